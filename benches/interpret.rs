@@ -1,0 +1,2 @@
+//! Benchmarks (filled by issue 2).
+fn main() {}

@@ -1,0 +1,1 @@
+//! The occupancy index: grown segments, and the clearance test.

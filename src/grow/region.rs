@@ -1,0 +1,1 @@
+//! The layout region: shapes painted in order on white, white erasing.

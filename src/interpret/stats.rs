@@ -1,0 +1,1 @@
+//! Exact word statistics of classic L-systems with big integers.

@@ -1,0 +1,40 @@
+//! Every limit stlc enforces, in one place, with its default.
+//!
+//! A limit turns runaway work (a huge depth, a runaway layout, hostile input)
+//! into a clear error that names the flag raising it, instead of an
+//! out-of-memory kill, a stack overflow or a hang. `docs/limits.md` explains
+//! each default.
+
+/// The limits in force for one run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Largest input file, bytes (`--max-input`).
+    pub max_input_bytes: u64,
+    /// Deepest nesting of `[ ] { } ( )` the parsers accept (`--max-nesting`).
+    pub max_nesting: usize,
+    /// Largest derivation depth / `generations` (`--max-depth`).
+    pub max_depth: u32,
+    /// Largest `n` in `[I n X]` (`--max-depth` too).
+    pub max_repeat: u32,
+    /// Most symbols a traversal (render, expand, stats' turtle pass) may
+    /// visit (`--max-symbols`).
+    pub max_symbols: u64,
+    /// Most symbols the `bfs` strategy may hold as one word (`--max-word`).
+    pub max_word: u64,
+    /// Most stems (drawn segments) growth may add (`--max-stems`).
+    pub max_stems: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_input_bytes: 64 * 1024 * 1024,
+            max_nesting: 10_000,
+            max_depth: 10_000,
+            max_repeat: 10_000,
+            max_symbols: 20_000_000_000,
+            max_word: 200_000_000,
+            max_stems: 1_000_000,
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! PNG backend (tiny-skia).

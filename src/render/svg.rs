@@ -1,0 +1,1 @@
+//! SVG backend: streamed text, fixed decimals.

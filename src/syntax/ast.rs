@@ -1,0 +1,386 @@
+//! Typed syntax trees of Outline Descriptions (`.od`) and Branch-Expansion
+//! Descriptions (`.bed`), after name resolution.
+//!
+//! One type serves both formats: a BED is a [`Description`] whose seed holds
+//! its growth decisions written out. Every node keeps the byte [`Span`] of its
+//! text; spans never take part in equality ([`Spanned`] and the `span` fields
+//! compare equal whatever they hold), so `parse(write(x)) == x` can be tested.
+//!
+//! Numbers are `f64` as written; the writer prints them with at most three
+//! decimals.
+
+use crate::color::Rgb;
+use crate::diag::Span;
+
+/// A byte span that every comparison ignores.
+#[derive(Debug, Clone, Default)]
+pub struct Loc(pub Span);
+
+impl PartialEq for Loc {
+    fn eq(&self, _other: &Self) -> bool {
+        true
+    }
+}
+
+impl From<Span> for Loc {
+    fn from(s: Span) -> Self {
+        Loc(s)
+    }
+}
+
+/// Which of the two STL formats a description came from (or goes to).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Outline Description: rule references in the seed are growth points.
+    Od,
+    /// Branch-Expansion Description: every decision written out.
+    Bed,
+}
+
+/// A whole `.od` or `.bed` file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Description {
+    /// Which format it was read as.
+    pub format: Format,
+    /// Tree name (`2DTree`).
+    pub name: String,
+    /// Where the name is.
+    pub name_loc: Loc,
+    /// Root coordinate, canvas units.
+    pub root: (f64, f64),
+    /// Where the root is.
+    pub root_loc: Loc,
+    /// Stem parameters.
+    pub params: StemParams,
+    /// Growth rules, in declaration order; [`RuleId`] indexes this.
+    pub rules: Vec<RuleDef>,
+    /// The seed as written, `None` if the file has no `SEED` section (then
+    /// the seed is `F` followed by the first rule: see [`Description::effective_seed`]).
+    pub seed: Option<Seed>,
+    /// The layout, if any.
+    pub layout: Option<Layout>,
+}
+
+/// `L=10(0) B=1(0) A=30 C=1`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StemParams {
+    /// `L`: segment length at order 0.
+    pub length: f64,
+    /// `L`'s decrement per order.
+    pub length_dec: f64,
+    /// `B`: stroke width (broadness) at order 0.
+    pub width: f64,
+    /// `B`'s decrement per order.
+    pub width_dec: f64,
+    /// `A`: turning angle in degrees (ours; default 30), `None` if not written.
+    pub angle: Option<f64>,
+    /// `C`: clearance between stems (ours), `None` if not written.
+    pub clearance: Option<f64>,
+    /// Where the parameters are.
+    pub loc: Loc,
+}
+
+/// Default turning angle when `A=` is not given (degrees).
+pub const DEFAULT_ANGLE: f64 = 30.0;
+
+impl StemParams {
+    /// The turning angle in force.
+    pub fn angle(&self) -> f64 {
+        self.angle.unwrap_or(DEFAULT_ANGLE)
+    }
+
+    /// Segment length of a stem of `order`.
+    pub fn length_at(&self, order: u32) -> f64 {
+        self.length - f64::from(order) * self.length_dec
+    }
+
+    /// Stroke width of a stem of `order`.
+    pub fn width_at(&self, order: u32) -> f64 {
+        self.width - f64::from(order) * self.width_dec
+    }
+
+    /// Whether a stem of `order` can exist (length and width both positive).
+    pub fn can_grow_at(&self, order: u32) -> bool {
+        self.length_at(order) > 0.0 && self.width_at(order) > 0.0
+    }
+}
+
+/// Index of a rule in [`Description::rules`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct RuleId(pub usize);
+
+/// `R1: [+F][-F]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RuleDef {
+    /// The rule's name.
+    pub name: String,
+    /// Where the name is.
+    pub name_loc: Loc,
+    /// What the rule draws.
+    pub body: Body,
+    /// The whole definition.
+    pub loc: Loc,
+}
+
+impl RuleDef {
+    /// Number of branches (top-level bracket groups): the slot count of its terms.
+    pub fn branch_count(&self) -> usize {
+        self.body
+            .items
+            .iter()
+            .filter(|i| matches!(i, BodyItem::Branch(_)))
+            .count()
+    }
+}
+
+/// A rule's body: trunk pieces and branches, in written order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// The items in written order.
+    pub items: Vec<BodyItem>,
+}
+
+/// One top-level item of a rule body.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BodyItem {
+    /// Drawing components outside any branch (trunk); no brackets.
+    Draw(DrawRun),
+    /// A fixed figure `[I n w]` (classic rewriting of `F` by `w`, n times).
+    Fixed(Fixed),
+    /// A top-level bracket group: one branch, one slot.
+    Branch(Branch),
+}
+
+/// One branch: `[+F R2]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Branch {
+    /// What the branch draws (may hold nested brackets, which are drawing).
+    pub pieces: Vec<Piece>,
+    /// The rule named at the end of the branch, growing at its tip in an OD
+    /// (`None`: the enclosing rule itself, self-resemblance). Draws nothing.
+    pub successor: Option<RuleRef>,
+    /// The whole bracket group.
+    pub loc: Loc,
+}
+
+/// Drawing inside a branch.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Piece {
+    /// Drawing components, nested brackets included.
+    Draw(DrawRun),
+    /// A fixed figure `[I n w]`.
+    Fixed(Fixed),
+}
+
+/// A run of drawing components `F f + - L R [ ] |` (whitespace removed).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawRun {
+    /// The components, one char each.
+    pub text: String,
+    /// Where they are.
+    pub loc: Loc,
+}
+
+/// A reference to a rule by name, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RuleRef {
+    /// Which rule.
+    pub rule: RuleId,
+    /// Where the name is.
+    pub loc: Loc,
+}
+
+/// `[I n w]` with `w` a string of drawing components: `F` rewritten by `w`,
+/// `n` times (`[I 1 w]` draws `w`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fixed {
+    /// `n`.
+    pub count: u32,
+    /// `w`: drawing components only.
+    pub word: String,
+    /// The whole form.
+    pub loc: Loc,
+}
+
+/// The seed: what grows from the root.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Seed {
+    /// Items in written order.
+    pub items: Vec<SeedItem>,
+    /// The `SEED ... ENDSEED` section.
+    pub loc: Loc,
+}
+
+/// One item of a seed. Brackets in `Draw` runs may enclose later items
+/// (`[+F R1]` is `Draw("[+F")`, `Term(R1)`, `Draw("]")`); the seed as a whole
+/// is balanced.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SeedItem {
+    /// Drawing components.
+    Draw(DrawRun),
+    /// A fixed figure `[I n w]`.
+    Fixed(Fixed),
+    /// A branch-expansion term or a bare rule reference.
+    Term(Term),
+    /// `[I n X]` with `X` a rule.
+    Repeat(Repeat),
+}
+
+/// `X{s1,...,sm}`: rule `X` drawn here, slot `i` growing at the tip of branch `i`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Term {
+    /// The rule.
+    pub rule: RuleId,
+    /// One entry per branch of the rule; `None` for an empty slot.
+    pub slots: Vec<Option<Slot>>,
+    /// Written as a bare name (`R1`) rather than `R1{...}`. In an OD a bare
+    /// reference is a growth point. In a BED a bare name means every slot
+    /// empty, so the BED parser stores it as `bare: false` with empty slots
+    /// (the writer always writes the full form).
+    pub bare: bool,
+    /// The whole term.
+    pub loc: Loc,
+}
+
+/// What grows at a branch tip.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Slot {
+    /// Another term (or bare reference).
+    Term(Term),
+    /// `[I n X]`.
+    Repeat(Repeat),
+}
+
+/// `[I n X]` with `X` a rule: `X` here and again at every branch tip, `n`
+/// levels in all.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Repeat {
+    /// `n`.
+    pub count: u32,
+    /// `X`.
+    pub rule: RuleId,
+    /// The whole form.
+    pub loc: Loc,
+}
+
+/// `LAYOUT ... ENDLAYOUT`: shapes painted in order on a white canvas.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layout {
+    /// Shapes in painting order.
+    pub shapes: Vec<LayoutShape>,
+    /// The section.
+    pub loc: Loc,
+}
+
+/// `(clGreen) RoundRect (0,0,180,192,7,7)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayoutShape {
+    /// Fill colour; white erases.
+    pub color: Rgb,
+    /// The colour as written (`clGreen`, `#00ff00`), kept for the writer.
+    pub color_text: String,
+    /// The geometry, normalised.
+    pub shape: Shape,
+    /// Which of the paper's two spellings was used (the writer keeps it).
+    pub spelling: Spelling,
+    /// Whether the paper's `< ... >` brackets were written around the shape.
+    pub angled: bool,
+    /// The whole line.
+    pub loc: Loc,
+}
+
+/// The two ways the paper writes shape arguments.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Spelling {
+    /// `Rectangle (x,y), w, h` / `RoundRect (x,y), w, h, r` (Table 1).
+    StartSize,
+    /// `Rectangle (x1,y1,x2,y2)` / `RoundRect (x1,y1,x2,y2,rx,ry)` (Delphi's
+    /// `TCanvas` arguments: two corners, then the corner ellipse's size).
+    Corners,
+    /// `Polygon (x1,y1), (x2,y2), ...`.
+    Points,
+}
+
+/// Layout geometry in canvas units, normalised: `(x, y)` is the top-left
+/// corner, `w` and `h` are positive.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// An axis-aligned rectangle.
+    Rect {
+        /// Left.
+        x: f64,
+        /// Top.
+        y: f64,
+        /// Width.
+        w: f64,
+        /// Height.
+        h: f64,
+    },
+    /// A rectangle with elliptic corners of radii `rx`, `ry`.
+    RoundRect {
+        /// Left.
+        x: f64,
+        /// Top.
+        y: f64,
+        /// Width.
+        w: f64,
+        /// Height.
+        h: f64,
+        /// Corner radius along x (half Delphi's ellipse width).
+        rx: f64,
+        /// Corner radius along y.
+        ry: f64,
+    },
+    /// The ellipse inscribed in the box.
+    Ellipse {
+        /// Left.
+        x: f64,
+        /// Top.
+        y: f64,
+        /// Width.
+        w: f64,
+        /// Height.
+        h: f64,
+    },
+    /// A closed polygon (at least 3 points, in written order).
+    Polygon(Vec<(f64, f64)>),
+}
+
+impl Description {
+    /// The rule a [`RuleId`] names.
+    pub fn rule(&self, id: RuleId) -> &RuleDef {
+        &self.rules[id.0]
+    }
+
+    /// Looks a rule up by name.
+    pub fn rule_id(&self, name: &str) -> Option<RuleId> {
+        self.rules.iter().position(|r| r.name == name).map(RuleId)
+    }
+
+    /// The seed in force: the written one, or `F` and a bare reference to
+    /// the first rule (Figure 9's `Seed(T) = FR1`). `None` if there is no
+    /// seed and no rule.
+    pub fn effective_seed(&self) -> Option<Seed> {
+        if let Some(s) = &self.seed {
+            return Some(s.clone());
+        }
+        if self.rules.is_empty() {
+            return None;
+        }
+        Some(Seed {
+            items: vec![
+                SeedItem::Draw(DrawRun {
+                    text: "F".into(),
+                    loc: Loc::default(),
+                }),
+                SeedItem::Term(Term {
+                    rule: RuleId(0),
+                    slots: vec![None; self.rules[0].branch_count()],
+                    bare: true,
+                    loc: Loc::default(),
+                }),
+            ],
+            loc: Loc::default(),
+        })
+    }
+}

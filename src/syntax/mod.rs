@@ -1,0 +1,218 @@
+//! Syntax: text to typed trees, for all three input kinds.
+//!
+//! One pest grammar (`grammar.pest` at the crate root) reads classic
+//! L-systems (`.lsys`), Outline Descriptions (`.od`) and Branch-Expansion
+//! Descriptions (`.bed`). Every failure is a [`Diagnostic`] with a byte span.
+//!
+//! - [`lsys`]: `.lsys` files into [`lsys::LSystem`].
+//! - [`stl`]: `.od`/`.bed` files into [`ast::Description`], names resolved.
+//! - [`ast`]: the STL syntax tree.
+//!
+//! Before pest sees any text, [`precheck`] enforces the input size and the
+//! nesting limit, so no input can drive the recursive-descent parser into a
+//! stack overflow.
+
+pub mod ast;
+pub mod lsys;
+pub mod stl;
+
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::limits::Limits;
+
+mod parser {
+    //! The generated parser; `Rule` names are the grammar's.
+    #![allow(missing_docs)]
+
+    /// The pest parser for `grammar.pest` (found from `CARGO_MANIFEST_DIR`).
+    #[derive(pest_derive::Parser)]
+    #[grammar = "grammar.pest"]
+    pub struct GrammarParser;
+}
+
+pub use parser::{GrammarParser, Rule};
+
+/// The three kinds of input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InputKind {
+    /// Outline Description.
+    Od,
+    /// Branch-Expansion Description.
+    Bed,
+    /// Classic L-system key-value file.
+    Lsys,
+}
+
+impl InputKind {
+    /// The kind a file name's extension names, if any.
+    pub fn from_path(path: &std::path::Path) -> Option<InputKind> {
+        match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+            "od" => Some(InputKind::Od),
+            "bed" => Some(InputKind::Bed),
+            "lsys" | "ls" => Some(InputKind::Lsys),
+            _ => None,
+        }
+    }
+
+    /// The usual extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            InputKind::Od => "od",
+            InputKind::Bed => "bed",
+            InputKind::Lsys => "lsys",
+        }
+    }
+}
+
+/// Checks raw input before parsing: size, UTF-8, and bracket nesting depth.
+/// Returns the text.
+pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnostics> {
+    if bytes.len() as u64 > limits.max_input_bytes {
+        return Err(Diagnostic::error(ErrorKind::InputTooLarge {
+            size: bytes.len() as u64,
+            limit: limits.max_input_bytes,
+        })
+        .with_help("raise the limit with --max-input BYTES")
+        .into());
+    }
+    let text = match std::str::from_utf8(bytes) {
+        Ok(t) => t,
+        Err(e) => {
+            let at = e.valid_up_to();
+            return Err(Diagnostic::error(ErrorKind::NotUtf8(at))
+                .with_span(at..at)
+                .with_help("stlc reads UTF-8 text files; is this the right file?")
+                .into());
+        }
+    };
+    let mut depth = 0usize;
+    let mut in_comment = false;
+    for (i, c) in text.char_indices() {
+        match c {
+            '\n' => in_comment = false,
+            _ if in_comment => {}
+            '#' => {
+                // `#rrggbb` colours are not comments; a comment starts a line
+                // or follows whitespace and is not followed by a hex digit run.
+                if !is_colour_at(text, i) {
+                    in_comment = true;
+                }
+            }
+            '[' | '{' | '(' => {
+                depth += 1;
+                if depth > limits.max_nesting {
+                    return Err(Diagnostic::error(ErrorKind::NestingTooDeep {
+                        limit: limits.max_nesting,
+                    })
+                    .with_span(i..i + 1)
+                    .with_label("this bracket is nested too deep")
+                    .with_help("raise the limit with --max-nesting N")
+                    .into());
+                }
+            }
+            ']' | '}' | ')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    Ok(text)
+}
+
+/// Whether the `#` at byte `i` starts a `#rgb`/`#rrggbb` colour.
+pub fn is_colour_at(text: &str, i: usize) -> bool {
+    let rest = &text[i + 1..];
+    let n = rest.bytes().take_while(u8::is_ascii_hexdigit).count();
+    let next = rest.as_bytes().get(n).copied();
+    (n == 6 || n == 3) && !matches!(next, Some(b) if b.is_ascii_alphanumeric() || b == b'_')
+}
+
+/// Turns a pest error into a diagnostic whose message names what the user
+/// would type, not grammar rule names.
+pub fn pest_error(e: pest::error::Error<Rule>) -> Diagnostic {
+    use pest::error::{ErrorVariant, InputLocation};
+    let span = match e.location {
+        InputLocation::Pos(p) => p..p,
+        InputLocation::Span((a, b)) => a..b,
+    };
+    let message = match &e.variant {
+        ErrorVariant::ParsingError {
+            positives,
+            negatives,
+        } => {
+            let mut parts = Vec::new();
+            if !positives.is_empty() {
+                parts.push(format!("expected {}", list(positives)));
+            }
+            if !negatives.is_empty() {
+                parts.push(format!("unexpected {}", list(negatives)));
+            }
+            if parts.is_empty() {
+                "unexpected text".to_string()
+            } else {
+                parts.join("; ")
+            }
+        }
+        ErrorVariant::CustomError { message } => message.clone(),
+    };
+    Diagnostic::error(ErrorKind::Syntax(message)).with_span(span)
+}
+
+fn list(rules: &[Rule]) -> String {
+    let mut names: Vec<String> = rules.iter().map(|r| describe(*r)).collect();
+    names.sort();
+    names.dedup();
+    match names.len() {
+        0 => String::new(),
+        1 => names.remove(0),
+        _ => {
+            let last = names.pop().unwrap_or_default();
+            format!("{} or {}", names.join(", "), last)
+        }
+    }
+}
+
+/// What a grammar rule looks like to a user: `` `generations` `` rather
+/// than `lsys_generations`. Rules without a description fall back to their
+/// name with `_` turned into spaces.
+pub fn describe(rule: Rule) -> String {
+    if let Some(d) = lsys::describe_rule(rule).or_else(|| stl::describe_rule(rule)) {
+        return d.to_string();
+    }
+    format!("{rule:?}").replace('_', " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nesting_beyond_the_limit_is_refused_before_parsing() {
+        let limits = Limits {
+            max_nesting: 3,
+            ..Limits::default()
+        };
+        assert!(precheck(b"[[[F]]]", &limits).is_ok());
+        let err = precheck(b"[[[[F]]]]", &limits).unwrap_err();
+        assert_eq!(
+            err.first_kind(),
+            Some(&ErrorKind::NestingTooDeep { limit: 3 })
+        );
+        assert_eq!(err.0[0].span, Some(3..4));
+    }
+
+    #[test]
+    fn colours_are_not_comments() {
+        let limits = Limits {
+            max_nesting: 1,
+            ..Limits::default()
+        };
+        // `#00ff00` is a colour, so the brackets after it count.
+        assert!(precheck(b"(#00ff00) [[", &limits).is_err());
+        // a comment hides brackets
+        assert!(precheck(b"# [[[[\nF", &limits).is_ok());
+    }
+
+    #[test]
+    fn invalid_utf8_is_reported_with_its_offset() {
+        let err = precheck(b"ab\xffcd", &Limits::default()).unwrap_err();
+        assert_eq!(err.first_kind(), Some(&ErrorKind::NotUtf8(2)));
+    }
+}

@@ -1,0 +1,273 @@
+//! The turtle: where drawing components end up.
+//!
+//! Interpretation (`interpret`) keeps the turtle *state* (position, heading,
+//! stack) and hands every drawn stem to a [`Turtle`] backend as a
+//! [`Segment`]. Backends: [`Recorder`] (segment lists, for tests),
+//! [`Bounds`] (the first, bounding pass: 000's `GetCurveSize`), and the PNG and
+//! SVG backends in `render`.
+//!
+//! Coordinates are canvas coordinates: origin top-left, y grows downward. The
+//! turtle starts heading up the canvas (-y); a left turn is counter-clockwise
+//! on screen.
+//!
+//! Headings are kept exactly, as an integer number of turns `k` plus a
+//! half-turn flag (`|`), never as an accumulated float angle. The unit
+//! direction of a heading comes from [`Headings::dir`], a pure function of
+//! `(k, flip)` computed with `libm` and cached, so every strategy that issues
+//! the same operations computes bit-identical positions.
+
+/// A point in canvas units.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Point {
+    /// Rightwards.
+    pub x: f64,
+    /// Downwards.
+    pub y: f64,
+}
+
+impl Point {
+    /// A point from its coordinates.
+    pub const fn new(x: f64, y: f64) -> Self {
+        Point { x, y }
+    }
+}
+
+/// One drawn stem: a straight line from `from` to `to`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    /// Where the pen went down.
+    pub from: Point,
+    /// Where it came up.
+    pub to: Point,
+    /// Stem order: number of enclosing rule applications (0 for the seed and
+    /// for every segment of a classic L-system). Backends map it to a width.
+    pub order: u32,
+}
+
+/// A drawing backend. It is told about each drawn segment, in drawing order.
+pub trait Turtle {
+    /// Draw one segment.
+    fn segment(&mut self, seg: Segment);
+}
+
+impl<T: Turtle + ?Sized> Turtle for &mut T {
+    #[inline]
+    fn segment(&mut self, seg: Segment) {
+        (**self).segment(seg)
+    }
+}
+
+/// Records every segment: the test backend.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Recorder {
+    /// The segments in drawing order.
+    pub segments: Vec<Segment>,
+}
+
+impl Turtle for Recorder {
+    #[inline]
+    fn segment(&mut self, seg: Segment) {
+        self.segments.push(seg);
+    }
+}
+
+/// An axis-aligned box in canvas units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BBox {
+    /// Smallest x.
+    pub min_x: f64,
+    /// Smallest y.
+    pub min_y: f64,
+    /// Largest x.
+    pub max_x: f64,
+    /// Largest y.
+    pub max_y: f64,
+}
+
+impl BBox {
+    /// The box holding just `p`.
+    pub fn at(p: Point) -> Self {
+        BBox {
+            min_x: p.x,
+            min_y: p.y,
+            max_x: p.x,
+            max_y: p.y,
+        }
+    }
+
+    /// Grows the box to hold `p`.
+    #[inline]
+    pub fn add(&mut self, p: Point) {
+        if p.x < self.min_x {
+            self.min_x = p.x;
+        }
+        if p.x > self.max_x {
+            self.max_x = p.x;
+        }
+        if p.y < self.min_y {
+            self.min_y = p.y;
+        }
+        if p.y > self.max_y {
+            self.max_y = p.y;
+        }
+    }
+
+    /// Grows the box to hold `other`.
+    pub fn union(&mut self, other: &BBox) {
+        self.add(Point::new(other.min_x, other.min_y));
+        self.add(Point::new(other.max_x, other.max_y));
+    }
+
+    /// Width.
+    pub fn width(&self) -> f64 {
+        self.max_x - self.min_x
+    }
+
+    /// Height.
+    pub fn height(&self) -> f64 {
+        self.max_y - self.min_y
+    }
+}
+
+/// The bounding pass: the box of every drawn segment, and how many there are.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Bounds {
+    /// The box, `None` until something is drawn.
+    pub bbox: Option<BBox>,
+    /// Number of segments seen.
+    pub count: u64,
+    /// Highest stem order seen.
+    pub max_order: u32,
+}
+
+impl Turtle for Bounds {
+    #[inline]
+    fn segment(&mut self, seg: Segment) {
+        match &mut self.bbox {
+            Some(b) => {
+                b.add(seg.from);
+                b.add(seg.to);
+            }
+            None => {
+                let mut b = BBox::at(seg.from);
+                b.add(seg.to);
+                self.bbox = Some(b);
+            }
+        }
+        self.count += 1;
+        if seg.order > self.max_order {
+            self.max_order = seg.order;
+        }
+    }
+}
+
+/// Counts segments and nothing else.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counter(pub u64);
+
+impl Turtle for Counter {
+    #[inline]
+    fn segment(&mut self, _seg: Segment) {
+        self.0 += 1;
+    }
+}
+
+/// How many cached directions to keep on each side of heading 0 before
+/// computing further ones directly (same function, so the same bits).
+const HEADING_CACHE: i64 = 1 << 14;
+
+/// Unit direction vectors for every heading `90° + k·angle (+180° if
+/// flipped)`, in canvas coordinates.
+#[derive(Debug, Clone)]
+pub struct Headings {
+    angle: f64,
+    /// `cache[i]` holds the direction for `k = i - HEADING_CACHE`, filled lazily.
+    cache: Vec<Option<(f64, f64)>>,
+}
+
+impl Headings {
+    /// Headings for a turning angle in degrees.
+    pub fn new(angle_deg: f64) -> Self {
+        Headings {
+            angle: angle_deg,
+            cache: Vec::new(),
+        }
+    }
+
+    /// The turning angle in degrees.
+    pub fn angle(&self) -> f64 {
+        self.angle
+    }
+
+    /// Unit vector `(dx, dy)` for heading `k` turns to the left of "up",
+    /// turned around if `flip`.
+    #[inline]
+    pub fn dir(&mut self, k: i64, flip: bool) -> (f64, f64) {
+        let (dx, dy) = self.unflipped(k);
+        if flip { (-dx, -dy) } else { (dx, dy) }
+    }
+
+    #[inline]
+    fn unflipped(&mut self, k: i64) -> (f64, f64) {
+        let idx = k + HEADING_CACHE;
+        if (0..2 * HEADING_CACHE).contains(&idx) {
+            let idx = idx as usize;
+            if let Some(Some(d)) = self.cache.get(idx) {
+                return *d;
+            }
+            let d = direction(self.angle, k);
+            if self.cache.len() <= idx {
+                self.cache.resize(idx + 1, None);
+            }
+            self.cache[idx] = Some(d);
+            d
+        } else {
+            direction(self.angle, k)
+        }
+    }
+}
+
+/// The canvas direction of heading `90° + k·angle`. Exact at multiples of 90°.
+pub fn direction(angle_deg: f64, k: i64) -> (f64, f64) {
+    // Reduce in degrees first so large k stay accurate and right angles exact.
+    let deg = (90.0 + (k as f64) * angle_deg).rem_euclid(360.0);
+    let (c, s) = if deg == 0.0 {
+        (1.0, 0.0)
+    } else if deg == 90.0 {
+        (0.0, 1.0)
+    } else if deg == 180.0 {
+        (-1.0, 0.0)
+    } else if deg == 270.0 {
+        (0.0, -1.0)
+    } else {
+        let rad = deg.to_radians();
+        (libm::cos(rad), libm::sin(rad))
+    };
+    // Mathematical angle, counter-clockwise; the canvas's y grows downward.
+    (c, -s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn starts_heading_up_and_left_turns_counter_clockwise() {
+        let mut h = Headings::new(90.0);
+        assert_eq!(h.dir(0, false), (0.0, -1.0)); // up
+        assert_eq!(h.dir(1, false), (-1.0, 0.0)); // left on screen
+        assert_eq!(h.dir(-1, false), (1.0, 0.0)); // right
+        assert_eq!(h.dir(0, true), (-0.0, 1.0)); // turned around: down
+    }
+
+    #[test]
+    fn cached_and_direct_directions_agree_bit_for_bit() {
+        let mut h = Headings::new(25.7);
+        for k in [-3, 0, 5, 99] {
+            assert_eq!(h.dir(k, false), direction(25.7, k));
+            assert_eq!(h.dir(k, false), direction(25.7, k)); // cached now
+        }
+        let far = HEADING_CACHE * 3;
+        assert_eq!(h.dir(far, false), direction(25.7, far));
+    }
+}
