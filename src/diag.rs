@@ -89,6 +89,20 @@ pub enum ErrorKind {
     /// Reading or writing a file failed.
     #[error("{0}")]
     Io(String),
+    /// The reader of our standard output went away (`stlc expand | head`).
+    /// The CLI exits quietly on it.
+    #[error("broken pipe")]
+    BrokenPipe,
+}
+
+/// The diagnostic for an I/O error while writing output: a broken pipe gets
+/// its own kind so the CLI can exit quietly.
+pub fn io_error(e: &std::io::Error, doing: &str) -> Diagnostic {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        Diagnostic::error(ErrorKind::BrokenPipe)
+    } else {
+        Diagnostic::error(ErrorKind::Io(format!("{doing}: {e}")))
+    }
 }
 
 fn plural(n: usize, suffix: &str) -> &str {
