@@ -1,8 +1,51 @@
-//! Command-line interface (binary only).
+//! Command-line interface (binary only): argument parsing, reading inputs,
+//! writing outputs, diagnostics on stderr, exit codes.
+//!
+//! Exit codes: 0 success (warnings may be printed), 1 the input or the work
+//! failed (diagnostics printed, nothing written), 2 usage error (clap).
 
+mod args;
+mod io;
+mod progress;
+mod report;
+mod run;
+
+use std::io::IsTerminal;
 use std::process::ExitCode;
 
-/// Runs the CLI.
+use clap::Parser;
+
+pub use args::Cli;
+
+/// Stack for the worker thread. Parsing is recursive descent (pest); input
+/// nesting is capped by `--max-nesting`, and this stack holds that cap with
+/// room to spare. Pages are only committed when touched.
+const WORKER_STACK: usize = 1 << 30;
+
+/// Parses arguments, runs the command on a big-stack thread, maps the result
+/// to an exit code.
 pub fn main() -> ExitCode {
-    ExitCode::SUCCESS
+    let cli = Cli::parse();
+    let color = match cli.color {
+        args::ColorChoice::Always => true,
+        args::ColorChoice::Never => false,
+        args::ColorChoice::Auto => {
+            std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none()
+        }
+    };
+    let worker = std::thread::Builder::new()
+        .name("stlc".into())
+        .stack_size(WORKER_STACK)
+        .spawn(move || run::run(&cli, color));
+    match worker.map(|h| h.join()) {
+        Ok(Ok(code)) => code,
+        Ok(Err(_)) => {
+            eprintln!("error: stlc crashed; this is a bug, please report it with the input file");
+            ExitCode::from(101)
+        }
+        Err(e) => {
+            eprintln!("error: cannot start the worker thread: {e}");
+            ExitCode::FAILURE
+        }
+    }
 }

@@ -1,0 +1,363 @@
+//! The command line, as clap derive types. Doc comments are the help text:
+//! the first paragraph shows with `-h`, all of it with `--help`.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+use stlc::Limits;
+
+/// Compile and render Structural Tree Language trees and classic L-systems.
+///
+/// stlc reads three kinds of text file:
+///   .od    Outline Description: rules, a seed, and a LAYOUT outline the tree grows into
+///   .bed   Branch-Expansion Description: the same with every branching decision written out
+///   .lsys  classic L-system: generations, axiom, rule X SUCC, angle
+///
+/// Use `-` for standard input or output. Exit status: 0 success, 1 the input
+/// or the work failed (nothing is written), 2 usage error.
+#[derive(Debug, Parser)]
+#[command(
+    name = "stlc",
+    version,
+    max_term_width = 100,
+    after_help = "Examples:\n  stlc render examples/koch.lsys -o koch.png\n  stlc compile examples/2dtree.od -o 2dtree.bed --strategy bfs\n  stlc render 2dtree.bed --show-layout -o 2dtree.svg\n  stlc stats examples/abop-1.24a.lsys --depth 57 --json\n\nDocumentation: docs/ in the source tree (language.md, cli.md, limits.md)."
+)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+
+    /// Colour in diagnostics: auto (when stderr is a terminal), always, never.
+    #[arg(long, value_enum, default_value_t = ColorChoice::Auto, global = true)]
+    pub color: ColorChoice,
+
+    /// Print no warnings and no progress bar; errors are still printed.
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
+}
+
+/// When to colour diagnostics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ColorChoice {
+    /// When stderr is a terminal and NO_COLOR is unset.
+    Auto,
+    /// Always.
+    Always,
+    /// Never.
+    Never,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Draw an .lsys, .od or .bed file to PNG or SVG.
+    ///
+    /// The picture is fitted to --size from a first bounding pass; a BED or
+    /// OD with a LAYOUT uses the layout's canvas instead. An .od is grown
+    /// first (with --strategy as the growth strategy), then drawn.
+    ///
+    /// Examples:
+    ///   stlc render examples/koch.lsys -o koch.png
+    ///   stlc render examples/abop-1.24a.lsys --depth 6 --strategy bfs -o tree.svg
+    ///   stlc render examples/2dtree.od --strategy dfs --show-layout -o vine.png
+    ///   cat tree.bed | stlc render - --from bed -f svg -o - > tree.svg
+    Render(RenderArgs),
+
+    /// Grow an Outline Description (.od) into a Branch-Expansion Description (.bed).
+    ///
+    /// Every growth point in the seed grows under space occupancy: a rule
+    /// application succeeds only if all its stems lie inside the LAYOUT and
+    /// keep the clearance from stems already grown. The result records every
+    /// decision and is byte-identical for the same input and options.
+    ///
+    /// Examples:
+    ///   stlc compile examples/2dtree.od -o 2dtree.bed
+    ///   stlc compile examples/fig9.od --strategy dfs -o -
+    Compile(CompileArgs),
+
+    /// Print the derived word: an .lsys's symbols at the depth, or a .bed's
+    /// (or grown .od's) seed as drawing components only.
+    ///
+    /// Examples:
+    ///   stlc expand examples/abop-1.24a.lsys --depth 2
+    ///   stlc expand examples/paper-worked.bed
+    Expand(ExpandArgs),
+
+    /// Exact word length and symbol counts of an .lsys at any depth, and
+    /// the extent of a unit-step turtle when the word is small enough to walk.
+    ///
+    /// Counts are exact big integers (memoised per symbol and depth), so
+    /// depth 57 of F -> F[+F]F[-F]F prints its 41-digit length at once.
+    ///
+    /// Examples:
+    ///   stlc stats examples/abop-1.24a.lsys --depth 5
+    ///   stlc stats examples/abop-1.24a.lsys --depth 57 --json
+    Stats(StatsArgs),
+
+    /// Validate an .od, .bed or .lsys file and print a short summary.
+    ///
+    /// Examples:
+    ///   stlc check examples/2dtree.od
+    ///   stlc check tree.bed
+    Check(CheckArgs),
+}
+
+/// The input file and how to read it.
+#[derive(Debug, Args)]
+pub struct InputArgs {
+    /// Input file (.od, .bed, .lsys), or `-` for standard input.
+    pub input: String,
+
+    /// Input kind, when the extension does not tell (stdin, other names).
+    #[arg(long, value_enum)]
+    pub from: Option<FromKind>,
+}
+
+/// The input kinds for `--from`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FromKind {
+    /// Outline Description.
+    Od,
+    /// Branch-Expansion Description.
+    Bed,
+    /// Classic L-system.
+    Lsys,
+}
+
+/// `--strategy`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum StrategyArg {
+    /// Depth-first: streams the derivation (render, expand); grows a
+    /// branch's whole subtree before its sibling (compile).
+    #[default]
+    Dfs,
+    /// Breadth-first: rewrites the whole word level by level (render,
+    /// expand); grows level by level (compile).
+    Bfs,
+}
+
+impl From<StrategyArg> for stlc::interpret::Strategy {
+    fn from(s: StrategyArg) -> Self {
+        match s {
+            StrategyArg::Dfs => stlc::interpret::Strategy::Dfs,
+            StrategyArg::Bfs => stlc::interpret::Strategy::Bfs,
+        }
+    }
+}
+
+/// Limits; each default is explained in docs/limits.md.
+#[derive(Debug, Args, Clone)]
+pub struct LimitArgs {
+    /// Largest input file in bytes.
+    #[arg(long, value_name = "BYTES", default_value_t = Limits::default().max_input_bytes)]
+    pub max_input: u64,
+    /// Deepest nesting of brackets and braces accepted.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_nesting)]
+    pub max_nesting: usize,
+    /// Largest derivation depth, `generations`, or count in `[I n X]`.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_depth)]
+    pub max_depth: u32,
+    /// Most symbols one traversal (render, expand, stats extent) may visit.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_symbols)]
+    pub max_symbols: u64,
+    /// Most symbols the bfs strategy may hold in memory as one word.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_word)]
+    pub max_word: u64,
+}
+
+impl LimitArgs {
+    /// The limits these flags set (`max_stems` from `stems`).
+    pub fn limits(&self, stems: Option<u64>) -> Limits {
+        Limits {
+            max_input_bytes: self.max_input,
+            max_nesting: self.max_nesting,
+            max_depth: self.max_depth,
+            max_repeat: self.max_depth,
+            max_symbols: self.max_symbols,
+            max_word: self.max_word,
+            max_stems: stems.unwrap_or(Limits::default().max_stems),
+        }
+    }
+}
+
+/// Options of growth, shared by `compile` and `render` of an .od.
+#[derive(Debug, Args, Clone)]
+pub struct GrowArgs {
+    /// Stop growth after N stems (drawn segments), with a warning. Needed
+    /// when an .od has no LAYOUT, count or decrement to end growth.
+    #[arg(long, value_name = "N")]
+    pub max_stems: Option<u64>,
+    /// Clearance kept between stems, canvas units (overrides the file's C=).
+    #[arg(long, value_name = "C")]
+    pub clearance: Option<f64>,
+}
+
+/// `stlc render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    /// Output file (.png or .svg), or `-` for standard output. Default: the
+    /// input's name with the format's extension.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: Option<String>,
+
+    /// Output format; default from the output's extension, else png.
+    #[arg(short, long, value_enum)]
+    pub format: Option<FormatArg>,
+
+    /// Derivation strategy (same picture, different cost); for an .od, the
+    /// growth strategy (different trees).
+    #[arg(short, long, value_enum, default_value_t = StrategyArg::Dfs)]
+    pub strategy: StrategyArg,
+
+    /// Derivation depth of an .lsys (overrides its `generations`).
+    #[arg(short, long, value_name = "N")]
+    pub depth: Option<u32>,
+
+    /// Output size in pixels, WxH (e.g. 1024x768). Default: 800 on the
+    /// longest side, the other from the picture's aspect ratio.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+
+    /// Paint the LAYOUT shapes in their colours under the tree.
+    #[arg(long)]
+    pub show_layout: bool,
+
+    /// Stroke colour (#rrggbb or a Delphi name such as clMaroon).
+    #[arg(long, value_name = "COLOR")]
+    pub stroke: Option<String>,
+
+    /// Background colour (#rrggbb, a Delphi name, or `none` for transparent).
+    #[arg(long, value_name = "COLOR")]
+    pub background: Option<String>,
+
+    #[command(flatten)]
+    pub grow: GrowArgs,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
+}
+
+/// `--format`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FormatArg {
+    /// PNG image.
+    Png,
+    /// SVG drawing.
+    Svg,
+}
+
+/// `stlc compile`.
+#[derive(Debug, Args)]
+pub struct CompileArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    /// Output .bed file, or `-` for standard output. Default: the input's
+    /// name with .bed (standard output when reading standard input).
+    #[arg(short, long, value_name = "OUT")]
+    pub output: Option<String>,
+
+    /// Growth strategy: bfs grows level by level (balanced trees), dfs a
+    /// branch's whole subtree before its sibling (vines, ornament).
+    #[arg(short, long, value_enum, default_value_t = StrategyArg::Bfs)]
+    pub strategy: StrategyArg,
+
+    #[command(flatten)]
+    pub grow: GrowArgs,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
+}
+
+/// `stlc expand`.
+#[derive(Debug, Args)]
+pub struct ExpandArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    /// Output file, or `-` (the default) for standard output.
+    #[arg(short, long, value_name = "OUT", default_value = "-")]
+    pub output: String,
+
+    /// Derivation strategy: dfs streams, bfs builds the word in memory.
+    #[arg(short, long, value_enum, default_value_t = StrategyArg::Dfs)]
+    pub strategy: StrategyArg,
+
+    /// Derivation depth of an .lsys (overrides its `generations`).
+    #[arg(short, long, value_name = "N")]
+    pub depth: Option<u32>,
+
+    #[command(flatten)]
+    pub grow: GrowArgs,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
+}
+
+/// `stlc stats`.
+#[derive(Debug, Args)]
+pub struct StatsArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    /// Derivation depth (overrides the file's `generations`).
+    #[arg(short, long, value_name = "N")]
+    pub depth: Option<u32>,
+
+    /// Print JSON: {"length", "segments", "bbox", "end", "symbols"}, exact
+    /// integers as decimal strings.
+    #[arg(long)]
+    pub json: bool,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
+}
+
+/// `stlc check`.
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
+}
+
+/// Parses `WxH`.
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{s}` is not WxH, e.g. 800x600"))?;
+    let num = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("`{t}` is not a whole number of pixels"))
+    };
+    let (w, h) = (num(w)?, num(h)?);
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err("each side must be between 1 and 16384 pixels".into());
+    }
+    Ok((w, h))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_and_absurd_ones_are_refused() {
+        assert_eq!(parse_size("800x600"), Ok((800, 600)));
+        assert_eq!(parse_size("64X64"), Ok((64, 64)));
+        assert!(parse_size("0x10").is_err());
+        assert!(parse_size("800").is_err());
+        assert!(parse_size("20000x10").is_err());
+    }
+
+    #[test]
+    fn the_command_line_is_well_formed() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
+    }
+}

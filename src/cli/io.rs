@@ -1,0 +1,177 @@
+//! Inputs and outputs: `-` for stdin/stdout, size limits, atomic writes.
+//!
+//! Every output file is written to a temporary file in the target's
+//! directory and renamed over the target only when complete, so a failure
+//! never leaves a truncated file or clobbers the previous one, and no
+//! temporary file is left behind (it is deleted when dropped).
+
+use std::io::{self, BufWriter, IsTerminal, Read, Write};
+use std::path::{Path, PathBuf};
+
+use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+
+/// Where input comes from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Input {
+    /// Standard input (`-`).
+    Stdin,
+    /// A file.
+    Path(PathBuf),
+}
+
+impl Input {
+    /// `-` is stdin, anything else a path.
+    pub fn parse(s: &str) -> Input {
+        if s == "-" {
+            Input::Stdin
+        } else {
+            Input::Path(PathBuf::from(s))
+        }
+    }
+
+    /// The name diagnostics show.
+    pub fn display_name(&self) -> String {
+        match self {
+            Input::Stdin => "<stdin>".to_string(),
+            Input::Path(p) => p.display().to_string(),
+        }
+    }
+
+    /// Reads the whole input, refusing more than `limit` bytes without
+    /// reading further.
+    pub fn read(&self, limit: u64) -> Result<Vec<u8>, Diagnostics> {
+        let mut buf = Vec::new();
+        let res = match self {
+            Input::Stdin => io::stdin().lock().take(limit + 1).read_to_end(&mut buf),
+            Input::Path(p) => std::fs::File::open(p)
+                .and_then(|f| f.take(limit + 1).read_to_end(&mut buf)),
+        };
+        if let Err(e) = res {
+            let what = match self {
+                Input::Stdin => "cannot read standard input".to_string(),
+                Input::Path(p) => format!("cannot read `{}`", p.display()),
+            };
+            let mut d = Diagnostic::error(ErrorKind::Io(format!("{what}: {e}")));
+            if e.kind() == io::ErrorKind::NotFound {
+                d = d.with_help("check the path; `-` reads standard input");
+            }
+            return Err(d.into());
+        }
+        if buf.len() as u64 > limit {
+            return Err(Diagnostic::error(ErrorKind::InputTooLarge {
+                size: buf.len() as u64,
+                limit,
+            })
+            .with_help("raise the limit with --max-input BYTES")
+            .into());
+        }
+        Ok(buf)
+    }
+}
+
+/// Where output goes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Output {
+    /// Standard output (`-`).
+    Stdout,
+    /// A file, written atomically.
+    Path(PathBuf),
+}
+
+impl Output {
+    /// `-` is stdout, anything else a path.
+    pub fn parse(s: &str) -> Output {
+        if s == "-" {
+            Output::Stdout
+        } else {
+            Output::Path(PathBuf::from(s))
+        }
+    }
+
+    /// The output's extension, lower case, if it is a file that has one.
+    pub fn extension(&self) -> Option<String> {
+        match self {
+            Output::Stdout => None,
+            Output::Path(p) => p
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase),
+        }
+    }
+
+    /// Whether this is a terminal (binary output there is refused).
+    pub fn is_terminal(&self) -> bool {
+        matches!(self, Output::Stdout) && io::stdout().is_terminal()
+    }
+
+    /// Runs `write` against this output. A file is written to a temporary
+    /// file beside it and renamed into place only if `write` succeeds.
+    pub fn write_with(
+        &self,
+        write: impl FnOnce(&mut dyn Write) -> Result<(), Diagnostics>,
+    ) -> Result<(), Diagnostics> {
+        match self {
+            Output::Stdout => {
+                let stdout = io::stdout();
+                let mut w = BufWriter::with_capacity(1 << 16, stdout.lock());
+                write(&mut w)?;
+                w.flush().map_err(|e| io_error(&e, "cannot write to standard output"))?;
+                Ok(())
+            }
+            Output::Path(target) => write_atomically(target, write),
+        }
+    }
+}
+
+fn write_atomically(
+    target: &Path,
+    write: impl FnOnce(&mut dyn Write) -> Result<(), Diagnostics>,
+) -> Result<(), Diagnostics> {
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    if target.is_dir() {
+        return Err(Diagnostic::error(ErrorKind::Io(format!(
+            "`{}` is a directory",
+            target.display()
+        )))
+        .with_help("give a file name with -o, e.g. -o tree.png")
+        .into());
+    }
+    let tmp = tempfile::Builder::new()
+        .prefix(".stlc-")
+        .suffix(".tmp")
+        .tempfile_in(&dir)
+        .map_err(|e| {
+            Diagnostic::error(ErrorKind::Io(format!(
+                "cannot create a file in `{}`: {e}",
+                dir.display()
+            )))
+            .with_help("check that the directory exists and is writable")
+        })?;
+    let mut w = BufWriter::with_capacity(1 << 16, tmp);
+    write(&mut w)?;
+    let tmp = w
+        .into_inner()
+        .map_err(|e| io_error(e.error(), &format!("cannot write `{}`", target.display())))?;
+    tmp.as_file()
+        .sync_all()
+        .map_err(|e| io_error(&e, &format!("cannot write `{}`", target.display())))?;
+    tmp.persist(target).map_err(|e| {
+        Diagnostic::error(ErrorKind::Io(format!(
+            "cannot replace `{}`: {}",
+            target.display(),
+            e.error
+        )))
+    })?;
+    Ok(())
+}
+
+/// `tree.od` with a new extension: the default output beside the input.
+pub fn sibling(input: &Input, extension: &str) -> Option<Output> {
+    match input {
+        Input::Stdin => None,
+        Input::Path(p) => Some(Output::Path(p.with_extension(extension))),
+    }
+}

@@ -1,0 +1,77 @@
+//! A progress bar on stderr for long work, shown only on a terminal, only
+//! when the work lasts more than a moment, and never with `--quiet`.
+
+use std::io::IsTerminal;
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use stlc::progress::Progress;
+
+/// How long work may run before a bar appears.
+const GRACE: Duration = Duration::from_millis(400);
+
+/// The CLI's [`Progress`]: an indicatif bar that appears after [`GRACE`].
+pub struct Bar {
+    enabled: bool,
+    started: Option<(Instant, String, u64)>,
+    bar: Option<ProgressBar>,
+}
+
+impl Bar {
+    /// A bar that shows itself only if stderr is a terminal and not `quiet`.
+    pub fn new(quiet: bool) -> Self {
+        Bar {
+            enabled: !quiet && std::io::stderr().is_terminal(),
+            started: None,
+            bar: None,
+        }
+    }
+}
+
+impl Progress for Bar {
+    fn start(&mut self, what: &str, total: u64) {
+        if let Some(b) = self.bar.take() {
+            b.finish_and_clear();
+        }
+        self.started = Some((Instant::now(), what.to_string(), total));
+    }
+
+    fn update(&mut self, done: u64) {
+        if !self.enabled {
+            return;
+        }
+        if self.bar.is_none() {
+            let Some((t0, what, total)) = &self.started else {
+                return;
+            };
+            if t0.elapsed() < GRACE {
+                return;
+            }
+            let bar = ProgressBar::with_draw_target(Some(*total), ProgressDrawTarget::stderr());
+            let style = ProgressStyle::with_template(
+                "{spinner} {msg} [{bar:30}] {percent:>3}% {human_pos}/{human_len} ({eta} left)",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> ");
+            bar.set_style(style);
+            bar.set_message(what.clone());
+            self.bar = Some(bar);
+        }
+        if let Some(b) = &self.bar {
+            b.set_position(done);
+        }
+    }
+
+    fn finish(&mut self) {
+        if let Some(b) = self.bar.take() {
+            b.finish_and_clear();
+        }
+        self.started = None;
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        self.finish();
+    }
+}
