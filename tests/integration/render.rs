@@ -168,7 +168,8 @@ fn assert_text_matches(name: &str, live: &str) {
         std::fs::write(&golden, live).unwrap();
         return;
     }
-    let expected = std::fs::read_to_string(&golden).unwrap_or_default();
+    let expected = std::fs::read_to_string(&golden)
+        .unwrap_or_else(|e| format!("(cannot read {}: {e})\n", golden.display()));
     if expected != live {
         let store = manifest_path("tests/store");
         std::fs::create_dir_all(&store).unwrap();
@@ -604,6 +605,11 @@ fn empty_and_single_point_drawings_give_valid_images() {
     let out = render_full("{F}", 90.0, 1.0, None, &[], &st, ImageFormat::Svg, None).unwrap();
     let svg = String::from_utf8(out).unwrap();
     assert!(svg.contains("d=\"M400.00 400.00 L400.00 400.00\""), "{svg}");
+    // PNG draws it as a round dot too, like SVG viewers do.
+    let out = render_full("{F}", 90.0, 1.0, None, &[], &st, ImageFormat::Png, None).unwrap();
+    let p = decode(&out);
+    assert!(is_dark(&p, 400, 400) && is_dark(&p, 398, 401));
+    assert_eq!(rgba(&p, 410, 400), [255, 255, 255, 255]);
 }
 
 #[test]
