@@ -1,1 +1,209 @@
 //! SVG backend: streamed text, fixed decimals.
+//!
+//! [`SvgTurtle`] writes SVG 1.1 as the drawing runs: the `<svg>` element of
+//! the fitted size, a background `<rect>`, the underlay ([`Fill`]s as
+//! `<path fill-rule="evenodd">`), then the segments as stroked
+//! `<path d="M.. L..">` elements with round caps and joins. Like the PNG
+//! backend it batches one path per stroke width, flushed every
+//! [`BATCH_SEGMENTS`] segments and on every width change, and a segment that
+//! starts where the previous one ended extends the current subpath.
+//!
+//! Coordinates are output pixels with exactly two decimals (`-0.00` is
+//! written `0.00`); lines end in LF and the file in a newline, so the same
+//! drawing gives the same bytes. Its sections mirror `png.rs`.
+
+use std::fmt::Write as _;
+use std::io::{self, Write};
+
+use super::{BATCH_SEGMENTS, Fill, Fit, Style, Width, stroke_px};
+use crate::color::Rgb;
+use crate::diag::{Diagnostics, io_error};
+use crate::turtle::{Point, Segment, Turtle};
+
+// ---------------------------------------------------------------------------
+// Canvas
+
+/// A turtle that streams SVG text into `W`.
+pub struct SvgTurtle<W: Write> {
+    out: W,
+    /// The first write error; later writes are skipped and `finish` reports it.
+    error: Option<io::Error>,
+    fit: Fit,
+    width: Width,
+    stroke: Rgb,
+    /// The `d` data being collected: all its segments share `batch_width`.
+    batch: String,
+    batch_width: f64,
+    batch_len: usize,
+    /// Where the last segment ended (canvas units), to extend subpaths.
+    last_to: Option<Point>,
+}
+
+impl<W: Write> SvgTurtle<W> {
+    /// Writes the `<svg>` start tag of size `fit.width` x `fit.height` and
+    /// the background (none when transparent).
+    pub fn new(out: W, fit: Fit, style: &Style) -> Result<SvgTurtle<W>, Diagnostics> {
+        let mut turtle = SvgTurtle {
+            out,
+            error: None,
+            fit,
+            width: style.width,
+            stroke: style.stroke,
+            batch: String::new(),
+            batch_width: 0.0,
+            batch_len: 0,
+            last_to: None,
+        };
+        let (w, h) = (fit.width, fit.height);
+        let mut head = format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" \
+             width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n"
+        );
+        if let Some(bg) = style.background {
+            let _ = writeln!(head, "<rect width=\"{w}\" height=\"{h}\" fill=\"{bg}\"/>");
+        }
+        turtle.write(&head);
+        match turtle.error.take() {
+            Some(e) => Err(io_error(&e, "writing the SVG image").into()),
+            None => Ok(turtle),
+        }
+    }
+
+    // -----------------------------------------------------------------------
+    // Underlay
+
+    /// Writes a filled area (a layout shape) with the even-odd rule. Call
+    /// before drawing segments: it paints over whatever is there.
+    pub fn fill(&mut self, fill: &Fill) {
+        self.flush();
+        let mut d = String::new();
+        for ring in &fill.rings {
+            let mut points = ring.iter().map(|&p| self.fit.map(p));
+            if let Some(first) = points.next() {
+                push_point(&mut d, 'M', first);
+                for p in points {
+                    push_point(&mut d, 'L', p);
+                }
+                d.push_str(" Z");
+            }
+        }
+        if !d.is_empty() {
+            let text = format!(
+                "<path fill=\"{}\" fill-rule=\"evenodd\" d=\"{}\"/>\n",
+                fill.color,
+                d.trim_start()
+            );
+            self.write(&text);
+        }
+    }
+
+    // -----------------------------------------------------------------------
+    // Strokes
+
+    /// Writes the collected path as one `<path>` element and starts an
+    /// empty one.
+    fn flush(&mut self) {
+        self.batch_len = 0;
+        self.last_to = None;
+        if self.batch.is_empty() {
+            return;
+        }
+        let mut width = String::new();
+        push_num(&mut width, self.batch_width);
+        let text = format!(
+            "<path fill=\"none\" stroke=\"{}\" stroke-width=\"{width}\" \
+             stroke-linecap=\"round\" stroke-linejoin=\"round\" d=\"{}\"/>\n",
+            self.stroke,
+            self.batch.trim_start()
+        );
+        self.batch.clear();
+        self.write(&text);
+    }
+
+    // -----------------------------------------------------------------------
+    // Output
+
+    /// Writes what is left and the end tag; hands back the writer (not
+    /// flushed) or the first write error.
+    pub fn finish(mut self) -> Result<W, Diagnostics> {
+        self.flush();
+        self.write("</svg>\n");
+        match self.error {
+            Some(e) => Err(io_error(&e, "writing the SVG image").into()),
+            None => Ok(self.out),
+        }
+    }
+
+    /// Writes `text` unless an earlier write failed.
+    fn write(&mut self, text: &str) {
+        if self.error.is_none() {
+            if let Err(e) = self.out.write_all(text.as_bytes()) {
+                self.error = Some(e);
+            }
+        }
+    }
+}
+
+impl<W: Write> Turtle for SvgTurtle<W> {
+    fn segment(&mut self, seg: Segment) {
+        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
+        if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
+            // Not writable as a number; the PNG backend skips it too.
+            return;
+        }
+        let width = stroke_px(&self.width, self.fit.scale, seg.order);
+        if self.batch_len >= BATCH_SEGMENTS || (self.batch_len > 0 && width != self.batch_width) {
+            self.flush();
+        }
+        self.batch_width = width;
+        if self.last_to != Some(seg.from) {
+            push_point(&mut self.batch, 'M', from);
+        }
+        push_point(&mut self.batch, 'L', to);
+        self.batch_len += 1;
+        self.last_to = Some(seg.to);
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Helpers
+
+/// Appends ` Cx y` (command letter, then the point with two decimals).
+fn push_point(buf: &mut String, command: char, p: Point) {
+    buf.push(' ');
+    buf.push(command);
+    push_num(buf, p.x);
+    buf.push(' ');
+    push_num(buf, p.y);
+}
+
+/// Appends `x` with exactly two decimals; `-0.00` becomes `0.00`, so the
+/// sign of a rounded-away zero never shows in the bytes.
+pub fn push_num(buf: &mut String, x: f64) {
+    let start = buf.len();
+    let _ = write!(buf, "{x:.2}");
+    if &buf[start..] == "-0.00" {
+        buf.remove(start);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn num(x: f64) -> String {
+        let mut s = String::new();
+        push_num(&mut s, x);
+        s
+    }
+
+    #[test]
+    fn numbers_have_two_decimals_and_no_negative_zero() {
+        assert_eq!(num(1.0), "1.00");
+        assert_eq!(num(-0.0), "0.00");
+        assert_eq!(num(-0.004), "0.00");
+        assert_eq!(num(-0.006), "-0.01");
+        assert_eq!(num(12.345_678), "12.35");
+        assert_eq!(num(-3.5), "-3.50");
+    }
+}

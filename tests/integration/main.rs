@@ -1,2 +1,4 @@
 //! One integration-test binary; each area is a module.
+
 mod cli;
+mod render;

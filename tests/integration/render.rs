@@ -1,0 +1,737 @@
+//! Rendering: PNG and SVG backends, fitting, widths, underlay.
+//!
+//! Drawings come from hand-written op strings run through the shared
+//! interpreter, so every expected pixel and coordinate here is worked out
+//! from the geometry, not read back from the renderer. References live in
+//! `tests/cases/render/`; `STLC_BLESS=1` rewrites them, and a mismatch
+//! leaves the live output in `tests/store/`.
+
+use std::path::PathBuf;
+
+use stlc::color::Rgb;
+use stlc::diag::{Diagnostic, Diagnostics, ErrorKind};
+use stlc::interpret::{Interp, Op, StemLength};
+use stlc::progress::{NoProgress, Progress};
+use stlc::render::{
+    self, DEFAULT_SIDE, Fill, Fit, ImageFormat, PngTurtle, RenderOptions, Style, Width,
+};
+use stlc::turtle::{BBox, Point, Segment, Turtle};
+use tiny_skia::Pixmap;
+
+// ---------------------------------------------------------------------------
+// Helpers
+
+/// Ops of a drawing string: the STL alphabet, plus `{` / `}` for entering
+/// and leaving a rule application (one order deeper).
+fn ops(text: &str) -> Vec<Op> {
+    text.chars()
+        .filter_map(|c| match c {
+            '{' => Some(Op::Enter),
+            '}' => Some(Op::Leave),
+            c => Op::of_stl(c),
+        })
+        .collect()
+}
+
+/// Runs `ops` from the origin with unit-length stems (minus `decrement` per
+/// order).
+fn run(ops: &[Op], angle: f64, decrement: f64, turtle: &mut dyn Turtle) {
+    let length = StemLength {
+        base: 1.0,
+        decrement,
+    };
+    let mut interp = Interp::new(turtle, Point::new(0.0, 0.0), angle, length);
+    for &op in ops {
+        interp.apply(op);
+    }
+}
+
+fn style(width: Width, background: Option<Rgb>) -> Style {
+    Style {
+        stroke: Rgb::BLACK,
+        background,
+        width,
+    }
+}
+
+/// Renders `text` (see [`ops`]) and returns the bytes.
+fn render_ops(
+    text: &str,
+    angle: f64,
+    style: &Style,
+    format: ImageFormat,
+    size: Option<(u32, u32)>,
+) -> Vec<u8> {
+    render_full(text, angle, 0.0, None, &[], style, format, size).unwrap()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn render_full(
+    text: &str,
+    angle: f64,
+    decrement: f64,
+    view: Option<BBox>,
+    underlay: &[Fill],
+    style: &Style,
+    format: ImageFormat,
+    size: Option<(u32, u32)>,
+) -> Result<Vec<u8>, Diagnostics> {
+    let ops = ops(text);
+    let mut drawing = |t: &mut dyn Turtle, _p: &mut dyn Progress| {
+        run(&ops, angle, decrement, t);
+        Ok(())
+    };
+    let mut out = Vec::new();
+    let opts = RenderOptions { format, size };
+    render::render(
+        &mut drawing,
+        view,
+        underlay,
+        style,
+        &opts,
+        &mut out,
+        &mut NoProgress,
+    )?;
+    Ok(out)
+}
+
+fn decode(png: &[u8]) -> Pixmap {
+    Pixmap::decode_png(png).expect("a valid PNG")
+}
+
+/// Demultiplied RGBA of one pixel.
+fn rgba(p: &Pixmap, x: u32, y: u32) -> [u8; 4] {
+    let c = p.pixel(x, y).unwrap().demultiply();
+    [c.red(), c.green(), c.blue(), c.alpha()]
+}
+
+/// Dark: an opaque pixel much closer to black than to white.
+fn is_dark(p: &Pixmap, x: u32, y: u32) -> bool {
+    let [r, g, b, a] = rgba(p, x, y);
+    a > 200 && u32::from(r) + u32::from(g) + u32::from(b) < 3 * 100
+}
+
+fn manifest_path(rel: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel)
+}
+
+fn blessing() -> bool {
+    std::env::var_os("STLC_BLESS").is_some_and(|v| v == "1")
+}
+
+/// Compares `live` with `tests/cases/render/<name>.png`: same size, every
+/// channel within 1. `STLC_BLESS=1` rewrites the reference; a mismatch
+/// writes `tests/store/<name>.live.png` for a look.
+fn assert_png_matches(name: &str, live: &Pixmap) {
+    let reference = manifest_path(&format!("tests/cases/render/{name}.png"));
+    if blessing() {
+        live.save_png(&reference).unwrap();
+        return;
+    }
+    let problem = match Pixmap::load_png(&reference) {
+        Err(e) => Some(format!("cannot read {}: {e}", reference.display())),
+        Ok(r) if (r.width(), r.height()) != (live.width(), live.height()) => Some(format!(
+            "size {}x{}, reference {}x{}",
+            live.width(),
+            live.height(),
+            r.width(),
+            r.height()
+        )),
+        Ok(r) => {
+            let off = (0..r.height())
+                .flat_map(|y| (0..r.width()).map(move |x| (x, y)))
+                .filter(|&(x, y)| {
+                    let (a, b) = (rgba(&r, x, y), rgba(live, x, y));
+                    a.iter().zip(b).any(|(a, b)| a.abs_diff(b) > 1)
+                })
+                .count();
+            (off > 0).then(|| format!("{off} pixels differ by more than 1"))
+        }
+    };
+    if let Some(problem) = problem {
+        let store = manifest_path("tests/store");
+        std::fs::create_dir_all(&store).unwrap();
+        let live_path = store.join(format!("{name}.live.png"));
+        live.save_png(&live_path).unwrap();
+        panic!(
+            "{name}.png: {problem}; live output in {} (STLC_BLESS=1 to accept)",
+            live_path.display()
+        );
+    }
+}
+
+/// Compares `live` with the text golden `tests/cases/render/<name>`, the
+/// same way as [`assert_png_matches`].
+fn assert_text_matches(name: &str, live: &str) {
+    let golden = manifest_path(&format!("tests/cases/render/{name}"));
+    if blessing() {
+        std::fs::write(&golden, live).unwrap();
+        return;
+    }
+    let expected = std::fs::read_to_string(&golden)
+        .unwrap_or_else(|e| format!("(cannot read {}: {e})\n", golden.display()));
+    if expected != live {
+        let store = manifest_path("tests/store");
+        std::fs::create_dir_all(&store).unwrap();
+        let live_path = store.join(format!("{name}.live"));
+        std::fs::write(&live_path, live).unwrap();
+        let first = expected
+            .lines()
+            .zip(live.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or(expected.lines().count().min(live.lines().count()));
+        panic!(
+            "{name} differs from its golden at line {}:\n  golden: {:?}\n  live:   {:?}\n\
+             live output in {} (STLC_BLESS=1 to accept)",
+            first + 1,
+            expected.lines().nth(first),
+            live.lines().nth(first),
+            live_path.display()
+        );
+    }
+}
+
+/// The stroked polylines of an SVG written by stlc: each `<path
+/// fill="none" ...>`'s `d` as segments, in output pixels, with its width.
+fn svg_strokes(svg: &str) -> Vec<(f64, Vec<(Point, Point)>)> {
+    let attr = |line: &str, name: &str| -> String {
+        let start = line.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        let end = start + line[start..].find('"').unwrap();
+        line[start..end].to_string()
+    };
+    svg.lines()
+        .filter(|l| l.starts_with("<path fill=\"none\""))
+        .map(|l| {
+            let width: f64 = attr(l, "stroke-width").parse().unwrap();
+            let d = attr(l, "d");
+            let mut segs = Vec::new();
+            let mut at = Point::default();
+            let mut letters = d.chars().filter(|c| *c == 'M' || *c == 'L');
+            for coords in d.split(['M', 'L']).skip(1) {
+                let v: Vec<f64> = coords
+                    .split_whitespace()
+                    .map(|n| n.parse().unwrap())
+                    .collect();
+                let p = Point::new(v[0], v[1]);
+                if letters.next() == Some('L') {
+                    segs.push((at, p));
+                }
+                at = p;
+            }
+            (width, segs)
+        })
+        .collect()
+}
+
+fn distance_to_segment(p: Point, (a, b): (Point, Point)) -> f64 {
+    let (vx, vy) = (b.x - a.x, b.y - a.y);
+    let len2 = vx * vx + vy * vy;
+    let t = if len2 == 0.0 {
+        0.0
+    } else {
+        (((p.x - a.x) * vx + (p.y - a.y) * vy) / len2).clamp(0.0, 1.0)
+    };
+    let (dx, dy) = (a.x + t * vx - p.x, a.y + t * vy - p.y);
+    (dx * dx + dy * dy).sqrt()
+}
+
+/// A small branching tree: trunk, two branches of order 1 each carrying two
+/// twigs of order 2 (the `{ }` mark rule applications).
+const TREE: &str = "FF[+{FF[+{F}][-{F}]}][-{FF[+{F}][-{F}]}]";
+
+// ---------------------------------------------------------------------------
+// SVG
+
+#[test]
+fn unit_square_svg_matches_its_golden() {
+    // At 90 degrees, FF+... draws (0,0) -> (0,-1) -> (-1,-1) -> (-1,0) ->
+    // (0,0). Into 100x100 with 2 px strokes: margin 4 + 1 = 5, scale 90,
+    // the centre (-0.5,-0.5) at (50,50): corners at 5 and 95.
+    let svg = render_ops(
+        "F+F+F+F",
+        90.0,
+        &style(Width::Pixels(2.0), Some(Rgb::WHITE)),
+        ImageFormat::Svg,
+        Some((100, 100)),
+    );
+    let svg = String::from_utf8(svg).unwrap();
+    assert!(svg.contains(" d=\"M95.00 95.00 L95.00 5.00 L5.00 5.00 L5.00 95.00 L95.00 95.00\""));
+    assert_text_matches("square.svg", &svg);
+}
+
+#[test]
+fn svg_is_well_formed_and_byte_deterministic() {
+    let st = style(
+        Width::Canvas {
+            base: 0.3,
+            decrement: 0.1,
+        },
+        Some(Rgb::WHITE),
+    );
+    let a = render_full(TREE, 30.0, 0.2, None, &[], &st, ImageFormat::Svg, None).unwrap();
+    let b = render_full(TREE, 30.0, 0.2, None, &[], &st, ImageFormat::Svg, None).unwrap();
+    assert_eq!(a, b);
+    let text = String::from_utf8(a).unwrap();
+    assert!(text.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\""));
+    assert!(text.ends_with("</svg>\n"));
+    assert!(!text.contains('\r') && !text.contains("-0.00") && !text.contains("NaN"));
+    // Three widths (orders 0, 1, 2), each in its own path element, thinning.
+    let widths: Vec<f64> = svg_strokes(&text).iter().map(|(w, _)| *w).collect();
+    assert!(widths.len() >= 3, "{widths:?}");
+    let mut distinct = widths.clone();
+    distinct.dedup();
+    distinct.sort_by(f64::total_cmp);
+    distinct.dedup();
+    assert_eq!(distinct.len(), 3, "{widths:?}");
+}
+
+#[test]
+fn svg_background_is_absent_when_transparent() {
+    let svg = render_ops(
+        "F",
+        90.0,
+        &style(Width::Pixels(1.0), None),
+        ImageFormat::Svg,
+        None,
+    );
+    let svg = String::from_utf8(svg).unwrap();
+    assert!(!svg.contains("<rect"), "{svg}");
+    let svg = render_ops(
+        "F",
+        90.0,
+        &style(Width::Pixels(1.0), Some(Rgb::new(1, 2, 3))),
+        ImageFormat::Svg,
+        None,
+    );
+    assert!(String::from_utf8(svg).unwrap().contains("fill=\"#010203\""));
+}
+
+// ---------------------------------------------------------------------------
+// PNG
+
+#[test]
+fn thick_horizontal_line_is_dark_in_the_middle_and_white_far_away() {
+    // Heading right, one stem: (0,0) -> (1,0). Into 100x50 with 10 px
+    // strokes: margin 4 + 5 = 9 px, scale 82: the line runs from x = 9 to
+    // x = 91 at y = 25, 10 px thick, round caps reaching x = 4 and 96.
+    let png = render_ops(
+        "-F",
+        90.0,
+        &style(Width::Pixels(10.0), Some(Rgb::WHITE)),
+        ImageFormat::Png,
+        Some((100, 50)),
+    );
+    let p = decode(&png);
+    assert_eq!((p.width(), p.height()), (100, 50));
+    for x in [10, 50, 90] {
+        assert_eq!(rgba(&p, x, 25), [0, 0, 0, 255], "x = {x}");
+        assert_eq!(rgba(&p, x, 22), [0, 0, 0, 255], "x = {x}");
+    }
+    for (x, y) in [(50, 2), (50, 47), (1, 25), (98, 25), (50, 35)] {
+        assert_eq!(rgba(&p, x, y), [255, 255, 255, 255], "({x}, {y})");
+    }
+}
+
+#[test]
+fn no_background_means_transparent() {
+    let png = render_ops(
+        "-F",
+        90.0,
+        &style(Width::Pixels(10.0), None),
+        ImageFormat::Png,
+        Some((100, 50)),
+    );
+    let p = decode(&png);
+    assert_eq!(rgba(&p, 50, 2)[3], 0);
+    assert_eq!(rgba(&p, 50, 25), [0, 0, 0, 255]);
+}
+
+#[test]
+fn default_size_is_800_on_the_long_side() {
+    // The tree is taller than wide: height 800.
+    let png = render_ops(
+        TREE,
+        30.0,
+        &style(Width::Pixels(2.0), None),
+        ImageFormat::Png,
+        None,
+    );
+    let p = decode(&png);
+    assert_eq!(p.height(), DEFAULT_SIDE);
+    assert!(p.width() < DEFAULT_SIDE && p.width() > 100, "{}", p.width());
+}
+
+#[test]
+fn canvas_widths_thin_with_order() {
+    // A vertical trunk of order 0 then, after moving right, a vertical stem
+    // of order 2 (decrement 1 of base 3: 3 and 1 canvas units). Scale is
+    // fixed by the 100-pixel view: 10 px per unit, so 30 px and 10 px.
+    let view = BBox {
+        min_x: -2.0,
+        min_y: -8.0,
+        max_x: 8.0,
+        max_y: 2.0,
+    };
+    let st = style(
+        Width::Canvas {
+            base: 3.0,
+            decrement: 1.0,
+        },
+        Some(Rgb::WHITE),
+    );
+    let png = render_full(
+        "FF-fff+{{F}}",
+        90.0,
+        0.0,
+        Some(view),
+        &[],
+        &st,
+        ImageFormat::Png,
+        Some((100, 100)),
+    )
+    .unwrap();
+    let p = decode(&png);
+    let dark_run = |y: u32, x0: u32, x1: u32| (x0..x1).filter(|&x| is_dark(&p, x, y)).count();
+    // Trunk at x = 20 px (canvas 0), row y = 70 (canvas -1).
+    let trunk = dark_run(70, 0, 40);
+    // Stem of order 2 at x = 50 px (canvas 3), rows 60..50 (canvas -2..-3),
+    // clear of the trunk's round cap (radius 15 px around (20, 60)).
+    let twig = dark_run(55, 40, 70);
+    assert!((29..=31).contains(&trunk), "trunk {trunk} px");
+    assert!((9..=11).contains(&twig), "twig {twig} px");
+}
+
+#[test]
+fn widths_below_zero_still_draw_hairlines() {
+    let st = style(
+        Width::Canvas {
+            base: 1.0,
+            decrement: 2.0,
+        },
+        Some(Rgb::WHITE),
+    );
+    let png = render_full(
+        "{{-F}}",
+        90.0,
+        0.0,
+        None,
+        &[],
+        &st,
+        ImageFormat::Png,
+        Some((50, 50)),
+    )
+    .unwrap();
+    // Widest stroke 1 unit (order 0 never drawn): the 1-unit line is fitted
+    // at (50 - 2 * 4.25) / 2 = 20.75 px per unit, centred on row 25.
+    let p = decode(&png);
+    let touched = (0..50)
+        .filter(|&x| rgba(&p, x, 24)[0] < 255 || rgba(&p, x, 25)[0] < 255)
+        .count();
+    assert!((19..=23).contains(&touched), "{touched}");
+}
+
+#[test]
+fn tree_png_matches_its_reference() {
+    let st = style(
+        Width::Canvas {
+            base: 0.12,
+            decrement: 0.04,
+        },
+        Some(Rgb::WHITE),
+    );
+    let png = render_full(
+        TREE,
+        30.0,
+        0.25,
+        None,
+        &[],
+        &st,
+        ImageFormat::Png,
+        Some((120, 160)),
+    )
+    .unwrap();
+    assert_png_matches("tree", &decode(&png));
+}
+
+#[test]
+fn png_is_byte_deterministic() {
+    let st = style(Width::Pixels(1.5), Some(Rgb::WHITE));
+    let a = render_ops(TREE, 25.7, &st, ImageFormat::Png, Some((64, 64)));
+    let b = render_ops(TREE, 25.7, &st, ImageFormat::Png, Some((64, 64)));
+    assert_eq!(a, b);
+}
+
+// ---------------------------------------------------------------------------
+// Underlay
+
+#[test]
+fn underlay_is_even_odd_and_under_the_strokes() {
+    // A 10x10 green square with a 4x4 hole, shown exactly (view 0..10 on
+    // 100x100: 10 px per unit), and a vertical stem from (1,9) up to (1,8).
+    let ring = |x0: f64, y0: f64, s: f64| {
+        vec![
+            Point::new(x0, y0),
+            Point::new(x0 + s, y0),
+            Point::new(x0 + s, y0 + s),
+            Point::new(x0, y0 + s),
+        ]
+    };
+    let green = Rgb::new(0, 128, 0);
+    let underlay = [Fill {
+        color: green,
+        rings: vec![ring(0.0, 0.0, 10.0), ring(3.0, 3.0, 4.0)],
+    }];
+    let view = BBox {
+        min_x: 0.0,
+        min_y: 0.0,
+        max_x: 10.0,
+        max_y: 10.0,
+    };
+    let ops = ops("F");
+    let draw = |t: &mut dyn Turtle| {
+        let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, StemLength::constant(1.0));
+        for &op in &ops {
+            interp.apply(op);
+        }
+    };
+    let st = style(Width::Pixels(4.0), Some(Rgb::WHITE));
+    let mut outputs = Vec::new();
+    for format in [ImageFormat::Png, ImageFormat::Svg] {
+        let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
+            draw(t);
+            Ok(())
+        };
+        let mut out = Vec::new();
+        render::render(
+            &mut drawing,
+            Some(view),
+            &underlay,
+            &st,
+            &RenderOptions {
+                format,
+                size: Some((100, 100)),
+            },
+            &mut out,
+            &mut NoProgress,
+        )
+        .unwrap();
+        outputs.push(out);
+    }
+    let p = decode(&outputs[0]);
+    assert_eq!(rgba(&p, 50, 50), [255, 255, 255, 255], "the hole");
+    assert_eq!(rgba(&p, 20, 50), [0, 128, 0, 255], "the ring");
+    assert_eq!(rgba(&p, 10, 85), [0, 0, 0, 255], "the stem on top");
+    let svg = String::from_utf8(outputs[1].clone()).unwrap();
+    let fill = svg.find("fill-rule=\"evenodd\"").unwrap();
+    let stroke = svg.find("<path fill=\"none\"").unwrap();
+    assert!(fill < stroke, "underlay first");
+    assert!(svg.contains(
+        "<path fill=\"#008000\" fill-rule=\"evenodd\" d=\"M0.00 0.00 L100.00 0.00 \
+         L100.00 100.00 L0.00 100.00 Z M30.00 30.00 L70.00 30.00 L70.00 70.00 L30.00 70.00 Z\"/>"
+    ));
+}
+
+// ---------------------------------------------------------------------------
+// PNG and SVG agree
+
+#[test]
+fn png_and_svg_agree() {
+    let st = style(Width::Pixels(3.0), Some(Rgb::WHITE));
+    let size = Some((150, 200));
+    let png = decode(&render_ops(TREE, 30.0, &st, ImageFormat::Png, size));
+    let svg = String::from_utf8(render_ops(TREE, 30.0, &st, ImageFormat::Svg, size)).unwrap();
+    assert!(svg.contains(" width=\"150\" height=\"200\" viewBox=\"0 0 150 200\""));
+    assert_eq!((png.width(), png.height()), (150, 200));
+
+    let strokes = svg_strokes(&svg);
+    let segs: Vec<(Point, Point)> = strokes.iter().flat_map(|(_, s)| s.clone()).collect();
+    assert_eq!(segs.len(), TREE.matches('F').count());
+    // Every dark pixel lies within half a stroke (plus a pixel of
+    // anti-aliasing) of the SVG's geometry ...
+    for y in 0..png.height() {
+        for x in 0..png.width() {
+            if is_dark(&png, x, y) {
+                let c = Point::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let d = segs
+                    .iter()
+                    .map(|&s| distance_to_segment(c, s))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    d <= 1.5 + 1.0,
+                    "dark pixel ({x}, {y}) is {d} px from every path"
+                );
+            }
+        }
+    }
+    // ... and the PNG is dark all along it.
+    for &(a, b) in &segs {
+        for i in 0..=10 {
+            let t = f64::from(i) / 10.0;
+            let (x, y) = (a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+            assert!(
+                is_dark(&png, x as u32, y as u32),
+                "({x}, {y}) on the path is not dark"
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Edge cases and errors
+
+#[test]
+fn empty_and_single_point_drawings_give_valid_images() {
+    let st = style(
+        Width::Canvas {
+            base: 1.0,
+            decrement: 0.0,
+        },
+        Some(Rgb::WHITE),
+    );
+    // Nothing drawn: no ops, a move only, turns only.
+    for text in ["", "f", "+-"] {
+        for format in [ImageFormat::Png, ImageFormat::Svg] {
+            let out = render_full(text, 90.0, 0.0, None, &[], &st, format, None).unwrap();
+            if format == ImageFormat::Png {
+                let p = decode(&out);
+                assert_eq!((p.width(), p.height()), (DEFAULT_SIDE, DEFAULT_SIDE));
+            } else {
+                assert!(String::from_utf8(out).unwrap().ends_with("</svg>\n"));
+            }
+        }
+    }
+    // One point drawn: a zero-length stem, fitted without NaN.
+    let st = style(Width::Pixels(6.0), Some(Rgb::WHITE));
+    let out = render_full("{F}", 90.0, 1.0, None, &[], &st, ImageFormat::Svg, None).unwrap();
+    let svg = String::from_utf8(out).unwrap();
+    assert!(svg.contains("d=\"M400.00 400.00 L400.00 400.00\""), "{svg}");
+    // PNG draws it as a round dot too, like SVG viewers do.
+    let out = render_full("{F}", 90.0, 1.0, None, &[], &st, ImageFormat::Png, None).unwrap();
+    let p = decode(&out);
+    assert!(is_dark(&p, 400, 400) && is_dark(&p, 398, 401));
+    assert_eq!(rgba(&p, 410, 400), [255, 255, 255, 255]);
+}
+
+#[test]
+fn absurd_sizes_are_refused_before_drawing() {
+    for size in [(0, 100), (100, 0), (16_385, 100)] {
+        let mut called = false;
+        let mut drawing = |_: &mut dyn Turtle, _: &mut dyn Progress| {
+            called = true;
+            Ok(())
+        };
+        let mut out = Vec::new();
+        let err = render::render(
+            &mut drawing,
+            None,
+            &[],
+            &style(Width::Pixels(1.0), None),
+            &RenderOptions {
+                format: ImageFormat::Png,
+                size: Some(size),
+            },
+            &mut out,
+            &mut NoProgress,
+        )
+        .unwrap_err();
+        assert!(matches!(err.first_kind(), Some(ErrorKind::Render(_))));
+        assert!(err.to_string().contains("--size"), "{err}");
+        assert!(!called && out.is_empty());
+    }
+}
+
+#[test]
+fn drawing_errors_pass_through_and_nothing_is_written() {
+    let mut runs = 0;
+    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
+        runs += 1;
+        if runs == 2 {
+            return Err(Diagnostic::error(ErrorKind::Render("boom".into())).into());
+        }
+        t.segment(Segment {
+            from: Point::new(0.0, 0.0),
+            to: Point::new(1.0, 1.0),
+            order: 0,
+        });
+        Ok(())
+    };
+    let mut out = Vec::new();
+    let err = render::render(
+        &mut drawing,
+        None,
+        &[],
+        &style(Width::Pixels(1.0), None),
+        &RenderOptions {
+            format: ImageFormat::Png,
+            size: None,
+        },
+        &mut out,
+        &mut NoProgress,
+    )
+    .unwrap_err();
+    assert_eq!(err.first_kind(), Some(&ErrorKind::Render("boom".into())));
+    assert!(out.is_empty());
+}
+
+#[test]
+fn write_errors_become_io_diagnostics() {
+    struct Full;
+    impl std::io::Write for Full {
+        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+            Err(std::io::Error::other("disk full"))
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    for format in [ImageFormat::Png, ImageFormat::Svg] {
+        let ops = ops("FF");
+        let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
+            run(&ops, 90.0, 0.0, t);
+            Ok(())
+        };
+        let err = render::render(
+            &mut drawing,
+            None,
+            &[],
+            &style(Width::Pixels(1.0), None),
+            &RenderOptions { format, size: None },
+            &mut Full,
+            &mut NoProgress,
+        )
+        .unwrap_err();
+        assert!(matches!(err.first_kind(), Some(ErrorKind::Io(m)) if m.contains("disk full")));
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Streaming
+
+#[test]
+fn a_million_tiny_segments_stream_through_the_png_backend() {
+    // A zigzag of 10^6 segments of a fifth of a pixel, drawn straight into
+    // the backend: nothing holds them (batches of a few thousand).
+    let fit = Fit {
+        width: 200,
+        height: 200,
+        scale: 1.0,
+        dx: 0.0,
+        dy: 0.0,
+    };
+    let mut turtle = PngTurtle::new(fit, &style(Width::Pixels(1.0), Some(Rgb::WHITE))).unwrap();
+    let point = |i: u32| {
+        let row = i / 1000;
+        let col = i % 1000;
+        let x = if row % 2 == 0 { col } else { 1000 - col };
+        Point::new(f64::from(x) * 0.19, f64::from(row) * 0.19)
+    };
+    for i in 0..1_000_000 {
+        turtle.segment(Segment {
+            from: point(i),
+            to: point(i + 1),
+            order: 0,
+        });
+    }
+    let p = turtle.into_pixmap();
+    assert!(is_dark(&p, 100, 100));
+}
