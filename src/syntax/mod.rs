@@ -90,13 +90,9 @@ pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnos
         match c {
             '\n' => in_comment = false,
             _ if in_comment => {}
-            '#' => {
-                // `#rrggbb` colours are not comments; a comment starts a line
-                // or follows whitespace and is not followed by a hex digit run.
-                if !is_colour_at(text, i) {
-                    in_comment = true;
-                }
-            }
+            // `#rrggbb` colours are not comments; a comment starts a line
+            // or follows whitespace and is not followed by a hex digit run.
+            '#' if !is_colour_at(text, i) => in_comment = true,
             '[' | '{' | '(' => {
                 depth += 1;
                 if depth > limits.max_nesting {

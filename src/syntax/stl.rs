@@ -82,6 +82,7 @@ pub fn describe_rule(rule: Rule) -> Option<&'static str> {
         Rule::stl_kw_endlayout => "`ENDLAYOUT`",
         Rule::stl_rule_def => "a rule definition like `R1: [+F][-F]`",
         Rule::stl_rule_name => "a rule name",
+        Rule::stl_defines => "`:` or `=`",
         Rule::stl_body => "a rule body",
         Rule::stl_token => "a drawing component or rule name",
         Rule::stl_repeat_open => "`[I n`",
@@ -427,7 +428,23 @@ impl Builder<'_> {
         }
         let mut bodies = Vec::new();
         for d in &defs {
-            let body = d.clone().into_inner().nth(1);
+            let body = d
+                .clone()
+                .into_inner()
+                .find(|p| p.as_rule() == Rule::stl_body);
+            if body.is_none() {
+                let at = d
+                    .clone()
+                    .into_inner()
+                    .find(|p| p.as_rule() == Rule::stl_defines)
+                    .map_or(span_of(d).end, |p| span_of(&p).end);
+                self.err(
+                    Diagnostic::error(ErrorKind::Syntax("expected a rule body".into()))
+                        .with_span(at..at)
+                        .with_label("the rule ends here")
+                        .with_help("write what the rule draws, e.g. `R1: [+F][-F]`"),
+                );
+            }
             let lex = body.map(|b| self.lex(b)).unwrap_or_default();
             bodies.push(lex);
         }
