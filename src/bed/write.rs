@@ -233,10 +233,24 @@ impl Writer<'_> {
             depth: usize,
             comma: bool,
         }
-        let indent = |out: &mut String, depth: usize| {
-            for _ in 0..depth {
-                out.push_str("  ");
+        // Deep vines indent thousands of levels: copy from one long run of
+        // spaces instead of pushing two at a time.
+        let deepest = {
+            let mut max = 0;
+            let mut todo = vec![(root, 0usize)];
+            while let Some((t, d)) = todo.pop() {
+                max = max.max(d);
+                for s in t.slots.iter().flatten() {
+                    if let Slot::Term(c) = s {
+                        todo.push((c, d + 1));
+                    }
+                }
             }
+            max + 1
+        };
+        let spaces = " ".repeat(2 * deepest);
+        let indent = |out: &mut String, depth: usize| {
+            out.push_str(&spaces[..(2 * depth).min(spaces.len())]);
         };
         let mut stack: Vec<Frame<'_>> = Vec::new();
         // Starts a term: one line if flat, else its opening line and a frame.

@@ -1361,20 +1361,60 @@ fn self_char(l: &Lex) -> char {
 mod tests {
     use super::*;
 
-    const TREE_2D: &str = "2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT (clGreen)< RoundRect (0,0,180,192,7,7)> (clWhite)< RoundRect (55,30,40,15,4,4)> (clWhite)< RoundRect (35,125,76,30,5,5)> ENDLAYOUT";
-
     fn bed(src: &str) -> Result<Description, Diagnostics> {
         parse(src, Format::Bed, &Limits::default())
     }
 
+    const HEAD: &str = "T (0,0) L=10(0) B=1(0) RULE R1: [F] R2: [F][F] ";
+
     #[test]
-    fn smoke() {
-        let d = parse(TREE_2D, Format::Od, &Limits::default()).unwrap();
-        assert_eq!(d.name, "2DTree");
-        let d = bed("T (0,0) L=10(1) B=1(0) RULE R1=[FFF] R2=[F[+F][-F]F] SEED R1R2R2 ENDSEED")
-            .unwrap();
-        eprintln!("{d:#?}");
-        let e = bed("T (0,0) RULE R1=[F][F] R2=[F] SEED R1{R3,} FR3 ENDSEED").unwrap_err();
-        eprintln!("{e}");
+    fn an_unknown_name_takes_the_letter_before_it() {
+        // `FR3`: F is drawing, `R3` the unknown name (not `FR3`, not `3`).
+        let e = bed(&format!("{HEAD} SEED FR3R1{{}} ENDSEED")).unwrap_err();
+        assert_eq!(e.0.len(), 1, "{e}");
+        assert_eq!(e.0[0].kind, ErrorKind::UnknownRule { name: "R3".into() });
+        // `Crwn`: a whole lower-case tail.
+        let e = bed(&format!("{HEAD} SEED Crwn ENDSEED")).unwrap_err();
+        assert_eq!(
+            e.0[0].kind,
+            ErrorKind::UnknownRule {
+                name: "Crwn".into()
+            }
+        );
+    }
+
+    #[test]
+    fn a_slot_holds_one_term() {
+        let e = bed(&format!("{HEAD} SEED R2{{R1{{}}R1{{}},}} ENDSEED")).unwrap_err();
+        assert!(matches!(&e.0[0].kind, ErrorKind::Stl(m) if m.contains("one term")));
+        let e = bed(&format!("{HEAD} SEED R2{{F,}} ENDSEED")).unwrap_err();
+        assert!(matches!(&e.0[0].kind, ErrorKind::Stl(m) if m.contains("slot")));
+    }
+
+    #[test]
+    fn empty_braces_fit_zero_or_one_branch() {
+        let d = bed("T (0,0) RULE R0: F R1: [F] SEED R0{} R1{} ENDSEED").unwrap();
+        let items = &d.seed.unwrap().items;
+        assert!(matches!(&items[0], SeedItem::Term(t) if t.slots.is_empty()));
+        assert!(matches!(&items[1], SeedItem::Term(t) if t.slots == vec![None]));
+    }
+
+    #[test]
+    fn repeat_needs_a_space_after_i() {
+        // `[I2]` is a bracket around the name `I2`, unknown here.
+        let e = bed(&format!("{HEAD} SEED [I2] ENDSEED")).unwrap_err();
+        assert_eq!(e.0[0].kind, ErrorKind::UnknownRule { name: "I2".into() });
+        let d = bed(&format!("{HEAD} SEED [I 2 R2] ENDSEED")).unwrap();
+        assert!(
+            matches!(&d.seed.unwrap().items[0], SeedItem::Repeat(r) if r.count == 2 && r.rule == RuleId(1))
+        );
+    }
+
+    #[test]
+    fn unknown_parameters_and_shapes_are_named() {
+        let e = bed("T (0,0) l=10(0) RULE R1: [F]").unwrap_err();
+        assert!(e.0[0].help.as_deref().unwrap_or("").contains("`L`"));
+        let e = bed("T (0,0) RULE R1: [F] LAYOUT (clRed) Rect (0,0), 1, 1 ENDLAYOUT").unwrap_err();
+        assert!(e.0[0].help.as_deref().unwrap_or("").contains("Rectangle"));
     }
 }
