@@ -1,15 +1,351 @@
 //! The Branch-Expansion Description: the contract between `compile` and
 //! `render`. A BED is a [`Description`] read or written as `Format::Bed`.
+//!
+//! [`validate`] checks what the grammar cannot see; [`measure`] computes
+//! what a BED draws (symbols and stems) exactly, saturating at `u64::MAX`,
+//! without expanding it.
 
 pub mod write;
 
-use crate::diag::Diagnostics;
-use crate::limits::Limits;
-use crate::syntax::ast::Description;
+use std::collections::BTreeMap;
 
-/// Checks what the grammar cannot: every term's order leaves its stems a
-/// positive length and width, repeat counts within limits.
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::limits::Limits;
+use crate::syntax::ast::{
+    BodyItem, Description, Piece, RuleId, Seed, SeedItem, Slot, StemParams, Term,
+};
+
+/// What a description's seed expands to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Size {
+    /// Turtle operations in the expansion (drawing components, plus one
+    /// `Enter` and one `Leave` per rule application), saturating.
+    pub symbols: u64,
+    /// Stems drawn (`F`s in the expansion), saturating.
+    pub stems: u64,
+}
+
+impl Size {
+    fn add(&mut self, o: Size) {
+        self.symbols = self.symbols.saturating_add(o.symbols);
+        self.stems = self.stems.saturating_add(o.stems);
+    }
+
+    fn times(self, k: u64) -> Size {
+        Size {
+            symbols: self.symbols.saturating_mul(k),
+            stems: self.stems.saturating_mul(k),
+        }
+    }
+}
+
+/// Size of drawing components as written.
+fn draw_size(text: &str) -> Size {
+    Size {
+        symbols: text.len() as u64,
+        stems: text.bytes().filter(|&b| b == b'F').count() as u64,
+    }
+}
+
+/// Size of `[I n w]`: `w` with each `F` rewritten by `w`, `n - 1` times.
+pub fn fixed_size(word: &str, count: u32) -> Size {
+    let len = word.len() as u64;
+    let fs = word.bytes().filter(|&b| b == b'F').count() as u64;
+    let others = len - fs;
+    let mut s = Size {
+        symbols: len,
+        stems: fs,
+    };
+    for _ in 1..count {
+        let mut next = Size {
+            symbols: others,
+            stems: 0,
+        };
+        next.add(s.times(fs));
+        if next == s {
+            break;
+        }
+        s = next;
+    }
+    s
+}
+
+/// Per-rule sizes, computed once.
+struct Sizer<'a> {
+    desc: &'a Description,
+    /// What one application of each rule draws itself (`Enter`/`Leave`
+    /// included, slots excluded).
+    own: Vec<Size>,
+    repeats: BTreeMap<(usize, u32), Size>,
+}
+
+impl<'a> Sizer<'a> {
+    fn new(desc: &'a Description) -> Self {
+        let own = desc
+            .rules
+            .iter()
+            .map(|r| {
+                let mut s = Size {
+                    symbols: 2,
+                    stems: 0,
+                };
+                for item in &r.body.items {
+                    match item {
+                        BodyItem::Draw(d) => s.add(draw_size(&d.text)),
+                        BodyItem::Fixed(f) => s.add(fixed_size(&f.word, f.count)),
+                        BodyItem::Branch(b) => {
+                            s.symbols = s.symbols.saturating_add(2);
+                            for p in &b.pieces {
+                                match p {
+                                    Piece::Draw(d) => s.add(draw_size(&d.text)),
+                                    Piece::Fixed(f) => s.add(fixed_size(&f.word, f.count)),
+                                }
+                            }
+                        }
+                    }
+                }
+                s
+            })
+            .collect();
+        Sizer {
+            desc,
+            own,
+            repeats: BTreeMap::new(),
+        }
+    }
+
+    /// Size of `[I n X]`: X and, at every branch tip, `[I n-1 X]`.
+    fn repeat(&mut self, rule: RuleId, n: u32) -> Size {
+        if let Some(s) = self.repeats.get(&(rule.0, n)) {
+            return *s;
+        }
+        let own = self.own.get(rule.0).copied().unwrap_or_default();
+        let m = self.desc.rules.get(rule.0).map_or(0, |r| r.branch_count()) as u64;
+        let mut s = own;
+        for _ in 1..n {
+            let mut next = own;
+            next.add(s.times(m));
+            if next == s {
+                break;
+            }
+            s = next;
+        }
+        self.repeats.insert((rule.0, n), s);
+        s
+    }
+}
+
+/// Computes what `seed` (of `desc`) expands to, exactly or saturated.
+pub fn measure_seed(desc: &Description, seed: &Seed) -> Size {
+    let mut z = Sizer::new(desc);
+    let mut total = Size::default();
+    let mut stack: Vec<&Term> = Vec::new();
+    for item in &seed.items {
+        match item {
+            SeedItem::Draw(d) => total.add(draw_size(&d.text)),
+            SeedItem::Fixed(f) => total.add(fixed_size(&f.word, f.count)),
+            SeedItem::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
+            SeedItem::Term(t) => stack.push(t),
+        }
+        while let Some(t) = stack.pop() {
+            total.add(z.own.get(t.rule.0).copied().unwrap_or_default());
+            for s in t.slots.iter().flatten() {
+                match s {
+                    Slot::Term(t) => stack.push(t),
+                    Slot::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
+                }
+            }
+        }
+    }
+    total
+}
+
+/// Computes what the description's seed in force expands to.
+pub fn measure(desc: &Description) -> Size {
+    match desc.effective_seed() {
+        Some(seed) => measure_seed(desc, &seed),
+        None => Size::default(),
+    }
+}
+
+/// Checks what the grammar cannot: every term names a rule and has one slot
+/// per branch, every rule application's order leaves its stems a positive
+/// length and width, counts are within `limits.max_repeat`, and the whole
+/// expansion stays within `limits.max_symbols`.
 pub fn validate(desc: &Description, limits: &Limits) -> Result<(), Diagnostics> {
-    let _ = (desc, limits);
-    unimplemented!("issue 3")
+    let mut diags = Diagnostics::new();
+    let Some(seed) = desc.effective_seed() else {
+        return Ok(());
+    };
+    let p = &desc.params;
+    let mut order_reported = false;
+    let mut check_order =
+        |order: u32, span: &crate::diag::Span, what: &str, diags: &mut Diagnostics| {
+            if order_reported || p.can_grow_at(order) {
+                return;
+            }
+            order_reported = true;
+            diags.push(order_error(p, order, span.clone(), what));
+        };
+    let check_count = |count: u32, span: &crate::diag::Span, diags: &mut Diagnostics| {
+        if count > limits.max_repeat {
+            diags.push(
+                Diagnostic::error(ErrorKind::Limit {
+                    what: "self-resemblance count".into(),
+                    value: count.to_string(),
+                    limit: limits.max_repeat.to_string(),
+                })
+                .with_span(span.clone())
+                .with_help("raise the limit with --max-depth N"),
+            );
+        }
+    };
+    for r in &desc.rules {
+        for item in &r.body.items {
+            let fixed: Vec<_> = match item {
+                BodyItem::Fixed(f) => vec![f],
+                BodyItem::Branch(b) => b
+                    .pieces
+                    .iter()
+                    .filter_map(|p| match p {
+                        Piece::Fixed(f) => Some(f),
+                        Piece::Draw(_) => None,
+                    })
+                    .collect(),
+                BodyItem::Draw(_) => Vec::new(),
+            };
+            for f in fixed {
+                check_count(f.count, &f.loc.0, &mut diags);
+            }
+        }
+    }
+    // (term, order) pairs, explicit stack.
+    let mut stack: Vec<(&Term, u32)> = Vec::new();
+    for item in &seed.items {
+        match item {
+            SeedItem::Term(t) => stack.push((t, 1)),
+            SeedItem::Repeat(r) => {
+                check_count(r.count, &r.loc.0, &mut diags);
+                let name = rule_name(desc, r.rule);
+                if desc.rules.get(r.rule.0).is_none() {
+                    diags.push(unknown_id(r.rule, &r.loc.0));
+                } else {
+                    check_order(r.count, &r.loc.0, &name, &mut diags);
+                }
+            }
+            SeedItem::Fixed(f) => check_count(f.count, &f.loc.0, &mut diags),
+            SeedItem::Draw(_) => {}
+        }
+        while let Some((t, order)) = stack.pop() {
+            let Some(rule) = desc.rules.get(t.rule.0) else {
+                diags.push(unknown_id(t.rule, &t.loc.0));
+                continue;
+            };
+            let m = rule.branch_count();
+            if t.slots.len() != m {
+                diags.push(
+                    Diagnostic::error(ErrorKind::SlotCount {
+                        rule: rule.name.clone(),
+                        expected: m,
+                        found: t.slots.len(),
+                    })
+                    .with_span(t.loc.0.clone())
+                    .with_help("write one slot per branch"),
+                );
+            }
+            check_order(order, &t.loc.0, &rule.name, &mut diags);
+            for s in t.slots.iter().flatten() {
+                match s {
+                    Slot::Term(c) => stack.push((c, order.saturating_add(1))),
+                    Slot::Repeat(r) => {
+                        check_count(r.count, &r.loc.0, &mut diags);
+                        if desc.rules.get(r.rule.0).is_none() {
+                            diags.push(unknown_id(r.rule, &r.loc.0));
+                        } else {
+                            let deepest = order.saturating_add(r.count);
+                            check_order(deepest, &r.loc.0, &rule_name(desc, r.rule), &mut diags);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if diags.has_errors() {
+        return Err(diags);
+    }
+    let size = measure_seed(desc, &seed);
+    if size.symbols > limits.max_symbols {
+        diags.push(
+            Diagnostic::error(ErrorKind::Limit {
+                what: "symbols in the expansion".into(),
+                value: if size.symbols == u64::MAX {
+                    format!("more than {}", u64::MAX - 1)
+                } else {
+                    size.symbols.to_string()
+                },
+                limit: limits.max_symbols.to_string(),
+            })
+            .with_span(seed.loc.0.clone())
+            .with_help("raise the limit with --max-symbols N, or lower the counts"),
+        );
+    }
+    diags.into_result(())
+}
+
+fn rule_name(desc: &Description, id: RuleId) -> String {
+    desc.rules
+        .get(id.0)
+        .map_or_else(|| format!("#{}", id.0), |r| r.name.clone())
+}
+
+fn unknown_id(id: RuleId, span: &crate::diag::Span) -> Diagnostic {
+    Diagnostic::error(ErrorKind::UnknownRule {
+        name: format!("#{}", id.0),
+    })
+    .with_span(span.clone())
+    .with_help("the description refers to a rule it does not declare")
+}
+
+fn order_error(p: &StemParams, order: u32, span: crate::diag::Span, rule: &str) -> Diagnostic {
+    let len = write::num(p.length_at(order));
+    let width = write::num(p.width_at(order));
+    Diagnostic::error(ErrorKind::Stl(format!(
+        "`{rule}` is applied at order {order}, where stems have length {len} and width {width}"
+    )))
+    .with_span(span)
+    .with_label("stems of this order cannot exist")
+    .with_help("stems need a positive length and width: lower the decrements of `L` and `B`, or remove the deeper terms")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fixed_sizes_follow_the_rewriting() {
+        // [I 1 F+F] = F+F; [I 2 F+F] = F+F+F+F (7 symbols, 4 stems).
+        assert_eq!(
+            fixed_size("F+F", 1),
+            Size {
+                symbols: 3,
+                stems: 2
+            }
+        );
+        assert_eq!(
+            fixed_size("F+F", 2),
+            Size {
+                symbols: 7,
+                stems: 4
+            }
+        );
+        assert_eq!(
+            fixed_size("F+F", 3),
+            Size {
+                symbols: 15,
+                stems: 8
+            }
+        );
+        // saturates instead of overflowing
+        assert_eq!(fixed_size("FF", 200).stems, u64::MAX);
+    }
 }

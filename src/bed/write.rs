@@ -1,10 +1,399 @@
 //! The canonical BED writer: deterministic, diff-friendly text.
+//!
+//! ```text
+//! 2DTree
+//! (76, 150)
+//! L=10(0) B=1(0) A=30
+//! RULE
+//! R1: [+F][-F]
+//! SEED
+//! F
+//! R1{
+//!   R1{,},
+//!   ,
+//! }
+//! ENDSEED
+//! LAYOUT
+//! (clGreen) <RoundRect (0, 0, 180, 192, 7, 7)>
+//! ENDLAYOUT
+//! ```
+//!
+//! - header: name, root, then `L=l(dl) B=b(db)`, `A=` and `C=` only if given;
+//! - `RULE`, one rule per line as `NAME: body`, a successor name separated
+//!   from the branch's drawing by a space (`[+F R2]`);
+//! - seed: one term per line, indented two spaces per nesting depth. A term
+//!   whose slots are all empty stays on one line (`R1{,,}`). Otherwise its
+//!   slots follow on their own lines, a comma after every slot but the last;
+//!   an empty slot that is not the last is a line holding just `,`, an
+//!   empty last slot writes nothing. Drawing runs, `[I n X]` and fixed
+//!   figures get their own lines. In a BED every term is written in full
+//!   (`R1{,}`); a growth point of an OD (`bare`) stays a bare name;
+//! - layout shapes in the spelling they were read in;
+//! - numbers with at most three decimals, integers without a dot; LF line
+//!   ends and a trailing newline.
+//!
+//! Drawing letters that could be read back as a rule name (with a rule
+//! called `FF`, the drawing `FF`) are written one letter at a time (`F F`).
+//!
+//! The writer is iterative: a depth-first-grown vine can nest its terms
+//! thousands deep.
 
-use crate::syntax::ast::Description;
+use std::fmt::Write as _;
+
+use crate::syntax::ast::{
+    Body, BodyItem, Description, Fixed, LayoutShape, Piece, Repeat, Shape, Slot, Spelling, Term,
+};
 
 /// Writes `desc` as a `.bed` file: header, rules, one seed term per line
-/// indented by depth, fixed decimals, LF line ends, trailing newline.
+/// indented by depth, at most three decimals, LF line ends, trailing newline.
 pub fn write(desc: &Description) -> String {
-    let _ = desc;
-    unimplemented!("issue 3")
+    let w = Writer { desc };
+    let mut out = String::new();
+    out.push_str(&desc.name);
+    out.push('\n');
+    let _ = writeln!(out, "({}, {})", num(desc.root.0), num(desc.root.1));
+    let p = &desc.params;
+    let _ = write!(
+        out,
+        "L={}({}) B={}({})",
+        num(p.length),
+        num(p.length_dec),
+        num(p.width),
+        num(p.width_dec)
+    );
+    if let Some(a) = p.angle {
+        let _ = write!(out, " A={}", num(a));
+    }
+    if let Some(c) = p.clearance {
+        let _ = write!(out, " C={}", num(c));
+    }
+    out.push_str("\nRULE\n");
+    for r in &desc.rules {
+        let _ = writeln!(out, "{}: {}", r.name, w.body(&r.body));
+    }
+    if let Some(seed) = &desc.seed {
+        out.push_str("SEED\n");
+        for item in &seed.items {
+            match item {
+                crate::syntax::ast::SeedItem::Draw(d) => {
+                    out.push_str(&w.draw(&d.text));
+                    out.push('\n');
+                }
+                crate::syntax::ast::SeedItem::Fixed(f) => {
+                    out.push_str(&w.fixed(f));
+                    out.push('\n');
+                }
+                crate::syntax::ast::SeedItem::Repeat(r) => {
+                    out.push_str(&w.repeat(r));
+                    out.push('\n');
+                }
+                crate::syntax::ast::SeedItem::Term(t) => w.term(t, &mut out),
+            }
+        }
+        out.push_str("ENDSEED\n");
+    }
+    if let Some(layout) = &desc.layout {
+        out.push_str("LAYOUT\n");
+        for s in &layout.shapes {
+            out.push_str(&shape_line(s));
+            out.push('\n');
+        }
+        out.push_str("ENDLAYOUT\n");
+    }
+    out
+}
+
+/// A number with at most three decimals; integers without a dot; no `-0`.
+pub fn num(v: f64) -> String {
+    let mut s = format!("{v:.3}");
+    if s.contains('.') {
+        while s.ends_with('0') {
+            s.pop();
+        }
+        if s.ends_with('.') {
+            s.pop();
+        }
+    }
+    if s == "-0" {
+        s = "0".into();
+    }
+    s
+}
+
+struct Writer<'a> {
+    desc: &'a Description,
+}
+
+impl Writer<'_> {
+    fn name(&self, id: crate::syntax::ast::RuleId) -> &str {
+        self.desc
+            .rules
+            .get(id.0)
+            .map(|r| r.name.as_str())
+            .unwrap_or("?")
+    }
+
+    /// Whether some rule name starts inside this run of letters, so that
+    /// reading it back would find a rule.
+    fn ambiguous(&self, letters: &str) -> bool {
+        (0..letters.len()).any(|i| {
+            self.desc
+                .rules
+                .iter()
+                .any(|r| !r.name.is_empty() && letters[i..].starts_with(r.name.as_str()))
+        })
+    }
+
+    /// Drawing components as text that reads back as the same components.
+    fn draw(&self, text: &str) -> String {
+        let mut out = String::with_capacity(text.len());
+        let mut letters = String::new();
+        let flush = |letters: &mut String, out: &mut String| {
+            if letters.is_empty() {
+                return;
+            }
+            if self.ambiguous(letters) {
+                if out.ends_with(|c: char| c.is_ascii_alphanumeric()) {
+                    out.push(' ');
+                }
+                let spaced: Vec<String> = letters.chars().map(String::from).collect();
+                out.push_str(&spaced.join(" "));
+            } else {
+                out.push_str(letters);
+            }
+            letters.clear();
+        };
+        for c in text.chars() {
+            if c.is_ascii_alphanumeric() || c == '_' {
+                letters.push(c);
+            } else {
+                flush(&mut letters, &mut out);
+                out.push(c);
+            }
+        }
+        flush(&mut letters, &mut out);
+        out
+    }
+
+    fn fixed(&self, f: &Fixed) -> String {
+        format!("[I {} {}]", f.count, self.draw(&f.word))
+    }
+
+    fn repeat(&self, r: &Repeat) -> String {
+        format!("[I {} {}]", r.count, self.name(r.rule))
+    }
+
+    fn body(&self, body: &Body) -> String {
+        let mut out = String::new();
+        for item in &body.items {
+            match item {
+                BodyItem::Draw(d) => out.push_str(&self.draw(&d.text)),
+                BodyItem::Fixed(f) => out.push_str(&self.fixed(f)),
+                BodyItem::Branch(b) => {
+                    out.push('[');
+                    for p in &b.pieces {
+                        match p {
+                            Piece::Draw(d) => out.push_str(&self.draw(&d.text)),
+                            Piece::Fixed(f) => out.push_str(&self.fixed(f)),
+                        }
+                    }
+                    if let Some(s) = &b.successor {
+                        if !b.pieces.is_empty() {
+                            out.push(' ');
+                        }
+                        out.push_str(self.name(s.rule));
+                    }
+                    out.push(']');
+                }
+            }
+        }
+        out
+    }
+
+    /// A term on one line if it has no filled slot: `R1{,,}` (or `R1` for
+    /// an OD growth point).
+    fn flat(&self, t: &Term) -> Option<String> {
+        if t.bare {
+            return Some(self.name(t.rule).to_string());
+        }
+        t.slots.iter().all(Option::is_none).then(|| {
+            format!(
+                "{}{{{}}}",
+                self.name(t.rule),
+                ",".repeat(t.slots.len().saturating_sub(1))
+            )
+        })
+    }
+
+    /// Writes a term at depth 0, one line per term, with an explicit stack.
+    fn term(&self, root: &Term, out: &mut String) {
+        struct Frame<'t> {
+            term: &'t Term,
+            next: usize,
+            depth: usize,
+            comma: bool,
+        }
+        // Deep vines indent thousands of levels: copy from one long run of
+        // spaces instead of pushing two at a time.
+        let deepest = {
+            let mut max = 0;
+            let mut todo = vec![(root, 0usize)];
+            while let Some((t, d)) = todo.pop() {
+                max = max.max(d);
+                for s in t.slots.iter().flatten() {
+                    if let Slot::Term(c) = s {
+                        todo.push((c, d + 1));
+                    }
+                }
+            }
+            max + 1
+        };
+        let spaces = " ".repeat(2 * deepest);
+        let indent = |out: &mut String, depth: usize| {
+            out.push_str(&spaces[..(2 * depth).min(spaces.len())]);
+        };
+        let mut stack: Vec<Frame<'_>> = Vec::new();
+        // Starts a term: one line if flat, else its opening line and a frame.
+        let start = |t: &'_ Term, depth: usize, comma: bool, out: &mut String| {
+            indent(out, depth);
+            match self.flat(t) {
+                Some(s) => {
+                    out.push_str(&s);
+                    if comma {
+                        out.push(',');
+                    }
+                    out.push('\n');
+                    None
+                }
+                None => {
+                    out.push_str(self.name(t.rule));
+                    out.push_str("{\n");
+                    Some((depth, comma))
+                }
+            }
+        };
+        if let Some((depth, comma)) = start(root, 0, false, out) {
+            stack.push(Frame {
+                term: root,
+                next: 0,
+                depth,
+                comma,
+            });
+        }
+        while let Some(top) = stack.last_mut() {
+            let m = top.term.slots.len();
+            if top.next == m {
+                let (depth, comma) = (top.depth, top.comma);
+                stack.pop();
+                indent(out, depth);
+                out.push('}');
+                if comma {
+                    out.push(',');
+                }
+                out.push('\n');
+                continue;
+            }
+            let i = top.next;
+            top.next += 1;
+            let last = i + 1 == m;
+            let depth = top.depth + 1;
+            match &top.term.slots[i] {
+                Some(Slot::Term(t)) => {
+                    if let Some((depth, comma)) = start(t, depth, !last, out) {
+                        stack.push(Frame {
+                            term: t,
+                            next: 0,
+                            depth,
+                            comma,
+                        });
+                    }
+                }
+                Some(Slot::Repeat(r)) => {
+                    indent(out, depth);
+                    out.push_str(&self.repeat(r));
+                    if !last {
+                        out.push(',');
+                    }
+                    out.push('\n');
+                }
+                None if !last => {
+                    indent(out, depth);
+                    out.push_str(",\n");
+                }
+                None => {}
+            }
+        }
+    }
+}
+
+/// `(clGreen) <RoundRect (0, 0, 180, 192, 7, 7)>`.
+fn shape_line(s: &LayoutShape) -> String {
+    let body = shape(&s.shape, s.spelling);
+    if s.angled {
+        format!("({}) <{}>", s.color_text, body)
+    } else {
+        format!("({}) {}", s.color_text, body)
+    }
+}
+
+fn shape(shape: &Shape, spelling: Spelling) -> String {
+    let n = |v: f64| num(v);
+    match *shape {
+        Shape::Rect { x, y, w, h } | Shape::Ellipse { x, y, w, h } => {
+            let name = if matches!(shape, Shape::Rect { .. }) {
+                "Rectangle"
+            } else {
+                "Ellipse"
+            };
+            if spelling == Spelling::Corners {
+                format!("{name} ({}, {}, {}, {})", n(x), n(y), n(x + w), n(y + h))
+            } else {
+                format!("{name} ({}, {}), {}, {}", n(x), n(y), n(w), n(h))
+            }
+        }
+        Shape::RoundRect { x, y, w, h, rx, ry } => {
+            if spelling == Spelling::Corners || rx != ry {
+                format!(
+                    "RoundRect ({}, {}, {}, {}, {}, {})",
+                    n(x),
+                    n(y),
+                    n(x + w),
+                    n(y + h),
+                    n(2.0 * rx),
+                    n(2.0 * ry)
+                )
+            } else {
+                format!(
+                    "RoundRect ({}, {}), {}, {}, {}",
+                    n(x),
+                    n(y),
+                    n(w),
+                    n(h),
+                    n(rx)
+                )
+            }
+        }
+        Shape::Polygon(ref pts) => {
+            let p: Vec<String> = pts
+                .iter()
+                .map(|&(x, y)| format!("({}, {})", n(x), n(y)))
+                .collect();
+            format!("Polygon {}", p.join(", "))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_have_at_most_three_decimals() {
+        assert_eq!(num(10.0), "10");
+        assert_eq!(num(-0.0), "0");
+        assert_eq!(num(2.5), "2.5");
+        assert_eq!(num(1.0 / 3.0), "0.333");
+        assert_eq!(num(-0.0001), "0");
+        assert_eq!(num(12.345), "12.345");
+    }
 }

@@ -1,0 +1,935 @@
+//! `.od`/`.bed`: parsing, diagnostics, the canonical writer and expansion.
+//!
+//! Expected values are worked by hand (the paper's expansions, coordinates
+//! of a turtle turning by right angles), never copied from the output.
+
+use proptest::prelude::*;
+use stlc::bed::validate;
+use stlc::bed::write::write;
+use stlc::color::Rgb;
+use stlc::diag::{Diagnostics, ErrorKind};
+use stlc::interpret::Strategy;
+use stlc::interpret::bed::{draw_into, expand};
+use stlc::limits::Limits;
+use stlc::progress::NoProgress;
+use stlc::syntax::ast::{
+    Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, Loc, Piece,
+    Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Slot, Spelling, StemParams, Term,
+};
+use stlc::syntax::stl::parse;
+use stlc::turtle::{Point, Recorder, Segment};
+
+const TREE_2D: &str = "2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT (clGreen)< RoundRect (0,0,180,192,7,7)> (clWhite)< RoundRect (55,30,40,15,4,4)> (clWhite)< RoundRect (35,125,76,30,5,5)> ENDLAYOUT";
+
+fn bed(src: &str) -> Description {
+    match parse(src, Format::Bed, &Limits::default()) {
+        Ok(d) => d,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+fn errors(src: &str) -> Diagnostics {
+    match parse(src, Format::Bed, &Limits::default()) {
+        Ok(d) => panic!("parsed, expected an error: {d:?}"),
+        Err(e) => e,
+    }
+}
+
+/// The one error of `src`: its kind and span.
+fn one_error(src: &str) -> (ErrorKind, std::ops::Range<usize>, String) {
+    let e = errors(src);
+    assert_eq!(e.0.len(), 1, "{e}");
+    let d = &e.0[0];
+    (
+        d.kind.clone(),
+        d.span.clone().expect("a span"),
+        d.help.clone().unwrap_or_default(),
+    )
+}
+
+/// Byte range of the `n`th (0-based) occurrence of `needle` in `src`.
+fn at(src: &str, needle: &str, n: usize) -> std::ops::Range<usize> {
+    let start = src.match_indices(needle).nth(n).expect("needle").0;
+    start..start + needle.len()
+}
+
+fn expanded(d: &Description, strategy: Strategy) -> String {
+    let mut out = Vec::new();
+    expand(d, strategy, &Limits::default(), &mut out, &mut NoProgress).unwrap();
+    String::from_utf8(out).unwrap()
+}
+
+fn segments(d: &Description, strategy: Strategy) -> Result<Vec<Segment>, Diagnostics> {
+    draw_into(
+        d,
+        strategy,
+        &Limits::default(),
+        Recorder::default(),
+        &mut NoProgress,
+    )
+    .map(|r| r.segments)
+}
+
+const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
+
+// ---------------------------------------------------------------- paper --
+
+#[test]
+fn the_papers_2dtree_parses_as_written() {
+    let d = parse(TREE_2D, Format::Od, &Limits::default()).unwrap();
+    assert_eq!(d.name, "2DTree");
+    assert_eq!(d.root, (76.0, 150.0));
+    let p = &d.params;
+    assert_eq!(
+        (p.length, p.length_dec, p.width, p.width_dec),
+        (10.0, 0.0, 1.0, 0.0)
+    );
+    assert_eq!((p.angle, p.clearance), (None, None));
+    assert_eq!(d.rules.len(), 1);
+    assert_eq!(d.rules[0].name, "R1");
+    assert_eq!(d.rules[0].branch_count(), 2);
+    assert!(d.seed.is_none());
+    let shapes = &d.layout.as_ref().unwrap().shapes;
+    assert_eq!(shapes.len(), 3);
+    // Delphi's corner reading: (x1,y1,x2,y2,ellipse w,ellipse h).
+    let want = [
+        (Rgb::new(0, 128, 0), 0.0, 0.0, 180.0, 192.0, 3.5),
+        // (55,30)-(40,15): corners in either order.
+        (Rgb::WHITE, 40.0, 15.0, 15.0, 15.0, 2.0),
+        // (35,125)-(76,30).
+        (Rgb::WHITE, 35.0, 30.0, 41.0, 95.0, 2.5),
+    ];
+    for (s, (c, x, y, w, h, r)) in shapes.iter().zip(want) {
+        assert_eq!(s.color, c);
+        assert_eq!(s.spelling, Spelling::Corners);
+        assert!(s.angled);
+        assert_eq!(
+            s.shape,
+            Shape::RoundRect {
+                x,
+                y,
+                w,
+                h,
+                rx: r,
+                ry: r
+            }
+        );
+    }
+    assert_eq!(shapes[0].color_text, "clGreen");
+    // No seed: `F` then the first rule (Figure 9's `FR1`).
+    let seed = d.effective_seed().unwrap();
+    assert!(matches!(&seed.items[0], SeedItem::Draw(r) if r.text == "F"));
+    assert!(matches!(&seed.items[1], SeedItem::Term(t) if t.bare && t.rule == RuleId(0)));
+}
+
+#[test]
+fn the_papers_worked_expansion() {
+    let d = bed("Rn (0, 0) L=10(0) B=1(0)
+        RULE R1 = [F][+F][-F]  R2 = [++F][-F]
+        SEED R1{R1{,,},R2{,},R1{,,}} ENDSEED");
+    for s in [Strategy::Dfs, Strategy::Bfs] {
+        assert_eq!(
+            expanded(&d, s),
+            "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n"
+        );
+    }
+}
+
+#[test]
+fn seed_r1r2r2_is_split_by_longest_match() {
+    let d = bed(&format!(
+        "{HEAD} R1=[FFF] R2=[F[+F][-F]F] SEED R1R2R2 ENDSEED"
+    ));
+    let seed = d.seed.as_ref().unwrap();
+    assert_eq!(seed.items.len(), 3);
+    // In a BED a bare name is the full term with every slot empty.
+    for item in &seed.items {
+        assert!(matches!(item, SeedItem::Term(t) if !t.bare && t.slots == vec![None]));
+    }
+    for s in [Strategy::Dfs, Strategy::Bfs] {
+        assert_eq!(expanded(&d, s), "[FFF][F[+F][-F]F][F[+F][-F]F]\n");
+    }
+}
+
+#[test]
+fn longest_match_prefers_the_longer_name() {
+    let d = bed(&format!("{HEAD} R1=[F] R12=[+F] SEED FR12R1 ENDSEED"));
+    let items = &d.seed.as_ref().unwrap().items;
+    assert!(matches!(&items[1], SeedItem::Term(t) if t.rule == RuleId(1)));
+    assert!(matches!(&items[2], SeedItem::Term(t) if t.rule == RuleId(0)));
+    assert_eq!(expanded(&d, Strategy::Dfs), "F[+F][F]\n");
+}
+
+#[test]
+fn self_resemblance_counts_in_both_forms() {
+    // [I 2 R1] = R1{R1{,},R1{,}}
+    let d = bed(&format!("{HEAD} R1=[F][+F] SEED [I 2 R1] ENDSEED"));
+    assert_eq!(expanded(&d, Strategy::Dfs), "[F[F][+F]][+F[F][+F]]\n");
+    assert_eq!(expanded(&d, Strategy::Bfs), "[F[F][+F]][+F[F][+F]]\n");
+    // [I 1 w] is w; [I 2 w] rewrites each F of w by w once.
+    let d = bed(&format!(
+        "{HEAD} R1=[F] SEED [I 1 F+F] f [I 2 F[+F]F] ENDSEED"
+    ));
+    let want = "F+Ff F[+F]F[+F[+F]F]F[+F]F\n".replace(' ', "");
+    assert_eq!(expanded(&d, Strategy::Dfs), want);
+    assert_eq!(expanded(&d, Strategy::Bfs), want);
+}
+
+#[test]
+fn trunk_and_successor_names_in_bodies() {
+    // The successor name draws nothing in a BED; the trunk comes first.
+    let d = bed(&format!(
+        "{HEAD} R1: F[+F R2][-F] R2: [F] SEED R1{{R2{{}},}} ENDSEED"
+    ));
+    let b = &d.rules[0].body.items;
+    assert!(matches!(&b[0], BodyItem::Draw(r) if r.text == "F"));
+    assert!(
+        matches!(&b[1], BodyItem::Branch(br) if br.successor.as_ref().map(|s| s.rule) == Some(RuleId(1)))
+    );
+    assert_eq!(expanded(&d, Strategy::Dfs), "F[+F[F]][-F]\n");
+}
+
+#[test]
+fn segments_have_hand_computed_coordinates_and_orders() {
+    // A=90 keeps every coordinate exact. L=10(2): order 0 length 10,
+    // order 1 length 8, order 2 length 6.
+    let d = bed("T (0, 0) L=10(2) B=1(0) A=90 RULE R1: F[+F] SEED F R1{R1{}} ENDSEED");
+    let seg = |x0, y0, x1, y1, order| Segment {
+        from: Point::new(x0, y0),
+        to: Point::new(x1, y1),
+        order,
+    };
+    let want = vec![
+        seg(0.0, 0.0, 0.0, -10.0, 0),       // seed F, up
+        seg(0.0, -10.0, 0.0, -18.0, 1),     // R1's trunk
+        seg(0.0, -18.0, -8.0, -18.0, 1),    // its branch, turned left
+        seg(-8.0, -18.0, -14.0, -18.0, 2),  // the inner R1's trunk, still left
+        seg(-14.0, -18.0, -14.0, -12.0, 2), // its branch, turned left again: down
+    ];
+    assert_eq!(segments(&d, Strategy::Dfs).unwrap(), want);
+    assert_eq!(segments(&d, Strategy::Bfs).unwrap(), want);
+}
+
+#[test]
+fn the_root_and_default_angle_are_used() {
+    // A defaults to 30: a left turn then F from (100, 50) goes to
+    // (100 - 10 sin 30, 50 - 10 cos 30).
+    let d = bed("T (100, 50) L=10(0) B=1(0) RULE R1: [+F] SEED R1 ENDSEED");
+    let s = segments(&d, Strategy::Dfs).unwrap();
+    assert_eq!(s.len(), 1);
+    assert_eq!(s[0].from, Point::new(100.0, 50.0));
+    assert!((s[0].to.x - 95.0).abs() < 1e-12);
+    assert!((s[0].to.y - (50.0 - 10.0 * 3f64.sqrt() / 2.0)).abs() < 1e-12);
+    assert_eq!(s[0].order, 1);
+}
+
+#[test]
+fn od_bare_references_are_growth_points() {
+    let d = parse(
+        &format!("{HEAD} R1: [+F][-F] SEED FR1 ENDSEED"),
+        Format::Od,
+        &Limits::default(),
+    )
+    .unwrap();
+    let items = &d.seed.as_ref().unwrap().items;
+    assert!(matches!(&items[1], SeedItem::Term(t) if t.bare && t.slots.len() == 2));
+}
+
+#[test]
+fn both_definition_forms_and_comments() {
+    let d = bed(
+        "# a comment\nT # name\n(1.5, -2) L=10(0.5) B=2(0.25) A=22.5 C=1\nRULE\nR1: [+F] # colon\nR2=[-F]\nSEED R1{R2{}} ENDSEED\nLAYOUT (#00ff00) Rectangle (0,0), 200, 100 ENDLAYOUT",
+    );
+    assert_eq!(d.root, (1.5, -2.0));
+    assert_eq!(d.params.angle, Some(22.5));
+    assert_eq!(d.params.clearance, Some(1.0));
+    assert_eq!(d.rules.len(), 2);
+    let s = &d.layout.as_ref().unwrap().shapes[0];
+    assert_eq!(s.color, Rgb::new(0, 255, 0));
+    assert_eq!(s.spelling, Spelling::StartSize);
+    assert_eq!(
+        s.shape,
+        Shape::Rect {
+            x: 0.0,
+            y: 0.0,
+            w: 200.0,
+            h: 100.0
+        }
+    );
+}
+
+// ---------------------------------------------------------- diagnostics --
+
+#[test]
+fn unknown_rule_suggests_the_nearest() {
+    let src = format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED");
+    let (kind, span, help) = one_error(&src);
+    assert_eq!(kind, ErrorKind::UnknownRule { name: "R3".into() });
+    assert_eq!(span, at(&src, "R3", 0));
+    assert!(help.contains("`R1`"), "{help}");
+}
+
+#[test]
+fn slot_count_names_the_rule_and_its_count() {
+    let src = format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED");
+    let (kind, span, help) = one_error(&src);
+    assert_eq!(
+        kind,
+        ErrorKind::SlotCount {
+            rule: "R1".into(),
+            expected: 2,
+            found: 3
+        }
+    );
+    assert_eq!(span, at(&src, "R1{,,}", 0));
+    assert!(help.contains("R1{,}"), "{help}");
+}
+
+#[test]
+fn unbalanced_brackets_point_at_the_unmatched_one() {
+    let src = format!("{HEAD} R1: [F][+F SEED ENDSEED");
+    let (kind, span, _) = one_error(&src);
+    assert_eq!(kind, ErrorKind::Unbalanced('['));
+    assert_eq!(span, at(&src, "[", 1));
+
+    let src = format!("{HEAD} R1: [F]] SEED ENDSEED");
+    let (kind, span, _) = one_error(&src);
+    assert_eq!(kind, ErrorKind::Unbalanced(']'));
+    assert_eq!(span, at(&src, "]", 1));
+
+    let src = format!("{HEAD} R1: [F] SEED R1{{R1{{}} ENDSEED");
+    let (kind, span, _) = one_error(&src);
+    assert_eq!(kind, ErrorKind::Unbalanced('{'));
+    assert_eq!(span, at(&src, "{", 0));
+
+    let src = format!("{HEAD} R1: [F] SEED R1{{}}}} ENDSEED");
+    let (kind, span, _) = one_error(&src);
+    assert_eq!(kind, ErrorKind::Unbalanced('}'));
+    assert_eq!(span, at(&src, "}", 1));
+
+    let src = format!("{HEAD} R1: [F] SEED [+F R1 ENDSEED");
+    let (kind, span, _) = one_error(&src);
+    assert_eq!(kind, ErrorKind::Unbalanced('['));
+    assert_eq!(span, at(&src, "[", 1));
+}
+
+#[test]
+fn duplicate_rule_labels_both() {
+    let src = format!("{HEAD} R1: [F] R1: [+F] SEED R1 ENDSEED");
+    let e = errors(&src);
+    assert_eq!(e.0.len(), 1, "{e}");
+    assert!(matches!(&e.0[0].kind, ErrorKind::Stl(m) if m.contains("defined twice")));
+    assert_eq!(e.0[0].span, Some(at(&src, "R1", 1)));
+    assert_eq!(e.0[0].labels[0].span, at(&src, "R1", 0));
+}
+
+#[test]
+fn reserved_names_are_refused() {
+    for name in ["F", "f", "L", "R", "I", "SEED"] {
+        let src = format!("{HEAD} {name}: [F] R1: [F]");
+        let (kind, span, _) = one_error(&src);
+        assert!(
+            matches!(&kind, ErrorKind::Stl(m) if m.contains("reserved")),
+            "{kind}"
+        );
+        assert_eq!(
+            span,
+            at(&src, &format!("{name}:"), 0).start..at(&src, ":", 0).start
+        );
+    }
+}
+
+#[test]
+fn rule_names_in_bodies_only_end_branches() {
+    let src = format!("{HEAD} R1: [R1 +F][-F]");
+    let (kind, span, _) = one_error(&src);
+    assert!(matches!(&kind, ErrorKind::Stl(m) if m.contains("must end a branch")));
+    assert_eq!(span, at(&src, "R1", 1));
+    // in the trunk
+    let src = format!("{HEAD} R1: F R1 [-F]");
+    let (_, span, _) = one_error(&src);
+    assert_eq!(span, at(&src, "R1", 1));
+    // in a nested bracket
+    let src = format!("{HEAD} R1: [F[+F R1]]");
+    let (_, span, _) = one_error(&src);
+    assert_eq!(span, at(&src, "R1", 1));
+}
+
+#[test]
+fn sizes_must_be_positive() {
+    let src = "T (0, 0) L=-1(0) B=1(0) RULE R1: [F]";
+    let (kind, span, _) = one_error(src);
+    assert!(matches!(&kind, ErrorKind::Stl(m) if m.contains("length")));
+    assert_eq!(span, at(src, "-1", 0));
+
+    let src = "T (0, 0) L=1(0) B=0(0) RULE R1: [F]";
+    let (_, span, _) = one_error(src);
+    let b = at(src, "B=0", 0).start + 2;
+    assert_eq!(span, b..b + 1);
+
+    let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 0, 10 ENDLAYOUT");
+    let (kind, span, _) = one_error(&src);
+    assert!(matches!(&kind, ErrorKind::Stl(m) if m.contains("width")));
+    let w = at(&src, "(0,0), 0", 0).end - 1;
+    assert_eq!(span, w..w + 1);
+
+    let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) RoundRect (0,0), 5, 10, -2 ENDLAYOUT");
+    let (kind, span, _) = one_error(&src);
+    assert!(matches!(&kind, ErrorKind::Stl(m) if m.contains("radius")));
+    assert_eq!(span, at(&src, "-2", 0));
+}
+
+#[test]
+fn polygons_need_three_points() {
+    let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
+    let (kind, span, _) = one_error(&src);
+    assert!(matches!(&kind, ErrorKind::Stl(m) if m.contains("at least 3 points")));
+    assert_eq!(span, at(&src, "Polygon (0,0), (5,5)", 0));
+}
+
+#[test]
+fn unknown_colour_suggests_one() {
+    let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
+    let (kind, span, help) = one_error(&src);
+    assert_eq!(kind, ErrorKind::Stl("unknown colour `clGren`".into()));
+    assert_eq!(span, at(&src, "clGren", 0));
+    assert!(help.contains("clGreen"));
+}
+
+#[test]
+fn missing_section_ends() {
+    let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
+    let (kind, span, _) = one_error(&src);
+    assert_eq!(kind, ErrorKind::Stl("`SEED` without `ENDSEED`".into()));
+    assert_eq!(span, at(&src, "SEED", 0));
+
+    let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 5, 5");
+    let (kind, span, _) = one_error(&src);
+    assert_eq!(kind, ErrorKind::Stl("`LAYOUT` without `ENDLAYOUT`".into()));
+    assert_eq!(span, at(&src, "LAYOUT", 0));
+}
+
+#[test]
+fn numbers_must_be_finite() {
+    let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
+    let (kind, span, _) = one_error(src);
+    assert!(matches!(&kind, ErrorKind::Stl(m) if m.contains("finite")));
+    assert_eq!(span, at(src, "1e999", 0));
+}
+
+#[test]
+fn counts_over_the_limit_are_refused() {
+    let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
+    let (kind, span, help) = one_error(&src);
+    assert_eq!(
+        kind,
+        ErrorKind::Limit {
+            what: "self-resemblance count".into(),
+            value: "10001".into(),
+            limit: "10000".into()
+        }
+    );
+    assert_eq!(span, at(&src, "10001", 0));
+    assert!(help.contains("--max-depth"));
+}
+
+#[test]
+fn braces_must_follow_a_rule_name() {
+    let src = format!("{HEAD} R1: [F] SEED F{{}} ENDSEED");
+    let (kind, span, _) = one_error(&src);
+    assert!(matches!(&kind, ErrorKind::Stl(m) if m.contains("must follow a rule name")));
+    assert_eq!(span, at(&src, "{", 0));
+}
+
+#[test]
+fn several_errors_are_reported_together() {
+    let src = format!(
+        "{HEAD} R1: [F][F] F: [F] SEED R1{{,,}} R9 ENDSEED LAYOUT (clBlu) Polygon (0,0) ENDLAYOUT"
+    );
+    let e = errors(&src);
+    let kinds: Vec<String> = e.iter().map(|d| d.kind.to_string()).collect();
+    assert_eq!(e.0.len(), 5, "{kinds:?}");
+}
+
+#[test]
+fn syntax_errors_name_what_the_user_types() {
+    let src = "T (0,0) RULE R1: SEED R1 ENDSEED";
+    let (kind, span, _) = one_error(src);
+    assert_eq!(kind, ErrorKind::Syntax("expected a rule body".into()));
+    let colon = at(src, ":", 0).end;
+    assert_eq!(span, colon..colon);
+    // pest's own errors are worded in what the user types, too.
+    let e = errors("T (0,0) RULE R1: [F] SEED R1 ENDSEED ENDSEED");
+    let m = e.0[0].kind.to_string();
+    assert!(m.contains("end of input"), "{m}");
+    assert!(!m.contains("stl_"), "{m}");
+}
+
+#[test]
+fn validate_refuses_orders_without_length() {
+    // L=10(5): order 2 has length 0.
+    let d = bed("T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED");
+    let e = validate(&d, &Limits::default()).unwrap_err();
+    assert!(matches!(e.first_kind(), Some(ErrorKind::Stl(m)) if m.contains("order 2")));
+    let inner = "R1{}";
+    let src = "T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED";
+    assert_eq!(e.0[0].span, Some(at(src, inner, 0)));
+    // ... and so does drawing.
+    assert!(segments(&d, Strategy::Dfs).is_err());
+}
+
+#[test]
+fn validate_bounds_the_derived_size() {
+    let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 40 R1] ENDSEED"));
+    let limits = Limits {
+        max_symbols: 1000,
+        ..Limits::default()
+    };
+    let e = validate(&d, &limits).unwrap_err();
+    assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
+}
+
+#[test]
+fn bfs_refuses_words_over_the_limit() {
+    // [I 8 R1], R1 = [F][F]: 2^8 - 1 = 255 applications, far over 100 symbols.
+    let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 8 R1] ENDSEED"));
+    let limits = Limits {
+        max_word: 100,
+        ..Limits::default()
+    };
+    let e = draw_into(
+        &d,
+        Strategy::Bfs,
+        &limits,
+        Recorder::default(),
+        &mut NoProgress,
+    )
+    .unwrap_err();
+    assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
+    assert!(e.0[0].help.as_deref().unwrap_or("").contains("--max-word"));
+    // dfs needs no word.
+    let r = draw_into(
+        &d,
+        Strategy::Dfs,
+        &limits,
+        Recorder::default(),
+        &mut NoProgress,
+    )
+    .unwrap();
+    assert_eq!(r.segments.len(), 2 * 255);
+}
+
+// --------------------------------------------------------------- writer --
+
+#[test]
+fn the_writer_is_canonical() {
+    let d = bed(
+        "X (1.25,2) L=10(0.5) B=1(0.1) A=30 RULE R1=F[+F R2][-F] R2=[F][+F][-F] \
+                 SEED F[+F R1{R2{,R2{,,},},}] R1 ENDSEED \
+                 LAYOUT (clGreen)<RoundRect (0,0,180,192,7,7)> (clWhite) Ellipse (1,2), 3, 4 \
+                 (#ff0000) Polygon (0,0),(1,0),(0,1) ENDLAYOUT",
+    );
+    let want = "\
+X
+(1.25, 2)
+L=10(0.5) B=1(0.1) A=30
+RULE
+R1: F[+F R2][-F]
+R2: [F][+F][-F]
+SEED
+F[+F
+R1{
+  R2{
+    ,
+    R2{,,},
+  },
+}
+]
+R1{,}
+ENDSEED
+LAYOUT
+(clGreen) <RoundRect (0, 0, 180, 192, 7, 7)>
+(clWhite) Ellipse (1, 2), 3, 4
+(#ff0000) Polygon (0, 0), (1, 0), (0, 1)
+ENDLAYOUT
+";
+    assert_eq!(write(&d), want);
+    assert_eq!(bed(want), d);
+}
+
+#[test]
+fn drawing_letters_that_spell_a_rule_are_spaced() {
+    let d = bed(&format!("{HEAD} FL: [F L] SEED F L FL ENDSEED"));
+    assert_eq!(d.rules[0].body.items.len(), 1);
+    let text = write(&d);
+    assert!(text.contains("FL: [F L]\n"), "{text}");
+    assert_eq!(bed(&text), d);
+}
+
+// ------------------------------------------------------------------ deep --
+
+fn big_stack<F: FnOnce() + Send + 'static>(f: F) {
+    std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(f)
+        .unwrap()
+        .join()
+        .unwrap();
+}
+
+#[test]
+fn five_thousand_nested_terms_parse_write_and_expand() {
+    big_stack(|| {
+        let n = 5000;
+        let src = format!(
+            "{HEAD} R1: [F] SEED {}{} ENDSEED",
+            "R1{".repeat(n),
+            "}".repeat(n)
+        );
+        let d = bed(&src);
+        let text = write(&d);
+        // One line per term, indented two spaces per level: the opening
+        // line of depth d is 2d + 4 bytes (`R1{` and LF), its closing line
+        // 2d + 2 (`}` and LF), the innermost `R1{}` line 2(n-1) + 5.
+        let head = "T\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [F]\nSEED\n";
+        let seed: usize = (0..n - 1).map(|d| 4 * d + 6).sum::<usize>() + 2 * (n - 1) + 5;
+        assert_eq!(text.len(), head.len() + seed + "ENDSEED\n".len());
+        assert!(text.starts_with(&format!("{head}R1{{\n  R1{{\n    R1{{\n")));
+        assert!(text.ends_with("  }\n}\nENDSEED\n"));
+        let limits = Limits::default();
+        let mut out = Vec::new();
+        expand(&d, Strategy::Dfs, &limits, &mut out, &mut NoProgress).unwrap();
+        assert_eq!(out.len(), 3 * n + 1);
+        assert!(out.starts_with(b"[F[F"));
+        // bfs rewrites the whole word once per level (quadratic here), so
+        // it is compared on the first 500 levels only.
+        assert_eq!(segments(&d, Strategy::Dfs).unwrap().len(), n);
+        let m = 500;
+        let src = format!(
+            "{HEAD} R1: [F] SEED {}{} ENDSEED",
+            "R1{".repeat(m),
+            "}".repeat(m)
+        );
+        let small = bed(&src);
+        assert_eq!(
+            segments(&small, Strategy::Bfs).unwrap(),
+            segments(&small, Strategy::Dfs).unwrap()
+        );
+        drop(d);
+    });
+}
+
+#[test]
+fn nesting_of_a_hundred_thousand_is_refused_before_parsing() {
+    let n = 100_000;
+    let src = format!(
+        "{HEAD} R1: [F] SEED {}{} ENDSEED",
+        "R1{".repeat(n),
+        "}".repeat(n)
+    );
+    let e = parse(&src, Format::Bed, &Limits::default()).unwrap_err();
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::NestingTooDeep { limit: 10_000 })
+    );
+}
+
+// ------------------------------------------------------------ proptests --
+
+/// A small deterministic generator of BEDs (xorshift), so a failing case is
+/// reproducible from its seed.
+struct Gen(u64);
+
+impl Gen {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+    fn chance(&mut self, percent: u64) -> bool {
+        self.below(100) < percent
+    }
+    fn pick<'a>(&mut self, xs: &[&'a str]) -> &'a str {
+        xs[self.below(xs.len() as u64) as usize]
+    }
+    /// k/1000 in [lo, hi).
+    fn milli(&mut self, lo: i64, hi: i64) -> f64 {
+        (lo * 1000 + self.below(((hi - lo) * 1000) as u64) as i64) as f64 / 1000.0
+    }
+    /// k/8 in (0, hi]: exact in binary, so corner sums are exact.
+    fn eighth(&mut self, hi: u64) -> f64 {
+        (1 + self.below(hi * 8)) as f64 / 8.0
+    }
+    fn letters(&mut self, max: u64) -> String {
+        (0..1 + self.below(max))
+            .map(|_| self.pick(&["F", "f", "+", "-", "L", "R", "|", "F"]))
+            .collect()
+    }
+    /// Drawing with balanced nested brackets.
+    fn drawing(&mut self) -> String {
+        let mut s = self.letters(3);
+        if self.chance(40) {
+            s = format!("{s}[{}]{}", self.letters(3), self.letters(2));
+        }
+        s
+    }
+    fn fixed(&mut self) -> Fixed {
+        Fixed {
+            count: 1 + self.below(3) as u32,
+            word: self.drawing(),
+            loc: Loc::default(),
+        }
+    }
+}
+
+fn run(text: String) -> DrawRun {
+    DrawRun {
+        text,
+        loc: Loc::default(),
+    }
+}
+
+fn gen_body(g: &mut Gen, rules: usize) -> Body {
+    let mut items: Vec<BodyItem> = Vec::new();
+    for _ in 0..1 + g.below(4) {
+        match g.below(3) {
+            0 => {
+                let t = g.letters(3);
+                if let Some(BodyItem::Draw(r)) = items.last_mut() {
+                    r.text.push_str(&t);
+                } else {
+                    items.push(BodyItem::Draw(run(t)));
+                }
+            }
+            1 => items.push(BodyItem::Fixed(g.fixed())),
+            _ => {
+                let mut pieces: Vec<Piece> = Vec::new();
+                for _ in 0..g.below(3) {
+                    if g.chance(70) {
+                        let t = g.drawing();
+                        if let Some(Piece::Draw(r)) = pieces.last_mut() {
+                            r.text.push_str(&t);
+                        } else {
+                            pieces.push(Piece::Draw(run(t)));
+                        }
+                    } else {
+                        pieces.push(Piece::Fixed(g.fixed()));
+                    }
+                }
+                let successor = g.chance(30).then(|| RuleRef {
+                    rule: RuleId(g.below(rules as u64) as usize),
+                    loc: Loc::default(),
+                });
+                items.push(BodyItem::Branch(Branch {
+                    pieces,
+                    successor,
+                    loc: Loc::default(),
+                }));
+            }
+        }
+    }
+    Body { items }
+}
+
+fn gen_term(g: &mut Gen, rules: &[RuleDef], depth: u32) -> Term {
+    let rule = g.below(rules.len() as u64) as usize;
+    let m = rules[rule].branch_count();
+    let slots = (0..m)
+        .map(|_| {
+            if depth == 0 || g.chance(40) {
+                None
+            } else if g.chance(20) {
+                Some(Slot::Repeat(Repeat {
+                    count: 1 + g.below(2) as u32,
+                    rule: RuleId(g.below(rules.len() as u64) as usize),
+                    loc: Loc::default(),
+                }))
+            } else {
+                Some(Slot::Term(gen_term(g, rules, depth - 1)))
+            }
+        })
+        .collect();
+    Term {
+        rule: RuleId(rule),
+        slots,
+        bare: false,
+        loc: Loc::default(),
+    }
+}
+
+fn gen_shape(g: &mut Gen) -> LayoutShape {
+    let color_text = g.pick(&["clGreen", "clWhite", "#00ff00", "clRed", "#abc"]);
+    let (x, y, w, h) = (
+        g.eighth(100) - 50.0,
+        g.eighth(100),
+        g.eighth(50),
+        g.eighth(50),
+    );
+    let (shape, spelling) = match g.below(6) {
+        0 => (Shape::Rect { x, y, w, h }, Spelling::StartSize),
+        1 => (Shape::Rect { x, y, w, h }, Spelling::Corners),
+        2 => (Shape::Ellipse { x, y, w, h }, Spelling::Corners),
+        3 => {
+            let r = g.eighth(5);
+            (
+                Shape::RoundRect {
+                    x,
+                    y,
+                    w,
+                    h,
+                    rx: r,
+                    ry: r,
+                },
+                Spelling::StartSize,
+            )
+        }
+        4 => (
+            Shape::RoundRect {
+                x,
+                y,
+                w,
+                h,
+                rx: g.eighth(5),
+                ry: g.eighth(5),
+            },
+            Spelling::Corners,
+        ),
+        _ => {
+            let pts = (0..3 + g.below(3))
+                .map(|_| (g.eighth(100), g.eighth(100)))
+                .collect();
+            (Shape::Polygon(pts), Spelling::Points)
+        }
+    };
+    LayoutShape {
+        color: Rgb::parse(color_text).unwrap(),
+        color_text: color_text.to_string(),
+        shape,
+        spelling,
+        angled: g.chance(50),
+        loc: Loc::default(),
+    }
+}
+
+fn gen_description(seed: u64) -> Description {
+    let mut g = Gen(seed | 1);
+    let pool = ["R1", "R2", "Crown", "FL", "Rn_2"];
+    let n = 1 + g.below(3) as usize;
+    let start = g.below(pool.len() as u64) as usize;
+    let names: Vec<&str> = (0..n).map(|i| pool[(start + i) % pool.len()]).collect();
+    let rules: Vec<RuleDef> = names
+        .iter()
+        .map(|name| RuleDef {
+            name: name.to_string(),
+            name_loc: Loc::default(),
+            body: gen_body(&mut g, n),
+            loc: Loc::default(),
+        })
+        .collect();
+    let mut items: Vec<SeedItem> = Vec::new();
+    let push_draw = |items: &mut Vec<SeedItem>, t: String| {
+        if let Some(SeedItem::Draw(r)) = items.last_mut() {
+            r.text.push_str(&t);
+        } else {
+            items.push(SeedItem::Draw(run(t)));
+        }
+    };
+    for _ in 0..g.below(5) {
+        match g.below(5) {
+            0 => push_draw(&mut items, g.drawing()),
+            1 => items.push(SeedItem::Fixed(g.fixed())),
+            2 => items.push(SeedItem::Repeat(Repeat {
+                count: 1 + g.below(3) as u32,
+                rule: RuleId(g.below(n as u64) as usize),
+                loc: Loc::default(),
+            })),
+            3 => {
+                // A term inside a seed bracket: `[+F`, term, `]`.
+                let open = format!("[{}", g.letters(2));
+                push_draw(&mut items, open);
+                let t = gen_term(&mut g, &rules, 3);
+                items.push(SeedItem::Term(t));
+                push_draw(&mut items, "]".into());
+            }
+            _ => {
+                let t = gen_term(&mut g, &rules, 4);
+                items.push(SeedItem::Term(t));
+            }
+        }
+    }
+    let layout = g.chance(60).then(|| Layout {
+        shapes: (0..g.below(4)).map(|_| gen_shape(&mut g)).collect(),
+        loc: Loc::default(),
+    });
+    Description {
+        format: Format::Bed,
+        name: g.pick(&["T", "2DTree", "tree_1"]).to_string(),
+        name_loc: Loc::default(),
+        root: (g.milli(-100, 100), g.milli(-100, 100)),
+        root_loc: Loc::default(),
+        params: StemParams {
+            length: g.milli(20, 100),
+            length_dec: g.milli(0, 2),
+            width: g.milli(1, 10),
+            width_dec: if g.chance(50) { 0.0 } else { 0.125 },
+            angle: g.chance(50).then(|| g.milli(0, 90)),
+            clearance: g.chance(50).then(|| g.milli(0, 5)),
+            loc: Loc::default(),
+        },
+        rules,
+        seed: g.chance(90).then_some(Seed {
+            items,
+            loc: Loc::default(),
+        }),
+        layout,
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn parse_write_roundtrips(seed in any::<u64>()) {
+        let d = gen_description(seed);
+        let text = write(&d);
+        let back = match parse(&text, Format::Bed, &Limits::default()) {
+            Ok(b) => b,
+            Err(e) => panic!("{e}\n{text}"),
+        };
+        prop_assert_eq!(&back, &d, "{}", text);
+        prop_assert_eq!(write(&back), text);
+    }
+
+    #[test]
+    fn dfs_and_bfs_draw_the_same(seed in any::<u64>()) {
+        let d = gen_description(seed);
+        let a = segments(&d, Strategy::Dfs);
+        let b = segments(&d, Strategy::Bfs);
+        prop_assert_eq!(&a, &b);
+        if a.is_ok() {
+            prop_assert_eq!(expanded(&d, Strategy::Dfs), expanded(&d, Strategy::Bfs));
+        }
+    }
+}
+
+#[test]
+fn the_example_files_parse_and_expand_as_the_paper_says() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let read = |n: &str| std::fs::read_to_string(dir.join(n)).unwrap();
+    let d = bed(&read("paper-worked.bed"));
+    assert_eq!(
+        expanded(&d, Strategy::Dfs),
+        "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n"
+    );
+    let d = bed(&read("seed-r1r2r2.bed"));
+    assert_eq!(
+        expanded(&d, Strategy::Bfs),
+        "[FFF][F[+F][-F]F][F[+F][-F]F]\n"
+    );
+    let od = parse(&read("2dtree.od"), Format::Od, &Limits::default()).unwrap();
+    assert_eq!(od.layout.unwrap().shapes.len(), 3);
+}
