@@ -392,6 +392,17 @@ pub enum FastOp {
     Push,
     /// `]`.
     Pop,
+    /// `[`, turn, `n` x `F`, `]` in one: a leaf branch. Draws from the
+    /// current state with the heading turned by `turn` (and flipped if
+    /// `flip`), then leaves the state as it was.
+    Leaf {
+        /// Turns added to the heading.
+        turn: i64,
+        /// Whether the branch is turned around.
+        flip: bool,
+        /// Number of segments.
+        n: u32,
+    },
 }
 
 /// What a compiled program is made of: drawing ops or text bytes.
@@ -459,6 +470,21 @@ fn push_op(out: &mut Vec<FastOp>, op: FastOp) {
         }
         (Some(Turn(..) | Move(_)), Pop) if out.len() >= 2 && out[out.len() - 2] == Push => {
             out.truncate(out.len() - 2);
+        }
+        // A leaf branch: `[` (turn) F..F `]`.
+        (Some(Draw(d)), Pop) => {
+            let len = out.len();
+            let (turn, flip, drop) = match out.get(len.wrapping_sub(3)..len - 1) {
+                Some([Push, Turn(t, f)]) => (*t, *f, 3),
+                _ if len >= 2 && out[len - 2] == Push => (0, false, 2),
+                _ => (0, false, 0),
+            };
+            if drop == 0 {
+                out.push(Pop);
+            } else {
+                out.truncate(len - drop);
+                out.push(Leaf { turn, flip, n: d });
+            }
         }
         _ => out.push(op),
     }
@@ -654,17 +680,35 @@ fn plan_items<U: Unit>(children: &[u32], prev: &[Entry], pool: &mut Vec<U>) -> V
 const DIR_OFFSET: i64 = 1 << 12;
 
 /// The `dfs` turtle: [`Interp`]'s state and arithmetic, for [`FastOp`]s.
+///
+/// The step vector of the current heading, `dir * len`, is kept in locals
+/// and looked up again only after a turn or a pop: `x + dx * len` is
+/// computed as `x + step_x` with `step_x = dx * len` taken from a table of
+/// the very same products (and `(-dx) * len == -(dx * len)` exactly for a
+/// flipped turtle), so positions are bit-identical to [`Interp`]'s.
 struct Exec<T: Turtle> {
     x: f64,
     y: f64,
     k: i64,
     flip: bool,
-    stack: Vec<(f64, f64, i64, bool)>,
+    stack: Vec<Saved>,
     len: f64,
     headings: Headings,
-    /// `dirs[k + DIR_OFFSET]`: [`Headings::dir`]`(k, false)`, NaN until needed.
-    dirs: Vec<(f64, f64)>,
+    /// `steps[k + DIR_OFFSET]`: [`Headings::dir`]`(k, false)` times `len`,
+    /// NaN until first needed.
+    steps: Vec<(f64, f64)>,
     turtle: T,
+}
+
+/// A `[`: the state and its step vector.
+#[derive(Clone, Copy)]
+struct Saved {
+    x: f64,
+    y: f64,
+    k: i64,
+    flip: bool,
+    sx: f64,
+    sy: f64,
 }
 
 impl<T: Turtle> Exec<T> {
@@ -677,41 +721,44 @@ impl<T: Turtle> Exec<T> {
             stack: Vec::new(),
             len,
             headings: Headings::new(angle),
-            dirs: vec![(f64::NAN, f64::NAN); 2 * DIR_OFFSET as usize],
+            steps: vec![(f64::NAN, f64::NAN); 2 * DIR_OFFSET as usize],
             turtle,
         }
     }
 
-    /// The same unit vector as [`Headings::dir`]`(k, flip)`, bit for bit.
-    #[inline]
-    fn dir(&mut self) -> (f64, f64) {
-        let i = self.k.wrapping_add(DIR_OFFSET) as u64;
-        let (dx, dy) = if i < self.dirs.len() as u64 {
-            let d = self.dirs[i as usize];
-            if d.0.is_nan() {
-                let d = self.headings.dir(self.k, false);
-                self.dirs[i as usize] = d;
-                d
-            } else {
-                d
-            }
-        } else {
-            self.headings.dir(self.k, false)
+    /// `dir(k, flip) * len`, with the products [`Interp`] computes.
+    #[inline(always)]
+    fn step(&mut self, k: i64, flip: bool) -> (f64, f64) {
+        let i = k.wrapping_add(DIR_OFFSET) as u64;
+        let (sx, sy) = match self.steps.get(i as usize) {
+            Some(&(sx, sy)) if !sx.is_nan() => (sx, sy),
+            _ => self.step_slow(k),
         };
-        if self.flip { (-dx, -dy) } else { (dx, dy) }
+        if flip { (-sx, -sy) } else { (sx, sy) }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn step_slow(&mut self, k: i64) -> (f64, f64) {
+        let (dx, dy) = self.headings.dir(k, false);
+        let s = (dx * self.len, dy * self.len);
+        let i = k.wrapping_add(DIR_OFFSET) as u64;
+        if let Some(slot) = self.steps.get_mut(i as usize) {
+            *slot = s;
+        }
+        s
     }
 
     #[inline]
     fn run(&mut self, ops: &[FastOp]) {
+        let (mut x, mut y, mut k, mut flip) = (self.x, self.y, self.k, self.flip);
+        let (mut sx, mut sy) = self.step(k, flip);
         for &op in ops {
             match op {
                 FastOp::Draw(n) => {
-                    let (dx, dy) = self.dir();
-                    let len = self.len;
-                    let (mut x, mut y) = (self.x, self.y);
                     for _ in 0..n {
-                        // Exactly Interp::forward's expression.
-                        let to = Point::new(x + dx * len, y + dy * len);
+                        // Interp::forward: pos + dir * len.
+                        let to = Point::new(x + sx, y + sy);
                         self.turtle.segment(Segment {
                             from: Point::new(x, y),
                             to,
@@ -720,32 +767,48 @@ impl<T: Turtle> Exec<T> {
                         x = to.x;
                         y = to.y;
                     }
-                    self.x = x;
-                    self.y = y;
                 }
                 FastOp::Move(n) => {
-                    let (dx, dy) = self.dir();
-                    let len = self.len;
                     for _ in 0..n {
-                        self.x += dx * len;
-                        self.y += dy * len;
+                        x += sx;
+                        y += sy;
                     }
                 }
                 FastOp::Turn(n, f) => {
-                    self.k = self.k.wrapping_add(n);
-                    self.flip ^= f;
+                    k = k.wrapping_add(n);
+                    flip ^= f;
+                    (sx, sy) = self.step(k, flip);
                 }
-                FastOp::Push => self.stack.push((self.x, self.y, self.k, self.flip)),
+                FastOp::Push => self.stack.push(Saved {
+                    x,
+                    y,
+                    k,
+                    flip,
+                    sx,
+                    sy,
+                }),
                 FastOp::Pop => {
-                    if let Some((x, y, k, f)) = self.stack.pop() {
-                        self.x = x;
-                        self.y = y;
-                        self.k = k;
-                        self.flip = f;
+                    if let Some(s) = self.stack.pop() {
+                        (x, y, k, flip, sx, sy) = (s.x, s.y, s.k, s.flip, s.sx, s.sy);
+                    }
+                }
+                FastOp::Leaf { turn, flip: f, n } => {
+                    let (bx, by) = self.step(k.wrapping_add(turn), flip ^ f);
+                    let (mut px, mut py) = (x, y);
+                    for _ in 0..n {
+                        let to = Point::new(px + bx, py + by);
+                        self.turtle.segment(Segment {
+                            from: Point::new(px, py),
+                            to,
+                            order: 0,
+                        });
+                        px = to.x;
+                        py = to.y;
                     }
                 }
             }
         }
+        (self.x, self.y, self.k, self.flip) = (x, y, k, flip);
     }
 }
 
@@ -766,6 +829,22 @@ mod tests {
                 FastOp::Turn(1, true),
                 FastOp::Move(1),
                 FastOp::Draw(2),
+            ]
+        );
+        let mut out = Vec::new();
+        for c in "F[+F]F[-|FF]F[F]".chars() {
+            FastOp::terminal(c, &mut out);
+        }
+        use FastOp::*;
+        assert_eq!(
+            out,
+            vec![
+                Draw(1),
+                Leaf { turn: 1, flip: false, n: 1 },
+                Draw(1),
+                Leaf { turn: -1, flip: true, n: 2 },
+                Draw(1),
+                Leaf { turn: 0, flip: false, n: 1 },
             ]
         );
     }

@@ -290,10 +290,17 @@ fn bracketed_tree_closed_forms() {
     // F -> F[+F]F[-F]F: each F becomes 5 F and 6 other symbols, so
     // F count 5^n and length 1 + 10 * (5^n - 1) / 4 = (5^(n+1) - 3) / 2.
     let s = sys(TREE1);
-    for n in 0..=12u32 {
-        let st = stats(&s, n, &Limits::default()).unwrap();
+    // A small traversal budget: counts are exact whether or not it runs.
+    let limits = Limits {
+        max_symbols: 100_000,
+        ..Limits::default()
+    };
+    for n in 0..=20u32 {
+        let st = stats(&s, n, &limits).unwrap();
+        assert_eq!(st.bbox.is_some(), n <= 6);
         assert_eq!(st.segments, big(5u64.pow(n)));
         assert_eq!(st.length, big((5u64.pow(n + 1) - 3) / 2));
+        assert_eq!(st.symbols[&'+'], big((5u64.pow(n) - 1) / 4));
     }
 }
 
