@@ -530,3 +530,59 @@ proptest! {
         prop_assert_eq!(expanded(&src, depth, Strategy::Dfs), expanded(&src, depth, Strategy::Bfs));
     }
 }
+
+#[test]
+fn every_example_parses_and_draws_the_same_both_ways() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "lsys") {
+            continue;
+        }
+        let src = std::fs::read_to_string(&path).unwrap();
+        let s = parse(&src, &Limits::default()).unwrap_or_else(|e| panic!("{path:?}: {e}"));
+        let depth = s.generations.expect("examples say their depth").min(4);
+        let lim = Limits::default();
+        let mut a = Recorder::default();
+        let mut b = Recorder::default();
+        draw_into(&s, depth, Strategy::Dfs, &lim, &mut a, &mut NoProgress).unwrap();
+        draw_into(&s, depth, Strategy::Bfs, &lim, &mut b, &mut NoProgress).unwrap();
+        assert!(!a.segments.is_empty(), "{path:?}");
+        assert_eq!(a, b, "{path:?}");
+        seen += 1;
+    }
+    assert_eq!(seen, 10);
+}
+
+#[test]
+fn hilbert_and_stl_fig4_counts() {
+    // Hilbert: 4^n - 1 segments (each level: 4 copies joined by 3 F).
+    let src = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hilbert.lsys"),
+    )
+    .unwrap();
+    for n in 1..=7u32 {
+        let st = stats(&sys(&src), n, &Limits::default()).unwrap();
+        assert_eq!(st.segments, big(4u64.pow(n) - 1));
+        // The curve fills a (2^n - 1) square.
+        let b = st.bbox.unwrap();
+        let side = f64::from(2u32.pow(n) - 1);
+        assert!(close(b[2] - b[0], side) && close(b[3] - b[1], side), "{n} {b:?}");
+    }
+    // 003 Fig. 4 at depth 1: F[-F]F[+F]F, 30 degrees, by hand.
+    let segs = segments("axiom F\nrule F F[-F]F[+F]F\nangle 30\n", 1, Strategy::Dfs);
+    assert_eq!(segs.len(), 5);
+    let (s30, c30) = (0.5, 3f64.sqrt() / 2.0);
+    let want = [
+        ((0.0, 0.0), (0.0, -1.0)),
+        ((0.0, -1.0), (s30, -1.0 - c30)), // right branch leans right
+        ((0.0, -1.0), (0.0, -2.0)),
+        ((0.0, -2.0), (-s30, -2.0 - c30)),
+        ((0.0, -2.0), (0.0, -3.0)),
+    ];
+    for (seg, (f, t)) in segs.iter().zip(want) {
+        assert!(close(seg.from.x, f.0) && close(seg.from.y, f.1), "{seg:?}");
+        assert!(close(seg.to.x, t.0) && close(seg.to.y, t.1), "{seg:?}");
+    }
+}
