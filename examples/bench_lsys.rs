@@ -63,8 +63,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let secs = t.elapsed().as_secs_f64();
     let rate = symbols.parse::<f64>().unwrap_or(f64::NAN) / secs / 1e6;
     println!(
-        "{mode} {} depth={depth} symbols={symbols} secs={secs:.4} Msym/s={rate:.1} {what}",
-        if strategy == Strategy::Bfs { "bfs" } else { "dfs" }
+        "{mode} {} depth={depth} symbols={symbols} secs={secs:.6} Msym/s={rate:.1} {what}",
+        if strategy == Strategy::Bfs {
+            "bfs"
+        } else {
+            "dfs"
+        }
     );
     Ok(())
 }

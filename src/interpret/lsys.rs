@@ -213,10 +213,7 @@ impl Alphabet {
             .map(|(i, &c)| (c, i as u32))
             .collect();
         let ids = |w: &[char]| -> Vec<u32> { w.iter().map(|c| index[c]).collect() };
-        let succ = chars
-            .iter()
-            .map(|c| sys.successor(*c).map(ids))
-            .collect();
+        let succ = chars.iter().map(|c| sys.successor(*c).map(ids)).collect();
         Alphabet {
             succ,
             axiom: ids(&sys.axiom),
@@ -282,9 +279,7 @@ impl Alphabet {
                 value: exact(depth),
                 limit: limits.max_symbols.to_string(),
             })
-            .with_help(
-                "use a smaller depth, or raise the traversal budget with --max-symbols N",
-            )
+            .with_help("use a smaller depth, or raise the traversal budget with --max-symbols N")
             .into());
         }
         if strategy == Strategy::Bfs {
@@ -538,7 +533,7 @@ impl<U: Unit> Program<U> {
         // The row before `prev`, to spot expansions that stopped changing.
         let mut prev2: Option<Vec<Entry>> = None;
         let mut scratch: Vec<U> = Vec::new();
-        for r in 1..=depth as usize {
+        for lens_r in lens.iter().take(depth as usize + 1).skip(1) {
             let mut row = Vec::with_capacity(n);
             for s in 0..n {
                 let Some(succ) = &alpha.succ[s] else {
@@ -576,7 +571,7 @@ impl<U: Unit> Program<U> {
                         row.push(Entry::Macro {
                             start,
                             end: pool.len() as u32,
-                            syms: lens[r][s],
+                            syms: lens_r[s],
                         });
                         continue;
                     }
@@ -840,11 +835,23 @@ mod tests {
             out,
             vec![
                 Draw(1),
-                Leaf { turn: 1, flip: false, n: 1 },
+                Leaf {
+                    turn: 1,
+                    flip: false,
+                    n: 1
+                },
                 Draw(1),
-                Leaf { turn: -1, flip: true, n: 2 },
+                Leaf {
+                    turn: -1,
+                    flip: true,
+                    n: 2
+                },
                 Draw(1),
-                Leaf { turn: 0, flip: false, n: 1 },
+                Leaf {
+                    turn: 0,
+                    flip: false,
+                    n: 1
+                },
             ]
         );
     }

@@ -290,15 +290,13 @@ impl Checker {
             }
             match c {
                 '[' => open.push(base + i),
-                ']' => {
-                    if open.pop().is_none() {
-                        self.diags.push(
-                            Diagnostic::error(ErrorKind::Unbalanced(']'))
-                                .with_span(base + i..base + i + 1)
-                                .with_label(format!("this `]` closes no `[` in the {what}"))
-                                .with_help("remove it, or add the `[` it should close"),
-                        );
-                    }
+                ']' if open.pop().is_none() => {
+                    self.diags.push(
+                        Diagnostic::error(ErrorKind::Unbalanced(']'))
+                            .with_span(base + i..base + i + 1)
+                            .with_label(format!("this `]` closes no `[` in the {what}"))
+                            .with_help("remove it, or add the `[` it should close"),
+                    );
                 }
                 _ => {}
             }

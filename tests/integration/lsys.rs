@@ -6,7 +6,7 @@ use proptest::prelude::*;
 use proptest::strategy::Strategy as _;
 use stlc::diag::ErrorKind;
 use stlc::interpret::Strategy;
-use stlc::interpret::lsys::{draw_into, expand, exact_lengths};
+use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
 use stlc::interpret::stats::stats;
 use stlc::limits::Limits;
 use stlc::progress::NoProgress;
@@ -87,7 +87,10 @@ fn defaults_and_optional_generations() {
     assert_eq!(s.color, None);
     assert_eq!(s.background, Background::White);
     let s = sys("axiom F\r\nangle 90\r\nbackground clGreen\r\nrule F->F+F");
-    assert_eq!(s.background, Background::Color(stlc::color::Rgb::new(0, 128, 0)));
+    assert_eq!(
+        s.background,
+        Background::Color(stlc::color::Rgb::new(0, 128, 0))
+    );
     assert_eq!(s.successor('F'), Some(&['F', '+', 'F'][..]));
 }
 
@@ -180,7 +183,10 @@ fn malformed_and_invalid_numbers() {
     );
     assert_eq!(e[3].1, 52..55);
     let e = errors("axiom F\nangle nan\n", &Limits::default());
-    assert_eq!(e, vec![(ErrorKind::Lsys("malformed number `nan`".into()), 14..17)]);
+    assert_eq!(
+        e,
+        vec![(ErrorKind::Lsys("malformed number `nan`".into()), 14..17)]
+    );
 }
 
 #[test]
@@ -269,8 +275,16 @@ fn segments_by_hand() {
     assert_eq!(
         segs,
         vec![
-            Segment { from: p(0.0, 0.0), to: p(0.0, -2.0), order: 0 },
-            Segment { from: p(0.0, -2.0), to: p(-2.0, -2.0), order: 0 },
+            Segment {
+                from: p(0.0, 0.0),
+                to: p(0.0, -2.0),
+                order: 0
+            },
+            Segment {
+                from: p(0.0, -2.0),
+                to: p(-2.0, -2.0),
+                order: 0
+            },
         ]
     );
     // `F[-F]|F` one level down from `X`: a right branch, then back down.
@@ -278,9 +292,21 @@ fn segments_by_hand() {
     assert_eq!(
         segs,
         vec![
-            Segment { from: p(0.0, 0.0), to: p(0.0, -1.0), order: 0 },
-            Segment { from: p(0.0, -1.0), to: p(1.0, -1.0), order: 0 },
-            Segment { from: p(0.0, -1.0), to: p(0.0, 0.0), order: 0 },
+            Segment {
+                from: p(0.0, 0.0),
+                to: p(0.0, -1.0),
+                order: 0
+            },
+            Segment {
+                from: p(0.0, -1.0),
+                to: p(1.0, -1.0),
+                order: 0
+            },
+            Segment {
+                from: p(0.0, -1.0),
+                to: p(0.0, 0.0),
+                order: 0
+            },
         ]
     );
 }
@@ -363,7 +389,10 @@ fn koch_snowflake_segments_end_and_box() {
     let last = segs.last().unwrap();
     let (dx, dy) = (last.to.x - last.from.x, last.to.y - last.from.y);
     let a210 = 210f64.to_radians();
-    assert!(close(dx, libm::cos(a210)) && close(dy, -libm::sin(a210)), "{dx} {dy}");
+    assert!(
+        close(dx, libm::cos(a210)) && close(dy, -libm::sin(a210)),
+        "{dx} {dy}"
+    );
 }
 
 #[test]
@@ -372,7 +401,11 @@ fn sierpinski_arrowhead_counts() {
         let src = format!("axiom {axiom}\nrule X YF+XF+Y\nrule Y XF-YF-X\nangle 60\n");
         for n in 0..=9u32 {
             let st = stats(&sys(&src), n, &Limits::default()).unwrap();
-            assert_eq!(st.segments, big((3i64.pow(n) - 1 + extra) as u64), "{axiom} {n}");
+            assert_eq!(
+                st.segments,
+                big((3i64.pow(n) - 1 + extra) as u64),
+                "{axiom} {n}"
+            );
             if n <= 6 {
                 assert_eq!(
                     segments(&src, n, Strategy::Dfs).len() as i64,
@@ -407,12 +440,22 @@ fn bfs_refuses_over_the_word_budget() {
     draw_into(&s, 4, Strategy::Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     assert_eq!(rec.segments.len(), 625);
     // Depth 57 with bfs: refused with the exact length, no attempt to allocate.
-    let err = draw_into(&s, 57, Strategy::Bfs, &Limits::default(), &mut rec, &mut NoProgress)
-        .unwrap_err();
+    let err = draw_into(
+        &s,
+        57,
+        Strategy::Bfs,
+        &Limits::default(),
+        &mut rec,
+        &mut NoProgress,
+    )
+    .unwrap_err();
     let ErrorKind::Limit { value, .. } = err.first_kind().unwrap() else {
         panic!("{err}")
     };
-    assert_eq!(*value, ((BigUint::from(5u32).pow(58) - 3u32) / 2u32).to_string());
+    assert_eq!(
+        *value,
+        ((BigUint::from(5u32).pow(58) - 3u32) / 2u32).to_string()
+    );
 }
 
 #[test]
@@ -427,7 +470,9 @@ fn both_strategies_refuse_over_max_symbols_and_max_depth() {
         let mut rec = Recorder::default();
         assert!(draw_into(&s, 3, strategy, &limits, &mut rec, &mut NoProgress).is_ok());
         let err = draw_into(&s, 4, strategy, &limits, &mut rec, &mut NoProgress).unwrap_err();
-        assert!(matches!(err.first_kind(), Some(ErrorKind::Limit { value, .. }) if value == "1561"));
+        assert!(
+            matches!(err.first_kind(), Some(ErrorKind::Limit { value, .. }) if value == "1561")
+        );
         assert!(err.0[0].help.as_deref().unwrap().contains("--max-symbols"));
         let err = draw_into(&s, 21, strategy, &limits, &mut rec, &mut NoProgress).unwrap_err();
         assert!(err.0[0].help.as_deref().unwrap().contains("--max-depth"));
@@ -483,7 +528,10 @@ fn broken_pipe_has_its_own_kind() {
 // -------------------------------------------------------- dfs == bfs (prop) --
 
 /// A random word over `alphabet` with balanced brackets.
-fn word(alphabet: &'static [char], max: usize) -> impl proptest::strategy::Strategy<Value = String> {
+fn word(
+    alphabet: &'static [char],
+    max: usize,
+) -> impl proptest::strategy::Strategy<Value = String> {
     proptest::collection::vec((0..alphabet.len() + 2, any::<bool>()), 0..max).prop_map(move |v| {
         let mut out = String::new();
         let mut open = 0;
@@ -568,7 +616,10 @@ fn hilbert_and_stl_fig4_counts() {
         // The curve fills a (2^n - 1) square.
         let b = st.bbox.unwrap();
         let side = f64::from(2u32.pow(n) - 1);
-        assert!(close(b[2] - b[0], side) && close(b[3] - b[1], side), "{n} {b:?}");
+        assert!(
+            close(b[2] - b[0], side) && close(b[3] - b[1], side),
+            "{n} {b:?}"
+        );
     }
     // 003 Fig. 4 at depth 1: F[-F]F[+F]F, 30 degrees, by hand.
     let segs = segments("axiom F\nrule F F[-F]F[+F]F\nangle 30\n", 1, Strategy::Dfs);
