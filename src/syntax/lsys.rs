@@ -102,8 +102,20 @@ impl LSystem {
 /// `limits.max_depth`.
 pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
     let text = super::precheck(src.as_bytes(), limits)?;
-    let file = GrammarParser::parse(Rule::lsys_file, text)
-        .map_err(|e| Diagnostics::from(super::pest_error(e)))?;
+    let file = GrammarParser::parse(Rule::lsys_file, text).map_err(|e| {
+        let mut d = super::pest_error(e);
+        // At the start of a line pest lists every key's form; say it short.
+        if let Some(span) = &d.span {
+            let line_start = text[..span.start].rfind(['\n', '\r']).map_or(0, |i| i + 1);
+            if text[line_start..span.start].trim().is_empty() {
+                d.kind = ErrorKind::Syntax("expected a line `key value` or a `#` comment".into());
+            }
+        }
+        Diagnostics::from(d.with_help(
+            "each line of a .lsys file is `key value` (generations, axiom, rule, \
+                 angle, length, width, color, background) or a `#` comment",
+        ))
+    })?;
     let mut ck = Checker {
         diags: Diagnostics::new(),
         seen: BTreeMap::new(),
@@ -459,7 +471,7 @@ pub fn describe_rule(rule: Rule) -> Option<&'static str> {
     Some(match rule {
         Rule::number | Rule::lsys_num => "a number",
         Rule::integer | Rule::lsys_int => "a whole number",
-        Rule::lsys_file => "a `.lsys` file",
+        Rule::lsys_file => "a line `key value` or a `#` comment",
         Rule::lsys_generations => "`generations N`",
         Rule::lsys_axiom => "`axiom WORD`",
         Rule::lsys_rule => "`rule X SUCCESSOR`",

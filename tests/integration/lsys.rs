@@ -232,8 +232,15 @@ fn syntax_errors_read_like_the_file_not_the_grammar() {
     let ErrorKind::Syntax(m) = &err.0[0].kind else {
         panic!("{err}")
     };
-    assert!(!m.contains("lsys_"), "{m}");
+    assert_eq!(m, "expected `->`, `=` or a space before the successor");
     assert_eq!(err.0[0].span, Some(23..23));
+    let err = parse("axiom F\n5 F\nangle 90\n", &Limits::default()).unwrap_err();
+    assert_eq!(
+        err.0[0].kind,
+        ErrorKind::Syntax("expected a line `key value` or a `#` comment".into())
+    );
+    assert_eq!(err.0[0].span, Some(8..8));
+    assert!(err.0[0].help.is_some());
 }
 
 // -------------------------------------------------------------- derivation --
