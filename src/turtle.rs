@@ -95,21 +95,15 @@ impl BBox {
         }
     }
 
-    /// Grows the box to hold `p`.
+    /// Grows the box to hold `p`. Written as selects, which compile to
+    /// `minsd`/`maxsd` rather than data-dependent branches (the bounding pass
+    /// runs once per segment); a NaN coordinate is ignored as before.
     #[inline]
     pub fn add(&mut self, p: Point) {
-        if p.x < self.min_x {
-            self.min_x = p.x;
-        }
-        if p.x > self.max_x {
-            self.max_x = p.x;
-        }
-        if p.y < self.min_y {
-            self.min_y = p.y;
-        }
-        if p.y > self.max_y {
-            self.max_y = p.y;
-        }
+        self.min_x = if p.x < self.min_x { p.x } else { self.min_x };
+        self.max_x = if p.x > self.max_x { p.x } else { self.max_x };
+        self.min_y = if p.y < self.min_y { p.y } else { self.min_y };
+        self.max_y = if p.y > self.max_y { p.y } else { self.max_y };
     }
 
     /// Grows the box to hold `other`.

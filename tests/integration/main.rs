@@ -1,5 +1,6 @@
 //! One integration-test binary; each area is a module.
 
 mod cli;
+mod lsys;
 mod render;
 mod stl;
