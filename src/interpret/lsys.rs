@@ -56,6 +56,10 @@ const GLUE_CAP: usize = 64;
 /// compile memory for systems whose expansions grow slowly).
 const POOL_CAP: usize = 1 << 20;
 
+/// Most limb additions spent on an exact (big integer) word length for an
+/// error message; beyond it the message gives a bound.
+const EXACT_WORK: u64 = 1 << 28;
+
 /// Progress is reported about every this many symbols.
 const PROGRESS_STEP: u64 = 1 << 20;
 
@@ -84,12 +88,12 @@ pub fn draw_into<T: Turtle>(
 ) -> Result<Point, Diagnostics> {
     let alpha = Alphabet::new(sys);
     let lens = alpha.check(depth, strategy, limits)?;
-    let total = alpha.word_len(&lens, depth);
+    let total = lens[depth as usize];
     let step = StemLength::constant(sys.length).at(0);
     progress.start("symbols", total);
     let end = match strategy {
         Strategy::Dfs => {
-            let program = Program::<FastOp>::compile(&alpha, &lens, depth);
+            let program = Program::<FastOp>::compile(&alpha, depth);
             let mut exec = Exec::new(turtle, sys.angle, step);
             program.run(|ops| exec.run(ops), progress);
             Point::new(exec.x, exec.y)
@@ -130,13 +134,13 @@ pub fn expand(
 ) -> Result<(), Diagnostics> {
     let alpha = Alphabet::new(sys);
     let lens = alpha.check(depth, strategy, limits)?;
-    let total = alpha.word_len(&lens, depth);
+    let total = lens[depth as usize];
     progress.start("symbols", total);
     let mut w = std::io::BufWriter::with_capacity(1 << 16, out);
     let mut failed: Option<std::io::Error> = None;
     match strategy {
         Strategy::Dfs => {
-            let program = Program::<u8>::compile(&alpha, &lens, depth);
+            let program = Program::<u8>::compile(&alpha, depth);
             program.run(
                 |bytes| {
                     if failed.is_none() {
@@ -177,20 +181,8 @@ pub fn expand(
 /// steps, `0..=depth`. Memoised per (symbol, steps) with big integers.
 pub fn exact_lengths(sys: &LSystem, depth: u32) -> Vec<BigUint> {
     let alpha = Alphabet::new(sys);
-    // len[s] for the current number of steps, starting at 0 steps.
-    let mut len: Vec<BigUint> = vec![BigUint::from(1u32); alpha.chars.len()];
-    let word = |len: &[BigUint]| -> BigUint { alpha.axiom.iter().map(|&s| &len[s as usize]).sum() };
-    let mut levels = vec![word(&len)];
-    for _ in 0..depth {
-        let next: Vec<BigUint> = (0..alpha.chars.len())
-            .map(|s| match &alpha.succ[s] {
-                Some(succ) => succ.iter().map(|&c| &len[c as usize]).sum(),
-                None => len[s].clone(),
-            })
-            .collect();
-        len = next;
-        levels.push(word(&len));
-    }
+    let mut levels = Vec::with_capacity(depth as usize + 1);
+    alpha.exact_each(depth, |len| levels.push(len));
     levels
 }
 
@@ -202,6 +194,13 @@ pub(crate) struct Alphabet {
     pub(crate) succ: Vec<Option<Vec<u32>>>,
     /// The axiom.
     pub(crate) axiom: Vec<u32>,
+    /// The symbols that have a rule (the others keep length 1 at every depth).
+    ruled: Vec<u32>,
+    /// How often each symbol of `ruled` occurs in the axiom, and how many
+    /// axiom symbols have no rule: word lengths are computed from these, not
+    /// by walking the axiom once per level.
+    axiom_ruled: Vec<u64>,
+    axiom_inert: u64,
 }
 
 impl Alphabet {
@@ -213,47 +212,80 @@ impl Alphabet {
             .map(|(i, &c)| (c, i as u32))
             .collect();
         let ids = |w: &[char]| -> Vec<u32> { w.iter().map(|c| index[c]).collect() };
-        let succ = chars.iter().map(|c| sys.successor(*c).map(ids)).collect();
+        let succ: Vec<Option<Vec<u32>>> =
+            chars.iter().map(|c| sys.successor(*c).map(ids)).collect();
+        let ruled: Vec<u32> = (0..chars.len() as u32)
+            .filter(|&s| succ[s as usize].is_some())
+            .collect();
+        let axiom = ids(&sys.axiom);
+        let mut axiom_ruled = vec![0u64; ruled.len()];
+        let mut axiom_inert = 0u64;
+        for &s in &axiom {
+            match ruled.binary_search(&s) {
+                Ok(i) => axiom_ruled[i] += 1,
+                Err(_) => axiom_inert += 1,
+            }
+        }
         Alphabet {
             succ,
-            axiom: ids(&sys.axiom),
+            axiom,
             chars,
+            ruled,
+            axiom_ruled,
+            axiom_inert,
         }
     }
 
-    /// Saturating lengths `lens[r][s]` of `W(s, r)` for `r` in `0..=depth`.
-    fn lengths(&self, depth: u32) -> Vec<Vec<u64>> {
-        let n = self.chars.len();
-        let mut lens = vec![vec![1u64; n]];
-        for r in 1..=depth as usize {
-            let prev = &lens[r - 1];
-            let row = (0..n)
-                .map(|s| match &self.succ[s] {
-                    Some(succ) => succ
-                        .iter()
-                        .fold(0u64, |a, &c| a.saturating_add(prev[c as usize])),
-                    None => 1,
-                })
-                .collect();
-            lens.push(row);
+    /// Saturating lengths of the derived word, `W(axiom, r)` for `r` in
+    /// `0..=depth`. Memory is O(alphabet), not O(alphabet x depth): level by
+    /// level, only symbols with a rule are recomputed, and once a level
+    /// equals the one before (saturated or stationary lengths) every later
+    /// level is the same, so the rest is filled in at once.
+    fn word_lengths(&self, depth: u32) -> Vec<u64> {
+        let mut len = vec![1u64; self.chars.len()];
+        let mut out = Vec::with_capacity(depth as usize + 1);
+        out.push(self.word_len(&len));
+        let mut next = vec![0u64; self.ruled.len()];
+        for _ in 0..depth {
+            for (v, &s) in next.iter_mut().zip(&self.ruled) {
+                *v = self.succ[s as usize]
+                    .iter()
+                    .flatten()
+                    .fold(0u64, |a, &c| a.saturating_add(len[c as usize]));
+            }
+            let mut changed = false;
+            for (&v, &s) in next.iter().zip(&self.ruled) {
+                changed |= len[s as usize] != v;
+                len[s as usize] = v;
+            }
+            let w = self.word_len(&len);
+            out.push(w);
+            if !changed {
+                out.resize(depth as usize + 1, w);
+                break;
+            }
         }
-        lens
+        out
     }
 
-    fn word_len(&self, lens: &[Vec<u64>], r: u32) -> u64 {
-        let row = &lens[r as usize];
-        self.axiom
+    /// The saturating word length for the per-symbol lengths `len`.
+    fn word_len(&self, len: &[u64]) -> u64 {
+        self.ruled
             .iter()
-            .fold(0u64, |a, &s| a.saturating_add(row[s as usize]))
+            .zip(&self.axiom_ruled)
+            .fold(self.axiom_inert, |a, (&s, &k)| {
+                a.saturating_add(len[s as usize].saturating_mul(k))
+            })
     }
 
-    /// Refuses depths and words over the limits; returns the length table.
+    /// Refuses depths and words over the limits; returns the saturating
+    /// word length of every level `0..=depth`.
     fn check(
         &self,
         depth: u32,
         strategy: Strategy,
         limits: &Limits,
-    ) -> Result<Vec<Vec<u64>>, Diagnostics> {
+    ) -> Result<Vec<u64>, Diagnostics> {
         if depth > limits.max_depth {
             return Err(Diagnostic::error(ErrorKind::Limit {
                 what: "derivation depth".into(),
@@ -263,17 +295,17 @@ impl Alphabet {
             .with_help("use a smaller depth, or raise the limit with --max-depth N")
             .into());
         }
-        let lens = self.lengths(depth);
+        let lens = self.word_lengths(depth);
         let exact = |r: u32| -> String {
             // Saturated lengths are recomputed exactly for the message.
-            let len = self.word_len(&lens, r);
+            let len = lens[r as usize];
             if len < u64::MAX {
                 len.to_string()
             } else {
-                self.exact_len(r).to_string()
+                self.exact_len(r)
             }
         };
-        if self.word_len(&lens, depth) > limits.max_symbols {
+        if lens[depth as usize] > limits.max_symbols {
             return Err(Diagnostic::error(ErrorKind::Limit {
                 what: format!("derived word length at depth {depth}"),
                 value: exact(depth),
@@ -283,7 +315,7 @@ impl Alphabet {
             .into());
         }
         if strategy == Strategy::Bfs {
-            if let Some(r) = (0..=depth).find(|&r| self.word_len(&lens, r) > limits.max_word) {
+            if let Some(r) = (0..=depth).find(|&r| lens[r as usize] > limits.max_word) {
                 return Err(Diagnostic::error(ErrorKind::Limit {
                     what: format!("bfs word at level {r}"),
                     value: exact(r),
@@ -299,17 +331,68 @@ impl Alphabet {
         Ok(lens)
     }
 
-    fn exact_len(&self, r: u32) -> BigUint {
-        let mut len: Vec<BigUint> = vec![BigUint::from(1u32); self.chars.len()];
-        for _ in 0..r {
-            len = (0..self.chars.len())
-                .map(|s| match &self.succ[s] {
-                    Some(succ) => succ.iter().map(|&c| &len[c as usize]).sum(),
-                    None => len[s].clone(),
+    /// The exact word length at level `r`, in decimal, for a message. Big
+    /// integers cost time in proportion to their size: when the work would
+    /// exceed [`EXACT_WORK`] limb additions, a bound is given instead.
+    fn exact_len(&self, r: u32) -> String {
+        let per_level: u64 = self
+            .ruled
+            .iter()
+            .map(|&s| self.succ[s as usize].as_ref().map_or(0, |w| w.len() as u64) + 1)
+            .sum::<u64>()
+            + self.ruled.len() as u64;
+        // Lengths grow by at most log2(longest successor) bits per level.
+        let longest = self
+            .succ
+            .iter()
+            .flatten()
+            .map(Vec::len)
+            .max()
+            .unwrap_or(1)
+            .max(2);
+        let bits = u64::from(r) * u64::from(usize::BITS - longest.leading_zeros());
+        let limbs = bits / 64 + 1;
+        let work = u64::from(r).saturating_mul(per_level).saturating_mul(limbs);
+        if work > EXACT_WORK {
+            return format!("more than {}", u64::MAX - 1);
+        }
+        let mut last = BigUint::default();
+        self.exact_each(r, |len| last = len);
+        last.to_string()
+    }
+
+    /// Exact word lengths `W(axiom, r)` for `r` in `0..=depth`, each handed
+    /// to `f` in order; only symbols with a rule are recomputed per level.
+    fn exact_each(&self, depth: u32, mut f: impl FnMut(BigUint)) {
+        let one = BigUint::from(1u32);
+        let mut len: Vec<BigUint> = vec![one; self.chars.len()];
+        let word = |len: &[BigUint]| -> BigUint {
+            let mut w = BigUint::from(self.axiom_inert);
+            for (&s, &k) in self.ruled.iter().zip(&self.axiom_ruled) {
+                if k > 0 {
+                    w += &len[s as usize] * k;
+                }
+            }
+            w
+        };
+        f(word(&len));
+        for _ in 0..depth {
+            let next: Vec<BigUint> = self
+                .ruled
+                .iter()
+                .map(|&s| {
+                    self.succ[s as usize]
+                        .iter()
+                        .flatten()
+                        .map(|&c| &len[c as usize])
+                        .sum()
                 })
                 .collect();
+            for (v, &s) in next.into_iter().zip(&self.ruled) {
+                len[s as usize] = v;
+            }
+            f(word(&len));
         }
-        self.axiom.iter().map(|&s| &len[s as usize]).sum()
     }
 
     /// Saupe's string rewriting: builds the word level by level, then calls
@@ -511,7 +594,7 @@ struct Program<U> {
 }
 
 impl<U: Unit> Program<U> {
-    fn compile(alpha: &Alphabet, lens: &[Vec<u64>], depth: u32) -> Self {
+    fn compile(alpha: &Alphabet, depth: u32) -> Self {
         let n = alpha.chars.len();
         let mut pool: Vec<U> = Vec::new();
         let mut plans: Vec<Vec<Item>> = Vec::new();
@@ -533,7 +616,17 @@ impl<U: Unit> Program<U> {
         // The row before `prev`, to spot expansions that stopped changing.
         let mut prev2: Option<Vec<Entry>> = None;
         let mut scratch: Vec<U> = Vec::new();
-        for lens_r in lens.iter().take(depth as usize + 1).skip(1) {
+        // Saturating lengths of every symbol's expansion at the level before.
+        let mut len_prev = vec![1u64; n];
+        for _ in 0..depth {
+            let lens_r: Vec<u64> = (0..n)
+                .map(|s| match &alpha.succ[s] {
+                    Some(succ) => succ
+                        .iter()
+                        .fold(0u64, |a, &c| a.saturating_add(len_prev[c as usize])),
+                    None => 1,
+                })
+                .collect();
             let mut row = Vec::with_capacity(n);
             for s in 0..n {
                 let Some(succ) = &alpha.succ[s] else {
@@ -580,7 +673,14 @@ impl<U: Unit> Program<U> {
                 plans.push(items);
                 row.push(Entry::Plan(plans.len() as u32 - 1));
             }
+            // A level equal to the one before repeats for ever: the
+            // remaining levels would compile to the same row.
+            let stationary = row == prev;
             prev2 = Some(std::mem::replace(&mut prev, row));
+            len_prev = lens_r;
+            if stationary {
+                break;
+            }
         }
         let root = plan_items(&alpha.axiom, &prev, &mut pool);
         plans.push(root);
