@@ -1,0 +1,131 @@
+//! Parse a `.lsys`, derive it with both strategies into a bounding turtle
+//! (they must agree bit for bit), then render it to a small PNG and SVG.
+//! Tight limits keep every input fast; any error after a successful parse
+//! must be a limit (or, for pictures with non-finite coordinates, a render
+//! error), never a panic.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use stlc::color::Rgb;
+use stlc::diag::{Diagnostics, ErrorKind};
+use stlc::interpret::{Strategy, lsys};
+use stlc::limits::Limits;
+use stlc::progress::{NoProgress, Progress};
+use stlc::render::{self, ImageFormat, RenderOptions, Style, Width};
+use stlc::syntax::lsys::{Background, parse};
+use stlc::turtle::{Bounds, Turtle};
+
+const DEPTH_CAP: u32 = 16;
+
+const LIMITS: Limits = Limits {
+    max_input_bytes: 1 << 16,
+    max_nesting: 1_000,
+    max_depth: 1_000,
+    max_repeat: 16,
+    max_symbols: 1_000_000,
+    max_word: 1_000_000,
+    max_stems: 10_000,
+};
+
+/// Rendering walks the word twice per format: a smaller budget.
+const RENDER_LIMITS: Limits = Limits {
+    max_symbols: 100_000,
+    ..LIMITS
+};
+
+fn bits(b: &Bounds) -> Option<[u64; 4]> {
+    b.bbox
+        .map(|b| [b.min_x, b.min_y, b.max_x, b.max_y].map(f64::to_bits))
+}
+
+fn only_limits(e: &Diagnostics, also_render: bool) {
+    for d in e.iter().filter(|d| d.is_error()) {
+        let ok = matches!(d.kind, ErrorKind::Limit { .. })
+            || (also_render && matches!(d.kind, ErrorKind::Render(_)));
+        assert!(ok, "unexpected error after a successful parse: {d}");
+    }
+}
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(sys) = parse(text, &LIMITS) else {
+        return;
+    };
+    let depth = sys.generations.unwrap_or(3).min(DEPTH_CAP);
+
+    let mut dfs = Bounds::default();
+    let rd = lsys::draw(
+        &sys,
+        depth,
+        Strategy::Dfs,
+        &LIMITS,
+        &mut dfs,
+        &mut NoProgress,
+    );
+    let mut bfs = Bounds::default();
+    let rb = lsys::draw(
+        &sys,
+        depth,
+        Strategy::Bfs,
+        &LIMITS,
+        &mut bfs,
+        &mut NoProgress,
+    );
+    match (&rd, &rb) {
+        (Ok(()), Ok(())) => {
+            assert_eq!(
+                dfs.count, bfs.count,
+                "dfs and bfs draw different segment counts"
+            );
+            assert_eq!(bits(&dfs), bits(&bfs), "dfs and bfs draw different boxes");
+        }
+        (Err(e), _) | (_, Err(e)) => only_limits(e, false),
+    }
+    if rd.is_err() {
+        return;
+    }
+
+    let style = Style {
+        stroke: sys.color.unwrap_or(Rgb::BLACK),
+        background: match sys.background {
+            Background::White => Some(Rgb::WHITE),
+            Background::None => None,
+            Background::Color(c) => Some(c),
+        },
+        width: Width::Pixels(sys.width),
+    };
+    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| {
+        lsys::draw(&sys, depth, Strategy::Dfs, &RENDER_LIMITS, t, p)
+    };
+    for format in [ImageFormat::Png, ImageFormat::Svg] {
+        let opts = RenderOptions {
+            format,
+            size: Some((64, 64)),
+        };
+        let mut out = Vec::new();
+        match render::render(
+            &mut drawing,
+            None,
+            &[],
+            &style,
+            &opts,
+            &mut out,
+            &mut NoProgress,
+        ) {
+            Ok(()) => match format {
+                ImageFormat::Png => assert!(out.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG"),
+                ImageFormat::Svg => {
+                    let svg = String::from_utf8(out).expect("SVG is UTF-8");
+                    assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
+                    assert!(
+                        !svg.contains("NaN") && !svg.contains("inf"),
+                        "non-finite number in SVG"
+                    );
+                }
+            },
+            Err(e) => only_limits(&e, true),
+        }
+    }
+});

@@ -1,0 +1,143 @@
+//! Bytes -> `precheck` -> the `.od`/`.bed` parser, both formats. For a BED
+//! that parses: `bed::validate`, the canonical writer and its round trip
+//! (`parse(write(x)) == x` when every number of `x` is written exactly;
+//! `write` a fixed point always), and drawing it with both strategies into
+//! bounding turtles under small limits (they must agree bit for bit).
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use stlc::bed::{validate, write::write};
+use stlc::diag::{Diagnostics, ErrorKind};
+use stlc::interpret::{Strategy, bed};
+use stlc::limits::Limits;
+use stlc::progress::NoProgress;
+use stlc::syntax::ast::{Description, Format, Shape};
+use stlc::syntax::{precheck, stl};
+use stlc::turtle::{Bounds, Counter};
+
+const LIMITS: Limits = Limits {
+    max_input_bytes: 1 << 16,
+    max_nesting: 1_000,
+    max_depth: 16,
+    max_repeat: 16,
+    max_symbols: 100_000,
+    max_word: 100_000,
+    max_stems: 10_000,
+};
+
+/// Every number the writer prints for `d`, as it computes them.
+fn numbers(d: &Description) -> Vec<f64> {
+    let p = &d.params;
+    let mut v = vec![
+        d.root.0,
+        d.root.1,
+        p.length,
+        p.length_dec,
+        p.width,
+        p.width_dec,
+    ];
+    v.extend(p.angle);
+    v.extend(p.clearance);
+    for s in d.layout.iter().flat_map(|l| &l.shapes) {
+        match &s.shape {
+            Shape::Rect { x, y, w, h } | Shape::Ellipse { x, y, w, h } => {
+                v.extend([*x, *y, *w, *h, x + w, y + h]);
+            }
+            Shape::RoundRect { x, y, w, h, rx, ry } => {
+                v.extend([*x, *y, *w, *h, x + w, y + h, 2.0 * rx, 2.0 * ry]);
+            }
+            Shape::Polygon(pts) => v.extend(pts.iter().flat_map(|&(x, y)| [x, y])),
+        }
+    }
+    v
+}
+
+/// Numbers that survive printing with three decimals, and arithmetic on
+/// them, exactly: multiples of 1/2 well inside f64's integer range.
+fn exact(d: &Description) -> bool {
+    numbers(d)
+        .iter()
+        .all(|&v| (2.0 * v).fract() == 0.0 && v.abs() < (1u64 << 40) as f64)
+}
+
+fn check_spans(e: &Diagnostics, text: &str) {
+    assert!(e.has_errors(), "an Err without an error: {e:?}");
+    for d in e.iter() {
+        for s in d.span.iter().chain(d.labels.iter().map(|l| &l.span)) {
+            assert!(
+                s.start <= s.end && s.end <= text.len(),
+                "span {s:?} outside the text"
+            );
+            assert!(text.is_char_boundary(s.start) && text.is_char_boundary(s.end));
+        }
+    }
+}
+
+fn roundtrip(x: &Description, format: Format) {
+    let w = write(x);
+    let y = match stl::parse(&w, format, &LIMITS) {
+        Ok(y) => y,
+        Err(e) => panic!("the writer's output does not parse back:\n{w}\n{e}"),
+    };
+    if exact(x) {
+        assert_eq!(&y, x, "parse(write(x)) != x; written:\n{w}");
+    }
+    let w2 = write(&y);
+    assert_eq!(w, w2, "write is not a fixed point");
+}
+
+fn bits(b: &Bounds) -> Option<[u64; 4]> {
+    b.bbox
+        .map(|b| [b.min_x, b.min_y, b.max_x, b.max_y].map(f64::to_bits))
+}
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = precheck(data, &LIMITS) else {
+        return;
+    };
+    match stl::parse(text, Format::Od, &LIMITS) {
+        Ok(od) => roundtrip(&od, Format::Od),
+        Err(e) => check_spans(&e, text),
+    }
+    let x = match stl::parse(text, Format::Bed, &LIMITS) {
+        Ok(x) => x,
+        Err(e) => return check_spans(&e, text),
+    };
+    roundtrip(&x, Format::Bed);
+    let valid = validate(&x, &LIMITS);
+    let mut count = Counter::default();
+    let rc = bed::draw(&x, Strategy::Dfs, &LIMITS, &mut count, &mut NoProgress);
+    assert_eq!(
+        valid.is_ok(),
+        rc.is_ok(),
+        "validate and draw disagree: {valid:?} {rc:?}"
+    );
+    if let Err(e) = &valid {
+        // The parser resolved names and slot counts: what is left are
+        // orders, counts and sizes.
+        for d in e.iter() {
+            assert!(
+                matches!(d.kind, ErrorKind::Limit { .. } | ErrorKind::Stl(_)),
+                "unexpected validation error of a parsed BED: {d}"
+            );
+        }
+        return;
+    }
+    let mut dfs = Bounds::default();
+    bed::draw(&x, Strategy::Dfs, &LIMITS, &mut dfs, &mut NoProgress).expect("validated");
+    let mut bfs = Bounds::default();
+    match bed::draw(&x, Strategy::Bfs, &LIMITS, &mut bfs, &mut NoProgress) {
+        Ok(()) => {
+            assert_eq!(
+                dfs.count, bfs.count,
+                "dfs and bfs draw different segment counts"
+            );
+            assert_eq!(bits(&dfs), bits(&bfs), "dfs and bfs draw different boxes");
+        }
+        Err(e) => assert!(
+            matches!(e.first_kind(), Some(ErrorKind::Limit { .. })),
+            "bfs failed where dfs did not: {e}"
+        ),
+    }
+    assert_eq!(count.0, dfs.count);
+});
