@@ -3,4 +3,5 @@
 mod cli;
 mod lsys;
 mod render;
+mod robustness;
 mod stl;

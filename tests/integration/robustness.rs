@@ -1,0 +1,605 @@
+//! Hostile input at the library level: deep nesting, huge counts, numbers
+//! that are not numbers, degenerate shapes, huge and binary inputs, and the
+//! regressions found by fuzzing (`fuzz/`, `docs/fuzzing.md`).
+//!
+//! Every case must end in a clean [`Diagnostics`] with the right
+//! [`ErrorKind`] (or the right drawing), quickly and in bounded memory.
+//! Parsing runs on a thread with an ordinary 2 MiB stack: the CLI's big
+//! worker stack is not what keeps these from overflowing.
+
+use std::time::{Duration, Instant};
+
+use stlc::bed::validate;
+use stlc::bed::write::write;
+use stlc::diag::{Diagnostics, ErrorKind};
+use stlc::interpret::Strategy;
+use stlc::limits::Limits;
+use stlc::progress::NoProgress;
+use stlc::syntax::ast::{Description, Format, Shape};
+use stlc::syntax::{lsys, precheck, stl};
+use stlc::turtle::{Bounds, Counter};
+
+/// The stack of an ordinary spawned thread.
+const SMALL_STACK: usize = 2 << 20;
+
+/// Runs `f` on a thread with a 2 MiB stack and returns its result; fails
+/// the test if it takes longer than `secs` seconds (debug build).
+fn small_stack<T: Send + 'static>(secs: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
+    on_stack(SMALL_STACK, secs, f)
+}
+
+/// [`small_stack`] with a stack of `bytes`.
+fn on_stack<T: Send + 'static>(
+    bytes: usize,
+    secs: u64,
+    f: impl FnOnce() -> T + Send + 'static,
+) -> T {
+    let start = Instant::now();
+    let out = std::thread::Builder::new()
+        .stack_size(bytes)
+        .spawn(f)
+        .expect("spawn")
+        .join()
+        .expect("no panic and no stack overflow");
+    let took = start.elapsed();
+    assert!(
+        took < Duration::from_secs(secs),
+        "took {took:?}, more than {secs} s"
+    );
+    out
+}
+
+fn lsys_err(src: String, limits: Limits) -> Diagnostics {
+    small_stack(10, move || match lsys::parse(&src, &limits) {
+        Ok(_) => panic!("parsed, expected an error"),
+        Err(e) => e,
+    })
+}
+
+fn stl_err(src: String, format: Format, limits: Limits) -> Diagnostics {
+    small_stack(10, move || match stl::parse(&src, format, &limits) {
+        Ok(_) => panic!("parsed, expected an error"),
+        Err(e) => e,
+    })
+}
+
+fn is_limit(e: &Diagnostics, what: &str) -> bool {
+    matches!(e.first_kind(), Some(ErrorKind::Limit { what: w, .. }) if w.contains(what))
+}
+
+fn bed(src: &str) -> Description {
+    stl::parse(src, Format::Bed, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+const N: usize = 100_000;
+const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
+
+// --------------------------------------------------------------- nesting --
+
+#[test]
+fn lsys_axiom_nested_a_hundred_thousand_deep_is_refused_at_the_limit() {
+    let src = format!("axiom {}F{}\nangle 90\n", "[".repeat(N), "]".repeat(N));
+    let e = lsys_err(src, Limits::default());
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::NestingTooDeep { limit: 10_000 })
+    );
+    // The 10 001st `[`, after `axiom `.
+    assert_eq!(e.0[0].span, Some(6 + 10_000..6 + 10_001));
+}
+
+#[test]
+fn lsys_successor_nested_a_hundred_thousand_deep_is_refused() {
+    let src = format!(
+        "axiom F\nangle 90\nrule F {}F{}\n",
+        "[".repeat(N),
+        "]".repeat(N)
+    );
+    let e = lsys_err(src, Limits::default());
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::NestingTooDeep { limit: 10_000 })
+    );
+}
+
+#[test]
+fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
+    // With the limit raised, nothing recursive is left to overflow: the
+    // grammar reads a word flat and both strategies use explicit stacks.
+    let limits = Limits {
+        max_nesting: 1_000_000,
+        ..Limits::default()
+    };
+    let src = format!(
+        "axiom {}F{}\nangle 90\nrule F F{}+F{}\n",
+        "[".repeat(N),
+        "]".repeat(N),
+        "[".repeat(N),
+        "]".repeat(N)
+    );
+    let counts = small_stack(30, move || {
+        let sys = lsys::parse(&src, &limits).expect("parses");
+        [Strategy::Dfs, Strategy::Bfs].map(|s| {
+            let mut c = Counter::default();
+            stlc::interpret::lsys::draw(&sys, 1, s, &limits, &mut c, &mut NoProgress)
+                .expect("draws");
+            c.0
+        })
+    });
+    // F -> F[...+F...]: two segments.
+    assert_eq!(counts, [2, 2]);
+    // An unbalanced one is still pointed at, at its opening bracket.
+    let src = format!("axiom F{}\nangle 90\n", "[".repeat(N));
+    let e = lsys_err(src, limits);
+    assert_eq!(e.first_kind(), Some(&ErrorKind::Unbalanced('[')));
+}
+
+#[test]
+fn stl_brackets_braces_and_repeats_a_hundred_thousand_deep_are_refused() {
+    let cases = [
+        format!("{HEAD} R1: {}F{}", "[".repeat(N), "]".repeat(N)),
+        format!(
+            "{HEAD} R1: [F] SEED {}{} ENDSEED",
+            "R1{".repeat(N),
+            "}".repeat(N)
+        ),
+        format!(
+            "{HEAD} R1: [F] SEED {}{} ENDSEED",
+            "{".repeat(N),
+            "}".repeat(N)
+        ),
+        format!(
+            "{HEAD} R1: [F] SEED {}R1{} ENDSEED",
+            "[I 2 ".repeat(N),
+            "]".repeat(N)
+        ),
+        format!(
+            "{HEAD} R1: [F] SEED {}F{} ENDSEED",
+            "[".repeat(N),
+            "]".repeat(N)
+        ),
+    ];
+    for src in cases {
+        for format in [Format::Od, Format::Bed] {
+            let e = stl_err(src.clone(), format, Limits::default());
+            assert_eq!(
+                e.first_kind(),
+                Some(&ErrorKind::NestingTooDeep { limit: 10_000 }),
+                "{}",
+                &src[..60]
+            );
+        }
+    }
+}
+
+#[test]
+fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
+    // Raised limit: what the parser itself does with 10^5 levels, on a
+    // small stack. Brackets in a body are drawing; a seed of bare braces
+    // or of `[I 2` around a rule is malformed and must say so.
+    let limits = Limits {
+        max_nesting: 1_000_000,
+        ..Limits::default()
+    };
+    let body = format!(
+        "{HEAD} R1: [{}F{}] SEED R1 ENDSEED",
+        "[".repeat(N),
+        "]".repeat(N)
+    );
+    let count = small_stack(30, move || {
+        let d = stl::parse(&body, Format::Bed, &limits).expect("a deep branch parses");
+        let mut c = Counter::default();
+        stlc::interpret::bed::draw(&d, Strategy::Dfs, &limits, &mut c, &mut NoProgress)
+            .expect("draws");
+        c.0
+    });
+    assert_eq!(count, 1);
+    let braces = format!(
+        "{HEAD} R1: [F] SEED {}{} ENDSEED",
+        "{".repeat(N),
+        "}".repeat(N)
+    );
+    let e = stl_err(braces, Format::Bed, limits);
+    assert!(e.has_errors());
+    let repeats = format!(
+        "{HEAD} R1: [F] SEED {}R1{} ENDSEED",
+        "[I 2 ".repeat(N),
+        "]".repeat(N)
+    );
+    let e = stl_err(repeats, Format::Bed, limits);
+    assert!(e.has_errors());
+}
+
+/// Stack for term trees nested up to the default `max_nesting`.
+///
+/// A seed term `R1{R1{...}}` is a tree of nested values, and its derived
+/// `Drop`, `Clone` and `PartialEq` recurse once per level: about 1 KiB of
+/// stack per level in a debug build (1 000 levels fit a 2 MiB stack, 2 000
+/// do not). `max_nesting` (default 10 000, refused by `precheck` beyond)
+/// bounds that recursion, and the CLI runs on a 1 GiB worker stack
+/// (`src/cli/mod.rs`), which holds it with a wide margin. Everything else
+/// (pest, the parser's own passes, validation, the writer, both drawing
+/// strategies) uses explicit stacks.
+const TERM_STACK: usize = 64 << 20;
+
+#[test]
+fn terms_nested_to_the_default_limit_work_within_a_bounded_stack() {
+    let n = 9_000;
+    let src = format!(
+        "{HEAD} R1: [F] SEED {}{} ENDSEED",
+        "R1{".repeat(n),
+        "}".repeat(n)
+    );
+    let (count, text_len) = on_stack(TERM_STACK, 60, move || {
+        let limits = Limits::default();
+        let d = stl::parse(&src, Format::Bed, &limits).expect("parses");
+        validate(&d, &limits).expect("valid");
+        let text = write(&d);
+        let mut c = Counter::default();
+        stlc::interpret::bed::draw(&d, Strategy::Dfs, &limits, &mut c, &mut NoProgress)
+            .expect("draws");
+        (c.0, text.len())
+    });
+    assert_eq!(count, n as u64);
+    // Indented two spaces per level: more than n^2 bytes, 162 MB here, more
+    // than the default input limit of 64 MiB (known gap, docs/fuzzing.md).
+    assert!(text_len > n * n, "{text_len}");
+    assert!(text_len as u64 > Limits::default().max_input_bytes);
+    // A thousand levels fit an ordinary thread's stack.
+    let m = 1_000;
+    let src = format!(
+        "{HEAD} R1: [F] SEED {}{} ENDSEED",
+        "R1{".repeat(m),
+        "}".repeat(m)
+    );
+    let count = small_stack(10, move || {
+        let limits = Limits::default();
+        let d = stl::parse(&src, Format::Bed, &limits).expect("parses");
+        let back = stl::parse(&write(&d), Format::Bed, &limits).expect("reparses");
+        assert!(back == d, "round trip");
+        let mut c = Counter::default();
+        stlc::interpret::bed::draw(&d, Strategy::Dfs, &limits, &mut c, &mut NoProgress)
+            .expect("draws");
+        c.0
+    });
+    assert_eq!(count, m as u64);
+}
+
+// ---------------------------------------------------------------- counts --
+
+#[test]
+fn generations_in_the_millions_are_refused_with_limit() {
+    let e = lsys_err(
+        "generations 5000000\naxiom F\nangle 90\n".into(),
+        Limits::default(),
+    );
+    assert!(is_limit(&e, "generations"), "{e}");
+    let d = &e.0[0];
+    assert_eq!(d.span, Some(12..19));
+    // A number too large for any integer type is a limit too, not a crash.
+    let e = lsys_err(
+        "generations 99999999999999999999999999\naxiom F\nangle 90\n".into(),
+        Limits::default(),
+    );
+    assert!(is_limit(&e, "generations"), "{e}");
+}
+
+#[test]
+fn self_resemblance_counts_in_the_millions_are_refused_with_limit() {
+    let src = format!("{HEAD} R1: [F] SEED [I 3000000 R1] ENDSEED");
+    let at = src.find("3000000").unwrap();
+    for format in [Format::Od, Format::Bed] {
+        let e = stl_err(src.clone(), format, Limits::default());
+        assert!(is_limit(&e, "self-resemblance count"), "{e}");
+        assert_eq!(e.0[0].span, Some(at..at + 7));
+    }
+    // In a fixed figure, and beyond u32.
+    let src = format!("{HEAD} R1: [F[I 99999999999999 F+F]]");
+    let e = stl_err(src, Format::Bed, Limits::default());
+    assert!(is_limit(&e, "self-resemblance count"), "{e}");
+}
+
+#[test]
+fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
+    // 2^40 stems from [I 40 R1] with two branches: within max_repeat,
+    // beyond max_symbols.
+    let d = bed(&format!("{HEAD} R1: [+F][-F] SEED [I 40 R1] ENDSEED"));
+    let e = small_stack(10, move || {
+        let mut c = Counter::default();
+        stlc::interpret::bed::draw(
+            &d,
+            Strategy::Dfs,
+            &Limits::default(),
+            &mut c,
+            &mut NoProgress,
+        )
+        .unwrap_err()
+    });
+    assert!(is_limit(&e, "symbols in the expansion"), "{e}");
+}
+
+#[test]
+fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
+    let sys = lsys::parse("axiom F\nrule F FF\nangle 90\n", &Limits::default()).unwrap();
+    let e = small_stack(10, move || {
+        let mut c = Counter::default();
+        stlc::interpret::lsys::draw(
+            &sys,
+            10_000,
+            Strategy::Dfs,
+            &Limits::default(),
+            &mut c,
+            &mut NoProgress,
+        )
+        .unwrap_err()
+    });
+    assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
+    // 2^10000 has 3011 digits.
+    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
+        unreachable!()
+    };
+    assert_eq!(value.len(), 3011);
+    let exact = num_bigint::BigUint::from(2u32).pow(10_000);
+    assert_eq!(*value, exact.to_string());
+}
+
+#[test]
+fn a_wide_alphabet_at_the_depth_limit_is_refused_quickly_in_bounded_memory() {
+    // 60 000 distinct symbols and depth 10 000: a length table of every
+    // (symbol, depth) pair would be 4.8 GB.
+    let alphabet: String = (0x4e00u32..0x4e00 + 60_000)
+        .filter_map(char::from_u32)
+        .collect();
+    let src = format!("axiom F{alphabet}\nrule F FF\nangle 90\n");
+    let e = small_stack(20, move || {
+        let limits = Limits::default();
+        let sys = lsys::parse(&src, &limits).expect("parses");
+        let mut c = Counter::default();
+        stlc::interpret::lsys::draw(
+            &sys,
+            10_000,
+            Strategy::Dfs,
+            &limits,
+            &mut c,
+            &mut NoProgress,
+        )
+        .unwrap_err()
+    });
+    assert!(
+        matches!(e.first_kind(), Some(ErrorKind::Limit { .. })),
+        "{e}"
+    );
+}
+
+// --------------------------------------------------------------- numbers --
+
+#[test]
+fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
+    for (line, needle) in [
+        ("angle 1e999", "1e999"),
+        ("angle NaN", "NaN"),
+        ("angle inf", "inf"),
+        ("angle -inf", "-inf"),
+        ("angle 1e", "1e"),
+    ] {
+        let src = format!("axiom F\n{line}\n");
+        let at = src.find(needle).unwrap();
+        let e = lsys_err(src.clone(), Limits::default());
+        assert!(
+            matches!(e.first_kind(), Some(ErrorKind::Lsys(_))),
+            "{line}: {e}"
+        );
+        assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{line}");
+    }
+    for line in ["length 0", "length -1", "width -2", "length 1e999"] {
+        let src = format!("axiom F\nangle 90\n{line}\n");
+        let e = lsys_err(src, Limits::default());
+        assert!(
+            matches!(e.first_kind(), Some(ErrorKind::Lsys(_))),
+            "{line}: {e}"
+        );
+    }
+}
+
+#[test]
+fn stl_numbers_that_overflow_are_refused() {
+    for (src, needle) in [
+        ("T (1e999, 0) L=10(0) B=1(0) RULE R1: [F]".to_string(), "1e999"),
+        ("T (0, 0) L=1e400(0) B=1(0) RULE R1: [F]".to_string(), "1e400"),
+        (
+            "T (0, 0) L=10(0) B=1(0) A=-1e999 RULE R1: [F]".to_string(),
+            "-1e999",
+        ),
+        (
+            format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 1e309, 5 ENDLAYOUT"),
+            "1e309",
+        ),
+    ] {
+        let at = src.find(needle).unwrap();
+        let e = stl_err(src.clone(), Format::Bed, Limits::default());
+        assert!(
+            matches!(e.first_kind(), Some(ErrorKind::Stl(_))),
+            "{src}: {e}"
+        );
+        assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{src}");
+    }
+    // `NaN` and `inf` are not numbers in the grammar at all.
+    for src in [
+        "T (NaN, 0) L=10(0) B=1(0) RULE R1: [F]",
+        "T (0, 0) L=inf(0) B=1(0) RULE R1: [F]",
+    ] {
+        let e = stl_err(src.into(), Format::Bed, Limits::default());
+        assert!(
+            matches!(e.first_kind(), Some(ErrorKind::Syntax(_))),
+            "{src}: {e}"
+        );
+    }
+}
+
+#[test]
+fn zero_and_negative_sizes_are_refused() {
+    for (src, needle) in [
+        ("T (0, 0) L=0(0) B=1(0) RULE R1: [F]", "0(0)"),
+        ("T (0, 0) L=10(0) B=-1(0) RULE R1: [F]", "-1(0)"),
+        ("T (0, 0) L=10(-1) B=1(0) RULE R1: [F]", "-1)"),
+    ] {
+        let e = stl_err(src.into(), Format::Bed, Limits::default());
+        assert!(
+            matches!(e.first_kind(), Some(ErrorKind::Stl(_))),
+            "{src}: {e}"
+        );
+        let at = src.find(needle).unwrap();
+        let span = e.0[0].span.clone().unwrap();
+        assert_eq!(span.start, at, "{src}");
+    }
+    for shape in [
+        "Rectangle (0,0), 0, 10",
+        "Rectangle (0,0), 10, -10",
+        "Ellipse (5,5,5,9)",
+        "RoundRect (0,0), 10, 10, -1",
+        "RoundRect (0,0,10,10,0,4)",
+        "Polygon (0,0), (1,1)",
+    ] {
+        let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) {shape} ENDLAYOUT");
+        let e = stl_err(src, Format::Od, Limits::default());
+        assert!(
+            matches!(e.first_kind(), Some(ErrorKind::Stl(_))),
+            "{shape}: {e}"
+        );
+    }
+    // A decrement that runs the length out: the order where it happens.
+    let d = bed("T (0, 0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{R1{}}} ENDSEED");
+    let e = validate(&d, &Limits::default()).unwrap_err();
+    assert!(
+        matches!(e.first_kind(), Some(ErrorKind::Stl(m)) if m.contains("order 2")),
+        "{e}"
+    );
+}
+
+// ---------------------------------------------------------------- layout --
+
+#[test]
+fn a_self_intersecting_polygon_is_read_and_written_back_as_given() {
+    // A bow tie: its edges cross at (5, 5). The region is the grower's
+    // business; the parser keeps the points in order and the writer too.
+    let src =
+        format!("{HEAD} R1: [F] LAYOUT (clGreen) Polygon (0,0), (10,10), (10,0), (0,10) ENDLAYOUT");
+    let d = bed(&src);
+    let shapes = &d.layout.as_ref().unwrap().shapes;
+    assert_eq!(
+        shapes[0].shape,
+        Shape::Polygon(vec![(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)])
+    );
+    assert_eq!(bed(&write(&d)), d);
+}
+
+#[test]
+fn a_layout_whose_shapes_cancel_is_read_and_drawn() {
+    // A green square erased by a white one: the painting is empty. Reading
+    // and drawing the BED do not depend on the region.
+    let src = format!(
+        "{HEAD} R1: [F] SEED F ENDSEED LAYOUT (clGreen) Rectangle (0,0), 10, 10 \
+         (clWhite) Rectangle (0,0), 10, 10 ENDLAYOUT"
+    );
+    let d = bed(&src);
+    assert_eq!(d.layout.as_ref().unwrap().shapes.len(), 2);
+    let mut b = Bounds::default();
+    stlc::interpret::bed::draw(
+        &d,
+        Strategy::Dfs,
+        &Limits::default(),
+        &mut b,
+        &mut NoProgress,
+    )
+    .unwrap();
+    assert_eq!(b.count, 1);
+}
+
+// ------------------------------------------------------ size and garbage --
+
+#[test]
+fn a_hundred_megabyte_input_is_refused_by_size_at_once() {
+    let big = vec![b'F'; 100 << 20];
+    let start = Instant::now();
+    let e = precheck(&big, &Limits::default()).unwrap_err();
+    assert!(start.elapsed() < Duration::from_secs(1));
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::InputTooLarge {
+            size: 100 << 20,
+            limit: 64 << 20
+        })
+    );
+}
+
+/// A deterministic stream of bytes (xorshift64*).
+fn garbage(len: usize, mut seed: u64) -> Vec<u8> {
+    (0..len)
+        .map(|_| {
+            seed ^= seed >> 12;
+            seed ^= seed << 25;
+            seed ^= seed >> 27;
+            (seed.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 56) as u8
+        })
+        .collect()
+}
+
+#[test]
+fn binary_garbage_is_refused_cleanly_by_every_parser() {
+    for seed in 1..=20u64 {
+        let bytes = garbage(4096, seed);
+        let lossy = String::from_utf8_lossy(&bytes).into_owned();
+        // As bytes: not UTF-8.
+        assert!(matches!(
+            precheck(&bytes, &Limits::default())
+                .unwrap_err()
+                .first_kind(),
+            Some(ErrorKind::NotUtf8(_))
+        ));
+        // As text (replacement characters): a syntax error or a limit.
+        let e = lsys_err(lossy.clone(), Limits::default());
+        assert!(
+            matches!(
+                e.first_kind(),
+                Some(ErrorKind::Syntax(_) | ErrorKind::NestingTooDeep { .. } | ErrorKind::Lsys(_))
+            ),
+            "{e}"
+        );
+        for format in [Format::Od, Format::Bed] {
+            let e = stl_err(lossy.clone(), format, Limits::default());
+            assert!(e.has_errors());
+        }
+    }
+}
+
+#[test]
+fn invalid_utf8_is_refused_with_its_offset_by_both_parsers_entry() {
+    let mut bytes = b"axiom F\nangle 90\n# caf".to_vec();
+    bytes.extend_from_slice(&[0xc3, 0x28]);
+    let e = precheck(&bytes, &Limits::default()).unwrap_err();
+    assert_eq!(e.first_kind(), Some(&ErrorKind::NotUtf8(22)));
+    assert_eq!(e.0[0].span, Some(22..22));
+    // A UTF-16 file (BOM FF FE) fails at byte 0.
+    let e = precheck(b"\xff\xfea\0x\0", &Limits::default()).unwrap_err();
+    assert_eq!(e.first_kind(), Some(&ErrorKind::NotUtf8(0)));
+}
+
+#[test]
+fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
+    for src in ["", "\n\n  \n", "# nothing but a comment\n# and another"] {
+        let e = lsys_err(src.into(), Limits::default());
+        let missing: Vec<String> = e.iter().map(|d| d.kind.to_string()).collect();
+        assert!(
+            missing.iter().any(|m| m.contains("axiom")),
+            "{src:?}: {missing:?}"
+        );
+        for format in [Format::Od, Format::Bed] {
+            let e = stl_err(src.into(), format, Limits::default());
+            assert!(
+                matches!(e.first_kind(), Some(ErrorKind::Syntax(_))),
+                "{src:?}: {e}"
+            );
+            assert_eq!(e.0.len(), 1);
+        }
+    }
+}
