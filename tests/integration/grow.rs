@@ -857,3 +857,62 @@ fn seed_with_trunk_rule_stays_consistent() {
         assert!(segs.len() > 100);
     }
 }
+
+#[test]
+fn seed_drawing_is_laid_down_before_growth() {
+    // Depth-first, the left R1's whole subtree grows before the right one;
+    // the seed's `-F` must already be there, or the subtree could take its
+    // place (the pairwise check would then fail on it).
+    let mut od = figure_9_10();
+    od.seed = Some("F[+F R1][-F R1]");
+    let d = od.build();
+    for s in [Strategy::Bfs, Strategy::Dfs] {
+        let g = grown(&d, opts(s));
+        let segs = check_invariants(&d, &g);
+        assert!(segs.len() > 200);
+    }
+}
+
+#[test]
+fn depth_limit_stops_a_vine_with_a_warning() {
+    // R1 = [F]: a straight vine, one stem per application.
+    let od = Od::new((0.0, 0.0), vec![("R1", "[F]")]).build();
+    let mut o = opts(Strategy::Dfs);
+    o.limits.max_depth = 5;
+    o.max_stems_explicit = true;
+    let g = grown(&od, o);
+    assert_eq!(g.stems, 1 + 5);
+    assert_eq!(g.warnings.len(), 1);
+    assert!(g.warnings[0].kind.to_string().contains("--max-depth"));
+}
+
+#[test]
+fn progress_is_reported_rarely() {
+    #[derive(Default)]
+    struct Count {
+        started: u64,
+        updates: Vec<u64>,
+        finished: bool,
+    }
+    impl stlc::progress::Progress for Count {
+        fn start(&mut self, _what: &str, total: u64) {
+            self.started = total;
+        }
+        fn update(&mut self, done: u64) {
+            self.updates.push(done);
+        }
+        fn finish(&mut self) {
+            self.finished = true;
+        }
+    }
+    let mut od = figure_9_10();
+    od.params = params(1.0, 0.0, 1.0, 0.0);
+    let d = od.build();
+    let mut p = Count::default();
+    let g = grow(&d, &opts(Strategy::Bfs), &mut p).unwrap();
+    assert!(g.stems > 20_000, "{}", g.stems);
+    assert_eq!(p.started, Limits::default().max_stems);
+    assert!(p.finished);
+    assert!(!p.updates.is_empty() && p.updates.len() as u64 <= g.stems / 10_000 + 1);
+    assert!(p.updates.windows(2).all(|w| w[0] <= w[1]));
+}
