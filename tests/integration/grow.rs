@@ -62,10 +62,7 @@ fn body(names: &[&str], text: &str) -> Body {
                     _ => (inner.clone(), None),
                 };
                 items.push(BodyItem::Branch(Branch {
-                    pieces: vec![Piece::Draw(DrawRun {
-                        text: draw.replace(' ', ""),
-                        loc: loc(),
-                    })],
+                    pieces: pieces(&draw),
                     successor: succ.map(|n| RuleRef {
                         rule: RuleId(names.iter().position(|x| *x == n).unwrap()),
                         loc: loc(),
@@ -97,6 +94,36 @@ fn body(names: &[&str], text: &str) -> Body {
         }));
     }
     Body { items }
+}
+
+/// Branch contents: drawing runs, and `{I n w}` fixed figures.
+fn pieces(text: &str) -> Vec<Piece> {
+    let mut out = Vec::new();
+    let mut rest = text;
+    while let Some(open) = rest.find('{') {
+        let close = rest.find('}').unwrap();
+        if open > 0 {
+            out.push(Piece::Draw(DrawRun {
+                text: rest[..open].replace(' ', ""),
+                loc: loc(),
+            }));
+        }
+        let parts: Vec<&str> = rest[open + 1..close].split_whitespace().collect();
+        assert_eq!(parts[0], "I");
+        out.push(Piece::Fixed(Fixed {
+            count: parts[1].parse().unwrap(),
+            word: parts[2].to_string(),
+            loc: loc(),
+        }));
+        rest = &rest[close + 1..];
+    }
+    if !rest.trim().is_empty() {
+        out.push(Piece::Draw(DrawRun {
+            text: rest.replace(' ', ""),
+            loc: loc(),
+        }));
+    }
+    out
 }
 
 /// A seed from text: drawing components, rule names (bare: growth points),
@@ -601,7 +628,13 @@ fn invariants_hold_on_several_grown_trees() {
             (10.0, 20.0),
         ]),
     )]);
-    let mut fixed = Od::new((60.0, 118.0), vec![("R1", "[+F{I 2 F[+F]F}][-FF]")]);
+    let mut fixed = Od::new(
+        (60.0, 118.0),
+        vec![
+            ("R1", "[+F{I 2 F[+F]F}][-FF R2]"),
+            ("R2", "{I 1 F[-F]}[+F R1]"),
+        ],
+    );
     fixed.params = params(5.0, 0.0, 1.0, 0.0);
     fixed.layout = Some(vec![(GREEN, rect(0.0, 0.0, 120.0, 120.0))]);
     for od in [two_d_tree(), figure_9_10(), ellipse, polygon, fixed] {
