@@ -505,6 +505,7 @@ struct Grower<'a> {
     /// The node grown at each seed growth point.
     seed_result: Vec<u32>,
     stems: u64,
+    seed_stems: u64,
     applications: u64,
     stopped: bool,
     depth_capped: bool,
@@ -563,6 +564,7 @@ impl<'a> Grower<'a> {
             slot_child: Vec::new(),
             seed_result: vec![NO_NODE; seed_gps],
             stems: 0,
+            seed_stems: 0,
             applications: 0,
             stopped: false,
             depth_capped: false,
@@ -639,10 +641,13 @@ impl<'a> Grower<'a> {
         self.interp.apply(op);
         if let Some(s) = self.interp.turtle.segments.pop() {
             self.stems += 1;
-            if self.stems > self.limits.max_stems {
+            self.seed_stems += 1;
+            // The seed is always drawn whole (a stop only ends growth), but
+            // a seed beyond the limit by itself is an error.
+            if self.seed_stems > self.limits.max_stems {
                 return Err(Diagnostic::error(ErrorKind::Limit {
                     what: "stems drawn by the seed alone".into(),
-                    value: self.stems.to_string(),
+                    value: self.seed_stems.to_string(),
                     limit: self.limits.max_stems.to_string(),
                 })
                 .with_help("raise the limit with --max-stems N, or draw a smaller seed")

@@ -949,3 +949,21 @@ fn progress_is_reported_rarely() {
     assert!(!p.updates.is_empty() && p.updates.len() as u64 <= g.stems / 10_000 + 1);
     assert!(p.updates.windows(2).all(|w| w[0] <= w[1]));
 }
+
+#[test]
+fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
+    let mut od = figure_9_10();
+    od.seed = Some("FFFFF");
+    let mut o = opts(Strategy::Bfs);
+    o.limits.max_stems = 4;
+    let e = grow(&od.build(), &o, &mut NoProgress).unwrap_err();
+    assert!(matches!(e.0[0].kind, ErrorKind::Limit { .. }));
+    // The seed (drawn first, R1 deferred) fills the limit: R1's application
+    // would pass it, so growth stops with a warning and R1 is left out.
+    od.seed = Some("F R1 F");
+    o.limits.max_stems = 2;
+    let g = grown(&od.build(), o);
+    assert_eq!(g.stems, 2);
+    assert_eq!(g.warnings.len(), 1);
+    assert_eq!(seed_text(&g.bed), "FF");
+}
