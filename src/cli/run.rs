@@ -179,6 +179,7 @@ fn grow(
         strategy,
         clearance: g.clearance,
         limits: *limits,
+        max_stems_explicit: g.max_stems.is_some(),
     };
     let mut bar = Bar::new(quiet);
     let grown = stlc::grow::grow(od, &opts, &mut bar)?;
@@ -289,15 +290,7 @@ fn layout_view(desc: &Description, show: bool) -> (Option<BBox>, Vec<Fill>) {
     let Some(layout) = &desc.layout else {
         return (None, Vec::new());
     };
-    let mut bbox: Option<BBox> = None;
-    for s in &layout.shapes {
-        for p in stlc::grow::region::shape_ring(&s.shape) {
-            match &mut bbox {
-                Some(b) => b.add(p),
-                None => bbox = Some(BBox::at(p)),
-            }
-        }
-    }
+    let bbox = stlc::grow::region::layout_bbox(layout);
     let fills = if show {
         stlc::grow::region::fills(layout)
     } else {
@@ -429,6 +422,8 @@ fn print_out(text: &str) -> Result<(), Diagnostics> {
 mod summary {
     use std::fmt::Write as _;
 
+    use geo::Area;
+
     use stlc::Limits;
     use stlc::diag::Diagnostics;
     use stlc::interpret::Strategy;
@@ -494,7 +489,7 @@ mod summary {
         match &desc.layout {
             Some(l) => {
                 let area = stlc::grow::region::Region::from_layout(l)
-                    .map(|r| format!("{:.1} square units", r.area()))
+                    .map(|r| format!("{:.1} square units", r.area().unsigned_area()))
                     .unwrap_or_else(|_| "empty".to_string());
                 let _ = writeln!(s, "  layout      {} shape(s), growth area {area}", l.shapes.len());
             }
