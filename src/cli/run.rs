@@ -218,7 +218,11 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         .with_help("redirect standard output to a file, or use -o tree.png")
         .into());
     }
-    let stroke = a.stroke.as_deref().map(|c| colour(c, "--stroke")).transpose()?;
+    let stroke = a
+        .stroke
+        .as_deref()
+        .map(|c| colour(c, "--stroke"))
+        .transpose()?;
     let background = match a.background.as_deref() {
         None => None,
         Some("none") => Some(None),
@@ -303,7 +307,9 @@ fn colour(text: &str, flag: &str) -> Result<Rgb, Diagnostics> {
     Rgb::parse(text).ok_or_else(|| {
         let mut d = Diagnostic::error(ErrorKind::Io(format!("{flag}: unknown colour `{text}`")));
         d = match Rgb::suggest(text) {
-            Some(s) => d.with_help(format!("did you mean `{s}`? Colours are #rrggbb or Delphi names")),
+            Some(s) => d.with_help(format!(
+                "did you mean `{s}`? Colours are #rrggbb or Delphi names"
+            )),
             None => d.with_help("colours are #rrggbb or Delphi names such as clGreen"),
         };
         d.into()
@@ -437,7 +443,11 @@ mod summary {
         let _ = writeln!(s, "classic L-system: ok");
         let _ = writeln!(s, "  axiom       {}", sys.axiom.iter().collect::<String>());
         for (k, p) in &sys.rules {
-            let _ = writeln!(s, "  rule        {k} -> {}", p.successor.iter().collect::<String>());
+            let _ = writeln!(
+                s,
+                "  rule        {k} -> {}",
+                p.successor.iter().collect::<String>()
+            );
         }
         let _ = writeln!(s, "  angle       {}", sys.angle);
         match sys.generations {
@@ -479,7 +489,11 @@ mod summary {
                     .count()
             })
             .unwrap_or(0);
-        let written = if desc.seed.is_some() { "" } else { " (default: F and the first rule)" };
+        let written = if desc.seed.is_some() {
+            ""
+        } else {
+            " (default: F and the first rule)"
+        };
         let _ = writeln!(s, "  seed terms  {terms}{written}");
         if desc.format == Format::Bed {
             let mut count = Counter::default();
@@ -491,7 +505,11 @@ mod summary {
                 let area = stlc::grow::region::Region::from_layout(l)
                     .map(|r| format!("{:.1} square units", r.area().unsigned_area()))
                     .unwrap_or_else(|_| "empty".to_string());
-                let _ = writeln!(s, "  layout      {} shape(s), growth area {area}", l.shapes.len());
+                let _ = writeln!(
+                    s,
+                    "  layout      {} shape(s), growth area {area}",
+                    l.shapes.len()
+                );
             }
             None => {
                 let _ = writeln!(s, "  layout      none");

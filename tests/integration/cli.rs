@@ -159,7 +159,10 @@ fn render_png_and_svg_files() {
     let f = dir.path().join("sq.lsys");
     fs::write(&f, SQUARE).unwrap();
     // Default output: beside the input, .png.
-    stlc().args(["render", f.to_str().unwrap()]).assert().success();
+    stlc()
+        .args(["render", f.to_str().unwrap()])
+        .assert()
+        .success();
     let png = fs::read(dir.path().join("sq.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     let pix = tiny_skia::Pixmap::decode_png(&png).unwrap();
@@ -168,11 +171,21 @@ fn render_png_and_svg_files() {
 
     let svg = dir.path().join("out.svg");
     stlc()
-        .args(["render", f.to_str().unwrap(), "-o", svg.to_str().unwrap(), "--size", "200x100"])
+        .args([
+            "render",
+            f.to_str().unwrap(),
+            "-o",
+            svg.to_str().unwrap(),
+            "--size",
+            "200x100",
+        ])
         .assert()
         .success();
     let text = fs::read_to_string(&svg).unwrap();
-    assert!(text.contains("width=\"200\"") && text.contains("height=\"100\""), "{text}");
+    assert!(
+        text.contains("width=\"200\"") && text.contains("height=\"100\""),
+        "{text}"
+    );
     assert_eq!(files_in(dir.path()), ["out.svg", "sq.lsys", "sq.png"]);
 }
 
@@ -184,7 +197,14 @@ fn a_bad_input_points_at_the_line_and_writes_nothing() {
     let out = dir.path().join("bad.png");
     fs::write(&out, b"previous picture").unwrap();
     stlc()
-        .args(["render", f.to_str().unwrap(), "-o", out.to_str().unwrap(), "--depth", "2"])
+        .args([
+            "render",
+            f.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--depth",
+            "2",
+        ])
         .assert()
         .code(1)
         .stderr(predicate::str::contains("bad.lsys"))
@@ -203,7 +223,14 @@ fn missing_file_and_unwritable_directory_are_errors_not_panics() {
         .code(1)
         .stderr(predicate::str::contains("cannot read"));
     stlc()
-        .args(["render", "-", "--from", "lsys", "-o", "/nonexistent/dir/x.png"])
+        .args([
+            "render",
+            "-",
+            "--from",
+            "lsys",
+            "-o",
+            "/nonexistent/dir/x.png",
+        ])
         .write_stdin(SQUARE)
         .assert()
         .code(1)
@@ -238,9 +265,19 @@ fn a_broken_pipe_exits_quietly() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    child.stdin.take().unwrap().write_all(SQUARE.as_bytes()).unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(SQUARE.as_bytes())
+        .unwrap();
     let mut first = [0u8; 16];
-    child.stdout.as_mut().unwrap().read_exact(&mut first).unwrap();
+    child
+        .stdout
+        .as_mut()
+        .unwrap()
+        .read_exact(&mut first)
+        .unwrap();
     assert_eq!(&first, b"F+F+F+F+F+F+F+F+");
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
