@@ -1,6 +1,7 @@
 //! One integration-test binary; each area is a module.
 
 mod cli;
+mod diagnostics;
 mod golden;
 mod grow;
 mod lsys;
