@@ -343,3 +343,171 @@ fn png_to_a_file_named_dash_svg_is_svg() {
     let text = fs::read_to_string(&out).unwrap();
     assert!(text.contains("<path"), "{text}");
 }
+
+// ------------------------------------------------- limits and hostile input --
+
+/// Runs `stlc ARGS` with `stdin`; returns (exit code, stderr).
+fn run_stdin(args: &[&str], stdin: impl Into<Vec<u8>>) -> (i32, String) {
+    let out = stlc().args(args).write_stdin(stdin).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn each_limit_names_the_flag_that_raises_it() {
+    // Input size: refused without reading it all.
+    let (code, err) = run_stdin(
+        &["check", "-", "--from", "lsys", "--max-input", "10"],
+        SQUARE,
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("--max-input"), "{err}");
+    // Nesting, in each format.
+    let deep = format!(
+        "angle 90\naxiom {}F{}\n",
+        "[".repeat(100_000),
+        "]".repeat(100_000)
+    );
+    let (code, err) = run_stdin(&["check", "-", "--from", "lsys"], deep);
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-nesting"), "{err}");
+    let deep_bed = format!(
+        "T (0,0) RULE R1: [F] SEED {}{} ENDSEED",
+        "R1{".repeat(100_000),
+        "}".repeat(100_000)
+    );
+    let (code, err) = run_stdin(&["check", "-", "--from", "bed"], deep_bed);
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-nesting"), "{err}");
+    // Depths and counts in the millions.
+    let (code, err) = run_stdin(
+        &["stats", "-", "--from", "lsys"],
+        "generations 5000000\nangle 90\naxiom F\nrule F FF\n",
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-depth"), "{err}");
+    let (code, err) = run_stdin(
+        &["check", "-", "--from", "bed"],
+        "T (0,0) RULE R1: [+F][-F] SEED [I 3000000 R1] ENDSEED",
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("3000000"), "{err}");
+    // bfs refuses to hold a word beyond --max-word; dfs streams it.
+    let tree = "angle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
+    let (code, err) = run_stdin(
+        &[
+            "render",
+            "-",
+            "--from",
+            "lsys",
+            "--depth",
+            "6",
+            "--strategy",
+            "bfs",
+            "--max-word",
+            "1000",
+            "-f",
+            "svg",
+            "-o",
+            "-",
+        ],
+        tree,
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-word"), "{err}");
+    let (code, err) = run_stdin(
+        &[
+            "render",
+            "-",
+            "--from",
+            "lsys",
+            "--depth",
+            "6",
+            "--max-symbols",
+            "1000",
+            "-f",
+            "svg",
+            "-o",
+            "-",
+        ],
+        tree,
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-symbols"), "{err}");
+}
+
+#[test]
+fn growth_limits_warn_or_refuse() {
+    // No layout, no count, no decrement: refused with the ways out.
+    let unbounded = "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F][-F]\n";
+    let (code, err) = run_stdin(&["compile", "-", "--from", "od"], unbounded);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("--max-stems") && err.contains("LAYOUT"),
+        "{err}"
+    );
+    // An explicit --max-stems bounds it: success with a warning.
+    let out = stlc()
+        .args(["compile", "-", "--from", "od", "--max-stems", "50"])
+        .write_stdin(unbounded)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--max-stems"), "{err}");
+    let bed = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        bed.starts_with("U\n(0, 0)\n") && bed.contains("SEED"),
+        "{bed}"
+    );
+    // --quiet silences the warning, not the result.
+    let out = stlc()
+        .args(["compile", "-", "--from", "od", "--max-stems", "50", "-q"])
+        .write_stdin(unbounded)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert!(out.stderr.is_empty());
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), bed);
+}
+
+#[test]
+fn garbage_empty_and_non_utf8_inputs_are_clean_errors() {
+    for kind in ["od", "bed", "lsys"] {
+        let (code, err) = run_stdin(&["check", "-", "--from", kind], "");
+        assert_eq!(code, 1, "empty {kind}: {err}");
+        assert!(err.contains("Error") || err.contains("error"), "{err}");
+        let (code, err) = run_stdin(
+            &["check", "-", "--from", kind],
+            b"ab\xff\xfe\x00cd".to_vec(),
+        );
+        assert_eq!(code, 1);
+        assert!(err.contains("UTF-8") && err.contains("byte 2"), "{err}");
+        let (code, err) = run_stdin(&["check", "-", "--from", kind], "\u{1}\u{2}}}{{)(\t**&^%$");
+        assert_eq!(code, 1, "{kind}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        let (code, err) = run_stdin(&["check", "-", "--from", kind], "# only a comment\n");
+        assert_eq!(code, 1, "{kind}: {err}");
+    }
+}
+
+#[test]
+fn the_readme_commands_run() {
+    let readme = fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    // The first screen names an example that exists and the test command.
+    assert!(readme.contains("cargo test"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("2dtree.png");
+    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/2dtree.od");
+    assert!(readme.contains("render examples/2dtree.od --show-layout"));
+    stlc()
+        .args(["render", example, "--show-layout", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let pix = tiny_skia::Pixmap::decode_png(&fs::read(&out).unwrap()).unwrap();
+    // The layout is 180 x 192 canvas units: 750 x 800 pixels.
+    assert_eq!((pix.width(), pix.height()), (750, 800));
+}
