@@ -130,17 +130,7 @@ fn sniff(bytes: &[u8]) -> Option<InputKind> {
         .find(|l| !l.is_empty() && !l.starts_with('#'))?
         .split_whitespace()
         .next()?;
-    const KEYS: [&str; 8] = [
-        "generations",
-        "axiom",
-        "rule",
-        "angle",
-        "length",
-        "width",
-        "color",
-        "background",
-    ];
-    if KEYS.contains(&first) {
+    if syntax::lsys::KEYS.contains(&first) {
         Some(InputKind::Lsys)
     } else if text.contains('{') {
         Some(InputKind::Bed)
@@ -155,15 +145,7 @@ fn depth_of(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<u32, D
         Diagnostic::error(ErrorKind::Lsys("no derivation depth".into()))
             .with_help("add a line `generations N` to the file, or pass --depth N")
     })?;
-    if d > limits.max_depth {
-        return Err(Diagnostic::error(ErrorKind::Limit {
-            what: "derivation depth".into(),
-            value: d.to_string(),
-            limit: limits.max_depth.to_string(),
-        })
-        .with_help("raise the limit with --max-depth N")
-        .into());
-    }
+    limits.check_depth(d)?;
     Ok(d)
 }
 
