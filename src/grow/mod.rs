@@ -350,6 +350,11 @@ fn check_bounded(od: &Description, gps: &[SeedGp], opts: &GrowOptions) -> Result
             ));
             if let Some(s) = span_of(&gp.loc) {
                 d = d.with_span(s).with_label("this growth point");
+            } else if let Some(s) = span_of(&od.rule(gp.rule).name_loc) {
+                // The default seed `F R1` has no text of its own.
+                d = d.with_span(s).with_label(
+                    "the seed's default growth point (no SEED section) grows this rule",
+                );
             }
             return Err(d.into());
         }
