@@ -511,3 +511,59 @@ fn the_readme_commands_run() {
     // The layout is 180 x 192 canvas units: 750 x 800 pixels.
     assert_eq!((pix.width(), pix.height()), (750, 800));
 }
+
+/// The grown tiny tree (tests/cases/grow/tiny.bfs.bed) over its layout,
+/// checked by hand: the layout box x -15..15, y -25..5 fills 120 px at scale
+/// 4, so the root (0, 0) is pixel (60, 100), stems are B=1 -> 4 px wide, and
+/// the four tips are (20, 100), (20, 20), (100, 20), (100, 100).
+#[test]
+fn a_bed_with_a_layout_renders_its_golden_svg() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let out = stlc()
+        .args(["render", &format!("{root}/tests/cases/grow/tiny.bfs.bed")])
+        .args(["--show-layout", "--size", "120x120", "-f", "svg", "-o", "-"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let golden = fs::read_to_string(format!("{root}/tests/cases/render/tiny-layout.svg")).unwrap();
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), golden);
+    // The PNG agrees: stem pixels are bark brown, the layout green, the
+    // background outside nothing (the layout fills the view).
+    let out = stlc()
+        .args(["render", &format!("{root}/tests/cases/grow/tiny.bfs.bed")])
+        .args(["--show-layout", "--size", "120x120", "-f", "png", "-o", "-"])
+        .output()
+        .unwrap();
+    let pix = tiny_skia::Pixmap::decode_png(&out.stdout).unwrap();
+    let at = |x: u32, y: u32| {
+        let p = pix.pixel(x, y).unwrap();
+        (p.red(), p.green(), p.blue())
+    };
+    assert_eq!(at(60, 80), (0x4a, 0x2c, 0x12)); // on the seed stem
+    assert_eq!(at(20, 40), (0x4a, 0x2c, 0x12)); // on a level-2 stem
+    assert_eq!(at(40, 100), (0, 128, 0)); // between stems: layout green
+}
+
+#[test]
+fn a_full_disk_on_stdout_is_an_error_not_a_panic() {
+    let Ok(full) = fs::File::create("/dev/full") else {
+        return; // no /dev/full on this system
+    };
+    let bin = assert_cmd::cargo::cargo_bin("stlc");
+    let out = StdCommand::new(bin)
+        .args(["expand", "-", "--from", "lsys", "--depth", "12"])
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::piped())
+        .stdout(full)
+        .stderr(Stdio::piped())
+        .spawn()
+        .and_then(|mut c| {
+            c.stdin.take().unwrap().write_all(SQUARE.as_bytes())?;
+            c.wait_with_output()
+        })
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("No space left"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
