@@ -38,3 +38,20 @@ impl Default for Limits {
         }
     }
 }
+
+impl Limits {
+    /// Refuses a derivation depth over [`Limits::max_depth`], naming the flag.
+    pub fn check_depth(&self, depth: u32) -> Result<(), crate::diag::Diagnostics> {
+        use crate::diag::{Diagnostic, ErrorKind};
+        if depth <= self.max_depth {
+            return Ok(());
+        }
+        Err(Diagnostic::error(ErrorKind::Limit {
+            what: "derivation depth".into(),
+            value: depth.to_string(),
+            limit: self.max_depth.to_string(),
+        })
+        .with_help("use a smaller depth, or raise the limit with --max-depth N")
+        .into())
+    }
+}

@@ -21,7 +21,9 @@
 //! - header: name, root, then `L=l(dl) B=b(db)`, `A=` and `C=` only if given;
 //! - `RULE`, one rule per line as `NAME: body`, a successor name separated
 //!   from the branch's drawing by a space (`[+F R2]`);
-//! - seed: one term per line, indented two spaces per nesting depth. A term
+//! - seed: one term per line, indented two spaces per nesting depth up to
+//!   depth [`MAX_INDENT_DEPTH`] (deeper terms stay at that column, so a
+//!   deep vine's file grows linearly with its depth, not quadratically). A term
 //!   whose slots are all empty stays on one line (`R1{,,}`). Otherwise its
 //!   slots follow on their own lines, a comma after every slot but the last;
 //!   an empty slot that is not the last is a line holding just `,`, an
@@ -37,6 +39,9 @@
 //!
 //! The writer is iterative: a depth-first-grown vine can nest its terms
 //! thousands deep.
+
+/// Nesting depth beyond which seed lines are indented no further.
+pub const MAX_INDENT_DEPTH: usize = 24;
 
 use std::fmt::Write as _;
 
@@ -233,24 +238,12 @@ impl Writer<'_> {
             depth: usize,
             comma: bool,
         }
-        // Deep vines indent thousands of levels: copy from one long run of
-        // spaces instead of pushing two at a time.
-        let deepest = {
-            let mut max = 0;
-            let mut todo = vec![(root, 0usize)];
-            while let Some((t, d)) = todo.pop() {
-                max = max.max(d);
-                for s in t.slots.iter().flatten() {
-                    if let Slot::Term(c) = s {
-                        todo.push((c, d + 1));
-                    }
-                }
-            }
-            max + 1
-        };
-        let spaces = " ".repeat(2 * deepest);
+        // Indentation stops growing at MAX_INDENT_DEPTH: a depth-first vine
+        // can nest thousands of levels, and indenting each by its depth
+        // would make the file grow with the square of the depth.
+        let spaces = " ".repeat(2 * MAX_INDENT_DEPTH);
         let indent = |out: &mut String, depth: usize| {
-            out.push_str(&spaces[..(2 * depth).min(spaces.len())]);
+            out.push_str(&spaces[..2 * depth.min(MAX_INDENT_DEPTH)]);
         };
         let mut stack: Vec<Frame<'_>> = Vec::new();
         // Starts a term: one line if flat, else its opening line and a frame.

@@ -17,9 +17,10 @@ use stlc::Limits;
 #[derive(Debug, Parser)]
 #[command(
     name = "stlc",
+    verbatim_doc_comment,
     version,
     max_term_width = 100,
-    after_help = "Examples:\n  stlc render examples/koch.lsys -o koch.png\n  stlc compile examples/2dtree.od -o 2dtree.bed --strategy bfs\n  stlc render 2dtree.bed --show-layout -o 2dtree.svg\n  stlc stats examples/abop-1.24a.lsys --depth 57 --json\n\nDocumentation: docs/ in the source tree (language.md, cli.md, limits.md)."
+    after_help = "Examples:\n  stlc render examples/koch-snowflake.lsys -o koch.png\n  stlc compile examples/2dtree.od -o 2dtree.bed --strategy bfs\n  stlc render 2dtree.bed --show-layout -o 2dtree.svg\n  stlc stats examples/abop-1.24a.lsys --depth 57 --json\n\nDocumentation: docs/ in the source tree (language.md, cli.md, limits.md)."
 )]
 pub struct Cli {
     /// What to do.
@@ -56,10 +57,11 @@ pub enum Command {
     /// first (with --strategy as the growth strategy), then drawn.
     ///
     /// Examples:
-    ///   stlc render examples/koch.lsys -o koch.png
+    ///   stlc render examples/koch-snowflake.lsys -o koch.png
     ///   stlc render examples/abop-1.24a.lsys --depth 6 --strategy bfs -o tree.svg
     ///   stlc render examples/2dtree.od --strategy dfs --show-layout -o vine.png
     ///   cat tree.bed | stlc render - --from bed -f svg -o - > tree.svg
+    #[command(verbatim_doc_comment)]
     Render(RenderArgs),
 
     /// Grow an Outline Description (.od) into a Branch-Expansion Description (.bed).
@@ -72,6 +74,7 @@ pub enum Command {
     /// Examples:
     ///   stlc compile examples/2dtree.od -o 2dtree.bed
     ///   stlc compile examples/fig9.od --strategy dfs -o -
+    #[command(verbatim_doc_comment)]
     Compile(CompileArgs),
 
     /// Print the derived word: an .lsys's symbols at the depth, or a .bed's
@@ -80,6 +83,7 @@ pub enum Command {
     /// Examples:
     ///   stlc expand examples/abop-1.24a.lsys --depth 2
     ///   stlc expand examples/paper-worked.bed
+    #[command(verbatim_doc_comment)]
     Expand(ExpandArgs),
 
     /// Exact word length and symbol counts of an .lsys at any depth, and
@@ -91,6 +95,7 @@ pub enum Command {
     /// Examples:
     ///   stlc stats examples/abop-1.24a.lsys --depth 5
     ///   stlc stats examples/abop-1.24a.lsys --depth 57 --json
+    #[command(verbatim_doc_comment)]
     Stats(StatsArgs),
 
     /// Validate an .od, .bed or .lsys file and print a short summary.
@@ -98,6 +103,7 @@ pub enum Command {
     /// Examples:
     ///   stlc check examples/2dtree.od
     ///   stlc check tree.bed
+    #[command(verbatim_doc_comment)]
     Check(CheckArgs),
 }
 

@@ -43,8 +43,9 @@ impl Input {
         let mut buf = Vec::new();
         let res = match self {
             Input::Stdin => io::stdin().lock().take(limit + 1).read_to_end(&mut buf),
-            Input::Path(p) => std::fs::File::open(p)
-                .and_then(|f| f.take(limit + 1).read_to_end(&mut buf)),
+            Input::Path(p) => {
+                std::fs::File::open(p).and_then(|f| f.take(limit + 1).read_to_end(&mut buf))
+            }
         };
         if let Err(e) = res {
             let what = match self {
@@ -115,7 +116,8 @@ impl Output {
                 let stdout = io::stdout();
                 let mut w = BufWriter::with_capacity(1 << 16, stdout.lock());
                 write(&mut w)?;
-                w.flush().map_err(|e| io_error(&e, "cannot write to standard output"))?;
+                w.flush()
+                    .map_err(|e| io_error(&e, "cannot write to standard output"))?;
                 Ok(())
             }
             Output::Path(target) => write_atomically(target, write),

@@ -130,17 +130,7 @@ fn sniff(bytes: &[u8]) -> Option<InputKind> {
         .find(|l| !l.is_empty() && !l.starts_with('#'))?
         .split_whitespace()
         .next()?;
-    const KEYS: [&str; 8] = [
-        "generations",
-        "axiom",
-        "rule",
-        "angle",
-        "length",
-        "width",
-        "color",
-        "background",
-    ];
-    if KEYS.contains(&first) {
+    if syntax::lsys::KEYS.contains(&first) {
         Some(InputKind::Lsys)
     } else if text.contains('{') {
         Some(InputKind::Bed)
@@ -155,15 +145,7 @@ fn depth_of(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<u32, D
         Diagnostic::error(ErrorKind::Lsys("no derivation depth".into()))
             .with_help("add a line `generations N` to the file, or pass --depth N")
     })?;
-    if d > limits.max_depth {
-        return Err(Diagnostic::error(ErrorKind::Limit {
-            what: "derivation depth".into(),
-            value: d.to_string(),
-            limit: limits.max_depth.to_string(),
-        })
-        .with_help("raise the limit with --max-depth N")
-        .into());
-    }
+    limits.check_depth(d)?;
     Ok(d)
 }
 
@@ -179,6 +161,7 @@ fn grow(
         strategy,
         clearance: g.clearance,
         limits: *limits,
+        max_stems_explicit: g.max_stems.is_some(),
     };
     let mut bar = Bar::new(quiet);
     let grown = stlc::grow::grow(od, &opts, &mut bar)?;
@@ -217,7 +200,11 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         .with_help("redirect standard output to a file, or use -o tree.png")
         .into());
     }
-    let stroke = a.stroke.as_deref().map(|c| colour(c, "--stroke")).transpose()?;
+    let stroke = a
+        .stroke
+        .as_deref()
+        .map(|c| colour(c, "--stroke"))
+        .transpose()?;
     let background = match a.background.as_deref() {
         None => None,
         Some("none") => Some(None),
@@ -289,15 +276,7 @@ fn layout_view(desc: &Description, show: bool) -> (Option<BBox>, Vec<Fill>) {
     let Some(layout) = &desc.layout else {
         return (None, Vec::new());
     };
-    let mut bbox: Option<BBox> = None;
-    for s in &layout.shapes {
-        for p in stlc::grow::region::shape_ring(&s.shape) {
-            match &mut bbox {
-                Some(b) => b.add(p),
-                None => bbox = Some(BBox::at(p)),
-            }
-        }
-    }
+    let bbox = stlc::grow::region::layout_bbox(layout);
     let fills = if show {
         stlc::grow::region::fills(layout)
     } else {
@@ -310,7 +289,9 @@ fn colour(text: &str, flag: &str) -> Result<Rgb, Diagnostics> {
     Rgb::parse(text).ok_or_else(|| {
         let mut d = Diagnostic::error(ErrorKind::Io(format!("{flag}: unknown colour `{text}`")));
         d = match Rgb::suggest(text) {
-            Some(s) => d.with_help(format!("did you mean `{s}`? Colours are #rrggbb or Delphi names")),
+            Some(s) => d.with_help(format!(
+                "did you mean `{s}`? Colours are #rrggbb or Delphi names"
+            )),
             None => d.with_help("colours are #rrggbb or Delphi names such as clGreen"),
         };
         d.into()
@@ -429,6 +410,8 @@ fn print_out(text: &str) -> Result<(), Diagnostics> {
 mod summary {
     use std::fmt::Write as _;
 
+    use geo::Area;
+
     use stlc::Limits;
     use stlc::diag::Diagnostics;
     use stlc::interpret::Strategy;
@@ -442,7 +425,11 @@ mod summary {
         let _ = writeln!(s, "classic L-system: ok");
         let _ = writeln!(s, "  axiom       {}", sys.axiom.iter().collect::<String>());
         for (k, p) in &sys.rules {
-            let _ = writeln!(s, "  rule        {k} -> {}", p.successor.iter().collect::<String>());
+            let _ = writeln!(
+                s,
+                "  rule        {k} -> {}",
+                p.successor.iter().collect::<String>()
+            );
         }
         let _ = writeln!(s, "  angle       {}", sys.angle);
         match sys.generations {
@@ -484,7 +471,11 @@ mod summary {
                     .count()
             })
             .unwrap_or(0);
-        let written = if desc.seed.is_some() { "" } else { " (default: F and the first rule)" };
+        let written = if desc.seed.is_some() {
+            ""
+        } else {
+            " (default: F and the first rule)"
+        };
         let _ = writeln!(s, "  seed terms  {terms}{written}");
         if desc.format == Format::Bed {
             let mut count = Counter::default();
@@ -494,9 +485,13 @@ mod summary {
         match &desc.layout {
             Some(l) => {
                 let area = stlc::grow::region::Region::from_layout(l)
-                    .map(|r| format!("{:.1} square units", r.area()))
+                    .map(|r| format!("{:.1} square units", r.area().unsigned_area()))
                     .unwrap_or_else(|_| "empty".to_string());
-                let _ = writeln!(s, "  layout      {} shape(s), growth area {area}", l.shapes.len());
+                let _ = writeln!(
+                    s,
+                    "  layout      {} shape(s), growth area {area}",
+                    l.shapes.len()
+                );
             }
             None => {
                 let _ = writeln!(s, "  layout      none");

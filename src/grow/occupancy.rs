@@ -1,1 +1,384 @@
 //! The occupancy index: grown segments, and the clearance test.
+//!
+//! # The clearance rule
+//!
+//! A new segment `t` (from `t.a` to `t.b`, the turtle's direction) conflicts
+//! with a segment `s` already placed when they come closer than the
+//! clearance `C` (distances between centre lines, canvas units):
+//!
+//! - **Joint exception.** If `t` starts where `s` starts or ends (`t.a` equal,
+//!   bit for bit, to `s.a` or `s.b`: a stem and the branches at its tip, two
+//!   branches at one tip, consecutive stems of one branch), their distance is
+//!   0 at that joint by construction, so the joint is left out: they conflict
+//!   only if `t`'s far end `t.b` is within `C` of `s`, or `s`'s far end (the
+//!   endpoint other than the joint) is within `C` of `t`. For two straight
+//!   segments sharing an endpoint these are the only distances left, so only
+//!   near-overlapping segments at a joint conflict (a branch folding back
+//!   onto its stem, two branches at an angle too small for their length).
+//! - **Otherwise** they conflict if the distance between the two segments is
+//!   below `C` (0 if they touch or cross).
+//!
+//! Only the new segment's *start* can be a joint: a segment that *ends* on an
+//! existing stem touches it (distance 0) and conflicts, so a tree never
+//! closes a loop. `C = 0` switches the test off: stems may then touch and
+//! cross, and only the region bounds growth.
+//!
+//! # Two indexes
+//!
+//! [`Backend::Rstar`] keeps the segments in an R*-tree (`rstar` 0.12, the one
+//! geo uses) and asks for those whose bounding box meets the new segment's
+//! box grown by `C`. [`Backend::Spade`] keeps the segments' endpoints as
+//! vertices of an incremental Delaunay triangulation (`spade`, with its
+//! hierarchy for O(log n) location) and asks for the vertices in a circle:
+//! any segment within `C` of `t` has an endpoint within
+//! `|t|/2 + C + max|s|/2` of `t`'s midpoint. Both then apply the exact rule
+//! above, so they accept exactly the same segments; `docs/growth.md` has
+//! the timings that made R-tree the default.
+
+use rstar::{AABB, RTree, RTreeObject};
+use spade::handles::FixedVertexHandle;
+use spade::{
+    DelaunayTriangulation, FloatTriangulation, HasPosition, HierarchyHintGenerator, Point2,
+    Triangulation,
+};
+
+/// One straight stem from `a` to `b` (the turtle's direction), canvas units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Seg {
+    /// Start (where the turtle was).
+    pub a: [f64; 2],
+    /// End (where the turtle went).
+    pub b: [f64; 2],
+}
+
+impl Seg {
+    /// A segment from two points.
+    pub fn new(a: [f64; 2], b: [f64; 2]) -> Self {
+        Seg { a, b }
+    }
+
+    fn len(&self) -> f64 {
+        let dx = self.b[0] - self.a[0];
+        let dy = self.b[1] - self.a[1];
+        (dx * dx + dy * dy).sqrt()
+    }
+}
+
+impl RTreeObject for Seg {
+    type Envelope = AABB<[f64; 2]>;
+    fn envelope(&self) -> Self::Envelope {
+        AABB::from_corners(self.a, self.b)
+    }
+}
+
+/// Which spatial index answers the clearance query.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Backend {
+    /// R*-tree over the segments (the default: faster, see `docs/growth.md`).
+    #[default]
+    Rstar,
+    /// Delaunay triangulation over the segments' endpoints.
+    Spade,
+}
+
+/// Whether a new segment `t` conflicts with a placed segment `s` under
+/// clearance `c` (the rule in the module documentation).
+pub fn conflicts(t: &Seg, s: &Seg, c: f64) -> bool {
+    if c <= 0.0 {
+        return false;
+    }
+    let c2 = c * c;
+    let far_s = if t.a == s.a {
+        Some(s.b)
+    } else if t.a == s.b {
+        Some(s.a)
+    } else {
+        None
+    };
+    match far_s {
+        Some(far) => point_seg_dist2(t.b, s) < c2 || point_seg_dist2(far, t) < c2,
+        None => seg_seg_dist2(t, s) < c2,
+    }
+}
+
+/// Squared distance from point `p` to segment `s`.
+pub fn point_seg_dist2(p: [f64; 2], s: &Seg) -> f64 {
+    let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
+    let (px, py) = (p[0] - s.a[0], p[1] - s.a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        ((px * dx + py * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (ex, ey) = (px - t * dx, py - t * dy);
+    ex * ex + ey * ey
+}
+
+fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// Squared distance between two segments (0 if they cross).
+pub fn seg_seg_dist2(t: &Seg, s: &Seg) -> f64 {
+    let d1 = orient(s.a, s.b, t.a);
+    let d2 = orient(s.a, s.b, t.b);
+    let d3 = orient(t.a, t.b, s.a);
+    let d4 = orient(t.a, t.b, s.b);
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return 0.0;
+    }
+    // Not properly crossing: the distance is reached at an endpoint (touching
+    // cases give 0 here too).
+    point_seg_dist2(t.a, s)
+        .min(point_seg_dist2(t.b, s))
+        .min(point_seg_dist2(s.a, t))
+        .min(point_seg_dist2(s.b, t))
+}
+
+/// The grown segments and the clearance query.
+#[derive(Debug)]
+pub struct Occupancy {
+    clearance: f64,
+    len: usize,
+    inner: Inner,
+}
+
+#[derive(Debug)]
+enum Inner {
+    Rstar(RTree<Seg>),
+    Spade(SpadeIndex),
+}
+
+impl Occupancy {
+    /// An empty index keeping clearance `clearance` (>= 0).
+    pub fn new(backend: Backend, clearance: f64) -> Self {
+        let inner = match backend {
+            Backend::Rstar => Inner::Rstar(RTree::new()),
+            Backend::Spade => Inner::Spade(SpadeIndex::default()),
+        };
+        Occupancy {
+            clearance,
+            len: 0,
+            inner,
+        }
+    }
+
+    /// The clearance kept.
+    pub fn clearance(&self) -> f64 {
+        self.clearance
+    }
+
+    /// Number of segments placed.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True if nothing is placed.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Whether `t` conflicts with any placed segment.
+    pub fn conflicts(&self, t: &Seg) -> bool {
+        let c = self.clearance;
+        if c <= 0.0 || self.len == 0 {
+            return false;
+        }
+        match &self.inner {
+            Inner::Rstar(tree) => {
+                let env = AABB::from_corners(
+                    [t.a[0].min(t.b[0]) - c, t.a[1].min(t.b[1]) - c],
+                    [t.a[0].max(t.b[0]) + c, t.a[1].max(t.b[1]) + c],
+                );
+                tree.locate_in_envelope_intersecting(&env)
+                    .any(|s| conflicts(t, s, c))
+            }
+            Inner::Spade(ix) => ix.conflicts(t, c),
+        }
+    }
+
+    /// Places `s`.
+    pub fn insert(&mut self, s: Seg) {
+        self.len += 1;
+        match &mut self.inner {
+            Inner::Rstar(tree) => tree.insert(s),
+            Inner::Spade(ix) => ix.insert(s),
+        }
+    }
+}
+
+/// A vertex of the spade index: an endpoint and its number.
+#[derive(Debug, Clone, Copy)]
+struct Vertex {
+    pos: Point2<f64>,
+    id: u32,
+}
+
+impl HasPosition for Vertex {
+    type Scalar = f64;
+    fn position(&self) -> Point2<f64> {
+        self.pos
+    }
+}
+
+type Dt = DelaunayTriangulation<Vertex, (), (), (), HierarchyHintGenerator<f64>>;
+
+/// Endpoints in a Delaunay triangulation; each endpoint lists the segments
+/// that end there.
+#[derive(Default)]
+struct SpadeIndex {
+    dt: Dt,
+    segs: Vec<Seg>,
+    /// Segments at each vertex id.
+    at: Vec<Vec<u32>>,
+    /// Coordinates spade cannot take (beyond its range): scanned linearly.
+    odd: Vec<u32>,
+    max_len: f64,
+    /// Query stamps, to visit each segment once per query.
+    seen: std::cell::RefCell<(u32, Vec<u32>)>,
+}
+
+impl std::fmt::Debug for SpadeIndex {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SpadeIndex")
+            .field("segments", &self.segs.len())
+            .finish()
+    }
+}
+
+impl SpadeIndex {
+    fn vertex_for(&mut self, p: [f64; 2]) -> Option<u32> {
+        let pos = spade::mitigate_underflow(Point2::new(p[0], p[1]));
+        spade::validate_vertex(&pos).ok()?;
+        if let Some(h) = self.dt.locate_vertex(pos) {
+            return Some(h.data().id);
+        }
+        let id = self.at.len() as u32;
+        let h: FixedVertexHandle = self.dt.insert(Vertex { pos, id }).ok()?;
+        let _ = h;
+        self.at.push(Vec::new());
+        Some(id)
+    }
+
+    fn insert(&mut self, s: Seg) {
+        let k = self.segs.len() as u32;
+        self.segs.push(s);
+        self.max_len = self.max_len.max(s.len());
+        let va = self.vertex_for(s.a);
+        let vb = self.vertex_for(s.b);
+        match (va, vb) {
+            (Some(a), Some(b)) => {
+                self.at[a as usize].push(k);
+                if b != a {
+                    self.at[b as usize].push(k);
+                }
+            }
+            _ => self.odd.push(k),
+        }
+    }
+
+    fn conflicts(&self, t: &Seg, c: f64) -> bool {
+        if self
+            .odd
+            .iter()
+            .any(|&k| conflicts(t, &self.segs[k as usize], c))
+        {
+            return true;
+        }
+        let mid = Point2::new((t.a[0] + t.b[0]) / 2.0, (t.a[1] + t.b[1]) / 2.0);
+        // Slightly larger than needed, so rounding never loses a candidate.
+        let r = (t.len() / 2.0 + c + self.max_len / 2.0) * (1.0 + 1e-9) + 1e-9;
+        let mut seen = self.seen.borrow_mut();
+        let (stamp, marks) = &mut *seen;
+        *stamp = stamp.wrapping_add(1);
+        if *stamp == 0 {
+            marks.iter_mut().for_each(|m| *m = 0);
+            *stamp = 1;
+        }
+        if marks.len() < self.segs.len() {
+            marks.resize(self.segs.len(), 0);
+        }
+        for v in self.dt.get_vertices_in_circle(mid, r * r) {
+            for &k in &self.at[v.data().id as usize] {
+                if marks[k as usize] != *stamp {
+                    marks[k as usize] = *stamp;
+                    if conflicts(t, &self.segs[k as usize], c) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seg(ax: f64, ay: f64, bx: f64, by: f64) -> Seg {
+        Seg::new([ax, ay], [bx, by])
+    }
+
+    #[test]
+    fn branches_at_a_joint_do_not_conflict_but_folding_back_does() {
+        let stem = seg(0.0, 0.0, 0.0, -10.0);
+        // A branch 30 degrees off the stem's line, from its tip.
+        let br = seg(0.0, -10.0, -5.0, -10.0 - 8.660_254_037_844_386);
+        assert!(!conflicts(&br, &stem, 1.0));
+        // Folding back along the stem: its far end lies on the stem.
+        let back = seg(0.0, -10.0, 0.5, -1.0);
+        assert!(conflicts(&back, &stem, 1.0));
+        // Sibling branches 60 degrees apart, length 10: far ends 8.66 off.
+        let left = seg(0.0, -10.0, 5.0, -18.66);
+        assert!(!conflicts(&left, &br, 1.0));
+        assert!(conflicts(&left, &br, 9.0));
+    }
+
+    #[test]
+    fn ending_on_a_stem_conflicts() {
+        let s = seg(0.0, 0.0, 10.0, 0.0);
+        assert!(conflicts(&seg(5.0, 5.0, 5.0, 0.0), &s, 0.5));
+        assert!(conflicts(&seg(5.0, 5.0, 5.0, -5.0), &s, 0.5)); // crossing
+        assert!(!conflicts(&seg(5.0, 5.0, 5.0, 1.0), &s, 0.5));
+        assert!(conflicts(&seg(5.0, 5.0, 5.0, 1.0), &s, 1.5));
+        // A segment ending exactly at s's endpoint is not a joint for it.
+        assert!(conflicts(&seg(10.0, 5.0, 10.0, 0.0), &s, 0.5));
+        assert!(!conflicts(&seg(10.0, 5.0, 10.0, 0.0), &s, 0.0));
+    }
+
+    #[test]
+    fn backends_agree_with_brute_force() {
+        // A pseudo-random field of short segments.
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut all = Vec::new();
+        for _ in 0..400 {
+            let (ax, ay) = (next() * 100.0, next() * 100.0);
+            let (dx, dy) = (next() * 6.0 - 3.0, next() * 6.0 - 3.0);
+            all.push(seg(ax, ay, ax + dx, ay + dy));
+        }
+        for backend in [Backend::Rstar, Backend::Spade] {
+            let mut occ = Occupancy::new(backend, 1.5);
+            let mut placed: Vec<Seg> = Vec::new();
+            for s in &all {
+                let brute = placed.iter().any(|p| conflicts(s, p, 1.5));
+                assert_eq!(occ.conflicts(s), brute, "{backend:?}");
+                if !brute {
+                    occ.insert(*s);
+                    placed.push(*s);
+                }
+            }
+            assert!(placed.len() > 20 && placed.len() < 400);
+            assert_eq!(occ.len(), placed.len());
+        }
+    }
+}

@@ -1,1 +1,511 @@
 //! The layout region: shapes painted in order on white, white erasing.
+//!
+//! The paper's Graphics Tool painted the layout: each shape is filled over
+//! what came before, on a white canvas, and the tree may grow where the final
+//! colour is not white. [`Region::from_layout`] builds that area once, before
+//! growth, with geo's boolean operations: a union for every coloured shape,
+//! a difference for every white one, in painting order.
+//!
+//! Curved shapes become polygons first ([`shape_ring`]): rounded-rectangle
+//! corners and ellipses are flattened with their vertices on the curve and a
+//! maximum deviation (sagitta) of [`FLATTEN_TOLERANCE`] canvas units, so the
+//! polygon lies inside the true curve and no farther than that from it. The
+//! renderer paints exactly these rings ([`fills`]), so the picture and the
+//! region agree.
+//!
+//! Self-intersecting polygons are read with the even-odd rule, the rule the
+//! renderer fills with: a pentagram's centre is outside it.
+//!
+//! The segment test ([`Region::segment_inside`]) is what growth calls for
+//! every stem: an R-tree over the region's boundary edges answers whether a
+//! segment touches the boundary; a segment that touches no boundary edge
+//! lies wholly inside or wholly outside, and which one is decided by its
+//! start point (known to be inside for growth points at branch tips, else
+//! found by a point-in-polygon test).
+
+use geo::{BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon, Polygon};
+use rstar::{AABB, RTree, RTreeObject};
+
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::render::Fill;
+use crate::syntax::ast::{Layout, Shape};
+use crate::turtle::{BBox, Point};
+
+/// Largest distance, in canvas units, between a flattened curve (rounded
+/// corner, ellipse) and the true curve. The flattened polygon's vertices lie
+/// on the curve, so the polygon lies inside it.
+pub const FLATTEN_TOLERANCE: f64 = 0.05;
+
+/// Most segments a quarter of a curve is flattened into; reached only for
+/// radii above about 1.2 million canvas units, where the deviation then
+/// exceeds [`FLATTEN_TOLERANCE`].
+pub const MAX_SEGMENTS_PER_QUARTER: usize = 4096;
+
+/// The area a tree may grow in.
+#[derive(Debug, Clone)]
+pub struct Region {
+    area: MultiPolygon<f64>,
+    edges: RTree<Edge>,
+    bbox: BBox,
+}
+
+/// One boundary edge of the region, for the R-tree.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Edge {
+    a: Coord<f64>,
+    b: Coord<f64>,
+}
+
+impl RTreeObject for Edge {
+    type Envelope = AABB<[f64; 2]>;
+    fn envelope(&self) -> Self::Envelope {
+        AABB::from_corners([self.a.x, self.a.y], [self.b.x, self.b.y])
+    }
+}
+
+impl Region {
+    /// Paints the layout's shapes in order and keeps what is not white.
+    ///
+    /// Errors: a shape with non-finite numbers, or a layout that leaves no
+    /// area at all (only white shapes, or every coloured shape erased).
+    pub fn from_layout(layout: &Layout) -> Result<Region, Diagnostics> {
+        let mut area: MultiPolygon<f64> = MultiPolygon::new(Vec::new());
+        for s in &layout.shapes {
+            let ring = shape_ring(&s.shape);
+            if ring.iter().any(|p| !p.x.is_finite() || !p.y.is_finite()) {
+                return Err(Diagnostic::error(ErrorKind::Grow(
+                    "a layout shape has a coordinate that is not a finite number".into(),
+                ))
+                .with_span(s.loc.0.clone())
+                .into());
+            }
+            let poly = polygon_of(&ring);
+            area = if s.color.is_white() {
+                area.difference(&poly)
+            } else {
+                area.union(&poly)
+            };
+        }
+        Region::from_area(area).ok_or_else(|| {
+            Diagnostic::error(ErrorKind::Grow(
+                "the layout leaves no area to grow in: nothing coloured remains once the white shapes are painted"
+                    .into(),
+            ))
+            .with_span(layout.loc.0.clone())
+            .with_help(
+                "paint at least one coloured (non-white) shape that later white shapes do not cover entirely",
+            )
+            .into()
+        })
+    }
+
+    /// A region from an area already built; `None` if the area is empty.
+    pub fn from_area(area: MultiPolygon<f64>) -> Option<Region> {
+        let rect = area.bounding_rect()?;
+        let mut edges = Vec::new();
+        for poly in &area.0 {
+            for ring in std::iter::once(poly.exterior()).chain(poly.interiors()) {
+                for l in ring.lines() {
+                    if l.start != l.end {
+                        edges.push(Edge {
+                            a: l.start,
+                            b: l.end,
+                        });
+                    }
+                }
+            }
+        }
+        if edges.is_empty() {
+            return None;
+        }
+        Some(Region {
+            area,
+            edges: RTree::bulk_load(edges),
+            bbox: BBox {
+                min_x: rect.min().x,
+                min_y: rect.min().y,
+                max_x: rect.max().x,
+                max_y: rect.max().y,
+            },
+        })
+    }
+
+    /// The area as geo polygons (holes included).
+    pub fn area(&self) -> &MultiPolygon<f64> {
+        &self.area
+    }
+
+    /// The bounding box of the growable area (not of the white shapes
+    /// around it): the canvas a renderer can show.
+    pub fn bbox(&self) -> BBox {
+        self.bbox
+    }
+
+    /// Number of boundary edges.
+    pub fn edge_count(&self) -> usize {
+        self.edges.size()
+    }
+
+    /// Whether `p` lies in the region or on its boundary. Linear in the
+    /// number of edges: growth calls it only where it cannot know the answer
+    /// (the root, growth points of the seed, after an `f` move).
+    pub fn covers_point(&self, p: Point) -> bool {
+        let c = Coord { x: p.x, y: p.y };
+        if c.x < self.bbox.min_x
+            || c.x > self.bbox.max_x
+            || c.y < self.bbox.min_y
+            || c.y > self.bbox.max_y
+        {
+            return false;
+        }
+        self.area.intersects(&c)
+    }
+
+    /// Whether the closed segment `a`-`b` touches or crosses the boundary
+    /// anywhere (exact predicates).
+    pub fn touches_boundary(&self, a: Point, b: Point) -> bool {
+        let env = AABB::from_corners([a.x, a.y], [b.x, b.y]);
+        let seg = geo::Line::new(Coord { x: a.x, y: a.y }, Coord { x: b.x, y: b.y });
+        self.edges
+            .locate_in_envelope_intersecting(&env)
+            .any(|e| seg.intersects(&geo::Line::new(e.a, e.b)))
+    }
+
+    /// Whether the segment `a`-`b` lies in the open interior of the region:
+    /// it touches no boundary edge and `a` is inside. `a_inside`: the caller
+    /// already knows `a` lies in the open interior (skips the point test).
+    pub fn segment_inside(&self, a: Point, b: Point, a_inside: bool) -> bool {
+        !self.touches_boundary(a, b) && (a_inside || self.covers_point(a))
+    }
+}
+
+/// The closed polygon of a layout shape, canvas units, in drawing order; the
+/// first point is not repeated at the end. Rectangles give their 4 corners,
+/// polygons their points as written (a repeated closing point dropped),
+/// rounded rectangles and ellipses their flattening (see
+/// [`FLATTEN_TOLERANCE`]). Corner radii larger than half the side are
+/// clamped to half the side, as Windows' `RoundRect` (the paper's) does.
+pub fn shape_ring(shape: &Shape) -> Vec<Point> {
+    match *shape {
+        Shape::Rect { x, y, w, h } => rect_ring(x, y, w, h),
+        Shape::RoundRect { x, y, w, h, rx, ry } => {
+            let rx = rx.min(w / 2.0);
+            let ry = ry.min(h / 2.0);
+            if rx.is_nan() || ry.is_nan() || rx <= 0.0 || ry <= 0.0 {
+                return rect_ring(x, y, w, h);
+            }
+            let q = quarter(rx, ry);
+            // Corner centres, and the quarter each corner uses, going round
+            // clockwise on screen from the top-right corner.
+            let corners = [
+                (x + w - rx, y + ry, 1.0, -1.0),    // top right
+                (x + w - rx, y + h - ry, 1.0, 1.0), // bottom right
+                (x + rx, y + h - ry, -1.0, 1.0),    // bottom left
+                (x + rx, y + ry, -1.0, -1.0),       // top left
+            ];
+            let mut ring = Vec::with_capacity(4 * q.len());
+            for (i, &(cx, cy, sx, sy)) in corners.iter().enumerate() {
+                // Top-right and bottom-left run from the vertical axis to the
+                // horizontal one; the other two the other way round.
+                let forward = i % 2 == 1;
+                for j in 0..q.len() {
+                    let (c, s) = if forward { q[j] } else { q[q.len() - 1 - j] };
+                    push_distinct(&mut ring, Point::new(cx + sx * rx * c, cy + sy * ry * s));
+                }
+            }
+            dedup_closing(&mut ring);
+            ring
+        }
+        Shape::Ellipse { x, y, w, h } => {
+            let (rx, ry) = (w / 2.0, h / 2.0);
+            let (cx, cy) = (x + rx, y + ry);
+            let q = quarter(rx, ry);
+            let n = q.len() - 1; // points per quarter without its end
+            let mut ring = Vec::with_capacity(4 * n);
+            // (cos, sin) of the quarter, mirrored into the four quadrants so
+            // the polygon is exactly symmetric.
+            let up = &q[..n]; // 0 to just before 90 degrees
+            let down = || q[1..].iter().rev(); // 90 down to just after 0
+            ring.extend(
+                up.iter()
+                    .map(|&(c, s)| Point::new(cx + rx * c, cy - ry * s)),
+            );
+            ring.extend(down().map(|&(c, s)| Point::new(cx - rx * c, cy - ry * s)));
+            ring.extend(
+                up.iter()
+                    .map(|&(c, s)| Point::new(cx - rx * c, cy + ry * s)),
+            );
+            ring.extend(down().map(|&(c, s)| Point::new(cx + rx * c, cy + ry * s)));
+            ring
+        }
+        Shape::Polygon(ref pts) => {
+            let mut ring: Vec<Point> = pts.iter().map(|&(x, y)| Point::new(x, y)).collect();
+            dedup_closing(&mut ring);
+            ring
+        }
+    }
+}
+
+/// The layout as the renderer paints it (`--show-layout`): one [`Fill`] per
+/// shape, in painting order, white ones included so the holes show.
+pub fn fills(layout: &Layout) -> Vec<Fill> {
+    layout
+        .shapes
+        .iter()
+        .map(|s| Fill {
+            color: s.color,
+            rings: vec![shape_ring(&s.shape)],
+        })
+        .collect()
+}
+
+/// The bounding box of every layout shape, white ones included (the whole
+/// painted canvas); `None` for a layout without shapes.
+pub fn layout_bbox(layout: &Layout) -> Option<BBox> {
+    let mut bbox: Option<BBox> = None;
+    for s in &layout.shapes {
+        for p in shape_ring(&s.shape) {
+            match &mut bbox {
+                Some(b) => b.add(p),
+                None => bbox = Some(BBox::at(p)),
+            }
+        }
+    }
+    bbox
+}
+
+fn rect_ring(x: f64, y: f64, w: f64, h: f64) -> Vec<Point> {
+    vec![
+        Point::new(x, y),
+        Point::new(x + w, y),
+        Point::new(x + w, y + h),
+        Point::new(x, y + h),
+    ]
+}
+
+/// `(cos t, sin t)` for `t` from 0 to 90 degrees in equal steps, both ends
+/// included and exact, with as many steps as keep the chord's deviation from
+/// an ellipse of radii `rx`, `ry` within [`FLATTEN_TOLERANCE`]. The ellipse is
+/// an affine image of the unit circle, so the circle's sagitta scaled by the
+/// larger radius bounds the deviation.
+fn quarter(rx: f64, ry: f64) -> Vec<(f64, f64)> {
+    let r = rx.max(ry);
+    let n = if r <= FLATTEN_TOLERANCE || r.is_nan() {
+        1
+    } else {
+        // sagitta r * (1 - cos(step / 2)) <= tol
+        let step = 2.0 * libm::acos(1.0 - FLATTEN_TOLERANCE / r);
+        let n = (std::f64::consts::FRAC_PI_2 / step).ceil();
+        if n.is_finite() {
+            (n as usize).clamp(1, MAX_SEGMENTS_PER_QUARTER)
+        } else {
+            MAX_SEGMENTS_PER_QUARTER
+        }
+    };
+    (0..=n)
+        .map(|j| {
+            if j == 0 {
+                (1.0, 0.0)
+            } else if j == n {
+                (0.0, 1.0)
+            } else {
+                let t = std::f64::consts::FRAC_PI_2 * (j as f64) / (n as f64);
+                (libm::cos(t), libm::sin(t))
+            }
+        })
+        .collect()
+}
+
+fn push_distinct(ring: &mut Vec<Point>, p: Point) {
+    if ring.last() != Some(&p) {
+        ring.push(p);
+    }
+}
+
+fn dedup_closing(ring: &mut Vec<Point>) {
+    while ring.len() > 1 && ring.first() == ring.last() {
+        ring.pop();
+    }
+}
+
+fn polygon_of(ring: &[Point]) -> Polygon<f64> {
+    let mut coords: Vec<Coord<f64>> = ring.iter().map(|p| Coord { x: p.x, y: p.y }).collect();
+    if let Some(&first) = coords.first() {
+        coords.push(first);
+    }
+    Polygon::new(LineString::new(coords), Vec::new())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use crate::syntax::ast::{LayoutShape, Loc, Spelling};
+    use geo::Area;
+
+    fn shape(color: Rgb, shape: Shape) -> LayoutShape {
+        LayoutShape {
+            color,
+            color_text: String::new(),
+            shape,
+            spelling: Spelling::StartSize,
+            angled: false,
+            loc: Loc::default(),
+        }
+    }
+
+    fn layout(shapes: Vec<LayoutShape>) -> Layout {
+        Layout {
+            shapes,
+            loc: Loc::default(),
+        }
+    }
+
+    const GREEN: Rgb = Rgb::new(0, 128, 0);
+
+    fn rect(x: f64, y: f64, w: f64, h: f64) -> Shape {
+        Shape::Rect { x, y, w, h }
+    }
+
+    #[test]
+    fn white_shape_cuts_a_hole_and_a_later_colour_fills_it_again() {
+        let l = layout(vec![
+            shape(GREEN, rect(0.0, 0.0, 100.0, 100.0)),
+            shape(Rgb::WHITE, rect(20.0, 20.0, 40.0, 40.0)),
+        ]);
+        let r = Region::from_layout(&l).unwrap();
+        assert!((r.area().unsigned_area() - (10_000.0 - 1_600.0)).abs() < 1e-9);
+        assert!(r.covers_point(Point::new(10.0, 10.0)));
+        assert!(!r.covers_point(Point::new(40.0, 40.0)));
+        // A segment crossing the hole is not inside; one beside it is.
+        assert!(!r.segment_inside(Point::new(10.0, 40.0), Point::new(70.0, 40.0), true));
+        assert!(r.segment_inside(Point::new(10.0, 10.0), Point::new(10.0, 90.0), true));
+
+        let mut shapes = l.shapes.clone();
+        shapes.push(shape(GREEN, rect(30.0, 30.0, 10.0, 10.0)));
+        let r = Region::from_layout(&layout(shapes)).unwrap();
+        assert!((r.area().unsigned_area() - (10_000.0 - 1_600.0 + 100.0)).abs() < 1e-9);
+        assert!(r.covers_point(Point::new(35.0, 35.0)));
+    }
+
+    #[test]
+    fn layout_that_cancels_is_an_error() {
+        let l = layout(vec![
+            shape(GREEN, rect(10.0, 10.0, 10.0, 10.0)),
+            shape(Rgb::WHITE, rect(0.0, 0.0, 50.0, 50.0)),
+        ]);
+        let e = Region::from_layout(&l).unwrap_err();
+        assert!(e.0[0].kind.to_string().contains("no area"));
+        let only_white = layout(vec![shape(Rgb::WHITE, rect(0.0, 0.0, 5.0, 5.0))]);
+        assert!(Region::from_layout(&only_white).is_err());
+    }
+
+    #[test]
+    fn segment_touching_the_boundary_is_not_inside() {
+        let r =
+            Region::from_layout(&layout(vec![shape(GREEN, rect(0.0, 0.0, 10.0, 10.0))])).unwrap();
+        assert!(r.segment_inside(Point::new(5.0, 5.0), Point::new(5.0, 9.0), false));
+        assert!(!r.segment_inside(Point::new(5.0, 5.0), Point::new(5.0, 10.0), false));
+        assert!(!r.segment_inside(Point::new(5.0, 5.0), Point::new(5.0, 12.0), false));
+        // Wholly outside, touching nothing: decided by the start point.
+        assert!(!r.segment_inside(Point::new(20.0, 5.0), Point::new(25.0, 5.0), false));
+    }
+
+    #[test]
+    fn ellipse_is_flattened_within_tolerance_and_symmetric() {
+        for &(w, h) in &[(200.0, 100.0), (3.0, 3.0), (1000.0, 40.0)] {
+            let ring = shape_ring(&Shape::Ellipse {
+                x: 0.0,
+                y: 0.0,
+                w,
+                h,
+            });
+            assert_eq!(ring.len() % 4, 0);
+            let (rx, ry) = (w / 2.0, h / 2.0);
+            // Vertices on the curve.
+            for p in &ring {
+                let u = (p.x - rx) / rx;
+                let v = (p.y - ry) / ry;
+                assert!((u * u + v * v - 1.0).abs() < 1e-12);
+            }
+            // Mid-chord points within the tolerance of the curve: sample the
+            // curve densely and take the distance to the nearest chord midpoint
+            // of the same arc (chord midpoints are the farthest points).
+            for i in 0..ring.len() {
+                let a = ring[i];
+                let b = ring[(i + 1) % ring.len()];
+                let m = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
+                // Radial distance from the curve, scaled: an upper bound.
+                let u = (m.x - rx) / rx;
+                let v = (m.y - ry) / ry;
+                let k = (u * u + v * v).sqrt();
+                let dev = (1.0 - k) * rx.max(ry);
+                assert!(dev <= FLATTEN_TOLERANCE + 1e-9, "deviation {dev}");
+            }
+        }
+    }
+
+    #[test]
+    fn round_rect_area_close_to_the_true_one() {
+        let (w, h, r) = (180.0, 192.0, 7.0);
+        let ring = shape_ring(&Shape::RoundRect {
+            x: 0.0,
+            y: 0.0,
+            w,
+            h,
+            rx: r,
+            ry: r,
+        });
+        let a = polygon_of(&ring).unsigned_area();
+        let exact = w * h - (4.0 - std::f64::consts::PI) * r * r;
+        assert!(
+            a < exact && exact - a < 0.05 * 4.0 * 2.0 * r,
+            "{a} vs {exact}"
+        );
+        // Clamped radii: a full stadium never exceeds its box.
+        let ring = shape_ring(&Shape::RoundRect {
+            x: 0.0,
+            y: 0.0,
+            w: 10.0,
+            h: 4.0,
+            rx: 50.0,
+            ry: 50.0,
+        });
+        assert!(
+            ring.iter()
+                .all(|p| p.x >= 0.0 && p.x <= 10.0 && p.y >= 0.0 && p.y <= 4.0)
+        );
+    }
+
+    #[test]
+    fn self_intersecting_polygon_is_even_odd() {
+        // A pentagram: its centre is outside under the even-odd rule.
+        let pts: Vec<(f64, f64)> = (0..5)
+            .map(|i| {
+                let t = std::f64::consts::FRAC_PI_2 + (i as f64) * 4.0 * std::f64::consts::PI / 5.0;
+                (50.0 + 40.0 * libm::cos(t), 50.0 - 40.0 * libm::sin(t))
+            })
+            .collect();
+        let r = Region::from_layout(&layout(vec![shape(GREEN, Shape::Polygon(pts))])).unwrap();
+        assert!(!r.covers_point(Point::new(50.0, 50.0)));
+        // A point inside one of the star's tips is inside.
+        assert!(r.covers_point(Point::new(50.0, 15.0)));
+    }
+
+    #[test]
+    fn fills_keep_painting_order_and_white() {
+        let l = layout(vec![
+            shape(GREEN, rect(0.0, 0.0, 100.0, 100.0)),
+            shape(Rgb::WHITE, rect(20.0, 20.0, 40.0, 40.0)),
+        ]);
+        let f = fills(&l);
+        assert_eq!(f.len(), 2);
+        assert_eq!(f[1].color, Rgb::WHITE);
+        assert_eq!(f[1].rings[0].len(), 4);
+        let b = layout_bbox(&l).unwrap();
+        assert_eq!(
+            (b.min_x, b.min_y, b.max_x, b.max_y),
+            (0.0, 0.0, 100.0, 100.0)
+        );
+    }
+}

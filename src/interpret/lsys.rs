@@ -286,15 +286,7 @@ impl Alphabet {
         strategy: Strategy,
         limits: &Limits,
     ) -> Result<Vec<u64>, Diagnostics> {
-        if depth > limits.max_depth {
-            return Err(Diagnostic::error(ErrorKind::Limit {
-                what: "derivation depth".into(),
-                value: depth.to_string(),
-                limit: limits.max_depth.to_string(),
-            })
-            .with_help("use a smaller depth, or raise the limit with --max-depth N")
-            .into());
-        }
+        limits.check_depth(depth)?;
         let lens = self.word_lengths(depth);
         let exact = |r: u32| -> String {
             // Saturated lengths are recomputed exactly for the message.

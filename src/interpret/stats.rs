@@ -17,7 +17,7 @@ use std::fmt::Write as _;
 
 use num_bigint::BigUint;
 
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::Diagnostics;
 use crate::interpret::Strategy;
 use crate::interpret::lsys::{Alphabet, draw_into};
 use crate::limits::Limits;
@@ -68,15 +68,7 @@ pub fn stats_with_budget(
     limits: &Limits,
     budget: u64,
 ) -> Result<Stats, Diagnostics> {
-    if depth > limits.max_depth {
-        return Err(Diagnostic::error(ErrorKind::Limit {
-            what: "derivation depth".into(),
-            value: depth.to_string(),
-            limit: limits.max_depth.to_string(),
-        })
-        .with_help("use a smaller depth, or raise the limit with --max-depth N")
-        .into());
-    }
+    limits.check_depth(depth)?;
     let alpha = Alphabet::new(sys);
     let n = alpha.chars.len();
     // Sparse substitution matrix: for each symbol, (child, multiplicity).

@@ -51,7 +51,13 @@ pub const RESERVED: &[&str] = &[
 /// slot empty (`bare: false`); in an OD it stays a growth point (`bare: true`).
 pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, Diagnostics> {
     let src = precheck(src.as_bytes(), limits)?;
-    let mut pairs = GrammarParser::parse(Rule::stl_file, src).map_err(pest_error)?;
+    let mut pairs = GrammarParser::parse(Rule::stl_file, src).map_err(|e| {
+        pest_error(e).with_help(
+            "a description reads: tree name, root `(x, y)`, stem parameters \
+             (`L=10(0) B=1(0)`), `RULE` and its rules (`R1: [+F][-F]`), then optional \
+             `SEED ... ENDSEED` and `LAYOUT ... ENDLAYOUT` (see docs/language.md)",
+        )
+    })?;
     let Some(file) = pairs.next() else {
         return Err(Diagnostic::error(ErrorKind::Syntax("empty input".into())).into());
     };

@@ -159,7 +159,10 @@ fn render_png_and_svg_files() {
     let f = dir.path().join("sq.lsys");
     fs::write(&f, SQUARE).unwrap();
     // Default output: beside the input, .png.
-    stlc().args(["render", f.to_str().unwrap()]).assert().success();
+    stlc()
+        .args(["render", f.to_str().unwrap()])
+        .assert()
+        .success();
     let png = fs::read(dir.path().join("sq.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     let pix = tiny_skia::Pixmap::decode_png(&png).unwrap();
@@ -168,11 +171,21 @@ fn render_png_and_svg_files() {
 
     let svg = dir.path().join("out.svg");
     stlc()
-        .args(["render", f.to_str().unwrap(), "-o", svg.to_str().unwrap(), "--size", "200x100"])
+        .args([
+            "render",
+            f.to_str().unwrap(),
+            "-o",
+            svg.to_str().unwrap(),
+            "--size",
+            "200x100",
+        ])
         .assert()
         .success();
     let text = fs::read_to_string(&svg).unwrap();
-    assert!(text.contains("width=\"200\"") && text.contains("height=\"100\""), "{text}");
+    assert!(
+        text.contains("width=\"200\"") && text.contains("height=\"100\""),
+        "{text}"
+    );
     assert_eq!(files_in(dir.path()), ["out.svg", "sq.lsys", "sq.png"]);
 }
 
@@ -184,7 +197,14 @@ fn a_bad_input_points_at_the_line_and_writes_nothing() {
     let out = dir.path().join("bad.png");
     fs::write(&out, b"previous picture").unwrap();
     stlc()
-        .args(["render", f.to_str().unwrap(), "-o", out.to_str().unwrap(), "--depth", "2"])
+        .args([
+            "render",
+            f.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--depth",
+            "2",
+        ])
         .assert()
         .code(1)
         .stderr(predicate::str::contains("bad.lsys"))
@@ -203,7 +223,14 @@ fn missing_file_and_unwritable_directory_are_errors_not_panics() {
         .code(1)
         .stderr(predicate::str::contains("cannot read"));
     stlc()
-        .args(["render", "-", "--from", "lsys", "-o", "/nonexistent/dir/x.png"])
+        .args([
+            "render",
+            "-",
+            "--from",
+            "lsys",
+            "-o",
+            "/nonexistent/dir/x.png",
+        ])
         .write_stdin(SQUARE)
         .assert()
         .code(1)
@@ -238,9 +265,19 @@ fn a_broken_pipe_exits_quietly() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    child.stdin.take().unwrap().write_all(SQUARE.as_bytes()).unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(SQUARE.as_bytes())
+        .unwrap();
     let mut first = [0u8; 16];
-    child.stdout.as_mut().unwrap().read_exact(&mut first).unwrap();
+    child
+        .stdout
+        .as_mut()
+        .unwrap()
+        .read_exact(&mut first)
+        .unwrap();
     assert_eq!(&first, b"F+F+F+F+F+F+F+F+");
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
@@ -305,4 +342,228 @@ fn png_to_a_file_named_dash_svg_is_svg() {
         .success();
     let text = fs::read_to_string(&out).unwrap();
     assert!(text.contains("<path"), "{text}");
+}
+
+// ------------------------------------------------- limits and hostile input --
+
+/// Runs `stlc ARGS` with `stdin`; returns (exit code, stderr).
+fn run_stdin(args: &[&str], stdin: impl Into<Vec<u8>>) -> (i32, String) {
+    let out = stlc().args(args).write_stdin(stdin).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn each_limit_names_the_flag_that_raises_it() {
+    // Input size: refused without reading it all.
+    let (code, err) = run_stdin(
+        &["check", "-", "--from", "lsys", "--max-input", "10"],
+        SQUARE,
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("--max-input"), "{err}");
+    // Nesting, in each format.
+    let deep = format!(
+        "angle 90\naxiom {}F{}\n",
+        "[".repeat(100_000),
+        "]".repeat(100_000)
+    );
+    let (code, err) = run_stdin(&["check", "-", "--from", "lsys"], deep);
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-nesting"), "{err}");
+    let deep_bed = format!(
+        "T (0,0) RULE R1: [F] SEED {}{} ENDSEED",
+        "R1{".repeat(100_000),
+        "}".repeat(100_000)
+    );
+    let (code, err) = run_stdin(&["check", "-", "--from", "bed"], deep_bed);
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-nesting"), "{err}");
+    // Depths and counts in the millions.
+    let (code, err) = run_stdin(
+        &["stats", "-", "--from", "lsys"],
+        "generations 5000000\nangle 90\naxiom F\nrule F FF\n",
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-depth"), "{err}");
+    let (code, err) = run_stdin(
+        &["check", "-", "--from", "bed"],
+        "T (0,0) RULE R1: [+F][-F] SEED [I 3000000 R1] ENDSEED",
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("3000000"), "{err}");
+    // bfs refuses to hold a word beyond --max-word; dfs streams it.
+    let tree = "angle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
+    let (code, err) = run_stdin(
+        &[
+            "render",
+            "-",
+            "--from",
+            "lsys",
+            "--depth",
+            "6",
+            "--strategy",
+            "bfs",
+            "--max-word",
+            "1000",
+            "-f",
+            "svg",
+            "-o",
+            "-",
+        ],
+        tree,
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-word"), "{err}");
+    let (code, err) = run_stdin(
+        &[
+            "render",
+            "-",
+            "--from",
+            "lsys",
+            "--depth",
+            "6",
+            "--max-symbols",
+            "1000",
+            "-f",
+            "svg",
+            "-o",
+            "-",
+        ],
+        tree,
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("--max-symbols"), "{err}");
+}
+
+#[test]
+fn growth_limits_warn_or_refuse() {
+    // No layout, no count, no decrement: refused with the ways out.
+    let unbounded = "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F][-F]\n";
+    let (code, err) = run_stdin(&["compile", "-", "--from", "od"], unbounded);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("--max-stems") && err.contains("LAYOUT"),
+        "{err}"
+    );
+    // An explicit --max-stems bounds it: success with a warning.
+    let out = stlc()
+        .args(["compile", "-", "--from", "od", "--max-stems", "50"])
+        .write_stdin(unbounded)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--max-stems"), "{err}");
+    let bed = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        bed.starts_with("U\n(0, 0)\n") && bed.contains("SEED"),
+        "{bed}"
+    );
+    // --quiet silences the warning, not the result.
+    let out = stlc()
+        .args(["compile", "-", "--from", "od", "--max-stems", "50", "-q"])
+        .write_stdin(unbounded)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert!(out.stderr.is_empty());
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), bed);
+}
+
+#[test]
+fn garbage_empty_and_non_utf8_inputs_are_clean_errors() {
+    for kind in ["od", "bed", "lsys"] {
+        let (code, err) = run_stdin(&["check", "-", "--from", kind], "");
+        assert_eq!(code, 1, "empty {kind}: {err}");
+        assert!(err.contains("Error") || err.contains("error"), "{err}");
+        let (code, err) = run_stdin(
+            &["check", "-", "--from", kind],
+            b"ab\xff\xfe\x00cd".to_vec(),
+        );
+        assert_eq!(code, 1);
+        assert!(err.contains("UTF-8") && err.contains("byte 2"), "{err}");
+        let (code, err) = run_stdin(&["check", "-", "--from", kind], "\u{1}\u{2}}}{{)(\t**&^%$");
+        assert_eq!(code, 1, "{kind}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        let (code, err) = run_stdin(&["check", "-", "--from", kind], "# only a comment\n");
+        assert_eq!(code, 1, "{kind}: {err}");
+    }
+}
+
+#[test]
+fn the_readme_commands_run() {
+    let readme = fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    // The first screen names an example that exists and the test command.
+    assert!(readme.contains("cargo test"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("2dtree.png");
+    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/2dtree.od");
+    assert!(readme.contains("render examples/2dtree.od --show-layout"));
+    stlc()
+        .args(["render", example, "--show-layout", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let pix = tiny_skia::Pixmap::decode_png(&fs::read(&out).unwrap()).unwrap();
+    // The layout is 180 x 192 canvas units: 750 x 800 pixels.
+    assert_eq!((pix.width(), pix.height()), (750, 800));
+}
+
+/// The grown tiny tree (tests/cases/grow/tiny.bfs.bed) over its layout,
+/// checked by hand: the layout box x -15..15, y -25..5 fills 120 px at scale
+/// 4, so the root (0, 0) is pixel (60, 100), stems are B=1 -> 4 px wide, and
+/// the four tips are (20, 100), (20, 20), (100, 20), (100, 100).
+#[test]
+fn a_bed_with_a_layout_renders_its_golden_svg() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let out = stlc()
+        .args(["render", &format!("{root}/tests/cases/grow/tiny.bfs.bed")])
+        .args(["--show-layout", "--size", "120x120", "-f", "svg", "-o", "-"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let golden = fs::read_to_string(format!("{root}/tests/cases/render/tiny-layout.svg")).unwrap();
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), golden);
+    // The PNG agrees: stem pixels are bark brown, the layout green, the
+    // background outside nothing (the layout fills the view).
+    let out = stlc()
+        .args(["render", &format!("{root}/tests/cases/grow/tiny.bfs.bed")])
+        .args(["--show-layout", "--size", "120x120", "-f", "png", "-o", "-"])
+        .output()
+        .unwrap();
+    let pix = tiny_skia::Pixmap::decode_png(&out.stdout).unwrap();
+    let at = |x: u32, y: u32| {
+        let p = pix.pixel(x, y).unwrap();
+        (p.red(), p.green(), p.blue())
+    };
+    assert_eq!(at(60, 80), (0x4a, 0x2c, 0x12)); // on the seed stem
+    assert_eq!(at(20, 40), (0x4a, 0x2c, 0x12)); // on a level-2 stem
+    assert_eq!(at(40, 100), (0, 128, 0)); // between stems: layout green
+}
+
+#[test]
+fn a_full_disk_on_stdout_is_an_error_not_a_panic() {
+    let Ok(full) = fs::File::create("/dev/full") else {
+        return; // no /dev/full on this system
+    };
+    let bin = assert_cmd::cargo::cargo_bin("stlc");
+    let out = StdCommand::new(bin)
+        .args(["expand", "-", "--from", "lsys", "--depth", "12"])
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::piped())
+        .stdout(full)
+        .stderr(Stdio::piped())
+        .spawn()
+        .and_then(|mut c| {
+            c.stdin.take().unwrap().write_all(SQUARE.as_bytes())?;
+            c.wait_with_output()
+        })
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("No space left"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
 }

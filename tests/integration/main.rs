@@ -1,6 +1,9 @@
 //! One integration-test binary; each area is a module.
 
 mod cli;
+mod diagnostics;
+mod golden;
+mod grow;
 mod lsys;
 mod render;
 mod robustness;

@@ -404,8 +404,14 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
 #[test]
 fn stl_numbers_that_overflow_are_refused() {
     for (src, needle) in [
-        ("T (1e999, 0) L=10(0) B=1(0) RULE R1: [F]".to_string(), "1e999"),
-        ("T (0, 0) L=1e400(0) B=1(0) RULE R1: [F]".to_string(), "1e400"),
+        (
+            "T (1e999, 0) L=10(0) B=1(0) RULE R1: [F]".to_string(),
+            "1e999",
+        ),
+        (
+            "T (0, 0) L=1e400(0) B=1(0) RULE R1: [F]".to_string(),
+            "1e400",
+        ),
         (
             "T (0, 0) L=10(0) B=1(0) A=-1e999 RULE R1: [F]".to_string(),
             "-1e999",

@@ -588,14 +588,18 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         );
         let d = bed(&src);
         let text = write(&d);
-        // One line per term, indented two spaces per level: the opening
-        // line of depth d is 2d + 4 bytes (`R1{` and LF), its closing line
-        // 2d + 2 (`}` and LF), the innermost `R1{}` line 2(n-1) + 5.
+        // One line per term, indented two spaces per level up to depth 24
+        // (then no further): with i(d) = 2 min(d, 24), the opening line of
+        // depth d is i(d) + 4 bytes (`R1{` and LF), its closing line
+        // i(d) + 2 (`}` and LF), the innermost `R1{}` line i(n-1) + 5.
         let head = "T\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [F]\nSEED\n";
-        let seed: usize = (0..n - 1).map(|d| 4 * d + 6).sum::<usize>() + 2 * (n - 1) + 5;
+        let i = |d: usize| 2 * d.min(24);
+        let seed: usize = (0..n - 1).map(|d| 2 * i(d) + 6).sum::<usize>() + i(n - 1) + 5;
         assert_eq!(text.len(), head.len() + seed + "ENDSEED\n".len());
         assert!(text.starts_with(&format!("{head}R1{{\n  R1{{\n    R1{{\n")));
         assert!(text.ends_with("  }\n}\nENDSEED\n"));
+        // Linear in depth, so the deep file reads back too.
+        assert_eq!(bed(&text), d);
         let limits = Limits::default();
         let mut out = Vec::new();
         expand(&d, Strategy::Dfs, &limits, &mut out, &mut NoProgress).unwrap();

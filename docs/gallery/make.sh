@@ -1,0 +1,18 @@
+#!/bin/sh
+# Regenerates the README gallery from examples/. Run from the repository root.
+set -eu
+cargo build --release --quiet
+B=target/release/stlc
+G=docs/gallery
+$B render examples/2dtree.od --show-layout --size 360x384 -o $G/2dtree.png
+$B render examples/fig9.od --strategy bfs --show-layout --size 300x316 -o $G/fig9-bfs.png
+$B render examples/fig9.od --strategy dfs --show-layout --size 300x316 -o $G/fig10-dfs.png
+$B render examples/holes.od --show-layout --size 300x300 -o $G/holes.png
+$B render examples/polygon.od --show-layout --size 300x300 -o $G/polygon.png
+$B render examples/decrement.od --size 300x300 -o $G/decrement.png
+for n in abop-1.24a abop-1.24b abop-1.24c abop-1.24d abop-1.24e abop-1.24f \
+         koch-snowflake sierpinski-arrowhead stl-003-fig4; do
+  $B render examples/$n.lsys --size 240x240 -o $G/$n.png
+done
+# Depth 7 is a solid grey square at thumbnail size.
+$B render examples/hilbert.lsys --depth 5 --size 240x240 -o $G/hilbert.png
