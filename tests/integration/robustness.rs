@@ -238,13 +238,15 @@ fn terms_nested_to_the_default_limit_work_within_a_bounded_stack() {
         let mut c = Counter::default();
         stlc::interpret::bed::draw(&d, Strategy::Dfs, &limits, &mut c, &mut NoProgress)
             .expect("draws");
+        let back = stl::parse(&text, Format::Bed, &limits).expect("reparses");
+        assert!(back == d, "round trip");
         (c.0, text.len())
     });
     assert_eq!(count, n as u64);
-    // Indented two spaces per level: more than n^2 bytes, 162 MB here, more
-    // than the default input limit of 64 MiB (known gap, docs/fuzzing.md).
-    assert!(text_len > n * n, "{text_len}");
-    assert!(text_len as u64 > Limits::default().max_input_bytes);
+    // Indentation stops at MAX_INDENT_DEPTH, so the text stays linear in
+    // the depth and reads back under the default input limit.
+    let indent = 2 * stlc::bed::write::MAX_INDENT_DEPTH;
+    assert!(text_len < n * 2 * (indent + 4) + 200, "{text_len}");
     // A thousand levels fit an ordinary thread's stack.
     let m = 1_000;
     let src = format!(
@@ -608,4 +610,59 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
             assert_eq!(e.0.len(), 1);
         }
     }
+}
+
+// ----------------------------------------------------------------- grower --
+
+fn od(src: &str) -> Description {
+    stl::parse(src, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn grow_err(src: &str) -> Diagnostics {
+    let d = od(src);
+    match stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress) {
+        Ok(g) => panic!("grew {} stems, expected an error", g.stems),
+        Err(e) => e,
+    }
+}
+
+#[test]
+fn a_layout_whose_shapes_cancel_leaves_nothing_to_grow_in() {
+    let src = "T (5, 5) L=1(0) B=1(0) RULE R1: [+F][-F] \
+               LAYOUT (clGreen) Rectangle (0,0), 10, 10 (clWhite) Rectangle (0,0), 10, 10 ENDLAYOUT";
+    let e = grow_err(src);
+    assert!(
+        matches!(e.first_kind(), Some(ErrorKind::Grow(m)) if m.contains("no area")),
+        "{e}"
+    );
+    let at = src.find("LAYOUT").unwrap();
+    assert_eq!(e.0[0].span.as_ref().map(|s| s.start), Some(at));
+}
+
+#[test]
+fn a_root_outside_the_layout_is_refused_at_the_root() {
+    let src = "T (50, 50) L=1(0) B=1(0) RULE R1: [+F][-F] \
+               LAYOUT (clGreen) Rectangle (0,0), 10, 10 ENDLAYOUT";
+    let e = grow_err(src);
+    assert!(
+        matches!(e.first_kind(), Some(ErrorKind::Grow(m)) if m.contains("outside the layout")),
+        "{e}"
+    );
+    assert_eq!(e.0[0].span, Some(2..10));
+}
+
+#[test]
+fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
+    // A bow tie crossing at (50, 50); the root sits in its left lobe.
+    let src = "T (15, 60) L=5(1) B=1(0) A=20 RULE R1: [+F][-F] SEED F R1 ENDSEED \
+               LAYOUT (clGreen) Polygon (0,0), (100,100), (100,0), (0,100) ENDLAYOUT";
+    let d = od(src);
+    let g = small_stack(30, move || {
+        stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress).expect("grows")
+    });
+    assert!(g.stems >= 1);
+    // What it grew is a valid BED that reads back.
+    let text = write(&g.bed);
+    let back = bed(&text);
+    validate(&back, &Limits::default()).expect("valid");
 }
