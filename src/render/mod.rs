@@ -93,6 +93,13 @@ pub const MIN_MARGIN: f64 = 4.0;
 /// so memory stays bounded however many segments stream through.
 pub const BATCH_SEGMENTS: usize = 4096;
 
+/// Folding tolerance of the PNG backend, in output pixels: along a run of
+/// connected segments (a subpath), a vertex closer than this to the last
+/// vertex kept is not written, only the run's exact end. Deep L-systems
+/// stream tens of millions of segments far shorter than a pixel, and
+/// tiny-skia's cost is per segment; the picture moves by less than this.
+pub const FOLD_PX: f64 = 0.25;
+
 /// Something that can draw itself into a turtle, any number of times.
 pub type Drawing<'a> =
     dyn FnMut(&mut dyn Turtle, &mut dyn Progress) -> Result<(), Diagnostics> + 'a;

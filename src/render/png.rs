@@ -8,6 +8,12 @@
 //! memory; a segment that starts where the previous one ended extends the
 //! current subpath (so a polyline gets proper joins).
 //!
+//! Along such a run, vertices closer than [`FOLD_PX`] to the last vertex
+//! written are folded away (the run's exact end is always written): a deep
+//! L-system streams tens of millions of segments of a hundredth of a pixel,
+//! and tiny-skia's stroking cost is per segment. Runs are never joined
+//! across a jump, so every subpath keeps its own round caps.
+//!
 //! It does not decide sizes or widths: [`Fit`] and [`stroke_px`] in the
 //! parent module do. Its sections mirror `svg.rs`, so the two read side by side.
 
@@ -15,7 +21,7 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, Stroke, Transform,
 };
 
-use super::{BATCH_SEGMENTS, Fill, Fit, Style, Width, render_error, stroke_px};
+use super::{BATCH_SEGMENTS, FOLD_PX, Fill, Fit, Style, Width, render_error, stroke_px};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
 use crate::turtle::{Point, Segment, Turtle};
@@ -35,6 +41,19 @@ pub struct PngTurtle {
     batch_len: usize,
     /// Where the last segment ended (canvas units), to extend subpaths.
     last_to: Option<Point>,
+    /// The open subpath's pen, `None` when no subpath is open.
+    pen: Option<Pen>,
+}
+
+/// The pen of the open subpath, in output pixels, for [`FOLD_PX`] folding.
+#[derive(Debug, Clone, Copy)]
+struct Pen {
+    /// The last vertex written into the path.
+    kept: Point,
+    /// Where the pen is: the end of the last segment.
+    at: Point,
+    /// `at` is not written yet (it is closer than [`FOLD_PX`] to `kept`).
+    pending: bool,
 }
 
 impl PngTurtle {
@@ -60,6 +79,7 @@ impl PngTurtle {
             batch_width: 0.0,
             batch_len: 0,
             last_to: None,
+            pen: None,
         })
     }
 
@@ -100,6 +120,7 @@ impl PngTurtle {
 
     /// Strokes the collected path and starts an empty one.
     fn flush(&mut self) {
+        self.end_subpath();
         let batch = std::mem::take(&mut self.batch);
         self.batch_len = 0;
         self.last_to = None;
@@ -114,6 +135,34 @@ impl PngTurtle {
                 .stroke_path(&path, &self.paint, &stroke, Transform::identity(), None);
             // Keep the allocation for the next batch.
             self.batch = Path::clear(path);
+        }
+    }
+
+    /// Ends the open subpath: writes the pen's pending end point, so the
+    /// exact end of every run is in the path.
+    fn end_subpath(&mut self) {
+        if let Some(pen) = self.pen.take() {
+            if pen.pending {
+                self.batch.line_to(pen.at.x as f32, pen.at.y as f32);
+            }
+        }
+    }
+
+    /// Moves the pen of the open subpath along a segment to `q` (output
+    /// pixels): written as a vertex once it is [`FOLD_PX`] or more from the
+    /// last vertex written, else held as the pending end.
+    fn pen_to(&mut self, q: Point) {
+        let Some(pen) = self.pen.as_mut() else {
+            return;
+        };
+        pen.at = q;
+        let (dx, dy) = (q.x - pen.kept.x, q.y - pen.kept.y);
+        if dx * dx + dy * dy >= FOLD_PX * FOLD_PX {
+            pen.kept = q;
+            pen.pending = false;
+            self.batch.line_to(q.x as f32, q.y as f32);
+        } else {
+            pen.pending = true;
         }
     }
 
@@ -149,9 +198,15 @@ impl Turtle for PngTurtle {
         }
         self.batch_width = width;
         if self.last_to != Some(seg.from) {
+            self.end_subpath();
             self.batch.move_to(from.x as f32, from.y as f32);
+            self.pen = Some(Pen {
+                kept: from,
+                at: from,
+                pending: false,
+            });
         }
-        self.batch.line_to(to.x as f32, to.y as f32);
+        self.pen_to(to);
         self.batch_len += 1;
         self.last_to = Some(seg.to);
     }
@@ -163,4 +218,84 @@ impl Turtle for PngTurtle {
 /// An opaque tiny-skia colour.
 fn color(c: Rgb) -> Color {
     Color::from_rgba8(c.r, c.g, c.b, 255)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::Style;
+
+    fn turtle() -> PngTurtle {
+        let fit = Fit {
+            width: 100,
+            height: 100,
+            scale: 1.0,
+            dx: 0.0,
+            dy: 0.0,
+        };
+        let style = Style {
+            stroke: Rgb::BLACK,
+            background: Some(Rgb::WHITE),
+            width: Width::Pixels(1.0),
+        };
+        PngTurtle::new(fit, &style).unwrap()
+    }
+
+    /// Draws a connected run through `points` (output pixels, scale 1).
+    fn run(t: &mut PngTurtle, points: &[Point]) {
+        for w in points.windows(2) {
+            t.segment(Segment {
+                from: w[0],
+                to: w[1],
+                order: 0,
+            });
+        }
+        t.end_subpath();
+    }
+
+    #[test]
+    fn a_run_of_sub_pixel_segments_folds_to_its_exact_end() {
+        // 100 steps of 0.001 px zigzagging right: 0.1 px in all, one line.
+        let points: Vec<Point> = (0..=100)
+            .map(|i| Point::new(10.0 + f64::from(i) * 0.001, 10.0 + f64::from(i % 2) * 0.01))
+            .collect();
+        let mut t = turtle();
+        run(&mut t, &points);
+        assert_eq!(t.batch.len(), 2, "move and one line");
+        let end = t.batch.last_point().unwrap();
+        assert_eq!((end.x, end.y), (10.1, 10.0));
+    }
+
+    #[test]
+    fn segments_of_the_tolerance_or_longer_are_all_kept() {
+        let points: Vec<Point> = (0..=40)
+            .map(|i| Point::new(10.0 + f64::from(i) * FOLD_PX, 20.0 + f64::from(i % 2)))
+            .collect();
+        let mut t = turtle();
+        run(&mut t, &points);
+        assert_eq!(t.batch.len(), points.len());
+    }
+
+    #[test]
+    fn a_long_run_keeps_a_vertex_per_tolerance_and_its_end() {
+        // 1000 steps of 0.01 px along a line: 10 px, a vertex every
+        // 0.25 px (25 steps; float sums may need one more step).
+        let points: Vec<Point> = (0..=1000)
+            .map(|i| Point::new(5.0 + f64::from(i) * 0.01, 50.0))
+            .collect();
+        let mut t = turtle();
+        run(&mut t, &points);
+        assert!((40..=42).contains(&t.batch.len()), "{}", t.batch.len());
+        let end = t.batch.last_point().unwrap();
+        assert_eq!((end.x, end.y), (15.0, 50.0));
+    }
+
+    #[test]
+    fn runs_do_not_fold_across_a_jump() {
+        // Two 0.1 px runs 0.05 px apart: two subpaths, both drawn.
+        let mut t = turtle();
+        run(&mut t, &[Point::new(10.0, 10.0), Point::new(10.1, 10.0)]);
+        run(&mut t, &[Point::new(10.15, 10.0), Point::new(10.25, 10.0)]);
+        assert_eq!(t.batch.len(), 4);
+    }
 }
