@@ -124,34 +124,49 @@ impl BBox {
 }
 
 /// The bounding pass: the box of every drawn segment, and how many there are.
-#[derive(Debug, Clone, Default, PartialEq)]
+///
+/// The box starts empty (`+inf`/`-inf`), so adding a point is four selects
+/// and no branch on "first point yet?"; [`Bounds::bbox`] gives `None` until
+/// something is drawn.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Bounds {
-    /// The box, `None` until something is drawn.
-    pub bbox: Option<BBox>,
+    acc: BBox,
     /// Number of segments seen.
     pub count: u64,
     /// Highest stem order seen.
     pub max_order: u32,
 }
 
+impl Default for Bounds {
+    fn default() -> Self {
+        Bounds {
+            acc: BBox {
+                min_x: f64::INFINITY,
+                min_y: f64::INFINITY,
+                max_x: f64::NEG_INFINITY,
+                max_y: f64::NEG_INFINITY,
+            },
+            count: 0,
+            max_order: 0,
+        }
+    }
+}
+
+impl Bounds {
+    /// The box of every segment drawn, `None` until one is (or when every
+    /// coordinate was NaN, which the box ignores).
+    pub fn bbox(&self) -> Option<BBox> {
+        (self.acc.min_x <= self.acc.max_x && self.acc.min_y <= self.acc.max_y).then_some(self.acc)
+    }
+}
+
 impl Turtle for Bounds {
     #[inline]
     fn segment(&mut self, seg: Segment) {
-        match &mut self.bbox {
-            Some(b) => {
-                b.add(seg.from);
-                b.add(seg.to);
-            }
-            None => {
-                let mut b = BBox::at(seg.from);
-                b.add(seg.to);
-                self.bbox = Some(b);
-            }
-        }
+        self.acc.add(seg.from);
+        self.acc.add(seg.to);
         self.count += 1;
-        if seg.order > self.max_order {
-            self.max_order = seg.order;
-        }
+        self.max_order = self.max_order.max(seg.order);
     }
 }
 

@@ -34,7 +34,7 @@ const RENDER_LIMITS: Limits = Limits {
 };
 
 fn bits(b: &Bounds) -> Option<[u64; 4]> {
-    b.bbox
+    b.bbox()
         .map(|b| [b.min_x, b.min_y, b.max_x, b.max_y].map(f64::to_bits))
 }
 

@@ -87,7 +87,7 @@ fn roundtrip(x: &Description, format: Format) {
 }
 
 fn bits(b: &Bounds) -> Option<[u64; 4]> {
-    b.bbox
+    b.bbox()
         .map(|b| [b.min_x, b.min_y, b.max_x, b.max_y].map(f64::to_bits))
 }
 

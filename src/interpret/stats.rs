@@ -121,7 +121,7 @@ pub fn stats_with_budget(
             &mut bounds,
             &mut NoProgress,
         )?;
-        let bbox = match bounds.bbox {
+        let bbox = match bounds.bbox() {
             Some(b) => [b.min_x, b.min_y, b.max_x, b.max_y],
             None => [0.0; 4],
         };

@@ -347,7 +347,7 @@ pub fn render(
         None => {
             let mut bounds = Bounds::default();
             drawing(&mut bounds, progress)?;
-            let mut bbox = bounds.bbox;
+            let mut bbox = bounds.bbox();
             for p in underlay.iter().flat_map(|f| &f.rings).flatten() {
                 match &mut bbox {
                     Some(b) => b.add(*p),
