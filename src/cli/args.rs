@@ -193,7 +193,9 @@ pub struct GrowArgs {
     #[arg(long, value_name = "N")]
     pub max_stems: Option<u64>,
     /// Clearance kept between stems, canvas units (overrides the file's C=).
-    #[arg(long, value_name = "C")]
+    /// A finite number >= 0; write a value that starts with `-` as
+    /// `--clearance=-1` (it is refused all the same).
+    #[arg(long, value_name = "C", value_parser = parse_clearance, allow_negative_numbers = true)]
     pub clearance: Option<f64>,
 }
 
@@ -348,6 +350,18 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
+fn parse_clearance(s: &str) -> Result<f64, String> {
+    let c: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number"))?;
+    if c.is_finite() && c >= 0.0 {
+        Ok(c)
+    } else {
+        Err("the clearance must be a finite number >= 0, e.g. 0.5".into())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -357,6 +371,11 @@ mod tests {
         assert_eq!(parse_size("800x600"), Ok((800, 600)));
         assert_eq!(parse_size("64X64"), Ok((64, 64)));
         assert!(parse_size("0x10").is_err());
+        assert_eq!(parse_clearance("0.5"), Ok(0.5));
+        assert_eq!(parse_clearance("0"), Ok(0.0));
+        for bad in ["-1", "nan", "inf", "1e400", "x"] {
+            assert!(parse_clearance(bad).is_err(), "{bad}");
+        }
         assert!(parse_size("800").is_err());
         assert!(parse_size("20000x10").is_err());
     }

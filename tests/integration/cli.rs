@@ -567,3 +567,163 @@ fn a_full_disk_on_stdout_is_an_error_not_a_panic() {
     assert!(err.contains("No space left"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// `stlc compile` as a user runs it: to a named file, to the default name
+/// beside the input, to stdout; each strategy gives its golden BED (the
+/// goldens in tests/cases/grow were checked by hand and by the invariant
+/// tests in grow.rs).
+#[test]
+fn compile_writes_the_golden_bed_to_a_file_a_default_name_and_stdout() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let golden =
+        |s: &str| fs::read_to_string(format!("{root}/tests/cases/grow/fig9.{s}.bed")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let od = dir.path().join("fig9.od");
+    fs::copy(format!("{root}/examples/fig9.od"), &od).unwrap();
+    // Named output, default strategy bfs.
+    let out = dir.path().join("grown.bed");
+    stlc()
+        .args(["compile", od.to_str().unwrap(), "-o"])
+        .arg(&out)
+        .assert()
+        .success()
+        .stdout("");
+    assert_eq!(fs::read_to_string(&out).unwrap(), golden("bfs"));
+    // No -o: the input's name with .bed, beside it.
+    stlc()
+        .args(["compile", od.to_str().unwrap(), "--strategy", "dfs"])
+        .assert()
+        .success();
+    assert_eq!(
+        fs::read_to_string(dir.path().join("fig9.bed")).unwrap(),
+        golden("dfs")
+    );
+    assert_eq!(files_in(dir.path()), ["fig9.bed", "fig9.od", "grown.bed"]);
+    // Standard input to standard output.
+    stlc()
+        .args(["compile", "-", "--strategy", "dfs"])
+        .write_stdin(fs::read(&od).unwrap())
+        .assert()
+        .success()
+        .stdout(golden("dfs"));
+    // bfs and dfs grow different trees here (Figures 9 and 10).
+    assert_ne!(golden("bfs"), golden("dfs"));
+}
+
+/// Growing and drawing in one step draws exactly what compiling and then
+/// rendering the BED draws (same pixels), for each strategy.
+#[test]
+fn render_of_an_od_equals_render_of_its_compiled_bed() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dir = tempfile::tempdir().unwrap();
+    for strategy in ["bfs", "dfs"] {
+        let from_od = dir.path().join(format!("od-{strategy}.png"));
+        stlc()
+            .args([
+                "render",
+                &format!("{root}/examples/fig9.od"),
+                "--show-layout",
+            ])
+            .args(["--strategy", strategy, "--size", "200x200", "-o"])
+            .arg(&from_od)
+            .assert()
+            .success();
+        let from_bed = dir.path().join(format!("bed-{strategy}.png"));
+        stlc()
+            .args([
+                "render",
+                &format!("{root}/tests/cases/grow/fig9.{strategy}.bed"),
+            ])
+            .args(["--show-layout", "--size", "200x200", "-o"])
+            .arg(&from_bed)
+            .assert()
+            .success();
+        let a = tiny_skia::Pixmap::decode_png(&fs::read(&from_od).unwrap()).unwrap();
+        let b = tiny_skia::Pixmap::decode_png(&fs::read(&from_bed).unwrap()).unwrap();
+        assert_eq!((a.width(), a.height()), (b.width(), b.height()));
+        assert!(a.data() == b.data(), "{strategy}: pixels differ");
+    }
+}
+
+/// Every command that writes a file, failing for each class of reason
+/// (bad input, limit, growth refused, bad option value), leaves an existing
+/// output byte for byte as it was, no temporary file beside it, exit 1 or 2
+/// and a message on stderr.
+#[test]
+fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, text: &str| {
+        let p = dir.path().join(name);
+        fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_owned()
+    };
+    let bad_lsys = write("bad.lsys", "angle 90\naxiom F]\n");
+    let square = write("sq.lsys", SQUARE);
+    let bad_od = write("bad.od", "T\n(0, 0)\nRULE\nR1: [+F][-F\n");
+    let unbounded = write("u.od", "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F][-F]\n");
+    let outside = write(
+        "out.od",
+        "O\n(500, 500)\nRULE\nR1: [+F][-F]\nSEED\nFR1\nENDSEED\nLAYOUT\nRectangle (0,0), 100, 100 clGreen\nENDLAYOUT\n",
+    );
+    let bad_bed = write("bad.bed", "T (0,0) RULE R1: [F] SEED R7{} ENDSEED");
+    let cases: Vec<(Vec<&str>, i32, &str)> = vec![
+        (vec!["render", &bad_lsys], 1, "unbalanced"),
+        (
+            vec!["render", &square, "--depth", "1000000"],
+            1,
+            "--max-depth",
+        ),
+        (vec!["render", &square, "--size", "0x0"], 2, "size"),
+        (vec!["render", &bad_bed], 1, "R7"),
+        (vec!["render", &outside], 1, "root"),
+        (vec!["compile", &bad_od], 1, "bad.od"),
+        (vec!["compile", &unbounded], 1, "--max-stems"),
+        (vec!["compile", &outside], 1, "root"),
+        (
+            vec!["compile", &unbounded, "--clearance", "-1"],
+            2,
+            "clearance",
+        ),
+        (
+            vec!["compile", &unbounded, "--clearance", "nan"],
+            2,
+            "clearance",
+        ),
+        (
+            vec![
+                "compile",
+                &unbounded,
+                "--max-stems",
+                "5",
+                "--clearance=0",
+                "--max-input",
+                "10",
+            ],
+            1,
+            "--max-input",
+        ),
+        (vec!["compile", &square], 1, "lsys"),
+        (vec!["expand", &bad_lsys], 1, "unbalanced"),
+        (
+            vec!["expand", &square, "--depth", "1000000"],
+            1,
+            "--max-depth",
+        ),
+        (vec!["expand", &bad_bed], 1, "R7"),
+    ];
+    for (args, code, needle) in cases {
+        let out = dir.path().join("previous.out");
+        fs::write(&out, b"previous bytes").unwrap();
+        let before = files_in(dir.path());
+        let res = stlc().args(&args).arg("-o").arg(&out).output().unwrap();
+        let err = String::from_utf8_lossy(&res.stderr);
+        assert_eq!(res.status.code(), Some(code), "{args:?}: {err}");
+        assert!(
+            err.to_lowercase().contains(&needle.to_lowercase()),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert_eq!(fs::read(&out).unwrap(), b"previous bytes", "{args:?}");
+        assert_eq!(files_in(dir.path()), before, "{args:?} left a file");
+    }
+}
