@@ -10,9 +10,14 @@ use stlc::progress::Progress;
 /// How long work may run before a bar appears.
 const GRACE: Duration = Duration::from_millis(400);
 
+/// Overrides [`GRACE`], in milliseconds (`0`: show the bar at once; for
+/// scripts recording a terminal, and for the tests).
+const GRACE_ENV: &str = "STLC_PROGRESS_DELAY_MS";
+
 /// The CLI's [`Progress`]: an indicatif bar that appears after [`GRACE`].
 pub struct Bar {
     enabled: bool,
+    grace: Duration,
     started: Option<(Instant, String, u64)>,
     bar: Option<ProgressBar>,
 }
@@ -20,8 +25,13 @@ pub struct Bar {
 impl Bar {
     /// A bar that shows itself only if stderr is a terminal and not `quiet`.
     pub fn new(quiet: bool) -> Self {
+        let grace = std::env::var(GRACE_ENV)
+            .ok()
+            .and_then(|v| v.trim().parse().ok())
+            .map_or(GRACE, Duration::from_millis);
         Bar {
             enabled: !quiet && std::io::stderr().is_terminal(),
+            grace,
             started: None,
             bar: None,
         }
@@ -44,12 +54,12 @@ impl Progress for Bar {
             let Some((t0, what, total)) = &self.started else {
                 return;
             };
-            if t0.elapsed() < GRACE {
+            if t0.elapsed() < self.grace {
                 return;
             }
             let bar = ProgressBar::with_draw_target(Some(*total), ProgressDrawTarget::stderr());
             let style = ProgressStyle::with_template(
-                "{spinner} {msg} [{bar:30}] {percent:>3}% {human_pos}/{human_len} ({eta} left)",
+                "{spinner} {msg} [{wide_bar}] {percent:>3}% {human_pos}/{human_len} ({eta} left)",
             )
             .unwrap_or_else(|_| ProgressStyle::default_bar())
             .progress_chars("=> ");

@@ -7,7 +7,7 @@ use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::grow::GrowOptions;
 use stlc::interpret::Strategy;
-use stlc::progress::Progress;
+use stlc::progress::{Phase, Progress};
 use stlc::render::{self, Fill, ImageFormat, RenderOptions, Style, Width};
 use stlc::syntax::ast::{Description, Format};
 use stlc::syntax::lsys::{Background, LSystem};
@@ -164,7 +164,7 @@ fn grow(
         max_stems_explicit: g.max_stems.is_some(),
     };
     let mut bar = Bar::new(quiet);
-    let grown = stlc::grow::grow(od, &opts, &mut bar)?;
+    let grown = stlc::grow::grow(od, &opts, &mut Phase::new(&mut bar, "growing"))?;
     bar.finish();
     Ok((grown.bed, grown.warnings))
 }

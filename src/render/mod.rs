@@ -12,7 +12,7 @@ use std::io::Write;
 
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
-use crate::progress::Progress;
+use crate::progress::{Phase, Progress};
 use crate::turtle::{BBox, Bounds, Point, Turtle};
 
 pub use png::PngTurtle;
@@ -326,7 +326,8 @@ fn render_error(message: impl Into<String>) -> Diagnostic {
 ///
 /// The drawing runs twice: once into a [`Bounds`] turtle (skipped when a
 /// view is given; the underlay's points count towards the fitted box too),
-/// once into the PNG or SVG backend. `progress` is handed to both runs.
+/// once into the PNG or SVG backend. `progress` is handed to both runs,
+/// their work named `measuring: ...` and `drawing: ...`.
 /// The underlay is painted first, in order, then the segments. SVG output
 /// streams into `out` while the drawing runs; PNG is written at the end.
 pub fn render(
@@ -346,7 +347,7 @@ pub fn render(
         Some(view) => Fit::view(&view, opts.size)?,
         None => {
             let mut bounds = Bounds::default();
-            drawing(&mut bounds, progress)?;
+            drawing(&mut bounds, &mut Phase::new(progress, "measuring"))?;
             let mut bbox = bounds.bbox();
             for p in underlay.iter().flat_map(|f| &f.rings).flatten() {
                 match &mut bbox {
@@ -363,7 +364,7 @@ pub fn render(
             for fill in underlay {
                 turtle.fill(fill);
             }
-            drawing(&mut turtle, progress)?;
+            drawing(&mut turtle, &mut Phase::new(progress, "drawing"))?;
             let bytes = turtle.finish()?;
             out.write_all(&bytes)
                 .and_then(|()| out.flush())
@@ -374,7 +375,7 @@ pub fn render(
             for fill in underlay {
                 turtle.fill(fill);
             }
-            drawing(&mut turtle, progress)?;
+            drawing(&mut turtle, &mut Phase::new(progress, "drawing"))?;
             let mut buffered = turtle.finish()?;
             buffered
                 .flush()

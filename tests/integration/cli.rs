@@ -727,3 +727,54 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
         assert_eq!(files_in(dir.path()), before, "{args:?} left a file");
     }
 }
+
+/// On a terminal (a pseudo-terminal from util-linux `script`, skipped where
+/// there is none) the bar appears, names its passes and reaches 100 %; with
+/// `--quiet`, or with stderr not a terminal, nothing is printed.
+///
+/// Each run draws a different depth, so its word length (the bar's total)
+/// marks its own output: on this sandbox a `script` log can also hold output
+/// of an earlier pseudo-terminal session.
+#[test]
+fn the_progress_bar_shows_on_a_terminal_only() {
+    if StdCommand::new("script").arg("--version").output().is_err() {
+        return;
+    }
+    let bin = assert_cmd::cargo::cargo_bin("stlc");
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dir = tempfile::tempdir().unwrap();
+    let run = |depth: u32, extra: &str| {
+        let log = dir.path().join(format!("tty{depth}.log"));
+        let cmd = format!(
+            "{} render {root}/examples/abop-1.24a.lsys --depth {depth} -o {}/x.png {extra}",
+            bin.display(),
+            dir.path().display()
+        );
+        let st = StdCommand::new("script")
+            .args(["-qfec", &cmd])
+            .arg(&log)
+            .env("STLC_PROGRESS_DELAY_MS", "0")
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .status()
+            .unwrap();
+        assert!(st.success());
+        fs::read_to_string(&log).unwrap()
+    };
+    // Word lengths (5^(n+1) - 3) / 2: depth 6 is 39,061, depth 7 195,311.
+    let quiet = run(6, "--quiet");
+    assert!(!quiet.contains("39,061"), "{quiet}");
+    let shown = run(7, "");
+    assert!(shown.contains("measuring: symbols"), "{shown}");
+    assert!(shown.contains("drawing: symbols"), "{shown}");
+    assert!(shown.contains("195,311/195,311"), "{shown}");
+    // Not a terminal: stderr stays empty even with no delay.
+    let out = stlc()
+        .args(["render", &format!("{root}/examples/abop-1.24a.lsys")])
+        .args(["--depth", "7", "-f", "svg", "-o", "-"])
+        .env("STLC_PROGRESS_DELAY_MS", "0")
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(out.stderr.is_empty());
+}
