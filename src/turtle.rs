@@ -185,19 +185,32 @@ impl Turtle for Counter {
 /// computing further ones directly (same function, so the same bits).
 const HEADING_CACHE: i64 = 1 << 14;
 
-/// Unit direction vectors for every heading `90° + k·angle (+180° if
-/// flipped)`, in canvas coordinates.
+/// The turtle's first heading unless told otherwise: up the canvas, in
+/// degrees counter-clockwise from the canvas's right.
+pub const UP: f64 = 90.0;
+
+/// Unit direction vectors for every heading `start + k·angle (+180° if
+/// flipped)`, in canvas coordinates; `start` is [`UP`] unless a `.lsys` file
+/// gives `heading`.
 #[derive(Debug, Clone)]
 pub struct Headings {
+    start: f64,
     angle: f64,
     /// `cache[i]` holds the direction for `k = i - HEADING_CACHE`, filled lazily.
     cache: Vec<Option<(f64, f64)>>,
 }
 
 impl Headings {
-    /// Headings for a turning angle in degrees.
+    /// Headings for a turning angle in degrees, starting [`UP`].
     pub fn new(angle_deg: f64) -> Self {
+        Self::starting(UP, angle_deg)
+    }
+
+    /// Headings for a turning angle in degrees, starting at `start_deg`
+    /// (counter-clockwise from the canvas's right; 90 is up).
+    pub fn starting(start_deg: f64, angle_deg: f64) -> Self {
         Headings {
+            start: start_deg,
             angle: angle_deg,
             cache: Vec::new(),
         }
@@ -224,22 +237,28 @@ impl Headings {
             if let Some(Some(d)) = self.cache.get(idx) {
                 return *d;
             }
-            let d = direction(self.angle, k);
+            let d = direction_from(self.start, self.angle, k);
             if self.cache.len() <= idx {
                 self.cache.resize(idx + 1, None);
             }
             self.cache[idx] = Some(d);
             d
         } else {
-            direction(self.angle, k)
+            direction_from(self.start, self.angle, k)
         }
     }
 }
 
 /// The canvas direction of heading `90° + k·angle`. Exact at multiples of 90°.
 pub fn direction(angle_deg: f64, k: i64) -> (f64, f64) {
+    direction_from(UP, angle_deg, k)
+}
+
+/// The canvas direction of heading `start + k·angle` (degrees,
+/// counter-clockwise from the canvas's right). Exact at multiples of 90°.
+pub fn direction_from(start_deg: f64, angle_deg: f64, k: i64) -> (f64, f64) {
     // Reduce in degrees first so large k stay accurate and right angles exact.
-    let deg = (90.0 + (k as f64) * angle_deg).rem_euclid(360.0);
+    let deg = (start_deg + (k as f64) * angle_deg).rem_euclid(360.0);
     let (c, s) = if deg == 0.0 {
         (1.0, 0.0)
     } else if deg == 90.0 {

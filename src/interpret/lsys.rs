@@ -94,7 +94,7 @@ pub fn draw_into<T: Turtle>(
     let end = match strategy {
         Strategy::Dfs => {
             let program = Program::<FastOp>::compile(&alpha, depth);
-            let mut exec = Exec::new(turtle, sys.angle, step);
+            let mut exec = Exec::new(turtle, Headings::starting(sys.heading, sys.angle), step);
             program.run(|ops| exec.run(ops), progress);
             Point::new(exec.x, exec.y)
         }
@@ -104,7 +104,8 @@ pub fn draw_into<T: Turtle>(
                 Point::default(),
                 sys.angle,
                 StemLength::constant(sys.length),
-            );
+            )
+            .heading(sys.heading);
             let ops: Vec<Option<Op>> = alpha.chars.iter().map(|&c| Op::of_lsys(c)).collect();
             alpha.bfs_each(depth, |i, s| {
                 if let Some(op) = ops[s as usize] {
@@ -799,7 +800,7 @@ struct Saved {
 }
 
 impl<T: Turtle> Exec<T> {
-    fn new(turtle: T, angle: f64, len: f64) -> Self {
+    fn new(turtle: T, headings: Headings, len: f64) -> Self {
         Exec {
             x: 0.0,
             y: 0.0,
@@ -807,7 +808,7 @@ impl<T: Turtle> Exec<T> {
             flip: false,
             stack: Vec::new(),
             len,
-            headings: Headings::new(angle),
+            headings,
             steps: vec![(f64::NAN, f64::NAN); 2 * DIR_OFFSET as usize],
             turtle,
         }

@@ -141,6 +141,13 @@ impl<T: Turtle> Interp<T> {
         }
     }
 
+    /// The same turtle with its first heading at `start_deg` (degrees
+    /// counter-clockwise from the canvas's right) instead of up.
+    pub fn heading(mut self, start_deg: f64) -> Self {
+        self.headings = Headings::starting(start_deg, self.headings.angle());
+        self
+    }
+
     /// Applies one operation.
     #[inline]
     pub fn apply(&mut self, op: Op) {

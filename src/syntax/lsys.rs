@@ -33,6 +33,9 @@ pub struct LSystem {
     pub generations: Option<u32>,
     /// `angle DEGREES`.
     pub angle: f64,
+    /// `heading DEGREES`: the first heading, counter-clockwise from the
+    /// canvas's right (default 90, up the canvas).
+    pub heading: f64,
     /// `length L`: step length in canvas units (default 1).
     pub length: f64,
     /// `width W`: stroke width in output pixels (default 1).
@@ -70,6 +73,7 @@ pub const KEYS: &[&str] = &[
     "axiom",
     "rule",
     "angle",
+    "heading",
     "length",
     "width",
     "color",
@@ -113,7 +117,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
         }
         Diagnostics::from(d.with_help(
             "each line of a .lsys file is `key value` (generations, axiom, rule, \
-                 angle, length, width, color, background) or a `#` comment",
+                 angle, heading, length, width, color, background) or a `#` comment",
         ))
     })?;
     let mut ck = Checker {
@@ -126,6 +130,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
         rules: BTreeMap::new(),
         generations: None,
         angle: 0.0,
+        heading: crate::turtle::UP,
         length: 1.0,
         width: 1.0,
         color: None,
@@ -218,6 +223,11 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
                         have_angle = true;
                         if let Some(a) = ck.number(&value, "angle", false) {
                             sys.angle = a;
+                        }
+                    }
+                    Rule::lsys_heading => {
+                        if let Some(h) = ck.number(&value, "heading", false) {
+                            sys.heading = h;
                         }
                     }
                     Rule::lsys_length => {
@@ -375,6 +385,7 @@ impl Checker {
         };
         let example = match key {
             "angle" => "`angle 25.7`",
+            "heading" => "`heading 0`",
             "length" => "`length 1`",
             _ => "`width 1.5`",
         };
@@ -476,12 +487,13 @@ pub fn describe_rule(rule: Rule) -> Option<&'static str> {
         Rule::lsys_axiom => "`axiom WORD`",
         Rule::lsys_rule => "`rule X SUCCESSOR`",
         Rule::lsys_angle => "`angle DEGREES`",
+        Rule::lsys_heading => "`heading DEGREES`",
         Rule::lsys_length => "`length L`",
         Rule::lsys_width => "`width W`",
         Rule::lsys_color => "`color C`",
         Rule::lsys_background => "`background C`",
         Rule::lsys_unknown | Rule::lsys_key => {
-            "a key (generations, axiom, rule, angle, length, width, color, background)"
+            "a key (generations, axiom, rule, angle, heading, length, width, color, background)"
         }
         Rule::lsys_colour | Rule::lsys_hex | Rule::lsys_name => "a colour (`#rrggbb` or `clGreen`)",
         Rule::lsys_bad | Rule::lsys_text => "a value",

@@ -294,6 +294,31 @@ fn segments_by_hand() {
             },
         ]
     );
+    // `heading 0`: the same word starts to the right, then turns up.
+    let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Strategy::Bfs);
+    assert_eq!(
+        segs,
+        vec![
+            Segment {
+                from: p(0.0, 0.0),
+                to: p(1.0, 0.0),
+                order: 0
+            },
+            Segment {
+                from: p(1.0, 0.0),
+                to: p(1.0, -1.0),
+                order: 0
+            },
+        ]
+    );
+    // `heading 180` with `|`: left, then turned around, back right.
+    assert_eq!(
+        segments("axiom F|F\nangle 90\nheading 180\n", 0, Strategy::Dfs)
+            .iter()
+            .map(|s| s.to)
+            .collect::<Vec<_>>(),
+        [p(-1.0, 0.0), p(0.0, 0.0)]
+    );
     // `F[-F]|F` one level down from `X`: a right branch, then back down.
     let segs = segments("axiom X\nrule X F[-F]|F\nangle 90\n", 1, Strategy::Dfs);
     assert_eq!(
@@ -570,10 +595,11 @@ proptest! {
         axiom in word(ALPHABET, 8),
         rules in proptest::collection::vec(word(ALPHABET, 9), 4),
         angle in prop_oneof![Just(90.0), Just(60.0), Just(25.7), -400.0..400.0f64],
+        heading in prop_oneof![Just(90.0), Just(0.0), Just(180.0), -720.0..720.0f64],
         depth in 0u32..=5,
     ) {
         let axiom = if axiom.is_empty() { "F".to_string() } else { axiom };
-        let mut src = format!("axiom {axiom}\nangle {angle}\n");
+        let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
         for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(&rules) {
             if !succ.is_empty() {
                 src.push_str(&format!("rule {pred} -> {succ}\n"));
@@ -643,4 +669,17 @@ fn hilbert_and_stl_fig4_counts() {
         assert!(close(seg.from.x, f.0) && close(seg.from.y, f.1), "{seg:?}");
         assert!(close(seg.to.x, t.0) && close(seg.to.y, t.1), "{seg:?}");
     }
+}
+
+#[test]
+fn heading_defaults_to_up_and_is_checked_like_any_number() {
+    assert_eq!(sys("axiom F\nangle 90\n").heading, 90.0);
+    assert_eq!(sys("axiom F\nangle 90\nheading -45\n").heading, -45.0);
+    let e = errors(
+        "axiom F\nangle 90\nheading north\nheading 0\n",
+        &Limits::default(),
+    );
+    assert_eq!(lsys_msg(&e[0].0), "malformed number `north`");
+    assert_eq!(e[0].1, 25..30); // `north`, after "axiom F\nangle 90\nheading "
+    assert_eq!(lsys_msg(&e[1].0), "`heading` is given twice");
 }
