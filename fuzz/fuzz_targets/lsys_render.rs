@@ -100,10 +100,7 @@ fuzz_target!(|data: &[u8]| {
         lsys::draw(&sys, depth, Strategy::Dfs, &RENDER_LIMITS, t, p)
     };
     for format in [ImageFormat::Png, ImageFormat::Svg] {
-        let opts = RenderOptions {
-            format,
-            size: Some((64, 64)),
-        };
+        let opts = RenderOptions::new(format, Some((64, 64)));
         let mut out = Vec::new();
         match render::render(
             &mut drawing,

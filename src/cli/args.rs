@@ -232,6 +232,11 @@ pub struct RenderArgs {
     #[arg(long)]
     pub show_layout: bool,
 
+    /// Most segments an SVG may hold (about 22 bytes each); a PNG has no
+    /// such limit.
+    #[arg(long, value_name = "N", default_value_t = stlc::render::DEFAULT_MAX_SVG_SEGMENTS)]
+    pub max_svg_segments: u64,
+
     /// Stroke colour (#rrggbb or a Delphi name such as clMaroon).
     #[arg(long, value_name = "COLOR")]
     pub stroke: Option<String>,

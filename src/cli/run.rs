@@ -213,6 +213,7 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
     let opts = RenderOptions {
         format,
         size: a.size,
+        max_svg_segments: a.max_svg_segments,
     };
     let strategy: Strategy = a.strategy.into();
     let mut bar = Bar::new(quiet);

@@ -13,7 +13,7 @@ use std::io::Write;
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use crate::progress::{Phase, Progress};
-use crate::turtle::{BBox, Bounds, Point, Turtle};
+use crate::turtle::{BBox, Bounds, Counter, Point, Turtle};
 
 pub use png::PngTurtle;
 pub use svg::SvgTurtle;
@@ -69,6 +69,39 @@ pub struct RenderOptions {
     /// Output size in pixels; `None`: longest side [`DEFAULT_SIDE`], the
     /// other from the picture's aspect ratio.
     pub size: Option<(u32, u32)>,
+    /// Most segments an SVG may hold (`--max-svg-segments`); a PNG's size
+    /// does not grow with the drawing, so it has no such limit.
+    pub max_svg_segments: u64,
+}
+
+impl RenderOptions {
+    /// `format` at `size`, with the default SVG segment limit.
+    pub fn new(format: ImageFormat, size: Option<(u32, u32)>) -> Self {
+        RenderOptions {
+            format,
+            size,
+            max_svg_segments: DEFAULT_MAX_SVG_SEGMENTS,
+        }
+    }
+}
+
+/// Default of [`RenderOptions::max_svg_segments`]: about 22 bytes a segment,
+/// so an SVG of at most about 220 MB (already more than browsers open).
+pub const DEFAULT_MAX_SVG_SEGMENTS: u64 = 10_000_000;
+
+/// The error for an SVG over [`RenderOptions::max_svg_segments`]; `count`
+/// is the exact number when known, else `None` ("more than the limit").
+pub(crate) fn svg_too_large(count: Option<u64>, limit: u64) -> Diagnostics {
+    Diagnostic::error(ErrorKind::Limit {
+        what: "segments in the SVG".into(),
+        value: count.map_or_else(|| format!("more than {limit}"), |c| c.to_string()),
+        limit: limit.to_string(),
+    })
+    .with_help(
+        "an SVG holds every segment (about 22 bytes each): render a PNG instead, \
+         draw less (a smaller --depth), or raise the limit with --max-svg-segments N",
+    )
+    .into()
 }
 
 /// Longest side of the output when no size is asked for.
@@ -324,8 +357,10 @@ fn render_error(message: impl Into<String>) -> Diagnostic {
 /// Renders `drawing` to `out`. `view`: the canvas area to show (a layout's
 /// bounds), or `None` to fit the picture from a bounding pass.
 ///
-/// The drawing runs twice: once into a [`Bounds`] turtle (skipped when a
-/// view is given; the underlay's points count towards the fitted box too),
+/// The drawing runs twice: once into a [`Bounds`] turtle (when a view is
+/// given, only for an SVG and into a [`Counter`], to check
+/// [`RenderOptions::max_svg_segments`] before writing; the underlay's points
+/// count towards the fitted box too),
 /// once into the PNG or SVG backend. `progress` is handed to both runs,
 /// their work named `measuring: ...` and `drawing: ...`.
 /// The underlay is painted first, in order, then the segments. SVG output
@@ -344,7 +379,18 @@ pub fn render(
         checked_size(size)?;
     }
     let fit = match view {
-        Some(view) => Fit::view(&view, opts.size)?,
+        Some(view) => {
+            if opts.format == ImageFormat::Svg {
+                // No bounding pass to count the segments: count them first,
+                // so an SVG over the limit is refused before a byte is written.
+                let mut count = Counter::default();
+                drawing(&mut count, &mut Phase::new(progress, "counting"))?;
+                if count.0 > opts.max_svg_segments {
+                    return Err(svg_too_large(Some(count.0), opts.max_svg_segments));
+                }
+            }
+            Fit::view(&view, opts.size)?
+        }
         None => {
             let mut bounds = Bounds::default();
             drawing(&mut bounds, &mut Phase::new(progress, "measuring"))?;
@@ -354,6 +400,9 @@ pub fn render(
                     Some(b) => b.add(*p),
                     None => bbox = Some(BBox::at(*p)),
                 }
+            }
+            if opts.format == ImageFormat::Svg && bounds.count > opts.max_svg_segments {
+                return Err(svg_too_large(Some(bounds.count), opts.max_svg_segments));
             }
             Fit::content(bbox, bounds.max_order, &style.width, opts.size)?
         }
@@ -371,7 +420,8 @@ pub fn render(
                 .map_err(|e| io_error(&e, "writing the PNG image"))?;
         }
         ImageFormat::Svg => {
-            let mut turtle = SvgTurtle::new(std::io::BufWriter::new(&mut *out), fit, style)?;
+            let mut turtle = SvgTurtle::new(std::io::BufWriter::new(&mut *out), fit, style)?
+                .with_max_segments(opts.max_svg_segments);
             for fill in underlay {
                 turtle.fill(fill);
             }

@@ -37,6 +37,10 @@ pub struct SvgTurtle<W: Write> {
     batch_len: usize,
     /// Where the last segment ended (canvas units), to extend subpaths.
     last_to: Option<Point>,
+    /// Segments written so far, and the most allowed; past it nothing more
+    /// is written and `finish` reports the limit.
+    written: u64,
+    max_segments: u64,
 }
 
 impl<W: Write> SvgTurtle<W> {
@@ -53,6 +57,8 @@ impl<W: Write> SvgTurtle<W> {
             batch_width: 0.0,
             batch_len: 0,
             last_to: None,
+            written: 0,
+            max_segments: u64::MAX,
         };
         let (w, h) = (fit.width, fit.height);
         let mut head = format!(
@@ -97,6 +103,12 @@ impl<W: Write> SvgTurtle<W> {
         }
     }
 
+    /// The same turtle, refusing to write more than `max` segments.
+    pub fn with_max_segments(mut self, max: u64) -> Self {
+        self.max_segments = max;
+        self
+    }
+
     // -----------------------------------------------------------------------
     // Strokes
 
@@ -126,6 +138,9 @@ impl<W: Write> SvgTurtle<W> {
     /// Writes what is left and the end tag; hands back the writer (not
     /// flushed) or the first write error.
     pub fn finish(mut self) -> Result<W, Diagnostics> {
+        if self.written > self.max_segments {
+            return Err(super::svg_too_large(None, self.max_segments));
+        }
         self.flush();
         self.write("</svg>\n");
         match self.error {
@@ -149,6 +164,11 @@ impl<W: Write> Turtle for SvgTurtle<W> {
         let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
         if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
             // Not writable as a number; the PNG backend skips it too.
+            return;
+        }
+        self.written += 1;
+        if self.written > self.max_segments {
+            // Over the limit: `finish` reports it; write nothing more.
             return;
         }
         let width = stroke_px(&self.width, self.fit.scale, seg.order);
@@ -205,5 +225,44 @@ mod tests {
         assert_eq!(num(-0.006), "-0.01");
         assert_eq!(num(12.345_678), "12.35");
         assert_eq!(num(-3.5), "-3.50");
+    }
+
+    #[test]
+    fn past_its_segment_limit_the_turtle_writes_nothing_more_and_finish_refuses() {
+        use crate::turtle::BBox;
+        let mut view = BBox::at(Point::new(0.0, 0.0));
+        view.add(Point::new(10.0, 10.0));
+        let fit = Fit::view(&view, Some((10, 10))).unwrap();
+        let style = Style {
+            stroke: Rgb::BLACK,
+            background: None,
+            width: Width::Pixels(1.0),
+        };
+        let seg = |i: f64| Segment {
+            from: Point::new(i, 0.0),
+            to: Point::new(i + 1.0, 0.0),
+            order: 0,
+        };
+        for (max, ok) in [(3, true), (2, false)] {
+            let mut t = SvgTurtle::new(Vec::new(), fit, &style)
+                .unwrap()
+                .with_max_segments(max);
+            for i in 0..3 {
+                t.segment(seg(f64::from(i)));
+            }
+            match t.finish() {
+                Ok(bytes) => {
+                    assert!(ok);
+                    let text = String::from_utf8(bytes).unwrap();
+                    // One subpath: a move and three lines.
+                    assert_eq!(text.matches(" L").count(), 3, "{text}");
+                    assert_eq!(text.matches("\"M").count(), 1, "{text}");
+                }
+                Err(e) => {
+                    assert!(!ok);
+                    assert!(e.to_string().contains("more than 2"), "{e}");
+                }
+            }
+        }
     }
 }

@@ -778,3 +778,52 @@ fn the_progress_bar_shows_on_a_terminal_only() {
     assert!(out.status.success());
     assert!(out.stderr.is_empty());
 }
+
+/// An SVG holds every segment, so it has a segment limit; it is checked
+/// before a byte is written, with or without a layout fixing the view. A
+/// PNG has no such limit. Counts by hand: `F -> F[+F]F[-F]F` at depth 4
+/// draws 5^4 = 625 segments; the grown tiny tree draws 7 stems (1 + 2 + 4).
+#[test]
+fn an_svg_over_its_segment_limit_is_refused_before_a_byte_is_written() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let tree = format!("{root}/examples/abop-1.24a.lsys");
+    let tiny = format!("{root}/tests/cases/grow/tiny.bfs.bed");
+    for (input, depth, count) in [(&tree, "4", 625u64), (&tiny, "1", 7)] {
+        let over = stlc()
+            .args(["render", input, "--depth", depth, "-f", "svg", "-o", "-"])
+            .args([
+                "--show-layout",
+                "--max-svg-segments",
+                &(count - 1).to_string(),
+            ])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&over.stderr);
+        assert_eq!(over.status.code(), Some(1), "{err}");
+        assert!(over.stdout.is_empty(), "{input}: wrote before refusing");
+        assert!(
+            err.contains(&format!("{count} exceeds the limit of {}", count - 1))
+                && err.contains("--max-svg-segments"),
+            "{err}"
+        );
+        let at = stlc()
+            .args(["render", input, "--depth", depth, "-f", "svg", "-o", "-"])
+            .args(["--show-layout", "--max-svg-segments", &count.to_string()])
+            .output()
+            .unwrap();
+        assert!(at.status.success());
+        let svg = String::from_utf8(at.stdout).unwrap();
+        // Every segment is written: one ` L` each (plus the three of the
+        // layout rectangle under the tiny tree).
+        assert_eq!(
+            svg.matches(" L").count() as u64,
+            count + u64::from(input == &tiny) * 3
+        );
+        let png = stlc()
+            .args(["render", input, "--depth", depth, "-f", "png", "-o", "-"])
+            .args(["--max-svg-segments", "1"])
+            .output()
+            .unwrap();
+        assert!(png.status.success());
+    }
+}

@@ -82,7 +82,7 @@ fn render_full(
         Ok(())
     };
     let mut out = Vec::new();
-    let opts = RenderOptions { format, size };
+    let opts = RenderOptions::new(format, size);
     render::render(
         &mut drawing,
         view,
@@ -507,10 +507,7 @@ fn underlay_is_even_odd_and_under_the_strokes() {
             Some(view),
             &underlay,
             &st,
-            &RenderOptions {
-                format,
-                size: Some((100, 100)),
-            },
+            &RenderOptions::new(format, Some((100, 100))),
             &mut out,
             &mut NoProgress,
         )
@@ -626,10 +623,7 @@ fn absurd_sizes_are_refused_before_drawing() {
             None,
             &[],
             &style(Width::Pixels(1.0), None),
-            &RenderOptions {
-                format: ImageFormat::Png,
-                size: Some(size),
-            },
+            &RenderOptions::new(ImageFormat::Png, Some(size)),
             &mut out,
             &mut NoProgress,
         )
@@ -661,10 +655,7 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
         None,
         &[],
         &style(Width::Pixels(1.0), None),
-        &RenderOptions {
-            format: ImageFormat::Png,
-            size: None,
-        },
+        &RenderOptions::new(ImageFormat::Png, None),
         &mut out,
         &mut NoProgress,
     )
@@ -695,7 +686,7 @@ fn write_errors_become_io_diagnostics() {
             None,
             &[],
             &style(Width::Pixels(1.0), None),
-            &RenderOptions { format, size: None },
+            &RenderOptions::new(format, None),
             &mut Full,
             &mut NoProgress,
         )
