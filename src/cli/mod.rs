@@ -17,9 +17,10 @@ use clap::Parser;
 
 pub use args::Cli;
 
-/// Stack for the worker thread. Parsing is recursive descent (pest); input
-/// nesting is capped by `--max-nesting`, and this stack holds that cap with
-/// room to spare. Pages are only committed when touched.
+/// Stack for the worker thread. No pass recurses on input depth (the
+/// grammar is flat, every pass and the syntax tree's Clone/PartialEq/Drop
+/// use explicit stacks); this big stack is a second line of defence, not a
+/// requirement. Pages are only committed when touched.
 const WORKER_STACK: usize = 1 << 30;
 
 /// Parses arguments, runs the command on a big-stack thread, maps the result

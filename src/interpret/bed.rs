@@ -122,17 +122,10 @@ pub fn ops(
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     validate(desc, limits)?;
-    let owned;
-    let seed = match &desc.seed {
-        Some(s) => s,
-        None => {
-            owned = desc.effective_seed();
-            match &owned {
-                Some(s) => s,
-                None => return Ok(()),
-            }
-        }
+    let Some(seed) = desc.effective_seed() else {
+        return Ok(());
     };
+    let seed: &Seed = &seed;
     let total = measure_seed(desc, seed).symbols;
     progress.start("symbols", total);
     let mut done = 0u64;

@@ -227,7 +227,12 @@ pub enum SeedItem {
 }
 
 /// `X{s1,...,sm}`: rule `X` drawn here, slot `i` growing at the tip of branch `i`.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// Terms nest as deep as the input does (up to `--max-nesting`), so
+/// `Clone`, `PartialEq` and `Drop` are written with explicit stacks rather
+/// than derived: derived ones recurse once per level and would overflow a
+/// thread's stack on a deeply nested BED.
+#[derive(Debug)]
 pub struct Term {
     /// The rule.
     pub rule: RuleId,
@@ -240,6 +245,82 @@ pub struct Term {
     pub bare: bool,
     /// The whole term.
     pub loc: Loc,
+}
+
+impl Clone for Term {
+    fn clone(&self) -> Self {
+        /// A term being copied: its source and the slots copied so far.
+        struct Frame<'a> {
+            src: &'a Term,
+            slots: Vec<Option<Slot>>,
+        }
+        fn frame(src: &Term) -> Frame<'_> {
+            Frame {
+                src,
+                slots: Vec::with_capacity(src.slots.len()),
+            }
+        }
+        let mut stack = vec![frame(self)];
+        loop {
+            let top = stack.last_mut().expect("a frame until the root is done");
+            if let Some(slot) = top.src.slots.get(top.slots.len()) {
+                match slot {
+                    None => top.slots.push(None),
+                    Some(Slot::Repeat(r)) => top.slots.push(Some(Slot::Repeat(r.clone()))),
+                    Some(Slot::Term(t)) => stack.push(frame(t)),
+                }
+                continue;
+            }
+            let done = stack.pop().expect("the top frame");
+            let copy = Term {
+                rule: done.src.rule,
+                slots: done.slots,
+                bare: done.src.bare,
+                loc: done.src.loc.clone(),
+            };
+            match stack.last_mut() {
+                Some(parent) => parent.slots.push(Some(Slot::Term(copy))),
+                None => return copy,
+            }
+        }
+    }
+}
+
+impl PartialEq for Term {
+    fn eq(&self, other: &Self) -> bool {
+        let mut stack = vec![(self, other)];
+        while let Some((a, b)) = stack.pop() {
+            if a.rule != b.rule
+                || a.bare != b.bare
+                || a.loc != b.loc
+                || a.slots.len() != b.slots.len()
+            {
+                return false;
+            }
+            for pair in a.slots.iter().zip(&b.slots) {
+                match pair {
+                    (None, None) => {}
+                    (Some(Slot::Term(x)), Some(Slot::Term(y))) => stack.push((x, y)),
+                    (Some(Slot::Repeat(x)), Some(Slot::Repeat(y))) if x == y => {}
+                    _ => return false,
+                }
+            }
+        }
+        true
+    }
+}
+
+impl Drop for Term {
+    fn drop(&mut self) {
+        // Detach every nested term's slots before it is dropped, so each
+        // drop below meets empty slots and nothing recurses.
+        let mut pending = std::mem::take(&mut self.slots);
+        while let Some(slot) = pending.pop() {
+            if let Some(Slot::Term(mut t)) = slot {
+                pending.append(&mut t.slots);
+            }
+        }
+    }
 }
 
 /// What grows at a branch tip.
@@ -360,14 +441,14 @@ impl Description {
     /// The seed in force: the written one, or `F` and a bare reference to
     /// the first rule (Figure 9's `Seed(T) = FR1`). `None` if there is no
     /// seed and no rule.
-    pub fn effective_seed(&self) -> Option<Seed> {
+    pub fn effective_seed(&self) -> Option<std::borrow::Cow<'_, Seed>> {
         if let Some(s) = &self.seed {
-            return Some(s.clone());
+            return Some(std::borrow::Cow::Borrowed(s));
         }
         if self.rules.is_empty() {
             return None;
         }
-        Some(Seed {
+        Some(std::borrow::Cow::Owned(Seed {
             items: vec![
                 SeedItem::Draw(DrawRun {
                     text: "F".into(),
@@ -381,6 +462,59 @@ impl Description {
                 }),
             ],
             loc: Loc::default(),
-        })
+        }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn term(rule: usize, slots: Vec<Option<Slot>>) -> Term {
+        Term {
+            rule: RuleId(rule),
+            slots,
+            bare: false,
+            loc: Loc(0..1),
+        }
+    }
+
+    fn repeat(count: u32) -> Option<Slot> {
+        Some(Slot::Repeat(Repeat {
+            count,
+            rule: RuleId(0),
+            loc: Loc(0..1),
+        }))
+    }
+
+    /// `R1{R2{[I 2 R1],},,R1{,}}` and variants differing in one place.
+    fn sample(inner_count: u32, inner_rule: usize) -> Term {
+        term(
+            0,
+            vec![
+                Some(Slot::Term(term(1, vec![repeat(inner_count), None]))),
+                None,
+                Some(Slot::Term(term(inner_rule, vec![None, None]))),
+            ],
+        )
+    }
+
+    #[test]
+    fn terms_clone_equal_and_differ_where_they_differ() {
+        let a = sample(2, 0);
+        let copy = a.clone();
+        assert!(copy == a);
+        assert!(sample(3, 0) != a, "a repeat count deep inside");
+        assert!(sample(2, 1) != a, "the last slot's rule");
+        let mut other_kind = a.clone();
+        other_kind.slots[1] = repeat(2);
+        assert!(other_kind != a, "empty slot against a repeat");
+        let mut fewer = a.clone();
+        fewer.slots.pop();
+        assert!(fewer != a, "slot count");
+        // Locations never count.
+        let mut moved = a.clone();
+        moved.loc = Loc(5..9);
+        assert!(moved == a);
     }
 }

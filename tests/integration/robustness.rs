@@ -210,27 +210,22 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     assert!(e.has_errors());
 }
 
-/// Stack for term trees nested up to the default `max_nesting`.
-///
-/// A seed term `R1{R1{...}}` is a tree of nested values, and its derived
-/// `Drop`, `Clone` and `PartialEq` recurse once per level: about 1 KiB of
-/// stack per level in a debug build (1 000 levels fit a 2 MiB stack, 2 000
-/// do not). `max_nesting` (default 10 000, refused by `precheck` beyond)
-/// bounds that recursion, and the CLI runs on a 1 GiB worker stack
-/// (`src/cli/mod.rs`), which holds it with a wide margin. Everything else
-/// (pest, the parser's own passes, validation, the writer, both drawing
-/// strategies) uses explicit stacks.
-const TERM_STACK: usize = 64 << 20;
-
+/// A seed term `R1{R1{...}}` is a tree of nested values as deep as the
+/// input. Every pass over it uses an explicit stack: pest, the parser's own
+/// passes, validation, the writer, both drawing strategies, and `Term`'s
+/// hand-written `Clone`, `PartialEq` and `Drop` (derived ones recursed about
+/// 1 KiB of stack per level in a debug build: 1 000 levels fitted a 2 MiB
+/// stack, 2 000 did not). So terms nested to just under the default
+/// `max_nesting` (10 000) go through everything on an ordinary 2 MiB thread.
 #[test]
-fn terms_nested_to_the_default_limit_work_within_a_bounded_stack() {
-    let n = 9_000;
+fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
+    let n = 9_900;
     let src = format!(
         "{HEAD} R1: [F] SEED {}{} ENDSEED",
         "R1{".repeat(n),
         "}".repeat(n)
     );
-    let (count, text_len) = on_stack(TERM_STACK, 60, move || {
+    let (count, text_len) = small_stack(60, move || {
         let limits = Limits::default();
         let d = stl::parse(&src, Format::Bed, &limits).expect("parses");
         validate(&d, &limits).expect("valid");
@@ -238,8 +233,29 @@ fn terms_nested_to_the_default_limit_work_within_a_bounded_stack() {
         let mut c = Counter::default();
         stlc::interpret::bed::draw(&d, Strategy::Dfs, &limits, &mut c, &mut NoProgress)
             .expect("draws");
+        let mut b = Counter::default();
+        stlc::interpret::bed::draw(&d, Strategy::Bfs, &limits, &mut b, &mut NoProgress)
+            .expect("draws");
+        assert_eq!(b.0, c.0);
         let back = stl::parse(&text, Format::Bed, &limits).expect("reparses");
         assert!(back == d, "round trip");
+        // Clone, compare, and tell a difference at the deepest level.
+        let copy = d.clone();
+        assert!(copy == d);
+        // (Locations do not take part in equality: only the innermost slot,
+        // a repeat instead of empty, differs.)
+        let deeper = stl::parse(
+            &format!(
+                "{HEAD} R1: [F] SEED {}[I 2 R1]{} ENDSEED",
+                "R1{".repeat(n - 1),
+                "}".repeat(n - 1)
+            ),
+            Format::Bed,
+            &limits,
+        )
+        .expect("parses");
+        assert!(deeper != d, "the innermost slot differs");
+        drop((d, copy, back, deeper));
         (c.0, text.len())
     });
     assert_eq!(count, n as u64);
@@ -247,24 +263,6 @@ fn terms_nested_to_the_default_limit_work_within_a_bounded_stack() {
     // the depth and reads back under the default input limit.
     let indent = 2 * stlc::bed::write::MAX_INDENT_DEPTH;
     assert!(text_len < n * 2 * (indent + 4) + 200, "{text_len}");
-    // A thousand levels fit an ordinary thread's stack.
-    let m = 1_000;
-    let src = format!(
-        "{HEAD} R1: [F] SEED {}{} ENDSEED",
-        "R1{".repeat(m),
-        "}".repeat(m)
-    );
-    let count = small_stack(10, move || {
-        let limits = Limits::default();
-        let d = stl::parse(&src, Format::Bed, &limits).expect("parses");
-        let back = stl::parse(&write(&d), Format::Bed, &limits).expect("reparses");
-        assert!(back == d, "round trip");
-        let mut c = Counter::default();
-        stlc::interpret::bed::draw(&d, Strategy::Dfs, &limits, &mut c, &mut NoProgress)
-            .expect("draws");
-        c.0
-    });
-    assert_eq!(count, m as u64);
 }
 
 // ---------------------------------------------------------------- counts --
