@@ -9,6 +9,8 @@
 //! Numbers are `f64` as written; the writer prints them with at most three
 //! decimals.
 
+use std::fmt;
+
 use crate::color::Rgb;
 use crate::diag::Span;
 
@@ -231,8 +233,8 @@ pub enum SeedItem {
 /// Terms nest as deep as the input does (up to `--max-nesting`), so
 /// `Clone`, `PartialEq` and `Drop` are written with explicit stacks rather
 /// than derived: derived ones recurse once per level and would overflow a
-/// thread's stack on a deeply nested BED.
-#[derive(Debug)]
+/// thread's stack on a deeply nested BED. `Debug` shows the first
+/// [`DEBUG_DEPTH`] levels and elides the rest.
 pub struct Term {
     /// The rule.
     pub rule: RuleId,
@@ -319,6 +321,62 @@ impl Drop for Term {
             if let Some(Slot::Term(mut t)) = slot {
                 pending.append(&mut t.slots);
             }
+        }
+    }
+}
+
+/// How many levels of nested terms `{:?}` shows; deeper terms print as
+/// `Term { rule: .., .. }`. Formatting recurses once per level shown, so the
+/// cap keeps `{:?}` of a hostile, 10 000-deep term within an ordinary stack.
+pub const DEBUG_DEPTH: usize = 32;
+
+impl fmt::Debug for Term {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        TermDebug(self, DEBUG_DEPTH).fmt(f)
+    }
+}
+
+/// A term formatted with `levels` more levels of nesting to show.
+struct TermDebug<'a>(&'a Term, usize);
+
+/// A slot inside a [`TermDebug`].
+struct SlotDebug<'a>(&'a Option<Slot>, usize);
+
+impl fmt::Debug for TermDebug<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let TermDebug(term, levels) = *self;
+        let mut s = f.debug_struct("Term");
+        s.field("rule", &term.rule);
+        if levels == 0 {
+            return s.finish_non_exhaustive();
+        }
+        let slots: Vec<SlotDebug<'_>> = term
+            .slots
+            .iter()
+            .map(|slot| SlotDebug(slot, levels - 1))
+            .collect();
+        s.field("slots", &slots)
+            .field("bare", &term.bare)
+            .field("loc", &term.loc)
+            .finish()
+    }
+}
+
+impl fmt::Debug for SlotDebug<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        /// The slot inside `Some(..)`.
+        struct Inner<'a>(&'a Slot, usize);
+        impl fmt::Debug for Inner<'_> {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                match self.0 {
+                    Slot::Term(t) => f.debug_tuple("Term").field(&TermDebug(t, self.1)).finish(),
+                    Slot::Repeat(r) => f.debug_tuple("Repeat").field(r).finish(),
+                }
+            }
+        }
+        match self.0 {
+            None => f.write_str("None"),
+            Some(slot) => f.debug_tuple("Some").field(&Inner(slot, self.1)).finish(),
         }
     }
 }
@@ -516,5 +574,25 @@ mod tests {
         let mut moved = a.clone();
         moved.loc = Loc(5..9);
         assert!(moved == a);
+    }
+
+    /// `{:?}` reads like the derived form for shallow terms and stops at
+    /// `DEBUG_DEPTH` levels for deep ones.
+    #[test]
+    fn debug_shows_shallow_terms_whole_and_elides_deep_ones() {
+        assert_eq!(
+            format!("{:?}", term(0, vec![None, repeat(2)])),
+            "Term { rule: RuleId(0), slots: [None, Some(Repeat(Repeat { count: 2, \
+             rule: RuleId(0), loc: Loc(0..1) }))], bare: false, loc: Loc(0..1) }"
+        );
+        let mut deep = term(0, vec![None]);
+        for _ in 0..50_000 {
+            deep = term(0, vec![Some(Slot::Term(deep))]);
+        }
+        let text = format!("{deep:?}");
+        assert_eq!(text.matches("Term {").count(), DEBUG_DEPTH + 1);
+        assert!(text.contains("Term { rule: RuleId(0), .. }"));
+        let pretty = format!("{deep:#?}");
+        assert_eq!(pretty.matches("Term {").count(), DEBUG_DEPTH + 1);
     }
 }

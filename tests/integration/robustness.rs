@@ -213,7 +213,7 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
 /// A seed term `R1{R1{...}}` is a tree of nested values as deep as the
 /// input. Every pass over it uses an explicit stack: pest, the parser's own
 /// passes, validation, the writer, both drawing strategies, and `Term`'s
-/// hand-written `Clone`, `PartialEq` and `Drop` (derived ones recursed about
+/// hand-written `Clone`, `PartialEq`, `Drop` and depth-capped `Debug` (derived ones recursed about
 /// 1 KiB of stack per level in a debug build: 1 000 levels fitted a 2 MiB
 /// stack, 2 000 did not). So terms nested to just under the default
 /// `max_nesting` (10 000) go through everything on an ordinary 2 MiB thread.
@@ -255,6 +255,12 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         )
         .expect("parses");
         assert!(deeper != d, "the innermost slot differs");
+        // `{:?}` shows the first levels and elides the rest.
+        let shown = format!("{d:#?}");
+        assert_eq!(
+            shown.matches("Term {").count(),
+            stlc::syntax::ast::DEBUG_DEPTH + 1
+        );
         drop((d, copy, back, deeper));
         (c.0, text.len())
     });
