@@ -3,8 +3,15 @@
 //! Every output file is written to a temporary file in the target's
 //! directory and renamed over the target only when complete, so a failure
 //! never leaves a truncated file or clobbers the previous one, and no
-//! temporary file is left behind (it is deleted when dropped).
+//! temporary file is left behind (it is deleted when dropped). A symbolic
+//! link is followed and the file it names is replaced, so the link stays.
+//! A new file gets the usual mode (0666 less the umask), a replaced one
+//! keeps its mode.
+//! A target that is neither a file nor a directory (`/dev/null`, a named
+//! pipe, a terminal) is written straight into: renaming a file over it
+//! would replace the device or pipe itself.
 
+use std::fs;
 use std::io::{self, BufWriter, IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 
@@ -125,10 +132,45 @@ impl Output {
     }
 }
 
+/// Symbolic links followed before writing, at most (as many as Linux follows).
+const MAX_SYMLINK_HOPS: usize = 40;
+
+/// The path a write to `target` lands on: `target` with every symbolic link
+/// followed, even a dangling one (writing creates the file it names).
+fn resolve_links(target: &Path) -> Result<PathBuf, Diagnostics> {
+    let mut path = target.to_path_buf();
+    for _ in 0..MAX_SYMLINK_HOPS {
+        match fs::symlink_metadata(&path) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let link = fs::read_link(&path)
+                    .map_err(|e| io_error(&e, &format!("cannot read link `{}`", path.display())))?;
+                path = match path.parent() {
+                    Some(dir) if link.is_relative() => dir.join(link),
+                    _ => link,
+                };
+            }
+            _ => return Ok(path),
+        }
+    }
+    Err(Diagnostic::error(ErrorKind::Io(format!(
+        "`{}`: more than {MAX_SYMLINK_HOPS} symbolic links in a row",
+        target.display()
+    )))
+    .with_help("point -o at the file itself")
+    .into())
+}
+
 fn write_atomically(
     target: &Path,
     write: impl FnOnce(&mut dyn Write) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
+    let target = &resolve_links(target)?;
+    if let Ok(meta) = fs::metadata(target)
+        && !meta.is_file()
+        && !meta.is_dir()
+    {
+        return write_in_place(target, write);
+    }
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
@@ -141,17 +183,24 @@ fn write_atomically(
         .with_help("give a file name with -o, e.g. -o tree.png")
         .into());
     }
-    let tmp = tempfile::Builder::new()
-        .prefix(".stlc-")
-        .suffix(".tmp")
-        .tempfile_in(&dir)
-        .map_err(|e| {
-            Diagnostic::error(ErrorKind::Io(format!(
-                "cannot create a file in `{}`: {e}",
-                dir.display()
-            )))
-            .with_help("check that the directory exists and is writable")
-        })?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".stlc-").suffix(".tmp");
+    // A new file gets the usual mode (0666 less the umask), not the 0600 of
+    // a temporary file; a replaced file keeps its own mode below.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let tmp = builder.tempfile_in(&dir).map_err(|e| {
+        Diagnostic::error(ErrorKind::Io(format!(
+            "cannot create a file in `{}`: {e}",
+            dir.display()
+        )))
+        .with_help("check that the directory exists and is writable")
+    })?;
+    if let Ok(meta) = fs::metadata(target) {
+        tmp.as_file()
+            .set_permissions(meta.permissions())
+            .map_err(|e| io_error(&e, &format!("cannot write `{}`", target.display())))?;
+    }
     let mut w = BufWriter::with_capacity(1 << 16, tmp);
     write(&mut w)?;
     let tmp = w
@@ -167,6 +216,22 @@ fn write_atomically(
             e.error
         )))
     })?;
+    Ok(())
+}
+
+/// Writes into a device or named pipe as it is: there is no file to replace.
+fn write_in_place(
+    target: &Path,
+    write: impl FnOnce(&mut dyn Write) -> Result<(), Diagnostics>,
+) -> Result<(), Diagnostics> {
+    let cannot = |e: &io::Error| io_error(e, &format!("cannot write `{}`", target.display()));
+    let file = fs::OpenOptions::new()
+        .write(true)
+        .open(target)
+        .map_err(|e| cannot(&e))?;
+    let mut w = BufWriter::with_capacity(1 << 16, file);
+    write(&mut w)?;
+    w.flush().map_err(|e| cannot(&e))?;
     Ok(())
 }
 

@@ -827,3 +827,147 @@ fn an_svg_over_its_segment_limit_is_refused_before_a_byte_is_written() {
         assert!(png.status.success());
     }
 }
+
+/// `-o` at something that is not a regular file: a named pipe and a null
+/// device are written into and stay what they were (renaming a finished
+/// file over them, as for a regular file, would replace the pipe or the
+/// device with a file: `-o /dev/null` as root would remove the machine's
+/// null device). A symbolic link stays a link and the file it names is
+/// replaced; a dangling link creates that file; a loop of links is an error.
+#[cfg(unix)]
+#[test]
+fn outputs_that_are_pipes_devices_or_links_stay_what_they_are() {
+    use std::os::unix::fs::FileTypeExt;
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name);
+    let square = p("square.lsys");
+    fs::write(&square, SQUARE).unwrap();
+    let svg = {
+        let out = stlc()
+            .args(["render", square.to_str().unwrap(), "-o", "-", "-f", "svg"])
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        out.stdout
+    };
+    assert!(svg.starts_with(b"<svg") || svg.starts_with(b"<?xml"));
+
+    // A named pipe, read by another thread while stlc writes.
+    let fifo = p("pipe.svg");
+    let made = StdCommand::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|s| s.success()) {
+        // A second name for the pipe, to release the reader should stlc
+        // have replaced the pipe instead of writing into it.
+        fs::hard_link(&fifo, p("pipe.alias")).unwrap();
+        let reader = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || fs::read(fifo).unwrap())
+        };
+        stlc()
+            .args(["render", square.to_str().unwrap(), "-o"])
+            .arg(&fifo)
+            .assert()
+            .success();
+        let still_a_pipe = fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo();
+        if !still_a_pipe {
+            drop(fs::OpenOptions::new().write(true).open(p("pipe.alias")));
+        }
+        assert!(still_a_pipe, "the pipe was replaced by a file");
+        assert_eq!(reader.join().unwrap(), svg, "the pipe carried the SVG");
+    }
+
+    // A private null device (only where mknod is allowed, i.e. as root).
+    let null = p("null.png");
+    let made = StdCommand::new("mknod")
+        .args(["-m", "666"])
+        .arg(&null)
+        .args(["c", "1", "3"])
+        .stderr(Stdio::null())
+        .status();
+    if made.is_ok_and(|s| s.success()) {
+        stlc()
+            .args(["render", square.to_str().unwrap(), "-o"])
+            .arg(&null)
+            .assert()
+            .success();
+        let ft = fs::symlink_metadata(&null).unwrap().file_type();
+        assert!(ft.is_char_device(), "still the null device");
+    }
+
+    // A link to an existing file.
+    let real = p("real.svg");
+    fs::write(&real, "old").unwrap();
+    std::os::unix::fs::symlink("real.svg", p("link.svg")).unwrap();
+    stlc()
+        .args(["render", square.to_str().unwrap(), "-o"])
+        .arg(p("link.svg"))
+        .assert()
+        .success();
+    assert!(
+        fs::symlink_metadata(p("link.svg"))
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(fs::read(&real).unwrap(), svg);
+
+    // A dangling link: the file it names is created.
+    std::os::unix::fs::symlink("made.svg", p("dangling.svg")).unwrap();
+    stlc()
+        .args(["render", square.to_str().unwrap(), "-o"])
+        .arg(p("dangling.svg"))
+        .assert()
+        .success();
+    assert_eq!(fs::read(p("made.svg")).unwrap(), svg);
+
+    // A loop: an error, nothing written.
+    std::os::unix::fs::symlink("b.svg", p("a.svg")).unwrap();
+    std::os::unix::fs::symlink("a.svg", p("b.svg")).unwrap();
+    let before = files_in(dir.path());
+    stlc()
+        .args(["render", square.to_str().unwrap(), "-o"])
+        .arg(p("a.svg"))
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("symbolic links"));
+    assert_eq!(files_in(dir.path()), before, "no temporary file left");
+}
+
+/// A new output file gets the mode any new file gets here (0666 less the
+/// umask, as `File::create` does), not a temporary file's 0600; a replaced
+/// file keeps its own mode.
+#[cfg(unix)]
+#[test]
+fn output_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name);
+    let square = p("square.lsys");
+    fs::write(&square, SQUARE).unwrap();
+    let mode = |path: &Path| fs::metadata(path).unwrap().permissions().mode() & 0o777;
+    fs::File::create(p("plain")).unwrap();
+    for args in [
+        vec!["render", "-o", "new.png"],
+        vec!["render", "-o", "new.svg"],
+        vec!["expand", "-o", "new.txt"],
+    ] {
+        let out = args[2];
+        stlc()
+            .current_dir(dir.path())
+            .args([args[0], "square.lsys"])
+            .args(&args[1..])
+            .assert()
+            .success();
+        assert_eq!(mode(&p(out)), mode(&p("plain")), "{out}");
+    }
+    let kept = p("kept.png");
+    fs::write(&kept, "old").unwrap();
+    fs::set_permissions(&kept, fs::Permissions::from_mode(0o640)).unwrap();
+    stlc()
+        .args(["render", square.to_str().unwrap(), "-o"])
+        .arg(&kept)
+        .assert()
+        .success();
+    assert_eq!(mode(&kept), 0o640);
+    assert!(fs::read(&kept).unwrap().starts_with(b"\x89PNG"));
+}
