@@ -546,8 +546,18 @@ fn a_bed_with_a_layout_renders_its_golden_svg() {
 
 #[test]
 fn a_full_disk_on_stdout_is_an_error_not_a_panic() {
-    let Ok(full) = fs::File::create("/dev/full") else {
-        return; // no /dev/full on this system
+    // Only the real device: where /dev is a plain directory, creating
+    // "/dev/full" would make an ordinary file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let is_device = fs::metadata("/dev/full").is_ok_and(|m| m.file_type().is_char_device());
+        if !is_device {
+            return; // no /dev/full on this system
+        }
+    }
+    let Ok(full) = fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return;
     };
     let bin = assert_cmd::cargo::cargo_bin("stlc");
     let out = StdCommand::new(bin)
@@ -737,12 +747,22 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
 /// of an earlier pseudo-terminal session.
 #[test]
 fn the_progress_bar_shows_on_a_terminal_only() {
-    if StdCommand::new("script").arg("--version").output().is_err() {
+    let dir = tempfile::tempdir().unwrap();
+    // `script` needs a pseudo-terminal; a container without /dev/ptmx or
+    // /dev/pts has none, and the test has nothing to look at there.
+    let has_pty = StdCommand::new("script")
+        .args(["-qfec", "true"])
+        .arg(dir.path().join("probe.log"))
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !has_pty {
         return;
     }
     let bin = assert_cmd::cargo::cargo_bin("stlc");
     let root = env!("CARGO_MANIFEST_DIR");
-    let dir = tempfile::tempdir().unwrap();
     let run = |depth: u32, extra: &str| {
         let log = dir.path().join(format!("tty{depth}.log"));
         let cmd = format!(
