@@ -23,6 +23,9 @@ pub struct Limits {
     pub max_word: u64,
     /// Most stems (drawn segments) growth may add (`--max-stems`).
     pub max_stems: u64,
+    /// Most vertices a layout's outline may have: each shape once flattened,
+    /// and the painted area after each shape (`--max-layout-vertices`).
+    pub max_layout_vertices: usize,
 }
 
 impl Default for Limits {
@@ -35,6 +38,7 @@ impl Default for Limits {
             max_symbols: 20_000_000_000,
             max_word: 200_000_000,
             max_stems: 1_000_000,
+            max_layout_vertices: 16_000,
         }
     }
 }

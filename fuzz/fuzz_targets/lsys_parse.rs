@@ -15,6 +15,7 @@ const LIMITS: Limits = Limits {
     max_symbols: 1_000_000,
     max_word: 1_000_000,
     max_stems: 10_000,
+    max_layout_vertices: 16_000,
 };
 
 fuzz_target!(|data: &[u8]| {

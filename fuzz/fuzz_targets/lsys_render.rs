@@ -25,6 +25,7 @@ const LIMITS: Limits = Limits {
     max_symbols: 1_000_000,
     max_word: 1_000_000,
     max_stems: 10_000,
+    max_layout_vertices: 16_000,
 };
 
 /// Rendering walks the word twice per format: a smaller budget.

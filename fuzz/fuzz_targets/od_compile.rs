@@ -22,6 +22,7 @@ const LIMITS: Limits = Limits {
     max_symbols: 100_000,
     max_word: 100_000,
     max_stems: 300,
+    max_layout_vertices: 2_000,
 };
 
 fuzz_target!(|data: &[u8]| {

@@ -23,6 +23,7 @@ const LIMITS: Limits = Limits {
     max_symbols: 100_000,
     max_word: 100_000,
     max_stems: 10_000,
+    max_layout_vertices: 16_000,
 };
 
 /// Every number the writer prints for `d`, as it computes them.

@@ -168,6 +168,10 @@ pub struct LimitArgs {
     /// Most symbols the bfs strategy may hold in memory as one word.
     #[arg(long, value_name = "N", default_value_t = Limits::default().max_word)]
     pub max_word: u64,
+    /// Most vertices of a LAYOUT's outline: each shape (curves flattened) and
+    /// the painted area after each shape.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_layout_vertices)]
+    pub max_layout_vertices: usize,
 }
 
 impl LimitArgs {
@@ -181,6 +185,7 @@ impl LimitArgs {
             max_symbols: self.max_symbols,
             max_word: self.max_word,
             max_stems: stems.unwrap_or(Limits::default().max_stems),
+            max_layout_vertices: self.max_layout_vertices,
         }
     }
 }

@@ -485,9 +485,17 @@ mod summary {
         }
         match &desc.layout {
             Some(l) => {
-                let area = stlc::grow::region::Region::from_layout(l)
-                    .map(|r| format!("{:.1} square units", r.area().unsigned_area()))
-                    .unwrap_or_else(|_| "empty".to_string());
+                let area =
+                    match stlc::grow::region::Region::from_layout(l, limits.max_layout_vertices) {
+                        Ok(r) => format!("{:.1} square units", r.area().unsigned_area()),
+                        Err(e)
+                            if e.iter()
+                                .any(|d| matches!(d.kind, stlc::diag::ErrorKind::Limit { .. })) =>
+                        {
+                            return Err(e);
+                        }
+                        Err(_) => "empty".to_string(),
+                    };
                 let _ = writeln!(
                     s,
                     "  layout      {} shape(s), growth area {area}",

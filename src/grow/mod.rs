@@ -146,7 +146,7 @@ pub fn grow_with(
     check_bounded(od, &flat.gps, opts)?;
 
     let region = match &od.layout {
-        Some(l) => Some(Region::from_layout(l)?),
+        Some(l) => Some(Region::from_layout(l, opts.limits.max_layout_vertices)?),
         None => None,
     };
     let root = Point::new(od.root.0, od.root.1);

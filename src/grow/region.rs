@@ -66,9 +66,13 @@ impl RTreeObject for Edge {
 impl Region {
     /// Paints the layout's shapes in order and keeps what is not white.
     ///
-    /// Errors: a shape with non-finite numbers, or a layout that leaves no
-    /// area at all (only white shapes, or every coloured shape erased).
-    pub fn from_layout(layout: &Layout) -> Result<Region, Diagnostics> {
+    /// Errors: a shape with non-finite numbers, a layout that leaves no area
+    /// at all (only white shapes, or every coloured shape erased), or more
+    /// than `max_vertices` vertices in a shape plus the area painted so far
+    /// (see [`Limits::max_layout_vertices`](crate::limits::Limits)): geo's
+    /// overlay fragments its input above 16 000 edges, and that path takes
+    /// tens of seconds on some shapes.
+    pub fn from_layout(layout: &Layout, max_vertices: usize) -> Result<Region, Diagnostics> {
         let mut area: MultiPolygon<f64> = MultiPolygon::new(Vec::new());
         for s in &layout.shapes {
             let ring = shape_ring(&s.shape);
@@ -79,12 +83,24 @@ impl Region {
                 .with_span(s.loc.0.clone())
                 .into());
             }
+            let vertices = vertex_count(&area).saturating_add(ring.len());
+            if vertices > max_vertices {
+                return Err(too_many_vertices(vertices, max_vertices, s.loc.0.clone()));
+            }
             let poly = polygon_of(&ring);
             area = if s.color.is_white() {
                 area.difference(&poly)
             } else {
                 area.union(&poly)
             };
+        }
+        let vertices = vertex_count(&area);
+        if vertices > max_vertices {
+            return Err(too_many_vertices(
+                vertices,
+                max_vertices,
+                layout.loc.0.clone(),
+            ));
         }
         Region::from_area(area).ok_or_else(|| {
             Diagnostic::error(ErrorKind::Grow(
@@ -328,6 +344,28 @@ fn dedup_closing(ring: &mut Vec<Point>) {
     }
 }
 
+/// Vertices of every ring of `area` (each ring's closing point not counted).
+fn vertex_count(area: &MultiPolygon<f64>) -> usize {
+    area.0
+        .iter()
+        .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+        .map(|r| r.0.len().saturating_sub(1))
+        .sum()
+}
+
+fn too_many_vertices(vertices: usize, limit: usize, span: crate::diag::Span) -> Diagnostics {
+    Diagnostic::error(ErrorKind::Limit {
+        what: "layout outline vertices".into(),
+        value: vertices.to_string(),
+        limit: limit.to_string(),
+    })
+    .with_span(span)
+    .with_help(
+        "use fewer polygon points or fewer, smaller curved shapes, or raise the limit with --max-layout-vertices N (above 16000 the overlay can take minutes on some shapes)",
+    )
+    .into()
+}
+
 fn polygon_of(ring: &[Point]) -> Polygon<f64> {
     let mut coords: Vec<Coord<f64>> = ring.iter().map(|p| Coord { x: p.x, y: p.y }).collect();
     if let Some(&first) = coords.first() {
@@ -373,7 +411,7 @@ mod tests {
             shape(GREEN, rect(0.0, 0.0, 100.0, 100.0)),
             shape(Rgb::WHITE, rect(20.0, 20.0, 40.0, 40.0)),
         ]);
-        let r = Region::from_layout(&l).unwrap();
+        let r = Region::from_layout(&l, 16_000).unwrap();
         assert!((r.area().unsigned_area() - (10_000.0 - 1_600.0)).abs() < 1e-9);
         assert!(r.covers_point(Point::new(10.0, 10.0)));
         assert!(!r.covers_point(Point::new(40.0, 40.0)));
@@ -383,9 +421,60 @@ mod tests {
 
         let mut shapes = l.shapes.clone();
         shapes.push(shape(GREEN, rect(30.0, 30.0, 10.0, 10.0)));
-        let r = Region::from_layout(&layout(shapes)).unwrap();
+        let r = Region::from_layout(&layout(shapes), 16_000).unwrap();
         assert!((r.area().unsigned_area() - (10_000.0 - 1_600.0 + 100.0)).abs() < 1e-9);
         assert!(r.covers_point(Point::new(35.0, 35.0)));
+    }
+
+    /// The vertex limit counts each shape's ring with the area painted so
+    /// far before an overlay runs, and the area after the last shape.
+    #[test]
+    fn the_vertex_limit_counts_shapes_and_the_painted_area() {
+        let limit_of = |e: Diagnostics| match &e.iter().next().unwrap().kind {
+            ErrorKind::Limit { value, limit, .. } => (value.clone(), limit.clone()),
+            k => panic!("not a limit: {k:?}"),
+        };
+        // A 12-gon: 12 vertices fit 12, not 11.
+        let gon = |n: usize| {
+            Shape::Polygon(
+                (0..n)
+                    .map(|i| {
+                        let t = std::f64::consts::TAU * i as f64 / n as f64;
+                        (50.0 + 40.0 * libm::cos(t), 50.0 + 40.0 * libm::sin(t))
+                    })
+                    .collect(),
+            )
+        };
+        let one = layout(vec![shape(GREEN, gon(12))]);
+        assert!(Region::from_layout(&one, 12).is_ok());
+        assert_eq!(
+            limit_of(Region::from_layout(&one, 11).unwrap_err()),
+            ("12".into(), "11".into())
+        );
+        // Two overlapping squares (4 + 4 vertices) paint an octagon with
+        // corners (0,0) (20,0) (20,10) (30,10) (30,30)
+        // (10,30) (10,20) (0,20), 8 vertices. Limit 8 holds; limit 7
+        // refuses the second square before the union (4 + 4 = 8 > 7).
+        let two = layout(vec![
+            shape(GREEN, rect(0.0, 0.0, 20.0, 20.0)),
+            shape(GREEN, rect(10.0, 10.0, 20.0, 20.0)),
+        ]);
+        assert_eq!(Region::from_layout(&two, 8).unwrap().edge_count(), 8);
+        assert_eq!(
+            limit_of(Region::from_layout(&two, 7).unwrap_err()),
+            ("8".into(), "7".into())
+        );
+        // Two crossing bars (4 + 4) paint a plus of 12 vertices: the
+        // inputs fit 8, the result does not.
+        let plus = layout(vec![
+            shape(GREEN, rect(0.0, 10.0, 30.0, 10.0)),
+            shape(GREEN, rect(10.0, 0.0, 10.0, 30.0)),
+        ]);
+        assert_eq!(
+            limit_of(Region::from_layout(&plus, 8).unwrap_err()),
+            ("12".into(), "8".into())
+        );
+        assert_eq!(Region::from_layout(&plus, 12).unwrap().edge_count(), 12);
     }
 
     #[test]
@@ -394,16 +483,19 @@ mod tests {
             shape(GREEN, rect(10.0, 10.0, 10.0, 10.0)),
             shape(Rgb::WHITE, rect(0.0, 0.0, 50.0, 50.0)),
         ]);
-        let e = Region::from_layout(&l).unwrap_err();
+        let e = Region::from_layout(&l, 16_000).unwrap_err();
         assert!(e.0[0].kind.to_string().contains("no area"));
         let only_white = layout(vec![shape(Rgb::WHITE, rect(0.0, 0.0, 5.0, 5.0))]);
-        assert!(Region::from_layout(&only_white).is_err());
+        assert!(Region::from_layout(&only_white, 16_000).is_err());
     }
 
     #[test]
     fn segment_touching_the_boundary_is_not_inside() {
-        let r =
-            Region::from_layout(&layout(vec![shape(GREEN, rect(0.0, 0.0, 10.0, 10.0))])).unwrap();
+        let r = Region::from_layout(
+            &layout(vec![shape(GREEN, rect(0.0, 0.0, 10.0, 10.0))]),
+            16_000,
+        )
+        .unwrap();
         assert!(r.segment_inside(Point::new(5.0, 5.0), Point::new(5.0, 9.0), false));
         assert!(!r.segment_inside(Point::new(5.0, 5.0), Point::new(5.0, 10.0), false));
         assert!(!r.segment_inside(Point::new(5.0, 5.0), Point::new(5.0, 12.0), false));
@@ -486,7 +578,8 @@ mod tests {
                 (50.0 + 40.0 * libm::cos(t), 50.0 - 40.0 * libm::sin(t))
             })
             .collect();
-        let r = Region::from_layout(&layout(vec![shape(GREEN, Shape::Polygon(pts))])).unwrap();
+        let r =
+            Region::from_layout(&layout(vec![shape(GREEN, Shape::Polygon(pts))]), 16_000).unwrap();
         assert!(!r.covers_point(Point::new(50.0, 50.0)));
         // A point inside one of the star's tips is inside.
         assert!(r.covers_point(Point::new(50.0, 15.0)));

@@ -991,3 +991,51 @@ fn output_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
     assert_eq!(mode(&kept), 0o640);
     assert!(fs::read(&kept).unwrap().starts_with(b"\x89PNG"));
 }
+
+/// A generated outline: a 2,000-point polygon on one 30 KB line. It grows
+/// under the default layout limit (16,000 vertices); under
+/// `--max-layout-vertices 100` it is refused, and the report names the flag
+/// and shows the line cut down around the shape instead of printing it all.
+#[test]
+fn a_long_generated_layout_line_is_limited_and_reported_short() {
+    let pts: Vec<String> = (0..2000)
+        .map(|i| {
+            let t = std::f64::consts::TAU * f64::from(i) / 2000.0;
+            format!(
+                "({:.4}, {:.4})",
+                500.0 + 400.0 * libm::cos(t),
+                500.0 + 400.0 * libm::sin(t)
+            )
+        })
+        .collect();
+    let od = format!(
+        "Round\n(500, 800)\nL=40(0) B=1(0)\nRULE\nR1: [-F][+F]\nSEED\nFR1\nENDSEED\nLAYOUT\n(clGreen) Polygon {}\nENDLAYOUT\n",
+        pts.join(", ")
+    );
+    assert!(od.len() > 30_000);
+    let (code, err) = run_stdin(&["compile", "-", "--from", "od", "-o", "-"], od.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let (code, err) = run_stdin(
+        &[
+            "compile",
+            "-",
+            "--from",
+            "od",
+            "-o",
+            "-",
+            "--max-layout-vertices",
+            "100",
+        ],
+        od.as_bytes(),
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("2000 exceeds the limit of 100"), "{err}");
+    assert!(err.contains("--max-layout-vertices"), "{err}");
+    assert!(err.contains(" … "), "{err}");
+    assert!(err.contains("line 10, column 1"), "{err}");
+    assert!(
+        err.len() < 2_000,
+        "the report is short: {} bytes",
+        err.len()
+    );
+}

@@ -670,3 +670,44 @@ fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
     let back = bed(&text);
     validate(&back, &Limits::default()).expect("valid");
 }
+
+/// A runaway layout: a star of 20,000 thin spikes (geo's overlay, past
+/// 16,000 edges, fragments its input and spent 10 s on it; 200,000 spikes
+/// took minutes), and big ellipses painted one after another. Both are
+/// refused by the layout vertex limit, at the shape that passes it, before
+/// an overlay of that size runs.
+#[test]
+fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
+    let star: Vec<String> = (0..20_000)
+        .map(|i| {
+            let t = std::f64::consts::TAU * f64::from(i) / 20_000.0;
+            let r = if i % 2 == 1 { 400.0 } else { 200.0 };
+            format!(
+                "({:.3},{:.3})",
+                500.0 + r * libm::cos(t),
+                500.0 + r * libm::sin(t)
+            )
+        })
+        .collect();
+    let src = format!(
+        "T (500, 500) L=10(0) B=1(0) RULE R1: [-F][+F] LAYOUT (clGreen) Polygon {} ENDLAYOUT",
+        star.join(",")
+    );
+    let e = grow_err(&src);
+    assert!(is_limit(&e, "layout outline vertices"), "{e}");
+    assert_eq!(e.0[0].span.as_ref().map(|s| s.start), src.find("(clGreen)"));
+
+    // An ellipse of radius 50,000 flattens (within 0.05 units) to 556 steps
+    // a quarter, 2,224 vertices. Ellipses side by side, not overlapping,
+    // add up: seven make 15,568, the eighth would make 17,792 > 16,000.
+    let shapes: String = (0..600)
+        .map(|i| format!("(clGreen) Ellipse ({}, 0), 100000, 100000 ", i * 100_001))
+        .collect();
+    let src =
+        format!("T (50000, 50000) L=10(0) B=1(0) RULE R1: [-F][+F] LAYOUT {shapes} ENDLAYOUT");
+    let e = grow_err(&src);
+    assert!(is_limit(&e, "layout outline vertices"), "{e}");
+    assert!(e.to_string().contains("17792"), "{e}");
+    let eighth = src.match_indices("(clGreen)").nth(7).unwrap().0;
+    assert_eq!(e.0[0].span.as_ref().map(|s| s.start), Some(eighth));
+}
