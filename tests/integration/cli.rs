@@ -848,6 +848,14 @@ fn an_svg_over_its_segment_limit_is_refused_before_a_byte_is_written() {
     }
 }
 
+/// `stlc render INPUT -o OUT`.
+fn render_to(input: &Path, out: impl AsRef<std::ffi::OsStr>) -> assert_cmd::assert::Assert {
+    stlc()
+        .args(["render", input.to_str().unwrap(), "-o"])
+        .arg(out)
+        .assert()
+}
+
 /// `-o` at something that is not a regular file: a named pipe and a null
 /// device are written into and stay what they were (renaming a finished
 /// file over them, as for a regular file, would replace the pipe or the
@@ -883,11 +891,7 @@ fn outputs_that_are_pipes_devices_or_links_stay_what_they_are() {
             let fifo = fifo.clone();
             std::thread::spawn(move || fs::read(fifo).unwrap())
         };
-        stlc()
-            .args(["render", square.to_str().unwrap(), "-o"])
-            .arg(&fifo)
-            .assert()
-            .success();
+        render_to(&square, &fifo).success();
         let still_a_pipe = fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo();
         if !still_a_pipe {
             drop(fs::OpenOptions::new().write(true).open(p("pipe.alias")));
@@ -905,11 +909,7 @@ fn outputs_that_are_pipes_devices_or_links_stay_what_they_are() {
         .stderr(Stdio::null())
         .status();
     if made.is_ok_and(|s| s.success()) {
-        stlc()
-            .args(["render", square.to_str().unwrap(), "-o"])
-            .arg(&null)
-            .assert()
-            .success();
+        render_to(&square, &null).success();
         let ft = fs::symlink_metadata(&null).unwrap().file_type();
         assert!(ft.is_char_device(), "still the null device");
     }
@@ -918,11 +918,7 @@ fn outputs_that_are_pipes_devices_or_links_stay_what_they_are() {
     let real = p("real.svg");
     fs::write(&real, "old").unwrap();
     std::os::unix::fs::symlink("real.svg", p("link.svg")).unwrap();
-    stlc()
-        .args(["render", square.to_str().unwrap(), "-o"])
-        .arg(p("link.svg"))
-        .assert()
-        .success();
+    render_to(&square, p("link.svg")).success();
     assert!(
         fs::symlink_metadata(p("link.svg"))
             .unwrap()
@@ -933,21 +929,14 @@ fn outputs_that_are_pipes_devices_or_links_stay_what_they_are() {
 
     // A dangling link: the file it names is created.
     std::os::unix::fs::symlink("made.svg", p("dangling.svg")).unwrap();
-    stlc()
-        .args(["render", square.to_str().unwrap(), "-o"])
-        .arg(p("dangling.svg"))
-        .assert()
-        .success();
+    render_to(&square, p("dangling.svg")).success();
     assert_eq!(fs::read(p("made.svg")).unwrap(), svg);
 
     // A loop: an error, nothing written.
     std::os::unix::fs::symlink("b.svg", p("a.svg")).unwrap();
     std::os::unix::fs::symlink("a.svg", p("b.svg")).unwrap();
     let before = files_in(dir.path());
-    stlc()
-        .args(["render", square.to_str().unwrap(), "-o"])
-        .arg(p("a.svg"))
-        .assert()
+    render_to(&square, p("a.svg"))
         .code(1)
         .stderr(predicate::str::contains("symbolic links"));
     assert_eq!(files_in(dir.path()), before, "no temporary file left");
@@ -983,11 +972,7 @@ fn output_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
     let kept = p("kept.png");
     fs::write(&kept, "old").unwrap();
     fs::set_permissions(&kept, fs::Permissions::from_mode(0o640)).unwrap();
-    stlc()
-        .args(["render", square.to_str().unwrap(), "-o"])
-        .arg(&kept)
-        .assert()
-        .success();
+    render_to(&square, &kept).success();
     assert_eq!(mode(&kept), 0o640);
     assert!(fs::read(&kept).unwrap().starts_with(b"\x89PNG"));
 }
