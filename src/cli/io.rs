@@ -165,24 +165,24 @@ fn write_atomically(
     write: impl FnOnce(&mut dyn Write) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     let target = &resolve_links(target)?;
-    if let Ok(meta) = fs::metadata(target)
-        && !meta.is_file()
-        && !meta.is_dir()
-    {
-        return write_in_place(target, write);
+    // What is there now: nothing, a file to replace, or something else.
+    let existing = fs::metadata(target).ok();
+    match &existing {
+        Some(m) if m.is_dir() => {
+            return Err(Diagnostic::error(ErrorKind::Io(format!(
+                "`{}` is a directory",
+                target.display()
+            )))
+            .with_help("give a file name with -o, e.g. -o tree.png")
+            .into());
+        }
+        Some(m) if !m.is_file() => return write_in_place(target, write),
+        _ => {}
     }
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    if target.is_dir() {
-        return Err(Diagnostic::error(ErrorKind::Io(format!(
-            "`{}` is a directory",
-            target.display()
-        )))
-        .with_help("give a file name with -o, e.g. -o tree.png")
-        .into());
-    }
     let mut builder = tempfile::Builder::new();
     builder.prefix(".stlc-").suffix(".tmp");
     // A new file gets the usual mode (0666 less the umask), not the 0600 of
@@ -196,7 +196,7 @@ fn write_atomically(
         )))
         .with_help("check that the directory exists and is writable")
     })?;
-    if let Ok(meta) = fs::metadata(target) {
+    if let Some(meta) = existing {
         tmp.as_file()
             .set_permissions(meta.permissions())
             .map_err(|e| io_error(&e, &format!("cannot write `{}`", target.display())))?;

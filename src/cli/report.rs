@@ -1,5 +1,6 @@
 //! Diagnostics to ariadne reports on stderr: the only file that knows ariadne.
 
+use std::borrow::Cow;
 use std::io::Write;
 
 use ariadne::{Config, IndexType, Label, Report, ReportKind, Source};
@@ -85,7 +86,7 @@ pub fn write(out: &mut dyn Write, d: &Diagnostic, src: Option<&SourceText<'_>>, 
     let mut buf = Vec::new();
     let _ = report
         .finish()
-        .write((name, Source::from(shown.text.as_str())), &mut buf);
+        .write((name, Source::from(&*shown.text)), &mut buf);
     let _ = out.write_all(&buf);
 }
 
@@ -101,8 +102,8 @@ const ELLIPSIS: &str = " … ";
 /// The source as shown: each line longer than [`LONG_LINE`] keeps only its
 /// start and the neighbourhood of every span end on it, the rest replaced
 /// by [`ELLIPSIS`]. Line breaks are all kept, so line numbers hold.
-struct Cropped {
-    text: String,
+struct Cropped<'a> {
+    text: Cow<'a, str>,
     /// `(original start, shown start, length)` of every kept piece of a cut
     /// line, in order.
     pieces: Vec<(usize, usize, usize)>,
@@ -110,11 +111,11 @@ struct Cropped {
     cut: bool,
 }
 
-impl Cropped {
-    fn new(text: &str, points: &[usize]) -> Cropped {
+impl<'a> Cropped<'a> {
+    fn new(text: &'a str, points: &[usize]) -> Cropped<'a> {
         if text.split('\n').all(|l| l.len() <= LONG_LINE) {
             return Cropped {
-                text: text.to_string(),
+                text: Cow::Borrowed(text),
                 pieces: Vec::new(),
                 cut: false,
             };
@@ -162,7 +163,7 @@ impl Cropped {
             line_start = line_end;
         }
         Cropped {
-            text: shown,
+            text: Cow::Owned(shown),
             pieces,
             cut: true,
         }
@@ -268,7 +269,7 @@ mod tests {
         let text = "a\nbb\n";
         let shown = Cropped::new(text, &[2, 4]);
         assert!(!shown.cut);
-        assert_eq!(shown.text, text);
+        assert!(matches!(shown.text, Cow::Borrowed(t) if t == text));
         assert_eq!(shown.range(&(2..4)), 2..4);
     }
 }

@@ -1023,4 +1023,11 @@ fn a_long_generated_layout_line_is_limited_and_reported_short() {
         "the report is short: {} bytes",
         err.len()
     );
+    // `check` refuses it the same way (its summary paints the layout).
+    let (code, err) = run_stdin(
+        &["check", "-", "--from", "od", "--max-layout-vertices", "100"],
+        od.as_bytes(),
+    );
+    assert_eq!(code, 1);
+    assert!(err.contains("2000 exceeds the limit of 100"), "{err}");
 }
