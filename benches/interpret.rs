@@ -5,7 +5,7 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use stlc::interpret::Strategy;
+use stlc::interpret::Derivation;
 use stlc::interpret::lsys::{draw_into, exact_lengths};
 use stlc::interpret::stats::stats;
 use stlc::limits::Limits;
@@ -23,7 +23,7 @@ fn bounding_pass(c: &mut Criterion) {
     for depth in [6u32, 8, 9] {
         let symbols = u64::try_from(&exact_lengths(&sys, depth)[depth as usize]).unwrap();
         group.throughput(Throughput::Elements(symbols));
-        for (name, strategy) in [("dfs", Strategy::Dfs), ("bfs", Strategy::Bfs)] {
+        for (name, strategy) in [("dfs", Derivation::Dfs), ("bfs", Derivation::Bfs)] {
             group.bench_with_input(BenchmarkId::new(name, depth), &depth, |b, &d| {
                 b.iter(|| {
                     let mut bounds = Bounds::default();

@@ -15,19 +15,17 @@
 
 use std::time::Instant;
 
-use stlc::color::Rgb;
 use stlc::grow::occupancy::Backend;
-use stlc::grow::{GrowOptions, grow_with};
-use stlc::interpret::Strategy;
+use stlc::grow::{GrowOptions, GrowthOrder, grow_with};
 use stlc::limits::Limits;
+use stlc::model::Format;
 use stlc::progress::NoProgress;
-use stlc::syntax::ast::*;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let strategy = match args.get(1).map(String::as_str) {
-        Some("dfs") => Strategy::Dfs,
-        _ => Strategy::Bfs,
+    let growth = match args.get(1).map(String::as_str) {
+        Some("dfs") => GrowthOrder::Dfs,
+        _ => GrowthOrder::Bfs,
     };
     let backend = match args.get(2).map(String::as_str) {
         Some("spade") => Backend::Spade,
@@ -35,60 +33,15 @@ fn main() {
     };
     let n: u64 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(100_000);
     let side: f64 = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(4000.0);
-    let loc = Loc::default;
-    let branch = |t: &str| {
-        BodyItem::Branch(Branch {
-            pieces: vec![Piece::Draw(DrawRun {
-                text: t.into(),
-                loc: loc(),
-            })],
-            successor: None,
-            loc: loc(),
-        })
-    };
-    let od = Description {
-        format: Format::Od,
-        name: "Bench".into(),
-        name_loc: loc(),
-        root: (side / 2.0, side - 1.0),
-        root_loc: loc(),
-        params: StemParams {
-            length: 1.0,
-            length_dec: 0.0,
-            width: 1.0,
-            width_dec: 0.0,
-            angle: None,
-            clearance: None,
-            loc: loc(),
-        },
-        rules: vec![RuleDef {
-            name: "R1".into(),
-            name_loc: loc(),
-            body: Body {
-                items: vec![branch("-F"), branch("F"), branch("+F")],
-            },
-            loc: loc(),
-        }],
-        seed: None,
-        layout: Some(Layout {
-            shapes: vec![LayoutShape {
-                color: Rgb::new(0, 128, 0),
-                color_text: "clGreen".into(),
-                shape: Shape::Rect {
-                    x: 0.0,
-                    y: 0.0,
-                    w: side,
-                    h: side,
-                },
-                spelling: Spelling::StartSize,
-                angled: false,
-                loc: loc(),
-            }],
-            loc: loc(),
-        }),
-    };
+    let text = format!(
+        "Bench\n({}, {})\nL=1(0) B=1(0)\nRULE\nR1: [-F][F][+F]\nLAYOUT\n(clGreen) Rectangle (0,0), {side}, {side}\nENDLAYOUT\n",
+        side / 2.0,
+        side - 1.0
+    );
+    let od =
+        stlc::syntax::stl::parse(&text, Format::Od, &Limits::default()).expect("the OD parses");
     let opts = GrowOptions {
-        strategy,
+        growth,
         clearance: None,
         limits: Limits {
             max_stems: n,
@@ -102,7 +55,7 @@ fn main() {
     let g = grow_with(&od, &opts, backend, &mut NoProgress).expect("growth");
     let secs = t.elapsed().as_secs_f64();
     println!(
-        "{strategy:?} {backend:?} stems={} time={secs:.3}s per_stem={:.2}us warnings={}",
+        "{growth:?} {backend:?} stems={} time={secs:.3}s per_stem={:.2}us warnings={}",
         g.stems,
         secs * 1e6 / g.stems as f64,
         g.warnings.len()

@@ -11,7 +11,7 @@
 
 use std::time::Instant;
 
-use stlc::interpret::Strategy;
+use stlc::interpret::Derivation;
 use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
 use stlc::interpret::stats::stats;
 use stlc::limits::Limits;
@@ -23,8 +23,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mode = args.first().map_or("bounds", String::as_str);
     let strategy = match args.get(1).map_or("dfs", String::as_str) {
-        "bfs" => Strategy::Bfs,
-        _ => Strategy::Dfs,
+        "bfs" => Derivation::Bfs,
+        _ => Derivation::Dfs,
     };
     let depth: u32 = args.get(2).map_or(Ok(8), |d| d.parse())?;
     let src = match args.get(3) {
@@ -64,7 +64,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let rate = symbols.parse::<f64>().unwrap_or(f64::NAN) / secs / 1e6;
     println!(
         "{mode} {} depth={depth} symbols={symbols} secs={secs:.6} Msym/s={rate:.1} {what}",
-        if strategy == Strategy::Bfs {
+        if strategy == Derivation::Bfs {
             "bfs"
         } else {
             "dfs"

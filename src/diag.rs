@@ -93,6 +93,20 @@ pub enum ErrorKind {
     /// The CLI exits quietly on it.
     #[error("broken pipe")]
     BrokenPipe,
+
+    // ------------------------------------------------ syntax: .lsys --
+
+    // --------------------------------------------- syntax: .od / .bed --
+
+    // ----------------------------------------------------- growth --
+
+    // -------------------------------------------------------- BED --
+
+    // ------------------------------------------- interpret / stats --
+
+    // ----------------------------------------------------- render --
+
+    // ------------------------------------------- pipeline and I/O --
 }
 
 /// The diagnostic for an I/O error while writing output: a broken pipe gets

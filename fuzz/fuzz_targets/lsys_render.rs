@@ -12,7 +12,7 @@ use stlc::interpret::{Strategy, lsys};
 use stlc::limits::Limits;
 use stlc::progress::{NoProgress, Progress};
 use stlc::render::{self, ImageFormat, RenderOptions, Style, Width};
-use stlc::syntax::lsys::{Background, parse};
+use stlc::{model::lsys::Background, syntax::lsys::parse};
 use stlc::turtle::{Bounds, Turtle};
 
 const DEPTH_CAP: u32 = 16;

@@ -10,7 +10,7 @@ use stlc::grow::{GrowOptions, grow};
 use stlc::interpret::{Strategy, bed};
 use stlc::limits::Limits;
 use stlc::progress::NoProgress;
-use stlc::syntax::ast::Format;
+use stlc::model::Format;
 use stlc::syntax::{precheck, stl};
 use stlc::turtle::Counter;
 

@@ -11,7 +11,7 @@ use stlc::diag::{Diagnostics, ErrorKind};
 use stlc::interpret::{Strategy, bed};
 use stlc::limits::Limits;
 use stlc::progress::NoProgress;
-use stlc::syntax::ast::{Description, Format, Shape};
+use stlc::model::{Description, Format, Shape};
 use stlc::syntax::{precheck, stl};
 use stlc::turtle::{Bounds, Counter};
 

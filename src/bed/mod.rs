@@ -1,9 +1,11 @@
 //! The Branch-Expansion Description: the contract between `compile` and
-//! `render`. A BED is a [`Description`] read or written as `Format::Bed`.
+//! `render`.
 //!
-//! [`validate`] checks what the grammar cannot see; [`measure`] computes
-//! what a BED draws (symbols and stems) exactly, saturating at `u64::MAX`,
-//! without expanding it.
+//! A [`Bed`] is a [`Description`] that has been validated and measured:
+//! [`Bed::new`] checks what the grammar cannot see ([`validate`]) and
+//! computes what the BED draws (symbols and stems) exactly, saturating at
+//! `u64::MAX`, without expanding it ([`measure`]). The interpreter takes a
+//! [`Bed`], so a BED is validated and measured once per run.
 
 pub mod write;
 
@@ -11,9 +13,7 @@ use std::collections::BTreeMap;
 
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::limits::Limits;
-use crate::syntax::ast::{
-    BodyItem, Description, Piece, RuleId, Seed, SeedItem, Slot, StemParams, Term,
-};
+use crate::model::{BodyItem, Description, Piece, RuleId, Seed, SeedItem, Slot, StemParams, Term};
 
 /// What a description's seed expands to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -168,14 +168,44 @@ pub fn measure(desc: &Description) -> Size {
     }
 }
 
+/// A validated, measured Branch-Expansion Description.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bed {
+    desc: Description,
+    size: Size,
+}
+
+impl Bed {
+    /// Validates `desc` (see [`validate`]) and measures it.
+    pub fn new(desc: Description, limits: &Limits) -> Result<Bed, Diagnostics> {
+        let size = validate(&desc, limits)?;
+        Ok(Bed { desc, size })
+    }
+
+    /// The description.
+    pub fn description(&self) -> &Description {
+        &self.desc
+    }
+
+    /// What its seed expands to.
+    pub fn size(&self) -> Size {
+        self.size
+    }
+
+    /// The description, given back.
+    pub fn into_description(self) -> Description {
+        self.desc
+    }
+}
+
 /// Checks what the grammar cannot: every term names a rule and has one slot
 /// per branch, every rule application's order leaves its stems a positive
 /// length and width, counts are within `limits.max_repeat`, and the whole
-/// expansion stays within `limits.max_symbols`.
-pub fn validate(desc: &Description, limits: &Limits) -> Result<(), Diagnostics> {
+/// expansion stays within `limits.max_symbols`. Returns the measured size.
+pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics> {
     let mut diags = Diagnostics::new();
     let Some(seed) = desc.effective_seed() else {
-        return Ok(());
+        return Ok(Size::default());
     };
     let p = &desc.params;
     let mut order_reported = false;
@@ -289,7 +319,7 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<(), Diagnostics> 
             .with_help("raise the limit with --max-symbols N, or lower the counts"),
         );
     }
-    diags.into_result(())
+    diags.into_result(size)
 }
 
 fn rule_name(desc: &Description, id: RuleId) -> String {
@@ -307,8 +337,8 @@ fn unknown_id(id: RuleId, span: &crate::diag::Span) -> Diagnostic {
 }
 
 fn order_error(p: &StemParams, order: u32, span: crate::diag::Span, rule: &str) -> Diagnostic {
-    let len = write::num(p.length_at(order));
-    let width = write::num(p.width_at(order));
+    let len = write::num(p.length.at(order));
+    let width = write::num(p.width.at(order));
     Diagnostic::error(ErrorKind::Stl(format!(
         "`{rule}` is applied at order {order}, where stems have length {len} and width {width}"
     )))

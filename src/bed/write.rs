@@ -45,7 +45,7 @@ pub const MAX_INDENT_DEPTH: usize = 24;
 
 use std::fmt::Write as _;
 
-use crate::syntax::ast::{
+use crate::model::{
     Body, BodyItem, Description, Fixed, LayoutShape, Piece, Repeat, Shape, Slot, Spelling, Term,
 };
 
@@ -61,10 +61,10 @@ pub fn write(desc: &Description) -> String {
     let _ = write!(
         out,
         "L={}({}) B={}({})",
-        num(p.length),
-        num(p.length_dec),
-        num(p.width),
-        num(p.width_dec)
+        num(p.length.base),
+        num(p.length.decrement),
+        num(p.width.base),
+        num(p.width.decrement)
     );
     if let Some(a) = p.angle {
         let _ = write!(out, " A={}", num(a));
@@ -80,19 +80,19 @@ pub fn write(desc: &Description) -> String {
         out.push_str("SEED\n");
         for item in &seed.items {
             match item {
-                crate::syntax::ast::SeedItem::Draw(d) => {
+                crate::model::SeedItem::Draw(d) => {
                     out.push_str(&w.draw(&d.text));
                     out.push('\n');
                 }
-                crate::syntax::ast::SeedItem::Fixed(f) => {
+                crate::model::SeedItem::Fixed(f) => {
                     out.push_str(&w.fixed(f));
                     out.push('\n');
                 }
-                crate::syntax::ast::SeedItem::Repeat(r) => {
+                crate::model::SeedItem::Repeat(r) => {
                     out.push_str(&w.repeat(r));
                     out.push('\n');
                 }
-                crate::syntax::ast::SeedItem::Term(t) => w.term(t, &mut out),
+                crate::model::SeedItem::Term(t) => w.term(t, &mut out),
             }
         }
         out.push_str("ENDSEED\n");
@@ -110,19 +110,7 @@ pub fn write(desc: &Description) -> String {
 
 /// A number with at most three decimals; integers without a dot; no `-0`.
 pub fn num(v: f64) -> String {
-    let mut s = format!("{v:.3}");
-    if s.contains('.') {
-        while s.ends_with('0') {
-            s.pop();
-        }
-        if s.ends_with('.') {
-            s.pop();
-        }
-    }
-    if s == "-0" {
-        s = "0".into();
-    }
-    s
+    crate::num::fixed(v, 3, crate::num::Trim::Zeros)
 }
 
 struct Writer<'a> {
@@ -130,7 +118,7 @@ struct Writer<'a> {
 }
 
 impl Writer<'_> {
-    fn name(&self, id: crate::syntax::ast::RuleId) -> &str {
+    fn name(&self, id: crate::model::RuleId) -> &str {
         self.desc
             .rules
             .get(id.0)

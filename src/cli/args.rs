@@ -141,11 +141,11 @@ pub enum StrategyArg {
     Bfs,
 }
 
-impl From<StrategyArg> for stlc::interpret::Strategy {
+impl From<StrategyArg> for stlc::interpret::Derivation {
     fn from(s: StrategyArg) -> Self {
         match s {
-            StrategyArg::Dfs => stlc::interpret::Strategy::Dfs,
-            StrategyArg::Bfs => stlc::interpret::Strategy::Bfs,
+            StrategyArg::Dfs => stlc::interpret::Derivation::Dfs,
+            StrategyArg::Bfs => stlc::interpret::Derivation::Bfs,
         }
     }
 }

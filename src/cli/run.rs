@@ -3,16 +3,17 @@
 use std::io::Write;
 use std::process::ExitCode;
 
+use stlc::bed::Bed;
 use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
-use stlc::grow::GrowOptions;
-use stlc::interpret::Strategy;
+use stlc::grow::{GrowOptions, GrowthOrder};
+use stlc::interpret::Derivation;
+use stlc::model::lsys::{Background, LSystem};
+use stlc::model::{Description, Format};
 use stlc::progress::{Phase, Progress};
-use stlc::render::{self, Fill, ImageFormat, RenderOptions, Style, Width};
-use stlc::syntax::ast::{Description, Format};
-use stlc::syntax::lsys::{Background, LSystem};
+use stlc::render::{self, ImageFormat, RenderOptions, Style, Width};
 use stlc::syntax::{self, InputKind};
-use stlc::turtle::{BBox, Turtle};
+use stlc::turtle::{BBox, Fill, Turtle};
 use stlc::{Limits, Severity};
 
 use super::args::{
@@ -82,6 +83,7 @@ pub fn run(cli: &Cli, color: bool) -> ExitCode {
 enum Loaded {
     Lsys(LSystem),
     Stl(Description),
+    Bed(Bed),
 }
 
 /// Reads and parses the input named by `args`.
@@ -114,8 +116,7 @@ fn load(args: &InputArgs, limits: &Limits, source: &mut Source) -> Result<Loaded
         InputKind::Od => syntax::stl::parse(text, Format::Od, limits).map(Loaded::Stl),
         InputKind::Bed => {
             let desc = syntax::stl::parse(text, Format::Bed, limits)?;
-            stlc::bed::validate(&desc, limits)?;
-            Ok(Loaded::Stl(desc))
+            Ok(Loaded::Bed(Bed::new(desc, limits)?))
         }
     }
 }
@@ -152,13 +153,13 @@ fn depth_of(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<u32, D
 /// Grows an OD into a BED, returning it with growth warnings.
 fn grow(
     od: &Description,
-    strategy: Strategy,
+    growth: GrowthOrder,
     g: &GrowArgs,
     limits: &Limits,
     quiet: bool,
-) -> Result<(Description, Vec<Diagnostic>), Diagnostics> {
+) -> Result<(Bed, Vec<Diagnostic>), Diagnostics> {
     let opts = GrowOptions {
-        strategy,
+        growth,
         clearance: g.clearance,
         limits: *limits,
         max_stems_explicit: g.max_stems.is_some(),
@@ -215,7 +216,7 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         size: a.size,
         max_svg_segments: a.max_svg_segments,
     };
-    let strategy: Strategy = a.strategy.into();
+    let strategy: Derivation = a.strategy.into();
     let mut bar = Bar::new(quiet);
     let mut warnings = Vec::new();
     match loaded {
@@ -237,25 +238,28 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
                 render::render(&mut drawing, None, &[], &style, &opts, out, &mut bar)
             })?;
         }
-        Loaded::Stl(desc) => {
+        Loaded::Stl(_) | Loaded::Bed(_) => {
             // An OD grows first (the strategy is the growth strategy), then
             // its BED is streamed depth-first.
-            let (bed, interp) = if desc.format == Format::Od {
-                let (bed, w) = grow(&desc, strategy, &a.grow, &limits, quiet)?;
-                warnings.extend(w);
-                (bed, Strategy::Dfs)
-            } else {
-                (desc, strategy)
+            let (bed, interp) = match loaded {
+                Loaded::Stl(desc) => {
+                    let growth = match strategy {
+                        Derivation::Dfs => GrowthOrder::Dfs,
+                        Derivation::Bfs => GrowthOrder::Bfs,
+                    };
+                    let (bed, w) = grow(&desc, growth, &a.grow, &limits, quiet)?;
+                    warnings.extend(w);
+                    (bed, Derivation::Dfs)
+                }
+                Loaded::Bed(bed) => (bed, strategy),
+                Loaded::Lsys(_) => unreachable!("matched above"),
             };
             let style = Style {
                 stroke: stroke.unwrap_or(TREE_BROWN),
                 background: background.unwrap_or(Some(Rgb::WHITE)),
-                width: Width::Canvas {
-                    base: bed.params.width,
-                    decrement: bed.params.width_dec,
-                },
+                width: Width::Canvas(bed.description().params.width),
             };
-            let (view, underlay) = layout_view(&bed, a.show_layout);
+            let (view, underlay) = layout_view(bed.description(), a.show_layout);
             let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| {
                 stlc::interpret::bed::draw(&bed, interp, &limits, t, p)
             };
@@ -277,9 +281,9 @@ fn layout_view(desc: &Description, show: bool) -> (Option<BBox>, Vec<Fill>) {
     let Some(layout) = &desc.layout else {
         return (None, Vec::new());
     };
-    let bbox = stlc::grow::region::layout_bbox(layout);
+    let bbox = stlc::layout::layout_bbox(layout);
     let fills = if show {
-        stlc::grow::region::fills(layout)
+        stlc::layout::fills(layout)
     } else {
         Vec::new()
     };
@@ -302,22 +306,30 @@ fn colour(text: &str, flag: &str) -> Result<Rgb, Diagnostics> {
 fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
     let limits = a.limits.limits(a.grow.max_stems);
     let loaded = load(&a.input, &limits, source)?;
-    let Loaded::Stl(desc) = loaded else {
-        return Err(Diagnostic::error(ErrorKind::Io(
-            "compile grows Outline Descriptions (.od); this is a classic L-system".into(),
-        ))
-        .with_help("draw it with `stlc render`, or print its word with `stlc expand`")
-        .into());
+    let desc =
+        match loaded {
+            Loaded::Stl(desc) => desc,
+            Loaded::Lsys(_) => {
+                return Err(Diagnostic::error(ErrorKind::Io(
+                    "compile grows Outline Descriptions (.od); this is a classic L-system".into(),
+                ))
+                .with_help("draw it with `stlc render`, or print its word with `stlc expand`")
+                .into());
+            }
+            Loaded::Bed(_) => return Err(Diagnostic::error(ErrorKind::Io(
+                "compile grows Outline Descriptions (.od); this is already a BED".into(),
+            ))
+            .with_help(
+                "draw it with `stlc render`; if it is an outline, name it .od or pass --from od",
+            )
+            .into()),
+        };
+    let growth = match a.strategy {
+        super::args::StrategyArg::Dfs => GrowthOrder::Dfs,
+        super::args::StrategyArg::Bfs => GrowthOrder::Bfs,
     };
-    if desc.format == Format::Bed {
-        return Err(Diagnostic::error(ErrorKind::Io(
-            "compile grows Outline Descriptions (.od); this is already a BED".into(),
-        ))
-        .with_help("draw it with `stlc render`; if it is an outline, name it .od or pass --from od")
-        .into());
-    }
-    let (bed, warnings) = grow(&desc, a.strategy.into(), &a.grow, &limits, quiet)?;
-    let text = stlc::bed::write::write(&bed);
+    let (bed, warnings) = grow(&desc, growth, &a.grow, &limits, quiet)?;
+    let text = stlc::bed::write::write(bed.description());
     let input = Input::parse(&a.input.input);
     let output = match &a.output {
         Some(o) => Output::parse(o),
@@ -334,7 +346,7 @@ fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
     let limits = a.limits.limits(a.grow.max_stems);
     let loaded = load(&a.input, &limits, source)?;
     let output = Output::parse(&a.output);
-    let strategy: Strategy = a.strategy.into();
+    let strategy: Derivation = a.strategy.into();
     let mut bar = Bar::new(quiet);
     let mut warnings = Vec::new();
     match loaded {
@@ -344,13 +356,15 @@ fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
                 stlc::interpret::lsys::expand(&sys, depth, strategy, &limits, out, &mut bar)
             })?;
         }
-        Loaded::Stl(desc) => {
-            let bed = if desc.format == Format::Od {
-                let (bed, w) = grow(&desc, Strategy::Bfs, &a.grow, &limits, quiet)?;
-                warnings.extend(w);
-                bed
-            } else {
-                desc
+        Loaded::Stl(_) | Loaded::Bed(_) => {
+            let bed = match loaded {
+                Loaded::Stl(desc) => {
+                    let (bed, w) = grow(&desc, GrowthOrder::Bfs, &a.grow, &limits, quiet)?;
+                    warnings.extend(w);
+                    bed
+                }
+                Loaded::Bed(bed) => bed,
+                Loaded::Lsys(_) => unreachable!("matched above"),
             };
             output.write_with(|out| {
                 stlc::interpret::bed::expand(&bed, strategy, &limits, out, &mut bar)
@@ -387,7 +401,8 @@ fn check(a: &CheckArgs, source: &mut Source) -> Outcome {
     let loaded = load(&a.input, &limits, source)?;
     let text = match &loaded {
         Loaded::Lsys(sys) => summary::lsys(sys),
-        Loaded::Stl(desc) => summary::stl(desc, &limits)?,
+        Loaded::Stl(desc) => summary::stl(desc, None, &limits)?,
+        Loaded::Bed(bed) => summary::stl(bed.description(), Some(bed), &limits)?,
     };
     print_out(&text)?;
     Ok(Vec::new())
@@ -415,10 +430,10 @@ mod summary {
 
     use stlc::Limits;
     use stlc::diag::Diagnostics;
-    use stlc::interpret::Strategy;
+    use stlc::interpret::Derivation;
+    use stlc::model::lsys::LSystem;
+    use stlc::model::{Description, Format, SeedItem};
     use stlc::progress::NoProgress;
-    use stlc::syntax::ast::{Description, Format, SeedItem};
-    use stlc::syntax::lsys::LSystem;
     use stlc::turtle::Counter;
 
     pub fn lsys(sys: &LSystem) -> String {
@@ -444,7 +459,11 @@ mod summary {
         s
     }
 
-    pub fn stl(desc: &Description, limits: &Limits) -> Result<String, Diagnostics> {
+    pub fn stl(
+        desc: &Description,
+        bed: Option<&stlc::bed::Bed>,
+        limits: &Limits,
+    ) -> Result<String, Diagnostics> {
         let mut s = String::new();
         let what = match desc.format {
             Format::Od => "Outline Description",
@@ -478,9 +497,9 @@ mod summary {
             " (default: F and the first rule)"
         };
         let _ = writeln!(s, "  seed terms  {terms}{written}");
-        if desc.format == Format::Bed {
+        if let Some(bed) = bed {
             let mut count = Counter::default();
-            stlc::interpret::bed::draw(desc, Strategy::Dfs, limits, &mut count, &mut NoProgress)?;
+            stlc::interpret::bed::draw(bed, Derivation::Dfs, limits, &mut count, &mut NoProgress)?;
             let _ = writeln!(s, "  stems       {}", count.0);
         }
         match &desc.layout {

@@ -44,14 +44,15 @@ pub mod region;
 
 use std::collections::VecDeque;
 
+use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
-use crate::interpret::{Interp, Op, State, StemLength, Strategy};
 use crate::limits::Limits;
-use crate::progress::Progress;
-use crate::syntax::ast::{
+use crate::model::{
     BodyItem, Description, Fixed, Format, Loc, Piece, RuleId, Seed, SeedItem, Slot, StemParams,
     Term,
 };
+use crate::progress::Progress;
+use crate::turtle::{Interp, Op, State};
 use crate::turtle::{Point, Recorder};
 
 use occupancy::{Backend, Occupancy, Seg};
@@ -65,14 +66,27 @@ pub const DEFAULT_CLEARANCE_FRACTION: f64 = 0.1;
 
 /// The clearance used when neither `--clearance` nor `C=` gives one.
 pub fn default_clearance(params: &StemParams) -> f64 {
-    (params.length * DEFAULT_CLEARANCE_FRACTION).max(0.0)
+    (params.length.base * DEFAULT_CLEARANCE_FRACTION).max(0.0)
+}
+
+/// The order in which growth points are decided (`--strategy` of `compile`):
+/// the two orders grow different trees from one outline (section 7 of the
+/// language notes). The default is breadth-first, the paper's conventional
+/// order: balanced trees, level by level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GrowthOrder {
+    /// Breadth-first growth: every growth point of a level before the next.
+    #[default]
+    Bfs,
+    /// Depth-first growth: a branch's whole subtree before its next sibling.
+    Dfs,
 }
 
 /// Options of one growth.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GrowOptions {
     /// Breadth-first (levels) or depth-first (a branch's subtree before its sibling).
-    pub strategy: Strategy,
+    pub growth: GrowthOrder,
     /// Clearance override (`--clearance`); else `C=` of the OD, else the default.
     pub clearance: Option<f64>,
     /// Limits (`max_stems` among them).
@@ -89,7 +103,7 @@ impl Default for GrowOptions {
     /// override, default limits, `--max-stems` not given.
     fn default() -> Self {
         GrowOptions {
-            strategy: Strategy::Bfs,
+            growth: GrowthOrder::Bfs,
             clearance: None,
             limits: Limits::default(),
             max_stems_explicit: false,
@@ -100,8 +114,8 @@ impl Default for GrowOptions {
 /// The result of growth: the BED and any warnings (a limit that stopped growth).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grown {
-    /// The Branch-Expansion Description.
-    pub bed: Description,
+    /// The Branch-Expansion Description, validated and measured.
+    pub bed: Bed,
     /// Warnings, e.g. `--max-stems` reached.
     pub warnings: Vec<Diagnostic>,
     /// Number of stems (segments) in the grown tree.
@@ -177,7 +191,7 @@ pub fn grow_with(
     let items = g.build_seed(&seed);
     let mut params = od.params.clone();
     params.clearance = Some(clearance);
-    let bed = Description {
+    let desc = Description {
         format: Format::Bed,
         name: od.name.clone(),
         name_loc: od.name_loc.clone(),
@@ -192,7 +206,7 @@ pub fn grow_with(
         layout: od.layout.clone(),
     };
     Ok(Grown {
-        bed,
+        bed: Bed::new(desc, &opts.limits)?,
         warnings,
         stems,
     })
@@ -335,7 +349,11 @@ fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a>, Diagnost
 /// branch's successor).
 fn check_bounded(od: &Description, gps: &[SeedGp], opts: &GrowOptions) -> Result<(), Diagnostics> {
     let p = &od.params;
-    if od.layout.is_some() || p.length_dec > 0.0 || p.width_dec > 0.0 || opts.max_stems_explicit {
+    if od.layout.is_some()
+        || p.length.decrement > 0.0
+        || p.width.decrement > 0.0
+        || opts.max_stems_explicit
+    {
         return Ok(());
     }
     for gp in gps.iter().filter(|g| g.count.is_none()) {
@@ -498,7 +516,7 @@ const LOCAL_LINEAR: usize = 64;
 struct Grower<'a> {
     od: &'a Description,
     params: &'a StemParams,
-    strategy: Strategy,
+    growth: GrowthOrder,
     limits: Limits,
     region: Option<Region>,
     occ: Occupancy,
@@ -552,14 +570,11 @@ impl<'a> Grower<'a> {
                 })
             })
             .collect();
-        let length = StemLength {
-            base: od.params.length,
-            decrement: od.params.length_dec,
-        };
+        let length = od.params.length;
         Grower {
             od,
             params: &od.params,
-            strategy: opts.strategy,
+            growth: opts.growth,
             limits: opts.limits,
             region,
             occ: Occupancy::new(backend, clearance),
@@ -628,7 +643,7 @@ impl<'a> Grower<'a> {
         for p in pending {
             self.decide_with_subtree(p, progress);
         }
-        if self.strategy == Strategy::Bfs {
+        if self.growth == GrowthOrder::Bfs {
             while let Some(gp) = self.queue.pop_front() {
                 if self.stopped {
                     break;
@@ -672,9 +687,9 @@ impl<'a> Grower<'a> {
             return None;
         }
         let end = self.decide(gp, progress)?;
-        match self.strategy {
-            Strategy::Bfs => self.queue.extend(self.children.drain(..)),
-            Strategy::Dfs => {
+        match self.growth {
+            GrowthOrder::Bfs => self.queue.extend(self.children.drain(..)),
+            GrowthOrder::Dfs => {
                 self.stack.extend(self.children.drain(..).rev());
                 while let Some(g) = self.stack.pop() {
                     if self.stopped {

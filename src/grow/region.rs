@@ -6,11 +6,11 @@
 //! growth, with geo's boolean operations: a union for every coloured shape,
 //! a difference for every white one, in painting order.
 //!
-//! Curved shapes become polygons first ([`shape_ring`]): rounded-rectangle
+//! Curved shapes become polygons first ([`shape_ring`], in [`crate::layout`]): rounded-rectangle
 //! corners and ellipses are flattened with their vertices on the curve and a
-//! maximum deviation (sagitta) of [`FLATTEN_TOLERANCE`] canvas units, so the
+//! maximum deviation (sagitta) of [`FLATTEN_TOLERANCE`](crate::layout::FLATTEN_TOLERANCE) canvas units, so the
 //! polygon lies inside the true curve and no farther than that from it. The
-//! renderer paints exactly these rings ([`fills`]), so the picture and the
+//! renderer paints exactly these rings ([`crate::layout::fills`]), so the picture and the
 //! region agree.
 //!
 //! Self-intersecting polygons are read with the even-odd rule, the rule the
@@ -27,19 +27,9 @@ use geo::{BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon,
 use rstar::{AABB, RTree, RTreeObject};
 
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
-use crate::render::Fill;
-use crate::syntax::ast::{Layout, Shape};
+use crate::layout::shape_ring;
+use crate::model::Layout;
 use crate::turtle::{BBox, Point};
-
-/// Largest distance, in canvas units, between a flattened curve (rounded
-/// corner, ellipse) and the true curve. The flattened polygon's vertices lie
-/// on the curve, so the polygon lies inside it.
-pub const FLATTEN_TOLERANCE: f64 = 0.05;
-
-/// Most segments a quarter of a curve is flattened into; reached only for
-/// radii above about 1.2 million canvas units, where the deviation then
-/// exceeds [`FLATTEN_TOLERANCE`].
-pub const MAX_SEGMENTS_PER_QUARTER: usize = 4096;
 
 /// The area a tree may grow in.
 #[derive(Debug, Clone)]
@@ -195,155 +185,6 @@ impl Region {
     }
 }
 
-/// The closed polygon of a layout shape, canvas units, in drawing order; the
-/// first point is not repeated at the end. Rectangles give their 4 corners,
-/// polygons their points as written (a repeated closing point dropped),
-/// rounded rectangles and ellipses their flattening (see
-/// [`FLATTEN_TOLERANCE`]). Corner radii larger than half the side are
-/// clamped to half the side, as Windows' `RoundRect` (the paper's) does.
-pub fn shape_ring(shape: &Shape) -> Vec<Point> {
-    match *shape {
-        Shape::Rect { x, y, w, h } => rect_ring(x, y, w, h),
-        Shape::RoundRect { x, y, w, h, rx, ry } => {
-            let rx = rx.min(w / 2.0);
-            let ry = ry.min(h / 2.0);
-            if rx.is_nan() || ry.is_nan() || rx <= 0.0 || ry <= 0.0 {
-                return rect_ring(x, y, w, h);
-            }
-            let q = quarter(rx, ry);
-            // Corner centres, and the quarter each corner uses, going round
-            // clockwise on screen from the top-right corner.
-            let corners = [
-                (x + w - rx, y + ry, 1.0, -1.0),    // top right
-                (x + w - rx, y + h - ry, 1.0, 1.0), // bottom right
-                (x + rx, y + h - ry, -1.0, 1.0),    // bottom left
-                (x + rx, y + ry, -1.0, -1.0),       // top left
-            ];
-            let mut ring = Vec::with_capacity(4 * q.len());
-            for (i, &(cx, cy, sx, sy)) in corners.iter().enumerate() {
-                // Top-right and bottom-left run from the vertical axis to the
-                // horizontal one; the other two the other way round.
-                let forward = i % 2 == 1;
-                for j in 0..q.len() {
-                    let (c, s) = if forward { q[j] } else { q[q.len() - 1 - j] };
-                    push_distinct(&mut ring, Point::new(cx + sx * rx * c, cy + sy * ry * s));
-                }
-            }
-            dedup_closing(&mut ring);
-            ring
-        }
-        Shape::Ellipse { x, y, w, h } => {
-            let (rx, ry) = (w / 2.0, h / 2.0);
-            let (cx, cy) = (x + rx, y + ry);
-            let q = quarter(rx, ry);
-            let n = q.len() - 1; // points per quarter without its end
-            let mut ring = Vec::with_capacity(4 * n);
-            // (cos, sin) of the quarter, mirrored into the four quadrants so
-            // the polygon is exactly symmetric.
-            let up = &q[..n]; // 0 to just before 90 degrees
-            let down = || q[1..].iter().rev(); // 90 down to just after 0
-            ring.extend(
-                up.iter()
-                    .map(|&(c, s)| Point::new(cx + rx * c, cy - ry * s)),
-            );
-            ring.extend(down().map(|&(c, s)| Point::new(cx - rx * c, cy - ry * s)));
-            ring.extend(
-                up.iter()
-                    .map(|&(c, s)| Point::new(cx - rx * c, cy + ry * s)),
-            );
-            ring.extend(down().map(|&(c, s)| Point::new(cx + rx * c, cy + ry * s)));
-            ring
-        }
-        Shape::Polygon(ref pts) => {
-            let mut ring: Vec<Point> = pts.iter().map(|&(x, y)| Point::new(x, y)).collect();
-            dedup_closing(&mut ring);
-            ring
-        }
-    }
-}
-
-/// The layout as the renderer paints it (`--show-layout`): one [`Fill`] per
-/// shape, in painting order, white ones included so the holes show.
-pub fn fills(layout: &Layout) -> Vec<Fill> {
-    layout
-        .shapes
-        .iter()
-        .map(|s| Fill {
-            color: s.color,
-            rings: vec![shape_ring(&s.shape)],
-        })
-        .collect()
-}
-
-/// The bounding box of every layout shape, white ones included (the whole
-/// painted canvas); `None` for a layout without shapes.
-pub fn layout_bbox(layout: &Layout) -> Option<BBox> {
-    let mut bbox: Option<BBox> = None;
-    for s in &layout.shapes {
-        for p in shape_ring(&s.shape) {
-            match &mut bbox {
-                Some(b) => b.add(p),
-                None => bbox = Some(BBox::at(p)),
-            }
-        }
-    }
-    bbox
-}
-
-fn rect_ring(x: f64, y: f64, w: f64, h: f64) -> Vec<Point> {
-    vec![
-        Point::new(x, y),
-        Point::new(x + w, y),
-        Point::new(x + w, y + h),
-        Point::new(x, y + h),
-    ]
-}
-
-/// `(cos t, sin t)` for `t` from 0 to 90 degrees in equal steps, both ends
-/// included and exact, with as many steps as keep the chord's deviation from
-/// an ellipse of radii `rx`, `ry` within [`FLATTEN_TOLERANCE`]. The ellipse is
-/// an affine image of the unit circle, so the circle's sagitta scaled by the
-/// larger radius bounds the deviation.
-fn quarter(rx: f64, ry: f64) -> Vec<(f64, f64)> {
-    let r = rx.max(ry);
-    let n = if r <= FLATTEN_TOLERANCE || r.is_nan() {
-        1
-    } else {
-        // sagitta r * (1 - cos(step / 2)) <= tol
-        let step = 2.0 * libm::acos(1.0 - FLATTEN_TOLERANCE / r);
-        let n = (std::f64::consts::FRAC_PI_2 / step).ceil();
-        if n.is_finite() {
-            (n as usize).clamp(1, MAX_SEGMENTS_PER_QUARTER)
-        } else {
-            MAX_SEGMENTS_PER_QUARTER
-        }
-    };
-    (0..=n)
-        .map(|j| {
-            if j == 0 {
-                (1.0, 0.0)
-            } else if j == n {
-                (0.0, 1.0)
-            } else {
-                let t = std::f64::consts::FRAC_PI_2 * (j as f64) / (n as f64);
-                (libm::cos(t), libm::sin(t))
-            }
-        })
-        .collect()
-}
-
-fn push_distinct(ring: &mut Vec<Point>, p: Point) {
-    if ring.last() != Some(&p) {
-        ring.push(p);
-    }
-}
-
-fn dedup_closing(ring: &mut Vec<Point>) {
-    while ring.len() > 1 && ring.first() == ring.last() {
-        ring.pop();
-    }
-}
-
 /// Vertices of every ring of `area` (each ring's closing point not counted).
 fn vertex_count(area: &MultiPolygon<f64>) -> usize {
     area.0
@@ -378,7 +219,8 @@ fn polygon_of(ring: &[Point]) -> Polygon<f64> {
 mod tests {
     use super::*;
     use crate::color::Rgb;
-    use crate::syntax::ast::{LayoutShape, Loc, Spelling};
+    use crate::layout::{FLATTEN_TOLERANCE, fills, layout_bbox};
+    use crate::model::{LayoutShape, Loc, Shape, Spelling};
     use geo::Area;
 
     fn shape(color: Rgb, shape: Shape) -> LayoutShape {

@@ -11,22 +11,21 @@
 //! - `[I n w]`, w drawing components: `F` rewritten by `w`, `n - 1` times on
 //!   `w` itself (`[I 1 w]` is `w`), drawn at the current order.
 //!
-//! [`Strategy::Dfs`] streams the operations with an explicit stack and never
+//! [`Derivation::Dfs`] streams the operations with an explicit stack and never
 //! builds the expanded word (memory grows with nesting depth only);
-//! [`Strategy::Bfs`] rewrites the whole word level by level (refusing words
+//! [`Derivation::Bfs`] rewrites the whole word level by level (refusing words
 //! longer than `limits.max_word`), then interprets it. Both feed the same
 //! [`Interp`], so their segments agree bit for bit.
 
 use std::io::Write;
 
-use crate::bed::{measure_seed, validate};
+use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
-use crate::interpret::{Interp, Op, StemLength, Strategy};
+use crate::interpret::Derivation;
 use crate::limits::Limits;
+use crate::model::{BodyItem, Description, Piece, RuleDef, RuleId, Seed, SeedItem, Slot, Term};
 use crate::progress::Progress;
-use crate::syntax::ast::{
-    BodyItem, Description, Piece, RuleDef, RuleId, Seed, SeedItem, Slot, Term,
-};
+use crate::turtle::{Interp, Op};
 use crate::turtle::{Point, Turtle};
 
 /// How often (in operations) progress is reported.
@@ -35,34 +34,32 @@ const PROGRESS_EVERY: u64 = 1 << 16;
 /// Draws a BED's seed into `turtle`: the turtle starts at the root, heading
 /// up, order 0; stems of order k have length `L - k*dL`.
 pub fn draw(
-    desc: &Description,
-    strategy: Strategy,
+    bed: &Bed,
+    strategy: Derivation,
     limits: &Limits,
     turtle: &mut dyn Turtle,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
-    draw_into(desc, strategy, limits, turtle, progress).map(|_| ())
+    draw_into(bed, strategy, limits, turtle, progress).map(|_| ())
 }
 
 /// [`draw`] into a turtle of a known type, which is handed back.
 pub fn draw_into<T: Turtle>(
-    desc: &Description,
-    strategy: Strategy,
+    bed: &Bed,
+    strategy: Derivation,
     limits: &Limits,
     turtle: T,
     progress: &mut dyn Progress,
 ) -> Result<T, Diagnostics> {
+    let desc = bed.description();
     let p = &desc.params;
     let mut interp = Interp::new(
         turtle,
         Point::new(desc.root.0, desc.root.1),
         p.angle(),
-        StemLength {
-            base: p.length,
-            decrement: p.length_dec,
-        },
+        p.length,
     );
-    ops(desc, strategy, limits, progress, &mut |op| {
+    ops(bed, strategy, limits, progress, &mut |op| {
         interp.apply(op);
         Ok(())
     })?;
@@ -72,8 +69,8 @@ pub fn draw_into<T: Turtle>(
 /// Prints the seed's expansion as drawing components (`F f + - [ ] |`; `L`
 /// and `R` come out as `+` and `-`), then a newline. Streams with `dfs`.
 pub fn expand(
-    desc: &Description,
-    strategy: Strategy,
+    bed: &Bed,
+    strategy: Derivation,
     limits: &Limits,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
@@ -85,7 +82,7 @@ pub fn expand(
         buf.clear();
         Ok(())
     };
-    ops(desc, strategy, limits, progress, &mut |op| {
+    ops(bed, strategy, limits, progress, &mut |op| {
         match op {
             Op::Draw => buf.push(b'F'),
             Op::Move => buf.push(b'f'),
@@ -113,20 +110,20 @@ pub fn expand(
 }
 
 /// The stream of turtle operations a description's seed denotes, fed to
-/// `sink` in order. Validates first (see [`validate`]).
+/// `sink` in order.
 pub fn ops(
-    desc: &Description,
-    strategy: Strategy,
+    bed: &Bed,
+    strategy: Derivation,
     limits: &Limits,
     progress: &mut dyn Progress,
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
-    validate(desc, limits)?;
+    let desc = bed.description();
     let Some(seed) = desc.effective_seed() else {
         return Ok(());
     };
     let seed: &Seed = &seed;
-    let total = measure_seed(desc, seed).symbols;
+    let total = bed.size().symbols;
     progress.start("symbols", total);
     let mut done = 0u64;
     let mut counted = |op: Op| -> Result<(), Diagnostics> {
@@ -137,8 +134,8 @@ pub fn ops(
         sink(op)
     };
     let r = match strategy {
-        Strategy::Dfs => dfs(desc, seed, &mut counted),
-        Strategy::Bfs => bfs(desc, seed, limits, &mut counted),
+        Derivation::Dfs => dfs(desc, seed, &mut counted),
+        Derivation::Bfs => bfs(desc, seed, limits, &mut counted),
     };
     progress.finish();
     r

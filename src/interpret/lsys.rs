@@ -38,11 +38,13 @@ use std::io::Write;
 use num_bigint::BigUint;
 
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
-use crate::interpret::{Interp, Op, StemLength, Strategy};
+use crate::interpret::Derivation;
 use crate::limits::Limits;
+use crate::model::lsys::LSystem;
+use crate::num::Linear;
 use crate::progress::Progress;
-use crate::syntax::lsys::LSystem;
 use crate::turtle::{Headings, Point, Segment, Turtle};
+use crate::turtle::{Interp, Op};
 
 /// Largest precomputed expansion of one `(symbol, remaining depth)`, in
 /// units (ops or bytes). 4096 ops are 64 KiB: a macro stays in L2 cache.
@@ -68,7 +70,7 @@ const PROGRESS_STEP: u64 = 1 << 20;
 pub fn draw(
     sys: &LSystem,
     depth: u32,
-    strategy: Strategy,
+    strategy: Derivation,
     limits: &Limits,
     turtle: &mut dyn Turtle,
     progress: &mut dyn Progress,
@@ -81,7 +83,7 @@ pub fn draw(
 pub fn draw_into<T: Turtle>(
     sys: &LSystem,
     depth: u32,
-    strategy: Strategy,
+    strategy: Derivation,
     limits: &Limits,
     turtle: T,
     progress: &mut dyn Progress,
@@ -89,21 +91,21 @@ pub fn draw_into<T: Turtle>(
     let alpha = Alphabet::new(sys);
     let lens = alpha.check(depth, strategy, limits)?;
     let total = lens[depth as usize];
-    let step = StemLength::constant(sys.length).at(0);
+    let step = Linear::constant(sys.length).at(0);
     progress.start("symbols", total);
     let end = match strategy {
-        Strategy::Dfs => {
+        Derivation::Dfs => {
             let program = Program::<FastOp>::compile(&alpha, depth);
             let mut exec = Exec::new(turtle, Headings::starting(sys.heading, sys.angle), step);
             program.run(|ops| exec.run(ops), progress);
             Point::new(exec.x, exec.y)
         }
-        Strategy::Bfs => {
+        Derivation::Bfs => {
             let mut interp = Interp::new(
                 turtle,
                 Point::default(),
                 sys.angle,
-                StemLength::constant(sys.length),
+                Linear::constant(sys.length),
             )
             .heading(sys.heading);
             let ops: Vec<Option<Op>> = alpha.chars.iter().map(|&c| Op::of_lsys(c)).collect();
@@ -128,7 +130,7 @@ pub fn draw_into<T: Turtle>(
 pub fn expand(
     sys: &LSystem,
     depth: u32,
-    strategy: Strategy,
+    strategy: Derivation,
     limits: &Limits,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
@@ -140,7 +142,7 @@ pub fn expand(
     let mut w = std::io::BufWriter::with_capacity(1 << 16, out);
     let mut failed: Option<std::io::Error> = None;
     match strategy {
-        Strategy::Dfs => {
+        Derivation::Dfs => {
             let program = Program::<u8>::compile(&alpha, depth);
             program.run(
                 |bytes| {
@@ -153,7 +155,7 @@ pub fn expand(
                 progress,
             );
         }
-        Strategy::Bfs => {
+        Derivation::Bfs => {
             let mut buf = [0u8; 4];
             alpha.bfs_each(depth, |_, s| {
                 if failed.is_none() {
@@ -284,7 +286,7 @@ impl Alphabet {
     fn check(
         &self,
         depth: u32,
-        strategy: Strategy,
+        strategy: Derivation,
         limits: &Limits,
     ) -> Result<Vec<u64>, Diagnostics> {
         limits.check_depth(depth)?;
@@ -307,7 +309,7 @@ impl Alphabet {
             .with_help("use a smaller depth, or raise the traversal budget with --max-symbols N")
             .into());
         }
-        if strategy == Strategy::Bfs {
+        if strategy == Derivation::Bfs {
             if let Some(r) = (0..=depth).find(|&r| lens[r as usize] > limits.max_word) {
                 return Err(Diagnostic::error(ErrorKind::Limit {
                     what: format!("bfs word at level {r}"),

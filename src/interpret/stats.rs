@@ -18,11 +18,11 @@ use std::fmt::Write as _;
 use num_bigint::BigUint;
 
 use crate::diag::Diagnostics;
-use crate::interpret::Strategy;
+use crate::interpret::Derivation;
 use crate::interpret::lsys::{Alphabet, draw_into};
 use crate::limits::Limits;
+use crate::model::lsys::LSystem;
 use crate::progress::NoProgress;
-use crate::syntax::lsys::LSystem;
 use crate::turtle::Bounds;
 
 /// Most symbols the geometric pass of [`stats`] traverses (2^30, a few
@@ -116,7 +116,7 @@ pub fn stats_with_budget(
         let end = draw_into(
             &unit,
             depth,
-            Strategy::Dfs,
+            Derivation::Dfs,
             limits,
             &mut bounds,
             &mut NoProgress,
@@ -144,12 +144,7 @@ pub const DECIMALS: usize = 6;
 
 /// A float with [`DECIMALS`] decimals, `-0.000000` written as `0.000000`.
 fn fixed(x: f64) -> String {
-    let s = format!("{x:.DECIMALS$}");
-    if s.starts_with('-') && s[1..].bytes().all(|b| b == b'0' || b == b'.') {
-        s[1..].to_string()
-    } else {
-        s
-    }
+    crate::num::fixed(x, DECIMALS, crate::num::Trim::Keep)
 }
 
 fn floats(xs: &[f64]) -> String {

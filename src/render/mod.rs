@@ -12,8 +12,9 @@ use std::io::Write;
 
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+use crate::num::Linear;
 use crate::progress::{Phase, Progress};
-use crate::turtle::{BBox, Bounds, Counter, Point, Turtle};
+use crate::turtle::{BBox, Bounds, Counter, Fill, Point, Turtle};
 
 pub use png::PngTurtle;
 pub use svg::SvgTurtle;
@@ -33,12 +34,7 @@ pub enum Width {
     /// The same width in output pixels for every stem (classic L-systems).
     Pixels(f64),
     /// `base - order * decrement` canvas units, scaled with the picture (STL's `B`).
-    Canvas {
-        /// Width at order 0.
-        base: f64,
-        /// Decrease per order.
-        decrement: f64,
-    },
+    Canvas(Linear),
 }
 
 /// Colours and widths.
@@ -50,15 +46,6 @@ pub struct Style {
     pub background: Option<Rgb>,
     /// Stroke width.
     pub width: Width,
-}
-
-/// A filled area painted under the drawing (a layout shape).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Fill {
-    /// Fill colour.
-    pub color: Rgb,
-    /// Closed rings, canvas units; filled with the even-odd rule.
-    pub rings: Vec<Vec<Point>>,
 }
 
 /// Size and format of the output.
@@ -270,7 +257,7 @@ impl Fit {
 pub fn stroke_px(width: &Width, scale: f64, order: u32) -> f64 {
     let px = match *width {
         Width::Pixels(w) => w,
-        Width::Canvas { base, decrement } => (base - f64::from(order) * decrement) * scale,
+        Width::Canvas(w) => w.at(order) * scale,
     };
     // `max` also turns a NaN into the hairline.
     px.max(HAIRLINE)
@@ -281,11 +268,11 @@ pub fn stroke_px(width: &Width, scale: f64, order: u32) -> f64 {
 fn half_widest(width: &Width, max_order: u32) -> (f64, f64) {
     match *width {
         Width::Pixels(w) => (w.max(HAIRLINE) / 2.0, 0.0),
-        Width::Canvas { base, decrement } => {
+        Width::Canvas(w) => {
             // Linear in the order: the widest is at one end. The hairline
             // floor is added on top, a slight overestimate.
-            let last = base - f64::from(max_order) * decrement;
-            let widest = base.max(last).max(0.0);
+            let last = w.at(max_order);
+            let widest = w.base.max(last).max(0.0);
             let widest = if widest.is_finite() { widest } else { 0.0 };
             (HAIRLINE / 2.0, widest / 2.0)
         }
@@ -505,23 +492,13 @@ mod tests {
         let fit = Fit::content(
             Some(bbox(0.0, 0.0, 100.0, 0.0)),
             3,
-            &Width::Canvas {
-                base: 10.0,
-                decrement: 1.0,
-            },
+            &Width::Canvas(Linear::new(10.0, 1.0)),
             Some((200, 200)),
         )
         .unwrap();
         assert!((fit.scale - 183.5 / 110.0).abs() < 1e-12);
         assert_eq!(
-            stroke_px(
-                &Width::Canvas {
-                    base: 10.0,
-                    decrement: 1.0
-                },
-                2.0,
-                3
-            ),
+            stroke_px(&Width::Canvas(Linear::new(10.0, 1.0)), 2.0, 3),
             14.0
         );
     }
@@ -560,10 +537,7 @@ mod tests {
 
     #[test]
     fn hairlines_are_the_floor() {
-        let w = Width::Canvas {
-            base: 1.0,
-            decrement: 0.5,
-        };
+        let w = Width::Canvas(Linear::new(1.0, 0.5));
         assert_eq!(stroke_px(&w, 10.0, 1), 5.0);
         assert_eq!(stroke_px(&w, 10.0, 2), HAIRLINE);
         assert_eq!(stroke_px(&w, 10.0, 9), HAIRLINE);

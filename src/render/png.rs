@@ -21,9 +21,10 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, Stroke, Transform,
 };
 
-use super::{BATCH_SEGMENTS, FOLD_PX, Fill, Fit, Style, Width, render_error, stroke_px};
+use super::{BATCH_SEGMENTS, FOLD_PX, Fit, Style, Width, render_error, stroke_px};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
+use crate::turtle::Fill;
 use crate::turtle::{Point, Segment, Turtle};
 
 // ---------------------------------------------------------------------------

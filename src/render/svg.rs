@@ -15,9 +15,10 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
-use super::{BATCH_SEGMENTS, Fill, Fit, Style, Width, stroke_px};
+use super::{BATCH_SEGMENTS, Fit, Style, Width, stroke_px};
 use crate::color::Rgb;
 use crate::diag::{Diagnostics, io_error};
+use crate::turtle::Fill;
 use crate::turtle::{Point, Segment, Turtle};
 
 // ---------------------------------------------------------------------------
@@ -200,11 +201,7 @@ fn push_point(buf: &mut String, command: char, p: Point) {
 /// Appends `x` with exactly two decimals; `-0.00` becomes `0.00`, so the
 /// sign of a rounded-away zero never shows in the bytes.
 pub fn push_num(buf: &mut String, x: f64) {
-    let start = buf.len();
-    let _ = write!(buf, "{x:.2}");
-    if &buf[start..] == "-0.00" {
-        buf.remove(start);
-    }
+    crate::num::push_fixed(buf, x, 2, crate::num::Trim::Keep);
 }
 
 #[cfg(test)]

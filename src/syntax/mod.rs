@@ -12,7 +12,6 @@
 //! nesting limit, so no input can drive the recursive-descent parser into a
 //! stack overflow.
 
-pub mod ast;
 pub mod lsys;
 pub mod stl;
 

@@ -20,14 +20,15 @@
 use pest::Parser;
 use pest::iterators::Pair;
 
-use super::ast::{
-    Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, Loc, Piece,
-    Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Slot, Spelling, StemParams, Term,
-};
 use super::{GrammarParser, Rule, pest_error, precheck};
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
 use crate::limits::Limits;
+use crate::model::{
+    Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, Loc, Piece,
+    Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Slot, Spelling, StemParams, Term,
+};
+use crate::num::Linear;
 
 /// Names a rule may not have: the drawing letters, the `I` of `[I n X]`,
 /// and the section keywords.
@@ -277,10 +278,8 @@ impl Builder<'_> {
 
     fn params(&mut self, pairs: Vec<Pair<'_, Rule>>, root_loc: &Loc) -> StemParams {
         let mut out = StemParams {
-            length: 10.0,
-            length_dec: 0.0,
-            width: 1.0,
-            width_dec: 0.0,
+            length: Linear::constant(10.0),
+            width: Linear::constant(1.0),
             angle: None,
             clearance: None,
             loc: Loc(root_loc.0.end..root_loc.0.end),
@@ -335,11 +334,9 @@ impl Builder<'_> {
                         );
                     }
                     if k == "L" {
-                        out.length = v;
-                        out.length_dec = dv.unwrap_or(0.0);
+                        out.length = Linear::new(v, dv.unwrap_or(0.0));
                     } else {
-                        out.width = v;
-                        out.width_dec = dv.unwrap_or(0.0);
+                        out.width = Linear::new(v, dv.unwrap_or(0.0));
                     }
                 }
                 "A" | "C" => {

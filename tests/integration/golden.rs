@@ -10,10 +10,10 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use stlc::Limits;
+use stlc::grow::GrowthOrder;
 use stlc::grow::{GrowOptions, grow};
-use stlc::interpret::Strategy;
+use stlc::model::Format;
 use stlc::progress::NoProgress;
-use stlc::syntax::ast::Format;
 use stlc::syntax::stl;
 use stlc::turtle::Counter;
 
@@ -36,16 +36,19 @@ fn cases() -> Vec<PathBuf> {
     v
 }
 
-fn compile(od_path: &Path, strategy: Strategy) -> (String, u64) {
+fn compile(od_path: &Path, strategy: GrowthOrder) -> (String, u64) {
     let text = fs::read_to_string(od_path).unwrap();
     let od = stl::parse(&text, Format::Od, &Limits::default())
         .unwrap_or_else(|e| panic!("{}: {e}", od_path.display()));
     let opts = GrowOptions {
-        strategy,
+        growth: strategy,
         ..GrowOptions::default()
     };
     let grown = grow(&od, &opts, &mut NoProgress).unwrap();
-    (stlc::bed::write::write(&grown.bed), grown.stems)
+    (
+        stlc::bed::write::write(grown.bed.description()),
+        grown.stems,
+    )
 }
 
 /// Fails with the first differing line and some context, not two walls of text.
@@ -77,7 +80,7 @@ fn compiled_beds_match_their_goldens() {
     let mut checked = 0;
     for od in cases() {
         let stem = od.file_stem().unwrap().to_string_lossy().into_owned();
-        for (strategy, tag) in [(Strategy::Bfs, "bfs"), (Strategy::Dfs, "dfs")] {
+        for (strategy, tag) in [(GrowthOrder::Bfs, "bfs"), (GrowthOrder::Dfs, "dfs")] {
             let golden = root().join(format!("tests/cases/grow/{stem}.{tag}.bed"));
             let (actual, _) = compile(&od, strategy);
             if bless {
@@ -115,19 +118,22 @@ fn every_golden_reparses_and_rewrites_unchanged_and_draws_its_stems() {
             let (_, stems) = compile(
                 &od,
                 if tag == "bfs" {
-                    Strategy::Bfs
+                    GrowthOrder::Bfs
                 } else {
-                    Strategy::Dfs
+                    GrowthOrder::Dfs
                 },
             );
-            let drawn = stlc::interpret::bed::draw_into(
-                &bed,
-                Strategy::Dfs,
-                &Limits::default(),
-                Counter::default(),
-                &mut NoProgress,
-            )
-            .unwrap();
+            let drawn = stlc::bed::Bed::new(bed.clone(), &Limits::default())
+                .and_then(|bed| {
+                    stlc::interpret::bed::draw_into(
+                        &bed,
+                        stlc::interpret::Derivation::Dfs,
+                        &Limits::default(),
+                        Counter::default(),
+                        &mut NoProgress,
+                    )
+                })
+                .unwrap();
             assert_eq!(drawn.0, stems, "{stem}.{tag}");
         }
     }
@@ -136,7 +142,7 @@ fn every_golden_reparses_and_rewrites_unchanged_and_draws_its_stems() {
 #[test]
 fn compiling_twice_gives_identical_bytes() {
     let od = root().join("examples/fig9.od");
-    for s in [Strategy::Bfs, Strategy::Dfs] {
+    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         assert_eq!(compile(&od, s).0, compile(&od, s).0);
     }
 }
@@ -144,5 +150,8 @@ fn compiling_twice_gives_identical_bytes() {
 #[test]
 fn figures_9_and_10_differ_by_strategy() {
     let od = root().join("examples/fig9.od");
-    assert_ne!(compile(&od, Strategy::Bfs).0, compile(&od, Strategy::Dfs).0);
+    assert_ne!(
+        compile(&od, GrowthOrder::Bfs).0,
+        compile(&od, GrowthOrder::Dfs).0
+    );
 }

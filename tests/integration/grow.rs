@@ -11,12 +11,14 @@ use geo::{
 };
 
 use stlc::color::Rgb;
+use stlc::grow::GrowthOrder;
 use stlc::grow::occupancy::Backend;
-use stlc::grow::region::shape_ring;
 use stlc::grow::{GrowOptions, Grown, grow, grow_with};
-use stlc::interpret::{Interp, Op, StemLength, Strategy};
+use stlc::layout::shape_ring;
+use stlc::model::*;
+use stlc::num::Linear;
 use stlc::progress::NoProgress;
-use stlc::syntax::ast::*;
+use stlc::turtle::{Interp, Op};
 use stlc::turtle::{Point, Recorder, Segment};
 use stlc::{ErrorKind, Limits, Severity};
 
@@ -250,10 +252,8 @@ struct Od {
 
 fn params(l: f64, dl: f64, b: f64, db: f64) -> StemParams {
     StemParams {
-        length: l,
-        length_dec: dl,
-        width: b,
-        width_dec: db,
+        length: Linear::new(l, dl),
+        width: Linear::new(b, db),
         angle: None,
         clearance: None,
         loc: loc(),
@@ -324,9 +324,9 @@ impl Od {
     }
 }
 
-fn opts(strategy: Strategy) -> GrowOptions {
+fn opts(growth: GrowthOrder) -> GrowOptions {
     GrowOptions {
-        strategy,
+        growth,
         ..GrowOptions::default()
     }
 }
@@ -358,10 +358,7 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
         Recorder::default(),
         Point::new(bed.root.0, bed.root.1),
         p.angle(),
-        StemLength {
-            base: p.length,
-            decrement: p.length_dec,
-        },
+        p.length,
     );
     let seed = bed.seed.as_ref().unwrap();
     let mut stack: Vec<Task> = Vec::new();
@@ -522,9 +519,14 @@ fn line(s: &Segment) -> Line<f64> {
 
 /// Checks every invariant of a grown BED; returns its segments.
 fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
-    let segs = draw_bed(&g.bed);
+    let segs = draw_bed(g.bed.description());
     assert_eq!(segs.len() as u64, g.stems, "stems reported vs drawn");
-    let c = g.bed.params.clearance.expect("clearance recorded");
+    let c = g
+        .bed
+        .description()
+        .params
+        .clearance
+        .expect("clearance recorded");
     if od.layout.is_some() {
         let region = oracle_region(od);
         for s in &segs {
@@ -639,7 +641,7 @@ fn invariants_hold_on_several_grown_trees() {
     fixed.layout = Some(vec![(GREEN, rect(0.0, 0.0, 120.0, 120.0))]);
     for od in [two_d_tree(), figure_9_10(), ellipse, polygon, fixed] {
         let d = od.build();
-        for s in [Strategy::Bfs, Strategy::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let g = grown(&d, opts(s));
             let segs = check_invariants(&d, &g);
             assert!(segs.len() > 40, "{s:?} grew only {}", segs.len());
@@ -651,14 +653,17 @@ fn invariants_hold_on_several_grown_trees() {
 #[test]
 fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
     let d = figure_9_10().build();
-    let bfs = grown(&d, opts(Strategy::Bfs));
-    let dfs = grown(&d, opts(Strategy::Dfs));
+    let bfs = grown(&d, opts(GrowthOrder::Bfs));
+    let dfs = grown(&d, opts(GrowthOrder::Dfs));
     check_invariants(&d, &bfs);
     check_invariants(&d, &dfs);
-    assert_ne!(seed_text(&bfs.bed), seed_text(&dfs.bed));
+    assert_ne!(
+        seed_text(bfs.bed.description()),
+        seed_text(dfs.bed.description())
+    );
     // The seed's one growth point grew: F then R1{right, left}.
     let root = |g: &Grown| -> (usize, usize) {
-        let items = &g.bed.seed.as_ref().unwrap().items;
+        let items = &g.bed.description().seed.as_ref().unwrap().items;
         let SeedItem::Term(t) = &items[1] else {
             panic!("no term")
         };
@@ -679,8 +684,8 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
     assert!(d_right > 2 * d_left, "dfs {d_right} vs {d_left}");
     assert!(d_right > b_right);
     // A depth-first tree is deeper (vines).
-    let bfs_depth = max_order(&draw_bed(&bfs.bed));
-    let dfs_depth = max_order(&draw_bed(&dfs.bed));
+    let bfs_depth = max_order(&draw_bed(bfs.bed.description()));
+    let dfs_depth = max_order(&draw_bed(dfs.bed.description()));
     assert!(dfs_depth > bfs_depth, "{dfs_depth} vs {bfs_depth}");
 }
 
@@ -688,13 +693,20 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
 fn growth_is_deterministic_and_backends_agree() {
     for od in [two_d_tree(), figure_9_10()] {
         let d = od.build();
-        for s in [Strategy::Bfs, Strategy::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let a = grown(&d, opts(s));
             let b = grown(&d, opts(s));
-            assert_eq!(seed_text(&a.bed), seed_text(&b.bed));
-            assert_eq!(draw_bed(&a.bed), draw_bed(&b.bed));
+            assert_eq!(
+                seed_text(a.bed.description()),
+                seed_text(b.bed.description())
+            );
+            assert_eq!(draw_bed(a.bed.description()), draw_bed(b.bed.description()));
             let c = grow_with(&d, &opts(s), Backend::Spade, &mut NoProgress).unwrap();
-            assert_eq!(seed_text(&a.bed), seed_text(&c.bed), "spade differs");
+            assert_eq!(
+                seed_text(a.bed.description()),
+                seed_text(c.bed.description()),
+                "spade differs"
+            );
             assert_eq!(a.stems, c.stems);
         }
     }
@@ -725,10 +737,14 @@ fn counts_grow_the_full_subtree_when_space_allows() {
         od.seed = Some(Box::leak(text.clone().into_boxed_str()));
         let written = od.build();
         let as_bed = Grown {
-            bed: Description {
-                format: Format::Bed,
-                ..written.clone()
-            },
+            bed: stlc::bed::Bed::new(
+                Description {
+                    format: Format::Bed,
+                    ..written.clone()
+                },
+                &Limits::default(),
+            )
+            .unwrap(),
             warnings: vec![],
             stems: 1 + 2 * ((1u64 << n) - 1),
         };
@@ -737,11 +753,11 @@ fn counts_grow_the_full_subtree_when_space_allows() {
         let seed = format!("F(I {n} R1)");
         od.seed = Some(Box::leak(seed.into_boxed_str()));
         let d = od.build();
-        for s in [Strategy::Bfs, Strategy::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let g = grown(&d, opts(s));
             // 2^n - 1 applications of 2 stems each, plus the seed's F.
             assert_eq!(g.stems, 1 + 2 * ((1u64 << n) - 1), "n={n} {s:?}");
-            assert_eq!(seed_text(&g.bed), text);
+            assert_eq!(seed_text(g.bed.description()), text);
             let segs = check_invariants(&d, &g);
             assert_eq!(max_order(&segs), n);
         }
@@ -756,10 +772,10 @@ fn count_follows_successors() {
     let mut od = Od::new((0.0, 0.0), vec![("R1", "[+F R2][-F]"), ("R2", "[F]")]);
     od.seed = Some("F(I 3 R1)");
     let d = od.build();
-    let g = grown(&d, opts(Strategy::Bfs));
+    let g = grown(&d, opts(GrowthOrder::Bfs));
     assert_eq!(g.stems, 10);
     assert_eq!(
-        seed_text(&g.bed),
+        seed_text(g.bed.description()),
         "FR1{R2{R2{}},R1{R2{},R1{,}}}",
         "written out by hand from the rule"
     );
@@ -772,7 +788,7 @@ fn decrements_end_growth_at_the_right_order() {
     let mut od = Od::new((0.0, 0.0), vec![("R1", "[+F][-F]")]);
     od.params = params(10.0, 2.0, 1.0, 0.0);
     let d = od.build();
-    let mut o = opts(Strategy::Bfs);
+    let mut o = opts(GrowthOrder::Bfs);
     o.clearance = Some(0.0);
     let g = grown(&d, o);
     assert_eq!(g.stems, 31);
@@ -782,13 +798,13 @@ fn decrements_end_growth_at_the_right_order() {
     od.params = params(10.0, 0.0, 1.0, 0.3);
     let g = grown(&od.build(), o);
     assert_eq!(g.stems, 15);
-    assert_eq!(max_order(&draw_bed(&g.bed)), 3);
+    assert_eq!(max_order(&draw_bed(g.bed.description())), 3);
 }
 
 #[test]
 fn max_stems_stops_growth_with_a_warning() {
     let od = Od::new((0.0, 0.0), vec![("R1", "[+F][-F]")]).build();
-    let mut o = opts(Strategy::Bfs);
+    let mut o = opts(GrowthOrder::Bfs);
     o.clearance = Some(0.0);
     o.limits = Limits {
         max_stems: 100,
@@ -798,7 +814,7 @@ fn max_stems_stops_growth_with_a_warning() {
     let g = grown(&od, o);
     // 1 + 2k <= 100: 49 applications fit, the 50th would make 101.
     assert_eq!(g.stems, 99);
-    assert_eq!(draw_bed(&g.bed).len(), 99);
+    assert_eq!(draw_bed(g.bed.description()).len(), 99);
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(g.warnings[0].severity, Severity::Warning);
     assert!(g.warnings[0].kind.to_string().contains("--max-stems"));
@@ -807,7 +823,7 @@ fn max_stems_stops_growth_with_a_warning() {
 #[test]
 fn unbounded_growth_is_refused_with_a_fix() {
     let od = Od::new((0.0, 0.0), vec![("R1", "[+F][-F]")]).build();
-    let e = grow(&od, &opts(Strategy::Bfs), &mut NoProgress).unwrap_err();
+    let e = grow(&od, &opts(GrowthOrder::Bfs), &mut NoProgress).unwrap_err();
     let d = &e.0[0];
     assert!(matches!(d.kind, ErrorKind::Grow(_)));
     let help = d.help.as_deref().unwrap();
@@ -816,7 +832,7 @@ fn unbounded_growth_is_refused_with_a_fix() {
     }
     // A chain of rules that ends is bounded: R1 -> R2 -> (no branches).
     let od = Od::new((0.0, 0.0), vec![("R1", "[+F R2][-F R2]"), ("R2", "F")]).build();
-    let g = grown(&od, opts(Strategy::Bfs));
+    let g = grown(&od, opts(GrowthOrder::Bfs));
     assert_eq!(g.stems, 1 + 2 + 2);
 }
 
@@ -824,7 +840,7 @@ fn unbounded_growth_is_refused_with_a_fix() {
 fn root_outside_the_region_is_an_error() {
     let mut od = figure_9_10();
     od.root = (250.0, 100.0);
-    let e = grow(&od.build(), &opts(Strategy::Bfs), &mut NoProgress).unwrap_err();
+    let e = grow(&od.build(), &opts(GrowthOrder::Bfs), &mut NoProgress).unwrap_err();
     assert!(e.0[0].kind.to_string().contains("root"));
     assert_eq!(e.0[0].span, Some(0..1));
 }
@@ -838,7 +854,7 @@ fn white_holes_are_respected() {
         (Rgb::WHITE, rect(60.0, 80.0, 80.0, 40.0)),
     ]);
     let d = od.build();
-    for s in [Strategy::Bfs, Strategy::Dfs] {
+    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
         let hole = Polygon::new(
@@ -866,9 +882,9 @@ fn written_terms_are_drawn_as_given_and_their_slots_grow() {
     let mut od = figure_9_10();
     od.seed = Some("FR1{R1,}");
     let d = od.build();
-    let g = grown(&d, opts(Strategy::Dfs));
+    let g = grown(&d, opts(GrowthOrder::Dfs));
     check_invariants(&d, &g);
-    let text = seed_text(&g.bed);
+    let text = seed_text(g.bed.description());
     assert!(text.starts_with("FR1{R1{"), "{text}");
     assert!(text.ends_with(",}"), "second slot stays empty: {text}");
 }
@@ -884,7 +900,7 @@ fn seed_with_trunk_rule_stays_consistent() {
     od.seed = Some("F R2 F R1 [+F R1]");
     od.layout = Some(vec![(GREEN, rect(0.0, 0.0, 200.0, 200.0))]);
     let d = od.build();
-    for s in [Strategy::Bfs, Strategy::Dfs] {
+    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
         assert!(segs.len() > 100);
@@ -899,7 +915,7 @@ fn seed_drawing_is_laid_down_before_growth() {
     let mut od = figure_9_10();
     od.seed = Some("F[+F R1][-F R1]");
     let d = od.build();
-    for s in [Strategy::Bfs, Strategy::Dfs] {
+    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
         assert!(segs.len() > 200);
@@ -910,7 +926,7 @@ fn seed_drawing_is_laid_down_before_growth() {
 fn depth_limit_stops_a_vine_with_a_warning() {
     // R1 = [F]: a straight vine, one stem per application.
     let od = Od::new((0.0, 0.0), vec![("R1", "[F]")]).build();
-    let mut o = opts(Strategy::Dfs);
+    let mut o = opts(GrowthOrder::Dfs);
     o.limits.max_depth = 5;
     o.max_stems_explicit = true;
     let g = grown(&od, o);
@@ -942,7 +958,7 @@ fn progress_is_reported_rarely() {
     od.params = params(1.0, 0.0, 1.0, 0.0);
     let d = od.build();
     let mut p = Count::default();
-    let g = grow(&d, &opts(Strategy::Bfs), &mut p).unwrap();
+    let g = grow(&d, &opts(GrowthOrder::Bfs), &mut p).unwrap();
     assert!(g.stems > 20_000, "{}", g.stems);
     assert_eq!(p.started, Limits::default().max_stems);
     assert!(p.finished);
@@ -954,7 +970,7 @@ fn progress_is_reported_rarely() {
 fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     let mut od = figure_9_10();
     od.seed = Some("FFFFF");
-    let mut o = opts(Strategy::Bfs);
+    let mut o = opts(GrowthOrder::Bfs);
     o.limits.max_stems = 4;
     let e = grow(&od.build(), &o, &mut NoProgress).unwrap_err();
     assert!(matches!(e.0[0].kind, ErrorKind::Limit { .. }));
@@ -965,5 +981,5 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     let g = grown(&od.build(), o);
     assert_eq!(g.stems, 2);
     assert_eq!(g.warnings.len(), 1);
-    assert_eq!(seed_text(&g.bed), "FF");
+    assert_eq!(seed_text(g.bed.description()), "FF");
 }

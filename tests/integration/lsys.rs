@@ -3,21 +3,20 @@
 
 use num_bigint::BigUint;
 use proptest::prelude::*;
-use proptest::strategy::Strategy as _;
 use stlc::diag::ErrorKind;
-use stlc::interpret::Strategy;
+use stlc::interpret::Derivation;
 use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
 use stlc::interpret::stats::stats;
 use stlc::limits::Limits;
 use stlc::progress::NoProgress;
-use stlc::syntax::lsys::{Background, parse};
 use stlc::turtle::{Point, Recorder, Segment};
+use stlc::{model::lsys::Background, syntax::lsys::parse};
 
-fn sys(src: &str) -> stlc::syntax::lsys::LSystem {
+fn sys(src: &str) -> stlc::model::lsys::LSystem {
     parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn segments(src: &str, depth: u32, strategy: Strategy) -> Vec<Segment> {
+fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
     let mut rec = Recorder::default();
     draw_into(
         &sys(src),
@@ -31,7 +30,7 @@ fn segments(src: &str, depth: u32, strategy: Strategy) -> Vec<Segment> {
     rec.segments
 }
 
-fn expanded(src: &str, depth: u32, strategy: Strategy) -> String {
+fn expanded(src: &str, depth: u32, strategy: Derivation) -> String {
     let mut out = Vec::new();
     expand(
         &sys(src),
@@ -255,12 +254,12 @@ fn parallel_rewriting_gives_fibonacci_lengths() {
         assert_eq!(*len, big(a), "depth {n}");
         (a, b) = (b, a + b);
     }
-    assert_eq!(expanded(src, 4, Strategy::Dfs), "ABAABABA\n");
-    assert_eq!(expanded(src, 4, Strategy::Bfs), "ABAABABA\n");
+    assert_eq!(expanded(src, 4, Derivation::Dfs), "ABAABABA\n");
+    assert_eq!(expanded(src, 4, Derivation::Bfs), "ABAABABA\n");
     for depth in 0..12 {
-        let dfs = expanded(src, depth, Strategy::Dfs);
+        let dfs = expanded(src, depth, Derivation::Dfs);
         assert_eq!(BigUint::from(dfs.len() - 1), lengths[depth as usize]);
-        assert_eq!(dfs, expanded(src, depth, Strategy::Bfs));
+        assert_eq!(dfs, expanded(src, depth, Derivation::Bfs));
     }
 }
 
@@ -268,16 +267,16 @@ fn parallel_rewriting_gives_fibonacci_lengths() {
 fn expand_by_hand() {
     // Hand derivation: F+X -> (FF)+(F-X) -> (FFFF)+(FF-F-X).
     let src = "axiom F+X\nrule F FF\nrule X F-X\nangle 90\n";
-    assert_eq!(expanded(src, 0, Strategy::Dfs), "F+X\n");
-    assert_eq!(expanded(src, 1, Strategy::Dfs), "FF+F-X\n");
-    assert_eq!(expanded(src, 2, Strategy::Dfs), "FFFF+FF-F-X\n");
-    assert_eq!(expanded(src, 2, Strategy::Bfs), "FFFF+FF-F-X\n");
+    assert_eq!(expanded(src, 0, Derivation::Dfs), "F+X\n");
+    assert_eq!(expanded(src, 1, Derivation::Dfs), "FF+F-X\n");
+    assert_eq!(expanded(src, 2, Derivation::Dfs), "FFFF+FF-F-X\n");
+    assert_eq!(expanded(src, 2, Derivation::Bfs), "FFFF+FF-F-X\n");
 }
 
 #[test]
 fn segments_by_hand() {
     // `F+F` at 90 degrees: up one, turn left, then one step left (canvas: y down).
-    let segs = segments("axiom F+F\nangle 90\nlength 2\n", 0, Strategy::Dfs);
+    let segs = segments("axiom F+F\nangle 90\nlength 2\n", 0, Derivation::Dfs);
     let p = Point::new;
     assert_eq!(
         segs,
@@ -295,7 +294,7 @@ fn segments_by_hand() {
         ]
     );
     // `heading 0`: the same word starts to the right, then turns up.
-    let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Strategy::Bfs);
+    let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Derivation::Bfs);
     assert_eq!(
         segs,
         vec![
@@ -313,14 +312,14 @@ fn segments_by_hand() {
     );
     // `heading 180` with `|`: left, then turned around, back right.
     assert_eq!(
-        segments("axiom F|F\nangle 90\nheading 180\n", 0, Strategy::Dfs)
+        segments("axiom F|F\nangle 90\nheading 180\n", 0, Derivation::Dfs)
             .iter()
             .map(|s| s.to)
             .collect::<Vec<_>>(),
         [p(-1.0, 0.0), p(0.0, 0.0)]
     );
     // `F[-F]|F` one level down from `X`: a right branch, then back down.
-    let segs = segments("axiom X\nrule X F[-F]|F\nangle 90\n", 1, Strategy::Dfs);
+    let segs = segments("axiom X\nrule X F[-F]|F\nangle 90\n", 1, Derivation::Dfs);
     assert_eq!(
         segs,
         vec![
@@ -371,7 +370,7 @@ fn table_3_of_000_corrected() {
     for (level, &want) in truth.iter().enumerate() {
         let n = level as u32 + 1;
         assert_eq!((5u64.pow(n + 1) - 3) / 2, want);
-        let word = expanded(TREE1, n, Strategy::Bfs);
+        let word = expanded(TREE1, n, Derivation::Bfs);
         assert_eq!(word.len() as u64 - 1, want, "level {level}");
         let st = stats(&sys(TREE1), n, &Limits::default()).unwrap();
         assert_eq!(st.length, big(want));
@@ -417,7 +416,7 @@ fn koch_snowflake_segments_end_and_box() {
     // Heading after the word: every `F+F--F+F` turns 0, the axiom -4 * 60:
     // 90 - 240 = -150 = 210 degrees. Check with one extra F at the end.
     let src = "axiom F--F--FA\nrule F F+F--F+F\nrule A F\nangle 60\n";
-    let segs = segments(src, 3, Strategy::Dfs);
+    let segs = segments(src, 3, Derivation::Dfs);
     let last = segs.last().unwrap();
     let (dx, dy) = (last.to.x - last.from.x, last.to.y - last.from.y);
     let a210 = 210f64.to_radians();
@@ -440,7 +439,7 @@ fn sierpinski_arrowhead_counts() {
             );
             if n <= 6 {
                 assert_eq!(
-                    segments(&src, n, Strategy::Dfs).len() as i64,
+                    segments(&src, n, Derivation::Dfs).len() as i64,
                     3i64.pow(n) - 1 + extra
                 );
             }
@@ -457,7 +456,7 @@ fn bfs_refuses_over_the_word_budget() {
     let s = sys(TREE1);
     let mut rec = Recorder::default();
     // Depth 4: 1561 symbols > 1000.
-    let err = draw_into(&s, 4, Strategy::Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
+    let err = draw_into(&s, 4, Derivation::Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
     assert_eq!(
         err.first_kind(),
         Some(&ErrorKind::Limit {
@@ -469,13 +468,13 @@ fn bfs_refuses_over_the_word_budget() {
     assert!(err.0[0].help.as_deref().unwrap().contains("--max-word"));
     assert!(rec.segments.is_empty());
     // dfs holds no word: fine.
-    draw_into(&s, 4, Strategy::Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
+    draw_into(&s, 4, Derivation::Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     assert_eq!(rec.segments.len(), 625);
     // Depth 57 with bfs: refused with the exact length, no attempt to allocate.
     let err = draw_into(
         &s,
         57,
-        Strategy::Bfs,
+        Derivation::Bfs,
         &Limits::default(),
         &mut rec,
         &mut NoProgress,
@@ -498,7 +497,7 @@ fn both_strategies_refuse_over_max_symbols_and_max_depth() {
         ..Limits::default()
     };
     let s = sys(TREE1);
-    for strategy in [Strategy::Dfs, Strategy::Bfs] {
+    for strategy in [Derivation::Dfs, Derivation::Bfs] {
         let mut rec = Recorder::default();
         assert!(draw_into(&s, 3, strategy, &limits, &mut rec, &mut NoProgress).is_ok());
         let err = draw_into(&s, 4, strategy, &limits, &mut rec, &mut NoProgress).unwrap_err();
@@ -548,7 +547,7 @@ fn broken_pipe_has_its_own_kind() {
     let err = expand(
         &sys(TREE1),
         8,
-        Strategy::Dfs,
+        Derivation::Dfs,
         &Limits::default(),
         &mut Closed,
         &mut NoProgress,
@@ -605,10 +604,10 @@ proptest! {
                 src.push_str(&format!("rule {pred} -> {succ}\n"));
             }
         }
-        let dfs = segments(&src, depth, Strategy::Dfs);
-        let bfs = segments(&src, depth, Strategy::Bfs);
+        let dfs = segments(&src, depth, Derivation::Dfs);
+        let bfs = segments(&src, depth, Derivation::Bfs);
         prop_assert_eq!(&dfs, &bfs, "{}", src);
-        prop_assert_eq!(expanded(&src, depth, Strategy::Dfs), expanded(&src, depth, Strategy::Bfs));
+        prop_assert_eq!(expanded(&src, depth, Derivation::Dfs), expanded(&src, depth, Derivation::Bfs));
     }
 }
 
@@ -627,8 +626,8 @@ fn every_example_parses_and_draws_the_same_both_ways() {
         let lim = Limits::default();
         let mut a = Recorder::default();
         let mut b = Recorder::default();
-        draw_into(&s, depth, Strategy::Dfs, &lim, &mut a, &mut NoProgress).unwrap();
-        draw_into(&s, depth, Strategy::Bfs, &lim, &mut b, &mut NoProgress).unwrap();
+        draw_into(&s, depth, Derivation::Dfs, &lim, &mut a, &mut NoProgress).unwrap();
+        draw_into(&s, depth, Derivation::Bfs, &lim, &mut b, &mut NoProgress).unwrap();
         assert!(!a.segments.is_empty(), "{path:?}");
         assert_eq!(a, b, "{path:?}");
         seen += 1;
@@ -655,7 +654,11 @@ fn hilbert_and_stl_fig4_counts() {
         );
     }
     // 003 Fig. 4 at depth 1: F[-F]F[+F]F, 30 degrees, by hand.
-    let segs = segments("axiom F\nrule F F[-F]F[+F]F\nangle 30\n", 1, Strategy::Dfs);
+    let segs = segments(
+        "axiom F\nrule F F[-F]F[+F]F\nangle 30\n",
+        1,
+        Derivation::Dfs,
+    );
     assert_eq!(segs.len(), 5);
     let (s30, c30) = (0.5, 3f64.sqrt() / 2.0);
     let want = [

@@ -10,12 +10,10 @@ use std::path::PathBuf;
 
 use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind};
-use stlc::interpret::{Interp, Op, StemLength};
+use stlc::num::Linear;
 use stlc::progress::{NoProgress, Progress};
-use stlc::render::{
-    self, DEFAULT_SIDE, Fill, Fit, ImageFormat, PngTurtle, RenderOptions, Style, Width,
-};
-use stlc::turtle::{BBox, Point, Segment, Turtle};
+use stlc::render::{self, DEFAULT_SIDE, Fit, ImageFormat, PngTurtle, RenderOptions, Style, Width};
+use stlc::turtle::{BBox, Fill, Interp, Op, Point, Segment, Turtle};
 use tiny_skia::Pixmap;
 
 // ---------------------------------------------------------------------------
@@ -36,7 +34,7 @@ fn ops(text: &str) -> Vec<Op> {
 /// Runs `ops` from the origin with unit-length stems (minus `decrement` per
 /// order).
 fn run(ops: &[Op], angle: f64, decrement: f64, turtle: &mut dyn Turtle) {
-    let length = StemLength {
+    let length = Linear {
         base: 1.0,
         decrement,
     };
@@ -261,13 +259,7 @@ fn unit_square_svg_matches_its_golden() {
 
 #[test]
 fn svg_is_well_formed_and_byte_deterministic() {
-    let st = style(
-        Width::Canvas {
-            base: 0.3,
-            decrement: 0.1,
-        },
-        Some(Rgb::WHITE),
-    );
+    let st = style(Width::Canvas(Linear::new(0.3, 0.1)), Some(Rgb::WHITE));
     let a = render_full(TREE, 30.0, 0.2, None, &[], &st, ImageFormat::Svg, None).unwrap();
     let b = render_full(TREE, 30.0, 0.2, None, &[], &st, ImageFormat::Svg, None).unwrap();
     assert_eq!(a, b);
@@ -372,13 +364,7 @@ fn canvas_widths_thin_with_order() {
         max_x: 8.0,
         max_y: 2.0,
     };
-    let st = style(
-        Width::Canvas {
-            base: 3.0,
-            decrement: 1.0,
-        },
-        Some(Rgb::WHITE),
-    );
+    let st = style(Width::Canvas(Linear::new(3.0, 1.0)), Some(Rgb::WHITE));
     let png = render_full(
         "FF-fff+{{F}}",
         90.0,
@@ -403,13 +389,7 @@ fn canvas_widths_thin_with_order() {
 
 #[test]
 fn widths_below_zero_still_draw_hairlines() {
-    let st = style(
-        Width::Canvas {
-            base: 1.0,
-            decrement: 2.0,
-        },
-        Some(Rgb::WHITE),
-    );
+    let st = style(Width::Canvas(Linear::new(1.0, 2.0)), Some(Rgb::WHITE));
     let png = render_full(
         "{{-F}}",
         90.0,
@@ -432,13 +412,7 @@ fn widths_below_zero_still_draw_hairlines() {
 
 #[test]
 fn tree_png_matches_its_reference() {
-    let st = style(
-        Width::Canvas {
-            base: 0.12,
-            decrement: 0.04,
-        },
-        Some(Rgb::WHITE),
-    );
+    let st = style(Width::Canvas(Linear::new(0.12, 0.04)), Some(Rgb::WHITE));
     let png = render_full(
         TREE,
         30.0,
@@ -489,7 +463,7 @@ fn underlay_is_even_odd_and_under_the_strokes() {
     };
     let ops = ops("F");
     let draw = |t: &mut dyn Turtle| {
-        let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, StemLength::constant(1.0));
+        let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, Linear::constant(1.0));
         for &op in &ops {
             interp.apply(op);
         }
@@ -578,13 +552,7 @@ fn png_and_svg_agree() {
 
 #[test]
 fn empty_and_single_point_drawings_give_valid_images() {
-    let st = style(
-        Width::Canvas {
-            base: 1.0,
-            decrement: 0.0,
-        },
-        Some(Rgb::WHITE),
-    );
+    let st = style(Width::Canvas(Linear::new(1.0, 0.0)), Some(Rgb::WHITE));
     // Nothing drawn: no ops, a move only, turns only.
     for text in ["", "f", "+-"] {
         for format in [ImageFormat::Png, ImageFormat::Svg] {

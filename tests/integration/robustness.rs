@@ -12,10 +12,10 @@ use std::time::{Duration, Instant};
 use stlc::bed::validate;
 use stlc::bed::write::write;
 use stlc::diag::{Diagnostics, ErrorKind};
-use stlc::interpret::Strategy;
+use stlc::interpret::Derivation;
 use stlc::limits::Limits;
+use stlc::model::{Description, Format, Shape};
 use stlc::progress::NoProgress;
-use stlc::syntax::ast::{Description, Format, Shape};
 use stlc::syntax::{lsys, precheck, stl};
 use stlc::turtle::{Bounds, Counter};
 
@@ -119,7 +119,7 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     );
     let counts = small_stack(30, move || {
         let sys = lsys::parse(&src, &limits).expect("parses");
-        [Strategy::Dfs, Strategy::Bfs].map(|s| {
+        [Derivation::Dfs, Derivation::Bfs].map(|s| {
             let mut c = Counter::default();
             stlc::interpret::lsys::draw(&sys, 1, s, &limits, &mut c, &mut NoProgress)
                 .expect("draws");
@@ -189,7 +189,10 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     let count = small_stack(30, move || {
         let d = stl::parse(&body, Format::Bed, &limits).expect("a deep branch parses");
         let mut c = Counter::default();
-        stlc::interpret::bed::draw(&d, Strategy::Dfs, &limits, &mut c, &mut NoProgress)
+        stlc::bed::Bed::new(d.clone(), &limits)
+            .and_then(|bed| {
+                stlc::interpret::bed::draw(&bed, Derivation::Dfs, &limits, &mut c, &mut NoProgress)
+            })
             .expect("draws");
         c.0
     });
@@ -231,10 +234,16 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         validate(&d, &limits).expect("valid");
         let text = write(&d);
         let mut c = Counter::default();
-        stlc::interpret::bed::draw(&d, Strategy::Dfs, &limits, &mut c, &mut NoProgress)
+        stlc::bed::Bed::new(d.clone(), &limits)
+            .and_then(|bed| {
+                stlc::interpret::bed::draw(&bed, Derivation::Dfs, &limits, &mut c, &mut NoProgress)
+            })
             .expect("draws");
         let mut b = Counter::default();
-        stlc::interpret::bed::draw(&d, Strategy::Bfs, &limits, &mut b, &mut NoProgress)
+        stlc::bed::Bed::new(d.clone(), &limits)
+            .and_then(|bed| {
+                stlc::interpret::bed::draw(&bed, Derivation::Bfs, &limits, &mut b, &mut NoProgress)
+            })
             .expect("draws");
         assert_eq!(b.0, c.0);
         let back = stl::parse(&text, Format::Bed, &limits).expect("reparses");
@@ -259,7 +268,7 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         let shown = format!("{d:#?}");
         assert_eq!(
             shown.matches("Term {").count(),
-            stlc::syntax::ast::DEBUG_DEPTH + 1
+            stlc::model::DEBUG_DEPTH + 1
         );
         drop((d, copy, back, deeper));
         (c.0, text.len())
@@ -312,14 +321,17 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
     let d = bed(&format!("{HEAD} R1: [+F][-F] SEED [I 40 R1] ENDSEED"));
     let e = small_stack(10, move || {
         let mut c = Counter::default();
-        stlc::interpret::bed::draw(
-            &d,
-            Strategy::Dfs,
-            &Limits::default(),
-            &mut c,
-            &mut NoProgress,
-        )
-        .unwrap_err()
+        stlc::bed::Bed::new(d.clone(), &Limits::default())
+            .and_then(|bed| {
+                stlc::interpret::bed::draw(
+                    &bed,
+                    Derivation::Dfs,
+                    &Limits::default(),
+                    &mut c,
+                    &mut NoProgress,
+                )
+            })
+            .unwrap_err()
     });
     assert!(is_limit(&e, "symbols in the expansion"), "{e}");
 }
@@ -332,7 +344,7 @@ fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
         stlc::interpret::lsys::draw(
             &sys,
             10_000,
-            Strategy::Dfs,
+            Derivation::Dfs,
             &Limits::default(),
             &mut c,
             &mut NoProgress,
@@ -364,7 +376,7 @@ fn a_wide_alphabet_at_the_depth_limit_is_refused_quickly_in_bounded_memory() {
         stlc::interpret::lsys::draw(
             &sys,
             10_000,
-            Strategy::Dfs,
+            Derivation::Dfs,
             &limits,
             &mut c,
             &mut NoProgress,
@@ -516,14 +528,17 @@ fn a_layout_whose_shapes_cancel_is_read_and_drawn() {
     let d = bed(&src);
     assert_eq!(d.layout.as_ref().unwrap().shapes.len(), 2);
     let mut b = Bounds::default();
-    stlc::interpret::bed::draw(
-        &d,
-        Strategy::Dfs,
-        &Limits::default(),
-        &mut b,
-        &mut NoProgress,
-    )
-    .unwrap();
+    stlc::bed::Bed::new(d.clone(), &Limits::default())
+        .and_then(|bed| {
+            stlc::interpret::bed::draw(
+                &bed,
+                Derivation::Dfs,
+                &Limits::default(),
+                &mut b,
+                &mut NoProgress,
+            )
+        })
+        .unwrap();
     assert_eq!(b.count, 1);
 }
 
@@ -666,7 +681,7 @@ fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
     });
     assert!(g.stems >= 1);
     // What it grew is a valid BED that reads back.
-    let text = write(&g.bed);
+    let text = write(g.bed.description());
     let back = bed(&text);
     validate(&back, &Limits::default()).expect("valid");
 }

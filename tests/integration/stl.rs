@@ -4,18 +4,20 @@
 //! of a turtle turning by right angles), never copied from the output.
 
 use proptest::prelude::*;
+use stlc::bed::Bed;
 use stlc::bed::validate;
 use stlc::bed::write::write;
 use stlc::color::Rgb;
 use stlc::diag::{Diagnostics, ErrorKind};
-use stlc::interpret::Strategy;
+use stlc::interpret::Derivation;
 use stlc::interpret::bed::{draw_into, expand};
 use stlc::limits::Limits;
-use stlc::progress::NoProgress;
-use stlc::syntax::ast::{
+use stlc::model::{
     Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, Loc, Piece,
     Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Slot, Spelling, StemParams, Term,
 };
+use stlc::num::Linear;
+use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
 use stlc::turtle::{Point, Recorder, Segment};
 
@@ -53,15 +55,24 @@ fn at(src: &str, needle: &str, n: usize) -> std::ops::Range<usize> {
     start..start + needle.len()
 }
 
-fn expanded(d: &Description, strategy: Strategy) -> String {
+fn expanded(d: &Description, strategy: Derivation) -> String {
     let mut out = Vec::new();
-    expand(d, strategy, &Limits::default(), &mut out, &mut NoProgress).unwrap();
+    let bed = Bed::new(d.clone(), &Limits::default()).unwrap();
+    expand(
+        &bed,
+        strategy,
+        &Limits::default(),
+        &mut out,
+        &mut NoProgress,
+    )
+    .unwrap();
     String::from_utf8(out).unwrap()
 }
 
-fn segments(d: &Description, strategy: Strategy) -> Result<Vec<Segment>, Diagnostics> {
+fn segments(d: &Description, strategy: Derivation) -> Result<Vec<Segment>, Diagnostics> {
+    let bed = Bed::new(d.clone(), &Limits::default())?;
     draw_into(
-        d,
+        &bed,
         strategy,
         &Limits::default(),
         Recorder::default(),
@@ -81,7 +92,12 @@ fn the_papers_2dtree_parses_as_written() {
     assert_eq!(d.root, (76.0, 150.0));
     let p = &d.params;
     assert_eq!(
-        (p.length, p.length_dec, p.width, p.width_dec),
+        (
+            p.length.base,
+            p.length.decrement,
+            p.width.base,
+            p.width.decrement
+        ),
         (10.0, 0.0, 1.0, 0.0)
     );
     assert_eq!((p.angle, p.clearance), (None, None));
@@ -127,7 +143,7 @@ fn the_papers_worked_expansion() {
     let d = bed("Rn (0, 0) L=10(0) B=1(0)
         RULE R1 = [F][+F][-F]  R2 = [++F][-F]
         SEED R1{R1{,,},R2{,},R1{,,}} ENDSEED");
-    for s in [Strategy::Dfs, Strategy::Bfs] {
+    for s in [Derivation::Dfs, Derivation::Bfs] {
         assert_eq!(
             expanded(&d, s),
             "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n"
@@ -146,7 +162,7 @@ fn seed_r1r2r2_is_split_by_longest_match() {
     for item in &seed.items {
         assert!(matches!(item, SeedItem::Term(t) if !t.bare && t.slots == vec![None]));
     }
-    for s in [Strategy::Dfs, Strategy::Bfs] {
+    for s in [Derivation::Dfs, Derivation::Bfs] {
         assert_eq!(expanded(&d, s), "[FFF][F[+F][-F]F][F[+F][-F]F]\n");
     }
 }
@@ -157,22 +173,22 @@ fn longest_match_prefers_the_longer_name() {
     let items = &d.seed.as_ref().unwrap().items;
     assert!(matches!(&items[1], SeedItem::Term(t) if t.rule == RuleId(1)));
     assert!(matches!(&items[2], SeedItem::Term(t) if t.rule == RuleId(0)));
-    assert_eq!(expanded(&d, Strategy::Dfs), "F[+F][F]\n");
+    assert_eq!(expanded(&d, Derivation::Dfs), "F[+F][F]\n");
 }
 
 #[test]
 fn self_resemblance_counts_in_both_forms() {
     // [I 2 R1] = R1{R1{,},R1{,}}
     let d = bed(&format!("{HEAD} R1=[F][+F] SEED [I 2 R1] ENDSEED"));
-    assert_eq!(expanded(&d, Strategy::Dfs), "[F[F][+F]][+F[F][+F]]\n");
-    assert_eq!(expanded(&d, Strategy::Bfs), "[F[F][+F]][+F[F][+F]]\n");
+    assert_eq!(expanded(&d, Derivation::Dfs), "[F[F][+F]][+F[F][+F]]\n");
+    assert_eq!(expanded(&d, Derivation::Bfs), "[F[F][+F]][+F[F][+F]]\n");
     // [I 1 w] is w; [I 2 w] rewrites each F of w by w once.
     let d = bed(&format!(
         "{HEAD} R1=[F] SEED [I 1 F+F] f [I 2 F[+F]F] ENDSEED"
     ));
     let want = "F+Ff F[+F]F[+F[+F]F]F[+F]F\n".replace(' ', "");
-    assert_eq!(expanded(&d, Strategy::Dfs), want);
-    assert_eq!(expanded(&d, Strategy::Bfs), want);
+    assert_eq!(expanded(&d, Derivation::Dfs), want);
+    assert_eq!(expanded(&d, Derivation::Bfs), want);
 }
 
 #[test]
@@ -186,7 +202,7 @@ fn trunk_and_successor_names_in_bodies() {
     assert!(
         matches!(&b[1], BodyItem::Branch(br) if br.successor.as_ref().map(|s| s.rule) == Some(RuleId(1)))
     );
-    assert_eq!(expanded(&d, Strategy::Dfs), "F[+F[F]][-F]\n");
+    assert_eq!(expanded(&d, Derivation::Dfs), "F[+F[F]][-F]\n");
 }
 
 #[test]
@@ -206,8 +222,8 @@ fn segments_have_hand_computed_coordinates_and_orders() {
         seg(-8.0, -18.0, -14.0, -18.0, 2),  // the inner R1's trunk, still left
         seg(-14.0, -18.0, -14.0, -12.0, 2), // its branch, turned left again: down
     ];
-    assert_eq!(segments(&d, Strategy::Dfs).unwrap(), want);
-    assert_eq!(segments(&d, Strategy::Bfs).unwrap(), want);
+    assert_eq!(segments(&d, Derivation::Dfs).unwrap(), want);
+    assert_eq!(segments(&d, Derivation::Bfs).unwrap(), want);
 }
 
 #[test]
@@ -215,7 +231,7 @@ fn the_root_and_default_angle_are_used() {
     // A defaults to 30: a left turn then F from (100, 50) goes to
     // (100 - 10 sin 30, 50 - 10 cos 30).
     let d = bed("T (100, 50) L=10(0) B=1(0) RULE R1: [+F] SEED R1 ENDSEED");
-    let s = segments(&d, Strategy::Dfs).unwrap();
+    let s = segments(&d, Derivation::Dfs).unwrap();
     assert_eq!(s.len(), 1);
     assert_eq!(s[0].from, Point::new(100.0, 50.0));
     assert!((s[0].to.x - 95.0).abs() < 1e-12);
@@ -475,7 +491,7 @@ fn validate_refuses_orders_without_length() {
     let src = "T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED";
     assert_eq!(e.0[0].span, Some(at(src, inner, 0)));
     // ... and so does drawing.
-    assert!(segments(&d, Strategy::Dfs).is_err());
+    assert!(segments(&d, Derivation::Dfs).is_err());
 }
 
 #[test]
@@ -497,25 +513,31 @@ fn bfs_refuses_words_over_the_limit() {
         max_word: 100,
         ..Limits::default()
     };
-    let e = draw_into(
-        &d,
-        Strategy::Bfs,
-        &limits,
-        Recorder::default(),
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let e = stlc::bed::Bed::new(d.clone(), &limits)
+        .and_then(|bed| {
+            draw_into(
+                &bed,
+                Derivation::Bfs,
+                &limits,
+                Recorder::default(),
+                &mut NoProgress,
+            )
+        })
+        .unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
     assert!(e.0[0].help.as_deref().unwrap_or("").contains("--max-word"));
     // dfs needs no word.
-    let r = draw_into(
-        &d,
-        Strategy::Dfs,
-        &limits,
-        Recorder::default(),
-        &mut NoProgress,
-    )
-    .unwrap();
+    let r = stlc::bed::Bed::new(d.clone(), &limits)
+        .and_then(|bed| {
+            draw_into(
+                &bed,
+                Derivation::Dfs,
+                &limits,
+                Recorder::default(),
+                &mut NoProgress,
+            )
+        })
+        .unwrap();
     assert_eq!(r.segments.len(), 2 * 255);
 }
 
@@ -602,12 +624,14 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         assert_eq!(bed(&text), d);
         let limits = Limits::default();
         let mut out = Vec::new();
-        expand(&d, Strategy::Dfs, &limits, &mut out, &mut NoProgress).unwrap();
+        stlc::bed::Bed::new(d.clone(), &limits)
+            .and_then(|bed| expand(&bed, Derivation::Dfs, &limits, &mut out, &mut NoProgress))
+            .unwrap();
         assert_eq!(out.len(), 3 * n + 1);
         assert!(out.starts_with(b"[F[F"));
         // bfs rewrites the whole word once per level (quadratic here), so
         // it is compared on the first 500 levels only.
-        assert_eq!(segments(&d, Strategy::Dfs).unwrap().len(), n);
+        assert_eq!(segments(&d, Derivation::Dfs).unwrap().len(), n);
         let m = 500;
         let src = format!(
             "{HEAD} R1: [F] SEED {}{} ENDSEED",
@@ -616,8 +640,8 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         );
         let small = bed(&src);
         assert_eq!(
-            segments(&small, Strategy::Bfs).unwrap(),
-            segments(&small, Strategy::Dfs).unwrap()
+            segments(&small, Derivation::Bfs).unwrap(),
+            segments(&small, Derivation::Dfs).unwrap()
         );
         drop(d);
     });
@@ -876,10 +900,8 @@ fn gen_description(seed: u64) -> Description {
         root: (g.milli(-100, 100), g.milli(-100, 100)),
         root_loc: Loc::default(),
         params: StemParams {
-            length: g.milli(20, 100),
-            length_dec: g.milli(0, 2),
-            width: g.milli(1, 10),
-            width_dec: if g.chance(50) { 0.0 } else { 0.125 },
+            length: Linear::new(g.milli(20, 100), g.milli(0, 2)),
+            width: Linear::new(g.milli(1, 10), if g.chance(50) { 0.0 } else { 0.125 }),
             angle: g.chance(50).then(|| g.milli(0, 90)),
             clearance: g.chance(50).then(|| g.milli(0, 5)),
             loc: Loc::default(),
@@ -911,11 +933,11 @@ proptest! {
     #[test]
     fn dfs_and_bfs_draw_the_same(seed in any::<u64>()) {
         let d = gen_description(seed);
-        let a = segments(&d, Strategy::Dfs);
-        let b = segments(&d, Strategy::Bfs);
+        let a = segments(&d, Derivation::Dfs);
+        let b = segments(&d, Derivation::Bfs);
         prop_assert_eq!(&a, &b);
         if a.is_ok() {
-            prop_assert_eq!(expanded(&d, Strategy::Dfs), expanded(&d, Strategy::Bfs));
+            prop_assert_eq!(expanded(&d, Derivation::Dfs), expanded(&d, Derivation::Bfs));
         }
     }
 }
@@ -926,12 +948,12 @@ fn the_example_files_parse_and_expand_as_the_paper_says() {
     let read = |n: &str| std::fs::read_to_string(dir.join(n)).unwrap();
     let d = bed(&read("paper-worked.bed"));
     assert_eq!(
-        expanded(&d, Strategy::Dfs),
+        expanded(&d, Derivation::Dfs),
         "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n"
     );
     let d = bed(&read("seed-r1r2r2.bed"));
     assert_eq!(
-        expanded(&d, Strategy::Bfs),
+        expanded(&d, Derivation::Bfs),
         "[FFF][F[+F][-F]F][F[+F][-F]F]\n"
     );
     let od = parse(&read("2dtree.od"), Format::Od, &Limits::default()).unwrap();

@@ -1,8 +1,9 @@
 //! The turtle: where drawing components end up.
 //!
-//! Interpretation (`interpret`) keeps the turtle *state* (position, heading,
-//! stack) and hands every drawn stem to a [`Turtle`] backend as a
-//! [`Segment`]. Backends: [`Recorder`] (segment lists, for tests),
+//! The turtle state machine ([`Interp`], in `interp.rs`) keeps the turtle
+//! *state* (position, heading, stack), applies [`Op`]s and hands every drawn
+//! stem to a [`Turtle`] backend as a [`Segment`]. [`Fill`]s are the areas a
+//! backend paints under the drawing (layout shapes). Backends: [`Recorder`] (segment lists, for tests),
 //! [`Bounds`] (the first, bounding pass: 000's `GetCurveSize`), and the PNG and
 //! SVG backends in `render`.
 //!
@@ -15,6 +16,21 @@
 //! direction of a heading comes from [`Headings::dir`], a pure function of
 //! `(k, flip)` computed with `libm` and cached, so every strategy that issues
 //! the same operations computes bit-identical positions.
+
+mod interp;
+
+pub use interp::{Interp, Op, State};
+
+use crate::color::Rgb;
+
+/// A filled area painted under the drawing (a layout shape).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fill {
+    /// Fill colour.
+    pub color: Rgb,
+    /// Closed rings, canvas units; filled with the even-odd rule.
+    pub rings: Vec<Vec<Point>>,
+}
 
 /// A point in canvas units.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -1,0 +1,88 @@
+//! The layout as written: shapes painted in order on a white canvas.
+//! Geometry (rings, fills, the canvas view) is [`crate::layout`].
+
+use super::Loc;
+use crate::color::Rgb;
+
+/// `LAYOUT ... ENDLAYOUT`: shapes painted in order on a white canvas.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layout {
+    /// Shapes in painting order.
+    pub shapes: Vec<LayoutShape>,
+    /// The section.
+    pub loc: Loc,
+}
+
+/// `(clGreen) RoundRect (0,0,180,192,7,7)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayoutShape {
+    /// Fill colour; white erases.
+    pub color: Rgb,
+    /// The colour as written (`clGreen`, `#00ff00`), kept for the writer.
+    pub color_text: String,
+    /// The geometry, normalised.
+    pub shape: Shape,
+    /// Which of the paper's two spellings was used (the writer keeps it).
+    pub spelling: Spelling,
+    /// Whether the paper's `< ... >` brackets were written around the shape.
+    pub angled: bool,
+    /// The whole line.
+    pub loc: Loc,
+}
+
+/// The two ways the paper writes shape arguments.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Spelling {
+    /// `Rectangle (x,y), w, h` / `RoundRect (x,y), w, h, r` (Table 1).
+    StartSize,
+    /// `Rectangle (x1,y1,x2,y2)` / `RoundRect (x1,y1,x2,y2,rx,ry)` (Delphi's
+    /// `TCanvas` arguments: two corners, then the corner ellipse's size).
+    Corners,
+    /// `Polygon (x1,y1), (x2,y2), ...`.
+    Points,
+}
+
+/// Layout geometry in canvas units, normalised: `(x, y)` is the top-left
+/// corner, `w` and `h` are positive.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// An axis-aligned rectangle.
+    Rect {
+        /// Left.
+        x: f64,
+        /// Top.
+        y: f64,
+        /// Width.
+        w: f64,
+        /// Height.
+        h: f64,
+    },
+    /// A rectangle with elliptic corners of radii `rx`, `ry`.
+    RoundRect {
+        /// Left.
+        x: f64,
+        /// Top.
+        y: f64,
+        /// Width.
+        w: f64,
+        /// Height.
+        h: f64,
+        /// Corner radius along x (half Delphi's ellipse width).
+        rx: f64,
+        /// Corner radius along y.
+        ry: f64,
+    },
+    /// The ellipse inscribed in the box.
+    Ellipse {
+        /// Left.
+        x: f64,
+        /// Top.
+        y: f64,
+        /// Width.
+        w: f64,
+        /// Height.
+        h: f64,
+    },
+    /// A closed polygon (at least 3 points, in written order).
+    Polygon(Vec<(f64, f64)>),
+}

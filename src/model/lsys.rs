@@ -1,0 +1,76 @@
+//! Classic 0L-systems (the `.lsys` key-value format of 002 section 3.5),
+//! rewritten in parallel.
+
+use std::collections::BTreeMap;
+
+use super::Loc;
+use crate::color::Rgb;
+
+/// The first heading when a file gives no `heading`: up the canvas, in
+/// degrees counter-clockwise from the canvas's right (the turtle's own
+/// default, [`crate::turtle::UP`]).
+pub const DEFAULT_HEADING: f64 = 90.0;
+
+/// A classic 0L-system, read from a `.lsys` file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LSystem {
+    /// The start word.
+    pub axiom: Vec<char>,
+    /// Where the axiom is.
+    pub axiom_loc: Loc,
+    /// Productions: symbol to successor word. Symbols without one stay.
+    pub rules: BTreeMap<char, Production>,
+    /// `generations N`, if given (`--depth` overrides it).
+    pub generations: Option<u32>,
+    /// `angle DEGREES`.
+    pub angle: f64,
+    /// `heading DEGREES`: the first heading, counter-clockwise from the
+    /// canvas's right (default 90, up the canvas).
+    pub heading: f64,
+    /// `length L`: step length in canvas units (default 1).
+    pub length: f64,
+    /// `width W`: stroke width in output pixels (default 1).
+    pub width: f64,
+    /// `color C`: stroke colour (default black).
+    pub color: Option<Rgb>,
+    /// `background C`: canvas colour (default white; `none` for transparent).
+    pub background: Background,
+}
+
+/// One production `X -> successor`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Production {
+    /// The successor word.
+    pub successor: Vec<char>,
+    /// Where the `rule` line is.
+    pub loc: Loc,
+}
+
+/// The canvas colour of a drawing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Background {
+    /// White (the default).
+    #[default]
+    White,
+    /// Transparent.
+    None,
+    /// A colour.
+    Color(Rgb),
+}
+
+impl LSystem {
+    /// The successor of `c`, if it has a rule.
+    pub fn successor(&self, c: char) -> Option<&[char]> {
+        self.rules.get(&c).map(|p| p.successor.as_slice())
+    }
+
+    /// Every symbol of the system (axiom, predecessors, successors), sorted.
+    pub fn alphabet(&self) -> Vec<char> {
+        let mut set: std::collections::BTreeSet<char> = self.axiom.iter().copied().collect();
+        for (c, p) in &self.rules {
+            set.insert(*c);
+            set.extend(p.successor.iter().copied());
+        }
+        set.into_iter().collect()
+    }
+}

@@ -1,0 +1,269 @@
+//! The model: what stlc's inputs mean, independent of how they are spelled.
+//!
+//! [`syntax`](crate::syntax) produces these types; [`grow`](crate::grow),
+//! [`bed`](crate::bed), [`interpret`](crate::interpret) and
+//! [`render`](crate::render) consume them.
+//!
+//! - [`Description`]: an Outline Description (`.od`) or a Branch-Expansion
+//!   Description (`.bed`) after name resolution. A BED is a description whose
+//!   seed holds its growth decisions written out; [`crate::bed::Bed`] is the
+//!   validated, measured form the renderer takes.
+//! - [`term`]: branch-expansion terms, the recursive part of a seed.
+//! - [`layout`]: the layout shapes as written.
+//! - [`walk`]: the one walk over a rule body's steps and the one expander
+//!   of fixed figures `[I n w]`, used by every pass.
+//! - [`lsys`]: classic L-systems.
+//!
+//! Every node keeps the byte span of its text in a [`Loc`]; locations never
+//! take part in equality, so `parse(write(x)) == x` can be tested. Numbers
+//! are `f64` as written; the writer prints them with at most three decimals.
+
+pub mod layout;
+pub mod lsys;
+pub mod term;
+pub mod walk;
+
+pub use layout::{Layout, LayoutShape, Shape, Spelling};
+pub use term::{DEBUG_DEPTH, Repeat, Slot, Term};
+
+use crate::diag::Span;
+use crate::num::Linear;
+
+/// A byte span that every comparison ignores.
+#[derive(Debug, Clone, Default)]
+pub struct Loc(pub Span);
+
+impl PartialEq for Loc {
+    fn eq(&self, _other: &Self) -> bool {
+        true
+    }
+}
+
+impl From<Span> for Loc {
+    fn from(s: Span) -> Self {
+        Loc(s)
+    }
+}
+
+/// Which of the two STL formats a description came from (or goes to).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Outline Description: rule references in the seed are growth points.
+    Od,
+    /// Branch-Expansion Description: every decision written out.
+    Bed,
+}
+
+/// A whole `.od` or `.bed` file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Description {
+    /// Which format it was read as.
+    pub format: Format,
+    /// Tree name (`2DTree`).
+    pub name: String,
+    /// Where the name is.
+    pub name_loc: Loc,
+    /// Root coordinate, canvas units.
+    pub root: (f64, f64),
+    /// Where the root is.
+    pub root_loc: Loc,
+    /// Stem parameters.
+    pub params: StemParams,
+    /// Growth rules, in declaration order; [`RuleId`] indexes this.
+    pub rules: Vec<RuleDef>,
+    /// The seed as written, `None` if the file has no `SEED` section (then
+    /// the seed is `F` followed by the first rule: see [`Description::effective_seed`]).
+    pub seed: Option<Seed>,
+    /// The layout, if any.
+    pub layout: Option<Layout>,
+}
+
+/// `L=10(0) B=1(0) A=30 C=1`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StemParams {
+    /// `L(dL)`: segment length at order 0 and its decrement per order.
+    pub length: Linear,
+    /// `B(dB)`: stroke width (broadness) at order 0 and its decrement.
+    pub width: Linear,
+    /// `A`: turning angle in degrees (ours; default 30), `None` if not written.
+    pub angle: Option<f64>,
+    /// `C`: clearance between stems (ours), `None` if not written.
+    pub clearance: Option<f64>,
+    /// Where the parameters are.
+    pub loc: Loc,
+}
+
+/// Default turning angle when `A=` is not given (degrees).
+pub const DEFAULT_ANGLE: f64 = 30.0;
+
+impl StemParams {
+    /// The turning angle in force.
+    pub fn angle(&self) -> f64 {
+        self.angle.unwrap_or(DEFAULT_ANGLE)
+    }
+
+    /// Whether a stem of `order` can exist (length and width both positive).
+    pub fn can_grow_at(&self, order: u32) -> bool {
+        self.length.at(order) > 0.0 && self.width.at(order) > 0.0
+    }
+}
+
+/// Index of a rule in [`Description::rules`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct RuleId(pub usize);
+
+/// `R1: [+F][-F]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RuleDef {
+    /// The rule's name.
+    pub name: String,
+    /// Where the name is.
+    pub name_loc: Loc,
+    /// What the rule draws.
+    pub body: Body,
+    /// The whole definition.
+    pub loc: Loc,
+}
+
+impl RuleDef {
+    /// Number of branches (top-level bracket groups): the slot count of its terms.
+    pub fn branch_count(&self) -> usize {
+        self.body
+            .items
+            .iter()
+            .filter(|i| matches!(i, BodyItem::Branch(_)))
+            .count()
+    }
+}
+
+/// A rule's body: trunk pieces and branches, in written order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// The items in written order.
+    pub items: Vec<BodyItem>,
+}
+
+/// One top-level item of a rule body.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BodyItem {
+    /// Drawing components outside any branch (trunk); no brackets.
+    Draw(DrawRun),
+    /// A fixed figure `[I n w]` (classic rewriting of `F` by `w`, n times).
+    Fixed(Fixed),
+    /// A top-level bracket group: one branch, one slot.
+    Branch(Branch),
+}
+
+/// One branch: `[+F R2]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Branch {
+    /// What the branch draws (may hold nested brackets, which are drawing).
+    pub pieces: Vec<Piece>,
+    /// The rule named at the end of the branch, growing at its tip in an OD
+    /// (`None`: the enclosing rule itself, self-resemblance). Draws nothing.
+    pub successor: Option<RuleRef>,
+    /// The whole bracket group.
+    pub loc: Loc,
+}
+
+/// Drawing inside a branch.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Piece {
+    /// Drawing components, nested brackets included.
+    Draw(DrawRun),
+    /// A fixed figure `[I n w]`.
+    Fixed(Fixed),
+}
+
+/// A run of drawing components `F f + - L R [ ] |` (whitespace removed).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawRun {
+    /// The components, one char each.
+    pub text: String,
+    /// Where they are.
+    pub loc: Loc,
+}
+
+/// A reference to a rule by name, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RuleRef {
+    /// Which rule.
+    pub rule: RuleId,
+    /// Where the name is.
+    pub loc: Loc,
+}
+
+/// `[I n w]` with `w` a string of drawing components: `F` rewritten by `w`,
+/// `n` times (`[I 1 w]` draws `w`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fixed {
+    /// `n`.
+    pub count: u32,
+    /// `w`: drawing components only.
+    pub word: String,
+    /// The whole form.
+    pub loc: Loc,
+}
+
+/// The seed: what grows from the root.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Seed {
+    /// Items in written order.
+    pub items: Vec<SeedItem>,
+    /// The `SEED ... ENDSEED` section.
+    pub loc: Loc,
+}
+
+/// One item of a seed. Brackets in `Draw` runs may enclose later items
+/// (`[+F R1]` is `Draw("[+F")`, `Term(R1)`, `Draw("]")`); the seed as a whole
+/// is balanced.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SeedItem {
+    /// Drawing components.
+    Draw(DrawRun),
+    /// A fixed figure `[I n w]`.
+    Fixed(Fixed),
+    /// A branch-expansion term or a bare rule reference.
+    Term(Term),
+    /// `[I n X]` with `X` a rule.
+    Repeat(Repeat),
+}
+
+impl Description {
+    /// The rule a [`RuleId`] names.
+    pub fn rule(&self, id: RuleId) -> &RuleDef {
+        &self.rules[id.0]
+    }
+
+    /// Looks a rule up by name.
+    pub fn rule_id(&self, name: &str) -> Option<RuleId> {
+        self.rules.iter().position(|r| r.name == name).map(RuleId)
+    }
+
+    /// The seed in force: the written one, or `F` and a bare reference to
+    /// the first rule (Figure 9's `Seed(T) = FR1`). `None` if there is no
+    /// seed and no rule.
+    pub fn effective_seed(&self) -> Option<std::borrow::Cow<'_, Seed>> {
+        if let Some(s) = &self.seed {
+            return Some(std::borrow::Cow::Borrowed(s));
+        }
+        if self.rules.is_empty() {
+            return None;
+        }
+        Some(std::borrow::Cow::Owned(Seed {
+            items: vec![
+                SeedItem::Draw(DrawRun {
+                    text: "F".into(),
+                    loc: Loc::default(),
+                }),
+                SeedItem::Term(Term {
+                    rule: RuleId(0),
+                    slots: vec![None; self.rules[0].branch_count()],
+                    bare: true,
+                    loc: Loc::default(),
+                }),
+            ],
+            loc: Loc::default(),
+        }))
+    }
+}
