@@ -107,6 +107,36 @@ pub enum ErrorKind {
     // ----------------------------------------------------- render --
 
     // ------------------------------------------- pipeline and I/O --
+    /// A file's kind cannot be told from its name or its text.
+    #[error("cannot tell what kind of file `{name}` is")]
+    UnknownInputKind {
+        /// The file name as given.
+        name: String,
+    },
+    /// A command was given a kind of input it does not take (`compile` of
+    /// an `.lsys`, `stats` of an `.od`).
+    #[error("{message}")]
+    WrongInputKind {
+        /// What the command takes and what it got.
+        message: String,
+    },
+    /// An L-system has no `generations` and no `--depth` was given.
+    #[error("no derivation depth")]
+    NoDepth,
+    /// Reading standard input, `render` was not told where the picture goes.
+    #[error("no output named")]
+    NoOutput,
+    /// A PNG would be written to a terminal.
+    #[error("refusing to write a PNG to a terminal")]
+    PngToTerminal,
+    /// A colour flag names no colour.
+    #[error("{flag}: unknown colour `{text}`")]
+    UnknownColourFlag {
+        /// The flag (`--stroke`, `--background`).
+        flag: String,
+        /// What was given.
+        text: String,
+    },
 }
 
 /// The diagnostic for an I/O error while writing output: a broken pipe gets

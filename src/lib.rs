@@ -37,6 +37,7 @@ pub mod layout;
 pub mod limits;
 pub mod model;
 pub mod num;
+pub mod pipeline;
 pub mod progress;
 pub mod render;
 pub mod syntax;

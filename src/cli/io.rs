@@ -96,17 +96,6 @@ impl Output {
         }
     }
 
-    /// The output's extension, lower case, if it is a file that has one.
-    pub fn extension(&self) -> Option<String> {
-        match self {
-            Output::Stdout => None,
-            Output::Path(p) => p
-                .extension()
-                .and_then(|e| e.to_str())
-                .map(str::to_ascii_lowercase),
-        }
-    }
-
     /// Whether this is a terminal (binary output there is refused).
     pub fn is_terminal(&self) -> bool {
         matches!(self, Output::Stdout) && io::stdout().is_terminal()
