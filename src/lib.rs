@@ -28,6 +28,13 @@
 //! The library never prints and never exits: errors are data
 //! ([`diag::Diagnostics`]); the `stlc` binary renders them with ariadne.
 
+#![deny(
+    clippy::print_stdout,
+    clippy::print_stderr,
+    clippy::exit,
+    clippy::dbg_macro
+)]
+
 pub mod bed;
 pub mod color;
 pub mod diag;

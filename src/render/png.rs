@@ -142,10 +142,10 @@ impl PngTurtle {
     /// Ends the open subpath: writes the pen's pending end point, so the
     /// exact end of every run is in the path.
     fn end_subpath(&mut self) {
-        if let Some(pen) = self.pen.take() {
-            if pen.pending {
-                self.batch.line_to(pen.at.x as f32, pen.at.y as f32);
-            }
+        if let Some(pen) = self.pen.take()
+            && pen.pending
+        {
+            self.batch.line_to(pen.at.x as f32, pen.at.y as f32);
         }
     }
 

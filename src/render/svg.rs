@@ -152,10 +152,10 @@ impl<W: Write> SvgTurtle<W> {
 
     /// Writes `text` unless an earlier write failed.
     fn write(&mut self, text: &str) {
-        if self.error.is_none() {
-            if let Err(e) = self.out.write_all(text.as_bytes()) {
-                self.error = Some(e);
-            }
+        if self.error.is_none()
+            && let Err(e) = self.out.write_all(text.as_bytes())
+        {
+            self.error = Some(e);
         }
     }
 }
