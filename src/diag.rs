@@ -83,12 +83,6 @@ pub enum ErrorKind {
     /// Growth (compile) cannot proceed or was cut short.
     #[error("{0}")]
     Grow(String),
-    /// Drawing failed or cannot be done as asked.
-    #[error("{0}")]
-    Render(String),
-    /// Reading or writing a file failed.
-    #[error("{0}")]
-    Io(String),
     /// The reader of our standard output went away (`stlc expand | head`).
     /// The CLI exits quietly on it.
     #[error("broken pipe")]
@@ -105,8 +99,86 @@ pub enum ErrorKind {
     // ------------------------------------------- interpret / stats --
 
     // ----------------------------------------------------- render --
+    /// A layout's canvas is not a proper box (NaN or inverted bounds).
+    #[error("the canvas to show is not a proper box ({min_x}, {min_y}) .. ({max_x}, {max_y})")]
+    BadCanvas {
+        /// Left.
+        min_x: f64,
+        /// Top.
+        min_y: f64,
+        /// Right.
+        max_x: f64,
+        /// Bottom.
+        max_y: f64,
+    },
+    /// The drawing reaches coordinates that are infinite or NaN.
+    #[error("the drawing reaches coordinates that are not finite numbers")]
+    NotFinite,
+    /// `--size` with a zero side or a side over the maximum.
+    #[error("image size {width}x{height} is out of range: each side must be 1 to {max} pixels")]
+    ImageSize {
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+        /// Largest side allowed.
+        max: u32,
+    },
+    /// The raster could not be allocated.
+    #[error("cannot make a {width}x{height} raster")]
+    NoRaster {
+        /// Width.
+        width: u32,
+        /// Height.
+        height: u32,
+    },
+    /// PNG encoding failed.
+    #[error("cannot encode the PNG image: {error}")]
+    PngEncoding {
+        /// The encoder's message.
+        error: String,
+    },
 
     // ------------------------------------------- pipeline and I/O --
+    /// Reading the input or writing the output failed: `doing` says what
+    /// (`cannot read \`tree.od\``), `error` is the system's message.
+    #[error("{doing}: {error}")]
+    Io {
+        /// What was being done.
+        doing: String,
+        /// The operating system's message.
+        error: String,
+    },
+    /// `-o` names a directory.
+    #[error("`{path}` is a directory")]
+    IsADirectory {
+        /// The path.
+        path: String,
+    },
+    /// `-o` names a chain of symbolic links longer than the limit.
+    #[error("`{path}`: more than {hops} symbolic links in a row")]
+    TooManyLinks {
+        /// The path.
+        path: String,
+        /// The limit.
+        hops: usize,
+    },
+    /// The temporary output file could not be created.
+    #[error("cannot create a file in `{dir}`: {error}")]
+    CannotCreate {
+        /// The target's directory.
+        dir: String,
+        /// The operating system's message.
+        error: String,
+    },
+    /// The finished output could not be renamed over the target.
+    #[error("cannot replace `{path}`: {error}")]
+    CannotReplace {
+        /// The target.
+        path: String,
+        /// The operating system's message.
+        error: String,
+    },
     /// A file's kind cannot be told from its name or its text.
     #[error("cannot tell what kind of file `{name}` is")]
     UnknownInputKind {
@@ -145,7 +217,10 @@ pub fn io_error(e: &std::io::Error, doing: &str) -> Diagnostic {
     if e.kind() == std::io::ErrorKind::BrokenPipe {
         Diagnostic::error(ErrorKind::BrokenPipe)
     } else {
-        Diagnostic::error(ErrorKind::Io(format!("{doing}: {e}")))
+        Diagnostic::error(ErrorKind::Io {
+            doing: doing.to_string(),
+            error: e.to_string(),
+        })
     }
 }
 

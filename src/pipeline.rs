@@ -493,14 +493,14 @@ fn stl_summary(
     }
     match &desc.layout {
         Some(l) => {
-            let area =
-                match crate::grow::region::Region::from_layout(l, limits.max_layout_vertices) {
-                    Ok(r) => format!("{:.1} square units", r.area().unsigned_area()),
-                    Err(e) if e.iter().any(|d| matches!(d.kind, ErrorKind::Limit { .. })) => {
-                        return Err(e);
-                    }
-                    Err(_) => "empty".to_string(),
-                };
+            let area = match crate::grow::region::Region::from_layout(l, limits.max_layout_vertices)
+            {
+                Ok(r) => format!("{:.1} square units", r.area().unsigned_area()),
+                Err(e) if e.iter().any(|d| matches!(d.kind, ErrorKind::Limit { .. })) => {
+                    return Err(e);
+                }
+                Err(_) => "empty".to_string(),
+            };
             let _ = writeln!(
                 s,
                 "  layout      {} shape(s), growth area {area}",

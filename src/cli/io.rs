@@ -59,7 +59,10 @@ impl Input {
                 Input::Stdin => "cannot read standard input".to_string(),
                 Input::Path(p) => format!("cannot read `{}`", p.display()),
             };
-            let mut d = Diagnostic::error(ErrorKind::Io(format!("{what}: {e}")));
+            let mut d = Diagnostic::error(ErrorKind::Io {
+                doing: what,
+                error: e.to_string(),
+            });
             if e.kind() == io::ErrorKind::NotFound {
                 d = d.with_help("check the path; `-` reads standard input");
             }
@@ -141,10 +144,10 @@ fn resolve_links(target: &Path) -> Result<PathBuf, Diagnostics> {
             _ => return Ok(path),
         }
     }
-    Err(Diagnostic::error(ErrorKind::Io(format!(
-        "`{}`: more than {MAX_SYMLINK_HOPS} symbolic links in a row",
-        target.display()
-    )))
+    Err(Diagnostic::error(ErrorKind::TooManyLinks {
+        path: target.display().to_string(),
+        hops: MAX_SYMLINK_HOPS,
+    })
     .with_help("point -o at the file itself")
     .into())
 }
@@ -158,10 +161,9 @@ fn write_atomically(
     let existing = fs::metadata(target).ok();
     match &existing {
         Some(m) if m.is_dir() => {
-            return Err(Diagnostic::error(ErrorKind::Io(format!(
-                "`{}` is a directory",
-                target.display()
-            )))
+            return Err(Diagnostic::error(ErrorKind::IsADirectory {
+                path: target.display().to_string(),
+            })
             .with_help("give a file name with -o, e.g. -o tree.png")
             .into());
         }
@@ -179,10 +181,10 @@ fn write_atomically(
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
     let tmp = builder.tempfile_in(&dir).map_err(|e| {
-        Diagnostic::error(ErrorKind::Io(format!(
-            "cannot create a file in `{}`: {e}",
-            dir.display()
-        )))
+        Diagnostic::error(ErrorKind::CannotCreate {
+            dir: dir.display().to_string(),
+            error: e.to_string(),
+        })
         .with_help("check that the directory exists and is writable")
     })?;
     if let Some(meta) = existing {
@@ -199,11 +201,10 @@ fn write_atomically(
         .sync_all()
         .map_err(|e| io_error(&e, &format!("cannot write `{}`", target.display())))?;
     tmp.persist(target).map_err(|e| {
-        Diagnostic::error(ErrorKind::Io(format!(
-            "cannot replace `{}`: {}",
-            target.display(),
-            e.error
-        )))
+        Diagnostic::error(ErrorKind::CannotReplace {
+            path: target.display().to_string(),
+            error: e.error.to_string(),
+        })
     })?;
     Ok(())
 }

@@ -251,7 +251,7 @@ mod tests {
         assert_eq!(second.matches(" … ").count(), 2, "{second}");
         assert!(second.len() < 400);
 
-        let d = Diagnostic::error(ErrorKind::Grow("here".into())).with_span(x..x + 1);
+        let d = Diagnostic::error(ErrorKind::NoDepth).with_span(x..x + 1);
         let src = SourceText {
             name: "t.od",
             text: &text,

@@ -159,10 +159,12 @@ impl Fit {
             .iter()
             .all(|v| v.is_finite());
         if !finite || vw < 0.0 || vh < 0.0 {
-            return Err(render_error(format!(
-                "the canvas to show is not a proper box ({}, {}) .. ({}, {})",
-                view.min_x, view.min_y, view.max_x, view.max_y
-            ))
+            return Err(Diagnostic::error(ErrorKind::BadCanvas {
+                min_x: view.min_x,
+                min_y: view.min_y,
+                max_x: view.max_x,
+                max_y: view.max_y,
+            })
             .into());
         }
         let (w, h) = match size {
@@ -195,11 +197,9 @@ impl Fit {
             .iter()
             .all(|v| v.is_finite());
         if !finite {
-            return Err(render_error(
-                "the drawing reaches coordinates that are not finite numbers",
-            )
-            .with_help("check the stem length, angle and depth")
-            .into());
+            return Err(Diagnostic::error(ErrorKind::NotFinite)
+                .with_help("check the stem length, angle and depth")
+                .into());
         }
         let (px_half, canvas_half) = half_widest(width, max_order);
         let (cw, ch) = (
@@ -326,19 +326,16 @@ fn checked_size((w, h): (u32, u32)) -> Result<(u32, u32), Diagnostics> {
     if (1..=MAX_SIDE).contains(&w) && (1..=MAX_SIDE).contains(&h) {
         Ok((w, h))
     } else {
-        Err(render_error(format!(
-            "image size {w}x{h} is out of range: each side must be 1 to {MAX_SIDE} pixels"
-        ))
+        Err(Diagnostic::error(ErrorKind::ImageSize {
+            width: w,
+            height: h,
+            max: MAX_SIDE,
+        })
         .with_help(format!(
             "ask for a size such as `--size {DEFAULT_SIDE}x{DEFAULT_SIDE}`, or leave out `--size`"
         ))
         .into())
     }
-}
-
-/// A rendering error.
-fn render_error(message: impl Into<String>) -> Diagnostic {
-    Diagnostic::error(ErrorKind::Render(message.into()))
 }
 
 /// Renders `drawing` to `out`. `view`: the canvas area to show (a layout's
@@ -550,7 +547,7 @@ mod tests {
         for size in [(0, 10), (10, 0), (MAX_SIDE + 1, 10)] {
             let err = Fit::content(None, 0, &Width::Pixels(1.0), Some(size)).unwrap_err();
             let d = &err.0[0];
-            assert!(matches!(d.kind, ErrorKind::Render(_)));
+            assert!(matches!(d.kind, ErrorKind::ImageSize { .. }));
             assert!(d.to_string().contains("--size"), "{d}");
         }
         assert!(Fit::view(&bbox(0.0, 0.0, 1.0, 1.0), Some((MAX_SIDE, 1))).is_ok());
@@ -565,6 +562,6 @@ mod tests {
             None,
         )
         .unwrap_err();
-        assert!(matches!(err.first_kind(), Some(ErrorKind::Render(_))));
+        assert_eq!(err.first_kind(), Some(&ErrorKind::NotFinite));
     }
 }

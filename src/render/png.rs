@@ -21,9 +21,10 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, Stroke, Transform,
 };
 
-use super::{BATCH_SEGMENTS, FOLD_PX, Fit, Style, Width, render_error, stroke_px};
+use super::{BATCH_SEGMENTS, FOLD_PX, Fit, Style, Width, stroke_px};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::turtle::Fill;
 use crate::turtle::{Point, Segment, Turtle};
 
@@ -62,8 +63,11 @@ impl PngTurtle {
     /// (transparent when there is none).
     pub fn new(fit: Fit, style: &Style) -> Result<PngTurtle, Diagnostics> {
         let mut pixmap = Pixmap::new(fit.width, fit.height).ok_or_else(|| {
-            render_error(format!("cannot make a {}x{} raster", fit.width, fit.height))
-                .with_help("ask for a smaller `--size`")
+            Diagnostic::error(ErrorKind::NoRaster {
+                width: fit.width,
+                height: fit.height,
+            })
+            .with_help("ask for a smaller `--size`")
         })?;
         if let Some(bg) = style.background {
             pixmap.fill(color(bg));
@@ -173,9 +177,12 @@ impl PngTurtle {
     /// Strokes what is left and encodes the raster as PNG bytes.
     pub fn finish(mut self) -> Result<Vec<u8>, Diagnostics> {
         self.flush();
-        self.pixmap
-            .encode_png()
-            .map_err(|e| render_error(format!("cannot encode the PNG image: {e}")).into())
+        self.pixmap.encode_png().map_err(|e| {
+            Diagnostic::error(ErrorKind::PngEncoding {
+                error: e.to_string(),
+            })
+            .into()
+        })
     }
 
     /// Strokes what is left and hands back the raster (for tests and
