@@ -14,6 +14,12 @@
 //! and tiny-skia's stroking cost is per segment. Runs are never joined
 //! across a jump, so every subpath keeps its own round caps.
 //!
+//! Wide strokes (two pixels or more) cost their area: a path holds at most
+//! [`INK_PER_BATCH`] images' worth of ink, so overlapping thick stems never
+//! crowd one path's scanlines with thousands of edges, and a wide capsule
+//! drawn again exactly where it was just drawn is skipped (one path would
+//! have unioned it away), so 50,000 copies of one stem cost one.
+//!
 //! It does not decide sizes or widths: [`Fit`] and [`stroke_px`] in the
 //! parent module do. Its sections mirror `svg.rs`, so the two read side by side.
 
@@ -41,6 +47,15 @@ pub struct PngTurtle {
     batch: PathBuilder,
     batch_width: f64,
     batch_len: usize,
+    /// Pixels the batch's strokes cover, overlaps counted again.
+    batch_ink: f64,
+    /// Largest `batch_ink` of one path ([`INK_PER_BATCH`] images' worth).
+    max_ink: f64,
+    /// The last wide capsules drawn, two per bucket by a hash of their
+    /// key: a repeat of one is skipped.
+    recent: Vec<[Option<[u64; 5]>; 2]>,
+    /// Paths stroked so far (tests count the work with it).
+    paths: u64,
     /// Where the last segment ended (canvas units), to extend subpaths.
     last_to: Option<Point>,
     /// The open subpath's pen, `None` when no subpath is open.
@@ -83,6 +98,10 @@ impl PngTurtle {
             batch: PathBuilder::new(),
             batch_width: 0.0,
             batch_len: 0,
+            batch_ink: 0.0,
+            max_ink: INK_PER_BATCH * f64::from(fit.width) * f64::from(fit.height),
+            recent: vec![[None; 2]; RECENT_BUCKETS],
+            paths: 0,
             last_to: None,
             pen: None,
         })
@@ -128,6 +147,7 @@ impl PngTurtle {
         self.end_subpath();
         let batch = std::mem::take(&mut self.batch);
         self.batch_len = 0;
+        self.batch_ink = 0.0;
         self.last_to = None;
         if let Some(path) = batch.finish() {
             let stroke = Stroke {
@@ -138,6 +158,7 @@ impl PngTurtle {
             };
             self.pixmap
                 .stroke_path(&path, &self.paint, &stroke, Transform::identity(), None);
+            self.paths += 1;
             // Keep the allocation for the next batch.
             self.batch = Path::clear(path);
         }
@@ -201,9 +222,25 @@ impl Turtle for PngTurtle {
             return;
         }
         let width = stroke_px(&self.width, self.fit.scale, seg.order);
-        if self.batch_len >= BATCH_SEGMENTS || (self.batch_len > 0 && width != self.batch_width) {
+        if width >= WIDE_PX {
+            // A wide stroke costs its area in pixels; drawing the very same
+            // capsule again adds nothing (one path would union it away).
+            let key = [from.x, from.y, to.x, to.y, width].map(f64::to_bits);
+            let bucket = &mut self.recent[bucket_of(&key)];
+            if bucket.contains(&Some(key)) {
+                return;
+            }
+            bucket[1] = bucket[0];
+            bucket[0] = Some(key);
+        }
+        let ink = width * ((to.x - from.x).hypot(to.y - from.y) + width);
+        if self.batch_len >= BATCH_SEGMENTS
+            || (self.batch_len > 0
+                && (width != self.batch_width || self.batch_ink + ink > self.max_ink))
+        {
             self.flush();
         }
+        self.batch_ink += ink;
         self.batch_width = width;
         if self.last_to != Some(seg.from) {
             self.end_subpath();
@@ -222,6 +259,34 @@ impl Turtle for PngTurtle {
 
 // ---------------------------------------------------------------------------
 // Helpers
+
+/// Strokes at least this wide (output pixels) are checked against the
+/// recently drawn ones: their cost is their area, and a thick tree that
+/// draws the same stem many times (50,000 terms at one point) would pay it
+/// each time. Thinner strokes are cheap and are not checked.
+const WIDE_PX: f64 = 2.0;
+
+/// Buckets of the recent-capsule table (two capsules each; 400 KB).
+const RECENT_BUCKETS: usize = 4096;
+
+/// Most ink one path may hold, in images' worth of pixels. tiny-skia
+/// rasterizes a path's strokes together, and the edges of many overlapping
+/// wide strokes crowd every scanline (the cost grows with their square);
+/// a path that covers the picture several times over is drawn and a new
+/// one started.
+const INK_PER_BATCH: f64 = 2.0;
+
+/// The bucket of a capsule key (splitmix64's finalizer over its bits).
+fn bucket_of(key: &[u64; 5]) -> usize {
+    let mut h: u64 = 0;
+    for k in key {
+        h = (h ^ k).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        h = (h ^ (h >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        h = (h ^ (h >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        h ^= h >> 31;
+    }
+    (h % RECENT_BUCKETS as u64) as usize
+}
 
 /// An opaque tiny-skia colour.
 fn color(c: Rgb) -> Color {
@@ -305,5 +370,76 @@ mod tests {
         run(&mut t, &[Point::new(10.0, 10.0), Point::new(10.1, 10.0)]);
         run(&mut t, &[Point::new(10.15, 10.0), Point::new(10.25, 10.0)]);
         assert_eq!(t.batch.len(), 4);
+    }
+
+    fn wide_turtle(width: f64) -> PngTurtle {
+        let fit = Fit {
+            width: 100,
+            height: 100,
+            scale: 1.0,
+            dx: 0.0,
+            dy: 0.0,
+        };
+        let style = Style {
+            stroke: Rgb::BLACK,
+            background: Some(Rgb::WHITE),
+            width: Width::Pixels(width),
+        };
+        PngTurtle::new(fit, &style).unwrap()
+    }
+
+    fn stem(ax: f64, ay: f64, bx: f64, by: f64) -> Segment {
+        Segment {
+            from: Point::new(ax, ay),
+            to: Point::new(bx, by),
+            order: 0,
+        }
+    }
+
+    /// One path unions its strokes, so the same wide stem drawn 10,000 times
+    /// (more than a batch) paints exactly what drawing it once paints, and
+    /// is stroked once.
+    #[test]
+    fn a_repeated_wide_stem_paints_what_one_paints_and_is_stroked_once() {
+        let mut once = wide_turtle(12.0);
+        once.segment(stem(20.0, 80.0, 70.0, 30.0));
+        let mut many = wide_turtle(12.0);
+        for _ in 0..10_000 {
+            many.segment(stem(20.0, 80.0, 70.0, 30.0));
+            many.segment(stem(70.0, 30.0, 60.0, 10.0));
+        }
+        many.flush();
+        assert_eq!(many.paths, 1);
+        let mut twice = wide_turtle(12.0);
+        twice.segment(stem(20.0, 80.0, 70.0, 30.0));
+        twice.segment(stem(70.0, 30.0, 60.0, 10.0));
+        assert_eq!(many.into_pixmap(), twice.into_pixmap());
+        assert_ne!(
+            once.into_pixmap().data(),
+            wide_turtle(12.0).into_pixmap().data()
+        );
+    }
+
+    /// Overlapping wide strokes are split into paths of at most
+    /// INK_PER_BATCH images' worth of ink: 100 x 100 px allows 20,000 px;
+    /// each 90 px stroke 10 px wide counts 10 x (90 + 10) = 1,000, so 20 go
+    /// in a path and 100 distinct strokes make 5 paths.
+    #[test]
+    fn overlapping_wide_strokes_are_drawn_in_paths_of_bounded_ink() {
+        let mut t = wide_turtle(10.0);
+        for i in 0..100 {
+            let x = 5.0 + f64::from(i) * 0.5;
+            t.segment(stem(x, 5.0, x, 95.0));
+        }
+        t.flush();
+        assert_eq!(t.paths, 5);
+        // Hairlines never count as wide: 100 of them go in one path.
+        let mut h = turtle();
+        for i in 0..100 {
+            let x = 5.0 + f64::from(i) * 0.5;
+            h.segment(stem(x, 5.0, x, 95.0));
+        }
+        h.flush();
+        assert_eq!(h.paths, 1);
     }
 }
