@@ -233,7 +233,7 @@ impl Turtle for PngTurtle {
             bucket[1] = bucket[0];
             bucket[0] = Some(key);
         }
-        let ink = width * ((to.x - from.x).hypot(to.y - from.y) + width);
+        let ink = width * (libm::hypot(to.x - from.x, to.y - from.y) + width);
         if self.batch_len >= BATCH_SEGMENTS
             || (self.batch_len > 0
                 && (width != self.batch_width || self.batch_ink + ink > self.max_ink))
