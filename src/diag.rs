@@ -163,9 +163,12 @@ pub enum ErrorKind {
         /// The limit.
         hops: usize,
     },
-    /// The temporary output file could not be created.
-    #[error("cannot create a file in `{dir}`: {error}")]
+    /// The output file could not be created (its temporary file, in the
+    /// target's directory, could not).
+    #[error("cannot write `{path}`: cannot create a file in `{dir}`: {error}")]
     CannotCreate {
+        /// The target as named.
+        path: String,
         /// The target's directory.
         dir: String,
         /// The operating system's message.
@@ -195,9 +198,55 @@ pub enum ErrorKind {
     /// An L-system has no `generations` and no `--depth` was given.
     #[error("no derivation depth")]
     NoDepth,
-    /// Reading standard input, `render` was not told where the picture goes.
+    /// Reading standard input, `render` was not told where the picture goes
+    /// (a usage error).
     #[error("no output named")]
     NoOutput,
+    /// `-f` names one format and the output's extension another (a usage
+    /// error).
+    #[error("`-f {format}` contradicts the output name `{path}`")]
+    FormatMismatch {
+        /// The format asked for with `-f`.
+        format: String,
+        /// The output path.
+        path: String,
+    },
+    /// The output's extension names no image format stlc writes (a usage
+    /// error).
+    #[error("cannot write `{path}`: `.{extension}` is not an image format stlc writes")]
+    UnknownOutputExtension {
+        /// The output path.
+        path: String,
+        /// Its extension.
+        extension: String,
+    },
+    /// The output is the input file: writing would destroy the input.
+    #[error("refusing to write over the input: `{output}` is the same file as `{input}`")]
+    OutputIsInput {
+        /// The input as named.
+        input: String,
+        /// The output as named.
+        output: String,
+    },
+    /// A flag given that does nothing for this input (a warning).
+    #[error("{flag} was ignored: {reason}")]
+    IgnoredFlag {
+        /// The flag as written (`--depth`).
+        flag: String,
+        /// Why it does nothing here.
+        reason: String,
+    },
+    /// Nothing was drawn: the picture is only its background (a warning).
+    #[error("the picture is empty: the derivation draws no stem")]
+    NothingDrawn,
+    /// An `.lsys` uses `L` or `R`, which do not turn there (a warning).
+    #[error(
+        "`{symbol}` does not turn in an .lsys file: it is an ordinary symbol there, and no rule rewrites it"
+    )]
+    InertTurn {
+        /// `L` or `R`.
+        symbol: char,
+    },
     /// A PNG would be written to a terminal.
     #[error("refusing to write a PNG to a terminal")]
     PngToTerminal,
@@ -209,6 +258,20 @@ pub enum ErrorKind {
         /// What was given.
         text: String,
     },
+}
+
+impl ErrorKind {
+    /// Whether this is a usage error: the command line asks for something
+    /// contradictory, rather than the input or the work failing. The CLI
+    /// exits with status 2 on these, as it does on clap's own.
+    pub fn is_usage(&self) -> bool {
+        matches!(
+            self,
+            ErrorKind::NoOutput
+                | ErrorKind::FormatMismatch { .. }
+                | ErrorKind::UnknownOutputExtension { .. }
+        )
+    }
 }
 
 /// The diagnostic for an I/O error while writing output: a broken pipe gets

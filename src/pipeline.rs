@@ -224,7 +224,8 @@ pub fn scene(
     let (what, warnings) = match loaded {
         Loaded::Lsys(sys) => {
             let depth = lsys_depth(&sys, req.depth, &req.limits)?;
-            (What::Lsys { sys, depth }, Vec::new())
+            let warnings = inert_turns(&sys);
+            (What::Lsys { sys, depth }, warnings)
         }
         Loaded::Bed(bed) => (What::Tree { bed, grown: None }, Vec::new()),
         Loaded::Od(od) => {
@@ -281,6 +282,33 @@ impl Scene {
             }
         }
     }
+}
+
+/// Warnings for `L` and `R` in an L-system that has no rule for them: in an
+/// `.lsys` they are ordinary symbols (the Hilbert curve's non-terminals),
+/// not turns as in STL, so a rule copied from an STL paper
+/// (`F -> F[RF]F[LF]F`) would draw a straight line without a word.
+pub fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
+    ['L', 'R']
+        .into_iter()
+        .filter(|c| !sys.rules.contains_key(c))
+        .filter_map(|c| {
+            let span = if sys.axiom.contains(&c) {
+                Some(sys.axiom_loc.0.clone())
+            } else {
+                sys.rules
+                    .values()
+                    .find(|p| p.successor.contains(&c))
+                    .map(|p| p.loc.0.clone())
+            }?;
+            Some(
+                Diagnostic::warning(ErrorKind::InertTurn { symbol: c })
+                    .with_span(span)
+                    .with_label(format!("`{c}` here turns nothing"))
+                    .with_help("write `+` for a left turn and `-` for a right turn"),
+            )
+        })
+        .collect()
 }
 
 /// The depth to derive an L-system to: `depth` if given, else the file's
@@ -348,19 +376,56 @@ pub fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>) {
     (crate::layout::layout_bbox(layout), fills)
 }
 
+/// What [`render`] drew.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rendered {
+    /// Segments drawn.
+    pub segments: u64,
+    /// Warnings (nothing drawn, ...).
+    pub warnings: Vec<Diagnostic>,
+}
+
 /// Draws `scene` as a PNG or SVG into `out`, with its style and layout
-/// view (see [`style`] and [`layout_view`]).
+/// view (see [`style`] and [`layout_view`]). A picture with no stem in it
+/// is written all the same, with a warning.
 pub fn render(
     scene: &Scene,
     look: &Look,
     opts: &RenderOptions,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
-) -> Result<(), Diagnostics> {
+) -> Result<Rendered, Diagnostics> {
     let style = style(scene, look);
     let (view, underlay) = layout_view(scene, look.show_layout);
-    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
-    crate::render::render(&mut drawing, view, &underlay, &style, opts, out, progress)
+    let mut segments = 0;
+    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| {
+        let mut tally = Tally { inner: t, count: 0 };
+        let r = scene.draw(&mut tally, p);
+        segments = tally.count;
+        r
+    };
+    crate::render::render(&mut drawing, view, &underlay, &style, opts, out, progress)?;
+    let mut warnings = Vec::new();
+    if segments == 0 {
+        warnings.push(Diagnostic::warning(ErrorKind::NothingDrawn).with_help(
+            "check the axiom or seed and the depth: only `F` draws (and in an .od, a rule that grows)",
+        ));
+    }
+    Ok(Rendered { segments, warnings })
+}
+
+/// A turtle that counts the segments it passes on.
+struct Tally<'a> {
+    inner: &'a mut dyn Turtle,
+    count: u64,
+}
+
+impl Turtle for Tally<'_> {
+    #[inline]
+    fn segment(&mut self, seg: crate::turtle::Segment) {
+        self.count += 1;
+        self.inner.segment(seg);
+    }
 }
 
 /// The image format a file name asks for: SVG for `.svg` (any case),
@@ -420,14 +485,45 @@ pub fn stats(
 
 // --------------------------------------------------------------- check --
 
-/// A summary of a valid input (`stlc check`): its rules, seed, layout and,
-/// for a BED, the stems it draws (from its measure, without drawing).
-pub fn check(loaded: &Loaded, limits: &Limits) -> Result<String, Diagnostics> {
-    match loaded {
-        Loaded::Lsys(sys) => Ok(lsys_summary(sys)),
-        Loaded::Od(desc) => stl_summary(desc, None, limits),
-        Loaded::Bed(bed) => stl_summary(bed.description(), Some(bed), limits),
-    }
+/// What [`check`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checked {
+    /// The summary, lines of text.
+    pub summary: String,
+    /// Warnings (growth cut short, inert symbols, ...).
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Answers "would compile and render succeed?" without drawing, and
+/// summarises the input (`stlc check`): its rules, seed and layout; an OD is
+/// grown with `opts` (every check compile makes: bounded growth, the root
+/// inside the layout, a layout with an area, the limits) and its stems
+/// counted; a BED's stems come from its measure.
+pub fn check(loaded: &Loaded, opts: &GrowOptions) -> Result<Checked, Diagnostics> {
+    let limits = &opts.limits;
+    Ok(match loaded {
+        Loaded::Lsys(sys) => Checked {
+            summary: lsys_summary(sys),
+            warnings: inert_turns(sys),
+        },
+        Loaded::Od(desc) => {
+            let grown = grow(desc, opts, &mut crate::progress::NoProgress)?;
+            let mut summary = stl_summary(desc, None, limits)?;
+            let order = match opts.growth {
+                crate::grow::GrowthOrder::Bfs => "bfs",
+                crate::grow::GrowthOrder::Dfs => "dfs",
+            };
+            let _ = writeln!(summary, "  grows       {} stems ({order})", grown.stems);
+            Checked {
+                summary,
+                warnings: grown.warnings,
+            }
+        }
+        Loaded::Bed(bed) => Checked {
+            summary: stl_summary(bed.description(), Some(bed), limits)?,
+            warnings: Vec::new(),
+        },
+    })
 }
 
 fn lsys_summary(sys: &LSystem) -> String {

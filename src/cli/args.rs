@@ -20,7 +20,7 @@ use stlc::Limits;
     verbatim_doc_comment,
     version,
     max_term_width = 100,
-    after_help = "Examples:\n  stlc render examples/koch-snowflake.lsys -o koch.png\n  stlc compile examples/2dtree.od -o 2dtree.bed --strategy bfs\n  stlc render 2dtree.bed --show-layout -o 2dtree.svg\n  stlc stats examples/abop-1.24a.lsys --depth 57 --json\n\nDocumentation: docs/ in the source tree (language.md, cli.md, limits.md)."
+    after_help = "Examples:\n  stlc render examples/koch-snowflake.lsys -o koch.png\n  stlc compile examples/2dtree.od -o 2dtree.bed --growth dfs\n  stlc render 2dtree.bed --show-layout -o 2dtree.svg\n  stlc stats examples/abop-1.24a.lsys --depth 57 --json\n\nDocumentation: docs/ in the source tree (language.md, cli.md, limits.md)."
 )]
 pub struct Cli {
     /// What to do.
@@ -54,12 +54,13 @@ pub enum Command {
     ///
     /// The picture is fitted to --size from a first bounding pass; a BED or
     /// OD with a LAYOUT uses the layout's canvas instead. An .od is grown
-    /// first (with --strategy as the growth strategy), then drawn.
+    /// first (--growth, default bfs), then drawn: `render tree.od` draws
+    /// exactly what `render` of `compile tree.od` draws.
     ///
     /// Examples:
     ///   stlc render examples/koch-snowflake.lsys -o koch.png
     ///   stlc render examples/abop-1.24a.lsys --depth 6 --strategy bfs -o tree.svg
-    ///   stlc render examples/2dtree.od --strategy dfs --show-layout -o vine.png
+    ///   stlc render examples/2dtree.od --growth dfs --show-layout -o vine.png
     ///   cat tree.bed | stlc render - --from bed -f svg -o - > tree.svg
     #[command(verbatim_doc_comment)]
     Render(RenderArgs),
@@ -73,8 +74,12 @@ pub enum Command {
     ///
     /// Examples:
     ///   stlc compile examples/2dtree.od -o 2dtree.bed
-    ///   stlc compile examples/fig9.od --strategy dfs -o -
-    #[command(verbatim_doc_comment)]
+    ///   stlc compile examples/fig9.od --growth dfs -o -
+    #[command(
+        verbatim_doc_comment,
+        mut_arg("input", |a| a.help("Outline Description (.od), or `-` for standard input")),
+        mut_arg("from", |a| a.help("Read the input as this kind (only od grows; bed and lsys are refused)"))
+    )]
     Compile(CompileArgs),
 
     /// Print the derived word: an .lsys's symbols at the depth, or a .bed's
@@ -95,10 +100,18 @@ pub enum Command {
     /// Examples:
     ///   stlc stats examples/abop-1.24a.lsys --depth 5
     ///   stlc stats examples/abop-1.24a.lsys --depth 57 --json
-    #[command(verbatim_doc_comment)]
+    #[command(
+        verbatim_doc_comment,
+        mut_arg("input", |a| a.help("Classic L-system (.lsys), or `-` for standard input")),
+        mut_arg("from", |a| a.help("Read the input as this kind (only lsys is counted)"))
+    )]
     Stats(StatsArgs),
 
     /// Validate an .od, .bed or .lsys file and print a short summary.
+    ///
+    /// Answers "would compile and render succeed?": an .od is grown (with
+    /// --growth, without drawing) and every check compile makes is made; a
+    /// BED is validated and measured; the stems are counted from the measure.
     ///
     /// Examples:
     ///   stlc check examples/2dtree.od
@@ -129,16 +142,36 @@ pub enum FromKind {
     Lsys,
 }
 
-/// `--strategy`.
+/// `--strategy` of `render` and `expand`: how the word is derived.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum StrategyArg {
-    /// Depth-first: streams the derivation (render, expand); grows a
-    /// branch's whole subtree before its sibling (compile).
+    /// Depth-first: streams the derivation, memory grows with depth only.
     #[default]
     Dfs,
-    /// Breadth-first: rewrites the whole word level by level (render,
-    /// expand); grows level by level (compile).
+    /// Breadth-first: rewrites the whole word level by level, then draws it
+    /// (the baseline; same picture, more memory).
     Bfs,
+}
+
+/// `--growth`: the order in which an .od's growth points are decided.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum GrowthArg {
+    /// Breadth-first growth (the default): every growth point of a level
+    /// before the next; balanced trees.
+    #[default]
+    Bfs,
+    /// Depth-first growth: a branch's whole subtree before its sibling;
+    /// vines and spirals.
+    Dfs,
+}
+
+impl From<GrowthArg> for stlc::grow::GrowthOrder {
+    fn from(g: GrowthArg) -> Self {
+        match g {
+            GrowthArg::Bfs => stlc::grow::GrowthOrder::Bfs,
+            GrowthArg::Dfs => stlc::grow::GrowthOrder::Dfs,
+        }
+    }
 }
 
 impl From<StrategyArg> for stlc::interpret::Derivation {
@@ -150,7 +183,8 @@ impl From<StrategyArg> for stlc::interpret::Derivation {
     }
 }
 
-/// Limits; each default is explained in docs/limits.md.
+/// Limits every command takes: on reading the input. Each default is
+/// explained in docs/limits.md.
 #[derive(Debug, Args, Clone)]
 pub struct LimitArgs {
     /// Largest input file in bytes.
@@ -162,12 +196,28 @@ pub struct LimitArgs {
     /// Largest derivation depth, `generations`, or count in `[I n X]`.
     #[arg(long, value_name = "N", default_value_t = Limits::default().max_depth)]
     pub max_depth: u32,
-    /// Most symbols one traversal (render, expand, stats extent) may visit.
+}
+
+/// Limits of a traversal (commands that walk a derivation).
+#[derive(Debug, Args, Clone)]
+pub struct SymbolLimitArgs {
+    /// Most symbols one traversal (render, expand, stats extent, a BED's
+    /// expansion) may visit.
     #[arg(long, value_name = "N", default_value_t = Limits::default().max_symbols)]
     pub max_symbols: u64,
+}
+
+/// The limit of the bfs derivation (commands with `--strategy`).
+#[derive(Debug, Args, Clone)]
+pub struct WordLimitArgs {
     /// Most symbols the bfs strategy may hold in memory as one word.
     #[arg(long, value_name = "N", default_value_t = Limits::default().max_word)]
     pub max_word: u64,
+}
+
+/// The limit of a layout's outline (commands that grow an .od).
+#[derive(Debug, Args, Clone)]
+pub struct LayoutLimitArgs {
     /// Most vertices of a LAYOUT's outline: each shape (curves flattened) and
     /// the painted area after each shape.
     #[arg(long, value_name = "N", default_value_t = Limits::default().max_layout_vertices)]
@@ -175,24 +225,36 @@ pub struct LimitArgs {
 }
 
 impl LimitArgs {
-    /// The limits these flags set (`max_stems` from `stems`).
-    pub fn limits(&self, stems: Option<u64>) -> Limits {
+    /// The limits these flags set, with the others from the groups a
+    /// command takes (defaults where it takes none).
+    pub fn limits(
+        &self,
+        symbols: Option<&SymbolLimitArgs>,
+        word: Option<&WordLimitArgs>,
+        layout: Option<&LayoutLimitArgs>,
+        stems: Option<u64>,
+    ) -> Limits {
+        let d = Limits::default();
         Limits {
             max_input_bytes: self.max_input,
             max_nesting: self.max_nesting,
             max_depth: self.max_depth,
             max_repeat: self.max_depth,
-            max_symbols: self.max_symbols,
-            max_word: self.max_word,
-            max_stems: stems.unwrap_or(Limits::default().max_stems),
-            max_layout_vertices: self.max_layout_vertices,
+            max_symbols: symbols.map_or(d.max_symbols, |a| a.max_symbols),
+            max_word: word.map_or(d.max_word, |a| a.max_word),
+            max_stems: stems.unwrap_or(d.max_stems),
+            max_layout_vertices: layout.map_or(d.max_layout_vertices, |a| a.max_layout_vertices),
         }
     }
 }
 
-/// Options of growth, shared by `compile` and `render` of an .od.
+/// Options of growth, shared by every command that grows an .od.
 #[derive(Debug, Args, Clone)]
 pub struct GrowArgs {
+    /// Growth order of an .od: bfs (the default) grows level by level,
+    /// balanced; dfs grows a branch's whole subtree before its sibling.
+    #[arg(long, value_enum, value_name = "ORDER")]
+    pub growth: Option<GrowthArg>,
     /// Stop growth after N stems (drawn segments), with a warning. Needed
     /// when an .od has no LAYOUT, count or decrement to end growth.
     #[arg(long, value_name = "N")]
@@ -219,8 +281,8 @@ pub struct RenderArgs {
     #[arg(short, long, value_enum)]
     pub format: Option<FormatArg>,
 
-    /// Derivation strategy (same picture, different cost); for an .od, the
-    /// growth strategy (different trees).
+    /// Derivation strategy: dfs streams, bfs rewrites the whole word first.
+    /// Same picture, different cost. (An .od's growth order is --growth.)
     #[arg(short, long, value_enum, default_value_t = StrategyArg::Dfs)]
     pub strategy: StrategyArg,
 
@@ -255,6 +317,15 @@ pub struct RenderArgs {
 
     #[command(flatten)]
     pub limits: LimitArgs,
+
+    #[command(flatten)]
+    pub symbol_limits: SymbolLimitArgs,
+
+    #[command(flatten)]
+    pub word_limits: WordLimitArgs,
+
+    #[command(flatten)]
+    pub layout_limits: LayoutLimitArgs,
 }
 
 /// `--format`.
@@ -277,16 +348,26 @@ pub struct CompileArgs {
     #[arg(short, long, value_name = "OUT")]
     pub output: Option<String>,
 
-    /// Growth strategy: bfs grows level by level (balanced trees), dfs a
-    /// branch's whole subtree before its sibling (vines, ornament).
-    #[arg(short, long, value_enum, default_value_t = StrategyArg::Bfs)]
-    pub strategy: StrategyArg,
+    /// The same as --growth (kept for scripts): bfs grows level by level
+    /// (balanced trees), dfs a branch's whole subtree before its sibling
+    /// (vines, ornament).
+    #[arg(
+        short,
+        long,
+        value_enum,
+        value_name = "ORDER",
+        conflicts_with = "growth"
+    )]
+    pub strategy: Option<GrowthArg>,
 
     #[command(flatten)]
     pub grow: GrowArgs,
 
     #[command(flatten)]
     pub limits: LimitArgs,
+
+    #[command(flatten)]
+    pub layout_limits: LayoutLimitArgs,
 }
 
 /// `stlc expand`.
@@ -300,6 +381,7 @@ pub struct ExpandArgs {
     pub output: String,
 
     /// Derivation strategy: dfs streams, bfs builds the word in memory.
+    /// (An .od's growth order is --growth.)
     #[arg(short, long, value_enum, default_value_t = StrategyArg::Dfs)]
     pub strategy: StrategyArg,
 
@@ -312,6 +394,15 @@ pub struct ExpandArgs {
 
     #[command(flatten)]
     pub limits: LimitArgs,
+
+    #[command(flatten)]
+    pub symbol_limits: SymbolLimitArgs,
+
+    #[command(flatten)]
+    pub word_limits: WordLimitArgs,
+
+    #[command(flatten)]
+    pub layout_limits: LayoutLimitArgs,
 }
 
 /// `stlc stats`.
@@ -331,6 +422,9 @@ pub struct StatsArgs {
 
     #[command(flatten)]
     pub limits: LimitArgs,
+
+    #[command(flatten)]
+    pub symbol_limits: SymbolLimitArgs,
 }
 
 /// `stlc check`.
@@ -340,7 +434,16 @@ pub struct CheckArgs {
     pub input: InputArgs,
 
     #[command(flatten)]
+    pub grow: GrowArgs,
+
+    #[command(flatten)]
     pub limits: LimitArgs,
+
+    #[command(flatten)]
+    pub symbol_limits: SymbolLimitArgs,
+
+    #[command(flatten)]
+    pub layout_limits: LayoutLimitArgs,
 }
 
 /// Parses `WxH`.

@@ -15,7 +15,56 @@ use std::fs;
 use std::io::{self, BufWriter, IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 
+use std::sync::Mutex;
+
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+
+/// The temporary file being written, if any: an interrupt removes it
+/// before the process exits ([`remove_pending`]).
+static PENDING: Mutex<Option<PathBuf>> = Mutex::new(None);
+
+/// Removes the temporary file being written, if any (the interrupt
+/// handler calls it; the target was never touched).
+pub fn remove_pending() {
+    let pending = match PENDING.lock() {
+        Ok(mut p) => p.take(),
+        Err(poisoned) => poisoned.into_inner().take(),
+    };
+    if let Some(p) = pending {
+        let _ = fs::remove_file(p);
+    }
+}
+
+fn set_pending(path: Option<PathBuf>) {
+    match PENDING.lock() {
+        Ok(mut p) => *p = path,
+        Err(poisoned) => *poisoned.into_inner() = path,
+    }
+}
+
+/// Whether `output` names the same file as `input` (the same device and
+/// inode, which covers links and different spellings of one path). An
+/// output that does not exist yet is no input.
+pub fn same_file(input: &Input, output: &Output) -> bool {
+    let (Input::Path(i), Output::Path(o)) = (input, output) else {
+        return false;
+    };
+    match (fs::metadata(i), fs::metadata(o)) {
+        (Ok(a), Ok(b)) => same_inode(&a, &b),
+        _ => false,
+    }
+}
+
+#[cfg(unix)]
+fn same_inode(a: &fs::Metadata, b: &fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    a.dev() == b.dev() && a.ino() == b.ino()
+}
+
+#[cfg(not(unix))]
+fn same_inode(_a: &fs::Metadata, _b: &fs::Metadata) -> bool {
+    false
+}
 
 /// Where input comes from.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -181,12 +230,33 @@ fn write_atomically(
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
     let tmp = builder.tempfile_in(&dir).map_err(|e| {
+        // tempfile's message names the temporary file; the user named the
+        // target, so say what the system said about the directory.
+        let error = match fs::metadata(&dir) {
+            Err(missing) => missing.to_string(),
+            Ok(m) if !m.is_dir() => "not a directory".to_string(),
+            Ok(_) => io::Error::from(e.kind()).to_string(),
+        };
         Diagnostic::error(ErrorKind::CannotCreate {
+            path: target.display().to_string(),
             dir: dir.display().to_string(),
-            error: e.to_string(),
+            error,
         })
         .with_help("check that the directory exists and is writable")
     })?;
+    set_pending(Some(tmp.path().to_path_buf()));
+    let result = write_temp(tmp, existing, target, write);
+    set_pending(None);
+    result
+}
+
+/// Fills the temporary file and renames it over `target`.
+fn write_temp(
+    tmp: tempfile::NamedTempFile,
+    existing: Option<fs::Metadata>,
+    target: &Path,
+    write: impl FnOnce(&mut dyn Write) -> Result<(), Diagnostics>,
+) -> Result<(), Diagnostics> {
     if let Some(meta) = existing {
         tmp.as_file()
             .set_permissions(meta.permissions())

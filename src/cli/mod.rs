@@ -23,10 +23,32 @@ pub use args::Cli;
 /// requirement. Pages are only committed when touched.
 const WORKER_STACK: usize = 1 << 30;
 
+/// On SIGINT or SIGTERM: remove the temporary output file (the target was
+/// never touched) and exit with 128 + the signal's number (130, 143), as a
+/// shell reports a process killed by it.
+fn install_interrupt_handler() {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) else {
+        // Without the handler the default action still stops stlc; only
+        // the temporary file may be left behind.
+        return;
+    };
+    let _ = std::thread::Builder::new()
+        .name("stlc-signals".into())
+        .spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                io::remove_pending();
+                progress::clear_on_interrupt();
+                std::process::exit(128 + signal);
+            }
+        });
+}
+
 /// Parses arguments, runs the command on a big-stack thread, maps the result
 /// to an exit code.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
+    install_interrupt_handler();
     let color = match cli.color {
         args::ColorChoice::Always => true,
         args::ColorChoice::Never => false,

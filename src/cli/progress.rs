@@ -85,3 +85,13 @@ impl Drop for Bar {
         self.finish();
     }
 }
+
+/// Clears the line a bar may be drawn on (an interrupt ends the process
+/// without dropping the bar).
+pub fn clear_on_interrupt() {
+    let mut err = std::io::stderr();
+    if err.is_terminal() {
+        use std::io::Write;
+        let _ = err.write_all(b"\r\x1b[2K");
+    }
+}

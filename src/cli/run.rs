@@ -7,7 +7,6 @@ use std::process::ExitCode;
 use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::grow::{GrowOptions, GrowthOrder};
-use stlc::interpret::Derivation;
 use stlc::limits::Limits;
 use stlc::pipeline::{self, Loaded, Look, SceneRequest};
 use stlc::progress::Progress as _;
@@ -16,10 +15,10 @@ use stlc::syntax::InputKind;
 use stlc::{Severity, syntax};
 
 use super::args::{
-    CheckArgs, Cli, Command, CompileArgs, ExpandArgs, FormatArg, FromKind, GrowArgs, InputArgs,
-    RenderArgs, StatsArgs, StrategyArg,
+    CheckArgs, Cli, Command, CompileArgs, ExpandArgs, FormatArg, FromKind, GrowArgs, GrowthArg,
+    InputArgs, RenderArgs, StatsArgs,
 };
-use super::io::{Input, Output, sibling};
+use super::io::{Input, Output, same_file, sibling};
 use super::progress::Bar;
 use super::report::{self, SourceText};
 
@@ -36,6 +35,15 @@ type Outcome = Result<Vec<Diagnostic>, Diagnostics>;
 /// Runs one command and reports; returns the exit code.
 pub fn run(cli: &Cli, color: bool) -> ExitCode {
     let mut source = Source::default();
+    let input = match &cli.command {
+        Command::Render(a) => &a.input.input,
+        Command::Compile(a) => &a.input.input,
+        Command::Expand(a) => &a.input.input,
+        Command::Stats(a) => &a.input.input,
+        Command::Check(a) => &a.input.input,
+    };
+    // Named before any work, so every diagnostic says which input it is about.
+    source.name = Input::parse(input).display_name();
     let outcome = match &cli.command {
         Command::Render(a) => render(a, cli.quiet, &mut source),
         Command::Compile(a) => compile(a, cli.quiet, &mut source),
@@ -71,7 +79,12 @@ pub fn run(cli: &Cli, color: bool) -> ExitCode {
                 }
                 report::write(&mut stderr, d, Some(&src), color);
             }
-            ExitCode::FAILURE
+            if diags.iter().any(|d| d.is_error() && d.kind.is_usage()) {
+                // A contradictory command line, like clap's own errors.
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
+            }
         }
     }
 }
@@ -97,32 +110,76 @@ fn load(args: &InputArgs, limits: &Limits, source: &mut Source) -> Result<Loaded
     pipeline::load(&bytes, kind, limits)
 }
 
-/// The growth options the growth flags ask for.
-fn grow_options(order: GrowthOrder, g: &GrowArgs, limits: &Limits) -> GrowOptions {
+/// The growth options the growth flags ask for (`order`: `--growth` or an
+/// alias of it; default bfs).
+fn grow_options(order: Option<GrowthArg>, g: &GrowArgs, limits: &Limits) -> GrowOptions {
     GrowOptions {
-        growth: order,
+        growth: order.map_or(GrowthOrder::default(), GrowthOrder::from),
         clearance: g.clearance,
         limits: *limits,
         max_stems_explicit: g.max_stems.is_some(),
     }
 }
 
-fn growth_order(s: StrategyArg) -> GrowthOrder {
-    match s {
-        StrategyArg::Dfs => GrowthOrder::Dfs,
-        StrategyArg::Bfs => GrowthOrder::Bfs,
+/// Warnings for flags that do nothing for this input: growth flags on an
+/// input that does not grow, `--depth` on one that has no depth. Scripts
+/// pass one set of flags to many files, so these are warnings, not errors
+/// (docs/cli.md states the rule).
+fn ignored_flags(loaded: &Loaded, g: &GrowArgs, depth: Option<u32>) -> Vec<Diagnostic> {
+    let mut w = Vec::new();
+    let mut ignored = |flag: &str, reason: &str| {
+        w.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
+            flag: flag.into(),
+            reason: reason.into(),
+        }));
+    };
+    if !matches!(loaded, Loaded::Od(_)) {
+        let why = "only an .od grows; this input's tree is already decided";
+        if g.growth.is_some() {
+            ignored("--growth", why);
+        }
+        if g.clearance.is_some() {
+            ignored("--clearance", why);
+        }
+        if g.max_stems.is_some() {
+            ignored("--max-stems", why);
+        }
     }
+    if depth.is_some() && !matches!(loaded, Loaded::Lsys(_)) {
+        ignored(
+            "--depth",
+            "only an .lsys has a derivation depth; an .od or .bed draws its whole tree",
+        );
+    }
+    w
+}
+
+/// Refuses an output that is the input file, before any work.
+fn not_the_input(input: &Input, output: &Output) -> Result<(), Diagnostics> {
+    if !same_file(input, output) {
+        return Ok(());
+    }
+    let name = |o: &Output| match o {
+        Output::Path(p) => p.display().to_string(),
+        Output::Stdout => "-".into(),
+    };
+    Err(Diagnostic::error(ErrorKind::OutputIsInput {
+        input: input.display_name(),
+        output: name(output),
+    })
+    .with_help("name another output file with -o")
+    .into())
 }
 
 fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
-    let limits = a.limits.limits(a.grow.max_stems);
-    let loaded = load(&a.input, &limits, source)?;
+    let limits = a.limits.limits(
+        Some(&a.symbol_limits),
+        Some(&a.word_limits),
+        Some(&a.layout_limits),
+        a.grow.max_stems,
+    );
     let input = Input::parse(&a.input.input);
-    let format = match a.format {
-        Some(FormatArg::Png) => ImageFormat::Png,
-        Some(FormatArg::Svg) => ImageFormat::Svg,
-        None => pipeline::format_for(a.output.as_deref()),
-    };
+    let format = image_format(a.format, a.output.as_deref())?;
     let ext = match format {
         ImageFormat::Png => "png",
         ImageFormat::Svg => "svg",
@@ -139,6 +196,7 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
             .with_help("redirect standard output to a file, or use -o tree.png")
             .into());
     }
+    not_the_input(&input, &output)?;
     let look = Look {
         stroke: a
             .stroke
@@ -157,24 +215,75 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         size: a.size,
         max_svg_segments: a.max_svg_segments,
     };
-    // On `render`, --strategy is the growth order of an OD (whose BED is
-    // then streamed depth-first) and the derivation of a BED or an L-system.
-    let derivation = match loaded {
-        Loaded::Od(_) => Derivation::Dfs,
-        Loaded::Lsys(_) | Loaded::Bed(_) => a.strategy.into(),
-    };
+    let loaded = load(&a.input, &limits, source)?;
+    let mut warnings = ignored_flags(&loaded, &a.grow, a.depth);
     let req = SceneRequest {
-        grow: grow_options(growth_order(a.strategy), &a.grow, &limits),
-        derivation,
+        grow: grow_options(a.grow.growth, &a.grow, &limits),
+        derivation: a.strategy.into(),
         depth: a.depth,
         limits,
     };
     let mut bar = Bar::new(quiet);
     let scene = pipeline::scene(loaded, &req, &mut bar)?;
     bar.finish();
-    output.write_with(|out| pipeline::render(&scene, &look, &opts, out, &mut bar))?;
+    if a.show_layout && pipeline::layout_view(&scene, true).1.is_empty() {
+        warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
+            flag: "--show-layout".into(),
+            reason: "this input has no LAYOUT to show".into(),
+        }));
+    }
+    let mut rendered = None;
+    output.write_with(|out| {
+        rendered = Some(pipeline::render(&scene, &look, &opts, out, &mut bar)?);
+        Ok(())
+    })?;
     bar.finish();
-    Ok(scene.warnings)
+    warnings.extend(scene.warnings);
+    warnings.extend(rendered.map(|r| r.warnings).unwrap_or_default());
+    Ok(warnings)
+}
+
+/// The image format: `-f` if given, else the output's extension (`.svg`;
+/// `.png`, no extension or standard output: PNG). An extension that is
+/// neither, or that contradicts `-f`, is a usage error.
+fn image_format(
+    format: Option<FormatArg>,
+    output: Option<&str>,
+) -> Result<ImageFormat, Diagnostics> {
+    let asked = format.map(|f| match f {
+        FormatArg::Png => ImageFormat::Png,
+        FormatArg::Svg => ImageFormat::Svg,
+    });
+    let path = output.filter(|o| *o != "-");
+    let ext = path
+        .and_then(|p| std::path::Path::new(p).extension())
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let named = match ext.as_deref() {
+        None => None,
+        Some("png") => Some(ImageFormat::Png),
+        Some("svg") => Some(ImageFormat::Svg),
+        Some(other) => {
+            return Err(Diagnostic::error(ErrorKind::UnknownOutputExtension {
+                path: path.unwrap_or_default().into(),
+                extension: other.into(),
+            })
+            .with_help("name the output .png or .svg")
+            .into());
+        }
+    };
+    match (asked, named) {
+        (Some(a), Some(n)) if a != n => Err(Diagnostic::error(ErrorKind::FormatMismatch {
+            format: match a {
+                ImageFormat::Png => "png".into(),
+                ImageFormat::Svg => "svg".into(),
+            },
+            path: path.unwrap_or_default().into(),
+        })
+        .with_help("leave out -f (the extension decides), or name the output to match")
+        .into()),
+        (Some(a), _) => Ok(a),
+        (None, n) => Ok(n.unwrap_or(ImageFormat::Png)),
+    }
 }
 
 /// A colour given on the command line.
@@ -195,17 +304,20 @@ fn colour(text: &str, flag: &str) -> Result<Rgb, Diagnostics> {
 }
 
 fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
-    let limits = a.limits.limits(a.grow.max_stems);
-    let loaded = load(&a.input, &limits, source)?;
-    let opts = grow_options(growth_order(a.strategy), &a.grow, &limits);
-    let mut bar = Bar::new(quiet);
-    let compiled = pipeline::compile(&loaded, &opts, &mut bar)?;
-    bar.finish();
+    let limits = a
+        .limits
+        .limits(None, None, Some(&a.layout_limits), a.grow.max_stems);
     let input = Input::parse(&a.input.input);
     let output = match &a.output {
         Some(o) => Output::parse(o),
         None => sibling(&input, "bed").unwrap_or(Output::Stdout),
     };
+    not_the_input(&input, &output)?;
+    let loaded = load(&a.input, &limits, source)?;
+    let opts = grow_options(a.strategy.or(a.grow.growth), &a.grow, &limits);
+    let mut bar = Bar::new(quiet);
+    let compiled = pipeline::compile(&loaded, &opts, &mut bar)?;
+    bar.finish();
     output.write_with(|out| {
         out.write_all(compiled.text.as_bytes())
             .map_err(|e| io_error(&e, "cannot write the BED").into())
@@ -214,12 +326,19 @@ fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
 }
 
 fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
-    let limits = a.limits.limits(a.grow.max_stems);
-    let loaded = load(&a.input, &limits, source)?;
+    let limits = a.limits.limits(
+        Some(&a.symbol_limits),
+        Some(&a.word_limits),
+        Some(&a.layout_limits),
+        a.grow.max_stems,
+    );
+    let input = Input::parse(&a.input.input);
     let output = Output::parse(&a.output);
-    // On `expand`, --strategy is the derivation; an OD grows breadth-first.
+    not_the_input(&input, &output)?;
+    let loaded = load(&a.input, &limits, source)?;
+    let mut warnings = ignored_flags(&loaded, &a.grow, a.depth);
     let req = SceneRequest {
-        grow: grow_options(GrowthOrder::Bfs, &a.grow, &limits),
+        grow: grow_options(a.grow.growth, &a.grow, &limits),
         derivation: a.strategy.into(),
         depth: a.depth,
         limits,
@@ -229,21 +348,30 @@ fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
     bar.finish();
     output.write_with(|out| pipeline::expand(&scene, out, &mut bar))?;
     bar.finish();
-    Ok(scene.warnings)
+    warnings.extend(scene.warnings);
+    Ok(warnings)
 }
 
 fn stats(a: &StatsArgs, source: &mut Source) -> Outcome {
-    let limits = a.limits.limits(None);
+    let limits = a.limits.limits(Some(&a.symbol_limits), None, None, None);
     let loaded = load(&a.input, &limits, source)?;
     print_out(&pipeline::stats(&loaded, a.depth, a.json, &limits)?)?;
     Ok(Vec::new())
 }
 
 fn check(a: &CheckArgs, source: &mut Source) -> Outcome {
-    let limits = a.limits.limits(None);
+    let limits = a.limits.limits(
+        Some(&a.symbol_limits),
+        None,
+        Some(&a.layout_limits),
+        a.grow.max_stems,
+    );
     let loaded = load(&a.input, &limits, source)?;
-    print_out(&pipeline::check(&loaded, &limits)?)?;
-    Ok(Vec::new())
+    let mut warnings = ignored_flags(&loaded, &a.grow, None);
+    let checked = pipeline::check(&loaded, &grow_options(a.grow.growth, &a.grow, &limits))?;
+    print_out(&checked.summary)?;
+    warnings.extend(checked.warnings);
+    Ok(warnings)
 }
 
 fn print_out(text: &str) -> Result<(), Diagnostics> {

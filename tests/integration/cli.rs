@@ -634,7 +634,7 @@ fn render_of_an_od_equals_render_of_its_compiled_bed() {
                 &format!("{root}/examples/fig9.od"),
                 "--show-layout",
             ])
-            .args(["--strategy", strategy, "--size", "200x200", "-o"])
+            .args(["--growth", strategy, "--size", "200x200", "-o"])
             .arg(&from_od)
             .assert()
             .success();
@@ -722,7 +722,12 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
         (vec!["expand", &bad_bed], 1, "R7"),
     ];
     for (args, code, needle) in cases {
-        let out = dir.path().join("previous.out");
+        // `render` refuses an output extension that is not an image format.
+        let out = dir.path().join(if args[0] == "render" {
+            "previous.png"
+        } else {
+            "previous.out"
+        });
         fs::write(&out, b"previous bytes").unwrap();
         let before = files_in(dir.path());
         let res = stlc().args(&args).arg("-o").arg(&out).output().unwrap();

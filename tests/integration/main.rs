@@ -5,6 +5,7 @@ mod diagnostics;
 mod golden;
 mod grow;
 mod lsys;
+mod newuser;
 mod render;
 mod robustness;
 mod stl;
