@@ -361,11 +361,18 @@ pub fn style(scene: &Scene, look: &Look) -> Style {
     }
 }
 
-/// The canvas area a tree's layout defines (its shapes' bounds), and its
-/// shapes as fills if `show`. An L-system or a tree without a layout is
-/// fitted to its drawing instead.
+/// The canvas area a tree's layout defines, and its shapes as fills if
+/// `show`. The area is the shapes' bounds with a margin around them: half
+/// the widest stem (so a stem at the layout's edge is not cut by the
+/// image's edge) plus [`crate::render::MARGIN_FRACTION`] of the longest
+/// side, the margin a fitted picture gets. An L-system or a tree without a
+/// layout is fitted to its drawing instead.
 pub fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>) {
-    let Some(layout) = scene.bed().and_then(|b| b.description().layout.as_ref()) else {
+    let Some(bed) = scene.bed() else {
+        return (None, Vec::new());
+    };
+    let desc = bed.description();
+    let Some(layout) = desc.layout.as_ref() else {
         return (None, Vec::new());
     };
     let fills = if show {
@@ -373,7 +380,17 @@ pub fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>) {
     } else {
         Vec::new()
     };
-    (crate::layout::layout_bbox(layout), fills)
+    let view = crate::layout::layout_bbox(layout).map(|b| {
+        let widest = desc.params.width.base.max(0.0);
+        let m = crate::render::MARGIN_FRACTION * b.width().max(b.height()) + widest / 2.0;
+        BBox {
+            min_x: b.min_x - m,
+            min_y: b.min_y - m,
+            max_x: b.max_x + m,
+            max_y: b.max_y + m,
+        }
+    });
+    (view, fills)
 }
 
 /// What [`render`] drew.

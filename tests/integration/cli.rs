@@ -508,14 +508,20 @@ fn the_readme_commands_run() {
         .assert()
         .success();
     let pix = tiny_skia::Pixmap::decode_png(&fs::read(&out).unwrap()).unwrap();
-    // The layout is 180 x 192 canvas units: 750 x 800 pixels.
-    assert_eq!((pix.width(), pix.height()), (750, 800));
+    // The layout is 180 x 192 canvas units; with a margin of 4% of 192
+    // plus half a stem (B=1) on every side, 8.18 units, it is 196.36 x
+    // 208.36: round(800 x 196.36 / 208.36) = 754 x 800 pixels.
+    assert_eq!((pix.width(), pix.height()), (754, 800));
 }
 
 /// The grown tiny tree (tests/cases/grow/tiny.bfs.bed) over its layout,
-/// checked by hand: the layout box x -15..15, y -25..5 fills 120 px at scale
-/// 4, so the root (0, 0) is pixel (60, 100), stems are B=1 -> 4 px wide, and
-/// the four tips are (20, 100), (20, 20), (100, 20), (100, 100).
+/// checked by hand: the layout box x -15..15, y -25..5 with a margin of
+/// 4% of 30 plus half a stem (B=1), 1.7 units, is 33.4 units square and
+/// fills 120 px, so the scale is s = 120 / 33.4 = 3.593; the box's centre
+/// (0, -10) is pixel (60, 60), the root (0, 0) is (60, 60 + 10 s) =
+/// (60, 95.93), stems are 3.59 px wide, the four tips are (24.07, 95.93),
+/// (24.07, 24.07), (95.93, 24.07), (95.93, 95.93), and the box spans
+/// 60 -/+ 15 s = 6.11 .. 113.89: the margin outside it is background.
 #[test]
 fn a_bed_with_a_layout_renders_its_golden_svg() {
     let root = env!("CARGO_MANIFEST_DIR");
@@ -528,7 +534,7 @@ fn a_bed_with_a_layout_renders_its_golden_svg() {
     let golden = fs::read_to_string(format!("{root}/tests/cases/render/tiny-layout.svg")).unwrap();
     assert_eq!(String::from_utf8(out.stdout).unwrap(), golden);
     // The PNG agrees: stem pixels are bark brown, the layout green, the
-    // background outside nothing (the layout fills the view).
+    // margin around the layout white.
     let out = stlc()
         .args(["render", &format!("{root}/tests/cases/grow/tiny.bfs.bed")])
         .args(["--show-layout", "--size", "120x120", "-f", "png", "-o", "-"])
@@ -540,8 +546,9 @@ fn a_bed_with_a_layout_renders_its_golden_svg() {
         (p.red(), p.green(), p.blue())
     };
     assert_eq!(at(60, 80), (0x4a, 0x2c, 0x12)); // on the seed stem
-    assert_eq!(at(20, 40), (0x4a, 0x2c, 0x12)); // on a level-2 stem
+    assert_eq!(at(24, 40), (0x4a, 0x2c, 0x12)); // on a level-2 stem
     assert_eq!(at(40, 100), (0, 128, 0)); // between stems: layout green
+    assert_eq!(at(3, 3), (255, 255, 255)); // the margin: background
 }
 
 #[test]
