@@ -69,8 +69,9 @@ pub fn draw_into<T: Turtle>(
     Ok(interp.into_turtle())
 }
 
-/// Prints the seed's expansion as drawing components (`F f + - [ ] |`; `L`
-/// and `R` come out as `+` and `-`), then a newline. Streams with `dfs`.
+/// Writes the seed's expansion to `out` as drawing components (`F f + - [ ]
+/// |`; `L` and `R` come out as `+` and `-`), then a newline, in pieces of
+/// 64 KiB as they come (with `dfs`, while the expansion streams).
 pub fn expand(
     bed: &Bed,
     strategy: Derivation,
@@ -507,5 +508,28 @@ mod tests {
             stream(&bed, Derivation::Dfs)[..3],
             [Op::Draw, Op::Enter, Op::Draw]
         );
+    }
+
+    /// A fixed figure enters the `bfs` word whole, measured before it is
+    /// built.
+    #[test]
+    fn bfs_checks_a_fixed_figure_before_building_it() {
+        let limits = Limits {
+            max_word: 10,
+            ..Limits::default()
+        };
+        let bed = Bed::new(desc(3), &limits).unwrap();
+        let none = &mut |_| Ok(());
+        // `[I 3 F+F]` is 15 symbols.
+        let e = ops(&bed, Derivation::Bfs, &limits, &mut NoProgress, none).unwrap_err();
+        assert_eq!(
+            e.first_kind(),
+            Some(&ErrorKind::Limit {
+                what: "bfs word length".into(),
+                value: "15".into(),
+                limit: "10".into(),
+            })
+        );
+        assert!(ops(&bed, Derivation::Dfs, &limits, &mut NoProgress, none).is_ok());
     }
 }
