@@ -13,7 +13,8 @@ use std::collections::BTreeMap;
 
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::limits::Limits;
-use crate::model::{BodyItem, Description, Piece, RuleId, Seed, SeedItem, Slot, StemParams, Term};
+use crate::model::walk::{self, Step};
+use crate::model::{Description, Fixed, RuleId, Seed, SeedItem, Slot, StemParams, Term};
 
 /// What a description's seed expands to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -47,27 +48,10 @@ fn draw_size(text: &str) -> Size {
     }
 }
 
-/// Size of `[I n w]`: `w` with each `F` rewritten by `w`, `n - 1` times.
-pub fn fixed_size(word: &str, count: u32) -> Size {
-    let len = word.len() as u64;
-    let fs = word.bytes().filter(|&b| b == b'F').count() as u64;
-    let others = len - fs;
-    let mut s = Size {
-        symbols: len,
-        stems: fs,
-    };
-    for _ in 1..count {
-        let mut next = Size {
-            symbols: others,
-            stems: 0,
-        };
-        next.add(s.times(fs));
-        if next == s {
-            break;
-        }
-        s = next;
-    }
-    s
+/// Size of `[I n w]` (see [`walk::fixed_counts`]).
+fn fixed_size(f: &Fixed) -> Size {
+    let (symbols, stems) = walk::fixed_counts(&f.word, f.count);
+    Size { symbols, stems }
 }
 
 /// Per-rule sizes, computed once.
@@ -85,22 +69,18 @@ impl<'a> Sizer<'a> {
             .rules
             .iter()
             .map(|r| {
+                // `Enter` and `Leave`.
                 let mut s = Size {
                     symbols: 2,
                     stems: 0,
                 };
-                for item in &r.body.items {
-                    match item {
-                        BodyItem::Draw(d) => s.add(draw_size(&d.text)),
-                        BodyItem::Fixed(f) => s.add(fixed_size(&f.word, f.count)),
-                        BodyItem::Branch(b) => {
-                            s.symbols = s.symbols.saturating_add(2);
-                            for p in &b.pieces {
-                                match p {
-                                    Piece::Draw(d) => s.add(draw_size(&d.text)),
-                                    Piece::Fixed(f) => s.add(fixed_size(&f.word, f.count)),
-                                }
-                            }
+                for step in walk::steps(&r.body) {
+                    match step {
+                        Step::Run(d) => s.add(draw_size(&d.text)),
+                        Step::Fixed(f) => s.add(fixed_size(f)),
+                        // A branch's `[` and its `]`.
+                        Step::Open { .. } | Step::Tip { .. } => {
+                            s.symbols = s.symbols.saturating_add(1);
                         }
                     }
                 }
@@ -143,7 +123,7 @@ pub fn measure_seed(desc: &Description, seed: &Seed) -> Size {
     for item in &seed.items {
         match item {
             SeedItem::Draw(d) => total.add(draw_size(&d.text)),
-            SeedItem::Fixed(f) => total.add(fixed_size(&f.word, f.count)),
+            SeedItem::Fixed(f) => total.add(fixed_size(f)),
             SeedItem::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
             SeedItem::Term(t) => stack.push(t),
         }
@@ -231,20 +211,8 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
         }
     };
     for r in &desc.rules {
-        for item in &r.body.items {
-            let fixed: Vec<_> = match item {
-                BodyItem::Fixed(f) => vec![f],
-                BodyItem::Branch(b) => b
-                    .pieces
-                    .iter()
-                    .filter_map(|p| match p {
-                        Piece::Fixed(f) => Some(f),
-                        Piece::Draw(_) => None,
-                    })
-                    .collect(),
-                BodyItem::Draw(_) => Vec::new(),
-            };
-            for f in fixed {
+        for step in walk::steps(&r.body) {
+            if let Step::Fixed(f) = step {
                 check_count(f.count, &f.loc.0, &mut diags);
             }
         }
@@ -337,11 +305,12 @@ fn unknown_id(id: RuleId, span: &crate::diag::Span) -> Diagnostic {
 }
 
 fn order_error(p: &StemParams, order: u32, span: crate::diag::Span, rule: &str) -> Diagnostic {
-    let len = write::num(p.length.at(order));
-    let width = write::num(p.width.at(order));
-    Diagnostic::error(ErrorKind::Stl(format!(
-        "`{rule}` is applied at order {order}, where stems have length {len} and width {width}"
-    )))
+    Diagnostic::error(ErrorKind::OrderTooDeep {
+        rule: rule.to_string(),
+        order,
+        length: p.length.at(order),
+        width: p.width.at(order),
+    })
     .with_span(span)
     .with_label("stems of this order cannot exist")
     .with_help("stems need a positive length and width: lower the decrements of `L` and `B`, or remove the deeper terms")
@@ -351,31 +320,70 @@ fn order_error(p: &StemParams, order: u32, span: crate::diag::Span, rule: &str) 
 mod tests {
     use super::*;
 
+    use crate::model::Loc;
+    use crate::num::Linear;
+
+    /// The message is the BED writer's numbers in a fixed sentence.
+    #[test]
+    fn order_errors_name_the_rule_order_length_and_width() {
+        let p = StemParams {
+            length: Linear::new(10.0, 5.0),
+            width: Linear::new(1.0, 0.3),
+            angle: None,
+            clearance: None,
+            loc: Loc::default(),
+        };
+        let d = order_error(&p, 4, 3..7, "R1");
+        assert_eq!(
+            d.kind,
+            ErrorKind::OrderTooDeep {
+                rule: "R1".into(),
+                order: 4,
+                length: -10.0,
+                width: 1.0 - 4.0 * 0.3
+            }
+        );
+        assert_eq!(d.span, Some(3..7));
+        assert_eq!(
+            d.kind.to_string(),
+            "`R1` is applied at order 4, where stems have length -10 and width -0.2"
+        );
+    }
+
+    fn fixed(count: u32, word: &str) -> Fixed {
+        Fixed {
+            count,
+            word: word.into(),
+            loc: Loc::default(),
+        }
+    }
+
     #[test]
     fn fixed_sizes_follow_the_rewriting() {
         // [I 1 F+F] = F+F; [I 2 F+F] = F+F+F+F (7 symbols, 4 stems).
+        let size = |count, word| fixed_size(&fixed(count, word));
         assert_eq!(
-            fixed_size("F+F", 1),
+            size(1, "F+F"),
             Size {
                 symbols: 3,
                 stems: 2
             }
         );
         assert_eq!(
-            fixed_size("F+F", 2),
+            size(2, "F+F"),
             Size {
                 symbols: 7,
                 stems: 4
             }
         );
         assert_eq!(
-            fixed_size("F+F", 3),
+            size(3, "F+F"),
             Size {
                 symbols: 15,
                 stems: 8
             }
         );
         // saturates instead of overflowing
-        assert_eq!(fixed_size("FF", 200).stems, u64::MAX);
+        assert_eq!(size(200, "FF").stems, u64::MAX);
     }
 }

@@ -45,9 +45,8 @@ pub const MAX_INDENT_DEPTH: usize = 24;
 
 use std::fmt::Write as _;
 
-use crate::model::{
-    Body, BodyItem, Description, Fixed, LayoutShape, Piece, Repeat, Shape, Slot, Spelling, Term,
-};
+use crate::model::walk::{self, Step};
+use crate::model::{Body, Description, Fixed, LayoutShape, Repeat, Shape, Slot, Spelling, Term};
 
 /// Writes `desc` as a `.bed` file: header, rules, one seed term per line
 /// indented by depth, at most three decimals, LF line ends, trailing newline.
@@ -178,20 +177,14 @@ impl Writer<'_> {
 
     fn body(&self, body: &Body) -> String {
         let mut out = String::new();
-        for item in &body.items {
-            match item {
-                BodyItem::Draw(d) => out.push_str(&self.draw(&d.text)),
-                BodyItem::Fixed(f) => out.push_str(&self.fixed(f)),
-                BodyItem::Branch(b) => {
-                    out.push('[');
-                    for p in &b.pieces {
-                        match p {
-                            Piece::Draw(d) => out.push_str(&self.draw(&d.text)),
-                            Piece::Fixed(f) => out.push_str(&self.fixed(f)),
-                        }
-                    }
-                    if let Some(s) = &b.successor {
-                        if !b.pieces.is_empty() {
+        for step in walk::steps(body) {
+            match step {
+                Step::Run(d) => out.push_str(&self.draw(&d.text)),
+                Step::Fixed(f) => out.push_str(&self.fixed(f)),
+                Step::Open { .. } => out.push('['),
+                Step::Tip { branch, .. } => {
+                    if let Some(s) = &branch.successor {
+                        if !branch.pieces.is_empty() {
                             out.push(' ');
                         }
                         out.push_str(self.name(s.rule));

@@ -8,13 +8,15 @@
 //! `[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]`.
 //!
 //! - `[I n X]`, X a rule: `X`, with `[I n-1 X]` in every slot (`n` levels).
-//! - `[I n w]`, w drawing components: `F` rewritten by `w`, `n - 1` times on
-//!   `w` itself (`[I 1 w]` is `w`), drawn at the current order.
+//! - `[I n w]`, w drawing components: `F` rewritten by `w`, `n` times
+//!   (`[I 1 w]` is `w`), drawn at the current order; [`FixedWord`] expands it.
 //!
+//! Both strategies read a rule body through [`walk::steps`].
 //! [`Derivation::Dfs`] streams the operations with an explicit stack and never
 //! builds the expanded word (memory grows with nesting depth only);
-//! [`Derivation::Bfs`] rewrites the whole word level by level (refusing words
-//! longer than `limits.max_word`), then interprets it. Both feed the same
+//! [`Derivation::Bfs`] rewrites the whole word one level of rule
+//! applications at a time (refusing words longer than `limits.max_word`),
+//! then interprets it. Both issue the same stream of [`Op`]s into the same
 //! [`Interp`], so their segments agree bit for bit.
 
 use std::io::Write;
@@ -23,7 +25,8 @@ use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use crate::interpret::Derivation;
 use crate::limits::Limits;
-use crate::model::{BodyItem, Description, Piece, RuleDef, RuleId, Seed, SeedItem, Slot, Term};
+use crate::model::walk::{self, FixedWord, Step, Steps};
+use crate::model::{Description, Fixed, RuleDef, RuleId, Seed, SeedItem, Slot, Term};
 use crate::progress::Progress;
 use crate::turtle::{Interp, Op};
 use crate::turtle::{Point, Turtle};
@@ -66,8 +69,9 @@ pub fn draw_into<T: Turtle>(
     Ok(interp.into_turtle())
 }
 
-/// Prints the seed's expansion as drawing components (`F f + - [ ] |`; `L`
-/// and `R` come out as `+` and `-`), then a newline. Streams with `dfs`.
+/// Writes the seed's expansion to `out` as drawing components (`F f + - [ ]
+/// |`; `L` and `R` come out as `+` and `-`), then a newline, in pieces of
+/// 64 KiB as they come (with `dfs`, while the expansion streams).
 pub fn expand(
     bed: &Bed,
     strategy: Derivation,
@@ -200,124 +204,93 @@ impl<'a> Child<'a> {
     }
 }
 
+/// What the `dfs` stack holds.
 enum Frame<'a> {
-    /// A rule application's body, from item `item`; `branch` branches done.
-    Body {
-        rule: &'a RuleDef,
-        slots: Slots<'a>,
-        item: usize,
-        branch: usize,
-    },
-    /// A branch's pieces from `idx`.
-    Pieces { pieces: &'a [Piece], idx: usize },
-    /// `[I n w]`'s word from `idx`, each `F` rewritten `r` more times.
-    Fix { word: &'a [u8], idx: usize, r: u32 },
+    /// A rule application's body: its steps still to come, and what grows
+    /// in its slots.
+    Body { steps: Steps<'a>, slots: Slots<'a> },
     /// Start a rule application (a slot's content).
     Start(Child<'a>),
     /// Emit one operation (the `]` closing a branch).
     Emit(Op),
 }
 
-/// Depth-first streaming with an explicit stack.
+/// Emits the operations of the fixed figure `f`, reusing `word`'s stack.
+fn emit_fixed<'a>(
+    f: &'a Fixed,
+    word: &mut Option<FixedWord<'a>>,
+    sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
+) -> Result<(), Diagnostics> {
+    let word = match word {
+        Some(w) => {
+            w.restart(f);
+            w
+        }
+        None => word.insert(FixedWord::new(f)),
+    };
+    for c in word {
+        if let Some(op) = op_of(c) {
+            sink(op)?;
+        }
+    }
+    Ok(())
+}
+
+/// Depth-first streaming with an explicit stack: one [`Frame::Body`] per
+/// rule application in progress, so memory grows with nesting depth only.
+/// A fixed figure is streamed whole when it is met (it holds no rule
+/// application), by one [`FixedWord`] reused for every figure.
 fn dfs(
     desc: &Description,
     seed: &Seed,
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     let mut stack: Vec<Frame<'_>> = Vec::new();
+    let mut fixed: Option<FixedWord<'_>> = None;
     for item in &seed.items {
         match item {
             SeedItem::Draw(d) => emit_text(&d.text, sink)?,
-            SeedItem::Fixed(f) => stack.push(Frame::Fix {
-                word: f.word.as_bytes(),
-                idx: 0,
-                r: f.count.saturating_sub(1),
-            }),
+            SeedItem::Fixed(f) => emit_fixed(f, &mut fixed, sink)?,
             SeedItem::Term(t) => stack.push(Frame::Start(Child::Term(t))),
             SeedItem::Repeat(r) => stack.push(Frame::Start(Child::Repeat(r.rule, r.count))),
         }
         while let Some(top) = stack.last_mut() {
-            match top {
-                Frame::Body {
-                    rule,
-                    slots,
-                    item,
-                    branch,
-                } => {
-                    let Some(it) = rule.body.items.get(*item) else {
-                        stack.pop();
-                        sink(Op::Leave)?;
-                        continue;
-                    };
-                    *item += 1;
-                    match it {
-                        BodyItem::Draw(d) => emit_text(&d.text, sink)?,
-                        BodyItem::Fixed(f) => stack.push(Frame::Fix {
-                            word: f.word.as_bytes(),
-                            idx: 0,
-                            r: f.count.saturating_sub(1),
-                        }),
-                        BodyItem::Branch(b) => {
-                            let child = slots.child(*branch);
-                            *branch += 1;
-                            sink(Op::Push)?;
-                            stack.push(Frame::Emit(Op::Pop));
-                            if let Some(c) = child {
-                                stack.push(Frame::Start(c));
-                            }
-                            stack.push(Frame::Pieces {
-                                pieces: &b.pieces,
-                                idx: 0,
-                            });
-                        }
-                    }
-                }
-                Frame::Pieces { pieces, idx } => {
-                    let Some(p) = pieces.get(*idx) else {
-                        stack.pop();
-                        continue;
-                    };
-                    *idx += 1;
-                    match p {
-                        Piece::Draw(d) => emit_text(&d.text, sink)?,
-                        Piece::Fixed(f) => stack.push(Frame::Fix {
-                            word: f.word.as_bytes(),
-                            idx: 0,
-                            r: f.count.saturating_sub(1),
-                        }),
-                    }
-                }
-                Frame::Fix { word, idx, r } => {
-                    let Some(&c) = word.get(*idx) else {
-                        stack.pop();
-                        continue;
-                    };
-                    *idx += 1;
-                    if c == b'F' && *r > 0 {
-                        let (word, r) = (*word, *r - 1);
-                        stack.push(Frame::Fix { word, idx: 0, r });
-                    } else if let Some(op) = op_of(c) {
-                        sink(op)?;
-                    }
-                }
+            let (step, slots) = match top {
+                Frame::Body { steps, slots } => (steps.next(), *slots),
                 Frame::Start(c) => {
                     let c = *c;
                     stack.pop();
                     if let Some((rule, slots)) = c.parts(desc) {
                         sink(Op::Enter)?;
                         stack.push(Frame::Body {
-                            rule,
+                            steps: walk::steps(&rule.body),
                             slots,
-                            item: 0,
-                            branch: 0,
                         });
                     }
+                    continue;
                 }
                 Frame::Emit(op) => {
                     let op = *op;
                     stack.pop();
                     sink(op)?;
+                    continue;
                 }
+            };
+            match step {
+                None => {
+                    stack.pop();
+                    sink(Op::Leave)?;
+                }
+                Some(Step::Run(r)) => emit_text(&r.text, sink)?,
+                Some(Step::Fixed(f)) => emit_fixed(f, &mut fixed, sink)?,
+                Some(Step::Open { .. }) => sink(Op::Push)?,
+                Some(Step::Tip { index, .. }) => match slots.child(index) {
+                    Some(c) => {
+                        stack.push(Frame::Emit(Op::Pop));
+                        stack.push(Frame::Start(c));
+                    }
+                    None => sink(Op::Pop)?,
+                },
             }
         }
     }
@@ -329,10 +302,40 @@ fn dfs(
 enum Sym<'a> {
     Op(Op),
     Apply(Child<'a>),
-    Fix(&'a [u8], u32),
 }
 
-/// Breadth-first rewriting: the whole word, level by level, then interpreted.
+/// Refuses a `bfs` word of `len` symbols over `limits.max_word`.
+fn check_word(len: u64, limits: &Limits) -> Result<(), Diagnostics> {
+    if len > limits.max_word {
+        return Err(Diagnostic::error(ErrorKind::Limit {
+            what: "bfs word length".into(),
+            value: len.to_string(),
+            limit: limits.max_word.to_string(),
+        })
+        .with_help("raise the limit with --max-word N, or use --strategy dfs, which needs no word")
+        .into());
+    }
+    Ok(())
+}
+
+/// Appends the drawing components of `text` to `word`.
+fn push_text(word: &mut Vec<Sym<'_>>, text: &str) {
+    word.extend(text.bytes().filter_map(op_of).map(Sym::Op));
+}
+
+/// Appends the fixed figure `f`, whole: it holds no rule application, so it
+/// is drawn at the level that meets it. Its length is checked against
+/// `limits.max_word` before it is built.
+fn push_fixed(word: &mut Vec<Sym<'_>>, f: &Fixed, limits: &Limits) -> Result<(), Diagnostics> {
+    let (symbols, _) = walk::fixed_counts(&f.word, f.count);
+    check_word((word.len() as u64).saturating_add(symbols), limits)?;
+    word.extend(FixedWord::new(f).filter_map(op_of).map(Sym::Op));
+    Ok(())
+}
+
+/// Breadth-first rewriting: the whole word, one level of rule applications
+/// at a time, then interpreted. Every level is checked against
+/// `limits.max_word` as it grows.
 fn bfs(
     desc: &Description,
     seed: &Seed,
@@ -340,73 +343,34 @@ fn bfs(
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     let mut word: Vec<Sym<'_>> = Vec::new();
-    let push_text = |w: &mut Vec<Sym<'_>>, text: &str| {
-        w.extend(text.bytes().filter_map(op_of).map(Sym::Op));
-    };
     for item in &seed.items {
         match item {
             SeedItem::Draw(d) => push_text(&mut word, &d.text),
-            SeedItem::Fixed(f) => word.push(Sym::Fix(f.word.as_bytes(), f.count.saturating_sub(1))),
+            SeedItem::Fixed(f) => push_fixed(&mut word, f, limits)?,
             SeedItem::Term(t) => word.push(Sym::Apply(Child::Term(t))),
             SeedItem::Repeat(r) => word.push(Sym::Apply(Child::Repeat(r.rule, r.count))),
         }
     }
-    let too_long = |len: usize| -> Result<(), Diagnostics> {
-        if len as u64 > limits.max_word {
-            return Err(Diagnostic::error(ErrorKind::Limit {
-                what: "bfs word length".into(),
-                value: len.to_string(),
-                limit: limits.max_word.to_string(),
-            })
-            .with_help(
-                "raise the limit with --max-word N, or use --strategy dfs, which needs no word",
-            )
-            .into());
-        }
-        Ok(())
-    };
-    too_long(word.len())?;
-    while word.iter().any(|s| !matches!(s, Sym::Op(_))) {
+    check_word(word.len() as u64, limits)?;
+    while word.iter().any(|s| matches!(s, Sym::Apply(_))) {
         let mut next: Vec<Sym<'_>> = Vec::with_capacity(word.len() * 2);
         for s in &word {
             match *s {
                 Sym::Op(op) => next.push(Sym::Op(op)),
-                Sym::Fix(w, r) => {
-                    for &c in w {
-                        if c == b'F' && r > 0 {
-                            next.push(Sym::Fix(w, r - 1));
-                        } else if let Some(op) = op_of(c) {
-                            next.push(Sym::Op(op));
-                        }
-                    }
-                }
                 Sym::Apply(c) => {
                     let Some((rule, slots)) = c.parts(desc) else {
                         continue;
                     };
                     next.push(Sym::Op(Op::Enter));
-                    let mut branch = 0;
-                    for item in &rule.body.items {
-                        match item {
-                            BodyItem::Draw(d) => push_text(&mut next, &d.text),
-                            BodyItem::Fixed(f) => {
-                                next.push(Sym::Fix(f.word.as_bytes(), f.count.saturating_sub(1)))
-                            }
-                            BodyItem::Branch(b) => {
-                                next.push(Sym::Op(Op::Push));
-                                for p in &b.pieces {
-                                    match p {
-                                        Piece::Draw(d) => push_text(&mut next, &d.text),
-                                        Piece::Fixed(f) => next.push(Sym::Fix(
-                                            f.word.as_bytes(),
-                                            f.count.saturating_sub(1),
-                                        )),
-                                    }
-                                }
-                                if let Some(c) = slots.child(branch) {
+                    for step in walk::steps(&rule.body) {
+                        match step {
+                            Step::Run(r) => push_text(&mut next, &r.text),
+                            Step::Fixed(f) => push_fixed(&mut next, f, limits)?,
+                            Step::Open { .. } => next.push(Sym::Op(Op::Push)),
+                            Step::Tip { index, .. } => {
+                                if let Some(c) = slots.child(index) {
                                     next.push(Sym::Apply(c));
                                 }
-                                branch += 1;
                                 next.push(Sym::Op(Op::Pop));
                             }
                         }
@@ -414,7 +378,7 @@ fn bfs(
                     next.push(Sym::Op(Op::Leave));
                 }
             }
-            too_long(next.len())?;
+            check_word(next.len() as u64, limits)?;
         }
         word = next;
     }
@@ -424,4 +388,148 @@ fn bfs(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Body, BodyItem, Branch, DrawRun, Format, Loc, Piece, Repeat, StemParams};
+    use crate::num::Linear;
+    use crate::progress::NoProgress;
+
+    fn run(text: &str) -> DrawRun {
+        DrawRun {
+            text: text.into(),
+            loc: Loc::default(),
+        }
+    }
+
+    fn fixed(count: u32, word: &str) -> Fixed {
+        Fixed {
+            count,
+            word: word.into(),
+            loc: Loc::default(),
+        }
+    }
+
+    /// `T: F[I n F-F][+F[I n F+F]]` with the seed `[I n F+F] T{T{}} [I 2 T]`,
+    /// built by hand: the parser refuses `n = 0`.
+    fn desc(n: u32) -> Description {
+        let body = Body {
+            items: vec![
+                BodyItem::Draw(run("F")),
+                BodyItem::Fixed(fixed(n, "F-F")),
+                BodyItem::Branch(Branch {
+                    pieces: vec![Piece::Draw(run("+F")), Piece::Fixed(fixed(n, "F+F"))],
+                    successor: None,
+                    loc: Loc::default(),
+                }),
+            ],
+        };
+        let term = |slots| Term {
+            rule: RuleId(0),
+            slots,
+            bare: false,
+            loc: Loc::default(),
+        };
+        Description {
+            format: Format::Bed,
+            name: "T".into(),
+            name_loc: Loc::default(),
+            root: (0.0, 0.0),
+            root_loc: Loc::default(),
+            params: StemParams {
+                length: Linear::new(10.0, 1.0),
+                width: Linear::constant(1.0),
+                angle: None,
+                clearance: None,
+                loc: Loc::default(),
+            },
+            rules: vec![RuleDef {
+                name: "T".into(),
+                name_loc: Loc::default(),
+                body,
+                loc: Loc::default(),
+            }],
+            seed: Some(Seed {
+                items: vec![
+                    SeedItem::Fixed(fixed(n, "F+F")),
+                    SeedItem::Term(term(vec![Some(Slot::Term(term(vec![None])))])),
+                    SeedItem::Repeat(Repeat {
+                        count: 2,
+                        rule: RuleId(0),
+                        loc: Loc::default(),
+                    }),
+                ],
+                loc: Loc::default(),
+            }),
+            layout: None,
+        }
+    }
+
+    fn stream(bed: &Bed, strategy: Derivation) -> Vec<Op> {
+        let mut out = Vec::new();
+        ops(
+            bed,
+            strategy,
+            &Limits::default(),
+            &mut NoProgress,
+            &mut |op| {
+                out.push(op);
+                Ok(())
+            },
+        )
+        .unwrap();
+        out
+    }
+
+    /// `[I n w]` is defined once (`walk::FixedWord`): `dfs`, `bfs` and the
+    /// sizer agree with it, `[I 0 w]` (a single `F`) included.
+    #[test]
+    fn fixed_figures_agree_across_dfs_bfs_sizer_and_fixed_word() {
+        for n in 0..4 {
+            let bed = Bed::new(desc(n), &Limits::default()).unwrap();
+            let dfs = stream(&bed, Derivation::Dfs);
+            assert_eq!(dfs, stream(&bed, Derivation::Bfs), "n = {n}");
+            let stems = dfs.iter().filter(|&&op| op == Op::Draw).count() as u64;
+            assert_eq!(bed.size().symbols, dfs.len() as u64, "n = {n}");
+            assert_eq!(bed.size().stems, stems, "n = {n}");
+            // The seed opens with the figure alone.
+            let figure: Vec<Op> = FixedWord::of("F+F", n).filter_map(op_of).collect();
+            assert_eq!(dfs[..figure.len()], figure[..], "n = {n}");
+            assert_eq!(dfs[figure.len()], Op::Enter, "n = {n}");
+            // The body's figures, right after the trunk's `F`.
+            let body: Vec<Op> = FixedWord::of("F-F", n).filter_map(op_of).collect();
+            let at = figure.len() + 2;
+            assert_eq!(dfs[at..at + body.len()], body[..], "n = {n}");
+        }
+        let bed = Bed::new(desc(0), &Limits::default()).unwrap();
+        assert_eq!(
+            stream(&bed, Derivation::Dfs)[..3],
+            [Op::Draw, Op::Enter, Op::Draw]
+        );
+    }
+
+    /// A fixed figure enters the `bfs` word whole, measured before it is
+    /// built.
+    #[test]
+    fn bfs_checks_a_fixed_figure_before_building_it() {
+        let limits = Limits {
+            max_word: 10,
+            ..Limits::default()
+        };
+        let bed = Bed::new(desc(3), &limits).unwrap();
+        let none = &mut |_| Ok(());
+        // `[I 3 F+F]` is 15 symbols.
+        let e = ops(&bed, Derivation::Bfs, &limits, &mut NoProgress, none).unwrap_err();
+        assert_eq!(
+            e.first_kind(),
+            Some(&ErrorKind::Limit {
+                what: "bfs word length".into(),
+                value: "15".into(),
+                limit: "10".into(),
+            })
+        );
+        assert!(ops(&bed, Derivation::Dfs, &limits, &mut NoProgress, none).is_ok());
+    }
 }

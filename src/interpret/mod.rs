@@ -1,15 +1,28 @@
 //! Interpretation: from a derivation (classic L-system or BED) to turtle
 //! operations, and from operations to segments.
 //!
-//! A derivation denotes one stream of [`Op`](crate::turtle::Op)s. Two strategies produce it:
-//! [`Derivation::Dfs`] expands depth-first straight into the turtle with an
-//! explicit stack, never holding the expanded word (000's method);
+//! A derivation denotes one word of drawing components. Two strategies
+//! produce it: [`Derivation::Dfs`] expands depth-first with an explicit
+//! stack, never holding the expanded word (000's method);
 //! [`Derivation::Bfs`] rewrites the whole word level by level and then
-//! interprets it (Saupe's method, the baseline). Both feed the same
-//! [`Interp`](crate::turtle::Interp), so they draw bit-identical segments.
+//! interprets it (Saupe's method, the baseline). Both draw bit-identical
+//! segments, in the same order:
 //!
-//! - [`lsys`]: derivation of classic L-systems, `expand` and `stats`.
-//! - [`bed`]: expansion of Branch-Expansion Descriptions.
+//! - for a BED, both issue the same stream of [`Op`]s into the same
+//!   [`Interp`];
+//! - for an L-system, `bfs` feeds [`Interp`] one [`Op`] per symbol, while
+//!   `dfs` runs merged operations (runs counted, turns summed, empty and
+//!   leaf branches folded) through its own executor, which computes every
+//!   position with [`Interp`]'s expression.
+//!
+//! - [`lsys`]: derivation of classic L-systems (`draw`, `expand`,
+//!   `exact_lengths`).
+//! - [`bed`]: expansion of Branch-Expansion Descriptions (`draw`, `expand`,
+//!   `ops`).
+//! - [`stats`]: exact word statistics of classic L-systems.
+//!
+//! [`Op`]: crate::turtle::Op
+//! [`Interp`]: crate::turtle::Interp
 
 pub mod bed;
 pub mod lsys;

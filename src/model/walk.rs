@@ -131,6 +131,18 @@ impl<'a> FixedWord<'a> {
             single_f: count == 0,
         }
     }
+
+    /// Starts over on `f`, keeping the stack's memory: a pass that meets
+    /// fixed figures again and again (the BED `dfs` streamer) reuses one
+    /// expander instead of allocating a stack per figure.
+    pub fn restart(&mut self, f: &'a Fixed) {
+        self.word = f.word.as_bytes();
+        self.stack.clear();
+        if f.count > 0 {
+            self.stack.push((f.count, 0));
+        }
+        self.single_f = f.count == 0;
+    }
 }
 
 impl Iterator for FixedWord<'_> {
@@ -266,6 +278,14 @@ mod tests {
         assert_eq!(expand(5, "+-"), "+-");
         assert_eq!(expand(3, ""), "");
         assert_eq!(FixedWord::new(&fixed(2, "FF")).count(), 4);
+        // Restarting mid-figure forgets the rest of the old one.
+        let (a, b) = (fixed(3, "F+F"), fixed(0, "F-F"));
+        let mut w = FixedWord::new(&a);
+        w.next();
+        w.restart(&b);
+        assert_eq!(w.by_ref().map(char::from).collect::<String>(), "F");
+        w.restart(&a);
+        assert_eq!(w.map(char::from).collect::<String>(), expand(3, "F+F"));
     }
 
     /// The counts agree with the expansion, component by component.

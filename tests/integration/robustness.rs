@@ -495,7 +495,10 @@ fn zero_and_negative_sizes_are_refused() {
     let d = bed("T (0, 0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{R1{}}} ENDSEED");
     let e = validate(&d, &Limits::default()).unwrap_err();
     assert!(
-        matches!(e.first_kind(), Some(ErrorKind::Stl(m)) if m.contains("order 2")),
+        matches!(
+            e.first_kind(),
+            Some(ErrorKind::OrderTooDeep { order: 2, .. })
+        ),
         "{e}"
     );
 }

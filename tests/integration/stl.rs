@@ -486,7 +486,15 @@ fn validate_refuses_orders_without_length() {
     // L=10(5): order 2 has length 0.
     let d = bed("T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED");
     let e = validate(&d, &Limits::default()).unwrap_err();
-    assert!(matches!(e.first_kind(), Some(ErrorKind::Stl(m)) if m.contains("order 2")));
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::OrderTooDeep {
+            rule: "R1".into(),
+            order: 2,
+            length: 0.0,
+            width: 1.0
+        })
+    );
     let inner = "R1{}";
     let src = "T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED";
     assert_eq!(e.0[0].span, Some(at(src, inner, 0)));

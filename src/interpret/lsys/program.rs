@@ -1,0 +1,228 @@
+//! The compiled `dfs` derivation of an L-system.
+//!
+//! Every `(symbol, remaining depth)` whose whole expansion is at most
+//! [`MACRO_CAP`] units is precomputed once as a *macro* (a slice of the
+//! pool); every larger one becomes a *plan*: its successor as runs (child
+//! macros referenced, or short ones merged into glue runs) and calls to
+//! child plans. [`Program::run`] executes the plans with an explicit stack
+//! of `(plan, index)` frames, one per level above the macros, handing each
+//! run of units to the executor.
+
+use super::units::Unit;
+use super::{Alphabet, PROGRESS_STEP};
+use crate::progress::Progress;
+
+/// Largest precomputed expansion of one `(symbol, remaining depth)`, in
+/// units (ops or bytes). 4096 ops are 64 KiB: a macro stays in L2 cache.
+pub const MACRO_CAP: usize = 4096;
+
+/// Child macros up to this size are copied into their parent's glue runs
+/// (one run instead of several short ones); larger ones are referenced.
+const GLUE_CAP: usize = 64;
+
+/// Macros stop being made once the pool holds this many units (a bound on
+/// compile memory for systems whose expansions grow slowly).
+const POOL_CAP: usize = 1 << 20;
+
+/// How one `(symbol, remaining depth)` is produced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Entry {
+    /// Precomputed: `pool[start..end]`, `syms` symbols of the word.
+    Macro { start: u32, end: u32, syms: u64 },
+    /// Executed through `plans[id]`.
+    Plan(u32),
+}
+
+/// One step of a plan.
+#[derive(Debug, Clone, Copy)]
+enum Item {
+    /// Execute `pool[start..end]`, which stands for `syms` symbols.
+    Run { start: u32, end: u32, syms: u64 },
+    /// Descend into another plan.
+    Call(u32),
+}
+
+/// A compiled derivation, see the module documentation.
+pub(super) struct Program<U> {
+    pool: Vec<U>,
+    plans: Vec<Vec<Item>>,
+    root: u32,
+}
+
+impl<U: Unit> Program<U> {
+    pub(super) fn compile(alpha: &Alphabet, depth: u32) -> Self {
+        let n = alpha.chars.len();
+        let mut pool: Vec<U> = Vec::new();
+        let mut plans: Vec<Vec<Item>> = Vec::new();
+        // Terminal code of every symbol (what it is at 0 remaining steps).
+        let mut terminal: Vec<Entry> = Vec::with_capacity(n);
+        for &c in &alpha.chars {
+            let start = pool.len() as u32;
+            let mut code = Vec::new();
+            U::terminal(c, &mut code);
+            pool.extend_from_slice(&code);
+            terminal.push(Entry::Macro {
+                start,
+                end: pool.len() as u32,
+                syms: 1,
+            });
+        }
+        // `prev[s]`: the entry of (s, r - 1) while level r is compiled.
+        let mut prev = terminal.clone();
+        // The row before `prev`, to spot expansions that stopped changing.
+        let mut prev2: Option<Vec<Entry>> = None;
+        let mut scratch: Vec<U> = Vec::new();
+        // Saturating lengths of every symbol's expansion at the level before.
+        let mut len_prev = vec![1u64; n];
+        for _ in 0..depth {
+            let lens_r: Vec<u64> = (0..n)
+                .map(|s| match &alpha.succ[s] {
+                    Some(succ) => succ
+                        .iter()
+                        .fold(0u64, |a, &c| a.saturating_add(len_prev[c as usize])),
+                    None => 1,
+                })
+                .collect();
+            let mut row = Vec::with_capacity(n);
+            for s in 0..n {
+                let Some(succ) = &alpha.succ[s] else {
+                    row.push(terminal[s]);
+                    continue;
+                };
+                // Same children as one level up: the same expansion.
+                if let Some(p2) = &prev2 {
+                    if succ.iter().all(|&c| prev[c as usize] == p2[c as usize]) {
+                        row.push(prev[s]);
+                        continue;
+                    }
+                }
+                // A macro if every child is one and the whole fits.
+                let all_macros = succ
+                    .iter()
+                    .all(|&c| matches!(prev[c as usize], Entry::Macro { .. }));
+                if all_macros {
+                    scratch.clear();
+                    let mut fits = true;
+                    for &c in succ {
+                        if let Entry::Macro { start, end, .. } = prev[c as usize] {
+                            let size = scratch.len() + (end - start) as usize;
+                            if size > MACRO_CAP || pool.len() + size > POOL_CAP {
+                                fits = false;
+                                break;
+                            }
+                            let piece = pool[start as usize..end as usize].to_vec();
+                            U::append(&mut scratch, &piece);
+                        }
+                    }
+                    if fits {
+                        let start = pool.len() as u32;
+                        pool.extend_from_slice(&scratch);
+                        row.push(Entry::Macro {
+                            start,
+                            end: pool.len() as u32,
+                            syms: lens_r[s],
+                        });
+                        continue;
+                    }
+                }
+                let items = plan_items(succ, &prev, &mut pool);
+                plans.push(items);
+                row.push(Entry::Plan(plans.len() as u32 - 1));
+            }
+            // A level equal to the one before repeats for ever: the
+            // remaining levels would compile to the same row.
+            let stationary = row == prev;
+            prev2 = Some(std::mem::replace(&mut prev, row));
+            len_prev = lens_r;
+            if stationary {
+                break;
+            }
+        }
+        let root = plan_items(&alpha.axiom, &prev, &mut pool);
+        plans.push(root);
+        Program {
+            pool,
+            root: plans.len() as u32 - 1,
+            plans,
+        }
+    }
+
+    /// Executes the program with an explicit stack, handing each run of
+    /// units to `exec`.
+    pub(super) fn run(&self, mut exec: impl FnMut(&[U]), progress: &mut dyn Progress) {
+        let mut stack: Vec<(u32, u32)> = vec![(self.root, 0)];
+        let mut done = 0u64;
+        let mut next_report = PROGRESS_STEP;
+        while let Some(top) = stack.last_mut() {
+            let plan = &self.plans[top.0 as usize];
+            let Some(&item) = plan.get(top.1 as usize) else {
+                stack.pop();
+                continue;
+            };
+            top.1 += 1;
+            match item {
+                Item::Run { start, end, syms } => {
+                    exec(&self.pool[start as usize..end as usize]);
+                    done = done.saturating_add(syms);
+                    if done >= next_report {
+                        progress.update(done);
+                        next_report = done.saturating_add(PROGRESS_STEP);
+                    }
+                }
+                Item::Call(p) => stack.push((p, 0)),
+            }
+        }
+    }
+}
+
+/// The items of a plan for the word `children`, each at the level `prev`
+/// describes: short child macros merged into glue runs, long ones
+/// referenced, plans called.
+fn plan_items<U: Unit>(children: &[u32], prev: &[Entry], pool: &mut Vec<U>) -> Vec<Item> {
+    let mut items = Vec::new();
+    let mut glue: Vec<U> = Vec::new();
+    let mut glue_syms = 0u64;
+    let flush = |glue: &mut Vec<U>, syms: &mut u64, pool: &mut Vec<U>, items: &mut Vec<Item>| {
+        if *syms > 0 {
+            let start = pool.len() as u32;
+            pool.extend_from_slice(glue);
+            if !glue.is_empty() {
+                items.push(Item::Run {
+                    start,
+                    end: pool.len() as u32,
+                    syms: *syms,
+                });
+            } else if let Some(Item::Run { syms: s, .. }) = items.last_mut() {
+                // Inert symbols only: count them with the previous run.
+                *s = s.saturating_add(*syms);
+            } else {
+                items.push(Item::Run {
+                    start,
+                    end: start,
+                    syms: *syms,
+                });
+            }
+            glue.clear();
+            *syms = 0;
+        }
+    };
+    for &c in children {
+        match prev[c as usize] {
+            Entry::Macro { start, end, syms } if (end - start) as usize <= GLUE_CAP => {
+                let piece = pool[start as usize..end as usize].to_vec();
+                U::append(&mut glue, &piece);
+                glue_syms = glue_syms.saturating_add(syms);
+            }
+            Entry::Macro { start, end, syms } => {
+                flush(&mut glue, &mut glue_syms, pool, &mut items);
+                items.push(Item::Run { start, end, syms });
+            }
+            Entry::Plan(p) => {
+                flush(&mut glue, &mut glue_syms, pool, &mut items);
+                items.push(Item::Call(p));
+            }
+        }
+    }
+    flush(&mut glue, &mut glue_syms, pool, &mut items);
+    items
+}
