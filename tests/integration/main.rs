@@ -2,6 +2,7 @@
 
 mod cli;
 mod diagnostics;
+mod docs;
 mod golden;
 mod grow;
 mod lsys;
