@@ -34,7 +34,7 @@ use crate::limits::Limits;
 use crate::model::lsys::{Background, LSystem};
 use crate::model::{Description, Format, SeedItem};
 use crate::progress::{Phase, Progress};
-use crate::render::{ImageFormat, RenderOptions, Style, Width};
+use crate::render::{RenderOptions, Style, Width};
 use crate::syntax::{self, InputKind};
 use crate::turtle::{BBox, Fill, Turtle};
 
@@ -414,14 +414,15 @@ pub fn render(
 ) -> Result<Rendered, Diagnostics> {
     let style = style(scene, look);
     let (view, underlay) = layout_view(scene, look.show_layout);
-    let mut segments = 0;
-    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| {
-        let mut tally = Tally { inner: t, count: 0 };
-        let r = scene.draw(&mut tally, p);
-        segments = tally.count;
-        r
+    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
+    let counted =
+        crate::render::render(&mut drawing, view, &underlay, &style, opts, out, progress)?;
+    // A tree's stems are known from its measure; an L-system's were counted
+    // by the bounding pass (it has no layout view, so one always runs).
+    let segments = match &scene.what {
+        What::Tree { bed, .. } => bed.size().stems,
+        What::Lsys { .. } => counted.unwrap_or(0),
     };
-    crate::render::render(&mut drawing, view, &underlay, &style, opts, out, progress)?;
     let mut warnings = Vec::new();
     if segments == 0 {
         warnings.push(Diagnostic::warning(ErrorKind::NothingDrawn).with_help(
@@ -429,29 +430,6 @@ pub fn render(
         ));
     }
     Ok(Rendered { segments, warnings })
-}
-
-/// A turtle that counts the segments it passes on.
-struct Tally<'a> {
-    inner: &'a mut dyn Turtle,
-    count: u64,
-}
-
-impl Turtle for Tally<'_> {
-    #[inline]
-    fn segment(&mut self, seg: crate::turtle::Segment) {
-        self.count += 1;
-        self.inner.segment(seg);
-    }
-}
-
-/// The image format a file name asks for: SVG for `.svg` (any case),
-/// else PNG.
-pub fn format_for(name: Option<&str>) -> ImageFormat {
-    match name.and_then(|n| Path::new(n).extension()?.to_str()) {
-        Some(e) if e.eq_ignore_ascii_case("svg") => ImageFormat::Svg,
-        _ => ImageFormat::Png,
-    }
 }
 
 // -------------------------------------------------------------- expand --
@@ -512,17 +490,25 @@ pub struct Checked {
 }
 
 /// Answers "would compile and render succeed?" without drawing, and
-/// summarises the input (`stlc check`): its rules, seed and layout; an OD is
+/// summarises the input (`stlc check`): its rules, seed and layout; an
+/// L-system with `generations` is checked against the limits at that depth
+/// (its word's length is computed, not derived); an OD is
 /// grown with `opts` (every check compile makes: bounded growth, the root
 /// inside the layout, a layout with an area, the limits) and its stems
 /// counted; a BED's stems come from its measure.
 pub fn check(loaded: &Loaded, opts: &GrowOptions) -> Result<Checked, Diagnostics> {
     let limits = &opts.limits;
     Ok(match loaded {
-        Loaded::Lsys(sys) => Checked {
-            summary: lsys_summary(sys),
-            warnings: inert_turns(sys),
-        },
+        Loaded::Lsys(sys) => {
+            // With its own depth, would it derive within the limits?
+            if let Some(depth) = sys.generations {
+                crate::interpret::lsys::check(sys, depth, Derivation::Dfs, limits)?;
+            }
+            Checked {
+                summary: lsys_summary(sys),
+                warnings: inert_turns(sys),
+            }
+        }
         Loaded::Od(desc) => {
             let grown = grow(desc, opts, &mut crate::progress::NoProgress)?;
             let mut summary = stl_summary(desc, None, limits)?;

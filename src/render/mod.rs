@@ -349,6 +349,7 @@ fn checked_size((w, h): (u32, u32)) -> Result<(u32, u32), Diagnostics> {
 /// their work named `measuring: ...` and `drawing: ...`.
 /// The underlay is painted first, in order, then the segments. SVG output
 /// streams into `out` while the drawing runs; PNG is written at the end.
+/// Returns the number of segments the first pass counted, if one ran.
 pub fn render(
     drawing: &mut Drawing<'_>,
     view: Option<BBox>,
@@ -357,11 +358,13 @@ pub fn render(
     opts: &RenderOptions,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
-) -> Result<(), Diagnostics> {
+) -> Result<Option<u64>, Diagnostics> {
     // Refuse a bad size before any work.
     if let Some(size) = opts.size {
         checked_size(size)?;
     }
+    // Segments counted by a first pass, when one runs.
+    let mut counted = None;
     let fit = match view {
         Some(view) => {
             if opts.format == ImageFormat::Svg {
@@ -369,6 +372,7 @@ pub fn render(
                 // so an SVG over the limit is refused before a byte is written.
                 let mut count = Counter::default();
                 drawing(&mut count, &mut Phase::new(progress, "counting"))?;
+                counted = Some(count.0);
                 if count.0 > opts.max_svg_segments {
                     return Err(svg_too_large(Some(count.0), opts.max_svg_segments));
                 }
@@ -378,6 +382,7 @@ pub fn render(
         None => {
             let mut bounds = Bounds::default();
             drawing(&mut bounds, &mut Phase::new(progress, "measuring"))?;
+            counted = Some(bounds.count);
             let mut bbox = bounds.bbox();
             for p in underlay.iter().flat_map(|f| &f.rings).flatten() {
                 match &mut bbox {
@@ -416,7 +421,7 @@ pub fn render(
                 .map_err(|e| io_error(&e, "writing the SVG image"))?;
         }
     }
-    Ok(())
+    Ok(counted)
 }
 
 #[cfg(test)]

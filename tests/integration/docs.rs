@@ -79,8 +79,8 @@ fn every_file_example_in_the_docs_loads_checks_and_draws() {
             depth: None,
             limits: opts.limits,
         };
-        let scene = pipeline::scene(loaded, &req, &mut NoProgress)
-            .unwrap_or_else(|e| panic!("{at}: {e}"));
+        let scene =
+            pipeline::scene(loaded, &req, &mut NoProgress).unwrap_or_else(|e| panic!("{at}: {e}"));
         let mut count = stlc::turtle::Counter::default();
         scene.draw(&mut count, &mut NoProgress).unwrap();
         assert!(count.0 > 0, "{at}: draws nothing");

@@ -73,6 +73,20 @@ pub use units::FastOp;
 /// Progress is reported about every this many symbols.
 const PROGRESS_STEP: u64 = 1 << 20;
 
+/// Checks that `sys` can be derived to `depth` with `strategy` within
+/// `limits` (depth, the traversal's length, bfs's word), as [`draw`] and
+/// [`expand`] do before any work, without deriving.
+pub fn check(
+    sys: &LSystem,
+    depth: u32,
+    strategy: Derivation,
+    limits: &Limits,
+) -> Result<(), Diagnostics> {
+    Alphabet::new(sys)
+        .check(depth, strategy, limits)
+        .map(|_| ())
+}
+
 /// Draws `sys` derived to `depth` into `turtle`, starting at the origin
 /// heading up, unit step `sys.length`, order 0.
 pub fn draw(
