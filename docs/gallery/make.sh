@@ -5,8 +5,8 @@ cargo build --release --quiet
 B=target/release/stlc
 G=docs/gallery
 $B render examples/2dtree.od --show-layout --size 360x384 -o $G/2dtree.png
-$B render examples/fig9.od --strategy bfs --show-layout --size 300x316 -o $G/fig9-bfs.png
-$B render examples/fig9.od --strategy dfs --show-layout --size 300x316 -o $G/fig10-dfs.png
+$B render examples/fig9.od --growth bfs --show-layout --size 300x316 -o $G/fig9-bfs.png
+$B render examples/fig9.od --growth dfs --show-layout --size 300x316 -o $G/fig10-dfs.png
 $B render examples/holes.od --show-layout --size 300x300 -o $G/holes.png
 $B render examples/polygon.od --show-layout --size 300x300 -o $G/polygon.png
 $B render examples/decrement.od --size 300x300 -o $G/decrement.png
@@ -14,5 +14,17 @@ for n in abop-1.24a abop-1.24b abop-1.24c abop-1.24d abop-1.24e abop-1.24f \
          koch-snowflake sierpinski-arrowhead stl-003-fig4; do
   $B render examples/$n.lsys --size 240x240 -o $G/$n.png
 done
+$B render examples/crown.od --show-layout --size 300x300 -o $G/crown.png
+$B render examples/successors.od --show-layout --size 300x300 -o $G/successors.png
+$B render examples/pentagon.od --show-layout --size 300x300 -o $G/pentagon.png
+# The tutorial's pictures (docs/tutorial.md).
+T=docs/tutorial
+for i in 1 2; do
+  $B render examples/tutorial/step$i.od --size 240x240 -o $T/step$i.png
+done
+for i in 3 4; do
+  $B render examples/tutorial/step$i.od --show-layout --size 240x240 -o $T/step$i.png
+done
+$B render examples/tutorial/step4.od --growth dfs --show-layout --size 240x240 -o $T/step5.png
 # Depth 7 is a solid grey square at thumbnail size.
 $B render examples/hilbert.lsys --depth 5 --size 240x240 -o $G/hilbert.png
