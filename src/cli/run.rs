@@ -8,7 +8,7 @@ use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::grow::{GrowOptions, GrowthOrder};
 use stlc::limits::Limits;
-use stlc::pipeline::{self, Loaded, Look, SceneRequest};
+use stlc::pipeline::{self, Loaded, Look, Scene, SceneRequest};
 use stlc::progress::Progress as _;
 use stlc::render::{ImageFormat, RenderOptions};
 use stlc::syntax::InputKind;
@@ -16,7 +16,7 @@ use stlc::{Severity, syntax};
 
 use super::args::{
     CheckArgs, Cli, Command, CompileArgs, ExpandArgs, FormatArg, FromKind, GrowArgs, GrowthArg,
-    InputArgs, RenderArgs, StatsArgs,
+    InputArgs, RenderArgs, StatsArgs, StrategyArg,
 };
 use super::io::{Input, Output, same_file, sibling};
 use super::progress::Bar;
@@ -121,6 +121,31 @@ fn grow_options(order: Option<GrowthArg>, g: &GrowArgs, limits: &Limits) -> Grow
     }
 }
 
+/// Loads the input and decides its scene (growing an OD), with warnings for
+/// the flags that do nothing for it: what `render` and `expand` share.
+fn scene(
+    input: &InputArgs,
+    grow: &GrowArgs,
+    strategy: StrategyArg,
+    depth: Option<u32>,
+    limits: &Limits,
+    quiet: bool,
+    source: &mut Source,
+) -> Result<(Scene, Vec<Diagnostic>), Diagnostics> {
+    let loaded = load(input, limits, source)?;
+    let warnings = ignored_flags(&loaded, grow, depth);
+    let req = SceneRequest {
+        grow: grow_options(grow.growth, grow, limits),
+        derivation: strategy.into(),
+        depth,
+        limits: *limits,
+    };
+    let mut bar = Bar::new(quiet);
+    let scene = pipeline::scene(loaded, &req, &mut bar)?;
+    bar.finish();
+    Ok((scene, warnings))
+}
+
 /// Warnings for flags that do nothing for this input: growth flags on an
 /// input that does not grow, `--depth` on one that has no depth. Scripts
 /// pass one set of flags to many files, so these are warnings, not errors
@@ -215,17 +240,10 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         size: a.size,
         max_svg_segments: a.max_svg_segments,
     };
-    let loaded = load(&a.input, &limits, source)?;
-    let mut warnings = ignored_flags(&loaded, &a.grow, a.depth);
-    let req = SceneRequest {
-        grow: grow_options(a.grow.growth, &a.grow, &limits),
-        derivation: a.strategy.into(),
-        depth: a.depth,
-        limits,
-    };
+    let (scene, mut warnings) = scene(
+        &a.input, &a.grow, a.strategy, a.depth, &limits, quiet, source,
+    )?;
     let mut bar = Bar::new(quiet);
-    let scene = pipeline::scene(loaded, &req, &mut bar)?;
-    bar.finish();
     if a.show_layout && pipeline::layout_view(&scene, true).1.is_empty() {
         warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
             flag: "--show-layout".into(),
@@ -335,17 +353,10 @@ fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
     let input = Input::parse(&a.input.input);
     let output = Output::parse(&a.output);
     not_the_input(&input, &output)?;
-    let loaded = load(&a.input, &limits, source)?;
-    let mut warnings = ignored_flags(&loaded, &a.grow, a.depth);
-    let req = SceneRequest {
-        grow: grow_options(a.grow.growth, &a.grow, &limits),
-        derivation: a.strategy.into(),
-        depth: a.depth,
-        limits,
-    };
+    let (scene, mut warnings) = scene(
+        &a.input, &a.grow, a.strategy, a.depth, &limits, quiet, source,
+    )?;
     let mut bar = Bar::new(quiet);
-    let scene = pipeline::scene(loaded, &req, &mut bar)?;
-    bar.finish();
     output.write_with(|out| pipeline::expand(&scene, out, &mut bar))?;
     bar.finish();
     warnings.extend(scene.warnings);

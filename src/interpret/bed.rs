@@ -132,7 +132,7 @@ pub fn ops(
     let mut done = 0u64;
     let mut counted = |op: Op| -> Result<(), Diagnostics> {
         done += 1;
-        if done % PROGRESS_EVERY == 0 {
+        if done.is_multiple_of(PROGRESS_EVERY) {
             progress.update(done);
         }
         sink(op)

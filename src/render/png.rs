@@ -299,19 +299,7 @@ mod tests {
     use crate::render::Style;
 
     fn turtle() -> PngTurtle {
-        let fit = Fit {
-            width: 100,
-            height: 100,
-            scale: 1.0,
-            dx: 0.0,
-            dy: 0.0,
-        };
-        let style = Style {
-            stroke: Rgb::BLACK,
-            background: Some(Rgb::WHITE),
-            width: Width::Pixels(1.0),
-        };
-        PngTurtle::new(fit, &style).unwrap()
+        wide_turtle(1.0)
     }
 
     /// Draws a connected run through `points` (output pixels, scale 1).

@@ -136,19 +136,19 @@ impl Alphabet {
             .with_help("use a smaller depth, or raise the traversal budget with --max-symbols N")
             .into());
         }
-        if strategy == Derivation::Bfs {
-            if let Some(r) = (0..=depth).find(|&r| lens[r as usize] > limits.max_word) {
-                return Err(Diagnostic::error(ErrorKind::Limit {
-                    what: format!("bfs word at level {r}"),
-                    value: exact(r),
-                    limit: limits.max_word.to_string(),
-                })
-                .with_help(
-                    "use --strategy dfs (it never holds the word), a smaller depth, \
-                     or raise the limit with --max-word N",
-                )
-                .into());
-            }
+        if strategy == Derivation::Bfs
+            && let Some(r) = (0..=depth).find(|&r| lens[r as usize] > limits.max_word)
+        {
+            return Err(Diagnostic::error(ErrorKind::Limit {
+                what: format!("bfs word at level {r}"),
+                value: exact(r),
+                limit: limits.max_word.to_string(),
+            })
+            .with_help(
+                "use --strategy dfs (it never holds the word), a smaller depth, \
+                 or raise the limit with --max-word N",
+            )
+            .into());
         }
         Ok(lens)
     }

@@ -168,10 +168,10 @@ pub fn expand(
             let program = Program::<u8>::compile(&alpha, depth);
             program.run(
                 |bytes| {
-                    if failed.is_none() {
-                        if let Err(e) = w.write_all(bytes) {
-                            failed = Some(e);
-                        }
+                    if failed.is_none()
+                        && let Err(e) = w.write_all(bytes)
+                    {
+                        failed = Some(e);
                     }
                 },
                 progress,
@@ -189,10 +189,10 @@ pub fn expand(
             });
         }
     }
-    if failed.is_none() {
-        if let Err(e) = w.write_all(b"\n").and_then(|()| w.flush()) {
-            failed = Some(e);
-        }
+    if failed.is_none()
+        && let Err(e) = w.write_all(b"\n").and_then(|()| w.flush())
+    {
+        failed = Some(e);
     }
     progress.update(total);
     progress.finish();

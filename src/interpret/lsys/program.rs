@@ -90,11 +90,11 @@ impl<U: Unit> Program<U> {
                     continue;
                 };
                 // Same children as one level up: the same expansion.
-                if let Some(p2) = &prev2 {
-                    if succ.iter().all(|&c| prev[c as usize] == p2[c as usize]) {
-                        row.push(prev[s]);
-                        continue;
-                    }
+                if let Some(p2) = &prev2
+                    && succ.iter().all(|&c| prev[c as usize] == p2[c as usize])
+                {
+                    row.push(prev[s]);
+                    continue;
                 }
                 // A macro if every child is one and the whole fits.
                 let all_macros = succ
