@@ -89,9 +89,215 @@ pub enum ErrorKind {
     BrokenPipe,
 
     // ------------------------------------------------ syntax: .lsys --
+    /// A `.lsys` line starts with no key of the format.
+    #[error("unknown key `{key}`")]
+    UnknownKey {
+        /// The key as written.
+        key: String,
+    },
+    /// A single-valued `.lsys` key is given on a second line.
+    #[error("`{key}` is given twice")]
+    DuplicateKey {
+        /// The key.
+        key: &'static str,
+    },
+    /// A `.lsys` file lacks a key it needs (`axiom`, `angle`).
+    #[error("missing `{key}`")]
+    MissingKey {
+        /// The key.
+        key: &'static str,
+    },
+    /// A `.lsys` rule's predecessor is more than one symbol.
+    #[error("a rule rewrites one symbol, but `{predecessor}` is {symbols} symbols")]
+    LongPredecessor {
+        /// The predecessor as written.
+        predecessor: String,
+        /// Its number of symbols.
+        symbols: usize,
+    },
+    /// Two `.lsys` rules rewrite the same symbol.
+    #[error("two rules for `{symbol}`")]
+    DuplicateProduction {
+        /// The symbol both rewrite.
+        symbol: char,
+    },
+    /// A `.lsys` key that takes a whole number is given something else.
+    #[error("`{key}` takes a whole number, not `{text}`")]
+    NotWholeNumber {
+        /// The key.
+        key: &'static str,
+        /// The value as written.
+        text: String,
+    },
+    /// A `.lsys` number value does not read as a number.
+    #[error("malformed number `{text}`")]
+    MalformedNumber {
+        /// The value as written.
+        text: String,
+    },
+    /// A `.lsys` number value does not fit a 64-bit float.
+    #[error("`{key}` {text} is too large")]
+    NumberTooLarge {
+        /// The key.
+        key: &'static str,
+        /// The value as written.
+        text: String,
+    },
+    /// A `.lsys` value that must be positive is zero or negative.
+    #[error("`{key}` must be greater than 0, not {text}")]
+    NotPositive {
+        /// The key.
+        key: &'static str,
+        /// The value as written.
+        text: String,
+    },
+    /// A colour is neither `#rrggbb` nor a known colour name: the value of
+    /// a `.lsys` `color` or `background`, or of a layout line.
+    #[error("unknown colour `{text}`")]
+    UnknownColour {
+        /// The colour as written.
+        text: String,
+    },
 
     // --------------------------------------------- syntax: .od / .bed --
-
+    /// A number in a description does not fit a 64-bit float.
+    #[error("`{text}` is not a finite number")]
+    NotFinite {
+        /// The number as written.
+        text: String,
+    },
+    /// A stem parameter is given twice.
+    #[error("`{key}` is given twice")]
+    DuplicateParam {
+        /// The parameter's name as written.
+        key: String,
+    },
+    /// A stem parameter's name is none of `L`, `B`, `A`, `C`.
+    #[error("unknown stem parameter `{key}`")]
+    UnknownParam {
+        /// The name as written.
+        key: String,
+    },
+    /// The base length `L` or broadness `B` is zero or negative.
+    #[error("the stem {what} `{key}` must be positive")]
+    StemSizeNotPositive {
+        /// `L` or `B`.
+        key: &'static str,
+        /// `length` or `broadness`.
+        what: &'static str,
+    },
+    /// The decrement of `L` or `B` is negative.
+    #[error("the decrement of `{key}` must not be negative")]
+    NegativeDecrement {
+        /// `L` or `B`.
+        key: &'static str,
+    },
+    /// `A` or `C` is written with a decrement.
+    #[error("`{key}` takes no decrement")]
+    UnexpectedDecrement {
+        /// `A` or `C`.
+        key: &'static str,
+    },
+    /// The clearance `C` is negative.
+    #[error("the clearance `C` must not be negative")]
+    NegativeClearance,
+    /// A rule is given a reserved name: a drawing letter, `I` or a section
+    /// keyword.
+    #[error("`{name}` is reserved and cannot name a rule")]
+    ReservedName {
+        /// The name.
+        name: String,
+    },
+    /// A rule name starts with a digit or `_`.
+    #[error("rule name `{name}` does not start with a letter")]
+    RuleNameNotLetter {
+        /// The name.
+        name: String,
+    },
+    /// Two rules have one name.
+    #[error("rule `{name}` is defined twice")]
+    DuplicateRule {
+        /// The name.
+        name: String,
+    },
+    /// A rule definition has no body.
+    #[error("syntax error: expected a rule body")]
+    MissingBody,
+    /// Part of a word that is neither a drawing letter nor a rule name and
+    /// does not start with a letter (the `3` of `F3`).
+    #[error("unexpected `{text}`")]
+    UnexpectedInWord {
+        /// The part as written.
+        text: String,
+    },
+    /// `[I 0 X]`.
+    #[error("a self-resemblance count must be at least 1")]
+    ZeroCount,
+    /// `[I n X]` mixes a rule name with drawing components, or names two
+    /// rules.
+    #[error("`[I n X]` takes one rule name or a string of drawing components")]
+    MixedRepeat,
+    /// `[I n]` with nothing to repeat.
+    #[error("`[I n X]` needs a rule name or drawing components")]
+    EmptyRepeat,
+    /// `[I n R1]` in a rule body.
+    #[error("`[I n X]` with a rule cannot stand in a rule body")]
+    RepeatInBody,
+    /// `{`, `}` or `,` in a rule body.
+    #[error("`{symbol}` cannot stand in a rule body")]
+    TermSyntaxInBody {
+        /// The symbol.
+        symbol: char,
+    },
+    /// A rule name in a body that does not end a top-level branch.
+    #[error("a rule name in a rule body must end a branch")]
+    NameNotAtBranchEnd,
+    /// A section that is opened and never closed.
+    #[error("`{open}` without `{close}`")]
+    UnclosedSection {
+        /// The keyword that opens it.
+        open: &'static str,
+        /// The keyword that should close it.
+        close: &'static str,
+    },
+    /// Drawing components in a term's slot.
+    #[error("drawing components cannot stand in a slot")]
+    DrawingInSlot,
+    /// A second term in one slot.
+    #[error("a slot holds one term")]
+    TwoTermsInSlot,
+    /// A `{` that follows no rule name.
+    #[error("`{{` must follow a rule name")]
+    BraceWithoutRule,
+    /// A `,` outside any term.
+    #[error("`,` outside a term")]
+    CommaOutsideTerm,
+    /// A layout shape's name is none of the known shapes.
+    #[error("unknown shape `{name}`")]
+    UnknownShape {
+        /// The name as written.
+        name: String,
+    },
+    /// A shape's arguments fit none of its spellings.
+    #[error("wrong arguments for `{shape}`")]
+    ShapeArguments {
+        /// The shape's name.
+        shape: &'static str,
+    },
+    /// A polygon with fewer than 3 points.
+    #[error("a polygon needs at least 3 points, this one has {points}")]
+    TooFewPoints {
+        /// The points given.
+        points: usize,
+    },
+    /// A shape's width, height or corner size is zero or negative.
+    #[error("the {what} of `{shape}` must be positive")]
+    ShapeSizeNotPositive {
+        /// The shape's name.
+        shape: &'static str,
+        /// `width`, `height`, `corner width`, `corner height` or `corner radius`.
+        what: &'static str,
+    },
     // ----------------------------------------------------- growth --
 
     // -------------------------------------------------------- BED --

@@ -12,7 +12,7 @@
 use std::collections::BTreeMap;
 
 use pest::Parser;
-use pest::iterators::Pair;
+use pest::iterators::{Pair, Pairs};
 
 use super::{GrammarParser, Rule};
 use crate::color::Rgb;
@@ -21,7 +21,9 @@ use crate::limits::Limits;
 use crate::model::Loc;
 use crate::model::lsys::{Background, DEFAULT_HEADING, LSystem, Production};
 
-/// The keys a `.lsys` file may use, in the order the docs list them.
+/// The keys a `.lsys` file may use, in the order the docs list them:
+/// the one spelling of each [`Key`] (indexed by `Key as usize`).
+/// `grammar.pest` spells them again in its `lsys_*` rules, as pest must.
 pub const KEYS: &[&str] = &[
     "generations",
     "axiom",
@@ -33,6 +35,84 @@ pub const KEYS: &[&str] = &[
     "color",
     "background",
 ];
+
+/// A key of a `.lsys` file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Key {
+    /// `generations N`: the default derivation depth.
+    Generations,
+    /// `axiom WORD`: the start word.
+    Axiom,
+    /// `rule X SUCCESSOR`: one production.
+    Rule,
+    /// `angle DEGREES`: the turn of `+` and `-`.
+    Angle,
+    /// `heading DEGREES`: the turtle's first direction.
+    Heading,
+    /// `length L`: the step of `F` and `f`.
+    Length,
+    /// `width W`: the line width.
+    Width,
+    /// `color C`: the line colour.
+    Color,
+    /// `background C`: the background colour or `none`.
+    Background,
+}
+
+impl Key {
+    /// Every key, in the order of [`KEYS`].
+    pub const ALL: [Key; 9] = [
+        Key::Generations,
+        Key::Axiom,
+        Key::Rule,
+        Key::Angle,
+        Key::Heading,
+        Key::Length,
+        Key::Width,
+        Key::Color,
+        Key::Background,
+    ];
+
+    /// The key as written in a file.
+    pub fn name(self) -> &'static str {
+        KEYS[self as usize]
+    }
+
+    /// A line that gives the key, for hints.
+    fn example(self) -> &'static str {
+        match self {
+            Key::Generations => "`generations 5`",
+            Key::Axiom => "`axiom F`",
+            Key::Rule => "`rule F F+F`",
+            Key::Angle => "`angle 25.7`",
+            Key::Heading => "`heading 0`",
+            Key::Length => "`length 1`",
+            Key::Width => "`width 1.5`",
+            Key::Color => "`color clGreen`",
+            Key::Background => "`background none`",
+        }
+    }
+
+    /// The grammar rule of a line with this key.
+    fn rule(self) -> Rule {
+        match self {
+            Key::Generations => Rule::lsys_generations,
+            Key::Axiom => Rule::lsys_axiom,
+            Key::Rule => Rule::lsys_rule,
+            Key::Angle => Rule::lsys_angle,
+            Key::Heading => Rule::lsys_heading,
+            Key::Length => Rule::lsys_length,
+            Key::Width => Rule::lsys_width,
+            Key::Color => Rule::lsys_color,
+            Key::Background => Rule::lsys_background,
+        }
+    }
+
+    /// The key whose line `rule` reads, if any.
+    fn of_rule(rule: Rule) -> Option<Key> {
+        Key::ALL.into_iter().find(|k| k.rule() == rule)
+    }
+}
 
 /// Parses a `.lsys` file.
 ///
@@ -52,10 +132,10 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
                 d.kind = ErrorKind::Syntax("expected a line `key value` or a `#` comment".into());
             }
         }
-        Diagnostics::from(d.with_help(
-            "each line of a .lsys file is `key value` (generations, axiom, rule, \
-                 angle, heading, length, width, color, background) or a `#` comment",
-        ))
+        Diagnostics::from(d.with_help(format!(
+            "each line of a .lsys file is `key value` ({}) or a `#` comment",
+            KEYS.join(", ")
+        )))
     })?;
     let mut ck = Checker {
         diags: Diagnostics::new(),
@@ -76,139 +156,94 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
     let mut have_axiom = false;
     let mut have_angle = false;
     for entry in file.into_iter().flat_map(|p| p.into_inner()) {
-        let span = entry.as_span().start()..entry.as_span().end();
+        let span = pair_span(&entry);
         let rule = entry.as_rule();
+        let mut inner = entry.into_inner();
+        let key_span = span.start..span.start + key_len(&src[span.clone()]);
         if rule == Rule::EOI {
             continue;
         }
-        let mut inner = entry.into_inner();
-        let key_span = span.start..span.start + key_len(&src[span.clone()]);
-        match rule {
-            Rule::lsys_unknown => {
-                let key = inner.next().map(|k| k.as_str()).unwrap_or("");
-                let mut d = Diagnostic::error(ErrorKind::Lsys(format!("unknown key `{key}`")))
-                    .with_span(key_span)
-                    .with_label("not a key of a .lsys file");
-                d = match nearest_key(key) {
-                    Some(k) => d.with_help(format!("did you mean `{k}`?")),
-                    None => d.with_help(format!("the keys are {}", KEYS.join(", "))),
-                };
-                ck.diags.push(d);
+        if rule == Rule::lsys_unknown {
+            let key = inner
+                .next()
+                .expect("grammar: lsys_unknown starts with lsys_key");
+            ck.unknown_key(key.as_str(), key_span);
+            continue;
+        }
+        let key = Key::of_rule(rule)
+            .expect("grammar: an lsys_file entry is a key line, lsys_unknown or EOI");
+        if key != Key::Rule && !ck.first_time(key, key_span) {
+            continue;
+        }
+        match key {
+            Key::Rule => ck.production(&mut sys, inner, span),
+            Key::Generations => sys.generations = ck.generations(&value(&mut inner), limits),
+            Key::Axiom => {
+                let value = value(&mut inner);
+                sys.axiom = ck.word(&value, "axiom");
+                sys.axiom_loc = Loc(pair_span(&value));
+                have_axiom = true;
             }
-            Rule::lsys_rule => {
-                let pred = inner.next().expect("grammar: rule has a predecessor");
-                let pred_span = pair_span(&pred);
-                let succ = inner.find(|p| p.as_rule() == Rule::lsys_word);
-                let mut chars = pred.as_str().chars();
-                let c = chars.next().unwrap_or(' ');
-                if chars.next().is_some() {
-                    ck.diags.push(
-                        Diagnostic::error(ErrorKind::Lsys(format!(
-                            "a rule rewrites one symbol, but `{}` is {} symbols",
-                            pred.as_str(),
-                            pred.as_str().chars().count()
-                        )))
-                        .with_span(pred_span)
-                        .with_label("the predecessor")
-                        .with_help(
-                            "write `rule X SUCCESSOR` with a single-symbol X \
-                             (separate it from the successor with a space, `->` or `=`)",
-                        ),
-                    );
-                    continue;
+            Key::Angle => {
+                have_angle = true;
+                if let Some(a) = ck.number(&value(&mut inner), key, false) {
+                    sys.angle = a;
                 }
-                let successor = match &succ {
-                    Some(w) => ck.word(w, "successor"),
-                    None => Vec::new(),
-                };
-                if let Some(first) = sys.rules.get(&c) {
-                    ck.diags.push(
-                        Diagnostic::error(ErrorKind::Lsys(format!("two rules for `{c}`")))
-                            .with_span(span.clone())
-                            .with_label("the second rule")
-                            .with_note_at(first.loc.0.clone(), "the first rule")
-                            .with_help(format!(
-                                "a 0L-system has one rule per symbol: keep one of the rules for `{c}`"
-                            )),
-                    );
-                    continue;
-                }
-                sys.rules.insert(
-                    c,
-                    Production {
-                        successor,
-                        loc: Loc(span.clone()),
-                    },
-                );
             }
-            _ => {
-                let key = &src[key_span.clone()];
-                if !ck.first_time(key, key_span.clone()) {
-                    continue;
+            Key::Heading => {
+                if let Some(h) = ck.number(&value(&mut inner), key, false) {
+                    sys.heading = h;
                 }
-                let value = inner.next().expect("grammar: a key has a value");
-                match rule {
-                    Rule::lsys_generations => {
-                        sys.generations = ck.generations(&value, limits);
-                    }
-                    Rule::lsys_axiom => {
-                        sys.axiom = ck.word(&value, "axiom");
-                        sys.axiom_loc = Loc(pair_span(&value));
-                        have_axiom = true;
-                    }
-                    Rule::lsys_angle => {
-                        have_angle = true;
-                        if let Some(a) = ck.number(&value, "angle", false) {
-                            sys.angle = a;
-                        }
-                    }
-                    Rule::lsys_heading => {
-                        if let Some(h) = ck.number(&value, "heading", false) {
-                            sys.heading = h;
-                        }
-                    }
-                    Rule::lsys_length => {
-                        if let Some(l) = ck.number(&value, "length", true) {
-                            sys.length = l;
-                        }
-                    }
-                    Rule::lsys_width => {
-                        if let Some(w) = ck.number(&value, "width", true) {
-                            sys.width = w;
-                        }
-                    }
-                    Rule::lsys_color => {
-                        if let Some(Some(c)) = ck.colour(&value, false) {
-                            sys.color = Some(c);
-                        }
-                    }
-                    Rule::lsys_background => {
-                        sys.background = match ck.colour(&value, true) {
-                            Some(Some(c)) => Background::Color(c),
-                            Some(None) => Background::None,
-                            None => Background::White,
-                        };
-                    }
-                    _ => {}
+            }
+            Key::Length => {
+                if let Some(l) = ck.number(&value(&mut inner), key, true) {
+                    sys.length = l;
                 }
+            }
+            Key::Width => {
+                if let Some(w) = ck.number(&value(&mut inner), key, true) {
+                    sys.width = w;
+                }
+            }
+            Key::Color => {
+                if let Some(Some(c)) = ck.colour(&value(&mut inner), false) {
+                    sys.color = Some(c);
+                }
+            }
+            Key::Background => {
+                sys.background = match ck.colour(&value(&mut inner), true) {
+                    Some(Some(c)) => Background::Color(c),
+                    Some(None) => Background::None,
+                    None => Background::White,
+                };
             }
         }
     }
     let end = src.len()..src.len();
     if !have_axiom {
         ck.diags.push(
-            Diagnostic::error(ErrorKind::Lsys("missing `axiom`".into()))
-                .with_span(end.clone())
-                .with_label("the file ends without an axiom")
-                .with_help("add a line `axiom WORD`, the start word, e.g. `axiom F`"),
+            Diagnostic::error(ErrorKind::MissingKey {
+                key: Key::Axiom.name(),
+            })
+            .with_span(end.clone())
+            .with_label("the file ends without an axiom")
+            .with_help(format!(
+                "add a line `axiom WORD`, the start word, e.g. {}",
+                Key::Axiom.example()
+            )),
         );
     }
     if !have_angle {
         ck.diags.push(
-            Diagnostic::error(ErrorKind::Lsys("missing `angle`".into()))
-                .with_span(end)
-                .with_label("the file ends without an angle")
-                .with_help("add a line `angle DEGREES`, the turning angle of `+` and `-`, e.g. `angle 25.7`"),
+            Diagnostic::error(ErrorKind::MissingKey {
+                key: Key::Angle.name(),
+            })
+            .with_span(end)
+            .with_label("the file ends without an angle")
+            .with_help(format!(
+                "add a line `angle DEGREES`, the turning angle of `+` and `-`, e.g. {}",
+                Key::Angle.example()
+            )),
         );
     }
     ck.diags.into_result(sys)
@@ -218,23 +253,83 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
 struct Checker {
     diags: Diagnostics,
     /// Where each single-valued key was first given.
-    seen: BTreeMap<String, Span>,
+    seen: BTreeMap<Key, Span>,
 }
 
 impl Checker {
-    /// Records a single-valued key; false (and an error) if it was given before.
-    fn first_time(&mut self, key: &str, span: Span) -> bool {
-        if let Some(first) = self.seen.get(key) {
+    /// Reports a key that is not one of [`KEYS`], with the nearest known one.
+    fn unknown_key(&mut self, key: &str, span: Span) {
+        let d = Diagnostic::error(ErrorKind::UnknownKey {
+            key: key.to_string(),
+        })
+        .with_span(span)
+        .with_label("not a key of a .lsys file");
+        self.diags.push(match nearest_key(key) {
+            Some(k) => d.with_help(format!("did you mean `{k}`?")),
+            None => d.with_help(format!("the keys are {}", KEYS.join(", "))),
+        });
+    }
+
+    /// A `rule` line: one symbol and its successor, at most one rule per
+    /// symbol.
+    fn production(&mut self, sys: &mut LSystem, mut inner: Pairs<'_, Rule>, span: Span) {
+        let pred = inner.next().expect("grammar: a rule has a predecessor");
+        let succ = inner.find(|p| p.as_rule() == Rule::lsys_word);
+        let mut chars = pred.as_str().chars();
+        let c = chars.next().expect("grammar: lsys_pred has a symbol");
+        if chars.next().is_some() {
             self.diags.push(
-                Diagnostic::error(ErrorKind::Lsys(format!("`{key}` is given twice")))
+                Diagnostic::error(ErrorKind::LongPredecessor {
+                    predecessor: pred.as_str().to_string(),
+                    symbols: pred.as_str().chars().count(),
+                })
+                .with_span(pair_span(&pred))
+                .with_label("the predecessor")
+                .with_help(
+                    "write `rule X SUCCESSOR` with a single-symbol X \
+                     (separate it from the successor with a space, `->` or `=`)",
+                ),
+            );
+            return;
+        }
+        let successor = match &succ {
+            Some(w) => self.word(w, "successor"),
+            None => Vec::new(),
+        };
+        if let Some(first) = sys.rules.get(&c) {
+            self.diags.push(
+                Diagnostic::error(ErrorKind::DuplicateProduction { symbol: c })
+                    .with_span(span)
+                    .with_label("the second rule")
+                    .with_note_at(first.loc.0.clone(), "the first rule")
+                    .with_help(format!(
+                        "a 0L-system has one rule per symbol: keep one of the rules for `{c}`"
+                    )),
+            );
+            return;
+        }
+        sys.rules.insert(
+            c,
+            Production {
+                successor,
+                loc: Loc(span),
+            },
+        );
+    }
+
+    /// Records a single-valued key; false (and an error) if it was given before.
+    fn first_time(&mut self, key: Key, span: Span) -> bool {
+        if let Some(first) = self.seen.get(&key) {
+            self.diags.push(
+                Diagnostic::error(ErrorKind::DuplicateKey { key: key.name() })
                     .with_span(span)
                     .with_label("given again here")
                     .with_note_at(first.clone(), "first given here")
-                    .with_help(format!("keep one `{key}` line")),
+                    .with_help(format!("keep one `{}` line", key.name())),
             );
             return false;
         }
-        self.seen.insert(key.to_string(), span);
+        self.seen.insert(key, span);
         true
     }
 
@@ -279,23 +374,27 @@ impl Checker {
     /// `generations`: a whole number no larger than `limits.max_depth`.
     fn generations(&mut self, value: &Pair<'_, Rule>, limits: &Limits) -> Option<u32> {
         let (text, span) = value_text(value);
-        let Some(Rule::integer) = value.clone().into_inner().next().map(|p| p.as_rule()) else {
+        if value_rule(value) != Rule::integer {
             self.diags.push(
-                Diagnostic::error(ErrorKind::Lsys(format!(
-                    "`generations` takes a whole number, not `{text}`"
-                )))
+                Diagnostic::error(ErrorKind::NotWholeNumber {
+                    key: Key::Generations.name(),
+                    text: text.to_string(),
+                })
                 .with_span(span)
                 .with_label("not a whole number")
-                .with_help("write the number of rewriting steps, e.g. `generations 5`"),
+                .with_help(format!(
+                    "write the number of rewriting steps, e.g. {}",
+                    Key::Generations.example()
+                )),
             );
             return None;
-        };
+        }
         match text.parse::<u32>() {
             Ok(n) if n <= limits.max_depth => Some(n),
             _ => {
                 self.diags.push(
                     Diagnostic::error(ErrorKind::Limit {
-                        what: "generations".into(),
+                        what: Key::Generations.name().into(),
                         value: text.trim_start_matches('0').to_string(),
                         limit: limits.max_depth.to_string(),
                     })
@@ -309,47 +408,45 @@ impl Checker {
     }
 
     /// A finite number; `positive`: also greater than zero.
-    fn number(&mut self, value: &Pair<'_, Rule>, key: &str, positive: bool) -> Option<f64> {
+    fn number(&mut self, value: &Pair<'_, Rule>, key: Key, positive: bool) -> Option<f64> {
         let (text, span) = value_text(value);
-        let is_number = matches!(
-            value.clone().into_inner().next().map(|p| p.as_rule()),
-            Some(Rule::number)
-        );
-        let parsed = if is_number {
+        let parsed = if value_rule(value) == Rule::number {
             text.parse::<f64>().ok()
         } else {
             None
         };
-        let example = match key {
-            "angle" => "`angle 25.7`",
-            "heading" => "`heading 0`",
-            "length" => "`length 1`",
-            _ => "`width 1.5`",
-        };
+        let example = key.example();
+        let name = key.name();
         match parsed {
             None => {
                 self.diags.push(
-                    Diagnostic::error(ErrorKind::Lsys(format!("malformed number `{text}`")))
-                        .with_span(span)
-                        .with_label(format!("`{key}` takes a number"))
-                        .with_help(format!("write a decimal number, e.g. {example}")),
+                    Diagnostic::error(ErrorKind::MalformedNumber {
+                        text: text.to_string(),
+                    })
+                    .with_span(span)
+                    .with_label(format!("`{name}` takes a number"))
+                    .with_help(format!("write a decimal number, e.g. {example}")),
                 );
                 None
             }
             Some(v) if !v.is_finite() => {
                 self.diags.push(
-                    Diagnostic::error(ErrorKind::Lsys(format!("`{key}` {text} is too large")))
-                        .with_span(span)
-                        .with_label("does not fit a 64-bit float")
-                        .with_help(format!("write a finite number, e.g. {example}")),
+                    Diagnostic::error(ErrorKind::NumberTooLarge {
+                        key: name,
+                        text: text.to_string(),
+                    })
+                    .with_span(span)
+                    .with_label("does not fit a 64-bit float")
+                    .with_help(format!("write a finite number, e.g. {example}")),
                 );
                 None
             }
             Some(v) if positive && v <= 0.0 => {
                 self.diags.push(
-                    Diagnostic::error(ErrorKind::Lsys(format!(
-                        "`{key}` must be greater than 0, not {text}"
-                    )))
+                    Diagnostic::error(ErrorKind::NotPositive {
+                        key: name,
+                        text: text.to_string(),
+                    })
                     .with_span(span)
                     .with_label("zero or negative")
                     .with_help(format!("write a positive number, e.g. {example}")),
@@ -377,13 +474,31 @@ impl Checker {
             None => "write `#rrggbb` or a Delphi colour name such as `clGreen`".into(),
         };
         self.diags.push(
-            Diagnostic::error(ErrorKind::Lsys(format!("unknown colour `{text}`")))
-                .with_span(span)
-                .with_label("not a colour")
-                .with_help(help),
+            Diagnostic::error(ErrorKind::UnknownColour {
+                text: text.to_string(),
+            })
+            .with_span(span)
+            .with_label("not a colour")
+            .with_help(help),
         );
         None
     }
+}
+
+/// The value of a single-valued key's line.
+fn value<'a>(inner: &mut Pairs<'a, Rule>) -> Pair<'a, Rule> {
+    inner.next().expect("grammar: a key has a value")
+}
+
+/// The rule of a value's one child: `integer` or `number` when the text
+/// reads as one, `lsys_bad` when not.
+fn value_rule(value: &Pair<'_, Rule>) -> Rule {
+    value
+        .clone()
+        .into_inner()
+        .next()
+        .expect("grammar: lsys_int and lsys_num hold a number or lsys_bad")
+        .as_rule()
 }
 
 /// The value's text and span, trailing spaces dropped.
@@ -414,29 +529,17 @@ fn nearest_key(key: &str) -> Option<&'static str> {
         .map(|(_, k)| k)
 }
 
-/// A user-facing description of a grammar rule of the lsys section.
-pub fn describe_rule(rule: Rule) -> Option<&'static str> {
-    Some(match rule {
-        Rule::number | Rule::lsys_num => "a number",
-        Rule::integer | Rule::lsys_int => "a whole number",
-        Rule::lsys_file => "a line `key value` or a `#` comment",
-        Rule::lsys_generations => "`generations N`",
-        Rule::lsys_axiom => "`axiom WORD`",
-        Rule::lsys_rule => "`rule X SUCCESSOR`",
-        Rule::lsys_angle => "`angle DEGREES`",
-        Rule::lsys_heading => "`heading DEGREES`",
-        Rule::lsys_length => "`length L`",
-        Rule::lsys_width => "`width W`",
-        Rule::lsys_color => "`color C`",
-        Rule::lsys_background => "`background C`",
-        Rule::lsys_unknown | Rule::lsys_key => {
-            "a key (generations, axiom, rule, angle, heading, length, width, color, background)"
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_key_has_its_spelling_at_its_index() {
+        assert_eq!(KEYS.len(), Key::ALL.len());
+        for (i, k) in Key::ALL.into_iter().enumerate() {
+            assert_eq!(k as usize, i);
+            assert_eq!(Key::of_rule(k.rule()), Some(k));
         }
-        Rule::lsys_colour | Rule::lsys_hex | Rule::lsys_name => "a colour (`#rrggbb` or `clGreen`)",
-        Rule::lsys_bad | Rule::lsys_text => "a value",
-        Rule::lsys_word => "a word of symbols",
-        Rule::lsys_pred => "the symbol the rule rewrites",
-        Rule::lsys_arrow => "`->`, `=` or a space before the successor",
-        _ => return None,
-    })
+        assert_eq!(Key::Background.name(), "background");
+    }
 }

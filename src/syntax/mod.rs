@@ -4,31 +4,24 @@
 //! L-systems (`.lsys`), Outline Descriptions (`.od`) and Branch-Expansion
 //! Descriptions (`.bed`). Every failure is a [`Diagnostic`] with a byte span.
 //!
-//! - [`lsys`]: `.lsys` files into [`lsys::LSystem`].
-//! - [`stl`]: `.od`/`.bed` files into [`ast::Description`], names resolved.
-//! - [`ast`]: the STL syntax tree.
+//! - [`lsys`]: `.lsys` files into [`LSystem`](crate::model::lsys::LSystem).
+//! - [`stl`]: `.od`/`.bed` files into
+//!   [`Description`](crate::model::Description), names resolved.
+//! - `grammar`: the generated parser (crate-private) and the one description
+//!   of its rules that pest's reports are worded with.
 //!
 //! Before pest sees any text, [`precheck`] enforces the input size and the
 //! nesting limit, so no input can drive the recursive-descent parser into a
 //! stack overflow.
 
+mod grammar;
 pub mod lsys;
 pub mod stl;
 
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::limits::Limits;
 
-mod parser {
-    //! The generated parser; `Rule` names are the grammar's.
-    #![allow(missing_docs)]
-
-    /// The pest parser for `grammar.pest` (found from `CARGO_MANIFEST_DIR`).
-    #[derive(pest_derive::Parser)]
-    #[grammar = "grammar.pest"]
-    pub struct GrammarParser;
-}
-
-pub use parser::{GrammarParser, Rule};
+pub(crate) use grammar::{GrammarParser, Rule, pest_error};
 
 /// The three kinds of input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -116,61 +109,6 @@ pub fn is_colour_at(text: &str, i: usize) -> bool {
     let n = rest.bytes().take_while(u8::is_ascii_hexdigit).count();
     let next = rest.as_bytes().get(n).copied();
     (n == 6 || n == 3) && !matches!(next, Some(b) if b.is_ascii_alphanumeric() || b == b'_')
-}
-
-/// Turns a pest error into a diagnostic whose message names what the user
-/// would type, not grammar rule names.
-pub fn pest_error(e: pest::error::Error<Rule>) -> Diagnostic {
-    use pest::error::{ErrorVariant, InputLocation};
-    let span = match e.location {
-        InputLocation::Pos(p) => p..p,
-        InputLocation::Span((a, b)) => a..b,
-    };
-    let message = match &e.variant {
-        ErrorVariant::ParsingError {
-            positives,
-            negatives,
-        } => {
-            let mut parts = Vec::new();
-            if !positives.is_empty() {
-                parts.push(format!("expected {}", list(positives)));
-            }
-            if !negatives.is_empty() {
-                parts.push(format!("unexpected {}", list(negatives)));
-            }
-            if parts.is_empty() {
-                "unexpected text".to_string()
-            } else {
-                parts.join("; ")
-            }
-        }
-        ErrorVariant::CustomError { message } => message.clone(),
-    };
-    Diagnostic::error(ErrorKind::Syntax(message)).with_span(span)
-}
-
-fn list(rules: &[Rule]) -> String {
-    let mut names: Vec<String> = rules.iter().map(|r| describe(*r)).collect();
-    names.sort();
-    names.dedup();
-    match names.len() {
-        0 => String::new(),
-        1 => names.remove(0),
-        _ => {
-            let last = names.pop().unwrap_or_default();
-            format!("{} or {}", names.join(", "), last)
-        }
-    }
-}
-
-/// What a grammar rule looks like to a user: `` `generations` `` rather
-/// than `lsys_generations`. Rules without a description fall back to their
-/// name with `_` turned into spaces.
-pub fn describe(rule: Rule) -> String {
-    if let Some(d) = lsys::describe_rule(rule).or_else(|| stl::describe_rule(rule)) {
-        return d.to_string();
-    }
-    format!("{rule:?}").replace('_', " ")
 }
 
 #[cfg(test)]

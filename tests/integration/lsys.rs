@@ -104,13 +104,6 @@ fn errors(src: &str, limits: &Limits) -> Vec<(ErrorKind, std::ops::Range<usize>)
         .collect()
 }
 
-fn lsys_msg(kind: &ErrorKind) -> &str {
-    match kind {
-        ErrorKind::Lsys(m) => m,
-        other => panic!("not an Lsys error: {other:?}"),
-    }
-}
-
 #[test]
 fn unknown_key_suggests_the_nearest() {
     let src = "axiom F\nangel 30\n";
@@ -118,10 +111,15 @@ fn unknown_key_suggests_the_nearest() {
     // Unknown key, and the angle is then missing: both reported.
     assert_eq!(err.0.len(), 2);
     let d = &err.0[0];
-    assert_eq!(lsys_msg(&d.kind), "unknown key `angel`");
+    assert_eq!(
+        d.kind,
+        ErrorKind::UnknownKey {
+            key: "angel".into()
+        }
+    );
     assert_eq!(d.span, Some(8..13));
     assert_eq!(d.help.as_deref(), Some("did you mean `angle`?"));
-    assert_eq!(lsys_msg(&err.0[1].kind), "missing `angle`");
+    assert_eq!(err.0[1].kind, ErrorKind::MissingKey { key: "angle" });
 }
 
 #[test]
@@ -131,8 +129,8 @@ fn missing_axiom_and_angle_are_both_reported() {
     assert_eq!(
         e,
         vec![
-            (ErrorKind::Lsys("missing `axiom`".into()), 24..24),
-            (ErrorKind::Lsys("missing `angle`".into()), 24..24),
+            (ErrorKind::MissingKey { key: "axiom" }, 24..24),
+            (ErrorKind::MissingKey { key: "angle" }, 24..24),
         ]
     );
 }
@@ -143,7 +141,7 @@ fn two_rules_for_one_symbol_label_both() {
     let err = parse(src, &Limits::default()).unwrap_err();
     assert_eq!(err.0.len(), 1);
     let d = &err.0[0];
-    assert_eq!(d.kind, ErrorKind::Lsys("two rules for `F`".into()));
+    assert_eq!(d.kind, ErrorKind::DuplicateProduction { symbol: 'F' });
     assert_eq!(d.span, Some(27..37)); // the second rule line
     assert_eq!(d.labels.len(), 1);
     assert_eq!(d.labels[0].span, 17..26); // the first
@@ -170,21 +168,37 @@ fn malformed_and_invalid_numbers() {
     let src = "axiom F\nangle 2x5\nlength -1\nwidth 1e999\ngenerations 2.5\n";
     let e = errors(src, &Limits::default());
     assert_eq!(e.len(), 4);
-    assert_eq!(lsys_msg(&e[0].0), "malformed number `2x5`");
-    assert_eq!(e[0].1, 14..17);
-    assert_eq!(lsys_msg(&e[1].0), "`length` must be greater than 0, not -1");
-    assert_eq!(e[1].1, 25..27);
-    assert_eq!(lsys_msg(&e[2].0), "`width` 1e999 is too large");
-    assert_eq!(e[2].1, 34..39);
     assert_eq!(
-        lsys_msg(&e[3].0),
-        "`generations` takes a whole number, not `2.5`"
+        e,
+        vec![
+            (ErrorKind::MalformedNumber { text: "2x5".into() }, 14..17),
+            (
+                ErrorKind::NotPositive {
+                    key: "length",
+                    text: "-1".into()
+                },
+                25..27
+            ),
+            (
+                ErrorKind::NumberTooLarge {
+                    key: "width",
+                    text: "1e999".into()
+                },
+                34..39
+            ),
+            (
+                ErrorKind::NotWholeNumber {
+                    key: "generations",
+                    text: "2.5".into()
+                },
+                52..55
+            ),
+        ]
     );
-    assert_eq!(e[3].1, 52..55);
     let e = errors("axiom F\nangle nan\n", &Limits::default());
     assert_eq!(
         e,
-        vec![(ErrorKind::Lsys("malformed number `nan`".into()), 14..17)]
+        vec![(ErrorKind::MalformedNumber { text: "nan".into() }, 14..17)]
     );
 }
 
@@ -212,13 +226,25 @@ fn generations_above_max_depth_name_the_flag() {
 fn duplicate_key_bad_colour_and_long_predecessor() {
     let src = "axiom F\nangle 90\nangle 60\ncolor clGren\nrule FF F\n";
     let e = errors(src, &Limits::default());
-    assert_eq!(e.len(), 3);
-    assert_eq!(lsys_msg(&e[0].0), "`angle` is given twice");
-    assert_eq!(e[0].1, 17..22);
-    assert_eq!(lsys_msg(&e[1].0), "unknown colour `clGren`");
-    assert_eq!(e[1].1, 32..38);
-    assert!(lsys_msg(&e[2].0).starts_with("a rule rewrites one symbol"));
-    assert_eq!(e[2].1, 44..46);
+    assert_eq!(
+        e,
+        vec![
+            (ErrorKind::DuplicateKey { key: "angle" }, 17..22),
+            (
+                ErrorKind::UnknownColour {
+                    text: "clGren".into()
+                },
+                32..38
+            ),
+            (
+                ErrorKind::LongPredecessor {
+                    predecessor: "FF".into(),
+                    symbols: 2
+                },
+                44..46
+            ),
+        ]
+    );
 }
 
 #[test]
@@ -682,7 +708,15 @@ fn heading_defaults_to_up_and_is_checked_like_any_number() {
         "axiom F\nangle 90\nheading north\nheading 0\n",
         &Limits::default(),
     );
-    assert_eq!(lsys_msg(&e[0].0), "malformed number `north`");
-    assert_eq!(e[0].1, 25..30); // `north`, after "axiom F\nangle 90\nheading "
-    assert_eq!(lsys_msg(&e[1].0), "`heading` is given twice");
+    assert_eq!(
+        e[0],
+        // `north`, after "axiom F\nangle 90\nheading "
+        (
+            ErrorKind::MalformedNumber {
+                text: "north".into()
+            },
+            25..30
+        )
+    );
+    assert_eq!(e[1].0, ErrorKind::DuplicateKey { key: "heading" });
 }

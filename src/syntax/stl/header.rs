@@ -1,0 +1,208 @@
+//! The header's stem parameters: `L=10(0) B=1(0) A=30 C=1`.
+//!
+//! The grammar reads any `key=number(decrement)`; which keys exist, which
+//! take a decrement and which values are allowed is checked here, against
+//! the one table of parameters, [`Param`].
+
+use pest::iterators::Pair;
+
+use super::{Builder, Rule, span_of};
+use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::model::{Loc, StemParams};
+use crate::num::Linear;
+
+/// A stem parameter of the header.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Param {
+    /// `L=base(decrement)`: segment length at order 0 and its decrement
+    /// per order.
+    Length,
+    /// `B=base(decrement)`: stroke width at order 0 and its decrement.
+    Broadness,
+    /// `A=degrees`: the turning angle.
+    Angle,
+    /// `C=distance`: the clearance between stems.
+    Clearance,
+}
+
+impl Param {
+    /// Every parameter, in the order the docs list them.
+    pub const ALL: [Param; 4] = [
+        Param::Length,
+        Param::Broadness,
+        Param::Angle,
+        Param::Clearance,
+    ];
+
+    /// The key as written: `L`, `B`, `A` or `C`.
+    pub fn key(self) -> &'static str {
+        match self {
+            Param::Length => "L",
+            Param::Broadness => "B",
+            Param::Angle => "A",
+            Param::Clearance => "C",
+        }
+    }
+
+    /// What the parameter is, in words.
+    pub fn what(self) -> &'static str {
+        match self {
+            Param::Length => "length",
+            Param::Broadness => "broadness",
+            Param::Angle => "angle",
+            Param::Clearance => "clearance",
+        }
+    }
+
+    /// The parameter whose key is `key`, exactly as written.
+    pub fn from_key(key: &str) -> Option<Param> {
+        Param::ALL.into_iter().find(|p| p.key() == key)
+    }
+}
+
+/// `L (length), B (broadness), A (angle) and C (clearance)`.
+fn param_list() -> String {
+    let items: Vec<String> = Param::ALL
+        .iter()
+        .map(|p| format!("{} ({})", p.key(), p.what()))
+        .collect();
+    let (last, rest) = items.split_last().expect("Param::ALL is not empty");
+    format!("{} and {last}", rest.join(", "))
+}
+
+impl Builder<'_> {
+    /// The stem parameters; without `L` or `B` a stem is 10 long and 1 wide
+    /// at every order.
+    pub(super) fn params(&mut self, pairs: Vec<Pair<'_, Rule>>, root_loc: &Loc) -> StemParams {
+        let mut out = StemParams {
+            length: Linear::constant(10.0),
+            width: Linear::constant(1.0),
+            angle: None,
+            clearance: None,
+            loc: Loc(root_loc.0.end..root_loc.0.end),
+        };
+        let mut seen: Vec<(String, Span)> = Vec::new();
+        let mut whole: Option<Span> = None;
+        for p in pairs {
+            let span = span_of(&p);
+            whole = Some(whole.map_or(span.clone(), |w| w.start..span.end));
+            let mut it = p.into_inner();
+            let key = it.next().expect("grammar: stl_param starts with a key");
+            let val = it.next().expect("grammar: stl_param has a number");
+            // `(d)` and the number inside it.
+            let dec = it.next().map(|d| {
+                let n = d.clone().into_inner().next();
+                (
+                    span_of(&d),
+                    n.expect("grammar: stl_param_dec holds a number"),
+                )
+            });
+            let k = key.as_str().to_string();
+            let kspan = span_of(&key);
+            if let Some((_, first)) = seen.iter().find(|(s, _)| *s == k) {
+                let first = first.clone();
+                self.err(
+                    Diagnostic::error(ErrorKind::DuplicateParam { key: k })
+                        .with_span(kspan)
+                        .with_label("given again here")
+                        .with_note_at(first, "first given here")
+                        .with_help("keep one of them"),
+                );
+                continue;
+            }
+            seen.push((k.clone(), kspan.clone()));
+            let v = self.number(&val);
+            let vspan = span_of(&val);
+            let dv = dec.as_ref().map(|(_, n)| (self.number(n), span_of(n)));
+            match Param::from_key(&k) {
+                Some(p @ Param::Length) => out.length = self.size(p, v, vspan, dv),
+                Some(p @ Param::Broadness) => out.width = self.size(p, v, vspan, dv),
+                Some(p @ Param::Angle) => {
+                    self.no_decrement(p, dec.map(|(s, _)| s));
+                    out.angle = Some(v);
+                }
+                Some(p @ Param::Clearance) => {
+                    self.no_decrement(p, dec.map(|(s, _)| s));
+                    if v < 0.0 {
+                        self.report(
+                            ErrorKind::NegativeClearance,
+                            vspan,
+                            "negative",
+                            "write a clearance of 0 or more",
+                        );
+                    }
+                    out.clearance = Some(v);
+                }
+                None => {
+                    let sugg = Param::ALL
+                        .iter()
+                        .find(|p| p.key().eq_ignore_ascii_case(&k))
+                        .map(|p| format!("did you mean `{}`? ", p.key()))
+                        .unwrap_or_default();
+                    self.report(
+                        ErrorKind::UnknownParam { key: k },
+                        kspan,
+                        "not a stem parameter",
+                        &format!("{sugg}the parameters are {}", param_list()),
+                    );
+                }
+            }
+        }
+        if let Some(w) = whole {
+            out.loc = Loc(w);
+        }
+        out
+    }
+
+    /// `L` or `B`: a positive base and a decrement of 0 or more (0 if none
+    /// is written).
+    fn size(&mut self, p: Param, v: f64, vspan: Span, dec: Option<(f64, Span)>) -> Linear {
+        let (key, what) = (p.key(), p.what());
+        if v <= 0.0 {
+            self.report(
+                ErrorKind::StemSizeNotPositive { key, what },
+                vspan,
+                "zero or negative",
+                &format!("write a positive {what}, e.g. `{key}=10(0)`"),
+            );
+        }
+        if let Some((dv, dspan)) = &dec
+            && *dv < 0.0
+        {
+            self.report(
+                ErrorKind::NegativeDecrement { key },
+                dspan.clone(),
+                "negative decrement",
+                "stems get shorter and slimmer with order: write a decrement of 0 or more",
+            );
+        }
+        Linear::new(v, dec.map_or(0.0, |(dv, _)| dv))
+    }
+
+    /// `A` and `C` take no decrement; `dec` is the span of one written.
+    fn no_decrement(&mut self, p: Param, dec: Option<Span>) {
+        if let Some(span) = dec {
+            self.report(
+                ErrorKind::UnexpectedDecrement { key: p.key() },
+                span,
+                "not allowed here",
+                &format!("write `{}=value` without parentheses", p.key()),
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_parameter_list_reads_as_prose() {
+        assert_eq!(
+            param_list(),
+            "L (length), B (broadness), A (angle) and C (clearance)"
+        );
+        assert_eq!(Param::from_key("B"), Some(Param::Broadness));
+        assert_eq!(Param::from_key("b"), None);
+    }
+}

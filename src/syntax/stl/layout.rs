@@ -1,0 +1,344 @@
+//! The layout, `LAYOUT ... ENDLAYOUT`: coloured shapes the tree grows in.
+//!
+//! Each shape has two spellings: Table 1's start point and size
+//! (`Rectangle (x,y), w, h`) and Delphi's corners (`Rectangle (x1,y1,x2,y2)`);
+//! a polygon lists its points. The shape names come from one table,
+//! [`ShapeName`].
+
+use pest::iterators::Pair;
+
+use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
+use super::{Builder, Rule, not_in_grammar, span_of};
+use crate::color::Rgb;
+use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::model::{Layout, LayoutShape, Loc, Shape, Spelling};
+
+/// A shape a layout line may draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShapeName {
+    /// `Rectangle`.
+    Rectangle,
+    /// `RoundRect`: a rectangle with rounded corners.
+    RoundRect,
+    /// `Ellipse`.
+    Ellipse,
+    /// `Polygon`.
+    Polygon,
+}
+
+impl ShapeName {
+    /// Every shape, in the order the docs list them.
+    pub const ALL: [ShapeName; 4] = [
+        ShapeName::Rectangle,
+        ShapeName::RoundRect,
+        ShapeName::Ellipse,
+        ShapeName::Polygon,
+    ];
+
+    /// The name as written.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShapeName::Rectangle => "Rectangle",
+            ShapeName::RoundRect => "RoundRect",
+            ShapeName::Ellipse => "Ellipse",
+            ShapeName::Polygon => "Polygon",
+        }
+    }
+
+    /// The shape named exactly `name`.
+    pub fn from_name(name: &str) -> Option<ShapeName> {
+        ShapeName::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// Its spellings, for hints.
+    fn usage(self) -> &'static str {
+        match self {
+            ShapeName::Rectangle => "`Rectangle (x,y), w, h` or `Rectangle (x1,y1,x2,y2)`",
+            ShapeName::Ellipse => "`Ellipse (x,y), w, h` or `Ellipse (x1,y1,x2,y2)`",
+            ShapeName::RoundRect => "`RoundRect (x,y), w, h, r` or `RoundRect (x1,y1,x2,y2,rx,ry)`",
+            ShapeName::Polygon => "`Polygon (x1,y1), (x2,y2), (x3,y3), ...`",
+        }
+    }
+}
+
+/// A shape argument, with spans: a parenthesised group or a single number.
+enum Arg {
+    Group(Vec<(f64, Span)>),
+    Num(f64, Span),
+}
+
+impl Builder<'_> {
+    /// The `LAYOUT` section.
+    pub(super) fn layout(&mut self, p: Pair<'_, Rule>) -> Layout {
+        let span = span_of(&p);
+        let mut shapes = Vec::new();
+        let mut kw = None;
+        let mut closed = false;
+        for c in p.into_inner() {
+            match c.as_rule() {
+                Rule::stl_kw_layout => kw = Some(span_of(&c)),
+                Rule::stl_kw_endlayout => closed = true,
+                Rule::stl_shape_line => {
+                    if let Some(s) = self.shape_line(c) {
+                        shapes.push(s);
+                    }
+                }
+                other => not_in_grammar("stl_layout", other),
+            }
+        }
+        if !closed {
+            self.err(
+                Diagnostic::error(ErrorKind::UnclosedSection {
+                    open: KW_LAYOUT,
+                    close: KW_ENDLAYOUT,
+                })
+                .with_span(kw.expect("grammar: stl_layout starts with `LAYOUT`"))
+                .with_label("this section is never closed")
+                .with_help(format!("end the layout with `{KW_ENDLAYOUT}`")),
+            );
+        }
+        Layout {
+            shapes,
+            loc: Loc(span),
+        }
+    }
+
+    /// `(colour) shape` or `(colour)< shape >`.
+    fn shape_line(&mut self, p: Pair<'_, Rule>) -> Option<LayoutShape> {
+        let loc = Loc(span_of(&p));
+        let mut it = p.into_inner();
+        let col = it
+            .next()
+            .expect("grammar: stl_shape_line starts with a colour");
+        let mut shape = it.next().expect("grammar: stl_shape_line has a shape");
+        let angled = shape.as_rule() == Rule::stl_angled;
+        if angled {
+            let inner = shape.into_inner().next();
+            shape = inner.expect("grammar: stl_angled holds a shape");
+        }
+        let color_text = col.as_str().to_string();
+        let color = match Rgb::parse(&color_text) {
+            Some(c) => Some(c),
+            None => {
+                let help = match Rgb::suggest(&color_text) {
+                    Some(s) => format!("did you mean `{s}`? Colours are Delphi names or `#rrggbb`"),
+                    None => "use a Delphi colour name (`clGreen`, `clWhite`, ...) or `#rrggbb`"
+                        .to_string(),
+                };
+                self.err(
+                    Diagnostic::error(ErrorKind::UnknownColour {
+                        text: color_text.clone(),
+                    })
+                    .with_span(span_of(&col))
+                    .with_label("not a colour")
+                    .with_help(help),
+                );
+                None
+            }
+        };
+        let (shape, spelling) = self.shape(shape)?;
+        Some(LayoutShape {
+            color: color?,
+            color_text,
+            shape,
+            spelling,
+            angled,
+            loc,
+        })
+    }
+
+    /// A shape: its name and arguments checked against the name's spellings.
+    fn shape(&mut self, p: Pair<'_, Rule>) -> Option<(Shape, Spelling)> {
+        let span = span_of(&p);
+        let mut it = p.into_inner();
+        let name_pair = it.next().expect("grammar: stl_shape starts with a name");
+        let name = name_pair.as_str();
+        let mut args = Vec::new();
+        for a in it {
+            let inner = a.into_inner().next();
+            let inner = inner.expect("grammar: stl_shape_arg holds a point list or a number");
+            let s = span_of(&inner);
+            match inner.as_rule() {
+                Rule::stl_point_list => {
+                    let nums: Vec<(f64, Span)> = inner
+                        .into_inner()
+                        .map(|n| (self.number(&n), span_of(&n)))
+                        .collect();
+                    args.push(Arg::Group(nums));
+                }
+                Rule::number => args.push(Arg::Num(self.number(&inner), s)),
+                other => not_in_grammar("stl_shape_arg", other),
+            }
+        }
+        let Some(kind) = ShapeName::from_name(name) else {
+            self.unknown_shape(name, span_of(&name_pair));
+            return None;
+        };
+        if kind == ShapeName::Polygon {
+            return self.polygon(&args, span);
+        }
+        let round = kind == ShapeName::RoundRect;
+        let positive = |b: &mut Self, v: f64, s: &Span, what: &'static str| {
+            if v <= 0.0 {
+                b.report(
+                    ErrorKind::ShapeSizeNotPositive {
+                        shape: kind.name(),
+                        what,
+                    },
+                    s.clone(),
+                    "zero or negative",
+                    &format!("write a positive {what}"),
+                );
+                false
+            } else {
+                true
+            }
+        };
+        // The shape of `kind` at (x, y), w by h; a round rectangle's corner
+        // radii are given.
+        let boxed = |x, y, w, h, (rx, ry)| match kind {
+            ShapeName::RoundRect => Shape::RoundRect { x, y, w, h, rx, ry },
+            ShapeName::Ellipse => Shape::Ellipse { x, y, w, h },
+            ShapeName::Rectangle => Shape::Rect { x, y, w, h },
+            ShapeName::Polygon => unreachable!("polygons are read above"),
+        };
+        match args.as_slice() {
+            // Delphi's corner spelling.
+            [Arg::Group(g)] if g.len() == if round { 6 } else { 4 } => {
+                let (x1, x2, y1, y2) = (g[0].0, g[2].0, g[1].0, g[3].0);
+                let (w, h) = ((x2 - x1).abs(), (y2 - y1).abs());
+                let mut ok = true;
+                if w == 0.0 {
+                    ok &= positive(self, w, &(g[0].1.start..g[2].1.end), "width");
+                }
+                if h == 0.0 {
+                    ok &= positive(self, h, &(g[1].1.start..g[3].1.end), "height");
+                }
+                let (x, y) = (x1.min(x2), y1.min(y2));
+                let mut radii = (0.0, 0.0);
+                if round {
+                    ok &= positive(self, g[4].0, &g[4].1, "corner width");
+                    ok &= positive(self, g[5].0, &g[5].1, "corner height");
+                    radii = (g[4].0 / 2.0, g[5].0 / 2.0);
+                }
+                ok.then(|| (boxed(x, y, w, h, radii), Spelling::Corners))
+            }
+            // Table 1's start-point spelling.
+            [Arg::Group(g), rest @ ..]
+                if g.len() == 2
+                    && rest.len() == if round { 3 } else { 2 }
+                    && rest.iter().all(|a| matches!(a, Arg::Num(..))) =>
+            {
+                let nums: Vec<(f64, Span)> = rest
+                    .iter()
+                    .filter_map(|a| match a {
+                        Arg::Num(v, s) => Some((*v, s.clone())),
+                        Arg::Group(..) => None,
+                    })
+                    .collect();
+                let (x, y) = (g[0].0, g[1].0);
+                let (w, h) = (nums[0].0, nums[1].0);
+                let mut ok = positive(self, w, &nums[0].1, "width");
+                ok &= positive(self, h, &nums[1].1, "height");
+                let mut radii = (0.0, 0.0);
+                if round {
+                    ok &= positive(self, nums[2].0, &nums[2].1, "corner radius");
+                    radii = (nums[2].0, nums[2].0);
+                }
+                ok.then(|| (boxed(x, y, w, h, radii), Spelling::StartSize))
+            }
+            _ => self.shape_arguments(kind, span),
+        }
+    }
+
+    /// `Polygon (x1,y1), (x2,y2), (x3,y3), ...`: three points or more.
+    fn polygon(&mut self, args: &[Arg], span: Span) -> Option<(Shape, Spelling)> {
+        let mut pts = Vec::new();
+        for a in args {
+            match a {
+                Arg::Group(g) if g.len() == 2 => pts.push((g[0].0, g[1].0)),
+                _ => return self.shape_arguments(ShapeName::Polygon, span),
+            }
+        }
+        if pts.len() < 3 {
+            self.report(
+                ErrorKind::TooFewPoints { points: pts.len() },
+                span,
+                "too few points",
+                "add points: `Polygon (x1,y1), (x2,y2), (x3,y3)`",
+            );
+            return None;
+        }
+        Some((Shape::Polygon(pts), Spelling::Points))
+    }
+
+    /// Reports arguments that fit none of `kind`'s spellings.
+    fn shape_arguments(&mut self, kind: ShapeName, span: Span) -> Option<(Shape, Spelling)> {
+        self.report(
+            ErrorKind::ShapeArguments { shape: kind.name() },
+            span,
+            "these arguments",
+            &format!("write {}", kind.usage()),
+        );
+        None
+    }
+
+    /// Reports a shape name that is none of [`ShapeName::ALL`], with the
+    /// nearest one.
+    fn unknown_shape(&mut self, name: &str, span: Span) {
+        let (_, best) = ShapeName::ALL
+            .iter()
+            .map(|k| {
+                let d =
+                    strsim::levenshtein(&k.name().to_ascii_lowercase(), &name.to_ascii_lowercase());
+                (d, k.name())
+            })
+            .min()
+            .expect("ShapeName::ALL is not empty");
+        let all: Vec<&str> = ShapeName::ALL.iter().map(|k| k.name()).collect();
+        self.report(
+            ErrorKind::UnknownShape {
+                name: name.to_string(),
+            },
+            span,
+            "not a shape",
+            &format!("did you mean `{best}`? Shapes: {}", all.join(", ")),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ShapeName;
+    use crate::diag::ErrorKind;
+    use crate::limits::Limits;
+    use crate::model::Format;
+
+    #[test]
+    fn unknown_parameters_and_shapes_are_named() {
+        let bed = |src: &str| super::super::parse(src, Format::Bed, &Limits::default());
+        let src = "T (0,0) l=10(0) RULE R1: [F]";
+        let e = bed(src).unwrap_err();
+        assert_eq!(e.0[0].kind, ErrorKind::UnknownParam { key: "l".into() });
+        assert!(e.0[0].help.as_deref().unwrap_or("").contains("`L`"));
+        let src = "T (0,0) RULE R1: [F] LAYOUT (clRed) Rect (0,0), 1, 1 ENDLAYOUT";
+        let e = bed(src).unwrap_err();
+        assert_eq!(
+            e.0[0].kind,
+            ErrorKind::UnknownShape {
+                name: "Rect".into()
+            }
+        );
+        let at = src.find("Rect ").unwrap();
+        assert_eq!(e.0[0].span, Some(at..at + 4));
+        assert!(e.0[0].help.as_deref().unwrap_or("").contains("Rectangle"));
+    }
+
+    #[test]
+    fn shape_names_round_trip() {
+        for s in ShapeName::ALL {
+            assert_eq!(ShapeName::from_name(s.name()), Some(s));
+        }
+        assert_eq!(ShapeName::from_name("rectangle"), None);
+    }
+}

@@ -1,0 +1,176 @@
+//! `.od` and `.bed` files into [`Description`], names resolved.
+//!
+//! The grammar (`stl_` section of `grammar.pest`) reads the header, the
+//! sections and the layout, but only *tokenises* rule bodies and seeds: a
+//! flat list of words, brackets, braces, commas and turn symbols. This
+//! module then
+//!
+//! 1. splits each word (`FR1`, `R1R2R2`) left to right by longest match
+//!    against the declared rule names, the leftovers being drawing letters
+//!    (`F f L R`); anything else is an unknown rule, with a suggestion;
+//! 2. builds bodies and seeds with explicit stacks (no recursion the input
+//!    can drive), reporting unbalanced `[ ] { }` at the unmatched one;
+//! 3. checks everything the grammar cannot (reserved and duplicate names,
+//!    slot counts, sizes, colours, section ends, limits), collecting as many
+//!    diagnostics as it can before giving up.
+//!
+//! One file per part: this one holds the entry point and the builder;
+//! `header` the stem parameters, `rules` the rule definitions and reserved
+//! names, `lex` the tokens and word splitting, `body` rule bodies and
+//! `[I n X]`, `seed` the seed's terms, `layout` the shapes.
+//!
+//! It does not check what needs the whole tree (stem orders, derived size):
+//! that is [`crate::bed::validate`].
+
+mod body;
+mod header;
+mod layout;
+mod lex;
+mod rules;
+mod seed;
+
+use pest::Parser;
+use pest::iterators::Pair;
+
+use super::{GrammarParser, Rule, pest_error, precheck};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::limits::Limits;
+use crate::model::{Description, Format, Loc};
+
+pub use header::Param;
+pub use layout::ShapeName;
+pub use rules::{DRAWING_LETTERS, KEYWORDS, REPEAT_MARK, is_reserved};
+
+/// Parses an Outline Description (`Format::Od`) or a Branch-Expansion
+/// Description (`Format::Bed`).
+///
+/// In a BED a bare rule reference `R1` is stored as the full term with every
+/// slot empty (`bare: false`); in an OD it stays a growth point (`bare: true`).
+pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, Diagnostics> {
+    let src = precheck(src.as_bytes(), limits)?;
+    let mut pairs = GrammarParser::parse(Rule::stl_file, src).map_err(|e| {
+        pest_error(e).with_help(
+            "a description reads: tree name, root `(x, y)`, stem parameters \
+             (`L=10(0) B=1(0)`), `RULE` and its rules (`R1: [+F][-F]`), then optional \
+             `SEED ... ENDSEED` and `LAYOUT ... ENDLAYOUT` (see docs/language.md)",
+        )
+    })?;
+    let file = pairs
+        .next()
+        .expect("grammar: a successful parse of stl_file yields it");
+    let mut b = Builder {
+        format,
+        limits,
+        diags: Diagnostics::new(),
+        names: Vec::new(),
+        branches: Vec::new(),
+    };
+    let desc = b.file(file);
+    b.diags.into_result(desc)
+}
+
+/// Collects the description and its diagnostics.
+struct Builder<'l> {
+    format: Format,
+    limits: &'l Limits,
+    diags: Diagnostics,
+    /// Declared rule names, by [`RuleId`](crate::model::RuleId) (invalid
+    /// ones as `""`).
+    names: Vec<String>,
+    /// Branch counts by [`RuleId`](crate::model::RuleId).
+    branches: Vec<usize>,
+}
+
+fn span_of(p: &Pair<'_, Rule>) -> Span {
+    let s = p.as_span();
+    s.start()..s.end()
+}
+
+/// A child the grammar does not allow under `parent`: pest produced a tree
+/// `grammar.pest` rules out.
+fn not_in_grammar(parent: &str, child: Rule) -> ! {
+    unreachable!("grammar: {parent} has no {child:?} child")
+}
+
+impl Builder<'_> {
+    fn err(&mut self, d: Diagnostic) {
+        self.diags.push(d);
+    }
+
+    /// An error at `span` with its label and hint.
+    fn report(&mut self, kind: ErrorKind, span: Span, label: &str, help: &str) {
+        self.err(
+            Diagnostic::error(kind)
+                .with_span(span)
+                .with_label(label)
+                .with_help(help),
+        );
+    }
+
+    // ------------------------------------------------------------- file --
+
+    fn file(&mut self, file: Pair<'_, Rule>) -> Description {
+        let mut name = None;
+        let mut root = None;
+        let mut params = Vec::new();
+        let mut defs = Vec::new();
+        let mut seed_pair = None;
+        let mut layout = None;
+        for p in file.into_inner() {
+            match p.as_rule() {
+                Rule::stl_tree_name => name = Some((p.as_str().to_string(), Loc(span_of(&p)))),
+                Rule::stl_root => {
+                    let loc = Loc(span_of(&p));
+                    let mut it = p.into_inner();
+                    let mut coordinate = || {
+                        let n = it.next().expect("grammar: stl_root holds two numbers");
+                        self.number(&n)
+                    };
+                    let (x, y) = (coordinate(), coordinate());
+                    root = Some(((x, y), loc));
+                }
+                Rule::stl_param => params.push(p),
+                Rule::stl_rule_def => defs.push(p),
+                Rule::stl_seed => seed_pair = Some(p),
+                Rule::stl_layout => layout = Some(self.layout(p)),
+                Rule::stl_kw_rule | Rule::EOI => {}
+                other => not_in_grammar("stl_file", other),
+            }
+        }
+        let (name, name_loc) = name.expect("grammar: stl_file starts with stl_tree_name");
+        let (root, root_loc) = root.expect("grammar: stl_file has stl_root");
+        let params = self.params(params, &root_loc);
+        let rules = self.rules(defs);
+        let seed = seed_pair.map(|p| self.seed(p));
+        Description {
+            format: self.format,
+            name,
+            name_loc,
+            root,
+            root_loc,
+            params,
+            rules,
+            seed,
+            layout,
+        }
+    }
+
+    /// A number of the grammar's `number` rule; a value too large for a
+    /// 64-bit float is reported and read as 0.
+    fn number(&mut self, p: &Pair<'_, Rule>) -> f64 {
+        match p.as_str().parse::<f64>() {
+            Ok(v) if v.is_finite() => v,
+            _ => {
+                self.report(
+                    ErrorKind::NotFinite {
+                        text: p.as_str().to_string(),
+                    },
+                    span_of(p),
+                    "too large to represent",
+                    "write a number of ordinary size",
+                );
+                0.0
+            }
+        }
+    }
+}

@@ -1,0 +1,314 @@
+//! The seed, `SEED ... ENDSEED`: drawing runs, fixed figures, repeats and
+//! branch-expansion terms `R1{R2{,},}`, built with an explicit stack of
+//! open terms (no recursion the input can drive).
+//!
+//! A slot of a term holds one term, one `[I n R1]`, or nothing. In a BED a
+//! bare rule name `R1` is the term with every slot empty; in an OD it stays
+//! a growth point.
+
+use pest::iterators::Pair;
+
+use super::body::{RepeatBody, Run};
+use super::lex::Lex;
+use super::rules::{KW_ENDSEED, KW_SEED};
+use super::{Builder, Rule, not_in_grammar, span_of};
+use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::model::{Format, Loc, RuleId, Seed, SeedItem, Slot, Term};
+
+/// A term whose `{` is open.
+struct TermFrame {
+    /// `None` after a `{` that followed no rule name (already reported).
+    rule: Option<RuleId>,
+    start: usize,
+    open: Span,
+    slots: Vec<Option<Slot>>,
+    cur: Option<Slot>,
+    saw_comma: bool,
+}
+
+impl Builder<'_> {
+    /// The `SEED` section.
+    pub(super) fn seed(&mut self, p: Pair<'_, Rule>) -> Seed {
+        let span = span_of(&p);
+        let mut kw = None;
+        let mut closed = false;
+        let mut lex = Vec::new();
+        for c in p.into_inner() {
+            match c.as_rule() {
+                Rule::stl_kw_seed => kw = Some(span_of(&c)),
+                Rule::stl_kw_endseed => closed = true,
+                Rule::stl_seed_body => lex = self.lex(c),
+                other => not_in_grammar("stl_seed", other),
+            }
+        }
+        if !closed {
+            self.err(
+                Diagnostic::error(ErrorKind::UnclosedSection {
+                    open: KW_SEED,
+                    close: KW_ENDSEED,
+                })
+                .with_span(kw.expect("grammar: stl_seed starts with `SEED`"))
+                .with_label("this section is never closed")
+                .with_help(format!("end the seed with `{KW_ENDSEED}`")),
+            );
+        }
+        let items = self.seed_items(&lex);
+        Seed {
+            items,
+            loc: Loc(span),
+        }
+    }
+
+    fn seed_items(&mut self, lex: &[Lex]) -> Vec<SeedItem> {
+        let mut items = Vec::new();
+        let mut run = Run::default();
+        let mut brackets: Vec<Span> = Vec::new();
+        let mut stack: Vec<TermFrame> = Vec::new();
+        // A rule name whose `{` may follow.
+        let mut pending: Option<(RuleId, Span)> = None;
+        let mut i = 0;
+        while i < lex.len() {
+            let l = &lex[i];
+            if !matches!(l, Lex::LBrace(_))
+                && let Some((id, s)) = pending.take()
+            {
+                let t = self.bare(id, s);
+                self.deliver(Slot::Term(t), &mut stack, &mut items, &mut run);
+            }
+            match l {
+                Lex::Name(id, s) => pending = Some((*id, s.clone())),
+                Lex::LBrace(s) => {
+                    let (rule, start) = match pending.take() {
+                        Some((id, ns)) => (Some(id), ns.start),
+                        None => {
+                            self.report(
+                                ErrorKind::BraceWithoutRule,
+                                s.clone(),
+                                "no rule before it",
+                                "write the rule whose slots these are before `{`, as in `R1{,}`",
+                            );
+                            (None, s.start)
+                        }
+                    };
+                    stack.push(TermFrame {
+                        rule,
+                        start,
+                        open: s.clone(),
+                        slots: Vec::new(),
+                        cur: None,
+                        saw_comma: false,
+                    });
+                }
+                Lex::Comma(s) => match stack.last_mut() {
+                    Some(f) => {
+                        let cur = f.cur.take();
+                        f.slots.push(cur);
+                        f.saw_comma = true;
+                    }
+                    None => self.report(
+                        ErrorKind::CommaOutsideTerm,
+                        s.clone(),
+                        "separates nothing",
+                        "commas separate the slots of a term `R1{R1{,},}`",
+                    ),
+                },
+                Lex::RBrace(s) => match stack.pop() {
+                    Some(mut f) => {
+                        let cur = f.cur.take();
+                        f.slots.push(cur);
+                        if let Some(rule) = f.rule {
+                            let m = self.branches[rule.0];
+                            // `R0{}` for a rule without branches.
+                            if m == 0 && !f.saw_comma && f.slots.len() == 1 && f.slots[0].is_none()
+                            {
+                                f.slots.clear();
+                            }
+                            let span = f.start..s.end;
+                            if f.slots.len() != m {
+                                self.slot_count(rule, f.slots.len(), span.clone());
+                            }
+                            let t = Term {
+                                rule,
+                                slots: f.slots,
+                                bare: false,
+                                loc: Loc(span),
+                            };
+                            self.deliver(Slot::Term(t), &mut stack, &mut items, &mut run);
+                        }
+                    }
+                    None => self.unbalanced('}', s.clone(), "this `}` closes nothing"),
+                },
+                Lex::RepeatOpen(count, open) => {
+                    let (what, next) = self.repeat(lex, i, *count, open);
+                    match what {
+                        RepeatBody::Rule(r) => {
+                            self.deliver(Slot::Repeat(r), &mut stack, &mut items, &mut run)
+                        }
+                        RepeatBody::Word(f) => {
+                            if stack.is_empty() {
+                                if let Some(r) = run.take() {
+                                    items.push(SeedItem::Draw(r));
+                                }
+                                items.push(SeedItem::Fixed(f));
+                            } else {
+                                self.in_slot(f.loc.0);
+                            }
+                        }
+                        RepeatBody::Invalid => {}
+                    }
+                    i = next;
+                    continue;
+                }
+                Lex::Draw(_, s) | Lex::Open(s) | Lex::Close(s) if !stack.is_empty() => {
+                    self.in_slot(s.clone());
+                }
+                Lex::Draw(c, s) => run.push(*c, s),
+                Lex::Open(s) => {
+                    brackets.push(s.clone());
+                    run.push('[', s);
+                }
+                Lex::Close(s) => {
+                    if brackets.pop().is_some() {
+                        run.push(']', s);
+                    } else {
+                        self.unbalanced(']', s.clone(), "this `]` closes nothing");
+                    }
+                }
+            }
+            i += 1;
+        }
+        if let Some((id, s)) = pending.take() {
+            let t = self.bare(id, s);
+            self.deliver(Slot::Term(t), &mut stack, &mut items, &mut run);
+        }
+        for f in stack.iter().rev() {
+            self.unbalanced('{', f.open.clone(), "this `{` is never closed");
+        }
+        for b in brackets.iter().rev() {
+            self.unbalanced('[', b.clone(), "this `[` is never closed");
+        }
+        if let Some(r) = run.take() {
+            items.push(SeedItem::Draw(r));
+        }
+        items
+    }
+
+    fn in_slot(&mut self, span: Span) {
+        self.report(
+            ErrorKind::DrawingInSlot,
+            span,
+            "inside a term's `{...}`",
+            "a slot holds one term (`R1{,}`), one `[I n R1]`, or nothing; drawing belongs in rule bodies",
+        );
+    }
+
+    fn slot_count(&mut self, rule: RuleId, found: usize, span: Span) {
+        let name = self.names[rule.0].clone();
+        let expected = self.branches[rule.0];
+        let empty = format!("{name}{{{}}}", ",".repeat(expected.saturating_sub(1)));
+        self.err(
+            Diagnostic::error(ErrorKind::SlotCount {
+                rule: name.clone(),
+                expected,
+                found,
+            })
+            .with_span(span)
+            .with_label(format!("{found} slot(s) here"))
+            .with_help(format!(
+                "`{name}` has {expected} branch(es): write one slot per branch, separated by commas (all empty: `{empty}`)"
+            )),
+        );
+    }
+
+    /// The term a bare rule name `R1` stands for.
+    fn bare(&mut self, rule: RuleId, span: Span) -> Term {
+        Term {
+            rule,
+            slots: vec![None; self.branches[rule.0]],
+            bare: self.format == Format::Od,
+            loc: Loc(span),
+        }
+    }
+
+    /// Puts a finished term or repeat where it belongs: the open slot of the
+    /// innermost open term, or the seed.
+    fn deliver(
+        &mut self,
+        s: Slot,
+        stack: &mut [TermFrame],
+        items: &mut Vec<SeedItem>,
+        run: &mut Run,
+    ) {
+        match stack.last_mut() {
+            Some(f) => {
+                if f.cur.is_some() {
+                    let span = match &s {
+                        Slot::Term(t) => t.loc.0.clone(),
+                        Slot::Repeat(r) => r.loc.0.clone(),
+                    };
+                    self.report(
+                        ErrorKind::TwoTermsInSlot,
+                        span,
+                        "second term in this slot",
+                        "separate slots with `,`; to grow more at one tip, give the rule more branches",
+                    );
+                } else {
+                    f.cur = Some(s);
+                }
+            }
+            None => {
+                if let Some(r) = run.take() {
+                    items.push(SeedItem::Draw(r));
+                }
+                items.push(match s {
+                    Slot::Term(t) => SeedItem::Term(t),
+                    Slot::Repeat(r) => SeedItem::Repeat(r),
+                });
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::diag::{Diagnostics, ErrorKind};
+    use crate::limits::Limits;
+    use crate::model::{Description, Format, SeedItem};
+
+    fn bed(src: &str) -> Result<Description, Diagnostics> {
+        super::super::parse(src, Format::Bed, &Limits::default())
+    }
+
+    const HEAD: &str = "T (0,0) L=10(0) B=1(0) RULE R1: [F] R2: [F][F] ";
+
+    #[test]
+    fn a_slot_holds_one_term() {
+        let src = format!("{HEAD} SEED R2{{R1{{}}R1{{}},}} ENDSEED");
+        let e = bed(&src).unwrap_err();
+        assert_eq!(e.0[0].kind, ErrorKind::TwoTermsInSlot);
+        let second = src.rfind("R1{}").unwrap();
+        assert_eq!(e.0[0].span, Some(second..second + 4));
+        let src = format!("{HEAD} SEED R2{{F,}} ENDSEED");
+        let e = bed(&src).unwrap_err();
+        assert_eq!(e.0[0].kind, ErrorKind::DrawingInSlot);
+        let f = src.find("{F").unwrap() + 1;
+        assert_eq!(e.0[0].span, Some(f..f + 1));
+    }
+
+    #[test]
+    fn empty_braces_fit_zero_or_one_branch() {
+        let d = bed("T (0,0) RULE R0: F R1: [F] SEED R0{} R1{} ENDSEED").unwrap();
+        let items = &d.seed.unwrap().items;
+        assert!(matches!(&items[0], SeedItem::Term(t) if t.slots.is_empty()));
+        assert!(matches!(&items[1], SeedItem::Term(t) if t.slots == vec![None]));
+    }
+
+    #[test]
+    fn a_comma_outside_a_term_separates_nothing() {
+        let src = format!("{HEAD} SEED R1, R1 ENDSEED");
+        let e = bed(&src).unwrap_err();
+        assert_eq!(e.0[0].kind, ErrorKind::CommaOutsideTerm);
+        let at = src.rfind(',').unwrap();
+        assert_eq!(e.0[0].span, Some(at..at + 1));
+    }
+}
