@@ -48,12 +48,6 @@ pub enum ErrorKind {
     /// A `[`, `{` or `(` without its partner, or a closing one without an opener.
     #[error("unbalanced `{0}`")]
     Unbalanced(char),
-    /// A problem in a classic L-system file (`.lsys`).
-    #[error("{0}")]
-    Lsys(String),
-    /// A problem in an Outline or Branch-Expansion Description.
-    #[error("{0}")]
-    Stl(String),
     /// A rule reference names no declared rule.
     #[error("unknown rule `{name}`")]
     UnknownRule {
@@ -336,7 +330,7 @@ pub enum ErrorKind {
     },
     /// The drawing reaches coordinates that are infinite or NaN.
     #[error("the drawing reaches coordinates that are not finite numbers")]
-    NotFinite,
+    DrawingNotFinite,
     /// `--size` with a zero side or a side over the maximum.
     #[error("image size {width}x{height} is out of range: each side must be 1 to {max} pixels")]
     ImageSize {

@@ -197,7 +197,7 @@ impl Fit {
             .iter()
             .all(|v| v.is_finite());
         if !finite {
-            return Err(Diagnostic::error(ErrorKind::NotFinite)
+            return Err(Diagnostic::error(ErrorKind::DrawingNotFinite)
                 .with_help("check the stem length, angle and depth")
                 .into());
         }
@@ -567,6 +567,6 @@ mod tests {
             None,
         )
         .unwrap_err();
-        assert_eq!(err.first_kind(), Some(&ErrorKind::NotFinite));
+        assert_eq!(err.first_kind(), Some(&ErrorKind::DrawingNotFinite));
     }
 }

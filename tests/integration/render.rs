@@ -611,7 +611,7 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
     let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
         runs += 1;
         if runs == 2 {
-            return Err(Diagnostic::error(ErrorKind::NotFinite).into());
+            return Err(Diagnostic::error(ErrorKind::DrawingNotFinite).into());
         }
         t.segment(Segment {
             from: Point::new(0.0, 0.0),
@@ -631,7 +631,7 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
         &mut NoProgress,
     )
     .unwrap_err();
-    assert_eq!(err.first_kind(), Some(&ErrorKind::NotFinite));
+    assert_eq!(err.first_kind(), Some(&ErrorKind::DrawingNotFinite));
     assert!(out.is_empty());
 }
 
