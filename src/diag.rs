@@ -412,6 +412,9 @@ pub enum ErrorKind {
         /// What the command takes and what it got.
         message: String,
     },
+    /// The input holds nothing but white space.
+    #[error("the file is empty")]
+    EmptyInput,
     /// An L-system has no `generations` and no `--depth` was given.
     #[error("no derivation depth")]
     NoDepth,

@@ -104,6 +104,17 @@ pub fn sniff(bytes: &[u8]) -> Option<InputKind> {
 /// depth, ...). A BED is validated and measured here, once.
 pub fn load(bytes: &[u8], kind: InputKind, limits: &Limits) -> Result<Loaded, Diagnostics> {
     let text = syntax::precheck(bytes, limits)?;
+    if text.trim().is_empty() {
+        let help = match kind {
+            InputKind::Lsys => "an .lsys file needs at least `axiom` and `angle` lines",
+            InputKind::Od | InputKind::Bed => {
+                "a description needs at least a tree name, a root `(x, y)` and `RULE` with a rule"
+            }
+        };
+        return Err(Diagnostic::error(ErrorKind::EmptyInput)
+            .with_help(help)
+            .into());
+    }
     match kind {
         InputKind::Lsys => syntax::lsys::parse(text, limits).map(Loaded::Lsys),
         InputKind::Od => syntax::stl::parse(text, Format::Od, limits).map(Loaded::Od),

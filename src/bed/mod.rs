@@ -117,27 +117,56 @@ impl<'a> Sizer<'a> {
 
 /// Computes what `seed` (of `desc`) expands to, exactly or saturated.
 pub fn measure_seed(desc: &Description, seed: &Seed) -> Size {
-    let mut z = Sizer::new(desc);
     let mut total = Size::default();
-    let mut stack: Vec<&Term> = Vec::new();
-    for item in &seed.items {
-        match item {
-            SeedItem::Draw(d) => total.add(draw_size(&d.text)),
-            SeedItem::Fixed(f) => total.add(fixed_size(f)),
-            SeedItem::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
-            SeedItem::Term(t) => stack.push(t),
-        }
-        while let Some(t) = stack.pop() {
-            total.add(z.own.get(t.rule.0).copied().unwrap_or_default());
-            for s in t.slots.iter().flatten() {
-                match s {
-                    Slot::Term(t) => stack.push(t),
-                    Slot::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
-                }
-            }
-        }
+    for s in item_sizes(desc, seed) {
+        total.add(s);
     }
     total
+}
+
+/// What each item of `seed` expands to, in order.
+fn item_sizes(desc: &Description, seed: &Seed) -> Vec<Size> {
+    let mut z = Sizer::new(desc);
+    let mut stack: Vec<&Term> = Vec::new();
+    seed.items
+        .iter()
+        .map(|item| {
+            let mut total = Size::default();
+            match item {
+                SeedItem::Draw(d) => total.add(draw_size(&d.text)),
+                SeedItem::Fixed(f) => total.add(fixed_size(f)),
+                SeedItem::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
+                SeedItem::Term(t) => stack.push(t),
+            }
+            while let Some(t) = stack.pop() {
+                total.add(z.own.get(t.rule.0).copied().unwrap_or_default());
+                for s in t.slots.iter().flatten() {
+                    match s {
+                        Slot::Term(t) => stack.push(t),
+                        Slot::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
+                    }
+                }
+            }
+            total
+        })
+        .collect()
+}
+
+/// The span of the seed item that alone expands past `max_symbols`, if
+/// one does (the one to point at); else `None`.
+fn item_over(desc: &Description, seed: &Seed, max_symbols: u64) -> Option<crate::diag::Span> {
+    let sizes = item_sizes(desc, seed);
+    let (i, biggest) = sizes.iter().enumerate().max_by_key(|(_, s)| s.symbols)?;
+    if biggest.symbols <= max_symbols {
+        return None;
+    }
+    let loc = match &seed.items[i] {
+        SeedItem::Draw(d) => &d.loc,
+        SeedItem::Fixed(f) => &f.loc,
+        SeedItem::Term(t) => &t.loc,
+        SeedItem::Repeat(r) => &r.loc,
+    };
+    (loc.0.end > loc.0.start).then(|| loc.0.clone())
 }
 
 /// Computes what the description's seed in force expands to.
@@ -283,7 +312,7 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
                 },
                 limit: limits.max_symbols.to_string(),
             })
-            .with_span(seed.loc.0.clone())
+            .with_span(item_over(desc, &seed, limits.max_symbols).unwrap_or(seed.loc.0.clone()))
             .with_help("raise the limit with --max-symbols N, or lower the counts"),
         );
     }

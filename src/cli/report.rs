@@ -58,19 +58,29 @@ pub fn write(out: &mut dyn Write, d: &Diagnostic, src: Option<&SourceText<'_>>, 
     let config = Config::default()
         .with_color(color)
         .with_index_type(IndexType::Byte);
+    // Labels are ordered by where they stand in the file: ariadne starts a
+    // new source group (whose header repeats the report's line) whenever a
+    // label comes before the previous one, so a note on an earlier line
+    // would otherwise show under the wrong line number.
+    let rank = |start: usize| {
+        std::iter::once(span.start)
+            .chain(extra.iter().map(|(r, _)| r.start))
+            .filter(|&s| s < start)
+            .count() as i32
+    };
     let mut report = Report::build(kind, (name.clone(), shown.range(&span)))
         .with_config(config)
         .with_message(&headline)
         .with_label(
             Label::new((name.clone(), shown.range(&span)))
                 .with_message(d.label.clone().unwrap_or_else(|| headline.clone()))
-                .with_order(0),
+                .with_order(rank(span.start)),
         );
-    for (i, (range, message)) in extra.iter().enumerate() {
+    for (range, message) in &extra {
         report = report.with_label(
             Label::new((name.clone(), shown.range(range)))
                 .with_message(message)
-                .with_order(i as i32 + 1),
+                .with_order(rank(range.start)),
         );
     }
     if shown.cut {

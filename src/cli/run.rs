@@ -4,6 +4,7 @@
 use std::io::Write;
 use std::process::ExitCode;
 
+use stlc::Severity;
 use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::grow::{GrowOptions, GrowthOrder};
@@ -12,7 +13,6 @@ use stlc::pipeline::{self, Loaded, Look, Scene, SceneRequest};
 use stlc::progress::Progress as _;
 use stlc::render::{ImageFormat, RenderOptions};
 use stlc::syntax::InputKind;
-use stlc::{Severity, syntax};
 
 use super::args::{
     CheckArgs, Cli, Command, CompileArgs, ExpandArgs, FormatArg, FromKind, GrowArgs, GrowthArg,
@@ -103,8 +103,9 @@ fn load(args: &InputArgs, limits: &Limits, source: &mut Source) -> Result<Loaded
             Input::Stdin => pipeline::detect_kind(None, &bytes)?,
         },
     };
-    // Keep the text for diagnostics (if it is text: precheck says why not).
-    if let Ok(text) = syntax::precheck(&bytes, limits) {
+    // Keep the text for diagnostics, whatever the library then says of it
+    // (a nesting error points into it); text that is not UTF-8 has none.
+    if let Ok(text) = std::str::from_utf8(&bytes) {
         source.text = text.to_string();
     }
     pipeline::load(&bytes, kind, limits)
