@@ -154,6 +154,15 @@ pub enum ErrorKind {
     },
 
     // --------------------------------------------- syntax: .od / .bed --
+    /// A header parameter given the wrong kind of value (a colour for `L`,
+    /// a number for `S`).
+    #[error("`{key}` takes {expected}")]
+    ParamValue {
+        /// The parameter's key.
+        key: &'static str,
+        /// What it takes, in words.
+        expected: &'static str,
+    },
     /// A number in a description does not fit a 64-bit float.
     #[error("`{text}` is not a finite number")]
     NotFinite {

@@ -338,11 +338,13 @@ pub fn lsys_depth(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<
 /// How a picture looks: the options of [`render`] beyond size and format.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Look {
-    /// Stroke colour; `None`: the input's own (an L-system's `color`), else
-    /// [`TREE_BROWN`] for trees and black for L-systems.
+    /// Stroke colour; `None`: the input's own (an L-system's `color`, a
+    /// description's `S=`), else [`TREE_BROWN`] for trees and black for
+    /// L-systems.
     pub stroke: Option<Rgb>,
     /// Canvas colour; `None`: the input's own (an L-system's
-    /// `background`), else white. `Some(None)` is transparent.
+    /// `background`, a description's `G=`), else white. `Some(None)` is
+    /// transparent.
     pub background: Option<Option<Rgb>>,
     /// Paint the layout's shapes under a tree (`--show-layout`).
     pub show_layout: bool,
@@ -364,11 +366,19 @@ pub fn style(scene: &Scene, look: &Look) -> Style {
             }),
             width: Width::Pixels(sys.width),
         },
-        What::Tree { bed, .. } => Style {
-            stroke: look.stroke.unwrap_or(TREE_BROWN),
-            background: look.background.unwrap_or(Some(Rgb::WHITE)),
-            width: Width::Canvas(bed.description().params.width),
-        },
+        What::Tree { bed, .. } => {
+            let p = &bed.description().params;
+            Style {
+                stroke: look
+                    .stroke
+                    .or(p.stroke.as_ref().and_then(|c| c.rgb))
+                    .unwrap_or(TREE_BROWN),
+                background: look
+                    .background
+                    .unwrap_or(p.background.as_ref().map_or(Some(Rgb::WHITE), |c| c.rgb)),
+                width: Width::Canvas(p.width),
+            }
+        }
     }
 }
 

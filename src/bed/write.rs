@@ -71,6 +71,12 @@ pub fn write(desc: &Description) -> String {
     if let Some(c) = p.clearance {
         let _ = write!(out, " C={}", num(c));
     }
+    if let Some(s) = &p.stroke {
+        let _ = write!(out, " S={}", s.text);
+    }
+    if let Some(g) = &p.background {
+        let _ = write!(out, " G={}", g.text);
+    }
     out.push_str("\nRULE\n");
     for r in &desc.rules {
         let _ = writeln!(out, "{}: {}", r.name, w.body(&r.body));

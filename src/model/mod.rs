@@ -89,8 +89,24 @@ pub struct StemParams {
     pub angle: Option<f64>,
     /// `C`: clearance between stems (ours), `None` if not written.
     pub clearance: Option<f64>,
+    /// `S`: the stroke colour the tree is drawn with (ours), `None` if not
+    /// written (the renderer's default, or `--stroke`).
+    pub stroke: Option<Colour>,
+    /// `G`: the background (ground) colour, or `none` for transparent
+    /// (ours), `None` if not written (white, or `--background`).
+    pub background: Option<Colour>,
     /// Where the parameters are.
     pub loc: Loc,
+}
+
+/// A colour as a description writes it: `clMaroon`, `#4a2c12`, or `none`
+/// (transparent, for a background).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Colour {
+    /// The colour; `None` for `none`.
+    pub rgb: Option<crate::color::Rgb>,
+    /// As written (the writer keeps it).
+    pub text: String,
 }
 
 /// Default turning angle when `A=` is not given (degrees).

@@ -102,6 +102,7 @@ pub(crate) fn describe(rule: Rule) -> String {
         Rule::stl_param => "a stem parameter like `L=10(0)`",
         Rule::stl_param_key => "a parameter name",
         Rule::stl_param_dec => "a decrement `(d)`",
+        Rule::stl_param_colour => "a colour (`clMaroon`, `#rrggbb` or `none`)",
         Rule::stl_kw_rule => "`RULE`",
         Rule::stl_kw_seed => "`SEED`",
         Rule::stl_kw_endseed => "`ENDSEED`",

@@ -256,6 +256,8 @@ fn params(l: f64, dl: f64, b: f64, db: f64) -> StemParams {
         width: Linear::new(b, db),
         angle: None,
         clearance: None,
+        stroke: None,
+        background: None,
         loc: loc(),
     }
 }

@@ -400,3 +400,48 @@ fn many_copies_of_a_thick_stem_draw_what_one_draws() {
     assert_eq!(run(&["render", path(&many), "-o", path(&b)]).0, 0);
     assert!(fs::read(&a).unwrap() == fs::read(&b).unwrap());
 }
+
+// ------------------------------------------------------ header colours --
+
+/// `S=` and `G=` in the header give the tree's stroke and background; the
+/// BED keeps them as written; `--stroke` and `--background` override them.
+#[test]
+fn a_description_can_store_its_stroke_and_background() {
+    let dir = tempfile::tempdir().unwrap();
+    let od = dir.path().join("c.od");
+    fs::write(
+        &od,
+        "C\n(0, 0)\nL=10(0) B=2(0) S=clMaroon G=#ffffe0\nRULE\nR1: [+F][-F]\nSEED\nF [I 3 R1]\nENDSEED\n",
+    )
+    .unwrap();
+    let (code, bed, _) = run(&["compile", path(&od), "-o", "-"]);
+    assert_eq!(code, 0);
+    let bed = String::from_utf8(bed).unwrap();
+    assert!(
+        bed.contains("L=10(0) B=2(0) C=1 S=clMaroon G=#ffffe0\n"),
+        "{bed}"
+    );
+    let svg = |extra: &[&str]| {
+        let mut args = vec!["render", path(&od), "-f", "svg", "-o", "-"];
+        args.extend(extra);
+        String::from_utf8(run(&args).1).unwrap()
+    };
+    let own = svg(&[]);
+    assert!(own.contains("fill=\"#ffffe0\""), "{own}");
+    assert!(own.contains("stroke=\"#800000\""), "clMaroon: {own}");
+    let over = svg(&["--stroke", "#123456", "--background", "none"]);
+    assert!(
+        over.contains("stroke=\"#123456\"") && !over.contains("<rect"),
+        "{over}"
+    );
+    // A number where a colour goes, and the other way round, are errors
+    // at the value.
+    let bad = dir.path().join("bad.od");
+    fs::write(&bad, "C\n(0, 0)\nL=clRed S=12\nRULE\nR1: [+F][-F]\n").unwrap();
+    let (code, _, err) = run(&["check", "--color", "never", path(&bad)]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("`L` takes a number") && err.contains("`S` takes a colour"),
+        "{err}"
+    );
+}

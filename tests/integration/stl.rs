@@ -974,6 +974,20 @@ fn gen_description(seed: u64) -> Description {
             width: Linear::new(g.milli(1, 10), if g.chance(50) { 0.0 } else { 0.125 }),
             angle: g.chance(50).then(|| g.milli(0, 90)),
             clearance: g.chance(50).then(|| g.milli(0, 5)),
+            stroke: g.chance(30).then(|| stlc::model::Colour {
+                rgb: Some(stlc::color::Rgb::new(0x80, 0, 0)),
+                text: g.pick(&["clMaroon", "#800000"]).to_string(),
+            }),
+            background: g.chance(30).then(|| match g.chance(50) {
+                true => stlc::model::Colour {
+                    rgb: None,
+                    text: "none".into(),
+                },
+                false => stlc::model::Colour {
+                    rgb: Some(stlc::color::Rgb::WHITE),
+                    text: "#ffffff".into(),
+                },
+            }),
             loc: Loc::default(),
         },
         rules,

@@ -23,15 +23,21 @@ pub enum Param {
     Angle,
     /// `C=distance`: the clearance between stems.
     Clearance,
+    /// `S=colour`: the stroke colour.
+    Stroke,
+    /// `G=colour` or `G=none`: the background (ground) colour.
+    Ground,
 }
 
 impl Param {
     /// Every parameter, in the order the docs list them.
-    pub const ALL: [Param; 4] = [
+    pub const ALL: [Param; 6] = [
         Param::Length,
         Param::Broadness,
         Param::Angle,
         Param::Clearance,
+        Param::Stroke,
+        Param::Ground,
     ];
 
     /// The key as written: `L`, `B`, `A` or `C`.
@@ -41,6 +47,8 @@ impl Param {
             Param::Broadness => "B",
             Param::Angle => "A",
             Param::Clearance => "C",
+            Param::Stroke => "S",
+            Param::Ground => "G",
         }
     }
 
@@ -51,7 +59,14 @@ impl Param {
             Param::Broadness => "broadness",
             Param::Angle => "angle",
             Param::Clearance => "clearance",
+            Param::Stroke => "stroke colour",
+            Param::Ground => "background colour",
         }
+    }
+
+    /// Whether the parameter's value is a colour rather than a number.
+    pub fn is_colour(self) -> bool {
+        matches!(self, Param::Stroke | Param::Ground)
     }
 
     /// The parameter whose key is `key`, exactly as written.
@@ -79,6 +94,8 @@ impl Builder<'_> {
             width: Linear::constant(1.0),
             angle: None,
             clearance: None,
+            stroke: None,
+            background: None,
             loc: Loc(root_loc.0.end..root_loc.0.end),
         };
         let mut seen: Vec<(String, Span)> = Vec::new();
@@ -88,7 +105,9 @@ impl Builder<'_> {
             whole = Some(whole.map_or(span.clone(), |w| w.start..span.end));
             let mut it = p.into_inner();
             let key = it.next().expect("grammar: stl_param starts with a key");
-            let val = it.next().expect("grammar: stl_param has a number");
+            let val = it
+                .next()
+                .expect("grammar: stl_param has a number or a colour");
             // `(d)` and the number inside it.
             let dec = it.next().map(|d| {
                 let n = d.clone().into_inner().next();
@@ -111,8 +130,46 @@ impl Builder<'_> {
                 continue;
             }
             seen.push((k.clone(), kspan.clone()));
-            let v = self.number(&val);
             let vspan = span_of(&val);
+            let param = Param::from_key(&k);
+            let colour_given = val.as_rule() == Rule::stl_param_colour;
+            if let Some(p) = param
+                && p.is_colour() != colour_given
+            {
+                let expected = if p.is_colour() {
+                    "a colour (a Delphi name such as `clMaroon`, `#rrggbb`, or `none` for G)"
+                } else {
+                    "a number"
+                };
+                self.report(
+                    ErrorKind::ParamValue {
+                        key: p.key(),
+                        expected,
+                    },
+                    vspan,
+                    "not this kind of value",
+                    &format!("write `{}=` followed by {expected}", p.key()),
+                );
+                continue;
+            }
+            if let Some(p) = param.filter(|p| p.is_colour()) {
+                let text = val.as_str().to_string();
+                let rgb = if p == Param::Ground && text.eq_ignore_ascii_case("none") {
+                    Some(None)
+                } else {
+                    self.colour(&text, vspan).map(Some)
+                };
+                if let Some(rgb) = rgb {
+                    let c = Some(crate::model::Colour { rgb, text });
+                    if p == Param::Stroke {
+                        out.stroke = c;
+                    } else {
+                        out.background = c;
+                    }
+                }
+                continue;
+            }
+            let v = if colour_given { 0.0 } else { self.number(&val) };
             let dv = dec.as_ref().map(|(_, n)| (self.number(n), span_of(n)));
             match Param::from_key(&k) {
                 Some(p @ Param::Length) => out.length = self.size(p, v, vspan, dv),
@@ -121,6 +178,8 @@ impl Builder<'_> {
                     self.no_decrement(p, dec.map(|(s, _)| s));
                     out.angle = Some(v);
                 }
+                // Colours were read above.
+                Some(Param::Stroke | Param::Ground) => {}
                 Some(p @ Param::Clearance) => {
                     self.no_decrement(p, dec.map(|(s, _)| s));
                     if v < 0.0 {

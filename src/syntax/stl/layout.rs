@@ -68,6 +68,27 @@ enum Arg {
 }
 
 impl Builder<'_> {
+    /// A colour as written (`clGreen`, `#rrggbb`), or an error at `span`
+    /// with the nearest colour name.
+    pub(super) fn colour(&mut self, text: &str, span: Span) -> Option<Rgb> {
+        if let Some(c) = Rgb::parse(text) {
+            return Some(c);
+        }
+        let help = match Rgb::suggest(text) {
+            Some(s) => format!("did you mean `{s}`? Colours are Delphi names or `#rrggbb`"),
+            None => "use a Delphi colour name (`clGreen`, `clWhite`, ...) or `#rrggbb`".to_string(),
+        };
+        self.err(
+            Diagnostic::error(ErrorKind::UnknownColour {
+                text: text.to_string(),
+            })
+            .with_span(span)
+            .with_label("not a colour")
+            .with_help(help),
+        );
+        None
+    }
+
     /// The `LAYOUT` section.
     pub(super) fn layout(&mut self, p: Pair<'_, Rule>) -> Layout {
         let span = span_of(&p);
@@ -117,25 +138,7 @@ impl Builder<'_> {
             shape = inner.expect("grammar: stl_angled holds a shape");
         }
         let color_text = col.as_str().to_string();
-        let color = match Rgb::parse(&color_text) {
-            Some(c) => Some(c),
-            None => {
-                let help = match Rgb::suggest(&color_text) {
-                    Some(s) => format!("did you mean `{s}`? Colours are Delphi names or `#rrggbb`"),
-                    None => "use a Delphi colour name (`clGreen`, `clWhite`, ...) or `#rrggbb`"
-                        .to_string(),
-                };
-                self.err(
-                    Diagnostic::error(ErrorKind::UnknownColour {
-                        text: color_text.clone(),
-                    })
-                    .with_span(span_of(&col))
-                    .with_label("not a colour")
-                    .with_help(help),
-                );
-                None
-            }
-        };
+        let color = self.colour(&color_text, span_of(&col));
         let (shape, spelling) = self.shape(shape)?;
         Some(LayoutShape {
             color: color?,
