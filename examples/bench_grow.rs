@@ -5,7 +5,9 @@
 //! /usr/bin/time -v target/release/examples/bench_grow bfs rstar 1000000
 //! ```
 //!
-//! Arguments: strategy (`bfs`|`dfs`), occupancy index (`rstar`|`spade`), and
+//! Arguments: strategy (`bfs`|`dfs`), occupancy index (`rstar`, or `spade`
+//! when built with `--features spade-index`: the Delaunay index, an
+//! experiment kept for this measurement), and
 //! the number of stems to grow (`--max-stems`; growth stops there with a
 //! warning), optionally the side of the square layout (default 4000). The tree: `Seed = FR1`, `R1 = [-F][F][+F]`, `L=1`, `A=30`,
 //! default clearance (0.1), in a 4000 x 4000 rectangle with the root at the
@@ -28,7 +30,15 @@ fn main() {
         _ => GrowthOrder::Bfs,
     };
     let backend = match args.get(2).map(String::as_str) {
+        #[cfg(feature = "spade-index")]
         Some("spade") => Backend::Spade,
+        #[cfg(not(feature = "spade-index"))]
+        Some("spade") => {
+            eprintln!(
+                "bench_grow: the spade index is an experiment behind a feature; build with `cargo build --release --example bench_grow --features spade-index`"
+            );
+            std::process::exit(2);
+        }
         _ => Backend::Rstar,
     };
     let n: u64 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(100_000);

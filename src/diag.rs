@@ -74,9 +74,6 @@ pub enum ErrorKind {
         /// The limit in force.
         limit: String,
     },
-    /// Growth (compile) cannot proceed or was cut short.
-    #[error("{0}")]
-    Grow(String),
     /// The reader of our standard output went away (`stlc expand | head`).
     /// The CLI exits quietly on it.
     #[error("broken pipe")]
@@ -302,7 +299,68 @@ pub enum ErrorKind {
         what: &'static str,
     },
     // ----------------------------------------------------- growth --
-
+    /// Growth has nothing to start from: no `SEED` and no rule.
+    #[error("nothing to grow: the description has no SEED and no rule")]
+    NothingToGrow,
+    /// The clearance (`C=` or `--clearance`) is negative or not finite.
+    #[error("the clearance must be a finite number >= 0, not {value}")]
+    BadClearance {
+        /// The clearance asked for.
+        value: f64,
+    },
+    /// The root lies outside the layout region, so nothing can grow.
+    #[error("the root ({x}, {y}) lies outside the layout region")]
+    RootOutside {
+        /// The root's x, as written.
+        x: f64,
+        /// The root's y, as written.
+        y: f64,
+    },
+    /// A rule reference of the seed names a rule number that is not
+    /// declared (a description built by hand; the parser resolves names).
+    #[error("rule number {number} is not declared")]
+    UndeclaredRule {
+        /// The rule's index.
+        number: usize,
+    },
+    /// Growth with nothing to bound it: a growth point without a count whose
+    /// rules can branch forever, and no layout, decrement or explicit
+    /// `--max-stems`.
+    #[error(
+        "growth has no bound: `{rule}` can branch forever (through `{through}`), and there is no LAYOUT, no count and no decrement to stop it"
+    )]
+    UnboundedGrowth {
+        /// The rule of the growth point.
+        rule: String,
+        /// A rule on the endless cycle reachable from it.
+        through: String,
+    },
+    /// Warning: `--max-stems` stopped growth; the BED is cut short.
+    #[error(
+        "growth stopped at {stems} stems: the next rule application would pass the limit of --max-stems {limit}"
+    )]
+    GrowthStopped {
+        /// Stems grown when growth stopped.
+        stems: u64,
+        /// The limit in force.
+        limit: u64,
+    },
+    /// Warning: growth reached `--max-depth`; deeper branches were not grown.
+    #[error(
+        "growth reached the depth limit of {limit} nested rule applications (--max-depth); deeper branches were not grown"
+    )]
+    DepthCapped {
+        /// The limit in force.
+        limit: u32,
+    },
+    /// A layout shape has a coordinate that is not a finite number.
+    #[error("a layout shape has a coordinate that is not a finite number")]
+    LayoutNotFinite,
+    /// The layout's shapes leave no area to grow in.
+    #[error(
+        "the layout leaves no area to grow in: nothing coloured remains once the white shapes are painted"
+    )]
+    EmptyRegion,
     // -------------------------------------------------------- BED --
     /// A rule is applied at an order where stems would have no positive
     /// length or width (`base - order * decrement <= 0`). Numbers as the

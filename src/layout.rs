@@ -167,3 +167,129 @@ fn dedup_closing(ring: &mut Vec<Point>) {
         ring.pop();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use crate::model::{LayoutShape, Loc, Spelling};
+
+    fn shape(color: Rgb, shape: Shape) -> LayoutShape {
+        LayoutShape {
+            color,
+            color_text: String::new(),
+            shape,
+            spelling: Spelling::StartSize,
+            angled: false,
+            loc: Loc::default(),
+        }
+    }
+
+    fn layout(shapes: Vec<LayoutShape>) -> Layout {
+        Layout {
+            shapes,
+            loc: Loc::default(),
+        }
+    }
+
+    const GREEN: Rgb = Rgb::new(0, 128, 0);
+
+    fn rect(x: f64, y: f64, w: f64, h: f64) -> Shape {
+        Shape::Rect { x, y, w, h }
+    }
+
+    /// The area of a simple closed ring (the shoelace formula).
+    fn area(ring: &[Point]) -> f64 {
+        let n = ring.len();
+        let twice: f64 = (0..n)
+            .map(|i| {
+                let (a, b) = (ring[i], ring[(i + 1) % n]);
+                a.x * b.y - b.x * a.y
+            })
+            .sum();
+        twice.abs() / 2.0
+    }
+
+    #[test]
+    fn ellipse_is_flattened_within_tolerance_and_symmetric() {
+        for &(w, h) in &[(200.0, 100.0), (3.0, 3.0), (1000.0, 40.0)] {
+            let ring = shape_ring(&Shape::Ellipse {
+                x: 0.0,
+                y: 0.0,
+                w,
+                h,
+            });
+            assert_eq!(ring.len() % 4, 0);
+            let (rx, ry) = (w / 2.0, h / 2.0);
+            // Vertices on the curve.
+            for p in &ring {
+                let u = (p.x - rx) / rx;
+                let v = (p.y - ry) / ry;
+                assert!((u * u + v * v - 1.0).abs() < 1e-12);
+            }
+            // Mid-chord points within the tolerance of the curve: sample the
+            // curve densely and take the distance to the nearest chord midpoint
+            // of the same arc (chord midpoints are the farthest points).
+            for i in 0..ring.len() {
+                let a = ring[i];
+                let b = ring[(i + 1) % ring.len()];
+                let m = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
+                // Radial distance from the curve, scaled: an upper bound.
+                let u = (m.x - rx) / rx;
+                let v = (m.y - ry) / ry;
+                let k = (u * u + v * v).sqrt();
+                let dev = (1.0 - k) * rx.max(ry);
+                assert!(dev <= FLATTEN_TOLERANCE + 1e-9, "deviation {dev}");
+            }
+        }
+    }
+
+    #[test]
+    fn round_rect_area_close_to_the_true_one() {
+        let (w, h, r) = (180.0, 192.0, 7.0);
+        let ring = shape_ring(&Shape::RoundRect {
+            x: 0.0,
+            y: 0.0,
+            w,
+            h,
+            rx: r,
+            ry: r,
+        });
+        let a = area(&ring);
+        let exact = w * h - (4.0 - std::f64::consts::PI) * r * r;
+        assert!(
+            a < exact && exact - a < 0.05 * 4.0 * 2.0 * r,
+            "{a} vs {exact}"
+        );
+        // Clamped radii: a full stadium never exceeds its box.
+        let ring = shape_ring(&Shape::RoundRect {
+            x: 0.0,
+            y: 0.0,
+            w: 10.0,
+            h: 4.0,
+            rx: 50.0,
+            ry: 50.0,
+        });
+        assert!(
+            ring.iter()
+                .all(|p| p.x >= 0.0 && p.x <= 10.0 && p.y >= 0.0 && p.y <= 4.0)
+        );
+    }
+
+    #[test]
+    fn fills_keep_painting_order_and_white() {
+        let l = layout(vec![
+            shape(GREEN, rect(0.0, 0.0, 100.0, 100.0)),
+            shape(Rgb::WHITE, rect(20.0, 20.0, 40.0, 40.0)),
+        ]);
+        let f = fills(&l);
+        assert_eq!(f.len(), 2);
+        assert_eq!(f[1].color, Rgb::WHITE);
+        assert_eq!(f[1].rings[0].len(), 4);
+        let b = layout_bbox(&l).unwrap();
+        assert_eq!(
+            (b.min_x, b.min_y, b.max_x, b.max_y),
+            (0.0, 0.0, 100.0, 100.0)
+        );
+    }
+}

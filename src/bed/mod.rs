@@ -360,6 +360,8 @@ mod tests {
             width: Linear::new(1.0, 0.3),
             angle: None,
             clearance: None,
+            stroke: None,
+            background: None,
             loc: Loc::default(),
         };
         let d = order_error(&p, 4, 3..7, "R1");

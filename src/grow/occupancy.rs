@@ -23,24 +23,31 @@
 //! closes a loop. `C = 0` switches the test off: stems may then touch and
 //! cross, and only the region bounds growth.
 //!
-//! # Two indexes
+//! # The indexes
 //!
-//! [`Backend::Rstar`] keeps the segments in an R*-tree (`rstar` 0.12, the one
-//! geo uses) and asks for those whose bounding box meets the new segment's
-//! box grown by `C`. [`Backend::Spade`] keeps the segments' endpoints as
-//! vertices of an incremental Delaunay triangulation (`spade`, with its
-//! hierarchy for O(log n) location) and asks for the vertices in a circle:
-//! any segment within `C` of `t` has an endpoint within
-//! `|t|/2 + C + max|s|/2` of `t`'s midpoint. Both then apply the exact rule
-//! above, so they accept exactly the same segments; `docs/growth.md` has
-//! the timings that made R-tree the default.
+//! [`Occupancy`] keeps the placed segments in an R*-tree (`rstar` 0.12, the
+//! one geo uses) and asks for those whose bounding box meets the new
+//! segment's box grown by `C`, then applies the exact rule above.
+//! [`LocalIndex`] keeps the segments of the application being drawn, which
+//! must keep the clearance from each other too: a list scanned linearly,
+//! and an R*-tree once an application passes [`LOCAL_LINEAR`] segments.
+//! With the region's tree of boundary edges ([`super::region`]), these are
+//! the only places growth names the spatial index.
+//!
+//! # spade: an experiment kept for measuring
+//!
+//! With the cargo feature `spade-index`, `Backend::Spade` keeps the
+//! placed segments' endpoints as vertices of an incremental Delaunay
+//! triangulation (`spade`, with its hierarchy for O(log n) location) and
+//! asks for the vertices in a circle: any segment within `C` of `t` has an
+//! endpoint within `|t|/2 + C + max|s|/2` of `t`'s midpoint. It applies the
+//! same exact rule, so it accepts exactly the same segments. The product
+//! never uses it; it is kept so the growth benchmark
+//! (`examples/bench_grow.rs`) can measure it against the R*-tree.
+//! `docs/growth.md` has the timings that made rstar the choice (3.7 to 12
+//! times faster).
 
 use rstar::{AABB, RTree, RTreeObject};
-use spade::handles::FixedVertexHandle;
-use spade::{
-    DelaunayTriangulation, FloatTriangulation, HasPosition, HierarchyHintGenerator, Point2,
-    Triangulation,
-};
 
 /// One straight stem from `a` to `b` (the turtle's direction), canvas units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,12 +63,6 @@ impl Seg {
     pub fn new(a: [f64; 2], b: [f64; 2]) -> Self {
         Seg { a, b }
     }
-
-    fn len(&self) -> f64 {
-        let dx = self.b[0] - self.a[0];
-        let dy = self.b[1] - self.a[1];
-        (dx * dx + dy * dy).sqrt()
-    }
 }
 
 impl RTreeObject for Seg {
@@ -71,13 +72,24 @@ impl RTreeObject for Seg {
     }
 }
 
+/// The box of the points within `c` of `t`'s bounding box: every segment
+/// that can conflict with `t` has its box meet it.
+fn reach(t: &Seg, c: f64) -> AABB<[f64; 2]> {
+    AABB::from_corners(
+        [t.a[0].min(t.b[0]) - c, t.a[1].min(t.b[1]) - c],
+        [t.a[0].max(t.b[0]) + c, t.a[1].max(t.b[1]) + c],
+    )
+}
+
 /// Which spatial index answers the clearance query.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Backend {
     /// R*-tree over the segments (the default: faster, see `docs/growth.md`).
     #[default]
     Rstar,
-    /// Delaunay triangulation over the segments' endpoints.
+    /// Delaunay triangulation over the segments' endpoints: an experiment
+    /// kept for measuring (feature `spade-index`).
+    #[cfg(feature = "spade-index")]
     Spade,
 }
 
@@ -149,7 +161,8 @@ pub struct Occupancy {
 #[derive(Debug)]
 enum Inner {
     Rstar(RTree<Seg>),
-    Spade(SpadeIndex),
+    #[cfg(feature = "spade-index")]
+    Spade(delaunay::SpadeIndex),
 }
 
 impl Occupancy {
@@ -157,7 +170,8 @@ impl Occupancy {
     pub fn new(backend: Backend, clearance: f64) -> Self {
         let inner = match backend {
             Backend::Rstar => Inner::Rstar(RTree::new()),
-            Backend::Spade => Inner::Spade(SpadeIndex::default()),
+            #[cfg(feature = "spade-index")]
+            Backend::Spade => Inner::Spade(delaunay::SpadeIndex::default()),
         };
         Occupancy {
             clearance,
@@ -188,14 +202,10 @@ impl Occupancy {
             return false;
         }
         match &self.inner {
-            Inner::Rstar(tree) => {
-                let env = AABB::from_corners(
-                    [t.a[0].min(t.b[0]) - c, t.a[1].min(t.b[1]) - c],
-                    [t.a[0].max(t.b[0]) + c, t.a[1].max(t.b[1]) + c],
-                );
-                tree.locate_in_envelope_intersecting(&env)
-                    .any(|s| conflicts(t, s, c))
-            }
+            Inner::Rstar(tree) => tree
+                .locate_in_envelope_intersecting(&reach(t, c))
+                .any(|s| conflicts(t, s, c)),
+            #[cfg(feature = "spade-index")]
             Inner::Spade(ix) => ix.conflicts(t, c),
         }
     }
@@ -205,113 +215,206 @@ impl Occupancy {
         self.len += 1;
         match &mut self.inner {
             Inner::Rstar(tree) => tree.insert(s),
+            #[cfg(feature = "spade-index")]
             Inner::Spade(ix) => ix.insert(s),
         }
     }
 }
 
-/// A vertex of the spade index: an endpoint and its number.
-#[derive(Debug, Clone, Copy)]
-struct Vertex {
-    pos: Point2<f64>,
-    id: u32,
-}
+/// The segments of one rule application checked linearly up to this many;
+/// beyond, through an R*-tree.
+pub const LOCAL_LINEAR: usize = 64;
 
-impl HasPosition for Vertex {
-    type Scalar = f64;
-    fn position(&self) -> Point2<f64> {
-        self.pos
-    }
-}
-
-type Dt = DelaunayTriangulation<Vertex, (), (), (), HierarchyHintGenerator<f64>>;
-
-/// Endpoints in a Delaunay triangulation; each endpoint lists the segments
-/// that end there.
-#[derive(Default)]
-struct SpadeIndex {
-    dt: Dt,
+/// The segments of the rule application being drawn, in drawing order, and
+/// the clearance query among them (a new segment must keep the clearance
+/// from the application's own earlier segments too). Most applications
+/// draw a few segments, which a scan tests fastest; one that passes
+/// [`LOCAL_LINEAR`] (a large fixed figure) gets an R*-tree.
+#[derive(Debug)]
+pub struct LocalIndex {
+    clearance: f64,
     segs: Vec<Seg>,
-    /// Segments at each vertex id.
-    at: Vec<Vec<u32>>,
-    /// Coordinates spade cannot take (beyond its range): scanned linearly.
-    odd: Vec<u32>,
-    max_len: f64,
-    /// Query stamps, to visit each segment once per query.
-    seen: std::cell::RefCell<(u32, Vec<u32>)>,
+    tree: Option<RTree<Seg>>,
 }
 
-impl std::fmt::Debug for SpadeIndex {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SpadeIndex")
-            .field("segments", &self.segs.len())
-            .finish()
-    }
-}
-
-impl SpadeIndex {
-    fn vertex_for(&mut self, p: [f64; 2]) -> Option<u32> {
-        let pos = spade::mitigate_underflow(Point2::new(p[0], p[1]));
-        spade::validate_vertex(&pos).ok()?;
-        if let Some(h) = self.dt.locate_vertex(pos) {
-            return Some(h.data().id);
+impl LocalIndex {
+    /// An empty index keeping clearance `clearance` (>= 0).
+    pub fn new(clearance: f64) -> Self {
+        LocalIndex {
+            clearance,
+            segs: Vec::new(),
+            tree: None,
         }
-        let id = self.at.len() as u32;
-        let h: FixedVertexHandle = self.dt.insert(Vertex { pos, id }).ok()?;
-        let _ = h;
-        self.at.push(Vec::new());
-        Some(id)
     }
 
-    fn insert(&mut self, s: Seg) {
-        let k = self.segs.len() as u32;
+    /// Forgets every segment (a new application starts).
+    pub fn clear(&mut self) {
+        self.segs.clear();
+        self.tree = None;
+    }
+
+    /// Number of segments held.
+    pub fn len(&self) -> usize {
+        self.segs.len()
+    }
+
+    /// True if no segment is held.
+    pub fn is_empty(&self) -> bool {
+        self.segs.is_empty()
+    }
+
+    /// Whether `t` conflicts with any segment held.
+    pub fn conflicts(&self, t: &Seg) -> bool {
+        let c = self.clearance;
+        if c <= 0.0 {
+            return false;
+        }
+        match &self.tree {
+            Some(tree) => tree
+                .locate_in_envelope_intersecting(&reach(t, c))
+                .any(|s| conflicts(t, s, c)),
+            None => self.segs.iter().any(|s| conflicts(t, s, c)),
+        }
+    }
+
+    /// Adds `s`.
+    pub fn insert(&mut self, s: Seg) {
         self.segs.push(s);
-        self.max_len = self.max_len.max(s.len());
-        let va = self.vertex_for(s.a);
-        let vb = self.vertex_for(s.b);
-        match (va, vb) {
-            (Some(a), Some(b)) => {
-                self.at[a as usize].push(k);
-                if b != a {
-                    self.at[b as usize].push(k);
-                }
+        match &mut self.tree {
+            Some(tree) => tree.insert(s),
+            // With no clearance nothing is ever queried.
+            None if self.clearance > 0.0 && self.segs.len() == LOCAL_LINEAR => {
+                self.tree = Some(RTree::bulk_load(self.segs.clone()));
             }
-            _ => self.odd.push(k),
+            None => {}
         }
     }
 
-    fn conflicts(&self, t: &Seg, c: f64) -> bool {
-        if self
-            .odd
-            .iter()
-            .any(|&k| conflicts(t, &self.segs[k as usize], c))
-        {
-            return true;
+    /// Hands the segments over in drawing order, leaving the index empty.
+    pub fn drain(&mut self) -> impl Iterator<Item = Seg> + '_ {
+        self.tree = None;
+        self.segs.drain(..)
+    }
+}
+
+/// The spade index (feature `spade-index`): an experiment kept for
+/// measuring, see the module documentation.
+#[cfg(feature = "spade-index")]
+mod delaunay {
+    use super::{Seg, conflicts};
+    use spade::{
+        DelaunayTriangulation, FloatTriangulation, HasPosition, HierarchyHintGenerator, Point2,
+        Triangulation,
+    };
+
+    fn len(s: &Seg) -> f64 {
+        let dx = s.b[0] - s.a[0];
+        let dy = s.b[1] - s.a[1];
+        (dx * dx + dy * dy).sqrt()
+    }
+
+    /// A vertex of the spade index: an endpoint and its number.
+    #[derive(Debug, Clone, Copy)]
+    struct Vertex {
+        pos: Point2<f64>,
+        id: u32,
+    }
+
+    impl HasPosition for Vertex {
+        type Scalar = f64;
+        fn position(&self) -> Point2<f64> {
+            self.pos
         }
-        let mid = Point2::new((t.a[0] + t.b[0]) / 2.0, (t.a[1] + t.b[1]) / 2.0);
-        // Slightly larger than needed, so rounding never loses a candidate.
-        let r = (t.len() / 2.0 + c + self.max_len / 2.0) * (1.0 + 1e-9) + 1e-9;
-        let mut seen = self.seen.borrow_mut();
-        let (stamp, marks) = &mut *seen;
-        *stamp = stamp.wrapping_add(1);
-        if *stamp == 0 {
-            marks.iter_mut().for_each(|m| *m = 0);
-            *stamp = 1;
+    }
+
+    type Dt = DelaunayTriangulation<Vertex, (), (), (), HierarchyHintGenerator<f64>>;
+
+    /// Endpoints in a Delaunay triangulation; each endpoint lists the segments
+    /// that end there.
+    #[derive(Default)]
+    pub(super) struct SpadeIndex {
+        dt: Dt,
+        segs: Vec<Seg>,
+        /// Segments at each vertex id.
+        at: Vec<Vec<u32>>,
+        /// Coordinates spade cannot take (beyond its range): scanned linearly.
+        odd: Vec<u32>,
+        max_len: f64,
+        /// Query stamps, to visit each segment once per query.
+        seen: std::cell::RefCell<(u32, Vec<u32>)>,
+    }
+
+    impl std::fmt::Debug for SpadeIndex {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.debug_struct("SpadeIndex")
+                .field("segments", &self.segs.len())
+                .finish()
         }
-        if marks.len() < self.segs.len() {
-            marks.resize(self.segs.len(), 0);
+    }
+
+    impl SpadeIndex {
+        fn vertex_for(&mut self, p: [f64; 2]) -> Option<u32> {
+            let pos = spade::mitigate_underflow(Point2::new(p[0], p[1]));
+            spade::validate_vertex(&pos).ok()?;
+            if let Some(h) = self.dt.locate_vertex(pos) {
+                return Some(h.data().id);
+            }
+            let id = self.at.len() as u32;
+            self.dt.insert(Vertex { pos, id }).ok()?;
+            self.at.push(Vec::new());
+            Some(id)
         }
-        for v in self.dt.get_vertices_in_circle(mid, r * r) {
-            for &k in &self.at[v.data().id as usize] {
-                if marks[k as usize] != *stamp {
-                    marks[k as usize] = *stamp;
-                    if conflicts(t, &self.segs[k as usize], c) {
-                        return true;
+
+        pub(super) fn insert(&mut self, s: Seg) {
+            let k = self.segs.len() as u32;
+            self.segs.push(s);
+            self.max_len = self.max_len.max(len(&s));
+            let va = self.vertex_for(s.a);
+            let vb = self.vertex_for(s.b);
+            match (va, vb) {
+                (Some(a), Some(b)) => {
+                    self.at[a as usize].push(k);
+                    if b != a {
+                        self.at[b as usize].push(k);
+                    }
+                }
+                _ => self.odd.push(k),
+            }
+        }
+
+        pub(super) fn conflicts(&self, t: &Seg, c: f64) -> bool {
+            if self
+                .odd
+                .iter()
+                .any(|&k| conflicts(t, &self.segs[k as usize], c))
+            {
+                return true;
+            }
+            let mid = Point2::new((t.a[0] + t.b[0]) / 2.0, (t.a[1] + t.b[1]) / 2.0);
+            // Slightly larger than needed, so rounding never loses a candidate.
+            let r = (len(t) / 2.0 + c + self.max_len / 2.0) * (1.0 + 1e-9) + 1e-9;
+            let mut seen = self.seen.borrow_mut();
+            let (stamp, marks) = &mut *seen;
+            *stamp = stamp.wrapping_add(1);
+            if *stamp == 0 {
+                marks.iter_mut().for_each(|m| *m = 0);
+                *stamp = 1;
+            }
+            if marks.len() < self.segs.len() {
+                marks.resize(self.segs.len(), 0);
+            }
+            for v in self.dt.get_vertices_in_circle(mid, r * r) {
+                for &k in &self.at[v.data().id as usize] {
+                    if marks[k as usize] != *stamp {
+                        marks[k as usize] = *stamp;
+                        if conflicts(t, &self.segs[k as usize], c) {
+                            return true;
+                        }
                     }
                 }
             }
+            false
         }
-        false
     }
 }
 
@@ -366,7 +469,12 @@ mod tests {
             let (dx, dy) = (next() * 6.0 - 3.0, next() * 6.0 - 3.0);
             all.push(seg(ax, ay, ax + dx, ay + dy));
         }
-        for backend in [Backend::Rstar, Backend::Spade] {
+        let backends = [
+            Backend::Rstar,
+            #[cfg(feature = "spade-index")]
+            Backend::Spade,
+        ];
+        for backend in backends {
             let mut occ = Occupancy::new(backend, 1.5);
             let mut placed: Vec<Seg> = Vec::new();
             for s in &all {

@@ -443,6 +443,8 @@ mod tests {
                 width: Linear::constant(1.0),
                 angle: None,
                 clearance: None,
+                stroke: None,
+                background: None,
                 loc: Loc::default(),
             },
             rules: vec![RuleDef {

@@ -1,329 +1,40 @@
 //! The grower (issue 4): an OD grown into a BED under space occupancy.
 //!
-//! The parser is built elsewhere, so descriptions are made here with a small
-//! builder. Every grown BED is checked by walking it again, independently of
-//! the grower: every segment recomputed with the interpreter's turtle, tested
-//! against the layout with geo's `Contains`, and every pair of segments
-//! against the clearance (O(n^2), with the joint exception).
+//! Every description is `.od` text read by the real parser. Every grown BED
+//! is checked by walking it again, independently of the grower: every
+//! segment recomputed with the interpreter's turtle, tested against the
+//! layout with geo's `Contains`, and every pair of segments against the
+//! clearance (O(n^2), with the joint exception).
 
 use geo::{
     BooleanOps, Contains, Coord, Distance, Euclidean, Line, LineString, MultiPolygon, Polygon,
 };
 
-use stlc::color::Rgb;
-use stlc::grow::GrowthOrder;
+use stlc::bed::Bed;
+#[cfg(feature = "spade-index")]
+use stlc::grow::grow_with;
+#[cfg(feature = "spade-index")]
 use stlc::grow::occupancy::Backend;
-use stlc::grow::{GrowOptions, Grown, grow, grow_with};
+use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow};
 use stlc::layout::shape_ring;
 use stlc::model::*;
-use stlc::num::Linear;
 use stlc::progress::NoProgress;
+use stlc::syntax::stl::parse;
 use stlc::turtle::{Interp, Op};
 use stlc::turtle::{Point, Recorder, Segment};
-use stlc::{ErrorKind, Limits, Severity};
+use stlc::{Diagnostics, ErrorKind, Limits, Severity};
 
-// ---------------------------------------------------------------- builder
+// ------------------------------------------------------------ descriptions
 
-fn loc() -> Loc {
-    Loc::default()
+/// `text` read as an OD by the real parser.
+fn od(text: &str) -> Description {
+    parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{text}"))
 }
 
-/// A rule body from text: top-level bracket groups are branches (a trailing
-/// rule name after a space is the successor), `{I n w}` at top level is a
-/// fixed figure, the rest trunk.
-fn body(names: &[&str], text: &str) -> Body {
-    let mut items = Vec::new();
-    let chars: Vec<char> = text.chars().collect();
-    let mut i = 0;
-    let mut trunk = String::new();
-    while i < chars.len() {
-        match chars[i] {
-            '[' => {
-                if !trunk.is_empty() {
-                    items.push(BodyItem::Draw(DrawRun {
-                        text: std::mem::take(&mut trunk),
-                        loc: loc(),
-                    }));
-                }
-                let mut depth = 0;
-                let start = i + 1;
-                loop {
-                    match chars[i] {
-                        '[' => depth += 1,
-                        ']' => depth -= 1,
-                        _ => {}
-                    }
-                    if depth == 0 {
-                        break;
-                    }
-                    i += 1;
-                }
-                let inner: String = chars[start..i].iter().collect();
-                let (draw, succ) = match inner.rsplit_once(' ') {
-                    Some((d, n)) if names.contains(&n) => (d.to_string(), Some(n)),
-                    _ => (inner.clone(), None),
-                };
-                items.push(BodyItem::Branch(Branch {
-                    pieces: pieces(&draw),
-                    successor: succ.map(|n| RuleRef {
-                        rule: RuleId(names.iter().position(|x| *x == n).unwrap()),
-                        loc: loc(),
-                    }),
-                    loc: loc(),
-                }));
-            }
-            '{' => {
-                let end = chars[i..].iter().position(|&c| c == '}').unwrap() + i;
-                let inner: String = chars[i + 1..end].iter().collect();
-                let parts: Vec<&str> = inner.split_whitespace().collect();
-                assert_eq!(parts[0], "I");
-                items.push(BodyItem::Fixed(Fixed {
-                    count: parts[1].parse().unwrap(),
-                    word: parts[2].to_string(),
-                    loc: loc(),
-                }));
-                i = end;
-            }
-            ' ' => {}
-            c => trunk.push(c),
-        }
-        i += 1;
-    }
-    if !trunk.is_empty() {
-        items.push(BodyItem::Draw(DrawRun {
-            text: trunk,
-            loc: loc(),
-        }));
-    }
-    Body { items }
-}
-
-/// Branch contents: drawing runs, and `{I n w}` fixed figures.
-fn pieces(text: &str) -> Vec<Piece> {
-    let mut out = Vec::new();
-    let mut rest = text;
-    while let Some(open) = rest.find('{') {
-        let close = rest.find('}').unwrap();
-        if open > 0 {
-            out.push(Piece::Draw(DrawRun {
-                text: rest[..open].replace(' ', ""),
-                loc: loc(),
-            }));
-        }
-        let parts: Vec<&str> = rest[open + 1..close].split_whitespace().collect();
-        assert_eq!(parts[0], "I");
-        out.push(Piece::Fixed(Fixed {
-            count: parts[1].parse().unwrap(),
-            word: parts[2].to_string(),
-            loc: loc(),
-        }));
-        rest = &rest[close + 1..];
-    }
-    if !rest.trim().is_empty() {
-        out.push(Piece::Draw(DrawRun {
-            text: rest.replace(' ', ""),
-            loc: loc(),
-        }));
-    }
-    out
-}
-
-/// A seed from text: drawing components, rule names (bare: growth points),
-/// `R1{...,...}` written terms, `(I n R1)` counted growth points.
-struct SeedParser<'a> {
-    names: &'a [&'a str],
-    branches: Vec<usize>,
-    s: Vec<char>,
-    i: usize,
-}
-
-impl SeedParser<'_> {
-    fn name(&mut self) -> Option<RuleId> {
-        // Longest declared name at i.
-        let rest: String = self.s[self.i..].iter().collect();
-        let (k, n) = self
-            .names
-            .iter()
-            .enumerate()
-            .filter(|(_, n)| rest.starts_with(**n))
-            .max_by_key(|(_, n)| n.len())?;
-        self.i += n.len();
-        Some(RuleId(k))
-    }
-
-    fn term(&mut self, rule: RuleId) -> Term {
-        if self.s.get(self.i) != Some(&'{') {
-            return Term {
-                rule,
-                slots: vec![None; self.branches[rule.0]],
-                bare: true,
-                loc: loc(),
-            };
-        }
-        self.i += 1;
-        let mut slots = Vec::new();
-        let mut cur: Option<Slot> = None;
-        loop {
-            match self.s[self.i] {
-                ',' => {
-                    slots.push(cur.take());
-                    self.i += 1;
-                }
-                '}' => {
-                    slots.push(cur.take());
-                    self.i += 1;
-                    break;
-                }
-                '(' => cur = Some(Slot::Repeat(self.repeat())),
-                _ => {
-                    let r = self.name().expect("rule name in slot");
-                    cur = Some(Slot::Term(self.term(r)));
-                }
-            }
-        }
-        if self.branches[rule.0] == 0 {
-            slots.clear();
-        }
-        Term {
-            rule,
-            slots,
-            bare: false,
-            loc: loc(),
-        }
-    }
-
-    fn repeat(&mut self) -> Repeat {
-        let end = self.s[self.i..].iter().position(|&c| c == ')').unwrap() + self.i;
-        let inner: String = self.s[self.i + 1..end].iter().collect();
-        let parts: Vec<&str> = inner.split_whitespace().collect();
-        self.i = end + 1;
-        Repeat {
-            count: parts[1].parse().unwrap(),
-            rule: RuleId(self.names.iter().position(|n| *n == parts[2]).unwrap()),
-            loc: Loc(0..1),
-        }
-    }
-
-    fn seed(&mut self) -> Seed {
-        let mut items = Vec::new();
-        let mut run = String::new();
-        while self.i < self.s.len() {
-            let c = self.s[self.i];
-            let item = if c == '(' {
-                Some(SeedItem::Repeat(self.repeat()))
-            } else if let Some(r) = self.name() {
-                Some(SeedItem::Term(self.term(r)))
-            } else {
-                if c != ' ' {
-                    run.push(c);
-                }
-                self.i += 1;
-                None
-            };
-            if let Some(item) = item {
-                if !run.is_empty() {
-                    items.push(SeedItem::Draw(DrawRun {
-                        text: std::mem::take(&mut run),
-                        loc: loc(),
-                    }));
-                }
-                items.push(item);
-            }
-        }
-        if !run.is_empty() {
-            items.push(SeedItem::Draw(DrawRun {
-                text: run,
-                loc: loc(),
-            }));
-        }
-        Seed { items, loc: loc() }
-    }
-}
-
-const GREEN: Rgb = Rgb::new(0, 128, 0);
-
-struct Od {
-    root: (f64, f64),
-    params: StemParams,
-    rules: Vec<(&'static str, &'static str)>,
-    seed: Option<&'static str>,
-    layout: Option<Vec<(Rgb, Shape)>>,
-}
-
-fn params(l: f64, dl: f64, b: f64, db: f64) -> StemParams {
-    StemParams {
-        length: Linear::new(l, dl),
-        width: Linear::new(b, db),
-        angle: None,
-        clearance: None,
-        stroke: None,
-        background: None,
-        loc: loc(),
-    }
-}
-
-fn rect(x: f64, y: f64, w: f64, h: f64) -> Shape {
-    Shape::Rect { x, y, w, h }
-}
-
-impl Od {
-    fn new(root: (f64, f64), rules: Vec<(&'static str, &'static str)>) -> Self {
-        Od {
-            root,
-            params: params(10.0, 0.0, 1.0, 0.0),
-            rules,
-            seed: None,
-            layout: None,
-        }
-    }
-
-    fn build(&self) -> Description {
-        let names: Vec<&str> = self.rules.iter().map(|r| r.0).collect();
-        let rules: Vec<RuleDef> = self
-            .rules
-            .iter()
-            .map(|(n, b)| RuleDef {
-                name: n.to_string(),
-                name_loc: loc(),
-                body: body(&names, b),
-                loc: loc(),
-            })
-            .collect();
-        let branches = rules.iter().map(|r| r.branch_count()).collect();
-        let seed = self.seed.map(|s| {
-            SeedParser {
-                names: &names,
-                branches,
-                s: s.chars().collect(),
-                i: 0,
-            }
-            .seed()
-        });
-        Description {
-            format: Format::Od,
-            name: "T".into(),
-            name_loc: loc(),
-            root: self.root,
-            root_loc: Loc(0..1),
-            params: self.params.clone(),
-            rules,
-            seed,
-            layout: self.layout.as_ref().map(|shapes| Layout {
-                shapes: shapes
-                    .iter()
-                    .map(|(c, s)| LayoutShape {
-                        color: *c,
-                        color_text: String::new(),
-                        shape: s.clone(),
-                        spelling: Spelling::StartSize,
-                        angled: false,
-                        loc: loc(),
-                    })
-                    .collect(),
-                loc: loc(),
-            }),
-        }
-    }
+/// The span of the first `needle` in `text`.
+fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
+    let at = text.find(needle).expect("needle in text");
+    at..at + needle.len()
 }
 
 fn opts(growth: GrowthOrder) -> GrowOptions {
@@ -335,6 +46,13 @@ fn opts(growth: GrowthOrder) -> GrowOptions {
 
 fn grown(od: &Description, o: GrowOptions) -> Grown {
     grow(od, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn grow_err(od: &Description, o: GrowOptions) -> Diagnostics {
+    match grow(od, &o, &mut NoProgress) {
+        Ok(g) => panic!("grew {} stems, expected an error", g.stems),
+        Err(e) => e,
+    }
 }
 
 // ------------------------------------------------- independent BED walk
@@ -576,73 +294,59 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
 
 // ---------------------------------------------------------- trees
 
-/// The paper's 2DTree (Figure 8). Its layout is written in Delphi's
+/// The paper's 2DTree (Figure 8), as `examples/2dtree.od` has it: Delphi's
 /// corners spelling, `RoundRect (x1,y1,x2,y2,rx,ry)` with the corner
-/// ellipse's width and height: (0,0,180,192,7,7), (55,30,40,15,4,4),
-/// (35,125,76,30,5,5); normalised here by hand.
-fn two_d_tree() -> Od {
-    let mut od = Od::new((76.0, 150.0), vec![("R1", "[+F][-F]")]);
-    let rr = |x, y, w, h, r| Shape::RoundRect {
-        x,
-        y,
-        w,
-        h,
-        rx: r,
-        ry: r,
-    };
-    od.layout = Some(vec![
-        (GREEN, rr(0.0, 0.0, 180.0, 192.0, 3.5)),
-        (Rgb::WHITE, rr(40.0, 15.0, 15.0, 15.0, 2.0)),
-        (Rgb::WHITE, rr(35.0, 30.0, 41.0, 95.0, 2.5)),
-    ]);
-    od
+/// ellipse's width and height.
+const TWO_D_TREE: &str = "2DTree (76, 150) L=10(0) B=1(0)
+    RULE R1: [+F][-F]
+    LAYOUT
+    (clGreen) RoundRect (0,0,180,192,7,7)
+    (clWhite) RoundRect (55,30,40,15,4,4)
+    (clWhite) RoundRect (35,125,76,30,5,5)
+    ENDLAYOUT";
+
+/// Figures 9 and 10 (`Seed = FR1`, `R1 = [-F][+F]`) in a 200 x 200 square,
+/// with stem parameters `params` and a `SEED ... ENDSEED` section `seed`
+/// (empty: the default seed `F R1`).
+fn figure_9_10_with(params: &str, seed: &str) -> Description {
+    od(&format!(
+        "Fig9 (100, 195) {params}
+        RULE R1: [-F][+F]
+        {seed}
+        LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT"
+    ))
 }
 
-/// Figures 9 and 10: `Seed = FR1`, `R1 = [-F][+F]`.
-fn figure_9_10() -> Od {
-    let mut od = Od::new((100.0, 195.0), vec![("R1", "[-F][+F]")]);
-    od.layout = Some(vec![(GREEN, rect(0.0, 0.0, 200.0, 200.0))]);
-    od
+fn figure_9_10() -> Description {
+    figure_9_10_with("L=10(0) B=1(0)", "")
 }
+
+/// The binary tree `R1 = [+F][-F]` from the root (0, 0), no layout.
+const BINARY: &str = "Binary (0, 0) L=10(0) B=1(0) RULE R1: [+F][-F]";
 
 #[test]
 fn invariants_hold_on_several_grown_trees() {
-    let mut ellipse = Od::new((100.0, 150.0), vec![("R1", "[+F][F][-F]")]);
-    ellipse.params = params(8.0, 0.0, 1.0, 0.0);
-    ellipse.layout = Some(vec![(
-        GREEN,
-        Shape::Ellipse {
-            x: 0.0,
-            y: 0.0,
-            w: 200.0,
-            h: 160.0,
-        },
-    )]);
-    let mut polygon = Od::new(
-        (50.0, 95.0),
-        vec![("R1", "F[+F R2][-F]"), ("R2", "[++F][F]")],
-    );
-    polygon.params.angle = Some(25.0);
-    polygon.layout = Some(vec![(
-        GREEN,
-        Shape::Polygon(vec![
-            (0.0, 100.0),
-            (100.0, 100.0),
-            (80.0, 0.0),
-            (10.0, 20.0),
-        ]),
-    )]);
-    let mut fixed = Od::new(
-        (60.0, 118.0),
-        vec![
-            ("R1", "[+F{I 2 F[+F]F}][-FF R2]"),
-            ("R2", "{I 1 F[-F]}[+F R1]"),
-        ],
-    );
-    fixed.params = params(5.0, 0.0, 1.0, 0.0);
-    fixed.layout = Some(vec![(GREEN, rect(0.0, 0.0, 120.0, 120.0))]);
-    for od in [two_d_tree(), figure_9_10(), ellipse, polygon, fixed] {
-        let d = od.build();
+    let ellipse = "Ellipse (100, 150) L=8(0) B=1(0)
+        RULE R1: [+F][F][-F]
+        LAYOUT (clGreen) Ellipse (0,0), 200, 160 ENDLAYOUT";
+    let polygon = "Polygon (50, 95) L=10(0) B=1(0) A=25
+        RULE
+        R1: F[+F R2][-F]
+        R2: [++F][F]
+        LAYOUT (clGreen) Polygon (0,100), (100,100), (80,0), (10,20) ENDLAYOUT";
+    let fixed = "Fixed (60, 118) L=5(0) B=1(0)
+        RULE
+        R1: [+F[I 2 F[+F]F]][-FF R2]
+        R2: [I 1 F[-F]][+F R1]
+        LAYOUT (clGreen) Rectangle (0,0), 120, 120 ENDLAYOUT";
+    let trees = [
+        od(TWO_D_TREE),
+        figure_9_10(),
+        od(ellipse),
+        od(polygon),
+        od(fixed),
+    ];
+    for d in trees {
         for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let g = grown(&d, opts(s));
             let segs = check_invariants(&d, &g);
@@ -654,7 +358,7 @@ fn invariants_hold_on_several_grown_trees() {
 
 #[test]
 fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
-    let d = figure_9_10().build();
+    let d = figure_9_10();
     let bfs = grown(&d, opts(GrowthOrder::Bfs));
     let dfs = grown(&d, opts(GrowthOrder::Dfs));
     check_invariants(&d, &bfs);
@@ -692,9 +396,8 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
 }
 
 #[test]
-fn growth_is_deterministic_and_backends_agree() {
-    for od in [two_d_tree(), figure_9_10()] {
-        let d = od.build();
+fn growth_is_deterministic() {
+    for d in [od(TWO_D_TREE), figure_9_10()] {
         for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let a = grown(&d, opts(s));
             let b = grown(&d, opts(s));
@@ -703,6 +406,17 @@ fn growth_is_deterministic_and_backends_agree() {
                 seed_text(b.bed.description())
             );
             assert_eq!(draw_bed(a.bed.description()), draw_bed(b.bed.description()));
+        }
+    }
+}
+
+/// The spade index (an experiment kept for measuring) grows the same trees.
+#[cfg(feature = "spade-index")]
+#[test]
+fn the_spade_index_grows_the_same_trees() {
+    for d in [od(TWO_D_TREE), figure_9_10()] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+            let a = grown(&d, opts(s));
             let c = grow_with(&d, &opts(s), Backend::Spade, &mut NoProgress).unwrap();
             assert_eq!(
                 seed_text(a.bed.description()),
@@ -728,37 +442,26 @@ fn full(n: u32) -> String {
 fn counts_grow_the_full_subtree_when_space_allows() {
     // [I n R1], R1 = [+F][-F], no layout. Equal lengths would make tips
     // coincide (+-+ and -++ end at one point), so the length decreases.
+    let head = "Counted (0, 0) L=16(3) B=1(0) A=45 C=0.3 RULE R1: [+F][-F]";
     for n in 1..=4u32 {
-        let mut od = Od::new((0.0, 0.0), vec![("R1", "[+F][-F]")]);
-        od.params = params(16.0, 3.0, 1.0, 0.0);
-        od.params.angle = Some(45.0);
-        od.params.clearance = Some(0.3);
-        // Space allows: the full tree, written out by hand, passes the
-        // brute-force checks.
+        let stems = 1 + 2 * ((1u64 << n) - 1);
+        // Space allows: the full tree, written out by hand as a BED, passes
+        // the brute-force checks.
         let text = format!("F{}", full(n));
-        od.seed = Some(Box::leak(text.clone().into_boxed_str()));
-        let written = od.build();
+        let bed_text = format!("{head} SEED {text} ENDSEED");
+        let written = parse(&bed_text, Format::Bed, &Limits::default()).unwrap();
         let as_bed = Grown {
-            bed: stlc::bed::Bed::new(
-                Description {
-                    format: Format::Bed,
-                    ..written.clone()
-                },
-                &Limits::default(),
-            )
-            .unwrap(),
+            bed: Bed::new(written.clone(), &Limits::default()).unwrap(),
             warnings: vec![],
-            stems: 1 + 2 * ((1u64 << n) - 1),
+            stems,
         };
         check_invariants(&written, &as_bed);
 
-        let seed = format!("F(I {n} R1)");
-        od.seed = Some(Box::leak(seed.into_boxed_str()));
-        let d = od.build();
+        let d = od(&format!("{head} SEED F[I {n} R1] ENDSEED"));
         for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let g = grown(&d, opts(s));
             // 2^n - 1 applications of 2 stems each, plus the seed's F.
-            assert_eq!(g.stems, 1 + 2 * ((1u64 << n) - 1), "n={n} {s:?}");
+            assert_eq!(g.stems, stems, "n={n} {s:?}");
             assert_eq!(seed_text(g.bed.description()), text);
             let segs = check_invariants(&d, &g);
             assert_eq!(max_order(&segs), n);
@@ -771,9 +474,11 @@ fn count_follows_successors() {
     // R1 = [+F R2][-F], R2 = [F], [I 3 R1]:
     // level 1: R1 (2 stems); level 2: R2 (1) + R1 (2);
     // level 3: R2 (1) from R2, R2 (1) + R1 (2) from R1. Total 9, seed 1.
-    let mut od = Od::new((0.0, 0.0), vec![("R1", "[+F R2][-F]"), ("R2", "[F]")]);
-    od.seed = Some("F(I 3 R1)");
-    let d = od.build();
+    let d = od("Successors (0, 0) L=10(0) B=1(0)
+        RULE
+        R1: [+F R2][-F]
+        R2: [F]
+        SEED F[I 3 R1] ENDSEED");
     let g = grown(&d, opts(GrowthOrder::Bfs));
     assert_eq!(g.stems, 10);
     assert_eq!(
@@ -787,9 +492,7 @@ fn count_follows_successors() {
 fn decrements_end_growth_at_the_right_order() {
     // L=10(2): lengths 10, 8, 6, 4, 2, 0: applications at orders 1..4,
     // a full binary tree of 4 levels: 15 applications, 30 stems + seed.
-    let mut od = Od::new((0.0, 0.0), vec![("R1", "[+F][-F]")]);
-    od.params = params(10.0, 2.0, 1.0, 0.0);
-    let d = od.build();
+    let d = od("Shorter (0, 0) L=10(2) B=1(0) RULE R1: [+F][-F]");
     let mut o = opts(GrowthOrder::Bfs);
     o.clearance = Some(0.0);
     let g = grown(&d, o);
@@ -797,15 +500,14 @@ fn decrements_end_growth_at_the_right_order() {
     let segs = check_invariants(&d, &g);
     assert_eq!(max_order(&segs), 4);
     // B=1(0.3): widths 1, .7, .4, .1, -.2: orders 1..3, 7 applications.
-    od.params = params(10.0, 0.0, 1.0, 0.3);
-    let g = grown(&od.build(), o);
+    let d = od("Thinner (0, 0) L=10(0) B=1(0.3) RULE R1: [+F][-F]");
+    let g = grown(&d, o);
     assert_eq!(g.stems, 15);
     assert_eq!(max_order(&draw_bed(g.bed.description())), 3);
 }
 
 #[test]
 fn max_stems_stops_growth_with_a_warning() {
-    let od = Od::new((0.0, 0.0), vec![("R1", "[+F][-F]")]).build();
     let mut o = opts(GrowthOrder::Bfs);
     o.clearance = Some(0.0);
     o.limits = Limits {
@@ -813,49 +515,65 @@ fn max_stems_stops_growth_with_a_warning() {
         ..Limits::default()
     };
     o.max_stems_explicit = true;
-    let g = grown(&od, o);
+    let g = grown(&od(BINARY), o);
     // 1 + 2k <= 100: 49 applications fit, the 50th would make 101.
     assert_eq!(g.stems, 99);
     assert_eq!(draw_bed(g.bed.description()).len(), 99);
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(g.warnings[0].severity, Severity::Warning);
-    assert!(g.warnings[0].kind.to_string().contains("--max-stems"));
+    assert_eq!(
+        g.warnings[0].kind,
+        ErrorKind::GrowthStopped {
+            stems: 99,
+            limit: 100
+        }
+    );
 }
 
 #[test]
 fn unbounded_growth_is_refused_with_a_fix() {
-    let od = Od::new((0.0, 0.0), vec![("R1", "[+F][-F]")]).build();
-    let e = grow(&od, &opts(GrowthOrder::Bfs), &mut NoProgress).unwrap_err();
+    let e = grow_err(&od(BINARY), opts(GrowthOrder::Bfs));
     let d = &e.0[0];
-    assert!(matches!(d.kind, ErrorKind::Grow(_)));
+    assert_eq!(
+        d.kind,
+        ErrorKind::UnboundedGrowth {
+            rule: "R1".into(),
+            through: "R1".into()
+        }
+    );
+    // The default seed has no text: the rule's name is pointed at.
+    assert_eq!(d.span, Some(span_of(BINARY, "R1")));
     let help = d.help.as_deref().unwrap();
     for fix in ["LAYOUT", "[I n R1]", "L=10(1)", "--max-stems"] {
         assert!(help.contains(fix), "help lacks {fix}: {help}");
     }
     // A chain of rules that ends is bounded: R1 -> R2 -> (no branches).
-    let od = Od::new((0.0, 0.0), vec![("R1", "[+F R2][-F R2]"), ("R2", "F")]).build();
-    let g = grown(&od, opts(GrowthOrder::Bfs));
+    let d = od("Chain (0, 0) L=10(0) B=1(0)
+        RULE
+        R1: [+F R2][-F R2]
+        R2: F");
+    let g = grown(&d, opts(GrowthOrder::Bfs));
     assert_eq!(g.stems, 1 + 2 + 2);
 }
 
 #[test]
 fn root_outside_the_region_is_an_error() {
-    let mut od = figure_9_10();
-    od.root = (250.0, 100.0);
-    let e = grow(&od.build(), &opts(GrowthOrder::Bfs), &mut NoProgress).unwrap_err();
-    assert!(e.0[0].kind.to_string().contains("root"));
-    assert_eq!(e.0[0].span, Some(0..1));
+    let text = "Fig9 (250, 100) L=10(0) B=1(0)
+        RULE R1: [-F][+F]
+        LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT";
+    let e = grow_err(&od(text), opts(GrowthOrder::Bfs));
+    assert_eq!(e.0[0].kind, ErrorKind::RootOutside { x: 250.0, y: 100.0 });
+    assert_eq!(e.0[0].span, Some(span_of(text, "(250, 100)")));
 }
 
 #[test]
 fn white_holes_are_respected() {
-    let mut od = Od::new((100.0, 195.0), vec![("R1", "[-F][F][+F]")]);
-    od.params = params(6.0, 0.0, 1.0, 0.0);
-    od.layout = Some(vec![
-        (GREEN, rect(0.0, 0.0, 200.0, 200.0)),
-        (Rgb::WHITE, rect(60.0, 80.0, 80.0, 40.0)),
-    ]);
-    let d = od.build();
+    let d = od("Holes (100, 195) L=6(0) B=1(0)
+        RULE R1: [-F][F][+F]
+        LAYOUT
+        (clGreen) Rectangle (0,0), 200, 200
+        (clWhite) Rectangle (60,80), 80, 40
+        ENDLAYOUT");
     for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
@@ -881,9 +599,7 @@ fn white_holes_are_respected() {
 fn written_terms_are_drawn_as_given_and_their_slots_grow() {
     // R1{R1,} in the seed: the written R1 is drawn unconditionally, its
     // first slot is a growth point, its second stays empty.
-    let mut od = figure_9_10();
-    od.seed = Some("FR1{R1,}");
-    let d = od.build();
+    let d = figure_9_10_with("L=10(0) B=1(0)", "SEED FR1{R1,} ENDSEED");
     let g = grown(&d, opts(GrowthOrder::Dfs));
     check_invariants(&d, &g);
     let text = seed_text(g.bed.description());
@@ -895,13 +611,12 @@ fn written_terms_are_drawn_as_given_and_their_slots_grow() {
 fn seed_with_trunk_rule_stays_consistent() {
     // R2 moves the turtle (trunk F) and more seed follows it: positions
     // after it depend on the decision; the BED must still draw what grew.
-    let mut od = Od::new(
-        (100.0, 195.0),
-        vec![("R1", "[-F][+F]"), ("R2", "F[-F][+F]")],
-    );
-    od.seed = Some("F R2 F R1 [+F R1]");
-    od.layout = Some(vec![(GREEN, rect(0.0, 0.0, 200.0, 200.0))]);
-    let d = od.build();
+    let d = od("Trunk (100, 195) L=10(0) B=1(0)
+        RULE
+        R1: [-F][+F]
+        R2: F[-F][+F]
+        SEED F R2 F R1 [+F R1] ENDSEED
+        LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT");
     for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
@@ -914,9 +629,7 @@ fn seed_drawing_is_laid_down_before_growth() {
     // Depth-first, the left R1's whole subtree grows before the right one;
     // the seed's `-F` must already be there, or the subtree could take its
     // place (the pairwise check would then fail on it).
-    let mut od = figure_9_10();
-    od.seed = Some("F[+F R1][-F R1]");
-    let d = od.build();
+    let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F[+F R1][-F R1] ENDSEED");
     for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
@@ -927,14 +640,15 @@ fn seed_drawing_is_laid_down_before_growth() {
 #[test]
 fn depth_limit_stops_a_vine_with_a_warning() {
     // R1 = [F]: a straight vine, one stem per application.
-    let od = Od::new((0.0, 0.0), vec![("R1", "[F]")]).build();
+    let d = od("Vine (0, 0) L=10(0) B=1(0) RULE R1: [F]");
     let mut o = opts(GrowthOrder::Dfs);
     o.limits.max_depth = 5;
     o.max_stems_explicit = true;
-    let g = grown(&od, o);
+    let g = grown(&d, o);
     assert_eq!(g.stems, 1 + 5);
     assert_eq!(g.warnings.len(), 1);
-    assert!(g.warnings[0].kind.to_string().contains("--max-depth"));
+    assert_eq!(g.warnings[0].severity, Severity::Warning);
+    assert_eq!(g.warnings[0].kind, ErrorKind::DepthCapped { limit: 5 });
 }
 
 #[test]
@@ -956,9 +670,7 @@ fn progress_is_reported_rarely() {
             self.finished = true;
         }
     }
-    let mut od = figure_9_10();
-    od.params = params(1.0, 0.0, 1.0, 0.0);
-    let d = od.build();
+    let d = figure_9_10_with("L=1(0) B=1(0)", "");
     let mut p = Count::default();
     let g = grow(&d, &opts(GrowthOrder::Bfs), &mut p).unwrap();
     assert!(g.stems > 20_000, "{}", g.stems);
@@ -970,17 +682,23 @@ fn progress_is_reported_rarely() {
 
 #[test]
 fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
-    let mut od = figure_9_10();
-    od.seed = Some("FFFFF");
     let mut o = opts(GrowthOrder::Bfs);
     o.limits.max_stems = 4;
-    let e = grow(&od.build(), &o, &mut NoProgress).unwrap_err();
-    assert!(matches!(e.0[0].kind, ErrorKind::Limit { .. }));
+    let d = figure_9_10_with("L=10(0) B=1(0)", "SEED FFFFF ENDSEED");
+    let e = grow_err(&d, o);
+    assert_eq!(
+        e.0[0].kind,
+        ErrorKind::Limit {
+            what: "stems drawn by the seed alone".into(),
+            value: "5".into(),
+            limit: "4".into()
+        }
+    );
     // The seed (drawn first, R1 deferred) fills the limit: R1's application
     // would pass it, so growth stops with a warning and R1 is left out.
-    od.seed = Some("F R1 F");
+    let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F R1 F ENDSEED");
     o.limits.max_stems = 2;
-    let g = grown(&od.build(), o);
+    let g = grown(&d, o);
     assert_eq!(g.stems, 2);
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(seed_text(g.bed.description()), "FF");

@@ -259,7 +259,8 @@ mod tests {
     fn the_parameter_list_reads_as_prose() {
         assert_eq!(
             param_list(),
-            "L (length), B (broadness), A (angle) and C (clearance)"
+            "L (length), B (broadness), A (angle), C (clearance), S (stroke colour) \
+             and G (background colour)"
         );
         assert_eq!(Param::from_key("B"), Some(Param::Broadness));
         assert_eq!(Param::from_key("b"), None);

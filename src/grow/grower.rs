@@ -1,0 +1,552 @@
+//! The grower: draws the flattened seed and decides growth points one at a
+//! time, `bfs` from a queue or `dfs` from a stack, never recursing.
+//!
+//! Deciding a growth point applies its rule: the whole body is drawn into
+//! the application's scratch from the turtle state at the point, every
+//! segment tested against the region, the placed segments and the
+//! application's own earlier ones. If every segment fits they are placed,
+//! the application becomes a node of the grown tree, and its branch tips
+//! become the next growth points; otherwise nothing of it remains. The
+//! module documentation of [`crate::grow`] states the rules.
+
+use std::collections::VecDeque;
+
+use super::bounded::successors;
+use super::occupancy::{Backend, LocalIndex, Occupancy, Seg};
+use super::region::Region;
+use super::seed::{Flat, Instr};
+use super::{GrowOptions, GrowthOrder};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::limits::Limits;
+use crate::model::walk::{self, FixedWord, Step};
+use crate::model::{Description, Fixed, RuleDef, RuleId};
+use crate::progress::Progress;
+use crate::turtle::{Interp, Op, Point, Recorder, Segment, State};
+
+/// Where a decision is recorded.
+#[derive(Debug, Clone, Copy)]
+enum Parent {
+    /// Growth point number `i` of the seed.
+    Seed(u32),
+    /// Entry `i` of [`Tree::slot_child`].
+    Slot(u32),
+}
+
+/// A growth point waiting for its decision.
+#[derive(Debug, Clone, Copy)]
+struct Gp {
+    state: State,
+    rule: RuleId,
+    count: Option<u32>,
+    /// The position is known to lie in the region's open interior.
+    inside: bool,
+    parent: Parent,
+}
+
+/// A successful application.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Node {
+    /// The rule applied.
+    pub(super) rule: RuleId,
+    /// First of its entries in [`Tree::slot_child`], one per branch.
+    pub(super) slots: u32,
+}
+
+/// No node: nothing grew there.
+pub(super) const NO_NODE: u32 = u32::MAX;
+
+/// The grown tree: every successful application, and what grew in each of
+/// its slots and at each growth point of the seed. A child is always
+/// recorded after its parent.
+#[derive(Debug, Default)]
+pub(super) struct Tree {
+    /// The applications, in the order they succeeded.
+    pub(super) nodes: Vec<Node>,
+    /// For each slot of each node, the node grown there or [`NO_NODE`].
+    pub(super) slot_child: Vec<u32>,
+    /// The node grown at each growth point of the seed, or [`NO_NODE`].
+    pub(super) seed_result: Vec<u32>,
+}
+
+impl Tree {
+    /// Records an application of `rule` (with `branches` slots) at
+    /// `parent`; returns the index of its first slot in `slot_child`.
+    fn record(&mut self, rule: RuleId, branches: usize, parent: Parent) -> u32 {
+        let id = self.nodes.len() as u32;
+        let first = self.slot_child.len() as u32;
+        self.nodes.push(Node { rule, slots: first });
+        self.slot_child
+            .extend(std::iter::repeat_n(NO_NODE, branches));
+        match parent {
+            Parent::Seed(i) => self.seed_result[i as usize] = id,
+            Parent::Slot(i) => self.slot_child[i as usize] = id,
+        }
+        first
+    }
+}
+
+/// What growth has spent against its limits, and the warnings of the
+/// limits that cut it short.
+#[derive(Debug, Default)]
+pub(super) struct Budget {
+    /// Stems drawn so far, the seed's included.
+    pub(super) stems: u64,
+    /// Stems drawn by the seed alone.
+    seed_stems: u64,
+    /// Successful rule applications (limited like stems, so rules that
+    /// draw nothing still end).
+    applications: u64,
+    /// `--max-stems` stopped all growth.
+    stopped: bool,
+    /// `--max-depth` refused an application (warned once).
+    depth_capped: bool,
+    /// Stems at the last progress report, in units of 2^14.
+    reported: u64,
+    /// The warnings, in the order they arose.
+    pub(super) warnings: Vec<Diagnostic>,
+}
+
+impl Budget {
+    /// Stops all growth at `--max-stems` (once, with a warning).
+    fn stop(&mut self, max_stems: u64) {
+        if self.stopped {
+            return;
+        }
+        self.stopped = true;
+        self.warnings.push(
+            Diagnostic::warning(ErrorKind::GrowthStopped {
+                stems: self.stems,
+                limit: max_stems,
+            })
+            .with_help(
+                "the BED is valid but its tree is cut short; raise the limit with --max-stems N",
+            ),
+        );
+    }
+
+    /// Notes that `--max-depth` refused an application (warned once).
+    fn cap_depth(&mut self, max_depth: u32) {
+        if self.depth_capped {
+            return;
+        }
+        self.depth_capped = true;
+        self.warnings.push(
+            Diagnostic::warning(ErrorKind::DepthCapped { limit: max_depth })
+                .with_help("raise it with --max-depth N"),
+        );
+    }
+}
+
+/// The scratch of one application, reused from one to the next.
+#[derive(Debug)]
+struct Scratch {
+    /// The segments drawn so far, placed only if all of them fit.
+    segs: LocalIndex,
+    /// The turtle state at each branch tip, and whether it is known to be
+    /// inside the region.
+    tips: Vec<(State, bool)>,
+    /// The growth points made by the last success, in branch order.
+    children: Vec<Gp>,
+}
+
+/// The growth points waiting for their decision: a FIFO queue in `bfs`, a
+/// stack in `dfs`.
+#[derive(Debug, Default)]
+struct Schedule {
+    queue: VecDeque<Gp>,
+    stack: Vec<Gp>,
+}
+
+/// What growth needs to know of a rule, worked out once.
+#[derive(Debug)]
+struct RuleInfo {
+    /// The rule leaves the turtle where it found it: its trunk neither
+    /// draws, moves nor turns (its branches restore the turtle). Drawing
+    /// after it in the seed does not depend on its decision.
+    neutral: bool,
+    /// The rule that grows at each branch tip, in branch order.
+    successors: Vec<RuleId>,
+}
+
+impl RuleInfo {
+    fn new(od: &Description, id: RuleId) -> Self {
+        RuleInfo {
+            neutral: is_neutral(od.rule(id)),
+            successors: successors(od, id).collect(),
+        }
+    }
+}
+
+/// Whether the trunk of `rule` leaves the turtle's position and heading
+/// alone (fixed figures on the trunk count as moving it).
+fn is_neutral(rule: &RuleDef) -> bool {
+    let mut in_branch = false;
+    walk::steps(&rule.body).all(|step| match step {
+        Step::Open { .. } => {
+            in_branch = true;
+            true
+        }
+        Step::Tip { .. } => {
+            in_branch = false;
+            true
+        }
+        Step::Run(r) => {
+            in_branch
+                || r.text.chars().all(|c| {
+                    !matches!(
+                        Op::of_stl(c),
+                        Some(Op::Draw | Op::Move | Op::Turn(_) | Op::Flip)
+                    )
+                })
+        }
+        Step::Fixed(_) => in_branch,
+    })
+}
+
+/// The turtle operations of a fixed figure.
+fn fixed_ops(f: &Fixed) -> impl Iterator<Item = Op> + '_ {
+    FixedWord::new(f).filter_map(|c| Op::of_stl(char::from(c)))
+}
+
+fn seg_of(s: &Segment) -> Seg {
+    Seg::new([s.from.x, s.from.y], [s.to.x, s.to.y])
+}
+
+/// Why an application did not grow.
+enum Miss {
+    /// Not here (space, order, count); growth goes on elsewhere.
+    Failed,
+    /// A limit stopped all growth.
+    Stopped,
+}
+
+/// The grower's state: what it works in (the description, the region, the
+/// placed segments, the turtle) and the four groups it keeps up to date.
+pub(super) struct Grower<'a> {
+    od: &'a Description,
+    growth: GrowthOrder,
+    limits: Limits,
+    /// By [`RuleId`].
+    rules: Vec<RuleInfo>,
+    region: Option<Region>,
+    occ: Occupancy,
+    interp: Interp<Recorder>,
+    tree: Tree,
+    budget: Budget,
+    scratch: Scratch,
+    schedule: Schedule,
+}
+
+impl<'a> Grower<'a> {
+    /// A grower for `od` with the turtle at `root`, for a seed with
+    /// `seed_gps` growth points.
+    pub(super) fn new(
+        od: &'a Description,
+        opts: &GrowOptions,
+        backend: Backend,
+        clearance: f64,
+        region: Option<Region>,
+        root: Point,
+        seed_gps: usize,
+    ) -> Self {
+        Grower {
+            od,
+            growth: opts.growth,
+            limits: opts.limits,
+            rules: (0..od.rules.len())
+                .map(|i| RuleInfo::new(od, RuleId(i)))
+                .collect(),
+            region,
+            occ: Occupancy::new(backend, clearance),
+            interp: Interp::new(
+                Recorder::default(),
+                root,
+                od.params.angle(),
+                od.params.length,
+            ),
+            tree: Tree {
+                seed_result: vec![NO_NODE; seed_gps],
+                ..Tree::default()
+            },
+            budget: Budget::default(),
+            scratch: Scratch {
+                segs: LocalIndex::new(clearance),
+                tips: Vec::new(),
+                children: Vec::new(),
+            },
+            schedule: Schedule::default(),
+        }
+    }
+
+    /// The grown tree and what growth spent.
+    pub(super) fn finish(self) -> (Tree, Budget) {
+        (self.tree, self.budget)
+    }
+
+    /// Draws the seed, deciding its growth points (and, in `dfs`, their
+    /// subtrees) as described in the module documentation; then, in `bfs`,
+    /// the levels that follow.
+    pub(super) fn walk_seed(
+        &mut self,
+        flat: &Flat<'_>,
+        progress: &mut dyn Progress,
+    ) -> Result<(), Diagnostics> {
+        let mut pending: Vec<Gp> = Vec::new();
+        for (idx, instr) in flat.instrs.iter().enumerate() {
+            match instr {
+                Instr::Op(op) => self.seed_op(*op)?,
+                Instr::Fixed(f) => {
+                    for op in fixed_ops(f) {
+                        self.seed_op(op)?;
+                    }
+                }
+                Instr::Gp(i) => {
+                    let sg = &flat.gps[*i];
+                    let gp = Gp {
+                        state: self.interp.state,
+                        rule: sg.rule,
+                        count: sg.count,
+                        inside: false,
+                        parent: Parent::Seed(*i as u32),
+                    };
+                    let later_drawing_fixed = self.rules[sg.rule.0].neutral
+                        || matches!(flat.instrs.get(idx + 1), None | Some(Instr::Op(Op::Pop)));
+                    if later_drawing_fixed {
+                        pending.push(gp);
+                    } else {
+                        let here = self.interp.state;
+                        for p in pending.drain(..) {
+                            self.decide_with_subtree(p, progress);
+                        }
+                        let end = self.decide_with_subtree(gp, progress);
+                        self.interp.state = end.unwrap_or(here);
+                    }
+                }
+            }
+        }
+        for p in pending {
+            self.decide_with_subtree(p, progress);
+        }
+        if self.growth == GrowthOrder::Bfs {
+            while let Some(gp) = self.schedule.queue.pop_front() {
+                if self.budget.stopped {
+                    break;
+                }
+                if self.decide(gp, progress).is_some() {
+                    self.schedule.queue.extend(self.scratch.children.drain(..));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// One drawing operation of the seed: drawn and placed without a test.
+    fn seed_op(&mut self, op: Op) -> Result<(), Diagnostics> {
+        self.interp.apply(op);
+        if let Some(s) = self.interp.turtle.segments.pop() {
+            self.budget.stems += 1;
+            self.budget.seed_stems += 1;
+            // The seed is always drawn whole (a stop only ends growth), but
+            // a seed beyond the limit by itself is an error.
+            if self.budget.seed_stems > self.limits.max_stems {
+                return Err(Diagnostic::error(ErrorKind::Limit {
+                    what: "stems drawn by the seed alone".into(),
+                    value: self.budget.seed_stems.to_string(),
+                    limit: self.limits.max_stems.to_string(),
+                })
+                .with_help("raise the limit with --max-stems N, or draw a smaller seed")
+                .into());
+            }
+            self.occ.insert(seg_of(&s));
+        }
+        Ok(())
+    }
+
+    /// Decides a seed growth point: in `bfs` its children join the queue, in
+    /// `dfs` its whole subtree is grown now. Returns the turtle state after
+    /// the application if it grew. The turtle's state is clobbered.
+    fn decide_with_subtree(&mut self, gp: Gp, progress: &mut dyn Progress) -> Option<State> {
+        if self.budget.stopped {
+            return None;
+        }
+        let end = self.decide(gp, progress)?;
+        match self.growth {
+            GrowthOrder::Bfs => self.schedule.queue.extend(self.scratch.children.drain(..)),
+            GrowthOrder::Dfs => {
+                self.schedule
+                    .stack
+                    .extend(self.scratch.children.drain(..).rev());
+                while let Some(g) = self.schedule.stack.pop() {
+                    if self.budget.stopped {
+                        self.schedule.stack.clear();
+                        break;
+                    }
+                    if self.decide(g, progress).is_some() {
+                        self.schedule
+                            .stack
+                            .extend(self.scratch.children.drain(..).rev());
+                    }
+                }
+            }
+        }
+        Some(end)
+    }
+
+    /// Decides one growth point. On success records the node, leaves its
+    /// children in `scratch.children` and returns the turtle state after the
+    /// application.
+    fn decide(&mut self, gp: Gp, progress: &mut dyn Progress) -> Option<State> {
+        self.scratch.children.clear();
+        let end = match self.apply(&gp) {
+            Ok(end) => end,
+            Err(Miss::Failed) => return None,
+            Err(Miss::Stopped) => {
+                self.budget.stopped = true;
+                return None;
+            }
+        };
+        // Commit.
+        self.budget.stems += self.scratch.segs.len() as u64;
+        for s in self.scratch.segs.drain() {
+            self.occ.insert(s);
+        }
+        self.budget.applications += 1;
+        let successors = &self.rules[gp.rule.0].successors;
+        let first = self.tree.record(gp.rule, successors.len(), gp.parent);
+        let count = gp.count.map(|n| n.saturating_sub(1));
+        if count != Some(0) {
+            for (j, &rule) in successors.iter().enumerate() {
+                let (state, inside) = self.scratch.tips[j];
+                self.scratch.children.push(Gp {
+                    state,
+                    rule,
+                    count,
+                    inside,
+                    parent: Parent::Slot(first + j as u32),
+                });
+            }
+        }
+        if self.budget.stems >> 14 != self.budget.reported {
+            self.budget.reported = self.budget.stems >> 14;
+            progress.update(self.budget.stems);
+        }
+        Some(end)
+    }
+
+    /// Draws rule `gp.rule` at the growth point into the scratch, testing
+    /// every segment; records the branch tips in `scratch.tips`.
+    fn apply(&mut self, gp: &Gp) -> Result<State, Miss> {
+        if self.budget.stopped {
+            return Err(Miss::Stopped);
+        }
+        if gp.count == Some(0) {
+            return Err(Miss::Failed);
+        }
+        let order = gp.state.order + 1;
+        if !self.od.params.can_grow_at(order) {
+            return Err(Miss::Failed);
+        }
+        if order > self.limits.max_depth {
+            self.budget.cap_depth(self.limits.max_depth);
+            return Err(Miss::Failed);
+        }
+        if self.budget.applications >= self.limits.max_stems {
+            self.budget.stop(self.limits.max_stems);
+            return Err(Miss::Stopped);
+        }
+        self.scratch.segs.clear();
+        self.scratch.tips.clear();
+        let base_depth = self.interp.stack_depth();
+        self.interp.state = gp.state;
+        self.interp.apply(Op::Enter);
+        let result = self.draw_body(gp);
+        // Unwind whatever the body left on the stack (only after a miss).
+        while self.interp.stack_depth() > base_depth {
+            self.interp.apply(Op::Pop);
+        }
+        result?;
+        self.interp.apply(Op::Leave);
+        Ok(self.interp.state)
+    }
+
+    fn draw_body(&mut self, gp: &Gp) -> Result<(), Miss> {
+        let od = self.od;
+        let rule = od.rule(gp.rule);
+        // Whether the turtle's position is known to be inside the region,
+        // saved and restored with the turtle's stack.
+        let mut inside = gp.inside;
+        let mut saved: Vec<bool> = Vec::new();
+        let base = self.interp.stack_depth();
+        // Pops below this depth are ignored: the body's own depth on the
+        // trunk, the depth just inside the `[` in a branch.
+        let mut floor = base;
+        for step in walk::steps(&rule.body) {
+            match step {
+                Step::Run(r) => {
+                    for op in r.text.chars().filter_map(Op::of_stl) {
+                        self.step(op, &mut inside, &mut saved, floor)?;
+                    }
+                }
+                Step::Fixed(f) => {
+                    for op in fixed_ops(f) {
+                        self.step(op, &mut inside, &mut saved, floor)?;
+                    }
+                }
+                Step::Open { .. } => {
+                    self.step(Op::Push, &mut inside, &mut saved, base)?;
+                    floor = self.interp.stack_depth();
+                }
+                Step::Tip { .. } => {
+                    self.scratch.tips.push((self.interp.state, inside));
+                    while self.interp.stack_depth() >= floor {
+                        self.step(Op::Pop, &mut inside, &mut saved, base)?;
+                    }
+                    floor = base;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// One operation inside an application; a drawn segment is tested.
+    /// `floor`: pops below this stack depth are ignored (unbalanced input).
+    fn step(
+        &mut self,
+        op: Op,
+        inside: &mut bool,
+        saved: &mut Vec<bool>,
+        floor: usize,
+    ) -> Result<(), Miss> {
+        match op {
+            Op::Push => saved.push(*inside),
+            Op::Pop => {
+                if self.interp.stack_depth() <= floor {
+                    return Ok(());
+                }
+                *inside = saved.pop().unwrap_or(false);
+            }
+            Op::Move => *inside = false,
+            _ => {}
+        }
+        self.interp.apply(op);
+        let Some(s) = self.interp.turtle.segments.pop() else {
+            return Ok(());
+        };
+        if let Some(r) = &self.region {
+            if !r.segment_inside(s.from, s.to, *inside) {
+                return Err(Miss::Failed);
+            }
+            *inside = true;
+        }
+        let seg = seg_of(&s);
+        if self.occ.conflicts(&seg) || self.scratch.segs.conflicts(&seg) {
+            return Err(Miss::Failed);
+        }
+        self.scratch.segs.insert(seg);
+        if self.budget.stems + self.scratch.segs.len() as u64 > self.limits.max_stems {
+            self.budget.stop(self.limits.max_stems);
+            return Err(Miss::Stopped);
+        }
+        Ok(())
+    }
+}
