@@ -222,7 +222,7 @@ pub struct Scene {
 #[derive(Debug, Clone, PartialEq)]
 enum What {
     Lsys { sys: LSystem, depth: u32 },
-    Tree { bed: Bed, grown: Option<u64> },
+    Tree { bed: Box<Bed>, grown: Option<u64> },
 }
 
 /// Decides what `loaded` shows: an L-system at its depth, a BED as it is,
@@ -238,11 +238,17 @@ pub fn scene(
             let warnings = inert_turns(&sys);
             (What::Lsys { sys, depth }, warnings)
         }
-        Loaded::Bed(bed) => (What::Tree { bed, grown: None }, Vec::new()),
+        Loaded::Bed(bed) => (
+            What::Tree {
+                bed: Box::new(bed),
+                grown: None,
+            },
+            Vec::new(),
+        ),
         Loaded::Od(od) => {
             let grown = grow(&od, &req.grow, progress)?;
             let what = What::Tree {
-                bed: grown.bed,
+                bed: Box::new(grown.bed),
                 grown: Some(grown.stems),
             };
             (what, grown.warnings)

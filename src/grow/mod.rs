@@ -167,20 +167,18 @@ pub fn grow_with(
         None => None,
     };
     let root = Point::new(od.root.0, od.root.1);
-    if let Some(r) = &region {
-        if !r.covers_point(root) {
-            let mut d = Diagnostic::error(ErrorKind::RootOutside {
-                x: od.root.0,
-                y: od.root.1,
-            })
-            .with_help(
-                "move the root into a coloured (non-white) layout shape, or change the LAYOUT",
-            );
-            if let Some(s) = span_of(&od.root_loc) {
-                d = d.with_span(s).with_label("the root");
-            }
-            return Err(d.into());
+    if let Some(r) = &region
+        && !r.covers_point(root)
+    {
+        let mut d = Diagnostic::error(ErrorKind::RootOutside {
+            x: od.root.0,
+            y: od.root.1,
+        })
+        .with_help("move the root into a coloured (non-white) layout shape, or change the LAYOUT");
+        if let Some(s) = span_of(&od.root_loc) {
+            d = d.with_span(s).with_label("the root");
         }
+        return Err(d.into());
     }
 
     let mut g = Grower::new(od, opts, backend, clearance, region, root, flat.gps.len());
