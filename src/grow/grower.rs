@@ -19,7 +19,7 @@ use super::{GrowOptions, GrowthOrder};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::limits::Limits;
 use crate::model::walk::{self, FixedWord, Step};
-use crate::model::{Description, Fixed, RuleDef, RuleId};
+use crate::model::{Description, Fixed, RuleDef, RuleId, StemParams};
 use crate::progress::Progress;
 use crate::turtle::{Interp, Op, Point, Recorder, Segment, State};
 
@@ -208,8 +208,13 @@ fn fixed_ops(f: &Fixed) -> impl Iterator<Item = Op> + '_ {
     FixedWord::new(f).filter_map(|c| Op::of_stl(char::from(c)))
 }
 
-fn seg_of(s: &Segment) -> Seg {
-    Seg::new([s.from.x, s.from.y], [s.to.x, s.to.y])
+/// The stem `s` as drawn: a capsule of half its stroke width at its order.
+fn seg_of(s: &Segment, params: &StemParams) -> Seg {
+    Seg::capsule(
+        [s.from.x, s.from.y],
+        [s.to.x, s.to.y],
+        params.width.at(s.order) / 2.0,
+    )
 }
 
 /// Why an application did not grow.
@@ -357,7 +362,7 @@ impl<'a> Grower<'a> {
                 .with_help("raise the limit with --max-stems N, or draw a smaller seed")
                 .into());
             }
-            self.occ.insert(seg_of(&s));
+            self.occ.insert(seg_of(&s, &self.od.params));
         }
         Ok(())
     }
@@ -532,13 +537,13 @@ impl<'a> Grower<'a> {
         let Some(s) = self.interp.turtle.segments.pop() else {
             return Ok(());
         };
+        let seg = seg_of(&s, &self.od.params);
         if let Some(r) = &self.region {
-            if !r.segment_inside(s.from, s.to, *inside) {
+            if !r.capsule_inside(s.from, s.to, seg.r, *inside) {
                 return Err(Miss::Failed);
             }
             *inside = true;
         }
-        let seg = seg_of(&s);
         if self.occ.conflicts(&seg) || self.scratch.segs.conflicts(&seg) {
             return Err(Miss::Failed);
         }

@@ -2,26 +2,32 @@
 //!
 //! # The clearance rule
 //!
-//! A new segment `t` (from `t.a` to `t.b`, the turtle's direction) conflicts
-//! with a segment `s` already placed when they come closer than the
-//! clearance `C` (distances between centre lines, canvas units):
+//! A stem occupies the space it is drawn with: a capsule of radius `r`
+//! (half its stroke width) around its centre line. A new segment `t` (from
+//! `t.a` to `t.b`, the turtle's direction) conflicts with a segment `s`
+//! already placed when their drawn edges come closer than the clearance `C`,
+//! that is when their centre lines come closer than `C + t.r + s.r` (the
+//! *threshold*; canvas units):
 //!
 //! - **Joint exception.** If `t` starts where `s` starts or ends (`t.a` equal,
 //!   bit for bit, to `s.a` or `s.b`: a stem and the branches at its tip, two
-//!   branches at one tip, consecutive stems of one branch), their distance is
-//!   0 at that joint by construction, so the joint is left out: they conflict
-//!   only if `t`'s far end `t.b` is within `C` of `s`, or `s`'s far end (the
-//!   endpoint other than the joint) is within `C` of `t`. For two straight
-//!   segments sharing an endpoint these are the only distances left, so only
-//!   near-overlapping segments at a joint conflict (a branch folding back
-//!   onto its stem, two branches at an angle too small for their length).
-//! - **Otherwise** they conflict if the distance between the two segments is
-//!   below `C` (0 if they touch or cross).
+//!   branches at one tip, consecutive stems of one branch), their strokes
+//!   meet at that joint by construction, so the joint is left out: they
+//!   conflict only if `t`'s far end `t.b` comes within the threshold of `s`
+//!   at a point other than the joint, or `s`'s far end (the endpoint other
+//!   than the joint) comes within it of `t` at a point other than the
+//!   joint. So only stems that fold onto each other at a joint conflict (a
+//!   branch folding back onto its stem, two branches at an angle too small
+//!   for their length and width); a straight continuation never does,
+//!   however short and thick its stems.
+//! - **Otherwise** they conflict if the distance between the two centre
+//!   lines is below the threshold (0 if they touch or cross).
 //!
 //! Only the new segment's *start* can be a joint: a segment that *ends* on an
 //! existing stem touches it (distance 0) and conflicts, so a tree never
-//! closes a loop. `C = 0` switches the test off: stems may then touch and
-//! cross, and only the region bounds growth.
+//! closes a loop. A threshold of 0 (`C = 0` and hairline stems) switches
+//! the test off: stems may then touch and cross, and only the region bounds
+//! growth.
 //!
 //! # The indexes
 //!
@@ -49,19 +55,31 @@
 
 use rstar::{AABB, RTree, RTreeObject};
 
-/// One straight stem from `a` to `b` (the turtle's direction), canvas units.
+/// One straight stem from `a` to `b` (the turtle's direction), drawn
+/// `2 r` wide, canvas units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Seg {
     /// Start (where the turtle was).
     pub a: [f64; 2],
     /// End (where the turtle went).
     pub b: [f64; 2],
+    /// Half the stroke width: the radius of the capsule it is drawn as.
+    pub r: f64,
 }
 
 impl Seg {
-    /// A segment from two points.
+    /// A hairline segment (radius 0) from two points.
     pub fn new(a: [f64; 2], b: [f64; 2]) -> Self {
-        Seg { a, b }
+        Seg { a, b, r: 0.0 }
+    }
+
+    /// A segment drawn `2 r` wide (a negative radius counts as 0).
+    pub fn capsule(a: [f64; 2], b: [f64; 2], r: f64) -> Self {
+        Seg {
+            a,
+            b,
+            r: r.max(0.0),
+        }
     }
 }
 
@@ -96,25 +114,34 @@ pub enum Backend {
 /// Whether a new segment `t` conflicts with a placed segment `s` under
 /// clearance `c` (the rule in the module documentation).
 pub fn conflicts(t: &Seg, s: &Seg, c: f64) -> bool {
-    if c <= 0.0 {
+    let threshold = c + t.r + s.r;
+    if threshold <= 0.0 {
         return false;
     }
-    let c2 = c * c;
-    let far_s = if t.a == s.a {
-        Some(s.b)
+    let c2 = threshold * threshold;
+    // The joint, and `s`'s far end, if `t` starts on an end of `s`.
+    let joint = if t.a == s.a {
+        Some((s.a, s.b))
     } else if t.a == s.b {
-        Some(s.a)
+        Some((s.b, s.a))
     } else {
         None
     };
-    match far_s {
-        Some(far) => point_seg_dist2(t.b, s) < c2 || point_seg_dist2(far, t) < c2,
+    match joint {
+        Some((j, far_s)) => {
+            let near = |p: [f64; 2], seg: &Seg| {
+                let (d2, at) = point_seg_nearest(p, seg);
+                d2 < c2 && at != j
+            };
+            near(t.b, s) || near(far_s, t)
+        }
         None => seg_seg_dist2(t, s) < c2,
     }
 }
 
-/// Squared distance from point `p` to segment `s`.
-pub fn point_seg_dist2(p: [f64; 2], s: &Seg) -> f64 {
+/// Squared distance from point `p` to segment `s`, and the point of `s`
+/// nearest to `p` (exactly an endpoint of `s` when that is the nearest).
+fn point_seg_nearest(p: [f64; 2], s: &Seg) -> (f64, [f64; 2]) {
     let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
     let (px, py) = (p[0] - s.a[0], p[1] - s.a[1]);
     let len2 = dx * dx + dy * dy;
@@ -123,8 +150,20 @@ pub fn point_seg_dist2(p: [f64; 2], s: &Seg) -> f64 {
     } else {
         0.0
     };
+    let at = if t <= 0.0 {
+        s.a
+    } else if t >= 1.0 {
+        s.b
+    } else {
+        [s.a[0] + t * dx, s.a[1] + t * dy]
+    };
     let (ex, ey) = (px - t * dx, py - t * dy);
-    ex * ex + ey * ey
+    (ex * ex + ey * ey, at)
+}
+
+/// Squared distance from point `p` to segment `s`.
+pub fn point_seg_dist2(p: [f64; 2], s: &Seg) -> f64 {
+    point_seg_nearest(p, s).0
 }
 
 fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
@@ -155,6 +194,8 @@ pub fn seg_seg_dist2(t: &Seg, s: &Seg) -> f64 {
 pub struct Occupancy {
     clearance: f64,
     len: usize,
+    /// The largest radius placed (the query's reach grows by it).
+    max_r: f64,
     inner: Inner,
 }
 
@@ -176,6 +217,7 @@ impl Occupancy {
         Occupancy {
             clearance,
             len: 0,
+            max_r: 0.0,
             inner,
         }
     }
@@ -198,21 +240,24 @@ impl Occupancy {
     /// Whether `t` conflicts with any placed segment.
     pub fn conflicts(&self, t: &Seg) -> bool {
         let c = self.clearance;
-        if c <= 0.0 || self.len == 0 {
+        // No placed segment's threshold with `t` is above this.
+        let widest = c + t.r + self.max_r;
+        if widest <= 0.0 || self.len == 0 {
             return false;
         }
         match &self.inner {
             Inner::Rstar(tree) => tree
-                .locate_in_envelope_intersecting(&reach(t, c))
+                .locate_in_envelope_intersecting(&reach(t, widest))
                 .any(|s| conflicts(t, s, c)),
             #[cfg(feature = "spade-index")]
-            Inner::Spade(ix) => ix.conflicts(t, c),
+            Inner::Spade(ix) => ix.conflicts(t, c, widest),
         }
     }
 
     /// Places `s`.
     pub fn insert(&mut self, s: Seg) {
         self.len += 1;
+        self.max_r = self.max_r.max(s.r);
         match &mut self.inner {
             Inner::Rstar(tree) => tree.insert(s),
             #[cfg(feature = "spade-index")]
@@ -235,6 +280,8 @@ pub struct LocalIndex {
     clearance: f64,
     segs: Vec<Seg>,
     tree: Option<RTree<Seg>>,
+    /// The largest radius held.
+    max_r: f64,
 }
 
 impl LocalIndex {
@@ -244,6 +291,7 @@ impl LocalIndex {
             clearance,
             segs: Vec::new(),
             tree: None,
+            max_r: 0.0,
         }
     }
 
@@ -251,6 +299,7 @@ impl LocalIndex {
     pub fn clear(&mut self) {
         self.segs.clear();
         self.tree = None;
+        self.max_r = 0.0;
     }
 
     /// Number of segments held.
@@ -266,12 +315,13 @@ impl LocalIndex {
     /// Whether `t` conflicts with any segment held.
     pub fn conflicts(&self, t: &Seg) -> bool {
         let c = self.clearance;
-        if c <= 0.0 {
+        let widest = c + t.r + self.max_r;
+        if widest <= 0.0 {
             return false;
         }
         match &self.tree {
             Some(tree) => tree
-                .locate_in_envelope_intersecting(&reach(t, c))
+                .locate_in_envelope_intersecting(&reach(t, widest))
                 .any(|s| conflicts(t, s, c)),
             None => self.segs.iter().any(|s| conflicts(t, s, c)),
         }
@@ -280,10 +330,11 @@ impl LocalIndex {
     /// Adds `s`.
     pub fn insert(&mut self, s: Seg) {
         self.segs.push(s);
+        self.max_r = self.max_r.max(s.r);
         match &mut self.tree {
             Some(tree) => tree.insert(s),
-            // With no clearance nothing is ever queried.
-            None if self.clearance > 0.0 && self.segs.len() == LOCAL_LINEAR => {
+            // With no clearance and hairlines nothing is ever queried.
+            None if self.clearance + self.max_r > 0.0 && self.segs.len() == LOCAL_LINEAR => {
                 self.tree = Some(RTree::bulk_load(self.segs.clone()));
             }
             None => {}
@@ -293,6 +344,7 @@ impl LocalIndex {
     /// Hands the segments over in drawing order, leaving the index empty.
     pub fn drain(&mut self) -> impl Iterator<Item = Seg> + '_ {
         self.tree = None;
+        self.max_r = 0.0;
         self.segs.drain(..)
     }
 }
@@ -382,7 +434,8 @@ mod delaunay {
             }
         }
 
-        pub(super) fn conflicts(&self, t: &Seg, c: f64) -> bool {
+        /// `widest`: the largest threshold any held segment can have with `t`.
+        pub(super) fn conflicts(&self, t: &Seg, c: f64, widest: f64) -> bool {
             if self
                 .odd
                 .iter()
@@ -392,7 +445,7 @@ mod delaunay {
             }
             let mid = Point2::new((t.a[0] + t.b[0]) / 2.0, (t.a[1] + t.b[1]) / 2.0);
             // Slightly larger than needed, so rounding never loses a candidate.
-            let r = (len(t) / 2.0 + c + self.max_len / 2.0) * (1.0 + 1e-9) + 1e-9;
+            let r = (len(t) / 2.0 + widest + self.max_len / 2.0) * (1.0 + 1e-9) + 1e-9;
             let mut seen = self.seen.borrow_mut();
             let (stamp, marks) = &mut *seen;
             *stamp = stamp.wrapping_add(1);
@@ -441,6 +494,40 @@ mod tests {
         assert!(conflicts(&left, &br, 9.0));
     }
 
+    /// Stems as drawn: the threshold is C plus both half widths.
+    #[test]
+    fn wide_stems_keep_the_clearance_between_their_edges() {
+        // Two parallel stems 3 apart: hairlines with C=1 are fine; 2 wide
+        // each (r=1) with C=1 need 3, which is just met; r=1.1 is not.
+        let a = Seg::capsule([0.0, 0.0], [0.0, 10.0], 1.0);
+        let b = Seg::capsule([3.0, 0.0], [3.0, 10.0], 1.0);
+        assert!(!conflicts(&b, &a, 1.0));
+        let b_wide = Seg::capsule([3.0, 0.0], [3.0, 10.0], 1.1);
+        assert!(conflicts(&b_wide, &a, 1.0));
+        // C=0 with wide stems still keeps the strokes apart.
+        assert!(conflicts(
+            &Seg::capsule([1.5, 0.0], [1.5, 9.0], 1.0),
+            &a,
+            0.0
+        ));
+        // A straight continuation never conflicts, however short and thick.
+        let stem = Seg::capsule([0.0, 0.0], [0.0, -1.0], 2.0);
+        let next = Seg::capsule([0.0, -1.0], [0.0, -2.0], 2.0);
+        assert!(!conflicts(&next, &stem, 1.0));
+        // Nor does a branch whose far end's nearest point on the stem is
+        // the joint itself (it turns away by more than 90 degrees).
+        let away = Seg::capsule([0.0, -1.0], [1.0, -1.5], 2.0);
+        assert!(!conflicts(&away, &stem, 1.0));
+        // Branches at a joint, 60 degrees apart and 10 long: far ends 8.66
+        // from the other; 4 wide each plus C=1 needs 5: fine; 8 wide each
+        // plus C=1 needs 9: they fold onto each other.
+        let br = seg(0.0, -10.0, -5.0, -10.0 - 8.660_254_037_844_386);
+        let left = seg(0.0, -10.0, 5.0, -18.66);
+        let wide = |s: Seg, r: f64| Seg { r, ..s };
+        assert!(!conflicts(&wide(left, 2.0), &wide(br, 2.0), 1.0));
+        assert!(conflicts(&wide(left, 4.0), &wide(br, 4.0), 1.0));
+    }
+
     #[test]
     fn ending_on_a_stem_conflicts() {
         let s = seg(0.0, 0.0, 10.0, 0.0);
@@ -467,7 +554,10 @@ mod tests {
         for _ in 0..400 {
             let (ax, ay) = (next() * 100.0, next() * 100.0);
             let (dx, dy) = (next() * 6.0 - 3.0, next() * 6.0 - 3.0);
-            all.push(seg(ax, ay, ax + dx, ay + dy));
+            // Widths from hairline to 2 (radius 0 to 1): the index's reach
+            // must grow with the widest stem placed.
+            let r = next();
+            all.push(Seg::capsule([ax, ay], [ax + dx, ay + dy], r));
         }
         let backends = [
             Backend::Rstar,

@@ -26,6 +26,7 @@
 use geo::{BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon, Polygon};
 use rstar::{AABB, RTree, RTreeObject};
 
+use super::occupancy::{Seg, seg_seg_dist2};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::layout::shape_ring;
 use crate::model::Layout;
@@ -177,6 +178,29 @@ impl Region {
     /// already knows `a` lies in the open interior (skips the point test).
     pub fn segment_inside(&self, a: Point, b: Point, a_inside: bool) -> bool {
         !self.touches_boundary(a, b) && (a_inside || self.covers_point(a))
+    }
+
+    /// Whether the capsule of radius `r` around the segment `a`-`b` (the
+    /// stem as drawn, `2 r` wide with round caps) lies inside the region:
+    /// the segment is inside ([`Region::segment_inside`]) and no boundary
+    /// edge comes closer to it than `r`.
+    pub fn capsule_inside(&self, a: Point, b: Point, r: f64, a_inside: bool) -> bool {
+        if !self.segment_inside(a, b, a_inside) {
+            return false;
+        }
+        if r <= 0.0 {
+            return true;
+        }
+        let seg = Seg::new([a.x, a.y], [b.x, b.y]);
+        let env = AABB::from_corners(
+            [a.x.min(b.x) - r, a.y.min(b.y) - r],
+            [a.x.max(b.x) + r, a.y.max(b.y) + r],
+        );
+        let r2 = r * r;
+        !self
+            .edges
+            .locate_in_envelope_intersecting(&env)
+            .any(|e| seg_seg_dist2(&seg, &Seg::new([e.a.x, e.a.y], [e.b.x, e.b.y])) < r2)
     }
 }
 
@@ -338,6 +362,14 @@ mod tests {
         assert!(!r.segment_inside(Point::new(5.0, 5.0), Point::new(5.0, 12.0), false));
         // Wholly outside, touching nothing: decided by the start point.
         assert!(!r.segment_inside(Point::new(20.0, 5.0), Point::new(25.0, 5.0), false));
+        // As drawn: a stem 1 from the right edge fits 2 wide (r = 1), not
+        // 2.2 wide; its round cap counts too (the end 1 from the top).
+        let (a, b) = (Point::new(9.0, 5.0), Point::new(9.0, 8.0));
+        assert!(r.capsule_inside(a, b, 1.0, false));
+        assert!(!r.capsule_inside(a, b, 1.1, false));
+        let (a, b) = (Point::new(5.0, 5.0), Point::new(5.0, 9.0));
+        assert!(r.capsule_inside(a, b, 1.0, false));
+        assert!(!r.capsule_inside(a, b, 1.01, false));
     }
 
     #[test]

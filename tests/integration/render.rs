@@ -686,7 +686,11 @@ fn a_million_tiny_segments_stream_through_the_png_backend() {
     let point = |i: u32| {
         let row = i / 1000;
         let col = i % 1000;
-        let x = if row.is_multiple_of(2) { col } else { 1000 - col };
+        let x = if row.is_multiple_of(2) {
+            col
+        } else {
+            1000 - col
+        };
         Point::new(f64::from(x) * 0.19, f64::from(row) * 0.19)
     };
     for i in 0..1_000_000 {
