@@ -8,3 +8,4 @@ mod lsys;
 mod render;
 mod robustness;
 mod stl;
+mod support;
