@@ -9,6 +9,8 @@ use std::process::{Command as StdCommand, Stdio};
 use assert_cmd::Command;
 use predicates::prelude::*;
 
+use crate::support::assert_golden;
+
 fn stlc() -> Command {
     let mut c = Command::cargo_bin("stlc").expect("binary");
     c.env("NO_COLOR", "1");
@@ -531,8 +533,10 @@ fn a_bed_with_a_layout_renders_its_golden_svg() {
         .output()
         .unwrap();
     assert!(out.status.success());
-    let golden = fs::read_to_string(format!("{root}/tests/cases/render/tiny-layout.svg")).unwrap();
-    assert_eq!(String::from_utf8(out.stdout).unwrap(), golden);
+    assert_golden(
+        "tests/cases/render/tiny-layout.svg",
+        &String::from_utf8(out.stdout).unwrap(),
+    );
     // The PNG agrees: stem pixels are bark brown, the layout green, the
     // margin around the layout white.
     let out = stlc()
@@ -592,8 +596,7 @@ fn a_full_disk_on_stdout_is_an_error_not_a_panic() {
 #[test]
 fn compile_writes_the_golden_bed_to_a_file_a_default_name_and_stdout() {
     let root = env!("CARGO_MANIFEST_DIR");
-    let golden =
-        |s: &str| fs::read_to_string(format!("{root}/tests/cases/grow/fig9.{s}.bed")).unwrap();
+    let golden = |s: &str| format!("tests/cases/grow/fig9.{s}.bed");
     let dir = tempfile::tempdir().unwrap();
     let od = dir.path().join("fig9.od");
     fs::copy(format!("{root}/examples/fig9.od"), &od).unwrap();
@@ -605,26 +608,31 @@ fn compile_writes_the_golden_bed_to_a_file_a_default_name_and_stdout() {
         .assert()
         .success()
         .stdout("");
-    assert_eq!(fs::read_to_string(&out).unwrap(), golden("bfs"));
+    assert_golden(golden("bfs"), &fs::read_to_string(&out).unwrap());
     // No -o: the input's name with .bed, beside it.
     stlc()
         .args(["compile", od.to_str().unwrap(), "--strategy", "dfs"])
         .assert()
         .success();
-    assert_eq!(
-        fs::read_to_string(dir.path().join("fig9.bed")).unwrap(),
-        golden("dfs")
+    assert_golden(
+        golden("dfs"),
+        &fs::read_to_string(dir.path().join("fig9.bed")).unwrap(),
     );
     assert_eq!(files_in(dir.path()), ["fig9.bed", "fig9.od", "grown.bed"]);
     // Standard input to standard output.
-    stlc()
+    let piped = stlc()
         .args(["compile", "-", "--strategy", "dfs"])
         .write_stdin(fs::read(&od).unwrap())
         .assert()
         .success()
-        .stdout(golden("dfs"));
-    // bfs and dfs grow different trees here (Figures 9 and 10).
-    assert_ne!(golden("bfs"), golden("dfs"));
+        .get_output()
+        .stdout
+        .clone();
+    assert_golden(golden("dfs"), &String::from_utf8(piped).unwrap());
+    // bfs and dfs grow different trees here (Figures 9 and 10), so the
+    // comparisons above tell whether --strategy reached the grower.
+    let read = |s: &str| fs::read(format!("{root}/{}", golden(s))).unwrap();
+    assert_ne!(read("bfs"), read("dfs"));
 }
 
 /// Growing and drawing in one step draws exactly what compiling and then

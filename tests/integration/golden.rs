@@ -1,11 +1,9 @@
 //! Golden BED files: every `.od` in `examples/` and `tests/cases/grow/` is
 //! compiled under both growth strategies and compared with
-//! `tests/cases/grow/<name>.<strategy>.bed`.
-//!
-//! Regenerate after an intended change with
-//! `STLC_BLESS=1 cargo test --test integration golden`, then read the diff
-//! (`git diff tests/cases/grow`) before committing. CI never writes.
+//! `tests/cases/grow/<name>.<strategy>.bed` (see [`crate::support`] for
+//! `STLC_BLESS=1` and what a mismatch leaves behind).
 
+use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -17,15 +15,13 @@ use stlc::progress::NoProgress;
 use stlc::syntax::stl;
 use stlc::turtle::Counter;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use crate::support::{assert_golden, assert_same_text, blessing, manifest_path};
 
 /// All outline descriptions with goldens, sorted by name.
 fn cases() -> Vec<PathBuf> {
     let mut v = Vec::new();
     for dir in ["examples", "tests/cases/grow"] {
-        for e in fs::read_dir(root().join(dir)).unwrap() {
+        for e in fs::read_dir(manifest_path(dir)).unwrap() {
             let p = e.unwrap().path();
             if p.extension().is_some_and(|x| x == "od") {
                 v.push(p);
@@ -51,60 +47,46 @@ fn compile(od_path: &Path, strategy: GrowthOrder) -> (String, u64) {
     )
 }
 
-/// Fails with the first differing line and some context, not two walls of text.
-fn assert_same_text(name: &str, expected: &str, actual: &str) {
-    if expected == actual {
-        return;
-    }
-    let (e, a): (Vec<_>, Vec<_>) = (expected.lines().collect(), actual.lines().collect());
-    let i = e
-        .iter()
-        .zip(&a)
-        .position(|(x, y)| x != y)
-        .unwrap_or(e.len().min(a.len()));
-    let ctx = |v: &[&str]| v[i.saturating_sub(3)..(i + 4).min(v.len())].join("\n");
-    panic!(
-        "{name}: output differs from the golden at line {} (golden {} lines, now {})\n--- golden\n{}\n--- now\n{}\n\
-         (regenerate with STLC_BLESS=1 cargo test --test integration golden, then read git diff)",
-        i + 1,
-        e.len(),
-        a.len(),
-        ctx(&e),
-        ctx(&a)
-    );
+/// The `.bed` goldens on disk, by file name.
+fn golden_files() -> BTreeSet<String> {
+    fs::read_dir(manifest_path("tests/cases/grow"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".bed"))
+        .collect()
 }
 
 #[test]
 fn compiled_beds_match_their_goldens() {
-    let bless = std::env::var_os("STLC_BLESS").is_some();
-    let mut checked = 0;
+    let mut checked = BTreeSet::new();
     for od in cases() {
         let stem = od.file_stem().unwrap().to_string_lossy().into_owned();
         for (strategy, tag) in [(GrowthOrder::Bfs, "bfs"), (GrowthOrder::Dfs, "dfs")] {
-            let golden = root().join(format!("tests/cases/grow/{stem}.{tag}.bed"));
+            let name = format!("{stem}.{tag}.bed");
             let (actual, _) = compile(&od, strategy);
-            if bless {
-                fs::write(&golden, &actual).unwrap();
-            }
-            let expected = fs::read_to_string(&golden)
-                .unwrap_or_else(|_| panic!("missing golden {}", golden.display()));
-            assert_same_text(&format!("{stem}.{tag}"), &expected, &actual);
-            checked += 1;
+            assert_golden(format!("tests/cases/grow/{name}"), &actual);
+            checked.insert(name);
         }
     }
-    // tiny + the five example outlines, two strategies each.
-    assert!(checked >= 12, "only {checked} goldens checked");
+    // tiny + the five example outlines, two strategies each; and no golden
+    // is left over from a case that is gone (it would never be checked).
+    assert_eq!(checked.len(), 12, "{checked:?}");
+    let orphans: Vec<String> = golden_files().difference(&checked).cloned().collect();
+    assert!(
+        orphans.is_empty(),
+        "goldens in tests/cases/grow that no case produces: {orphans:?}"
+    );
 }
 
 #[test]
 fn every_golden_reparses_and_rewrites_unchanged_and_draws_its_stems() {
-    if std::env::var_os("STLC_BLESS").is_some() {
+    if blessing() {
         return; // the goldens are being rewritten by the test above
     }
     for od in cases() {
         let stem = od.file_stem().unwrap().to_string_lossy().into_owned();
         for tag in ["bfs", "dfs"] {
-            let golden = root().join(format!("tests/cases/grow/{stem}.{tag}.bed"));
+            let golden = manifest_path(format!("tests/cases/grow/{stem}.{tag}.bed"));
             let text = fs::read_to_string(&golden).unwrap();
             let bed = stl::parse(&text, Format::Bed, &Limits::default())
                 .unwrap_or_else(|e| panic!("{}: {e}", golden.display()));
@@ -140,16 +122,8 @@ fn every_golden_reparses_and_rewrites_unchanged_and_draws_its_stems() {
 }
 
 #[test]
-fn compiling_twice_gives_identical_bytes() {
-    let od = root().join("examples/fig9.od");
-    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
-        assert_eq!(compile(&od, s).0, compile(&od, s).0);
-    }
-}
-
-#[test]
 fn figures_9_and_10_differ_by_strategy() {
-    let od = root().join("examples/fig9.od");
+    let od = manifest_path("examples/fig9.od");
     assert_ne!(
         compile(&od, GrowthOrder::Bfs).0,
         compile(&od, GrowthOrder::Dfs).0

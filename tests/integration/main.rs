@@ -10,3 +10,37 @@ mod newuser;
 mod render;
 mod robustness;
 mod stl;
+mod support;
+
+use std::collections::BTreeSet;
+
+/// Every `.rs` file beside this one is declared above: a file left out
+/// would never be compiled, and its tests would pass by not running.
+#[test]
+fn no_forgotten_test_files() {
+    let declared: BTreeSet<&str> = include_str!("main.rs")
+        .lines()
+        .filter_map(|line| line.strip_prefix("mod ")?.strip_suffix(';'))
+        .collect();
+    let dir = support::manifest_path("tests/integration");
+    let on_disk: BTreeSet<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.is_file() && path.extension().is_some_and(|e| e == "rs"))
+        .map(|path| path.file_stem().unwrap().to_string_lossy().into_owned())
+        .filter(|name| name != "main")
+        .collect();
+    let forgotten: Vec<&String> = on_disk
+        .iter()
+        .filter(|name| !declared.contains(name.as_str()))
+        .collect();
+    assert!(
+        forgotten.is_empty(),
+        "tests/integration has files main.rs does not declare as `mod`: {forgotten:?}"
+    );
+    // The list above was read, not empty by a parsing slip.
+    assert!(
+        declared.contains("support") && declared.len() >= 9,
+        "{declared:?}"
+    );
+}

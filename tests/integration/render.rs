@@ -3,10 +3,7 @@
 //! Drawings come from hand-written op strings run through the shared
 //! interpreter, so every expected pixel and coordinate here is worked out
 //! from the geometry, not read back from the renderer. References live in
-//! `tests/cases/render/`; `STLC_BLESS=1` rewrites them, and a mismatch
-//! leaves the live output in `tests/store/`.
-
-use std::path::PathBuf;
+//! `tests/cases/render/`, compared by [`crate::support`].
 
 use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind};
@@ -15,6 +12,8 @@ use stlc::progress::{NoProgress, Progress};
 use stlc::render::{self, DEFAULT_SIDE, Fit, ImageFormat, PngTurtle, RenderOptions, Style, Width};
 use stlc::turtle::{BBox, Fill, Interp, Op, Point, Segment, Turtle};
 use tiny_skia::Pixmap;
+
+use crate::support::{assert_golden, assert_golden_png};
 
 // ---------------------------------------------------------------------------
 // Helpers
@@ -109,86 +108,6 @@ fn is_dark(p: &Pixmap, x: u32, y: u32) -> bool {
     a > 200 && u32::from(r) + u32::from(g) + u32::from(b) < 3 * 100
 }
 
-fn manifest_path(rel: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel)
-}
-
-fn blessing() -> bool {
-    std::env::var_os("STLC_BLESS").is_some_and(|v| v == "1")
-}
-
-/// Compares `live` with `tests/cases/render/<name>.png`: same size, every
-/// channel within 1. `STLC_BLESS=1` rewrites the reference; a mismatch
-/// writes `tests/store/<name>.live.png` for a look.
-fn assert_png_matches(name: &str, live: &Pixmap) {
-    let reference = manifest_path(&format!("tests/cases/render/{name}.png"));
-    if blessing() {
-        live.save_png(&reference).unwrap();
-        return;
-    }
-    let problem = match Pixmap::load_png(&reference) {
-        Err(e) => Some(format!("cannot read {}: {e}", reference.display())),
-        Ok(r) if (r.width(), r.height()) != (live.width(), live.height()) => Some(format!(
-            "size {}x{}, reference {}x{}",
-            live.width(),
-            live.height(),
-            r.width(),
-            r.height()
-        )),
-        Ok(r) => {
-            let off = (0..r.height())
-                .flat_map(|y| (0..r.width()).map(move |x| (x, y)))
-                .filter(|&(x, y)| {
-                    let (a, b) = (rgba(&r, x, y), rgba(live, x, y));
-                    a.iter().zip(b).any(|(a, b)| a.abs_diff(b) > 1)
-                })
-                .count();
-            (off > 0).then(|| format!("{off} pixels differ by more than 1"))
-        }
-    };
-    if let Some(problem) = problem {
-        let store = manifest_path("tests/store");
-        std::fs::create_dir_all(&store).unwrap();
-        let live_path = store.join(format!("{name}.live.png"));
-        live.save_png(&live_path).unwrap();
-        panic!(
-            "{name}.png: {problem}; live output in {} (STLC_BLESS=1 to accept)",
-            live_path.display()
-        );
-    }
-}
-
-/// Compares `live` with the text golden `tests/cases/render/<name>`, the
-/// same way as [`assert_png_matches`].
-fn assert_text_matches(name: &str, live: &str) {
-    let golden = manifest_path(&format!("tests/cases/render/{name}"));
-    if blessing() {
-        std::fs::write(&golden, live).unwrap();
-        return;
-    }
-    let expected = std::fs::read_to_string(&golden)
-        .unwrap_or_else(|e| format!("(cannot read {}: {e})\n", golden.display()));
-    if expected != live {
-        let store = manifest_path("tests/store");
-        std::fs::create_dir_all(&store).unwrap();
-        let live_path = store.join(format!("{name}.live"));
-        std::fs::write(&live_path, live).unwrap();
-        let first = expected
-            .lines()
-            .zip(live.lines())
-            .position(|(a, b)| a != b)
-            .unwrap_or(expected.lines().count().min(live.lines().count()));
-        panic!(
-            "{name} differs from its golden at line {}:\n  golden: {:?}\n  live:   {:?}\n\
-             live output in {} (STLC_BLESS=1 to accept)",
-            first + 1,
-            expected.lines().nth(first),
-            live.lines().nth(first),
-            live_path.display()
-        );
-    }
-}
-
 /// The stroked polylines of an SVG written by stlc: each `<path
 /// fill="none" ...>`'s `d` as segments, in output pixels, with its width.
 fn svg_strokes(svg: &str) -> Vec<(f64, Vec<(Point, Point)>)> {
@@ -254,7 +173,7 @@ fn unit_square_svg_matches_its_golden() {
     );
     let svg = String::from_utf8(svg).unwrap();
     assert!(svg.contains(" d=\"M95.00 95.00 L95.00 5.00 L5.00 5.00 L5.00 95.00 L95.00 95.00\""));
-    assert_text_matches("square.svg", &svg);
+    assert_golden("tests/cases/render/square.svg", &svg);
 }
 
 #[test]
@@ -424,7 +343,7 @@ fn tree_png_matches_its_reference() {
         Some((120, 160)),
     )
     .unwrap();
-    assert_png_matches("tree", &decode(&png));
+    assert_golden_png("tests/cases/render/tree.png", &decode(&png));
 }
 
 #[test]
