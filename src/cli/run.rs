@@ -9,7 +9,7 @@ use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::grow::{GrowOptions, GrowthOrder};
 use stlc::limits::Limits;
-use stlc::pipeline::{self, Loaded, Look, Scene, SceneRequest};
+use stlc::pipeline::{self, Given, Loaded, Look, Scene, SceneRequest};
 use stlc::progress::Progress as _;
 use stlc::render::{ImageFormat, RenderOptions};
 use stlc::syntax::InputKind;
@@ -134,7 +134,7 @@ fn scene(
     source: &mut Source,
 ) -> Result<(Scene, Vec<Diagnostic>), Diagnostics> {
     let loaded = load(input, limits, source)?;
-    let warnings = ignored_flags(&loaded, grow, depth);
+    let warnings = pipeline::ignored_flags(&loaded, &given(grow, depth));
     let req = SceneRequest {
         grow: grow_options(grow.growth, grow, limits),
         derivation: strategy.into(),
@@ -147,37 +147,14 @@ fn scene(
     Ok((scene, warnings))
 }
 
-/// Warnings for flags that do nothing for this input: growth flags on an
-/// input that does not grow, `--depth` on one that has no depth. Scripts
-/// pass one set of flags to many files, so these are warnings, not errors
-/// (docs/cli.md states the rule).
-fn ignored_flags(loaded: &Loaded, g: &GrowArgs, depth: Option<u32>) -> Vec<Diagnostic> {
-    let mut w = Vec::new();
-    let mut ignored = |flag: &str, reason: &str| {
-        w.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
-            flag: flag.into(),
-            reason: reason.into(),
-        }));
-    };
-    if !matches!(loaded, Loaded::Od(_)) {
-        let why = "only an .od grows; this input's tree is already decided";
-        if g.growth.is_some() {
-            ignored("--growth", why);
-        }
-        if g.clearance.is_some() {
-            ignored("--clearance", why);
-        }
-        if g.max_stems.is_some() {
-            ignored("--max-stems", why);
-        }
+/// The growth and depth flags given explicitly.
+fn given(g: &GrowArgs, depth: Option<u32>) -> Given {
+    Given {
+        growth: g.growth.is_some(),
+        clearance: g.clearance.is_some(),
+        max_stems: g.max_stems.is_some(),
+        depth: depth.is_some(),
     }
-    if depth.is_some() && !matches!(loaded, Loaded::Lsys(_)) {
-        ignored(
-            "--depth",
-            "only an .lsys has a derivation depth; an .od or .bed draws its whole tree",
-        );
-    }
-    w
 }
 
 /// Refuses an output that is the input file, before any work.
@@ -205,7 +182,13 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         a.grow.max_stems,
     );
     let input = Input::parse(&a.input.input);
-    let format = image_format(a.format, a.output.as_deref())?;
+    let format = pipeline::image_format(
+        a.format.map(|f| match f {
+            FormatArg::Png => ImageFormat::Png,
+            FormatArg::Svg => ImageFormat::Svg,
+        }),
+        a.output.as_deref().filter(|o| *o != "-"),
+    )?;
     let ext = match format {
         ImageFormat::Png => "png",
         ImageFormat::Svg => "svg",
@@ -260,49 +243,6 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
     warnings.extend(scene.warnings);
     warnings.extend(rendered.map(|r| r.warnings).unwrap_or_default());
     Ok(warnings)
-}
-
-/// The image format: `-f` if given, else the output's extension (`.svg`;
-/// `.png`, no extension or standard output: PNG). An extension that is
-/// neither, or that contradicts `-f`, is a usage error.
-fn image_format(
-    format: Option<FormatArg>,
-    output: Option<&str>,
-) -> Result<ImageFormat, Diagnostics> {
-    let asked = format.map(|f| match f {
-        FormatArg::Png => ImageFormat::Png,
-        FormatArg::Svg => ImageFormat::Svg,
-    });
-    let path = output.filter(|o| *o != "-");
-    let ext = path
-        .and_then(|p| std::path::Path::new(p).extension())
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let named = match ext.as_deref() {
-        None => None,
-        Some("png") => Some(ImageFormat::Png),
-        Some("svg") => Some(ImageFormat::Svg),
-        Some(other) => {
-            return Err(Diagnostic::error(ErrorKind::UnknownOutputExtension {
-                path: path.unwrap_or_default().into(),
-                extension: other.into(),
-            })
-            .with_help("name the output .png or .svg")
-            .into());
-        }
-    };
-    match (asked, named) {
-        (Some(a), Some(n)) if a != n => Err(Diagnostic::error(ErrorKind::FormatMismatch {
-            format: match a {
-                ImageFormat::Png => "png".into(),
-                ImageFormat::Svg => "svg".into(),
-            },
-            path: path.unwrap_or_default().into(),
-        })
-        .with_help("leave out -f (the extension decides), or name the output to match")
-        .into()),
-        (Some(a), _) => Ok(a),
-        (None, n) => Ok(n.unwrap_or(ImageFormat::Png)),
-    }
 }
 
 /// A colour given on the command line.
@@ -379,7 +319,7 @@ fn check(a: &CheckArgs, source: &mut Source) -> Outcome {
         a.grow.max_stems,
     );
     let loaded = load(&a.input, &limits, source)?;
-    let mut warnings = ignored_flags(&loaded, &a.grow, None);
+    let mut warnings = pipeline::ignored_flags(&loaded, &given(&a.grow, None));
     let checked = pipeline::check(&loaded, &grow_options(a.grow.growth, &a.grow, &limits))?;
     print_out(&checked.summary)?;
     warnings.extend(checked.warnings);

@@ -21,22 +21,27 @@
 //! writes atomically), progress goes to a [`Progress`] sink, and every
 //! failure is a [`Diagnostics`] value.
 
-use std::fmt::Write as _;
+mod draw;
+mod summary;
+
+pub use draw::{
+    Given, Look, Rendered, TREE_BROWN, ignored_flags, image_format, layout_view, render, style,
+};
+pub use summary::{Checked, check, stats};
+
 use std::io::Write;
 use std::path::Path;
 
 use crate::bed::Bed;
-use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::grow::{GrowOptions, Grown};
 use crate::interpret::Derivation;
 use crate::limits::Limits;
-use crate::model::lsys::{Background, LSystem};
-use crate::model::{Description, Format, SeedItem};
+use crate::model::lsys::LSystem;
+use crate::model::{Description, Format};
 use crate::progress::{Phase, Progress};
-use crate::render::{RenderOptions, Style, Width};
 use crate::syntax::{self, InputKind};
-use crate::turtle::{BBox, Fill, Turtle};
+use crate::turtle::Turtle;
 
 /// A parsed input.
 #[derive(Debug, Clone, PartialEq)]
@@ -339,126 +344,6 @@ pub fn lsys_depth(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<
     Ok(d)
 }
 
-// -------------------------------------------------------------- render --
-
-/// How a picture looks: the options of [`render`] beyond size and format.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Look {
-    /// Stroke colour; `None`: the input's own (an L-system's `color`, a
-    /// description's `S=`), else [`TREE_BROWN`] for trees and black for
-    /// L-systems.
-    pub stroke: Option<Rgb>,
-    /// Canvas colour; `None`: the input's own (an L-system's
-    /// `background`, a description's `G=`), else white. `Some(None)` is
-    /// transparent.
-    pub background: Option<Option<Rgb>>,
-    /// Paint the layout's shapes under a tree (`--show-layout`).
-    pub show_layout: bool,
-}
-
-/// The default stroke of STL trees: a dark bark brown.
-pub const TREE_BROWN: Rgb = Rgb::new(0x4a, 0x2c, 0x12);
-
-/// The style a scene is drawn with: the input's own colours and widths,
-/// overridden by `look`.
-pub fn style(scene: &Scene, look: &Look) -> Style {
-    match &scene.what {
-        What::Lsys { sys, .. } => Style {
-            stroke: look.stroke.or(sys.color).unwrap_or(Rgb::BLACK),
-            background: look.background.unwrap_or(match sys.background {
-                Background::White => Some(Rgb::WHITE),
-                Background::None => None,
-                Background::Color(c) => Some(c),
-            }),
-            width: Width::Pixels(sys.width),
-        },
-        What::Tree { bed, .. } => {
-            let p = &bed.description().params;
-            Style {
-                stroke: look
-                    .stroke
-                    .or(p.stroke.as_ref().and_then(|c| c.rgb))
-                    .unwrap_or(TREE_BROWN),
-                background: look
-                    .background
-                    .unwrap_or(p.background.as_ref().map_or(Some(Rgb::WHITE), |c| c.rgb)),
-                width: Width::Canvas(p.width),
-            }
-        }
-    }
-}
-
-/// The canvas area a tree's layout defines, and its shapes as fills if
-/// `show`. The area is the shapes' bounds with a margin around them: half
-/// the widest stem (so a stem at the layout's edge is not cut by the
-/// image's edge) plus [`crate::render::MARGIN_FRACTION`] of the longest
-/// side, the margin a fitted picture gets. An L-system or a tree without a
-/// layout is fitted to its drawing instead.
-pub fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>) {
-    let Some(bed) = scene.bed() else {
-        return (None, Vec::new());
-    };
-    let desc = bed.description();
-    let Some(layout) = desc.layout.as_ref() else {
-        return (None, Vec::new());
-    };
-    let fills = if show {
-        crate::layout::fills(layout)
-    } else {
-        Vec::new()
-    };
-    let view = crate::layout::layout_bbox(layout).map(|b| {
-        let widest = desc.params.width.base.max(0.0);
-        let m = crate::render::MARGIN_FRACTION * b.width().max(b.height()) + widest / 2.0;
-        BBox {
-            min_x: b.min_x - m,
-            min_y: b.min_y - m,
-            max_x: b.max_x + m,
-            max_y: b.max_y + m,
-        }
-    });
-    (view, fills)
-}
-
-/// What [`render`] drew.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Rendered {
-    /// Segments drawn.
-    pub segments: u64,
-    /// Warnings (nothing drawn, ...).
-    pub warnings: Vec<Diagnostic>,
-}
-
-/// Draws `scene` as a PNG or SVG into `out`, with its style and layout
-/// view (see [`style`] and [`layout_view`]). A picture with no stem in it
-/// is written all the same, with a warning.
-pub fn render(
-    scene: &Scene,
-    look: &Look,
-    opts: &RenderOptions,
-    out: &mut dyn Write,
-    progress: &mut dyn Progress,
-) -> Result<Rendered, Diagnostics> {
-    let style = style(scene, look);
-    let (view, underlay) = layout_view(scene, look.show_layout);
-    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
-    let counted =
-        crate::render::render(&mut drawing, view, &underlay, &style, opts, out, progress)?;
-    // A tree's stems are known from its measure; an L-system's were counted
-    // by the bounding pass (it has no layout view, so one always runs).
-    let segments = match &scene.what {
-        What::Tree { bed, .. } => bed.size().stems,
-        What::Lsys { .. } => counted.unwrap_or(0),
-    };
-    let mut warnings = Vec::new();
-    if segments == 0 {
-        warnings.push(Diagnostic::warning(ErrorKind::NothingDrawn).with_help(
-            "check the axiom or seed and the depth: only `F` draws (and in an .od, a rule that grows)",
-        ));
-    }
-    Ok(Rendered { segments, warnings })
-}
-
 // -------------------------------------------------------------- expand --
 
 /// Writes the scene's derived word to `out`: for an L-system its symbols,
@@ -481,161 +366,4 @@ pub fn expand(
             crate::interpret::bed::expand(bed, scene.derivation, &scene.limits, out, progress)
         }
     }
-}
-
-// --------------------------------------------------------------- stats --
-
-/// Exact word lengths and counts of an L-system (`stlc stats`), as text or
-/// JSON. Any other input is refused.
-pub fn stats(
-    loaded: &Loaded,
-    depth: Option<u32>,
-    json: bool,
-    limits: &Limits,
-) -> Result<String, Diagnostics> {
-    let Loaded::Lsys(sys) = loaded else {
-        return Err(wrong_kind(Command::Stats, loaded.kind()));
-    };
-    let depth = lsys_depth(sys, depth, limits)?;
-    let stats = crate::interpret::stats::stats(sys, depth, limits)?;
-    Ok(if json {
-        stats.to_json()
-    } else {
-        stats.to_text()
-    })
-}
-
-// --------------------------------------------------------------- check --
-
-/// What [`check`] found.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Checked {
-    /// The summary, lines of text.
-    pub summary: String,
-    /// Warnings (growth cut short, inert symbols, ...).
-    pub warnings: Vec<Diagnostic>,
-}
-
-/// Answers "would compile and render succeed?" without drawing, and
-/// summarises the input (`stlc check`): its rules, seed and layout; an
-/// L-system with `generations` is checked against the limits at that depth
-/// (its word's length is computed, not derived); an OD is
-/// grown with `opts` (every check compile makes: bounded growth, the root
-/// inside the layout, a layout with an area, the limits) and its stems
-/// counted; a BED's stems come from its measure.
-pub fn check(loaded: &Loaded, opts: &GrowOptions) -> Result<Checked, Diagnostics> {
-    let limits = &opts.limits;
-    Ok(match loaded {
-        Loaded::Lsys(sys) => {
-            // With its own depth, would it derive within the limits?
-            if let Some(depth) = sys.generations {
-                crate::interpret::lsys::check(sys, depth, Derivation::Dfs, limits)?;
-            }
-            Checked {
-                summary: lsys_summary(sys),
-                warnings: inert_turns(sys),
-            }
-        }
-        Loaded::Od(desc) => {
-            let grown = grow(desc, opts, &mut crate::progress::NoProgress)?;
-            let mut summary = stl_summary(desc, None, limits)?;
-            let order = match opts.growth {
-                crate::grow::GrowthOrder::Bfs => "bfs",
-                crate::grow::GrowthOrder::Dfs => "dfs",
-            };
-            let _ = writeln!(summary, "  grows       {} stems ({order})", grown.stems);
-            Checked {
-                summary,
-                warnings: grown.warnings,
-            }
-        }
-        Loaded::Bed(bed) => Checked {
-            summary: stl_summary(bed.description(), Some(bed), limits)?,
-            warnings: Vec::new(),
-        },
-    })
-}
-
-fn lsys_summary(sys: &LSystem) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "classic L-system: ok");
-    let _ = writeln!(s, "  axiom       {}", sys.axiom.iter().collect::<String>());
-    for (k, p) in &sys.rules {
-        let _ = writeln!(
-            s,
-            "  rule        {k} -> {}",
-            p.successor.iter().collect::<String>()
-        );
-    }
-    let _ = writeln!(s, "  angle       {}", sys.angle);
-    match sys.generations {
-        Some(g) => {
-            let _ = writeln!(s, "  generations {g}");
-        }
-        None => {
-            let _ = writeln!(s, "  generations (none: pass --depth)");
-        }
-    }
-    s
-}
-
-fn stl_summary(
-    desc: &Description,
-    bed: Option<&Bed>,
-    limits: &Limits,
-) -> Result<String, Diagnostics> {
-    use geo::Area;
-    let mut s = String::new();
-    let what = match desc.format {
-        Format::Od => "Outline Description",
-        Format::Bed => "Branch-Expansion Description",
-    };
-    let _ = writeln!(s, "{what} `{}`: ok", desc.name);
-    let _ = writeln!(s, "  root        ({}, {})", desc.root.0, desc.root.1);
-    for r in &desc.rules {
-        let n = r.branch_count();
-        let _ = writeln!(
-            s,
-            "  rule        {} ({} branch{})",
-            r.name,
-            n,
-            if n == 1 { "" } else { "es" }
-        );
-    }
-    let terms = desc.effective_seed().map_or(0, |seed| {
-        seed.items
-            .iter()
-            .filter(|i| matches!(i, SeedItem::Term(_) | SeedItem::Repeat(_)))
-            .count()
-    });
-    let written = if desc.seed.is_some() {
-        ""
-    } else {
-        " (default: F and the first rule)"
-    };
-    let _ = writeln!(s, "  seed terms  {terms}{written}");
-    if let Some(bed) = bed {
-        let _ = writeln!(s, "  stems       {}", bed.size().stems);
-    }
-    match &desc.layout {
-        Some(l) => {
-            let area = match crate::grow::region::Region::from_layout(l, limits.max_layout_vertices)
-            {
-                Ok(r) => format!("{:.1} square units", r.area().unsigned_area()),
-                Err(e) if e.iter().any(|d| matches!(d.kind, ErrorKind::Limit { .. })) => {
-                    return Err(e);
-                }
-                Err(_) => "empty".to_string(),
-            };
-            let _ = writeln!(
-                s,
-                "  layout      {} shape(s), growth area {area}",
-                l.shapes.len()
-            );
-        }
-        None => {
-            let _ = writeln!(s, "  layout      none");
-        }
-    }
-    Ok(s)
 }

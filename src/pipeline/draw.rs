@@ -1,0 +1,218 @@
+//! Drawing a scene: its style (the input's own colours and widths, or the
+//! front end's), its layout view, PNG or SVG; and the rules front ends
+//! share about image formats and options that do not apply.
+
+use std::io::Write;
+use std::path::Path;
+
+use super::{Loaded, Scene, What};
+use crate::color::Rgb;
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::model::lsys::Background;
+use crate::progress::Progress;
+use crate::render::{ImageFormat, RenderOptions, Style, Width};
+use crate::turtle::{BBox, Fill, Turtle};
+
+/// How a picture looks: the options of [`render`] beyond size and format.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Look {
+    /// Stroke colour; `None`: the input's own (an L-system's `color`, a
+    /// description's `S=`), else [`TREE_BROWN`] for trees and black for
+    /// L-systems.
+    pub stroke: Option<Rgb>,
+    /// Canvas colour; `None`: the input's own (an L-system's
+    /// `background`, a description's `G=`), else white. `Some(None)` is
+    /// transparent.
+    pub background: Option<Option<Rgb>>,
+    /// Paint the layout's shapes under a tree (`--show-layout`).
+    pub show_layout: bool,
+}
+
+/// The default stroke of STL trees: a dark bark brown.
+pub const TREE_BROWN: Rgb = Rgb::new(0x4a, 0x2c, 0x12);
+
+/// The style a scene is drawn with: the input's own colours and widths,
+/// overridden by `look`.
+pub fn style(scene: &Scene, look: &Look) -> Style {
+    match &scene.what {
+        What::Lsys { sys, .. } => Style {
+            stroke: look.stroke.or(sys.color).unwrap_or(Rgb::BLACK),
+            background: look.background.unwrap_or(match sys.background {
+                Background::White => Some(Rgb::WHITE),
+                Background::None => None,
+                Background::Color(c) => Some(c),
+            }),
+            width: Width::Pixels(sys.width),
+        },
+        What::Tree { bed, .. } => {
+            let p = &bed.description().params;
+            Style {
+                stroke: look
+                    .stroke
+                    .or(p.stroke.as_ref().and_then(|c| c.rgb))
+                    .unwrap_or(TREE_BROWN),
+                background: look
+                    .background
+                    .unwrap_or(p.background.as_ref().map_or(Some(Rgb::WHITE), |c| c.rgb)),
+                width: Width::Canvas(p.width),
+            }
+        }
+    }
+}
+
+/// The canvas area a tree's layout defines, and its shapes as fills if
+/// `show`. The area is the shapes' bounds with a margin around them: half
+/// the widest stem (so a stem at the layout's edge is not cut by the
+/// image's edge) plus [`crate::render::MARGIN_FRACTION`] of the longest
+/// side, the margin a fitted picture gets. An L-system or a tree without a
+/// layout is fitted to its drawing instead.
+pub fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>) {
+    let Some(bed) = scene.bed() else {
+        return (None, Vec::new());
+    };
+    let desc = bed.description();
+    let Some(layout) = desc.layout.as_ref() else {
+        return (None, Vec::new());
+    };
+    let fills = if show {
+        crate::layout::fills(layout)
+    } else {
+        Vec::new()
+    };
+    let view = crate::layout::layout_bbox(layout).map(|b| {
+        let widest = desc.params.width.base.max(0.0);
+        let m = crate::render::MARGIN_FRACTION * b.width().max(b.height()) + widest / 2.0;
+        BBox {
+            min_x: b.min_x - m,
+            min_y: b.min_y - m,
+            max_x: b.max_x + m,
+            max_y: b.max_y + m,
+        }
+    });
+    (view, fills)
+}
+
+/// What [`render`] drew.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rendered {
+    /// Segments drawn.
+    pub segments: u64,
+    /// Warnings (nothing drawn, ...).
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Draws `scene` as a PNG or SVG into `out`, with its style and layout
+/// view (see [`style`] and [`layout_view`]). A picture with no stem in it
+/// is written all the same, with a warning.
+pub fn render(
+    scene: &Scene,
+    look: &Look,
+    opts: &RenderOptions,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<Rendered, Diagnostics> {
+    let style = style(scene, look);
+    let (view, underlay) = layout_view(scene, look.show_layout);
+    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
+    let counted =
+        crate::render::render(&mut drawing, view, &underlay, &style, opts, out, progress)?;
+    // A tree's stems are known from its measure; an L-system's were counted
+    // by the bounding pass (it has no layout view, so one always runs).
+    let segments = match &scene.what {
+        What::Tree { bed, .. } => bed.size().stems,
+        What::Lsys { .. } => counted.unwrap_or(0),
+    };
+    let mut warnings = Vec::new();
+    if segments == 0 {
+        warnings.push(Diagnostic::warning(ErrorKind::NothingDrawn).with_help(
+            "check the axiom or seed and the depth: only `F` draws (and in an .od, a rule that grows)",
+        ));
+    }
+    Ok(Rendered { segments, warnings })
+}
+
+/// The image format: `asked` (`-f`) if given, else the output name's
+/// extension (`.svg`; `.png` or no extension: PNG). An extension that is
+/// neither, or that contradicts `asked`, is a usage error.
+pub fn image_format(
+    asked: Option<ImageFormat>,
+    output: Option<&str>,
+) -> Result<ImageFormat, Diagnostics> {
+    let name = |f: ImageFormat| match f {
+        ImageFormat::Png => "png",
+        ImageFormat::Svg => "svg",
+    };
+    let ext = output
+        .and_then(|p| Path::new(p).extension())
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let named = match ext.as_deref() {
+        None => None,
+        Some("png") => Some(ImageFormat::Png),
+        Some("svg") => Some(ImageFormat::Svg),
+        Some(other) => {
+            return Err(Diagnostic::error(ErrorKind::UnknownOutputExtension {
+                path: output.unwrap_or_default().into(),
+                extension: other.into(),
+            })
+            .with_help("name the output .png or .svg")
+            .into());
+        }
+    };
+    match (asked, named) {
+        (Some(a), Some(n)) if a != n => Err(Diagnostic::error(ErrorKind::FormatMismatch {
+            format: name(a).into(),
+            path: output.unwrap_or_default().into(),
+        })
+        .with_help("leave out -f (the extension decides), or name the output to match")
+        .into()),
+        (Some(a), _) => Ok(a),
+        (None, n) => Ok(n.unwrap_or(ImageFormat::Png)),
+    }
+}
+
+/// Which options a front end was given explicitly (not left at their
+/// defaults), for [`ignored_flags`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Given {
+    /// A growth order (`--growth`).
+    pub growth: bool,
+    /// A clearance (`--clearance`).
+    pub clearance: bool,
+    /// A stem limit (`--max-stems`).
+    pub max_stems: bool,
+    /// A derivation depth (`--depth`).
+    pub depth: bool,
+}
+
+/// Warnings for options that do nothing for this input: growth options on
+/// an input that does not grow, a depth on one that has none. Scripts pass
+/// one set of options to many files, so these are warnings, not errors
+/// (docs/cli.md states the rule).
+pub fn ignored_flags(loaded: &Loaded, given: &Given) -> Vec<Diagnostic> {
+    let mut w = Vec::new();
+    let mut ignored = |flag: &str, reason: &str| {
+        w.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
+            flag: flag.into(),
+            reason: reason.into(),
+        }));
+    };
+    if !matches!(loaded, Loaded::Od(_)) {
+        let why = "only an .od grows; this input's tree is already decided";
+        for (on, flag) in [
+            (given.growth, "--growth"),
+            (given.clearance, "--clearance"),
+            (given.max_stems, "--max-stems"),
+        ] {
+            if on {
+                ignored(flag, why);
+            }
+        }
+    }
+    if given.depth && !matches!(loaded, Loaded::Lsys(_)) {
+        ignored(
+            "--depth",
+            "only an .lsys has a derivation depth; an .od or .bed draws its whole tree",
+        );
+    }
+    w
+}

@@ -1,0 +1,168 @@
+//! Summaries without drawing: `stats` (exact counts of an L-system) and
+//! `check` (would compile and render succeed?).
+
+use std::fmt::Write as _;
+
+use super::{Command, Loaded, grow, inert_turns, lsys_depth, wrong_kind};
+use crate::bed::Bed;
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::grow::GrowOptions;
+use crate::interpret::Derivation;
+use crate::limits::Limits;
+use crate::model::lsys::LSystem;
+use crate::model::{Description, Format, SeedItem};
+
+/// Exact word lengths and counts of an L-system (`stlc stats`), as text or
+/// JSON. Any other input is refused.
+pub fn stats(
+    loaded: &Loaded,
+    depth: Option<u32>,
+    json: bool,
+    limits: &Limits,
+) -> Result<String, Diagnostics> {
+    let Loaded::Lsys(sys) = loaded else {
+        return Err(wrong_kind(Command::Stats, loaded.kind()));
+    };
+    let depth = lsys_depth(sys, depth, limits)?;
+    let stats = crate::interpret::stats::stats(sys, depth, limits)?;
+    Ok(if json {
+        stats.to_json()
+    } else {
+        stats.to_text()
+    })
+}
+
+// --------------------------------------------------------------- check --
+
+/// What [`check`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checked {
+    /// The summary, lines of text.
+    pub summary: String,
+    /// Warnings (growth cut short, inert symbols, ...).
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Answers "would compile and render succeed?" without drawing, and
+/// summarises the input (`stlc check`): its rules, seed and layout; an
+/// L-system with `generations` is checked against the limits at that depth
+/// (its word's length is computed, not derived); an OD is
+/// grown with `opts` (every check compile makes: bounded growth, the root
+/// inside the layout, a layout with an area, the limits) and its stems
+/// counted; a BED's stems come from its measure.
+pub fn check(loaded: &Loaded, opts: &GrowOptions) -> Result<Checked, Diagnostics> {
+    let limits = &opts.limits;
+    Ok(match loaded {
+        Loaded::Lsys(sys) => {
+            // With its own depth, would it derive within the limits?
+            if let Some(depth) = sys.generations {
+                crate::interpret::lsys::check(sys, depth, Derivation::Dfs, limits)?;
+            }
+            Checked {
+                summary: lsys_summary(sys),
+                warnings: inert_turns(sys),
+            }
+        }
+        Loaded::Od(desc) => {
+            let grown = grow(desc, opts, &mut crate::progress::NoProgress)?;
+            let mut summary = stl_summary(desc, None, limits)?;
+            let order = match opts.growth {
+                crate::grow::GrowthOrder::Bfs => "bfs",
+                crate::grow::GrowthOrder::Dfs => "dfs",
+            };
+            let _ = writeln!(summary, "  grows       {} stems ({order})", grown.stems);
+            Checked {
+                summary,
+                warnings: grown.warnings,
+            }
+        }
+        Loaded::Bed(bed) => Checked {
+            summary: stl_summary(bed.description(), Some(bed), limits)?,
+            warnings: Vec::new(),
+        },
+    })
+}
+
+fn lsys_summary(sys: &LSystem) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "classic L-system: ok");
+    let _ = writeln!(s, "  axiom       {}", sys.axiom.iter().collect::<String>());
+    for (k, p) in &sys.rules {
+        let _ = writeln!(
+            s,
+            "  rule        {k} -> {}",
+            p.successor.iter().collect::<String>()
+        );
+    }
+    let _ = writeln!(s, "  angle       {}", sys.angle);
+    match sys.generations {
+        Some(g) => {
+            let _ = writeln!(s, "  generations {g}");
+        }
+        None => {
+            let _ = writeln!(s, "  generations (none: pass --depth)");
+        }
+    }
+    s
+}
+
+fn stl_summary(
+    desc: &Description,
+    bed: Option<&Bed>,
+    limits: &Limits,
+) -> Result<String, Diagnostics> {
+    use geo::Area;
+    let mut s = String::new();
+    let what = match desc.format {
+        Format::Od => "Outline Description",
+        Format::Bed => "Branch-Expansion Description",
+    };
+    let _ = writeln!(s, "{what} `{}`: ok", desc.name);
+    let _ = writeln!(s, "  root        ({}, {})", desc.root.0, desc.root.1);
+    for r in &desc.rules {
+        let n = r.branch_count();
+        let _ = writeln!(
+            s,
+            "  rule        {} ({} branch{})",
+            r.name,
+            n,
+            if n == 1 { "" } else { "es" }
+        );
+    }
+    let terms = desc.effective_seed().map_or(0, |seed| {
+        seed.items
+            .iter()
+            .filter(|i| matches!(i, SeedItem::Term(_) | SeedItem::Repeat(_)))
+            .count()
+    });
+    let written = if desc.seed.is_some() {
+        ""
+    } else {
+        " (default: F and the first rule)"
+    };
+    let _ = writeln!(s, "  seed terms  {terms}{written}");
+    if let Some(bed) = bed {
+        let _ = writeln!(s, "  stems       {}", bed.size().stems);
+    }
+    match &desc.layout {
+        Some(l) => {
+            let area = match crate::grow::region::Region::from_layout(l, limits.max_layout_vertices)
+            {
+                Ok(r) => format!("{:.1} square units", r.area().unsigned_area()),
+                Err(e) if e.iter().any(|d| matches!(d.kind, ErrorKind::Limit { .. })) => {
+                    return Err(e);
+                }
+                Err(_) => "empty".to_string(),
+            };
+            let _ = writeln!(
+                s,
+                "  layout      {} shape(s), growth area {area}",
+                l.shapes.len()
+            );
+        }
+        None => {
+            let _ = writeln!(s, "  layout      none");
+        }
+    }
+    Ok(s)
+}
