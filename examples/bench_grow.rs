@@ -9,7 +9,7 @@
 //! when built with `--features spade-index`: the Delaunay index, an
 //! experiment kept for this measurement), and
 //! the number of stems to grow (`--max-stems`; growth stops there with a
-//! warning), optionally the side of the square layout (default 4000). The tree: `Seed = FR1`, `R1 = [-F][F][+F]`, `L=1`, `A=30`,
+//! warning), optionally the side of the square layout (default 4000) and the stroke width B (default 0.1). The tree: `Seed = FR1`, `R1 = [-F][F][+F]`, `L=1`, `B=0.1` (thin: stems keep their distance as drawn), `A=30`,
 //! default clearance (0.1), in a 4000 x 4000 rectangle with the root at the
 //! middle of the bottom edge: far more room than 10^6 stems take, so every
 //! run stops at the limit and the number of stems is exactly the one asked
@@ -43,8 +43,11 @@ fn main() {
     };
     let n: u64 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(100_000);
     let side: f64 = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(4000.0);
+    // The stroke width: stems keep the clearance between their drawn edges,
+    // so a wider stroke grows a sparser tree.
+    let width: f64 = args.get(5).and_then(|s| s.parse().ok()).unwrap_or(0.1);
     let text = format!(
-        "Bench\n({}, {})\nL=1(0) B=1(0)\nRULE\nR1: [-F][F][+F]\nLAYOUT\n(clGreen) Rectangle (0,0), {side}, {side}\nENDLAYOUT\n",
+        "Bench\n({}, {})\nL=1(0) B={width}(0)\nRULE\nR1: [-F][F][+F]\nLAYOUT\n(clGreen) Rectangle (0,0), {side}, {side}\nENDLAYOUT\n",
         side / 2.0,
         side - 1.0
     );

@@ -172,24 +172,14 @@ fn dedup_closing(ring: &mut Vec<Point>) {
 mod tests {
     use super::*;
     use crate::color::Rgb;
-    use crate::model::{LayoutShape, Loc, Spelling};
+    use crate::model::LayoutShape;
 
     fn shape(color: Rgb, shape: Shape) -> LayoutShape {
-        LayoutShape {
-            color,
-            color_text: String::new(),
-            shape,
-            spelling: Spelling::StartSize,
-            angled: false,
-            loc: Loc::default(),
-        }
+        LayoutShape::new(color, shape)
     }
 
     fn layout(shapes: Vec<LayoutShape>) -> Layout {
-        Layout {
-            shapes,
-            loc: Loc::default(),
-        }
+        Layout::new(shapes)
     }
 
     const GREEN: Rgb = Rgb::new(0, 128, 0);

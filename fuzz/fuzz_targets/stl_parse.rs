@@ -1,17 +1,18 @@
 //! Bytes -> `precheck` -> the `.od`/`.bed` parser, both formats. For a BED
-//! that parses: `bed::validate`, the canonical writer and its round trip
+//! that parses: `bed::validate` and `Bed::new` (they agree, and the measured
+//! stems are the segments drawn), the canonical writer and its round trip
 //! (`parse(write(x)) == x` when every number of `x` is written exactly;
-//! `write` a fixed point always), and drawing it with both strategies into
+//! `write` a fixed point always), and drawing it with both derivations into
 //! bounding turtles under small limits (they must agree bit for bit).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use stlc::bed::{validate, write::write};
+use stlc::bed::{Bed, validate, write::write};
 use stlc::diag::{Diagnostics, ErrorKind};
-use stlc::interpret::{Strategy, bed};
+use stlc::interpret::{Derivation, bed};
 use stlc::limits::Limits;
-use stlc::progress::NoProgress;
 use stlc::model::{Description, Format, Shape};
+use stlc::progress::NoProgress;
 use stlc::syntax::{precheck, stl};
 use stlc::turtle::{Bounds, Counter};
 
@@ -32,10 +33,10 @@ fn numbers(d: &Description) -> Vec<f64> {
     let mut v = vec![
         d.root.0,
         d.root.1,
-        p.length,
-        p.length_dec,
-        p.width,
-        p.width_dec,
+        p.length.base,
+        p.length.decrement,
+        p.width.base,
+        p.width.decrement,
     ];
     v.extend(p.angle);
     v.extend(p.clearance);
@@ -106,29 +107,52 @@ fuzz_target!(|data: &[u8]| {
     };
     roundtrip(&x, Format::Bed);
     let valid = validate(&x, &LIMITS);
-    let mut count = Counter::default();
-    let rc = bed::draw(&x, Strategy::Dfs, &LIMITS, &mut count, &mut NoProgress);
+    let bed = Bed::new(x, &LIMITS);
     assert_eq!(
-        valid.is_ok(),
-        rc.is_ok(),
-        "validate and draw disagree: {valid:?} {rc:?}"
+        valid,
+        bed.as_ref().map(Bed::size).map_err(Clone::clone),
+        "validate and Bed::new disagree"
     );
-    if let Err(e) = &valid {
-        // The parser resolved names and slot counts: what is left are
-        // orders, counts and sizes.
-        for d in e.iter() {
-            assert!(
-                matches!(d.kind, ErrorKind::Limit { .. } | ErrorKind::Stl(_)),
-                "unexpected validation error of a parsed BED: {d}"
-            );
+    let bed = match bed {
+        Ok(bed) => bed,
+        Err(e) => {
+            // The parser resolved names and slot counts: what is left are
+            // orders and counts and sizes against the limits.
+            for d in e.iter() {
+                assert!(
+                    matches!(
+                        d.kind,
+                        ErrorKind::Limit { .. } | ErrorKind::OrderTooDeep { .. }
+                    ),
+                    "unexpected validation error of a parsed BED: {d}"
+                );
+            }
+            return;
         }
-        return;
-    }
-    let mut dfs = Bounds::default();
-    bed::draw(&x, Strategy::Dfs, &LIMITS, &mut dfs, &mut NoProgress).expect("validated");
-    let mut bfs = Bounds::default();
-    match bed::draw(&x, Strategy::Bfs, &LIMITS, &mut bfs, &mut NoProgress) {
-        Ok(()) => {
+    };
+    let mut count = Counter::default();
+    bed::draw(&bed, Derivation::Dfs, &LIMITS, &mut count, &mut NoProgress).expect("validated");
+    assert_eq!(
+        count.0,
+        bed.size().stems,
+        "the measured stems and the drawn segments differ"
+    );
+    let dfs = bed::draw_into(
+        &bed,
+        Derivation::Dfs,
+        &LIMITS,
+        Bounds::default(),
+        &mut NoProgress,
+    )
+    .expect("validated");
+    match bed::draw_into(
+        &bed,
+        Derivation::Bfs,
+        &LIMITS,
+        Bounds::default(),
+        &mut NoProgress,
+    ) {
+        Ok(bfs) => {
             assert_eq!(
                 dfs.count, bfs.count,
                 "dfs and bfs draw different segment counts"

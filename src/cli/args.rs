@@ -224,6 +224,31 @@ pub struct LayoutLimitArgs {
     pub max_layout_vertices: usize,
 }
 
+/// The limits of commands that derive, grow and draw (`render`, `expand`).
+#[derive(Debug, Args, Clone)]
+pub struct DeriveLimitArgs {
+    #[command(flatten)]
+    pub symbols: SymbolLimitArgs,
+
+    #[command(flatten)]
+    pub word: WordLimitArgs,
+
+    #[command(flatten)]
+    pub layout: LayoutLimitArgs,
+}
+
+impl DeriveLimitArgs {
+    /// All the limits, with `base` and the stem limit.
+    pub fn limits(&self, base: &LimitArgs, stems: Option<u64>) -> Limits {
+        base.limits(
+            Some(&self.symbols),
+            Some(&self.word),
+            Some(&self.layout),
+            stems,
+        )
+    }
+}
+
 impl LimitArgs {
     /// The limits these flags set, with the others from the groups a
     /// command takes (defaults where it takes none).
@@ -319,13 +344,7 @@ pub struct RenderArgs {
     pub limits: LimitArgs,
 
     #[command(flatten)]
-    pub symbol_limits: SymbolLimitArgs,
-
-    #[command(flatten)]
-    pub word_limits: WordLimitArgs,
-
-    #[command(flatten)]
-    pub layout_limits: LayoutLimitArgs,
+    pub derive_limits: DeriveLimitArgs,
 }
 
 /// `--format`.
@@ -396,13 +415,7 @@ pub struct ExpandArgs {
     pub limits: LimitArgs,
 
     #[command(flatten)]
-    pub symbol_limits: SymbolLimitArgs,
-
-    #[command(flatten)]
-    pub word_limits: WordLimitArgs,
-
-    #[command(flatten)]
-    pub layout_limits: LayoutLimitArgs,
+    pub derive_limits: DeriveLimitArgs,
 }
 
 /// `stlc stats`.

@@ -175,12 +175,7 @@ fn not_the_input(input: &Input, output: &Output) -> Result<(), Diagnostics> {
 }
 
 fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
-    let limits = a.limits.limits(
-        Some(&a.symbol_limits),
-        Some(&a.word_limits),
-        Some(&a.layout_limits),
-        a.grow.max_stems,
-    );
+    let limits = a.derive_limits.limits(&a.limits, a.grow.max_stems);
     let input = Input::parse(&a.input.input);
     let format = pipeline::image_format(
         a.format.map(|f| match f {
@@ -285,12 +280,7 @@ fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
 }
 
 fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
-    let limits = a.limits.limits(
-        Some(&a.symbol_limits),
-        Some(&a.word_limits),
-        Some(&a.layout_limits),
-        a.grow.max_stems,
-    );
+    let limits = a.derive_limits.limits(&a.limits, a.grow.max_stems);
     let input = Input::parse(&a.input.input);
     let output = Output::parse(&a.output);
     not_the_input(&input, &output)?;

@@ -238,25 +238,15 @@ fn polygon_of(ring: &[Point]) -> Polygon<f64> {
 mod tests {
     use super::*;
     use crate::color::Rgb;
-    use crate::model::{LayoutShape, Loc, Shape, Spelling};
+    use crate::model::{LayoutShape, Shape};
     use geo::Area;
 
     fn shape(color: Rgb, shape: Shape) -> LayoutShape {
-        LayoutShape {
-            color,
-            color_text: String::new(),
-            shape,
-            spelling: Spelling::StartSize,
-            angled: false,
-            loc: Loc::default(),
-        }
+        LayoutShape::new(color, shape)
     }
 
     fn layout(shapes: Vec<LayoutShape>) -> Layout {
-        Layout {
-            shapes,
-            loc: Loc::default(),
-        }
+        Layout::new(shapes)
     }
 
     const GREEN: Rgb = Rgb::new(0, 128, 0);

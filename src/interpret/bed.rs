@@ -398,18 +398,11 @@ mod tests {
     use crate::progress::NoProgress;
 
     fn run(text: &str) -> DrawRun {
-        DrawRun {
-            text: text.into(),
-            loc: Loc::default(),
-        }
+        DrawRun::new(text)
     }
 
     fn fixed(count: u32, word: &str) -> Fixed {
-        Fixed {
-            count,
-            word: word.into(),
-            loc: Loc::default(),
-        }
+        Fixed::new(count, word)
     }
 
     /// `T: F[I n F-F][+F[I n F+F]]` with the seed `[I n F+F] T{T{}} [I 2 T]`,

@@ -30,6 +30,31 @@ pub struct LayoutShape {
     pub loc: Loc,
 }
 
+impl LayoutShape {
+    /// A shape of `color`, spelled with a start point and sizes, at no
+    /// place in any text (for shapes made by a program, not read).
+    pub fn new(color: Rgb, shape: Shape) -> Self {
+        LayoutShape {
+            color,
+            color_text: String::new(),
+            shape,
+            spelling: Spelling::StartSize,
+            angled: false,
+            loc: Loc::default(),
+        }
+    }
+}
+
+impl Layout {
+    /// A layout of `shapes`, at no place in any text.
+    pub fn new(shapes: Vec<LayoutShape>) -> Self {
+        Layout {
+            shapes,
+            loc: Loc::default(),
+        }
+    }
+}
+
 /// The two ways the paper writes shape arguments.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Spelling {

@@ -245,6 +245,27 @@ pub enum SeedItem {
     Repeat(Repeat),
 }
 
+impl DrawRun {
+    /// Drawing components at no place in any text (made by a program).
+    pub fn new(text: &str) -> Self {
+        DrawRun {
+            text: text.into(),
+            loc: Loc::default(),
+        }
+    }
+}
+
+impl Fixed {
+    /// `[I count word]` at no place in any text (made by a program).
+    pub fn new(count: u32, word: &str) -> Self {
+        Fixed {
+            count,
+            word: word.into(),
+            loc: Loc::default(),
+        }
+    }
+}
+
 impl Description {
     /// The rule a [`RuleId`] names.
     pub fn rule(&self, id: RuleId) -> &RuleDef {

@@ -200,18 +200,11 @@ mod tests {
     use crate::model::{Loc, RuleId, RuleRef};
 
     fn run(text: &str) -> DrawRun {
-        DrawRun {
-            text: text.into(),
-            loc: Loc::default(),
-        }
+        DrawRun::new(text)
     }
 
     fn fixed(count: u32, word: &str) -> Fixed {
-        Fixed {
-            count,
-            word: word.into(),
-            loc: Loc::default(),
-        }
+        Fixed::new(count, word)
     }
 
     fn expand(count: u32, word: &str) -> String {

@@ -473,14 +473,7 @@ impl Checker {
             }
             None => "write `#rrggbb` or a Delphi colour name such as `clGreen`".into(),
         };
-        self.diags.push(
-            Diagnostic::error(ErrorKind::UnknownColour {
-                text: text.to_string(),
-            })
-            .with_span(span)
-            .with_label("not a colour")
-            .with_help(help),
-        );
+        self.diags.push(super::unknown_colour(text, span, help));
         None
     }
 }

@@ -103,6 +103,16 @@ pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnos
     Ok(text)
 }
 
+/// The error for a colour name no colour has, at `span`, with `help`.
+pub(crate) fn unknown_colour(text: &str, span: crate::diag::Span, help: String) -> Diagnostic {
+    Diagnostic::error(ErrorKind::UnknownColour {
+        text: text.to_string(),
+    })
+    .with_span(span)
+    .with_label("not a colour")
+    .with_help(help)
+}
+
 /// Whether the `#` at byte `i` starts a `#rgb`/`#rrggbb` colour.
 pub fn is_colour_at(text: &str, i: usize) -> bool {
     let rest = &text[i + 1..];

@@ -78,14 +78,7 @@ impl Builder<'_> {
             Some(s) => format!("did you mean `{s}`? Colours are Delphi names or `#rrggbb`"),
             None => "use a Delphi colour name (`clGreen`, `clWhite`, ...) or `#rrggbb`".to_string(),
         };
-        self.err(
-            Diagnostic::error(ErrorKind::UnknownColour {
-                text: text.to_string(),
-            })
-            .with_span(span)
-            .with_label("not a colour")
-            .with_help(help),
-        );
+        self.err(crate::syntax::unknown_colour(text, span, help));
         None
     }
 

@@ -199,15 +199,10 @@ impl Builder<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::diag::{Diagnostics, ErrorKind};
-    use crate::limits::Limits;
-    use crate::model::{Description, Format, RuleId, SeedItem};
+    use crate::diag::ErrorKind;
+    use crate::model::{RuleId, SeedItem};
 
-    fn bed(src: &str) -> Result<Description, Diagnostics> {
-        super::super::parse(src, Format::Bed, &Limits::default())
-    }
-
-    const HEAD: &str = "T (0,0) L=10(0) B=1(0) RULE R1: [F] R2: [F][F] ";
+    use super::super::testing::{HEAD, bed};
 
     #[test]
     fn an_unknown_name_takes_the_letter_before_it() {

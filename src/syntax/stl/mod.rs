@@ -174,3 +174,19 @@ impl Builder<'_> {
         }
     }
 }
+
+/// Helpers the parser's unit tests share.
+#[cfg(test)]
+pub(super) mod testing {
+    use crate::diag::Diagnostics;
+    use crate::limits::Limits;
+    use crate::model::{Description, Format};
+
+    /// A header with two rules: `R1` (one branch) and `R2` (two).
+    pub const HEAD: &str = "T (0,0) L=10(0) B=1(0) RULE R1: [F] R2: [F][F] ";
+
+    /// `src` read as a BED with the default limits.
+    pub fn bed(src: &str) -> Result<Description, Diagnostics> {
+        super::parse(src, Format::Bed, &Limits::default())
+    }
+}
