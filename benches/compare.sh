@@ -11,12 +11,6 @@ set -euo pipefail
 B=$1 A=$2
 RUNS=${RUNS:-5}
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
-# run BIN ARGS... -> "secs rss_kb" for one run
-one() {
-    local out
-    out=$(/usr/bin/time -f "RSS %M WALL %e" "$@" 2>&1 >/dev/null; "$@" 2>/dev/null | head -0) || true
-    echo "$out"
-}
 measure() { # label, then args after the binary name
     local label=$1 prog=$2; shift 2
     local bt=() at=() br=() ar=()
@@ -47,5 +41,8 @@ for d in 9 10; do
 done
 measure "lsys stats, depth 57" bench_lsys stats dfs 57
 for s in bfs dfs; do
-    measure "grow $s, 10^5 stems" bench_grow "$s" rstar 100000
+    # Width 0.0001: stems as drawn keep the clearance between their edges
+    # since 0.2; so thin a stroke grows the same tree as the centre lines did.
+    measure "grow $s, 10^5 stems" bench_grow "$s" rstar 100000 4000 0.0001
+    measure "grow $s, 10^6 stems" bench_grow "$s" rstar 1000000 4000 0.0001
 done
