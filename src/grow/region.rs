@@ -185,22 +185,23 @@ impl Region {
     /// the segment is inside ([`Region::segment_inside`]) and no boundary
     /// edge comes closer to it than `r`.
     pub fn capsule_inside(&self, a: Point, b: Point, r: f64, a_inside: bool) -> bool {
-        if !self.segment_inside(a, b, a_inside) {
-            return false;
-        }
         if r <= 0.0 {
-            return true;
+            return self.segment_inside(a, b, a_inside);
         }
+        // One query covers both tests: the exact crossing test of
+        // `segment_inside` and the distance, on the same candidate edges.
         let seg = Seg::new([a.x, a.y], [b.x, b.y]);
+        let line = geo::Line::new(Coord { x: a.x, y: a.y }, Coord { x: b.x, y: b.y });
         let env = AABB::from_corners(
             [a.x.min(b.x) - r, a.y.min(b.y) - r],
             [a.x.max(b.x) + r, a.y.max(b.y) + r],
         );
         let r2 = r * r;
-        !self
-            .edges
-            .locate_in_envelope_intersecting(&env)
-            .any(|e| seg_seg_dist2(&seg, &Seg::new([e.a.x, e.a.y], [e.b.x, e.b.y])) < r2)
+        let near_edge = self.edges.locate_in_envelope_intersecting(&env).any(|e| {
+            line.intersects(&geo::Line::new(e.a, e.b))
+                || seg_seg_dist2(&seg, &Seg::new([e.a.x, e.a.y], [e.b.x, e.b.y])) < r2
+        });
+        !near_edge && (a_inside || self.covers_point(a))
     }
 }
 
