@@ -159,6 +159,19 @@ pub fn grow_with(
                 .into(),
         );
     }
+    // A seed that alone passes the stem limit is refused before any work
+    // (a generated seed of millions of stems would otherwise be flattened
+    // and drawn into the occupancy index first).
+    let seed_stems = seed::drawn_stems(&seed);
+    if seed_stems > opts.limits.max_stems {
+        return Err(Diagnostic::error(ErrorKind::Limit {
+            what: "stems drawn by the seed alone".into(),
+            value: seed_stems.to_string(),
+            limit: opts.limits.max_stems.to_string(),
+        })
+        .with_help("raise the limit with --max-stems N, or draw a smaller seed")
+        .into());
+    }
     let flat = seed::flatten(od, &seed)?;
     bounded::check_bounded(od, &flat.gps, opts)?;
 

@@ -44,6 +44,20 @@ pub(super) struct Flat<'a> {
     pub(super) gps: Vec<SeedGp>,
 }
 
+/// The stems the seed's top-level drawing makes by itself (its `F`s and
+/// fixed figures'; terms written out in the seed are counted as they are
+/// drawn), counted without flattening, saturating.
+pub(super) fn drawn_stems(seed: &Seed) -> u64 {
+    seed.items
+        .iter()
+        .map(|i| match i {
+            SeedItem::Draw(r) => r.text.bytes().filter(|&b| b == b'F').count() as u64,
+            SeedItem::Fixed(f) => walk::fixed_counts(&f.word, f.count).1,
+            SeedItem::Term(_) | SeedItem::Repeat(_) => 0,
+        })
+        .fold(0u64, u64::saturating_add)
+}
+
 /// The error for a reference to rule number `rule` if no such rule is
 /// declared (only a description built by hand can have one).
 fn rule_error(od: &Description, rule: RuleId, loc: &Loc) -> Option<Diagnostic> {

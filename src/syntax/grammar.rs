@@ -124,6 +124,8 @@ pub(crate) fn describe(rule: Rule) -> String {
         Rule::stl_word => "drawing letters or a rule name",
         Rule::stl_seed => "a `SEED` section",
         Rule::stl_seed_body => "the seed",
+        Rule::stl_seed_token => "a drawing component, rule name or term",
+        Rule::stl_run => "drawing components or rule names",
         Rule::stl_layout => "a `LAYOUT` section",
         Rule::stl_shape_line => "a layout shape like `(clGreen) Rectangle (0,0), 200, 100`",
         Rule::stl_angled => "`<`",

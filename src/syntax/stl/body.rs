@@ -38,6 +38,15 @@ impl Run {
         });
     }
 
+    /// Appends `text`, written at `span` (one component a byte).
+    pub(super) fn push_str(&mut self, text: &str, span: &Span) {
+        self.text.push_str(text);
+        self.span = Some(match self.span.take() {
+            Some(s) => s.start..span.end,
+            None => span.clone(),
+        });
+    }
+
     /// The run so far, if any, leaving this one empty.
     pub(super) fn take(&mut self) -> Option<DrawRun> {
         let span = self.span.take()?;
@@ -92,6 +101,12 @@ impl Builder<'_> {
                 }
                 Some(Lex::Draw(c, s)) => {
                     word.push(*c);
+                    if rule.is_some() {
+                        mixed.get_or_insert(s.clone());
+                    }
+                }
+                Some(Lex::Draws(t, s)) => {
+                    word.push_str(t);
                     if rule.is_some() {
                         mixed.get_or_insert(s.clone());
                     }
@@ -172,6 +187,10 @@ impl Builder<'_> {
                 Lex::Draw(c, s) => match &mut br {
                     Some(b) => b.run.push(*c, s),
                     None => trunk.push(*c, s),
+                },
+                Lex::Draws(t, s) => match &mut br {
+                    Some(b) => b.run.push_str(t, s),
+                    None => trunk.push_str(t, s),
                 },
                 Lex::Open(s) => match &mut br {
                     Some(b) => {

@@ -16,6 +16,9 @@ use crate::model::RuleId;
 pub(super) enum Lex {
     /// A drawing component `F f L R + - |`.
     Draw(char, Span),
+    /// Drawing components written together at `Span` (no space, no rule
+    /// name among them): what consecutive [`Lex::Draw`]s of a seed become.
+    Draws(String, Span),
     /// `[`.
     Open(Span),
     /// `]`.
@@ -30,6 +33,19 @@ pub(super) enum Lex {
     Name(RuleId, Span),
     /// `[I n` (count already checked; `None` if invalid).
     RepeatOpen(Option<u32>, Span),
+}
+
+/// Appends the drawing component at `span`, extending a [`Lex::Draws`]
+/// that ends where it starts.
+fn push_draw(out: &mut Vec<Lex>, c: char, span: Span) {
+    if let Some(Lex::Draws(text, s)) = out.last_mut()
+        && s.end == span.start
+    {
+        text.push(c);
+        s.end = span.end;
+        return;
+    }
+    out.push(Lex::Draws(c.to_string(), span));
 }
 
 impl Builder<'_> {
@@ -62,6 +78,7 @@ impl Builder<'_> {
                     out.push(Lex::Draw(c.expect("grammar: stl_sym is one symbol"), span));
                 }
                 Rule::stl_word => self.split_word(t.as_str(), span.start, &mut out),
+                Rule::stl_run => self.split_run(t.as_str(), span.start, &mut out),
                 Rule::stl_repeat_open => {
                     let count = t.into_inner().find(|x| x.as_rule() == Rule::integer);
                     let count = count.expect("grammar: stl_repeat_open holds an integer");
@@ -102,6 +119,35 @@ impl Builder<'_> {
                 );
                 None
             }
+        }
+    }
+
+    /// Splits a seed's run (`F+R1-FF`) into its symbols and words, each word
+    /// split as [`Builder::split_word`] does; consecutive drawing
+    /// components become one [`Lex::Draws`], so a run of a million of them
+    /// is one item.
+    fn split_run(&mut self, run: &str, at: usize, out: &mut Vec<Lex>) {
+        let b = run.as_bytes();
+        let mut i = 0;
+        while i < b.len() {
+            if matches!(b[i], b'+' | b'-' | b'|') {
+                push_draw(out, char::from(b[i]), at + i..at + i + 1);
+                i += 1;
+                continue;
+            }
+            let mut e = i;
+            while e < b.len() && !matches!(b[e], b'+' | b'-' | b'|') {
+                e += 1;
+            }
+            let mut word = Vec::new();
+            self.split_word(&run[i..e], at + i, &mut word);
+            for l in word {
+                match l {
+                    Lex::Draw(c, s) => push_draw(out, c, s),
+                    other => out.push(other),
+                }
+            }
+            i = e;
         }
     }
 

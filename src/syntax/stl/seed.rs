@@ -162,7 +162,14 @@ impl Builder<'_> {
                 Lex::Draw(_, s) | Lex::Open(s) | Lex::Close(s) if !stack.is_empty() => {
                     self.in_slot(s.clone());
                 }
+                Lex::Draws(t, s) if !stack.is_empty() => {
+                    // One report a component, as separate tokens had.
+                    for k in 0..t.len() {
+                        self.in_slot(s.start + k..s.start + k + 1);
+                    }
+                }
                 Lex::Draw(c, s) => run.push(*c, s),
+                Lex::Draws(t, s) => run.push_str(t, s),
                 Lex::Open(s) => {
                     brackets.push(s.clone());
                     run.push('[', s);
@@ -275,6 +282,37 @@ mod tests {
     use crate::model::SeedItem;
 
     use super::super::testing::{HEAD, bed};
+
+    /// A generated seed of a million drawing components is one run: one
+    /// item, its text exactly (the parser holds one token for it, not two
+    /// per character). Keywords still end a run that touches them.
+    #[test]
+    fn a_long_flat_seed_is_one_run_and_keywords_still_end_it() {
+        let body = "F+F-".repeat(250_000);
+        let d = bed(&format!("{HEAD} SEED {body} ENDSEED")).unwrap();
+        let items = &d.seed.unwrap().items;
+        assert_eq!(items.len(), 1);
+        assert!(matches!(&items[0], SeedItem::Draw(r) if r.text == body));
+        // `F+ENDSEED`: the run stops before the keyword, which closes the
+        // seed; `FENDSEED` is one word, not `F` and a keyword (its unknown
+        // name is reported; the seed stays open to the real `ENDSEED`).
+        let d = bed(&format!("{HEAD} SEED F+ENDSEED")).unwrap();
+        assert!(matches!(&d.seed.unwrap().items[..], [SeedItem::Draw(r)] if r.text == "F+"));
+        let e = bed(&format!("{HEAD} SEED FENDSEED ENDSEED")).unwrap_err();
+        assert!(matches!(&e.0[0].kind, ErrorKind::UnknownRule { .. }), "{e}");
+        assert!(
+            !e.iter()
+                .any(|d| matches!(d.kind, ErrorKind::UnclosedSection { .. }))
+        );
+        // Rule names inside a run split it: `FF+R1-F` is a run, a term and
+        // a run.
+        let d = bed(&format!("{HEAD} SEED FF+R1-F ENDSEED")).unwrap();
+        let items = d.seed.unwrap().items;
+        assert_eq!(items.len(), 3, "{items:?}");
+        assert!(matches!(&items[0], SeedItem::Draw(r) if r.text == "FF+"));
+        assert!(matches!(&items[1], SeedItem::Term(t) if t.rule == crate::model::RuleId(0)));
+        assert!(matches!(&items[2], SeedItem::Draw(r) if r.text == "-F"));
+    }
 
     #[test]
     fn a_slot_holds_one_term() {
