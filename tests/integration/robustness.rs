@@ -802,7 +802,33 @@ fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
         "T (500, 500) L=10(0) B=1(0) RULE R1: [-F][+F] LAYOUT (clGreen) Polygon {} ENDLAYOUT",
         star.join(",")
     );
-    let e = grow_err(&src);
+    // A polygon of more points than the limit is refused before the parser
+    // reads it, pointing at the shape; within a raised limit it parses and
+    // the region counts it exactly.
+    let e = stl::parse(&src, Format::Od, &Limits::default()).unwrap_err();
+    assert!(is_limit(&e, "layout outline vertices"), "{e}");
+    assert!(
+        e.to_string().contains("20000 exceeds the limit of 16000"),
+        "{e}"
+    );
+    assert_eq!(e.0[0].span.as_ref().map(|s| s.start), src.find("(clGreen)"));
+    let limits = Limits {
+        max_layout_vertices: 20_000,
+        ..Limits::default()
+    };
+    let d = stl::parse(&src, Format::Od, &limits).expect("within the raised limit it parses");
+    let e = stlc::grow::grow(
+        &d,
+        &stlc::grow::GrowOptions {
+            limits: Limits {
+                max_layout_vertices: 16_000,
+                ..Limits::default()
+            },
+            ..Default::default()
+        },
+        &mut NoProgress,
+    )
+    .unwrap_err();
     assert!(is_limit(&e, "layout outline vertices"), "{e}");
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), src.find("(clGreen)"));
 

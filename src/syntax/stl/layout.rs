@@ -10,7 +10,7 @@ use pest::iterators::Pair;
 use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
 use crate::model::{Layout, LayoutShape, Loc, Shape, Spelling};
 
 /// A shape a layout line may draw.
@@ -65,6 +65,88 @@ impl ShapeName {
 enum Arg {
     Group(Vec<(f64, Span)>),
     Num(f64, Span),
+}
+
+/// Refuses a `Polygon` with more points than a layout may have vertices
+/// (`--max-layout-vertices`) before the parser reads it: a generated
+/// polygon of a million points would cost the parser hundreds of bytes per
+/// byte before the region's own vertex count (`grow::region`) refuses it.
+/// A byte scan of the text after `LAYOUT`: each `Polygon` word, then its
+/// `(x, y)` groups up to the next group without a comma (a colour) or the
+/// next word. A closing point written as the first one is not counted; the
+/// region counts exactly (points written differently but equal, `1.0` and
+/// `1`, are counted here as two).
+pub(super) fn prescan_polygons(src: &str, max_vertices: usize) -> Result<(), Diagnostics> {
+    let b = src.as_bytes();
+    let Some(layout) = find_word(src, 0, KW_LAYOUT) else {
+        return Ok(());
+    };
+    let mut at = layout + KW_LAYOUT.len();
+    while let Some(p) = find_word(src, at, ShapeName::Polygon.name()) {
+        let mut i = p + ShapeName::Polygon.name().len();
+        let mut points = 0usize;
+        // The first and the last point as written: a polygon that repeats
+        // its first point at the end has one vertex fewer than points.
+        let (mut first, mut last) = ("", "");
+        loop {
+            while i < b.len() && (b[i].is_ascii_whitespace() || b[i] == b',') {
+                i += 1;
+            }
+            if i >= b.len() || b[i] != b'(' {
+                break;
+            }
+            let close = src[i..].find(')').map_or(b.len(), |k| i + k);
+            if !src[i..close].contains(',') {
+                break;
+            }
+            points += 1;
+            let group = src[i + 1..close].trim();
+            if points == 1 {
+                first = group;
+            }
+            last = group;
+            i = close + 1;
+        }
+        let vertices = if points > 1 && first == last {
+            points - 1
+        } else {
+            points
+        };
+        if vertices > max_vertices {
+            // Point at the shape's line: its colour's `(` before the name.
+            let start = src[..p].rfind('(').unwrap_or(p);
+            return Err(Diagnostic::error(ErrorKind::Limit {
+                what: "layout outline vertices".into(),
+                value: vertices.to_string(),
+                limit: max_vertices.to_string(),
+            })
+            .with_span(start..i.min(b.len()))
+            .with_help(
+                "use fewer polygon points, or raise the limit with --max-layout-vertices N (above 16000 the overlay can take minutes on some shapes)",
+            )
+            .into());
+        }
+        at = i.max(p + 1);
+    }
+    Ok(())
+}
+
+/// The first occurrence of `word` at or after `from` that stands alone
+/// (no name character on either side).
+fn find_word(src: &str, from: usize, word: &str) -> Option<usize> {
+    let b = src.as_bytes();
+    let name = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
+    let mut at = from;
+    while let Some(k) = src.get(at..)?.find(word) {
+        let p = at + k;
+        let before = p == 0 || !name(b[p - 1]);
+        let after = b.get(p + word.len()).is_none_or(|&c| !name(c));
+        if before && after {
+            return Some(p);
+        }
+        at = p + word.len();
+    }
+    None
 }
 
 impl Builder<'_> {
@@ -305,6 +387,25 @@ impl Builder<'_> {
 
 #[cfg(test)]
 mod tests {
+    /// Points counted by hand: a closing point written as the first is not
+    /// a vertex; a colour ends the polygon; other shapes are not counted.
+    #[test]
+    fn polygons_past_the_vertex_limit_are_refused_before_parsing() {
+        use super::prescan_polygons;
+        let square =
+            "LAYOUT (clGreen) Polygon (0,0), (1,0), (1,1), (0,1) (clRed) Rectangle (0,0), 1, 1";
+        assert!(prescan_polygons(square, 4).is_ok());
+        let e = prescan_polygons(square, 3).unwrap_err();
+        assert!(e.to_string().contains("4 exceeds the limit of 3"), "{e}");
+        assert_eq!(e.0[0].span.as_ref().map(|s| s.start), Some(7));
+        let closed = "LAYOUT (clGreen) Polygon (0,0), (1,0), (1,1), (0,1), (0,0)";
+        assert!(prescan_polygons(closed, 4).is_ok());
+        // A word that only contains the name, and polygons before LAYOUT
+        // (a comment, a rule name), are not counted.
+        let other = "Polygon (0,0), (1,0), (1,1) LAYOUT (clGreen) PolygonX (0,0), (1,0)";
+        assert!(prescan_polygons(other, 1).is_ok());
+    }
+
     use super::ShapeName;
     use crate::diag::ErrorKind;
     use crate::limits::Limits;

@@ -48,6 +48,7 @@ pub use rules::{DRAWING_LETTERS, KEYWORDS, REPEAT_MARK, is_reserved};
 /// slot empty (`bare: false`); in an OD it stays a growth point (`bare: true`).
 pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, Diagnostics> {
     let src = precheck(src.as_bytes(), limits)?;
+    layout::prescan_polygons(src, limits.max_layout_vertices)?;
     let mut pairs = GrammarParser::parse(Rule::stl_file, src).map_err(|e| {
         pest_error(e).with_help(
             "a description reads: tree name, root `(x, y)`, stem parameters \
