@@ -172,21 +172,7 @@ fn dedup_closing(ring: &mut Vec<Point>) {
 mod tests {
     use super::*;
     use crate::color::Rgb;
-    use crate::model::LayoutShape;
-
-    fn shape(color: Rgb, shape: Shape) -> LayoutShape {
-        LayoutShape::new(color, shape)
-    }
-
-    fn layout(shapes: Vec<LayoutShape>) -> Layout {
-        Layout::new(shapes)
-    }
-
-    const GREEN: Rgb = Rgb::new(0, 128, 0);
-
-    fn rect(x: f64, y: f64, w: f64, h: f64) -> Shape {
-        Shape::Rect { x, y, w, h }
-    }
+    use crate::model::layout::testing::{GREEN, layout, rect, shape};
 
     /// The area of a simple closed ring (the shoelace formula).
     fn area(ring: &[Point]) -> f64 {

@@ -239,22 +239,9 @@ fn polygon_of(ring: &[Point]) -> Polygon<f64> {
 mod tests {
     use super::*;
     use crate::color::Rgb;
-    use crate::model::{LayoutShape, Shape};
+    use crate::model::Shape;
+    use crate::model::layout::testing::{GREEN, layout, rect, shape};
     use geo::Area;
-
-    fn shape(color: Rgb, shape: Shape) -> LayoutShape {
-        LayoutShape::new(color, shape)
-    }
-
-    fn layout(shapes: Vec<LayoutShape>) -> Layout {
-        Layout::new(shapes)
-    }
-
-    const GREEN: Rgb = Rgb::new(0, 128, 0);
-
-    fn rect(x: f64, y: f64, w: f64, h: f64) -> Shape {
-        Shape::Rect { x, y, w, h }
-    }
 
     #[test]
     fn white_shape_cuts_a_hole_and_a_later_colour_fills_it_again() {

@@ -393,17 +393,11 @@ fn bfs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Body, BodyItem, Branch, DrawRun, Format, Loc, Piece, Repeat, StemParams};
+    use crate::model::{Body, BodyItem, Branch, Format, Loc, Piece, Repeat, StemParams};
     use crate::num::Linear;
     use crate::progress::NoProgress;
 
-    fn run(text: &str) -> DrawRun {
-        DrawRun::new(text)
-    }
-
-    fn fixed(count: u32, word: &str) -> Fixed {
-        Fixed::new(count, word)
-    }
+    use crate::model::walk::testing::{fixed, run};
 
     /// `T: F[I n F-F][+F[I n F+F]]` with the seed `[I n F+F] T{T{}} [I 2 T]`,
     /// built by hand: the parser refuses `n = 0`.

@@ -111,3 +111,28 @@ pub enum Shape {
     /// A closed polygon (at least 3 points, in written order).
     Polygon(Vec<(f64, f64)>),
 }
+
+/// Builders the layout and region tests share.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::{Layout, LayoutShape, Shape};
+    use crate::color::Rgb;
+
+    /// Delphi's `clGreen`.
+    pub const GREEN: Rgb = Rgb::new(0, 128, 0);
+
+    /// A shape of `color`.
+    pub fn shape(color: Rgb, shape: Shape) -> LayoutShape {
+        LayoutShape::new(color, shape)
+    }
+
+    /// A layout of `shapes`, painted in order.
+    pub fn layout(shapes: Vec<LayoutShape>) -> Layout {
+        Layout::new(shapes)
+    }
+
+    /// The rectangle at `(x, y)`, `w` by `h`.
+    pub fn rect(x: f64, y: f64, w: f64, h: f64) -> Shape {
+        Shape::Rect { x, y, w, h }
+    }
+}

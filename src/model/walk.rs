@@ -199,13 +199,7 @@ mod tests {
     use super::*;
     use crate::model::{Loc, RuleId, RuleRef};
 
-    fn run(text: &str) -> DrawRun {
-        DrawRun::new(text)
-    }
-
-    fn fixed(count: u32, word: &str) -> Fixed {
-        Fixed::new(count, word)
-    }
+    use super::testing::{fixed, run};
 
     fn expand(count: u32, word: &str) -> String {
         FixedWord::of(word, count).map(char::from).collect()
@@ -296,5 +290,21 @@ mod tests {
             }
         }
         assert_eq!(fixed_counts("FF", 200), (u64::MAX, u64::MAX));
+    }
+}
+
+/// Builders the walk and expansion tests share.
+#[cfg(test)]
+pub(crate) mod testing {
+    use crate::model::{DrawRun, Fixed};
+
+    /// Drawing components at no place in the text.
+    pub fn run(text: &str) -> DrawRun {
+        DrawRun::new(text)
+    }
+
+    /// `[I count word]` at no place in the text.
+    pub fn fixed(count: u32, word: &str) -> Fixed {
+        Fixed::new(count, word)
     }
 }
