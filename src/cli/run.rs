@@ -223,7 +223,7 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         &a.input, &a.grow, a.strategy, a.depth, &limits, quiet, source,
     )?;
     let mut bar = Bar::new(quiet);
-    if a.show_layout && pipeline::layout_view(&scene, true).1.is_empty() {
+    if a.show_layout && !scene.has_layout() {
         warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
             flag: "--show-layout".into(),
             reason: "this input has no LAYOUT to show".into(),

@@ -276,6 +276,12 @@ impl Scene {
         }
     }
 
+    /// Whether the scene is a tree with a LAYOUT (something `show_layout`
+    /// can paint).
+    pub fn has_layout(&self) -> bool {
+        self.bed().is_some_and(|b| b.description().layout.is_some())
+    }
+
     /// Stems grown, if the scene was grown from an OD.
     pub fn grown_stems(&self) -> Option<u64> {
         match &self.what {

@@ -233,7 +233,14 @@ impl Turtle for PngTurtle {
             bucket[1] = bucket[0];
             bucket[0] = Some(key);
         }
-        let ink = width * (libm::hypot(to.x - from.x, to.y - from.y) + width);
+        // Only wide strokes count towards a path's ink: hairlines cost
+        // little however they overlap, and skip the length on the hot path
+        // of deep L-systems.
+        let ink = if width >= WIDE_PX {
+            width * (libm::hypot(to.x - from.x, to.y - from.y) + width)
+        } else {
+            0.0
+        };
         if self.batch_len >= BATCH_SEGMENTS
             || (self.batch_len > 0
                 && (width != self.batch_width || self.batch_ink + ink > self.max_ink))

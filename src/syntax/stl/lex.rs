@@ -128,6 +128,8 @@ impl Builder<'_> {
     /// is one item.
     fn split_run(&mut self, run: &str, at: usize, out: &mut Vec<Lex>) {
         let b = run.as_bytes();
+        // One scratch list for every word of the run, not one a word.
+        let mut word = Vec::new();
         let mut i = 0;
         while i < b.len() {
             if matches!(b[i], b'+' | b'-' | b'|') {
@@ -139,9 +141,8 @@ impl Builder<'_> {
             while e < b.len() && !matches!(b[e], b'+' | b'-' | b'|') {
                 e += 1;
             }
-            let mut word = Vec::new();
             self.split_word(&run[i..e], at + i, &mut word);
-            for l in word {
+            for l in word.drain(..) {
                 match l {
                     Lex::Draw(c, s) => push_draw(out, c, s),
                     other => out.push(other),
