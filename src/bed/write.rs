@@ -208,7 +208,7 @@ impl Writer<'_> {
         if t.bare {
             return Some(self.name(t.rule).to_string());
         }
-        t.slots.iter().all(Option::is_none).then(|| {
+        t.slots.all_empty().then(|| {
             format!(
                 "{}{{{}}}",
                 self.name(t.rule),
@@ -277,7 +277,7 @@ impl Writer<'_> {
             top.next += 1;
             let last = i + 1 == m;
             let depth = top.depth + 1;
-            match &top.term.slots[i] {
+            match top.term.slots.get(i) {
                 Some(Slot::Term(t)) => {
                     if let Some((depth, comma)) = start(t, depth, !last, out) {
                         stack.push(Frame {

@@ -142,7 +142,7 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
                         Step::Fixed(f) => tasks.push(Task::Fixed(f)),
                         Step::Open { .. } => tasks.push(Task::Op(Op::Push)),
                         Step::Tip { index, .. } => {
-                            if let Some(s) = &t.slots[index] {
+                            if let Some(s) = t.slots.get(index) {
                                 tasks.push(Task::Slot(s));
                             }
                             tasks.push(Task::Op(Op::Pop));
@@ -176,7 +176,8 @@ pub(super) fn grown_seed(od: &Description, tree: &Tree, seed: &Seed) -> Vec<Seed
                     .then(|| terms[c as usize].take().map(Slot::Term))
                     .flatten()
             })
-            .collect();
+            .collect::<Vec<_>>()
+            .into();
         terms[id] = Some(Term {
             rule: n.rule,
             slots,
@@ -219,7 +220,7 @@ pub(super) fn grown_seed(od: &Description, tree: &Tree, seed: &Seed) -> Vec<Seed
         }];
         while let Some(f) = stack.last_mut() {
             if f.next < f.term.slots.len() {
-                let slot = &f.term.slots[f.next];
+                let slot = f.term.slots.get(f.next);
                 f.next += 1;
                 match slot {
                     None => f.built.push(None),
@@ -237,7 +238,7 @@ pub(super) fn grown_seed(od: &Description, tree: &Tree, seed: &Seed) -> Vec<Seed
                 let Some(f) = stack.pop() else { break };
                 let t = Term {
                     rule: f.term.rule,
-                    slots: f.built,
+                    slots: f.built.into(),
                     bare: false,
                     loc: f.term.loc.clone(),
                 };

@@ -26,7 +26,7 @@ use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use crate::interpret::Derivation;
 use crate::limits::Limits;
 use crate::model::walk::{self, FixedWord, Step, Steps};
-use crate::model::{Description, Fixed, RuleDef, RuleId, Seed, SeedItem, Slot, Term};
+use crate::model::{Description, Fixed, RuleDef, RuleId, Seed, SeedItem, Slot, Term, SlotList};
 use crate::progress::Progress;
 use crate::turtle::{Interp, Op};
 use crate::turtle::{Point, Turtle};
@@ -165,7 +165,7 @@ fn emit_text(
 #[derive(Clone, Copy)]
 enum Slots<'a> {
     /// A written term's slots.
-    Written(&'a [Option<Slot>]),
+    Written(&'a SlotList),
     /// `[I n X]` with `n` levels left for the children (0: all empty).
     Repeat(RuleId, u32),
 }
@@ -174,9 +174,8 @@ impl<'a> Slots<'a> {
     fn child(self, i: usize) -> Option<Child<'a>> {
         match self {
             Slots::Written(s) => match s.get(i)? {
-                Some(Slot::Term(t)) => Some(Child::Term(t)),
-                Some(Slot::Repeat(r)) => Some(Child::Repeat(r.rule, r.count)),
-                None => None,
+                Slot::Term(t) => Some(Child::Term(t)),
+                Slot::Repeat(r) => Some(Child::Repeat(r.rule, r.count)),
             },
             Slots::Repeat(_, 0) => None,
             Slots::Repeat(rule, n) => Some(Child::Repeat(rule, n)),
@@ -413,9 +412,9 @@ mod tests {
                 }),
             ],
         };
-        let term = |slots| Term {
+        let term = |slots: Vec<Option<Slot>>| Term {
             rule: RuleId(0),
-            slots,
+            slots: slots.into(),
             bare: false,
             loc: Loc::default(),
         };

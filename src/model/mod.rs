@@ -24,7 +24,7 @@ pub mod term;
 pub mod walk;
 
 pub use layout::{Layout, LayoutShape, Shape, Spelling};
-pub use term::{DEBUG_DEPTH, Repeat, Slot, Term};
+pub use term::{DEBUG_DEPTH, Repeat, Slot, SlotList, Term};
 
 use crate::diag::Span;
 use crate::num::Linear;
@@ -295,7 +295,7 @@ impl Description {
                 }),
                 SeedItem::Term(Term {
                     rule: RuleId(0),
-                    slots: vec![None; self.rules[0].branch_count()],
+                    slots: SlotList::empty(self.rules[0].branch_count()),
                     bare: true,
                     loc: Loc::default(),
                 }),

@@ -17,8 +17,8 @@ use super::{Loc, RuleId};
 pub struct Term {
     /// The rule.
     pub rule: RuleId,
-    /// One entry per branch of the rule; `None` for an empty slot.
-    pub slots: Vec<Option<Slot>>,
+    /// One slot per branch of the rule.
+    pub slots: SlotList,
     /// Written as a bare name (`R1`) rather than `R1{...}`. In an OD a bare
     /// reference is a growth point. In a BED a bare name means every slot
     /// empty, so the BED parser stores it as `bare: false` with empty slots
@@ -38,13 +38,13 @@ impl Clone for Term {
         fn frame(src: &Term) -> Frame<'_> {
             Frame {
                 src,
-                slots: Vec::with_capacity(src.slots.len()),
+                slots: Vec::with_capacity(src.slots.filled.len()),
             }
         }
         let mut stack = vec![frame(self)];
         loop {
             let top = stack.last_mut().expect("a frame until the root is done");
-            if let Some(slot) = top.src.slots.get(top.slots.len()) {
+            if let Some(slot) = top.src.slots.filled.get(top.slots.len()) {
                 match slot {
                     None => top.slots.push(None),
                     Some(Slot::Repeat(r)) => top.slots.push(Some(Slot::Repeat(r.clone()))),
@@ -55,7 +55,10 @@ impl Clone for Term {
             let done = stack.pop().expect("the top frame");
             let copy = Term {
                 rule: done.src.rule,
-                slots: done.slots,
+                slots: SlotList {
+                    filled: done.slots.into_boxed_slice(),
+                    len: done.src.slots.len,
+                },
                 bare: done.src.bare,
                 loc: done.src.loc.clone(),
             };
@@ -78,7 +81,7 @@ impl PartialEq for Term {
             {
                 return false;
             }
-            for pair in a.slots.iter().zip(&b.slots) {
+            for pair in a.slots.iter().zip(b.slots.iter()) {
                 match pair {
                     (None, None) => {}
                     (Some(Slot::Term(x)), Some(Slot::Term(y))) => stack.push((x, y)),
@@ -95,10 +98,10 @@ impl Drop for Term {
     fn drop(&mut self) {
         // Detach every nested term's slots before it is dropped, so each
         // drop below meets empty slots and nothing recurses.
-        let mut pending = std::mem::take(&mut self.slots);
+        let mut pending = std::mem::take(&mut self.slots.filled).into_vec();
         while let Some(slot) = pending.pop() {
             if let Some(Slot::Term(mut t)) = slot {
-                pending.append(&mut t.slots);
+                pending.extend(std::mem::take(&mut t.slots.filled));
             }
         }
     }
@@ -119,7 +122,7 @@ impl fmt::Debug for Term {
 struct TermDebug<'a>(&'a Term, usize);
 
 /// A slot inside a [`TermDebug`].
-struct SlotDebug<'a>(&'a Option<Slot>, usize);
+struct SlotDebug<'a>(Option<&'a Slot>, usize);
 
 impl fmt::Debug for TermDebug<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -160,6 +163,75 @@ impl fmt::Debug for SlotDebug<'_> {
     }
 }
 
+/// A term's slots, one per branch of its rule, each empty or holding a
+/// [`Slot`]. A term whose slots are all empty (every leaf of a BED, most of
+/// its terms) holds no allocation, so a BED of a million leaves costs its
+/// terms and no more (docs/limits.md).
+#[derive(Default)]
+pub struct SlotList {
+    /// Every slot, or nothing when all `len` are empty.
+    filled: Box<[Option<Slot>]>,
+    len: usize,
+}
+
+impl SlotList {
+    /// `n` empty slots.
+    pub fn empty(n: usize) -> Self {
+        SlotList {
+            filled: Box::default(),
+            len: n,
+        }
+    }
+
+    /// How many slots (the rule's branch count, if it is right).
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether there are no slots (a rule without branches).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Whether every slot is empty.
+    pub fn all_empty(&self) -> bool {
+        self.filled.iter().all(Option::is_none)
+    }
+
+    /// Slot `i`: `None` if it is empty or there is no slot `i`.
+    pub fn get(&self, i: usize) -> Option<&Slot> {
+        self.filled.get(i)?.as_ref()
+    }
+
+    /// The slots in order, `None` for an empty one.
+    pub fn iter(&self) -> impl Iterator<Item = Option<&Slot>> + '_ {
+        (0..self.len).map(|i| self.get(i))
+    }
+}
+
+impl From<Vec<Option<Slot>>> for SlotList {
+    fn from(v: Vec<Option<Slot>>) -> Self {
+        let len = v.len();
+        if v.iter().all(Option::is_none) {
+            return SlotList::empty(len);
+        }
+        SlotList {
+            filled: v.into_boxed_slice(),
+            len,
+        }
+    }
+}
+
+impl fmt::Debug for SlotList {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // Shallow: a `Term`'s own Debug shows slots with its depth cap.
+        f.debug_struct("SlotList")
+            .field("len", &self.len)
+            .field("filled", &!self.filled.is_empty())
+            .finish()
+    }
+}
+
 /// What grows at a branch tip.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Slot {
@@ -188,7 +260,7 @@ mod tests {
     fn term(rule: usize, slots: Vec<Option<Slot>>) -> Term {
         Term {
             rule: RuleId(rule),
-            slots,
+            slots: slots.into(),
             bare: false,
             loc: Loc(0..1),
         }
@@ -221,12 +293,19 @@ mod tests {
         assert!(copy == a);
         assert!(sample(3, 0) != a, "a repeat count deep inside");
         assert!(sample(2, 1) != a, "the last slot's rule");
-        let mut other_kind = a.clone();
-        other_kind.slots[1] = repeat(2);
-        assert!(other_kind != a, "empty slot against a repeat");
-        let mut fewer = a.clone();
-        fewer.slots.pop();
-        assert!(fewer != a, "slot count");
+        let with = |slots: Vec<Option<Slot>>| term(0, slots);
+        let mut slots = vec![a.slots.get(0).cloned(), repeat(2), a.slots.get(2).cloned()];
+        assert!(with(slots.clone()) != a, "empty slot against a repeat");
+        slots[1] = None;
+        assert!(with(slots.clone()) == a, "the same slots rebuilt");
+        slots.pop();
+        assert!(with(slots) != a, "slot count");
+        // All-empty slots compare by count, however they were built.
+        assert!(SlotList::from(vec![None, None]).len() == 2);
+        let mut empty = term(0, vec![]);
+        empty.slots = SlotList::empty(2);
+        assert!(term(0, vec![None, None]) == empty);
+        assert!(term(0, vec![None]) != term(0, vec![None, None]));
         // Locations never count.
         let mut moved = a.clone();
         moved.loc = Loc(5..9);

@@ -118,7 +118,7 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
                                     Piece::Fixed(f) => seq.push(Task::Fixed(f)),
                                 }
                             }
-                            match &term.slots[k] {
+                            match term.slots.get(k) {
                                 Some(Slot::Term(t)) => seq.push(Task::Term(t)),
                                 Some(Slot::Repeat(_)) => panic!("no repeats in a grown BED"),
                                 None => {}
@@ -447,11 +447,11 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
         let SeedItem::Term(t) = &items[1] else {
             panic!("no term")
         };
-        let size = |s: &Option<Slot>| match s {
+        let size = |s: Option<&Slot>| match s {
             Some(Slot::Term(t)) => subtree_size(t),
             _ => 0,
         };
-        (size(&t.slots[0]), size(&t.slots[1]))
+        (size(t.slots.get(0)), size(t.slots.get(1)))
     };
     let (b_right, b_left) = root(&bfs);
     let (d_right, d_left) = root(&dfs);

@@ -160,7 +160,7 @@ fn seed_r1r2r2_is_split_by_longest_match() {
     assert_eq!(seed.items.len(), 3);
     // In a BED a bare name is the full term with every slot empty.
     for item in &seed.items {
-        assert!(matches!(item, SeedItem::Term(t) if !t.bare && t.slots == vec![None]));
+        assert!(matches!(item, SeedItem::Term(t) if !t.bare && t.slots.len() == 1 && t.slots.all_empty()));
     }
     for s in [Derivation::Dfs, Derivation::Bfs] {
         assert_eq!(expanded(&d, s), "[FFF][F[+F][-F]F][F[+F][-F]F]\n");
@@ -510,7 +510,8 @@ fn several_errors_are_reported_together() {
     );
     let e = errors(&src);
     let kinds: Vec<ErrorKind> = e.iter().map(|d| d.kind.clone()).collect();
-    // The layout is read as it is met, names before bodies, the seed last.
+    // The layout is read as it is met, names before bodies, the seed last,
+    // in the order its text is read (the seed is tokenised as it is built).
     assert_eq!(
         kinds,
         vec![
@@ -519,12 +520,12 @@ fn several_errors_are_reported_together() {
             },
             ErrorKind::TooFewPoints { points: 1 },
             ErrorKind::ReservedName { name: "F".into() },
-            ErrorKind::UnknownRule { name: "R9".into() },
             ErrorKind::SlotCount {
                 rule: "R1".into(),
                 expected: 2,
                 found: 3
             },
+            ErrorKind::UnknownRule { name: "R9".into() },
         ]
     );
 }
@@ -850,10 +851,10 @@ fn gen_term(g: &mut Gen, rules: &[RuleDef], depth: u32) -> Term {
                 Some(Slot::Term(gen_term(g, rules, depth - 1)))
             }
         })
-        .collect();
+        .collect::<Vec<_>>();
     Term {
         rule: RuleId(rule),
-        slots,
+        slots: slots.into(),
         bare: false,
         loc: Loc::default(),
     }

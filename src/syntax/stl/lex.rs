@@ -5,6 +5,8 @@
 //! the declared rule names; the leftovers must be [`DRAWING_LETTERS`].
 //! Anything else is an unknown rule, reported with the nearest declared one.
 
+use std::collections::VecDeque;
+
 use pest::iterators::Pair;
 
 use super::{Builder, DRAWING_LETTERS, Rule, not_in_grammar, span_of};
@@ -35,17 +37,161 @@ pub(super) enum Lex {
     RepeatOpen(Option<u32>, Span),
 }
 
-/// Appends the drawing component at `span`, extending a [`Lex::Draws`]
-/// that ends where it starts.
-fn push_draw(out: &mut Vec<Lex>, c: char, span: Span) {
-    if let Some(Lex::Draws(text, s)) = out.last_mut()
-        && s.end == span.start
-    {
-        text.push(c);
-        s.end = span.end;
-        return;
+/// Streams the tokens of a seed's text (the grammar's `stl_seed_text`: the
+/// whole seed, spaces and comments included) one at a time, words split as
+/// [`Builder::split_word`] does and consecutive drawing components merged
+/// into one [`Lex::Draws`]. A seed of millions of terms so never becomes a
+/// token list: the parser holds one pair for it and this holds one word.
+pub(super) struct SeedLex<'s> {
+    text: &'s str,
+    /// Where `text` starts in the file.
+    at: usize,
+    /// The next byte of `text` to read.
+    i: usize,
+    /// Tokens read but not yet taken, in order.
+    ready: VecDeque<Lex>,
+    /// Drawing components written together, not yet ended.
+    draws: Option<(String, Span)>,
+    /// Scratch for one word's split.
+    word: Vec<Lex>,
+}
+
+/// Whether `b` can be part of a word (the grammar's `stl_name_char`).
+fn name_char(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_'
+}
+
+impl<'s> SeedLex<'s> {
+    /// The tokens of `text`, which starts at byte `at` of the file.
+    pub(super) fn new(text: &'s str, at: usize) -> Self {
+        SeedLex {
+            text,
+            at,
+            i: 0,
+            ready: VecDeque::new(),
+            draws: None,
+            word: Vec::new(),
+        }
     }
-    out.push(Lex::Draws(c.to_string(), span));
+
+    /// The next token, or `None` at the end of the text.
+    pub(super) fn next(&mut self, b: &mut Builder<'_>) -> Option<Lex> {
+        while self.ready.is_empty() && self.i < self.text.len() {
+            self.step(b);
+        }
+        if self.ready.is_empty()
+            && let Some((t, s)) = self.draws.take()
+        {
+            return Some(Lex::Draws(t, s));
+        }
+        self.ready.pop_front()
+    }
+
+    /// Reads one space, comment, symbol or word.
+    fn step(&mut self, b: &mut Builder<'_>) {
+        let bytes = self.text.as_bytes();
+        let i = self.i;
+        let here = self.at + i..self.at + i + 1;
+        match bytes[i] {
+            b' ' | b'\t' | b'\r' | b'\n' => self.i += 1,
+            // The grammar's COMMENT: the only `#` a seed's text can hold.
+            b'#' => self.i = self.skip_space(i),
+            b'+' | b'-' | b'|' => {
+                self.draw(char::from(bytes[i]), here);
+                self.i += 1;
+            }
+            b'{' => self.token(Lex::LBrace(here), i + 1),
+            b'}' => self.token(Lex::RBrace(here), i + 1),
+            b',' => self.token(Lex::Comma(here), i + 1),
+            b']' => self.token(Lex::Close(here), i + 1),
+            b'[' => match self.repeat_count(i) {
+                Some((digits, end)) => {
+                    let span = self.at + digits.start..self.at + digits.end;
+                    let n = b.count(&self.text[digits], span);
+                    self.token(Lex::RepeatOpen(n, self.at + i..self.at + end), end);
+                }
+                None => self.token(Lex::Open(here), i + 1),
+            },
+            c if name_char(c) => {
+                let mut e = i;
+                while e < bytes.len() && name_char(bytes[e]) {
+                    e += 1;
+                }
+                b.split_word(&self.text[i..e], self.at + i, &mut self.word);
+                for l in std::mem::take(&mut self.word) {
+                    match l {
+                        Lex::Draw(c, s) => self.draw(c, s),
+                        other => self.end_draws_then(other),
+                    }
+                }
+                self.i = e;
+            }
+            // A `BOM` (the grammar's WHITESPACE) or a byte the grammar
+            // keeps out of `stl_seed_text`.
+            _ => self.i += self.text[i..].chars().next().map_or(1, char::len_utf8),
+        }
+    }
+
+    /// `[I n` at `open`: the digits of `n` and where the form's head ends
+    /// (the grammar's `stl_repeat_open`, spaces and comments allowed between).
+    fn repeat_count(&self, open: usize) -> Option<(std::ops::Range<usize>, usize)> {
+        let bytes = self.text.as_bytes();
+        let i = self.skip_space(open + 1);
+        if bytes.get(i) != Some(&b'I') || bytes.get(i + 1).is_some_and(|&c| name_char(c)) {
+            return None;
+        }
+        let d = self.skip_space(i + 1);
+        let mut e = d;
+        while e < bytes.len() && bytes[e].is_ascii_digit() {
+            e += 1;
+        }
+        (e > d).then_some((d..e, e))
+    }
+
+    /// The first byte at or after `i` that is no space and in no comment.
+    fn skip_space(&self, mut i: usize) -> usize {
+        let bytes = self.text.as_bytes();
+        loop {
+            match bytes.get(i) {
+                Some(b' ' | b'\t' | b'\r' | b'\n') => i += 1,
+                Some(b'#') => {
+                    while i < bytes.len() && bytes[i] != b'\n' {
+                        i += 1;
+                    }
+                }
+                _ if self.text[i..].starts_with('\u{FEFF}') => i += '\u{FEFF}'.len_utf8(),
+                _ => return i,
+            }
+        }
+    }
+
+    /// A drawing component at `span`, joining the ones written just before it.
+    fn draw(&mut self, c: char, span: Span) {
+        if let Some((text, s)) = &mut self.draws
+            && s.end == span.start
+        {
+            text.push(c);
+            s.end = span.end;
+            return;
+        }
+        if let Some((t, s)) = self.draws.replace((c.to_string(), span)) {
+            self.ready.push_back(Lex::Draws(t, s));
+        }
+    }
+
+    /// A token other than drawing, after the drawing before it.
+    fn end_draws_then(&mut self, l: Lex) {
+        if let Some((t, s)) = self.draws.take() {
+            self.ready.push_back(Lex::Draws(t, s));
+        }
+        self.ready.push_back(l);
+    }
+
+    /// [`Self::end_draws_then`], reading on at `next`.
+    fn token(&mut self, l: Lex, next: usize) {
+        self.end_draws_then(l);
+        self.i = next;
+    }
 }
 
 impl Builder<'_> {
@@ -78,11 +224,10 @@ impl Builder<'_> {
                     out.push(Lex::Draw(c.expect("grammar: stl_sym is one symbol"), span));
                 }
                 Rule::stl_word => self.split_word(t.as_str(), span.start, &mut out),
-                Rule::stl_run => self.split_run(t.as_str(), span.start, &mut out),
                 Rule::stl_repeat_open => {
                     let count = t.into_inner().find(|x| x.as_rule() == Rule::integer);
                     let count = count.expect("grammar: stl_repeat_open holds an integer");
-                    let n = self.count(&count);
+                    let n = self.count(count.as_str(), span_of(&count));
                     out.push(Lex::RepeatOpen(n, span));
                 }
                 other => not_in_grammar("stl_token", other),
@@ -92,14 +237,13 @@ impl Builder<'_> {
     }
 
     /// The `n` of `[I n`: at least 1, at most `limits.max_repeat`.
-    fn count(&mut self, c: &Pair<'_, Rule>) -> Option<u32> {
-        let text = c.as_str();
+    pub(super) fn count(&mut self, text: &str, span: Span) -> Option<u32> {
         let limit = self.limits.max_repeat;
         match text.parse::<u32>() {
             Ok(0) => {
                 self.report(
                     ErrorKind::ZeroCount,
-                    span_of(c),
+                    span,
                     "zero",
                     "write `[I 1 X]` or more, or leave the form out",
                 );
@@ -113,7 +257,7 @@ impl Builder<'_> {
                         value: text.trim_start_matches('0').to_string(),
                         limit: limit.to_string(),
                     })
-                    .with_span(span_of(c))
+                    .with_span(span)
                     .with_label("count too large")
                     .with_help("raise the limit with --max-depth N"),
                 );
@@ -122,39 +266,9 @@ impl Builder<'_> {
         }
     }
 
-    /// Splits a seed's run (`F+R1-FF`) into its symbols and words, each word
-    /// split as [`Builder::split_word`] does; consecutive drawing
-    /// components become one [`Lex::Draws`], so a run of a million of them
-    /// is one item.
-    fn split_run(&mut self, run: &str, at: usize, out: &mut Vec<Lex>) {
-        let b = run.as_bytes();
-        // One scratch list for every word of the run, not one a word.
-        let mut word = Vec::new();
-        let mut i = 0;
-        while i < b.len() {
-            if matches!(b[i], b'+' | b'-' | b'|') {
-                push_draw(out, char::from(b[i]), at + i..at + i + 1);
-                i += 1;
-                continue;
-            }
-            let mut e = i;
-            while e < b.len() && !matches!(b[e], b'+' | b'-' | b'|') {
-                e += 1;
-            }
-            self.split_word(&run[i..e], at + i, &mut word);
-            for l in word.drain(..) {
-                match l {
-                    Lex::Draw(c, s) => push_draw(out, c, s),
-                    other => out.push(other),
-                }
-            }
-            i = e;
-        }
-    }
-
     /// Splits a word left to right by longest match against the declared
     /// rule names; the leftovers must be drawing letters.
-    fn split_word(&mut self, word: &str, at: usize, out: &mut Vec<Lex>) {
+    pub(super) fn split_word(&mut self, word: &str, at: usize, out: &mut Vec<Lex>) {
         let b = word.as_bytes();
         let mut i = 0;
         while i < b.len() {

@@ -6,14 +6,16 @@
 //! bare rule name `R1` is the term with every slot empty; in an OD it stays
 //! a growth point.
 
+use std::collections::VecDeque;
+
 use pest::iterators::Pair;
 
 use super::body::{RepeatBody, Run};
-use super::lex::Lex;
+use super::lex::{Lex, SeedLex};
 use super::rules::{KW_ENDSEED, KW_SEED};
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::diag::{Diagnostic, ErrorKind, Span};
-use crate::model::{Format, Loc, RuleId, Seed, SeedItem, Slot, Term};
+use crate::model::{Format, Loc, RuleId, Seed, SeedItem, Slot, SlotList, Term};
 
 /// A term whose `{` is open.
 struct TermFrame {
@@ -32,12 +34,12 @@ impl Builder<'_> {
         let span = span_of(&p);
         let mut kw = None;
         let mut closed = false;
-        let mut lex = Vec::new();
+        let mut items = Vec::new();
         for c in p.into_inner() {
             match c.as_rule() {
                 Rule::stl_kw_seed => kw = Some(span_of(&c)),
                 Rule::stl_kw_endseed => closed = true,
-                Rule::stl_seed_body => lex = self.lex(c),
+                Rule::stl_seed_body => items = self.seed_items(c),
                 other => not_in_grammar("stl_seed", other),
             }
         }
@@ -52,23 +54,39 @@ impl Builder<'_> {
                 .with_help(format!("end the seed with `{KW_ENDSEED}`")),
             );
         }
-        let items = self.seed_items(&lex);
         Seed {
             items,
             loc: Loc(span),
         }
     }
 
-    fn seed_items(&mut self, lex: &[Lex]) -> Vec<SeedItem> {
+    /// The seed's items from its text, read as a stream of tokens (see
+    /// [`SeedLex`]): memory for the terms built, not for their tokens.
+    fn seed_items(&mut self, body: Pair<'_, Rule>) -> Vec<SeedItem> {
+        let mut texts = body.into_inner().map(|t| {
+            debug_assert_eq!(t.as_rule(), Rule::stl_seed_text);
+            SeedLex::new(t.as_str(), t.as_span().start())
+        });
+        let mut lexer = texts.next();
+        // Tokens read past the end of a `[I n ...]` form, to take first.
+        let mut back: VecDeque<Lex> = VecDeque::new();
+        let mut pull = |b: &mut Self, back: &mut VecDeque<Lex>| loop {
+            if let Some(l) = back.pop_front() {
+                return Some(l);
+            }
+            let lx = lexer.as_mut()?;
+            match lx.next(b) {
+                Some(l) => return Some(l),
+                None => lexer = texts.next(),
+            }
+        };
         let mut items = Vec::new();
         let mut run = Run::default();
         let mut brackets: Vec<Span> = Vec::new();
         let mut stack: Vec<TermFrame> = Vec::new();
         // A rule name whose `{` may follow.
         let mut pending: Option<(RuleId, Span)> = None;
-        let mut i = 0;
-        while i < lex.len() {
-            let l = &lex[i];
+        while let Some(l) = pull(self, &mut back) {
             if !matches!(l, Lex::LBrace(_))
                 && let Some((id, s)) = pending.take()
             {
@@ -76,7 +94,7 @@ impl Builder<'_> {
                 self.deliver(Slot::Term(t), &mut stack, &mut items, &mut run);
             }
             match l {
-                Lex::Name(id, s) => pending = Some((*id, s.clone())),
+                Lex::Name(id, s) => pending = Some((id, s)),
                 Lex::LBrace(s) => {
                     let (rule, start) = match pending.take() {
                         Some((id, ns)) => (Some(id), ns.start),
@@ -129,7 +147,7 @@ impl Builder<'_> {
                             }
                             let t = Term {
                                 rule,
-                                slots: f.slots,
+                                slots: f.slots.into(),
                                 bare: false,
                                 loc: Loc(span),
                             };
@@ -139,7 +157,32 @@ impl Builder<'_> {
                     None => self.unbalanced('}', s.clone(), "this `}` closes nothing"),
                 },
                 Lex::RepeatOpen(count, open) => {
-                    let (what, next) = self.repeat(lex, i, *count, open);
+                    // The form's tokens up to its `]` (or what ends it early).
+                    let mut form = vec![Lex::RepeatOpen(count, open.clone())];
+                    let mut depth = 0usize;
+                    while let Some(t) = pull(self, &mut back) {
+                        let last = match &t {
+                            Lex::Close(_) if depth == 0 => true,
+                            Lex::Close(_) => {
+                                depth -= 1;
+                                false
+                            }
+                            Lex::Open(_) => {
+                                depth += 1;
+                                false
+                            }
+                            Lex::LBrace(_) | Lex::RBrace(_) | Lex::Comma(_) | Lex::RepeatOpen(..) => true,
+                            _ => false,
+                        };
+                        form.push(t);
+                        if last {
+                            break;
+                        }
+                    }
+                    let (what, next) = self.repeat(&form, 0, count, &open);
+                    for t in form.drain(next..).rev() {
+                        back.push_front(t);
+                    }
                     match what {
                         RepeatBody::Rule(r) => {
                             self.deliver(Slot::Repeat(r), &mut stack, &mut items, &mut run)
@@ -156,8 +199,6 @@ impl Builder<'_> {
                         }
                         RepeatBody::Invalid => {}
                     }
-                    i = next;
-                    continue;
                 }
                 Lex::Draw(_, s) | Lex::Open(s) | Lex::Close(s) if !stack.is_empty() => {
                     self.in_slot(s.clone());
@@ -168,21 +209,20 @@ impl Builder<'_> {
                         self.in_slot(s.start + k..s.start + k + 1);
                     }
                 }
-                Lex::Draw(c, s) => run.push(*c, s),
-                Lex::Draws(t, s) => run.push_str(t, s),
+                Lex::Draw(c, s) => run.push(c, &s),
+                Lex::Draws(t, s) => run.push_str(&t, &s),
                 Lex::Open(s) => {
-                    brackets.push(s.clone());
-                    run.push('[', s);
+                    run.push('[', &s);
+                    brackets.push(s);
                 }
                 Lex::Close(s) => {
                     if brackets.pop().is_some() {
-                        run.push(']', s);
+                        run.push(']', &s);
                     } else {
                         self.unbalanced(']', s.clone(), "this `]` closes nothing");
                     }
                 }
             }
-            i += 1;
         }
         if let Some((id, s)) = pending.take() {
             let t = self.bare(id, s);
@@ -231,7 +271,7 @@ impl Builder<'_> {
     fn bare(&mut self, rule: RuleId, span: Span) -> Term {
         Term {
             rule,
-            slots: vec![None; self.branches[rule.0]],
+            slots: SlotList::empty(self.branches[rule.0]),
             bare: self.format == Format::Od,
             loc: Loc(span),
         }
@@ -333,7 +373,7 @@ mod tests {
         let d = bed("T (0,0) RULE R0: F R1: [F] SEED R0{} R1{} ENDSEED").unwrap();
         let items = &d.seed.unwrap().items;
         assert!(matches!(&items[0], SeedItem::Term(t) if t.slots.is_empty()));
-        assert!(matches!(&items[1], SeedItem::Term(t) if t.slots == vec![None]));
+        assert!(matches!(&items[1], SeedItem::Term(t) if t.slots.len() == 1 && t.slots.all_empty()));
     }
 
     #[test]
