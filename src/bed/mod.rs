@@ -118,55 +118,51 @@ impl<'a> Sizer<'a> {
 /// Computes what `seed` (of `desc`) expands to, exactly or saturated.
 pub fn measure_seed(desc: &Description, seed: &Seed) -> Size {
     let mut total = Size::default();
-    for s in item_sizes(desc, seed) {
-        total.add(s);
-    }
+    item_sizes(desc, seed, |_, s| total.add(s));
     total
 }
 
-/// What each item of `seed` expands to, in order.
-fn item_sizes(desc: &Description, seed: &Seed) -> Vec<Size> {
+/// Calls `each` with the index and size of every item of `seed`, in order
+/// (one at a time: a generated seed can hold millions of items).
+fn item_sizes(desc: &Description, seed: &Seed, mut each: impl FnMut(usize, Size)) {
     let mut z = Sizer::new(desc);
-    let mut stack: Vec<&Term> = Vec::new();
-    seed.items
-        .iter()
-        .map(|item| {
-            let mut total = Size::default();
-            match item {
-                SeedItem::Draw(d) => total.add(draw_size(&d.text)),
-                SeedItem::Fixed(f) => total.add(fixed_size(f)),
-                SeedItem::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
-                SeedItem::Term(t) => stack.push(t),
-            }
-            while let Some(t) = stack.pop() {
-                total.add(z.own.get(t.rule.0).copied().unwrap_or_default());
-                for s in t.slots.iter().flatten() {
-                    match s {
-                        Slot::Term(t) => stack.push(t),
-                        Slot::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
-                    }
+    let mut stack: Vec<Term<'_>> = Vec::new();
+    for (i, item) in seed.items.iter().enumerate() {
+        let mut total = Size::default();
+        match item {
+            SeedItem::Draw(d) => total.add(draw_size(&d.text)),
+            SeedItem::Fixed(f) => total.add(fixed_size(f)),
+            SeedItem::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
+            SeedItem::Term(t) => stack.push(seed.term(*t)),
+        }
+        while let Some(t) = stack.pop() {
+            total.add(z.own.get(t.rule().0).copied().unwrap_or_default());
+            for s in t.slots().flatten() {
+                match s {
+                    Slot::Term(t) => stack.push(t),
+                    Slot::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
                 }
             }
-            total
-        })
-        .collect()
+        }
+        each(i, total);
+    }
 }
 
 /// The span of the seed item that alone expands past `max_symbols`, if
 /// one does (the one to point at); else `None`.
 fn item_over(desc: &Description, seed: &Seed, max_symbols: u64) -> Option<crate::diag::Span> {
-    let sizes = item_sizes(desc, seed);
-    let (i, biggest) = sizes.iter().enumerate().max_by_key(|(_, s)| s.symbols)?;
-    if biggest.symbols <= max_symbols {
+    let mut biggest: Option<(usize, u64)> = None;
+    item_sizes(desc, seed, |i, s| {
+        if biggest.is_none_or(|(_, b)| s.symbols > b) {
+            biggest = Some((i, s.symbols));
+        }
+    });
+    let (i, symbols) = biggest?;
+    if symbols <= max_symbols {
         return None;
     }
-    let loc = match &seed.items[i] {
-        SeedItem::Draw(d) => &d.loc,
-        SeedItem::Fixed(f) => &f.loc,
-        SeedItem::Term(t) => &t.loc,
-        SeedItem::Repeat(r) => &r.loc,
-    };
-    (loc.0.end > loc.0.start).then(|| loc.0.clone())
+    let span = seed.item_span(&seed.items[i]);
+    (span.end > span.start).then_some(span)
 }
 
 /// Computes what the description's seed in force expands to.
@@ -247,10 +243,10 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
         }
     }
     // (term, order) pairs, explicit stack.
-    let mut stack: Vec<(&Term, u32)> = Vec::new();
+    let mut stack: Vec<(Term<'_>, u32)> = Vec::new();
     for item in &seed.items {
         match item {
-            SeedItem::Term(t) => stack.push((t, 1)),
+            SeedItem::Term(t) => stack.push((seed.term(*t), 1)),
             SeedItem::Repeat(r) => {
                 check_count(r.count, &r.loc.0, &mut diags);
                 let name = rule_name(desc, r.rule);
@@ -264,24 +260,24 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
             SeedItem::Draw(_) => {}
         }
         while let Some((t, order)) = stack.pop() {
-            let Some(rule) = desc.rules.get(t.rule.0) else {
-                diags.push(unknown_id(t.rule, &t.loc.0));
+            let Some(rule) = desc.rules.get(t.rule().0) else {
+                diags.push(unknown_id(t.rule(), &t.loc()));
                 continue;
             };
             let m = rule.branch_count();
-            if t.slots.len() != m {
+            if t.slot_count() != m {
                 diags.push(
                     Diagnostic::error(ErrorKind::SlotCount {
                         rule: rule.name.clone(),
                         expected: m,
-                        found: t.slots.len(),
+                        found: t.slot_count(),
                     })
-                    .with_span(t.loc.0.clone())
+                    .with_span(t.loc())
                     .with_help("write one slot per branch"),
                 );
             }
-            check_order(order, &t.loc.0, &rule.name, &mut diags);
-            for s in t.slots.iter().flatten() {
+            check_order(order, &t.loc(), &rule.name, &mut diags);
+            for s in t.slots().flatten() {
                 match s {
                     Slot::Term(c) => stack.push((c, order.saturating_add(1))),
                     Slot::Repeat(r) => {

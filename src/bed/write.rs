@@ -97,7 +97,7 @@ pub fn write(desc: &Description) -> String {
                     out.push_str(&w.repeat(r));
                     out.push('\n');
                 }
-                crate::model::SeedItem::Term(t) => w.term(t, &mut out),
+                crate::model::SeedItem::Term(t) => w.term(seed.term(*t), &mut out),
             }
         }
         out.push_str("ENDSEED\n");
@@ -204,23 +204,23 @@ impl Writer<'_> {
 
     /// A term on one line if it has no filled slot: `R1{,,}` (or `R1` for
     /// an OD growth point).
-    fn flat(&self, t: &Term) -> Option<String> {
-        if t.bare {
-            return Some(self.name(t.rule).to_string());
+    fn flat(&self, t: Term<'_>) -> Option<String> {
+        if t.bare() {
+            return Some(self.name(t.rule()).to_string());
         }
-        t.slots.all_empty().then(|| {
+        t.all_empty().then(|| {
             format!(
                 "{}{{{}}}",
-                self.name(t.rule),
-                ",".repeat(t.slots.len().saturating_sub(1))
+                self.name(t.rule()),
+                ",".repeat(t.slot_count().saturating_sub(1))
             )
         })
     }
 
     /// Writes a term at depth 0, one line per term, with an explicit stack.
-    fn term(&self, root: &Term, out: &mut String) {
+    fn term(&self, root: Term<'_>, out: &mut String) {
         struct Frame<'t> {
-            term: &'t Term,
+            term: Term<'t>,
             next: usize,
             depth: usize,
             comma: bool,
@@ -234,7 +234,7 @@ impl Writer<'_> {
         };
         let mut stack: Vec<Frame<'_>> = Vec::new();
         // Starts a term: one line if flat, else its opening line and a frame.
-        let start = |t: &'_ Term, depth: usize, comma: bool, out: &mut String| {
+        let start = |t: Term<'_>, depth: usize, comma: bool, out: &mut String| {
             indent(out, depth);
             match self.flat(t) {
                 Some(s) => {
@@ -246,7 +246,7 @@ impl Writer<'_> {
                     None
                 }
                 None => {
-                    out.push_str(self.name(t.rule));
+                    out.push_str(self.name(t.rule()));
                     out.push_str("{\n");
                     Some((depth, comma))
                 }
@@ -261,7 +261,7 @@ impl Writer<'_> {
             });
         }
         while let Some(top) = stack.last_mut() {
-            let m = top.term.slots.len();
+            let m = top.term.slot_count();
             if top.next == m {
                 let (depth, comma) = (top.depth, top.comma);
                 stack.pop();
@@ -277,7 +277,7 @@ impl Writer<'_> {
             top.next += 1;
             let last = i + 1 == m;
             let depth = top.depth + 1;
-            match top.term.slots.get(i) {
+            match top.term.slot(i) {
                 Some(Slot::Term(t)) => {
                     if let Some((depth, comma)) = start(t, depth, !last, out) {
                         stack.push(Frame {

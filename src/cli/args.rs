@@ -187,7 +187,7 @@ impl From<StrategyArg> for stlc::interpret::Derivation {
 /// explained in docs/limits.md.
 #[derive(Debug, Args, Clone)]
 pub struct LimitArgs {
-    /// Largest input file in bytes.
+    /// Largest input file in bytes (at most 4 GiB: positions are 32-bit).
     #[arg(long, value_name = "BYTES", default_value_t = Limits::default().max_input_bytes)]
     pub max_input: u64,
     /// Deepest nesting of brackets and braces accepted.

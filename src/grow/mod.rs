@@ -162,7 +162,7 @@ pub fn grow_with(
     // A seed that alone passes the stem limit is refused before any work
     // (a generated seed of millions of stems would otherwise be flattened
     // and drawn into the occupancy index first).
-    let seed_stems = seed::drawn_stems(&seed);
+    let seed_stems = seed::drawn_stems(od, &seed);
     if seed_stems > opts.limits.max_stems {
         return Err(Diagnostic::error(ErrorKind::Limit {
             what: "stems drawn by the seed alone".into(),
@@ -201,7 +201,7 @@ pub fn grow_with(
     walked?;
 
     let (tree, budget) = g.finish();
-    let items = seed::grown_seed(od, &tree, &seed);
+    let (items, terms) = seed::grown_seed(od, &tree, &seed);
     let mut params = od.params.clone();
     params.clearance = Some(clearance);
     let desc = Description {
@@ -214,6 +214,7 @@ pub fn grow_with(
         rules: od.rules.clone(),
         seed: Some(Seed {
             items,
+            terms,
             loc: seed.loc.clone(),
         }),
         layout: od.layout.clone(),

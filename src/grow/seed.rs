@@ -9,7 +9,9 @@ use super::grower::{NO_NODE, Tree};
 use super::span_of;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::model::walk::{self, Step};
-use crate::model::{Description, Fixed, Loc, RuleId, Seed, SeedItem, Slot, Term};
+use crate::model::{
+    Description, Fixed, Loc, RuleDef, RuleId, Seed, SeedItem, Slot, SlotId, Term, Terms,
+};
 use crate::turtle::Op;
 
 /// A growth point written in the seed: a bare rule reference (no count) or
@@ -44,16 +46,51 @@ pub(super) struct Flat<'a> {
     pub(super) gps: Vec<SeedGp>,
 }
 
-/// The stems the seed's top-level drawing makes by itself (its `F`s and
-/// fixed figures'; terms written out in the seed are counted as they are
-/// drawn), counted without flattening, saturating.
-pub(super) fn drawn_stems(seed: &Seed) -> u64 {
-    seed.items
-        .iter()
-        .map(|i| match i {
-            SeedItem::Draw(r) => r.text.bytes().filter(|&b| b == b'F').count() as u64,
+/// The stems the seed draws by itself, before anything grows: its `F`s,
+/// its fixed figures', and those of the rules of the terms written out in
+/// it (growth points count nothing), counted without flattening,
+/// saturating.
+pub(super) fn drawn_stems(od: &Description, seed: &Seed) -> u64 {
+    let own: Vec<u64> = od.rules.iter().map(own_stems).collect();
+    let mut total = 0u64;
+    let mut stack: Vec<Term<'_>> = Vec::new();
+    for item in &seed.items {
+        let n = match item {
+            SeedItem::Draw(r) => stems_of(&r.text),
             SeedItem::Fixed(f) => walk::fixed_counts(&f.word, f.count).1,
-            SeedItem::Term(_) | SeedItem::Repeat(_) => 0,
+            SeedItem::Term(t) => {
+                stack.push(seed.term(*t));
+                0
+            }
+            SeedItem::Repeat(_) => 0,
+        };
+        total = total.saturating_add(n);
+        while let Some(t) = stack.pop() {
+            if t.bare() {
+                continue;
+            }
+            total = total.saturating_add(own.get(t.rule().0).copied().unwrap_or(0));
+            stack.extend(t.slots().flatten().filter_map(|s| match s {
+                Slot::Term(c) => Some(c),
+                Slot::Repeat(_) => None,
+            }));
+        }
+    }
+    total
+}
+
+/// The `F`s of a run of drawing components.
+fn stems_of(text: &str) -> u64 {
+    text.bytes().filter(|&b| b == b'F').count() as u64
+}
+
+/// The stems rule `r` draws itself, its slots aside.
+fn own_stems(r: &RuleDef) -> u64 {
+    walk::steps(&r.body)
+        .map(|step| match step {
+            Step::Run(run) => stems_of(&run.text),
+            Step::Fixed(f) => walk::fixed_counts(&f.word, f.count).1,
+            Step::Open { .. } | Step::Tip { .. } => 0,
         })
         .fold(0u64, u64::saturating_add)
 }
@@ -77,8 +114,8 @@ fn rule_error(od: &Description, rule: RuleId, loc: &Loc) -> Option<Diagnostic> {
 pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a>, Diagnostics> {
     enum Task<'a> {
         Item(&'a SeedItem),
-        Slot(&'a Slot),
-        Term(&'a Term),
+        Slot(Slot<'a>),
+        Term(Term<'a>),
         Run(&'a str),
         Fixed(&'a Fixed),
         Op(Op),
@@ -91,9 +128,12 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
     while let Some(task) = stack.pop() {
         match task {
             Task::Item(SeedItem::Draw(r)) => stack.push(Task::Run(&r.text)),
-            Task::Item(SeedItem::Fixed(f)) | Task::Fixed(f) => flat.instrs.push(Instr::Fixed(f)),
-            Task::Item(SeedItem::Term(t)) | Task::Slot(Slot::Term(t)) => stack.push(Task::Term(t)),
-            Task::Item(SeedItem::Repeat(r)) | Task::Slot(Slot::Repeat(r)) => {
+            Task::Item(SeedItem::Fixed(f)) => flat.instrs.push(Instr::Fixed(f)),
+            Task::Fixed(f) => flat.instrs.push(Instr::Fixed(f)),
+            Task::Item(SeedItem::Term(t)) => stack.push(Task::Term(seed.term(*t))),
+            Task::Slot(Slot::Term(t)) => stack.push(Task::Term(t)),
+            Task::Item(SeedItem::Repeat(r)) => stack.push(Task::Slot(Slot::Repeat(r))),
+            Task::Slot(Slot::Repeat(r)) => {
                 if let Some(d) = rule_error(od, r.rule, &r.loc) {
                     return Err(d.into());
                 }
@@ -109,26 +149,27 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
                 .extend(text.chars().filter_map(Op::of_stl).map(Instr::Op)),
             Task::Op(op) => flat.instrs.push(Instr::Op(op)),
             Task::Term(t) => {
-                if let Some(d) = rule_error(od, t.rule, &t.loc) {
+                let loc = Loc(t.loc());
+                if let Some(d) = rule_error(od, t.rule(), &loc) {
                     return Err(d.into());
                 }
-                let rule = od.rule(t.rule);
-                if t.bare {
+                let rule = od.rule(t.rule());
+                if t.bare() {
                     flat.instrs.push(Instr::Gp(flat.gps.len()));
                     flat.gps.push(SeedGp {
-                        rule: t.rule,
+                        rule: t.rule(),
                         count: None,
-                        loc: t.loc.clone(),
+                        loc,
                     });
                     continue;
                 }
-                if t.slots.len() != rule.branch_count() {
+                if t.slot_count() != rule.branch_count() {
                     let mut d = Diagnostic::error(ErrorKind::SlotCount {
                         rule: rule.name.clone(),
                         expected: rule.branch_count(),
-                        found: t.slots.len(),
+                        found: t.slot_count(),
                     });
-                    if let Some(s) = span_of(&t.loc) {
+                    if let Some(s) = span_of(&loc) {
                         d = d.with_span(s);
                     }
                     return Err(d.into());
@@ -142,7 +183,7 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
                         Step::Fixed(f) => tasks.push(Task::Fixed(f)),
                         Step::Open { .. } => tasks.push(Task::Op(Op::Push)),
                         Step::Tip { index, .. } => {
-                            if let Some(s) = t.slots.get(index) {
+                            if let Some(s) = t.slot(index) {
                                 tasks.push(Task::Slot(s));
                             }
                             tasks.push(Task::Op(Op::Pop));
@@ -158,44 +199,42 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
 }
 
 /// The grown seed: the seed's items with every growth point replaced by its
-/// grown term (left out, or its slot left empty, where nothing grew), built
-/// bottom-up without recursion. Growth points are met in the order
-/// [`flatten`] numbered them.
-pub(super) fn grown_seed(od: &Description, tree: &Tree, seed: &Seed) -> Vec<SeedItem> {
-    // Terms of all nodes, children first (a child is always made after its
-    // parent, so it has a larger id).
-    let mut terms: Vec<Option<Term>> = Vec::with_capacity(tree.nodes.len());
-    terms.resize_with(tree.nodes.len(), || None);
+/// grown term (left out, or its slot left empty, where nothing grew), and
+/// the terms they refer to, built children first without recursion. Growth
+/// points are met in the order [`flatten`] numbered them.
+pub(super) fn grown_seed(od: &Description, tree: &Tree, seed: &Seed) -> (Vec<SeedItem>, Terms) {
+    let mut terms = Terms::new();
+    // The term of each grown node. A child is always made after its
+    // parent, so it has a larger id: building in reverse puts children first.
+    let mut built: Vec<Option<SlotId>> = vec![None; tree.nodes.len()];
+    let mut cells: Vec<Option<SlotId>> = Vec::new();
     for id in (0..tree.nodes.len()).rev() {
         let n = tree.nodes[id];
         let k = od.rule(n.rule).branch_count();
-        let slots = (0..k)
-            .map(|j| {
-                let c = tree.slot_child[n.slots as usize + j];
-                (c != NO_NODE)
-                    .then(|| terms[c as usize].take().map(Slot::Term))
-                    .flatten()
-            })
-            .collect::<Vec<_>>()
-            .into();
-        terms[id] = Some(Term {
-            rule: n.rule,
-            slots,
-            bare: false,
-            loc: Loc::default(),
-        });
+        cells.clear();
+        cells.extend((0..k).map(|j| {
+            let c = tree.slot_child[n.slots as usize + j];
+            (c != NO_NODE).then(|| built[c as usize]).flatten()
+        }));
+        built[id] = Some(Terms::slot_of(terms.push(n.rule, false, 0..0, &cells)));
     }
     let mut gp_index = 0usize;
-    let mut next_gp = |terms: &mut Vec<Option<Term>>| -> Option<Term> {
+    let mut next_gp = || -> Option<SlotId> {
         let id = tree.seed_result[gp_index];
         gp_index += 1;
-        (id != NO_NODE).then(|| terms[id as usize].take()).flatten()
+        (id != NO_NODE).then(|| built[id as usize]).flatten()
     };
+    /// A written term being rebuilt: its slots so far.
     struct Frame<'t> {
-        term: &'t Term,
+        term: Term<'t>,
         next: usize,
-        built: Vec<Option<Slot>>,
+        built: Vec<Option<SlotId>>,
     }
+    let frame = |term| Frame {
+        term,
+        next: 0,
+        built: Vec::new(),
+    };
     let mut items = Vec::with_capacity(seed.items.len());
     for item in &seed.items {
         let top = match item {
@@ -203,51 +242,31 @@ pub(super) fn grown_seed(od: &Description, tree: &Tree, seed: &Seed) -> Vec<Seed
                 items.push(item.clone());
                 continue;
             }
-            SeedItem::Repeat(_) => {
-                items.extend(next_gp(&mut terms).map(SeedItem::Term));
+            SeedItem::Term(t) if !seed.term(*t).bare() => seed.term(*t),
+            SeedItem::Repeat(_) | SeedItem::Term(_) => {
+                items.extend(next_gp().map(|s| SeedItem::Term(Terms::term_of(s))));
                 continue;
             }
-            SeedItem::Term(t) if t.bare => {
-                items.extend(next_gp(&mut terms).map(SeedItem::Term));
-                continue;
-            }
-            SeedItem::Term(t) => t,
         };
-        let mut stack = vec![Frame {
-            term: top,
-            next: 0,
-            built: Vec::new(),
-        }];
+        let mut stack = vec![frame(top)];
         while let Some(f) = stack.last_mut() {
-            if f.next < f.term.slots.len() {
-                let slot = f.term.slots.get(f.next);
+            if f.next < f.term.slot_count() {
+                let slot = f.term.slot(f.next);
                 f.next += 1;
                 match slot {
                     None => f.built.push(None),
-                    Some(Slot::Repeat(_)) => f.built.push(next_gp(&mut terms).map(Slot::Term)),
-                    Some(Slot::Term(t)) if t.bare => {
-                        f.built.push(next_gp(&mut terms).map(Slot::Term))
-                    }
-                    Some(Slot::Term(t)) => stack.push(Frame {
-                        term: t,
-                        next: 0,
-                        built: Vec::new(),
-                    }),
+                    Some(Slot::Term(t)) if !t.bare() => stack.push(frame(t)),
+                    Some(Slot::Repeat(_) | Slot::Term(_)) => f.built.push(next_gp()),
                 }
             } else {
                 let Some(f) = stack.pop() else { break };
-                let t = Term {
-                    rule: f.term.rule,
-                    slots: f.built.into(),
-                    bare: false,
-                    loc: f.term.loc.clone(),
-                };
+                let id = terms.push(f.term.rule(), false, f.term.loc(), &f.built);
                 match stack.last_mut() {
-                    Some(parent) => parent.built.push(Some(Slot::Term(t))),
-                    None => items.push(SeedItem::Term(t)),
+                    Some(parent) => parent.built.push(Some(Terms::slot_of(id))),
+                    None => items.push(SeedItem::Term(id)),
                 }
             }
         }
     }
-    items
+    (items, terms)
 }

@@ -26,7 +26,7 @@ use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use crate::interpret::Derivation;
 use crate::limits::Limits;
 use crate::model::walk::{self, FixedWord, Step, Steps};
-use crate::model::{Description, Fixed, RuleDef, RuleId, Seed, SeedItem, Slot, Term, SlotList};
+use crate::model::{Description, Fixed, RuleDef, RuleId, Seed, SeedItem, Slot, Term};
 use crate::progress::Progress;
 use crate::turtle::{Interp, Op};
 use crate::turtle::{Point, Turtle};
@@ -165,7 +165,7 @@ fn emit_text(
 #[derive(Clone, Copy)]
 enum Slots<'a> {
     /// A written term's slots.
-    Written(&'a SlotList),
+    Written(Term<'a>),
     /// `[I n X]` with `n` levels left for the children (0: all empty).
     Repeat(RuleId, u32),
 }
@@ -173,7 +173,7 @@ enum Slots<'a> {
 impl<'a> Slots<'a> {
     fn child(self, i: usize) -> Option<Child<'a>> {
         match self {
-            Slots::Written(s) => match s.get(i)? {
+            Slots::Written(t) => match t.slot(i)? {
                 Slot::Term(t) => Some(Child::Term(t)),
                 Slot::Repeat(r) => Some(Child::Repeat(r.rule, r.count)),
             },
@@ -186,7 +186,7 @@ impl<'a> Slots<'a> {
 /// A rule application to start.
 #[derive(Clone, Copy)]
 enum Child<'a> {
-    Term(&'a Term),
+    Term(Term<'a>),
     /// `[I n X]`, `n >= 1`.
     Repeat(RuleId, u32),
 }
@@ -194,7 +194,7 @@ enum Child<'a> {
 impl<'a> Child<'a> {
     fn parts(self, desc: &'a Description) -> Option<(&'a RuleDef, Slots<'a>)> {
         match self {
-            Child::Term(t) => Some((desc.rules.get(t.rule.0)?, Slots::Written(&t.slots))),
+            Child::Term(t) => Some((desc.rules.get(t.rule().0)?, Slots::Written(t))),
             Child::Repeat(rule, n) => Some((
                 desc.rules.get(rule.0)?,
                 Slots::Repeat(rule, n.saturating_sub(1)),
@@ -250,7 +250,7 @@ fn dfs(
         match item {
             SeedItem::Draw(d) => emit_text(&d.text, sink)?,
             SeedItem::Fixed(f) => emit_fixed(f, &mut fixed, sink)?,
-            SeedItem::Term(t) => stack.push(Frame::Start(Child::Term(t))),
+            SeedItem::Term(t) => stack.push(Frame::Start(Child::Term(seed.term(*t)))),
             SeedItem::Repeat(r) => stack.push(Frame::Start(Child::Repeat(r.rule, r.count))),
         }
         while let Some(top) = stack.last_mut() {
@@ -346,7 +346,7 @@ fn bfs(
         match item {
             SeedItem::Draw(d) => push_text(&mut word, &d.text),
             SeedItem::Fixed(f) => push_fixed(&mut word, f, limits)?,
-            SeedItem::Term(t) => word.push(Sym::Apply(Child::Term(t))),
+            SeedItem::Term(t) => word.push(Sym::Apply(Child::Term(seed.term(*t)))),
             SeedItem::Repeat(r) => word.push(Sym::Apply(Child::Repeat(r.rule, r.count))),
         }
     }
@@ -392,7 +392,7 @@ fn bfs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Body, BodyItem, Branch, Format, Loc, Piece, Repeat, StemParams};
+    use crate::model::{Body, BodyItem, Branch, Format, Loc, Piece, Repeat, StemParams, Terms};
     use crate::num::Linear;
     use crate::progress::NoProgress;
 
@@ -412,12 +412,9 @@ mod tests {
                 }),
             ],
         };
-        let term = |slots: Vec<Option<Slot>>| Term {
-            rule: RuleId(0),
-            slots: slots.into(),
-            bare: false,
-            loc: Loc::default(),
-        };
+        let mut terms = Terms::new();
+        let leaf = terms.push(RuleId(0), false, 0..0, &[None]);
+        let outer = terms.push(RuleId(0), false, 0..0, &[Some(Terms::slot_of(leaf))]);
         Description {
             format: Format::Bed,
             name: "T".into(),
@@ -441,14 +438,15 @@ mod tests {
             }],
             seed: Some(Seed {
                 items: vec![
-                    SeedItem::Fixed(fixed(n, "F+F")),
-                    SeedItem::Term(term(vec![Some(Slot::Term(term(vec![None])))])),
-                    SeedItem::Repeat(Repeat {
+                    SeedItem::Fixed(Box::new(fixed(n, "F+F"))),
+                    SeedItem::Term(outer),
+                    SeedItem::Repeat(Box::new(Repeat {
                         count: 2,
                         rule: RuleId(0),
                         loc: Loc::default(),
-                    }),
+                    })),
                 ],
+                terms,
                 loc: Loc::default(),
             }),
             layout: None,

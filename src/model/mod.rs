@@ -24,7 +24,7 @@ pub mod term;
 pub mod walk;
 
 pub use layout::{Layout, LayoutShape, Shape, Spelling};
-pub use term::{DEBUG_DEPTH, Repeat, Slot, SlotList, Term};
+pub use term::{Repeat, Slot, SlotId, Term, TermId, Terms};
 
 use crate::diag::Span;
 use crate::num::Linear;
@@ -222,27 +222,61 @@ pub struct Fixed {
 }
 
 /// The seed: what grows from the root.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Seed {
     /// Items in written order.
     pub items: Vec<SeedItem>,
+    /// The terms the items (and their slots) refer to.
+    pub terms: Terms,
     /// The `SEED ... ENDSEED` section.
     pub loc: Loc,
+}
+
+impl Seed {
+    /// The term `id` of this seed.
+    pub fn term(&self, id: TermId) -> Term<'_> {
+        self.terms.get(id)
+    }
+
+    /// Where item `item` is written.
+    pub fn item_span(&self, item: &SeedItem) -> Span {
+        match item {
+            SeedItem::Draw(d) => d.loc.0.clone(),
+            SeedItem::Fixed(f) => f.loc.0.clone(),
+            SeedItem::Term(t) => self.term(*t).loc(),
+            SeedItem::Repeat(r) => r.loc.0.clone(),
+        }
+    }
+}
+
+/// Seeds are equal when their items are, terms compared by shape.
+impl PartialEq for Seed {
+    fn eq(&self, other: &Self) -> bool {
+        self.items.len() == other.items.len()
+            && self.items.iter().zip(&other.items).all(|pair| match pair {
+                (SeedItem::Term(a), SeedItem::Term(b)) => self.term(*a) == other.term(*b),
+                (a, b) => a == b,
+            })
+    }
 }
 
 /// One item of a seed. Brackets in `Draw` runs may enclose later items
 /// (`[+F R1]` is `Draw("[+F")`, `Term(R1)`, `Draw("]")`); the seed as a whole
 /// is balanced.
+///
+/// 16 bytes: a generated seed can hold millions of items, so the rarer,
+/// larger ones are boxed (docs/limits.md).
 #[derive(Debug, Clone, PartialEq)]
 pub enum SeedItem {
     /// Drawing components.
-    Draw(DrawRun),
+    Draw(Box<DrawRun>),
     /// A fixed figure `[I n w]`.
-    Fixed(Fixed),
-    /// A branch-expansion term or a bare rule reference.
-    Term(Term),
+    Fixed(Box<Fixed>),
+    /// A branch-expansion term or a bare rule reference, in the seed's
+    /// [`Terms`] (compare with [`Seed::term`]s, not ids).
+    Term(TermId),
     /// `[I n X]` with `X` a rule.
-    Repeat(Repeat),
+    Repeat(Box<Repeat>),
 }
 
 impl DrawRun {
@@ -287,19 +321,18 @@ impl Description {
         if self.rules.is_empty() {
             return None;
         }
+        let mut terms = Terms::new();
+        let empty = vec![None; self.rules[0].branch_count()];
+        let first = terms.push(RuleId(0), true, 0..0, &empty);
         Some(std::borrow::Cow::Owned(Seed {
             items: vec![
-                SeedItem::Draw(DrawRun {
+                SeedItem::Draw(Box::new(DrawRun {
                     text: "F".into(),
                     loc: Loc::default(),
-                }),
-                SeedItem::Term(Term {
-                    rule: RuleId(0),
-                    slots: SlotList::empty(self.rules[0].branch_count()),
-                    bare: true,
-                    loc: Loc::default(),
-                }),
+                })),
+                SeedItem::Term(first),
             ],
+            terms,
             loc: Loc::default(),
         }))
     }

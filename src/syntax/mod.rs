@@ -55,15 +55,20 @@ impl InputKind {
     }
 }
 
+/// The largest input any `--max-input` allows: positions in the text are
+/// stored in 32 bits (a seed's terms take 20 bytes each that way, not 56).
+pub const MAX_INPUT_CEILING: u64 = u32::MAX as u64;
+
 /// Checks raw input before parsing: size, UTF-8, and bracket nesting depth.
 /// Returns the text.
 pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnostics> {
-    if bytes.len() as u64 > limits.max_input_bytes {
+    let limit = limits.max_input_bytes.min(MAX_INPUT_CEILING);
+    if bytes.len() as u64 > limit {
         return Err(Diagnostic::error(ErrorKind::InputTooLarge {
             size: bytes.len() as u64,
-            limit: limits.max_input_bytes,
+            limit,
         })
-        .with_help("raise the limit with --max-input BYTES")
+        .with_help("raise the limit with --max-input BYTES (at most 4 GiB)")
         .into());
     }
     let text = match std::str::from_utf8(bytes) {

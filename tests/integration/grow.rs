@@ -62,7 +62,7 @@ fn grow_err(od: &Description, o: GrowOptions) -> Diagnostics {
 fn draw_bed(bed: &Description) -> Vec<Segment> {
     enum Task<'a> {
         Text(&'a str),
-        Term(&'a Term),
+        Term(Term<'a>),
         Op(Op),
         Fixed(&'a Fixed),
     }
@@ -87,7 +87,8 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
             SeedItem::Draw(d) => Task::Text(&d.text),
             SeedItem::Fixed(f) => Task::Fixed(f),
             SeedItem::Term(t) => {
-                assert!(!t.bare, "a BED has no bare terms");
+                let t = seed.term(*t);
+                assert!(!t.bare(), "a BED has no bare terms");
                 Task::Term(t)
             }
             SeedItem::Repeat(_) => panic!("a grown BED has no [I n X] left"),
@@ -102,8 +103,8 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
                 .for_each(|o| it.apply(o)),
             Task::Op(o) => it.apply(o),
             Task::Term(term) => {
-                let rule = bed.rule(term.rule);
-                assert_eq!(term.slots.len(), rule.branch_count());
+                let rule = bed.rule(term.rule());
+                assert_eq!(term.slot_count(), rule.branch_count());
                 let mut seq = vec![Task::Op(Op::Enter)];
                 let mut k = 0;
                 for item in &rule.body.items {
@@ -118,7 +119,7 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
                                     Piece::Fixed(f) => seq.push(Task::Fixed(f)),
                                 }
                             }
-                            match term.slots.get(k) {
+                            match term.slot(k) {
                                 Some(Slot::Term(t)) => seq.push(Task::Term(t)),
                                 Some(Slot::Repeat(_)) => panic!("no repeats in a grown BED"),
                                 None => {}
@@ -139,26 +140,27 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
 /// The BED's seed as text, iteratively (`R1{R1{,},}`), for comparisons.
 fn seed_text(bed: &Description) -> String {
     enum Tok<'a> {
-        Term(&'a Term),
+        Term(Term<'a>),
         Lit(&'static str),
     }
     let mut out = String::new();
     let mut stack: Vec<Tok> = Vec::new();
-    for item in bed.seed.as_ref().unwrap().items.iter() {
+    let seed = bed.seed.as_ref().unwrap();
+    for item in seed.items.iter() {
         match item {
             SeedItem::Draw(d) => out.push_str(&d.text),
             SeedItem::Fixed(f) => out.push_str(&format!("[I {} {}]", f.count, f.word)),
-            SeedItem::Term(t) => stack.push(Tok::Term(t)),
+            SeedItem::Term(t) => stack.push(Tok::Term(seed.term(*t))),
             SeedItem::Repeat(_) => out.push('?'),
         }
         while let Some(tok) = stack.pop() {
             match tok {
                 Tok::Lit(s) => out.push_str(s),
                 Tok::Term(t) => {
-                    out.push_str(&bed.rule(t.rule).name);
+                    out.push_str(&bed.rule(t.rule()).name);
                     out.push('{');
                     let mut seq = Vec::new();
-                    for (i, s) in t.slots.iter().enumerate() {
+                    for (i, s) in t.slots().enumerate() {
                         if i > 0 {
                             seq.push(Tok::Lit(","));
                         }
@@ -176,12 +178,12 @@ fn seed_text(bed: &Description) -> String {
 }
 
 /// Number of terms (rule applications) under a term, itself included.
-fn subtree_size(t: &Term) -> usize {
+fn subtree_size(t: Term<'_>) -> usize {
     let mut n = 0;
     let mut stack = vec![t];
     while let Some(t) = stack.pop() {
         n += 1;
-        for s in t.slots.iter().flatten() {
+        for s in t.slots().flatten() {
             if let Slot::Term(c) = s {
                 stack.push(c);
             }
@@ -443,15 +445,16 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
     );
     // The seed's one growth point grew: F then R1{right, left}.
     let root = |g: &Grown| -> (usize, usize) {
-        let items = &g.bed.description().seed.as_ref().unwrap().items;
-        let SeedItem::Term(t) = &items[1] else {
+        let seed = g.bed.description().seed.as_ref().unwrap();
+        let SeedItem::Term(t) = &seed.items[1] else {
             panic!("no term")
         };
-        let size = |s: Option<&Slot>| match s {
+        let t = seed.term(*t);
+        let size = |s: Option<Slot<'_>>| match s {
             Some(Slot::Term(t)) => subtree_size(t),
             _ => 0,
         };
-        (size(t.slots.get(0)), size(t.slots.get(1)))
+        (size(t.slot(0)), size(t.slot(1)))
     };
     let (b_right, b_left) = root(&bfs);
     let (d_right, d_left) = root(&dfs);
@@ -771,6 +774,21 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
             value: "5".into(),
             limit: "4".into()
         }
+    );
+    // Terms written out in the seed count what their rules draw, all of
+    // them, before anything is drawn: F, then 4 x R1{,} (2 stems each), 9.
+    let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F R1{,}R1{,} R1{R1,} ENDSEED");
+    let mut few = opts(GrowthOrder::Bfs);
+    few.limits.max_stems = 5;
+    let e = grow_err(&d, few);
+    assert_eq!(
+        e.0[0].kind,
+        ErrorKind::Limit {
+            what: "stems drawn by the seed alone".into(),
+            value: "7".into(),
+            limit: "5".into()
+        },
+        "the bare R1 is a growth point and counts nothing"
     );
     // The seed (drawn first, R1 deferred) fills the limit: R1's application
     // would pass it, so growth stops with a warning and R1 is left out.

@@ -292,12 +292,9 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         )
         .expect("parses");
         assert!(deeper != d, "the innermost slot differs");
-        // `{:?}` shows the first levels and elides the rest.
+        // `{:?}` of the description shows the arena's size, not its terms.
         let shown = format!("{d:#?}");
-        assert_eq!(
-            shown.matches("Term {").count(),
-            stlc::model::DEBUG_DEPTH + 1
-        );
+        assert!(shown.contains(&format!("terms: {n}")), "{shown}");
         drop((d, copy, back, deeper));
         (c.0, text.len())
     });

@@ -14,7 +14,7 @@ use stlc::interpret::bed::{draw_into, expand};
 use stlc::limits::Limits;
 use stlc::model::{
     Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, Loc, Piece,
-    Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Slot, Spelling, StemParams, Term,
+    Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Spelling, StemParams, TermId, Terms,
 };
 use stlc::num::Linear;
 use stlc::progress::NoProgress;
@@ -135,7 +135,9 @@ fn the_papers_2dtree_parses_as_written() {
     // No seed: `F` then the first rule (Figure 9's `FR1`).
     let seed = d.effective_seed().unwrap();
     assert!(matches!(&seed.items[0], SeedItem::Draw(r) if r.text == "F"));
-    assert!(matches!(&seed.items[1], SeedItem::Term(t) if t.bare && t.rule == RuleId(0)));
+    assert!(
+        matches!(&seed.items[1], SeedItem::Term(t) if seed.term(*t).bare() && seed.term(*t).rule() == RuleId(0))
+    );
 }
 
 #[test]
@@ -160,7 +162,8 @@ fn seed_r1r2r2_is_split_by_longest_match() {
     assert_eq!(seed.items.len(), 3);
     // In a BED a bare name is the full term with every slot empty.
     for item in &seed.items {
-        assert!(matches!(item, SeedItem::Term(t) if !t.bare && t.slots.len() == 1 && t.slots.all_empty()));
+        assert!(matches!(item, SeedItem::Term(t)
+            if !seed.term(*t).bare() && seed.term(*t).slot_count() == 1 && seed.term(*t).all_empty()));
     }
     for s in [Derivation::Dfs, Derivation::Bfs] {
         assert_eq!(expanded(&d, s), "[FFF][F[+F][-F]F][F[+F][-F]F]\n");
@@ -170,9 +173,10 @@ fn seed_r1r2r2_is_split_by_longest_match() {
 #[test]
 fn longest_match_prefers_the_longer_name() {
     let d = bed(&format!("{HEAD} R1=[F] R12=[+F] SEED FR12R1 ENDSEED"));
-    let items = &d.seed.as_ref().unwrap().items;
-    assert!(matches!(&items[1], SeedItem::Term(t) if t.rule == RuleId(1)));
-    assert!(matches!(&items[2], SeedItem::Term(t) if t.rule == RuleId(0)));
+    let seed = d.seed.as_ref().unwrap();
+    let items = &seed.items;
+    assert!(matches!(&items[1], SeedItem::Term(t) if seed.term(*t).rule() == RuleId(1)));
+    assert!(matches!(&items[2], SeedItem::Term(t) if seed.term(*t).rule() == RuleId(0)));
     assert_eq!(expanded(&d, Derivation::Dfs), "F[+F][F]\n");
 }
 
@@ -247,8 +251,10 @@ fn od_bare_references_are_growth_points() {
         &Limits::default(),
     )
     .unwrap();
-    let items = &d.seed.as_ref().unwrap().items;
-    assert!(matches!(&items[1], SeedItem::Term(t) if t.bare && t.slots.len() == 2));
+    let seed = d.seed.as_ref().unwrap();
+    assert!(
+        matches!(&seed.items[1], SeedItem::Term(t) if seed.term(*t).bare() && seed.term(*t).slot_count() == 2)
+    );
 }
 
 #[test]
@@ -834,7 +840,7 @@ fn gen_body(g: &mut Gen, rules: usize) -> Body {
     Body { items }
 }
 
-fn gen_term(g: &mut Gen, rules: &[RuleDef], depth: u32) -> Term {
+fn gen_term(g: &mut Gen, terms: &mut Terms, rules: &[RuleDef], depth: u32) -> TermId {
     let rule = g.below(rules.len() as u64) as usize;
     let m = rules[rule].branch_count();
     let slots = (0..m)
@@ -842,22 +848,17 @@ fn gen_term(g: &mut Gen, rules: &[RuleDef], depth: u32) -> Term {
             if depth == 0 || g.chance(40) {
                 None
             } else if g.chance(20) {
-                Some(Slot::Repeat(Repeat {
+                Some(terms.repeat(Repeat {
                     count: 1 + g.below(2) as u32,
                     rule: RuleId(g.below(rules.len() as u64) as usize),
                     loc: Loc::default(),
                 }))
             } else {
-                Some(Slot::Term(gen_term(g, rules, depth - 1)))
+                Some(Terms::slot_of(gen_term(g, terms, rules, depth - 1)))
             }
         })
         .collect::<Vec<_>>();
-    Term {
-        rule: RuleId(rule),
-        slots: slots.into(),
-        bare: false,
-        loc: Loc::default(),
-    }
+    terms.push(RuleId(rule), false, 0..0, &slots)
 }
 
 fn gen_shape(g: &mut Gen) -> LayoutShape {
@@ -930,32 +931,33 @@ fn gen_description(seed: u64) -> Description {
         })
         .collect();
     let mut items: Vec<SeedItem> = Vec::new();
+    let mut terms = Terms::new();
     let push_draw = |items: &mut Vec<SeedItem>, t: String| {
         if let Some(SeedItem::Draw(r)) = items.last_mut() {
             r.text.push_str(&t);
         } else {
-            items.push(SeedItem::Draw(run(t)));
+            items.push(SeedItem::Draw(Box::new(run(t))));
         }
     };
     for _ in 0..g.below(5) {
         match g.below(5) {
             0 => push_draw(&mut items, g.drawing()),
-            1 => items.push(SeedItem::Fixed(g.fixed())),
-            2 => items.push(SeedItem::Repeat(Repeat {
+            1 => items.push(SeedItem::Fixed(Box::new(g.fixed()))),
+            2 => items.push(SeedItem::Repeat(Box::new(Repeat {
                 count: 1 + g.below(3) as u32,
                 rule: RuleId(g.below(n as u64) as usize),
                 loc: Loc::default(),
-            })),
+            }))),
             3 => {
                 // A term inside a seed bracket: `[+F`, term, `]`.
                 let open = format!("[{}", g.letters(2));
                 push_draw(&mut items, open);
-                let t = gen_term(&mut g, &rules, 3);
+                let t = gen_term(&mut g, &mut terms, &rules, 3);
                 items.push(SeedItem::Term(t));
                 push_draw(&mut items, "]".into());
             }
             _ => {
-                let t = gen_term(&mut g, &rules, 4);
+                let t = gen_term(&mut g, &mut terms, &rules, 4);
                 items.push(SeedItem::Term(t));
             }
         }
@@ -994,6 +996,7 @@ fn gen_description(seed: u64) -> Description {
         rules,
         seed: g.chance(90).then_some(Seed {
             items,
+            terms,
             loc: Loc::default(),
         }),
         layout,

@@ -15,7 +15,7 @@ use super::lex::{Lex, SeedLex};
 use super::rules::{KW_ENDSEED, KW_SEED};
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::diag::{Diagnostic, ErrorKind, Span};
-use crate::model::{Format, Loc, RuleId, Seed, SeedItem, Slot, SlotList, Term};
+use crate::model::{Format, Loc, Repeat, RuleId, Seed, SeedItem, SlotId, TermId, Terms};
 
 /// A term whose `{` is open.
 struct TermFrame {
@@ -23,9 +23,26 @@ struct TermFrame {
     rule: Option<RuleId>,
     start: usize,
     open: Span,
-    slots: Vec<Option<Slot>>,
-    cur: Option<Slot>,
+    slots: Vec<Option<SlotId>>,
+    cur: Option<SlotId>,
     saw_comma: bool,
+}
+
+/// A finished term or repeat, to put in a slot or the seed.
+enum Made {
+    /// A term in the arena, written at `Span`.
+    Term(TermId, Span),
+    /// `[I n X]`.
+    Repeat(Repeat),
+}
+
+/// The seed being built.
+#[derive(Default)]
+struct Out {
+    items: Vec<SeedItem>,
+    terms: Terms,
+    /// Drawing since the last item.
+    run: Run,
 }
 
 impl Builder<'_> {
@@ -34,12 +51,12 @@ impl Builder<'_> {
         let span = span_of(&p);
         let mut kw = None;
         let mut closed = false;
-        let mut items = Vec::new();
+        let mut out = Out::default();
         for c in p.into_inner() {
             match c.as_rule() {
                 Rule::stl_kw_seed => kw = Some(span_of(&c)),
                 Rule::stl_kw_endseed => closed = true,
-                Rule::stl_seed_body => items = self.seed_items(c),
+                Rule::stl_seed_body => out = self.seed_items(c),
                 other => not_in_grammar("stl_seed", other),
             }
         }
@@ -55,14 +72,15 @@ impl Builder<'_> {
             );
         }
         Seed {
-            items,
+            items: out.items,
+            terms: out.terms,
             loc: Loc(span),
         }
     }
 
     /// The seed's items from its text, read as a stream of tokens (see
     /// [`SeedLex`]): memory for the terms built, not for their tokens.
-    fn seed_items(&mut self, body: Pair<'_, Rule>) -> Vec<SeedItem> {
+    fn seed_items(&mut self, body: Pair<'_, Rule>) -> Out {
         let mut texts = body.into_inner().map(|t| {
             debug_assert_eq!(t.as_rule(), Rule::stl_seed_text);
             SeedLex::new(t.as_str(), t.as_span().start())
@@ -80,8 +98,7 @@ impl Builder<'_> {
                 None => lexer = texts.next(),
             }
         };
-        let mut items = Vec::new();
-        let mut run = Run::default();
+        let mut out = Out::default();
         let mut brackets: Vec<Span> = Vec::new();
         let mut stack: Vec<TermFrame> = Vec::new();
         // A rule name whose `{` may follow.
@@ -90,8 +107,8 @@ impl Builder<'_> {
             if !matches!(l, Lex::LBrace(_))
                 && let Some((id, s)) = pending.take()
             {
-                let t = self.bare(id, s);
-                self.deliver(Slot::Term(t), &mut stack, &mut items, &mut run);
+                let t = self.bare(&mut out.terms, id, s);
+                self.deliver(t, &mut stack, &mut out);
             }
             match l {
                 Lex::Name(id, s) => pending = Some((id, s)),
@@ -137,21 +154,15 @@ impl Builder<'_> {
                         if let Some(rule) = f.rule {
                             let m = self.branches[rule.0];
                             // `R0{}` for a rule without branches.
-                            if m == 0 && !f.saw_comma && f.slots.len() == 1 && f.slots[0].is_none()
-                            {
+                            if m == 0 && !f.saw_comma && f.slots == [None] {
                                 f.slots.clear();
                             }
                             let span = f.start..s.end;
                             if f.slots.len() != m {
                                 self.slot_count(rule, f.slots.len(), span.clone());
                             }
-                            let t = Term {
-                                rule,
-                                slots: f.slots.into(),
-                                bare: false,
-                                loc: Loc(span),
-                            };
-                            self.deliver(Slot::Term(t), &mut stack, &mut items, &mut run);
+                            let t = out.terms.push(rule, false, span.clone(), &f.slots);
+                            self.deliver(Made::Term(t, span), &mut stack, &mut out);
                         }
                     }
                     None => self.unbalanced('}', s.clone(), "this `}` closes nothing"),
@@ -171,7 +182,10 @@ impl Builder<'_> {
                                 depth += 1;
                                 false
                             }
-                            Lex::LBrace(_) | Lex::RBrace(_) | Lex::Comma(_) | Lex::RepeatOpen(..) => true,
+                            Lex::LBrace(_)
+                            | Lex::RBrace(_)
+                            | Lex::Comma(_)
+                            | Lex::RepeatOpen(..) => true,
                             _ => false,
                         };
                         form.push(t);
@@ -184,15 +198,13 @@ impl Builder<'_> {
                         back.push_front(t);
                     }
                     match what {
-                        RepeatBody::Rule(r) => {
-                            self.deliver(Slot::Repeat(r), &mut stack, &mut items, &mut run)
-                        }
+                        RepeatBody::Rule(r) => self.deliver(Made::Repeat(r), &mut stack, &mut out),
                         RepeatBody::Word(f) => {
                             if stack.is_empty() {
-                                if let Some(r) = run.take() {
-                                    items.push(SeedItem::Draw(r));
+                                if let Some(r) = out.run.take() {
+                                    out.items.push(SeedItem::Draw(Box::new(r)));
                                 }
-                                items.push(SeedItem::Fixed(f));
+                                out.items.push(SeedItem::Fixed(Box::new(f)));
                             } else {
                                 self.in_slot(f.loc.0);
                             }
@@ -209,15 +221,15 @@ impl Builder<'_> {
                         self.in_slot(s.start + k..s.start + k + 1);
                     }
                 }
-                Lex::Draw(c, s) => run.push(c, &s),
-                Lex::Draws(t, s) => run.push_str(&t, &s),
+                Lex::Draw(c, s) => out.run.push(c, &s),
+                Lex::Draws(t, s) => out.run.push_str(&t, &s),
                 Lex::Open(s) => {
-                    run.push('[', &s);
+                    out.run.push('[', &s);
                     brackets.push(s);
                 }
                 Lex::Close(s) => {
                     if brackets.pop().is_some() {
-                        run.push(']', &s);
+                        out.run.push(']', &s);
                     } else {
                         self.unbalanced(']', s.clone(), "this `]` closes nothing");
                     }
@@ -225,8 +237,8 @@ impl Builder<'_> {
             }
         }
         if let Some((id, s)) = pending.take() {
-            let t = self.bare(id, s);
-            self.deliver(Slot::Term(t), &mut stack, &mut items, &mut run);
+            let t = self.bare(&mut out.terms, id, s);
+            self.deliver(t, &mut stack, &mut out);
         }
         for f in stack.iter().rev() {
             self.unbalanced('{', f.open.clone(), "this `{` is never closed");
@@ -234,10 +246,10 @@ impl Builder<'_> {
         for b in brackets.iter().rev() {
             self.unbalanced('[', b.clone(), "this `[` is never closed");
         }
-        if let Some(r) = run.take() {
-            items.push(SeedItem::Draw(r));
+        if let Some(r) = out.run.take() {
+            out.items.push(SeedItem::Draw(Box::new(r)));
         }
-        items
+        out
     }
 
     fn in_slot(&mut self, span: Span) {
@@ -268,30 +280,21 @@ impl Builder<'_> {
     }
 
     /// The term a bare rule name `R1` stands for.
-    fn bare(&mut self, rule: RuleId, span: Span) -> Term {
-        Term {
-            rule,
-            slots: SlotList::empty(self.branches[rule.0]),
-            bare: self.format == Format::Od,
-            loc: Loc(span),
-        }
+    fn bare(&mut self, terms: &mut Terms, rule: RuleId, span: Span) -> Made {
+        let empty = vec![None; self.branches[rule.0]];
+        let id = terms.push(rule, self.format == Format::Od, span.clone(), &empty);
+        Made::Term(id, span)
     }
 
     /// Puts a finished term or repeat where it belongs: the open slot of the
     /// innermost open term, or the seed.
-    fn deliver(
-        &mut self,
-        s: Slot,
-        stack: &mut [TermFrame],
-        items: &mut Vec<SeedItem>,
-        run: &mut Run,
-    ) {
+    fn deliver(&mut self, made: Made, stack: &mut [TermFrame], out: &mut Out) {
         match stack.last_mut() {
             Some(f) => {
                 if f.cur.is_some() {
-                    let span = match &s {
-                        Slot::Term(t) => t.loc.0.clone(),
-                        Slot::Repeat(r) => r.loc.0.clone(),
+                    let span = match made {
+                        Made::Term(_, span) => span,
+                        Made::Repeat(r) => r.loc.0,
                     };
                     self.report(
                         ErrorKind::TwoTermsInSlot,
@@ -300,16 +303,19 @@ impl Builder<'_> {
                         "separate slots with `,`; to grow more at one tip, give the rule more branches",
                     );
                 } else {
-                    f.cur = Some(s);
+                    f.cur = Some(match made {
+                        Made::Term(t, _) => Terms::slot_of(t),
+                        Made::Repeat(r) => out.terms.repeat(r),
+                    });
                 }
             }
             None => {
-                if let Some(r) = run.take() {
-                    items.push(SeedItem::Draw(r));
+                if let Some(r) = out.run.take() {
+                    out.items.push(SeedItem::Draw(Box::new(r)));
                 }
-                items.push(match s {
-                    Slot::Term(t) => SeedItem::Term(t),
-                    Slot::Repeat(r) => SeedItem::Repeat(r),
+                out.items.push(match made {
+                    Made::Term(t, _) => SeedItem::Term(t),
+                    Made::Repeat(r) => SeedItem::Repeat(Box::new(r)),
                 });
             }
         }
@@ -347,11 +353,47 @@ mod tests {
         // Rule names inside a run split it: `FF+R1-F` is a run, a term and
         // a run.
         let d = bed(&format!("{HEAD} SEED FF+R1-F ENDSEED")).unwrap();
-        let items = d.seed.unwrap().items;
+        let seed = d.seed.unwrap();
+        let items = &seed.items;
         assert_eq!(items.len(), 3, "{items:?}");
         assert!(matches!(&items[0], SeedItem::Draw(r) if r.text == "FF+"));
-        assert!(matches!(&items[1], SeedItem::Term(t) if t.rule == crate::model::RuleId(0)));
+        assert!(
+            matches!(&items[1], SeedItem::Term(t) if seed.term(*t).rule() == crate::model::RuleId(0))
+        );
         assert!(matches!(&items[2], SeedItem::Draw(r) if r.text == "-F"));
+    }
+
+    /// The seed is tokenised in Rust from one parser token: spaces,
+    /// newlines and comments anywhere between tokens (and inside `[I n`)
+    /// read as the compact form does, and every span points into the file.
+    #[test]
+    fn spaced_and_commented_seeds_read_as_the_compact_form() {
+        let compact = bed(&format!(
+            "{HEAD} SEED F+R2{{R1{{}},[I 2 R1]}}[+F]-F ENDSEED"
+        ))
+        .unwrap();
+        let spaced_src = format!(
+            "{HEAD} SEED F +\n  R2 {{ # first slot\n R1{{ }} ,\n\t[ # count next\n I 2 R1 ] }}\n [ + F ] - F\nENDSEED"
+        );
+        let spaced = bed(&spaced_src).unwrap();
+        assert!(compact.seed == spaced.seed);
+        let seed = spaced.seed.unwrap();
+        let spans: Vec<&str> = seed
+            .items
+            .iter()
+            .map(|i| &spaced_src[seed.item_span(i)])
+            .collect();
+        assert_eq!(
+            spans,
+            [
+                "F +",
+                "R2 { # first slot\n R1{ } ,\n\t[ # count next\n I 2 R1 ] }",
+                "[ + F ] - F"
+            ]
+        );
+        // `#abc` is a colour, not a comment, so the seed stops there.
+        let e = bed(&format!("{HEAD} SEED F #abc ENDSEED")).unwrap_err();
+        assert!(matches!(e.0[0].kind, ErrorKind::Syntax(_)), "{e}");
     }
 
     #[test]
@@ -371,9 +413,13 @@ mod tests {
     #[test]
     fn empty_braces_fit_zero_or_one_branch() {
         let d = bed("T (0,0) RULE R0: F R1: [F] SEED R0{} R1{} ENDSEED").unwrap();
-        let items = &d.seed.unwrap().items;
-        assert!(matches!(&items[0], SeedItem::Term(t) if t.slots.is_empty()));
-        assert!(matches!(&items[1], SeedItem::Term(t) if t.slots.len() == 1 && t.slots.all_empty()));
+        let seed = d.seed.unwrap();
+        let term = |i: usize| match &seed.items[i] {
+            SeedItem::Term(t) => seed.term(*t),
+            other => panic!("{other:?} is no term"),
+        };
+        assert_eq!(term(0).slot_count(), 0);
+        assert!(term(1).slot_count() == 1 && term(1).all_empty());
     }
 
     #[test]
