@@ -50,6 +50,9 @@ chain = "A{" * 9000 + "}" * 9000
 w("chains.bed", "A: [F]\n", "\n".join([chain] * 200))
 # Bare names (a BED reads `A` as `A{}`): two bytes a term.
 w("bare.bed", "A: F\n", "A " * 2_000_000)
+# One rule body of megabytes; a RULE section at --max-rule-parts.
+w("body.bed", "R1: " + "F+F-" * 1_500_000 + "\n", "R1{}")
+w("rules-limit.bed", "".join(f"R{i}: [F]\n" for i in range(49_999)), "F")
 # The same terms in an OD, refused by --max-stems before growing.
 with open(f"{t}/terms.od", "w") as f:
     f.write(head + "R1: [+F][-F]\nSEED\n" + "R1{,}" * 1_000_000 + "\nENDSEED\n")
@@ -81,5 +84,7 @@ checkrun() {
 for f in flat-draw.bed terms.bed terms-lines.bed binary.bed chains.bed bare.bed; do
     run "$f" render
 done
+checkrun body.bed
+checkrun rules-limit.bed
 checkrun terms.od
 checkrun polygon.od

@@ -26,6 +26,9 @@ pub struct Limits {
     /// Most vertices a layout's outline may have: each shape once flattened,
     /// and the painted area after each shape (`--max-layout-vertices`).
     pub max_layout_vertices: usize,
+    /// Most rule definitions and top-level bracket groups of rule bodies an
+    /// OD or BED may have (`--max-rule-parts`).
+    pub max_rule_parts: usize,
 }
 
 impl Default for Limits {
@@ -39,6 +42,7 @@ impl Default for Limits {
             max_word: 200_000_000,
             max_stems: 1_000_000,
             max_layout_vertices: 16_000,
+            max_rule_parts: 100_000,
         }
     }
 }

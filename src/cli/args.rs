@@ -196,6 +196,10 @@ pub struct LimitArgs {
     /// Largest derivation depth, `generations`, or count in `[I n X]`.
     #[arg(long, value_name = "N", default_value_t = Limits::default().max_depth)]
     pub max_depth: u32,
+    /// Most rule definitions plus top-level branches and fixed figures in
+    /// an .od or .bed's RULE section.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_rule_parts)]
+    pub max_rule_parts: usize,
 }
 
 /// Limits of a traversal (commands that walk a derivation).
@@ -269,6 +273,7 @@ impl LimitArgs {
             max_word: word.map_or(d.max_word, |a| a.max_word),
             max_stems: stems.unwrap_or(d.max_stems),
             max_layout_vertices: layout.map_or(d.max_layout_vertices, |a| a.max_layout_vertices),
+            max_rule_parts: self.max_rule_parts,
         }
     }
 }

@@ -112,16 +112,8 @@ pub(crate) fn describe(rule: Rule) -> String {
         Rule::stl_rule_name => "a rule name",
         Rule::stl_defines => "`:` or `=`",
         Rule::stl_body => "a rule body",
-        Rule::stl_token => "a drawing component or rule name",
-        Rule::stl_repeat_open => "`[I n`",
-        Rule::stl_kw_i => "`I`",
-        Rule::stl_open => "`[`",
-        Rule::stl_close => "`]`",
-        Rule::stl_lbrace => "`{`",
-        Rule::stl_rbrace => "`}`",
-        Rule::stl_comma => "`,`",
-        Rule::stl_sym => "`+`, `-` or `|`",
-        Rule::stl_word => "drawing letters or a rule name",
+        Rule::stl_body_text => "a drawing component or rule name",
+        Rule::stl_body_piece => "a drawing component or rule name",
         Rule::stl_seed => "a `SEED` section",
         Rule::stl_seed_body => "the seed",
         Rule::stl_seed_text => "a drawing component, rule name or term",
@@ -182,8 +174,8 @@ mod tests {
         assert_eq!(list(&[]), "");
         assert_eq!(list(&[Rule::EOI]), "end of input");
         assert_eq!(
-            list(&[Rule::stl_open, Rule::EOI, Rule::number, Rule::lsys_num]),
-            "`[`, a number or end of input"
+            list(&[Rule::stl_kw_rule, Rule::EOI, Rule::number, Rule::lsys_num]),
+            "`RULE`, a number or end of input"
         );
     }
 }

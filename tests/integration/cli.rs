@@ -383,6 +383,18 @@ fn each_limit_names_the_flag_that_raises_it() {
     let (code, err) = run_stdin(&["check", "-", "--from", "bed"], deep_bed);
     assert_eq!(code, 1);
     assert!(err.contains("--max-nesting"), "{err}");
+    // A RULE section of 200,001 parts (one rule of 200,000 branches) is
+    // refused before parsing; under a raised limit it reads.
+    let wide = format!("T (0,0) RULE R1: {} SEED F ENDSEED", "[+F]".repeat(200_000));
+    let (code, err) = run_stdin(&["check", "-", "--from", "bed"], wide.clone());
+    assert_eq!(code, 1);
+    assert!(err.contains("200001 exceeds the limit of 100000"), "{err}");
+    assert!(err.contains("--max-rule-parts"), "{err}");
+    let (code, err) = run_stdin(
+        &["check", "-", "--from", "bed", "--max-rule-parts", "200001"],
+        wide,
+    );
+    assert_eq!(code, 0, "{err}");
     // Depths and counts in the millions.
     let (code, err) = run_stdin(
         &["stats", "-", "--from", "lsys"],

@@ -133,7 +133,7 @@ pub(super) fn prescan_polygons(src: &str, max_vertices: usize) -> Result<(), Dia
 
 /// The first occurrence of `word` at or after `from` that stands alone
 /// (no name character on either side).
-fn find_word(src: &str, from: usize, word: &str) -> Option<usize> {
+pub(super) fn find_word(src: &str, from: usize, word: &str) -> Option<usize> {
     let b = src.as_bytes();
     let name = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
     let mut at = from;

@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 
 use pest::iterators::Pair;
 
-use super::{Builder, DRAWING_LETTERS, Rule, not_in_grammar, span_of};
+use super::{Builder, DRAWING_LETTERS, Rule, not_in_grammar};
 use crate::diag::{Diagnostic, ErrorKind, Span};
 use crate::model::RuleId;
 
@@ -37,12 +37,13 @@ pub(super) enum Lex {
     RepeatOpen(Option<u32>, Span),
 }
 
-/// Streams the tokens of a seed's text (the grammar's `stl_seed_text`: the
-/// whole seed, spaces and comments included) one at a time, words split as
+/// Streams the tokens of a seed's or a body's text (the grammar's
+/// `stl_seed_text`, the whole seed, and `stl_body_text`; spaces and comments
+/// included) one at a time, words split as
 /// [`Builder::split_word`] does and consecutive drawing components merged
 /// into one [`Lex::Draws`]. A seed of millions of terms so never becomes a
 /// token list: the parser holds one pair for it and this holds one word.
-pub(super) struct SeedLex<'s> {
+pub(super) struct TextLex<'s> {
     text: &'s str,
     /// Where `text` starts in the file.
     at: usize,
@@ -61,10 +62,10 @@ fn name_char(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_'
 }
 
-impl<'s> SeedLex<'s> {
+impl<'s> TextLex<'s> {
     /// The tokens of `text`, which starts at byte `at` of the file.
     pub(super) fn new(text: &'s str, at: usize) -> Self {
-        SeedLex {
+        TextLex {
             text,
             at,
             i: 0,
@@ -196,41 +197,26 @@ impl<'s> SeedLex<'s> {
 
 impl Builder<'_> {
     /// Longest declared rule name that `text` starts with.
+    /// (A lookup per prefix length: a description may declare tens of
+    /// thousands of rules.)
     fn longest(&self, text: &str) -> Option<(RuleId, usize)> {
-        self.names
-            .iter()
-            .enumerate()
-            .filter(|(_, n)| !n.is_empty() && text.starts_with(n.as_str()))
-            .max_by_key(|(i, n)| (n.len(), std::cmp::Reverse(*i)))
-            .map(|(i, n)| (RuleId(i), n.len()))
+        (1..=self.longest_name.min(text.len()))
+            .rev()
+            .filter(|&n| text.is_char_boundary(n))
+            .find_map(|n| self.by_name.get(&text[..n]).map(|&id| (id, n)))
     }
 
-    /// The tokens of a body or seed (`stl_body`, `stl_seed_body`), words
-    /// split into drawing letters and rule names.
+    /// The tokens of a rule body (`stl_body`: chunks of text), words split
+    /// and drawing components written together merged, as in a seed.
     pub(super) fn lex(&mut self, p: Pair<'_, Rule>) -> Vec<Lex> {
         let mut out = Vec::new();
-        for tok in p.into_inner() {
-            let t = tok.into_inner().next();
-            let t = t.expect("grammar: stl_token holds one token");
-            let span = span_of(&t);
-            match t.as_rule() {
-                Rule::stl_open => out.push(Lex::Open(span)),
-                Rule::stl_close => out.push(Lex::Close(span)),
-                Rule::stl_lbrace => out.push(Lex::LBrace(span)),
-                Rule::stl_rbrace => out.push(Lex::RBrace(span)),
-                Rule::stl_comma => out.push(Lex::Comma(span)),
-                Rule::stl_sym => {
-                    let c = t.as_str().chars().next();
-                    out.push(Lex::Draw(c.expect("grammar: stl_sym is one symbol"), span));
-                }
-                Rule::stl_word => self.split_word(t.as_str(), span.start, &mut out),
-                Rule::stl_repeat_open => {
-                    let count = t.into_inner().find(|x| x.as_rule() == Rule::integer);
-                    let count = count.expect("grammar: stl_repeat_open holds an integer");
-                    let n = self.count(count.as_str(), span_of(&count));
-                    out.push(Lex::RepeatOpen(n, span));
-                }
-                other => not_in_grammar("stl_token", other),
+        for chunk in p.into_inner() {
+            if chunk.as_rule() != Rule::stl_body_text {
+                not_in_grammar("stl_body", chunk.as_rule());
+            }
+            let mut tokens = TextLex::new(chunk.as_str(), chunk.as_span().start());
+            while let Some(l) = tokens.next(self) {
+                out.push(l);
             }
         }
         out

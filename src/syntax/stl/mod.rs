@@ -35,7 +35,7 @@ use pest::iterators::Pair;
 use super::{GrammarParser, Rule, pest_error, precheck};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
 use crate::limits::Limits;
-use crate::model::{Description, Format, Loc};
+use crate::model::{Description, Format, Loc, RuleId};
 
 pub use header::Param;
 pub use layout::ShapeName;
@@ -49,6 +49,7 @@ pub use rules::{DRAWING_LETTERS, KEYWORDS, REPEAT_MARK, is_reserved};
 pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, Diagnostics> {
     let src = precheck(src.as_bytes(), limits)?;
     layout::prescan_polygons(src, limits.max_layout_vertices)?;
+    rules::prescan_rules(src, limits.max_rule_parts)?;
     let mut pairs = GrammarParser::parse(Rule::stl_file, src).map_err(|e| {
         pest_error(e).with_help(
             "a description reads: tree name, root `(x, y)`, stem parameters \
@@ -64,6 +65,8 @@ pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, 
         limits,
         diags: Diagnostics::new(),
         names: Vec::new(),
+        by_name: std::collections::HashMap::new(),
+        longest_name: 0,
         branches: Vec::new(),
     };
     let desc = b.file(file);
@@ -78,6 +81,10 @@ struct Builder<'l> {
     /// Declared rule names, by [`RuleId`](crate::model::RuleId) (invalid
     /// ones as `""`).
     names: Vec<String>,
+    /// The first rule of each valid name (looked up, never iterated).
+    by_name: std::collections::HashMap<String, RuleId>,
+    /// The longest valid name's length in bytes.
+    longest_name: usize,
     /// Branch counts by [`RuleId`](crate::model::RuleId).
     branches: Vec<usize>,
 }

@@ -3,9 +3,10 @@
 
 use pest::iterators::Pair;
 
+use super::layout::find_word;
 use super::{Builder, Rule, span_of};
-use crate::diag::{Diagnostic, ErrorKind, Span};
-use crate::model::{Loc, RuleDef};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::model::{Loc, RuleDef, RuleId};
 
 /// The drawing letters of bodies and seeds. A word's leftovers after the
 /// rule names are taken out must be these.
@@ -19,6 +20,58 @@ pub(super) const KW_SEED: &str = "SEED";
 pub(super) const KW_ENDSEED: &str = "ENDSEED";
 pub(super) const KW_LAYOUT: &str = "LAYOUT";
 pub(super) const KW_ENDLAYOUT: &str = "ENDLAYOUT";
+
+/// Refuses a `RULE` section of more parts (definitions, and top-level
+/// bracket groups of bodies: branches and fixed figures) than
+/// `--max-rule-parts` before the parser reads it. Each part costs the
+/// parser and the model a few hundred bytes, whatever its length, so a
+/// generated section of millions of tiny parts would cost far more than
+/// its text (docs/limits.md). A byte scan from `RULE` to the next `SEED`
+/// or `LAYOUT`, comments skipped.
+pub(super) fn prescan_rules(src: &str, max_parts: usize) -> Result<(), Diagnostics> {
+    let Some(start) = find_word(src, 0, KW_RULE) else {
+        return Ok(());
+    };
+    let from = start + KW_RULE.len();
+    let end = [KW_SEED, KW_LAYOUT]
+        .iter()
+        .filter_map(|kw| find_word(src, from, kw))
+        .min()
+        .unwrap_or(src.len());
+    let b = &src.as_bytes()[..end];
+    let (mut parts, mut depth, mut i) = (0usize, 0usize, from);
+    while i < b.len() {
+        match b[i] {
+            b'#' => {
+                while i < b.len() && b[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            b':' | b'=' => parts += 1,
+            b'[' => {
+                if depth == 0 {
+                    parts += 1;
+                }
+                depth += 1;
+            }
+            b']' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        i += 1;
+    }
+    if parts <= max_parts {
+        return Ok(());
+    }
+    Err(Diagnostic::error(ErrorKind::Limit {
+        what: "rule definitions and branches".into(),
+        value: parts.to_string(),
+        limit: max_parts.to_string(),
+    })
+    .with_span(start..from)
+    .with_label("this section")
+    .with_help("use fewer rules or branches, or raise the limit with --max-rule-parts N")
+    .into())
+}
 
 /// The section keywords (`grammar.pest` spells them again in its
 /// `stl_kw_*` rules, as pest must).
@@ -46,6 +99,10 @@ impl Builder<'_> {
             let span = span_of(&n);
             let valid = self.check_name(&name, &span, &heads);
             heads.push((name.clone(), span));
+            if valid {
+                self.by_name.insert(name.clone(), RuleId(self.names.len()));
+                self.longest_name = self.longest_name.max(name.len());
+            }
             self.names.push(if valid { name } else { String::new() });
         }
         let mut bodies = Vec::new();
@@ -68,17 +125,23 @@ impl Builder<'_> {
                         .with_help("write what the rule draws, e.g. `R1: [+F][-F]`"),
                 );
             }
+            // The definition ends with its body's last chunk, not with the
+            // spaces and comments the parser skipped after it.
+            let end = body
+                .as_ref()
+                .and_then(|b| b.clone().into_inner().last())
+                .map_or(span_of(d).end, |t| t.as_span().end());
             let lex = body.map(|b| self.lex(b)).unwrap_or_default();
-            bodies.push(lex);
+            bodies.push((lex, end));
         }
         let mut out = Vec::new();
-        for ((d, (name, span)), lex) in defs.iter().zip(heads).zip(bodies) {
+        for ((d, (name, span)), (lex, end)) in defs.iter().zip(heads).zip(bodies) {
             let body = self.body(&lex);
             out.push(RuleDef {
                 name,
                 name_loc: Loc(span),
                 body,
-                loc: Loc(span_of(d)),
+                loc: Loc(span_of(d).start..end),
             });
         }
         self.branches = out.iter().map(RuleDef::branch_count).collect();
@@ -115,7 +178,7 @@ impl Builder<'_> {
             );
             return false;
         }
-        if let Some(i) = self.names.iter().position(|x| x == name) {
+        if let Some(&RuleId(i)) = self.by_name.get(name) {
             self.err(
                 Diagnostic::error(ErrorKind::DuplicateRule {
                     name: name.to_string(),
@@ -133,6 +196,48 @@ impl Builder<'_> {
 
 #[cfg(test)]
 mod tests {
+    use super::prescan_rules;
+
+    /// A body is read from chunks of text: spaces and comments inside it
+    /// change nothing, and a definition's span ends at its body's last
+    /// symbol, not at the comment or spaces before the next definition.
+    #[test]
+    fn bodies_read_through_spaces_and_comments() {
+        use super::super::testing::bed;
+        let src = "T (0,0) L=1(0) B=1(0) RULE R1: [ + F ] # note: [x]\n [ -F R2 ]  # end\n R2 = F [I 2 F] SEED R1{,} ENDSEED";
+        let spaced = bed(src).unwrap();
+        let compact =
+            bed("T (0,0) L=1(0) B=1(0) RULE R1:[+F][-F R2] R2=F[I 2 F] SEED R1{,} ENDSEED")
+                .unwrap();
+        assert!(spaced.rules == compact.rules);
+        assert_eq!(
+            &src[spaced.rules[0].loc.0.clone()],
+            "R1: [ + F ] # note: [x]\n [ -F R2 ]"
+        );
+        assert_eq!(&src[spaced.rules[1].loc.0.clone()], "R2 = F [I 2 F]");
+    }
+
+    /// Definitions and top-level bracket groups count; nested brackets,
+    /// comments and anything after `SEED` do not.
+    #[test]
+    fn rule_parts_are_counted_before_parsing() {
+        let src =
+            "T (0,0) L=1(0) B=1(0) RULE R1: [+F[F]][-F] # [x]: [y]\n R2=[I 2 F]F SEED [F] ENDSEED";
+        // R1:, [+F[F]], [-F], R2=, [I 2 F]: five.
+        assert!(prescan_rules(src, 5).is_ok());
+        let e = prescan_rules(src, 4).unwrap_err();
+        assert_eq!(
+            e.0[0].kind,
+            crate::diag::ErrorKind::Limit {
+                what: "rule definitions and branches".into(),
+                value: "5".into(),
+                limit: "4".into()
+            }
+        );
+        let at = src.find("RULE").unwrap();
+        assert_eq!(e.0[0].span, Some(at..at + 4));
+    }
+
     use super::*;
 
     #[test]

@@ -11,7 +11,7 @@ use std::collections::VecDeque;
 use pest::iterators::Pair;
 
 use super::body::{RepeatBody, Run};
-use super::lex::{Lex, SeedLex};
+use super::lex::{Lex, TextLex};
 use super::rules::{KW_ENDSEED, KW_SEED};
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::diag::{Diagnostic, ErrorKind, Span};
@@ -79,11 +79,11 @@ impl Builder<'_> {
     }
 
     /// The seed's items from its text, read as a stream of tokens (see
-    /// [`SeedLex`]): memory for the terms built, not for their tokens.
+    /// [`TextLex`]): memory for the terms built, not for their tokens.
     fn seed_items(&mut self, body: Pair<'_, Rule>) -> Out {
         let mut texts = body.into_inner().map(|t| {
             debug_assert_eq!(t.as_rule(), Rule::stl_seed_text);
-            SeedLex::new(t.as_str(), t.as_span().start())
+            TextLex::new(t.as_str(), t.as_span().start())
         });
         let mut lexer = texts.next();
         // Tokens read past the end of a `[I n ...]` form, to take first.
