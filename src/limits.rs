@@ -29,6 +29,8 @@ pub struct Limits {
     /// Most rule definitions and top-level bracket groups of rule bodies an
     /// OD or BED may have (`--max-rule-parts`).
     pub max_rule_parts: usize,
+    /// Most shapes a LAYOUT may have (`--max-layout-shapes`).
+    pub max_layout_shapes: usize,
 }
 
 impl Default for Limits {
@@ -43,6 +45,7 @@ impl Default for Limits {
             max_stems: 1_000_000,
             max_layout_vertices: 16_000,
             max_rule_parts: 100_000,
+            max_layout_shapes: 10_000,
         }
     }
 }

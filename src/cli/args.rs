@@ -200,6 +200,9 @@ pub struct LimitArgs {
     /// an .od or .bed's RULE section.
     #[arg(long, value_name = "N", default_value_t = Limits::default().max_rule_parts)]
     pub max_rule_parts: usize,
+    /// Most shapes in an .od or .bed's LAYOUT.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_layout_shapes)]
+    pub max_layout_shapes: usize,
 }
 
 /// Limits of a traversal (commands that walk a derivation).
@@ -274,6 +277,7 @@ impl LimitArgs {
             max_stems: stems.unwrap_or(d.max_stems),
             max_layout_vertices: layout.map_or(d.max_layout_vertices, |a| a.max_layout_vertices),
             max_rule_parts: self.max_rule_parts,
+            max_layout_shapes: self.max_layout_shapes,
         }
     }
 }

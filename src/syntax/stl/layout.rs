@@ -131,6 +131,41 @@ pub(super) fn prescan_polygons(src: &str, max_vertices: usize) -> Result<(), Dia
     Ok(())
 }
 
+/// Refuses a LAYOUT of more shapes than `--max-layout-shapes` before the
+/// parser reads it: each shape line costs the parser and the model about a
+/// kilobyte however short it is (docs/limits.md). A byte scan of the text
+/// after `LAYOUT` counting shape names.
+pub(super) fn prescan_shapes(src: &str, max_shapes: usize) -> Result<(), Diagnostics> {
+    let Some(layout) = find_word(src, 0, KW_LAYOUT) else {
+        return Ok(());
+    };
+    let from = layout + KW_LAYOUT.len();
+    let shapes: usize = ShapeName::ALL
+        .iter()
+        .map(|s| {
+            let mut n = 0;
+            let mut at = from;
+            while let Some(p) = find_word(src, at, s.name()) {
+                n += 1;
+                at = p + 1;
+            }
+            n
+        })
+        .sum();
+    if shapes <= max_shapes {
+        return Ok(());
+    }
+    Err(Diagnostic::error(ErrorKind::Limit {
+        what: "layout shapes".into(),
+        value: shapes.to_string(),
+        limit: max_shapes.to_string(),
+    })
+    .with_span(layout..from)
+    .with_label("this section")
+    .with_help("use fewer shapes, or raise the limit with --max-layout-shapes N")
+    .into())
+}
+
 /// The first occurrence of `word` at or after `from` that stands alone
 /// (no name character on either side).
 pub(super) fn find_word(src: &str, from: usize, word: &str) -> Option<usize> {
@@ -404,6 +439,28 @@ mod tests {
         // (a comment, a rule name), are not counted.
         let other = "Polygon (0,0), (1,0), (1,1) LAYOUT (clGreen) PolygonX (0,0), (1,0)";
         assert!(prescan_polygons(other, 1).is_ok());
+    }
+
+    /// Shapes counted by name after `LAYOUT`, whatever their kind.
+    #[test]
+    fn shapes_past_the_shape_limit_are_refused_before_parsing() {
+        use super::prescan_shapes;
+        let src = "T (0,0) RULE R1: [F] LAYOUT (clGreen) Rectangle (0,0), 9, 9 \
+                   (clWhite) Ellipse (1,1), 2, 2 (clRed) <RoundRect (0,0), 4, 4, 1, 1> \
+                   (clGreen) Polygon (0,0), (1,0), (1,1) ENDLAYOUT";
+        assert!(prescan_shapes(src, 4).is_ok());
+        let e = prescan_shapes(src, 3).unwrap_err();
+        assert_eq!(
+            e.0[0].kind,
+            ErrorKind::Limit {
+                what: "layout shapes".into(),
+                value: "4".into(),
+                limit: "3".into()
+            }
+        );
+        let at = src.find("LAYOUT").unwrap();
+        assert_eq!(e.0[0].span, Some(at..at + 6));
+        assert!(prescan_shapes("T (0,0) RULE R1: [F]", 0).is_ok());
     }
 
     use super::ShapeName;

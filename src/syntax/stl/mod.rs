@@ -50,6 +50,7 @@ pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, 
     let src = precheck(src.as_bytes(), limits)?;
     layout::prescan_polygons(src, limits.max_layout_vertices)?;
     rules::prescan_rules(src, limits.max_rule_parts)?;
+    layout::prescan_shapes(src, limits.max_layout_shapes)?;
     let mut pairs = GrammarParser::parse(Rule::stl_file, src).map_err(|e| {
         pest_error(e).with_help(
             "a description reads: tree name, root `(x, y)`, stem parameters \
