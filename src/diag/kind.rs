@@ -27,6 +27,13 @@ pub enum ErrorKind {
         /// The limit in force.
         limit: usize,
     },
+    /// More diagnostics than [`super::MAX_DIAGNOSTICS`]: the rest are
+    /// counted, not kept (a generated file can hold a million mistakes).
+    #[error("{count} more problem(s) of the same input not shown")]
+    MoreDiagnostics {
+        /// How many were left out.
+        count: usize,
+    },
     /// A `[`, `{` or `(` without its partner, or a closing one without an opener.
     #[error("unbalanced `{0}`")]
     Unbalanced(char),

@@ -135,6 +135,9 @@ impl fmt::Display for Diagnostic {
     }
 }
 
+/// The most diagnostics one [`Diagnostics`] keeps; the rest are counted.
+pub const MAX_DIAGNOSTICS: usize = 100;
+
 /// One or more diagnostics: the error type of every fallible stage.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Diagnostics(pub Vec<Diagnostic>);
@@ -145,9 +148,36 @@ impl Diagnostics {
         Diagnostics(Vec::new())
     }
 
-    /// Adds one.
+    /// Adds one. Past [`MAX_DIAGNOSTICS`] the rest are only counted, in
+    /// one last [`ErrorKind::MoreDiagnostics`] (an error if any of them is),
+    /// so a file with a million mistakes costs neither a million reports
+    /// nor the memory to hold them.
     pub fn push(&mut self, d: Diagnostic) {
-        self.0.push(d);
+        if self.0.len() < MAX_DIAGNOSTICS {
+            self.0.push(d);
+            return;
+        }
+        let error = d.is_error();
+        match self.0.last_mut() {
+            Some(last) if matches!(last.kind, ErrorKind::MoreDiagnostics { .. }) => {
+                if let ErrorKind::MoreDiagnostics { count } = &mut last.kind {
+                    *count += 1;
+                }
+                if error {
+                    last.severity = Severity::Error;
+                }
+            }
+            _ => {
+                let more = ErrorKind::MoreDiagnostics { count: 1 };
+                let mut more = if error {
+                    Diagnostic::error(more)
+                } else {
+                    Diagnostic::warning(more)
+                };
+                more = more.with_help("fix the ones shown first");
+                self.0.push(more);
+            }
+        }
     }
 
     /// True if any of them is an error.
@@ -205,5 +235,33 @@ impl IntoIterator for Diagnostics {
     type IntoIter = std::vec::IntoIter<Diagnostic>;
     fn into_iter(self) -> Self::IntoIter {
         self.0.into_iter()
+    }
+}
+
+#[cfg(test)]
+mod cap_tests {
+    use super::*;
+
+    /// Past the cap the rest are counted in one last diagnostic, an error
+    /// as soon as one of them is.
+    #[test]
+    fn diagnostics_past_the_cap_are_counted() {
+        let mut d = Diagnostics::new();
+        for _ in 0..MAX_DIAGNOSTICS {
+            d.push(Diagnostic::warning(ErrorKind::EmptyInput));
+        }
+        assert!(!d.has_errors());
+        for _ in 0..5 {
+            d.push(Diagnostic::warning(ErrorKind::EmptyInput));
+        }
+        assert_eq!(d.0.len(), MAX_DIAGNOSTICS + 1);
+        assert!(!d.has_errors(), "five more warnings are no error");
+        d.push(Diagnostic::error(ErrorKind::EmptyInput));
+        assert_eq!(d.0.len(), MAX_DIAGNOSTICS + 1);
+        assert!(d.has_errors(), "an error among the rest is an error");
+        assert_eq!(
+            d.0.last().map(|l| &l.kind),
+            Some(&ErrorKind::MoreDiagnostics { count: 6 })
+        );
     }
 }
