@@ -53,7 +53,22 @@
 //! `docs/growth.md` has the timings that made rstar the choice (3.7 to 12
 //! times faster).
 
-use rstar::{AABB, RTree, RTreeObject};
+use rstar::{AABB, RStarInsertionStrategy, RTree, RTreeObject, RTreeParams};
+
+/// The occupancy tree's node sizes: up to 8 entries and no forced
+/// reinsertion. Growth inserts a stem for every query it answers, so
+/// insertion dominates; without reinsertion it costs a third less, and the
+/// queries' answers (sets) are the same whatever the tree's shape, so the
+/// trees grown are too. Measured in docs/performance.md (rstar's default is
+/// 3, 6 and 2).
+pub struct OccupancyParams;
+
+impl RTreeParams for OccupancyParams {
+    const MIN_SIZE: usize = 3;
+    const MAX_SIZE: usize = 8;
+    const REINSERTION_COUNT: usize = 0;
+    type DefaultInsertionStrategy = RStarInsertionStrategy;
+}
 
 /// One straight stem from `a` to `b` (the turtle's direction), drawn
 /// `2 r` wide, canvas units.
@@ -87,6 +102,23 @@ impl RTreeObject for Seg {
     type Envelope = AABB<[f64; 2]>;
     fn envelope(&self) -> Self::Envelope {
         AABB::from_corners(self.a, self.b)
+    }
+}
+
+/// A placed stem in the occupancy tree, with its box computed once: the
+/// R*-tree asks an entry for its box at every comparison while it inserts
+/// and splits, and computing it from the ends each time was a third of
+/// growth's instructions (docs/performance.md).
+#[derive(Debug, Clone, Copy)]
+struct Placed {
+    seg: Seg,
+    env: AABB<[f64; 2]>,
+}
+
+impl RTreeObject for Placed {
+    type Envelope = AABB<[f64; 2]>;
+    fn envelope(&self) -> Self::Envelope {
+        self.env
     }
 }
 
@@ -201,7 +233,7 @@ pub struct Occupancy {
 
 #[derive(Debug)]
 enum Inner {
-    Rstar(RTree<Seg>),
+    Rstar(RTree<Placed, OccupancyParams>),
     #[cfg(feature = "spade-index")]
     Spade(delaunay::SpadeIndex),
 }
@@ -210,7 +242,7 @@ impl Occupancy {
     /// An empty index keeping clearance `clearance` (>= 0).
     pub fn new(backend: Backend, clearance: f64) -> Self {
         let inner = match backend {
-            Backend::Rstar => Inner::Rstar(RTree::new()),
+            Backend::Rstar => Inner::Rstar(RTree::new_with_params()),
             #[cfg(feature = "spade-index")]
             Backend::Spade => Inner::Spade(delaunay::SpadeIndex::default()),
         };
@@ -248,7 +280,7 @@ impl Occupancy {
         match &self.inner {
             Inner::Rstar(tree) => tree
                 .locate_in_envelope_intersecting(&reach(t, widest))
-                .any(|s| conflicts(t, s, c)),
+                .any(|p| conflicts(t, &p.seg, c)),
             #[cfg(feature = "spade-index")]
             Inner::Spade(ix) => ix.conflicts(t, c, widest),
         }
@@ -259,7 +291,10 @@ impl Occupancy {
         self.len += 1;
         self.max_r = self.max_r.max(s.r);
         match &mut self.inner {
-            Inner::Rstar(tree) => tree.insert(s),
+            Inner::Rstar(tree) => tree.insert(Placed {
+                seg: s,
+                env: s.envelope(),
+            }),
             #[cfg(feature = "spade-index")]
             Inner::Spade(ix) => ix.insert(s),
         }
