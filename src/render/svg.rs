@@ -42,6 +42,8 @@ pub struct SvgTurtle<W: Write> {
     /// is written and `finish` reports the limit.
     written: u64,
     max_segments: u64,
+    /// Level of detail in canvas units ([`Turtle::detail`]), `None`: exact.
+    detail: Option<f64>,
 }
 
 impl<W: Write> SvgTurtle<W> {
@@ -60,6 +62,7 @@ impl<W: Write> SvgTurtle<W> {
             last_to: None,
             written: 0,
             max_segments: u64::MAX,
+            detail: None,
         };
         let (w, h) = (fit.width, fit.height);
         let mut head = format!(
@@ -74,6 +77,13 @@ impl<W: Write> SvgTurtle<W> {
             Some(e) => Err(io_error(&e, "writing the SVG image").into()),
             None => Ok(turtle),
         }
+    }
+
+    /// The same turtle asking for a level of detail of `px` output pixels
+    /// (see [`Turtle::detail`]); `None` writes every segment.
+    pub fn with_detail(mut self, px: Option<f64>) -> Self {
+        self.detail = px.map(|px| px / self.fit.scale);
+        self
     }
 
     // -----------------------------------------------------------------------
@@ -161,6 +171,10 @@ impl<W: Write> SvgTurtle<W> {
 }
 
 impl<W: Write> Turtle for SvgTurtle<W> {
+    fn detail(&self) -> Option<f64> {
+        self.detail
+    }
+
     fn segment(&mut self, seg: Segment) {
         let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
         if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
