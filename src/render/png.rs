@@ -20,6 +20,16 @@
 //! drawn again exactly where it was just drawn is skipped (one path would
 //! have unioned it away), so 50,000 copies of one stem cost one.
 //!
+//! At a level of detail ([`Turtle::detail`], asked for with
+//! [`PngTurtle::with_detail`]) the drawing hands over stand-ins for
+//! sub-pixel subtrees ([`Turtle::blot`]): sparse ones are drawn as ordinary
+//! segments, dense ones as blots: anti-aliased capsules [`BLOT_EXTRA_PX`]
+//! wider than the stems, painted straight into the raster by distance
+//! (tiny-skia's stroker costs about 4 us a blot, the stamp a few dozen
+//! pixel blends; docs/rendering.md, *Level of detail*). Blots and segments
+//! are one colour, source-over, so the order in which they land does not
+//! matter.
+//!
 //! It does not decide sizes or widths: [`Fit`] and [`stroke_px`] in the
 //! parent module do. Its sections mirror `svg.rs`, so the two read side by side.
 
@@ -62,10 +72,8 @@ pub struct PngTurtle {
     pen: Option<Pen>,
     /// Level of detail in canvas units ([`Turtle::detail`]), `None`: exact.
     detail: Option<f64>,
-    /// Stand-ins ([`Turtle::blot`]): one subpath each, stroked
-    /// [`BLOT_PX`] wide, and how many the path holds.
-    blots: PathBuilder,
-    blots_len: usize,
+    /// The stroke colour, for blots painted straight into the raster.
+    ink: Rgb,
 }
 
 /// The pen of the open subpath, in output pixels, for [`FOLD_PX`] folding.
@@ -111,8 +119,7 @@ impl PngTurtle {
             last_to: None,
             pen: None,
             detail: None,
-            blots: PathBuilder::new(),
-            blots_len: 0,
+            ink: style.stroke,
         })
     }
 
@@ -180,21 +187,67 @@ impl PngTurtle {
         }
     }
 
-    /// Strokes the collected stand-ins and starts an empty path.
-    fn flush_blots(&mut self) {
-        let blots = std::mem::take(&mut self.blots);
-        self.blots_len = 0;
-        if let Some(path) = blots.finish() {
-            let stroke = Stroke {
-                width: (stroke_px(&self.width, self.fit.scale, 0) + BLOT_EXTRA_PX) as f32,
-                line_cap: LineCap::Round,
-                line_join: LineJoin::Round,
-                ..Stroke::default()
-            };
-            self.pixmap
-                .stroke_path(&path, &self.paint, &stroke, Transform::identity(), None);
-            self.paths += 1;
-            self.blots = Path::clear(path);
+    /// Paints a blot: the capsule of radius `radius` around `a`-`b`
+    /// (output pixels), each pixel covered by `radius + 0.5` minus its
+    /// centre's distance to the segment (clamped to 0..1), blended
+    /// source-over in the stroke colour. Overlapping blots accumulate, as
+    /// the hairlines they stand for do. A few dozen pixels each, instead of
+    /// a stroked path's outline and scan conversion.
+    fn stamp(&mut self, a: Point, b: Point, radius: f64) {
+        let (w, h) = (
+            f64::from(self.pixmap.width()),
+            f64::from(self.pixmap.height()),
+        );
+        let reach = radius + 0.5;
+        let (lo_x, hi_x) = (a.x.min(b.x) - reach, a.x.max(b.x) + reach);
+        let (lo_y, hi_y) = (a.y.min(b.y) - reach, a.y.max(b.y) + reach);
+        if hi_x < 0.0 || hi_y < 0.0 || lo_x >= w || lo_y >= h {
+            return;
+        }
+        let x0 = libm::floor(lo_x.max(0.0)) as usize;
+        let y0 = libm::floor(lo_y.max(0.0)) as usize;
+        let x1 = libm::ceil(hi_x.min(w - 1.0)) as usize;
+        let y1 = libm::ceil(hi_y.min(h - 1.0)) as usize;
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let len2 = dx * dx + dy * dy;
+        let inv = if len2 > 0.0 { 1.0 / len2 } else { 0.0 };
+        // Beyond `outer` nothing is covered; within `inner` all is.
+        let outer = reach * reach;
+        let inner = if radius > 0.5 {
+            (radius - 0.5) * (radius - 0.5)
+        } else {
+            -1.0
+        };
+        let stride = self.pixmap.width() as usize;
+        let src = [
+            u32::from(self.ink.r),
+            u32::from(self.ink.g),
+            u32::from(self.ink.b),
+            255,
+        ];
+        let data = self.pixmap.data_mut();
+        for y in y0..=y1 {
+            let py = y as f64 + 0.5;
+            for x in x0..=x1 {
+                let px = x as f64 + 0.5;
+                let t = (((px - a.x) * dx + (py - a.y) * dy) * inv).clamp(0.0, 1.0);
+                let (qx, qy) = (a.x + t * dx - px, a.y + t * dy - py);
+                let d2 = qx * qx + qy * qy;
+                if d2 >= outer {
+                    continue;
+                }
+                let cov = if d2 <= inner {
+                    1.0
+                } else {
+                    (reach - libm::sqrt(d2)).clamp(0.0, 1.0)
+                };
+                let c = (cov * 255.0 + 0.5) as u32;
+                let i = (y * stride + x) * 4;
+                for (ch, &s) in src.iter().enumerate() {
+                    let d = u32::from(data[i + ch]);
+                    data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
+                }
+            }
         }
     }
 
@@ -232,7 +285,6 @@ impl PngTurtle {
     /// Strokes what is left and encodes the raster as PNG bytes.
     pub fn finish(mut self) -> Result<Vec<u8>, Diagnostics> {
         self.flush();
-        self.flush_blots();
         self.pixmap.encode_png().map_err(|e| {
             Diagnostic::error(ErrorKind::PngEncoding {
                 error: e.to_string(),
@@ -263,12 +315,8 @@ impl Turtle for PngTurtle {
         if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
             return;
         }
-        if self.blots_len >= BATCH_SEGMENTS {
-            self.flush_blots();
-        }
-        self.blots.move_to(from.x as f32, from.y as f32);
-        self.blots.line_to(to.x as f32, to.y as f32);
-        self.blots_len += 1;
+        let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
+        self.stamp(from, to, radius);
     }
 
     fn segment(&mut self, seg: Segment) {
@@ -328,12 +376,12 @@ impl Turtle for PngTurtle {
 /// sparse twig) as ordinary segments.
 const BLOT_DENSITY: f64 = 2.0;
 
-/// A blot is stroked this much wider than the stems, in output pixels: the
-/// exact drawing of a sub-pixel bush is many overlapping anti-aliased
-/// hairlines, each with its round caps, which saturate a spot about this
-/// much wider than one stroke. Chosen by measurement against `--exact`
-/// (docs/rendering.md: 1.0 to 3.0 tried, 1.25 closest on average).
-const BLOT_EXTRA_PX: f64 = 1.25;
+/// A blot is this much wider than the stems, in output pixels: the exact
+/// drawing of a sub-pixel bush is many overlapping anti-aliased hairlines,
+/// each with its round caps, which saturate a spot about this much wider
+/// than one stroke. Chosen by measurement against `--exact`
+/// (docs/rendering.md, *Level of detail*: 0.5 to 1.25 tried, 1.0 closest).
+const BLOT_EXTRA_PX: f64 = 1.0;
 
 /// Strokes at least this wide (output pixels) are checked against the
 /// recently drawn ones: their cost is their area, and a thick tree that

@@ -361,9 +361,7 @@ impl<'a> Geometry<'a> {
             last = Some((c, key));
             add(c, depth, key, &mut needed)
         });
-        if let Err(e) = result {
-            return Err(e);
-        }
+        result?;
         for r in (2..=depth).rev() {
             let level = std::mem::take(&mut needed[r as usize]);
             for &(s, key) in &level {
