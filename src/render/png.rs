@@ -483,6 +483,36 @@ mod tests {
         assert_eq!(t.batch.len(), 4);
     }
 
+    /// A blot is a capsule painted by distance: full ink within its
+    /// radius less half a pixel, half at its radius, none a pixel out;
+    /// two blots accumulate. A sparse stand-in is an ordinary segment.
+    #[test]
+    fn blots_paint_by_distance_and_accumulate() {
+        // Stems 1 px, so blots are 2 px wide: radius 1 around (10.5, 10.5).
+        let mut t = turtle();
+        let dot = stem(10.5, 10.5, 10.5, 10.5);
+        t.blot(dot, 5.0);
+        let p = t.into_pixmap();
+        let at = |p: &Pixmap, x, y| p.pixel(x, y).unwrap().red();
+        assert_eq!(at(&p, 10, 10), 0, "centre: full ink");
+        // Centre 1 px away: coverage 0.5, 255 * (1 - 128/255) rounded.
+        assert_eq!(at(&p, 11, 10), 127);
+        assert_eq!(at(&p, 10, 9), 127);
+        assert_eq!(at(&p, 12, 10), 255, "1.5 px out: untouched");
+        let mut twice = turtle();
+        twice.blot(dot, 5.0);
+        twice.blot(dot, 5.0);
+        assert_eq!(at(&twice.into_pixmap(), 11, 10), 63, "source-over twice");
+        // Density under BLOT_DENSITY: a 1 px hairline segment, not a blot.
+        let mut sparse = turtle();
+        sparse.blot(stem(20.0, 10.5, 40.0, 10.5), 1.0);
+        assert_eq!(sparse.paths, 0);
+        sparse.flush();
+        assert_eq!(sparse.paths, 1);
+        let p = sparse.into_pixmap();
+        assert!(at(&p, 30, 10) < 128 && at(&p, 30, 12) == 255);
+    }
+
     fn wide_turtle(width: f64) -> PngTurtle {
         let fit = Fit {
             width: 100,

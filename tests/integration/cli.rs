@@ -815,12 +815,11 @@ fn the_progress_bar_shows_on_a_terminal_only() {
     assert!(shown.contains("measuring: symbols"), "{shown}");
     assert!(shown.contains("drawing: symbols"), "{shown}");
     assert!(shown.contains("195,311/195,311"), "{shown}");
-    // The default level of detail fits from the memo (no measuring pass)
-    // and counts what it visits: at depth 7 nothing is cut, so every
-    // symbol and every expanded subtree (195,311 + 19,531).
+    // The default level of detail fits from the memo (no measuring pass);
+    // at depth 7 nothing is under half a pixel, so every symbol is drawn.
     let lod = run(7, "");
     assert!(!lod.contains("measuring"), "{lod}");
-    assert!(lod.contains("214,842/214,842"), "{lod}");
+    assert!(lod.contains("195,311/195,311"), "{lod}");
     // Not a terminal: stderr stays empty even with no delay.
     let out = stlc()
         .args(["render", &format!("{root}/examples/abop-1.24a.lsys")])

@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use proptest::prelude::*;
 use stlc::interpret::Derivation;
-use stlc::interpret::lsys::{Measured, Refusal, draw, draw_into, measure};
+use stlc::interpret::lsys::{Measured, Refusal, draw, draw_into, draw_lod, measure};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
@@ -144,7 +144,8 @@ proptest! {
 
         let mut exact = Recorder::default();
         draw_into(&s, depth, Derivation::Dfs, &Limits::default(), &mut exact, &mut NoProgress).unwrap();
-        let at0 = lod(&s, depth, 0.0);
+        let mut at0 = Detailed::default();
+        prop_assert!(draw_lod(&s, depth, 0.0, &Limits::default(), &mut at0, &mut NoProgress).unwrap());
         prop_assert_eq!(at0.blots, 0);
         prop_assert_eq!(&at0.rec.segments, &exact.segments, "{}", src);
     }
@@ -396,4 +397,66 @@ fn a_straight_run_is_drawn_as_its_chords() {
         assert_eq!(w[0].from.x, 0.0);
     }
     assert_eq!(segs.last().unwrap().to.y, -(2f64.powi(40)));
+}
+
+// ------------------------------------------------------------ the CLI --
+
+fn stlc() -> assert_cmd::Command {
+    let mut c = assert_cmd::Command::cargo_bin("stlc").expect("binary");
+    c.env("NO_COLOR", "1");
+    c
+}
+
+/// Depth 57 (10^40 symbols) renders to PNG and to an SVG of bounded size;
+/// with --exact it is refused by the traversal budget, naming the flag.
+#[test]
+fn depth_57_renders_at_a_level_of_detail_and_exact_refuses() {
+    let dir = tempfile::tempdir().unwrap();
+    let lsys = support_path("examples/abop-1.24a.lsys");
+    let png = dir.path().join("t.png");
+    stlc()
+        .args(["render", &lsys, "--depth", "57", "--size", "200x200", "-o"])
+        .arg(&png)
+        .assert()
+        .success();
+    let pixmap = tiny_skia::Pixmap::load_png(&png).unwrap();
+    assert_eq!((pixmap.width(), pixmap.height()), (200, 200));
+    // Something is drawn in the middle column (the trunk), not everywhere.
+    let dark = pixmap.pixels().iter().filter(|p| p.red() < 128).count();
+    assert!(dark > 200 && dark < 200 * 200 / 2, "{dark}");
+    let svg = dir.path().join("t.svg");
+    stlc()
+        .args(["render", &lsys, "--depth", "57", "--size", "200x200", "-o"])
+        .arg(&svg)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&svg).unwrap();
+    // A few thousand stand-ins at 200 px: well under a megabyte.
+    assert!(text.len() < 1_000_000, "{}", text.len());
+    assert!(text.contains("<path"));
+    stlc()
+        .args(["render", &lsys, "--depth", "57", "--exact", "-o"])
+        .arg(dir.path().join("x.png"))
+        .assert()
+        .failure()
+        .stderr(predicates::str::contains("--max-symbols"));
+    // And the limit still holds at a level of detail: visits are counted.
+    stlc()
+        .args([
+            "render",
+            &lsys,
+            "--depth",
+            "57",
+            "--max-symbols",
+            "1000",
+            "-o",
+        ])
+        .arg(dir.path().join("y.png"))
+        .assert()
+        .failure()
+        .stderr(predicates::str::contains("level of detail"));
+}
+
+fn support_path(rel: &str) -> String {
+    crate::support::manifest_path(rel).display().to_string()
 }

@@ -501,31 +501,38 @@ impl<'a> Geometry<'a> {
         }
     }
 
-    /// What [`Geometry::draw_lod`] at `detail` will do: `(units, segments)`,
-    /// the symbols and stand-ins it visits and the segments it draws
-    /// (saturating).
-    pub(crate) fn lod_cost(&self, detail: f64) -> (u64, u64) {
+    /// What [`Geometry::draw_lod`] at `detail` will do, counted from the
+    /// memo before drawing (saturating): `[units, segments, stand-ins]`,
+    /// the symbols and stand-ins it visits, the segments and stand-ins it
+    /// hands over, and the stand-ins that draw or move (the approximations:
+    /// with none, the drawing is the exact one).
+    pub(crate) fn lod_cost(&self, detail: f64) -> [u64; 3] {
+        let add = |a: [u64; 3], b: [u64; 3]| {
+            [
+                a[0].saturating_add(b[0]),
+                a[1].saturating_add(b[1]),
+                a[2].saturating_add(b[2]),
+            ]
+        };
         let n = self.pieces.len();
-        let mut cost: Vec<(u64, u64)> = Vec::with_capacity(n);
-        let child = |c: u32, r: u32, k: i64, cost: &[(u64, u64)]| -> (u64, u64) {
+        let mut cost: Vec<[u64; 3]> = Vec::with_capacity(n);
+        let child = |c: u32, r: u32, k: i64, cost: &[[u64; 3]]| -> [u64; 3] {
             if self.is_piece(c, r) {
                 let i = self.index.get(&(c, r, self.key(k))).copied().unwrap_or(0) as usize;
                 let p = self.pieces.get(i).copied().unwrap_or(Piece::EMPTY);
                 if self.cut(&p, detail) {
-                    (1, u64::from(p.draws()))
+                    [1, u64::from(p.draws()), u64::from(p.draws() || p.moves)]
                 } else {
-                    let (u, s) = cost.get(i).copied().unwrap_or((0, 0));
-                    (u.saturating_add(1), s)
+                    add([1, 0, 0], cost.get(i).copied().unwrap_or([0; 3]))
                 }
             } else {
-                (1, u64::from(self.ops[c as usize] == Some(Op::Draw)))
+                [1, u64::from(self.ops[c as usize] == Some(Op::Draw)), 0]
             }
         };
-        let sum = |word: &[u32], r: u32, key: i64, cost: &[(u64, u64)]| -> (u64, u64) {
-            let mut acc = (0u64, 0u64);
+        let sum = |word: &[u32], r: u32, key: i64, cost: &[[u64; 3]]| -> [u64; 3] {
+            let mut acc = [0u64; 3];
             let _ = self.walk_headings_all(word, r, key, |c, k| {
-                let (u, s) = child(c, r, k, cost);
-                acc = (acc.0.saturating_add(u), acc.1.saturating_add(s));
+                acc = add(acc, child(c, r, k, cost));
             });
             acc
         };

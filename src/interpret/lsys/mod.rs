@@ -141,33 +141,69 @@ pub fn draw(
 ) -> Result<(), Diagnostics> {
     if strategy == Derivation::Dfs
         && let Some(detail) = turtle.detail()
-        && detail.is_finite()
-        && detail >= 0.0
+        && lod(sys, depth, detail, limits, turtle, progress, false)?
     {
-        limits.check_depth(depth)?;
-        let alpha = Alphabet::new(sys);
-        let step = Linear::constant(sys.length).at(0);
-        if let Ok(mut g) = Geometry::new(&alpha, sys, depth, step, GEOMETRY_ENTRIES) {
-            let (units, _) = g.lod_cost(detail);
-            if units > limits.max_symbols {
-                return Err(Diagnostic::error(ErrorKind::Limit {
-                    what: format!("symbols to visit at depth {depth} at this level of detail"),
-                    value: units.to_string(),
-                    limit: limits.max_symbols.to_string(),
-                })
-                .with_help(
-                    "use a smaller depth or --size, or raise the traversal budget with --max-symbols N",
-                )
-                .into());
-            }
-            progress.start("symbols", units);
-            g.draw_lod(detail, turtle, progress);
-            progress.update(units);
-            progress.finish();
-            return Ok(());
-        }
+        return Ok(());
     }
     draw_into(sys, depth, strategy, limits, turtle, progress).map(|_| ())
+}
+
+/// Draws `sys` at a level of detail of `detail` canvas units with the
+/// memoized geometry (see [`draw`]), whether or not anything is cut.
+/// Returns `false`, drawing nothing, when the memo does not apply or
+/// `detail` is negative or not finite.
+pub fn draw_lod(
+    sys: &LSystem,
+    depth: u32,
+    detail: f64,
+    limits: &Limits,
+    turtle: &mut dyn Turtle,
+    progress: &mut dyn Progress,
+) -> Result<bool, Diagnostics> {
+    lod(sys, depth, detail, limits, turtle, progress, true)
+}
+
+/// The level-of-detail walk; unless `always`, only when something is cut
+/// (otherwise the drawing is the exact one, which the compiled program
+/// draws faster). Returns whether it drew.
+fn lod(
+    sys: &LSystem,
+    depth: u32,
+    detail: f64,
+    limits: &Limits,
+    turtle: &mut dyn Turtle,
+    progress: &mut dyn Progress,
+    always: bool,
+) -> Result<bool, Diagnostics> {
+    if !(detail.is_finite() && detail >= 0.0) {
+        return Ok(false);
+    }
+    limits.check_depth(depth)?;
+    let alpha = Alphabet::new(sys);
+    let step = Linear::constant(sys.length).at(0);
+    let Ok(mut g) = Geometry::new(&alpha, sys, depth, step, GEOMETRY_ENTRIES) else {
+        return Ok(false);
+    };
+    let [units, _, cuts] = g.lod_cost(detail);
+    if cuts == 0 && !always {
+        return Ok(false);
+    }
+    if units > limits.max_symbols {
+        return Err(Diagnostic::error(ErrorKind::Limit {
+            what: format!("symbols to visit at depth {depth} at this level of detail"),
+            value: units.to_string(),
+            limit: limits.max_symbols.to_string(),
+        })
+        .with_help(
+            "use a smaller depth or --size, or raise the traversal budget with --max-symbols N",
+        )
+        .into());
+    }
+    progress.start("symbols", units);
+    g.draw_lod(detail, turtle, progress);
+    progress.update(units);
+    progress.finish();
+    Ok(true)
 }
 
 /// [`draw`] for a concrete backend (monomorphised: the hot loop calls the

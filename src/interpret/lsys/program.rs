@@ -62,6 +62,11 @@ impl<U: Unit> Program<U> {
     /// The program of `alpha` to `depth`, or `None` when its plans would
     /// pass [`PROGRAM_CAP`].
     pub(super) fn compile(alpha: &Alphabet, depth: u32) -> Option<Self> {
+        Self::compile_capped(alpha, depth, PROGRAM_CAP)
+    }
+
+    /// [`Program::compile`] with a cap of `cap` items.
+    fn compile_capped(alpha: &Alphabet, depth: u32, cap: usize) -> Option<Self> {
         let mut items_total = 0usize;
         let n = alpha.chars.len();
         let mut pool: Vec<U> = Vec::new();
@@ -139,7 +144,7 @@ impl<U: Unit> Program<U> {
                 }
                 let items = plan_items(succ, &prev, &mut pool);
                 items_total = items_total.saturating_add(items.len());
-                if items_total.saturating_add(pool.len().saturating_sub(POOL_CAP)) > PROGRAM_CAP {
+                if items_total.saturating_add(pool.len().saturating_sub(POOL_CAP)) > cap {
                     return None;
                 }
                 plans.push(items);
@@ -273,4 +278,35 @@ fn plan_items<U: Unit>(children: &[u32], prev: &[Entry], pool: &mut Vec<U>) -> V
     }
     flush(&mut glue, &mut glue_syms, pool, &mut items);
     items
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::interpret::lsys::FastOp;
+    use crate::limits::Limits;
+
+    #[test]
+    fn a_program_over_its_cap_is_not_built_and_the_word_streams_the_same() {
+        let src = "axiom F[X]+F\nangle 30\nrule F F[+F]F[-F]F\nrule X FX-\n";
+        let sys = crate::syntax::lsys::parse(src, &Limits::default()).unwrap();
+        let alpha = Alphabet::new(&sys);
+        // Depth 6: F at 6 is over MACRO_CAP, so there are plans.
+        assert!(Program::<FastOp>::compile_capped(&alpha, 6, 0).is_none());
+        let program = Program::<u8>::compile(&alpha, 6).unwrap();
+        let mut compiled = Vec::new();
+        program.run(
+            &alpha.axiom,
+            |b| compiled.extend_from_slice(b),
+            &mut crate::progress::NoProgress,
+        );
+        // The fallback streams every symbol, drawing or not; the compiled
+        // text has them all too.
+        let mut plain = String::new();
+        alpha.plain_each(6, |_, s| plain.push(alpha.chars[s as usize]));
+        let mut bfs = String::new();
+        alpha.bfs_each(6, |_, s| bfs.push(alpha.chars[s as usize]));
+        assert_eq!(plain, bfs);
+        assert_eq!(String::from_utf8(compiled).unwrap(), bfs);
+    }
 }
