@@ -47,9 +47,10 @@ pub struct Stats {
     pub symbols: BTreeMap<char, BigUint>,
     /// `[min_x, min_y, max_x, max_y]` of the drawn segments of a unit-step
     /// turtle from the origin, canvas coordinates (y down, heading up). The
-    /// origin itself if nothing is drawn. `None` if the traversal was skipped.
+    /// origin itself if nothing is drawn. `None` if neither the memoized
+    /// geometry nor a traversal within the budget could give it.
     pub bbox: Option<[f64; 4]>,
-    /// Where that turtle ends, `None` if the traversal was skipped.
+    /// Where that turtle ends, `None` when `bbox` is.
     pub end: Option<[f64; 2]>,
 }
 

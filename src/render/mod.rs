@@ -87,6 +87,18 @@ impl RenderOptions {
 /// segment. See docs/rendering.md for what it changes and why this value.
 pub const LOD_PX: f64 = 0.5;
 
+/// Stand-ins ([`Turtle::blot`]) at least this dense (drawn length over
+/// their own length) are drawn as blots; sparser ones (a straight run, a
+/// sparse twig) as ordinary segments.
+pub const BLOT_DENSITY: f64 = 2.0;
+
+/// A blot is this much wider than the stems, in output pixels: the exact
+/// drawing of a sub-pixel bush is many overlapping anti-aliased hairlines,
+/// each with its round caps, which saturate a spot about this much wider
+/// than one stroke. Chosen by measurement against `--exact`
+/// (docs/rendering.md, *Level of detail*: 0.5 to 1.25 tried, 1.0 closest).
+pub const BLOT_EXTRA_PX: f64 = 1.0;
+
 /// How [`render_framed`] decides what the picture shows.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Frame {

@@ -37,7 +37,7 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, Stroke, Transform,
 };
 
-use super::{BATCH_SEGMENTS, FOLD_PX, Fit, Style, Width, stroke_px};
+use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, Style, Width, stroke_px};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
 use crate::diag::{Diagnostic, ErrorKind};
@@ -370,18 +370,6 @@ impl Turtle for PngTurtle {
 
 // ---------------------------------------------------------------------------
 // Helpers
-
-/// Stand-ins ([`Turtle::blot`]) at least this dense (drawn length over
-/// their own length) are drawn as blots; sparser ones (a straight run, a
-/// sparse twig) as ordinary segments.
-const BLOT_DENSITY: f64 = 2.0;
-
-/// A blot is this much wider than the stems, in output pixels: the exact
-/// drawing of a sub-pixel bush is many overlapping anti-aliased hairlines,
-/// each with its round caps, which saturate a spot about this much wider
-/// than one stroke. Chosen by measurement against `--exact`
-/// (docs/rendering.md, *Level of detail*: 0.5 to 1.25 tried, 1.0 closest).
-const BLOT_EXTRA_PX: f64 = 1.0;
 
 /// Strokes at least this wide (output pixels) are checked against the
 /// recently drawn ones: their cost is their area, and a thick tree that
