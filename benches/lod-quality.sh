@@ -22,6 +22,13 @@ SIZE=${SIZE:-512x512}
 DEPTHS=${DEPTHS:-"8 9 10 11"}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
+row() { # name depth t0 t1 t2: one table row from the two PNGs in $OUT
+    local mean max n o16 o64
+    read -r _ mean _ max _ n _ o16 _ o64 _ <<<"$("$PIXDIFF" "$OUT/x.png" "$OUT/l.png" | tr -d '(),:')"
+    awk -v t="$1" -v d="$2" -v mean="$mean" -v max="$max" -v n="$n" -v a="$o16" -v b="$o64" \
+        -v xs="$((($4 - $3) / 1000000))" -v ls="$((($5 - $4) / 1000000))" \
+        'BEGIN { printf "| %s | %d | %s | %s | %s | %s | %s | %.2f | %.2f |\n", t, d, mean, max, n, a, b, xs / 1000, ls / 1000 }'
+}
 echo "| tree | depth | mean | max | pixels differing | > 16 | > 64 | exact s | LOD s |"
 echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 for t in a b c d e f; do
@@ -33,9 +40,18 @@ for t in a b c d e f; do
         t1=$(date +%s%N)
         "$STLC" render "$f" --depth "$d" --size "$SIZE" -o "$OUT/l.png" 2>/dev/null
         t2=$(date +%s%N)
-        read -r _ mean _ max _ n _ o16 _ o64 _ <<<"$("$PIXDIFF" "$OUT/x.png" "$OUT/l.png" | tr -d '(),:' )"
-        awk -v t="1.24$t" -v d="$d" -v mean="$mean" -v max="$max" -v n="$n" -v a="$o16" -v b="$o64" \
-            -v xs="$(( (t1 - t0) / 1000000 ))" -v ls="$(( (t2 - t1) / 1000000 ))" \
-            'BEGIN { printf "| %s | %d | %s | %s | %s | %s | %s | %.2f | %.2f |\n", t, d, mean, max, n, a, b, xs / 1000, ls / 1000 }'
+        row "1.24$t" "$d" "$t0" "$t1" "$t2"
+    done
+done
+for curve in "koch-snowflake 8 9" "sierpinski-arrowhead 11 12" "hilbert 8 9" "stl-003-fig4 8 9"; do
+    read -r name d1 d2 <<<"$curve"
+    for d in $d1 $d2; do
+        f=examples/$name.lsys
+        t0=$(date +%s%N)
+        "$STLC" render "$f" --depth "$d" --size "$SIZE" --exact -o "$OUT/x.png" 2>/dev/null
+        t1=$(date +%s%N)
+        "$STLC" render "$f" --depth "$d" --size "$SIZE" -o "$OUT/l.png" 2>/dev/null
+        t2=$(date +%s%N)
+        row "$name" "$d" "$t0" "$t1" "$t2"
     done
 done

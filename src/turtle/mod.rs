@@ -74,9 +74,10 @@ pub trait Turtle {
     }
 
     /// A stand-in for a part of the drawing no larger than
-    /// [`Turtle::detail`]: `seg` is its chord (or its box's diagonal), and
+    /// [`Turtle::detail`] (half of it for one connected run): `seg` is its chord (or its box's diagonal), and
     /// `density` the length of the segments it stands for over the length
-    /// of `seg` (1 for a straight run, more for a bush). The default draws
+    /// of `seg` when they are several runs (a bush: branches that break
+    /// off), and 1 for one connected run (a straight or winding line). The default draws
     /// it as one segment; a raster backend draws a dense one with the ink
     /// that many segments leave in so small an area.
     fn blot(&mut self, seg: Segment, density: f64) {

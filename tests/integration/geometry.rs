@@ -387,8 +387,9 @@ fn level_of_detail_is_bounded_and_stays_in_the_box() {
 #[test]
 fn a_straight_run_is_drawn_as_its_chords() {
     let s = sys("axiom F\nrule F FF\nangle 90\n");
-    // F at 30 steps is 2^30 long, under the detail; at 31, over it.
-    let t = lod(&s, 40, 1.5 * 2f64.powi(30));
+    // A connected run is cut at half the detail: F at 30 steps is 2^30
+    // long, under it; at 31, over it.
+    let t = lod(&s, 40, 3.0 * 2f64.powi(30));
     let segs = &t.rec.segments;
     assert_eq!(segs.len(), 1024);
     assert_eq!(t.blots, 1024);

@@ -137,6 +137,9 @@ pub(crate) struct Geometry<'a> {
     flip: Vec<bool>,
     /// Saturating number of `F` in `W(s, r)`, same index.
     count: Vec<u64>,
+    /// Saturating number of `]` and `f` in `W(s, r)` (where a drawn run
+    /// breaks off and a new one starts), same index.
+    jumps: Vec<u64>,
     /// `(s, r, key)` to its index in `pieces`, for `r >= 1` and `s` ruled.
     index: HashMap<(u32, u32, i64), u32>,
     /// Per level `r`, the `(s, key)` needed, in the order first needed.
@@ -207,6 +210,7 @@ impl<'a> Geometry<'a> {
             turn: vec![0; n * levels],
             flip: vec![false; n * levels],
             count: vec![0; n * levels],
+            jumps: vec![0; n * levels],
             index: HashMap::new(),
             needed: vec![Vec::new(); levels],
             pieces: Vec::new(),
@@ -248,21 +252,24 @@ impl<'a> Geometry<'a> {
             self.turn[s] = t;
             self.flip[s] = f;
             self.count[s] = u64::from(self.ops[s] == Some(Op::Draw));
+            self.jumps[s] = u64::from(matches!(self.ops[s], Some(Op::Pop | Op::Move)));
         }
         for r in 1..=self.depth as usize {
             for s in 0..n {
-                let (mut t, mut f, mut c) = (0i64, false, 0u64);
+                let (mut t, mut f, mut c, mut j) = (0i64, false, 0u64, 0u64);
                 match &self.alpha.succ[s] {
                     None => {
                         t = self.turn[s];
                         f = self.flip[s];
                         c = self.count[s];
+                        j = self.jumps[s];
                     }
                     Some(succ) => {
                         let mut open = 0usize;
                         for &ch in succ {
                             let i = (r - 1) * n + ch as usize;
                             c = c.saturating_add(self.count[i]);
+                            j = j.saturating_add(self.jumps[i]);
                             match self.ops[ch as usize] {
                                 Some(Op::Push) => open += 1,
                                 Some(Op::Pop) => open -= 1,
@@ -278,6 +285,7 @@ impl<'a> Geometry<'a> {
                 self.turn[r * n + s] = t;
                 self.flip[r * n + s] = f;
                 self.count[r * n + s] = c;
+                self.jumps[r * n + s] = j;
             }
         }
         Ok(())
@@ -493,9 +501,18 @@ impl<'a> Geometry<'a> {
     /// `detail` or not at all (only its net turn matters; exact). At
     /// `detail` 0 nothing that draws or moves is cut, so the segments are
     /// the exact drawing's, bit for bit.
-    fn cut(&self, p: &Piece, detail: f64) -> bool {
+    fn cut(&self, c: u32, r: u32, p: &Piece, detail: f64) -> bool {
         if p.draws() {
-            p.extent() < detail
+            // A connected run's stand-in is its chord, one line where the
+            // exact drawing folds a winding line at FOLD_PX: cut it at half
+            // the detail, about that tolerance.
+            let at = r as usize * self.alpha.chars.len() + c as usize;
+            let d = if self.jumps[at] == 0 {
+                detail / 2.0
+            } else {
+                detail
+            };
+            p.extent() < d
         } else {
             !p.moves || libm::hypot(p.dx, p.dy) < detail
         }
@@ -520,7 +537,7 @@ impl<'a> Geometry<'a> {
             if self.is_piece(c, r) {
                 let i = self.index.get(&(c, r, self.key(k))).copied().unwrap_or(0) as usize;
                 let p = self.pieces.get(i).copied().unwrap_or(Piece::EMPTY);
-                if self.cut(&p, detail) {
+                if self.cut(c, r, &p, detail) {
                     [1, u64::from(p.draws()), u64::from(p.draws() || p.moves)]
                 } else {
                     add([1, 0, 0], cost.get(i).copied().unwrap_or([0; 3]))
@@ -624,7 +641,7 @@ impl<'a> Geometry<'a> {
             }
             if self.is_piece(c, r) {
                 let p = self.piece(c, r, k);
-                if self.cut(&p, detail) {
+                if self.cut(c, r, &p, detail) {
                     let sg = if flip { -1.0 } else { 1.0 };
                     let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
                     if p.draws() {
@@ -637,9 +654,16 @@ impl<'a> Geometry<'a> {
                                 Point::new(x + sg * p.max_x, y + sg * p.max_y),
                             )
                         };
-                        let n = self.count[r as usize * alpha.chars.len() + c as usize];
+                        let at = r as usize * alpha.chars.len() + c as usize;
+                        let n = self.count[at];
                         let seg_len = libm::hypot(to.x - from.x, to.y - from.y);
-                        let density = (n as f64 * len.abs() / seg_len).max(1.0);
+                        // A connected run (no jump inside) is drawn as one
+                        // line however it winds, so it stays a line.
+                        let density = if self.jumps[at] == 0 {
+                            1.0
+                        } else {
+                            (n as f64 * len.abs() / seg_len).max(1.0)
+                        };
                         turtle.blot(
                             Segment { from, to, order: 0 },
                             if density.is_finite() { density } else { 1.0 },
