@@ -7,7 +7,11 @@
 #
 #   benches/render-scale.sh                 # depths 8..13
 #   DEPTHS="8 9" RUNS=5 benches/render-scale.sh
-#   STLC=/tmp/stlc-old benches/render-scale.sh   # another build, same table
+#   STLC=/tmp/stlc-old EXACT= benches/render-scale.sh   # another build (one without --exact)
+#
+# dfs renders with --exact (every segment, the renderer this table has
+# always measured); the level of detail, on by default since issue 12, is
+# measured by benches/lod-compare.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! [ -x /usr/bin/time ]; then
@@ -19,6 +23,7 @@ if [ -z "${STLC:-}" ]; then
     STLC=target/release/stlc
 fi
 DEPTHS=${DEPTHS:-"8 9 10 11 12 13"}
+EXACT=${EXACT---exact}
 RUNS=${RUNS:-3}
 LSYS=examples/abop-1.24a.lsys
 OUT=$(mktemp -d)
@@ -49,7 +54,7 @@ echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --
 for depth in $DEPTHS; do
     sym=$(( (5 ** (depth + 1) - 3) / 2 ))
     seg=$(( 5 ** depth ))
-    read -r ds dr <<<"$(run "$STLC" render "$LSYS" --depth "$depth" --strategy dfs -o "$OUT/dfs.png")"
+    read -r ds dr <<<"$(run "$STLC" render "$LSYS" --depth "$depth" --strategy dfs $EXACT -o "$OUT/dfs.png")"
     # bfs holds the word (one byte per symbol, two levels at once): raise
     # --max-word for depth 12 (610 M symbols, about 0.75 GB); depth 13
     # would need about 4 GB and is not run.

@@ -338,6 +338,12 @@ pub struct RenderArgs {
     #[arg(long, value_name = "N", default_value_t = stlc::render::DEFAULT_MAX_SVG_SEGMENTS)]
     pub max_svg_segments: u64,
 
+    /// Draw every segment of an .lsys. By default a subtree smaller than
+    /// half a pixel is drawn as one stand-in stroke (level of detail), so
+    /// any depth renders in bounded time.
+    #[arg(long)]
+    pub exact: bool,
+
     /// Stroke colour (#rrggbb or a Delphi name such as clMaroon).
     #[arg(long, value_name = "COLOR")]
     pub stroke: Option<String>,

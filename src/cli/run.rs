@@ -218,6 +218,7 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         format,
         size: a.size,
         max_svg_segments: a.max_svg_segments,
+        exact: a.exact,
     };
     let (scene, mut warnings) = scene(
         &a.input, &a.grow, a.strategy, a.depth, &limits, quiet, source,

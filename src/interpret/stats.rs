@@ -6,11 +6,16 @@
 //! memo of every `(symbol, depth)` folded into one count vector per level),
 //! so `F -> F[+F]F[-F]F` at depth 57 costs 57 x 6 big-integer additions.
 //!
-//! The geometric part (`bbox`, `end`) needs a traversal of the word. It runs
-//! (with the `dfs` fast path and a unit step) only when the word has at most
-//! `min(limits.max_symbols, STATS_TRAVERSAL_SYMBOLS)` symbols: `stats` is
-//! meant to answer at once, and 2^30 symbols take about 2 to 4 seconds;
-//! beyond that `bbox` and `end` are `None` (`null` in JSON).
+//! The geometric part (`bbox`, `end`) comes from the memoized geometry
+//! (`interpret::lsys::measure`: net move, turn and box per `(symbol,
+//! depth, heading)`, composed, no traversal; depth 57 of `F -> F[+F]F[-F]F`
+//! in well under a millisecond) whenever it applies within its budget
+//! (`lsys::GEOMETRY_ENTRIES` pieces). When it does not (a successor with
+//! unbalanced brackets, too many headings), a traversal (the `dfs` fast
+//! path, unit step) runs if the word has at most `min(limits.max_symbols,
+//! STATS_TRAVERSAL_SYMBOLS)` symbols: `stats` is meant to answer at once,
+//! and 2^30 symbols take about 2 to 4 seconds; beyond that `bbox` and `end`
+//! are `None` (`null` in JSON).
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -42,9 +47,10 @@ pub struct Stats {
     pub symbols: BTreeMap<char, BigUint>,
     /// `[min_x, min_y, max_x, max_y]` of the drawn segments of a unit-step
     /// turtle from the origin, canvas coordinates (y down, heading up). The
-    /// origin itself if nothing is drawn. `None` if the traversal was skipped.
+    /// origin itself if nothing is drawn. `None` if neither the memoized
+    /// geometry nor a traversal within the budget could give it.
     pub bbox: Option<[f64; 4]>,
-    /// Where that turtle ends, `None` if the traversal was skipped.
+    /// Where that turtle ends, `None` when `bbox` is.
     pub end: Option<[f64; 2]>,
 }
 
@@ -61,7 +67,8 @@ pub fn stats(sys: &LSystem, depth: u32, limits: &Limits) -> Result<Stats, Diagno
 }
 
 /// [`stats`] with an explicit traversal budget (in symbols) for the
-/// geometric pass; 0 skips it.
+/// geometric pass when the memoized geometry does not apply; 0 skips the
+/// geometric part altogether (memo included).
 pub fn stats_with_budget(
     sys: &LSystem,
     depth: u32,
@@ -109,7 +116,18 @@ pub fn stats_with_budget(
     let segments = symbols.get(&'F').cloned().unwrap_or_default();
 
     let fits = u64::try_from(&length).is_ok_and(|l| l <= budget);
-    let (bbox, end) = if fits {
+    let memo = if budget > 0 {
+        crate::interpret::lsys::measure(sys, depth, 1.0).ok()
+    } else {
+        None
+    };
+    let (bbox, end) = if let Some(m) = memo {
+        let bbox = match m.bbox {
+            Some(b) => [b.min_x, b.min_y, b.max_x, b.max_y],
+            None => [0.0; 4],
+        };
+        (Some(bbox), Some([m.end.x, m.end.y]))
+    } else if fits {
         let mut unit = sys.clone();
         unit.length = 1.0;
         let mut bounds = Bounds::default();

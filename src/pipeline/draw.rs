@@ -10,7 +10,7 @@ use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::model::lsys::Background;
 use crate::progress::Progress;
-use crate::render::{ImageFormat, RenderOptions, Style, Width};
+use crate::render::{Frame, ImageFormat, RenderOptions, Style, Width};
 use crate::turtle::{BBox, Fill, Turtle};
 
 /// How a picture looks: the options of [`render`] beyond size and format.
@@ -114,8 +114,25 @@ pub fn render(
     let style = style(scene, look);
     let (view, underlay) = layout_view(scene, look.show_layout);
     let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
+    let frame = match (&scene.what, view) {
+        (_, Some(v)) => Frame::View(v),
+        // At a level of detail, an L-system is fitted from its memoized
+        // geometry (no bounding pass), when the memo applies.
+        (What::Lsys { sys, depth }, None)
+            if !opts.exact && scene.derivation == crate::interpret::Derivation::Dfs =>
+        {
+            match crate::interpret::lsys::measure(sys, *depth, sys.length) {
+                Ok(m) => Frame::Known {
+                    bbox: m.bbox,
+                    segments: m.segments,
+                },
+                Err(_) => Frame::Fit,
+            }
+        }
+        _ => Frame::Fit,
+    };
     let counted =
-        crate::render::render(&mut drawing, view, &underlay, &style, opts, out, progress)?;
+        crate::render::render_framed(&mut drawing, frame, &underlay, &style, opts, out, progress)?;
     // A tree's stems are known from its measure; an L-system's were counted
     // by the bounding pass (it has no layout view, so one always runs).
     let segments = match &scene.what {

@@ -59,16 +59,77 @@ pub struct RenderOptions {
     /// Most segments an SVG may hold (`--max-svg-segments`); a PNG's size
     /// does not grow with the drawing, so it has no such limit.
     pub max_svg_segments: u64,
+    /// Draw every segment (`--exact`); otherwise the backends ask for a
+    /// level of detail of [`LOD_PX`] ([`crate::turtle::Turtle::detail`]).
+    pub exact: bool,
 }
 
 impl RenderOptions {
-    /// `format` at `size`, with the default SVG segment limit.
+    /// `format` at `size`, with the default SVG segment limit and the
+    /// default level of detail.
     pub fn new(format: ImageFormat, size: Option<(u32, u32)>) -> Self {
         RenderOptions {
             format,
             size,
             max_svg_segments: DEFAULT_MAX_SVG_SEGMENTS,
+            exact: false,
         }
+    }
+
+    /// The level of detail the backends ask for, in output pixels.
+    pub fn detail_px(&self) -> Option<f64> {
+        (!self.exact).then_some(LOD_PX)
+    }
+}
+
+/// Level of detail, in output pixels: a part of a drawing (an L-system
+/// subtree) whose whole extent is at most this is drawn as one stand-in
+/// segment. See docs/rendering.md for what it changes and why this value.
+pub const LOD_PX: f64 = 0.5;
+
+/// Stand-ins ([`Turtle::blot`]) at least this dense (drawn length over
+/// their own length) are drawn as blots; sparser ones (a straight run, a
+/// sparse twig) as ordinary segments.
+pub const BLOT_DENSITY: f64 = 2.0;
+
+/// A blot is this much wider than the stems, in output pixels: the exact
+/// drawing of a sub-pixel bush is many overlapping anti-aliased hairlines,
+/// each with its round caps, which saturate a spot about this much wider
+/// than one stroke. Chosen by measurement against `--exact`
+/// (docs/rendering.md, *Level of detail*: 0.5 to 1.25 tried, 1.0 closest).
+pub const BLOT_EXTRA_PX: f64 = 1.0;
+
+/// How [`render_framed`] decides what the picture shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Frame {
+    /// Fit the drawing, measured by a bounding pass (000's GetCurveSize).
+    Fit,
+    /// Show exactly this canvas area (a layout's bounds).
+    View(BBox),
+    /// Fit the drawing whose box (`None`: nothing drawn) and number of
+    /// segments are already known (an L-system's memoized geometry): no
+    /// bounding pass.
+    Known {
+        /// The drawing's box.
+        bbox: Option<BBox>,
+        /// Its segments, drawn exactly (saturating).
+        segments: u64,
+    },
+}
+
+/// Counts the segments a drawing hands over at a level of detail.
+struct DetailCounter {
+    count: u64,
+    detail: Option<f64>,
+}
+
+impl Turtle for DetailCounter {
+    fn segment(&mut self, _seg: crate::turtle::Segment) {
+        self.count += 1;
+    }
+
+    fn detail(&self) -> Option<f64> {
+        self.detail
     }
 }
 
@@ -359,14 +420,63 @@ pub fn render(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<Option<u64>, Diagnostics> {
+    let frame = match view {
+        Some(v) => Frame::View(v),
+        None => Frame::Fit,
+    };
+    render_framed(drawing, frame, underlay, style, opts, out, progress)
+}
+
+/// [`render`] with the picture's frame given as a [`Frame`]: with
+/// [`Frame::Known`] there is no bounding pass (an SVG at a level of detail
+/// is counted by a pass at that level instead, which costs what drawing
+/// it does). The drawing pass's backend asks for
+/// [`RenderOptions::detail_px`].
+pub fn render_framed(
+    drawing: &mut Drawing<'_>,
+    frame: Frame,
+    underlay: &[Fill],
+    style: &Style,
+    opts: &RenderOptions,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<Option<u64>, Diagnostics> {
     // Refuse a bad size before any work.
     if let Some(size) = opts.size {
         checked_size(size)?;
     }
     // Segments counted by a first pass, when one runs.
     let mut counted = None;
-    let fit = match view {
-        Some(view) => {
+    let fit = match frame {
+        Frame::Known { bbox, segments } => {
+            counted = Some(segments);
+            let mut bbox = bbox;
+            for p in underlay.iter().flat_map(|f| &f.rings).flatten() {
+                match &mut bbox {
+                    Some(b) => b.add(*p),
+                    None => bbox = Some(BBox::at(*p)),
+                }
+            }
+            let fit = Fit::content(bbox, 0, &style.width, opts.size)?;
+            if opts.format == ImageFormat::Svg {
+                let drawn = match opts.detail_px() {
+                    Some(px) => {
+                        let mut count = DetailCounter {
+                            count: 0,
+                            detail: Some(px / fit.scale),
+                        };
+                        drawing(&mut count, &mut Phase::new(progress, "counting"))?;
+                        count.count
+                    }
+                    None => segments,
+                };
+                if drawn > opts.max_svg_segments {
+                    return Err(svg_too_large(Some(drawn), opts.max_svg_segments));
+                }
+            }
+            fit
+        }
+        Frame::View(view) => {
             if opts.format == ImageFormat::Svg {
                 // No bounding pass to count the segments: count them first,
                 // so an SVG over the limit is refused before a byte is written.
@@ -379,7 +489,7 @@ pub fn render(
             }
             Fit::view(&view, opts.size)?
         }
-        None => {
+        Frame::Fit => {
             let mut bounds = Bounds::default();
             drawing(&mut bounds, &mut Phase::new(progress, "measuring"))?;
             counted = Some(bounds.count);
@@ -398,7 +508,7 @@ pub fn render(
     };
     match opts.format {
         ImageFormat::Png => {
-            let mut turtle = PngTurtle::new(fit, style)?;
+            let mut turtle = PngTurtle::new(fit, style)?.with_detail(opts.detail_px());
             for fill in underlay {
                 turtle.fill(fill);
             }
@@ -410,7 +520,8 @@ pub fn render(
         }
         ImageFormat::Svg => {
             let mut turtle = SvgTurtle::new(std::io::BufWriter::new(&mut *out), fit, style)?
-                .with_max_segments(opts.max_svg_segments);
+                .with_max_segments(opts.max_svg_segments)
+                .with_detail(opts.detail_px());
             for fill in underlay {
                 turtle.fill(fill);
             }

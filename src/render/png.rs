@@ -20,6 +20,16 @@
 //! drawn again exactly where it was just drawn is skipped (one path would
 //! have unioned it away), so 50,000 copies of one stem cost one.
 //!
+//! At a level of detail ([`Turtle::detail`], asked for with
+//! [`PngTurtle::with_detail`]) the drawing hands over stand-ins for
+//! sub-pixel subtrees ([`Turtle::blot`]): sparse ones are drawn as ordinary
+//! segments, dense ones as blots: anti-aliased capsules [`BLOT_EXTRA_PX`]
+//! wider than the stems, painted straight into the raster by distance
+//! (tiny-skia's stroker costs about 4 us a blot, the stamp a few dozen
+//! pixel blends; docs/rendering.md, *Level of detail*). Blots and segments
+//! are one colour, source-over, so the order in which they land does not
+//! matter.
+//!
 //! It does not decide sizes or widths: [`Fit`] and [`stroke_px`] in the
 //! parent module do. Its sections mirror `svg.rs`, so the two read side by side.
 
@@ -27,7 +37,7 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, Stroke, Transform,
 };
 
-use super::{BATCH_SEGMENTS, FOLD_PX, Fit, Style, Width, stroke_px};
+use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, Style, Width, stroke_px};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
 use crate::diag::{Diagnostic, ErrorKind};
@@ -60,6 +70,10 @@ pub struct PngTurtle {
     last_to: Option<Point>,
     /// The open subpath's pen, `None` when no subpath is open.
     pen: Option<Pen>,
+    /// Level of detail in canvas units ([`Turtle::detail`]), `None`: exact.
+    detail: Option<f64>,
+    /// The stroke colour, for blots painted straight into the raster.
+    ink: Rgb,
 }
 
 /// The pen of the open subpath, in output pixels, for [`FOLD_PX`] folding.
@@ -104,7 +118,16 @@ impl PngTurtle {
             paths: 0,
             last_to: None,
             pen: None,
+            detail: None,
+            ink: style.stroke,
         })
+    }
+
+    /// The same turtle asking for a level of detail of `px` output pixels
+    /// (see [`Turtle::detail`]); `None` draws every segment.
+    pub fn with_detail(mut self, px: Option<f64>) -> Self {
+        self.detail = px.map(|px| px / self.fit.scale);
+        self
     }
 
     // -----------------------------------------------------------------------
@@ -164,6 +187,70 @@ impl PngTurtle {
         }
     }
 
+    /// Paints a blot: the capsule of radius `radius` around `a`-`b`
+    /// (output pixels), each pixel covered by `radius + 0.5` minus its
+    /// centre's distance to the segment (clamped to 0..1), blended
+    /// source-over in the stroke colour. Overlapping blots accumulate, as
+    /// the hairlines they stand for do. A few dozen pixels each, instead of
+    /// a stroked path's outline and scan conversion.
+    fn stamp(&mut self, a: Point, b: Point, radius: f64) {
+        let (w, h) = (
+            f64::from(self.pixmap.width()),
+            f64::from(self.pixmap.height()),
+        );
+        let reach = radius + 0.5;
+        let (lo_x, hi_x) = (a.x.min(b.x) - reach, a.x.max(b.x) + reach);
+        let (lo_y, hi_y) = (a.y.min(b.y) - reach, a.y.max(b.y) + reach);
+        if hi_x < 0.0 || hi_y < 0.0 || lo_x >= w || lo_y >= h {
+            return;
+        }
+        let x0 = libm::floor(lo_x.max(0.0)) as usize;
+        let y0 = libm::floor(lo_y.max(0.0)) as usize;
+        let x1 = libm::ceil(hi_x.min(w - 1.0)) as usize;
+        let y1 = libm::ceil(hi_y.min(h - 1.0)) as usize;
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let len2 = dx * dx + dy * dy;
+        let inv = if len2 > 0.0 { 1.0 / len2 } else { 0.0 };
+        // Beyond `outer` nothing is covered; within `inner` all is.
+        let outer = reach * reach;
+        let inner = if radius > 0.5 {
+            (radius - 0.5) * (radius - 0.5)
+        } else {
+            -1.0
+        };
+        let stride = self.pixmap.width() as usize;
+        let src = [
+            u32::from(self.ink.r),
+            u32::from(self.ink.g),
+            u32::from(self.ink.b),
+            255,
+        ];
+        let data = self.pixmap.data_mut();
+        for y in y0..=y1 {
+            let py = y as f64 + 0.5;
+            for x in x0..=x1 {
+                let px = x as f64 + 0.5;
+                let t = (((px - a.x) * dx + (py - a.y) * dy) * inv).clamp(0.0, 1.0);
+                let (qx, qy) = (a.x + t * dx - px, a.y + t * dy - py);
+                let d2 = qx * qx + qy * qy;
+                if d2 >= outer {
+                    continue;
+                }
+                let cov = if d2 <= inner {
+                    1.0
+                } else {
+                    (reach - libm::sqrt(d2)).clamp(0.0, 1.0)
+                };
+                let c = (cov * 255.0 + 0.5) as u32;
+                let i = (y * stride + x) * 4;
+                for (ch, &s) in src.iter().enumerate() {
+                    let d = u32::from(data[i + ch]);
+                    data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
+                }
+            }
+        }
+    }
+
     /// Ends the open subpath: writes the pen's pending end point, so the
     /// exact end of every run is in the path.
     fn end_subpath(&mut self) {
@@ -215,6 +302,23 @@ impl PngTurtle {
 }
 
 impl Turtle for PngTurtle {
+    fn detail(&self) -> Option<f64> {
+        self.detail
+    }
+
+    fn blot(&mut self, seg: Segment, density: f64) {
+        if density < BLOT_DENSITY {
+            self.segment(seg);
+            return;
+        }
+        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
+        if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
+            return;
+        }
+        let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
+        self.stamp(from, to, radius);
+    }
+
     fn segment(&mut self, seg: Segment) {
         let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
         if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
@@ -365,6 +469,36 @@ mod tests {
         run(&mut t, &[Point::new(10.0, 10.0), Point::new(10.1, 10.0)]);
         run(&mut t, &[Point::new(10.15, 10.0), Point::new(10.25, 10.0)]);
         assert_eq!(t.batch.len(), 4);
+    }
+
+    /// A blot is a capsule painted by distance: full ink within its
+    /// radius less half a pixel, half at its radius, none a pixel out;
+    /// two blots accumulate. A sparse stand-in is an ordinary segment.
+    #[test]
+    fn blots_paint_by_distance_and_accumulate() {
+        // Stems 1 px, so blots are 2 px wide: radius 1 around (10.5, 10.5).
+        let mut t = turtle();
+        let dot = stem(10.5, 10.5, 10.5, 10.5);
+        t.blot(dot, 5.0);
+        let p = t.into_pixmap();
+        let at = |p: &Pixmap, x, y| p.pixel(x, y).unwrap().red();
+        assert_eq!(at(&p, 10, 10), 0, "centre: full ink");
+        // Centre 1 px away: coverage 0.5, 255 * (1 - 128/255) rounded.
+        assert_eq!(at(&p, 11, 10), 127);
+        assert_eq!(at(&p, 10, 9), 127);
+        assert_eq!(at(&p, 12, 10), 255, "1.5 px out: untouched");
+        let mut twice = turtle();
+        twice.blot(dot, 5.0);
+        twice.blot(dot, 5.0);
+        assert_eq!(at(&twice.into_pixmap(), 11, 10), 63, "source-over twice");
+        // Density under BLOT_DENSITY: a 1 px hairline segment, not a blot.
+        let mut sparse = turtle();
+        sparse.blot(stem(20.0, 10.5, 40.0, 10.5), 1.0);
+        assert_eq!(sparse.paths, 0);
+        sparse.flush();
+        assert_eq!(sparse.paths, 1);
+        let p = sparse.into_pixmap();
+        assert!(at(&p, 30, 10) < 128 && at(&p, 30, 12) == 255);
     }
 
     fn wide_turtle(width: f64) -> PngTurtle {

@@ -15,7 +15,7 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
-use super::{BATCH_SEGMENTS, Fit, Style, Width, stroke_px};
+use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, Fit, Style, Width, stroke_px};
 use crate::color::Rgb;
 use crate::diag::{Diagnostics, io_error};
 use crate::turtle::Fill;
@@ -42,6 +42,8 @@ pub struct SvgTurtle<W: Write> {
     /// is written and `finish` reports the limit.
     written: u64,
     max_segments: u64,
+    /// Level of detail in canvas units ([`Turtle::detail`]), `None`: exact.
+    detail: Option<f64>,
 }
 
 impl<W: Write> SvgTurtle<W> {
@@ -60,6 +62,7 @@ impl<W: Write> SvgTurtle<W> {
             last_to: None,
             written: 0,
             max_segments: u64::MAX,
+            detail: None,
         };
         let (w, h) = (fit.width, fit.height);
         let mut head = format!(
@@ -74,6 +77,13 @@ impl<W: Write> SvgTurtle<W> {
             Some(e) => Err(io_error(&e, "writing the SVG image").into()),
             None => Ok(turtle),
         }
+    }
+
+    /// The same turtle asking for a level of detail of `px` output pixels
+    /// (see [`Turtle::detail`]); `None` writes every segment.
+    pub fn with_detail(mut self, px: Option<f64>) -> Self {
+        self.detail = px.map(|px| px / self.fit.scale);
+        self
     }
 
     // -----------------------------------------------------------------------
@@ -161,7 +171,29 @@ impl<W: Write> SvgTurtle<W> {
 }
 
 impl<W: Write> Turtle for SvgTurtle<W> {
+    fn detail(&self) -> Option<f64> {
+        self.detail
+    }
+
+    fn blot(&mut self, seg: Segment, density: f64) {
+        let mut width = stroke_px(&self.width, self.fit.scale, seg.order);
+        if density >= BLOT_DENSITY {
+            // The PNG backend's blot, as a wider stroke: in SVG a path's
+            // strokes are a union, so this is the bush's dilated outline.
+            width += BLOT_EXTRA_PX;
+        }
+        self.stroke(seg, width);
+    }
+
     fn segment(&mut self, seg: Segment) {
+        let width = stroke_px(&self.width, self.fit.scale, seg.order);
+        self.stroke(seg, width);
+    }
+}
+
+impl<W: Write> SvgTurtle<W> {
+    /// Adds `seg` to the batch of paths `width` pixels wide.
+    fn stroke(&mut self, seg: Segment, width: f64) {
         let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
         if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
             // Not writable as a number; the PNG backend skips it too.
@@ -172,7 +204,6 @@ impl<W: Write> Turtle for SvgTurtle<W> {
             // Over the limit: `finish` reports it; write nothing more.
             return;
         }
-        let width = stroke_px(&self.width, self.fit.scale, seg.order);
         if self.batch_len >= BATCH_SEGMENTS || (self.batch_len > 0 && width != self.batch_width) {
             self.flush();
         }

@@ -64,12 +64,40 @@ pub struct Segment {
 pub trait Turtle {
     /// Draw one segment.
     fn segment(&mut self, seg: Segment);
+
+    /// The level of detail the backend shows, in canvas units: a part of
+    /// the drawing whose whole extent is at most this may be handed over as
+    /// one stand-in segment instead of all of its own (the renderer's level
+    /// of detail). `None`, the default: every segment.
+    fn detail(&self) -> Option<f64> {
+        None
+    }
+
+    /// A stand-in for a part of the drawing no larger than
+    /// [`Turtle::detail`] (half of it for one connected run): `seg` is its chord (or its box's diagonal), and
+    /// `density` the length of the segments it stands for over the length
+    /// of `seg` when they are several runs (a bush: branches that break
+    /// off), and 1 for one connected run (a straight or winding line). The default draws
+    /// it as one segment; a raster backend draws a dense one with the ink
+    /// that many segments leave in so small an area.
+    fn blot(&mut self, seg: Segment, density: f64) {
+        let _ = density;
+        self.segment(seg);
+    }
 }
 
 impl<T: Turtle + ?Sized> Turtle for &mut T {
     #[inline]
     fn segment(&mut self, seg: Segment) {
         (**self).segment(seg)
+    }
+
+    fn detail(&self) -> Option<f64> {
+        (**self).detail()
+    }
+
+    fn blot(&mut self, seg: Segment, density: f64) {
+        (**self).blot(seg, density)
     }
 }
 

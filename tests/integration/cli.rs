@@ -152,7 +152,13 @@ fn stats_at_depth_57_is_exact() {
     assert_eq!(v["length"], length.to_string());
     assert_eq!(length.to_string().len(), 41);
     assert_eq!(v["segments"], five57.to_string());
-    assert!(v["bbox"].is_null(), "too long to walk: {}", v["bbox"]);
+    // 10^40 symbols: bbox and end come from the memoized geometry. The
+    // trunk is 3^57 unit steps straight up, and nothing is higher.
+    let three57 = 3f64.powi(57);
+    assert_eq!(v["bbox"][1].as_f64(), Some(-three57), "{}", v["bbox"]);
+    assert_eq!(v["bbox"][3].as_f64(), Some(0.0));
+    assert_eq!(v["end"][0].as_f64(), Some(0.0));
+    assert_eq!(v["end"][1].as_f64(), Some(-three57));
 }
 
 #[test]
@@ -816,10 +822,16 @@ fn the_progress_bar_shows_on_a_terminal_only() {
     // Word lengths (5^(n+1) - 3) / 2: depth 6 is 39,061, depth 7 195,311.
     let quiet = run(6, "--quiet");
     assert!(!quiet.contains("39,061"), "{quiet}");
-    let shown = run(7, "");
+    // --exact: a bounding pass, then every symbol drawn.
+    let shown = run(7, "--exact");
     assert!(shown.contains("measuring: symbols"), "{shown}");
     assert!(shown.contains("drawing: symbols"), "{shown}");
     assert!(shown.contains("195,311/195,311"), "{shown}");
+    // The default level of detail fits from the memo (no measuring pass);
+    // at depth 7 nothing is under half a pixel, so every symbol is drawn.
+    let lod = run(7, "");
+    assert!(!lod.contains("measuring"), "{lod}");
+    assert!(lod.contains("195,311/195,311"), "{lod}");
     // Not a terminal: stderr stays empty even with no delay.
     let out = stlc()
         .args(["render", &format!("{root}/examples/abop-1.24a.lsys")])

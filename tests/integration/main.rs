@@ -3,6 +3,7 @@
 mod cli;
 mod diagnostics;
 mod docs;
+mod geometry;
 mod golden;
 mod grow;
 mod lsys;

@@ -19,6 +19,31 @@ impl Alphabet {
         }
     }
 
+    /// Streams the word `W(axiom, depth)` depth-first, symbol by symbol,
+    /// into `f` (its index and the symbol), with an explicit stack of
+    /// `(word, position, remaining depth)` frames: no precomputation, memory
+    /// O(depth). The fallback of `dfs` when its program would pass
+    /// `program::PROGRAM_CAP`.
+    pub(super) fn plain_each(&self, depth: u32, mut f: impl FnMut(u64, u32)) {
+        let mut frames: Vec<(&[u32], usize, u32)> = vec![(&self.axiom, 0, depth)];
+        let mut i = 0u64;
+        while let Some(top) = frames.last_mut() {
+            let Some(&s) = top.0.get(top.1) else {
+                frames.pop();
+                continue;
+            };
+            top.1 += 1;
+            let r = top.2;
+            match &self.succ[s as usize] {
+                Some(w) if r > 0 => frames.push((w, 0, r - 1)),
+                _ => {
+                    f(i, s);
+                    i += 1;
+                }
+            }
+        }
+    }
+
     fn rewrite<S: SymId>(&self, depth: u32) -> Vec<S> {
         let succ: Vec<Option<Vec<S>>> = self
             .succ

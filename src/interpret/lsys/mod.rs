@@ -43,11 +43,15 @@
 //! - `units.rs`: what programs are made of ([`FastOp`]s and their merging,
 //!   or text bytes);
 //! - `exec.rs`: the `dfs` turtle executing [`FastOp`]s;
+//! - `geometry.rs`: the memoized geometry (net move, turn and box per
+//!   `(symbol, depth, heading)`), for `bbox`/`end` at any depth, the
+//!   renderer's fitting and its level of detail;
 //! - `bfs.rs`: Saupe's level-by-level rewriting.
 
 mod alphabet;
 mod bfs;
 mod exec;
+mod geometry;
 mod program;
 mod units;
 
@@ -55,19 +59,22 @@ use std::io::Write;
 
 use num_bigint::BigUint;
 
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::diag::{Diagnostics, io_error};
 use crate::interpret::Derivation;
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 use crate::num::Linear;
 use crate::progress::Progress;
-use crate::turtle::{Headings, Point, Turtle};
+use crate::turtle::{BBox, Headings, Point, Turtle};
 use crate::turtle::{Interp, Op};
 
 pub(crate) use alphabet::Alphabet;
 use exec::Exec;
-pub use program::MACRO_CAP;
+use geometry::Geometry;
+pub use geometry::{GEOMETRY_ENTRIES, MAX_PERIOD, Refusal};
 use program::Program;
+pub use program::{MACRO_CAP, PROGRAM_CAP};
 pub use units::FastOp;
 
 /// Progress is reported about every this many symbols.
@@ -87,8 +94,43 @@ pub fn check(
         .map(|_| ())
 }
 
+/// What the memoized geometry knows about a derived word without
+/// traversing it (see [`measure`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measured {
+    /// Box of every drawn segment, `None` if nothing is drawn.
+    pub bbox: Option<BBox>,
+    /// Where the turtle ends.
+    pub end: Point,
+    /// Number of segments (`F`s), saturating.
+    pub segments: u64,
+}
+
+/// The box, end and segment count of `sys` derived to `depth` with step
+/// `len`, from the memoized geometry (no traversal; positions to
+/// floating-point accuracy), or why the memo does not apply. At most
+/// [`GEOMETRY_ENTRIES`] pieces are held. `depth` must be within the
+/// limits (callers check it).
+pub fn measure(sys: &LSystem, depth: u32, len: f64) -> Result<Measured, Refusal> {
+    let alpha = Alphabet::new(sys);
+    let mut g = Geometry::new(&alpha, sys, depth, len, GEOMETRY_ENTRIES)?;
+    let (bbox, end) = g.whole();
+    Ok(Measured {
+        bbox,
+        end,
+        segments: g.segments(),
+    })
+}
+
 /// Draws `sys` derived to `depth` into `turtle`, starting at the origin
 /// heading up, unit step `sys.length`, order 0.
+///
+/// With `dfs`, when the turtle asks for a level of detail
+/// ([`Turtle::detail`]) and the memoized geometry applies, subtrees that
+/// fit inside it are drawn as one stand-in segment each; the traversal
+/// limit (`limits.max_symbols`) then bounds the symbols and stand-ins
+/// visited, which the memo counts before drawing. Otherwise every segment
+/// is drawn.
 pub fn draw(
     sys: &LSystem,
     depth: u32,
@@ -97,7 +139,71 @@ pub fn draw(
     turtle: &mut dyn Turtle,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
+    if strategy == Derivation::Dfs
+        && let Some(detail) = turtle.detail()
+        && lod(sys, depth, detail, limits, turtle, progress, false)?
+    {
+        return Ok(());
+    }
     draw_into(sys, depth, strategy, limits, turtle, progress).map(|_| ())
+}
+
+/// Draws `sys` at a level of detail of `detail` canvas units with the
+/// memoized geometry (see [`draw`]), whether or not anything is cut.
+/// Returns `false`, drawing nothing, when the memo does not apply or
+/// `detail` is negative or not finite.
+pub fn draw_lod(
+    sys: &LSystem,
+    depth: u32,
+    detail: f64,
+    limits: &Limits,
+    turtle: &mut dyn Turtle,
+    progress: &mut dyn Progress,
+) -> Result<bool, Diagnostics> {
+    lod(sys, depth, detail, limits, turtle, progress, true)
+}
+
+/// The level-of-detail walk; unless `always`, only when something is cut
+/// (otherwise the drawing is the exact one, which the compiled program
+/// draws faster). Returns whether it drew.
+fn lod(
+    sys: &LSystem,
+    depth: u32,
+    detail: f64,
+    limits: &Limits,
+    turtle: &mut dyn Turtle,
+    progress: &mut dyn Progress,
+    always: bool,
+) -> Result<bool, Diagnostics> {
+    if !(detail.is_finite() && detail >= 0.0) {
+        return Ok(false);
+    }
+    limits.check_depth(depth)?;
+    let alpha = Alphabet::new(sys);
+    let step = Linear::constant(sys.length).at(0);
+    let Ok(mut g) = Geometry::new(&alpha, sys, depth, step, GEOMETRY_ENTRIES) else {
+        return Ok(false);
+    };
+    let [units, _, cuts] = g.lod_cost(detail);
+    if cuts == 0 && !always {
+        return Ok(false);
+    }
+    if units > limits.max_symbols {
+        return Err(Diagnostic::error(ErrorKind::Limit {
+            what: format!("symbols to visit at depth {depth} at this level of detail"),
+            value: units.to_string(),
+            limit: limits.max_symbols.to_string(),
+        })
+        .with_help(
+            "use a smaller depth or --size, or raise the traversal budget with --max-symbols N",
+        )
+        .into());
+    }
+    progress.start("symbols", units);
+    g.draw_lod(detail, turtle, progress);
+    progress.update(units);
+    progress.finish();
+    Ok(true)
 }
 
 /// [`draw`] for a concrete backend (monomorphised: the hot loop calls the
@@ -116,12 +222,33 @@ pub fn draw_into<T: Turtle>(
     let step = Linear::constant(sys.length).at(0);
     progress.start("symbols", total);
     let end = match strategy {
-        Derivation::Dfs => {
-            let program = Program::<FastOp>::compile(&alpha, depth);
-            let mut exec = Exec::new(turtle, Headings::starting(sys.heading, sys.angle), step);
-            program.run(|ops| exec.run(ops), progress);
-            Point::new(exec.x, exec.y)
-        }
+        Derivation::Dfs => match Program::<FastOp>::compile(&alpha, depth) {
+            Some(program) => {
+                let mut exec = Exec::new(turtle, Headings::starting(sys.heading, sys.angle), step);
+                program.run(&alpha.axiom, |ops| exec.run(ops), progress);
+                Point::new(exec.x, exec.y)
+            }
+            None => {
+                // Over the program's budget: the same word, streamed.
+                let mut interp = Interp::new(
+                    turtle,
+                    Point::default(),
+                    sys.angle,
+                    Linear::constant(sys.length),
+                )
+                .heading(sys.heading);
+                let ops: Vec<Option<Op>> = alpha.chars.iter().map(|&c| Op::of_lsys(c)).collect();
+                alpha.plain_each(depth, |i, s| {
+                    if let Some(op) = ops[s as usize] {
+                        interp.apply(op);
+                    }
+                    if i % PROGRESS_STEP == PROGRESS_STEP - 1 {
+                        progress.update(i + 1);
+                    }
+                });
+                interp.state.pos
+            }
+        },
         Derivation::Bfs => {
             let mut interp = Interp::new(
                 turtle,
@@ -164,9 +291,9 @@ pub fn expand(
     let mut w = std::io::BufWriter::with_capacity(1 << 16, out);
     let mut failed: Option<std::io::Error> = None;
     match strategy {
-        Derivation::Dfs => {
-            let program = Program::<u8>::compile(&alpha, depth);
-            program.run(
+        Derivation::Dfs => match Program::<u8>::compile(&alpha, depth) {
+            Some(program) => program.run(
+                &alpha.axiom,
                 |bytes| {
                     if failed.is_none()
                         && let Err(e) = w.write_all(bytes)
@@ -175,8 +302,19 @@ pub fn expand(
                     }
                 },
                 progress,
-            );
-        }
+            ),
+            None => {
+                let mut buf = [0u8; 4];
+                alpha.plain_each(depth, |_, s| {
+                    if failed.is_none() {
+                        let text = alpha.chars[s as usize].encode_utf8(&mut buf);
+                        if let Err(e) = w.write_all(text.as_bytes()) {
+                            failed = Some(e);
+                        }
+                    }
+                });
+            }
+        },
         Derivation::Bfs => {
             let mut buf = [0u8; 4];
             alpha.bfs_each(depth, |_, s| {

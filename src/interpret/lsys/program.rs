@@ -24,6 +24,13 @@ const GLUE_CAP: usize = 64;
 /// compile memory for systems whose expansions grow slowly).
 const POOL_CAP: usize = 1 << 20;
 
+/// Most plan items and glue units one program may hold (plans are a
+/// successor's length each, per level: a 40 MB successor at depth 3 would
+/// be 120 M items). Past it, [`Program::compile`] gives up and the caller
+/// streams the word without precomputation ([`super::Alphabet::plain_each`]).
+/// About 16 bytes each: at most about 64 MB, plus the pool.
+pub const PROGRAM_CAP: usize = 1 << 22;
+
 /// How one `(symbol, remaining depth)` is produced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Entry {
@@ -46,11 +53,21 @@ enum Item {
 pub(super) struct Program<U> {
     pool: Vec<U>,
     plans: Vec<Vec<Item>>,
-    root: u32,
+    /// The entry of every symbol at the full depth: the axiom is streamed
+    /// through these, never compiled (it may be as long as the input).
+    top: Vec<Entry>,
 }
 
 impl<U: Unit> Program<U> {
-    pub(super) fn compile(alpha: &Alphabet, depth: u32) -> Self {
+    /// The program of `alpha` to `depth`, or `None` when its plans would
+    /// pass [`PROGRAM_CAP`].
+    pub(super) fn compile(alpha: &Alphabet, depth: u32) -> Option<Self> {
+        Self::compile_capped(alpha, depth, PROGRAM_CAP)
+    }
+
+    /// [`Program::compile`] with a cap of `cap` items.
+    fn compile_capped(alpha: &Alphabet, depth: u32, cap: usize) -> Option<Self> {
+        let mut items_total = 0usize;
         let n = alpha.chars.len();
         let mut pool: Vec<U> = Vec::new();
         let mut plans: Vec<Vec<Item>> = Vec::new();
@@ -126,6 +143,10 @@ impl<U: Unit> Program<U> {
                     }
                 }
                 let items = plan_items(succ, &prev, &mut pool);
+                items_total = items_total.saturating_add(items.len());
+                if items_total.saturating_add(pool.len().saturating_sub(POOL_CAP)) > cap {
+                    return None;
+                }
                 plans.push(items);
                 row.push(Entry::Plan(plans.len() as u32 - 1));
             }
@@ -138,21 +159,52 @@ impl<U: Unit> Program<U> {
                 break;
             }
         }
-        let root = plan_items(&alpha.axiom, &prev, &mut pool);
-        plans.push(root);
-        Program {
+        Some(Program {
             pool,
-            root: plans.len() as u32 - 1,
             plans,
+            top: prev,
+        })
+    }
+
+    /// Executes the program for `axiom` with an explicit stack, handing
+    /// each run of units to `exec`. The axiom's symbols are taken one by
+    /// one (a child macro run directly, a plan called).
+    pub(super) fn run(
+        &self,
+        axiom: &[u32],
+        mut exec: impl FnMut(&[U]),
+        progress: &mut dyn Progress,
+    ) {
+        let mut stack: Vec<(u32, u32)> = Vec::new();
+        let mut done = 0u64;
+        let mut next_report = PROGRESS_STEP;
+        for &s in axiom {
+            match self.top[s as usize] {
+                Entry::Macro { start, end, syms } => {
+                    exec(&self.pool[start as usize..end as usize]);
+                    done = done.saturating_add(syms);
+                    if done >= next_report {
+                        progress.update(done);
+                        next_report = done.saturating_add(PROGRESS_STEP);
+                    }
+                }
+                Entry::Plan(p) => {
+                    stack.push((p, 0));
+                    self.run_stack(&mut stack, &mut exec, &mut done, &mut next_report, progress);
+                }
+            }
         }
     }
 
-    /// Executes the program with an explicit stack, handing each run of
-    /// units to `exec`.
-    pub(super) fn run(&self, mut exec: impl FnMut(&[U]), progress: &mut dyn Progress) {
-        let mut stack: Vec<(u32, u32)> = vec![(self.root, 0)];
-        let mut done = 0u64;
-        let mut next_report = PROGRESS_STEP;
+    fn run_stack(
+        &self,
+        stack: &mut Vec<(u32, u32)>,
+        exec: &mut impl FnMut(&[U]),
+        done: &mut u64,
+        next_report: &mut u64,
+        progress: &mut dyn Progress,
+    ) {
+        let (mut d, mut next) = (*done, *next_report);
         while let Some(top) = stack.last_mut() {
             let plan = &self.plans[top.0 as usize];
             let Some(&item) = plan.get(top.1 as usize) else {
@@ -163,15 +215,16 @@ impl<U: Unit> Program<U> {
             match item {
                 Item::Run { start, end, syms } => {
                     exec(&self.pool[start as usize..end as usize]);
-                    done = done.saturating_add(syms);
-                    if done >= next_report {
-                        progress.update(done);
-                        next_report = done.saturating_add(PROGRESS_STEP);
+                    d = d.saturating_add(syms);
+                    if d >= next {
+                        progress.update(d);
+                        next = d.saturating_add(PROGRESS_STEP);
                     }
                 }
                 Item::Call(p) => stack.push((p, 0)),
             }
         }
+        (*done, *next_report) = (d, next);
     }
 }
 
@@ -225,4 +278,35 @@ fn plan_items<U: Unit>(children: &[u32], prev: &[Entry], pool: &mut Vec<U>) -> V
     }
     flush(&mut glue, &mut glue_syms, pool, &mut items);
     items
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::interpret::lsys::FastOp;
+    use crate::limits::Limits;
+
+    #[test]
+    fn a_program_over_its_cap_is_not_built_and_the_word_streams_the_same() {
+        let src = "axiom F[X]+F\nangle 30\nrule F F[+F]F[-F]F\nrule X FX-\n";
+        let sys = crate::syntax::lsys::parse(src, &Limits::default()).unwrap();
+        let alpha = Alphabet::new(&sys);
+        // Depth 6: F at 6 is over MACRO_CAP, so there are plans.
+        assert!(Program::<FastOp>::compile_capped(&alpha, 6, 0).is_none());
+        let program = Program::<u8>::compile(&alpha, 6).unwrap();
+        let mut compiled = Vec::new();
+        program.run(
+            &alpha.axiom,
+            |b| compiled.extend_from_slice(b),
+            &mut crate::progress::NoProgress,
+        );
+        // The fallback streams every symbol, drawing or not; the compiled
+        // text has them all too.
+        let mut plain = String::new();
+        alpha.plain_each(6, |_, s| plain.push(alpha.chars[s as usize]));
+        let mut bfs = String::new();
+        alpha.bfs_each(6, |_, s| bfs.push(alpha.chars[s as usize]));
+        assert_eq!(plain, bfs);
+        assert_eq!(String::from_utf8(compiled).unwrap(), bfs);
+    }
 }

@@ -1,0 +1,715 @@
+//! Memoized geometry of a deterministic L-system: per `(symbol, remaining
+//! depth, starting heading)` the net displacement, net turn and bounding box
+//! of its expansion relative to its start, composed exactly instead of
+//! traversed.
+//!
+//! Brackets restore what they saved, so the drawing of `W(s, r)` started
+//! at position `p`, heading `k`, flip `f` is the drawing started at the
+//! origin, heading `k`, unflipped, translated by `p` and (if `f`) turned
+//! around: a turn adds to `k` whatever the flip, and a flip negates every
+//! direction. Its net turn and flip do not depend on the start at all. So
+//! one [`Piece`] per `(s, r, k)` gives everything: a parent's piece is its
+//! successor's pieces (at `r - 1`, each at the heading reached) composed in
+//! order. Headings stay exact integers; positions are sums of the same
+//! directions in another order, so they match a traversal to
+//! floating-point accuracy, not bit for bit.
+//!
+//! Only the headings the word reaches are computed: first the net turns of
+//! every `(symbol, r)` (heading-independent), then, from the axiom down,
+//! the `(symbol, r, k)` each level needs, then the pieces bottom-up. When
+//! the angle has a period (`p` turns make a whole number of full turns,
+//! `p` at most [`MAX_PERIOD`]), headings are keyed modulo `p`. The work is
+//! O(alphabet x depth x headings reached x successor length), whatever the
+//! word's length; when the pieces would pass [`GEOMETRY_ENTRIES`] the memo
+//! is refused and callers fall back (`stats` to its bounded traversal, the
+//! renderer to drawing every segment).
+//!
+//! The memo applies when every successor is bracket-balanced and `[` and
+//! `]` have no rule (then every expansion is balanced); the axiom may be
+//! anything (it is walked with a real stack, an extra `]` ignored as the
+//! turtle ignores it).
+//!
+//! The same memo gives the renderer its level of detail ([`Geometry::draw_lod`]):
+//! a subtree whose whole drawing fits inside `detail` canvas units is drawn
+//! as one stand-in segment instead of being expanded.
+
+use std::collections::HashMap;
+
+use super::{Alphabet, PROGRESS_STEP};
+use crate::model::lsys::LSystem;
+use crate::progress::Progress;
+use crate::turtle::{BBox, Headings, Op, Point, Segment, Turtle};
+
+/// Most pieces (and per-level turn and count entries) one memo may hold:
+/// about 100 bytes each with the map, so at most about 50 MB.
+pub const GEOMETRY_ENTRIES: usize = 1 << 19;
+
+/// Longest heading period looked for: `p` turns of the angle that make a
+/// whole number of full turns (25.7 degrees: 3600).
+pub const MAX_PERIOD: i64 = 1 << 16;
+
+/// Why the memo does not apply.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Refusal {
+    /// A successor is not bracket-balanced, or `[` or `]` has a rule.
+    Brackets,
+    /// More than [`GEOMETRY_ENTRIES`] pieces (headings reached x depth x symbols).
+    Budget,
+    /// A net turn does not fit 64 bits and the angle has no period.
+    Turns,
+}
+
+/// The drawing of one `(symbol, remaining depth, heading)` relative to its
+/// start, unflipped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Piece {
+    /// Net displacement.
+    pub dx: f64,
+    /// Net displacement.
+    pub dy: f64,
+    /// Box of every drawn point; `min > max` when nothing is drawn.
+    pub min_x: f64,
+    /// See `min_x`.
+    pub min_y: f64,
+    /// See `min_x`.
+    pub max_x: f64,
+    /// See `min_x`.
+    pub max_y: f64,
+    /// Whether it moves without drawing somewhere (an `f`).
+    pub moves: bool,
+}
+
+impl Piece {
+    const EMPTY: Piece = Piece {
+        dx: 0.0,
+        dy: 0.0,
+        min_x: f64::INFINITY,
+        min_y: f64::INFINITY,
+        max_x: f64::NEG_INFINITY,
+        max_y: f64::NEG_INFINITY,
+        moves: false,
+    };
+
+    /// Whether anything is drawn.
+    pub fn draws(&self) -> bool {
+        self.min_x <= self.max_x && self.min_y <= self.max_y
+    }
+
+    /// The longer side of the box (0 when nothing is drawn).
+    pub fn extent(&self) -> f64 {
+        if self.draws() {
+            (self.max_x - self.min_x).max(self.max_y - self.min_y)
+        } else {
+            0.0
+        }
+    }
+
+    /// Adds the point `(x, y)` to the box.
+    #[inline]
+    fn add(&mut self, x: f64, y: f64) {
+        self.min_x = self.min_x.min(x);
+        self.min_y = self.min_y.min(y);
+        self.max_x = self.max_x.max(x);
+        self.max_y = self.max_y.max(y);
+    }
+}
+
+/// The composing turtle: position, exact heading, flip, and the box so far.
+#[derive(Clone, Copy)]
+struct Pen {
+    x: f64,
+    y: f64,
+    k: i64,
+    flip: bool,
+}
+
+/// The memo; see the module documentation.
+pub(crate) struct Geometry<'a> {
+    alpha: &'a Alphabet,
+    depth: u32,
+    /// Terminal op of every symbol.
+    ops: Vec<Option<Op>>,
+    period: Option<i64>,
+    /// Net turn of `(s, r)`: `turn[r * n + s]` (reduced modulo the period
+    /// only if it would not fit 64 bits).
+    turn: Vec<i64>,
+    /// Net flip of `(s, r)`, same index.
+    flip: Vec<bool>,
+    /// Saturating number of `F` in `W(s, r)`, same index.
+    count: Vec<u64>,
+    /// Saturating number of `]` and `f` in `W(s, r)` (where a drawn run
+    /// breaks off and a new one starts), same index.
+    jumps: Vec<u64>,
+    /// `(s, r, key)` to its index in `pieces`, for `r >= 1` and `s` ruled.
+    index: HashMap<(u32, u32, i64), u32>,
+    /// Per level `r`, the `(s, key)` needed, in the order first needed.
+    needed: Vec<Vec<(u32, i64)>>,
+    pieces: Vec<Piece>,
+    headings: Headings,
+    len: f64,
+}
+
+/// The period of `angle` in turns: the least `p` in `1..=MAX_PERIOD` with
+/// `p * angle` a whole number of full turns (within 1e-9 of a degree).
+fn period_of(angle: f64) -> Option<i64> {
+    if !angle.is_finite() {
+        return None;
+    }
+    (1..=MAX_PERIOD).find(|&p| {
+        let turns = p as f64 * angle / 360.0;
+        (turns - libm::round(turns)).abs() * 360.0 < 1e-9
+    })
+}
+
+/// Whether `word` is bracket-balanced: never more `]` than `[` so far, and
+/// as many of each in all.
+fn balanced(word: &[u32], ops: &[Option<Op>]) -> bool {
+    let mut open = 0usize;
+    for &c in word {
+        match ops[c as usize] {
+            Some(Op::Push) => open += 1,
+            Some(Op::Pop) => match open.checked_sub(1) {
+                Some(o) => open = o,
+                None => return false,
+            },
+            _ => {}
+        }
+    }
+    open == 0
+}
+
+impl<'a> Geometry<'a> {
+    /// The memo of `alpha` (of `sys`) derived to `depth`, unit step `len`,
+    /// for the headings the axiom reaches; at most `budget` pieces.
+    pub(crate) fn new(
+        alpha: &'a Alphabet,
+        sys: &LSystem,
+        depth: u32,
+        len: f64,
+        budget: usize,
+    ) -> Result<Self, Refusal> {
+        let n = alpha.chars.len();
+        let ops: Vec<Option<Op>> = alpha.chars.iter().map(|&c| Op::of_lsys(c)).collect();
+        for (s, succ) in alpha.succ.iter().enumerate() {
+            if let Some(succ) = succ
+                && (matches!(ops[s], Some(Op::Push | Op::Pop)) || !balanced(succ, &ops))
+            {
+                return Err(Refusal::Brackets);
+            }
+        }
+        let levels = depth as usize + 1;
+        if n.saturating_mul(levels) > budget.saturating_mul(4) {
+            return Err(Refusal::Budget);
+        }
+        let period = period_of(sys.angle);
+        let mut g = Geometry {
+            alpha,
+            depth,
+            ops,
+            period,
+            turn: vec![0; n * levels],
+            flip: vec![false; n * levels],
+            count: vec![0; n * levels],
+            jumps: vec![0; n * levels],
+            index: HashMap::new(),
+            needed: vec![Vec::new(); levels],
+            pieces: Vec::new(),
+            headings: Headings::starting(sys.heading, sys.angle),
+            len,
+        };
+        g.turns()?;
+        g.demand(budget)?;
+        g.compose_all();
+        Ok(g)
+    }
+
+    fn key(&self, k: i64) -> i64 {
+        match self.period {
+            Some(p) => k.rem_euclid(p),
+            None => k,
+        }
+    }
+
+    /// `k + t`, exact when it fits, else modulo the period; `None` when it
+    /// does not fit and there is no period.
+    fn add_turn(&self, k: i64, t: i64) -> Option<i64> {
+        match (k.checked_add(t), self.period) {
+            (Some(v), _) => Some(v),
+            (None, Some(p)) => Some(k.rem_euclid(p) + t.rem_euclid(p)),
+            (None, None) => None,
+        }
+    }
+
+    /// Net turns, flips and `F` counts of every `(s, r)`, level by level.
+    fn turns(&mut self) -> Result<(), Refusal> {
+        let n = self.alpha.chars.len();
+        for s in 0..n {
+            let (t, f) = match self.ops[s] {
+                Some(Op::Turn(t)) => (i64::from(t), false),
+                Some(Op::Flip) => (0, true),
+                _ => (0, false),
+            };
+            self.turn[s] = t;
+            self.flip[s] = f;
+            self.count[s] = u64::from(self.ops[s] == Some(Op::Draw));
+            self.jumps[s] = u64::from(matches!(self.ops[s], Some(Op::Pop | Op::Move)));
+        }
+        for r in 1..=self.depth as usize {
+            for s in 0..n {
+                let (mut t, mut f, mut c, mut j) = (0i64, false, 0u64, 0u64);
+                match &self.alpha.succ[s] {
+                    None => {
+                        t = self.turn[s];
+                        f = self.flip[s];
+                        c = self.count[s];
+                        j = self.jumps[s];
+                    }
+                    Some(succ) => {
+                        let mut open = 0usize;
+                        for &ch in succ {
+                            let i = (r - 1) * n + ch as usize;
+                            c = c.saturating_add(self.count[i]);
+                            j = j.saturating_add(self.jumps[i]);
+                            match self.ops[ch as usize] {
+                                Some(Op::Push) => open += 1,
+                                Some(Op::Pop) => open -= 1,
+                                _ if open == 0 => {
+                                    t = self.add_turn(t, self.turn[i]).ok_or(Refusal::Turns)?;
+                                    f ^= self.flip[i];
+                                }
+                                _ => {}
+                            }
+                        }
+                    }
+                }
+                self.turn[r * n + s] = t;
+                self.flip[r * n + s] = f;
+                self.count[r * n + s] = c;
+                self.jumps[r * n + s] = j;
+            }
+        }
+        Ok(())
+    }
+
+    fn turn_of(&self, s: u32, r: u32) -> i64 {
+        self.turn[r as usize * self.alpha.chars.len() + s as usize]
+    }
+
+    fn flip_of(&self, s: u32, r: u32) -> bool {
+        self.flip[r as usize * self.alpha.chars.len() + s as usize]
+    }
+
+    /// Saturating number of `F` in the whole word.
+    pub(crate) fn segments(&self) -> u64 {
+        let n = self.alpha.chars.len();
+        let base = self.depth as usize * n;
+        self.alpha.axiom.iter().fold(0u64, |a, &s| {
+            a.saturating_add(self.count[base + s as usize])
+        })
+    }
+
+    /// Whether child `c` at remaining depth `r` is a piece (else terminal).
+    fn is_piece(&self, c: u32, r: u32) -> bool {
+        r >= 1 && self.alpha.succ[c as usize].is_some()
+    }
+
+    /// Walks `word`, whose symbols are at remaining depth `r`, from heading
+    /// `k`, calling `need(c, key)` for every piece, in order.
+    fn walk_headings(
+        &self,
+        word: &[u32],
+        r: u32,
+        mut k: i64,
+        mut need: impl FnMut(u32, i64) -> Result<(), Refusal>,
+    ) -> Result<(), Refusal> {
+        let mut stack: Vec<i64> = Vec::new();
+        for &c in word {
+            match self.ops[c as usize] {
+                Some(Op::Push) => stack.push(k),
+                Some(Op::Pop) => {
+                    if let Some(saved) = stack.pop() {
+                        k = saved;
+                    }
+                }
+                _ if self.is_piece(c, r) => {
+                    need(c, self.key(k))?;
+                    k = self.add_turn(k, self.turn_of(c, r)).ok_or(Refusal::Turns)?;
+                }
+                Some(Op::Turn(t)) => {
+                    k = self.add_turn(k, i64::from(t)).ok_or(Refusal::Turns)?;
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// The `(s, r, key)` the word needs, from the axiom down.
+    fn demand(&mut self, budget: usize) -> Result<(), Refusal> {
+        let mut index = std::mem::take(&mut self.index);
+        let mut needed = std::mem::take(&mut self.needed);
+        let mut total = 0usize;
+        let mut add = |c: u32, r: u32, key: i64, needed: &mut Vec<Vec<(u32, i64)>>| {
+            if let std::collections::hash_map::Entry::Vacant(v) = index.entry((c, r, key)) {
+                if total >= budget {
+                    return Err(Refusal::Budget);
+                }
+                v.insert(total as u32);
+                total += 1;
+                needed[r as usize].push((c, key));
+            }
+            Ok(())
+        };
+        let depth = self.depth;
+        let mut last = None;
+        let result = self.walk_headings(&self.alpha.axiom, depth, 0, |c, key| {
+            if last == Some((c, key)) {
+                return Ok(());
+            }
+            last = Some((c, key));
+            add(c, depth, key, &mut needed)
+        });
+        result?;
+        for r in (2..=depth).rev() {
+            let level = std::mem::take(&mut needed[r as usize]);
+            for &(s, key) in &level {
+                let succ = self.alpha.succ[s as usize].as_deref().unwrap_or(&[]);
+                self.walk_headings(succ, r - 1, key, |c, ck| add(c, r - 1, ck, &mut needed))?;
+            }
+            needed[r as usize] = level;
+        }
+        // Indices were handed out top-down; renumber bottom-up so pieces
+        // can be pushed in order.
+        let mut next = 0u32;
+        for r in 1..=depth {
+            for &(s, key) in &needed[r as usize] {
+                index.insert((s, r, key), next);
+                next += 1;
+            }
+        }
+        self.index = index;
+        self.needed = needed;
+        Ok(())
+    }
+
+    /// The piece of `(c, r)` at heading `k` (which must have been needed).
+    fn piece(&self, c: u32, r: u32, k: i64) -> Piece {
+        match self.index.get(&(c, r, self.key(k))) {
+            Some(&i) => self.pieces[i as usize],
+            None => Piece::EMPTY,
+        }
+    }
+
+    /// Applies child `c` (at remaining depth `r`) to the pen, adding what it
+    /// draws to `acc`.
+    fn apply(&mut self, c: u32, r: u32, pen: &mut Pen, acc: &mut Piece) {
+        if self.is_piece(c, r) {
+            let p = self.piece(c, r, pen.k);
+            let sg = if pen.flip { -1.0 } else { 1.0 };
+            acc.moves |= p.moves;
+            if p.draws() {
+                if pen.flip {
+                    acc.add(pen.x - p.max_x, pen.y - p.max_y);
+                    acc.add(pen.x - p.min_x, pen.y - p.min_y);
+                } else {
+                    acc.add(pen.x + p.min_x, pen.y + p.min_y);
+                    acc.add(pen.x + p.max_x, pen.y + p.max_y);
+                }
+            }
+            pen.x += sg * p.dx;
+            pen.y += sg * p.dy;
+            pen.k = self.add_turn(pen.k, self.turn_of(c, r)).unwrap_or(pen.k);
+            pen.flip ^= self.flip_of(c, r);
+            return;
+        }
+        match self.ops[c as usize] {
+            Some(Op::Draw) => {
+                let (dx, dy) = self.headings.dir(pen.k, pen.flip);
+                acc.add(pen.x, pen.y);
+                pen.x += dx * self.len;
+                pen.y += dy * self.len;
+                acc.add(pen.x, pen.y);
+            }
+            Some(Op::Move) => {
+                let (dx, dy) = self.headings.dir(pen.k, pen.flip);
+                pen.x += dx * self.len;
+                pen.y += dy * self.len;
+                acc.moves = true;
+            }
+            Some(Op::Turn(t)) => pen.k = self.add_turn(pen.k, i64::from(t)).unwrap_or(pen.k),
+            Some(Op::Flip) => pen.flip = !pen.flip,
+            _ => {}
+        }
+    }
+
+    /// Composes `word` (symbols at remaining depth `r`) from the origin at
+    /// heading `k`: its piece and where it ends.
+    fn compose(&mut self, word: &[u32], r: u32, k: i64) -> (Piece, Pen) {
+        let mut pen = Pen {
+            x: 0.0,
+            y: 0.0,
+            k,
+            flip: false,
+        };
+        let mut acc = Piece::EMPTY;
+        let mut stack: Vec<Pen> = Vec::new();
+        for &c in word {
+            match self.ops[c as usize] {
+                Some(Op::Push) => stack.push(pen),
+                Some(Op::Pop) => {
+                    if let Some(saved) = stack.pop() {
+                        pen = saved;
+                    }
+                }
+                _ => self.apply(c, r, &mut pen, &mut acc),
+            }
+        }
+        acc.dx = pen.x;
+        acc.dy = pen.y;
+        (acc, pen)
+    }
+
+    fn compose_all(&mut self) {
+        let alpha = self.alpha;
+        for r in 1..=self.depth {
+            let level = std::mem::take(&mut self.needed[r as usize]);
+            for &(s, key) in &level {
+                let succ = alpha.succ[s as usize].as_deref().unwrap_or(&[]);
+                let (piece, _) = self.compose(succ, r - 1, key);
+                self.pieces.push(piece);
+            }
+            self.needed[r as usize] = level;
+        }
+    }
+
+    /// The box of the whole drawing (`None` if nothing is drawn) and where
+    /// the turtle ends, starting at the origin.
+    pub(crate) fn whole(&mut self) -> (Option<BBox>, Point) {
+        let alpha = self.alpha;
+        let (p, pen) = self.compose(&alpha.axiom, self.depth, 0);
+        let bbox = p.draws().then_some(BBox {
+            min_x: p.min_x,
+            min_y: p.min_y,
+            max_x: p.max_x,
+            max_y: p.max_y,
+        });
+        (bbox, Point::new(pen.x, pen.y))
+    }
+
+    /// Whether a piece is drawn as a stand-in at `detail`: one whose box is
+    /// smaller than `detail`, or one that draws nothing and moves less than
+    /// `detail` or not at all (only its net turn matters; exact). At
+    /// `detail` 0 nothing that draws or moves is cut, so the segments are
+    /// the exact drawing's, bit for bit.
+    fn cut(&self, c: u32, r: u32, p: &Piece, detail: f64) -> bool {
+        if p.draws() {
+            // A connected run's stand-in is its chord, one line where the
+            // exact drawing folds a winding line at FOLD_PX: cut it at half
+            // the detail, about that tolerance.
+            let at = r as usize * self.alpha.chars.len() + c as usize;
+            let d = if self.jumps[at] == 0 {
+                detail / 2.0
+            } else {
+                detail
+            };
+            p.extent() < d
+        } else {
+            !p.moves || libm::hypot(p.dx, p.dy) < detail
+        }
+    }
+
+    /// What [`Geometry::draw_lod`] at `detail` will do, counted from the
+    /// memo before drawing (saturating): `[units, segments, stand-ins]`,
+    /// the symbols and stand-ins it visits, the segments and stand-ins it
+    /// hands over, and the stand-ins that draw or move (the approximations:
+    /// with none, the drawing is the exact one).
+    pub(crate) fn lod_cost(&self, detail: f64) -> [u64; 3] {
+        let add = |a: [u64; 3], b: [u64; 3]| {
+            [
+                a[0].saturating_add(b[0]),
+                a[1].saturating_add(b[1]),
+                a[2].saturating_add(b[2]),
+            ]
+        };
+        let n = self.pieces.len();
+        let mut cost: Vec<[u64; 3]> = Vec::with_capacity(n);
+        let child = |c: u32, r: u32, k: i64, cost: &[[u64; 3]]| -> [u64; 3] {
+            if self.is_piece(c, r) {
+                let i = self.index.get(&(c, r, self.key(k))).copied().unwrap_or(0) as usize;
+                let p = self.pieces.get(i).copied().unwrap_or(Piece::EMPTY);
+                if self.cut(c, r, &p, detail) {
+                    [1, u64::from(p.draws()), u64::from(p.draws() || p.moves)]
+                } else {
+                    add([1, 0, 0], cost.get(i).copied().unwrap_or([0; 3]))
+                }
+            } else {
+                [1, u64::from(self.ops[c as usize] == Some(Op::Draw)), 0]
+            }
+        };
+        let sum = |word: &[u32], r: u32, key: i64, cost: &[[u64; 3]]| -> [u64; 3] {
+            let mut acc = [0u64; 3];
+            let _ = self.walk_headings_all(word, r, key, |c, k| {
+                acc = add(acc, child(c, r, k, cost));
+            });
+            acc
+        };
+        for r in 1..=self.depth {
+            for &(s, key) in &self.needed[r as usize] {
+                let succ = self.alpha.succ[s as usize].as_deref().unwrap_or(&[]);
+                let c = sum(succ, r - 1, key, &cost);
+                cost.push(c);
+            }
+        }
+        sum(&self.alpha.axiom, self.depth, 0, &cost)
+    }
+
+    /// Like `walk_headings`, but calls `f(c, k)` for every symbol (pieces,
+    /// terminals and brackets) with the heading before it.
+    fn walk_headings_all(
+        &self,
+        word: &[u32],
+        r: u32,
+        mut k: i64,
+        mut f: impl FnMut(u32, i64),
+    ) -> Option<()> {
+        let mut stack: Vec<i64> = Vec::new();
+        for &c in word {
+            f(c, k);
+            match self.ops[c as usize] {
+                Some(Op::Push) => stack.push(k),
+                Some(Op::Pop) => {
+                    if let Some(saved) = stack.pop() {
+                        k = saved;
+                    }
+                }
+                _ if self.is_piece(c, r) => k = self.add_turn(k, self.turn_of(c, r))?,
+                Some(Op::Turn(t)) => k = self.add_turn(k, i64::from(t))?,
+                _ => {}
+            }
+        }
+        Some(())
+    }
+
+    /// Draws the word into `turtle` with a level of detail: a subtree whose
+    /// box fits inside `detail` canvas units is one stand-in segment (its
+    /// chord, or its box's diagonal when the chord is less than half the
+    /// box), a subtree that draws nothing is its net move and turn; every
+    /// other symbol is interpreted as [`Interp`](crate::turtle::Interp)
+    /// does, with its expression, so where nothing is cut the segments are
+    /// bit-identical to the exact drawing. Returns where the turtle ends.
+    pub(crate) fn draw_lod<T: Turtle>(
+        &mut self,
+        detail: f64,
+        mut turtle: T,
+        progress: &mut dyn Progress,
+    ) -> Point {
+        struct Frame<'w> {
+            word: &'w [u32],
+            at: usize,
+            /// Remaining depth of the word's symbols.
+            r: u32,
+        }
+        #[derive(Clone, Copy)]
+        struct Saved {
+            x: f64,
+            y: f64,
+            k: i64,
+            flip: bool,
+        }
+        let alpha = self.alpha;
+        let len = self.len;
+        let mut frames = vec![Frame {
+            word: &alpha.axiom,
+            at: 0,
+            r: self.depth,
+        }];
+        let (mut x, mut y, mut k, mut flip) = (0.0f64, 0.0f64, 0i64, false);
+        let mut stack: Vec<Saved> = Vec::new();
+        let mut done = 0u64;
+        let mut next_report = PROGRESS_STEP;
+        while let Some(top) = frames.last_mut() {
+            let Some(&c) = top.word.get(top.at) else {
+                frames.pop();
+                continue;
+            };
+            top.at += 1;
+            let r = top.r;
+            done += 1;
+            if done >= next_report {
+                progress.update(done);
+                next_report = done.saturating_add(PROGRESS_STEP);
+            }
+            if self.is_piece(c, r) {
+                let p = self.piece(c, r, k);
+                if self.cut(c, r, &p, detail) {
+                    let sg = if flip { -1.0 } else { 1.0 };
+                    let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
+                    if p.draws() {
+                        let chord = libm::hypot(p.dx, p.dy);
+                        let (from, to) = if chord * 2.0 >= p.extent() {
+                            (Point::new(x, y), Point::new(ex, ey))
+                        } else {
+                            (
+                                Point::new(x + sg * p.min_x, y + sg * p.min_y),
+                                Point::new(x + sg * p.max_x, y + sg * p.max_y),
+                            )
+                        };
+                        let at = r as usize * alpha.chars.len() + c as usize;
+                        let n = self.count[at];
+                        let seg_len = libm::hypot(to.x - from.x, to.y - from.y);
+                        // A connected run (no jump inside) is drawn as one
+                        // line however it winds, so it stays a line.
+                        let density = if self.jumps[at] == 0 {
+                            1.0
+                        } else {
+                            (n as f64 * len.abs() / seg_len).max(1.0)
+                        };
+                        turtle.blot(
+                            Segment { from, to, order: 0 },
+                            if density.is_finite() { density } else { 1.0 },
+                        );
+                    }
+                    (x, y) = (ex, ey);
+                    k = k.wrapping_add(self.turn_of(c, r));
+                    flip ^= self.flip_of(c, r);
+                } else {
+                    let succ = alpha.succ[c as usize].as_deref().unwrap_or(&[]);
+                    frames.push(Frame {
+                        word: succ,
+                        at: 0,
+                        r: r - 1,
+                    });
+                }
+                continue;
+            }
+            match self.ops[c as usize] {
+                Some(Op::Draw) => {
+                    // Interp::forward: pos + dir * len.
+                    let (dx, dy) = self.headings.dir(k, flip);
+                    let to = Point::new(x + dx * len, y + dy * len);
+                    turtle.segment(Segment {
+                        from: Point::new(x, y),
+                        to,
+                        order: 0,
+                    });
+                    (x, y) = (to.x, to.y);
+                }
+                Some(Op::Move) => {
+                    let (dx, dy) = self.headings.dir(k, flip);
+                    (x, y) = (x + dx * len, y + dy * len);
+                }
+                Some(Op::Turn(t)) => k = k.wrapping_add(i64::from(t)),
+                Some(Op::Flip) => flip = !flip,
+                Some(Op::Push) => stack.push(Saved { x, y, k, flip }),
+                Some(Op::Pop) => {
+                    if let Some(s) = stack.pop() {
+                        (x, y, k, flip) = (s.x, s.y, s.k, s.flip);
+                    }
+                }
+                Some(Op::Enter | Op::Leave) | None => {}
+            }
+        }
+        progress.update(done);
+        Point::new(x, y)
+    }
+}

@@ -1,0 +1,463 @@
+//! The memoized geometry of L-systems (`interpret::lsys::measure`) and the
+//! renderer's level of detail: against a full traversal where one is
+//! possible, against an independent recursive computation at depth 30 and
+//! more, and the level of detail against the exact drawing.
+
+use std::collections::{BTreeMap, HashMap};
+
+use proptest::prelude::*;
+use stlc::interpret::Derivation;
+use stlc::interpret::lsys::{Measured, Refusal, draw, draw_into, draw_lod, measure};
+use stlc::limits::Limits;
+use stlc::model::lsys::LSystem;
+use stlc::progress::NoProgress;
+use stlc::turtle::{BBox, Bounds, Recorder, Segment, Turtle};
+
+fn sys(src: &str) -> LSystem {
+    stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Within `rel` of the larger magnitude (at least 1).
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs()).max(1.0)
+}
+
+fn close_box(a: &BBox, b: &BBox, rel: f64) -> bool {
+    close(a.min_x, b.min_x, rel)
+        && close(a.min_y, b.min_y, rel)
+        && close(a.max_x, b.max_x, rel)
+        && close(a.max_y, b.max_y, rel)
+}
+
+/// The traversal: every segment into a bounding turtle.
+fn traversed(s: &LSystem, depth: u32) -> (Option<BBox>, stlc::turtle::Point, u64) {
+    let mut b = Bounds::default();
+    let end = draw_into(
+        s,
+        depth,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut b,
+        &mut NoProgress,
+    )
+    .unwrap();
+    (b.bbox(), end, b.count)
+}
+
+// ------------------------------------------------- against a traversal --
+
+/// A random word over `alphabet` with balanced brackets (as the parser
+/// requires of successors).
+fn word(alphabet: &'static [char], max: usize) -> impl Strategy<Value = String> {
+    proptest::collection::vec(0..alphabet.len() + 2, 0..max).prop_map(move |v| {
+        let mut out = String::new();
+        let mut open = 0;
+        for i in v {
+            if i == alphabet.len() {
+                out.push('[');
+                open += 1;
+            } else if i == alphabet.len() + 1 {
+                if open > 0 {
+                    out.push(']');
+                    open -= 1;
+                }
+            } else {
+                out.push(alphabet[i]);
+            }
+        }
+        out.extend(std::iter::repeat_n(']', open));
+        out
+    })
+}
+
+const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
+
+/// A turtle that records segments and stand-ins and asks for a level of
+/// detail.
+#[derive(Default)]
+struct Detailed {
+    rec: Recorder,
+    blots: u64,
+    detail: f64,
+}
+
+impl Turtle for Detailed {
+    fn segment(&mut self, seg: Segment) {
+        self.rec.segments.push(seg);
+    }
+    fn detail(&self) -> Option<f64> {
+        Some(self.detail)
+    }
+    fn blot(&mut self, seg: Segment, density: f64) {
+        assert!(density >= 1.0, "{density}");
+        self.blots += 1;
+        self.rec.segments.push(seg);
+    }
+}
+
+fn lod(s: &LSystem, depth: u32, detail: f64) -> Detailed {
+    let mut t = Detailed {
+        detail,
+        ..Detailed::default()
+    };
+    draw(
+        s,
+        depth,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut t,
+        &mut NoProgress,
+    )
+    .unwrap();
+    t
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// The memo's box, end and count match a full traversal, and the level
+    /// of detail at 0 draws the exact segments bit for bit.
+    #[test]
+    fn memo_matches_a_traversal(
+        axiom in word(ALPHABET, 8),
+        rules in proptest::collection::vec(word(ALPHABET, 9), 4),
+        angle in prop_oneof![Just(90.0), Just(60.0), Just(25.7), -400.0..400.0f64],
+        heading in prop_oneof![Just(90.0), Just(0.0), -720.0..720.0f64],
+        depth in 0u32..=5,
+    ) {
+        let axiom = if axiom.is_empty() { "F".to_string() } else { axiom };
+        let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
+        for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(&rules) {
+            if !succ.is_empty() {
+                src.push_str(&format!("rule {pred} -> {succ}\n"));
+            }
+        }
+        let s = sys(&src);
+        let (bbox, end, count) = traversed(&s, depth);
+        let m: Measured = measure(&s, depth, s.length).unwrap();
+        prop_assert_eq!(m.segments, count, "{}", src);
+        prop_assert_eq!(m.bbox.is_some(), bbox.is_some(), "{}", src);
+        if let (Some(a), Some(b)) = (m.bbox, bbox) {
+            prop_assert!(close_box(&a, &b, 1e-9), "{:?} {:?} {}", a, b, src);
+        }
+        prop_assert!(close(m.end.x, end.x, 1e-9) && close(m.end.y, end.y, 1e-9), "{}", src);
+
+        let mut exact = Recorder::default();
+        draw_into(&s, depth, Derivation::Dfs, &Limits::default(), &mut exact, &mut NoProgress).unwrap();
+        let mut at0 = Detailed::default();
+        prop_assert!(draw_lod(&s, depth, 0.0, &Limits::default(), &mut at0, &mut NoProgress).unwrap());
+        prop_assert_eq!(at0.blots, 0);
+        prop_assert_eq!(&at0.rec.segments, &exact.segments, "{}", src);
+    }
+}
+
+// ------------------------------------- against an independent recursion --
+
+/// What an independent recursion computes per (symbol, depth, heading):
+/// net move, net turn in degrees, flip, and the box of drawn points.
+#[derive(Clone, Copy)]
+struct Geo {
+    x: f64,
+    y: f64,
+    turn: f64,
+    flip: bool,
+    bbox: Option<[f64; 4]>,
+}
+
+/// Plain recursion over the rule strings with float headings in degrees
+/// (no integer turns, no composition by pieces of the library), memoized
+/// by (symbol, depth, heading in millionths of a degree modulo 360).
+struct Recursion {
+    rules: BTreeMap<char, Vec<char>>,
+    angle: f64,
+    memo: HashMap<(char, u32, i64), Geo>,
+}
+
+impl Recursion {
+    fn new(s: &LSystem) -> Self {
+        Recursion {
+            rules: s
+                .rules
+                .iter()
+                .map(|(k, p)| (*k, p.successor.clone()))
+                .collect(),
+            angle: s.angle,
+            memo: HashMap::new(),
+        }
+    }
+
+    /// The word `w` (symbols at depth `r`) walked from the origin at
+    /// `heading` degrees, unflipped.
+    fn walk(&mut self, w: &[char], r: u32, heading: f64) -> Geo {
+        let (mut x, mut y, mut h, mut flip) = (0.0f64, 0.0f64, heading, false);
+        let mut bbox: Option<[f64; 4]> = None;
+        let mut stack = Vec::new();
+        let add = |bbox: &mut Option<[f64; 4]>, px: f64, py: f64| {
+            let b = bbox.get_or_insert([px, py, px, py]);
+            b[0] = b[0].min(px);
+            b[1] = b[1].min(py);
+            b[2] = b[2].max(px);
+            b[3] = b[3].max(py);
+        };
+        for &c in w {
+            let sign = if flip { -1.0 } else { 1.0 };
+            match c {
+                '[' => stack.push((x, y, h, flip)),
+                ']' => (x, y, h, flip) = stack.pop().unwrap(),
+                c if r > 0 && self.rules.contains_key(&c) => {
+                    let g = self.geo(c, r - 1, h);
+                    if let Some(b) = g.bbox {
+                        add(&mut bbox, x + sign * b[0], y + sign * b[1]);
+                        add(&mut bbox, x + sign * b[2], y + sign * b[3]);
+                    }
+                    x += sign * g.x;
+                    y += sign * g.y;
+                    h += g.turn;
+                    flip ^= g.flip;
+                }
+                'F' | 'f' => {
+                    // Right angles exactly (the Hilbert curve's 4^31 steps
+                    // would otherwise drift by cos(90 degrees) = 6e-17 each).
+                    let deg = h.rem_euclid(360.0);
+                    let right = [
+                        (0.0, (1.0, 0.0)),
+                        (90.0, (0.0, 1.0)),
+                        (180.0, (-1.0, 0.0)),
+                        (270.0, (0.0, -1.0)),
+                    ];
+                    let (co, si) = right.iter().find(|(d, _)| *d == deg).map_or(
+                        (libm::cos(deg.to_radians()), libm::sin(deg.to_radians())),
+                        |r| r.1,
+                    );
+                    let (dx, dy) = (sign * co, -sign * si);
+                    if c == 'F' {
+                        add(&mut bbox, x, y);
+                        add(&mut bbox, x + dx, y + dy);
+                    }
+                    x += dx;
+                    y += dy;
+                }
+                '+' => h += self.angle,
+                '-' => h -= self.angle,
+                '|' => flip = !flip,
+                _ => {}
+            }
+        }
+        Geo {
+            x,
+            y,
+            turn: h - heading,
+            flip,
+            bbox,
+        }
+    }
+
+    fn geo(&mut self, c: char, r: u32, heading: f64) -> Geo {
+        let key = (
+            c,
+            r,
+            libm::round(heading.rem_euclid(360.0) * 1e6) as i64 % 360_000_000,
+        );
+        if let Some(g) = self.memo.get(&key) {
+            return *g;
+        }
+        let succ = self.rules[&c].clone();
+        let g = self.walk(&succ, r, heading);
+        self.memo.insert(key, g);
+        g
+    }
+}
+
+#[test]
+fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
+    let cases = [
+        ("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\n", 30),
+        ("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\n", 57),
+        ("axiom X\nrule X F[+X]F[-X]+X\nrule F FF\nangle 20\n", 40),
+        ("axiom F--F--F\nrule F F+F--F+F\nangle 60\n", 30),
+        (
+            "axiom L\nrule L +RF-LFL-FR+\nrule R -LF+RFR+FL-\nangle 90\n",
+            31,
+        ),
+        (
+            "axiom X\nrule X F-[[X]+X]+F[+FX]-X\nrule F FF\nangle 22.5\nheading 80\n",
+            33,
+        ),
+        ("axiom F|F\nrule F F[+F|f]F[-fF]|F\nangle 33.3\n", 30),
+    ];
+    for (src, depth) in cases {
+        let s = sys(src);
+        let m = measure(&s, depth, 1.0).unwrap();
+        let mut rec = Recursion::new(&s);
+        let g = rec.walk(&s.axiom, depth, s.heading);
+        let b = g.bbox.expect("draws");
+        let want = BBox {
+            min_x: b[0],
+            min_y: b[1],
+            max_x: b[2],
+            max_y: b[3],
+        };
+        let got = m.bbox.expect("draws");
+        // The two sum the same directions in different orders and compute
+        // them differently (integer turns vs float degrees): relative
+        // agreement to 1e-9 of the drawing's size.
+        let size = want.width().max(want.height());
+        let tol = 1e-9 * size;
+        assert!(
+            (got.min_x - want.min_x).abs() <= tol
+                && (got.min_y - want.min_y).abs() <= tol
+                && (got.max_x - want.max_x).abs() <= tol
+                && (got.max_y - want.max_y).abs() <= tol,
+            "{src} at {depth}: {got:?} vs {want:?}"
+        );
+        assert!(
+            (m.end.x - g.x).abs() <= tol && (m.end.y - g.y).abs() <= tol,
+            "{src} at {depth}: end {:?} vs ({}, {})",
+            m.end,
+            g.x,
+            g.y
+        );
+    }
+}
+
+/// ABOP 1.24a at depth n: the trunk is 3^n steps straight up, so the box's
+/// top is exactly -3^n (integer steps up are exact in floating point).
+#[test]
+fn tree_height_is_three_to_the_depth() {
+    let s = sys("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\n");
+    for depth in [10u32, 20, 33] {
+        let m = measure(&s, depth, 1.0).unwrap();
+        assert_eq!(m.bbox.unwrap().min_y, -(3f64.powi(depth as i32)));
+        assert_eq!(m.bbox.unwrap().max_y, 0.0);
+        assert_eq!(m.end.x, 0.0);
+        assert_eq!(m.end.y, -(3f64.powi(depth as i32)));
+    }
+}
+
+#[test]
+fn the_memo_refuses_what_it_cannot_bound() {
+    // Net turn x 5 per level: headings past 2^63 at depth 30 and no period.
+    let s = sys("axiom F\nrule F F+F+F+F+F\nangle 25.123456789\n");
+    assert!(measure(&s, 5, 1.0).is_ok());
+    assert!(matches!(
+        measure(&s, 40, 1.0),
+        Err(Refusal::Budget | Refusal::Turns)
+    ));
+}
+
+// ------------------------------------------------------ level of detail --
+
+/// At a detail as large as the drawing, the whole word is one stand-in;
+/// smaller details give more, and every stand-in and segment lies in the
+/// memo's box.
+#[test]
+fn level_of_detail_is_bounded_and_stays_in_the_box() {
+    let s = sys("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\n");
+    let depth = 57;
+    let m = measure(&s, depth, s.length).unwrap();
+    let b = m.bbox.unwrap();
+    let size = b.width().max(b.height());
+    let whole = lod(&s, depth, size * 1.01);
+    assert_eq!((whole.blots, whole.rec.segments.len()), (1, 1));
+    // The trunk is the chord: from the origin straight up to the end.
+    let seg = whole.rec.segments[0];
+    assert_eq!((seg.from.x, seg.from.y), (0.0, 0.0));
+    assert_eq!((seg.to.x, seg.to.y), (m.end.x, m.end.y));
+    // 1/200 of the picture: a few thousand stand-ins at depth 57 (the word
+    // has 10^40 symbols).
+    let fine = lod(&s, depth, size / 200.0);
+    let n = fine.rec.segments.len();
+    assert!(n > 100 && n < 20_000, "{n}");
+    let slack = size * 1e-9;
+    for seg in &fine.rec.segments {
+        for p in [seg.from, seg.to] {
+            assert!(
+                p.x >= b.min_x - slack
+                    && p.x <= b.max_x + slack
+                    && p.y >= b.min_y - slack
+                    && p.y <= b.max_y + slack,
+                "{p:?} outside {b:?}"
+            );
+        }
+    }
+}
+
+/// A straight line (`F -> FF`) cut into stand-ins is still the same line:
+/// every stand-in is a chord of density 1, joined end to end.
+#[test]
+fn a_straight_run_is_drawn_as_its_chords() {
+    let s = sys("axiom F\nrule F FF\nangle 90\n");
+    // A connected run is cut at half the detail: F at 30 steps is 2^30
+    // long, under it; at 31, over it.
+    let t = lod(&s, 40, 3.0 * 2f64.powi(30));
+    let segs = &t.rec.segments;
+    assert_eq!(segs.len(), 1024);
+    assert_eq!(t.blots, 1024);
+    for w in segs.windows(2) {
+        assert_eq!(w[0].to, w[1].from);
+        assert_eq!(w[0].from.x, 0.0);
+    }
+    assert_eq!(segs.last().unwrap().to.y, -(2f64.powi(40)));
+}
+
+// ------------------------------------------------------------ the CLI --
+
+fn stlc() -> assert_cmd::Command {
+    let mut c = assert_cmd::Command::cargo_bin("stlc").expect("binary");
+    c.env("NO_COLOR", "1");
+    c
+}
+
+/// Depth 57 (10^40 symbols) renders to PNG and to an SVG of bounded size;
+/// with --exact it is refused by the traversal budget, naming the flag.
+#[test]
+fn depth_57_renders_at_a_level_of_detail_and_exact_refuses() {
+    let dir = tempfile::tempdir().unwrap();
+    let lsys = support_path("examples/abop-1.24a.lsys");
+    let png = dir.path().join("t.png");
+    stlc()
+        .args(["render", &lsys, "--depth", "57", "--size", "200x200", "-o"])
+        .arg(&png)
+        .assert()
+        .success();
+    let pixmap = tiny_skia::Pixmap::load_png(&png).unwrap();
+    assert_eq!((pixmap.width(), pixmap.height()), (200, 200));
+    // Something is drawn in the middle column (the trunk), not everywhere.
+    let dark = pixmap.pixels().iter().filter(|p| p.red() < 128).count();
+    assert!(dark > 200 && dark < 200 * 200 / 2, "{dark}");
+    let svg = dir.path().join("t.svg");
+    stlc()
+        .args(["render", &lsys, "--depth", "57", "--size", "200x200", "-o"])
+        .arg(&svg)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&svg).unwrap();
+    // A few thousand stand-ins at 200 px: well under a megabyte.
+    assert!(text.len() < 1_000_000, "{}", text.len());
+    assert!(text.contains("<path"));
+    stlc()
+        .args(["render", &lsys, "--depth", "57", "--exact", "-o"])
+        .arg(dir.path().join("x.png"))
+        .assert()
+        .failure()
+        .stderr(predicates::str::contains("--max-symbols"));
+    // And the limit still holds at a level of detail: visits are counted.
+    stlc()
+        .args([
+            "render",
+            &lsys,
+            "--depth",
+            "57",
+            "--max-symbols",
+            "1000",
+            "-o",
+        ])
+        .arg(dir.path().join("y.png"))
+        .assert()
+        .failure()
+        .stderr(predicates::str::contains("level of detail"));
+}
+
+fn support_path(rel: &str) -> String {
+    crate::support::manifest_path(rel).display().to_string()
+}
