@@ -1,5 +1,6 @@
 //! One integration-test binary; each area is a module.
 
+mod browser;
 mod cli;
 mod diagnostics;
 mod docs;
@@ -9,6 +10,7 @@ mod lsys;
 mod newuser;
 mod render;
 mod robustness;
+mod serve;
 mod stl;
 mod support;
 

@@ -10,7 +10,7 @@ const TOKEN = document.querySelector('meta[name="stlc-token"]').content;
 const COLOURS = ['clGreen', 'clWhite', 'clLime', 'clOlive', 'clTeal', 'clNavy', 'clBlue',
   'clAqua', 'clMaroon', 'clRed', 'clPurple', 'clFuchsia', 'clYellow', 'clBlack', 'clGray',
   'clSilver', 'clMoneyGreen', 'clSkyBlue', 'clCream'];
-const DEBOUNCE_MS = 120;
+const DEBOUNCE_MS = 40;
 
 const src = $('source');
 const gutter = $('gutter');
@@ -477,12 +477,12 @@ preview.addEventListener('mousedown', (e) => {
   }
   if (state.tool === 'Polygon') {
     if (!poly) {
-      poly = { points: [p] };
+      poly = { points: [snap(p)] };
     } else {
       const first = poly.points[0];
       const near = Math.hypot(first[0] - p[0], first[1] - p[1]) < 8 * unitsPerPixel();
       if (near && poly.points.length >= 3) { finishPolygon(); return; }
-      poly.points.push(p);
+      poly.points.push(snap(p));
     }
     drawGhostPolygon(p);
     return;
@@ -504,13 +504,13 @@ window.addEventListener('mousemove', (e) => {
     state.root = p;
     drawOverlay();
   } else if (drag.kind === 'move') {
-    const dx = p[0] - drag.start[0];
-    const dy = p[1] - drag.start[1];
+    const dx = Math.round(p[0] - drag.start[0]);
+    const dy = Math.round(p[1] - drag.start[1]);
     drag.moved = drag.moved || Math.hypot(dx, dy) > 0;
     state.shapes[state.selected] = translate(drag.orig, dx, dy);
     drawOverlay();
   } else if (drag.kind === 'resize') {
-    state.shapes[state.selected] = resize(drag.orig, drag.handle, p);
+    state.shapes[state.selected] = resize(drag.orig, drag.handle, snap(p));
     drawOverlay();
   } else if (drag.kind === 'draw') {
     drag.now = p;
@@ -529,7 +529,7 @@ window.addEventListener('mouseup', (e) => {
   } else if (d.kind === 'resize') {
     commitShapes();
   } else if (d.kind === 'draw') {
-    const b = box(d.start, toCanvas(e));
+    const b = box(snap(d.start), snap(toCanvas(e)));
     removeGhost();
     if (b.w * b.h > 0 && b.w / unitsPerPixel() >= 3 && b.h / unitsPerPixel() >= 3) {
       const s = { type: state.tool, x: b.x, y: b.y, w: b.w, h: b.h, name: $('colour').value };
@@ -586,6 +586,9 @@ function reorder(by) {
   state.selected = j;
   commitShapes();
 }
+
+// Drawn coordinates snap to whole canvas units: short, readable text.
+function snap(p) { return [Math.round(p[0]), Math.round(p[1])]; }
 
 function clone(s) { return JSON.parse(JSON.stringify(s)); }
 
