@@ -3,9 +3,10 @@
 #   python3 benches/serve_latency.py http://127.0.0.1:9516 URL 21 examples/2dtree.od examples/fig9.od examples/holes.od
 # (docs/serve.md, Latency). Needs chromium and chromium-driver.
 # Keystroke-to-picture latency of stlc serve in headless Chromium, through
-# chromedriver's WebDriver HTTP API: for each example, N edits (a space
-# typed at the end of a comment-free line and removed again), each timed by
-# the page from the input event to the redrawn picture (window.stlc.timings).
+# chromedriver's WebDriver HTTP API: for each example, N edits (a `#`, an
+# empty comment, added at the end of the text and removed again), each timed
+# by the page from the input event to the redrawn picture
+# (window.stlc.timings).
 import json, sys, time, urllib.request, statistics, subprocess, os
 drv, url, runs = sys.argv[1], sys.argv[2], int(sys.argv[3])
 def call(method, path, body=None):
