@@ -356,4 +356,191 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     let status = js(c, "return document.getElementById('status').textContent").await;
     assert!(status.as_str().unwrap().starts_with("Saved"), "{status}");
     shot(c, "7-saved").await;
+
+    tools(c, &good).await;
+}
+
+/// The layout lines of `text`, between `LAYOUT` and `ENDLAYOUT`.
+fn layout_lines(text: &str) -> Vec<String> {
+    text.lines()
+        .skip_while(|l| *l != "LAYOUT")
+        .skip(1)
+        .take_while(|l| *l != "ENDLAYOUT")
+        .map(str::to_string)
+        .collect()
+}
+
+/// Presses at canvas point `a`, moves to `b` and releases.
+async fn drag(c: &Client, a: (f64, f64), b: (f64, f64)) {
+    let (x0, y0) = screen_of(c, a.0, a.1).await;
+    let (x1, y1) = screen_of(c, b.0, b.1).await;
+    let mouse = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x: x0,
+            y: y0,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::MoveTo {
+            duration: Some(Duration::from_millis(80)),
+            x: (x0 + x1) / 2.0,
+            y: (y0 + y1) / 2.0,
+        })
+        .then(PointerAction::MoveTo {
+            duration: Some(Duration::from_millis(80)),
+            x: x1,
+            y: y1,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(mouse).await.unwrap();
+}
+
+/// Clicks at canvas point `a`.
+async fn click_at(c: &Client, a: (f64, f64)) {
+    let (x, y) = screen_of(c, a.0, a.1).await;
+    let mouse = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x,
+            y,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(mouse).await.unwrap();
+}
+
+async fn click(c: &Client, css: &str) {
+    c.find(Locator::Css(css))
+        .await
+        .unwrap()
+        .click()
+        .await
+        .unwrap();
+}
+
+/// The other tools: a white ellipse erases (fewer stems), moving it
+/// rewrites its line, a polygon by clicks, reordering, deleting, and
+/// dragging the root; each edit shows in the LAYOUT text.
+async fn tools(c: &Client, start: &str) {
+    let before = layout_lines(start);
+    assert_eq!(before.len(), 2, "{before:?}");
+    let stems0 = settled(c).await["stems"].as_u64().unwrap();
+
+    // A white ellipse: a hole in the outline.
+    // Picking a drawing tool drops the selection, so the paint colour
+    // chosen next is for the new shape only.
+    click(c, "[data-tool=Ellipse]").await;
+    click(c, "#colour option[value=clWhite]").await;
+    drag(c, (60.0, 40.0), (140.0, 100.0)).await;
+    let holed = settled(c).await;
+    let lines = layout_lines(holed["text"].as_str().unwrap());
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    assert_eq!(lines[2], "(clWhite) Ellipse (60, 40), 80, 60");
+    let stems1 = holed["stems"].as_u64().unwrap();
+    assert!(
+        stems1 < stems0,
+        "a hole grows fewer stems: {stems0} -> {stems1}"
+    );
+    shot(c, "8-hole").await;
+
+    // Select it by its outline and move it 10 units right and down.
+    click(c, "[data-tool=select]").await;
+    drag(c, (100.0, 70.0), (110.0, 80.0)).await;
+    let moved = settled(c).await;
+    let lines = layout_lines(moved["text"].as_str().unwrap());
+    assert_eq!(lines[2], "(clWhite) Ellipse (70, 50), 80, 60", "{lines:?}");
+
+    // Resize by its bottom-right handle.
+    drag(c, (150.0, 110.0), (160.0, 120.0)).await;
+    let resized = settled(c).await;
+    let lines = layout_lines(resized["text"].as_str().unwrap());
+    assert_eq!(lines[2], "(clWhite) Ellipse (70, 50), 90, 70", "{lines:?}");
+
+    // Lower it below the second rectangle: paint order in the text.
+    click(c, "#lower").await;
+    let lowered = settled(c).await;
+    let lines = layout_lines(lowered["text"].as_str().unwrap());
+    assert_eq!(lines[1], "(clWhite) Ellipse (70, 50), 90, 70", "{lines:?}");
+    assert_eq!(lines[2], before[1]);
+    // Painted before the big green rectangle, the hole is painted over.
+    assert_eq!(lowered["stems"].as_u64().unwrap(), stems0, "{lines:?}");
+
+    // Delete it.
+    click(c, "#delete").await;
+    let deleted = settled(c).await;
+    assert_eq!(layout_lines(deleted["text"].as_str().unwrap()), before);
+
+    // A polygon by clicks, closed on its first point.
+    click(c, "[data-tool=Polygon]").await;
+    click(c, "#colour option[value=clGreen]").await;
+    for p in [
+        (150.0, 170.0),
+        (190.0, 170.0),
+        (190.0, 195.0),
+        (150.0, 170.0),
+    ] {
+        click_at(c, p).await;
+    }
+    let poly = settled(c).await;
+    let lines = layout_lines(poly["text"].as_str().unwrap());
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    assert_eq!(
+        lines[2],
+        "(clGreen) Polygon (150, 170), (190, 170), (190, 195)"
+    );
+    shot(c, "9-polygon").await;
+
+    // Drag the root: its `(x, y)` in the text follows.
+    click(c, "[data-tool=select]").await;
+    drag(c, (100.0, 190.0), (90.0, 185.0)).await;
+    let rooted = settled(c).await;
+    let text = rooted["text"].as_str().unwrap();
+    assert!(text.starts_with("Typed (90, 185)\n"), "{text}");
+    assert_eq!(rooted["ok"], true, "{rooted}");
+
+    // Fit, zoom in, Fit: the view shrinks, then comes back.
+    let width = "return document.getElementById('preview').viewBox.baseVal.width";
+    click(c, "#fit").await;
+    let fitted = js(c, width).await.as_f64().unwrap();
+    // The layout's canvas: the drawn rectangle and the polygon, plus margins.
+    assert!(fitted > 170.0 && fitted < 200.0, "{fitted}");
+    click(c, "#zoom-in").await;
+    let zoomed = js(c, width).await.as_f64().unwrap();
+    // (SVG keeps the box in single precision.)
+    assert!(
+        (zoomed - fitted / 1.25).abs() < 1e-3,
+        "{fitted} -> {zoomed}"
+    );
+    click(c, "#fit").await;
+    assert!((js(c, width).await.as_f64().unwrap() - fitted).abs() < 1e-3);
+
+    // Tree Renderer: an L-system at a depth.
+    click(c, "#kind option[value=lsys]").await;
+    let depth = c.find(Locator::Id("depth")).await.unwrap();
+    depth.send_keys("2").await.unwrap();
+    let source = c.find(Locator::Id("source")).await.unwrap();
+    source.clear().await.unwrap();
+    source
+        .send_keys("axiom F++F++F\nangle 60\nrule F F-F++F-F\n")
+        .await
+        .unwrap();
+    let koch = settled(c).await;
+    assert_eq!(koch["ok"], true, "{koch}");
+    // Depth 2 of the Koch snowflake: 3 * 4^2 segments.
+    assert_eq!(koch["stems"], 48, "{koch}");
+    let drawn = js(
+        c,
+        "return document.querySelectorAll('#preview .lib path').length",
+    )
+    .await;
+    assert!(drawn.as_u64().unwrap() >= 1, "{drawn}");
+    shot(c, "10-renderer").await;
 }

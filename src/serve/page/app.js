@@ -429,6 +429,8 @@ document.querySelectorAll('.tool').forEach((b) => b.addEventListener('click', ()
 function setTool(t) {
   state.tool = t;
   cancelPolygon();
+  // A new shape gets the paint colour; the selection keeps its own.
+  if (t !== 'select' && state.selected >= 0) { state.selected = -1; drawOverlay(); }
   document.querySelectorAll('.tool').forEach((b) => b.classList.toggle('active', b.dataset.tool === t));
   preview.classList.toggle('select', t === 'select');
 }
@@ -501,7 +503,7 @@ window.addEventListener('mousemove', (e) => {
     state.view = [v[0] - dx, v[1] - dy, v[2] - dx, v[3] - dy];
     setViewBox();
   } else if (drag.kind === 'root') {
-    state.root = p;
+    state.root = snap(p);
     drawOverlay();
   } else if (drag.kind === 'move') {
     const dx = Math.round(p[0] - drag.start[0]);
@@ -643,7 +645,7 @@ function finishPolygon() {
 }
 
 function moveRoot(p) {
-  state.root = [round(p[0]), round(p[1])];
+  state.root = snap(p);
   const text = src.value;
   const inSync = text === state.answerText && state.rootSpan;
   if (!inSync) { drawOverlay(); return; }
