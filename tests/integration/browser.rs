@@ -165,9 +165,85 @@ async fn drive(server: &Server, driver: &Driver, chromium: &Path, tmp: &Path, fi
         .connect(&format!("http://127.0.0.1:{}", driver.port))
         .await
         .expect("a WebDriver session");
-    let result = steps(&c, server, file).await;
+    steps(&c, server, file).await;
+    acceptance(&c).await;
     let _ = c.close().await;
-    result
+}
+
+/// The acceptance, on the paper's 2DTree: open it, draw a white
+/// hole with the mouse, switch to dfs, replay, save.
+async fn acceptance(c: &Client) {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("2dtree.od");
+    std::fs::copy(manifest_path("examples/2dtree.od"), &file).unwrap();
+    let server = Server::start(&[file.to_str().unwrap()]);
+    c.goto(&format!("http://{}/", server.addr)).await.unwrap();
+    let opened = settled(c).await;
+    assert_eq!(opened["ok"], true, "{opened}");
+    let before = opened["stems"].as_u64().unwrap();
+    click(c, "[data-tool=Ellipse]").await;
+    click(c, "#colour option[value=clWhite]").await;
+    drag(c, (100.0, 60.0), (160.0, 110.0)).await;
+    let holed = settled(c).await;
+    assert_eq!(holed["ok"], true, "{holed}");
+    let text = holed["text"].as_str().unwrap();
+    let lines = layout_lines(text);
+    // The paper's inline layout, rewritten one shape a line, same shapes.
+    assert_eq!(
+        lines,
+        [
+            "(clGreen) RoundRect (0, 0), 180, 192, 3.5",
+            "(clWhite) RoundRect (40, 15), 15, 15, 2",
+            "(clWhite) RoundRect (35, 30), 41, 95, 2.5",
+            "(clWhite) Ellipse (100, 60), 60, 50",
+        ],
+        "{text}"
+    );
+    let after = holed["stems"].as_u64().unwrap();
+    assert!(
+        after < before,
+        "the hole takes stems away: {before} -> {after}"
+    );
+    // No stem ends inside the hole (an ellipse centred at (130, 85)).
+    let g: Vec<f64> = holed["growth"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let inside = |x: f64, y: f64| ((x - 130.0) / 30.0).powi(2) + ((y - 85.0) / 25.0).powi(2) < 0.95;
+    assert!(
+        !g.chunks(6).any(|s| inside(s[2], s[3])),
+        "a stem grew in the hole"
+    );
+    click(c, "#strategy option[value=dfs]").await;
+    let mut dfs = settled(c).await;
+    for _ in 0..20 {
+        if dfs["growth"] != holed["growth"] {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+        dfs = settled(c).await;
+    }
+    assert_ne!(dfs["growth"], holed["growth"]);
+    click(c, "#play").await;
+    for _ in 0..200 {
+        if js(c, "return window.stlc.replayTimer === null").await == json!(true) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    shot(c, "11-acceptance").await;
+    click(c, "#save").await;
+    let mut on_disk = String::new();
+    for _ in 0..100 {
+        on_disk = std::fs::read_to_string(&file).unwrap();
+        if on_disk == text {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    assert_eq!(on_disk, text);
 }
 
 async fn steps(c: &Client, server: &Server, file: &Path) {
