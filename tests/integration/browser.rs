@@ -227,7 +227,7 @@ async fn acceptance(c: &Client) {
     }
     assert_ne!(dfs["growth"], holed["growth"]);
     click(c, "#play").await;
-    for _ in 0..200 {
+    for _ in 0..600 {
         if js(c, "return window.stlc.replayTimer === null").await == json!(true) {
             break;
         }
@@ -244,6 +244,46 @@ async fn acceptance(c: &Client) {
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
     assert_eq!(on_disk, text);
+
+    // Export: the page offers the CLI's PNG and BED for the same options.
+    let od = tmp.path().join("saved.od");
+    std::fs::write(&od, text).unwrap();
+    for (button, args) in [
+        (
+            "#export-png",
+            vec!["render", "-f", "png", "--show-layout", "--growth", "dfs"],
+        ),
+        ("#export-bed", vec!["compile", "--growth", "dfs"]),
+    ] {
+        js(c, "window.stlc.lastDownload = null; return 0;").await;
+        click(c, button).await;
+        let mut offered = Value::Null;
+        for _ in 0..200 {
+            offered = js(c, "return window.stlc.lastDownload").await;
+            if !offered.is_null() {
+                break;
+            }
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+        let out = std::process::Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+            .args(&args[..1])
+            .arg(&od)
+            .args(&args[1..])
+            .args(["-o", "-"])
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        assert_eq!(offered["size"], out.stdout.len(), "{button}: {offered}");
+        let ext = if button.ends_with("png") {
+            ".png"
+        } else {
+            ".bed"
+        };
+        assert!(
+            offered["name"].as_str().unwrap().ends_with(ext),
+            "{offered}"
+        );
+    }
 }
 
 async fn steps(c: &Client, server: &Server, file: &Path) {
@@ -366,19 +406,26 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
         .click()
         .await
         .unwrap();
-    tokio::time::sleep(Duration::from_millis(1200)).await;
-    let mid = js(
-        c,
-        "return {v: Number(document.getElementById('step').value),
-                 replaying: document.getElementById('preview').classList.contains('replaying'),
-                 label: document.getElementById('step-label').textContent};",
-    )
-    .await;
+    // The replay takes about four seconds: look once it is under way.
+    let mut mid = Value::Null;
+    for _ in 0..200 {
+        tokio::time::sleep(Duration::from_millis(50)).await;
+        mid = js(
+            c,
+            "return {v: Number(document.getElementById('step').value),
+                     replaying: document.getElementById('preview').classList.contains('replaying'),
+                     label: document.getElementById('step-label').textContent};",
+        )
+        .await;
+        if mid["v"].as_u64().unwrap() > max / 4 {
+            break;
+        }
+    }
     let v = mid["v"].as_u64().unwrap();
     assert!(v > 0 && v < max, "{mid}");
     assert_eq!(mid["replaying"], true, "{mid}");
     shot(c, "5-replay").await;
-    for _ in 0..200 {
+    for _ in 0..600 {
         let done = js(c, "return window.stlc.replayTimer === null").await;
         if done == json!(true) {
             break;
@@ -429,7 +476,15 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
     assert_eq!(on_disk, good);
-    let status = js(c, "return document.getElementById('status').textContent").await;
+    // The page says so once the answer is back (the file is written first).
+    let mut status = Value::Null;
+    for _ in 0..100 {
+        status = js(c, "return document.getElementById('saved').textContent").await;
+        if status.as_str().unwrap().starts_with("Saved") {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
     assert!(status.as_str().unwrap().starts_with("Saved"), "{status}");
     shot(c, "7-saved").await;
 

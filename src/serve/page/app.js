@@ -733,6 +733,8 @@ $('open-file').addEventListener('change', async () => {
 });
 
 function download(blob, name) {
+  // What was offered last, for scripts and tests.
+  state.lastDownload = { name, size: blob.size, type: blob.type };
   const a = document.createElement('a');
   a.href = URL.createObjectURL(blob);
   a.download = name;
@@ -766,10 +768,10 @@ async function save() {
   const res = await post('/api/save', { source: src.value });
   const a = await res.json().catch(() => ({}));
   if (res.ok && a.ok) {
-    $('status').textContent = `Saved ${state.name}.`;
+    $('saved').textContent = `Saved ${state.name} at ${new Date().toLocaleTimeString()}.`;
     document.title = `${state.name} - stlc`;
   } else {
-    $('status').textContent = 'Not saved: ' + (a.error || (a.diagnostics && a.diagnostics.map((d) => d.message).join('; ')) || res.statusText);
+    $('saved').textContent = 'Not saved: ' + (a.error || (a.diagnostics && a.diagnostics.map((d) => d.message).join('; ')) || res.statusText);
   }
 }
 
