@@ -118,6 +118,46 @@ pub enum Command {
     ///   stlc check tree.bed
     #[command(verbatim_doc_comment)]
     Check(CheckArgs),
+
+    /// Open the Tree Maker in a web browser: edit an .od, draw its LAYOUT
+    /// with the mouse, and watch the tree grow (also renders .bed and .lsys).
+    ///
+    /// Serves a page on 127.0.0.1 only and prints its address as the first
+    /// line on standard output; Ctrl-C stops it. With FILE the page opens
+    /// it and Save writes it back (atomically); without, it starts from an
+    /// example and Save downloads. docs/serve.md describes the page and its
+    /// HTTP API.
+    ///
+    /// Examples:
+    ///   stlc serve examples/2dtree.od
+    ///   stlc serve --port 8080
+    #[command(verbatim_doc_comment)]
+    Serve(ServeArgs),
+}
+
+/// `stlc serve`.
+#[derive(Debug, Args)]
+pub struct ServeArgs {
+    /// The file to open and save (.od, .bed, .lsys); none: an example.
+    pub file: Option<String>,
+
+    /// Port on 127.0.0.1; 0 picks a free one.
+    #[arg(long, value_name = "N", default_value_t = 8765)]
+    pub port: u16,
+
+    /// Most stems one growth may add; a page's max-stems above it is refused.
+    #[arg(long, value_name = "N")]
+    pub max_stems: Option<u64>,
+
+    /// Most segments an SVG may hold.
+    #[arg(long, value_name = "N", default_value_t = stlc::render::DEFAULT_MAX_SVG_SEGMENTS)]
+    pub max_svg_segments: u64,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
+
+    #[command(flatten)]
+    pub derive_limits: DeriveLimitArgs,
 }
 
 /// The input file and how to read it.

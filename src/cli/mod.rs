@@ -4,10 +4,10 @@
 //! Exit codes: 0 success (warnings may be printed), 1 the input or the work
 //! failed (diagnostics printed, nothing written), 2 usage error (clap).
 
-mod args;
-mod io;
+pub(crate) mod args;
+pub(crate) mod io;
 mod progress;
-mod report;
+pub(crate) mod report;
 mod run;
 
 use std::io::IsTerminal;
@@ -39,6 +39,10 @@ fn install_interrupt_handler() {
             if let Some(signal) = signals.forever().next() {
                 io::remove_pending();
                 progress::clear_on_interrupt();
+                if crate::serve::SERVING.load(std::sync::atomic::Ordering::SeqCst) {
+                    // Stopping the server is how it ends: not a failure.
+                    std::process::exit(0);
+                }
                 std::process::exit(128 + signal);
             }
         });

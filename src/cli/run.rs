@@ -34,6 +34,9 @@ type Outcome = Result<Vec<Diagnostic>, Diagnostics>;
 
 /// Runs one command and reports; returns the exit code.
 pub fn run(cli: &Cli, color: bool) -> ExitCode {
+    if let Command::Serve(a) = &cli.command {
+        return crate::serve::run(a, cli.quiet, color);
+    }
     let mut source = Source::default();
     let input = match &cli.command {
         Command::Render(a) => &a.input.input,
@@ -41,6 +44,7 @@ pub fn run(cli: &Cli, color: bool) -> ExitCode {
         Command::Expand(a) => &a.input.input,
         Command::Stats(a) => &a.input.input,
         Command::Check(a) => &a.input.input,
+        Command::Serve(_) => unreachable!("served above"),
     };
     // Named before any work, so every diagnostic says which input it is about.
     source.name = Input::parse(input).display_name();
@@ -50,6 +54,7 @@ pub fn run(cli: &Cli, color: bool) -> ExitCode {
         Command::Expand(a) => expand(a, cli.quiet, &mut source),
         Command::Stats(a) => stats(a, &mut source),
         Command::Check(a) => check(a, &mut source),
+        Command::Serve(_) => unreachable!("served above"),
     };
     let src = SourceText {
         name: &source.name,

@@ -240,6 +240,9 @@ pub(super) struct Grower<'a> {
     budget: Budget,
     scratch: Scratch,
     schedule: Schedule,
+    /// When asked for ([`super::grow_traced`]): every stem placed, in the
+    /// order growth placed it, with its decision (0: the seed's drawing).
+    pub(super) trace: Option<Vec<(Seg, u64)>>,
 }
 
 impl<'a> Grower<'a> {
@@ -280,6 +283,7 @@ impl<'a> Grower<'a> {
                 children: Vec::new(),
             },
             schedule: Schedule::default(),
+            trace: None,
         }
     }
 
@@ -362,7 +366,11 @@ impl<'a> Grower<'a> {
                 .with_help("raise the limit with --max-stems N, or draw a smaller seed")
                 .into());
             }
-            self.occ.insert(seg_of(&s, &self.od.params));
+            let seg = seg_of(&s, &self.od.params);
+            if let Some(t) = &mut self.trace {
+                t.push((seg, 0));
+            }
+            self.occ.insert(seg);
         }
         Ok(())
     }
@@ -413,6 +421,9 @@ impl<'a> Grower<'a> {
         // Commit.
         self.budget.stems += self.scratch.segs.len() as u64;
         for s in self.scratch.segs.drain() {
+            if let Some(t) = &mut self.trace {
+                t.push((s, self.budget.applications + 1));
+            }
             self.occ.insert(s);
         }
         self.budget.applications += 1;

@@ -135,6 +135,45 @@ pub fn grow(
     grow_with(od, opts, Backend::Rstar, progress)
 }
 
+/// One stem as growth placed it: what a replay of growth shows, in order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlacedStem {
+    /// Where the turtle was.
+    pub from: Point,
+    /// Where it went.
+    pub to: Point,
+    /// The stroke width, canvas units.
+    pub width: f64,
+    /// Which decision placed it: 0 for the seed's own drawing, `k` for the
+    /// `k`-th successful rule application (in `bfs` level by level, in
+    /// `dfs` a branch's subtree before its sibling).
+    pub decision: u64,
+}
+
+/// Grows `od` like [`grow`] and also returns every stem in the order growth
+/// placed it (the seed's drawing first, then each successful application's
+/// stems in drawing order). The BED is the same as [`grow`]'s; the list
+/// costs memory in proportion to the stems, so only front ends that replay
+/// growth ask for it.
+pub fn grow_traced(
+    od: &Description,
+    opts: &GrowOptions,
+    progress: &mut dyn Progress,
+) -> Result<(Grown, Vec<PlacedStem>), Diagnostics> {
+    let (grown, trace) = grow_inner(od, opts, Backend::Rstar, true, progress)?;
+    let placed = trace
+        .unwrap_or_default()
+        .into_iter()
+        .map(|(s, decision)| PlacedStem {
+            from: Point::new(s.a[0], s.a[1]),
+            to: Point::new(s.b[0], s.b[1]),
+            width: 2.0 * s.r,
+            decision,
+        })
+        .collect();
+    Ok((grown, placed))
+}
+
 /// Grows `od` into a BED with a chosen occupancy index. Every [`Backend`]
 /// gives the same result; the choice is for measuring (the Delaunay one
 /// exists only with the feature `spade-index`).
@@ -144,6 +183,19 @@ pub fn grow_with(
     backend: Backend,
     progress: &mut dyn Progress,
 ) -> Result<Grown, Diagnostics> {
+    grow_inner(od, opts, backend, false, progress).map(|(g, _)| g)
+}
+
+/// The trace of placed stems, with their decisions, when asked for.
+type Trace = Option<Vec<(occupancy::Seg, u64)>>;
+
+fn grow_inner(
+    od: &Description,
+    opts: &GrowOptions,
+    backend: Backend,
+    trace: bool,
+    progress: &mut dyn Progress,
+) -> Result<(Grown, Trace), Diagnostics> {
     let seed = od.effective_seed().ok_or_else(|| {
         Diagnostic::error(ErrorKind::NothingToGrow)
             .with_help("declare a rule after RULE, or write a SEED")
@@ -195,11 +247,15 @@ pub fn grow_with(
     }
 
     let mut g = Grower::new(od, opts, backend, clearance, region, root, flat.gps.len());
+    if trace {
+        g.trace = Some(Vec::new());
+    }
     progress.start("stems", opts.limits.max_stems);
     let walked = g.walk_seed(&flat, progress);
     progress.finish();
     walked?;
 
+    let placed = g.trace.take();
     let (tree, budget) = g.finish();
     let (items, terms) = seed::grown_seed(od, &tree, &seed);
     let mut params = od.params.clone();
@@ -219,11 +275,12 @@ pub fn grow_with(
         }),
         layout: od.layout.clone(),
     };
-    Ok(Grown {
+    let grown = Grown {
         bed: Bed::new(desc, &opts.limits)?,
         warnings: budget.warnings,
         stems: budget.stems,
-    })
+    };
+    Ok((grown, placed))
 }
 
 /// The span of `loc`, unless it is empty (text made by growth, the default

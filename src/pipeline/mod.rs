@@ -34,7 +34,7 @@ use std::path::Path;
 
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
-use crate::grow::{GrowOptions, Grown};
+use crate::grow::{GrowOptions, Grown, PlacedStem};
 use crate::interpret::Derivation;
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
@@ -185,6 +185,22 @@ pub fn compile(
     let grown = grow(od, opts, progress)?;
     let text = crate::bed::write::write(grown.bed.description());
     Ok(Compiled { grown, text })
+}
+
+/// [`compile`], and the stems in the order growth placed them
+/// ([`crate::grow::grow_traced`]): what an editor's growth replay shows.
+/// The BED text is the same as [`compile`]'s.
+pub fn compile_traced(
+    loaded: &Loaded,
+    opts: &GrowOptions,
+    progress: &mut dyn Progress,
+) -> Result<(Compiled, Vec<PlacedStem>), Diagnostics> {
+    let Loaded::Od(od) = loaded else {
+        return Err(wrong_kind(Command::Compile, loaded.kind()));
+    };
+    let (grown, placed) = crate::grow::grow_traced(od, opts, &mut Phase::new(progress, "growing"))?;
+    let text = crate::bed::write::write(grown.bed.description());
+    Ok((Compiled { grown, text }, placed))
 }
 
 /// Grows `od`, reporting progress as `growing: ...`.

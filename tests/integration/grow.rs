@@ -799,3 +799,40 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(seed_text(g.bed.description()), "FF");
 }
+
+// ---------------------------------------------------- the growth order
+
+/// `grow_traced` grows the same BED as `grow`, and its list of placed
+/// stems is exactly the BED's segments (recomputed by the independent
+/// walk), each once, with decisions that never go back and a seed drawn
+/// first.
+#[test]
+fn the_traced_growth_places_exactly_the_beds_stems_in_decision_order() {
+    let key = |a: Point, b: Point| {
+        let r = |v: f64| (v * 1000.0).round() as i64;
+        (r(a.x), r(a.y), r(b.x), r(b.y))
+    };
+    for file in ["fig9.od", "holes.od", "2dtree.od"] {
+        let text =
+            std::fs::read_to_string(crate::support::manifest_path("examples").join(file)).unwrap();
+        let d = od(&text);
+        for order in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+            let plain = grown(&d, opts(order));
+            let (traced, placed) =
+                stlc::grow::grow_traced(&d, &opts(order), &mut NoProgress).unwrap();
+            assert!(traced == plain, "{file}: grow_traced grew another BED");
+            assert_eq!(placed.len() as u64, plain.stems, "{file}");
+            let mut from_trace: Vec<_> = placed.iter().map(|p| key(p.from, p.to)).collect();
+            let mut from_bed: Vec<_> = draw_bed(plain.bed.description())
+                .iter()
+                .map(|s| key(s.from, s.to))
+                .collect();
+            from_trace.sort_unstable();
+            from_bed.sort_unstable();
+            assert_eq!(from_trace, from_bed, "{file} {order:?}");
+            assert!(placed.windows(2).all(|w| w[0].decision <= w[1].decision));
+            assert_eq!(placed[0].decision, 0, "{file}: the seed comes first");
+            assert!(placed.last().unwrap().decision > 1, "{file}");
+        }
+    }
+}

@@ -1,5 +1,6 @@
 //! One integration-test binary; each area is a module.
 
+mod browser;
 mod cli;
 mod diagnostics;
 mod docs;
@@ -10,6 +11,7 @@ mod lsys;
 mod newuser;
 mod render;
 mod robustness;
+mod serve;
 mod stl;
 mod support;
 

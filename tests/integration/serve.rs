@@ -1,0 +1,612 @@
+//! `stlc serve`: the HTTP API against the CLI's own bytes, and the
+//! security rules (Host, Origin, sizes, malformed HTTP, the Save token).
+//! The server runs as the real binary on port 0; requests are raw HTTP
+//! over a `TcpStream`, so malformed ones can be sent as they are.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+use serde_json::{Value, json};
+
+use crate::support::manifest_path;
+
+/// A running `stlc serve`, stopped with Ctrl-C (SIGINT) when dropped.
+pub struct Server {
+    child: Child,
+    /// `127.0.0.1:PORT`.
+    pub addr: String,
+}
+
+impl Server {
+    /// Starts `stlc serve ARGS --port 0` and reads the URL it prints.
+    pub fn start(args: &[&str]) -> Server {
+        let mut child = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+            .arg("serve")
+            .args(args)
+            .args(["--port", "0"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("start stlc serve");
+        let mut out = BufReader::new(child.stdout.take().unwrap());
+        let mut line = String::new();
+        out.read_line(&mut line).unwrap();
+        let addr = line
+            .trim()
+            .strip_prefix("http://")
+            .and_then(|r| r.strip_suffix('/'))
+            .unwrap_or_else(|| panic!("first line is not the URL: {line:?}"))
+            .to_string();
+        assert!(addr.starts_with("127.0.0.1:"), "{addr}");
+        // Keep reading, so the server never writes into a closed pipe.
+        std::thread::spawn(move || std::io::copy(&mut out, &mut std::io::sink()));
+        Server { child, addr }
+    }
+
+    /// The port.
+    pub fn port(&self) -> &str {
+        self.addr.rsplit(':').next().unwrap()
+    }
+
+    /// Sends SIGINT (what Ctrl-C sends) and waits for the exit status.
+    pub fn interrupt(mut self) -> std::process::ExitStatus {
+        let status = interrupt(&mut self.child);
+        std::mem::forget(self);
+        status
+    }
+}
+
+fn interrupt(child: &mut Child) -> std::process::ExitStatus {
+    let _ = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status();
+    for _ in 0..100 {
+        if let Ok(Some(s)) = child.try_wait() {
+            return s;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let _ = child.kill();
+    child.wait().unwrap()
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        interrupt(&mut self.child);
+    }
+}
+
+/// An answer: status, head (lower-cased), body.
+pub struct Answer {
+    pub status: u16,
+    pub head: String,
+    pub body: Vec<u8>,
+}
+
+impl Answer {
+    pub fn json(&self) -> Value {
+        serde_json::from_slice(&self.body)
+            .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&self.body)))
+    }
+}
+
+/// Sends `raw` as it is and reads the answer until the server closes.
+pub fn raw(addr: &str, raw: &[u8]) -> Answer {
+    let mut s = TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
+    let _ = s.write_all(raw);
+    let mut buf = Vec::new();
+    let _ = s.read_to_end(&mut buf);
+    let split = buf
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .unwrap_or_else(|| panic!("no HTTP answer: {:?}", String::from_utf8_lossy(&buf)));
+    let head = String::from_utf8_lossy(&buf[..split]).to_ascii_lowercase();
+    let status = head.split(' ').nth(1).unwrap().parse().unwrap();
+    let mut body = buf[split + 4..].to_vec();
+    if head.contains("transfer-encoding: chunked") {
+        body = unchunk(&body);
+    }
+    Answer { status, head, body }
+}
+
+fn unchunk(mut b: &[u8]) -> Vec<u8> {
+    let mut out = Vec::new();
+    loop {
+        let nl = b.windows(2).position(|w| w == b"\r\n").unwrap();
+        let n = usize::from_str_radix(std::str::from_utf8(&b[..nl]).unwrap().trim(), 16).unwrap();
+        if n == 0 {
+            return out;
+        }
+        out.extend_from_slice(&b[nl + 2..nl + 2 + n]);
+        b = &b[nl + 2 + n + 2..];
+    }
+}
+
+/// A request with the usual headers and `Connection: close`.
+pub fn request(
+    addr: &str,
+    method: &str,
+    path: &str,
+    extra: &[(&str, &str)],
+    body: &[u8],
+) -> Answer {
+    let mut head = format!(
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n",
+        body.len()
+    );
+    for (k, v) in extra {
+        head.push_str(&format!("{k}: {v}\r\n"));
+    }
+    head.push_str("\r\n");
+    let mut all = head.into_bytes();
+    all.extend_from_slice(body);
+    raw(addr, &all)
+}
+
+/// `POST /api/render` with `body`; the answer's JSON.
+pub fn render(addr: &str, body: &Value) -> Value {
+    let a = request(
+        addr,
+        "POST",
+        "/api/render",
+        &[],
+        body.to_string().as_bytes(),
+    );
+    assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
+    a.json()
+}
+
+fn example(name: &str) -> String {
+    std::fs::read_to_string(manifest_path("examples").join(name)).unwrap()
+}
+
+/// What the CLI writes for `args` (standard output).
+fn cli(args: &[&str]) -> Vec<u8> {
+    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+/// The BED and SVG of an .od are byte for byte what `stlc compile` and
+/// `stlc render -f svg --show-layout` write with the same options, in both
+/// growth orders, with a clearance and a stem limit.
+#[test]
+fn render_answers_the_cli_bytes_for_an_od() {
+    let server = Server::start(&[]);
+    for name in ["2dtree.od", "fig9.od", "holes.od"] {
+        let path = manifest_path("examples").join(name);
+        let path = path.to_str().unwrap();
+        for (strategy, extra) in [
+            ("bfs", vec![]),
+            ("dfs", vec![]),
+            ("dfs", vec!["--clearance", "0.5", "--max-stems", "120"]),
+        ] {
+            let mut body = json!({"source": example(name), "kind": "od", "strategy": strategy});
+            if !extra.is_empty() {
+                body["clearance"] = json!(0.5);
+                body["max_stems"] = json!(120);
+            }
+            let a = render(&server.addr, &body);
+            assert_eq!(a["ok"], true, "{a}");
+            let mut args = vec!["compile", path, "-o", "-", "--growth", strategy];
+            args.extend(&extra);
+            let bed = String::from_utf8(cli(&args)).unwrap();
+            crate::support::assert_same_text(name, &bed, a["bed"].as_str().unwrap());
+            let mut args = vec![
+                "render",
+                path,
+                "-f",
+                "svg",
+                "-o",
+                "-",
+                "--show-layout",
+                "--growth",
+                strategy,
+            ];
+            args.extend(&extra);
+            let svg = String::from_utf8(cli(&args)).unwrap();
+            crate::support::assert_same_text(name, &svg, a["svg"].as_str().unwrap());
+            // The stems counted are the stems in the growth order.
+            let order = a["growth"]["stems"].as_array().unwrap();
+            assert_eq!(order.len() as u64 / 6, a["stems"].as_u64().unwrap());
+            if !extra.is_empty() {
+                assert!(a["stems"].as_u64().unwrap() <= 120);
+            }
+        }
+    }
+}
+
+/// The growth order: the seed's stems come first (decision 0, the first
+/// one from the root); decisions never go back; and every stem of a
+/// decision starts where an earlier stem (or its own decision's earlier
+/// stem) ends: a replay always adds to the tree already drawn. bfs and dfs
+/// decide fig9 in different orders but place the same number of stems
+/// only if the trees agree, which they do not.
+#[test]
+fn the_growth_order_replays_a_connected_tree() {
+    let server = Server::start(&[]);
+    let mut orders = Vec::new();
+    for strategy in ["bfs", "dfs"] {
+        let a = render(
+            &server.addr,
+            &json!({"source": example("fig9.od"), "strategy": strategy}),
+        );
+        let g: Vec<f64> = a["growth"]["stems"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert!(g.len() >= 6 * 50, "{}", g.len());
+        assert_eq!(
+            (g[0], g[1]),
+            (100.0, 196.0),
+            "the first stem starts at the root"
+        );
+        assert_eq!(g[5], 0.0, "the seed's F is decision 0");
+        let mut ends: Vec<(f64, f64)> = vec![(100.0, 196.0)];
+        let mut last = 0.0;
+        for s in g.chunks(6) {
+            assert!(s[5] >= last, "decisions go forward");
+            last = s[5];
+            let near = |p: &(f64, f64)| (p.0 - s[0]).abs() < 0.01 && (p.1 - s[1]).abs() < 0.01;
+            assert!(ends.iter().any(near), "stem {s:?} starts at no earlier end");
+            ends.push((s[2], s[3]));
+        }
+        assert_eq!(a["growth"]["decisions"].as_f64().unwrap(), last);
+        orders.push(g);
+    }
+    assert_ne!(orders[0], orders[1], "bfs and dfs grow fig9 differently");
+}
+
+/// An L-system with a depth and a BED are drawn as `stlc render` draws
+/// them; the PNG export is the CLI's PNG.
+#[test]
+fn lsys_bed_and_png_export_are_the_cli_bytes() {
+    let server = Server::start(&[]);
+    let koch = manifest_path("examples/koch-snowflake.lsys");
+    let a = render(
+        &server.addr,
+        &json!({"source": example("koch-snowflake.lsys"), "kind": "lsys", "depth": 2}),
+    );
+    assert_eq!(a["ok"], true, "{a}");
+    let svg = cli(&[
+        "render",
+        koch.to_str().unwrap(),
+        "-f",
+        "svg",
+        "-o",
+        "-",
+        "--depth",
+        "2",
+    ]);
+    assert_eq!(a["svg"].as_str().unwrap().as_bytes(), &svg[..]);
+    assert!(a["bed"].is_null());
+
+    let bed = manifest_path("examples/paper-worked.bed");
+    let a = render(
+        &server.addr,
+        &json!({"source": example("paper-worked.bed"), "kind": "bed"}),
+    );
+    let svg = cli(&[
+        "render",
+        bed.to_str().unwrap(),
+        "-f",
+        "svg",
+        "-o",
+        "-",
+        "--show-layout",
+    ]);
+    assert_eq!(a["svg"].as_str().unwrap().as_bytes(), &svg[..]);
+
+    let od = manifest_path("examples/holes.od");
+    let body = json!({"source": example("holes.od"), "strategy": "dfs"});
+    let png = request(
+        &server.addr,
+        "POST",
+        "/api/export?format=png",
+        &[],
+        body.to_string().as_bytes(),
+    );
+    assert!(png.head.contains("content-type: image/png"), "{}", png.head);
+    let cli_png = cli(&[
+        "render",
+        od.to_str().unwrap(),
+        "-f",
+        "png",
+        "-o",
+        "-",
+        "--show-layout",
+        "--growth",
+        "dfs",
+    ]);
+    assert!(png.body == cli_png, "the exported PNG is not the CLI's");
+    let bed = request(
+        &server.addr,
+        "POST",
+        "/api/export?format=bed",
+        &[],
+        body.to_string().as_bytes(),
+    );
+    let cli_bed = cli(&[
+        "compile",
+        od.to_str().unwrap(),
+        "-o",
+        "-",
+        "--growth",
+        "dfs",
+    ]);
+    assert!(bed.body == cli_bed);
+}
+
+/// An input error answers 200 with diagnostics at 1-based lines and
+/// columns: here an unknown colour, at column 2 (after `(`) of its line.
+#[test]
+fn input_errors_answer_diagnostics_with_lines_and_columns() {
+    let server = Server::start(&[]);
+    let text = example("holes.od").replace("(clWhite) Ellipse (40", "(clWhiet) Ellipse (40");
+    let line = text.lines().position(|l| l.contains("clWhiet")).unwrap() + 1;
+    assert!(line > 10, "{line}");
+    let a = render(&server.addr, &json!({"source": text, "kind": "od"}));
+    assert_eq!(a["ok"], false, "{a}");
+    let d = &a["diagnostics"][0];
+    assert_eq!(d["line"], line, "{d}");
+    assert_eq!(d["column"], 2, "{d}");
+    assert_eq!(d["end_line"], line, "{d}");
+    assert_eq!(d["end_column"], 9, "{d}");
+    assert!(d["message"].as_str().unwrap().contains("clWhiet"), "{d}");
+    assert!(d["help"].as_str().unwrap().contains("clWhite"), "{d}");
+
+    // Growth that nothing bounds is refused, not run for ever.
+    let a = render(
+        &server.addr,
+        &json!({"source": "T (0, 0) L=10(0) RULE R1: F[+R1][-R1]", "kind": "od"}),
+    );
+    assert_eq!(a["ok"], false, "{a}");
+    // A stem limit above the server's own is refused.
+    let server = Server::start(&["--max-stems", "100"]);
+    let a = render(
+        &server.addr,
+        &json!({"source": example("fig9.od"), "max_stems": 101}),
+    );
+    assert_eq!(a["ok"], false, "{a}");
+    let a = render(
+        &server.addr,
+        &json!({"source": example("fig9.od"), "max_stems": 40}),
+    );
+    assert_eq!(a["ok"], true, "{a}");
+    assert!(a["stems"].as_u64().unwrap() <= 40);
+    assert!(
+        a["warnings"][0]["message"].as_str().unwrap().contains("40"),
+        "{a}"
+    );
+}
+
+/// DNS rebinding and cross-site requests: a foreign or missing Host is
+/// refused on every path, `localhost:PORT` is accepted; a POST from a
+/// foreign Origin is refused, from the page's own accepted.
+#[test]
+fn foreign_hosts_and_origins_are_refused() {
+    let server = Server::start(&[]);
+    let addr = &server.addr;
+    let port = server.port();
+    let get = |host: &str| {
+        raw(
+            addr,
+            format!("GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n").as_bytes(),
+        )
+    };
+    assert_eq!(get(addr).status, 200);
+    assert_eq!(get(&format!("localhost:{port}")).status, 200);
+    for host in [
+        "evil.example".to_string(),
+        format!("evil.example:{port}"),
+        "127.0.0.1".to_string(),
+        format!("127.0.0.1:{port}.evil.example"),
+    ] {
+        assert_eq!(get(&host).status, 403, "{host}");
+    }
+    let no_host = raw(addr, b"GET /api/file HTTP/1.0\r\n\r\n");
+    assert_eq!(no_host.status, 403);
+    let body = json!({"source": example("fig9.od")}).to_string();
+    for (origin, status) in [
+        ("http://evil.example".to_string(), 403),
+        (format!("http://localhost:{port}.evil.example"), 403),
+        ("null".to_string(), 403),
+        (format!("http://127.0.0.1:{port}"), 200),
+        (format!("http://localhost:{port}"), 200),
+    ] {
+        let a = request(
+            addr,
+            "POST",
+            "/api/render",
+            &[("Origin", &origin)],
+            body.as_bytes(),
+        );
+        assert_eq!(a.status, status, "{origin}");
+    }
+    // No file path is read from a request: paths other than the page's
+    // are not found.
+    for path in [
+        "/../Cargo.toml",
+        "/examples/fig9.od",
+        "/api/file?path=/etc/passwd",
+    ] {
+        let a = request(addr, "GET", path, &[], b"");
+        assert!(
+            a.status == 404
+                || (a.status == 200 && !String::from_utf8_lossy(&a.body).contains("root:")),
+            "{path}: {}",
+            a.status
+        );
+    }
+}
+
+/// Sizes: a body over --max-input is 413 (declared or chunked), malformed
+/// JSON is 400, a huge head is refused; garbage never stops the server;
+/// idle connections do not keep others waiting.
+#[test]
+fn oversize_malformed_and_idle_requests_never_stop_the_server() {
+    let server = Server::start(&["--max-input", "2000"]);
+    let addr = &server.addr;
+    let big = json!({"source": "x".repeat(3000)}).to_string();
+    assert_eq!(
+        request(addr, "POST", "/api/render", &[], big.as_bytes()).status,
+        413
+    );
+    // Chunked, with no length declared.
+    let mut chunked = format!(
+        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nTransfer-Encoding: chunked\r\n\r\n"
+    )
+    .into_bytes();
+    for _ in 0..3 {
+        chunked.extend_from_slice(format!("3e8\r\n{}\r\n", "y".repeat(1000)).as_bytes());
+    }
+    chunked.extend_from_slice(b"0\r\n\r\n");
+    assert_eq!(raw(addr, &chunked).status, 413);
+    for bad in [
+        &b"{"[..],
+        b"not json",
+        b"[]",
+        b"{\"source\": 1}",
+        b"\xff\xfe",
+    ] {
+        assert_eq!(request(addr, "POST", "/api/render", &[], bad).status, 400);
+    }
+    // A head over the limit: refused (431) or the connection closed.
+    let huge = format!(
+        "GET / HTTP/1.1\r\nHost: {addr}\r\nX-Big: {}\r\n\r\n",
+        "z".repeat(100_000)
+    );
+    let mut s = TcpStream::connect(addr).unwrap();
+    let _ = s.write_all(huge.as_bytes());
+    let mut buf = Vec::new();
+    s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    let _ = s.read_to_end(&mut buf);
+    let answer = String::from_utf8_lossy(&buf);
+    assert!(!answer.contains(" 200 "), "{answer}");
+    // Garbage, a half request, idle connections.
+    for junk in [
+        &b"\x00\x01\x02\r\n\r\n"[..],
+        b"GET\r\n\r\n",
+        b"POST /api/render HTTP/1.1\r\nContent-Length: -5\r\n\r\n",
+        b"GET / HTTP/9.9\r\n\r\n",
+    ] {
+        let mut s = TcpStream::connect(addr).unwrap();
+        let _ = s.write_all(junk);
+        s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+        let _ = s.read_to_end(&mut Vec::new());
+    }
+    let idle: Vec<TcpStream> = (0..20).map(|_| TcpStream::connect(addr).unwrap()).collect();
+    let a = render(addr, &json!({"source": example("fig9.od")}));
+    assert_eq!(a["ok"], true);
+    drop(idle);
+}
+
+/// Save: refused without the page's token or with a wrong one; with it,
+/// the named file is written (atomically, by the CLI's writer); with no
+/// file named, there is nothing to write (the page downloads).
+#[test]
+fn save_needs_the_token_and_writes_only_the_named_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("tree.od");
+    std::fs::write(&file, example("fig9.od")).unwrap();
+    let server = Server::start(&[file.to_str().unwrap()]);
+    let addr = &server.addr;
+    let page = request(addr, "GET", "/", &[], b"");
+    let page = String::from_utf8(page.body).unwrap();
+    let token = page
+        .split("name=\"stlc-token\" content=\"")
+        .nth(1)
+        .and_then(|r| r.split('"').next())
+        .unwrap()
+        .to_string();
+    assert_eq!(token.len(), 32);
+    let opened = request(addr, "GET", "/api/file", &[], b"").json();
+    assert_eq!(opened["text"], example("fig9.od"));
+    assert_eq!(opened["can_save"], true);
+    let body = json!({"source": "Changed (1, 2)\nRULE\nR1: F\n"}).to_string();
+    for bad in [None, Some("0".repeat(32)), Some(format!("{token}0"))] {
+        let headers: Vec<(&str, &str)> = bad.iter().map(|t| ("X-Stlc-Token", t.as_str())).collect();
+        let a = request(addr, "POST", "/api/save", &headers, body.as_bytes());
+        assert_eq!(a.status, 403);
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), example("fig9.od"));
+    let a = request(
+        addr,
+        "POST",
+        "/api/save",
+        &[("X-Stlc-Token", &token)],
+        body.as_bytes(),
+    );
+    assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
+    assert_eq!(
+        std::fs::read_to_string(&file).unwrap(),
+        "Changed (1, 2)\nRULE\nR1: F\n"
+    );
+    // Nothing but the file: no temporary left beside it.
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("tree.od")]);
+
+    let example_server = Server::start(&[]);
+    let page = request(&example_server.addr, "GET", "/", &[], b"");
+    let page = String::from_utf8(page.body).unwrap();
+    let token = page
+        .split("content=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap();
+    let a = request(
+        &example_server.addr,
+        "POST",
+        "/api/save",
+        &[("X-Stlc-Token", token)],
+        body.as_bytes(),
+    );
+    assert_eq!(a.status, 409);
+    assert_ne!(token, page_token(&server), "each run has its own token");
+}
+
+fn page_token(server: &Server) -> String {
+    let page = request(&server.addr, "GET", "/", &[], b"");
+    let page = String::from_utf8(page.body).unwrap();
+    page.split("content=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .to_string()
+}
+
+/// Ctrl-C stops the server with exit status 0; a missing file is an error
+/// before anything is served.
+#[test]
+fn ctrl_c_stops_cleanly_and_a_missing_file_is_an_error() {
+    let server = Server::start(&[]);
+    assert_eq!(request(&server.addr, "GET", "/", &[], b"").status, 200);
+    let status = server.interrupt();
+    assert!(status.success(), "{status:?}");
+    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+        .args(["serve", "no/such/file.od", "--port", "0"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/file.od"));
+}
