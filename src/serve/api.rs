@@ -209,6 +209,8 @@ fn run(
         format,
         size: None,
         max_svg_segments: s.max_svg_segments,
+        // The CLI's default level of detail (no `--exact`): the same bytes.
+        exact: false,
     };
     let mut image = Vec::new();
     let rendered = pipeline::render(&scene, &look, &opts, &mut image, &mut NoProgress)?;
