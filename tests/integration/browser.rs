@@ -721,7 +721,8 @@ async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
     panic!("{} was never downloaded", path.display());
 }
 
-/// Opens `file` through the page's Open… control (its file input).
+/// Opens `file` through the page's Open… control (its file input), and
+/// waits until the page has read it into the editor.
 async fn open(c: &Client, file: &Path) {
     c.find(Locator::Id("open-file"))
         .await
@@ -729,6 +730,21 @@ async fn open(c: &Client, file: &Path) {
         .send_keys(file.to_str().unwrap())
         .await
         .unwrap();
+    let text = std::fs::read_to_string(file).unwrap();
+    for _ in 0..200 {
+        let read = c
+            .execute(
+                "return document.getElementById('source').value === arguments[0]",
+                vec![json!(text)],
+            )
+            .await
+            .unwrap();
+        if read == json!(true) {
+            return;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    panic!("the page never read {}", file.display());
 }
 
 /// The preview's view box: `[x, y, width, height]` in canvas units.
@@ -997,7 +1013,7 @@ async fn editing(c: &Client, dir: &Path) {
     }
     let zoomed = view_box(c).await;
     let ratio = zoomed[2] / fitted[2];
-    let steps = ratio.ln() / 1.15f64.ln();
+    let steps = libm::log(ratio) / libm::log(1.15);
     assert!((steps - steps.round()).abs() < 1e-3, "{ratio}");
     assert!((zoomed[3] / fitted[3] - ratio).abs() < 1e-3);
     let (qx, qy) = screen_of(c, 100.0, 150.0).await;
@@ -1119,4 +1135,28 @@ async fn editing(c: &Client, dir: &Path) {
     assert_eq!(settled(c).await["text"].as_str().unwrap(), raised_text);
     assert!(same_box(&view_box(c).await, &panned));
     shot(c, "17-undone").await;
+
+    // Typing is one more step of the same history, undone in the editor.
+    js(
+        c,
+        "const s = document.getElementById('source'); s.focus();
+         s.setSelectionRange(s.value.length, s.value.length); return 0;",
+    )
+    .await;
+    c.find(Locator::Id("source"))
+        .await
+        .unwrap()
+        .send_keys("JUNK(")
+        .await
+        .unwrap();
+    let typed = settled(c).await;
+    assert_eq!(typed["ok"], false, "{typed}");
+    assert_eq!(
+        typed["text"].as_str().unwrap(),
+        format!("{raised_text}JUNK(")
+    );
+    chord(c, false, 'z').await;
+    let back = settled(c).await;
+    assert_eq!(back["text"].as_str().unwrap(), raised_text);
+    assert_eq!(back["ok"], true, "{back}");
 }
