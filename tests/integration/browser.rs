@@ -1159,4 +1159,31 @@ async fn editing(c: &Client, dir: &Path) {
     let back = settled(c).await;
     assert_eq!(back["text"].as_str().unwrap(), raised_text);
     assert_eq!(back["ok"], true, "{back}");
+
+    // Another description pasted over the whole text is shown whole. (Its
+    // text reaches the clipboard by a real Ctrl-C in a scratch textarea.)
+    let fig9 = std::fs::read_to_string(manifest_path("examples/fig9.od")).unwrap();
+    c.execute(
+        "const t = document.createElement('textarea'); t.id = 'scratch';
+         t.value = arguments[0]; document.body.appendChild(t);
+         t.focus(); t.select(); return 0;",
+        vec![json!(fig9)],
+    )
+    .await
+    .unwrap();
+    chord(c, false, 'c').await;
+    js(
+        c,
+        "document.getElementById('scratch').remove();
+         const s = document.getElementById('source'); s.focus(); s.select(); return 0;",
+    )
+    .await;
+    chord(c, false, 'v').await;
+    let pasted = settled(c).await;
+    assert_eq!(pasted["text"].as_str().unwrap(), fig9);
+    assert_eq!(pasted["ok"], true, "{pasted}");
+    let shown = view_box(c).await;
+    assert!(same_box(&shown, &fit_box(c).await), "{shown:?}");
+    assert!(!same_box(&shown, &panned), "{shown:?}");
+    shot(c, "18-pasted").await;
 }

@@ -302,7 +302,7 @@ function draw() {
   const content = a.view || grownNoLayout ? box : [0, 0, Number(lib.getAttribute('width')), Number(lib.getAttribute('height'))];
   state.fitView = content || [0, 0, 100, 100];
   // Refit once the answer is to the new text itself (not to one sent before).
-  if (!state.view || (state.refit && a === state.answer && state.answerText === src.value)) {
+  if (!state.view || (state.refit && state.answerText === src.value)) {
     state.view = state.fitView.slice();
     state.refit = false;
   }
