@@ -855,7 +855,7 @@ fn the_page_opens_exports_zooms_edits_and_undoes_in_chromium() {
     rt.block_on(async {
         let c = connect(&driver, &chromium, &chrome_tmp).await;
         renderer(&c, &server, tmp.path(), &chrome_tmp.join("downloads")).await;
-        editing(&c, tmp.path()).await;
+        editing(&c, tmp.path(), &chrome_tmp.join("downloads")).await;
         let _ = c.close().await;
     });
 }
@@ -984,7 +984,7 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
 /// Back in Tree Maker: wheel zoom and drag-to-pan move only the view; a
 /// RoundRect drawn, Raise, a selected shape recoloured; Ctrl-Z and Ctrl-Y
 /// walk those edits back and forth.
-async fn editing(c: &Client, dir: &Path) {
+async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     let od = dir.join("tree.od");
     std::fs::write(&od, TYPED).unwrap();
     open(c, &od).await;
@@ -1186,4 +1186,29 @@ async fn editing(c: &Client, dir: &Path) {
     assert!(same_box(&shown, &fit_box(c).await), "{shown:?}");
     assert!(!same_box(&shown, &panned), "{shown:?}");
     shot(c, "18-pasted").await;
+
+    // Tree Maker's SVG export, grown depth-first: `stlc render`'s bytes.
+    click(c, "#strategy option[value=dfs]").await;
+    let mut dfs = settled(c).await;
+    for _ in 0..20 {
+        if dfs["growth"] != pasted["growth"] {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+        dfs = settled(c).await;
+    }
+    assert_ne!(dfs["growth"], pasted["growth"]);
+    let od = dir.join("fig9.od");
+    std::fs::write(&od, &fig9).unwrap();
+    let svg = cli(&[
+        "render",
+        od.to_str().unwrap(),
+        "--show-layout",
+        "--growth",
+        "dfs",
+        "-f",
+        "svg",
+    ]);
+    click(c, "#export-svg").await;
+    same_bytes(&downloaded(downloads, "tree.svg").await, &svg, "tree.svg");
 }
