@@ -209,7 +209,7 @@ fn run(
         format,
         size: None,
         max_svg_segments: s.max_svg_segments,
-        // As the CLI's default: level of detail for an .lsys.
+        // The CLI's default level of detail (no `--exact`): the same bytes.
         exact: false,
     };
     let mut image = Vec::new();

@@ -9,7 +9,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
-use fantoccini::actions::{InputSource, MOUSE_BUTTON_LEFT, MouseActions, PointerAction};
+use fantoccini::actions::{
+    InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
+    WheelAction, WheelActions,
+};
 use fantoccini::{Client, ClientBuilder, Locator};
 use serde_json::{Value, json};
 
@@ -121,13 +124,21 @@ async fn shot(c: &Client, name: &str) {
 
 const TYPED: &str = "Typed (100, 190)\nL=9(0) B=1.5(0) A=30 C=2\nRULE\nR1: [-F][+F]\nSEED\nFR1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (70, 120), 60, 75\nENDLAYOUT\n";
 
-#[test]
-fn the_page_grows_draws_replays_and_saves_in_chromium() {
+/// chromium and chromedriver, or `None` after saying why the test skips.
+fn installed() -> Option<(PathBuf, PathBuf)> {
     let (Some(chromium), Some(driver)) = (which("chromium"), which("chromedriver")) else {
         eprintln!(
             "SKIPPED the browser test: chromium and chromedriver are not installed \
              (apt-get install chromium chromium-driver; .ci/run does)"
         );
+        return None;
+    };
+    Some((chromium, driver))
+}
+
+#[test]
+fn the_page_grows_draws_replays_and_saves_in_chromium() {
+    let Some((chromium, driver)) = installed() else {
         return;
     };
     let tmp = tempfile::tempdir().unwrap();
@@ -145,6 +156,15 @@ fn the_page_grows_draws_replays_and_saves_in_chromium() {
 }
 
 async fn drive(server: &Server, driver: &Driver, chromium: &Path, tmp: &Path, file: &Path) {
+    let c = connect(driver, chromium, tmp).await;
+    steps(&c, server, file).await;
+    acceptance(&c).await;
+    let _ = c.close().await;
+}
+
+/// A WebDriver session in a headless Chromium whose downloads go to
+/// `tmp/downloads`.
+async fn connect(driver: &Driver, chromium: &Path, tmp: &Path) -> Client {
     let mut caps = serde_json::Map::new();
     caps.insert(
         "goog:chromeOptions".into(),
@@ -157,17 +177,18 @@ async fn drive(server: &Server, driver: &Driver, chromium: &Path, tmp: &Path, fi
                 "--window-size=1280,860",
                 format!("--user-data-dir={}", tmp.join("profile").display()),
             ],
+            "prefs": {
+                "download.default_directory": tmp.join("downloads"),
+                "download.prompt_for_download": false,
+            },
         }),
     );
     let connector = hyper_util::client::legacy::connect::HttpConnector::new();
-    let c = ClientBuilder::new(connector)
+    ClientBuilder::new(connector)
         .capabilities(caps)
         .connect(&format!("http://127.0.0.1:{}", driver.port))
         .await
-        .expect("a WebDriver session");
-    steps(&c, server, file).await;
-    acceptance(&c).await;
-    let _ = c.close().await;
+        .expect("a WebDriver session")
 }
 
 /// The issue's acceptance, on the paper's 2DTree: open it, draw a white
@@ -674,4 +695,520 @@ async fn tools(c: &Client, start: &str) {
     .await;
     assert!(drawn.as_u64().unwrap() >= 1, "{drawn}");
     shot(c, "10-renderer").await;
+}
+
+/// What `stlc ARGS -o -` writes.
+fn cli(args: &[&str]) -> Vec<u8> {
+    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+        .args(args)
+        .args(["-o", "-"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "stlc {args:?}");
+    out.stdout
+}
+
+/// The bytes of `dir/name` once Chromium has finished downloading it.
+async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
+    let path = dir.join(name);
+    let partial = dir.join(format!("{name}.crdownload"));
+    for _ in 0..200 {
+        if path.is_file() && !partial.exists() {
+            return std::fs::read(&path).unwrap();
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    panic!("{} was never downloaded", path.display());
+}
+
+/// Opens `file` through the page's Open… control (its file input), and
+/// waits until the page has read it into the editor.
+async fn open(c: &Client, file: &Path) {
+    c.find(Locator::Id("open-file"))
+        .await
+        .unwrap()
+        .send_keys(file.to_str().unwrap())
+        .await
+        .unwrap();
+    let text = std::fs::read_to_string(file).unwrap();
+    for _ in 0..200 {
+        let read = c
+            .execute(
+                "return document.getElementById('source').value === arguments[0]",
+                vec![json!(text)],
+            )
+            .await
+            .unwrap();
+        if read == json!(true) {
+            return;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    panic!("the page never read {}", file.display());
+}
+
+/// The preview's view box: `[x, y, width, height]` in canvas units.
+async fn view_box(c: &Client) -> Vec<f64> {
+    let v = js(
+        c,
+        "const b = document.getElementById('preview').viewBox.baseVal;
+         return [b.x, b.y, b.width, b.height];",
+    )
+    .await;
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// The box Fit shows, as a view box.
+async fn fit_box(c: &Client) -> Vec<f64> {
+    let v = js(
+        c,
+        "const f = window.stlc.fitView; return [f[0], f[1], f[2] - f[0], f[3] - f[1]];",
+    )
+    .await;
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// Asserts `got` is `want`, saying where they part (not all the bytes).
+fn same_bytes(got: &[u8], want: &[u8], what: &str) {
+    if got != want {
+        let at = got.iter().zip(want).take_while(|(a, b)| a == b).count();
+        let show = |b: &[u8]| {
+            String::from_utf8_lossy(&b[at.saturating_sub(40)..(at + 40).min(b.len())]).into_owned()
+        };
+        panic!(
+            "{what}: {} bytes, the CLI's {}; they part at byte {at}: {:?} / {:?}",
+            got.len(),
+            want.len(),
+            show(got),
+            show(want)
+        );
+    }
+}
+
+fn same_box(a: &[f64], b: &[f64]) -> bool {
+    // (SVG keeps the box in single precision.)
+    a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-3)
+}
+
+/// Presses Ctrl (and Shift) with `key`.
+async fn chord(c: &Client, shift: bool, key: char) {
+    let mut keys = KeyActions::new("keyboard".into()).then(KeyAction::Down { value: '\u{E009}' });
+    if shift {
+        keys = keys.then(KeyAction::Down { value: '\u{E008}' });
+    }
+    keys = keys
+        .then(KeyAction::Down { value: key })
+        .then(KeyAction::Up { value: key });
+    if shift {
+        keys = keys.then(KeyAction::Up { value: '\u{E008}' });
+    }
+    keys = keys.then(KeyAction::Up { value: '\u{E009}' });
+    c.perform_actions(keys).await.unwrap();
+}
+
+/// The mouse wheel turned one notch (`dy` > 0: towards the user, zoom
+/// out) at viewport point `(x, y)`.
+async fn wheel(c: &Client, x: f64, y: f64, dy: i64) {
+    let w = WheelActions::new("wheel".into()).then(WheelAction::Scroll {
+        duration: None,
+        x: x.round() as i64,
+        y: y.round() as i64,
+        delta_x: 0,
+        delta_y: dy,
+    });
+    c.perform_actions(w).await.unwrap();
+}
+
+/// The text of the source of the answer the page shows.
+async fn answer_svg(c: &Client) -> String {
+    js(c, "return window.stlc.answer.svg")
+        .await
+        .as_str()
+        .unwrap()
+        .to_string()
+}
+
+#[test]
+fn the_page_opens_exports_zooms_edits_and_undoes_in_chromium() {
+    let Some((chromium, driver)) = installed() else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let start = tmp.path().join("start.od");
+    std::fs::write(&start, TYPED).unwrap();
+    let server = Server::start(&[start.to_str().unwrap()]);
+    let chrome_tmp = tmp.path().join("chrome");
+    std::fs::create_dir_all(&chrome_tmp).unwrap();
+    let driver = Driver::start(&driver, &chrome_tmp);
+    let rt = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap();
+    rt.block_on(async {
+        let c = connect(&driver, &chromium, &chrome_tmp).await;
+        renderer(&c, &server, tmp.path(), &chrome_tmp.join("downloads")).await;
+        editing(&c, tmp.path(), &chrome_tmp.join("downloads")).await;
+        let _ = c.close().await;
+    });
+}
+
+/// Tree Renderer through Open…: a BED (and its SVG export, the CLI's
+/// bytes), a broken BED's diagnostic, an L-system at a depth; each new
+/// file is shown whole.
+async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
+    c.goto(&format!("http://{}/", server.addr)).await.unwrap();
+    let first = settled(c).await;
+    assert_eq!(first["ok"], true, "{first}");
+    let typed_view = view_box(c).await;
+
+    // A BED opened from disk: drawn as `stlc render` draws it, and fitted.
+    let fig9 = manifest_path("examples/fig9.od");
+    let bed = dir.join("fig9.bed");
+    std::fs::write(&bed, cli(&["compile", fig9.to_str().unwrap()])).unwrap();
+    open(c, &bed).await;
+    let opened = settled(c).await;
+    assert_eq!(opened["ok"], true, "{opened}");
+    assert_eq!(
+        opened["text"].as_str().unwrap(),
+        std::fs::read_to_string(&bed).unwrap()
+    );
+    assert_eq!(
+        js(c, "return document.getElementById('kind').value").await,
+        "bed"
+    );
+    // (The BED keeps the OD's LAYOUT, so the page shows it, as
+    // `--show-layout` does.)
+    let svg = cli(&[
+        "render",
+        bed.to_str().unwrap(),
+        "--show-layout",
+        "-f",
+        "svg",
+    ]);
+    same_bytes(answer_svg(c).await.as_bytes(), &svg, "the page's SVG");
+    let fitted = view_box(c).await;
+    assert!(same_box(&fitted, &fit_box(c).await), "{fitted:?}");
+    assert!(!same_box(&fitted, &typed_view), "{fitted:?} {typed_view:?}");
+    shot(c, "12-open-bed").await;
+
+    // SVG export: the file the browser saves is the CLI's.
+    click(c, "#export-svg").await;
+    same_bytes(&downloaded(downloads, "fig9.svg").await, &svg, "fig9.svg");
+
+    // A broken BED: its diagnostic at its line, the last picture kept.
+    let text = std::fs::read_to_string(&bed).unwrap();
+    let broken: Vec<String> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == 2 {
+                format!("JUNK {l}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect();
+    let bad = dir.join("bad.bed");
+    std::fs::write(&bad, broken.join("\n") + "\n").unwrap();
+    open(c, &bad).await;
+    let failed = settled(c).await;
+    assert_eq!(failed["ok"], false, "{failed}");
+    let listed = js(
+        c,
+        "const li = document.querySelector('[data-testid=diagnostics] li.error');
+         const mark = document.querySelector('#gutter span.error');
+         return {line: li && li.dataset.line, text: li && li.textContent,
+                 mark: mark && mark.textContent,
+                 stale: document.querySelector('#preview .lib.stale') !== null};",
+    )
+    .await;
+    assert_eq!(listed["line"], "3", "{listed}");
+    assert_eq!(listed["mark"], "3", "{listed}");
+    assert!(
+        listed["text"]
+            .as_str()
+            .unwrap()
+            .contains("expected `RULE` or a stem parameter"),
+        "{listed}"
+    );
+    assert_eq!(listed["stale"], true, "{listed}");
+    shot(c, "13-bad-bed").await;
+
+    // An L-system with a depth: the Koch snowflake at depth 3.
+    let koch = dir.join("koch.lsys");
+    std::fs::write(&koch, "axiom F++F++F\nangle 60\nrule F F-F++F-F\n").unwrap();
+    open(c, &koch).await;
+    assert_eq!(
+        js(c, "return document.getElementById('kind').value").await,
+        "lsys"
+    );
+    c.find(Locator::Id("depth"))
+        .await
+        .unwrap()
+        .send_keys("3")
+        .await
+        .unwrap();
+    let mut drawn = settled(c).await;
+    for _ in 0..40 {
+        if drawn["stems"] == 192 {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+        drawn = settled(c).await;
+    }
+    // 3 * 4^3 segments.
+    assert_eq!(drawn["stems"], 192, "{drawn}");
+    let svg = cli(&[
+        "render",
+        koch.to_str().unwrap(),
+        "--depth",
+        "3",
+        "-f",
+        "svg",
+    ]);
+    same_bytes(answer_svg(c).await.as_bytes(), &svg, "the page's SVG");
+    assert!(same_box(&view_box(c).await, &fit_box(c).await));
+    shot(c, "14-lsys").await;
+    click(c, "#export-svg").await;
+    same_bytes(&downloaded(downloads, "koch.svg").await, &svg, "koch.svg");
+}
+
+/// Back in Tree Maker: wheel zoom and drag-to-pan move only the view; a
+/// RoundRect drawn, Raise, a selected shape recoloured; Ctrl-Z and Ctrl-Y
+/// walk those edits back and forth.
+async fn editing(c: &Client, dir: &Path, downloads: &Path) {
+    let od = dir.join("tree.od");
+    std::fs::write(&od, TYPED).unwrap();
+    open(c, &od).await;
+    let opened = settled(c).await;
+    assert_eq!(opened["ok"], true, "{opened}");
+    assert_eq!(
+        js(c, "return document.getElementById('kind').value").await,
+        "od"
+    );
+    let fitted = view_box(c).await;
+    assert!(same_box(&fitted, &fit_box(c).await), "{fitted:?}");
+    let svg = answer_svg(c).await;
+    let lib = "return document.querySelector('#preview .lib').innerHTML";
+    let picture = js(c, lib).await;
+    let renders = "return window.stlc.timings.length";
+    let rendered = js(c, renders).await;
+
+    // The wheel zooms out around the pointer: the canvas point under it
+    // stays under it, the picture is the same.
+    let (px, py) = screen_of(c, 100.0, 150.0).await;
+    let mut notches = 0;
+    while view_box(c).await[2] < 240.0 {
+        wheel(c, px, py, 120).await;
+        notches += 1;
+        assert!(notches < 30, "the wheel does not zoom");
+    }
+    let zoomed = view_box(c).await;
+    let ratio = zoomed[2] / fitted[2];
+    let steps = libm::log(ratio) / libm::log(1.15);
+    assert!((steps - steps.round()).abs() < 1e-3, "{ratio}");
+    assert!((zoomed[3] / fitted[3] - ratio).abs() < 1e-3);
+    let (qx, qy) = screen_of(c, 100.0, 150.0).await;
+    assert!(
+        (qx - px).abs() < 1.0 && (qy - py).abs() < 1.0,
+        "{px},{py} -> {qx},{qy}"
+    );
+    // The wheel back towards the screen zooms in.
+    wheel(c, px, py, -120).await;
+    assert!((view_box(c).await[2] * 1.15 - zoomed[2]).abs() < 1e-2);
+    wheel(c, px, py, 120).await;
+
+    // Dragging empty space pans: the picture moves with the mouse.
+    let (sx, sy) = screen_of(c, 30.0, 60.0).await;
+    let grip = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x: sx,
+            y: sy,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::MoveTo {
+            duration: Some(Duration::from_millis(100)),
+            x: sx + 60.0,
+            y: sy + 40.0,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(grip).await.unwrap();
+    let (tx, ty) = screen_of(c, 30.0, 60.0).await;
+    assert!(
+        (tx - sx - 60.0).abs() < 1.0 && (ty - sy - 40.0).abs() < 1.0,
+        "{sx},{sy} -> {tx},{ty}"
+    );
+    let panned = view_box(c).await;
+    assert!((panned[2] - zoomed[2]).abs() < 1e-3);
+    assert_eq!(js(c, lib).await, picture);
+    assert_eq!(js(c, renders).await, rendered);
+    assert_eq!(answer_svg(c).await, svg);
+    shot(c, "15-zoomed-panned").await;
+
+    // A RoundRect drawn beside the rectangle: the canvas grows, the view
+    // stays where the user put it.
+    click(c, "[data-tool=RoundRect]").await;
+    click(c, "#colour option[value=clGreen]").await;
+    drag(c, (140.0, 40.0), (190.0, 100.0)).await;
+    let drawn = settled(c).await;
+    assert_eq!(drawn["ok"], true, "{drawn}");
+    let drawn_text = drawn["text"].as_str().unwrap().to_string();
+    assert_eq!(
+        layout_lines(&drawn_text),
+        [
+            "(clGreen) Rectangle (70, 120), 60, 75",
+            "(clGreen) RoundRect (140, 40), 50, 60, 6.3",
+        ]
+    );
+    let shape = js(c, "return window.stlc.answer.layout.shapes[1]").await;
+    assert_eq!(shape["type"], "RoundRect", "{shape}");
+    assert_eq!(shape["rx"], 6.3, "{shape}");
+    assert_eq!(shape["ry"], 6.3, "{shape}");
+    assert!(same_box(&view_box(c).await, &panned));
+    assert!(!same_box(&fit_box(c).await, &fitted));
+
+    // Raise the rectangle above the RoundRect.
+    click(c, "[data-tool=select]").await;
+    click_at(c, (100.0, 140.0)).await;
+    assert_eq!(js(c, "return window.stlc.selected").await, 0);
+    click(c, "#raise").await;
+    let raised = settled(c).await;
+    let raised_text = raised["text"].as_str().unwrap().to_string();
+    assert_eq!(
+        layout_lines(&raised_text),
+        [
+            "(clGreen) RoundRect (140, 40), 50, 60, 6.3",
+            "(clGreen) Rectangle (70, 120), 60, 75",
+        ]
+    );
+
+    // The paint colour applied to the selection rewrites its line.
+    click(c, "#colour option[value=clLime]").await;
+    let lime = settled(c).await;
+    assert_eq!(lime["ok"], true, "{lime}");
+    let lime_text = lime["text"].as_str().unwrap().to_string();
+    assert_eq!(
+        layout_lines(&lime_text),
+        [
+            "(clGreen) RoundRect (140, 40), 50, 60, 6.3",
+            "(clLime) Rectangle (70, 120), 60, 75",
+        ]
+    );
+    assert!(
+        answer_svg(c).await.to_lowercase().contains("#00ff00"),
+        "the lime rectangle is not drawn lime"
+    );
+    assert!(same_box(&view_box(c).await, &panned));
+    shot(c, "16-roundrect-raised-lime").await;
+
+    // Undo walks back through the three edits (and no further: opening a
+    // file starts a new history); redo walks forward.
+    for want in [
+        &raised_text,
+        &drawn_text,
+        &TYPED.to_string(),
+        &TYPED.to_string(),
+    ] {
+        chord(c, false, 'z').await;
+        let back = settled(c).await;
+        assert_eq!(back["text"].as_str().unwrap(), want.as_str());
+        assert_eq!(back["ok"], true, "{back}");
+    }
+    let shapes = js(c, "return window.stlc.shapes.length").await;
+    assert_eq!(shapes, 1);
+    chord(c, false, 'y').await;
+    assert_eq!(settled(c).await["text"].as_str().unwrap(), drawn_text);
+    chord(c, true, 'z').await;
+    assert_eq!(settled(c).await["text"].as_str().unwrap(), raised_text);
+    assert!(same_box(&view_box(c).await, &panned));
+    shot(c, "17-undone").await;
+
+    // Typing is one more step of the same history, undone in the editor.
+    js(
+        c,
+        "const s = document.getElementById('source'); s.focus();
+         s.setSelectionRange(s.value.length, s.value.length); return 0;",
+    )
+    .await;
+    c.find(Locator::Id("source"))
+        .await
+        .unwrap()
+        .send_keys("JUNK(")
+        .await
+        .unwrap();
+    let typed = settled(c).await;
+    assert_eq!(typed["ok"], false, "{typed}");
+    assert_eq!(
+        typed["text"].as_str().unwrap(),
+        format!("{raised_text}JUNK(")
+    );
+    chord(c, false, 'z').await;
+    let back = settled(c).await;
+    assert_eq!(back["text"].as_str().unwrap(), raised_text);
+    assert_eq!(back["ok"], true, "{back}");
+
+    // Another description pasted over the whole text is shown whole. (Its
+    // text reaches the clipboard by a real Ctrl-C in a scratch textarea.)
+    let fig9 = std::fs::read_to_string(manifest_path("examples/fig9.od")).unwrap();
+    c.execute(
+        "const t = document.createElement('textarea'); t.id = 'scratch';
+         t.value = arguments[0]; document.body.appendChild(t);
+         t.focus(); t.select(); return 0;",
+        vec![json!(fig9)],
+    )
+    .await
+    .unwrap();
+    chord(c, false, 'c').await;
+    js(
+        c,
+        "document.getElementById('scratch').remove();
+         const s = document.getElementById('source'); s.focus(); s.select(); return 0;",
+    )
+    .await;
+    chord(c, false, 'v').await;
+    let pasted = settled(c).await;
+    assert_eq!(pasted["text"].as_str().unwrap(), fig9);
+    assert_eq!(pasted["ok"], true, "{pasted}");
+    let shown = view_box(c).await;
+    assert!(same_box(&shown, &fit_box(c).await), "{shown:?}");
+    assert!(!same_box(&shown, &panned), "{shown:?}");
+    shot(c, "18-pasted").await;
+
+    // Tree Maker's SVG export, grown depth-first: `stlc render`'s bytes.
+    click(c, "#strategy option[value=dfs]").await;
+    let mut dfs = settled(c).await;
+    for _ in 0..20 {
+        if dfs["growth"] != pasted["growth"] {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+        dfs = settled(c).await;
+    }
+    assert_ne!(dfs["growth"], pasted["growth"]);
+    let od = dir.join("fig9.od");
+    std::fs::write(&od, &fig9).unwrap();
+    let svg = cli(&[
+        "render",
+        od.to_str().unwrap(),
+        "--show-layout",
+        "--growth",
+        "dfs",
+        "-f",
+        "svg",
+    ]);
+    click(c, "#export-svg").await;
+    same_bytes(&downloaded(downloads, "tree.svg").await, &svg, "tree.svg");
 }

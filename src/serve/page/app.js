@@ -36,6 +36,14 @@ const state = {
   editedAt: 0,
   timings: [],
   replayTimer: null,
+  // Show the whole new picture when its answer comes (a file opened, the
+  // kind changed, a description pasted over the old one); drawing never
+  // moves the view.
+  refit: true,
+  // Earlier texts for Ctrl-Z, later ones for Ctrl-Shift-Z / Ctrl-Y.
+  undo: [],
+  redo: [],
+  typedAt: -Infinity,
 };
 window.stlc = state; // for scripts and the browser test
 
@@ -57,6 +65,22 @@ function escapeHtml(s) {
 }
 
 src.addEventListener('scroll', () => { gutter.scrollTop = src.scrollTop; });
+src.addEventListener('beforeinput', (e) => {
+  if (e.inputType === 'historyUndo' || e.inputType === 'historyRedo') {
+    e.preventDefault();
+    if (e.inputType === 'historyUndo') undo(); else redo();
+    return;
+  }
+  // A burst of typing is one undo step: the text before it is kept.
+  const now = performance.now();
+  if (now - state.typedAt > 1000) remember();
+  state.typedAt = now;
+  // Pasting over most of the text is a new description: fit it.
+  if (e.inputType === 'insertFromPaste' || e.inputType === 'insertFromDrop') {
+    const replaced = src.selectionEnd - src.selectionStart;
+    if (replaced >= src.value.trim().length / 2) state.refit = true;
+  }
+});
 src.addEventListener('input', () => {
   state.editedAt = performance.now();
   updateGutter(currentMarks);
@@ -75,6 +99,27 @@ let timer = null;
 function schedule() {
   clearTimeout(timer);
   timer = setTimeout(refresh, DEBOUNCE_MS);
+}
+
+// Keeps `src.value` for Ctrl-Z before an edit replaces it.
+function remember() {
+  const u = state.undo;
+  if (u.length && u[u.length - 1] === src.value) return;
+  u.push(src.value);
+  if (u.length > 100) u.shift();
+  state.redo = [];
+}
+
+function undo() { travel(state.undo, state.redo); }
+function redo() { travel(state.redo, state.undo); }
+function travel(from, to) {
+  if (!from.length) return;
+  to.push(src.value);
+  const text = from.pop();
+  state.selected = -1;
+  state.typedAt = -Infinity;
+  cancelPolygon();
+  setText(text);
 }
 
 function setText(text) {
@@ -256,7 +301,11 @@ function draw() {
   }
   const content = a.view || grownNoLayout ? box : [0, 0, Number(lib.getAttribute('width')), Number(lib.getAttribute('height'))];
   state.fitView = content || [0, 0, 100, 100];
-  if (!state.view || state.kindChanged) { state.view = state.fitView.slice(); state.kindChanged = false; }
+  // Refit once the answer is to the new text itself (not to one sent before).
+  if (!state.view || (state.refit && state.answerText === src.value)) {
+    state.view = state.fitView.slice();
+    state.refit = false;
+  }
   el('g', { class: 'replay-layer' }, preview);
   if (grownNoLayout) showStems(Infinity);
   el('g', { class: 'overlay' }, preview);
@@ -553,11 +602,14 @@ preview.addEventListener('dblclick', (e) => {
 });
 
 window.addEventListener('keydown', (e) => {
-  if (e.target === src || e.target.tagName === 'INPUT' || e.target.tagName === 'SELECT') {
+  // Number fields keep their own undo; the editor and the rest share ours.
+  if (e.target === src || e.target.tagName === 'INPUT') {
     if ((e.ctrlKey || e.metaKey) && e.key === 's') { e.preventDefault(); save(); }
+    else if (e.target === src) undoKey(e);
     return;
   }
   if ((e.ctrlKey || e.metaKey) && e.key === 's') { e.preventDefault(); save(); return; }
+  if (undoKey(e)) return;
   if (e.key === 'Escape') cancelPolygon();
   else if (e.key === 'Delete' || e.key === 'Backspace') deleteSelected();
   else if (e.key === 'f') fit();
@@ -567,6 +619,19 @@ window.addEventListener('keydown', (e) => {
   else if (e.key === 'e') setTool('Ellipse');
   else if (e.key === 'p') setTool('Polygon');
 });
+
+// Ctrl-Z, Ctrl-Shift-Z and Ctrl-Y, in the editor and out of it: one
+// history for typing and drawing (the browser's own is lost whenever a
+// drawing edit rewrites the text).
+function undoKey(e) {
+  if (!(e.ctrlKey || e.metaKey) || e.altKey) return false;
+  const k = e.key.toLowerCase();
+  if (k === 'z' && !e.shiftKey) undo();
+  else if ((k === 'z' && e.shiftKey) || k === 'y') redo();
+  else return false;
+  e.preventDefault();
+  return true;
+}
 
 $('delete').addEventListener('click', deleteSelected);
 $('raise').addEventListener('click', () => reorder(1));
@@ -650,6 +715,8 @@ function moveRoot(p) {
   const inSync = text === state.answerText && state.rootSpan;
   if (!inSync) { drawOverlay(); return; }
   const [a, b] = state.rootSpan;
+  remember();
+  state.typedAt = -Infinity;
   setText(text.slice(0, a) + `(${num(state.root[0])}, ${num(state.root[1])})` + text.slice(b));
   drawOverlay();
 }
@@ -697,6 +764,8 @@ function commitShapes() {
   }
   // Spans of the new text are known only after the next answer; until
   // then, edits locate the section by its keywords.
+  remember();
+  state.typedAt = -Infinity;
   setText(next);
   drawOverlay();
 }
@@ -708,8 +777,7 @@ function setKind(kind) {
   document.body.classList.toggle('renderer', kind !== 'od');
   document.body.classList.toggle('lsys', kind === 'lsys');
   $('mode-name').textContent = kind === 'od' ? 'Tree Maker' : 'Tree Renderer';
-  state.kindChanged = true;
-  state.view = null;
+  state.refit = true;
 }
 
 $('kind').addEventListener('change', () => { setKind($('kind').value); schedule(); });
@@ -721,14 +789,25 @@ $('strategy').addEventListener('change', () => { state.editedAt = performance.no
 
 $('open').addEventListener('click', () => $('open-file').click());
 $('open-file').addEventListener('change', async () => {
-  const f = $('open-file').files[0];
+  const input = $('open-file');
+  const f = input.files[0];
   if (!f) return;
   const text = await f.text();
+  // Cleared, so that opening the same file again reads it again.
+  input.value = '';
   const ext = (f.name.split('.').pop() || '').toLowerCase();
   setKind(ext === 'bed' ? 'bed' : ext === 'lsys' || ext === 'ls' ? 'lsys' : 'od');
   state.name = f.name;
   state.canSave = false;
   $('file-name').textContent = f.name + ' (Save downloads)';
+  document.title = `${f.name} - stlc`;
+  state.selected = -1;
+  cancelPolygon();
+  // A new file starts a new history.
+  state.undo = [];
+  state.redo = [];
+  state.typedAt = -Infinity;
+  src.selectionStart = src.selectionEnd = 0;
   setText(text);
 });
 
