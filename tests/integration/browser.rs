@@ -1066,17 +1066,29 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     let drawn = settled(c).await;
     assert_eq!(drawn["ok"], true, "{drawn}");
     let drawn_text = drawn["text"].as_str().unwrap().to_string();
-    assert_eq!(
-        layout_lines(&drawn_text),
-        [
-            "(clGreen) Rectangle (70, 120), 60, 75",
-            "(clGreen) RoundRect (140, 40), 50, 60, 6.3",
-        ]
-    );
+    let lines = layout_lines(&drawn_text);
+    assert_eq!(lines.len(), 2, "{lines:?}");
+    assert_eq!(lines[0], "(clGreen) Rectangle (70, 120), 60, 75");
+    // The drag lands on whole screen pixels at a zoom of 1.15^k, so each
+    // number is the intended one within one canvas unit; the corner radius
+    // is an eighth of the shorter side, to 0.1.
+    let rr = lines[1].clone();
+    let nums: Vec<f64> = rr
+        .trim_start_matches("(clGreen) RoundRect ")
+        .split(|ch: char| !(ch.is_ascii_digit() || ch == '.'))
+        .filter(|t| !t.is_empty())
+        .map(|t| t.parse().unwrap())
+        .collect();
+    assert_eq!(nums.len(), 5, "{rr}");
+    for (got, want) in nums.iter().zip([140.0, 40.0, 50.0, 60.0]) {
+        assert!((got - want).abs() <= 1.0, "{rr}");
+    }
+    let radius = (nums[2].min(nums[3]) / 8.0 * 10.0).round() / 10.0;
+    assert!((nums[4] - radius).abs() < 1e-9, "{rr}");
     let shape = js(c, "return window.stlc.answer.layout.shapes[1]").await;
     assert_eq!(shape["type"], "RoundRect", "{shape}");
-    assert_eq!(shape["rx"], 6.3, "{shape}");
-    assert_eq!(shape["ry"], 6.3, "{shape}");
+    assert_eq!(shape["rx"], nums[4], "{shape}");
+    assert_eq!(shape["ry"], nums[4], "{shape}");
     assert!(same_box(&view_box(c).await, &panned));
     assert!(!same_box(&fit_box(c).await, &fitted));
 
@@ -1089,10 +1101,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     let raised_text = raised["text"].as_str().unwrap().to_string();
     assert_eq!(
         layout_lines(&raised_text),
-        [
-            "(clGreen) RoundRect (140, 40), 50, 60, 6.3",
-            "(clGreen) Rectangle (70, 120), 60, 75",
-        ]
+        [rr.as_str(), "(clGreen) Rectangle (70, 120), 60, 75",]
     );
 
     // The paint colour applied to the selection rewrites its line.
@@ -1102,10 +1111,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     let lime_text = lime["text"].as_str().unwrap().to_string();
     assert_eq!(
         layout_lines(&lime_text),
-        [
-            "(clGreen) RoundRect (140, 40), 50, 60, 6.3",
-            "(clLime) Rectangle (70, 120), 60, 75",
-        ]
+        [rr.as_str(), "(clLime) Rectangle (70, 120), 60, 75",]
     );
     assert!(
         answer_svg(c).await.to_lowercase().contains("#00ff00"),
