@@ -209,6 +209,8 @@ fn run(
         format,
         size: None,
         max_svg_segments: s.max_svg_segments,
+        // As the CLI's default: level of detail for an .lsys.
+        exact: false,
     };
     let mut image = Vec::new();
     let rendered = pipeline::render(&scene, &look, &opts, &mut image, &mut NoProgress)?;

@@ -1,9 +1,11 @@
 //! `.od` and `.bed` files into [`Description`], names resolved.
 //!
 //! The grammar (`stl_` section of `grammar.pest`) reads the header, the
-//! sections and the layout, but only *tokenises* rule bodies and seeds: a
-//! flat list of words, brackets, braces, commas and turn symbols. This
-//! module then
+//! sections and the layout, but reads rule bodies and the seed only as
+//! chunks of text (one parser token each, spaces and comments included):
+//! `lex` tokenises them as a stream into words, brackets, braces, commas
+//! and turn symbols, so a generated seed of millions of terms never becomes
+//! a token list. This module then
 //!
 //! 1. splits each word (`FR1`, `R1R2R2`) left to right by longest match
 //!    against the declared rule names, the leftovers being drawing letters
