@@ -197,7 +197,8 @@ fn walk_pays(visits: u64, cuts: u64, word: u64, max_symbols: u64) -> bool {
 ///
 /// With `dfs`, when the turtle asks for a level of detail
 /// ([`Turtle::detail`]) and the memoized geometry applies, subtrees that
-/// fit inside it are drawn as one stand-in segment each; the traversal
+/// fit inside it are drawn as one stand-in segment each, when that pays
+/// ([`Plan::walk`]; else every segment is drawn by the compiled path); the traversal
 /// limit (`limits.max_symbols`) then bounds the symbols and stand-ins
 /// visited, which the memo counts before drawing. Otherwise every segment
 /// is drawn.
