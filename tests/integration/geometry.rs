@@ -491,9 +491,9 @@ fn the_plan_counts_what_each_path_visits() {
 }
 
 /// Ten plain `F` and one small bush `B`: cutting the bush saves too little
-/// (11 of 18 symbols visited, over half), so the exact path draws and the
-/// segments are the exact ones; with a bush three times as big (11 of 34)
-/// the walk draws it as one stand-in.
+/// (11 of 18 symbols visited, over `LOD_MAX_VISITS` = 0.35), so the exact
+/// path draws and the segments are the exact ones; with a bush three times
+/// as big (11 of 34, 0.32) the walk draws it as one stand-in.
 #[test]
 fn a_cut_that_saves_too_little_draws_exactly() {
     let small = sys("axiom FFFFFFFFFFB\nrule B [+F][-F]\nangle 90\nlength 1\n");

@@ -130,7 +130,7 @@ fn measured(g: &Geometry) -> Measured {
 /// length); otherwise the exact path draws (the same picture as
 /// `--exact`), being faster per symbol. Chosen by measurement
 /// (docs/rendering.md, *When the walk is used*).
-pub const LOD_MAX_VISITS: f64 = 0.5;
+pub const LOD_MAX_VISITS: f64 = 0.35;
 
 /// The memoized geometry of one `.lsys` at one depth, built once per
 /// render and used for everything the render needs from it: fitting the
