@@ -113,23 +113,36 @@ pub fn render(
 ) -> Result<Rendered, Diagnostics> {
     let style = style(scene, look);
     let (view, underlay) = layout_view(scene, look.show_layout);
-    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
-    let frame = match (&scene.what, view) {
-        (_, Some(v)) => Frame::View(v),
-        // At a level of detail, an L-system is fitted from its memoized
-        // geometry (no bounding pass), when the memo applies.
-        (What::Lsys { sys, depth }, None)
+    // At a level of detail, an L-system's memoized geometry (when it
+    // applies) is built once and serves the whole render: fitting (no
+    // bounding pass), an SVG's count and the drawing.
+    let memo = match &scene.what {
+        What::Lsys { sys, depth }
             if !opts.exact && scene.derivation == crate::interpret::Derivation::Dfs =>
         {
-            match crate::interpret::lsys::measure(sys, *depth, sys.length) {
-                Ok(m) => Frame::Known {
-                    bbox: m.bbox,
-                    segments: m.segments,
-                },
-                Err(_) => Frame::Fit,
+            scene.limits.check_depth(*depth)?;
+            crate::interpret::lsys::Memo::new(sys, *depth)
+                .ok()
+                .map(|m| (m, sys, *depth))
+        }
+        _ => None,
+    };
+    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| match &memo {
+        Some((m, sys, depth)) => {
+            crate::interpret::lsys::draw_with(m, sys, *depth, &scene.limits, t, p)
+        }
+        None => scene.draw(t, p),
+    };
+    let frame = match (view, &memo) {
+        (Some(v), _) => Frame::View(v),
+        (None, Some((m, _, _))) => {
+            let m = m.measured();
+            Frame::Known {
+                bbox: m.bbox,
+                segments: m.segments,
             }
         }
-        _ => Frame::Fit,
+        (None, None) => Frame::Fit,
     };
     let counted =
         crate::render::render_framed(&mut drawing, frame, &underlay, &style, opts, out, progress)?;

@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use proptest::prelude::*;
 use stlc::interpret::Derivation;
-use stlc::interpret::lsys::{Measured, Refusal, draw, draw_into, draw_lod, measure};
+use stlc::interpret::lsys::{Measured, Memo, Refusal, draw, draw_into, draw_lod, measure};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
@@ -460,4 +460,92 @@ fn depth_57_renders_at_a_level_of_detail_and_exact_refuses() {
 
 fn support_path(rel: &str) -> String {
     crate::support::manifest_path(rel).display().to_string()
+}
+
+// ------------------------------------- walk or exact path: the decision --
+
+/// `F -> F[+F]F[-F]F` (11 symbols, 5 `F`) at a detail of 4 steps cuts
+/// exactly the pieces one level above the terminals (box about 3 steps;
+/// two levels up the trunk alone is 9 steps long). By hand: the word has
+/// `L(d) = 5 L(d-1) + 6`, `L(0) = 1`, so `2.5 * 5^d - 1.5` symbols; the
+/// walk visits each expanded symbol and its successor's 6 brackets and
+/// turns, `U(r) = 1 + 6 + 5 U(r-1)` down to `U(1) = 1` (the stand-in), so
+/// `2.75 * 5^(d-1) - 1.75`; the stand-ins are the `5^(d-1)` pieces at
+/// level 1. Visits are about 0.22 of the word: the walk draws.
+#[test]
+fn the_plan_counts_what_each_path_visits() {
+    let s = sys("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\nlength 1\n");
+    for d in [3u32, 8, 11] {
+        let memo = Memo::new(&s, d).unwrap();
+        let p = 5u64.pow(d - 1);
+        let plan = memo.plan(4.0, Limits::default().max_symbols);
+        assert_eq!(plan.word, (5 * 5u64.pow(d) - 3) / 2, "depth {d}");
+        assert_eq!(plan.visits, (11 * p - 7) / 4, "depth {d}");
+        assert_eq!(plan.cuts, p, "depth {d}");
+        assert!(plan.walk);
+        // Nothing under the detail: nothing cut, the exact path draws.
+        let none = memo.plan(0.5, Limits::default().max_symbols);
+        assert_eq!(none.cuts, 0);
+        assert!(!none.walk);
+    }
+}
+
+/// Ten plain `F` and one small bush `B`: cutting the bush saves too little
+/// (11 of 18 symbols visited, over `LOD_MAX_VISITS` = 0.35), so the exact
+/// path draws and the segments are the exact ones; with a bush three times
+/// as big (11 of 34, 0.32) the walk draws it as one stand-in.
+#[test]
+fn a_cut_that_saves_too_little_draws_exactly() {
+    let small = sys("axiom FFFFFFFFFFB\nrule B [+F][-F]\nangle 90\nlength 1\n");
+    let big = sys("axiom FFFFFFFFFFB\nrule B [+F][-F][+F][-F][+F][-F]\nangle 90\nlength 1\n");
+    let max = Limits::default().max_symbols;
+    // The bush spans 2 steps: a detail of 3 cuts it.
+    let plan = Memo::new(&small, 1).unwrap().plan(3.0, max);
+    assert_eq!(
+        (plan.visits, plan.word, plan.cuts, plan.walk),
+        (11, 18, 1, false)
+    );
+    let t = lod(&small, 1, 3.0);
+    let mut exact = Recorder::default();
+    draw_into(
+        &small,
+        1,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut exact,
+        &mut NoProgress,
+    )
+    .unwrap();
+    assert_eq!(exact.segments.len(), 12);
+    assert_eq!(t.blots, 0);
+    assert_eq!(t.rec.segments, exact.segments);
+    // Asked for the walk regardless, it cuts the bush.
+    let mut forced = Detailed {
+        detail: 3.0,
+        ..Detailed::default()
+    };
+    assert!(
+        draw_lod(
+            &small,
+            1,
+            3.0,
+            &Limits::default(),
+            &mut forced,
+            &mut NoProgress
+        )
+        .unwrap()
+    );
+    assert_eq!((forced.blots, forced.rec.segments.len()), (1, 11));
+
+    let plan = Memo::new(&big, 1).unwrap().plan(3.0, max);
+    assert_eq!(
+        (plan.visits, plan.word, plan.cuts, plan.walk),
+        (11, 34, 1, true)
+    );
+    let t = lod(&big, 1, 3.0);
+    assert_eq!((t.blots, t.rec.segments.len()), (1, 11));
+    // Over the traversal budget the exact path would refuse: the walk
+    // draws whatever it saves.
+    let plan = Memo::new(&small, 1).unwrap().plan(3.0, 17);
+    assert!(plan.walk);
 }

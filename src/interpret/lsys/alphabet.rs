@@ -71,7 +71,7 @@ impl Alphabet {
     /// level, only symbols with a rule are recomputed, and once a level
     /// equals the one before (saturated or stationary lengths) every later
     /// level is the same, so the rest is filled in at once.
-    fn word_lengths(&self, depth: u32) -> Vec<u64> {
+    pub(super) fn word_lengths(&self, depth: u32) -> Vec<u64> {
         let mut len = vec![1u64; self.chars.len()];
         let mut out = Vec::with_capacity(depth as usize + 1);
         out.push(self.word_len(&len));

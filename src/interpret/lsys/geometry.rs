@@ -33,6 +33,7 @@
 //! a subtree whose whole drawing fits inside `detail` canvas units is drawn
 //! as one stand-in segment instead of being expanded.
 
+use std::cell::RefCell;
 use std::collections::HashMap;
 
 use super::{Alphabet, PROGRESS_STEP};
@@ -124,8 +125,10 @@ struct Pen {
 }
 
 /// The memo; see the module documentation.
-pub(crate) struct Geometry<'a> {
-    alpha: &'a Alphabet,
+pub(crate) struct Geometry {
+    alpha: Alphabet,
+    /// Saturating length of the whole word (what the exact path visits).
+    word: u64,
     depth: u32,
     /// Terminal op of every symbol.
     ops: Vec<Option<Op>>,
@@ -145,7 +148,9 @@ pub(crate) struct Geometry<'a> {
     /// Per level `r`, the `(s, key)` needed, in the order first needed.
     needed: Vec<Vec<(u32, i64)>>,
     pieces: Vec<Piece>,
-    headings: Headings,
+    /// Directions (a lazily filled cache, hence the cell: the memo is
+    /// shared by the render's passes).
+    headings: RefCell<Headings>,
     len: f64,
 }
 
@@ -178,11 +183,11 @@ fn balanced(word: &[u32], ops: &[Option<Op>]) -> bool {
     open == 0
 }
 
-impl<'a> Geometry<'a> {
+impl Geometry {
     /// The memo of `alpha` (of `sys`) derived to `depth`, unit step `len`,
     /// for the headings the axiom reaches; at most `budget` pieces.
     pub(crate) fn new(
-        alpha: &'a Alphabet,
+        alpha: Alphabet,
         sys: &LSystem,
         depth: u32,
         len: f64,
@@ -202,8 +207,10 @@ impl<'a> Geometry<'a> {
             return Err(Refusal::Budget);
         }
         let period = period_of(sys.angle);
+        let word = alpha.word_lengths(depth)[depth as usize];
         let mut g = Geometry {
             alpha,
+            word,
             depth,
             ops,
             period,
@@ -214,7 +221,7 @@ impl<'a> Geometry<'a> {
             index: HashMap::new(),
             needed: vec![Vec::new(); levels],
             pieces: Vec::new(),
-            headings: Headings::starting(sys.heading, sys.angle),
+            headings: RefCell::new(Headings::starting(sys.heading, sys.angle)),
             len,
         };
         g.turns()?;
@@ -297,6 +304,12 @@ impl<'a> Geometry<'a> {
 
     fn flip_of(&self, s: u32, r: u32) -> bool {
         self.flip[r as usize * self.alpha.chars.len() + s as usize]
+    }
+
+    /// Saturating length of the whole word: the symbols the exact path
+    /// visits.
+    pub(crate) fn word(&self) -> u64 {
+        self.word
     }
 
     /// Saturating number of `F` in the whole word.
@@ -402,7 +415,7 @@ impl<'a> Geometry<'a> {
 
     /// Applies child `c` (at remaining depth `r`) to the pen, adding what it
     /// draws to `acc`.
-    fn apply(&mut self, c: u32, r: u32, pen: &mut Pen, acc: &mut Piece) {
+    fn apply(&self, c: u32, r: u32, pen: &mut Pen, acc: &mut Piece) {
         if self.is_piece(c, r) {
             let p = self.piece(c, r, pen.k);
             let sg = if pen.flip { -1.0 } else { 1.0 };
@@ -424,14 +437,14 @@ impl<'a> Geometry<'a> {
         }
         match self.ops[c as usize] {
             Some(Op::Draw) => {
-                let (dx, dy) = self.headings.dir(pen.k, pen.flip);
+                let (dx, dy) = self.headings.borrow_mut().dir(pen.k, pen.flip);
                 acc.add(pen.x, pen.y);
                 pen.x += dx * self.len;
                 pen.y += dy * self.len;
                 acc.add(pen.x, pen.y);
             }
             Some(Op::Move) => {
-                let (dx, dy) = self.headings.dir(pen.k, pen.flip);
+                let (dx, dy) = self.headings.borrow_mut().dir(pen.k, pen.flip);
                 pen.x += dx * self.len;
                 pen.y += dy * self.len;
                 acc.moves = true;
@@ -444,7 +457,7 @@ impl<'a> Geometry<'a> {
 
     /// Composes `word` (symbols at remaining depth `r`) from the origin at
     /// heading `k`: its piece and where it ends.
-    fn compose(&mut self, word: &[u32], r: u32, k: i64) -> (Piece, Pen) {
+    fn compose(&self, word: &[u32], r: u32, k: i64) -> (Piece, Pen) {
         let mut pen = Pen {
             x: 0.0,
             y: 0.0,
@@ -470,11 +483,10 @@ impl<'a> Geometry<'a> {
     }
 
     fn compose_all(&mut self) {
-        let alpha = self.alpha;
         for r in 1..=self.depth {
             let level = std::mem::take(&mut self.needed[r as usize]);
             for &(s, key) in &level {
-                let succ = alpha.succ[s as usize].as_deref().unwrap_or(&[]);
+                let succ = self.alpha.succ[s as usize].as_deref().unwrap_or(&[]);
                 let (piece, _) = self.compose(succ, r - 1, key);
                 self.pieces.push(piece);
             }
@@ -484,9 +496,8 @@ impl<'a> Geometry<'a> {
 
     /// The box of the whole drawing (`None` if nothing is drawn) and where
     /// the turtle ends, starting at the origin.
-    pub(crate) fn whole(&mut self) -> (Option<BBox>, Point) {
-        let alpha = self.alpha;
-        let (p, pen) = self.compose(&alpha.axiom, self.depth, 0);
+    pub(crate) fn whole(&self) -> (Option<BBox>, Point) {
+        let (p, pen) = self.compose(&self.alpha.axiom, self.depth, 0);
         let bbox = p.draws().then_some(BBox {
             min_x: p.min_x,
             min_y: p.min_y,
@@ -598,7 +609,7 @@ impl<'a> Geometry<'a> {
     /// does, with its expression, so where nothing is cut the segments are
     /// bit-identical to the exact drawing. Returns where the turtle ends.
     pub(crate) fn draw_lod<T: Turtle>(
-        &mut self,
+        &self,
         detail: f64,
         mut turtle: T,
         progress: &mut dyn Progress,
@@ -616,8 +627,9 @@ impl<'a> Geometry<'a> {
             k: i64,
             flip: bool,
         }
-        let alpha = self.alpha;
+        let alpha = &self.alpha;
         let len = self.len;
+        let mut headings = self.headings.borrow().clone();
         let mut frames = vec![Frame {
             word: &alpha.axiom,
             at: 0,
@@ -685,7 +697,7 @@ impl<'a> Geometry<'a> {
             match self.ops[c as usize] {
                 Some(Op::Draw) => {
                     // Interp::forward: pos + dir * len.
-                    let (dx, dy) = self.headings.dir(k, flip);
+                    let (dx, dy) = headings.dir(k, flip);
                     let to = Point::new(x + dx * len, y + dy * len);
                     turtle.segment(Segment {
                         from: Point::new(x, y),
@@ -695,7 +707,7 @@ impl<'a> Geometry<'a> {
                     (x, y) = (to.x, to.y);
                 }
                 Some(Op::Move) => {
-                    let (dx, dy) = self.headings.dir(k, flip);
+                    let (dx, dy) = headings.dir(k, flip);
                     (x, y) = (x + dx * len, y + dy * len);
                 }
                 Some(Op::Turn(t)) => k = k.wrapping_add(i64::from(t)),

@@ -112,14 +112,84 @@ pub struct Measured {
 /// [`GEOMETRY_ENTRIES`] pieces are held. `depth` must be within the
 /// limits (callers check it).
 pub fn measure(sys: &LSystem, depth: u32, len: f64) -> Result<Measured, Refusal> {
-    let alpha = Alphabet::new(sys);
-    let mut g = Geometry::new(&alpha, sys, depth, len, GEOMETRY_ENTRIES)?;
+    let g = Geometry::new(Alphabet::new(sys), sys, depth, len, GEOMETRY_ENTRIES)?;
+    Ok(measured(&g))
+}
+
+fn measured(g: &Geometry) -> Measured {
     let (bbox, end) = g.whole();
-    Ok(Measured {
+    Measured {
         bbox,
         end,
         segments: g.segments(),
-    })
+    }
+}
+
+/// The level-of-detail walk draws only when it visits at most this
+/// fraction of the symbols the exact compiled path visits (the word's
+/// length); otherwise the exact path draws (the same picture as
+/// `--exact`), being faster per symbol. Chosen by measurement
+/// (docs/rendering.md, *When the walk is used*).
+pub const LOD_MAX_VISITS: f64 = 0.35;
+
+/// The memoized geometry of one `.lsys` at one depth, built once per
+/// render and used for everything the render needs from it: fitting the
+/// picture ([`Memo::measured`]), deciding how to draw ([`Memo::plan`]) and
+/// drawing ([`draw_with`]).
+pub struct Memo {
+    g: Geometry,
+}
+
+/// What drawing at a level of detail will do, counted from the memo
+/// before drawing ([`Memo::plan`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Plan {
+    /// Symbols and stand-ins the level-of-detail walk would visit
+    /// (saturating).
+    pub visits: u64,
+    /// Symbols the exact compiled path visits: the word's length
+    /// (saturating).
+    pub word: u64,
+    /// Stand-ins that draw or move (approximations); with none, the walk
+    /// would draw the exact segments.
+    pub cuts: u64,
+    /// Whether the walk draws (else the exact path): something is cut, and
+    /// it visits at most [`LOD_MAX_VISITS`] of the word, or the word is
+    /// over `max_symbols` (the exact path would refuse).
+    pub walk: bool,
+}
+
+impl Memo {
+    /// The memo of `sys` derived to `depth` with its own step, or why it
+    /// does not apply. `depth` must be within the limits (callers check
+    /// it).
+    pub fn new(sys: &LSystem, depth: u32) -> Result<Memo, Refusal> {
+        let step = Linear::constant(sys.length).at(0);
+        Geometry::new(Alphabet::new(sys), sys, depth, step, GEOMETRY_ENTRIES).map(|g| Memo { g })
+    }
+
+    /// Box, end and segment count of the whole drawing.
+    pub fn measured(&self) -> Measured {
+        measured(&self.g)
+    }
+
+    /// What drawing at `detail` canvas units will do, and whether the walk
+    /// or the exact path draws, for a traversal budget of `max_symbols`.
+    pub fn plan(&self, detail: f64, max_symbols: u64) -> Plan {
+        let [visits, _, cuts] = self.g.lod_cost(detail);
+        let word = self.g.word();
+        Plan {
+            visits,
+            word,
+            cuts,
+            walk: walk_pays(visits, cuts, word, max_symbols),
+        }
+    }
+}
+
+/// The rule of [`Plan::walk`].
+fn walk_pays(visits: u64, cuts: u64, word: u64, max_symbols: u64) -> bool {
+    cuts > 0 && (word > max_symbols || visits as f64 <= LOD_MAX_VISITS * word as f64)
 }
 
 /// Draws `sys` derived to `depth` into `turtle`, starting at the origin
@@ -127,7 +197,8 @@ pub fn measure(sys: &LSystem, depth: u32, len: f64) -> Result<Measured, Refusal>
 ///
 /// With `dfs`, when the turtle asks for a level of detail
 /// ([`Turtle::detail`]) and the memoized geometry applies, subtrees that
-/// fit inside it are drawn as one stand-in segment each; the traversal
+/// fit inside it are drawn as one stand-in segment each, when that pays
+/// ([`Plan::walk`]; else every segment is drawn by the compiled path); the traversal
 /// limit (`limits.max_symbols`) then bounds the symbols and stand-ins
 /// visited, which the memo counts before drawing. Otherwise every segment
 /// is drawn.
@@ -139,13 +210,32 @@ pub fn draw(
     turtle: &mut dyn Turtle,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
-    if strategy == Derivation::Dfs
-        && let Some(detail) = turtle.detail()
-        && lod(sys, depth, detail, limits, turtle, progress, false)?
+    if strategy == Derivation::Dfs && turtle.detail().is_some() {
+        limits.check_depth(depth)?;
+        if let Ok(memo) = Memo::new(sys, depth) {
+            return draw_with(&memo, sys, depth, limits, turtle, progress);
+        }
+    }
+    draw_into(sys, depth, strategy, limits, turtle, progress).map(|_| ())
+}
+
+/// [`draw`] with `--strategy dfs` and the memo of `sys` at `depth` already
+/// built (once per render): at the turtle's level of detail, by the walk
+/// when [`Memo::plan`] says it pays, else by the exact compiled path.
+pub fn draw_with(
+    memo: &Memo,
+    sys: &LSystem,
+    depth: u32,
+    limits: &Limits,
+    turtle: &mut dyn Turtle,
+    progress: &mut dyn Progress,
+) -> Result<(), Diagnostics> {
+    if let Some(detail) = turtle.detail()
+        && lod(&memo.g, depth, detail, limits, turtle, progress, false)?
     {
         return Ok(());
     }
-    draw_into(sys, depth, strategy, limits, turtle, progress).map(|_| ())
+    draw_into(sys, depth, Derivation::Dfs, limits, turtle, progress).map(|_| ())
 }
 
 /// Draws `sys` at a level of detail of `detail` canvas units with the
@@ -160,14 +250,18 @@ pub fn draw_lod(
     turtle: &mut dyn Turtle,
     progress: &mut dyn Progress,
 ) -> Result<bool, Diagnostics> {
-    lod(sys, depth, detail, limits, turtle, progress, true)
+    limits.check_depth(depth)?;
+    match Memo::new(sys, depth) {
+        Ok(memo) => lod(&memo.g, depth, detail, limits, turtle, progress, true),
+        Err(_) => Ok(false),
+    }
 }
 
-/// The level-of-detail walk; unless `always`, only when something is cut
-/// (otherwise the drawing is the exact one, which the compiled program
-/// draws faster). Returns whether it drew.
+/// The level-of-detail walk; unless `always`, only when it pays
+/// ([`Plan::walk`]: otherwise the compiled exact program draws faster).
+/// Returns whether it drew.
 fn lod(
-    sys: &LSystem,
+    g: &Geometry,
     depth: u32,
     detail: f64,
     limits: &Limits,
@@ -178,14 +272,8 @@ fn lod(
     if !(detail.is_finite() && detail >= 0.0) {
         return Ok(false);
     }
-    limits.check_depth(depth)?;
-    let alpha = Alphabet::new(sys);
-    let step = Linear::constant(sys.length).at(0);
-    let Ok(mut g) = Geometry::new(&alpha, sys, depth, step, GEOMETRY_ENTRIES) else {
-        return Ok(false);
-    };
     let [units, _, cuts] = g.lod_cost(detail);
-    if cuts == 0 && !always {
+    if !always && !walk_pays(units, cuts, g.word(), limits.max_symbols) {
         return Ok(false);
     }
     if units > limits.max_symbols {
