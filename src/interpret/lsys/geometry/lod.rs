@@ -1,0 +1,226 @@
+//! The level of detail on the memo: which pieces are cut at a detail,
+//! what a walk at that detail will visit (counted before drawing), and the
+//! walk itself ([`Geometry::draw_lod`]), which draws a cut piece as one
+//! stand-in and every other symbol as the exact drawing does.
+
+use super::*;
+
+impl Geometry {
+    /// Whether a piece is drawn as a stand-in at `detail`: one whose box is
+    /// smaller than `detail`, or one that draws nothing and moves less than
+    /// `detail` or not at all (only its net turn matters; exact). At
+    /// `detail` 0 nothing that draws or moves is cut, so the segments are
+    /// the exact drawing's, bit for bit.
+    fn cut(&self, c: u32, r: u32, p: &Piece, detail: f64) -> bool {
+        if p.draws() {
+            // A connected run's stand-in is its chord, one line where the
+            // exact drawing folds a winding line at FOLD_PX: cut it at half
+            // the detail, about that tolerance.
+            let at = r as usize * self.alpha.chars.len() + c as usize;
+            let d = if self.jumps[at] == 0 {
+                detail / 2.0
+            } else {
+                detail
+            };
+            p.extent() < d
+        } else {
+            !p.moves || libm::hypot(p.dx, p.dy) < detail
+        }
+    }
+
+    /// What [`Geometry::draw_lod`] at `detail` will do, counted from the
+    /// memo before drawing (saturating): `[units, segments, stand-ins]`,
+    /// the symbols and stand-ins it visits, the segments and stand-ins it
+    /// hands over, and the stand-ins that draw or move (the approximations:
+    /// with none, the drawing is the exact one).
+    pub(crate) fn lod_cost(&self, detail: f64) -> [u64; 3] {
+        let add = |a: [u64; 3], b: [u64; 3]| {
+            [
+                a[0].saturating_add(b[0]),
+                a[1].saturating_add(b[1]),
+                a[2].saturating_add(b[2]),
+            ]
+        };
+        let n = self.pieces.len();
+        let mut cost: Vec<[u64; 3]> = Vec::with_capacity(n);
+        let child = |c: u32, r: u32, k: i64, cost: &[[u64; 3]]| -> [u64; 3] {
+            if self.is_piece(c, r) {
+                let i = self.index.get(&(c, r, self.key(k))).copied().unwrap_or(0) as usize;
+                let p = self.pieces.get(i).copied().unwrap_or(Piece::EMPTY);
+                if self.cut(c, r, &p, detail) {
+                    [1, u64::from(p.draws()), u64::from(p.draws() || p.moves)]
+                } else {
+                    add([1, 0, 0], cost.get(i).copied().unwrap_or([0; 3]))
+                }
+            } else {
+                [1, u64::from(self.ops[c as usize] == Some(Op::Draw)), 0]
+            }
+        };
+        let sum = |word: &[u32], r: u32, key: i64, cost: &[[u64; 3]]| -> [u64; 3] {
+            let mut acc = [0u64; 3];
+            let _ = self.walk_headings_all(word, r, key, |c, k| {
+                acc = add(acc, child(c, r, k, cost));
+            });
+            acc
+        };
+        for r in 1..=self.depth {
+            for &(s, key) in &self.needed[r as usize] {
+                let succ = self.alpha.succ[s as usize].as_deref().unwrap_or(&[]);
+                let c = sum(succ, r - 1, key, &cost);
+                cost.push(c);
+            }
+        }
+        sum(&self.alpha.axiom, self.depth, 0, &cost)
+    }
+
+    /// Like `walk_headings`, but calls `f(c, k)` for every symbol (pieces,
+    /// terminals and brackets) with the heading before it.
+    fn walk_headings_all(
+        &self,
+        word: &[u32],
+        r: u32,
+        mut k: i64,
+        mut f: impl FnMut(u32, i64),
+    ) -> Option<()> {
+        let mut stack: Vec<i64> = Vec::new();
+        for &c in word {
+            f(c, k);
+            match self.ops[c as usize] {
+                Some(Op::Push) => stack.push(k),
+                Some(Op::Pop) => {
+                    if let Some(saved) = stack.pop() {
+                        k = saved;
+                    }
+                }
+                _ if self.is_piece(c, r) => k = self.add_turn(k, self.turn_of(c, r))?,
+                Some(Op::Turn(t)) => k = self.add_turn(k, i64::from(t))?,
+                _ => {}
+            }
+        }
+        Some(())
+    }
+
+    /// Draws the word into `turtle` with a level of detail: a subtree whose
+    /// box fits inside `detail` canvas units is one stand-in segment (its
+    /// chord, or its box's diagonal when the chord is less than half the
+    /// box), a subtree that draws nothing is its net move and turn; every
+    /// other symbol is interpreted as [`Interp`](crate::turtle::Interp)
+    /// does, with its expression, so where nothing is cut the segments are
+    /// bit-identical to the exact drawing. Returns where the turtle ends.
+    pub(crate) fn draw_lod<T: Turtle>(
+        &self,
+        detail: f64,
+        mut turtle: T,
+        progress: &mut dyn Progress,
+    ) -> Point {
+        struct Frame<'w> {
+            word: &'w [u32],
+            at: usize,
+            /// Remaining depth of the word's symbols.
+            r: u32,
+        }
+        #[derive(Clone, Copy)]
+        struct Saved {
+            x: f64,
+            y: f64,
+            k: i64,
+            flip: bool,
+        }
+        let alpha = &self.alpha;
+        let len = self.len;
+        let mut headings = self.headings.borrow().clone();
+        let mut frames = vec![Frame {
+            word: &alpha.axiom,
+            at: 0,
+            r: self.depth,
+        }];
+        let (mut x, mut y, mut k, mut flip) = (0.0f64, 0.0f64, 0i64, false);
+        let mut stack: Vec<Saved> = Vec::new();
+        let mut done = 0u64;
+        let mut next_report = PROGRESS_STEP;
+        while let Some(top) = frames.last_mut() {
+            let Some(&c) = top.word.get(top.at) else {
+                frames.pop();
+                continue;
+            };
+            top.at += 1;
+            let r = top.r;
+            done += 1;
+            if done >= next_report {
+                progress.update(done);
+                next_report = done.saturating_add(PROGRESS_STEP);
+            }
+            if self.is_piece(c, r) {
+                let p = self.piece(c, r, k);
+                if self.cut(c, r, &p, detail) {
+                    let sg = if flip { -1.0 } else { 1.0 };
+                    let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
+                    if p.draws() {
+                        let chord = libm::hypot(p.dx, p.dy);
+                        let (from, to) = if chord * 2.0 >= p.extent() {
+                            (Point::new(x, y), Point::new(ex, ey))
+                        } else {
+                            (
+                                Point::new(x + sg * p.min_x, y + sg * p.min_y),
+                                Point::new(x + sg * p.max_x, y + sg * p.max_y),
+                            )
+                        };
+                        let at = r as usize * alpha.chars.len() + c as usize;
+                        let n = self.count[at];
+                        let seg_len = libm::hypot(to.x - from.x, to.y - from.y);
+                        // A connected run (no jump inside) is drawn as one
+                        // line however it winds, so it stays a line.
+                        let density = if self.jumps[at] == 0 {
+                            1.0
+                        } else {
+                            (n as f64 * len.abs() / seg_len).max(1.0)
+                        };
+                        turtle.blot(
+                            Segment { from, to, order: 0 },
+                            if density.is_finite() { density } else { 1.0 },
+                        );
+                    }
+                    (x, y) = (ex, ey);
+                    k = k.wrapping_add(self.turn_of(c, r));
+                    flip ^= self.flip_of(c, r);
+                } else {
+                    let succ = alpha.succ[c as usize].as_deref().unwrap_or(&[]);
+                    frames.push(Frame {
+                        word: succ,
+                        at: 0,
+                        r: r - 1,
+                    });
+                }
+                continue;
+            }
+            match self.ops[c as usize] {
+                Some(Op::Draw) => {
+                    // Interp::forward: pos + dir * len.
+                    let (dx, dy) = headings.dir(k, flip);
+                    let to = Point::new(x + dx * len, y + dy * len);
+                    turtle.segment(Segment {
+                        from: Point::new(x, y),
+                        to,
+                        order: 0,
+                    });
+                    (x, y) = (to.x, to.y);
+                }
+                Some(Op::Move) => {
+                    let (dx, dy) = headings.dir(k, flip);
+                    (x, y) = (x + dx * len, y + dy * len);
+                }
+                Some(Op::Turn(t)) => k = k.wrapping_add(i64::from(t)),
+                Some(Op::Flip) => flip = !flip,
+                Some(Op::Push) => stack.push(Saved { x, y, k, flip }),
+                Some(Op::Pop) => {
+                    if let Some(s) = stack.pop() {
+                        (x, y, k, flip) = (s.x, s.y, s.k, s.flip);
+                    }
+                }
+                Some(Op::Enter | Op::Leave) | None => {}
+            }
+        }
+        progress.update(done);
+        Point::new(x, y)
+    }
+}
