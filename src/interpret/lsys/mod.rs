@@ -318,14 +318,7 @@ pub fn draw_into<T: Turtle>(
             }
             None => {
                 // Over the program's budget: the same word, streamed.
-                let mut interp = Interp::new(
-                    turtle,
-                    Point::default(),
-                    sys.angle,
-                    Linear::constant(sys.length),
-                )
-                .heading(sys.heading);
-                let ops: Vec<Option<Op>> = alpha.chars.iter().map(|&c| Op::of_lsys(c)).collect();
+                let (mut interp, ops) = plain_interp(sys, &alpha, turtle);
                 alpha.plain_each(depth, |i, s| {
                     if let Some(op) = ops[s as usize] {
                         interp.apply(op);
@@ -338,14 +331,7 @@ pub fn draw_into<T: Turtle>(
             }
         },
         Derivation::Bfs => {
-            let mut interp = Interp::new(
-                turtle,
-                Point::default(),
-                sys.angle,
-                Linear::constant(sys.length),
-            )
-            .heading(sys.heading);
-            let ops: Vec<Option<Op>> = alpha.chars.iter().map(|&c| Op::of_lsys(c)).collect();
+            let (mut interp, ops) = plain_interp(sys, &alpha, turtle);
             alpha.bfs_each(depth, |i, s| {
                 if let Some(op) = ops[s as usize] {
                     interp.apply(op);
@@ -360,6 +346,24 @@ pub fn draw_into<T: Turtle>(
     progress.update(total);
     progress.finish();
     Ok(end)
+}
+
+/// The turtle state machine at `sys`'s start, and each symbol's operation:
+/// what the plain (uncompiled) paths feed symbol by symbol.
+fn plain_interp<T: Turtle>(
+    sys: &LSystem,
+    alpha: &Alphabet,
+    turtle: T,
+) -> (Interp<T>, Vec<Option<Op>>) {
+    let interp = Interp::new(
+        turtle,
+        Point::default(),
+        sys.angle,
+        Linear::constant(sys.length),
+    )
+    .heading(sys.heading);
+    let ops = alpha.chars.iter().map(|&c| Op::of_lsys(c)).collect();
+    (interp, ops)
 }
 
 /// Streams the word of `sys` derived to `depth` (every symbol, not only the
