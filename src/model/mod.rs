@@ -322,8 +322,7 @@ impl Description {
             return None;
         }
         let mut terms = Terms::new();
-        let empty = vec![None; self.rules[0].branch_count()];
-        let first = terms.push(RuleId(0), true, 0..0, &empty);
+        let first = terms.push_leaf(RuleId(0), true, 0..0, self.rules[0].branch_count());
         Some(std::borrow::Cow::Owned(Seed {
             items: vec![
                 SeedItem::Draw(Box::new(DrawRun {

@@ -117,15 +117,30 @@ impl Terms {
         loc: Span,
         slots: &[Option<SlotId>],
     ) -> TermId {
-        let first = if slots.iter().all(Option::is_none) {
-            NO_CELLS
-        } else {
-            let first = narrow(self.cells.len());
-            self.cells
-                .extend(slots.iter().map(|s| s.map_or(0, |SlotId(c)| c)));
-            first
-        };
-        let count = narrow(slots.len());
+        if slots.iter().all(Option::is_none) {
+            return self.push_leaf(rule, bare, loc, slots.len());
+        }
+        let first = narrow(self.cells.len());
+        self.cells
+            .extend(slots.iter().map(|s| s.map_or(0, |SlotId(c)| c)));
+        self.push_node(rule, bare, loc, slots.len(), first)
+    }
+
+    /// Adds the term `rule{,...}` with `count` empty slots (a bare
+    /// reference `rule` if `bare`): no cells, no list of empty slots.
+    pub fn push_leaf(&mut self, rule: RuleId, bare: bool, loc: Span, count: usize) -> TermId {
+        self.push_node(rule, bare, loc, count, NO_CELLS)
+    }
+
+    fn push_node(
+        &mut self,
+        rule: RuleId,
+        bare: bool,
+        loc: Span,
+        count: usize,
+        first: u32,
+    ) -> TermId {
+        let count = narrow(count);
         assert!(count < BARE, "term arena: more than 2^31 slots");
         self.nodes.push(Node {
             rule: narrow(rule.0),

@@ -281,8 +281,8 @@ impl Builder<'_> {
 
     /// The term a bare rule name `R1` stands for.
     fn bare(&mut self, terms: &mut Terms, rule: RuleId, span: Span) -> Made {
-        let empty = vec![None; self.branches[rule.0]];
-        let id = terms.push(rule, self.format == Format::Od, span.clone(), &empty);
+        let bare = self.format == Format::Od;
+        let id = terms.push_leaf(rule, bare, span.clone(), self.branches[rule.0]);
         Made::Term(id, span)
     }
 
