@@ -63,6 +63,7 @@ fn main() {
             ..Limits::default()
         },
         max_stems_explicit: true,
+        seed: 0,
     };
     let t = Instant::now();
     let g = grow_with(&od, &opts, backend, &mut NoProgress).expect("growth");

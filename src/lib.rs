@@ -36,6 +36,7 @@
 )]
 
 pub mod bed;
+pub mod choice;
 pub mod color;
 pub mod diag;
 pub mod grow;

@@ -169,6 +169,12 @@ pub struct InputArgs {
     /// Input kind, when the extension does not tell (stdin, other names).
     #[arg(long, value_enum)]
     pub from: Option<FromKind>,
+
+    /// Seed of stochastic rules: the same seed draws the same plant, another
+    /// seed another one. Overrides an .lsys's `seed` key; an .od grows with
+    /// seed 0 unless given. A .bed has its choices written out and ignores it.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
 }
 
 /// The input kinds for `--from`.

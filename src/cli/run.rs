@@ -113,13 +113,19 @@ fn load(args: &InputArgs, limits: &Limits, source: &mut Source) -> Result<Loaded
     if let Ok(text) = std::str::from_utf8(&bytes) {
         source.text = text.to_string();
     }
-    pipeline::load(&bytes, kind, limits)
+    Ok(pipeline::load(&bytes, kind, limits)?.seeded(args.seed))
 }
 
 /// The growth options the growth flags ask for (`order`: `--growth` or an
 /// alias of it; default bfs).
-fn grow_options(order: Option<GrowthArg>, g: &GrowArgs, limits: &Limits) -> GrowOptions {
+fn grow_options(
+    order: Option<GrowthArg>,
+    g: &GrowArgs,
+    seed: Option<u64>,
+    limits: &Limits,
+) -> GrowOptions {
     GrowOptions {
+        seed: seed.unwrap_or(0),
         growth: order.map_or(GrowthOrder::default(), GrowthOrder::from),
         clearance: g.clearance,
         limits: *limits,
@@ -141,7 +147,7 @@ fn scene(
     let loaded = load(input, limits, source)?;
     let warnings = pipeline::ignored_flags(&loaded, &given(grow, depth));
     let req = SceneRequest {
-        grow: grow_options(grow.growth, grow, limits),
+        grow: grow_options(grow.growth, grow, input.seed, limits),
         derivation: strategy.into(),
         depth,
         limits: *limits,
@@ -274,7 +280,7 @@ fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
     };
     not_the_input(&input, &output)?;
     let loaded = load(&a.input, &limits, source)?;
-    let opts = grow_options(a.strategy.or(a.grow.growth), &a.grow, &limits);
+    let opts = grow_options(a.strategy.or(a.grow.growth), &a.grow, a.input.seed, &limits);
     let mut bar = Bar::new(quiet);
     let compiled = pipeline::compile(&loaded, &opts, &mut bar)?;
     bar.finish();
@@ -316,7 +322,10 @@ fn check(a: &CheckArgs, source: &mut Source) -> Outcome {
     );
     let loaded = load(&a.input, &limits, source)?;
     let mut warnings = pipeline::ignored_flags(&loaded, &given(&a.grow, None));
-    let checked = pipeline::check(&loaded, &grow_options(a.grow.growth, &a.grow, &limits))?;
+    let checked = pipeline::check(
+        &loaded,
+        &grow_options(a.grow.growth, &a.grow, a.input.seed, &limits),
+    )?;
     print_out(&checked.summary)?;
     warnings.extend(checked.warnings);
     Ok(warnings)

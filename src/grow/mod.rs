@@ -100,17 +100,23 @@ pub struct GrowOptions {
     /// other bound (no layout, count or decrement) go ahead; the default
     /// limit is a safety net, not a design.
     pub max_stems_explicit: bool,
+    /// The seed of stochastic rules (`--seed`, default 0): every choice is
+    /// a pure function of it and the growth point's place
+    /// ([`crate::choice`]). A description without alternatives grows the
+    /// same tree whatever it is.
+    pub seed: u64,
 }
 
 impl Default for GrowOptions {
     /// Breadth-first (the paper's conventional strategy), no clearance
-    /// override, default limits, `--max-stems` not given.
+    /// override, default limits, `--max-stems` not given, seed 0.
     fn default() -> Self {
         GrowOptions {
             growth: GrowthOrder::Bfs,
             clearance: None,
             limits: Limits::default(),
             max_stems_explicit: false,
+            seed: 0,
         }
     }
 }

@@ -35,6 +35,9 @@ pub struct LSystem {
     pub color: Option<Rgb>,
     /// `background C`: canvas colour (default white; `none` for transparent).
     pub background: Background,
+    /// `seed N`: the seed of stochastic rules (default 0; `--seed`
+    /// overrides it). See [`crate::choice`].
+    pub seed: u64,
 }
 
 /// One production `X -> successor`.

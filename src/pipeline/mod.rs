@@ -63,6 +63,20 @@ impl Loaded {
             Loaded::Bed(_) => InputKind::Bed,
         }
     }
+
+    /// The input with `seed` (`--seed`), if given, in place of an
+    /// L-system's `seed` key. An OD takes its seed with its growth options
+    /// ([`GrowOptions::seed`]); a BED has every choice written out and
+    /// needs none, so for both this changes nothing.
+    pub fn seeded(self, seed: Option<u64>) -> Loaded {
+        match (self, seed) {
+            (Loaded::Lsys(mut sys), Some(s)) => {
+                sys.seed = s;
+                Loaded::Lsys(sys)
+            }
+            (other, _) => other,
+        }
+    }
 }
 
 /// The kind of an input: from its file name's extension if it has a known

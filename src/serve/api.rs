@@ -33,6 +33,8 @@ pub struct Request {
     pub clearance: Option<f64>,
     /// `--max-stems`.
     pub max_stems: Option<u64>,
+    /// `--seed` of stochastic rules.
+    pub seed: Option<u64>,
 }
 
 /// The server's own settings that every request works within.
@@ -51,7 +53,7 @@ pub struct Settings {
 pub struct BadRequest(pub String);
 
 /// Reads a request body: `{"source": TEXT, "kind"?, "strategy"?, "depth"?,
-/// "clearance"?, "max_stems"?}`; absent and `null` fields take defaults.
+/// "clearance"?, "max_stems"?, "seed"?}`; absent and `null` fields take defaults.
 pub fn parse_request(body: &[u8]) -> Result<(Request, Map<String, Value>), BadRequest> {
     let value: Value =
         serde_json::from_slice(body).map_err(|e| BadRequest(format!("malformed JSON: {e}")))?;
@@ -97,6 +99,7 @@ pub fn parse_request(body: &[u8]) -> Result<(Request, Map<String, Value>), BadRe
         Some(d) => Some(u32::try_from(d).map_err(|_| BadRequest("`depth` is too large".into()))?),
     };
     let max_stems = whole("max_stems")?;
+    let seed = whole("seed")?;
     let clearance = match field("clearance") {
         None => None,
         Some(v) => Some(
@@ -112,6 +115,7 @@ pub fn parse_request(body: &[u8]) -> Result<(Request, Map<String, Value>), BadRe
             depth,
             clearance,
             max_stems,
+            seed,
         },
         obj,
     ))
@@ -140,6 +144,7 @@ fn options(req: &Request, s: &Settings) -> Result<(Limits, GrowOptions), Diagnos
         clearance: req.clearance,
         limits,
         max_stems_explicit: explicit,
+        seed: req.seed.unwrap_or(0),
     };
     Ok((limits, grow))
 }
@@ -169,7 +174,7 @@ fn run(
         Some(k) => k,
         None => pipeline::detect_kind(None, bytes)?,
     };
-    let loaded = pipeline::load(bytes, kind, &limits)?;
+    let loaded = pipeline::load(bytes, kind, &limits)?.seeded(req.seed);
     let given = Given {
         growth: false,
         clearance: req.clearance.is_some(),

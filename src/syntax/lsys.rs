@@ -152,6 +152,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
         width: 1.0,
         color: None,
         background: Background::White,
+        seed: 0,
     };
     let mut have_axiom = false;
     let mut have_angle = false;
