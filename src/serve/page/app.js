@@ -142,6 +142,8 @@ function request() {
     if (num('max-stems') !== '') r.max_stems = Math.floor(Number(num('max-stems')));
   }
   if (r.kind === 'lsys' && num('depth') !== '') r.depth = Math.floor(Number(num('depth')));
+  // A BED has its choices written out: the seed changes nothing there.
+  if (r.kind !== 'bed' && num('seed') !== '') r.seed = Math.floor(Number(num('seed')));
   return r;
 }
 
@@ -776,12 +778,19 @@ function setKind(kind) {
   $('kind').value = kind;
   document.body.classList.toggle('renderer', kind !== 'od');
   document.body.classList.toggle('lsys', kind === 'lsys');
+  document.body.classList.toggle('bed', kind === 'bed');
   $('mode-name').textContent = kind === 'od' ? 'Tree Maker' : 'Tree Renderer';
   state.refit = true;
 }
 
 $('kind').addEventListener('change', () => { setKind($('kind').value); schedule(); });
-['strategy', 'clearance', 'max-stems', 'depth'].forEach((id) => $(id).addEventListener('input', () => {
+$('reseed').addEventListener('click', () => {
+  const now = $('seed').value.trim();
+  $('seed').value = String(now === '' ? 1 : Math.floor(Number(now)) + 1);
+  state.editedAt = performance.now();
+  schedule();
+});
+['strategy', 'clearance', 'max-stems', 'depth', 'seed'].forEach((id) => $(id).addEventListener('input', () => {
   state.editedAt = performance.now();
   schedule();
 }));
