@@ -165,12 +165,16 @@ fn item_over(desc: &Description, seed: &Seed, max_symbols: u64) -> Option<crate:
     (span.end > span.start).then_some(span)
 }
 
-/// Computes what the description's seed in force expands to.
+/// Computes what the description's seeds in force expand to (all trees of
+/// a forest together).
 pub fn measure(desc: &Description) -> Size {
-    match desc.effective_seed() {
-        Some(seed) => measure_seed(desc, &seed),
-        None => Size::default(),
+    let mut total = Size::default();
+    for (_, seed) in desc.trees() {
+        if let Some(seed) = seed {
+            total.add(measure_seed(desc, &seed));
+        }
     }
+    total
 }
 
 /// A validated, measured Branch-Expansion Description.
@@ -207,11 +211,30 @@ impl Bed {
 /// per branch, every rule application's order leaves its stems a positive
 /// length and width, counts are within `limits.max_repeat`, and the whole
 /// expansion stays within `limits.max_symbols`. Returns the measured size.
+///
+/// A forest's trees are checked one by one and measured together.
 pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics> {
+    let mut total = Size::default();
+    for (_, seed) in desc.trees() {
+        if let Some(seed) = seed {
+            total.add(validate_seed(desc, &seed, limits)?);
+        }
+    }
+    if total.symbols > limits.max_symbols {
+        return Err(Diagnostic::error(ErrorKind::Limit {
+            what: "symbols in the expansion of the forest".into(),
+            value: total.symbols.to_string(),
+            limit: limits.max_symbols.to_string(),
+        })
+        .with_help("raise the limit with --max-symbols N, or grow fewer trees")
+        .into());
+    }
+    Ok(total)
+}
+
+/// [`validate`] for one tree's seed.
+fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Size, Diagnostics> {
     let mut diags = Diagnostics::new();
-    let Some(seed) = desc.effective_seed() else {
-        return Ok(Size::default());
-    };
     let p = &desc.params;
     let mut order_reported = false;
     let mut check_order =
@@ -296,7 +319,7 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
     if diags.has_errors() {
         return Err(diags);
     }
-    let size = measure_seed(desc, &seed);
+    let size = measure_seed(desc, seed);
     if size.symbols > limits.max_symbols {
         diags.push(
             Diagnostic::error(ErrorKind::Limit {
@@ -308,7 +331,7 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
                 },
                 limit: limits.max_symbols.to_string(),
             })
-            .with_span(item_over(desc, &seed, limits.max_symbols).unwrap_or(seed.loc.0.clone()))
+            .with_span(item_over(desc, seed, limits.max_symbols).unwrap_or(seed.loc.0.clone()))
             .with_help("raise the limit with --max-symbols N, or lower the counts"),
         );
     }

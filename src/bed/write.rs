@@ -55,7 +55,11 @@ pub fn write(desc: &Description) -> String {
     let mut out = String::new();
     out.push_str(&desc.name);
     out.push('\n');
-    let _ = writeln!(out, "({}, {})", num(desc.root.0), num(desc.root.1));
+    let _ = write!(out, "({}, {})", num(desc.root.0), num(desc.root.1));
+    for t in &desc.forest {
+        let _ = write!(out, " ({}, {})", num(t.root.0), num(t.root.1));
+    }
+    out.push('\n');
     let p = &desc.params;
     let _ = write!(
         out,
@@ -79,9 +83,15 @@ pub fn write(desc: &Description) -> String {
     }
     out.push_str("\nRULE\n");
     for r in &desc.rules {
-        let _ = writeln!(out, "{}: {}", r.name, w.body(&r.body));
+        let _ = match r.alternative.as_ref().and_then(|a| a.probability) {
+            Some(p) => writeln!(out, "{} ({}): {}", r.full_name(), num_p(p), w.body(&r.body)),
+            None => writeln!(out, "{}: {}", r.full_name(), w.body(&r.body)),
+        };
     }
-    if let Some(seed) = &desc.seed {
+    let seeds = std::iter::once(desc.seed.as_ref())
+        .chain(desc.forest.iter().map(|t| t.seed.as_ref()))
+        .flatten();
+    for seed in seeds {
         out.push_str("SEED\n");
         for item in &seed.items {
             match item {
@@ -113,6 +123,12 @@ pub fn write(desc: &Description) -> String {
     out
 }
 
+/// A probability: up to six decimals (they must sum to 1 within 1e-6),
+/// trailing zeros trimmed.
+fn num_p(v: f64) -> String {
+    crate::num::fixed(v, 6, crate::num::Trim::Zeros)
+}
+
 /// A number with at most three decimals; integers without a dot; no `-0`.
 pub fn num(v: f64) -> String {
     crate::num::fixed(v, 3, crate::num::Trim::Zeros)
@@ -123,6 +139,15 @@ struct Writer<'a> {
 }
 
 impl Writer<'_> {
+    /// The name a term writes: the alternative that grew (`R1.2`).
+    fn term_name(&self, id: crate::model::RuleId) -> std::borrow::Cow<'_, str> {
+        self.desc
+            .rules
+            .get(id.0)
+            .map_or(std::borrow::Cow::Borrowed("?"), |r| r.full_name())
+    }
+
+    /// The name a body or a repeat writes: the rule, any alternative.
     fn name(&self, id: crate::model::RuleId) -> &str {
         self.desc
             .rules
@@ -211,7 +236,7 @@ impl Writer<'_> {
         t.all_empty().then(|| {
             format!(
                 "{}{{{}}}",
-                self.name(t.rule()),
+                self.term_name(t.rule()),
                 ",".repeat(t.slot_count().saturating_sub(1))
             )
         })
@@ -246,7 +271,7 @@ impl Writer<'_> {
                     None
                 }
                 None => {
-                    out.push_str(self.name(t.rule()));
+                    out.push_str(&self.term_name(t.rule()));
                     out.push_str("{\n");
                     Some((depth, comma))
                 }

@@ -212,6 +212,62 @@ pub enum ErrorKind {
     /// A rule definition has no body.
     #[error("syntax error: expected a rule body")]
     MissingBody,
+    /// A dot in a rule name where it means nothing: in an OD (dots are
+    /// reserved for a BED's alternatives), or `R1.x` with `x` not a number
+    /// from 1 in a BED.
+    #[error("`{name}` is not a rule name here")]
+    DottedName {
+        /// The name as written.
+        name: String,
+    },
+    /// A rule with several bodies where one has no probability.
+    #[error("`{name}` has several bodies, but not every one has a probability")]
+    MissingProbability {
+        /// The rule's name.
+        name: String,
+    },
+    /// An alternative's probability is not a number above 0.
+    #[error("probability {value} of an alternative of `{name}` is not above 0")]
+    BadProbability {
+        /// The rule's name.
+        name: String,
+        /// The probability written.
+        value: f64,
+    },
+    /// The probabilities of a rule's alternatives do not sum to 1.
+    #[error("the probabilities of `{name}`'s alternatives sum to {sum}, not 1")]
+    ProbabilitySum {
+        /// The rule's name.
+        name: String,
+        /// Their sum.
+        sum: f64,
+    },
+    /// A BED names an alternative its rule does not have (`R1.3` of two).
+    #[error("`{name}` has no alternative {number}")]
+    UnknownAlternative {
+        /// The rule's name.
+        name: String,
+        /// The number written after the dot.
+        number: String,
+    },
+    /// A written-out term names a rule with alternatives but not which one
+    /// grew (`R1{,}` where R1 has `R1.1` and `R1.2`).
+    #[error("`{name}` has {count} alternatives; a written term names the one that grew")]
+    AlternativeNotNamed {
+        /// The rule's name.
+        name: String,
+        /// How many alternatives it has.
+        count: usize,
+    },
+    /// A BED of a forest has a different number of seeds than roots.
+    #[error("{roots} root{} but {seeds} SEED section{}", plural(*roots, "s"), plural(*seeds, "s"))]
+    SeedsPerRoot {
+        /// Roots on the root line.
+        roots: usize,
+        /// `SEED ... ENDSEED` sections.
+        seeds: usize,
+    },
+
     /// Part of a word that is neither a drawing letter nor a rule name and
     /// does not start with a letter (the `3` of `F3`).
     #[error("unexpected `{text}`")]

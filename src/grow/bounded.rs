@@ -12,7 +12,7 @@ use super::seed::SeedGp;
 use super::{GrowOptions, span_of};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::model::walk::{self, Step};
-use crate::model::{Description, RuleId};
+use crate::model::{Description, RuleGroups, RuleId};
 
 /// The rules that grow at the branch tips of rule `r`, in branch order: the
 /// rule named at the branch's end, or `r` itself.
@@ -40,8 +40,13 @@ pub(super) fn check_bounded(
     {
         return Ok(());
     }
+    let groups = od.groups();
     for gp in gps.iter().filter(|g| g.count.is_none()) {
-        if let Some(cycle_rule) = endless_from(od, gp.rule) {
+        let endless = groups
+            .members(gp.rule)
+            .iter()
+            .find_map(|&r| endless_from(od, &groups, r));
+        if let Some(cycle_rule) = endless {
             let name = &od.rule(gp.rule).name;
             let mut d = Diagnostic::error(ErrorKind::UnboundedGrowth {
                 rule: name.clone(),
@@ -66,9 +71,15 @@ pub(super) fn check_bounded(
 
 /// A rule on a cycle of the successor graph reachable from `start`, if any
 /// (iterative depth-first search with colours).
-fn endless_from(od: &Description, start: RuleId) -> Option<RuleId> {
-    let succ =
-        |r: RuleId| -> Vec<RuleId> { successors(od, r).filter(|s| s.0 < od.rules.len()).collect() };
+///
+/// A successor with alternatives leads to each of them: any may be chosen.
+fn endless_from(od: &Description, groups: &RuleGroups, start: RuleId) -> Option<RuleId> {
+    let succ = |r: RuleId| -> Vec<RuleId> {
+        successors(od, r)
+            .filter(|s| s.0 < od.rules.len())
+            .flat_map(|s| groups.members(s).iter().copied())
+            .collect()
+    };
     // 0 unvisited, 1 on the path, 2 done.
     let mut colour = vec![0u8; od.rules.len()];
     let mut stack: Vec<(RuleId, Vec<RuleId>)> = vec![(start, succ(start))];

@@ -16,6 +16,7 @@ use super::occupancy::{Backend, LocalIndex, Occupancy, Seg};
 use super::region::Region;
 use super::seed::{Flat, Instr};
 use super::{GrowOptions, GrowthOrder};
+use crate::choice::{Alternatives, Key};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::limits::Limits;
 use crate::model::walk::{self, FixedWord, Step};
@@ -36,7 +37,13 @@ enum Parent {
 #[derive(Debug, Clone, Copy)]
 struct Gp {
     state: State,
+    /// The rule named there (with alternatives: any of them; the decision
+    /// chooses by `key`).
     rule: RuleId,
+    /// The growth point's place ([`crate::choice`]): the seed's `i`-th
+    /// point of root `r` has `Key::root(seed).child(r).child(i)`, the tip
+    /// of branch `j` of an application at `k` has `k.child(j)`.
+    key: Key,
     count: Option<u32>,
     /// The position is known to lie in the region's open interior.
     inside: bool,
@@ -64,8 +71,11 @@ pub(super) struct Tree {
     pub(super) nodes: Vec<Node>,
     /// For each slot of each node, the node grown there or [`NO_NODE`].
     pub(super) slot_child: Vec<u32>,
-    /// The node grown at each growth point of the seed, or [`NO_NODE`].
+    /// The node grown at each growth point of the seed, or [`NO_NODE`]:
+    /// in a forest, tree `t`'s points are entries `t * gps ..`.
     pub(super) seed_result: Vec<u32>,
+    /// How many trees (roots) grew.
+    pub(super) trees: usize,
 }
 
 impl Tree {
@@ -160,20 +170,51 @@ struct Schedule {
 /// What growth needs to know of a rule, worked out once.
 #[derive(Debug)]
 struct RuleInfo {
-    /// The rule leaves the turtle where it found it: its trunk neither
-    /// draws, moves nor turns (its branches restore the turtle). Drawing
-    /// after it in the seed does not depend on its decision.
+    /// The rule, and every alternative of its name, leaves the turtle
+    /// where it found it: its trunk neither draws, moves nor turns (its
+    /// branches restore the turtle). Drawing after it in the seed does not
+    /// depend on its decision.
     neutral: bool,
     /// The rule that grows at each branch tip, in branch order.
     successors: Vec<RuleId>,
+    /// With alternatives: the probabilities and the rules they choose.
+    choice: Option<std::sync::Arc<(Alternatives, Vec<RuleId>)>>,
 }
 
 impl RuleInfo {
-    fn new(od: &Description, id: RuleId) -> Self {
-        RuleInfo {
-            neutral: is_neutral(od.rule(id)),
-            successors: successors(od, id).collect(),
-        }
+    /// The information of every rule, by [`RuleId`].
+    fn all(od: &Description) -> Vec<RuleInfo> {
+        let groups = od.groups();
+        let choices: Vec<_> = groups
+            .groups
+            .iter()
+            .map(|g| {
+                let p: Vec<f64> = g
+                    .iter()
+                    .filter_map(|&r| od.rule(r).alternative.as_ref()?.probability)
+                    .collect();
+                // An OD's alternatives passed the parser's check; a
+                // description made otherwise chooses the first.
+                let alts = Alternatives::new(&p).unwrap_or_else(|_| {
+                    Alternatives::new(&[1.0]).expect("a single certain choice")
+                });
+                od.rule(g[0])
+                    .alternative
+                    .is_some()
+                    .then(|| std::sync::Arc::new((alts, g.clone())))
+            })
+            .collect();
+        let own: Vec<bool> = od.rules.iter().map(is_neutral).collect();
+        (0..od.rules.len())
+            .map(|i| {
+                let members = groups.members(RuleId(i));
+                RuleInfo {
+                    neutral: members.iter().all(|r| own[r.0]),
+                    successors: successors(od, RuleId(i)).collect(),
+                    choice: choices[groups.of_rule[i]].clone(),
+                }
+            })
+            .collect()
     }
 }
 
@@ -240,40 +281,44 @@ pub(super) struct Grower<'a> {
     budget: Budget,
     scratch: Scratch,
     schedule: Schedule,
+    /// The key of the tree being grown: `Key::root(seed).child(r)` for
+    /// root `r` ([`Gp::key`]).
+    tree_key: Key,
+    /// `--seed`.
+    seed: u64,
     /// When asked for ([`super::grow_traced`]): every stem placed, in the
     /// order growth placed it, with its decision (0: the seed's drawing).
     pub(super) trace: Option<Vec<(Seg, u64)>>,
 }
 
 impl<'a> Grower<'a> {
-    /// A grower for `od` with the turtle at `root`, for a seed with
-    /// `seed_gps` growth points.
+    /// A grower for `od`, for `trees` trees of a
+    /// seed with `seed_gps` growth points each.
     pub(super) fn new(
         od: &'a Description,
         opts: &GrowOptions,
         backend: Backend,
         clearance: f64,
         region: Option<Region>,
-        root: Point,
         seed_gps: usize,
+        trees: usize,
     ) -> Self {
         Grower {
             od,
             growth: opts.growth,
             limits: opts.limits,
-            rules: (0..od.rules.len())
-                .map(|i| RuleInfo::new(od, RuleId(i)))
-                .collect(),
+            rules: RuleInfo::all(od),
             region,
             occ: Occupancy::new(backend, clearance),
             interp: Interp::new(
                 Recorder::default(),
-                root,
+                Point::new(od.root.0, od.root.1),
                 od.params.angle(),
                 od.params.length,
             ),
             tree: Tree {
-                seed_result: vec![NO_NODE; seed_gps],
+                seed_result: vec![NO_NODE; seed_gps * trees],
+                trees,
                 ..Tree::default()
             },
             budget: Budget::default(),
@@ -283,6 +328,8 @@ impl<'a> Grower<'a> {
                 children: Vec::new(),
             },
             schedule: Schedule::default(),
+            tree_key: Key::root(opts.seed).child(0),
+            seed: opts.seed,
             trace: None,
         }
     }
@@ -292,14 +339,44 @@ impl<'a> Grower<'a> {
         (self.tree, self.budget)
     }
 
-    /// Draws the seed, deciding its growth points (and, in `dfs`, their
-    /// subtrees) as described in the module documentation; then, in `bfs`,
-    /// the levels that follow.
-    pub(super) fn walk_seed(
+    /// Grows every tree: draws each tree's seed from its root, in root
+    /// order, deciding only the growth points the later drawing depends on
+    /// (the module documentation of [`crate::grow`]); then decides the
+    /// others (in `dfs` with their subtrees), tree by tree; then, in
+    /// `bfs`, the levels that follow, so a forest's trees interleave level
+    /// by level. Every tree's seed drawing is so in place before the trees
+    /// grow around it (one tree: the order growth always had).
+    pub(super) fn grow_trees(
         &mut self,
         flat: &Flat<'_>,
+        roots: &[Point],
         progress: &mut dyn Progress,
     ) -> Result<(), Diagnostics> {
+        let mut pending = Vec::with_capacity(roots.len());
+        for (t, &root) in roots.iter().enumerate() {
+            pending.push(self.walk_seed(flat, t, root, progress)?);
+        }
+        for tree in pending {
+            for p in tree {
+                self.decide_with_subtree(p, progress);
+            }
+        }
+        self.grow_levels(progress);
+        Ok(())
+    }
+
+    /// Draws the seed of tree `t` from `root`, deciding the growth points
+    /// the drawing after them depends on; returns the others, in order.
+    fn walk_seed(
+        &mut self,
+        flat: &Flat<'_>,
+        t: usize,
+        root: Point,
+        progress: &mut dyn Progress,
+    ) -> Result<Vec<Gp>, Diagnostics> {
+        self.interp.state = State::start(root);
+        self.tree_key = Key::root(self.seed).child(t as u64);
+        let first_gp = t * flat.gps.len();
         let mut pending: Vec<Gp> = Vec::new();
         for (idx, instr) in flat.instrs.iter().enumerate() {
             match instr {
@@ -314,9 +391,10 @@ impl<'a> Grower<'a> {
                     let gp = Gp {
                         state: self.interp.state,
                         rule: sg.rule,
+                        key: self.tree_key.child(*i as u64),
                         count: sg.count,
                         inside: false,
-                        parent: Parent::Seed(*i as u32),
+                        parent: Parent::Seed((first_gp + *i) as u32),
                     };
                     let later_drawing_fixed = self.rules[sg.rule.0].neutral
                         || matches!(flat.instrs.get(idx + 1), None | Some(Instr::Op(Op::Pop)));
@@ -333,9 +411,13 @@ impl<'a> Grower<'a> {
                 }
             }
         }
-        for p in pending {
-            self.decide_with_subtree(p, progress);
-        }
+        Ok(pending)
+    }
+
+    /// In `bfs`, decides the levels after the seeds', in queue order (a
+    /// forest's trees interleave level by level, root order within a
+    /// level). Nothing to do in `dfs`.
+    fn grow_levels(&mut self, progress: &mut dyn Progress) {
         if self.growth == GrowthOrder::Bfs {
             while let Some(gp) = self.schedule.queue.pop_front() {
                 if self.budget.stopped {
@@ -346,7 +428,6 @@ impl<'a> Grower<'a> {
                 }
             }
         }
-        Ok(())
     }
 
     /// One drawing operation of the seed: drawn and placed without a test.
@@ -408,8 +489,11 @@ impl<'a> Grower<'a> {
     /// Decides one growth point. On success records the node, leaves its
     /// children in `scratch.children` and returns the turtle state after the
     /// application.
-    fn decide(&mut self, gp: Gp, progress: &mut dyn Progress) -> Option<State> {
+    fn decide(&mut self, mut gp: Gp, progress: &mut dyn Progress) -> Option<State> {
         self.scratch.children.clear();
+        if let Some(c) = &self.rules[gp.rule.0].choice {
+            gp.rule = c.1[c.0.pick(gp.key)];
+        }
         let end = match self.apply(&gp) {
             Ok(end) => end,
             Err(Miss::Failed) => return None,
@@ -436,6 +520,7 @@ impl<'a> Grower<'a> {
                 self.scratch.children.push(Gp {
                     state,
                     rule,
+                    key: gp.key.child(j as u64),
                     count,
                     inside,
                     parent: Parent::Slot(first + j as u32),

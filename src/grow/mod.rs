@@ -220,7 +220,8 @@ fn grow_inner(
     // A seed that alone passes the stem limit is refused before any work
     // (a generated seed of millions of stems would otherwise be flattened
     // and drawn into the occupancy index first).
-    let seed_stems = seed::drawn_stems(od, &seed);
+    let trees = 1 + od.forest.len() as u64;
+    let seed_stems = seed::drawn_stems(od, &seed).saturating_mul(trees);
     if seed_stems > opts.limits.max_stems {
         return Err(Diagnostic::error(ErrorKind::Limit {
             what: "stems drawn by the seed alone".into(),
@@ -237,33 +238,64 @@ fn grow_inner(
         Some(l) => Some(Region::from_layout(l, opts.limits.max_layout_vertices)?),
         None => None,
     };
-    let root = Point::new(od.root.0, od.root.1);
-    if let Some(r) = &region
-        && !r.covers_point(root)
-    {
-        let mut d = Diagnostic::error(ErrorKind::RootOutside {
-            x: od.root.0,
-            y: od.root.1,
-        })
-        .with_help("move the root into a coloured (non-white) layout shape, or change the LAYOUT");
-        if let Some(s) = span_of(&od.root_loc) {
-            d = d.with_span(s).with_label("the root");
+    // The roots, in root order (one for a tree, several for a forest).
+    let roots: Vec<((f64, f64), &Loc)> = std::iter::once((od.root, &od.root_loc))
+        .chain(od.forest.iter().map(|t| (t.root, &t.root_loc)))
+        .collect();
+    for &((x, y), loc) in &roots {
+        if let Some(r) = &region
+            && !r.covers_point(Point::new(x, y))
+        {
+            let mut d = Diagnostic::error(ErrorKind::RootOutside { x, y }).with_help(
+                "move the root into a coloured (non-white) layout shape, or change the LAYOUT",
+            );
+            if let Some(s) = span_of(loc) {
+                d = d.with_span(s).with_label("the root");
+            }
+            return Err(d.into());
         }
-        return Err(d.into());
     }
 
-    let mut g = Grower::new(od, opts, backend, clearance, region, root, flat.gps.len());
+    let mut g = Grower::new(
+        od,
+        opts,
+        backend,
+        clearance,
+        region,
+        flat.gps.len(),
+        roots.len(),
+    );
     if trace {
         g.trace = Some(Vec::new());
     }
     progress.start("stems", opts.limits.max_stems);
-    let walked = g.walk_seed(&flat, progress);
+    let points: Vec<Point> = roots.iter().map(|&((x, y), _)| Point::new(x, y)).collect();
+    let walked = g.grow_trees(&flat, &points, progress);
     progress.finish();
     walked?;
 
     let placed = g.trace.take();
     let (tree, budget) = g.finish();
-    let (items, terms) = seed::grown_seed(od, &tree, &seed);
+    let owner = seed::owners(&tree);
+    let mut grown_seeds = (0..roots.len()).map(|t| {
+        let (items, terms) = seed::grown_seed(od, &tree, &seed, t, &owner);
+        Seed {
+            items,
+            terms,
+            loc: seed.loc.clone(),
+        }
+    });
+    let first = grown_seeds.next();
+    let forest = od
+        .forest
+        .iter()
+        .zip(grown_seeds)
+        .map(|(t, s)| crate::model::Tree {
+            root: t.root,
+            root_loc: t.root_loc.clone(),
+            seed: Some(s),
+        })
+        .collect();
     let mut params = od.params.clone();
     params.clearance = Some(clearance);
     let desc = Description {
@@ -274,12 +306,9 @@ fn grow_inner(
         root_loc: od.root_loc.clone(),
         params,
         rules: od.rules.clone(),
-        seed: Some(Seed {
-            items,
-            terms,
-            loc: seed.loc.clone(),
-        }),
+        seed: first,
         layout: od.layout.clone(),
+        forest,
     };
     let grown = Grown {
         bed: Bed::new(desc, &opts.limits)?,

@@ -198,17 +198,56 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
     Ok(flat)
 }
 
+/// The tree (root index) each node of `tree` grew in: a seed growth
+/// point's node belongs to its tree, a slot's child to its parent's.
+pub(super) fn owners(tree: &Tree) -> Vec<u32> {
+    let mut owner = vec![0u32; tree.nodes.len()];
+    let per_tree = (tree.seed_result.len() / tree.trees.max(1)).max(1);
+    for (i, &id) in tree.seed_result.iter().enumerate() {
+        if id != NO_NODE {
+            owner[id as usize] = (i / per_tree) as u32;
+        }
+    }
+    // A child is recorded after its parent: one pass forward.
+    for id in 0..tree.nodes.len() {
+        let first = tree.nodes[id].slots as usize;
+        let end = tree
+            .nodes
+            .get(id + 1)
+            .map_or(tree.slot_child.len(), |n| n.slots as usize);
+        for &c in &tree.slot_child[first..end] {
+            if c != NO_NODE {
+                owner[c as usize] = owner[id];
+            }
+        }
+    }
+    owner
+}
+
 /// The grown seed: the seed's items with every growth point replaced by its
 /// grown term (left out, or its slot left empty, where nothing grew), and
 /// the terms they refer to, built children first without recursion. Growth
 /// points are met in the order [`flatten`] numbered them.
-pub(super) fn grown_seed(od: &Description, tree: &Tree, seed: &Seed) -> (Vec<SeedItem>, Terms) {
+///
+/// In a forest the seed's growth points of tree `t` are entries
+/// `t * gps ..` of [`Tree::seed_result`]; `owner` gives each node's tree
+/// ([`owners`]), and only tree `t`'s nodes are built.
+pub(super) fn grown_seed(
+    od: &Description,
+    tree: &Tree,
+    seed: &Seed,
+    t: usize,
+    owner: &[u32],
+) -> (Vec<SeedItem>, Terms) {
     let mut terms = Terms::new();
     // The term of each grown node. A child is always made after its
     // parent, so it has a larger id: building in reverse puts children first.
     let mut built: Vec<Option<SlotId>> = vec![None; tree.nodes.len()];
     let mut cells: Vec<Option<SlotId>> = Vec::new();
     for id in (0..tree.nodes.len()).rev() {
+        if owner[id] != t as u32 {
+            continue;
+        }
         let n = tree.nodes[id];
         let k = od.rule(n.rule).branch_count();
         cells.clear();
@@ -218,7 +257,7 @@ pub(super) fn grown_seed(od: &Description, tree: &Tree, seed: &Seed) -> (Vec<See
         }));
         built[id] = Some(Terms::slot_of(terms.push(n.rule, false, 0..0, &cells)));
     }
-    let mut gp_index = 0usize;
+    let mut gp_index = t * (tree.seed_result.len() / tree.trees.max(1));
     let mut next_gp = || -> Option<SlotId> {
         let id = tree.seed_result[gp_index];
         gp_index += 1;

@@ -28,7 +28,7 @@ use crate::limits::Limits;
 use crate::model::walk::{self, FixedWord, Step, Steps};
 use crate::model::{Description, Fixed, RuleDef, RuleId, Seed, SeedItem, Slot, Term};
 use crate::progress::Progress;
-use crate::turtle::{Interp, Op};
+use crate::turtle::{Interp, Op, State};
 use crate::turtle::{Point, Turtle};
 
 /// How often (in operations) progress is reported.
@@ -62,8 +62,11 @@ pub fn draw_into<T: Turtle>(
         p.angle(),
         p.length,
     );
-    ops(bed, strategy, limits, progress, &mut |op| {
-        interp.apply(op);
+    tree_ops(bed, strategy, limits, progress, &mut |e| {
+        match e {
+            Emit::Tree(root) => interp.state = State::start(root),
+            Emit::Op(op) => interp.apply(op),
+        }
         Ok(())
     })?;
     Ok(interp.into_turtle())
@@ -71,7 +74,8 @@ pub fn draw_into<T: Turtle>(
 
 /// Writes the seed's expansion to `out` as drawing components (`F f + - [ ]
 /// |`; `L` and `R` come out as `+` and `-`), then a newline, in pieces of
-/// 64 KiB as they come (with `dfs`, while the expansion streams).
+/// 64 KiB as they come (with `dfs`, while the expansion streams). A
+/// forest writes one line per tree, in root order.
 pub fn expand(
     bed: &Bed,
     strategy: Derivation,
@@ -86,7 +90,18 @@ pub fn expand(
         buf.clear();
         Ok(())
     };
-    ops(bed, strategy, limits, progress, &mut |op| {
+    let mut trees = 0usize;
+    tree_ops(bed, strategy, limits, progress, &mut |e| {
+        let op = match e {
+            Emit::Tree(_) => {
+                trees += 1;
+                if trees > 1 {
+                    buf.push(b'\n');
+                }
+                return Ok(());
+            }
+            Emit::Op(op) => op,
+        };
         match op {
             Op::Draw => buf.push(b'F'),
             Op::Move => buf.push(b'f'),
@@ -114,7 +129,8 @@ pub fn expand(
 }
 
 /// The stream of turtle operations a description's seed denotes, fed to
-/// `sink` in order.
+/// `sink` in order (a forest's trees one after another, each from its own
+/// root: see [`tree_ops`]).
 pub fn ops(
     bed: &Bed,
     strategy: Derivation,
@@ -122,25 +138,58 @@ pub fn ops(
     progress: &mut dyn Progress,
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
+    tree_ops(bed, strategy, limits, progress, &mut |e| match e {
+        Emit::Op(op) => sink(op),
+        Emit::Tree(_) => Ok(()),
+    })
+}
+
+/// What [`tree_ops`] emits: a tree starts at its root, or an operation.
+#[derive(Debug, Clone, Copy)]
+pub enum Emit {
+    /// The next tree starts at this root (heading up, order 0), before
+    /// its operations; the first tree's too.
+    Tree(Point),
+    /// A turtle operation.
+    Op(Op),
+}
+
+/// The operations of every tree, in root order, each tree announced by
+/// [`Emit::Tree`] with its root.
+pub fn tree_ops(
+    bed: &Bed,
+    strategy: Derivation,
+    limits: &Limits,
+    progress: &mut dyn Progress,
+    sink: &mut dyn FnMut(Emit) -> Result<(), Diagnostics>,
+) -> Result<(), Diagnostics> {
     let desc = bed.description();
-    let Some(seed) = desc.effective_seed() else {
-        return Ok(());
-    };
-    let seed: &Seed = &seed;
     let total = bed.size().symbols;
     progress.start("symbols", total);
     let mut done = 0u64;
-    let mut counted = |op: Op| -> Result<(), Diagnostics> {
-        done += 1;
-        if done.is_multiple_of(PROGRESS_EVERY) {
-            progress.update(done);
+    let mut r = Ok(());
+    for (root, seed) in desc.trees() {
+        let Some(seed) = seed else { continue };
+        let seed: &Seed = &seed;
+        r = sink(Emit::Tree(Point::new(root.0, root.1)));
+        if r.is_err() {
+            break;
         }
-        sink(op)
-    };
-    let r = match strategy {
-        Derivation::Dfs => dfs(desc, seed, &mut counted),
-        Derivation::Bfs => bfs(desc, seed, limits, &mut counted),
-    };
+        let mut counted = |op: Op| -> Result<(), Diagnostics> {
+            done += 1;
+            if done.is_multiple_of(PROGRESS_EVERY) {
+                progress.update(done);
+            }
+            sink(Emit::Op(op))
+        };
+        r = match strategy {
+            Derivation::Dfs => dfs(desc, seed, &mut counted),
+            Derivation::Bfs => bfs(desc, seed, limits, &mut counted),
+        };
+        if r.is_err() {
+            break;
+        }
+    }
     progress.finish();
     r
 }
@@ -433,6 +482,7 @@ mod tests {
             rules: vec![RuleDef {
                 name: "T".into(),
                 name_loc: Loc::default(),
+                alternative: None,
                 body,
                 loc: Loc::default(),
             }],
@@ -450,6 +500,7 @@ mod tests {
                 loc: Loc::default(),
             }),
             layout: None,
+            forest: Vec::new(),
         }
     }
 

@@ -76,6 +76,24 @@ pub struct Description {
     pub seed: Option<Seed>,
     /// The layout, if any.
     pub layout: Option<Layout>,
+    /// A forest's further trees (roots 2, 3, ... of the root line), empty
+    /// for one tree. All trees share the layout; in an OD they all grow
+    /// [`Description::seed`], in a BED each has its own.
+    pub forest: Vec<Tree>,
+}
+
+/// A tree's root and the seed in force there ([`Description::trees`]).
+pub type TreeSeed<'a> = ((f64, f64), Option<std::borrow::Cow<'a, Seed>>);
+
+/// A tree of a forest after the first: its root and, in a BED, its seed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tree {
+    /// Root coordinate, canvas units.
+    pub root: (f64, f64),
+    /// Where the root is.
+    pub root_loc: Loc,
+    /// In a BED, what grew from it; `None` in an OD.
+    pub seed: Option<Seed>,
 }
 
 /// `L=10(0) B=1(0) A=30 C=1`.
@@ -128,20 +146,60 @@ impl StemParams {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct RuleId(pub usize);
 
-/// `R1: [+F][-F]`.
+/// `R1: [+F][-F]`, or one alternative of a rule: `R1 (0.6): [+F][-F]` in
+/// an OD, `R1.1 (0.6): [+F][-F]` in a BED.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RuleDef {
-    /// The rule's name.
+    /// The rule's name (`R1`; without the alternative's number).
     pub name: String,
     /// Where the name is.
     pub name_loc: Loc,
+    /// Which alternative of `name` this is, if the name has several bodies
+    /// to choose from.
+    pub alternative: Option<Alternative>,
     /// What the rule draws.
     pub body: Body,
     /// The whole definition.
     pub loc: Loc,
 }
 
+/// The rules a reference chooses from, for every rule: itself alone, or
+/// all the alternatives of its name in number order (a group).
+#[derive(Debug, Clone)]
+pub struct RuleGroups {
+    /// The group of each rule, by [`RuleId`].
+    pub of_rule: Vec<usize>,
+    /// The groups' members.
+    pub groups: Vec<Vec<RuleId>>,
+}
+
+impl RuleGroups {
+    /// The rules a reference to `r` chooses from (`r` among them).
+    pub fn members(&self, r: RuleId) -> &[RuleId] {
+        &self.groups[self.of_rule[r.0]]
+    }
+}
+
+/// One of a rule's bodies, chosen at each application with its probability
+/// (section 9 of the language notes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Alternative {
+    /// 1-based, in the order of the OD's lines: the BED names it `R1.2`.
+    pub number: u32,
+    /// The probability of choosing it (an OD requires it; a BED keeps it
+    /// for the reader, it chooses nothing).
+    pub probability: Option<f64>,
+}
+
 impl RuleDef {
+    /// The name a BED writes and reads: `R1`, or `R1.2` for an alternative.
+    pub fn full_name(&self) -> std::borrow::Cow<'_, str> {
+        match &self.alternative {
+            None => std::borrow::Cow::Borrowed(&self.name),
+            Some(a) => std::borrow::Cow::Owned(format!("{}.{}", self.name, a.number)),
+        }
+    }
+
     /// Number of branches (top-level bracket groups): the slot count of its terms.
     pub fn branch_count(&self) -> usize {
         self.body
@@ -306,9 +364,59 @@ impl Description {
         &self.rules[id.0]
     }
 
-    /// Looks a rule up by name.
+    /// Looks a rule up by name (`R1`: its first alternative if it has
+    /// several; `R1.2`: that alternative).
     pub fn rule_id(&self, name: &str) -> Option<RuleId> {
-        self.rules.iter().position(|r| r.name == name).map(RuleId)
+        self.rules
+            .iter()
+            .position(|r| r.name == name || r.full_name() == name)
+            .map(RuleId)
+    }
+
+    /// The rules each reference chooses from ([`RuleGroups`]).
+    pub fn groups(&self) -> RuleGroups {
+        let mut by_name: std::collections::BTreeMap<&str, usize> = Default::default();
+        let mut groups: Vec<Vec<RuleId>> = Vec::new();
+        let mut of_rule = Vec::with_capacity(self.rules.len());
+        for (i, r) in self.rules.iter().enumerate() {
+            let g = match r.alternative {
+                None => None,
+                Some(_) => by_name.get(r.name.as_str()).copied(),
+            };
+            let g = g.unwrap_or_else(|| {
+                groups.push(Vec::new());
+                if r.alternative.is_some() {
+                    by_name.insert(&r.name, groups.len() - 1);
+                }
+                groups.len() - 1
+            });
+            groups[g].push(RuleId(i));
+            of_rule.push(g);
+        }
+        for g in &mut groups {
+            g.sort_by_key(|&r| self.rule(r).alternative.as_ref().map_or(0, |a| a.number));
+        }
+        RuleGroups { of_rule, groups }
+    }
+
+    /// The trees in root order, each with its root and the seed in force
+    /// there: in an OD every tree grows [`Description::effective_seed`],
+    /// in a BED each tree has its own (the first's is `seed`).
+    pub fn trees(&self) -> Vec<TreeSeed<'_>> {
+        let mut v = vec![(self.root, self.effective_seed())];
+        for t in &self.forest {
+            let seed = match self.format {
+                Format::Od => self.effective_seed(),
+                Format::Bed => t.seed.as_ref().map(std::borrow::Cow::Borrowed),
+            };
+            v.push((t.root, seed));
+        }
+        v
+    }
+
+    /// Whether any rule has alternatives (the description chooses).
+    pub fn chooses(&self) -> bool {
+        self.rules.iter().any(|r| r.alternative.is_some())
     }
 
     /// The seed in force: the written one, or `F` and a bare reference to

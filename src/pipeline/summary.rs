@@ -118,13 +118,34 @@ fn stl_summary(
         Format::Bed => "Branch-Expansion Description",
     };
     let _ = writeln!(s, "{what} `{}`: ok", desc.name);
-    let _ = writeln!(s, "  root        ({}, {})", desc.root.0, desc.root.1);
-    for r in &desc.rules {
-        let n = r.branch_count();
+    if desc.forest.is_empty() {
+        let _ = writeln!(s, "  root        ({}, {})", desc.root.0, desc.root.1);
+    } else {
+        let roots: Vec<String> = desc
+            .trees()
+            .iter()
+            .map(|((x, y), _)| format!("({x}, {y})"))
+            .collect();
         let _ = writeln!(
             s,
-            "  rule        {} ({} branch{})",
-            r.name,
+            "  roots       {} (a forest): {}",
+            roots.len(),
+            roots.join(" ")
+        );
+    }
+    for r in &desc.rules {
+        let n = r.branch_count();
+        let chance = match r.alternative.as_ref().and_then(|a| a.probability) {
+            Some(p) => format!(
+                ", alternative with probability {}",
+                crate::num::fixed(p, 6, crate::num::Trim::Zeros)
+            ),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            s,
+            "  rule        {} ({} branch{}{chance})",
+            r.full_name(),
             n,
             if n == 1 { "" } else { "es" }
         );

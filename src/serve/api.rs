@@ -360,14 +360,21 @@ fn utf16(text: &str, byte: usize) -> usize {
     text[..b].encode_utf16().count()
 }
 
-/// Where the root is written, and where, so the page can move it.
+/// Where the root is written, and where, so the page can move it; a
+/// forest's further roots as `others` (drawn, not moved by the page).
 fn root_json(text: &str, od: &Description) -> Value {
     let span = &od.root_loc.0;
+    let others: Vec<Value> = od
+        .forest
+        .iter()
+        .map(|t| json!({"x": t.root.0, "y": t.root.1}))
+        .collect();
     json!({
         "x": od.root.0,
         "y": od.root.1,
         "start": utf16(text, span.start),
         "end": utf16(text, span.end),
+        "others": others,
     })
 }
 

@@ -111,6 +111,8 @@ pub(crate) fn describe(rule: Rule) -> String {
         Rule::stl_rule_def => "a rule definition like `R1: [+F][-F]`",
         Rule::stl_rule_name => "a rule name",
         Rule::stl_defines => "`:` or `=`",
+        Rule::stl_probability => "a probability like `(0.5)`",
+        Rule::stl_word => "a rule name",
         Rule::stl_body => "a rule body",
         Rule::stl_body_text => "a drawing component or rule name",
         Rule::stl_body_piece => "a drawing component or rule name",

@@ -71,6 +71,18 @@ pub struct State {
     pub order: u32,
 }
 
+impl State {
+    /// The state at a root: at `pos`, heading up, not flipped, order 0.
+    pub fn start(pos: Point) -> State {
+        State {
+            pos,
+            k: 0,
+            flip: false,
+            order: 0,
+        }
+    }
+}
+
 /// The turtle state machine: applies [`Op`]s and hands segments to a backend.
 pub struct Interp<T: Turtle> {
     /// Current state.
@@ -86,12 +98,7 @@ impl<T: Turtle> Interp<T> {
     /// A turtle at `start`, heading up, order 0.
     pub fn new(turtle: T, start: Point, angle_deg: f64, length: Linear) -> Self {
         Interp {
-            state: State {
-                pos: start,
-                k: 0,
-                flip: false,
-                order: 0,
-            },
+            state: State::start(start),
             stack: Vec::new(),
             headings: Headings::new(angle_deg),
             length,

@@ -58,8 +58,24 @@ fn grow_err(od: &Description, o: GrowOptions) -> Diagnostics {
 // ------------------------------------------------- independent BED walk
 
 /// Every segment a BED draws, recomputed: seed items in order, a term as
-/// Enter, its rule's body (slot i at the tip of branch i), Leave.
+/// Enter, its rule's body (slot i at the tip of branch i), Leave; a
+/// forest's trees one after another, each from its root.
 fn draw_bed(bed: &Description) -> Vec<Segment> {
+    let mut trees = vec![(bed.root, bed.seed.as_ref().unwrap())];
+    for t in &bed.forest {
+        trees.push((
+            t.root,
+            t.seed.as_ref().expect("a grown forest has a seed per root"),
+        ));
+    }
+    trees
+        .into_iter()
+        .flat_map(|(root, seed)| draw_tree(bed, root, seed))
+        .collect()
+}
+
+/// [`draw_bed`] for one tree.
+fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
     enum Task<'a> {
         Text(&'a str),
         Term(Term<'a>),
@@ -76,11 +92,10 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
     let p = &bed.params;
     let mut it = Interp::new(
         Recorder::default(),
-        Point::new(bed.root.0, bed.root.1),
+        Point::new(root.0, root.1),
         p.angle(),
         p.length,
     );
-    let seed = bed.seed.as_ref().unwrap();
     let mut stack: Vec<Task> = Vec::new();
     for item in seed.items.iter().rev() {
         stack.push(match item {

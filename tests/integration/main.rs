@@ -9,6 +9,7 @@ mod golden;
 mod grow;
 mod lsys;
 mod newuser;
+mod od_variation;
 mod render;
 mod robustness;
 mod serve;

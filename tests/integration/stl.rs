@@ -926,6 +926,7 @@ fn gen_description(seed: u64) -> Description {
         .map(|name| RuleDef {
             name: name.to_string(),
             name_loc: Loc::default(),
+            alternative: None,
             body: gen_body(&mut g, n),
             loc: Loc::default(),
         })
@@ -1000,6 +1001,7 @@ fn gen_description(seed: u64) -> Description {
             loc: Loc::default(),
         }),
         layout,
+        forest: Vec::new(),
     }
 }
 

@@ -28,6 +28,8 @@ const state = {
   layoutSpan: null,
   root: null,
   rootSpan: null,
+  // A forest's roots after the first (shown, not dragged).
+  others: [],
   selected: -1,
   view: null, // [minx, miny, maxx, maxy] shown
   fitView: null,
@@ -239,10 +241,12 @@ function apply(answer, text) {
   if (answer.root) {
     state.root = [answer.root.x, answer.root.y];
     state.rootSpan = [answer.root.start, answer.root.end];
+    state.others = (answer.root.others || []).map((r) => [r.x, r.y]);
     state.layoutSpan = answer.layout ? [answer.layout.start, answer.layout.end] : null;
     state.shapes = answer.layout ? answer.layout.shapes.map((s) => Object.assign({}, s)) : [];
   } else {
     state.root = null;
+    state.others = [];
     state.shapes = [];
     state.layoutSpan = null;
   }
@@ -411,6 +415,10 @@ function drawOverlay() {
   if (state.root) {
     el('circle', { class: 'root', cx: state.root[0], cy: state.root[1], r: 5 * unitsPerPixel(), 'data-testid': 'root' }, ov);
   }
+  // A forest's further roots: shown, edited in the text.
+  (state.others || []).forEach(([x, y], i) => {
+    el('circle', { class: 'other-root', cx: x, cy: y, r: 4 * unitsPerPixel(), 'data-testid': `root-${i + 2}` }, ov);
+  });
 }
 
 function shapeElement(s, parent) {

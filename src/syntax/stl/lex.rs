@@ -11,7 +11,7 @@ use pest::iterators::Pair;
 
 use super::{Builder, DRAWING_LETTERS, Rule, not_in_grammar};
 use crate::diag::{Diagnostic, ErrorKind, Span};
-use crate::model::RuleId;
+use crate::model::{Format, RuleId};
 
 /// One lexical item of a body or seed, words already split.
 #[derive(Debug, Clone)]
@@ -113,9 +113,9 @@ impl<'s> TextLex<'s> {
                 }
                 None => self.token(Lex::Open(here), i + 1),
             },
-            c if name_char(c) => {
+            c if name_char(c) || c == b'.' => {
                 let mut e = i;
-                while e < bytes.len() && name_char(bytes[e]) {
+                while e < bytes.len() && (name_char(bytes[e]) || bytes[e] == b'.') {
                     e += 1;
                 }
                 b.split_word(&self.text[i..e], self.at + i, &mut self.word);
@@ -254,11 +254,37 @@ impl Builder<'_> {
 
     /// Splits a word left to right by longest match against the declared
     /// rule names; the leftovers must be drawing letters.
+    /// A dot belongs to a BED's alternative (`R1.2`); in an OD it is
+    /// reported.
     pub(super) fn split_word(&mut self, word: &str, at: usize, out: &mut Vec<Lex>) {
+        if self.format == Format::Od && word.contains('.') {
+            let name = word.split('.').next().unwrap_or(word);
+            self.report(
+                ErrorKind::DottedName {
+                    name: word.to_string(),
+                },
+                at..at + word.len(),
+                "a dot in an OD",
+                &format!(
+                    "a dot names an alternative in a BED only; an OD refers to the rule \
+                     (`{name}`) and growth chooses its body"
+                ),
+            );
+            return;
+        }
         let b = word.as_bytes();
         let mut i = 0;
         while i < b.len() {
             if let Some((id, len)) = self.longest(&word[i..]) {
+                if b.get(i + len) == Some(&b'.') {
+                    // `R1.3` where R1 has no third alternative.
+                    let e = (i + len + 1..=b.len())
+                        .find(|&e| e == b.len() || !b[e].is_ascii_digit())
+                        .unwrap_or(b.len());
+                    self.no_alternative(&word[i..i + len], &word[i + len + 1..e], at + i..at + e);
+                    i = e;
+                    continue;
+                }
                 out.push(Lex::Name(id, at + i..at + i + len));
                 i += len;
                 continue;
@@ -290,6 +316,31 @@ impl Builder<'_> {
             self.unknown(&word[s..e], at + s..at + e);
             i = e;
         }
+    }
+
+    /// Reports `R1.3` (`name`, `number`) where R1 (`id`) has no such
+    /// alternative.
+    fn no_alternative(&mut self, name: &str, number: &str, span: Span) {
+        let known: Vec<&str> = self
+            .names
+            .iter()
+            .filter(|n| n.split_once('.').is_some_and(|(base, _)| base == name))
+            .map(String::as_str)
+            .collect();
+        let help = if known.is_empty() {
+            format!("`{name}` has no alternatives: write `{name}`")
+        } else {
+            format!("the alternatives of `{name}` are {}", known.join(", "))
+        };
+        self.report(
+            ErrorKind::UnknownAlternative {
+                name: name.to_string(),
+                number: number.to_string(),
+            },
+            span,
+            "no such alternative",
+            &help,
+        );
     }
 
     /// Reports a part of a word that is no declared rule, with the nearest

@@ -71,6 +71,7 @@ pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, 
         by_name: std::collections::HashMap::new(),
         longest_name: 0,
         branches: Vec::new(),
+        alternatives: Vec::new(),
     };
     let desc = b.file(file);
     b.diags.into_result(desc)
@@ -90,6 +91,9 @@ struct Builder<'l> {
     longest_name: usize,
     /// Branch counts by [`RuleId`](crate::model::RuleId).
     branches: Vec<usize>,
+    /// How many alternatives the name of each rule has (0: it has one
+    /// body, without a probability), by [`RuleId`](crate::model::RuleId).
+    alternatives: Vec<usize>,
 }
 
 fn span_of(p: &Pair<'_, Rule>) -> Span {
@@ -122,10 +126,10 @@ impl Builder<'_> {
 
     fn file(&mut self, file: Pair<'_, Rule>) -> Description {
         let mut name = None;
-        let mut root = None;
+        let mut roots = Vec::new();
         let mut params = Vec::new();
         let mut defs = Vec::new();
-        let mut seed_pair = None;
+        let mut seed_pairs = Vec::new();
         let mut layout = None;
         for p in file.into_inner() {
             match p.as_rule() {
@@ -138,21 +142,57 @@ impl Builder<'_> {
                         self.number(&n)
                     };
                     let (x, y) = (coordinate(), coordinate());
-                    root = Some(((x, y), loc));
+                    roots.push(((x, y), loc));
                 }
                 Rule::stl_param => params.push(p),
                 Rule::stl_rule_def => defs.push(p),
-                Rule::stl_seed => seed_pair = Some(p),
+                Rule::stl_seed => seed_pairs.push(p),
                 Rule::stl_layout => layout = Some(self.layout(p)),
                 Rule::stl_kw_rule | Rule::EOI => {}
                 other => not_in_grammar("stl_file", other),
             }
         }
         let (name, name_loc) = name.expect("grammar: stl_file starts with stl_tree_name");
-        let (root, root_loc) = root.expect("grammar: stl_file has stl_root");
+        let mut roots = roots.into_iter();
+        let (root, root_loc) = roots.next().expect("grammar: stl_file has stl_root");
         let params = self.params(params, &root_loc);
         let rules = self.rules(defs);
-        let seed = seed_pair.map(|p| self.seed(p));
+        let mut seeds: Vec<_> = seed_pairs.into_iter().map(|p| self.seed(p)).collect();
+        let more: Vec<_> = roots.collect();
+        let wanted = match self.format {
+            Format::Bed if !more.is_empty() => more.len() + 1,
+            _ => 1,
+        };
+        if seeds.len() > wanted || (seeds.len() > 1 && seeds.len() != wanted) {
+            let extra = seeds.get(wanted).unwrap_or(&seeds[0]).loc.0.clone();
+            let help = match self.format {
+                Format::Od => "an OD has one SEED, grown from every root: remove the others",
+                Format::Bed => "a BED has one SEED per root, in root order",
+            };
+            self.report(
+                ErrorKind::SeedsPerRoot {
+                    roots: more.len() + 1,
+                    seeds: seeds.len(),
+                },
+                extra,
+                "this SEED",
+                help,
+            );
+        }
+        let mut later = seeds.drain(1.min(seeds.len())..);
+        let forest = more
+            .into_iter()
+            .map(|(root, root_loc)| crate::model::Tree {
+                root,
+                root_loc,
+                seed: match self.format {
+                    Format::Bed => later.next(),
+                    Format::Od => None,
+                },
+            })
+            .collect();
+        drop(later);
+        let seed = seeds.pop();
         Description {
             format: self.format,
             name,
@@ -163,6 +203,7 @@ impl Builder<'_> {
             rules,
             seed,
             layout,
+            forest,
         }
     }
 

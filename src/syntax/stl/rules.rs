@@ -5,8 +5,9 @@ use pest::iterators::Pair;
 
 use super::layout::find_word;
 use super::{Builder, Rule, span_of};
+use crate::choice::{self, BadProbabilities};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
-use crate::model::{Loc, RuleDef, RuleId};
+use crate::model::{Alternative, Format, Loc, RuleDef, RuleId};
 
 /// The drawing letters of bodies and seeds. A word's leftovers after the
 /// rule names are taken out must be these.
@@ -92,18 +93,39 @@ impl Builder<'_> {
     pub(super) fn rules(&mut self, defs: Vec<Pair<'_, Rule>>) -> Vec<RuleDef> {
         // Names as written and their spans, by `RuleId`.
         let mut heads: Vec<(String, Span)> = Vec::new();
+        let mut alternatives: Vec<Option<Alternative>> = Vec::new();
         for d in &defs {
-            let n = d.clone().into_inner().next();
+            let mut inner = d.clone().into_inner();
+            let n = inner.next();
             let n = n.expect("grammar: stl_rule_def starts with stl_rule_name");
-            let name = n.as_str().to_string();
+            let written = n.as_str().to_string();
             let span = span_of(&n);
-            let valid = self.check_name(&name, &span, &heads);
-            heads.push((name.clone(), span));
-            if valid {
-                self.by_name.insert(name.clone(), RuleId(self.names.len()));
-                self.longest_name = self.longest_name.max(name.len());
+            let probability = inner
+                .next()
+                .filter(|p| p.as_rule() == Rule::stl_probability)
+                .map(|p| {
+                    let num = p.into_inner().next();
+                    self.number(&num.expect("grammar: stl_probability holds a number"))
+                });
+            let (name, alternative) = self.split_alternative(&written, &span, probability);
+            let valid = !name.is_empty()
+                && self.check_name(&name, &written, &span, &heads, &alternatives, &alternative);
+            if valid && !self.by_name.contains_key(&written) {
+                self.by_name
+                    .insert(written.clone(), RuleId(self.names.len()));
+                self.longest_name = self.longest_name.max(written.len());
             }
-            self.names.push(if valid { name } else { String::new() });
+            // A BED's body names the rule a branch grows (`R1`) without
+            // its alternative: the name stands for the first one.
+            if valid && alternative.is_some() && !self.by_name.contains_key(&name) {
+                self.by_name.insert(name.clone(), RuleId(self.names.len()));
+            }
+            self.names.push(if valid { written } else { String::new() });
+            heads.push((name, span));
+            alternatives.push(alternative);
+        }
+        if self.format == Format::Od {
+            self.check_alternatives(&heads, &mut alternatives);
         }
         let mut bodies = Vec::new();
         for d in &defs {
@@ -135,22 +157,155 @@ impl Builder<'_> {
             bodies.push((lex, end));
         }
         let mut out = Vec::new();
-        for ((d, (name, span)), (lex, end)) in defs.iter().zip(heads).zip(bodies) {
+        for (((d, (name, span)), (lex, end)), alternative) in
+            defs.iter().zip(heads).zip(bodies).zip(alternatives)
+        {
             let body = self.body(&lex);
             out.push(RuleDef {
                 name,
                 name_loc: Loc(span),
+                alternative,
                 body,
                 loc: Loc(span_of(d).start..end),
             });
         }
         self.branches = out.iter().map(RuleDef::branch_count).collect();
+        let mut per_name: std::collections::BTreeMap<&str, usize> = Default::default();
+        for r in out.iter().filter(|r| r.alternative.is_some()) {
+            *per_name.entry(&r.name).or_default() += 1;
+        }
+        self.alternatives = out
+            .iter()
+            .map(|r| match r.alternative {
+                None => 0,
+                Some(_) => per_name[r.name.as_str()],
+            })
+            .collect();
         out
     }
 
-    /// Whether `name` may name a rule (else reports why); `heads` are the
-    /// names before it.
-    fn check_name(&mut self, name: &str, span: &Span, heads: &[(String, Span)]) -> bool {
+    /// A rule's name as written into its name and alternative: in an OD,
+    /// `R1 (0.6)` (the number is given later, by line order); in a BED,
+    /// `R1.2 (0.6)` or `R1.2`. A dot in an OD, or a BED's number that is
+    /// not a whole number from 1, is reported (the name comes back empty).
+    fn split_alternative(
+        &mut self,
+        written: &str,
+        span: &Span,
+        probability: Option<f64>,
+    ) -> (String, Option<Alternative>) {
+        let Some((name, number)) = written.split_once('.') else {
+            let alternative = probability.map(|p| Alternative {
+                number: 0,
+                probability: Some(p),
+            });
+            return (written.to_string(), alternative);
+        };
+        let number = number.parse::<u32>().ok().filter(|&n| n >= 1);
+        match (self.format, number) {
+            (Format::Bed, Some(number)) => (
+                name.to_string(),
+                Some(Alternative {
+                    number,
+                    probability,
+                }),
+            ),
+            (format, _) => {
+                let help = if format == Format::Od {
+                    format!(
+                        "a dot is reserved for the alternatives a BED records (`{name}.1`); \
+                         rename the rule (`{name}_{n}`), or give `{name}` several bodies \
+                         with probabilities: `{name} (0.6): ...` and `{name} (0.4): ...`",
+                        n = written.split_once('.').map_or("", |x| x.1)
+                    )
+                } else {
+                    format!("alternatives are numbered from 1: `{name}.1`, `{name}.2`")
+                };
+                self.report(
+                    ErrorKind::DottedName {
+                        name: written.to_string(),
+                    },
+                    span.clone(),
+                    "not a rule name here",
+                    &help,
+                );
+                (String::new(), None)
+            }
+        }
+    }
+
+    /// In an OD: the bodies of one name are its alternatives, numbered in
+    /// line order; each needs a probability and together they sum to 1.
+    fn check_alternatives(
+        &mut self,
+        heads: &[(String, Span)],
+        alternatives: &mut [Option<Alternative>],
+    ) {
+        // The alternatives of each name, in line order.
+        let mut groups: std::collections::BTreeMap<&str, Vec<usize>> = Default::default();
+        for (j, (name, _)) in heads.iter().enumerate() {
+            if !name.is_empty() && alternatives[j].is_some() {
+                groups.entry(name).or_default().push(j);
+            }
+        }
+        for (name, group) in groups {
+            let name = name.to_string();
+            let probabilities: Vec<f64> = group
+                .iter()
+                .map(|&j| {
+                    alternatives[j]
+                        .as_ref()
+                        .and_then(|a| a.probability)
+                        .unwrap_or(0.0)
+                })
+                .collect();
+            for (k, &j) in group.iter().enumerate() {
+                if let Some(a) = &mut alternatives[j] {
+                    a.number = k as u32 + 1;
+                }
+            }
+            match choice::check(&probabilities) {
+                Ok(()) => {}
+                Err(BadProbabilities::NotPositive(k)) => self.report(
+                    ErrorKind::BadProbability {
+                        name: name.clone(),
+                        value: probabilities[k],
+                    },
+                    heads[group[k]].1.clone(),
+                    "this alternative's probability",
+                    "a probability is a number above 0, e.g. `(0.5)`",
+                ),
+                Err(BadProbabilities::Sum(sum)) => {
+                    let mut d = Diagnostic::error(ErrorKind::ProbabilitySum {
+                        name: name.clone(),
+                        sum,
+                    })
+                    .with_span(heads[group[0]].1.clone())
+                    .with_label("first alternative");
+                    for &j in group.iter().skip(1).take(4) {
+                        d = d.with_note_at(heads[j].1.clone(), "another alternative");
+                    }
+                    self.err(d.with_help(
+                        "make the probabilities of a rule's alternatives add up to 1, \
+                         e.g. `(0.6)` and `(0.4)`",
+                    ));
+                }
+            }
+        }
+    }
+
+    /// Whether `name` (written `written`) may name a rule (else reports
+    /// why); `heads` and `alternatives` are the definitions before it.
+    /// In an OD a name may have several bodies if each has a probability.
+    fn check_name(
+        &mut self,
+        name: &str,
+        written: &str,
+        span: &Span,
+        heads: &[(String, Span)],
+        alternatives: &[Option<Alternative>],
+        alternative: &Option<Alternative>,
+    ) -> bool {
         if is_reserved(name) {
             let letters: Vec<String> = DRAWING_LETTERS.iter().map(char::to_string).collect();
             self.report(
@@ -178,10 +333,37 @@ impl Builder<'_> {
             );
             return false;
         }
-        if let Some(&RuleId(i)) = self.by_name.get(name) {
+        // In an OD `written` is `name`; a BED's alternatives differ in it.
+        if let Some(&RuleId(i)) = self.by_name.get(written) {
+            if self.format == Format::Od {
+                match (alternatives[i].is_some(), alternative.is_some()) {
+                    (true, true) => return true,
+                    (false, false) => {}
+                    (first, _) => {
+                        let (at, other) = if first {
+                            (span.clone(), heads[i].1.clone())
+                        } else {
+                            (heads[i].1.clone(), span.clone())
+                        };
+                        self.err(
+                            Diagnostic::error(ErrorKind::MissingProbability {
+                                name: name.to_string(),
+                            })
+                            .with_span(at)
+                            .with_label("no probability")
+                            .with_note_at(other, "an alternative with one")
+                            .with_help(format!(
+                                "a rule with several bodies chooses among them: give each \
+                                 a probability, `{name} (0.5): ...`"
+                            )),
+                        );
+                        return false;
+                    }
+                }
+            }
             self.err(
                 Diagnostic::error(ErrorKind::DuplicateRule {
-                    name: name.to_string(),
+                    name: written.to_string(),
                 })
                 .with_span(span.clone())
                 .with_label("defined again here")

@@ -114,7 +114,10 @@ impl Builder<'_> {
                 Lex::Name(id, s) => pending = Some((id, s)),
                 Lex::LBrace(s) => {
                     let (rule, start) = match pending.take() {
-                        Some((id, ns)) => (Some(id), ns.start),
+                        Some((id, ns)) => {
+                            self.names_alternative(id, &ns, true);
+                            (Some(id), ns.start)
+                        }
                         None => {
                             self.report(
                                 ErrorKind::BraceWithoutRule,
@@ -282,8 +285,38 @@ impl Builder<'_> {
     /// The term a bare rule name `R1` stands for.
     fn bare(&mut self, terms: &mut Terms, rule: RuleId, span: Span) -> Made {
         let bare = self.format == Format::Od;
+        self.names_alternative(rule, &span, !bare);
         let id = terms.push_leaf(rule, bare, span.clone(), self.branches[rule.0]);
         Made::Term(id, span)
+    }
+
+    /// Reports a term that must say which alternative grew and does not:
+    /// in a BED every term names its alternative (`R1.2`, not `R1`); in an
+    /// OD a term written out (`R1{,}`, `written`) cannot, since growth
+    /// chooses the body.
+    fn names_alternative(&mut self, rule: RuleId, span: &Span, written: bool) {
+        let count = self.alternatives[rule.0];
+        let named = span.len() == self.names[rule.0].len() && self.format == Format::Bed;
+        if count == 0 || named || !written {
+            return;
+        }
+        let name = self.names[rule.0]
+            .split('.')
+            .next()
+            .unwrap_or_default()
+            .to_string();
+        let help = match self.format {
+            Format::Bed => format!("write which one grew: `{name}.1` to `{name}.{count}`"),
+            Format::Od => format!(
+                "growth chooses the body of `{name}`: write a growth point `{name}` (no braces)"
+            ),
+        };
+        self.report(
+            ErrorKind::AlternativeNotNamed { name, count },
+            span.clone(),
+            "which alternative?",
+            &help,
+        );
     }
 
     /// Puts a finished term or repeat where it belongs: the open slot of the

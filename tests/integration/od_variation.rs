@@ -1,0 +1,454 @@
+//! Variation in Outline Descriptions (section 9 of the language notes):
+//! rules with alternatives chosen by seed and place, the BED that records
+//! the choices, and forests of several roots in one outline.
+
+use assert_cmd::Command;
+use stlc::choice::{Alternatives, Key};
+use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow, grow_traced};
+use stlc::model::{Description, Format, SeedItem, Slot};
+use stlc::progress::NoProgress;
+use stlc::syntax::stl::parse;
+use stlc::{Diagnostics, ErrorKind, Limits};
+
+use crate::support::manifest_path;
+
+fn od(text: &str) -> Description {
+    parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+fn errors(text: &str, format: Format) -> Diagnostics {
+    match parse(text, format, &Limits::default()) {
+        Ok(_) => panic!("parsed, expected an error:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+fn grown(d: &Description, growth: GrowthOrder, seed: u64) -> Grown {
+    let o = GrowOptions {
+        growth,
+        seed,
+        max_stems_explicit: true,
+        ..GrowOptions::default()
+    };
+    grow(d, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn bed_text(g: &Grown) -> String {
+    stlc::bed::write::write(g.bed.description())
+}
+
+/// The alternative (1-based) of the term at the first growth point of the
+/// first tree's grown seed, `None` if nothing grew there.
+fn first_choice(g: &Grown) -> Option<u32> {
+    let d = g.bed.description();
+    let seed = d.seed.as_ref()?;
+    seed.items.iter().find_map(|i| match i {
+        SeedItem::Term(t) => Some(d.rule(seed.term(*t).rule()).alternative.as_ref()?.number),
+        _ => None,
+    })
+}
+
+fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
+    let at = text.find(needle).expect("needle");
+    at..at + needle.len()
+}
+
+// ------------------------------------------------------------ choices
+
+/// The documented key function decides: the seed's growth point 0 of root
+/// 0 has key `Key::root(seed).child(0).child(0)`, and the alternative grown
+/// there is the table's pick for it, for every seed tried.
+#[test]
+fn the_first_choice_is_the_documented_function_of_seed_and_place() {
+    let d = od("T (0,0) L=10(0) B=1(0) RULE
+        R1 (0.5): [+F] R1 (0.3): [-F] R1 (0.2): [F] SEED [I 1 R1] ENDSEED");
+    let table = Alternatives::new(&[0.5, 0.3, 0.2]).unwrap();
+    for seed in 0..200u64 {
+        let g = grown(&d, GrowthOrder::Bfs, seed);
+        let expected = table.pick(Key::root(seed).child(0).child(0)) as u32 + 1;
+        assert_eq!(first_choice(&g), Some(expected), "seed {seed}");
+    }
+}
+
+/// Over thousands of seeds the choices follow the probabilities: each
+/// alternative's count lies within 4 standard deviations of `n p`.
+#[test]
+fn choices_follow_the_probabilities() {
+    let d = od("T (0,0) L=10(0) B=1(0) RULE
+        R1 (0.6): [+F] R1 (0.3): [-F] R1 (0.1): [F] SEED [I 1 R1] ENDSEED");
+    let n = 3000u64;
+    let mut counts = [0u64; 3];
+    for seed in 0..n {
+        let k = first_choice(&grown(&d, GrowthOrder::Bfs, seed)).unwrap();
+        counts[k as usize - 1] += 1;
+    }
+    for (c, p) in counts.iter().zip([0.6, 0.3, 0.1]) {
+        let mean = n as f64 * p;
+        let sd = (n as f64 * p * (1.0 - p)).sqrt();
+        assert!(
+            (*c as f64 - mean).abs() < 4.0 * sd,
+            "{counts:?}: {c} vs {mean} ± {sd}"
+        );
+    }
+}
+
+/// A picked body that does not fit leaves its slot empty: growth never
+/// tries another alternative. The long body cannot fit in the box, so the
+/// seed's point is empty exactly when the key picks it.
+#[test]
+fn a_body_that_does_not_fit_is_not_replaced_by_another() {
+    let d = od("T (50,95) L=10(0) B=1(0) RULE
+        R1 (0.5): [F] R1 (0.5): [FFFFFFFFFFFF] SEED R1 ENDSEED
+        LAYOUT (clGreen) Rectangle (0,0), 100, 100 ENDLAYOUT");
+    let table = Alternatives::new(&[0.5, 0.5]).unwrap();
+    let (mut empty, mut short) = (0, 0);
+    for seed in 0..100u64 {
+        let g = grown(&d, GrowthOrder::Dfs, seed);
+        let pick = table.pick(Key::root(seed).child(0).child(0));
+        match first_choice(&g) {
+            None => {
+                assert_eq!(pick, 1, "seed {seed}: empty but the short body was picked");
+                empty += 1;
+            }
+            Some(k) => {
+                assert_eq!((k, pick), (1, 0), "seed {seed}");
+                short += 1;
+            }
+        }
+    }
+    assert!(empty > 20 && short > 20, "{empty} empty, {short} short");
+}
+
+/// Every application chooses anew: a self-resemblant branch of one
+/// alternative grows any alternative, and the BED names each one.
+#[test]
+fn every_application_chooses_and_the_bed_names_the_choice() {
+    let d = od("T (0,0) L=10(0) B=1(0) RULE
+        R1 (0.5): [+F] R1 (0.5): [-F] SEED [I 6 R1] ENDSEED");
+    let g = grown(&d, GrowthOrder::Bfs, 3);
+    let text = bed_text(&g);
+    assert!(
+        text.contains("R1.1 (0.5): [+F]\nR1.2 (0.5): [-F]\n"),
+        "{text}"
+    );
+    // One chain of six applications; both alternatives occur (the chance
+    // that one seed gives six equal choices is 1/32, and seed 3 does not).
+    let (ones, twos) = (text.matches("R1.1{").count(), text.matches("R1.2{").count());
+    assert_eq!(ones + twos, 6, "{text}");
+    assert!(ones > 0 && twos > 0, "{text}");
+    // The chain follows the key path root, child(0), child(0), ...
+    let table = Alternatives::new(&[0.5, 0.5]).unwrap();
+    let mut key = Key::root(3).child(0).child(0);
+    let mut expected = Vec::new();
+    for _ in 0..6 {
+        expected.push(format!("R1.{}", table.pick(key) + 1));
+        key = key.child(0);
+    }
+    let found: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with("R1.") && l.contains('{'))
+        .map(|l| &l[..4])
+        .collect();
+    assert_eq!(found, expected);
+}
+
+/// The BED round-trips: read back, it is the same description; and it
+/// renders the same picture whatever `--seed` says.
+#[test]
+fn a_grown_bed_reads_back_and_needs_no_seed() {
+    for file in ["alternatives", "grove"] {
+        let text = std::fs::read_to_string(manifest_path(format!("examples/{file}.od"))).unwrap();
+        let g = grown(&od(&text), GrowthOrder::Bfs, 5);
+        let written = bed_text(&g);
+        let back = parse(&written, Format::Bed, &Limits::default()).unwrap();
+        assert!(
+            back == *g.bed.description(),
+            "{file}: the BED reads back differently"
+        );
+        assert_eq!(stlc::bed::write::write(&back), written);
+    }
+}
+
+/// Same seed, same bytes; another seed, another tree.
+#[test]
+fn the_seed_selects_the_tree() {
+    let text = std::fs::read_to_string(manifest_path("examples/alternatives.od")).unwrap();
+    let d = od(&text);
+    for g in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        let a = bed_text(&grown(&d, g, 1));
+        assert_eq!(a, bed_text(&grown(&d, g, 1)));
+        assert_ne!(a, bed_text(&grown(&d, g, 2)));
+    }
+}
+
+/// A description without alternatives grows the same tree for any seed.
+#[test]
+fn without_alternatives_the_seed_changes_nothing() {
+    let text = std::fs::read_to_string(manifest_path("examples/crown.od")).unwrap();
+    let d = od(&text);
+    assert_eq!(
+        bed_text(&grown(&d, GrowthOrder::Bfs, 0)),
+        bed_text(&grown(&d, GrowthOrder::Bfs, 99))
+    );
+}
+
+// ------------------------------------------------------------ diagnostics
+
+#[test]
+fn probabilities_must_sum_to_one() {
+    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F] R1 (0.4): [-F]";
+    let e = errors(text, Format::Od);
+    let d = &e.0[0];
+    assert!(
+        matches!(&d.kind, ErrorKind::ProbabilitySum { name, sum } if name == "R1" && (sum - 0.9).abs() < 1e-12),
+        "{:?}",
+        d.kind
+    );
+    assert_eq!(d.span, Some(span_of(text, "R1")));
+    assert!(d.kind.to_string().contains("0.9"), "{}", d.kind);
+}
+
+#[test]
+fn a_probability_must_be_above_zero() {
+    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] R1 (0): [-F]";
+    let e = errors(text, Format::Od);
+    assert!(
+        matches!(&e.0[0].kind, ErrorKind::BadProbability { name, value } if name == "R1" && *value == 0.0)
+    );
+    let second = text.rfind("R1").unwrap();
+    assert_eq!(e.0[0].span, Some(second..second + 2));
+}
+
+#[test]
+fn every_alternative_needs_a_probability() {
+    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F] R1: [-F]";
+    let e = errors(text, Format::Od);
+    assert!(matches!(&e.0[0].kind, ErrorKind::MissingProbability { name } if name == "R1"));
+    let second = text.rfind("R1").unwrap();
+    assert_eq!(e.0[0].span, Some(second..second + 2));
+    // Two bodies without probabilities stay a duplicate.
+    let e = errors("T (0,0) L=1(0) B=1(0) RULE R1: [+F] R1: [-F]", Format::Od);
+    assert!(matches!(&e.0[0].kind, ErrorKind::DuplicateRule { .. }));
+}
+
+#[test]
+fn a_dot_in_an_od_is_refused() {
+    let text = "T (0,0) L=1(0) B=1(0) RULE R1.1: [+F]";
+    let e = errors(text, Format::Od);
+    assert!(matches!(&e.0[0].kind, ErrorKind::DottedName { name } if name == "R1.1"));
+    assert_eq!(e.0[0].span, Some(span_of(text, "R1.1")));
+    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] SEED F R1.1 ENDSEED";
+    let e = errors(text, Format::Od);
+    assert!(matches!(&e.0[0].kind, ErrorKind::DottedName { name } if name == "R1.1"));
+    assert_eq!(
+        e.0[0].span,
+        Some(span_of(text, "R1.1 ")).map(|s| s.start..s.end - 1)
+    );
+}
+
+#[test]
+fn a_bed_names_alternatives_that_exist() {
+    let head = "T (0,0) L=1(0) B=1(0) RULE R1.1 (0.5): [+F] R1.2 (0.5): [-F] SEED ";
+    let text = format!("{head}R1.3{{}} ENDSEED");
+    let e = errors(&text, Format::Bed);
+    assert!(
+        matches!(&e.0[0].kind, ErrorKind::UnknownAlternative { name, number } if name == "R1" && number == "3"),
+        "{:?}",
+        e.0[0].kind
+    );
+    assert_eq!(e.0[0].span, Some(span_of(&text, "R1.3")));
+    let text = format!("{head}R1{{}} ENDSEED");
+    let e = errors(&text, Format::Bed);
+    assert!(
+        matches!(&e.0[0].kind, ErrorKind::AlternativeNotNamed { name, count: 2 } if name == "R1")
+    );
+    let text = format!("{head}R1.2{{}} ENDSEED");
+    assert!(parse(&text, Format::Bed, &Limits::default()).is_ok());
+}
+
+#[test]
+fn a_forest_bed_has_one_seed_per_root() {
+    let text =
+        "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED SEED F ENDSEED";
+    let e = errors(text, Format::Bed);
+    assert!(matches!(
+        e.0[0].kind,
+        ErrorKind::SeedsPerRoot { roots: 2, seeds: 3 }
+    ));
+    let text = "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED";
+    let d = parse(text, Format::Bed, &Limits::default()).unwrap();
+    assert_eq!(d.forest.len(), 1);
+    let e = errors(
+        "T (0,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED",
+        Format::Od,
+    );
+    assert!(matches!(
+        e.0[0].kind,
+        ErrorKind::SeedsPerRoot { roots: 1, seeds: 2 }
+    ));
+}
+
+// ------------------------------------------------------------ forests
+
+/// Two binary trees far apart, three levels each, lengths 15, 10, 5 and
+/// branches 90 degrees apart (no collisions: 1 + 2 + 4 applications and
+/// 1 + 2 + 4 + 8 stems a tree).
+const FAR_APART: &str =
+    "F2 (0,0) (1000,0) L=20(5) B=1(0) A=45 RULE R1: [+F][-F] SEED F [I 3 R1] ENDSEED";
+
+/// Which tree each decision of [`FAR_APART`] grew in, in decision order.
+fn decision_trees(growth: GrowthOrder) -> Vec<usize> {
+    let d = od(FAR_APART);
+    let o = GrowOptions {
+        growth,
+        ..GrowOptions::default()
+    };
+    let (_, placed) = grow_traced(&d, &o, &mut NoProgress).unwrap();
+    let mut trees: Vec<(u64, usize)> = placed
+        .iter()
+        .filter(|s| s.decision > 0)
+        .map(|s| (s.decision, usize::from(s.from.x > 500.0)))
+        .collect();
+    trees.dedup();
+    trees.into_iter().map(|(_, t)| t).collect()
+}
+
+/// `bfs` interleaves the trees level by level, root order within a level;
+/// `dfs` grows the first tree whole, then the second.
+#[test]
+fn bfs_interleaves_trees_by_level_and_dfs_grows_them_in_root_order() {
+    // Levels of 1, 2, 4 applications per tree.
+    let bfs = decision_trees(GrowthOrder::Bfs);
+    let level = |t: usize, n: usize| std::iter::repeat_n(t, n);
+    let expected: Vec<usize> = level(0, 1)
+        .chain(level(1, 1))
+        .chain(level(0, 2))
+        .chain(level(1, 2))
+        .chain(level(0, 4))
+        .chain(level(1, 4))
+        .collect();
+    assert_eq!(bfs, expected);
+    let dfs = decision_trees(GrowthOrder::Dfs);
+    assert_eq!(dfs, [vec![0; 7], vec![1; 7]].concat());
+}
+
+/// Each root grows the seed; without alternatives, two trees far apart are
+/// the same tree moved; and the BED has one SEED per root.
+#[test]
+fn each_root_grows_the_seed_and_the_bed_lists_the_roots() {
+    let d = od(FAR_APART);
+    let g = grown(&d, GrowthOrder::Bfs, 0);
+    assert_eq!(g.stems, 2 * (1 + 2 + 4 + 8));
+    let text = bed_text(&g);
+    assert!(text.starts_with("F2\n(0, 0) (1000, 0)\n"), "{text}");
+    assert_eq!(text.matches("\nSEED\n").count(), 2);
+    let seeds: Vec<&str> = text.split("SEED\n").collect();
+    assert_eq!(seeds[1], seeds[3], "{text}");
+}
+
+/// Trees compete for space: two roots close together in a box grow fewer
+/// stems than twice one alone, and both grow. (The brute-force
+/// invariants of grow.rs hold between the trees of every example forest.)
+#[test]
+fn trees_share_the_occupancy() {
+    let alone = od(
+        "A (50,190) L=10(0) B=1(0) RULE R1: [+F][-F] SEED FF R1 ENDSEED
+        LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT",
+    );
+    let pair = od(
+        "A (50,190) (90,190) L=10(0) B=1(0) RULE R1: [+F][-F] SEED FF R1 ENDSEED
+        LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT",
+    );
+    let one = grown(&alone, GrowthOrder::Bfs, 0).stems;
+    let g = grown(&pair, GrowthOrder::Bfs, 0);
+    assert!(
+        g.stems < 2 * one,
+        "{} stems for two trees, {one} for one",
+        g.stems
+    );
+    let text = bed_text(&g);
+    let seeds: Vec<&str> = text.split("SEED\n").collect();
+    assert!(
+        seeds[1].contains("R1{") && seeds[3].contains("R1{"),
+        "{text}"
+    );
+}
+
+/// Roots of a forest get their own keys: the trees of a forest with
+/// alternatives differ from each other.
+#[test]
+fn trees_of_a_forest_choose_differently() {
+    let d = od(
+        "F2 (0,0) (1000,0) L=10(0) B=1(0) RULE R1 (0.5): [+F] R1 (0.5): [-F]
+        SEED F [I 8 R1] ENDSEED",
+    );
+    let text = bed_text(&grown(&d, GrowthOrder::Bfs, 0));
+    let seeds: Vec<&str> = text.split("SEED\n").collect();
+    assert_ne!(seeds[1], seeds[3], "{text}");
+}
+
+/// Acceptance: `stlc compile grove.od --seed 7` twice gives the same bytes,
+/// `--seed 8` a different grove, and the BED renders alike under any seed
+/// and like the OD rendered with the seed it was compiled with.
+#[test]
+fn compile_grove_with_seeds() {
+    let dir = tempfile::tempdir().unwrap();
+    let grove = manifest_path("examples/grove.od");
+    let compile = |seed: &str, out: &str| {
+        let out = dir.path().join(out);
+        Command::cargo_bin("stlc")
+            .unwrap()
+            .args(["compile", grove.to_str().unwrap(), "--seed", seed, "-o"])
+            .arg(&out)
+            .assert()
+            .success();
+        std::fs::read(out).unwrap()
+    };
+    let a = compile("7", "a.bed");
+    assert_eq!(a, compile("7", "b.bed"));
+    assert_ne!(a, compile("8", "c.bed"));
+    let render = |input: &std::path::Path, seed: &str| {
+        Command::cargo_bin("stlc")
+            .unwrap()
+            .args(["render", "--format", "svg", "--seed", seed, "-o", "-"])
+            .arg(input)
+            .output()
+            .unwrap()
+            .stdout
+    };
+    let bed = dir.path().join("a.bed");
+    let from_bed = render(&bed, "1");
+    assert!(from_bed.starts_with(b"<svg") || from_bed.starts_with(b"<?xml"));
+    assert_eq!(from_bed, render(&bed, "2"));
+    assert_eq!(from_bed, render(&grove, "7"));
+    assert_ne!(from_bed, render(&grove, "8"));
+}
+
+/// Every slot of a grown forest's terms names an alternative of R1.
+#[test]
+fn grown_terms_name_alternatives() {
+    let text = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
+    let g = grown(&od(&text), GrowthOrder::Dfs, 7);
+    let d = g.bed.description();
+    let mut seeds = vec![d.seed.as_ref().unwrap()];
+    seeds.extend(d.forest.iter().map(|t| t.seed.as_ref().unwrap()));
+    assert_eq!(seeds.len(), 4);
+    for seed in seeds {
+        let mut stack: Vec<_> = seed
+            .items
+            .iter()
+            .filter_map(|i| match i {
+                SeedItem::Term(t) => Some(seed.term(*t)),
+                _ => None,
+            })
+            .collect();
+        while let Some(t) = stack.pop() {
+            assert!(d.rule(t.rule()).alternative.is_some());
+            stack.extend(t.slots().flatten().filter_map(|s| match s {
+                Slot::Term(c) => Some(c),
+                Slot::Repeat(_) => None,
+            }));
+        }
+    }
+}
