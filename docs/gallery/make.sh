@@ -28,3 +28,10 @@ done
 $B render examples/tutorial/step4.od --growth dfs --show-layout --size 240x240 -o $T/step5.png
 # Depth 7 is a solid grey square at thumbnail size.
 $B render examples/hilbert.lsys --depth 5 --size 240x240 -o $G/hilbert.png
+# Variation (docs/language.md): alternatives under bfs and dfs, and a grove
+# of four roots in one outline under two seeds and both growth orders.
+$B render examples/alternatives.od --show-layout --size 240x300 -o $G/alternatives-bfs.png
+$B render examples/alternatives.od --growth dfs --show-layout --size 240x300 -o $G/alternatives-dfs.png
+$B render examples/grove.od --seed 7 --show-layout --size 300x300 -o $G/grove-seed7.png
+$B render examples/grove.od --seed 8 --show-layout --size 300x300 -o $G/grove-seed8.png
+$B render examples/grove.od --seed 7 --growth dfs --show-layout --size 300x300 -o $G/grove-seed7-dfs.png

@@ -610,3 +610,30 @@ fn ctrl_c_stops_cleanly_and_a_missing_file_is_an_error() {
     assert!(out.stdout.is_empty());
     assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/file.od"));
 }
+
+/// A forest with alternatives: the request's seed is the CLI's `--seed`
+/// (same BED bytes), another seed grows another grove, and the answer
+/// lists the roots after the first for the page to show.
+#[test]
+fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
+    let server = Server::start(&[]);
+    let path = crate::support::manifest_path("examples/grove.od");
+    let path = path.to_str().unwrap();
+    let ask = |seed: u64| {
+        render(
+            &server.addr,
+            &json!({"source": example("grove.od"), "strategy": "bfs", "seed": seed}),
+        )
+    };
+    let a = ask(7);
+    assert_eq!(a["ok"], true, "{a}");
+    let bed = String::from_utf8(cli(&["compile", path, "-o", "-", "--seed", "7"])).unwrap();
+    crate::support::assert_same_text("grove --seed 7", &bed, a["bed"].as_str().unwrap());
+    assert_ne!(a["bed"], ask(8)["bed"]);
+    let others = a["root"]["others"].as_array().unwrap();
+    let xy: Vec<(f64, f64)> = others
+        .iter()
+        .map(|r| (r["x"].as_f64().unwrap(), r["y"].as_f64().unwrap()))
+        .collect();
+    assert_eq!(xy, [(110.0, 290.0), (170.0, 290.0), (235.0, 290.0)]);
+}
