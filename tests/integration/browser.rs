@@ -936,7 +936,7 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
         listed["text"]
             .as_str()
             .unwrap()
-            .contains("expected `RULE` or a stem parameter"),
+            .contains("expected `RULE`, a root `(x, y)` or a stem parameter"),
         "{listed}"
     );
     assert_eq!(listed["stale"], true, "{listed}");
@@ -979,6 +979,76 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
     shot(c, "14-lsys").await;
     click(c, "#export-svg").await;
     same_bytes(&downloaded(downloads, "koch.svg").await, &svg, "koch.svg");
+
+    // A forest with alternatives: the seed field is `--seed`, "next seed"
+    // grows the next variant, and every root shows.
+    let grove = dir.join("grove.od");
+    std::fs::copy(manifest_path("examples/grove.od"), &grove).unwrap();
+    open(c, &grove).await;
+    settled(c).await;
+    let bed_of = |seed: &str| {
+        String::from_utf8(cli(&["compile", grove.to_str().unwrap(), "--seed", seed])).unwrap()
+    };
+    c.find(Locator::Id("seed"))
+        .await
+        .unwrap()
+        .send_keys("7")
+        .await
+        .unwrap();
+    let mut page_bed = String::new();
+    for _ in 0..40 {
+        settled(c).await;
+        page_bed = js(c, "return window.stlc.answer.bed")
+            .await
+            .as_str()
+            .unwrap()
+            .to_string();
+        if page_bed == bed_of("7") {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    same_bytes(
+        page_bed.as_bytes(),
+        bed_of("7").as_bytes(),
+        "the grove, seed 7",
+    );
+    let roots = js(
+        c,
+        "return document.querySelectorAll('#preview .other-root').length",
+    )
+    .await;
+    assert_eq!(roots, 3, "the grove's three further roots");
+    shot(c, "15-grove-seed-7").await;
+    click(c, "#reseed").await;
+    assert_eq!(
+        js(c, "return document.getElementById('seed').value").await,
+        "8"
+    );
+    for _ in 0..40 {
+        settled(c).await;
+        page_bed = js(c, "return window.stlc.answer.bed")
+            .await
+            .as_str()
+            .unwrap()
+            .to_string();
+        if page_bed == bed_of("8") {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    same_bytes(
+        page_bed.as_bytes(),
+        bed_of("8").as_bytes(),
+        "the grove, next seed",
+    );
+    shot(c, "16-grove-seed-8").await;
+    js(
+        c,
+        "const s = document.getElementById('seed'); s.value = '';
+         s.dispatchEvent(new Event('input')); return null;",
+    )
+    .await;
 }
 
 /// Back in Tree Maker: wheel zoom and drag-to-pan move only the view; a
