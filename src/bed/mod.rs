@@ -291,7 +291,7 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
             if t.slot_count() != m {
                 diags.push(
                     Diagnostic::error(ErrorKind::SlotCount {
-                        rule: rule.name.clone(),
+                        rule: rule.full_name().into_owned(),
                         expected: m,
                         found: t.slot_count(),
                     })
@@ -299,7 +299,7 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
                     .with_help("write one slot per branch"),
                 );
             }
-            check_order(order, &t.loc(), &rule.name, &mut diags);
+            check_order(order, &t.loc(), &rule.full_name(), &mut diags);
             for s in t.slots().flatten() {
                 match s {
                     Slot::Term(c) => stack.push((c, order.saturating_add(1))),
@@ -341,7 +341,7 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
 fn rule_name(desc: &Description, id: RuleId) -> String {
     desc.rules
         .get(id.0)
-        .map_or_else(|| format!("#{}", id.0), |r| r.name.clone())
+        .map_or_else(|| format!("#{}", id.0), |r| r.full_name().into_owned())
 }
 
 fn unknown_id(id: RuleId, span: &crate::diag::Span) -> Diagnostic {

@@ -227,7 +227,7 @@ pub enum ErrorKind {
         name: String,
     },
     /// An alternative's probability is not a number above 0.
-    #[error("probability {value} of an alternative of `{name}` is not above 0")]
+    #[error("probability {} of an alternative of `{name}` is not above 0", crate::num::fixed(*value, 9, crate::num::Trim::Zeros))]
     BadProbability {
         /// The rule's name.
         name: String,
@@ -235,7 +235,7 @@ pub enum ErrorKind {
         value: f64,
     },
     /// The probabilities of a rule's alternatives do not sum to 1.
-    #[error("the probabilities of `{name}`'s alternatives sum to {sum}, not 1")]
+    #[error("the probabilities of `{name}`'s alternatives sum to {}, not 1", crate::num::fixed(*sum, 9, crate::num::Trim::Zeros))]
     ProbabilitySum {
         /// The rule's name.
         name: String,

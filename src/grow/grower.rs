@@ -15,6 +15,7 @@ use super::bounded::successors;
 use super::occupancy::{Backend, LocalIndex, Occupancy, Seg};
 use super::region::Region;
 use super::seed::{Flat, Instr};
+use super::tree::{Budget, NO_NODE, Parent, Tree};
 use super::{GrowOptions, GrowthOrder};
 use crate::choice::{Alternatives, Key};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
@@ -23,15 +24,6 @@ use crate::model::walk::{self, FixedWord, Step};
 use crate::model::{Description, Fixed, RuleDef, RuleId, StemParams};
 use crate::progress::Progress;
 use crate::turtle::{Interp, Op, Point, Recorder, Segment, State};
-
-/// Where a decision is recorded.
-#[derive(Debug, Clone, Copy)]
-enum Parent {
-    /// Growth point number `i` of the seed.
-    Seed(u32),
-    /// Entry `i` of [`Tree::slot_child`].
-    Slot(u32),
-}
 
 /// A growth point waiting for its decision.
 #[derive(Debug, Clone, Copy)]
@@ -48,103 +40,6 @@ struct Gp {
     /// The position is known to lie in the region's open interior.
     inside: bool,
     parent: Parent,
-}
-
-/// A successful application.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Node {
-    /// The rule applied.
-    pub(super) rule: RuleId,
-    /// First of its entries in [`Tree::slot_child`], one per branch.
-    pub(super) slots: u32,
-}
-
-/// No node: nothing grew there.
-pub(super) const NO_NODE: u32 = u32::MAX;
-
-/// The grown tree: every successful application, and what grew in each of
-/// its slots and at each growth point of the seed. A child is always
-/// recorded after its parent.
-#[derive(Debug, Default)]
-pub(super) struct Tree {
-    /// The applications, in the order they succeeded.
-    pub(super) nodes: Vec<Node>,
-    /// For each slot of each node, the node grown there or [`NO_NODE`].
-    pub(super) slot_child: Vec<u32>,
-    /// The node grown at each growth point of the seed, or [`NO_NODE`]:
-    /// in a forest, tree `t`'s points are entries `t * gps ..`.
-    pub(super) seed_result: Vec<u32>,
-    /// How many trees (roots) grew.
-    pub(super) trees: usize,
-}
-
-impl Tree {
-    /// Records an application of `rule` (with `branches` slots) at
-    /// `parent`; returns the index of its first slot in `slot_child`.
-    fn record(&mut self, rule: RuleId, branches: usize, parent: Parent) -> u32 {
-        let id = self.nodes.len() as u32;
-        let first = self.slot_child.len() as u32;
-        self.nodes.push(Node { rule, slots: first });
-        self.slot_child
-            .extend(std::iter::repeat_n(NO_NODE, branches));
-        match parent {
-            Parent::Seed(i) => self.seed_result[i as usize] = id,
-            Parent::Slot(i) => self.slot_child[i as usize] = id,
-        }
-        first
-    }
-}
-
-/// What growth has spent against its limits, and the warnings of the
-/// limits that cut it short.
-#[derive(Debug, Default)]
-pub(super) struct Budget {
-    /// Stems drawn so far, the seed's included.
-    pub(super) stems: u64,
-    /// Stems drawn by the seed alone.
-    seed_stems: u64,
-    /// Successful rule applications (limited like stems, so rules that
-    /// draw nothing still end).
-    applications: u64,
-    /// `--max-stems` stopped all growth.
-    stopped: bool,
-    /// `--max-depth` refused an application (warned once).
-    depth_capped: bool,
-    /// Stems at the last progress report, in units of 2^14.
-    reported: u64,
-    /// The warnings, in the order they arose.
-    pub(super) warnings: Vec<Diagnostic>,
-}
-
-impl Budget {
-    /// Stops all growth at `--max-stems` (once, with a warning).
-    fn stop(&mut self, max_stems: u64) {
-        if self.stopped {
-            return;
-        }
-        self.stopped = true;
-        self.warnings.push(
-            Diagnostic::warning(ErrorKind::GrowthStopped {
-                stems: self.stems,
-                limit: max_stems,
-            })
-            .with_help(
-                "the BED is valid but its tree is cut short; raise the limit with --max-stems N",
-            ),
-        );
-    }
-
-    /// Notes that `--max-depth` refused an application (warned once).
-    fn cap_depth(&mut self, max_depth: u32) {
-        if self.depth_capped {
-            return;
-        }
-        self.depth_capped = true;
-        self.warnings.push(
-            Diagnostic::warning(ErrorKind::DepthCapped { limit: max_depth })
-                .with_help("raise it with --max-depth N"),
-        );
-    }
 }
 
 /// The scratch of one application, reused from one to the next.

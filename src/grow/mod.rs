@@ -42,7 +42,9 @@
 //! The steps, one file each: `seed.rs` flattens the seed into drawing
 //! operations and growth points, and writes the grown seed back;
 //! `bounded.rs` refuses growth that nothing bounds; `grower.rs` draws the
-//! seed and decides the growth points; [`region`] and [`occupancy`] answer
+//! seeds (one per root of a forest) and decides the growth points, choosing
+//! among a rule's alternatives by [`crate::choice`]; `tree.rs` holds what it
+//! records (the grown tree, the budget spent against the limits); [`region`] and [`occupancy`] answer
 //! where a segment may go (they alone know the spatial index).
 
 mod bounded;
@@ -50,6 +52,7 @@ mod grower;
 pub mod occupancy;
 pub mod region;
 mod seed;
+mod tree;
 
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};

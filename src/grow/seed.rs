@@ -5,8 +5,8 @@
 //! Both walks use explicit stacks: terms written out in a seed may nest as
 //! deep as the input allows.
 
-use super::grower::{NO_NODE, Tree};
 use super::span_of;
+use super::tree::{NO_NODE, Tree};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::model::walk::{self, Step};
 use crate::model::{
@@ -165,7 +165,7 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
                 }
                 if t.slot_count() != rule.branch_count() {
                     let mut d = Diagnostic::error(ErrorKind::SlotCount {
-                        rule: rule.name.clone(),
+                        rule: rule.full_name().into_owned(),
                         expected: rule.branch_count(),
                         found: t.slot_count(),
                     });
