@@ -747,6 +747,25 @@ async fn open(c: &Client, file: &Path) {
     panic!("the page never read {}", file.display());
 }
 
+/// The BED of the page's answer once it is `want` (the page may still be
+/// answering an earlier edit), or the last one seen.
+async fn answer_bed(c: &Client, want: &str) -> String {
+    let mut bed = String::new();
+    for _ in 0..40 {
+        settled(c).await;
+        bed = js(c, "return window.stlc.answer.bed")
+            .await
+            .as_str()
+            .unwrap_or_default()
+            .to_string();
+        if bed == want {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    bed
+}
+
 /// The preview's view box: `[x, y, width, height]` in canvas units.
 async fn view_box(c: &Client) -> Vec<f64> {
     let v = js(
@@ -995,19 +1014,7 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
         .send_keys("7")
         .await
         .unwrap();
-    let mut page_bed = String::new();
-    for _ in 0..40 {
-        settled(c).await;
-        page_bed = js(c, "return window.stlc.answer.bed")
-            .await
-            .as_str()
-            .unwrap()
-            .to_string();
-        if page_bed == bed_of("7") {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
+    let page_bed = answer_bed(c, &bed_of("7")).await;
     same_bytes(
         page_bed.as_bytes(),
         bed_of("7").as_bytes(),
@@ -1025,18 +1032,7 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
         js(c, "return document.getElementById('seed').value").await,
         "8"
     );
-    for _ in 0..40 {
-        settled(c).await;
-        page_bed = js(c, "return window.stlc.answer.bed")
-            .await
-            .as_str()
-            .unwrap()
-            .to_string();
-        if page_bed == bed_of("8") {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
+    let page_bed = answer_bed(c, &bed_of("8")).await;
     same_bytes(
         page_bed.as_bytes(),
         bed_of("8").as_bytes(),
