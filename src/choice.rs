@@ -121,6 +121,16 @@ impl Alternatives {
         self.cumulative.is_empty()
     }
 
+    /// The (normalised) probability of alternative `i`, 0 past the end.
+    pub fn probability(&self, i: usize) -> f64 {
+        let below = if i == 0 {
+            0.0
+        } else {
+            self.cumulative.get(i - 1).copied().unwrap_or(1.0)
+        };
+        self.cumulative.get(i).map_or(0.0, |c| c - below)
+    }
+
     /// The alternative (0-based) the place with `key` picks.
     #[inline]
     pub fn pick(&self, key: Key) -> usize {

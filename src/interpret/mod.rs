@@ -25,6 +25,7 @@
 //! [`Interp`]: crate::turtle::Interp
 
 pub mod bed;
+pub mod expected;
 pub mod lsys;
 pub mod stats;
 

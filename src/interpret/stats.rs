@@ -52,6 +52,9 @@ pub struct Stats {
     pub bbox: Option<[f64; 4]>,
     /// Where that turtle ends, `None` when `bbox` is.
     pub end: Option<[f64; 2]>,
+    /// For a stochastic system, the seed its word was derived with (the
+    /// counts are this seed's); `None` for a deterministic one.
+    pub seed: Option<u64>,
 }
 
 /// Statistics of `sys` derived to `depth`: exact length and symbol counts,
@@ -154,6 +157,7 @@ pub fn stats_with_budget(
         symbols,
         bbox,
         end,
+        seed: None,
     })
 }
 
@@ -161,7 +165,7 @@ pub fn stats_with_budget(
 pub const DECIMALS: usize = 6;
 
 /// A float with [`DECIMALS`] decimals, `-0.000000` written as `0.000000`.
-fn fixed(x: f64) -> String {
+pub(crate) fn fixed(x: f64) -> String {
     crate::num::fixed(x, DECIMALS, crate::num::Trim::Keep)
 }
 
@@ -176,9 +180,14 @@ impl Stats {
     /// skipped traversal, symbols sorted. One line, no trailing newline.
     pub fn to_json(&self) -> String {
         let mut out = String::new();
+        if let Some(seed) = self.seed {
+            let _ = write!(out, "{{\"seed\": {seed}, ");
+        } else {
+            out.push('{');
+        }
         let _ = write!(
             out,
-            "{{\"length\": \"{}\", \"segments\": \"{}\", \"bbox\": {}, \"end\": {}, \"symbols\": {{",
+            "\"length\": \"{}\", \"segments\": \"{}\", \"bbox\": {}, \"end\": {}, \"symbols\": {{",
             self.length,
             self.segments,
             self.bbox.map_or("null".into(), |b| floats(&b)),
@@ -196,6 +205,12 @@ impl Stats {
     pub fn to_text(&self) -> String {
         let mut out = String::new();
         let _ = writeln!(out, "depth     {}", self.depth);
+        if let Some(seed) = self.seed {
+            let _ = writeln!(
+                out,
+                "seed      {seed} (stochastic: the counts of this seed's word)"
+            );
+        }
         let _ = writeln!(out, "length    {}", self.length);
         let _ = writeln!(out, "segments  {}", self.segments);
         match self.bbox {

@@ -18,8 +18,10 @@ pub struct LSystem {
     pub axiom: Vec<char>,
     /// Where the axiom is.
     pub axiom_loc: Loc,
-    /// Productions: symbol to successor word. Symbols without one stay.
-    pub rules: BTreeMap<char, Production>,
+    /// Productions: each symbol's rule, or its stochastic rules (the
+    /// alternatives, each with a probability), in the file's order.
+    /// Symbols without one stay.
+    pub rules: BTreeMap<char, Vec<Production>>,
     /// `generations N`, if given (`--depth` overrides it).
     pub generations: Option<u32>,
     /// `angle DEGREES`.
@@ -40,11 +42,14 @@ pub struct LSystem {
     pub seed: u64,
 }
 
-/// One production `X -> successor`.
+/// One production `X -> successor`, or one alternative of a stochastic rule
+/// `X (p) -> successor`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Production {
     /// The successor word.
     pub successor: Vec<char>,
+    /// The probability of a stochastic rule, `None` for a deterministic one.
+    pub probability: Option<f64>,
     /// Where the `rule` line is.
     pub loc: Loc,
 }
@@ -62,17 +67,31 @@ pub enum Background {
 }
 
 impl LSystem {
-    /// The successor of `c`, if it has a rule.
+    /// The successor of `c`, if it has a rule (the first alternative's,
+    /// for a stochastic rule).
     pub fn successor(&self, c: char) -> Option<&[char]> {
-        self.rules.get(&c).map(|p| p.successor.as_slice())
+        self.rules
+            .get(&c)
+            .and_then(|p| p.first())
+            .map(|p| p.successor.as_slice())
+    }
+
+    /// Whether some symbol has stochastic rules (alternatives chosen by
+    /// [`LSystem::seed`] and place, [`crate::choice`]).
+    pub fn is_stochastic(&self) -> bool {
+        self.rules
+            .values()
+            .any(|ps| ps.iter().any(|p| p.probability.is_some()))
     }
 
     /// Every symbol of the system (axiom, predecessors, successors), sorted.
     pub fn alphabet(&self) -> Vec<char> {
         let mut set: std::collections::BTreeSet<char> = self.axiom.iter().copied().collect();
-        for (c, p) in &self.rules {
+        for (c, ps) in &self.rules {
             set.insert(*c);
-            set.extend(p.successor.iter().copied());
+            for p in ps {
+                set.extend(p.successor.iter().copied());
+            }
         }
         set.into_iter().collect()
     }

@@ -356,6 +356,7 @@ pub fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
             } else {
                 sys.rules
                     .values()
+                    .flatten()
                     .find(|p| p.successor.contains(&c))
                     .map(|p| p.loc.0.clone())
             }?;

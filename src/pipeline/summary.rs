@@ -24,6 +24,14 @@ pub fn stats(
         return Err(wrong_kind(Command::Stats, loaded.kind()));
     };
     let depth = lsys_depth(sys, depth, limits)?;
+    if sys.is_stochastic() {
+        let stats = crate::interpret::expected::stochastic_stats(sys, depth, limits)?;
+        return Ok(if json {
+            stats.to_json()
+        } else {
+            stats.to_text()
+        });
+    }
     let stats = crate::interpret::stats::stats(sys, depth, limits)?;
     Ok(if json {
         stats.to_json()
@@ -87,12 +95,26 @@ fn lsys_summary(sys: &LSystem) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "classic L-system: ok");
     let _ = writeln!(s, "  axiom       {}", sys.axiom.iter().collect::<String>());
-    for (k, p) in &sys.rules {
+    for (k, p) in sys
+        .rules
+        .iter()
+        .flat_map(|(k, ps)| ps.iter().map(move |p| (k, p)))
+    {
+        let chance = match p.probability {
+            Some(q) => format!(
+                " (probability {})",
+                crate::num::fixed(q, 6, crate::num::Trim::Zeros)
+            ),
+            None => String::new(),
+        };
         let _ = writeln!(
             s,
-            "  rule        {k} -> {}",
+            "  rule        {k} -> {}{chance}",
             p.successor.iter().collect::<String>()
         );
+    }
+    if sys.is_stochastic() {
+        let _ = writeln!(s, "  seed        {}", sys.seed);
     }
     let _ = writeln!(s, "  angle       {}", sys.angle);
     match sys.generations {

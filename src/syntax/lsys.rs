@@ -15,6 +15,7 @@ use pest::Parser;
 use pest::iterators::{Pair, Pairs};
 
 use super::{GrammarParser, Rule};
+use crate::choice::{self, BadProbabilities};
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
 use crate::limits::Limits;
@@ -34,6 +35,7 @@ pub const KEYS: &[&str] = &[
     "width",
     "color",
     "background",
+    "seed",
 ];
 
 /// A key of a `.lsys` file.
@@ -57,11 +59,13 @@ pub enum Key {
     Color,
     /// `background C`: the background colour or `none`.
     Background,
+    /// `seed N`: the seed of stochastic rules.
+    Seed,
 }
 
 impl Key {
     /// Every key, in the order of [`KEYS`].
-    pub const ALL: [Key; 9] = [
+    pub const ALL: [Key; 10] = [
         Key::Generations,
         Key::Axiom,
         Key::Rule,
@@ -71,6 +75,7 @@ impl Key {
         Key::Width,
         Key::Color,
         Key::Background,
+        Key::Seed,
     ];
 
     /// The key as written in a file.
@@ -90,6 +95,7 @@ impl Key {
             Key::Width => "`width 1.5`",
             Key::Color => "`color clGreen`",
             Key::Background => "`background none`",
+            Key::Seed => "`seed 7`",
         }
     }
 
@@ -105,6 +111,7 @@ impl Key {
             Key::Width => Rule::lsys_width,
             Key::Color => Rule::lsys_color,
             Key::Background => Rule::lsys_background,
+            Key::Seed => Rule::lsys_seed,
         }
     }
 
@@ -218,8 +225,14 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
                     None => Background::White,
                 };
             }
+            Key::Seed => {
+                if let Some(n) = ck.seed(&value(&mut inner)) {
+                    sys.seed = n;
+                }
+            }
         }
     }
+    ck.probabilities(&sys);
     let end = src.len()..src.len();
     if !have_axiom {
         ck.diags.push(
@@ -275,7 +288,12 @@ impl Checker {
     /// symbol.
     fn production(&mut self, sys: &mut LSystem, mut inner: Pairs<'_, Rule>, span: Span) {
         let pred = inner.next().expect("grammar: a rule has a predecessor");
-        let succ = inner.find(|p| p.as_rule() == Rule::lsys_word);
+        let rest: Vec<Pair<'_, Rule>> = inner.collect();
+        let probability = rest
+            .iter()
+            .find(|p| p.as_rule() == Rule::lsys_probability)
+            .cloned();
+        let succ = rest.into_iter().find(|p| p.as_rule() == Rule::lsys_word);
         let mut chars = pred.as_str().chars();
         let c = chars.next().expect("grammar: lsys_pred has a symbol");
         if chars.next().is_some() {
@@ -297,25 +315,117 @@ impl Checker {
             Some(w) => self.word(w, "successor"),
             None => Vec::new(),
         };
-        if let Some(first) = sys.rules.get(&c) {
-            self.diags.push(
-                Diagnostic::error(ErrorKind::DuplicateProduction { symbol: c })
-                    .with_span(span)
-                    .with_label("the second rule")
-                    .with_note_at(first.loc.0.clone(), "the first rule")
-                    .with_help(format!(
-                        "a 0L-system has one rule per symbol: keep one of the rules for `{c}`"
-                    )),
-            );
-            return;
+        let probability = probability.map(|p| {
+            let text = p
+                .into_inner()
+                .next()
+                .expect("grammar: a probability holds a number");
+            text.as_str().parse::<f64>().unwrap_or(f64::NAN)
+        });
+        if let Some(first) = sys.rules.get(&c).and_then(|ps| ps.first()) {
+            match (first.probability.is_some(), probability.is_some()) {
+                (true, true) => {}
+                (false, false) => {
+                    self.diags.push(
+                        Diagnostic::error(ErrorKind::DuplicateProduction { symbol: c })
+                            .with_span(span)
+                            .with_label("the second rule")
+                            .with_note_at(first.loc.0.clone(), "the first rule")
+                            .with_help(format!(
+                                "a 0L-system has one rule per symbol: keep one of the rules \
+                                 for `{c}`, or give each a probability, `rule {c} (0.5) ...`"
+                            )),
+                    );
+                    return;
+                }
+                (first_has, _) => {
+                    let (at, other) = if first_has {
+                        (span, first.loc.0.clone())
+                    } else {
+                        (first.loc.0.clone(), span)
+                    };
+                    self.diags.push(
+                        Diagnostic::error(ErrorKind::MissingProbability {
+                            name: c.to_string(),
+                        })
+                        .with_span(at)
+                        .with_label("no probability")
+                        .with_note_at(other, "a rule with one")
+                        .with_help(format!(
+                            "a symbol with several rules chooses among them: give each a \
+                             probability, `rule {c} (0.5) ...`"
+                        )),
+                    );
+                    return;
+                }
+            }
         }
-        sys.rules.insert(
-            c,
-            Production {
-                successor,
-                loc: Loc(span),
-            },
-        );
+        sys.rules.entry(c).or_default().push(Production {
+            successor,
+            probability,
+            loc: Loc(span),
+        });
+    }
+
+    /// The probabilities of each symbol's stochastic rules: each above 0,
+    /// together 1 (within [`choice::SUM_TOLERANCE`]).
+    fn probabilities(&mut self, sys: &LSystem) {
+        for (c, ps) in &sys.rules {
+            let p: Vec<f64> = ps.iter().filter_map(|p| p.probability).collect();
+            if p.is_empty() {
+                continue;
+            }
+            match choice::check(&p) {
+                Ok(()) => {}
+                Err(BadProbabilities::NotPositive(i)) => self.diags.push(
+                    Diagnostic::error(ErrorKind::BadProbability {
+                        name: c.to_string(),
+                        value: p[i],
+                    })
+                    .with_span(ps[i].loc.0.clone())
+                    .with_label("this rule's probability")
+                    .with_help("a probability is a number above 0, e.g. `(0.5)`"),
+                ),
+                Err(BadProbabilities::Sum(sum)) => {
+                    let mut d = Diagnostic::error(ErrorKind::ProbabilitySum {
+                        name: c.to_string(),
+                        sum,
+                    })
+                    .with_span(ps[0].loc.0.clone())
+                    .with_label("first rule");
+                    for q in ps.iter().skip(1).take(4) {
+                        d = d.with_note_at(q.loc.0.clone(), "another rule");
+                    }
+                    self.diags.push(d.with_help(format!(
+                        "make the probabilities of the rules for `{c}` add up to 1, e.g. \
+                         `(0.5)` and `(0.5)`"
+                    )));
+                }
+            }
+        }
+    }
+
+    /// `seed`: a whole number from 0 to 2^64 - 1.
+    fn seed(&mut self, value: &Pair<'_, Rule>) -> Option<u64> {
+        let (text, span) = value_text(value);
+        match (value_rule(value), text.parse::<u64>()) {
+            (Rule::integer, Ok(n)) => Some(n),
+            _ => {
+                self.diags.push(
+                    Diagnostic::error(ErrorKind::NotWholeNumber {
+                        key: Key::Seed.name(),
+                        text: text.to_string(),
+                    })
+                    .with_span(span)
+                    .with_label("not a seed")
+                    .with_help(format!(
+                        "a seed is a whole number from 0 to 18446744073709551615, e.g. {}",
+                        Key::Seed.example()
+                    )),
+                );
+                None
+            }
+        }
     }
 
     /// Records a single-valued key; false (and an error) if it was given before.

@@ -179,7 +179,7 @@ impl Recursion {
             rules: s
                 .rules
                 .iter()
-                .map(|(k, p)| (*k, p.successor.clone()))
+                .map(|(k, p)| (*k, p[0].successor.clone()))
                 .collect(),
             angle: s.angle,
             memo: HashMap::new(),

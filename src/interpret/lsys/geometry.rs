@@ -60,6 +60,9 @@ pub enum Refusal {
     Budget,
     /// A net turn does not fit 64 bits and the angle has no period.
     Turns,
+    /// The system has stochastic rules: occurrences of one symbol at one
+    /// depth differ, so no piece can stand for all of them.
+    Stochastic,
 }
 
 /// The drawing of one `(symbol, remaining depth, heading)` relative to its

@@ -53,6 +53,7 @@ mod bfs;
 mod exec;
 mod geometry;
 mod program;
+mod stochastic;
 mod units;
 
 use std::io::Write;
@@ -75,6 +76,8 @@ use geometry::Geometry;
 pub use geometry::{GEOMETRY_ENTRIES, MAX_PERIOD, Refusal};
 use program::Program;
 pub use program::{MACRO_CAP, PROGRAM_CAP};
+pub use stochastic::BFS_BYTES_PER_SYMBOL;
+pub(crate) use stochastic::Stochastic;
 pub use units::FastOp;
 
 /// Progress is reported about every this many symbols.
@@ -89,6 +92,10 @@ pub fn check(
     strategy: Derivation,
     limits: &Limits,
 ) -> Result<(), Diagnostics> {
+    if sys.is_stochastic() {
+        // Its length is known only by deriving (stochastic.rs).
+        return limits.check_depth(depth);
+    }
     Alphabet::new(sys)
         .check(depth, strategy, limits)
         .map(|_| ())
@@ -112,6 +119,9 @@ pub struct Measured {
 /// [`GEOMETRY_ENTRIES`] pieces are held. `depth` must be within the
 /// limits (callers check it).
 pub fn measure(sys: &LSystem, depth: u32, len: f64) -> Result<Measured, Refusal> {
+    if sys.is_stochastic() {
+        return Err(Refusal::Stochastic);
+    }
     let g = Geometry::new(Alphabet::new(sys), sys, depth, len, GEOMETRY_ENTRIES)?;
     Ok(measured(&g))
 }
@@ -164,6 +174,9 @@ impl Memo {
     /// does not apply. `depth` must be within the limits (callers check
     /// it).
     pub fn new(sys: &LSystem, depth: u32) -> Result<Memo, Refusal> {
+        if sys.is_stochastic() {
+            return Err(Refusal::Stochastic);
+        }
         let step = Linear::constant(sys.length).at(0);
         Geometry::new(Alphabet::new(sys), sys, depth, step, GEOMETRY_ENTRIES).map(|g| Memo { g })
     }
@@ -304,6 +317,9 @@ pub fn draw_into<T: Turtle>(
     turtle: T,
     progress: &mut dyn Progress,
 ) -> Result<Point, Diagnostics> {
+    if sys.is_stochastic() {
+        return draw_stochastic(sys, depth, strategy, limits, turtle, progress);
+    }
     let alpha = Alphabet::new(sys);
     let lens = alpha.check(depth, strategy, limits)?;
     let total = lens[depth as usize];
@@ -348,6 +364,43 @@ pub fn draw_into<T: Turtle>(
     Ok(end)
 }
 
+/// [`draw_into`] for a stochastic system: every symbol through [`Interp`]
+/// (no compiled program or memo: their pieces would be shared by
+/// occurrences that choose differently).
+fn draw_stochastic<T: Turtle>(
+    sys: &LSystem,
+    depth: u32,
+    strategy: Derivation,
+    limits: &Limits,
+    turtle: T,
+    progress: &mut dyn Progress,
+) -> Result<Point, Diagnostics> {
+    limits.check_depth(depth)?;
+    let st = Stochastic::new(sys);
+    let alpha = Alphabet::new(sys);
+    let (mut interp, ops) = plain_interp(sys, &alpha, turtle);
+    // The progress bar's end is the longest word the choices can make.
+    let (_, most) = st.length_bounds(depth);
+    progress.start("symbols", most);
+    let mut i = 0u64;
+    let each = |s: u32| {
+        if let Some(op) = ops[s as usize] {
+            interp.apply(op);
+        }
+        i += 1;
+        if i % PROGRESS_STEP == 0 {
+            progress.update(i);
+        }
+    };
+    let done = match strategy {
+        Derivation::Dfs => st.dfs_each(depth, limits, each),
+        Derivation::Bfs => st.bfs_each(depth, limits, each),
+    };
+    progress.finish();
+    done?;
+    Ok(interp.state.pos)
+}
+
 /// The turtle state machine at `sys`'s start, and each symbol's operation:
 /// what the plain (uncompiled) paths feed symbol by symbol.
 fn plain_interp<T: Turtle>(
@@ -377,27 +430,64 @@ pub fn expand(
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
     let alpha = Alphabet::new(sys);
-    let lens = alpha.check(depth, strategy, limits)?;
-    let total = lens[depth as usize];
+    let stochastic = sys.is_stochastic();
+    let total = if stochastic {
+        limits.check_depth(depth)?;
+        Stochastic::new(sys).length_bounds(depth).1
+    } else {
+        alpha.check(depth, strategy, limits)?[depth as usize]
+    };
     progress.start("symbols", total);
     let mut w = std::io::BufWriter::with_capacity(1 << 16, out);
     let mut failed: Option<std::io::Error> = None;
-    match strategy {
-        Derivation::Dfs => match Program::<u8>::compile(&alpha, depth) {
-            Some(program) => program.run(
-                &alpha.axiom,
-                |bytes| {
-                    if failed.is_none()
-                        && let Err(e) = w.write_all(bytes)
-                    {
-                        failed = Some(e);
-                    }
-                },
-                progress,
-            ),
-            None => {
+    if stochastic {
+        let st = Stochastic::new(sys);
+        let mut buf = [0u8; 4];
+        let each = |s: u32| {
+            if failed.is_none() {
+                let text = alpha.chars[s as usize].encode_utf8(&mut buf);
+                if let Err(e) = w.write_all(text.as_bytes()) {
+                    failed = Some(e);
+                }
+            }
+        };
+        let derived = match strategy {
+            Derivation::Dfs => st.dfs_each(depth, limits, each),
+            Derivation::Bfs => st.bfs_each(depth, limits, each),
+        };
+        if let Err(e) = derived {
+            progress.finish();
+            return Err(e);
+        }
+    } else {
+        match strategy {
+            Derivation::Dfs => match Program::<u8>::compile(&alpha, depth) {
+                Some(program) => program.run(
+                    &alpha.axiom,
+                    |bytes| {
+                        if failed.is_none()
+                            && let Err(e) = w.write_all(bytes)
+                        {
+                            failed = Some(e);
+                        }
+                    },
+                    progress,
+                ),
+                None => {
+                    let mut buf = [0u8; 4];
+                    alpha.plain_each(depth, |_, s| {
+                        if failed.is_none() {
+                            let text = alpha.chars[s as usize].encode_utf8(&mut buf);
+                            if let Err(e) = w.write_all(text.as_bytes()) {
+                                failed = Some(e);
+                            }
+                        }
+                    });
+                }
+            },
+            Derivation::Bfs => {
                 let mut buf = [0u8; 4];
-                alpha.plain_each(depth, |_, s| {
+                alpha.bfs_each(depth, |_, s| {
                     if failed.is_none() {
                         let text = alpha.chars[s as usize].encode_utf8(&mut buf);
                         if let Err(e) = w.write_all(text.as_bytes()) {
@@ -406,17 +496,6 @@ pub fn expand(
                     }
                 });
             }
-        },
-        Derivation::Bfs => {
-            let mut buf = [0u8; 4];
-            alpha.bfs_each(depth, |_, s| {
-                if failed.is_none() {
-                    let text = alpha.chars[s as usize].encode_utf8(&mut buf);
-                    if let Err(e) = w.write_all(text.as_bytes()) {
-                        failed = Some(e);
-                    }
-                }
-            });
         }
     }
     if failed.is_none()

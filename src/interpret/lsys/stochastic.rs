@@ -1,0 +1,292 @@
+//! Stochastic L-systems: a symbol's rule is chosen at every occurrence,
+//! by the seed and the occurrence's place in the derivation tree.
+//!
+//! The word is `W(s, k, r)` for a symbol `s` with key `k` and `r` rewriting
+//! steps left: `s` itself if `r = 0` or `s` has no rule; otherwise, with
+//! `succ` the successor of the rule chosen for `k` (`Alternatives::pick`,
+//! [`crate::choice`]), the concatenation of `W(succ[j], k.child(j), r - 1)`
+//! over `j`. The axiom's `i`-th symbol has key `Key::root(seed).child(i)`
+//! (the axiom is the successor of a root with key `Key::root(seed)`). A
+//! choice so depends only on the seed and the path of successor positions
+//! from the axiom, never on the order of the traversal: `dfs` (an explicit
+//! stack of frames, memory O(depth)) and `bfs` (the word of `(symbol,
+//! key)` pairs, rewritten level by level) derive the same word, and a
+//! subtree's choices do not change when something elsewhere does.
+//!
+//! Deterministic symbols of a stochastic system keep their one rule; their
+//! successors' keys are derived all the same. A system without stochastic
+//! rules never comes here: its word does not depend on any key, and the
+//! compiled and memoized paths of [`super`] derive it.
+//!
+//! Word lengths are not known before the traversal (each run chooses), so
+//! the limits are enforced while deriving: the traversal stops with an
+//! error when it passes `limits.max_symbols`, `bfs` when a level passes its
+//! word budget. The renderer fits the picture with a bounding traversal
+//! first, so a refusal comes before any output is written.
+
+use crate::choice::{Alternatives, Key};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::limits::Limits;
+use crate::model::lsys::LSystem;
+
+use super::Alphabet;
+
+/// Bytes `bfs` holds per symbol of a stochastic word (the symbol and its
+/// key), against one for a deterministic word: its word budget is
+/// `limits.max_word / BFS_BYTES_PER_SYMBOL` symbols, the same memory.
+pub const BFS_BYTES_PER_SYMBOL: u64 = 16;
+
+/// One symbol's rules as dense successor words.
+struct Rules {
+    /// The alternatives' successors (one for a deterministic rule).
+    succ: Vec<Vec<u32>>,
+    /// The probabilities, for a stochastic rule.
+    table: Option<Alternatives>,
+}
+
+/// A stochastic system over the dense ids of an [`Alphabet`].
+pub(crate) struct Stochastic {
+    /// By symbol id: its rules, if it has any.
+    rules: Vec<Option<Rules>>,
+    /// The axiom.
+    pub(crate) axiom: Vec<u32>,
+    /// `Key::root(seed)`: the axiom's symbols are its children.
+    root: Key,
+    /// Id to symbol.
+    pub(crate) chars: Vec<char>,
+}
+
+/// One level of the `dfs` stack: a successor being walked.
+struct Frame<'a> {
+    succ: &'a [u32],
+    next: usize,
+    key: Key,
+    /// Rewriting steps left for the symbols of `succ`.
+    left: u32,
+}
+
+impl Stochastic {
+    /// The system `sys` with its seed.
+    pub(crate) fn new(sys: &LSystem) -> Self {
+        let alpha = Alphabet::new(sys);
+        let id = |c: &char| {
+            alpha
+                .chars
+                .binary_search(c)
+                .expect("the alphabet holds every symbol") as u32
+        };
+        let rules = alpha
+            .chars
+            .iter()
+            .map(|c| {
+                let ps = sys.rules.get(c)?;
+                let succ: Vec<Vec<u32>> = ps
+                    .iter()
+                    .map(|p| p.successor.iter().map(id).collect())
+                    .collect();
+                let p: Vec<f64> = ps.iter().filter_map(|p| p.probability).collect();
+                // The parser checked the probabilities; a system made in
+                // code with bad ones takes its first rule.
+                let table = (!p.is_empty()).then(|| {
+                    Alternatives::new(&p)
+                        .unwrap_or_else(|_| Alternatives::new(&[1.0]).expect("one certain choice"))
+                });
+                Some(Rules { succ, table })
+            })
+            .collect();
+        Stochastic {
+            rules,
+            axiom: alpha.axiom,
+            root: Key::root(sys.seed),
+            chars: alpha.chars,
+        }
+    }
+
+    /// The successor of symbol `s` at key `k`, if `s` has a rule.
+    fn successor(&self, s: u32, k: Key) -> Option<&[u32]> {
+        let r = self.rules[s as usize].as_ref()?;
+        let i = r
+            .table
+            .as_ref()
+            .map_or(0, |t| t.pick(k).min(r.succ.len() - 1));
+        Some(&r.succ[i])
+    }
+
+    /// Calls `f` with every symbol of the word at `depth`, in order, by an
+    /// explicit stack (memory O(depth)). Refuses, having emitted
+    /// `limits.max_symbols` symbols, a word longer than that. Returns the
+    /// word's length.
+    pub(crate) fn dfs_each(
+        &self,
+        depth: u32,
+        limits: &Limits,
+        mut f: impl FnMut(u32),
+    ) -> Result<u64, Diagnostics> {
+        let mut count = 0u64;
+        let mut stack = vec![Frame {
+            succ: &self.axiom,
+            next: 0,
+            key: self.root,
+            left: depth,
+        }];
+        while let Some(top) = stack.last_mut() {
+            let Some(&s) = top.succ.get(top.next) else {
+                stack.pop();
+                continue;
+            };
+            let k = top.key.child(top.next as u64);
+            top.next += 1;
+            let left = top.left;
+            match (left > 0).then(|| self.successor(s, k)).flatten() {
+                Some(succ) => stack.push(Frame {
+                    succ,
+                    next: 0,
+                    key: k,
+                    left: left - 1,
+                }),
+                None => {
+                    count += 1;
+                    if count > limits.max_symbols {
+                        return Err(over(depth, "derived word length", limits.max_symbols));
+                    }
+                    f(s);
+                }
+            }
+        }
+        Ok(count)
+    }
+
+    /// Calls `f` with every symbol of the word at `depth`, in order, after
+    /// rewriting the whole word level by level (Saupe's method with keys).
+    /// Refuses a level over `limits.max_word / BFS_BYTES_PER_SYMBOL`
+    /// symbols, or a word over `limits.max_symbols`, before emitting.
+    pub(crate) fn bfs_each(
+        &self,
+        depth: u32,
+        limits: &Limits,
+        mut f: impl FnMut(u32),
+    ) -> Result<u64, Diagnostics> {
+        let budget = (limits.max_word / BFS_BYTES_PER_SYMBOL).min(limits.max_symbols);
+        let mut word: Vec<(u32, Key)> = self
+            .axiom
+            .iter()
+            .enumerate()
+            .map(|(i, &s)| (s, self.root.child(i as u64)))
+            .collect();
+        for level in 1..=depth {
+            let mut next = Vec::with_capacity(word.len());
+            for &(s, k) in &word {
+                match self.successor(s, k) {
+                    Some(succ) => next.extend(
+                        succ.iter()
+                            .enumerate()
+                            .map(|(j, &c)| (c, k.child(j as u64))),
+                    ),
+                    None => next.push((s, k)),
+                }
+                if next.len() as u64 > budget {
+                    return Err(over(level, "bfs word (symbols and keys)", budget));
+                }
+            }
+            word = next;
+        }
+        for &(s, _) in &word {
+            f(s);
+        }
+        Ok(word.len() as u64)
+    }
+
+    /// The expected count of every symbol (by id) in the word at `depth`:
+    /// the axiom's counts times the mean production matrix `depth` times
+    /// (row `s`: each alternative's symbol counts weighted by its
+    /// probability; a symbol without a rule maps to itself). Floats; they
+    /// may overflow to infinity at great depths.
+    pub(crate) fn expected(&self, depth: u32) -> Vec<f64> {
+        let n = self.chars.len();
+        let rows: Vec<Vec<(usize, f64)>> = (0..n)
+            .map(|s| match &self.rules[s] {
+                None => vec![(s, 1.0)],
+                Some(r) => {
+                    let weights: Vec<f64> = match &r.table {
+                        Some(t) => (0..r.succ.len()).map(|i| t.probability(i)).collect(),
+                        None => vec![1.0],
+                    };
+                    let mut row = vec![0.0; n];
+                    for (succ, w) in r.succ.iter().zip(weights) {
+                        for &c in succ {
+                            row[c as usize] += w;
+                        }
+                    }
+                    row.into_iter()
+                        .enumerate()
+                        .filter(|(_, v)| *v != 0.0)
+                        .collect()
+                }
+            })
+            .collect();
+        let mut v = vec![0.0; n];
+        for &s in &self.axiom {
+            v[s as usize] += 1.0;
+        }
+        for _ in 0..depth {
+            let mut next = vec![0.0; n];
+            for (s, row) in rows.iter().enumerate() {
+                if v[s] == 0.0 {
+                    continue;
+                }
+                for &(c, m) in row {
+                    next[c] += v[s] * m;
+                }
+            }
+            v = next;
+        }
+        v
+    }
+
+    /// The fewest and the most symbols the word at `depth` can have
+    /// (saturating): each symbol's shortest and longest alternative.
+    pub(crate) fn length_bounds(&self, depth: u32) -> (u64, u64) {
+        let n = self.chars.len();
+        let mut lo = vec![1u64; n];
+        let mut hi = vec![1u64; n];
+        for _ in 0..depth {
+            let sum = |len: &[u64], w: &[u32]| {
+                w.iter()
+                    .fold(0u64, |a, &c| a.saturating_add(len[c as usize]))
+            };
+            let step = |len: &[u64], pick: fn(u64, u64) -> u64| -> Vec<u64> {
+                (0..n)
+                    .map(|s| match &self.rules[s] {
+                        None => 1,
+                        Some(r) => r.succ.iter().map(|w| sum(len, w)).reduce(pick).unwrap_or(0),
+                    })
+                    .collect()
+            };
+            let (l, h) = (step(&lo, u64::min), step(&hi, u64::max));
+            if l == lo && h == hi {
+                break;
+            }
+            lo = l;
+            hi = h;
+        }
+        let total = |len: &[u64]| {
+            self.axiom
+                .iter()
+                .fold(0u64, |a, &s| a.saturating_add(len[s as usize]))
+        };
+        (total(&lo), total(&hi))
+    }
+}
+
+/// The error of a stochastic traversal over a limit.
+fn over(level: u32, what: &str, limit: u64) -> Diagnostics {
+    Diagnostic::error(ErrorKind::Limit {
+        what: format!("{what} at depth {level} (stochastic: counted while deriving)"),
+        value: format!("more than {limit}"),
+        limit: limit.to_string(),
+    })
+    .with_help(
+        "use a smaller depth, or raise the limit with --max-symbols N (--max-word N for bfs)",
+    )
+    .into()
+}
