@@ -388,7 +388,7 @@ fn draw_stochastic<T: Turtle>(
             interp.apply(op);
         }
         i += 1;
-        if i % PROGRESS_STEP == 0 {
+        if i.is_multiple_of(PROGRESS_STEP) {
             progress.update(i);
         }
     };
