@@ -14,6 +14,7 @@ mod render;
 mod robustness;
 mod serve;
 mod stl;
+mod stochastic;
 mod support;
 
 use std::collections::BTreeSet;

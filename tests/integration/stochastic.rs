@@ -1,0 +1,304 @@
+//! Stochastic `.lsys` rules (section 9 of the language notes): choices by
+//! seed and place, dfs equal to bfs, the `seed` key and `--seed`, `stats`
+//! counted or expected, diagnostics.
+
+use assert_cmd::Command;
+use proptest::prelude::*;
+use stlc::choice::{Alternatives, Key};
+use stlc::diag::ErrorKind;
+use stlc::interpret::Derivation;
+use stlc::interpret::expected::{StochasticStats, stochastic_stats};
+use stlc::interpret::lsys::{draw_into, expand};
+use stlc::limits::Limits;
+use stlc::model::lsys::LSystem;
+use stlc::progress::NoProgress;
+use stlc::syntax::lsys::parse;
+use stlc::turtle::{Recorder, Segment};
+
+use crate::support::manifest_path;
+
+fn sys(src: &str) -> LSystem {
+    parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
+}
+
+fn word(s: &LSystem, depth: u32, strategy: Derivation) -> String {
+    let mut out = Vec::new();
+    expand(
+        s,
+        depth,
+        strategy,
+        &Limits::default(),
+        &mut out,
+        &mut NoProgress,
+    )
+    .unwrap();
+    String::from_utf8(out).unwrap().trim_end().to_string()
+}
+
+fn segments(s: &LSystem, depth: u32, strategy: Derivation) -> Vec<Segment> {
+    let mut rec = Recorder::default();
+    draw_into(
+        s,
+        depth,
+        strategy,
+        &Limits::default(),
+        &mut rec,
+        &mut NoProgress,
+    )
+    .unwrap();
+    rec.segments
+}
+
+const FIG_1_27: &str = "axiom F\nangle 25.7\n\
+    rule F (0.34) -> F[+F]F[-F]F\nrule F (0.33) -> F[+F]F\nrule F (0.33) -> F[-F]F\n";
+
+/// The documented key function: the axiom's `i`-th symbol has key
+/// `Key::root(seed).child(i)`, so at depth 1 the `i`-th successor is the
+/// table's pick for that key, for a long axiom of `A`s.
+#[test]
+fn the_choice_is_the_documented_function_of_seed_and_place() {
+    let n = 500;
+    let src = format!(
+        "axiom {}\nangle 90\nrule A (0.5) -> x\nrule A (0.3) -> y\nrule A (0.2) -> z\nseed 11\n",
+        "A".repeat(n)
+    );
+    let got = word(&sys(&src), 1, Derivation::Dfs);
+    let table = Alternatives::new(&[0.5, 0.3, 0.2]).unwrap();
+    let want: String = (0..n as u64)
+        .map(|i| ['x', 'y', 'z'][table.pick(Key::root(11).child(i))])
+        .collect();
+    assert_eq!(got, want);
+}
+
+/// Over 3000 occurrences the choices follow the probabilities (each count
+/// within 4 standard deviations of `n p`), at depth 1 and, through the
+/// keys of successors, at depth 2.
+#[test]
+fn choices_follow_the_probabilities() {
+    let n = 3000usize;
+    for (axiom, depth) in [("A".repeat(n), 1), ("B".repeat(n / 3), 2)] {
+        let src = format!(
+            "axiom {axiom}\nangle 90\nrule B -> AAA\n\
+             rule A (0.6) -> x\nrule A (0.3) -> y\nrule A (0.1) -> z\n"
+        );
+        let w = word(&sys(&src), depth, Derivation::Bfs);
+        assert_eq!(w.len(), n);
+        for (c, p) in [('x', 0.6), ('y', 0.3), ('z', 0.1)] {
+            let k = w.chars().filter(|&x| x == c).count() as f64;
+            let (mean, sd) = (n as f64 * p, (n as f64 * p * (1.0 - p)).sqrt());
+            assert!((k - mean).abs() < 4.0 * sd, "{c}: {k} vs {mean} ± {sd}");
+        }
+    }
+}
+
+/// A stochastic system made of random rules over `A B F + - [ ]`.
+fn arb_system() -> impl Strategy<Value = String> {
+    let succ =
+        proptest::string::string_regex("[ABF+\\-]{0,4}(\\[[ABF+\\-]{1,3}\\])?[ABF]{0,2}").unwrap();
+    (
+        proptest::collection::vec(succ, 2..5),
+        proptest::collection::vec(1u32..10, 2..5),
+        "[AB]{1,3}",
+        0u64..1000,
+    )
+        .prop_map(|(succs, weights, axiom, seed)| {
+            let k = succs.len().min(weights.len());
+            let total: u32 = weights[..k].iter().sum();
+            let mut src = format!("axiom {axiom}\nangle 30\nseed {seed}\nrule B -> A[+B]F\n");
+            // Probabilities that sum to 1 exactly: the last takes the rest.
+            let mut acc = 0.0;
+            for i in 0..k {
+                let p = if i + 1 == k {
+                    1.0 - acc
+                } else {
+                    f64::from(weights[i]) / f64::from(total)
+                };
+                acc += p;
+                src.push_str(&format!("rule A ({p}) -> {}\n", succs[i]));
+            }
+            src
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// dfs and bfs derive the same word and draw the same segments.
+    #[test]
+    fn dfs_and_bfs_agree_on_stochastic_systems(src in arb_system(), depth in 0u32..6) {
+        let s = sys(&src);
+        prop_assert_eq!(word(&s, depth, Derivation::Dfs), word(&s, depth, Derivation::Bfs));
+        prop_assert_eq!(segments(&s, depth, Derivation::Dfs), segments(&s, depth, Derivation::Bfs));
+    }
+}
+
+fn render(args: &[&str]) -> Vec<u8> {
+    let out = Command::cargo_bin("stlc")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+/// Same seed, same bytes; another seed, another plant; `--seed` overrides
+/// the file's `seed` key; `--exact` (no level of detail) draws the same.
+#[test]
+fn the_seed_selects_the_plant() {
+    let file = manifest_path("examples/abop-1.27.lsys");
+    let f = file.to_str().unwrap();
+    let png = |extra: &[&str]| {
+        let mut a = vec!["render", f, "-o", "-", "--size", "120x120"];
+        a.extend_from_slice(extra);
+        render(&a)
+    };
+    let one = png(&["--seed", "1"]);
+    assert_eq!(one, png(&["--seed", "1"]));
+    assert_ne!(one, png(&["--seed", "2"]));
+    assert_eq!(one, png(&["--seed", "1", "--exact"]));
+    assert_eq!(one, png(&["--seed", "1", "--strategy", "bfs"]));
+    // The seed key, and the flag over it.
+    let dir = tempfile::tempdir().unwrap();
+    let keyed = dir.path().join("keyed.lsys");
+    std::fs::write(&keyed, format!("{FIG_1_27}generations 4\nseed 5\n")).unwrap();
+    let k = keyed.to_str().unwrap();
+    let five = render(&["expand", k]);
+    assert_eq!(five, render(&["expand", k, "--seed", "5"]));
+    assert_ne!(five, render(&["expand", k, "--seed", "6"]));
+    assert_eq!(five, render(&["expand", k, "--strategy", "bfs"]));
+}
+
+/// A deterministic system derives the same word whatever the seed.
+#[test]
+fn a_deterministic_system_ignores_the_seed() {
+    let mut s = sys("axiom F\nangle 25.7\nrule F -> F[+F]F[-F]F\n");
+    let w = word(&s, 3, Derivation::Dfs);
+    s.seed = 12345;
+    assert_eq!(w, word(&s, 3, Derivation::Dfs));
+}
+
+// ------------------------------------------------------------ stats
+
+/// Counted stats are this seed's word: the counts of the expanded word.
+#[test]
+fn counted_stats_are_the_words_counts() {
+    let s = sys(FIG_1_27);
+    let StochasticStats::Counted(st) = stochastic_stats(&s, 4, &Limits::default()).unwrap() else {
+        panic!("a short word is counted");
+    };
+    let w = word(&s, 4, Derivation::Dfs);
+    assert_eq!(st.length, w.len().into());
+    for (c, n) in &st.symbols {
+        assert_eq!(*n, w.chars().filter(|x| x == c).count().into(), "{c}");
+    }
+    assert_eq!(st.seed, Some(0));
+}
+
+/// Over the budget the expected values come from the mean production
+/// matrix: for Fig. 1.27 each F becomes 0.34 x 5 + 0.66 x 3 = 3.68 F on
+/// average, so depth r has 3.68^r F expected; `[` follows 0.34 x 2 + 0.66
+/// per F of the level above. A second method, the mean over 400 seeds at
+/// depth 3, agrees within 4 standard errors.
+#[test]
+fn expected_stats_follow_the_mean_matrix() {
+    let s = sys(FIG_1_27);
+    let mut tiny = Limits::default();
+    tiny.max_symbols = 10;
+    let StochasticStats::Expected(e) = stochastic_stats(&s, 12, &tiny).unwrap() else {
+        panic!("over the budget, the values are expected");
+    };
+    let f12 = 3.68f64.powi(12);
+    assert!(
+        (e.segments - f12).abs() < 1e-6 * f12,
+        "{} vs {f12}",
+        e.segments
+    );
+    let brackets: f64 = (0..12).map(|r| 3.68f64.powi(r) * 1.34).sum();
+    assert!((e.symbols[&'['] - brackets).abs() < 1e-6 * brackets);
+    let json = StochasticStats::Expected(e.clone()).to_json();
+    assert!(json.starts_with("{\"expected\": true, "), "{json}");
+    assert!(StochasticStats::Expected(e).to_text().contains("expected"));
+    // Mean over seeds at depth 3.
+    let n = 400;
+    let counts: Vec<f64> = (0..n)
+        .map(|seed| {
+            let mut s = sys(FIG_1_27);
+            s.seed = seed;
+            word(&s, 3, Derivation::Dfs)
+                .chars()
+                .filter(|&c| c == 'F')
+                .count() as f64
+        })
+        .collect();
+    let mean = counts.iter().sum::<f64>() / n as f64;
+    let var = counts.iter().map(|c| (c - mean).powi(2)).sum::<f64>() / (n as f64 - 1.0);
+    let se = (var / n as f64).sqrt();
+    let want = 3.68f64.powi(3);
+    assert!((mean - want).abs() < 4.0 * se, "{mean} vs {want} ± {se}");
+}
+
+// ------------------------------------------------------------ errors
+
+fn first_error(src: &str) -> (ErrorKind, std::ops::Range<usize>) {
+    let e = parse(src, &Limits::default()).unwrap_err();
+    let d = e.iter().next().unwrap();
+    assert!(d.help.is_some());
+    (d.kind.clone(), d.span.clone().unwrap())
+}
+
+#[test]
+fn probabilities_are_checked() {
+    let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\nrule F (0.4) -> F-F\n";
+    let (kind, span) = first_error(src);
+    assert!(
+        matches!(&kind, ErrorKind::ProbabilitySum { name, sum } if name == "F" && (sum - 0.9).abs() < 1e-12),
+        "{kind:?}"
+    );
+    assert_eq!(&src[span], "rule F (0.5) -> F+F");
+    assert!(kind.to_string().contains("sum to 0.9"), "{kind}");
+
+    let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F -> F-F\n";
+    let (kind, span) = first_error(src);
+    assert!(matches!(&kind, ErrorKind::MissingProbability { name } if name == "F"));
+    assert_eq!(&src[span], "rule F -> F-F");
+
+    let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (0) -> F-F\n";
+    let (kind, span) = first_error(src);
+    assert!(matches!(&kind, ErrorKind::BadProbability { value, .. } if *value == 0.0));
+    assert_eq!(&src[span], "rule F (0) -> F-F");
+
+    let src = "axiom F\nangle 30\nrule F -> F+F\nrule F -> F-F\n";
+    assert!(matches!(
+        first_error(src).0,
+        ErrorKind::DuplicateProduction { symbol: 'F' }
+    ));
+
+    let src = "axiom F\nangle 30\nseed -3\n";
+    let (kind, span) = first_error(src);
+    assert!(
+        matches!(kind, ErrorKind::NotWholeNumber { key: "seed", .. }),
+        "{kind:?}"
+    );
+    assert_eq!(&src[span], "-3");
+}
+
+/// The forms of a stochastic rule: with or without an arrow, a rule of one
+/// alternative with `(1)`, the largest seed; `(` stays a symbol elsewhere.
+#[test]
+fn stochastic_rule_forms() {
+    let s =
+        sys("axiom F\nangle 30\nrule F (0.5) F+F\nrule F (0.5) = F-F\nseed 18446744073709551615\n");
+    assert_eq!(s.rules[&'F'].len(), 2);
+    assert_eq!(s.seed, u64::MAX);
+    let s = sys("axiom F\nangle 30\nrule F (1) -> FF\n");
+    assert!(s.is_stochastic());
+    assert_eq!(word(&s, 2, Derivation::Dfs), "FFFF");
+    let s = sys("axiom F\nangle 30\nrule F (F)\n");
+    assert!(!s.is_stochastic());
+    assert_eq!(word(&s, 1, Derivation::Dfs), "(F)");
+}
