@@ -35,3 +35,7 @@ $B render examples/alternatives.od --growth dfs --show-layout --size 240x300 -o 
 $B render examples/grove.od --seed 7 --show-layout --size 300x300 -o $G/grove-seed7.png
 $B render examples/grove.od --seed 8 --show-layout --size 300x300 -o $G/grove-seed8.png
 $B render examples/grove.od --seed 7 --growth dfs --show-layout --size 300x300 -o $G/grove-seed7-dfs.png
+# ABOP Fig. 1.27, the stochastic plant, with five seeds.
+for s in 1 2 3 4 5; do
+  $B render examples/abop-1.27.lsys --seed $s --size 160x240 -o $G/abop-1.27-seed$s.png
+done

@@ -666,7 +666,7 @@ fn every_example_parses_and_draws_the_same_both_ways() {
         assert_eq!(a, b, "{path:?}");
         seen += 1;
     }
-    assert_eq!(seen, 10);
+    assert_eq!(seen, 11);
 }
 
 #[test]
