@@ -207,8 +207,10 @@ fn counted_stats_are_the_words_counts() {
 #[test]
 fn expected_stats_follow_the_mean_matrix() {
     let s = sys(FIG_1_27);
-    let mut tiny = Limits::default();
-    tiny.max_symbols = 10;
+    let tiny = Limits {
+        max_symbols: 10,
+        ..Limits::default()
+    };
     let StochasticStats::Expected(e) = stochastic_stats(&s, 12, &tiny).unwrap() else {
         panic!("over the budget, the values are expected");
     };
