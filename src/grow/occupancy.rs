@@ -55,17 +55,19 @@
 
 use rstar::{AABB, RStarInsertionStrategy, RTree, RTreeObject, RTreeParams};
 
-/// The occupancy tree's node sizes: up to 8 entries and no forced
+/// The occupancy tree's node sizes: rstar's 3 to 6 entries, but no forced
 /// reinsertion. Growth inserts a stem for every query it answers, so
 /// insertion dominates; without reinsertion it costs a third less, and the
 /// queries' answers (sets) are the same whatever the tree's shape, so the
-/// trees grown are too. Measured in docs/performance.md (rstar's default is
+/// trees grown are too. Nodes of up to 8 cost less to insert into but make
+/// a larger tree that depth-first growth, which inserts all over it, pays
+/// for in cache misses. Measured in docs/performance.md (rstar's default is
 /// 3, 6 and 2).
 pub struct OccupancyParams;
 
 impl RTreeParams for OccupancyParams {
     const MIN_SIZE: usize = 3;
-    const MAX_SIZE: usize = 8;
+    const MAX_SIZE: usize = 6;
     const REINSERTION_COUNT: usize = 0;
     type DefaultInsertionStrategy = RStarInsertionStrategy;
 }
@@ -105,14 +107,16 @@ impl RTreeObject for Seg {
     }
 }
 
-/// A placed stem in the occupancy tree, with its box computed once: the
-/// R*-tree asks an entry for its box at every comparison while it inserts
-/// and splits, and computing it from the ends each time was a third of
-/// growth's instructions (docs/performance.md).
+/// A placed stem in the occupancy tree: its box, computed once (the R*-tree
+/// asks an entry for its box at every comparison while it inserts and
+/// splits; computing it from the ends each time was a third of growth's
+/// instructions), and the stem's index in [`Occupancy::segs`], where the
+/// exact test finds it. A small entry keeps the tree small: 64 bytes a
+/// node entry against 80 with the stem inside (docs/performance.md).
 #[derive(Debug, Clone, Copy)]
 struct Placed {
-    seg: Seg,
     env: AABB<[f64; 2]>,
+    index: usize,
 }
 
 impl RTreeObject for Placed {
@@ -228,6 +232,8 @@ pub struct Occupancy {
     len: usize,
     /// The largest radius placed (the query's reach grows by it).
     max_r: f64,
+    /// The placed stems, by [`Placed::index`].
+    segs: Vec<Seg>,
     inner: Inner,
 }
 
@@ -250,6 +256,7 @@ impl Occupancy {
             clearance,
             len: 0,
             max_r: 0.0,
+            segs: Vec::new(),
             inner,
         }
     }
@@ -280,7 +287,7 @@ impl Occupancy {
         match &self.inner {
             Inner::Rstar(tree) => tree
                 .locate_in_envelope_intersecting(&reach(t, widest))
-                .any(|p| conflicts(t, &p.seg, c)),
+                .any(|p| conflicts(t, &self.segs[p.index], c)),
             #[cfg(feature = "spade-index")]
             Inner::Spade(ix) => ix.conflicts(t, c, widest),
         }
@@ -291,10 +298,13 @@ impl Occupancy {
         self.len += 1;
         self.max_r = self.max_r.max(s.r);
         match &mut self.inner {
-            Inner::Rstar(tree) => tree.insert(Placed {
-                seg: s,
-                env: s.envelope(),
-            }),
+            Inner::Rstar(tree) => {
+                tree.insert(Placed {
+                    env: s.envelope(),
+                    index: self.segs.len(),
+                });
+                self.segs.push(s);
+            }
             #[cfg(feature = "spade-index")]
             Inner::Spade(ix) => ix.insert(s),
         }
