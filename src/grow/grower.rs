@@ -52,6 +52,9 @@ struct Scratch {
     tips: Vec<(State, bool)>,
     /// The growth points made by the last success, in branch order.
     children: Vec<Gp>,
+    /// Whether the turtle was inside the region, saved at each `[` of the
+    /// body being drawn (kept to reuse its allocation).
+    saved: Vec<bool>,
 }
 
 /// The growth points waiting for their decision: a FIFO queue in `bfs`, a
@@ -221,6 +224,7 @@ impl<'a> Grower<'a> {
                 segs: LocalIndex::new(clearance),
                 tips: Vec::new(),
                 children: Vec::new(),
+                saved: Vec::new(),
             },
             schedule: Schedule::default(),
             tree_key: Key::root(opts.seed).child(0),
@@ -466,12 +470,20 @@ impl<'a> Grower<'a> {
     }
 
     fn draw_body(&mut self, gp: &Gp) -> Result<(), Miss> {
+        let mut saved = std::mem::take(&mut self.scratch.saved);
+        saved.clear();
+        let drawn = self.draw_body_with(gp, &mut saved);
+        self.scratch.saved = saved;
+        drawn
+    }
+
+    /// [`Grower::draw_body`] with the stack of saved inside-flags.
+    fn draw_body_with(&mut self, gp: &Gp, saved: &mut Vec<bool>) -> Result<(), Miss> {
         let od = self.od;
         let rule = od.rule(gp.rule);
         // Whether the turtle's position is known to be inside the region,
         // saved and restored with the turtle's stack.
         let mut inside = gp.inside;
-        let mut saved: Vec<bool> = Vec::new();
         let base = self.interp.stack_depth();
         // Pops below this depth are ignored: the body's own depth on the
         // trunk, the depth just inside the `[` in a branch.
@@ -480,22 +492,22 @@ impl<'a> Grower<'a> {
             match step {
                 Step::Run(r) => {
                     for op in r.text.chars().filter_map(Op::of_stl) {
-                        self.step(op, &mut inside, &mut saved, floor)?;
+                        self.step(op, &mut inside, saved, floor)?;
                     }
                 }
                 Step::Fixed(f) => {
                     for op in fixed_ops(f) {
-                        self.step(op, &mut inside, &mut saved, floor)?;
+                        self.step(op, &mut inside, saved, floor)?;
                     }
                 }
                 Step::Open { .. } => {
-                    self.step(Op::Push, &mut inside, &mut saved, base)?;
+                    self.step(Op::Push, &mut inside, saved, base)?;
                     floor = self.interp.stack_depth();
                 }
                 Step::Tip { .. } => {
                     self.scratch.tips.push((self.interp.state, inside));
                     while self.interp.stack_depth() >= floor {
-                        self.step(Op::Pop, &mut inside, &mut saved, base)?;
+                        self.step(Op::Pop, &mut inside, saved, base)?;
                     }
                     floor = base;
                 }
