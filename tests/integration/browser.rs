@@ -699,13 +699,9 @@ async fn tools(c: &Client, start: &str) {
 
 /// What `stlc ARGS -o -` writes.
 fn cli(args: &[&str]) -> Vec<u8> {
-    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-        .args(args)
-        .args(["-o", "-"])
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "stlc {args:?}");
-    out.stdout
+    let mut all = args.to_vec();
+    all.extend(["-o", "-"]);
+    crate::support::stlc_stdout(&all)
 }
 
 /// The bytes of `dir/name` once Chromium has finished downloading it.

@@ -165,16 +165,7 @@ fn example(name: &str) -> String {
 
 /// What the CLI writes for `args` (standard output).
 fn cli(args: &[&str]) -> Vec<u8> {
-    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
+    crate::support::stlc_stdout(args)
 }
 
 /// The BED and SVG of an .od are byte for byte what `stlc compile` and

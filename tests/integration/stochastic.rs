@@ -2,7 +2,6 @@
 //! seed and place, dfs equal to bfs, the `seed` key and `--seed`, `stats`
 //! counted or expected, diagnostics.
 
-use assert_cmd::Command;
 use proptest::prelude::*;
 use stlc::choice::{Alternatives, Key};
 use stlc::diag::ErrorKind;
@@ -16,6 +15,7 @@ use stlc::syntax::lsys::parse;
 use stlc::turtle::{Recorder, Segment};
 
 use crate::support::manifest_path;
+use crate::support::stlc_stdout as render;
 
 fn sys(src: &str) -> LSystem {
     parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
@@ -130,20 +130,6 @@ proptest! {
         prop_assert_eq!(word(&s, depth, Derivation::Dfs), word(&s, depth, Derivation::Bfs));
         prop_assert_eq!(segments(&s, depth, Derivation::Dfs), segments(&s, depth, Derivation::Bfs));
     }
-}
-
-fn render(args: &[&str]) -> Vec<u8> {
-    let out = Command::cargo_bin("stlc")
-        .unwrap()
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
 }
 
 /// Same seed, same bytes; another seed, another plant; `--seed` overrides

@@ -361,3 +361,18 @@ fn an_image_off_by_one_matches_and_off_by_two_does_not() {
     assert_eq!(rgba(&diff, 0, 0), [217, 217, 217, 255]);
     assert!(png_difference(&reference, &Pixmap::new(2, 3).unwrap()).is_some());
 }
+
+/// What the `stlc` binary writes to standard output for `args`; its
+/// standard error in the panic if it fails.
+pub fn stlc_stdout(args: &[&str]) -> Vec<u8> {
+    let out = std::process::Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "stlc {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
