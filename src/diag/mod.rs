@@ -22,9 +22,11 @@ pub enum Severity {
 
 pub mod excerpt;
 mod kind;
+mod number;
 
 pub use excerpt::{Excerpt, line_column};
-pub use kind::{ErrorKind, SHOWN_DIGITS, short_number};
+pub use kind::ErrorKind;
+pub use number::{SHOWN_DIGITS, short_number};
 
 /// The diagnostic for an I/O error while writing output: a broken pipe gets
 /// its own kind so the CLI can exit quietly.
