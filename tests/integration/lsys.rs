@@ -17,9 +17,18 @@ fn sys(src: &str) -> stlc::model::lsys::LSystem {
 }
 
 fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
+    segments_of(&sys(src), depth, strategy)
+}
+
+/// The segments `s` draws at `depth`, with the default limits.
+pub fn segments_of(
+    s: &stlc::model::lsys::LSystem,
+    depth: u32,
+    strategy: Derivation,
+) -> Vec<Segment> {
     let mut rec = Recorder::default();
     draw_into(
-        &sys(src),
+        s,
         depth,
         strategy,
         &Limits::default(),
@@ -31,9 +40,14 @@ fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
 }
 
 fn expanded(src: &str, depth: u32, strategy: Derivation) -> String {
+    expanded_of(&sys(src), depth, strategy)
+}
+
+/// The word `s` derives at `depth` (newline included), default limits.
+pub fn expanded_of(s: &stlc::model::lsys::LSystem, depth: u32, strategy: Derivation) -> String {
     let mut out = Vec::new();
     expand(
-        &sys(src),
+        s,
         depth,
         strategy,
         &Limits::default(),

@@ -7,13 +7,11 @@ use stlc::choice::{Alternatives, Key};
 use stlc::diag::ErrorKind;
 use stlc::interpret::Derivation;
 use stlc::interpret::expected::{StochasticStats, stochastic_stats};
-use stlc::interpret::lsys::{draw_into, expand};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
-use stlc::progress::NoProgress;
 use stlc::syntax::lsys::parse;
-use stlc::turtle::{Recorder, Segment};
 
+use crate::lsys::{expanded_of, segments_of as segments};
 use crate::support::manifest_path;
 use crate::support::stlc_stdout as render;
 
@@ -22,31 +20,7 @@ fn sys(src: &str) -> LSystem {
 }
 
 fn word(s: &LSystem, depth: u32, strategy: Derivation) -> String {
-    let mut out = Vec::new();
-    expand(
-        s,
-        depth,
-        strategy,
-        &Limits::default(),
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
-    String::from_utf8(out).unwrap().trim_end().to_string()
-}
-
-fn segments(s: &LSystem, depth: u32, strategy: Derivation) -> Vec<Segment> {
-    let mut rec = Recorder::default();
-    draw_into(
-        s,
-        depth,
-        strategy,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
-    rec.segments
+    expanded_of(s, depth, strategy).trim_end().to_string()
 }
 
 const FIG_1_27: &str = "axiom F\nangle 25.7\n\
