@@ -261,6 +261,18 @@ pub enum ErrorKind {
         /// How many alternatives it has.
         count: usize,
     },
+    /// A BED repeats a rule with alternatives (`[I 2 R1]` or `[I 2 R1.2]`
+    /// where R1 has several bodies): each application would choose, and a
+    /// BED records choices instead of making them.
+    #[error(
+        "`[I n {name}]` would choose among {count} alternatives; a BED writes the terms that grew"
+    )]
+    RepeatChooses {
+        /// The rule's name, without an alternative's number.
+        name: String,
+        /// How many alternatives it has.
+        count: usize,
+    },
     /// A BED of a forest has a different number of seeds than roots.
     #[error("{roots} root{} but {seeds} SEED section{}", plural(*roots, "s"), plural(*seeds, "s"))]
     SeedsPerRoot {

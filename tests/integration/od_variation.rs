@@ -268,6 +268,28 @@ fn a_bed_names_alternatives_that_exist() {
 }
 
 #[test]
+fn a_bed_repeats_only_rules_without_alternatives() {
+    // `[I 2 R1]` unrolls R1 at every tip: with alternatives each level
+    // would choose, so a BED (which records choices) refuses it, with or
+    // without an alternative's number; an OD's repeat is a growth point.
+    let head = "T (0,0) L=1(0) B=1(0) RULE R1.1 (0.5): [+F] R1.2 (0.5): [-F] R2: [+F] SEED F ";
+    for repeat in ["[I 2 R1]", "[I 2 R1.2]"] {
+        let text = format!("{head}{repeat} ENDSEED");
+        let e = errors(&text, Format::Bed);
+        assert!(
+            matches!(&e.0[0].kind, ErrorKind::RepeatChooses { name, count: 2 } if name == "R1"),
+            "{repeat}: {:?}",
+            e.0[0].kind
+        );
+        assert_eq!(e.0[0].span, Some(span_of(&text, repeat)));
+    }
+    let text = format!("{head}[I 2 R2] ENDSEED");
+    assert!(parse(&text, Format::Bed, &Limits::default()).is_ok());
+    let od = "T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F] R1 (0.5): [-F] SEED F [I 2 R1] ENDSEED";
+    assert!(parse(od, Format::Od, &Limits::default()).is_ok());
+}
+
+#[test]
 fn a_forest_bed_has_one_seed_per_root() {
     let text =
         "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED SEED F ENDSEED";

@@ -201,7 +201,10 @@ impl Builder<'_> {
                         back.push_front(t);
                     }
                     match what {
-                        RepeatBody::Rule(r) => self.deliver(Made::Repeat(r), &mut stack, &mut out),
+                        RepeatBody::Rule(r) => {
+                            self.repeat_chooses(&r);
+                            self.deliver(Made::Repeat(r), &mut stack, &mut out);
+                        }
                         RepeatBody::Word(f) => {
                             if stack.is_empty() {
                                 if let Some(r) = out.run.take() {
@@ -315,6 +318,29 @@ impl Builder<'_> {
             ErrorKind::AlternativeNotNamed { name, count },
             span.clone(),
             "which alternative?",
+            &help,
+        );
+    }
+
+    /// Reports a BED's repeat of a rule with alternatives: every level it
+    /// unrolls would have to choose a body, and a BED never chooses.
+    fn repeat_chooses(&mut self, r: &Repeat) {
+        let count = self.alternatives[r.rule.0];
+        if self.format != Format::Bed || count == 0 {
+            return;
+        }
+        let name = self.names[r.rule.0]
+            .split('.')
+            .next()
+            .unwrap_or_default()
+            .to_string();
+        let help = format!(
+            "write the terms that grew (`{name}.1{{...}}` to `{name}.{count}{{...}}`), as `stlc compile` does"
+        );
+        self.report(
+            ErrorKind::RepeatChooses { name, count },
+            r.loc.0.clone(),
+            "a repeat that would choose",
             &help,
         );
     }
