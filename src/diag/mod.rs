@@ -26,7 +26,7 @@ mod number;
 
 pub use excerpt::{Excerpt, line_column};
 pub use kind::ErrorKind;
-pub use number::{SHOWN_DIGITS, short_number};
+pub use number::{SHOWN_DIGITS, saturated, short_number};
 
 /// The diagnostic for an I/O error while writing output: a broken pipe gets
 /// its own kind so the CLI can exit quietly.

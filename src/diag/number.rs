@@ -20,6 +20,17 @@ pub fn short_number(value: &str) -> std::borrow::Cow<'_, str> {
     ))
 }
 
+/// A count computed with saturating arithmetic, as a person reads it:
+/// the number, or `more than 18446744073709551614` where it saturated at
+/// `u64::MAX` (the true value is that or more).
+pub fn saturated(n: u64) -> String {
+    if n == u64::MAX {
+        format!("more than {}", u64::MAX - 1)
+    } else {
+        n.to_string()
+    }
+}
+
 pub(super) fn plural(n: usize, suffix: &str) -> &str {
     if n == 1 { "" } else { suffix }
 }
@@ -38,6 +49,9 @@ mod tests {
         assert_eq!(short_number(&long), "1995063116... (3011 digits)");
         let more = format!("more than {}", "9".repeat(40));
         assert_eq!(short_number(&more), "more than 9999999999... (40 digits)");
+        assert_eq!(saturated(12), "12");
+        assert_eq!(saturated(u64::MAX - 1), "18446744073709551614");
+        assert_eq!(saturated(u64::MAX), "more than 18446744073709551614");
         assert_eq!(short_number("not a number"), "not a number");
         let d = ErrorKind::Limit {
             what: "derived word length".into(),

@@ -20,7 +20,7 @@ use num_bigint::BigUint;
 use super::Derivation;
 use super::lsys::Stochastic;
 use super::stats::{STATS_TRAVERSAL_SYMBOLS, Stats, fixed};
-use crate::diag::Diagnostics;
+use crate::diag::{Diagnostics, saturated};
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 use crate::progress::NoProgress;
@@ -169,12 +169,8 @@ impl StochasticStats {
         let _ = writeln!(
             out,
             "          any seed: {} .. {}",
-            e.bounds.0,
-            if e.bounds.1 == u64::MAX {
-                "more than 18446744073709551614".to_string()
-            } else {
-                e.bounds.1.to_string()
-            }
+            saturated(e.bounds.0),
+            saturated(e.bounds.1)
         );
         let _ = writeln!(out, "segments  {} expected", mean(e.segments, false));
         let _ = writeln!(out, "bbox      (skipped: the word is too long to traverse)");

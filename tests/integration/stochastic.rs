@@ -206,6 +206,91 @@ fn expected_stats_follow_the_mean_matrix() {
 
 // ------------------------------------------------------------ errors
 
+/// The shortest word of Fig. 1.27 takes `F[+F]F` (six symbols, three `F`)
+/// everywhere: L(d) = 3 + 3 L(d-1), L(0) = 1, so L(3) = 66; the longest
+/// takes `F[+F]F[-F]F` (eleven, five `F`): H(d) = 6 + 5 H(d-1), H(3) =
+/// 311. Under a limit below 66 no seed's word
+/// fits, and the refusal comes before a symbol is derived (nothing is
+/// written), for dfs and bfs; at depth 100 the bound saturates.
+#[test]
+fn a_depth_no_choice_can_fit_is_refused_at_once() {
+    let s = sys(FIG_1_27);
+    let refuse = |depth: u32, limit: u64, strategy: Derivation| {
+        let limits = Limits {
+            max_symbols: limit,
+            ..Limits::default()
+        };
+        let mut out = Vec::new();
+        let e = stlc::interpret::lsys::expand(
+            &s,
+            depth,
+            strategy,
+            &limits,
+            &mut out,
+            &mut stlc::progress::NoProgress,
+        )
+        .unwrap_err();
+        assert!(out.is_empty(), "wrote {} bytes first", out.len());
+        match &e.0[0].kind {
+            ErrorKind::Limit {
+                value, limit: l, ..
+            } => {
+                assert_eq!(l, &limit.to_string());
+                value.clone()
+            }
+            other => panic!("{other:?}"),
+        }
+    };
+    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+        assert_eq!(refuse(3, 65, strategy), "at least 66");
+        assert_eq!(
+            refuse(100, 1_000_000, strategy),
+            "more than 18446744073709551614"
+        );
+    }
+    // Under a limit between the bounds some seeds fit and some do not: a
+    // word over it is refused before anything is written all the same.
+    let mut over = 0;
+    for seed in 0..20 {
+        let mut s = sys(FIG_1_27);
+        s.seed = seed;
+        let limits = Limits {
+            max_symbols: 120,
+            ..Limits::default()
+        };
+        let mut out = Vec::new();
+        let r = stlc::interpret::lsys::expand(
+            &s,
+            3,
+            Derivation::Dfs,
+            &limits,
+            &mut out,
+            &mut stlc::progress::NoProgress,
+        );
+        if r.is_err() {
+            over += 1;
+            assert!(
+                out.is_empty(),
+                "seed {seed}: wrote {} bytes first",
+                out.len()
+            );
+        } else {
+            assert!(out.len() <= 121, "seed {seed}: {}", out.len());
+        }
+    }
+    assert!(over > 0 && over < 20, "{over} of 20 seeds over 120 symbols");
+    // Every seed's word lies within the bounds, and they vary.
+    let lens: Vec<usize> = (0..50)
+        .map(|seed| {
+            let mut s = sys(FIG_1_27);
+            s.seed = seed;
+            word(&s, 3, Derivation::Dfs).len()
+        })
+        .collect();
+    assert!(lens.iter().all(|l| (66..=311).contains(l)), "{lens:?}");
+    assert!(lens.iter().any(|&l| l != lens[0]), "{lens:?}");
+}
+
 fn first_error(src: &str) -> (ErrorKind, std::ops::Range<usize>) {
     let e = parse(src, &Limits::default()).unwrap_err();
     let d = e.iter().next().unwrap();

@@ -433,7 +433,15 @@ pub fn expand(
     let stochastic = sys.is_stochastic();
     let total = if stochastic {
         limits.check_depth(depth)?;
-        Stochastic::new(sys).length_bounds(depth).1
+        let st = Stochastic::new(sys);
+        let (_, most) = st.length_bounds(depth);
+        if strategy == Derivation::Dfs && most > limits.max_symbols {
+            // The word may be over the limit: count it first, so that a
+            // refusal comes before a byte is written (bfs refuses before
+            // emitting anyway).
+            st.dfs_each(depth, limits, |_| {})?;
+        }
+        most
     } else {
         alpha.check(depth, strategy, limits)?[depth as usize]
     };

@@ -21,11 +21,13 @@
 //! Word lengths are not known before the traversal (each run chooses), so
 //! the limits are enforced while deriving: the traversal stops with an
 //! error when it passes `limits.max_symbols`, `bfs` when a level passes its
-//! word budget. The renderer fits the picture with a bounding traversal
+//! word budget. A depth whose *shortest* possible word (each symbol's
+//! shortest alternative, [`Stochastic::length_bounds`]) is already over
+//! the limit is refused before any symbol is derived. The renderer fits the picture with a bounding traversal
 //! first, so a refusal comes before any output is written.
 
 use crate::choice::{Alternatives, Key};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, saturated};
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 
@@ -122,6 +124,7 @@ impl Stochastic {
         limits: &Limits,
         mut f: impl FnMut(u32),
     ) -> Result<u64, Diagnostics> {
+        self.check_shortest(depth, limits.max_symbols, "derived word length")?;
         let mut count = 0u64;
         let mut stack = vec![Frame {
             succ: &self.axiom,
@@ -167,6 +170,7 @@ impl Stochastic {
         mut f: impl FnMut(u32),
     ) -> Result<u64, Diagnostics> {
         let budget = (limits.max_word / BFS_BYTES_PER_SYMBOL).min(limits.max_symbols);
+        self.check_shortest(depth, budget, "bfs word (symbols and keys)")?;
         let mut word: Vec<(u32, Key)> = self
             .axiom
             .iter()
@@ -241,6 +245,29 @@ impl Stochastic {
             v = next;
         }
         v
+    }
+
+    /// Refuses at once a depth whose shortest possible word (whatever the
+    /// choices) is over `limit`: the traversal would only stop there after
+    /// deriving `limit` symbols.
+    fn check_shortest(&self, depth: u32, limit: u64, what: &str) -> Result<(), Diagnostics> {
+        let (least, _) = self.length_bounds(depth);
+        if least <= limit {
+            return Ok(());
+        }
+        Err(Diagnostic::error(ErrorKind::Limit {
+            what: format!("{what} at depth {depth} (stochastic: the shortest any choices make)"),
+            value: if least == u64::MAX {
+                saturated(least)
+            } else {
+                format!("at least {least}")
+            },
+            limit: limit.to_string(),
+        })
+        .with_help(
+            "use a smaller depth, or raise the limit with --max-symbols N (--max-word N for bfs)",
+        )
+        .into())
     }
 
     /// The fewest and the most symbols the word at `depth` can have
