@@ -228,13 +228,21 @@ pub enum ErrorKind {
         /// The rule's name.
         name: String,
     },
-    /// An alternative's probability is not a number above 0.
-    #[error("probability {} of an alternative of `{name}` is not above 0", crate::num::fixed(*value, 9, crate::num::Trim::Zeros))]
+    /// An alternative's probability is not a finite number above 0.
+    #[error("probability {} of an alternative of `{name}` is not a finite number above 0", crate::num::fixed(*value, 9, crate::num::Trim::Zeros))]
     BadProbability {
         /// The rule's name.
         name: String,
         /// The probability written.
         value: f64,
+    },
+    /// A `.lsys` rule has a parenthesis where a probability goes that does
+    /// not hold a decimal number (`rule F (1/3) -> ...`, `(50%)`): read as
+    /// it stands it would be part of the successor.
+    #[error("`{text}` is not a probability")]
+    UnreadableProbability {
+        /// The parenthesis as written.
+        text: String,
     },
     /// The probabilities of a rule's alternatives do not sum to 1.
     #[error("the probabilities of `{name}`'s alternatives sum to {}, not 1", crate::num::fixed(*sum, 9, crate::num::Trim::Zeros))]

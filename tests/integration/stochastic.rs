@@ -325,6 +325,42 @@ fn probabilities_are_checked() {
         ErrorKind::DuplicateProduction { symbol: 'F' }
     ));
 
+    let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (1e400) -> F-F\n";
+    let (kind, _) = first_error(src);
+    assert!(matches!(&kind, ErrorKind::BadProbability { value, .. } if value.is_infinite()));
+    assert!(
+        kind.to_string().contains("not a finite number above 0"),
+        "{kind}"
+    );
+
+    // A parenthesis where the probability goes that is no decimal number
+    // would otherwise start the successor `(1/3)->F+F`.
+    for (line, text) in [
+        ("rule F (1/3) -> F+F", "(1/3)"),
+        ("rule F (50%) = F+F", "(50%)"),
+        ("rule F (nan)->F+F", "(nan)"),
+    ] {
+        let src = format!("axiom F\nangle 30\n{line}\n");
+        let (kind, span) = first_error(&src);
+        assert!(
+            matches!(&kind, ErrorKind::UnreadableProbability { text: t } if t == text),
+            "{line}: {kind:?}"
+        );
+        assert_eq!(&src[span], text);
+    }
+    let src = "axiom F\nangle 30\nrule F(0.5) -> F+F\n";
+    let e = parse(src, &Limits::default()).unwrap_err();
+    let d = e.iter().next().unwrap();
+    assert!(matches!(
+        d.kind,
+        ErrorKind::LongPredecessor { symbols: 6, .. }
+    ));
+    assert!(
+        d.help.as_deref().unwrap().contains("rule F (0.5)"),
+        "{:?}",
+        d.help
+    );
+
     let src = "axiom F\nangle 30\nseed -3\n";
     let (kind, span) = first_error(src);
     assert!(
@@ -348,4 +384,7 @@ fn stochastic_rule_forms() {
     let s = sys("axiom F\nangle 30\nrule F (F)\n");
     assert!(!s.is_stochastic());
     assert_eq!(word(&s, 1, Derivation::Dfs), "(F)");
+    // Without an arrow after it, a parenthesis is symbols of the successor.
+    let s = sys("axiom F\nangle 30\nrule F (x)F\n");
+    assert_eq!(word(&s, 1, Derivation::Dfs), "(x)F");
 }

@@ -168,6 +168,15 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
     ck.diags.into_result(sys)
 }
 
+/// The length of a leading parenthesis of a rule's successor that stands
+/// where a probability goes but is not one: `(1/3) -> F` (an arrow follows
+/// it, so the successor would be `(1/3)->F`). `None` for anything else.
+fn unreadable_probability(successor: &str) -> Option<usize> {
+    let close = successor.strip_prefix('(')?.find(')')? + 2;
+    let rest = successor[close..].trim_start_matches([' ', '\t', '\u{FEFF}']);
+    (rest.starts_with("->") || rest.starts_with('=')).then_some(close)
+}
+
 /// Collects diagnostics while the entries are checked.
 struct Checker {
     diags: Diagnostics,
@@ -202,17 +211,41 @@ impl Checker {
         let mut chars = pred.as_str().chars();
         let c = chars.next().expect("grammar: lsys_pred has a symbol");
         if chars.next().is_some() {
+            let text = pred.as_str();
+            let help = if text[c.len_utf8()..].starts_with('(') {
+                format!("put a space before the probability: `rule {c} (0.5) -> ...`")
+            } else {
+                "write `rule X SUCCESSOR` with a single-symbol X \
+                 (separate it from the successor with a space, `->` or `=`)"
+                    .to_string()
+            };
             self.diags.push(
                 Diagnostic::error(ErrorKind::LongPredecessor {
-                    predecessor: pred.as_str().to_string(),
-                    symbols: pred.as_str().chars().count(),
+                    predecessor: text.to_string(),
+                    symbols: text.chars().count(),
                 })
                 .with_span(pair_span(&pred))
                 .with_label("the predecessor")
-                .with_help(
-                    "write `rule X SUCCESSOR` with a single-symbol X \
-                     (separate it from the successor with a space, `->` or `=`)",
-                ),
+                .with_help(help),
+            );
+            return;
+        }
+        if probability.is_none()
+            && let Some(w) = &succ
+            && let Some(len) = unreadable_probability(w.as_str())
+        {
+            let at = w.as_span().start();
+            self.diags.push(
+                Diagnostic::error(ErrorKind::UnreadableProbability {
+                    text: w.as_str()[..len].to_string(),
+                })
+                .with_span(at..at + len)
+                .with_label("not a decimal number")
+                .with_help(format!(
+                    "write the probability as a decimal number above 0, `rule {c} (0.5) -> ...`; \
+                     a symbol's probabilities sum to 1 within 1e-6, so thirds are \
+                     (0.34), (0.33), (0.33)"
+                )),
             );
             return;
         }
