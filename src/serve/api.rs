@@ -53,7 +53,8 @@ pub struct Settings {
 pub struct BadRequest(pub String);
 
 /// Reads a request body: `{"source": TEXT, "kind"?, "strategy"?, "depth"?,
-/// "clearance"?, "max_stems"?, "seed"?}`; absent and `null` fields take defaults.
+/// "clearance"?, "max_stems"?, "seed"?}`; absent and `null` fields take defaults;
+/// `seed` is a number or a string of digits.
 pub fn parse_request(body: &[u8]) -> Result<(Request, Map<String, Value>), BadRequest> {
     let value: Value =
         serde_json::from_slice(body).map_err(|e| BadRequest(format!("malformed JSON: {e}")))?;
@@ -99,7 +100,17 @@ pub fn parse_request(body: &[u8]) -> Result<(Request, Map<String, Value>), BadRe
         Some(d) => Some(u32::try_from(d).map_err(|_| BadRequest("`depth` is too large".into()))?),
     };
     let max_stems = whole("max_stems")?;
-    let seed = whole("seed")?;
+    // A seed may be any u64, past what a JavaScript number holds exactly
+    // (2^53), so the page sends it as a string of digits.
+    let seed = match field("seed") {
+        Some(Value::String(t)) => Some(t.trim().parse::<u64>().map_err(|_| {
+            BadRequest(format!(
+                "`seed` must be a whole number from 0 to {}, not `{t}`",
+                u64::MAX
+            ))
+        })?),
+        _ => whole("seed")?,
+    };
     let clearance = match field("clearance") {
         None => None,
         Some(v) => Some(

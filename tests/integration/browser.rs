@@ -1035,6 +1035,26 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
         "the grove, next seed",
     );
     shot(c, "16-grove-seed-8").await;
+    // Seeds past 2^53 (where JavaScript numbers stop being exact) reach
+    // the server digit for digit; "next seed" counts on exactly.
+    js(
+        c,
+        "const s = document.getElementById('seed'); s.value = '18446744073709551614';
+         s.dispatchEvent(new Event('input')); return null;",
+    )
+    .await;
+    click(c, "#reseed").await;
+    let top = u64::MAX.to_string();
+    assert_eq!(
+        js(c, "return document.getElementById('seed').value").await,
+        top.as_str()
+    );
+    let page_bed = answer_bed(c, &bed_of(&top)).await;
+    same_bytes(
+        page_bed.as_bytes(),
+        bed_of(&top).as_bytes(),
+        "the grove, seed 2^64 - 1",
+    );
     js(
         c,
         "const s = document.getElementById('seed'); s.value = '';

@@ -627,4 +627,28 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
         .map(|r| (r["x"].as_f64().unwrap(), r["y"].as_f64().unwrap()))
         .collect();
     assert_eq!(xy, [(110.0, 290.0), (170.0, 290.0), (235.0, 290.0)]);
+    // A seed as a string of digits (how the page sends it): exact past a
+    // JavaScript number's 2^53, the CLI's --seed of the same digits.
+    let top = u64::MAX.to_string();
+    let b = render(
+        &server.addr,
+        &json!({"source": example("grove.od"), "seed": top}),
+    );
+    let bed = String::from_utf8(cli(&["compile", path, "-o", "-", "--seed", &top])).unwrap();
+    crate::support::assert_same_text("grove --seed 2^64-1", &bed, b["bed"].as_str().unwrap());
+    let below = String::from_utf8(cli(&[
+        "compile",
+        path,
+        "-o",
+        "-",
+        "--seed",
+        &(u64::MAX - 1).to_string(),
+    ]))
+    .unwrap();
+    assert_ne!(below, bed, "neighbouring seeds grow different groves");
+    for bad in ["x", "-1", "18446744073709551616", "1.5"] {
+        let body = json!({"source": example("grove.od"), "seed": bad}).to_string();
+        let answer = request(&server.addr, "POST", "/api/render", &[], body.as_bytes());
+        assert_eq!(answer.status, 400, "{bad}");
+    }
 }

@@ -145,7 +145,8 @@ function request() {
   }
   if (r.kind === 'lsys' && num('depth') !== '') r.depth = Math.floor(Number(num('depth')));
   // A BED has its choices written out: the seed changes nothing there.
-  if (r.kind !== 'bed' && num('seed') !== '') r.seed = Math.floor(Number(num('seed')));
+  // As a string: a seed is any 64-bit number, more than a JS number holds.
+  if (r.kind !== 'bed' && num('seed') !== '') r.seed = num('seed');
   return r;
 }
 
@@ -794,7 +795,9 @@ function setKind(kind) {
 $('kind').addEventListener('change', () => { setKind($('kind').value); schedule(); });
 $('reseed').addEventListener('click', () => {
   const now = $('seed').value.trim();
-  $('seed').value = String(now === '' ? 1 : Math.floor(Number(now)) + 1);
+  let next = 1n;
+  try { if (now !== '') next = BigInt(now) + 1n; } catch (e) { next = 1n; }
+  $('seed').value = String(next);
   state.editedAt = performance.now();
   schedule();
 });
