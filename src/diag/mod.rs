@@ -26,6 +26,7 @@ mod number;
 
 pub use excerpt::{Excerpt, line_column};
 pub use kind::ErrorKind;
+pub(crate) use number::plural;
 pub use number::{SHOWN_DIGITS, saturated, short_number};
 
 /// The diagnostic for an I/O error while writing output: a broken pipe gets

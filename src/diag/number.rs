@@ -31,7 +31,8 @@ pub fn saturated(n: u64) -> String {
     }
 }
 
-pub(super) fn plural(n: usize, suffix: &str) -> &str {
+/// `suffix` unless `n` is 1: `format!("{n} shape{}", plural(n, "s"))`.
+pub(crate) fn plural(n: usize, suffix: &str) -> &str {
     if n == 1 { "" } else { suffix }
 }
 

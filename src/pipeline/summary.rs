@@ -199,8 +199,9 @@ fn stl_summary(
             };
             let _ = writeln!(
                 s,
-                "  layout      {} shape(s), growth area {area}",
-                l.shapes.len()
+                "  layout      {} shape{}, growth area {area}",
+                l.shapes.len(),
+                crate::diag::plural(l.shapes.len(), "s")
             );
         }
         None => {

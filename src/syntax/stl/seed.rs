@@ -14,7 +14,7 @@ use super::body::{RepeatBody, Run};
 use super::lex::{Lex, TextLex};
 use super::rules::{KW_ENDSEED, KW_SEED};
 use super::{Builder, Rule, not_in_grammar, span_of};
-use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::diag::{Diagnostic, ErrorKind, Span, plural};
 use crate::model::{Format, Loc, Repeat, RuleId, Seed, SeedItem, SlotId, TermId, Terms};
 
 /// A term whose `{` is open.
@@ -278,9 +278,10 @@ impl Builder<'_> {
                 found,
             })
             .with_span(span)
-            .with_label(format!("{found} slot(s) here"))
+            .with_label(format!("{found} slot{} here", plural(found, "s")))
             .with_help(format!(
-                "`{name}` has {expected} branch(es): write one slot per branch, separated by commas (all empty: `{empty}`)"
+                "`{name}` has {expected} branch{}: write one slot per branch, separated by commas (all empty: `{empty}`)",
+                plural(expected, "es")
             )),
         );
     }
