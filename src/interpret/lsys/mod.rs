@@ -439,7 +439,16 @@ pub fn expand(
             // The word may be over the limit: count it first, so that a
             // refusal comes before a byte is written (bfs refuses before
             // emitting anyway).
-            st.dfs_each(depth, limits, |_| {})?;
+            progress.start("counting: symbols", limits.max_symbols);
+            let mut n = 0u64;
+            let counted = st.dfs_each(depth, limits, |_| {
+                n += 1;
+                if n.is_multiple_of(PROGRESS_STEP) {
+                    progress.update(n);
+                }
+            });
+            progress.finish();
+            counted?;
         }
         most
     } else {
