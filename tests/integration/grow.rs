@@ -447,6 +447,34 @@ fn invariants_hold_on_every_example_with_strokes_as_drawn() {
     }
 }
 
+/// The grove's trees compete for one outline: for the gallery's seeds, in
+/// both orders, every tree's strokes stay inside and clear of every other
+/// tree's as of its own (the pairwise check runs over all trees' stems).
+/// (A tree may find no room: dfs lets the first trees take it.)
+#[test]
+fn trees_of_a_forest_keep_clear_of_each_other() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/grove.od");
+    let d = od(&std::fs::read_to_string(path).unwrap());
+    assert_eq!(d.forest.len(), 3, "four roots");
+    for seed in [7, 8] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+            let g = grown(&d, GrowOptions { seed, ..opts(s) });
+            let segs = check_invariants(&d, &g);
+            let forest = &g.bed.description().forest;
+            assert_eq!(forest.len(), 3);
+            assert!(forest.iter().all(|t| t.seed.is_some()));
+            // Stems start at every root: each tree drew at least its seed.
+            for t in forest {
+                let (x, y) = t.root;
+                assert!(
+                    segs.iter().any(|p| p.from.x == x && p.from.y == y),
+                    "seed {seed} {s:?}: nothing at root ({x}, {y})"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
     let d = figure_9_10();
