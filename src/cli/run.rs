@@ -145,7 +145,7 @@ fn scene(
     source: &mut Source,
 ) -> Result<(Scene, Vec<Diagnostic>), Diagnostics> {
     let loaded = load(input, limits, source)?;
-    let warnings = pipeline::ignored_flags(&loaded, &given(grow, depth));
+    let warnings = pipeline::ignored_flags(&loaded, &given(grow, depth, input.seed));
     let req = SceneRequest {
         grow: grow_options(grow.growth, grow, input.seed, limits),
         derivation: strategy.into(),
@@ -158,13 +158,14 @@ fn scene(
     Ok((scene, warnings))
 }
 
-/// The growth and depth flags given explicitly.
-fn given(g: &GrowArgs, depth: Option<u32>) -> Given {
+/// The growth, depth and seed flags given explicitly.
+fn given(g: &GrowArgs, depth: Option<u32>, seed: Option<u64>) -> Given {
     Given {
         growth: g.growth.is_some(),
         clearance: g.clearance.is_some(),
         max_stems: g.max_stems.is_some(),
         depth: depth.is_some(),
+        seed: seed.is_some(),
     }
 }
 
@@ -288,7 +289,9 @@ fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
         out.write_all(compiled.text.as_bytes())
             .map_err(|e| io_error(&e, "cannot write the BED").into())
     })?;
-    Ok(compiled.grown.warnings)
+    let mut warnings = pipeline::ignored_flags(&loaded, &given(&a.grow, None, a.input.seed));
+    warnings.extend(compiled.grown.warnings);
+    Ok(warnings)
 }
 
 fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
@@ -310,7 +313,11 @@ fn stats(a: &StatsArgs, source: &mut Source) -> Outcome {
     let limits = a.limits.limits(Some(&a.symbol_limits), None, None, None);
     let loaded = load(&a.input, &limits, source)?;
     print_out(&pipeline::stats(&loaded, a.depth, a.json, &limits)?)?;
-    Ok(Vec::new())
+    let seed = Given {
+        seed: a.input.seed.is_some(),
+        ..Given::default()
+    };
+    Ok(pipeline::ignored_flags(&loaded, &seed))
 }
 
 fn check(a: &CheckArgs, source: &mut Source) -> Outcome {
@@ -321,7 +328,7 @@ fn check(a: &CheckArgs, source: &mut Source) -> Outcome {
         a.grow.max_stems,
     );
     let loaded = load(&a.input, &limits, source)?;
-    let mut warnings = pipeline::ignored_flags(&loaded, &given(&a.grow, None));
+    let mut warnings = pipeline::ignored_flags(&loaded, &given(&a.grow, None, a.input.seed));
     let checked = pipeline::check(
         &loaded,
         &grow_options(a.grow.growth, &a.grow, a.input.seed, &limits),

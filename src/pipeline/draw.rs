@@ -212,10 +212,13 @@ pub struct Given {
     pub max_stems: bool,
     /// A derivation depth (`--depth`).
     pub depth: bool,
+    /// A seed (`--seed`).
+    pub seed: bool,
 }
 
 /// Warnings for options that do nothing for this input: growth options on
-/// an input that does not grow, a depth on one that has none. Scripts pass
+/// an input that does not grow, a depth on one that has none, a seed on
+/// one that chooses nothing. Scripts pass
 /// one set of options to many files, so these are warnings, not errors
 /// (docs/cli.md states the rule).
 pub fn ignored_flags(loaded: &Loaded, given: &Given) -> Vec<Diagnostic> {
@@ -243,6 +246,23 @@ pub fn ignored_flags(loaded: &Loaded, given: &Given) -> Vec<Diagnostic> {
             "--depth",
             "only an .lsys has a derivation depth; an .od or .bed draws its whole tree",
         );
+    }
+    if given.seed {
+        match loaded {
+            Loaded::Bed(_) => ignored(
+                "--seed",
+                "a .bed has its choices written out; it draws the same tree whatever the seed",
+            ),
+            Loaded::Lsys(sys) if !sys.is_stochastic() => ignored(
+                "--seed",
+                "this L-system has no stochastic rules (`rule F (0.5) -> ...`); every seed draws the same",
+            ),
+            Loaded::Od(desc) if !desc.chooses() => ignored(
+                "--seed",
+                "this description has no alternatives (`R1 (0.5): ...`); every seed grows the same tree",
+            ),
+            _ => {}
+        }
     }
     w
 }

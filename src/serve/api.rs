@@ -191,6 +191,7 @@ fn run(
         clearance: req.clearance.is_some(),
         max_stems: req.max_stems.is_some(),
         depth: req.depth.is_some(),
+        seed: req.seed.is_some(),
     };
     let mut warnings = pipeline::ignored_flags(&loaded, &given);
     let scene_req = SceneRequest {

@@ -183,12 +183,27 @@ async fn connect(driver: &Driver, chromium: &Path, tmp: &Path) -> Client {
             },
         }),
     );
-    let connector = hyper_util::client::legacy::connect::HttpConnector::new();
-    ClientBuilder::new(connector)
-        .capabilities(caps)
-        .connect(&format!("http://127.0.0.1:{}", driver.port))
-        .await
-        .expect("a WebDriver session")
+    // Starting Chromium can be slow on a busy machine (a cold start while
+    // other tests compile or run): a failed session start is retried, and
+    // the last error is the one reported.
+    let url = format!("http://127.0.0.1:{}", driver.port);
+    let mut last = None;
+    for attempt in 1..=3 {
+        let connector = hyper_util::client::legacy::connect::HttpConnector::new();
+        match ClientBuilder::new(connector)
+            .capabilities(caps.clone())
+            .connect(&url)
+            .await
+        {
+            Ok(c) => return c,
+            Err(e) => {
+                eprintln!("WebDriver session, attempt {attempt} of 3: {e}");
+                last = Some(e);
+                tokio::time::sleep(Duration::from_secs(2)).await;
+            }
+        }
+    }
+    panic!("no WebDriver session: {:?}", last);
 }
 
 /// The acceptance, on the paper's 2DTree: open it, draw a white

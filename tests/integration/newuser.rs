@@ -445,3 +445,57 @@ fn a_description_can_store_its_stroke_and_background() {
         "{err}"
     );
 }
+
+/// `--seed` where nothing chooses (a BED, a deterministic L-system, an OD
+/// without alternatives) is a warning that says why every seed gives the
+/// same tree; where something chooses, there is none.
+#[test]
+fn a_seed_that_changes_nothing_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = |name: &str| path(&dir.path().join(name)).to_string();
+    let bed = format!("{}/tests/cases/grow/alternatives.dfs.bed", root());
+    let koch = example("koch-snowflake.lsys");
+    let tree = example("2dtree.od");
+    for (args, reason) in [
+        (
+            vec!["render", bed.as_str(), "--seed", "3", "-o", &out("a.png")],
+            "a .bed has its choices written out",
+        ),
+        (
+            vec!["stats", koch.as_str(), "--seed", "3"],
+            "this L-system has no stochastic rules",
+        ),
+        (
+            vec!["compile", tree.as_str(), "--seed", "3", "-o", &out("b.bed")],
+            "this description has no alternatives",
+        ),
+        (
+            vec!["check", tree.as_str(), "--seed", "3"],
+            "this description has no alternatives",
+        ),
+    ] {
+        let (code, _, err) = run(&args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert!(
+            err.contains("--seed was ignored") && err.contains(reason),
+            "{args:?}: {err}"
+        );
+    }
+    let plant = example("abop-1.27.lsys");
+    let grove = example("grove.od");
+    for args in [
+        vec!["render", plant.as_str(), "--seed", "3", "-o", &out("c.png")],
+        vec!["stats", plant.as_str(), "--seed", "3"],
+        vec![
+            "compile",
+            grove.as_str(),
+            "--seed",
+            "3",
+            "-o",
+            &out("d.bed"),
+        ],
+    ] {
+        let (code, _, err) = run(&args);
+        assert_eq!((code, err.as_str()), (0, ""), "{args:?}");
+    }
+}
