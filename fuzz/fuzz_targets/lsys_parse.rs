@@ -1,62 +1,13 @@
 //! Bytes -> `precheck` -> `.lsys` parser. Any input must give an `LSystem`
 //! or a `Diagnostics` with at least one error, never a panic, hang or
 //! unbounded allocation.
+//!
+//! The body is `fuzz/bodies/lsys_parse.rs`, which the test suite also runs over
+//! this target's corpus (tests/integration/fuzz_corpus.rs), so it always
+//! compiles and the corpus stays a regression test.
 #![no_main]
 
-use libfuzzer_sys::fuzz_target;
-use stlc::limits::Limits;
-use stlc::syntax::{lsys, precheck};
+#[path = "../bodies/lsys_parse.rs"]
+mod body;
 
-const LIMITS: Limits = Limits {
-    max_input_bytes: 1 << 16,
-    max_nesting: 1_000,
-    max_depth: 16,
-    max_repeat: 16,
-    max_symbols: 1_000_000,
-    max_word: 1_000_000,
-    max_stems: 10_000,
-    max_layout_vertices: 16_000,
-};
-
-fuzz_target!(|data: &[u8]| {
-    let Ok(text) = precheck(data, &LIMITS) else {
-        return;
-    };
-    match lsys::parse(text, &LIMITS) {
-        Ok(sys) => {
-            // What the parser promises about a system it accepts.
-            assert!(sys.angle.is_finite(), "angle {}", sys.angle);
-            assert!(sys.length.is_finite(), "length {}", sys.length);
-            assert!(sys.width.is_finite(), "width {}", sys.width);
-            assert!(sys.generations.is_none_or(|g| g <= LIMITS.max_depth));
-            assert!(!sys.axiom.is_empty(), "an accepted axiom is not empty");
-            let balanced = |w: &[char]| {
-                let mut d = 0i64;
-                w.iter().all(|&c| {
-                    d += match c {
-                        '[' => 1,
-                        ']' => -1,
-                        _ => 0,
-                    };
-                    d >= 0
-                }) && d == 0
-            };
-            assert!(balanced(&sys.axiom), "unbalanced axiom accepted");
-            for p in sys.rules.values() {
-                assert!(balanced(&p.successor), "unbalanced successor accepted");
-            }
-        }
-        Err(e) => {
-            assert!(e.has_errors(), "an Err without an error: {e:?}");
-            for d in e.iter() {
-                if let Some(s) = &d.span {
-                    assert!(
-                        s.start <= s.end && s.end <= text.len(),
-                        "span {s:?} outside the text"
-                    );
-                    assert!(text.is_char_boundary(s.start) && text.is_char_boundary(s.end));
-                }
-            }
-        }
-    }
-});
+libfuzzer_sys::fuzz_target!(|data: &[u8]| body::run(data));

@@ -1,110 +1,13 @@
 //! Bytes -> `.od` parser -> the grower (both growth orders, tight limits) ->
 //! the canonical writer. What grows must be a BED that reads back, passes
 //! `Bed::new` (or meets only the symbol budget) and draws.
+//!
+//! The body is `fuzz/bodies/od_compile.rs`, which the test suite also runs over
+//! this target's corpus (tests/integration/fuzz_corpus.rs), so it always
+//! compiles and the corpus stays a regression test.
 #![no_main]
 
-use libfuzzer_sys::fuzz_target;
-use stlc::bed::{Bed, write::write};
-use stlc::diag::ErrorKind;
-use stlc::grow::{GrowOptions, GrowthOrder, grow};
-use stlc::interpret::{Derivation, bed};
-use stlc::limits::Limits;
-use stlc::model::Format;
-use stlc::progress::NoProgress;
-use stlc::syntax::{precheck, stl};
-use stlc::turtle::Counter;
+#[path = "../bodies/od_compile.rs"]
+mod body;
 
-const LIMITS: Limits = Limits {
-    max_input_bytes: 1 << 16,
-    max_nesting: 1_000,
-    max_depth: 16,
-    max_repeat: 16,
-    max_symbols: 100_000,
-    max_word: 100_000,
-    max_stems: 300,
-    max_layout_vertices: 2_000,
-};
-
-/// The errors growth may give for an OD the parser accepted. Not among
-/// them: `UnboundedGrowth` (`max_stems` is given explicitly, which bounds
-/// any growth), `BadClearance` (the parser admits only finite `C >= 0` and
-/// finite `L`), `UndeclaredRule`, `UnknownRule` and `SlotCount` (the parser
-/// resolved names and slot counts).
-fn acceptable_growth_error(kind: &ErrorKind) -> bool {
-    matches!(
-        kind,
-        // A budget: seed stems, layout vertices, symbols of the grown BED.
-        ErrorKind::Limit { .. }
-            // No SEED and no rule.
-            | ErrorKind::NothingToGrow
-            // The layout: the root outside it, no area left, or shapes
-            // whose corners overflow (`x + w` infinite).
-            | ErrorKind::RootOutside { .. }
-            | ErrorKind::EmptyRegion
-            | ErrorKind::LayoutNotFinite
-            // A term written out in the seed at an order where stems have
-            // no length or width (`Bed::new` of the grown BED).
-            | ErrorKind::OrderTooDeep { .. }
-    )
-}
-
-fuzz_target!(|data: &[u8]| {
-    let Ok(text) = precheck(data, &LIMITS) else {
-        return;
-    };
-    let Ok(od) = stl::parse(text, Format::Od, &LIMITS) else {
-        return;
-    };
-    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
-        let opts = GrowOptions {
-            growth,
-            clearance: None,
-            limits: LIMITS,
-            max_stems_explicit: true,
-        };
-        let grown = match grow(&od, &opts, &mut NoProgress) {
-            Ok(g) => g,
-            Err(e) => {
-                for d in e.iter().filter(|d| d.is_error()) {
-                    assert!(
-                        acceptable_growth_error(&d.kind),
-                        "unexpected growth error: {d}"
-                    );
-                }
-                continue;
-            }
-        };
-        assert!(grown.stems <= LIMITS.max_stems, "{} stems", grown.stems);
-        let w = write(grown.bed.description());
-        let back = match stl::parse(&w, Format::Bed, &LIMITS) {
-            Ok(b) => b,
-            Err(e) => panic!("the grown BED does not read back:\n{w}\n{e}"),
-        };
-        let back = match Bed::new(back, &LIMITS) {
-            Ok(b) => b,
-            Err(e) => {
-                // Only the symbol budget may refuse a grown tree (fixed
-                // figures in rules can be large); never names, slots or
-                // orders.
-                assert!(
-                    e.iter().all(|d| matches!(d.kind, ErrorKind::Limit { .. })),
-                    "grown BED invalid:\n{w}\n{e}"
-                );
-                continue;
-            }
-        };
-        let c = bed::draw_into(
-            &back,
-            Derivation::Dfs,
-            &LIMITS,
-            Counter::default(),
-            &mut NoProgress,
-        )
-        .expect("validated");
-        assert_eq!(
-            c.0,
-            back.size().stems,
-            "the measured stems and the drawn segments differ:\n{w}"
-        );
-    }
-});
+libfuzzer_sys::fuzz_target!(|data: &[u8]| body::run(data));

@@ -20,7 +20,8 @@
 //!
 //! - header: name, root, then `L=l(dl) B=b(db)`, `A=` and `C=` only if given;
 //! - `RULE`, one rule per line as `NAME: body`, a successor name separated
-//!   from the branch's drawing by a space (`[+F R2]`);
+//!   from the branch's drawing by a space (`[+F R2]`); an alternative as
+//!   `R1.2 (0.25): body` in a BED and `R1 (0.25): body` in an OD;
 //! - seed: one term per line, indented two spaces per nesting depth up to
 //!   depth [`MAX_INDENT_DEPTH`] (deeper terms stay at that column, so a
 //!   deep vine's file grows linearly with its depth, not quadratically). A term
@@ -83,9 +84,15 @@ pub fn write(desc: &Description) -> String {
     }
     out.push_str("\nRULE\n");
     for r in &desc.rules {
+        // An OD gives a name several bodies (`R1 (0.6): ...`); a BED names
+        // each alternative (`R1.1 (0.6): ...`).
+        let name = match desc.format {
+            crate::model::Format::Od => std::borrow::Cow::Borrowed(r.name.as_str()),
+            crate::model::Format::Bed => r.full_name(),
+        };
         let _ = match r.alternative.as_ref().and_then(|a| a.probability) {
-            Some(p) => writeln!(out, "{} ({}): {}", r.full_name(), num_p(p), w.body(&r.body)),
-            None => writeln!(out, "{}: {}", r.full_name(), w.body(&r.body)),
+            Some(p) => writeln!(out, "{name} ({}): {}", num_p(p), w.body(&r.body)),
+            None => writeln!(out, "{name}: {}", w.body(&r.body)),
         };
     }
     let seeds = std::iter::once(desc.seed.as_ref())

@@ -4,6 +4,7 @@ mod browser;
 mod cli;
 mod diagnostics;
 mod docs;
+mod fuzz_corpus;
 mod geometry;
 mod golden;
 mod grow;

@@ -232,6 +232,24 @@ fn every_alternative_needs_a_probability() {
     assert!(matches!(&e.0[0].kind, ErrorKind::DuplicateRule { .. }));
 }
 
+/// The canonical writer keeps an OD an OD: alternatives as several bodies
+/// of one name (`R1 (0.6): ...`), which read back as the same description;
+/// the BED grown from it names them `R1.1`, `R1.2`.
+#[test]
+fn an_od_with_alternatives_writes_as_an_od() {
+    let text = "T\n(50, 90)\nL=10(0) B=1(0) A=30\nRULE\nR1 (0.6): [+F][-F]\nR1 (0.4): [F]\nSEED\nF R1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (0, 0), 100, 100\nENDLAYOUT\n";
+    let d = od(text);
+    let written = stlc::bed::write::write(&d);
+    assert_eq!(written, text.replace("F R1", "F\nR1"));
+    assert_eq!(stlc::bed::write::write(&od(&written)), written);
+    let g = grown(&d, GrowthOrder::Bfs, 0);
+    let bed = bed_text(&g);
+    assert!(
+        bed.contains("R1.1 (0.6): [+F][-F]\nR1.2 (0.4): [F]\n"),
+        "{bed}"
+    );
+}
+
 #[test]
 fn a_dot_in_an_od_is_refused() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1.1: [+F]";
