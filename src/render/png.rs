@@ -74,6 +74,9 @@ pub struct PngTurtle {
     detail: Option<f64>,
     /// The stroke colour, for blots painted straight into the raster.
     ink: Rgb,
+    /// A stroke has covered every pixel: the raster is the stroke colour
+    /// and nothing drawn later can change it.
+    covered: bool,
 }
 
 /// The pen of the open subpath, in output pixels, for [`FOLD_PX`] folding.
@@ -120,6 +123,7 @@ impl PngTurtle {
             pen: None,
             detail: None,
             ink: style.stroke,
+            covered: false,
         })
     }
 
@@ -185,6 +189,44 @@ impl PngTurtle {
             // Keep the allocation for the next batch.
             self.batch = Path::clear(path);
         }
+    }
+
+    /// How far the raster's farthest pixel corner is from the segment
+    /// `a`-`b` (output pixels): the distance to a segment is convex, so
+    /// its largest value over the raster is at a corner.
+    fn farthest_corner(&self, a: Point, b: Point) -> f64 {
+        let (w, h) = (
+            f64::from(self.pixmap.width()),
+            f64::from(self.pixmap.height()),
+        );
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let len2 = dx * dx + dy * dy;
+        [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)]
+            .iter()
+            .map(|&(px, py)| {
+                let t = if len2 > 0.0 {
+                    (((px - a.x) * dx + (py - a.y) * dy) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                libm::hypot(a.x + t * dx - px, a.y + t * dy - py)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// A stroke covers every pixel: the raster becomes the (opaque) stroke
+    /// colour, what is batched is dropped (it is under the stroke), and
+    /// every later stroke is skipped (it could only paint that colour
+    /// again). The path rasteriser never sees a stroke wider than the
+    /// picture many times over.
+    fn cover(&mut self) {
+        self.batch = PathBuilder::new();
+        self.batch_len = 0;
+        self.batch_ink = 0.0;
+        self.pen = None;
+        self.last_to = None;
+        self.pixmap.fill(color(self.ink));
+        self.covered = true;
     }
 
     /// Paints a blot: the capsule of radius `radius` around `a`-`b`
@@ -307,6 +349,9 @@ impl Turtle for PngTurtle {
     }
 
     fn blot(&mut self, seg: Segment, density: f64) {
+        if self.covered {
+            return;
+        }
         if density < BLOT_DENSITY {
             self.segment(seg);
             return;
@@ -320,12 +365,20 @@ impl Turtle for PngTurtle {
     }
 
     fn segment(&mut self, seg: Segment) {
+        if self.covered {
+            return;
+        }
         let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
         if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
             // Nothing sensible to draw; the SVG backend skips it too.
             return;
         }
         let width = stroke_px(&self.width, self.fit.scale, seg.order);
+        if width / 2.0 >= self.farthest_corner(from, to) {
+            self.cover();
+            return;
+        }
+        let width = width.min(MAX_STROKE_PX);
         if width >= WIDE_PX {
             // A wide stroke costs its area in pixels; drawing the very same
             // capsule again adds nothing (one path would union it away).
@@ -376,6 +429,13 @@ impl Turtle for PngTurtle {
 /// draws the same stem many times (50,000 terms at one point) would pay it
 /// each time. Thinner strokes are cheap and are not checked.
 const WIDE_PX: f64 = 2.0;
+
+/// The widest stroke handed to the rasteriser, in pixels. A wider stroke
+/// that covers the whole raster paints it all ([`PngTurtle::cover`]); one
+/// that does not (its segment lies more than half this far outside the
+/// picture) is drawn this wide. tiny-skia 0.12 panics on strokes around
+/// 10^10 pixels wide (found by the `lsys_render` fuzz body; 10^9 draws).
+const MAX_STROKE_PX: f64 = 1.0e6;
 
 /// Buckets of the recent-capsule table (two capsules each; 400 KB).
 const RECENT_BUCKETS: usize = 4096;
@@ -523,6 +583,43 @@ mod tests {
             to: Point::new(bx, by),
             order: 0,
         }
+    }
+
+    /// A stroke wider than the picture many times over (tiny-skia 0.12
+    /// panics near 10^10 px) paints every pixel the stroke colour, with no
+    /// path stroked, and later strokes change nothing. One whose half
+    /// width falls short of the farthest corner is a real stroke: a 100 x
+    /// 100 raster's farthest corner from the point (50, 50) is 70.7 px away.
+    #[test]
+    fn a_stroke_wider_than_the_picture_covers_it_without_the_rasteriser() {
+        let all = |p: &Pixmap, v: u8| {
+            (0..100).all(|y| (0..100).all(|x| p.pixel(x, y).unwrap().red() == v))
+        };
+        for width in [1.0e10, 1.0e300, 142.0] {
+            let mut t = wide_turtle(width);
+            t.segment(stem(50.0, 50.0, 50.0, 50.0));
+            t.segment(stem(10.0, 10.0, 20.0, 20.0));
+            assert_eq!(t.paths, 0, "{width}");
+            assert!(t.covered);
+            assert!(all(&t.into_pixmap(), 0), "{width}: all stroke colour");
+        }
+        let mut t = wide_turtle(140.0);
+        t.segment(stem(50.0, 50.0, 50.0, 50.0));
+        assert!(!t.covered, "70 < 70.7: a stroke");
+        t.flush();
+        assert_eq!(t.paths, 1);
+        let mut t = wide_turtle(130.0);
+        t.segment(stem(50.0, 50.0, 50.0, 50.0));
+        let p = t.into_pixmap();
+        // The corner pixel's centre is 70.0 px from (50, 50), 5 px out.
+        assert_eq!(p.pixel(0, 0).unwrap().red(), 255);
+        assert_eq!(p.pixel(50, 50).unwrap().red(), 0);
+        // Far outside the picture, too far to reach it even 10^10 px wide:
+        // drawn at the widest the rasteriser takes, and nothing panics.
+        let mut t = wide_turtle(1.0e10);
+        t.segment(stem(1.0e11, 0.0, 1.0e11, 10.0));
+        assert!(!t.covered);
+        assert!(all(&t.into_pixmap(), 255));
     }
 
     /// One path unions its strokes, so the same wide stem drawn 10,000 times

@@ -14,14 +14,19 @@ mod stl_parse;
 
 use crate::support::manifest_path;
 
-/// Runs `body` over every file of `fuzz/corpus/<target>`, in name order;
-/// returns how many it ran.
+/// Runs `body` over every committed seed of `fuzz/corpus/<target>`
+/// (`seed-*`, in name order; what a local fuzzing run adds beside them is
+/// not committed and not run); returns how many it ran.
 fn corpus(target: &str, body: fn(&[u8])) -> usize {
     let dir = manifest_path("fuzz/corpus").join(target);
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|e| e.unwrap().path())
-        .filter(|p| p.is_file())
+        .filter(|p| {
+            p.is_file()
+                && p.file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with("seed-"))
+        })
         .collect();
     files.sort();
     for f in &files {
