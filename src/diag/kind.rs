@@ -269,6 +269,13 @@ pub enum ErrorKind {
         /// How many alternatives it has.
         count: usize,
     },
+    /// A BED gives a probability to a rule that is not an alternative
+    /// (`R1 (0.5): ...` instead of `R1.1 (0.5): ...`).
+    #[error("`{name}` has a probability, but a BED's rule without a number is not an alternative")]
+    ProbabilityWithoutAlternative {
+        /// The rule's name.
+        name: String,
+    },
     /// A BED repeats a rule with alternatives (`[I 2 R1]` or `[I 2 R1.2]`
     /// where R1 has several bodies): each application would choose, and a
     /// BED records choices instead of making them.

@@ -285,6 +285,24 @@ fn a_bed_names_alternatives_that_exist() {
     assert!(parse(&text, Format::Bed, &Limits::default()).is_ok());
 }
 
+/// A BED chooses nothing: a probability only annotates a recorded
+/// alternative (`R1.1 (0.5)`); on a rule without a number it is an error
+/// (it was read as an alternative numbered 0 and written back as `R1.0`).
+#[test]
+fn a_bed_probability_belongs_to_an_alternative() {
+    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F][-F] SEED F R1{,} ENDSEED";
+    let e = errors(text, Format::Bed);
+    assert!(
+        matches!(&e.0[0].kind, ErrorKind::ProbabilityWithoutAlternative { name } if name == "R1"),
+        "{:?}",
+        e.0[0].kind
+    );
+    assert_eq!(e.0[0].span, Some(span_of(text, "R1")));
+    // The same line in an OD is a rule of one alternative.
+    let d = od(text.replace("R1{,}", "R1").as_str());
+    assert_eq!(d.rules[0].alternative.as_ref().map(|a| a.number), Some(1));
+}
+
 #[test]
 fn a_bed_repeats_only_rules_without_alternatives() {
     // `[I 2 R1]` unrolls R1 at every tip: with alternatives each level

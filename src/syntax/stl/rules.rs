@@ -195,6 +195,22 @@ impl Builder<'_> {
         probability: Option<f64>,
     ) -> (String, Option<Alternative>) {
         let Some((name, number)) = written.split_once('.') else {
+            if self.format == Format::Bed && probability.is_some() {
+                // A BED chooses nothing: a probability only annotates a
+                // recorded alternative (`R1.1 (0.5)`).
+                self.report(
+                    ErrorKind::ProbabilityWithoutAlternative {
+                        name: written.to_string(),
+                    },
+                    span.clone(),
+                    "a probability on a rule with one body",
+                    &format!(
+                        "in a BED a probability belongs to a recorded alternative: \
+                         `{written}.1 (0.5): ...`; or drop it: `{written}: ...`"
+                    ),
+                );
+                return (written.to_string(), None);
+            }
             let alternative = probability.map(|p| Alternative {
                 number: 0,
                 probability: Some(p),
