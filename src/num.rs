@@ -3,7 +3,9 @@
 //!
 //! Every number stlc writes (BED files, SVG coordinates, `stats` output)
 //! goes through [`fixed`]: a fixed number of decimals, never `-0`, so output
-//! is byte-identical across runs and platforms.
+//! is byte-identical across runs and platforms. A BED's root and stem
+//! parameters go through [`exact`]: the same, unless rounding would change
+//! the number, which must then read back bit for bit.
 
 /// `base - order * decrement`: a stem's length (`L(dL)`) or width (`B(dB)`)
 /// at a rule-application order.
@@ -70,9 +72,38 @@ pub fn push_fixed(buf: &mut String, x: f64, decimals: usize, trim: Trim) {
     }
 }
 
+/// `x` as [`fixed`] with `decimals` decimals (trimmed) when that reads
+/// back as exactly `x`, else the shortest decimal that does (Rust's
+/// `Display` of `f64`: round-trip exact, never an exponent, the same on
+/// every platform). For numbers a reader must get back bit for bit: a
+/// BED's root and stem parameters, which decide what the tree draws and
+/// whether an order still has positive length and width.
+pub fn exact(x: f64, decimals: usize) -> String {
+    let short = fixed(x, decimals, Trim::Zeros);
+    if !x.is_finite() || short.parse::<f64>() == Ok(x) {
+        short
+    } else {
+        // Not zero (zero reads back): no `-0` to avoid.
+        format!("{x}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn exact_numbers_are_fixed_when_fixed_reads_back() {
+        assert_eq!(exact(0.35, 3), "0.35");
+        assert_eq!(exact(10.0, 3), "10");
+        assert_eq!(exact(-0.0, 3), "0");
+        assert_eq!(exact(1.0 / 3.0, 3), "0.3333333333333333");
+        assert_eq!(exact(0.999999999926, 3), "0.999999999926");
+        assert_eq!(exact(1e-7, 3), "0.0000001");
+        for x in [0.1 + 0.2, 1.0 / 3.0, 123.456789, 1e-300, 12345678.9] {
+            assert_eq!(exact(x, 3).parse::<f64>(), Ok(x), "{x}");
+        }
+    }
 
     #[test]
     fn linear_values_by_order() {

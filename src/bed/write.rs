@@ -32,7 +32,9 @@
 //!   figures get their own lines. In a BED every term is written in full
 //!   (`R1{,}`); a growth point of an OD (`bare`) stays a bare name;
 //! - layout shapes in the spelling they were read in;
-//! - numbers with at most three decimals, integers without a dot; LF line
+//! - numbers with at most three decimals, integers without a dot (the root
+//!   and the stem parameters with more when three would change them: the
+//!   BED must draw the tree that grew); LF line
 //!   ends and a trailing newline.
 //!
 //! Drawing letters that could be read back as a rule name (with a rule
@@ -56,25 +58,25 @@ pub fn write(desc: &Description) -> String {
     let mut out = String::new();
     out.push_str(&desc.name);
     out.push('\n');
-    let _ = write!(out, "({}, {})", num(desc.root.0), num(desc.root.1));
+    let _ = write!(out, "({}, {})", exact(desc.root.0), exact(desc.root.1));
     for t in &desc.forest {
-        let _ = write!(out, " ({}, {})", num(t.root.0), num(t.root.1));
+        let _ = write!(out, " ({}, {})", exact(t.root.0), exact(t.root.1));
     }
     out.push('\n');
     let p = &desc.params;
     let _ = write!(
         out,
         "L={}({}) B={}({})",
-        num(p.length.base),
-        num(p.length.decrement),
-        num(p.width.base),
-        num(p.width.decrement)
+        exact(p.length.base),
+        exact(p.length.decrement),
+        exact(p.width.base),
+        exact(p.width.decrement)
     );
     if let Some(a) = p.angle {
-        let _ = write!(out, " A={}", num(a));
+        let _ = write!(out, " A={}", exact(a));
     }
     if let Some(c) = p.clearance {
-        let _ = write!(out, " C={}", num(c));
+        let _ = write!(out, " C={}", exact(c));
     }
     if let Some(s) = &p.stroke {
         let _ = write!(out, " S={}", s.text);
@@ -139,6 +141,14 @@ fn num_p(v: f64) -> String {
 /// A number with at most three decimals; integers without a dot; no `-0`.
 pub fn num(v: f64) -> String {
     crate::num::fixed(v, 3, crate::num::Trim::Zeros)
+}
+
+/// [`num`] when that reads back exactly, else every digit needed
+/// ([`crate::num::exact`]): the root and the stem parameters, so the BED
+/// draws the tree that grew (a width decrement of 0.9999999999 written as
+/// `1` would leave order 3 of `B=3` without width, and the BED invalid).
+fn exact(v: f64) -> String {
+    crate::num::exact(v, 3)
 }
 
 struct Writer<'a> {

@@ -879,3 +879,30 @@ fn the_traced_growth_places_exactly_the_beds_stems_in_decision_order() {
         }
     }
 }
+
+/// The BED draws the tree that grew, to the bit: a width decrement just
+/// under 1 lets `B=3` reach order 3 with width 2.2e-10, and the BED keeps
+/// every digit of it (three decimals would write `1`, leaving order 3
+/// without width and the BED invalid); numbers that three decimals keep
+/// stay short. Found by the `od_compile` fuzz body.
+#[test]
+fn the_bed_keeps_every_digit_growth_used() {
+    let text = "Shrinking (0.0001234, 0.5) L=12(1) B=3(0.999999999926) A=28 C=0.5
+        RULE R1: [+F][-F][F] SEED FR1 ENDSEED";
+    let d = od(text);
+    let g = grown(&d, opts(GrowthOrder::Bfs));
+    let written = stlc::bed::write::write(g.bed.description());
+    assert!(
+        written.contains("(0.0001234, 0.5)\nL=12(1) B=3(0.999999999926) A=28 C=0.5\n"),
+        "{written}"
+    );
+    let back = parse(&written, Format::Bed, &Limits::default()).unwrap();
+    assert_eq!(back.params, {
+        let mut p = g.bed.description().params.clone();
+        p.loc = back.params.loc.clone();
+        p
+    });
+    let bed = Bed::new(back, &Limits::default()).expect("the written BED is valid");
+    assert_eq!(bed.size().stems, g.stems);
+    assert_eq!(draw_bed(bed.description()), draw_bed(g.bed.description()));
+}
