@@ -14,7 +14,7 @@ const CONTEXT: usize = 40;
 /// Marks what a cut line leaves out.
 pub const ELLIPSIS: &str = " … ";
 
-/// The source as shown: each line longer than [`LONG_LINE`] keeps only its
+/// The source as shown: each line longer than `LONG_LINE` bytes keeps only its
 /// start and the neighbourhood of every span end on it, the rest replaced
 /// by [`ELLIPSIS`]. Line breaks are all kept, so line numbers hold.
 pub struct Excerpt<'a> {

@@ -5,7 +5,7 @@
 use super::number::{plural, short_number};
 
 /// What went wrong. Each stage owns its variants; the message is the
-/// `Display` text, the span and hints live on [`Diagnostic`].
+/// `Display` text, the span and hints live on [`super::Diagnostic`].
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ErrorKind {
     /// The text does not follow the grammar (pest's report, with rule names

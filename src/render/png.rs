@@ -15,7 +15,7 @@
 //! across a jump, so every subpath keeps its own round caps.
 //!
 //! Wide strokes (two pixels or more) cost their area: a path holds at most
-//! [`INK_PER_BATCH`] images' worth of ink, so overlapping thick stems never
+//! `INK_PER_BATCH` images' worth of ink, so overlapping thick stems never
 //! crowd one path's scanlines with thousands of edges, and a wide capsule
 //! drawn again exactly where it was just drawn is skipped (one path would
 //! have unioned it away), so 50,000 copies of one stem cost one.

@@ -26,8 +26,8 @@ const POOL_CAP: usize = 1 << 20;
 
 /// Most plan items and glue units one program may hold (plans are a
 /// successor's length each, per level: a 40 MB successor at depth 3 would
-/// be 120 M items). Past it, [`Program::compile`] gives up and the caller
-/// streams the word without precomputation ([`super::Alphabet::plain_each`]).
+/// be 120 M items). Past it, `Program::compile` gives up and the caller
+/// streams the word without precomputation (`Alphabet::plain_each`).
 /// About 16 bytes each: at most about 64 MB, plus the pool.
 pub const PROGRAM_CAP: usize = 1 << 22;
 
