@@ -44,6 +44,10 @@ use crate::diag::{Diagnostic, ErrorKind};
 use crate::turtle::Fill;
 use crate::turtle::{Point, Segment, Turtle};
 
+mod raster;
+
+use raster::Recent;
+
 // ---------------------------------------------------------------------------
 // Canvas
 
@@ -61,9 +65,8 @@ pub struct PngTurtle {
     batch_ink: f64,
     /// Largest `batch_ink` of one path ([`INK_PER_BATCH`] images' worth).
     max_ink: f64,
-    /// The last wide capsules drawn, two per bucket by a hash of their
-    /// key: a repeat of one is skipped.
-    recent: Vec<[Option<[u64; 5]>; 2]>,
+    /// The last wide capsules drawn: a repeat of one is skipped.
+    recent: Recent,
     /// Paths stroked so far (tests count the work with it).
     paths: u64,
     /// Where the last segment ended (canvas units), to extend subpaths.
@@ -117,7 +120,7 @@ impl PngTurtle {
             batch_len: 0,
             batch_ink: 0.0,
             max_ink: INK_PER_BATCH * f64::from(fit.width) * f64::from(fit.height),
-            recent: vec![[None; 2]; RECENT_BUCKETS],
+            recent: Recent::new(),
             paths: 0,
             last_to: None,
             pen: None,
@@ -191,29 +194,6 @@ impl PngTurtle {
         }
     }
 
-    /// How far the raster's farthest pixel corner is from the segment
-    /// `a`-`b` (output pixels): the distance to a segment is convex, so
-    /// its largest value over the raster is at a corner.
-    fn farthest_corner(&self, a: Point, b: Point) -> f64 {
-        let (w, h) = (
-            f64::from(self.pixmap.width()),
-            f64::from(self.pixmap.height()),
-        );
-        let (dx, dy) = (b.x - a.x, b.y - a.y);
-        let len2 = dx * dx + dy * dy;
-        [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)]
-            .iter()
-            .map(|&(px, py)| {
-                let t = if len2 > 0.0 {
-                    (((px - a.x) * dx + (py - a.y) * dy) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                libm::hypot(a.x + t * dx - px, a.y + t * dy - py)
-            })
-            .fold(0.0, f64::max)
-    }
-
     /// A stroke covers every pixel: the raster becomes the (opaque) stroke
     /// colour, what is batched is dropped (it is under the stroke), and
     /// every later stroke is skipped (it could only paint that colour
@@ -227,70 +207,6 @@ impl PngTurtle {
         self.last_to = None;
         self.pixmap.fill(color(self.ink));
         self.covered = true;
-    }
-
-    /// Paints a blot: the capsule of radius `radius` around `a`-`b`
-    /// (output pixels), each pixel covered by `radius + 0.5` minus its
-    /// centre's distance to the segment (clamped to 0..1), blended
-    /// source-over in the stroke colour. Overlapping blots accumulate, as
-    /// the hairlines they stand for do. A few dozen pixels each, instead of
-    /// a stroked path's outline and scan conversion.
-    fn stamp(&mut self, a: Point, b: Point, radius: f64) {
-        let (w, h) = (
-            f64::from(self.pixmap.width()),
-            f64::from(self.pixmap.height()),
-        );
-        let reach = radius + 0.5;
-        let (lo_x, hi_x) = (a.x.min(b.x) - reach, a.x.max(b.x) + reach);
-        let (lo_y, hi_y) = (a.y.min(b.y) - reach, a.y.max(b.y) + reach);
-        if hi_x < 0.0 || hi_y < 0.0 || lo_x >= w || lo_y >= h {
-            return;
-        }
-        let x0 = libm::floor(lo_x.max(0.0)) as usize;
-        let y0 = libm::floor(lo_y.max(0.0)) as usize;
-        let x1 = libm::ceil(hi_x.min(w - 1.0)) as usize;
-        let y1 = libm::ceil(hi_y.min(h - 1.0)) as usize;
-        let (dx, dy) = (b.x - a.x, b.y - a.y);
-        let len2 = dx * dx + dy * dy;
-        let inv = if len2 > 0.0 { 1.0 / len2 } else { 0.0 };
-        // Beyond `outer` nothing is covered; within `inner` all is.
-        let outer = reach * reach;
-        let inner = if radius > 0.5 {
-            (radius - 0.5) * (radius - 0.5)
-        } else {
-            -1.0
-        };
-        let stride = self.pixmap.width() as usize;
-        let src = [
-            u32::from(self.ink.r),
-            u32::from(self.ink.g),
-            u32::from(self.ink.b),
-            255,
-        ];
-        let data = self.pixmap.data_mut();
-        for y in y0..=y1 {
-            let py = y as f64 + 0.5;
-            for x in x0..=x1 {
-                let px = x as f64 + 0.5;
-                let t = (((px - a.x) * dx + (py - a.y) * dy) * inv).clamp(0.0, 1.0);
-                let (qx, qy) = (a.x + t * dx - px, a.y + t * dy - py);
-                let d2 = qx * qx + qy * qy;
-                if d2 >= outer {
-                    continue;
-                }
-                let cov = if d2 <= inner {
-                    1.0
-                } else {
-                    (reach - libm::sqrt(d2)).clamp(0.0, 1.0)
-                };
-                let c = (cov * 255.0 + 0.5) as u32;
-                let i = (y * stride + x) * 4;
-                for (ch, &s) in src.iter().enumerate() {
-                    let d = u32::from(data[i + ch]);
-                    data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
-                }
-            }
-        }
     }
 
     /// Ends the open subpath: writes the pen's pending end point, so the
@@ -361,7 +277,7 @@ impl Turtle for PngTurtle {
             return;
         }
         let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
-        self.stamp(from, to, radius);
+        raster::stamp(&mut self.pixmap, self.ink, from, to, radius);
     }
 
     fn segment(&mut self, seg: Segment) {
@@ -374,7 +290,7 @@ impl Turtle for PngTurtle {
             return;
         }
         let width = stroke_px(&self.width, self.fit.scale, seg.order);
-        if width / 2.0 >= self.farthest_corner(from, to) {
+        if width / 2.0 >= raster::farthest_corner(&self.pixmap, from, to) {
             self.cover();
             return;
         }
@@ -382,13 +298,9 @@ impl Turtle for PngTurtle {
         if width >= WIDE_PX {
             // A wide stroke costs its area in pixels; drawing the very same
             // capsule again adds nothing (one path would union it away).
-            let key = [from.x, from.y, to.x, to.y, width].map(f64::to_bits);
-            let bucket = &mut self.recent[bucket_of(&key)];
-            if bucket.contains(&Some(key)) {
+            if self.recent.repeats(from, to, width) {
                 return;
             }
-            bucket[1] = bucket[0];
-            bucket[0] = Some(key);
         }
         // Only wide strokes count towards a path's ink: hairlines cost
         // little however they overlap, and skip the length on the hot path
@@ -437,27 +349,12 @@ const WIDE_PX: f64 = 2.0;
 /// 10^10 pixels wide (found by the `lsys_render` fuzz body; 10^9 draws).
 const MAX_STROKE_PX: f64 = 1.0e6;
 
-/// Buckets of the recent-capsule table (two capsules each; 400 KB).
-const RECENT_BUCKETS: usize = 4096;
-
 /// Most ink one path may hold, in images' worth of pixels. tiny-skia
 /// rasterizes a path's strokes together, and the edges of many overlapping
 /// wide strokes crowd every scanline (the cost grows with their square);
 /// a path that covers the picture several times over is drawn and a new
 /// one started.
 const INK_PER_BATCH: f64 = 2.0;
-
-/// The bucket of a capsule key (splitmix64's finalizer over its bits).
-fn bucket_of(key: &[u64; 5]) -> usize {
-    let mut h: u64 = 0;
-    for k in key {
-        h = (h ^ k).wrapping_add(0x9e37_79b9_7f4a_7c15);
-        h = (h ^ (h >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        h = (h ^ (h >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        h ^= h >> 31;
-    }
-    (h % RECENT_BUCKETS as u64) as usize
-}
 
 /// An opaque tiny-skia colour.
 fn color(c: Rgb) -> Color {

@@ -1,0 +1,154 @@
+//! Work on the raster without tiny-skia's path rasteriser: blots painted
+//! by distance, the test for a stroke that covers the whole picture, and
+//! the table of recently drawn wide capsules. Points are output pixels.
+
+use tiny_skia::Pixmap;
+
+use crate::color::Rgb;
+use crate::turtle::Point;
+
+/// Paints a blot: the capsule of radius `radius` around `a`-`b`, each pixel
+/// covered by `radius + 0.5` minus its centre's distance to the segment
+/// (clamped to 0..1), blended source-over in `ink`. Overlapping blots
+/// accumulate, as the hairlines they stand for do. A few dozen pixels
+/// each, instead of a stroked path's outline and scan conversion.
+pub(super) fn stamp(pixmap: &mut Pixmap, ink: Rgb, a: Point, b: Point, radius: f64) {
+    let (w, h) = (f64::from(pixmap.width()), f64::from(pixmap.height()));
+    let reach = radius + 0.5;
+    let (lo_x, hi_x) = (a.x.min(b.x) - reach, a.x.max(b.x) + reach);
+    let (lo_y, hi_y) = (a.y.min(b.y) - reach, a.y.max(b.y) + reach);
+    if hi_x < 0.0 || hi_y < 0.0 || lo_x >= w || lo_y >= h {
+        return;
+    }
+    let x0 = libm::floor(lo_x.max(0.0)) as usize;
+    let y0 = libm::floor(lo_y.max(0.0)) as usize;
+    let x1 = libm::ceil(hi_x.min(w - 1.0)) as usize;
+    let y1 = libm::ceil(hi_y.min(h - 1.0)) as usize;
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    let len2 = dx * dx + dy * dy;
+    let inv = if len2 > 0.0 { 1.0 / len2 } else { 0.0 };
+    // Beyond `outer` nothing is covered; within `inner` all is.
+    let outer = reach * reach;
+    let inner = if radius > 0.5 {
+        (radius - 0.5) * (radius - 0.5)
+    } else {
+        -1.0
+    };
+    let stride = pixmap.width() as usize;
+    let src = [u32::from(ink.r), u32::from(ink.g), u32::from(ink.b), 255];
+    let data = pixmap.data_mut();
+    for y in y0..=y1 {
+        let py = y as f64 + 0.5;
+        for x in x0..=x1 {
+            let px = x as f64 + 0.5;
+            let t = (((px - a.x) * dx + (py - a.y) * dy) * inv).clamp(0.0, 1.0);
+            let (qx, qy) = (a.x + t * dx - px, a.y + t * dy - py);
+            let d2 = qx * qx + qy * qy;
+            if d2 >= outer {
+                continue;
+            }
+            let cov = if d2 <= inner {
+                1.0
+            } else {
+                (reach - libm::sqrt(d2)).clamp(0.0, 1.0)
+            };
+            let c = (cov * 255.0 + 0.5) as u32;
+            let i = (y * stride + x) * 4;
+            for (ch, &s) in src.iter().enumerate() {
+                let d = u32::from(data[i + ch]);
+                data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
+            }
+        }
+    }
+}
+
+/// How far the raster's farthest pixel corner is from the segment `a`-`b`:
+/// the distance to a segment is convex, so its largest value over the
+/// raster is at a corner.
+pub(super) fn farthest_corner(pixmap: &Pixmap, a: Point, b: Point) -> f64 {
+    let (w, h) = (f64::from(pixmap.width()), f64::from(pixmap.height()));
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    let len2 = dx * dx + dy * dy;
+    [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)]
+        .iter()
+        .map(|&(px, py)| {
+            let t = if len2 > 0.0 {
+                (((px - a.x) * dx + (py - a.y) * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            libm::hypot(a.x + t * dx - px, a.y + t * dy - py)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Buckets of the recent-capsule table (two capsules each; 400 KB).
+const RECENT_BUCKETS: usize = 4096;
+
+/// The last wide capsules drawn, two per bucket by a hash of their ends
+/// and width: a lossy memory, so a repeat is sometimes drawn again (which
+/// paints nothing new) but a capsule never drawn is never skipped.
+pub(super) struct Recent {
+    buckets: Vec<[Option<[u64; 5]>; 2]>,
+}
+
+impl Recent {
+    pub(super) fn new() -> Recent {
+        Recent {
+            buckets: vec![[None; 2]; RECENT_BUCKETS],
+        }
+    }
+
+    /// Whether the capsule `from`-`to` of `width` was one of the last drawn
+    /// in its bucket; if not, it is remembered as drawn.
+    pub(super) fn repeats(&mut self, from: Point, to: Point, width: f64) -> bool {
+        let key = [from.x, from.y, to.x, to.y, width].map(f64::to_bits);
+        let bucket = &mut self.buckets[bucket_of(&key)];
+        if bucket.contains(&Some(key)) {
+            return true;
+        }
+        bucket[1] = bucket[0];
+        bucket[0] = Some(key);
+        false
+    }
+}
+
+/// The bucket of a capsule key (splitmix64's finalizer over its bits).
+fn bucket_of(key: &[u64; 5]) -> usize {
+    let mut h: u64 = 0;
+    for k in key {
+        h = (h ^ k).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        h = (h ^ (h >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        h = (h ^ (h >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        h ^= h >> 31;
+    }
+    (h % RECENT_BUCKETS as u64) as usize
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Corner distances worked by hand on a 100 x 50 raster.
+    #[test]
+    fn the_farthest_corner_is_measured_to_the_segment_not_its_ends() {
+        let p = Pixmap::new(100, 50).unwrap();
+        let pt = Point::new;
+        // From the centre point: every corner is hypot(50, 25) away.
+        let c = farthest_corner(&p, pt(50.0, 25.0), pt(50.0, 25.0));
+        assert!((c - libm::hypot(50.0, 25.0)).abs() < 1e-12);
+        // A horizontal segment across the middle: each corner is 25 away.
+        let c = farthest_corner(&p, pt(0.0, 25.0), pt(100.0, 25.0));
+        assert!((c - 25.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_capsule_repeats_only_after_it_was_drawn() {
+        let mut r = Recent::new();
+        let (a, b) = (Point::new(1.0, 2.0), Point::new(3.0, 4.0));
+        assert!(!r.repeats(a, b, 5.0));
+        assert!(r.repeats(a, b, 5.0));
+        assert!(!r.repeats(a, b, 6.0), "another width is another capsule");
+        assert!(!r.repeats(b, a, 5.0), "and so is the other direction");
+    }
+}
