@@ -4,6 +4,10 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use stlc::Limits;
+use stlc::grow::GrowthOrder;
+use stlc::interpret::Derivation;
+use stlc::render::ImageFormat;
+use stlc::syntax::InputKind;
 
 /// Compile and render Structural Tree Language trees and classic L-systems.
 ///
@@ -168,65 +172,13 @@ pub struct InputArgs {
 
     /// Input kind, when the extension does not tell (stdin, other names).
     #[arg(long, value_enum)]
-    pub from: Option<FromKind>,
+    pub from: Option<InputKind>,
 
     /// Seed of stochastic rules: the same seed draws the same plant, another
     /// seed another one. Overrides an .lsys's `seed` key; an .od grows with
     /// seed 0 unless given. A .bed has its choices written out and ignores it.
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
-}
-
-/// The input kinds for `--from`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum FromKind {
-    /// Outline Description.
-    Od,
-    /// Branch-Expansion Description.
-    Bed,
-    /// Classic L-system.
-    Lsys,
-}
-
-/// `--strategy` of `render` and `expand`: how the word is derived.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
-pub enum StrategyArg {
-    /// Depth-first: streams the derivation, memory grows with depth only.
-    #[default]
-    Dfs,
-    /// Breadth-first: rewrites the whole word level by level, then draws it
-    /// (the baseline; same picture, more memory).
-    Bfs,
-}
-
-/// `--growth`: the order in which an .od's growth points are decided.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
-pub enum GrowthArg {
-    /// Breadth-first growth (the default): every growth point of a level
-    /// before the next; balanced trees.
-    #[default]
-    Bfs,
-    /// Depth-first growth: a branch's whole subtree before its sibling;
-    /// vines and spirals.
-    Dfs,
-}
-
-impl From<GrowthArg> for stlc::grow::GrowthOrder {
-    fn from(g: GrowthArg) -> Self {
-        match g {
-            GrowthArg::Bfs => stlc::grow::GrowthOrder::Bfs,
-            GrowthArg::Dfs => stlc::grow::GrowthOrder::Dfs,
-        }
-    }
-}
-
-impl From<StrategyArg> for stlc::interpret::Derivation {
-    fn from(s: StrategyArg) -> Self {
-        match s {
-            StrategyArg::Dfs => stlc::interpret::Derivation::Dfs,
-            StrategyArg::Bfs => stlc::interpret::Derivation::Bfs,
-        }
-    }
 }
 
 /// Limits every command takes: on reading the input. Each default is
@@ -334,7 +286,7 @@ pub struct GrowArgs {
     /// Growth order of an .od: bfs (the default) grows level by level,
     /// balanced; dfs grows a branch's whole subtree before its sibling.
     #[arg(long, value_enum, value_name = "ORDER")]
-    pub growth: Option<GrowthArg>,
+    pub growth: Option<GrowthOrder>,
     /// Stop growth after N stems (drawn segments), with a warning. Needed
     /// when an .od has no LAYOUT, count or decrement to end growth.
     #[arg(long, value_name = "N")]
@@ -359,12 +311,12 @@ pub struct RenderArgs {
 
     /// Output format; default from the output's extension, else png.
     #[arg(short, long, value_enum)]
-    pub format: Option<FormatArg>,
+    pub format: Option<ImageFormat>,
 
     /// Derivation strategy: dfs streams, bfs rewrites the whole word first.
     /// Same picture, different cost. (An .od's growth order is --growth.)
-    #[arg(short, long, value_enum, default_value_t = StrategyArg::Dfs)]
-    pub strategy: StrategyArg,
+    #[arg(short, long, value_enum, default_value_t = Derivation::Dfs)]
+    pub strategy: Derivation,
 
     /// Derivation depth of an .lsys (overrides its `generations`).
     #[arg(short, long, value_name = "N")]
@@ -408,15 +360,6 @@ pub struct RenderArgs {
     pub derive_limits: DeriveLimitArgs,
 }
 
-/// `--format`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum FormatArg {
-    /// PNG image.
-    Png,
-    /// SVG drawing.
-    Svg,
-}
-
 /// `stlc compile`.
 #[derive(Debug, Args)]
 pub struct CompileArgs {
@@ -438,7 +381,7 @@ pub struct CompileArgs {
         value_name = "ORDER",
         conflicts_with = "growth"
     )]
-    pub strategy: Option<GrowthArg>,
+    pub strategy: Option<GrowthOrder>,
 
     #[command(flatten)]
     pub grow: GrowArgs,
@@ -462,8 +405,8 @@ pub struct ExpandArgs {
 
     /// Derivation strategy: dfs streams, bfs builds the word in memory.
     /// (An .od's growth order is --growth.)
-    #[arg(short, long, value_enum, default_value_t = StrategyArg::Dfs)]
-    pub strategy: StrategyArg,
+    #[arg(short, long, value_enum, default_value_t = Derivation::Dfs)]
+    pub strategy: Derivation,
 
     /// Derivation depth of an .lsys (overrides its `generations`).
     #[arg(short, long, value_name = "N")]

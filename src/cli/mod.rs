@@ -1,13 +1,12 @@
-//! Command-line interface (binary only): argument parsing, reading inputs,
-//! writing outputs, diagnostics on stderr, exit codes.
+//! Command-line interface (binary only): argument parsing, one library
+//! request per command, the progress bar, exit codes. Reading inputs,
+//! writing outputs and reporting diagnostics are [`crate::frontend`]'s.
 //!
 //! Exit codes: 0 success (warnings may be printed), 1 the input or the work
 //! failed (diagnostics printed, nothing written), 2 usage error (clap).
 
 pub(crate) mod args;
-pub(crate) mod io;
 mod progress;
-pub(crate) mod report;
 mod run;
 
 use std::io::IsTerminal;
@@ -37,7 +36,7 @@ fn install_interrupt_handler() {
         .name("stlc-signals".into())
         .spawn(move || {
             if let Some(signal) = signals.forever().next() {
-                io::remove_pending();
+                crate::frontend::io::remove_pending();
                 progress::clear_on_interrupt();
                 if crate::serve::SERVING.load(std::sync::atomic::Ordering::SeqCst) {
                     // Stopping the server is how it ends: not a failure.

@@ -8,19 +8,18 @@ use stlc::Severity;
 use stlc::color::Rgb;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::grow::{GrowOptions, GrowthOrder};
+use stlc::interpret::Derivation;
 use stlc::limits::Limits;
 use stlc::pipeline::{self, Given, Loaded, Look, Scene, SceneRequest};
 use stlc::progress::Progress as _;
 use stlc::render::{ImageFormat, RenderOptions};
-use stlc::syntax::InputKind;
 
 use super::args::{
-    CheckArgs, Cli, Command, CompileArgs, ExpandArgs, FormatArg, FromKind, GrowArgs, GrowthArg,
-    InputArgs, RenderArgs, StatsArgs, StrategyArg,
+    CheckArgs, Cli, Command, CompileArgs, ExpandArgs, GrowArgs, InputArgs, RenderArgs, StatsArgs,
 };
-use super::io::{Input, Output, same_file, sibling};
 use super::progress::Bar;
-use super::report::{self, SourceText};
+use crate::frontend::io::{Input, Output, same_file, sibling};
+use crate::frontend::report::{self, SourceText};
 
 /// The input as read: its name and text, kept for diagnostics.
 #[derive(Default)]
@@ -99,14 +98,10 @@ fn load(args: &InputArgs, limits: &Limits, source: &mut Source) -> Result<Loaded
     let input = Input::parse(&args.input);
     source.name = input.display_name();
     let bytes = input.read(limits.max_input_bytes)?;
-    let kind = match args.from {
-        Some(FromKind::Od) => InputKind::Od,
-        Some(FromKind::Bed) => InputKind::Bed,
-        Some(FromKind::Lsys) => InputKind::Lsys,
-        None => match &input {
-            Input::Path(p) => pipeline::detect_kind(Some(p), &bytes)?,
-            Input::Stdin => pipeline::detect_kind(None, &bytes)?,
-        },
+    let kind = match (args.from, &input) {
+        (Some(kind), _) => kind,
+        (None, Input::Path(p)) => pipeline::detect_kind(Some(p), &bytes)?,
+        (None, Input::Stdin) => pipeline::detect_kind(None, &bytes)?,
     };
     // Keep the text for diagnostics, whatever the library then says of it
     // (a nesting error points into it); text that is not UTF-8 has none.
@@ -119,14 +114,14 @@ fn load(args: &InputArgs, limits: &Limits, source: &mut Source) -> Result<Loaded
 /// The growth options the growth flags ask for (`order`: `--growth` or an
 /// alias of it; default bfs).
 fn grow_options(
-    order: Option<GrowthArg>,
+    order: Option<GrowthOrder>,
     g: &GrowArgs,
     seed: Option<u64>,
     limits: &Limits,
 ) -> GrowOptions {
     GrowOptions {
         seed: seed.unwrap_or(0),
-        growth: order.map_or(GrowthOrder::default(), GrowthOrder::from),
+        growth: order.unwrap_or_default(),
         clearance: g.clearance,
         limits: *limits,
         max_stems_explicit: g.max_stems.is_some(),
@@ -138,7 +133,7 @@ fn grow_options(
 fn scene(
     input: &InputArgs,
     grow: &GrowArgs,
-    strategy: StrategyArg,
+    strategy: Derivation,
     depth: Option<u32>,
     limits: &Limits,
     quiet: bool,
@@ -148,7 +143,7 @@ fn scene(
     let warnings = pipeline::ignored_flags(&loaded, &given(grow, depth, input.seed));
     let req = SceneRequest {
         grow: grow_options(grow.growth, grow, input.seed, limits),
-        derivation: strategy.into(),
+        derivation: strategy,
         depth,
         limits: *limits,
     };
@@ -189,13 +184,7 @@ fn not_the_input(input: &Input, output: &Output) -> Result<(), Diagnostics> {
 fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
     let limits = a.derive_limits.limits(&a.limits, a.grow.max_stems);
     let input = Input::parse(&a.input.input);
-    let format = pipeline::image_format(
-        a.format.map(|f| match f {
-            FormatArg::Png => ImageFormat::Png,
-            FormatArg::Svg => ImageFormat::Svg,
-        }),
-        a.output.as_deref().filter(|o| *o != "-"),
-    )?;
+    let format = pipeline::image_format(a.format, a.output.as_deref().filter(|o| *o != "-"))?;
     let ext = match format {
         ImageFormat::Png => "png",
         ImageFormat::Svg => "svg",

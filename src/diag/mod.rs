@@ -1,7 +1,7 @@
 //! Diagnostics: every error and warning the library produces, as data.
 //!
 //! The library never prints. A stage returns `Result<T, Diagnostics>`; the CLI
-//! (`cli/report.rs`, the only place that knows ariadne) turns each
+//! (`frontend/report.rs`, the only place that knows ariadne) turns each
 //! [`Diagnostic`] into a report that points at the offending text. Tests assert
 //! on [`Diagnostic::kind`] and [`Diagnostic::span`].
 

@@ -30,12 +30,15 @@ pub mod lsys;
 pub mod stats;
 
 /// How a derivation is produced (`--strategy`): the same picture at a
-/// different cost. The default is depth-first, which streams.
+/// different cost. The default is depth-first, which streams. The
+/// variants' doc comments are the help of `--strategy`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Derivation {
-    /// Depth-first streaming: memory grows with nesting depth only.
+    /// Depth-first: streams the derivation, memory grows with depth only.
     #[default]
     Dfs,
-    /// Breadth-first string rewriting, then interpretation (the baseline).
+    /// Breadth-first: rewrites the whole word level by level, then draws it
+    /// (the baseline; same picture, more memory).
     Bfs,
 }

@@ -22,12 +22,13 @@ pub use fit::{Fit, stroke_px};
 pub use png::PngTurtle;
 pub use svg::SvgTurtle;
 
-/// Output image format.
+/// Output image format (also the values of `--format`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum ImageFormat {
-    /// PNG through tiny-skia.
+    /// PNG image.
     Png,
-    /// SVG text.
+    /// SVG drawing.
     Svg,
 }
 

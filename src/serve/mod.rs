@@ -30,8 +30,8 @@ use hyper_util::rt::{TokioIo, TokioTimer};
 use serde_json::{Value, json};
 
 use crate::cli::args::ServeArgs;
-use crate::cli::io::{Input, Output};
-use crate::cli::report;
+use crate::frontend::io::{Input, Output};
+use crate::frontend::report;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::pipeline;
 use stlc::syntax::InputKind;

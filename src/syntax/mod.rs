@@ -23,14 +23,16 @@ use crate::limits::Limits;
 
 pub(crate) use grammar::{GrammarParser, Rule, pest_error};
 
-/// The three kinds of input.
+/// The three kinds of input (also the values of `--from`: the doc
+/// comments of the variants are its help).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum InputKind {
     /// Outline Description.
     Od,
     /// Branch-Expansion Description.
     Bed,
-    /// Classic L-system key-value file.
+    /// Classic L-system.
     Lsys,
 }
 

@@ -1,5 +1,6 @@
 //! One integration-test binary; each area is a module.
 
+mod architecture;
 mod browser;
 mod cli;
 mod diagnostics;

@@ -1,0 +1,7 @@
+//! What the two front ends ([`crate::cli`] and [`crate::serve`]) share and
+//! the library must not do: reading an input (`-` for standard input, a
+//! size limit), writing an output file atomically, and rendering
+//! diagnostics as ariadne reports on stderr.
+
+pub(crate) mod io;
+pub(crate) mod report;
