@@ -65,6 +65,7 @@ pub(super) fn stamp(pixmap: &mut Pixmap, ink: Rgb, a: Point, b: Point, radius: f
 /// How far the raster's farthest pixel corner is from the segment `a`-`b`:
 /// the distance to a segment is convex, so its largest value over the
 /// raster is at a corner.
+#[inline]
 pub(super) fn farthest_corner(pixmap: &Pixmap, a: Point, b: Point) -> f64 {
     let (w, h) = (f64::from(pixmap.width()), f64::from(pixmap.height()));
     let (dx, dy) = (b.x - a.x, b.y - a.y);
@@ -101,6 +102,7 @@ impl Recent {
 
     /// Whether the capsule `from`-`to` of `width` was one of the last drawn
     /// in its bucket; if not, it is remembered as drawn.
+    #[inline]
     pub(super) fn repeats(&mut self, from: Point, to: Point, width: f64) -> bool {
         let key = [from.x, from.y, to.x, to.y, width].map(f64::to_bits);
         let bucket = &mut self.buckets[bucket_of(&key)];
