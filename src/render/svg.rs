@@ -10,7 +10,7 @@
 //!
 //! Coordinates are output pixels with exactly two decimals (`-0.00` is
 //! written `0.00`); lines end in LF and the file in a newline, so the same
-//! drawing gives the same bytes. Its sections mirror `png.rs`.
+//! drawing gives the same bytes. Its sections mirror `png/mod.rs`.
 
 use std::fmt::Write as _;
 use std::io::{self, Write};
