@@ -20,7 +20,7 @@ use num_bigint::BigUint;
 use super::Derivation;
 use super::lsys::Stochastic;
 use super::stats::{STATS_TRAVERSAL_SYMBOLS, Stats, fixed};
-use crate::diag::{Diagnostics, saturated};
+use crate::diag::Diagnostics;
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 use crate::progress::NoProgress;
@@ -46,8 +46,8 @@ pub struct Expected {
     pub segments: f64,
     /// The expected count of every symbol of the alphabet.
     pub symbols: BTreeMap<char, f64>,
-    /// The shortest and the longest word any seed can derive (saturating).
-    pub bounds: (u64, u64),
+    /// The shortest and the longest word any seed can derive, exactly.
+    pub bounds: (BigUint, BigUint),
 }
 
 /// The statistics of stochastic `sys` (its seed in force) at `depth`.
@@ -59,8 +59,7 @@ pub fn stochastic_stats(
     limits.check_depth(depth)?;
     let st = Stochastic::new(sys);
     let budget = limits.max_symbols.min(STATS_TRAVERSAL_SYMBOLS);
-    let bounds = st.length_bounds(depth);
-    if bounds.0 <= budget {
+    if st.length_bounds(depth).0 <= budget {
         let mut capped = *limits;
         capped.max_symbols = budget;
         let mut counts = vec![0u64; st.chars.len()];
@@ -104,7 +103,7 @@ pub fn stochastic_stats(
         length: v.iter().sum(),
         segments: symbols.get(&'F').copied().unwrap_or(0.0),
         symbols,
-        bounds,
+        bounds: st.exact_length_bounds(depth),
     }))
 }
 
@@ -166,12 +165,7 @@ impl StochasticStats {
             "expected  (stochastic, over the traversal budget: means over all seeds)"
         );
         let _ = writeln!(out, "length    {} expected", mean(e.length, false));
-        let _ = writeln!(
-            out,
-            "          any seed: {} .. {}",
-            saturated(e.bounds.0),
-            saturated(e.bounds.1)
-        );
+        let _ = writeln!(out, "          any seed: {} .. {}", e.bounds.0, e.bounds.1);
         let _ = writeln!(out, "segments  {} expected", mean(e.segments, false));
         let _ = writeln!(out, "bbox      (skipped: the word is too long to traverse)");
         let _ = writeln!(out, "end       (skipped)");

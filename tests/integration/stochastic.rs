@@ -204,6 +204,44 @@ fn expected_stats_follow_the_mean_matrix() {
     assert!((mean - want).abs() < 4.0 * se, "{mean} vs {want} ± {se}");
 }
 
+/// The shortest and longest word lengths of Fig. 1.27 at depth `r`, by
+/// the closed forms of the recurrences L(r) = 3 L(r-1) + 3 and H(r) =
+/// 5 H(r-1) + 6 (see below): L(r) = (5 x 3^r - 3) / 2, H(r) = (5 x 5^r -
+/// 3) / 2.
+fn fig_1_27_bounds(r: u32) -> (num_bigint::BigUint, num_bigint::BigUint) {
+    use num_bigint::BigUint;
+    let closed = |b: u32| (BigUint::from(5u32) * BigUint::from(b).pow(r) - 3u32) / 2u32;
+    (closed(3), closed(5))
+}
+
+/// Past `u64` the shortest and longest words any seed can derive are
+/// still exact in `stats`, text and JSON (they used to saturate, and
+/// JSON wrote 2^64 - 1 as if it were the length).
+#[test]
+fn expected_stats_give_exact_bounds_at_any_depth() {
+    assert_eq!(fig_1_27_bounds(3).0, 66u32.into());
+    assert_eq!(fig_1_27_bounds(3).1, 311u32.into());
+    let s = sys(FIG_1_27);
+    for depth in [3, 40, 100, 1000] {
+        let tiny = Limits {
+            max_symbols: 10,
+            ..Limits::default()
+        };
+        let StochasticStats::Expected(e) = stochastic_stats(&s, depth, &tiny).unwrap() else {
+            panic!("over the budget, the values are expected");
+        };
+        let (lo, hi) = fig_1_27_bounds(depth);
+        assert_eq!(e.bounds, (lo.clone(), hi.clone()), "depth {depth}");
+        let json = StochasticStats::Expected(e.clone()).to_json();
+        assert!(
+            json.contains(&format!("\"bounds\": [\"{lo}\", \"{hi}\"]")),
+            "{json}"
+        );
+        let text = StochasticStats::Expected(e).to_text();
+        assert!(text.contains(&format!("any seed: {lo} .. {hi}")), "{text}");
+    }
+}
+
 // ------------------------------------------------------------ errors
 
 /// The shortest word of Fig. 1.27 takes `F[+F]F` (six symbols, three `F`)
@@ -211,7 +249,8 @@ fn expected_stats_follow_the_mean_matrix() {
 /// takes `F[+F]F[-F]F` (eleven, five `F`): H(d) = 6 + 5 H(d-1), H(3) =
 /// 311. Under a limit below 66 no seed's word
 /// fits, and the refusal comes before a symbol is derived (nothing is
-/// written), for dfs and bfs; at depth 100 the bound saturates.
+/// written), for dfs and bfs; past `u64` (depth 100) the message gives the
+/// exact bound, L(100) from the closed form below.
 #[test]
 fn a_depth_no_choice_can_fit_is_refused_at_once() {
     let s = sys(FIG_1_27);
@@ -245,7 +284,7 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
         assert_eq!(refuse(3, 65, strategy), "at least 66");
         assert_eq!(
             refuse(100, 1_000_000, strategy),
-            "more than 18446744073709551614"
+            format!("at least {}", fig_1_27_bounds(100).0)
         );
     }
     // Under a limit between the bounds some seeds fit and some do not: a

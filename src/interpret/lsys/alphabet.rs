@@ -14,7 +14,7 @@ use crate::model::lsys::LSystem;
 
 /// Most limb additions spent on an exact (big integer) word length for an
 /// error message; beyond it the message gives a bound.
-const EXACT_WORK: u64 = 1 << 28;
+pub(super) const EXACT_WORK: u64 = 1 << 28;
 
 /// The system's symbols as dense ids.
 pub(crate) struct Alphabet {

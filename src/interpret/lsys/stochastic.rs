@@ -26,12 +26,15 @@
 //! the limit is refused before any symbol is derived. The renderer fits the picture with a bounding traversal
 //! first, so a refusal comes before any output is written.
 
+use num_bigint::BigUint;
+
 use crate::choice::{Alternatives, Key};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, saturated};
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 
 use super::Alphabet;
+use super::alphabet::EXACT_WORK;
 
 /// Bytes `bfs` holds per symbol of a stochastic word (the symbol and its
 /// key), against one for a deterministic word: its word budget is
@@ -255,13 +258,16 @@ impl Stochastic {
         if least <= limit {
             return Ok(());
         }
+        let value = if least < u64::MAX {
+            format!("at least {least}")
+        } else if self.exact_work(depth) <= EXACT_WORK {
+            format!("at least {}", self.exact_length_bounds(depth).0)
+        } else {
+            saturated(least)
+        };
         Err(Diagnostic::error(ErrorKind::Limit {
             what: format!("{what} at depth {depth} (stochastic: the shortest any choices make)"),
-            value: if least == u64::MAX {
-                saturated(least)
-            } else {
-                format!("at least {least}")
-            },
+            value,
             limit: limit.to_string(),
         })
         .with_help(
@@ -270,38 +276,70 @@ impl Stochastic {
         .into())
     }
 
-    /// The fewest and the most symbols the word at `depth` can have
-    /// (saturating): each symbol's shortest and longest alternative.
+    /// The fewest and the most symbols the word at `depth` can have,
+    /// saturating at `u64::MAX` (for the limit checks and the progress bar).
     pub(crate) fn length_bounds(&self, depth: u32) -> (u64, u64) {
+        self.bounds_with(depth, |a: u64, b| a.saturating_add(*b))
+    }
+
+    /// [`Self::length_bounds`] exactly, in big integers (for `stats`). The
+    /// cost grows with the depth times the numbers' size, as the exact
+    /// counts of a deterministic system do.
+    pub(crate) fn exact_length_bounds(&self, depth: u32) -> (BigUint, BigUint) {
+        self.bounds_with(depth, |a: BigUint, b| a + b)
+    }
+
+    /// Limb additions [`Self::exact_length_bounds`] costs at `depth`, about:
+    /// every alternative's symbols once per level, on numbers that grow by
+    /// at most log2 of the longest successor in bits per level.
+    fn exact_work(&self, depth: u32) -> u64 {
+        let succs = || self.rules.iter().flatten().flat_map(|r| &r.succ);
+        let per_level = succs().map(|w| w.len() as u64 + 1).sum::<u64>();
+        let longest = succs().map(Vec::len).max().unwrap_or(1).max(2);
+        let bits = u64::from(depth) * u64::from(usize::BITS - longest.leading_zeros());
+        u64::from(depth)
+            .saturating_mul(per_level)
+            .saturating_mul(bits / 64 + 1)
+    }
+
+    /// The fewest and the most symbols at `depth`, level by level: a symbol
+    /// with a rule has its shortest (longest) alternative's length at the
+    /// level below, summed with `add`; without, length 1. Stops early once
+    /// a level equals the one before (saturated or stationary lengths).
+    fn bounds_with<T: Clone + Ord + Default + From<u8>>(
+        &self,
+        depth: u32,
+        add: impl Fn(T, &T) -> T,
+    ) -> (T, T) {
         let n = self.chars.len();
-        let mut lo = vec![1u64; n];
-        let mut hi = vec![1u64; n];
+        let sum = |len: &[T], w: &[u32]| {
+            w.iter()
+                .fold(T::default(), |a, &c| add(a, &len[c as usize]))
+        };
+        let step = |len: &[T], pick: fn(T, T) -> T| -> Vec<T> {
+            (0..n)
+                .map(|s| match &self.rules[s] {
+                    None => T::from(1),
+                    Some(r) => r
+                        .succ
+                        .iter()
+                        .map(|w| sum(len, w))
+                        .reduce(pick)
+                        .unwrap_or_default(),
+                })
+                .collect()
+        };
+        let mut lo = vec![T::from(1); n];
+        let mut hi = lo.clone();
         for _ in 0..depth {
-            let sum = |len: &[u64], w: &[u32]| {
-                w.iter()
-                    .fold(0u64, |a, &c| a.saturating_add(len[c as usize]))
-            };
-            let step = |len: &[u64], pick: fn(u64, u64) -> u64| -> Vec<u64> {
-                (0..n)
-                    .map(|s| match &self.rules[s] {
-                        None => 1,
-                        Some(r) => r.succ.iter().map(|w| sum(len, w)).reduce(pick).unwrap_or(0),
-                    })
-                    .collect()
-            };
-            let (l, h) = (step(&lo, u64::min), step(&hi, u64::max));
+            let (l, h) = (step(&lo, Ord::min), step(&hi, Ord::max));
             if l == lo && h == hi {
                 break;
             }
             lo = l;
             hi = h;
         }
-        let total = |len: &[u64]| {
-            self.axiom
-                .iter()
-                .fold(0u64, |a, &s| a.saturating_add(len[s as usize]))
-        };
-        (total(&lo), total(&hi))
+        (sum(&lo, &self.axiom), sum(&hi, &self.axiom))
     }
 }
 
