@@ -227,6 +227,16 @@ fn every_alternative_needs_a_probability() {
     assert!(matches!(&e.0[0].kind, ErrorKind::MissingProbability { name } if name == "R1"));
     let second = text.rfind("R1").unwrap();
     assert_eq!(e.0[0].span, Some(second..second + 2));
+    // Only that: the sum of the bodies that have one (0.5) is no news.
+    assert_eq!(e.0.len(), 1, "{e}");
+    // One body with a probability other than 1: it needs none.
+    let e = errors("T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F]", Format::Od);
+    assert!(matches!(&e.0[0].kind, ErrorKind::ProbabilitySum { .. }));
+    let help = e.0[0].help.as_deref().unwrap();
+    assert!(
+        help.contains("one body needs no probability: write `R1: ...`"),
+        "{help}"
+    );
     // Two bodies without probabilities stay a duplicate.
     let e = errors("T (0,0) L=1(0) B=1(0) RULE R1: [+F] R1: [-F]", Format::Od);
     assert!(matches!(&e.0[0].kind, ErrorKind::DuplicateRule { .. }));

@@ -353,6 +353,21 @@ fn probabilities_are_checked() {
     assert!(matches!(&kind, ErrorKind::MissingProbability { name } if name == "F"));
     assert_eq!(&src[span], "rule F -> F-F");
 
+    // Only that: the sum of the rules that have one (0.5) is no news.
+    let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\nrule F -> F-F\n";
+    let e = parse(src, &Limits::default()).unwrap_err();
+    assert_eq!(e.0.len(), 1, "{e}");
+    assert!(matches!(&e.0[0].kind, ErrorKind::MissingProbability { .. }));
+    // One rule with a probability other than 1: it needs none.
+    let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\n";
+    let e = parse(src, &Limits::default()).unwrap_err();
+    assert!(matches!(&e.0[0].kind, ErrorKind::ProbabilitySum { .. }));
+    let help = e.0[0].help.as_deref().unwrap();
+    assert!(
+        help.contains("needs no probability: write `rule F -> ...`"),
+        "{help}"
+    );
+
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (0) -> F-F\n";
     let (kind, span) = first_error(src);
     assert!(matches!(&kind, ErrorKind::BadProbability { value, .. } if *value == 0.0));

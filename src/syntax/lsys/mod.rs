@@ -310,7 +310,13 @@ impl Checker {
     fn probabilities(&mut self, sys: &LSystem) {
         for (c, ps) in &sys.rules {
             let p: Vec<f64> = ps.iter().filter_map(|p| p.probability).collect();
-            if p.is_empty() {
+            let mixed = self.diags.iter().any(|d| {
+                matches!(&d.kind, ErrorKind::MissingProbability { name } if *name == c.to_string())
+            });
+            if p.is_empty() || mixed {
+                // A rule without a probability beside ones with is
+                // reported where it is (and left out): a sum would only
+                // repeat it.
                 continue;
             }
             match choice::check(&p) {
@@ -334,10 +340,17 @@ impl Checker {
                     for q in ps.iter().skip(1).take(4) {
                         d = d.with_note_at(q.loc.0.clone(), "another rule");
                     }
-                    self.diags.push(d.with_help(format!(
-                        "make the probabilities of the rules for `{c}` add up to 1, e.g. \
-                         `(0.5)` and `(0.5)`"
-                    )));
+                    self.diags.push(d.with_help(if ps.len() == 1 {
+                        format!(
+                            "one rule for `{c}` needs no probability: write `rule {c} -> ...`, \
+                             or add rules for `{c}` whose probabilities add up to 1"
+                        )
+                    } else {
+                        format!(
+                            "make the probabilities of the rules for `{c}` add up to 1, e.g. \
+                             `(0.5)` and `(0.5)`"
+                        )
+                    }));
                 }
             }
         }

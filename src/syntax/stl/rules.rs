@@ -280,6 +280,17 @@ impl Builder<'_> {
                     a.number = k as u32 + 1;
                 }
             }
+            let missing = heads.iter().enumerate().any(|(j, (other, _))| {
+                other == &name
+                    && alternatives[j]
+                        .as_ref()
+                        .is_none_or(|a| a.probability.is_none())
+            });
+            if missing {
+                // Reported where the body without one is: a sum of the
+                // others would only repeat it.
+                continue;
+            }
             match choice::check(&probabilities) {
                 Ok(()) => {}
                 Err(BadProbabilities::NotPositive(k)) => self.report(
@@ -301,10 +312,16 @@ impl Builder<'_> {
                     for &j in group.iter().skip(1).take(4) {
                         d = d.with_note_at(heads[j].1.clone(), "another alternative");
                     }
-                    self.err(d.with_help(
+                    self.err(d.with_help(if group.len() == 1 {
+                        format!(
+                            "a rule with one body needs no probability: write `{name}: ...`, \
+                             or give `{name}` more bodies whose probabilities add up to 1"
+                        )
+                    } else {
                         "make the probabilities of a rule's alternatives add up to 1, \
-                         e.g. `(0.6)` and `(0.4)`",
-                    ));
+                         e.g. `(0.6)` and `(0.4)`"
+                            .to_string()
+                    }));
                 }
             }
         }
