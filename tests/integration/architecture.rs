@@ -24,10 +24,16 @@ fn rust_files(dir: &Path) -> Vec<PathBuf> {
 }
 
 /// The stages `text` imports from the crate: `crate::x` paths and the
-/// first segment of each item in a `use crate::{...}` group.
+/// first segment of each item in a `use crate::{...}` group, in code (a
+/// link in a comment is no dependency).
 fn imported_stages(text: &str) -> Vec<String> {
+    let code: String = text
+        .lines()
+        .filter(|line| !line.trim_start().starts_with("//"))
+        .map(|line| format!("{line}\n"))
+        .collect();
     let mut stages = Vec::new();
-    let mut rest = text;
+    let mut rest = code.as_str();
     while let Some(at) = rest.find("crate::") {
         rest = &rest[at + "crate::".len()..];
         if let Some(group) = rest.strip_prefix('{') {
@@ -51,8 +57,8 @@ fn imported_stages(text: &str) -> Vec<String> {
 
 #[test]
 fn the_import_reader_sees_plain_paths_and_groups() {
-    let text =
-        "use crate::render::Fill;\nuse crate::{diag::X, grow};\nlet a = crate::num::fixed(1);";
+    let text = "use crate::render::Fill;\n/// [`crate::turtle`]\n\
+                use crate::{diag::X, grow};\nlet a = crate::num::fixed(1);";
     assert_eq!(imported_stages(text), ["render", "diag", "grow", "num"]);
 }
 
@@ -81,6 +87,24 @@ fn stages_import_only_downstream() {
         }
     }
     assert!(checked >= 20, "only {checked} files read");
+}
+
+/// The model is the bottom stage: it imports only `diag`, `num` and
+/// `color` (and itself).
+#[test]
+fn the_model_imports_only_diag_num_and_color() {
+    let files = rust_files(&support::manifest_path("src/model"));
+    assert!(files.len() >= 4, "only {} files found", files.len());
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        for stage in imported_stages(&text) {
+            assert!(
+                ["diag", "num", "color", "model"].contains(&stage.as_str()),
+                "{} imports crate::{stage}",
+                file.display()
+            );
+        }
+    }
 }
 
 /// Files of one idea each: none in src/ over 650 lines.
