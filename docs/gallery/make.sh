@@ -26,6 +26,9 @@ for i in 3 4; do
   $B render examples/tutorial/step$i.od --show-layout --size 240x240 -o $T/step$i.png
 done
 $B render examples/tutorial/step4.od --growth dfs --show-layout --size 240x240 -o $T/step5.png
+for s in 1 2; do
+  $B render examples/tutorial/step6.od --seed $s --show-layout --size 240x240 -o $T/step6-seed$s.png
+done
 # Depth 7 is a solid grey square at thumbnail size.
 $B render examples/hilbert.lsys --depth 5 --size 240x240 -o $G/hilbert.png
 # Variation (docs/language.md): alternatives under bfs and dfs, and a grove

@@ -86,3 +86,38 @@ fn every_file_example_in_the_docs_loads_checks_and_draws() {
         assert!(count.0 > 0, "{at}: draws nothing");
     }
 }
+
+/// The tutorial shows each step's file as it is in examples/tutorial/
+/// (comment lines aside), so the commands under the blocks draw what the
+/// blocks say.
+#[test]
+fn the_tutorial_blocks_are_its_example_files() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let tutorial = fs::read_to_string(format!("{root}/docs/tutorial.md")).unwrap();
+    let shown: Vec<String> = blocks()
+        .into_iter()
+        .filter(|b| b.0.ends_with("tutorial.md"))
+        .map(|b| b.3)
+        .collect();
+    let mut steps: Vec<_> = fs::read_dir(format!("{root}/examples/tutorial"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    steps.sort();
+    assert!(steps.len() >= 5, "{steps:?}");
+    for step in steps {
+        let text: String = fs::read_to_string(&step)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        assert!(
+            shown.contains(&text),
+            "{} is not shown as it is in docs/tutorial.md",
+            step.display()
+        );
+        let name = step.file_name().unwrap().to_string_lossy().into_owned();
+        assert!(tutorial.contains(&name), "the tutorial never runs {name}");
+    }
+}
