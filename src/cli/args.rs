@@ -16,6 +16,10 @@ use stlc::syntax::InputKind;
 ///   .bed   Branch-Expansion Description: the same with every branching decision written out
 ///   .lsys  classic L-system: generations, axiom, rule X SUCC, angle
 ///
+/// Rules with several bodies choose by probability (`R1 (0.6): ...` in an
+/// .od, `rule F (0.6) -> ...` in an .lsys): --seed N picks the plant, and
+/// the same seed always draws the same one.
+///
 /// Use `-` for standard input or output. Exit status: 0 success, 1 the input
 /// or the work failed (nothing is written), 2 usage error.
 #[derive(Debug, Parser)]
@@ -24,7 +28,7 @@ use stlc::syntax::InputKind;
     verbatim_doc_comment,
     version,
     max_term_width = 100,
-    after_help = "Examples:\n  stlc render examples/koch-snowflake.lsys -o koch.png\n  stlc compile examples/2dtree.od -o 2dtree.bed --growth dfs\n  stlc render 2dtree.bed --show-layout -o 2dtree.svg\n  stlc stats examples/abop-1.24a.lsys --depth 57 --json\n\nDocumentation: docs/ in the source tree (language.md, cli.md, limits.md)."
+    after_help = "Examples:\n  stlc render examples/koch-snowflake.lsys -o koch.png\n  stlc compile examples/2dtree.od -o 2dtree.bed --growth dfs\n  stlc render 2dtree.bed --show-layout -o 2dtree.svg\n  stlc stats examples/abop-1.24a.lsys --depth 57 --json\n  stlc render examples/grove.od --seed 7 --show-layout -o grove.png\n\nDocumentation: docs/ in the source tree (language.md, cli.md, limits.md)."
 )]
 pub struct Cli {
     /// What to do.
