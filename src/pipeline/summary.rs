@@ -143,15 +143,22 @@ fn stl_summary(
     if desc.forest.is_empty() {
         let _ = writeln!(s, "  root        ({}, {})", desc.root.0, desc.root.1);
     } else {
-        let roots: Vec<String> = desc
-            .trees()
+        // A few roots say where the forest stands; a root line of
+        // thousands would bury the rest of the summary.
+        const SHOWN: usize = 6;
+        let trees = desc.trees();
+        let mut roots: Vec<String> = trees
             .iter()
+            .take(SHOWN)
             .map(|((x, y), _)| format!("({x}, {y})"))
             .collect();
+        if trees.len() > SHOWN {
+            roots.push(format!("... and {} more", trees.len() - SHOWN));
+        }
         let _ = writeln!(
             s,
             "  roots       {} (a forest): {}",
-            roots.len(),
+            trees.len(),
             roots.join(" ")
         );
     }

@@ -359,6 +359,37 @@ fn a_forest_bed_has_one_seed_per_root() {
 
 // ------------------------------------------------------------ forests
 
+/// `check` counts a forest's roots and shows the first six: all four of
+/// the grove; six of ten, then how many more.
+#[test]
+fn check_lists_a_forests_roots_briefly() {
+    let summary = |text: &str| {
+        let opts = GrowOptions::default();
+        let loaded =
+            stlc::pipeline::load(text.as_bytes(), stlc::syntax::InputKind::Od, &opts.limits)
+                .unwrap();
+        stlc::pipeline::check(&loaded, &opts).unwrap().summary
+    };
+    let grove = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
+    assert!(
+        summary(&grove)
+            .contains("  roots       4 (a forest): (50, 290) (110, 290) (170, 290) (235, 290)\n"),
+        "{}",
+        summary(&grove)
+    );
+    let roots: Vec<String> = (0..10).map(|i| format!("({}, 0)", i * 100)).collect();
+    let ten = format!(
+        "T {} L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED",
+        roots.join(" ")
+    );
+    let s = summary(&ten);
+    let line = s.lines().find(|l| l.starts_with("  roots")).unwrap();
+    assert_eq!(
+        line,
+        "  roots       10 (a forest): (0, 0) (100, 0) (200, 0) (300, 0) (400, 0) (500, 0) ... and 4 more"
+    );
+}
+
 /// Two binary trees far apart, three levels each, lengths 15, 10, 5 and
 /// branches 90 degrees apart (no collisions: 1 + 2 + 4 applications and
 /// 1 + 2 + 4 + 8 stems a tree).
