@@ -382,6 +382,16 @@ pub enum ErrorKind {
         /// The clearance asked for.
         value: f64,
     },
+    /// Warning: a root of a forest on the point of an earlier root.
+    #[error(
+        "root {root} is on the point of root {first}: the two trees start in one place, and the later finds its room taken"
+    )]
+    SharedRoot {
+        /// The later root, counted from 1 in root-line order.
+        root: usize,
+        /// The earlier root on the same point.
+        first: usize,
+    },
     /// The root lies outside the layout region, so nothing can grow.
     #[error("the root ({x}, {y}) lies outside the layout region")]
     RootOutside {

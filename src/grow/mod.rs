@@ -263,6 +263,8 @@ fn grow_inner(
         }
     }
 
+    let shared = shared_roots(&roots);
+
     let mut g = Grower::new(
         od,
         opts,
@@ -319,10 +321,38 @@ fn grow_inner(
     };
     let grown = Grown {
         bed: Bed::new(desc, &opts.limits)?,
-        warnings: budget.warnings,
+        warnings: shared.into_iter().chain(budget.warnings).collect(),
         stems: budget.stems,
     };
     Ok((grown, placed))
+}
+
+/// A warning for the first root on the very point of an earlier one (two
+/// clicks of the Root tool in one place, a point typed twice), if any: its
+/// tree starts on top of the earlier tree and finds its room taken.
+fn shared_roots(roots: &[((f64, f64), &Loc)]) -> Option<Diagnostic> {
+    // `+ 0.0` makes -0 and 0 one point.
+    let key = |(x, y): (f64, f64)| ((x + 0.0).to_bits(), (y + 0.0).to_bits());
+    let mut seen = std::collections::BTreeMap::new();
+    for (i, &(point, loc)) in roots.iter().enumerate() {
+        let Some(&first) = seen.get(&key(point)) else {
+            seen.insert(key(point), i);
+            continue;
+        };
+        let mut d = Diagnostic::warning(ErrorKind::SharedRoot {
+            root: i + 1,
+            first: first + 1,
+        })
+        .with_help("give each tree its own point on the root line, or delete the repeated root");
+        if let Some(s) = span_of(loc) {
+            d = d.with_span(s).with_label("this root");
+        }
+        if let Some(s) = span_of(roots[first].1) {
+            d = d.with_note_at(s, "the earlier root");
+        }
+        return Some(d);
+    }
+    None
 }
 
 /// The span of `loc`, unless it is empty (text made by growth, the default

@@ -359,6 +359,39 @@ fn a_forest_bed_has_one_seed_per_root() {
 
 // ------------------------------------------------------------ forests
 
+/// A root on the point of an earlier one is warned about, pointing at both
+/// (its tree grows on top of the other's); distinct roots are not, nor is
+/// 0 against -0.
+#[test]
+fn a_root_on_another_roots_point_is_warned_about() {
+    let text = "T (10, 0) (30, 0) (10, 0) (0, -0) (0, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
+    let g = grown(&od(text), GrowthOrder::Bfs, 0);
+    let shared: Vec<_> = g
+        .warnings
+        .iter()
+        .filter(|w| matches!(w.kind, ErrorKind::SharedRoot { .. }))
+        .collect();
+    assert_eq!(shared.len(), 1, "the first repeat only: {:?}", g.warnings);
+    assert!(matches!(
+        shared[0].kind,
+        ErrorKind::SharedRoot { root: 3, first: 1 }
+    ));
+    let third = text.rfind("(10, 0)").unwrap();
+    assert_eq!(shared[0].span, Some(third..third + "(10, 0)".len()));
+    assert_eq!(
+        shared[0].labels[0].span,
+        text.find("(10, 0)").unwrap()..text.find("(10, 0)").unwrap() + 7
+    );
+    let apart = "T (10, 0) (30, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
+    assert!(grown(&od(apart), GrowthOrder::Bfs, 0).warnings.is_empty());
+    let signed = "T (0, -0) (0, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
+    let w = grown(&od(signed), GrowthOrder::Bfs, 0).warnings;
+    assert!(matches!(
+        w[0].kind,
+        ErrorKind::SharedRoot { root: 2, first: 1 }
+    ));
+}
+
 /// `check` counts a forest's roots and shows the first six: all four of
 /// the grove; six of ten, then how many more.
 #[test]
