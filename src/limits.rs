@@ -35,22 +35,26 @@ pub struct Limits {
 
 impl Default for Limits {
     fn default() -> Self {
-        Limits {
-            max_input_bytes: 64 * 1024 * 1024,
-            max_nesting: 10_000,
-            max_depth: 10_000,
-            max_repeat: 10_000,
-            max_symbols: 20_000_000_000,
-            max_word: 200_000_000,
-            max_stems: 1_000_000,
-            max_layout_vertices: 16_000,
-            max_rule_parts: 100_000,
-            max_layout_shapes: 10_000,
-        }
+        Limits::DEFAULT
     }
 }
 
 impl Limits {
+    /// The defaults (docs/limits.md explains each), usable in constants:
+    /// `Limits { max_depth: 16, ..Limits::DEFAULT }`.
+    pub const DEFAULT: Limits = Limits {
+        max_input_bytes: 64 * 1024 * 1024,
+        max_nesting: 10_000,
+        max_depth: 10_000,
+        max_repeat: 10_000,
+        max_symbols: 20_000_000_000,
+        max_word: 200_000_000,
+        max_stems: 1_000_000,
+        max_layout_vertices: 16_000,
+        max_rule_parts: 100_000,
+        max_layout_shapes: 10_000,
+    };
+
     /// Refuses a derivation depth over [`Limits::max_depth`], naming the flag.
     pub fn check_depth(&self, depth: u32) -> Result<(), crate::diag::Diagnostics> {
         use crate::diag::{Diagnostic, ErrorKind};

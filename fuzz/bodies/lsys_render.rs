@@ -16,6 +16,7 @@ use stlc::turtle::{Bounds, Turtle};
 
 const DEPTH_CAP: u32 = 16;
 
+/// The defaults, tightened so every input runs in milliseconds.
 const LIMITS: Limits = Limits {
     max_input_bytes: 1 << 16,
     max_nesting: 1_000,
@@ -24,9 +25,9 @@ const LIMITS: Limits = Limits {
     max_symbols: 1_000_000,
     max_word: 1_000_000,
     max_stems: 10_000,
-    max_layout_vertices: 16_000,
     max_rule_parts: 1_000,
     max_layout_shapes: 100,
+    ..Limits::DEFAULT
 };
 
 /// Rendering walks the word twice per format: a smaller budget.

@@ -12,6 +12,7 @@ use stlc::progress::NoProgress;
 use stlc::syntax::{precheck, stl};
 use stlc::turtle::Counter;
 
+/// Every limit tightened, so every input runs in milliseconds.
 const LIMITS: Limits = Limits {
     max_input_bytes: 1 << 16,
     max_nesting: 1_000,

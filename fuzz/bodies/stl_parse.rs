@@ -14,6 +14,7 @@ use stlc::progress::NoProgress;
 use stlc::syntax::{precheck, stl};
 use stlc::turtle::{Bounds, Counter};
 
+/// The defaults, tightened so every input runs in milliseconds.
 const LIMITS: Limits = Limits {
     max_input_bytes: 1 << 16,
     max_nesting: 1_000,
@@ -22,9 +23,9 @@ const LIMITS: Limits = Limits {
     max_symbols: 100_000,
     max_word: 100_000,
     max_stems: 10_000,
-    max_layout_vertices: 16_000,
     max_rule_parts: 1_000,
     max_layout_shapes: 100,
+    ..Limits::DEFAULT
 };
 
 /// Every number the writer prints for `d`, as it computes them.
