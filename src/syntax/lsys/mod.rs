@@ -52,6 +52,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
     let mut ck = Checker {
         diags: Diagnostics::new(),
         seen: BTreeMap::new(),
+        mixed: Default::default(),
     };
     let mut sys = LSystem {
         axiom: Vec::new(),
@@ -182,6 +183,9 @@ struct Checker {
     diags: Diagnostics,
     /// Where each single-valued key was first given.
     seen: BTreeMap<Key, Span>,
+    /// Symbols with rules both with and without a probability (reported
+    /// once, where the odd one is; their probabilities are not summed).
+    mixed: std::collections::BTreeSet<char>,
 }
 
 impl Checker {
@@ -277,6 +281,7 @@ impl Checker {
                     return;
                 }
                 (first_has, _) => {
+                    self.mixed.insert(c);
                     let (at, other) = if first_has {
                         (span, first.loc.0.clone())
                     } else {
@@ -310,10 +315,7 @@ impl Checker {
     fn probabilities(&mut self, sys: &LSystem) {
         for (c, ps) in &sys.rules {
             let p: Vec<f64> = ps.iter().filter_map(|p| p.probability).collect();
-            let mixed = self.diags.iter().any(|d| {
-                matches!(&d.kind, ErrorKind::MissingProbability { name } if *name == c.to_string())
-            });
-            if p.is_empty() || mixed {
+            if p.is_empty() || self.mixed.contains(c) {
                 // A rule without a probability beside ones with is
                 // reported where it is (and left out): a sum would only
                 // repeat it.

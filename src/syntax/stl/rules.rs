@@ -257,11 +257,22 @@ impl Builder<'_> {
         heads: &[(String, Span)],
         alternatives: &mut [Option<Alternative>],
     ) {
-        // The alternatives of each name, in line order.
+        // The alternatives of each name, in line order, and the names with
+        // a body that has no probability.
         let mut groups: std::collections::BTreeMap<&str, Vec<usize>> = Default::default();
+        let mut unweighted = std::collections::BTreeSet::new();
         for (j, (name, _)) in heads.iter().enumerate() {
-            if !name.is_empty() && alternatives[j].is_some() {
+            if name.is_empty() {
+                continue;
+            }
+            if alternatives[j].is_some() {
                 groups.entry(name).or_default().push(j);
+            }
+            if alternatives[j]
+                .as_ref()
+                .is_none_or(|a| a.probability.is_none())
+            {
+                unweighted.insert(name.as_str());
             }
         }
         for (name, group) in groups {
@@ -280,13 +291,7 @@ impl Builder<'_> {
                     a.number = k as u32 + 1;
                 }
             }
-            let missing = heads.iter().enumerate().any(|(j, (other, _))| {
-                other == &name
-                    && alternatives[j]
-                        .as_ref()
-                        .is_none_or(|a| a.probability.is_none())
-            });
-            if missing {
+            if unweighted.contains(name.as_str()) {
                 // Reported where the body without one is: a sum of the
                 // others would only repeat it.
                 continue;
