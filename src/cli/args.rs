@@ -3,11 +3,9 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use stlc::Limits;
-use stlc::grow::GrowthOrder;
-use stlc::interpret::Derivation;
-use stlc::render::ImageFormat;
-use stlc::syntax::InputKind;
+use stlc::pipeline::{
+    DEFAULT_MAX_SVG_SEGMENTS, Derivation, GrowthOrder, ImageFormat, InputKind, Limits,
+};
 
 /// Compile and render Structural Tree Language trees and classic L-systems.
 ///
@@ -158,7 +156,7 @@ pub struct ServeArgs {
     pub max_stems: Option<u64>,
 
     /// Most segments an SVG may hold.
-    #[arg(long, value_name = "N", default_value_t = stlc::render::DEFAULT_MAX_SVG_SEGMENTS)]
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SVG_SEGMENTS)]
     pub max_svg_segments: u64,
 
     #[command(flatten)]
@@ -244,6 +242,19 @@ pub struct DeriveLimitArgs {
 
     #[command(flatten)]
     pub layout: LayoutLimitArgs,
+}
+
+impl ServeArgs {
+    /// The server's configuration these flags ask for.
+    pub fn config(&self) -> crate::serve::Config {
+        crate::serve::Config {
+            file: self.file.clone(),
+            port: self.port,
+            limits: self.derive_limits.limits(&self.limits, self.max_stems),
+            max_stems: self.max_stems,
+            max_svg_segments: self.max_svg_segments,
+        }
+    }
 }
 
 impl DeriveLimitArgs {
@@ -337,7 +348,7 @@ pub struct RenderArgs {
 
     /// Most segments an SVG may hold (about 22 bytes each); a PNG has no
     /// such limit.
-    #[arg(long, value_name = "N", default_value_t = stlc::render::DEFAULT_MAX_SVG_SEGMENTS)]
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SVG_SEGMENTS)]
     pub max_svg_segments: u64,
 
     /// Draw every segment of an .lsys. By default a subtree smaller than

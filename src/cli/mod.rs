@@ -22,9 +22,9 @@ pub use args::Cli;
 /// requirement. Pages are only committed when touched.
 const WORKER_STACK: usize = 1 << 30;
 
-/// On SIGINT or SIGTERM: remove the temporary output file (the target was
-/// never touched) and exit with 128 + the signal's number (130, 143), as a
-/// shell reports a process killed by it.
+/// On SIGINT or SIGTERM: remove the temporary output files (their targets
+/// were never touched) and exit with 128 + the signal's number (130, 143),
+/// as a shell reports a process killed by it, or 0 for a server.
 fn install_interrupt_handler() {
     use signal_hook::consts::{SIGINT, SIGTERM};
     let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) else {
@@ -36,13 +36,9 @@ fn install_interrupt_handler() {
         .name("stlc-signals".into())
         .spawn(move || {
             if let Some(signal) = signals.forever().next() {
-                crate::frontend::io::remove_pending();
+                crate::frontend::interrupt::remove_pending();
                 progress::clear_on_interrupt();
-                if crate::serve::SERVING.load(std::sync::atomic::Ordering::SeqCst) {
-                    // Stopping the server is how it ends: not a failure.
-                    std::process::exit(0);
-                }
-                std::process::exit(128 + signal);
+                std::process::exit(crate::frontend::interrupt::exit_status(signal));
             }
         });
 }

@@ -4,15 +4,11 @@
 use std::io::Write;
 use std::process::ExitCode;
 
-use stlc::Severity;
-use stlc::color::Rgb;
-use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
-use stlc::grow::{GrowOptions, GrowthOrder};
-use stlc::interpret::Derivation;
-use stlc::limits::Limits;
-use stlc::pipeline::{self, Given, Loaded, Look, Scene, SceneRequest};
-use stlc::progress::Progress as _;
-use stlc::render::{ImageFormat, RenderOptions};
+use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, Severity, io_error};
+use stlc::pipeline::{
+    self, GrowthOrder, ImageFormat, Limits, Look, Progress as _, RenderOptions, Request, Rgb,
+    ShowLayout,
+};
 
 use super::args::{
     CheckArgs, Cli, Command, CompileArgs, ExpandArgs, GrowArgs, InputArgs, RenderArgs, StatsArgs,
@@ -34,7 +30,7 @@ type Outcome = Result<Vec<Diagnostic>, Diagnostics>;
 /// Runs one command and reports; returns the exit code.
 pub fn run(cli: &Cli, color: bool) -> ExitCode {
     if let Command::Serve(a) = &cli.command {
-        return crate::serve::run(a, cli.quiet, color);
+        return crate::serve::run(&a.config(), color);
     }
     let mut source = Source::default();
     let input = match &cli.command {
@@ -93,74 +89,37 @@ pub fn run(cli: &Cli, color: bool) -> ExitCode {
     }
 }
 
-/// Reads the input named by `args` and loads it with the library.
-fn load(args: &InputArgs, limits: &Limits, source: &mut Source) -> Result<Loaded, Diagnostics> {
+/// Reads the input named by `args` into a request with the input options
+/// and `limits`: every command starts here.
+fn request(args: &InputArgs, limits: Limits, source: &mut Source) -> Result<Request, Diagnostics> {
     let input = Input::parse(&args.input);
     source.name = input.display_name();
     let bytes = input.read(limits.max_input_bytes)?;
-    let kind = match (args.from, &input) {
-        (Some(kind), _) => kind,
-        (None, Input::Path(p)) => pipeline::detect_kind(Some(p), &bytes)?,
-        (None, Input::Stdin) => pipeline::detect_kind(None, &bytes)?,
-    };
     // Keep the text for diagnostics, whatever the library then says of it
     // (a nesting error points into it); text that is not UTF-8 has none.
     if let Ok(text) = std::str::from_utf8(&bytes) {
         source.text = text.to_string();
     }
-    Ok(pipeline::load(&bytes, kind, limits)?.seeded(args.seed))
+    Ok(Request {
+        name: match input {
+            Input::Path(p) => Some(p),
+            Input::Stdin => None,
+        },
+        kind: args.from,
+        seed: args.seed,
+        limits,
+        ..Request::new(bytes)
+    })
 }
 
-/// The growth options the growth flags ask for (`order`: `--growth` or an
-/// alias of it; default bfs).
-fn grow_options(
-    order: Option<GrowthOrder>,
-    g: &GrowArgs,
-    seed: Option<u64>,
-    limits: &Limits,
-) -> GrowOptions {
-    GrowOptions {
-        seed: seed.unwrap_or(0),
-        growth: order.unwrap_or_default(),
+/// The request with the growth flags (`order`: `--growth` or an alias of
+/// it).
+fn with_growth(req: Request, order: Option<GrowthOrder>, g: &GrowArgs) -> Request {
+    Request {
+        growth: order,
         clearance: g.clearance,
-        limits: *limits,
-        max_stems_explicit: g.max_stems.is_some(),
-    }
-}
-
-/// Loads the input and decides its scene (growing an OD), with warnings for
-/// the flags that do nothing for it: what `render` and `expand` share.
-fn scene(
-    input: &InputArgs,
-    grow: &GrowArgs,
-    strategy: Derivation,
-    depth: Option<u32>,
-    limits: &Limits,
-    quiet: bool,
-    source: &mut Source,
-) -> Result<(Scene, Vec<Diagnostic>), Diagnostics> {
-    let loaded = load(input, limits, source)?;
-    let warnings = pipeline::ignored_flags(&loaded, &given(grow, depth, input.seed));
-    let req = SceneRequest {
-        grow: grow_options(grow.growth, grow, input.seed, limits),
-        derivation: strategy,
-        depth,
-        limits: *limits,
-    };
-    let mut bar = Bar::new(quiet);
-    let scene = pipeline::scene(loaded, &req, &mut bar)?;
-    bar.finish();
-    Ok((scene, warnings))
-}
-
-/// The growth, depth and seed flags given explicitly.
-fn given(g: &GrowArgs, depth: Option<u32>, seed: Option<u64>) -> Given {
-    Given {
-        growth: g.growth.is_some(),
-        clearance: g.clearance.is_some(),
-        max_stems: g.max_stems.is_some(),
-        depth: depth.is_some(),
-        seed: seed.is_some(),
+        max_stems: g.max_stems,
+        ..req
     }
 }
 
@@ -213,33 +172,32 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
             Some("none") => Some(None),
             Some(c) => Some(Some(colour(c, "--background")?)),
         },
-        show_layout: a.show_layout,
+        show_layout: if a.show_layout {
+            ShowLayout::Yes
+        } else {
+            ShowLayout::No
+        },
     };
-    let opts = RenderOptions {
-        format,
-        size: a.size,
-        max_svg_segments: a.max_svg_segments,
-        exact: a.exact,
+    let req = Request {
+        derivation: a.strategy,
+        depth: a.depth,
+        look,
+        image: RenderOptions {
+            format,
+            size: a.size,
+            max_svg_segments: a.max_svg_segments,
+            exact: a.exact,
+        },
+        ..with_growth(request(&a.input, limits, source)?, a.grow.growth, &a.grow)
     };
-    let (scene, mut warnings) = scene(
-        &a.input, &a.grow, a.strategy, a.depth, &limits, quiet, source,
-    )?;
     let mut bar = Bar::new(quiet);
-    if a.show_layout && !scene.has_layout() {
-        warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
-            flag: "--show-layout".into(),
-            reason: "this input has no LAYOUT to show".into(),
-        }));
-    }
-    let mut rendered = None;
+    let mut drawn = None;
     output.write_with(|out| {
-        rendered = Some(pipeline::render(&scene, &look, &opts, out, &mut bar)?);
+        drawn = Some(req.render(out, &mut bar)?);
         Ok(())
     })?;
     bar.finish();
-    warnings.extend(scene.warnings);
-    warnings.extend(rendered.map(|r| r.warnings).unwrap_or_default());
-    Ok(warnings)
+    Ok(drawn.map(|d| d.warnings).unwrap_or_default())
 }
 
 /// A colour given on the command line.
@@ -269,17 +227,18 @@ fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
         None => sibling(&input, "bed").unwrap_or(Output::Stdout),
     };
     not_the_input(&input, &output)?;
-    let loaded = load(&a.input, &limits, source)?;
-    let opts = grow_options(a.strategy.or(a.grow.growth), &a.grow, a.input.seed, &limits);
+    let req = with_growth(
+        request(&a.input, limits, source)?,
+        a.strategy.or(a.grow.growth),
+        &a.grow,
+    );
     let mut bar = Bar::new(quiet);
-    let compiled = pipeline::compile(&loaded, &opts, &mut bar)?;
+    let (compiled, warnings) = req.compile(&mut bar)?;
     bar.finish();
     output.write_with(|out| {
         out.write_all(compiled.text.as_bytes())
             .map_err(|e| io_error(&e, "cannot write the BED").into())
     })?;
-    let mut warnings = pipeline::ignored_flags(&loaded, &given(&a.grow, None, a.input.seed));
-    warnings.extend(compiled.grown.warnings);
     Ok(warnings)
 }
 
@@ -288,25 +247,30 @@ fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
     let input = Input::parse(&a.input.input);
     let output = Output::parse(&a.output);
     not_the_input(&input, &output)?;
-    let (scene, mut warnings) = scene(
-        &a.input, &a.grow, a.strategy, a.depth, &limits, quiet, source,
-    )?;
+    let req = Request {
+        derivation: a.strategy,
+        depth: a.depth,
+        ..with_growth(request(&a.input, limits, source)?, a.grow.growth, &a.grow)
+    };
     let mut bar = Bar::new(quiet);
-    output.write_with(|out| pipeline::expand(&scene, out, &mut bar))?;
+    let mut warnings = Vec::new();
+    output.write_with(|out| {
+        warnings = req.expand(out, &mut bar)?;
+        Ok(())
+    })?;
     bar.finish();
-    warnings.extend(scene.warnings);
     Ok(warnings)
 }
 
 fn stats(a: &StatsArgs, source: &mut Source) -> Outcome {
     let limits = a.limits.limits(Some(&a.symbol_limits), None, None, None);
-    let loaded = load(&a.input, &limits, source)?;
-    print_out(&pipeline::stats(&loaded, a.depth, a.json, &limits)?)?;
-    let seed = Given {
-        seed: a.input.seed.is_some(),
-        ..Given::default()
+    let req = Request {
+        depth: a.depth,
+        ..request(&a.input, limits, source)?
     };
-    Ok(pipeline::ignored_flags(&loaded, &seed))
+    let (text, warnings) = req.stats(a.json)?;
+    print_out(&text)?;
+    Ok(warnings)
 }
 
 fn check(a: &CheckArgs, source: &mut Source) -> Outcome {
@@ -316,15 +280,10 @@ fn check(a: &CheckArgs, source: &mut Source) -> Outcome {
         Some(&a.layout_limits),
         a.grow.max_stems,
     );
-    let loaded = load(&a.input, &limits, source)?;
-    let mut warnings = pipeline::ignored_flags(&loaded, &given(&a.grow, None, a.input.seed));
-    let checked = pipeline::check(
-        &loaded,
-        &grow_options(a.grow.growth, &a.grow, a.input.seed, &limits),
-    )?;
+    let req = with_growth(request(&a.input, limits, source)?, a.grow.growth, &a.grow);
+    let checked = req.check()?;
     print_out(&checked.summary)?;
-    warnings.extend(checked.warnings);
-    Ok(warnings)
+    Ok(checked.warnings)
 }
 
 fn print_out(text: &str) -> Result<(), Diagnostics> {

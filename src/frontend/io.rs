@@ -15,32 +15,7 @@ use std::fs;
 use std::io::{self, BufWriter, IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 
-use std::sync::Mutex;
-
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
-
-/// The temporary file being written, if any: an interrupt removes it
-/// before the process exits ([`remove_pending`]).
-static PENDING: Mutex<Option<PathBuf>> = Mutex::new(None);
-
-/// Removes the temporary file being written, if any (the interrupt
-/// handler calls it; the target was never touched).
-pub fn remove_pending() {
-    let pending = match PENDING.lock() {
-        Ok(mut p) => p.take(),
-        Err(poisoned) => poisoned.into_inner().take(),
-    };
-    if let Some(p) = pending {
-        let _ = fs::remove_file(p);
-    }
-}
-
-fn set_pending(path: Option<PathBuf>) {
-    match PENDING.lock() {
-        Ok(mut p) => *p = path,
-        Err(poisoned) => *poisoned.into_inner() = path,
-    }
-}
 
 /// Whether `output` names the same file as `input` (the same device and
 /// inode, which covers links and different spellings of one path). An
@@ -244,10 +219,8 @@ fn write_atomically(
         })
         .with_help("check that the directory exists and is writable")
     })?;
-    set_pending(Some(tmp.path().to_path_buf()));
-    let result = write_temp(tmp, existing, target, write);
-    set_pending(None);
-    result
+    let _pending = super::interrupt::Pending::new(tmp.path().to_path_buf());
+    write_temp(tmp, existing, target, write)
 }
 
 /// Fills the temporary file and renames it over `target`.

@@ -24,8 +24,22 @@ pub struct Look {
     /// `background`, a description's `G=`), else white. `Some(None)` is
     /// transparent.
     pub background: Option<Option<Rgb>>,
-    /// Paint the layout's shapes under a tree (`--show-layout`).
-    pub show_layout: bool,
+    /// Whether to paint the layout's shapes under a tree.
+    pub show_layout: ShowLayout,
+}
+
+/// Whether a picture shows the layout's shapes under the tree.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShowLayout {
+    /// The tree alone (the default).
+    #[default]
+    No,
+    /// Asked for (`--show-layout`): an input with no LAYOUT to show gets
+    /// a warning.
+    Yes,
+    /// Wherever there is one, without a word where there is none (an
+    /// editor, which shows every input's layout).
+    IfAny,
 }
 
 /// The default stroke of STL trees: a dark bark brown.
@@ -112,7 +126,7 @@ pub fn render(
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
     let style = style(scene, look);
-    let (view, underlay) = layout_view(scene, look.show_layout);
+    let (view, underlay) = layout_view(scene, look.show_layout != ShowLayout::No);
     // At a level of detail, an L-system's memoized geometry (when it
     // applies) is built once and serves the whole render: fitting (no
     // bounding pass), an SVG's count and the drawing.

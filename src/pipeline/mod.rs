@@ -22,25 +22,37 @@
 //! failure is a [`Diagnostics`] value.
 
 mod draw;
+mod request;
 mod summary;
 
 pub use draw::{
-    Given, Look, Rendered, TREE_BROWN, ignored_flags, image_format, layout_view, render, style,
+    Given, Look, Rendered, ShowLayout, TREE_BROWN, ignored_flags, image_format, layout_view,
+    render, style,
 };
+pub use request::{Drawn, Request};
 pub use summary::{Checked, check, stats};
+
+// What front ends name, reached through the pipeline: the enums their
+// options take, the limits, colours, progress sinks and what comes back.
+pub use crate::color::Rgb;
+pub use crate::grow::{GrowthOrder, PlacedStem};
+pub use crate::interpret::Derivation;
+pub use crate::limits::Limits;
+pub use crate::progress::{NoProgress, Progress};
+pub use crate::render::{DEFAULT_MAX_SVG_SEGMENTS, ImageFormat, RenderOptions};
+pub use crate::syntax::InputKind;
+pub use crate::turtle::BBox;
 
 use std::io::Write;
 use std::path::Path;
 
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
-use crate::grow::{GrowOptions, Grown, PlacedStem};
-use crate::interpret::Derivation;
-use crate::limits::Limits;
+use crate::grow::{GrowOptions, Grown};
 use crate::model::lsys::LSystem;
 use crate::model::{Description, Format};
-use crate::progress::{Phase, Progress};
-use crate::syntax::{self, InputKind};
+use crate::progress::Phase;
+use crate::syntax;
 use crate::turtle::Turtle;
 
 /// A parsed input.
@@ -201,20 +213,15 @@ pub fn compile(
     Ok(Compiled { grown, text })
 }
 
-/// [`compile`], and the stems in the order growth placed them
-/// ([`crate::grow::grow_traced`]): what an editor's growth replay shows.
-/// The BED text is the same as [`compile`]'s.
-pub fn compile_traced(
-    loaded: &Loaded,
-    opts: &GrowOptions,
-    progress: &mut dyn Progress,
-) -> Result<(Compiled, Vec<PlacedStem>), Diagnostics> {
-    let Loaded::Od(od) = loaded else {
-        return Err(wrong_kind(Command::Compile, loaded.kind()));
-    };
-    let (grown, placed) = crate::grow::grow_traced(od, opts, &mut Phase::new(progress, "growing"))?;
-    let text = crate::bed::write::write(grown.bed.description());
-    Ok((Compiled { grown, text }, placed))
+/// A grown tree as an editor replays it: the BED's text (the same as
+/// [`compile`]'s) and its stems in the order growth placed them
+/// ([`crate::grow::grow_traced`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TraceTree {
+    /// The BED as canonical text.
+    pub text: String,
+    /// The stems in growth order, each with its decision.
+    pub placed: Vec<PlacedStem>,
 }
 
 /// Grows `od`, reporting progress as `growing: ...`.
@@ -295,6 +302,38 @@ pub fn scene(
         limits: req.limits,
         warnings,
     })
+}
+
+/// [`scene`], and for an OD the description as read and, if `trace`,
+/// the grown tree as an editor replays it ([`TraceTree`]): one growth
+/// for both.
+fn traced_scene(
+    loaded: Loaded,
+    req: &SceneRequest,
+    trace: bool,
+    progress: &mut dyn Progress,
+) -> Result<(Scene, Option<Description>, Option<TraceTree>), Diagnostics> {
+    let Loaded::Od(od) = loaded else {
+        return Ok((scene(loaded, req, progress)?, None, None));
+    };
+    let (grown, traced) = if trace {
+        let (grown, placed) =
+            crate::grow::grow_traced(&od, &req.grow, &mut Phase::new(progress, "growing"))?;
+        let text = crate::bed::write::write(grown.bed.description());
+        (grown, Some(TraceTree { text, placed }))
+    } else {
+        (grow(&od, &req.grow, progress)?, None)
+    };
+    let scene = Scene {
+        what: What::Tree {
+            bed: Box::new(grown.bed),
+            grown: Some(grown.stems),
+        },
+        derivation: req.derivation,
+        limits: req.limits,
+        warnings: grown.warnings,
+    };
+    Ok((scene, Some(od), traced))
 }
 
 impl Scene {

@@ -1,362 +1,407 @@
-//! The JSON API of `stlc serve`: a request's fields mapped to library
-//! pipeline requests ([`stlc::pipeline`]), and what comes back as JSON.
+//! The JSON API of `stlc serve`, typed: the request body ([`Body`]) and
+//! what comes back ([`RenderAnswer`], [`Failed`]), derived with serde, and
+//! the one mapping from a body to a [`pipeline::Request`].
 //!
 //! No pipeline logic lives here: loading, growing, the BED text, the SVG
-//! and the PNG all come from the same library calls `stlc compile` and
-//! `stlc render` make, so the bytes are the same for the same options.
+//! and the PNG all come from [`Request::render`], the call `stlc render`
+//! makes, so the bytes are the same for the same options.
+//!
+//! A field the API does not know is refused (HTTP 400, naming it): a
+//! misspelt `"clearence"` would otherwise be ignored in silence.
 
-use serde_json::{Map, Value, json};
+use serde::{Deserialize, Serialize};
 
-use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, line_column};
-use stlc::grow::{GrowOptions, GrowthOrder, PlacedStem};
-use stlc::interpret::Derivation;
-use stlc::limits::Limits;
+use stlc::diag::{Diagnostic, Diagnostics, line_column};
 use stlc::model::Description;
 use stlc::model::layout::Shape;
-use stlc::pipeline::{self, Given, Loaded, Look, SceneRequest};
-use stlc::progress::NoProgress;
-use stlc::render::{ImageFormat, RenderOptions};
-use stlc::syntax::InputKind;
-
-/// What a request asks for, once its JSON is read.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Request {
-    /// The text.
-    pub source: String,
-    /// Its kind; `None`: guessed from the text, as for standard input.
-    pub kind: Option<InputKind>,
-    /// Growth order of an .od (`--growth`).
-    pub growth: GrowthOrder,
-    /// Derivation depth of an .lsys (`--depth`).
-    pub depth: Option<u32>,
-    /// `--clearance`.
-    pub clearance: Option<f64>,
-    /// `--max-stems`.
-    pub max_stems: Option<u64>,
-    /// `--seed` of stochastic rules.
-    pub seed: Option<u64>,
-}
+use stlc::pipeline::{
+    Derivation, GrowthOrder, ImageFormat, InputKind, Limits, NoProgress, RenderOptions, Request,
+    ShowLayout,
+};
 
 /// The server's own settings that every request works within.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
     /// The `--max-*` limits `stlc serve` was started with.
     pub limits: Limits,
-    /// Whether `--max-stems` was given to `stlc serve`.
-    pub max_stems_explicit: bool,
+    /// `--max-stems` of `stlc serve`, if given.
+    pub max_stems: Option<u64>,
     /// `--max-svg-segments`.
     pub max_svg_segments: u64,
+}
+
+/// A request body: `{"source", "kind"?, "strategy"?, "depth"?,
+/// "clearance"?, "max_stems"?, "seed"?}`. Absent and `null` fields take
+/// their defaults; any other field is refused.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Body {
+    /// The text.
+    pub source: String,
+    /// Its kind; `None`: guessed from the text, as for standard input.
+    #[serde(default)]
+    pub kind: Option<Kind>,
+    /// Growth order of an .od (`--growth`).
+    #[serde(default)]
+    pub strategy: Option<Order>,
+    /// Derivation depth of an .lsys (`--depth`).
+    #[serde(default)]
+    pub depth: Option<u32>,
+    /// `--clearance`.
+    #[serde(default)]
+    pub clearance: Option<f64>,
+    /// `--max-stems`.
+    #[serde(default)]
+    pub max_stems: Option<u64>,
+    /// `--seed` of stochastic rules: a number, or a string of digits (a
+    /// seed may be any u64, past what a JavaScript number holds exactly).
+    #[serde(default)]
+    pub seed: Option<Seed>,
+}
+
+/// `"od"`, `"bed"` or `"lsys"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Kind {
+    /// An Outline Description.
+    Od,
+    /// A Branch-Expansion Description.
+    Bed,
+    /// A classic L-system.
+    Lsys,
+}
+
+impl From<Kind> for InputKind {
+    fn from(k: Kind) -> Self {
+        match k {
+            Kind::Od => InputKind::Od,
+            Kind::Bed => InputKind::Bed,
+            Kind::Lsys => InputKind::Lsys,
+        }
+    }
+}
+
+impl From<InputKind> for Kind {
+    fn from(k: InputKind) -> Self {
+        match k {
+            InputKind::Od => Kind::Od,
+            InputKind::Bed => Kind::Bed,
+            InputKind::Lsys => Kind::Lsys,
+        }
+    }
+}
+
+/// `"bfs"` or `"dfs"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Order {
+    /// Breadth-first.
+    Bfs,
+    /// Depth-first.
+    Dfs,
+}
+
+/// A seed: a JSON number or a string of digits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(try_from = "SeedText")]
+pub struct Seed(pub u64);
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum SeedText {
+    Number(u64),
+    Text(String),
+}
+
+impl TryFrom<SeedText> for Seed {
+    type Error = String;
+    fn try_from(s: SeedText) -> Result<Self, String> {
+        match s {
+            SeedText::Number(n) => Ok(Seed(n)),
+            SeedText::Text(t) => t.trim().parse().map(Seed).map_err(|_| {
+                format!(
+                    "`seed` must be a whole number from 0 to {}, not `{t}`",
+                    u64::MAX
+                )
+            }),
+        }
+    }
 }
 
 /// A malformed request (HTTP 400): the JSON is not what the API takes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BadRequest(pub String);
 
-/// Reads a request body: `{"source": TEXT, "kind"?, "strategy"?, "depth"?,
-/// "clearance"?, "max_stems"?, "seed"?}`; absent and `null` fields take defaults;
-/// `seed` is a number or a string of digits.
-pub fn parse_request(body: &[u8]) -> Result<(Request, Map<String, Value>), BadRequest> {
-    let value: Value =
-        serde_json::from_slice(body).map_err(|e| BadRequest(format!("malformed JSON: {e}")))?;
-    let Value::Object(obj) = value else {
-        return Err(BadRequest("the body must be a JSON object".into()));
-    };
-    let field = |name: &str| obj.get(name).filter(|v| !v.is_null());
-    let source = match field("source") {
-        Some(Value::String(s)) => s.clone(),
-        _ => return Err(BadRequest("`source` must be a string".into())),
-    };
-    let kind = match field("kind") {
-        None => None,
-        Some(Value::String(k)) => Some(match k.as_str() {
-            "od" => InputKind::Od,
-            "bed" => InputKind::Bed,
-            "lsys" => InputKind::Lsys,
-            _ => {
-                return Err(BadRequest(
-                    "`kind` must be \"od\", \"bed\" or \"lsys\"".into(),
-                ));
-            }
-        }),
-        Some(_) => return Err(BadRequest("`kind` must be a string".into())),
-    };
-    let growth = match field("strategy") {
-        None => GrowthOrder::Bfs,
-        Some(Value::String(s)) if s == "bfs" => GrowthOrder::Bfs,
-        Some(Value::String(s)) if s == "dfs" => GrowthOrder::Dfs,
-        Some(_) => return Err(BadRequest("`strategy` must be \"bfs\" or \"dfs\"".into())),
-    };
-    let whole = |name: &str| -> Result<Option<u64>, BadRequest> {
-        match field(name) {
-            None => Ok(None),
-            Some(v) => v
-                .as_u64()
-                .map(Some)
-                .ok_or_else(|| BadRequest(format!("`{name}` must be a whole number >= 0"))),
-        }
-    };
-    let depth = match whole("depth")? {
-        None => None,
-        Some(d) => Some(u32::try_from(d).map_err(|_| BadRequest("`depth` is too large".into()))?),
-    };
-    let max_stems = whole("max_stems")?;
-    // A seed may be any u64, past what a JavaScript number holds exactly
-    // (2^53), so the page sends it as a string of digits.
-    let seed = match field("seed") {
-        Some(Value::String(t)) => Some(t.trim().parse::<u64>().map_err(|_| {
-            BadRequest(format!(
-                "`seed` must be a whole number from 0 to {}, not `{t}`",
-                u64::MAX
-            ))
-        })?),
-        _ => whole("seed")?,
-    };
-    let clearance = match field("clearance") {
-        None => None,
-        Some(v) => Some(
-            v.as_f64()
-                .ok_or_else(|| BadRequest("`clearance` must be a number".into()))?,
-        ),
-    };
-    Ok((
+/// Reads a request body.
+pub fn parse(body: &[u8]) -> Result<Body, BadRequest> {
+    serde_json::from_slice(body).map_err(|e| BadRequest(format!("malformed request: {e}")))
+}
+
+impl Body {
+    /// The pipeline request this body asks for, drawn as the editor shows
+    /// it: with the layout underneath, the default size and level of
+    /// detail (the CLI's defaults, so the same bytes), depth-first.
+    pub fn request(&self, s: &Settings, format: ImageFormat) -> Request {
         Request {
-            source,
-            kind,
-            growth,
-            depth,
-            clearance,
-            max_stems,
-            seed,
-        },
-        obj,
-    ))
-}
-
-/// The limits and growth options of one request: the server's, with the
-/// page's stem limit if it asked for one within the server's.
-fn options(req: &Request, s: &Settings) -> Result<(Limits, GrowOptions), Diagnostics> {
-    let mut limits = s.limits;
-    let mut explicit = s.max_stems_explicit;
-    if let Some(n) = req.max_stems {
-        if n > s.limits.max_stems {
-            return Err(Diagnostic::error(ErrorKind::Limit {
-                what: "max stems asked for".into(),
-                value: n.to_string(),
-                limit: s.limits.max_stems.to_string(),
-            })
-            .with_help("ask for fewer, or start `stlc serve` with --max-stems N")
-            .into());
+            kind: self.kind.map(InputKind::from),
+            derivation: Derivation::Dfs,
+            growth: self.strategy.map(|o| match o {
+                Order::Bfs => GrowthOrder::Bfs,
+                Order::Dfs => GrowthOrder::Dfs,
+            }),
+            depth: self.depth,
+            seed: self.seed.map(|s| s.0),
+            clearance: self.clearance,
+            max_stems: self.max_stems.or(s.max_stems),
+            limits: s.limits,
+            look: stlc::pipeline::Look {
+                show_layout: ShowLayout::IfAny,
+                ..Default::default()
+            },
+            image: RenderOptions {
+                max_svg_segments: s.max_svg_segments,
+                ..RenderOptions::new(format, None)
+            },
+            trace: true,
+            ..Request::new(self.source.clone().into_bytes())
         }
-        limits.max_stems = n;
-        explicit = true;
     }
-    let grow = GrowOptions {
-        growth: req.growth,
-        clearance: req.clearance,
-        limits,
-        max_stems_explicit: explicit,
-        seed: req.seed.unwrap_or(0),
-    };
-    Ok((limits, grow))
 }
 
-/// What a request grew and drew.
-struct Outcome {
-    svg: String,
-    bed: Option<String>,
-    stems: u64,
-    placed: Vec<PlacedStem>,
-    view: Option<[f64; 4]>,
-    warnings: Vec<Diagnostic>,
-    /// An .od's root and LAYOUT as JSON, for the page to draw and edit.
-    od: Option<(Value, Value)>,
+/// The answer of `POST /api/render` when the input could be drawn.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RenderAnswer {
+    /// Always `true`.
+    pub ok: bool,
+    /// The picture, as `stlc render -f svg --show-layout` writes it.
+    pub svg: String,
+    /// The grown BED (an .od only), as `stlc compile` writes it.
+    pub bed: Option<String>,
+    /// Stems grown (an .od), else segments drawn.
+    pub stems: u64,
+    /// Warnings.
+    pub warnings: Vec<DiagnosticJson>,
+    /// The stems in growth order, for the replay.
+    pub growth: Growth,
+    /// The layout's canvas area `[min_x, min_y, max_x, max_y]`, if any.
+    pub view: Option<[f64; 4]>,
+    /// An .od's root, where it is written.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub root: Option<RootJson>,
+    /// An .od's LAYOUT as written (`null` without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub layout: Option<Option<LayoutJson>>,
 }
 
-/// Loads, grows (an .od) and draws the request's input as `format`: the
-/// library calls `stlc compile` and `stlc render --show-layout` make.
-fn run(
-    req: &Request,
+/// The stems in growth order: six numbers a stem (`from.x, from.y, to.x,
+/// to.y, width, decision`), three decimals; and the last decision.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Growth {
+    /// Six numbers a stem.
+    pub stems: Vec<f64>,
+    /// The last decision's number.
+    pub decisions: u64,
+}
+
+/// The answer for an input error: `{"ok": false, "diagnostics": [...]}`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Failed {
+    /// Always `false`.
+    pub ok: bool,
+    /// What went wrong.
+    pub diagnostics: Vec<DiagnosticJson>,
+}
+
+impl Failed {
+    /// The answer for `diags` about `text`.
+    pub fn new(text: &str, diags: &Diagnostics) -> Self {
+        let list: Vec<Diagnostic> = diags.iter().cloned().collect();
+        Failed {
+            ok: false,
+            diagnostics: diagnostics_json(text, &list),
+        }
+    }
+
+    /// One error without a place.
+    pub fn message(message: &str, help: &str) -> Self {
+        Failed {
+            ok: false,
+            diagnostics: vec![DiagnosticJson {
+                message: message.into(),
+                severity: "error",
+                line: None,
+                column: None,
+                end_line: None,
+                end_column: None,
+                label: None,
+                help: Some(help.into()),
+            }],
+        }
+    }
+}
+
+/// A diagnostic: message, severity, 1-based line and column of the span's
+/// start and end (`null` when it has none; columns count characters, not
+/// bytes or UTF-16 units), label, help.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DiagnosticJson {
+    message: String,
+    severity: &'static str,
+    line: Option<usize>,
+    column: Option<usize>,
+    end_line: Option<usize>,
+    end_column: Option<usize>,
+    label: Option<String>,
+    help: Option<String>,
+}
+
+/// An .od's root as written, and where (UTF-16 offsets: JavaScript string
+/// indices), so the page can move it; a forest's further roots as
+/// `others` (drawn, not moved by the page).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RootJson {
+    x: f64,
+    y: f64,
+    start: usize,
+    end: usize,
+    others: Vec<Point>,
+}
+
+/// A point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Point {
+    x: f64,
+    y: f64,
+}
+
+/// The LAYOUT as written: its shapes in painting order, each with its
+/// geometry and colour, and where the section is (UTF-16 offsets), so the
+/// page can draw the shapes and write the section anew.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LayoutJson {
+    start: usize,
+    end: usize,
+    shapes: Vec<ShapeJson>,
+}
+
+/// A shape as the page draws it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ShapeJson {
+    #[serde(flatten)]
+    geometry: Geometry,
+    /// `#rrggbb`.
+    color: String,
+    /// The colour's Delphi name if it has one, else `#rrggbb`.
+    name: String,
+}
+
+/// A shape's geometry, tagged by its STL name.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "type")]
+enum Geometry {
+    Rectangle {
+        x: f64,
+        y: f64,
+        w: f64,
+        h: f64,
+    },
+    RoundRect {
+        x: f64,
+        y: f64,
+        w: f64,
+        h: f64,
+        rx: f64,
+        ry: f64,
+    },
+    Ellipse {
+        x: f64,
+        y: f64,
+        w: f64,
+        h: f64,
+    },
+    Polygon {
+        points: Vec<[f64; 2]>,
+    },
+}
+
+/// What a render request drew, in the answer's terms, and the image's bytes.
+pub fn run(
+    body: &Body,
     s: &Settings,
     format: ImageFormat,
-) -> Result<(Outcome, Vec<u8>), Diagnostics> {
-    let (limits, grow) = options(req, s)?;
-    let bytes = req.source.as_bytes();
-    let kind = match req.kind {
-        Some(k) => k,
-        None => pipeline::detect_kind(None, bytes)?,
-    };
-    let loaded = pipeline::load(bytes, kind, &limits)?.seeded(req.seed);
-    let given = Given {
-        growth: false,
-        clearance: req.clearance.is_some(),
-        max_stems: req.max_stems.is_some(),
-        depth: req.depth.is_some(),
-        seed: req.seed.is_some(),
-    };
-    let mut warnings = pipeline::ignored_flags(&loaded, &given);
-    let scene_req = SceneRequest {
-        grow,
-        derivation: Derivation::Dfs,
-        depth: req.depth,
-        limits,
-    };
-    let (scene, bed, stems, placed, od) = match &loaded {
-        Loaded::Od(desc) => {
-            let drawn = (root_json(&req.source, desc), layout_json(&req.source, desc));
-            let (compiled, placed) = pipeline::compile_traced(&loaded, &grow, &mut NoProgress)?;
-            warnings.extend(compiled.grown.warnings);
-            let stems = compiled.grown.stems;
-            // The grown BED drawn as it is: the same tree `render x.od`
-            // grows and draws, grown once.
-            let scene =
-                pipeline::scene(Loaded::Bed(compiled.grown.bed), &scene_req, &mut NoProgress)?;
-            (scene, Some(compiled.text), Some(stems), placed, Some(drawn))
-        }
-        _ => {
-            let scene = pipeline::scene(loaded, &scene_req, &mut NoProgress)?;
-            (scene, None, None, Vec::new(), None)
-        }
-    };
-    warnings.extend(scene.warnings.iter().cloned());
-    let look = Look {
-        show_layout: scene.has_layout(),
-        ..Look::default()
-    };
-    let opts = RenderOptions {
-        format,
-        size: None,
-        max_svg_segments: s.max_svg_segments,
-        // The CLI's default level of detail (no `--exact`): the same bytes.
-        exact: false,
-    };
+) -> Result<(RenderAnswer, Vec<u8>), Failed> {
+    let req = body.request(s, format);
+    let text = &body.source;
     let mut image = Vec::new();
-    let rendered = pipeline::render(&scene, &look, &opts, &mut image, &mut NoProgress)?;
-    warnings.extend(rendered.warnings);
-    let view = pipeline::layout_view(&scene, false)
-        .0
-        .map(|b| [b.min_x, b.min_y, b.max_x, b.max_y]);
+    let drawn = req
+        .render(&mut image, &mut NoProgress)
+        .map_err(|d| Failed::new(text, &d))?;
+    let (bed, placed) = match drawn.trace {
+        Some(t) => (Some(t.text), t.placed),
+        None => (None, Vec::new()),
+    };
+    let mut stems = Vec::with_capacity(placed.len() * 6);
+    let mut decisions = 0;
+    for p in &placed {
+        stems.extend([
+            round(p.from.x),
+            round(p.from.y),
+            round(p.to.x),
+            round(p.to.y),
+            round(p.width),
+            p.decision as f64,
+        ]);
+        decisions = decisions.max(p.decision);
+    }
     let svg = match format {
-        ImageFormat::Svg => String::from_utf8(image.clone()).unwrap_or_default(),
+        ImageFormat::Svg => String::from_utf8_lossy(&image).into_owned(),
         ImageFormat::Png => String::new(),
     };
-    Ok((
-        Outcome {
-            svg,
-            bed,
-            stems: stems.unwrap_or(rendered.segments),
-            placed,
-            view,
-            warnings,
-            od,
-        },
-        image,
-    ))
-}
-
-/// `POST /api/render`: the answer as JSON (always HTTP 200 once the
-/// request itself is well formed).
-pub fn render(req: &Request, s: &Settings) -> Value {
-    match run(req, s, ImageFormat::Svg) {
-        Ok((out, _)) => {
-            let mut growth = Vec::with_capacity(out.placed.len() * 6);
-            let mut decisions = 0;
-            for p in &out.placed {
-                growth.extend([
-                    round(p.from.x),
-                    round(p.from.y),
-                    round(p.to.x),
-                    round(p.to.y),
-                    round(p.width),
-                    Value::from(p.decision),
-                ]);
-                decisions = decisions.max(p.decision);
-            }
-            let text = &req.source;
-            let mut answer = json!({
-                "ok": true,
-                "svg": out.svg,
-                "bed": out.bed,
-                "stems": out.stems,
-                "warnings": diagnostics_json(text, &out.warnings),
-                "growth": {"stems": growth, "decisions": decisions},
-                "view": out.view,
-            });
-            if let Some((root, layout)) = out.od {
-                answer["root"] = root;
-                answer["layout"] = layout;
-            }
-            answer
-        }
-        Err(diags) => failed(&req.source, &diags),
-    }
-}
-
-/// `POST /api/export`: the file's bytes and media type, or the
-/// diagnostics as JSON.
-pub fn export(req: &Request, s: &Settings, format: &str) -> Result<(Vec<u8>, &'static str), Value> {
-    let image = match format {
-        "png" => ImageFormat::Png,
-        "svg" | "bed" => ImageFormat::Svg,
-        _ => unreachable!("checked by the caller"),
+    let answer = RenderAnswer {
+        ok: true,
+        svg,
+        bed,
+        stems: drawn.grown.unwrap_or(drawn.segments),
+        warnings: diagnostics_json(text, &drawn.warnings),
+        growth: Growth { stems, decisions },
+        view: drawn.view.map(|b| [b.min_x, b.min_y, b.max_x, b.max_y]),
+        root: drawn.od.as_ref().map(|od| root_json(text, od)),
+        layout: drawn.od.as_ref().map(|od| layout_json(text, od)),
     };
-    let (out, bytes) = run(req, s, image).map_err(|d| failed(&req.source, &d))?;
-    match format {
-        "png" => Ok((bytes, "image/png")),
-        "svg" => Ok((bytes, "image/svg+xml")),
-        _ => match out.bed {
-            Some(bed) => Ok((bed.into_bytes(), "text/plain; charset=utf-8")),
-            None => Err(json!({"ok": false, "diagnostics": [{
-                "message": "only an .od grows into a BED",
-                "severity": "error", "line": null, "column": null,
-                "end_line": null, "end_column": null,
-                "help": "export a picture instead", "label": null,
-            }]})),
-        },
-    }
+    Ok((answer, image))
 }
 
-/// The answer for an input error.
-fn failed(text: &str, diags: &Diagnostics) -> Value {
-    let list: Vec<Diagnostic> = diags.iter().cloned().collect();
-    json!({"ok": false, "diagnostics": diagnostics_json(text, &list)})
-}
-
-/// A number with three decimals, as JSON (a replay needs no more).
-fn round(x: f64) -> Value {
+/// A number with three decimals (a replay needs no more), never `-0`.
+fn round(x: f64) -> f64 {
     let r = (x * 1000.0).round() / 1000.0;
-    serde_json::Number::from_f64(if r == 0.0 { 0.0 } else { r }).map_or(Value::Null, Value::Number)
+    if r == 0.0 { 0.0 } else { r }
 }
 
-/// Diagnostics as JSON: message, severity, 1-based line and column of the
-/// span's start and end (`null` when it has none), label, help.
-pub fn diagnostics_json(text: &str, diags: &[Diagnostic]) -> Value {
-    Value::Array(
-        diags
-            .iter()
-            .map(|d| {
-                let at = |p: usize| {
-                    let p = floor_char(text, p.min(text.len()));
-                    line_column(text, p)
-                };
-                let (start, end) = match &d.span {
-                    Some(span) if span.end <= text.len() => {
-                        (Some(at(span.start)), Some(at(span.end)))
-                    }
-                    _ => (None, None),
-                };
-                json!({
-                    "message": d.kind.to_string(),
-                    "severity": if d.is_error() { "error" } else { "warning" },
-                    "line": start.map(|s| s.0),
-                    "column": start.map(|s| s.1),
-                    "end_line": end.map(|e| e.0),
-                    "end_column": end.map(|e| e.1),
-                    "label": d.label,
-                    "help": d.help,
-                })
-            })
-            .collect(),
-    )
+/// Diagnostics in the answer's terms.
+pub fn diagnostics_json(text: &str, diags: &[Diagnostic]) -> Vec<DiagnosticJson> {
+    diags
+        .iter()
+        .map(|d| {
+            let at = |p: usize| {
+                let p = floor_char(text, p.min(text.len()));
+                line_column(text, p)
+            };
+            let (start, end) = match &d.span {
+                Some(span) if span.end <= text.len() => (Some(at(span.start)), Some(at(span.end))),
+                _ => (None, None),
+            };
+            DiagnosticJson {
+                message: d.kind.to_string(),
+                severity: if d.is_error() { "error" } else { "warning" },
+                line: start.map(|s| s.0),
+                column: start.map(|s| s.1),
+                end_line: end.map(|e| e.0),
+                end_column: end.map(|e| e.1),
+                label: d.label.clone(),
+                help: d.help.clone(),
+            }
+        })
+        .collect()
 }
 
 fn floor_char(text: &str, mut i: usize) -> usize {
@@ -372,64 +417,67 @@ fn utf16(text: &str, byte: usize) -> usize {
     text[..b].encode_utf16().count()
 }
 
-/// Where the root is written, and where, so the page can move it; a
-/// forest's further roots as `others` (drawn, not moved by the page).
-fn root_json(text: &str, od: &Description) -> Value {
+fn root_json(text: &str, od: &Description) -> RootJson {
     let span = &od.root_loc.0;
-    let others: Vec<Value> = od
-        .forest
-        .iter()
-        .map(|t| json!({"x": t.root.0, "y": t.root.1}))
-        .collect();
-    json!({
-        "x": od.root.0,
-        "y": od.root.1,
-        "start": utf16(text, span.start),
-        "end": utf16(text, span.end),
-        "others": others,
-    })
+    RootJson {
+        x: od.root.0,
+        y: od.root.1,
+        start: utf16(text, span.start),
+        end: utf16(text, span.end),
+        others: od
+            .forest
+            .iter()
+            .map(|t| Point {
+                x: t.root.0,
+                y: t.root.1,
+            })
+            .collect(),
+    }
 }
 
-/// The LAYOUT as written: its shapes in painting order, each with its
-/// geometry and colour, and where the section is, so the page can draw
-/// the shapes and write the section anew.
-fn layout_json(text: &str, od: &Description) -> Value {
-    let Some(layout) = &od.layout else {
-        return Value::Null;
-    };
-    let shapes: Vec<Value> = layout
+fn layout_json(text: &str, od: &Description) -> Option<LayoutJson> {
+    let layout = od.layout.as_ref()?;
+    let shapes = layout
         .shapes
         .iter()
-        .map(|s| {
-            let mut v = match &s.shape {
-                Shape::Rect { x, y, w, h } => {
-                    json!({"type": "Rectangle", "x": x, "y": y, "w": w, "h": h})
-                }
-                Shape::RoundRect { x, y, w, h, rx, ry } => json!({
-                    "type": "RoundRect", "x": x, "y": y, "w": w, "h": h, "rx": rx, "ry": ry
-                }),
-                Shape::Ellipse { x, y, w, h } => {
-                    json!({"type": "Ellipse", "x": x, "y": y, "w": w, "h": h})
-                }
-                Shape::Polygon(points) => json!({
-                    "type": "Polygon",
-                    "points": points.iter().map(|&(x, y)| json!([x, y])).collect::<Vec<_>>(),
-                }),
-            };
-            v["color"] = Value::String(s.color.to_string());
-            v["name"] = Value::String(
-                s.color
-                    .delphi_name()
-                    .map_or_else(|| s.color.to_string(), str::to_string),
-            );
-            v
+        .map(|s| ShapeJson {
+            geometry: match &s.shape {
+                Shape::Rect { x, y, w, h } => Geometry::Rectangle {
+                    x: *x,
+                    y: *y,
+                    w: *w,
+                    h: *h,
+                },
+                Shape::RoundRect { x, y, w, h, rx, ry } => Geometry::RoundRect {
+                    x: *x,
+                    y: *y,
+                    w: *w,
+                    h: *h,
+                    rx: *rx,
+                    ry: *ry,
+                },
+                Shape::Ellipse { x, y, w, h } => Geometry::Ellipse {
+                    x: *x,
+                    y: *y,
+                    w: *w,
+                    h: *h,
+                },
+                Shape::Polygon(points) => Geometry::Polygon {
+                    points: points.iter().map(|&(x, y)| [x, y]).collect(),
+                },
+            },
+            color: s.color.to_string(),
+            name: s
+                .color
+                .delphi_name()
+                .map_or_else(|| s.color.to_string(), str::to_string),
         })
         .collect();
     let span = &layout.loc.0;
-    json!({
-        "start": utf16(text, span.start),
-        "end": utf16(text, span.end),
-        "shapes": shapes,
+    Some(LayoutJson {
+        start: utf16(text, span.start),
+        end: utf16(text, span.end),
+        shapes,
     })
 }
 
@@ -438,13 +486,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn requests_take_defaults_and_refuse_wrong_types() {
-        let (r, _) =
-            parse_request(br#"{"source": "x", "strategy": "dfs", "depth": null}"#).unwrap();
-        assert_eq!(r.source, "x");
-        assert_eq!(r.growth, GrowthOrder::Dfs);
-        assert_eq!(r.depth, None);
-        assert_eq!(r.kind, None);
+    fn bodies_take_defaults_and_refuse_wrong_types_and_unknown_fields() {
+        let b = parse(br#"{"source": "x", "strategy": "dfs", "depth": null}"#).unwrap();
+        assert_eq!(b.source, "x");
+        assert_eq!(b.strategy, Some(Order::Dfs));
+        assert_eq!(b.depth, None);
+        assert_eq!(b.kind, None);
+        let b = parse(br#"{"source": "x", "seed": "18446744073709551615"}"#).unwrap();
+        assert_eq!(b.seed, Some(Seed(u64::MAX)));
+        assert_eq!(
+            parse(br#"{"source": "x", "seed": 7}"#).unwrap().seed,
+            Some(Seed(7))
+        );
         for bad in [
             &br#"{"source": 3}"#[..],
             br#"[1]"#,
@@ -452,14 +505,14 @@ mod tests {
             br#"{"source": "x", "depth": -1}"#,
             br#"{"source": "x", "depth": 5000000000}"#,
             br#"{"source": "x", "clearance": "1"}"#,
+            br#"{"source": "x", "seed": "-1"}"#,
+            br#"{"kind": "od"}"#,
             b"{",
         ] {
-            assert!(
-                parse_request(bad).is_err(),
-                "{}",
-                String::from_utf8_lossy(bad)
-            );
+            assert!(parse(bad).is_err(), "{}", String::from_utf8_lossy(bad));
         }
+        let BadRequest(m) = parse(br#"{"source": "x", "clearence": 2}"#).unwrap_err();
+        assert!(m.contains("unknown field `clearence`"), "{m}");
     }
 
     #[test]

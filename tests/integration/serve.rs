@@ -652,3 +652,71 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
         assert_eq!(answer.status, 400, "{bad}");
     }
 }
+
+/// The typed edge: the query string is parsed wherever `format` stands, a
+/// field the API does not know is a 400 that names it, and a request with
+/// two `Host` headers, two `Origin` headers, or an absolute URL naming
+/// another host is refused.
+#[test]
+fn the_edge_parses_queries_refuses_unknown_fields_and_doubled_headers() {
+    let server = Server::start(&[]);
+    let addr = &server.addr;
+    let body = json!({"source": example("fig9.od")}).to_string();
+    let svg = request(
+        addr,
+        "POST",
+        "/api/export?x=1&format=svg",
+        &[],
+        body.as_bytes(),
+    );
+    assert_eq!(svg.status, 200);
+    assert!(
+        svg.head.contains("content-type: image/svg+xml"),
+        "{}",
+        svg.head
+    );
+    let fig9 = manifest_path("examples/fig9.od");
+    let cli_svg = cli(&[
+        "render",
+        fig9.to_str().unwrap(),
+        "-f",
+        "svg",
+        "-o",
+        "-",
+        "--show-layout",
+    ]);
+    assert!(svg.body == cli_svg, "the exported SVG is not the CLI's");
+
+    let typo = json!({"source": example("fig9.od"), "clearence": 2}).to_string();
+    let a = request(addr, "POST", "/api/render", &[], typo.as_bytes());
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("unknown field `clearence`"),
+        "{}",
+        String::from_utf8_lossy(&a.body)
+    );
+
+    let twice = format!(
+        "GET / HTTP/1.1\r\nHost: {addr}\r\nHost: evil.example\r\nConnection: close\r\n\r\n"
+    );
+    assert_eq!(raw(addr, twice.as_bytes()).status, 400);
+    let origins = request(
+        addr,
+        "POST",
+        "/api/render",
+        &[
+            ("Origin", &format!("http://{addr}")),
+            ("Origin", "http://evil.example"),
+        ],
+        body.as_bytes(),
+    );
+    assert_eq!(origins.status, 400);
+    let absolute =
+        format!("GET http://evil.example/ HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n");
+    assert_eq!(raw(addr, absolute.as_bytes()).status, 403);
+    let ours = format!("GET http://{addr}/ HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n");
+    assert_eq!(raw(addr, ours.as_bytes()).status, 200);
+}

@@ -1,0 +1,278 @@
+//! One request type for every front end: [`Request`] holds the input and
+//! every option a run can take; its methods run the pipeline and return
+//! everything a front end shows.
+//!
+//! A front end builds a `Request` once from its own inputs (the CLI from its
+//! flags, `stlc serve` from a JSON body) and calls one method:
+//!
+//! | method | what | CLI | serve |
+//! | --- | --- | --- | --- |
+//! | [`Request::render`] | the picture (PNG or SVG) into a writer, and with [`Request::trace`] the BED text and the stems in growth order | `render` | `/api/render`, `/api/export` |
+//! | [`Request::compile`] | an OD grown into BED text | `compile` | |
+//! | [`Request::expand`] | the derived word into a writer | `expand` | |
+//! | [`Request::check`], [`Request::stats`] | summaries | `check`, `stats` | |
+//!
+//! Options a front end was not given are `None`; an option given for an
+//! input it does nothing for is a warning ([`super::ignored_flags`]), named
+//! by its command-line flag (docs/cli.md states the rule).
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use super::{
+    Compiled, Given, Loaded, Look, SceneRequest, ShowLayout, TraceTree, detect_kind, ignored_flags,
+    load,
+};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::grow::{GrowOptions, GrowthOrder};
+use crate::interpret::Derivation;
+use crate::limits::Limits;
+use crate::model::Description;
+use crate::progress::Progress;
+use crate::render::{ImageFormat, RenderOptions};
+use crate::syntax::InputKind;
+use crate::turtle::BBox;
+
+/// Everything one run of the pipeline takes: the input and its options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Request {
+    /// The input's bytes.
+    pub input: Vec<u8>,
+    /// The input's file name, if it has one: its extension tells its kind.
+    pub name: Option<PathBuf>,
+    /// The input's kind (`--from`); `None`: from [`Request::name`], else
+    /// guessed from the text ([`super::detect_kind`]).
+    pub kind: Option<InputKind>,
+    /// How the word is derived (`--derivation`): the same picture at a
+    /// different cost.
+    pub derivation: Derivation,
+    /// Growth order of an OD (`--growth`); `None`: breadth-first.
+    pub growth: Option<GrowthOrder>,
+    /// Derivation depth of an L-system (`--depth`); `None`: its
+    /// `generations`.
+    pub depth: Option<u32>,
+    /// Seed of stochastic rules (`--seed`); `None`: an L-system's `seed`
+    /// key, an OD's 0.
+    pub seed: Option<u64>,
+    /// Clearance between stems (`--clearance`); `None`: the OD's `C=`.
+    pub clearance: Option<f64>,
+    /// Stems one growth may add (`--max-stems`), at most
+    /// `limits.max_stems`; `None`: that limit, as a safety net (growth
+    /// with no other bound is then refused).
+    pub max_stems: Option<u64>,
+    /// The limits in force (`--max-*`).
+    pub limits: Limits,
+    /// Colours and the layout underlay.
+    pub look: Look,
+    /// Image format, size, SVG segment limit, level of detail.
+    pub image: RenderOptions,
+    /// [`Request::render`] also returns the grown tree's BED text and its
+    /// stems in the order growth placed them (an editor's replay).
+    pub trace: bool,
+}
+
+impl Default for Request {
+    /// No input, every option at its default: a PNG at the default size.
+    fn default() -> Self {
+        Request {
+            input: Vec::new(),
+            name: None,
+            kind: None,
+            derivation: Derivation::default(),
+            growth: None,
+            depth: None,
+            seed: None,
+            clearance: None,
+            max_stems: None,
+            limits: Limits::DEFAULT,
+            look: Look::default(),
+            image: RenderOptions::new(ImageFormat::Png, None),
+            trace: false,
+        }
+    }
+}
+
+/// What [`Request::render`] drew.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drawn {
+    /// Segments drawn (a tree's stems; an L-system's segments).
+    pub segments: u64,
+    /// Stems grown, if an OD was grown.
+    pub grown: Option<u64>,
+    /// The OD as read, if the input was one (its root and layout, with
+    /// their spans, for an editor to draw and edit).
+    pub od: Option<Description>,
+    /// With [`Request::trace`], for an OD: the grown BED's text and its
+    /// stems in growth order.
+    pub trace: Option<TraceTree>,
+    /// The canvas area the layout defines, if the input has one.
+    pub view: Option<BBox>,
+    /// Warnings, in the order the work met them.
+    pub warnings: Vec<Diagnostic>,
+}
+
+impl Request {
+    /// A request for `input` with every option at its default.
+    pub fn new(input: Vec<u8>) -> Self {
+        Request {
+            input,
+            ..Request::default()
+        }
+    }
+
+    /// The input's kind: [`Request::kind`], else from its name or text.
+    pub fn input_kind(&self) -> Result<InputKind, Diagnostics> {
+        match self.kind {
+            Some(k) => Ok(k),
+            None => detect_kind(self.name.as_deref(), &self.input),
+        }
+    }
+
+    /// The limits and growth options of this request: `max_stems`, if
+    /// given, within `limits.max_stems`.
+    fn options(&self) -> Result<(Limits, GrowOptions), Diagnostics> {
+        let mut limits = self.limits;
+        if let Some(n) = self.max_stems {
+            if n > limits.max_stems {
+                return Err(Diagnostic::error(ErrorKind::Limit {
+                    what: "max stems asked for".into(),
+                    value: n.to_string(),
+                    limit: limits.max_stems.to_string(),
+                })
+                .with_help("ask for fewer, or raise the limit (`stlc serve --max-stems N`)")
+                .into());
+            }
+            limits.max_stems = n;
+        }
+        let grow = GrowOptions {
+            growth: self.growth.unwrap_or_default(),
+            clearance: self.clearance,
+            limits,
+            max_stems_explicit: self.max_stems.is_some(),
+            seed: self.seed.unwrap_or(0),
+        };
+        Ok((limits, grow))
+    }
+
+    /// Which options were given, for the warnings about those that do
+    /// nothing for the input.
+    fn given(&self) -> Given {
+        Given {
+            growth: self.growth.is_some(),
+            clearance: self.clearance.is_some(),
+            max_stems: self.max_stems.is_some(),
+            depth: self.depth.is_some(),
+            seed: self.seed.is_some(),
+        }
+    }
+
+    /// Loads the input within the limits, with the seed in place, and the
+    /// warnings for options that do nothing for it.
+    pub fn open(&self) -> Result<(Loaded, Vec<Diagnostic>), Diagnostics> {
+        let (limits, _) = self.options()?;
+        let loaded = load(&self.input, self.input_kind()?, &limits)?.seeded(self.seed);
+        let mut warnings = ignored_flags(&loaded, &self.given());
+        if self.look.show_layout == ShowLayout::Yes && !has_layout(&loaded) {
+            warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
+                flag: "--show-layout".into(),
+                reason: "this input has no LAYOUT to show".into(),
+            }));
+        }
+        Ok((loaded, warnings))
+    }
+
+    /// The scene's request: how to grow and derive.
+    fn scene_request(&self) -> Result<SceneRequest, Diagnostics> {
+        let (limits, grow) = self.options()?;
+        Ok(SceneRequest {
+            grow,
+            derivation: self.derivation,
+            depth: self.depth,
+            limits,
+        })
+    }
+
+    /// Draws the input as [`Request::image`] asks into `out`: an OD grown
+    /// first (traced with [`Request::trace`]), an L-system at its depth, a
+    /// BED as it is.
+    pub fn render(
+        &self,
+        out: &mut dyn Write,
+        progress: &mut dyn Progress,
+    ) -> Result<Drawn, Diagnostics> {
+        let (loaded, mut warnings) = self.open()?;
+        let req = self.scene_request()?;
+        let (scene, od, trace) = super::traced_scene(loaded, &req, self.trace, progress)?;
+        let rendered = super::render(&scene, &self.look, &self.image, out, progress)?;
+        let view = super::layout_view(&scene, false).0;
+        let grown = scene.grown_stems();
+        warnings.extend(scene.warnings);
+        warnings.extend(rendered.warnings);
+        Ok(Drawn {
+            segments: rendered.segments,
+            grown,
+            od,
+            trace,
+            view,
+            warnings,
+        })
+    }
+
+    /// Grows an OD into a BED and writes its canonical text. Any other
+    /// input is refused with a diagnostic that says what to do.
+    /// Returns it with the warnings: options that do nothing, then the
+    /// growth's own.
+    pub fn compile(
+        &self,
+        progress: &mut dyn Progress,
+    ) -> Result<(Compiled, Vec<Diagnostic>), Diagnostics> {
+        let (loaded, mut warnings) = self.open()?;
+        let (_, grow) = self.options()?;
+        let compiled = super::compile(&loaded, &grow, progress)?;
+        warnings.extend(compiled.grown.warnings.iter().cloned());
+        Ok((compiled, warnings))
+    }
+
+    /// Writes the derived word to `out` (see [`super::expand`]); returns
+    /// the warnings.
+    pub fn expand(
+        &self,
+        out: &mut dyn Write,
+        progress: &mut dyn Progress,
+    ) -> Result<Vec<Diagnostic>, Diagnostics> {
+        let (loaded, mut warnings) = self.open()?;
+        let scene = super::scene(loaded, &self.scene_request()?, progress)?;
+        super::expand(&scene, out, progress)?;
+        warnings.extend(scene.warnings);
+        Ok(warnings)
+    }
+
+    /// `stlc check`'s summary and warnings (see [`super::check`]).
+    pub fn check(&self) -> Result<super::Checked, Diagnostics> {
+        let (loaded, mut warnings) = self.open()?;
+        let (_, grow) = self.options()?;
+        let checked = super::check(&loaded, &grow)?;
+        warnings.extend(checked.warnings);
+        Ok(super::Checked {
+            summary: checked.summary,
+            warnings,
+        })
+    }
+
+    /// `stlc stats`'s text (or JSON) and warnings (see [`super::stats`]).
+    pub fn stats(&self, json: bool) -> Result<(String, Vec<Diagnostic>), Diagnostics> {
+        let (loaded, warnings) = self.open()?;
+        let (limits, _) = self.options()?;
+        let text = super::stats(&loaded, self.depth, json, &limits)?;
+        Ok((text, warnings))
+    }
+}
+
+/// Whether the input is a tree with a LAYOUT.
+fn has_layout(loaded: &Loaded) -> bool {
+    match loaded {
+        Loaded::Od(d) => d.layout.is_some(),
+        Loaded::Bed(b) => b.description().layout.is_some(),
+        Loaded::Lsys(_) => false,
+    }
+}

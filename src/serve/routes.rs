@@ -1,0 +1,207 @@
+//! The routes: one handler each, behind the one guard.
+//!
+//! | route | handler |
+//! | --- | --- |
+//! | `GET /` | [`page`]: the editor, with the per-run token |
+//! | `GET /<asset>` | [`asset`]: the page's scripts and style |
+//! | `GET /api/file` | [`file`]: the text opened |
+//! | `POST /api/render` | [`render`]: the picture, BED and growth order as JSON |
+//! | `POST /api/export?format=png\|svg\|bed` | [`export`]: the file's bytes |
+//! | `POST /api/save` | [`save`]: the text written back (token required) |
+
+use std::sync::Arc;
+
+use hyper::body::Incoming;
+use hyper::{Method, Request, StatusCode};
+use serde::Serialize;
+
+use super::State;
+use super::api::{self, Body, Failed, Kind};
+use super::assets;
+use super::http::{self, Answer};
+use crate::frontend::io::Output;
+use stlc::diag::{Diagnostic, io_error};
+use stlc::pipeline::ImageFormat;
+
+/// Answers one request.
+pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
+    if let Err(refused) = state.guard.check(&req) {
+        return refused.answer();
+    }
+    let method = req.method().clone();
+    let path = req.uri().path().to_string();
+    let expected = match path.as_str() {
+        "/" | "/api/file" => Method::GET,
+        "/api/render" | "/api/export" | "/api/save" => Method::POST,
+        p if assets::find(p).is_some() => Method::GET,
+        _ => return http::error(StatusCode::NOT_FOUND, "not found"),
+    };
+    if method != expected {
+        return http::error(StatusCode::METHOD_NOT_ALLOWED, "wrong method");
+    }
+    match path.as_str() {
+        "/" => page(&state),
+        "/api/file" => file(&state),
+        "/api/render" => render(state, req).await,
+        "/api/export" => export(state, req).await,
+        "/api/save" => save(state, req).await,
+        p => asset(p),
+    }
+}
+
+/// `GET /`: the page, with this run's token in its meta tag.
+fn page(state: &State) -> Answer {
+    http::answer(
+        StatusCode::OK,
+        "text/html; charset=utf-8",
+        assets::PAGE.replace("{{TOKEN}}", &state.token),
+    )
+}
+
+/// `GET /<asset>`: an embedded script or style sheet.
+fn asset(path: &str) -> Answer {
+    match assets::find(path) {
+        Some(a) => http::answer(StatusCode::OK, a.media, a.body),
+        None => http::error(StatusCode::NOT_FOUND, "not found"),
+    }
+}
+
+/// `GET /api/file`: `{"text", "kind", "name", "can_save"}`.
+fn file(state: &State) -> Answer {
+    #[derive(Serialize)]
+    struct Opened<'a> {
+        text: &'a str,
+        kind: Kind,
+        name: &'a str,
+        can_save: bool,
+    }
+    let (text, kind, name) = &state.opened;
+    http::json(
+        StatusCode::OK,
+        &Opened {
+            text,
+            kind: (*kind).into(),
+            name,
+            can_save: state.file.is_some(),
+        },
+    )
+}
+
+/// Reads and parses a request body: the answer to send instead if it is
+/// too large, too slow or not what the API takes.
+async fn body(state: &State, req: Request<Incoming>) -> Result<Body, Answer> {
+    let bytes = http::read_body(req, state.settings.limits.max_input_bytes).await?;
+    api::parse(&bytes).map_err(|api::BadRequest(m)| http::error(StatusCode::BAD_REQUEST, &m))
+}
+
+/// `POST /api/render`: the answer as JSON (HTTP 200 once the request itself
+/// is well formed, the input's errors as diagnostics).
+async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
+    let body = match body(&state, req).await {
+        Ok(b) => b,
+        Err(a) => return a,
+    };
+    let done = blocking(move || api::run(&body, &state.settings, ImageFormat::Svg)).await;
+    match done {
+        Some(Ok((answer, _))) => http::json(StatusCode::OK, &answer),
+        Some(Err(failed)) => http::json(StatusCode::OK, &failed),
+        None => crashed(),
+    }
+}
+
+/// `POST /api/export?format=png|svg|bed`: the file's bytes and media type,
+/// or the diagnostics as JSON.
+async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
+    let format = http::query_param(req.uri().query(), "format");
+    let (image, media) = match format.as_deref() {
+        Some("png") => (ImageFormat::Png, "image/png"),
+        Some("svg") => (ImageFormat::Svg, "image/svg+xml"),
+        Some("bed") => (ImageFormat::Svg, "text/plain; charset=utf-8"),
+        _ => {
+            return http::error(
+                StatusCode::BAD_REQUEST,
+                "say ?format=png, ?format=svg or ?format=bed",
+            );
+        }
+    };
+    let want_bed = format.as_deref() == Some("bed");
+    let body = match body(&state, req).await {
+        Ok(b) => b,
+        Err(a) => return a,
+    };
+    let done = blocking(move || api::run(&body, &state.settings, image)).await;
+    match done {
+        Some(Ok((answer, _))) if want_bed => match answer.bed {
+            Some(bed) => http::answer(StatusCode::OK, media, bed),
+            None => http::json(
+                StatusCode::OK,
+                &Failed::message("only an .od grows into a BED", "export a picture instead"),
+            ),
+        },
+        Some(Ok((_, bytes))) => http::answer(StatusCode::OK, media, bytes),
+        Some(Err(failed)) => http::json(StatusCode::OK, &failed),
+        None => crashed(),
+    }
+}
+
+/// `POST /api/save`: writes the text to the file named on the command
+/// line, atomically; only with this run's token.
+async fn save(state: Arc<State>, req: Request<Incoming>) -> Answer {
+    let token_ok = req
+        .headers()
+        .get("x-stlc-token")
+        .and_then(|t| t.to_str().ok())
+        .is_some_and(|t| http::same_secret(t, &state.token));
+    let body = match body(&state, req).await {
+        Ok(b) => b,
+        Err(a) => return a,
+    };
+    if !token_ok {
+        return http::error(StatusCode::FORBIDDEN, "saving needs the page's token");
+    }
+    let Some(file) = state.file.clone() else {
+        return http::error(
+            StatusCode::CONFLICT,
+            "no file was named on the command line: the page downloads instead",
+        );
+    };
+    let text = body.source;
+    let done = blocking(move || {
+        Output::Path(file).write_with(|w| {
+            w.write_all(text.as_bytes())
+                .map_err(|e| io_error(&e, "cannot write the file").into())
+        })
+    })
+    .await;
+    #[derive(Serialize)]
+    struct Saved {
+        ok: bool,
+    }
+    match done {
+        Some(Ok(())) => http::json(StatusCode::OK, &Saved { ok: true }),
+        Some(Err(d)) => {
+            let list: Vec<Diagnostic> = d.iter().cloned().collect();
+            http::json(
+                StatusCode::OK,
+                &Failed {
+                    ok: false,
+                    diagnostics: api::diagnostics_json("", &list),
+                },
+            )
+        }
+        None => crashed(),
+    }
+}
+
+fn crashed() -> Answer {
+    http::error(
+        StatusCode::INTERNAL_SERVER_ERROR,
+        "stlc crashed; this is a bug",
+    )
+}
+
+/// Runs pipeline work on the blocking pool; `None` if it panicked (a bug;
+/// the server goes on).
+async fn blocking<T: Send + 'static>(work: impl FnOnce() -> T + Send + 'static) -> Option<T> {
+    tokio::task::spawn_blocking(work).await.ok()
+}
