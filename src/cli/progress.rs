@@ -5,7 +5,7 @@ use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use stlc::progress::Progress;
+use stlc::pipeline::Progress;
 
 /// How long work may run before a bar appears.
 const GRACE: Duration = Duration::from_millis(400);

@@ -5,7 +5,7 @@ use std::io::Write;
 use ariadne::{Config, IndexType, Label, Report, ReportKind, Source};
 use stlc::diag::excerpt::ELLIPSIS;
 use stlc::diag::line_column;
-use stlc::{Diagnostic, Severity};
+use stlc::diag::{Diagnostic, Severity};
 
 /// Where a diagnostic's spans point: the input's display name and text.
 pub struct SourceText<'a> {

@@ -80,7 +80,7 @@ pub fn style(scene: &Scene, look: &Look) -> Style {
 /// image's edge) plus [`crate::render::MARGIN_FRACTION`] of the longest
 /// side, the margin a fitted picture gets. An L-system or a tree without a
 /// layout is fitted to its drawing instead.
-pub fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>) {
+pub(crate) fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>) {
     let Some(bed) = scene.bed() else {
         return (None, Vec::new());
     };
@@ -116,7 +116,7 @@ pub struct Rendered {
 }
 
 /// Draws `scene` as a PNG or SVG into `out`, with its style and layout
-/// view (see [`style`] and [`layout_view`]). A picture with no stem in it
+/// view (see [`style`]; the view is the layout's bounds with a margin). A picture with no stem in it
 /// is written all the same, with a warning.
 pub fn render(
     scene: &Scene,
@@ -217,7 +217,7 @@ pub fn image_format(
 /// Which options a front end was given explicitly (not left at their
 /// defaults), for [`ignored_flags`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Given {
+pub(crate) struct Given {
     /// A growth order (`--growth`).
     pub growth: bool,
     /// A clearance (`--clearance`).
@@ -235,7 +235,7 @@ pub struct Given {
 /// one that chooses nothing. Scripts pass
 /// one set of options to many files, so these are warnings, not errors
 /// (docs/cli.md states the rule).
-pub fn ignored_flags(loaded: &Loaded, given: &Given) -> Vec<Diagnostic> {
+pub(crate) fn ignored_flags(loaded: &Loaded, given: &Given) -> Vec<Diagnostic> {
     let mut w = Vec::new();
     let mut ignored = |flag: &str, reason: &str| {
         w.push(Diagnostic::warning(ErrorKind::IgnoredFlag {

@@ -25,10 +25,8 @@ mod draw;
 mod request;
 mod summary;
 
-pub use draw::{
-    Given, Look, Rendered, ShowLayout, TREE_BROWN, ignored_flags, image_format, layout_view,
-    render, style,
-};
+pub(crate) use draw::{Given, ignored_flags, layout_view};
+pub use draw::{Look, Rendered, ShowLayout, TREE_BROWN, image_format, render, style};
 pub use request::{Drawn, Request};
 pub use summary::{Checked, check, stats};
 
@@ -92,7 +90,7 @@ impl Loaded {
 }
 
 /// The kind of an input: from its file name's extension if it has a known
-/// one, else guessed from its text ([`sniff`]). Unnamed input (standard
+/// one, else guessed from its text (its first word, or `{` terms). Unnamed input (standard
 /// input, text typed in an editor) that cannot be guessed is an OD; a named
 /// file that cannot be is an error that says how to name it.
 pub fn detect_kind(name: Option<&Path>, bytes: &[u8]) -> Result<InputKind, Diagnostics> {
@@ -114,7 +112,7 @@ pub fn detect_kind(name: Option<&Path>, bytes: &[u8]) -> Result<InputKind, Diagn
 /// Guesses the kind of unnamed input: `.lsys` if its first word is an
 /// `.lsys` key, `.bed` if it has `{` terms, else `.od`. `None` for text
 /// that is not UTF-8 or has no word.
-pub fn sniff(bytes: &[u8]) -> Option<InputKind> {
+pub(crate) fn sniff(bytes: &[u8]) -> Option<InputKind> {
     let text = std::str::from_utf8(bytes).ok()?;
     let first = text
         .lines()
@@ -385,7 +383,7 @@ impl Scene {
 /// `.lsys` they are ordinary symbols (the Hilbert curve's non-terminals),
 /// not turns as in STL, so a rule copied from an STL paper
 /// (`F -> F[RF]F[LF]F`) would draw a straight line without a word.
-pub fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
+pub(crate) fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
     ['L', 'R']
         .into_iter()
         .filter(|c| !sys.rules.contains_key(c))
@@ -411,7 +409,7 @@ pub fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
 
 /// The depth to derive an L-system to: `depth` if given, else the file's
 /// `generations`, within `limits.max_depth`.
-pub fn lsys_depth(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<u32, Diagnostics> {
+pub(crate) fn lsys_depth(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<u32, Diagnostics> {
     let d = depth.or(sys.generations).ok_or_else(|| {
         Diagnostic::error(ErrorKind::NoDepth)
             .with_help("add a line `generations N` to the file, or pass --depth N")

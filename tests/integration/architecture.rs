@@ -27,32 +27,47 @@ fn rust_files(dir: &Path) -> Vec<PathBuf> {
 /// first segment of each item in a `use crate::{...}` group, in code (a
 /// link in a comment is no dependency).
 fn imported_stages(text: &str) -> Vec<String> {
+    imported_paths(text, "crate::")
+        .into_iter()
+        .map(|p| p.split("::").next().unwrap_or("").to_string())
+        .collect()
+}
+
+/// The paths `text` imports under `root` (`crate::` or `stlc::`), without
+/// the root: `render::Fill` for `crate::render::Fill`, each item of a
+/// group on its own (`{diag::X, grow}`: `diag::X`, `grow`), in code.
+fn imported_paths(text: &str, root: &str) -> Vec<String> {
     let code: String = text
         .lines()
         .filter(|line| !line.trim_start().starts_with("//"))
         .map(|line| format!("{line}\n"))
         .collect();
-    let mut stages = Vec::new();
+    let mut paths = Vec::new();
     let mut rest = code.as_str();
-    while let Some(at) = rest.find("crate::") {
-        rest = &rest[at + "crate::".len()..];
+    while let Some(at) = rest.find(root) {
+        // `stlc::` inside another path (`my_stlc::`) is not the crate.
+        let whole = at == 0 || !rest[..at].ends_with(|c: char| c.is_alphanumeric() || c == '_');
+        rest = &rest[at + root.len()..];
+        if !whole {
+            continue;
+        }
         if let Some(group) = rest.strip_prefix('{') {
             let end = group.find('}').unwrap_or(group.len());
             for item in group[..end].split(',') {
-                let item = item.trim();
+                let item: String = item.chars().filter(|c| !c.is_whitespace()).collect();
                 if !item.is_empty() {
-                    stages.push(item.split("::").next().unwrap().trim().to_string());
+                    paths.push(item);
                 }
             }
         } else {
-            let name: String = rest
+            let path: String = rest
                 .chars()
-                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
                 .collect();
-            stages.push(name);
+            paths.push(path.trim_end_matches(':').to_string());
         }
     }
-    stages
+    paths
 }
 
 #[test]
@@ -60,6 +75,61 @@ fn the_import_reader_sees_plain_paths_and_groups() {
     let text = "use crate::render::Fill;\n/// [`crate::turtle`]\n\
                 use crate::{diag::X, grow};\nlet a = crate::num::fixed(1);";
     assert_eq!(imported_stages(text), ["render", "diag", "grow", "num"]);
+}
+
+#[test]
+fn the_path_reader_sees_library_paths_in_the_binary() {
+    let text = "use stlc::pipeline::{self, Request};\nuse stlc::{diag::X, model};\n\
+                let a = stlc::render::x(); let b = my_stlc::grow::y();";
+    assert_eq!(
+        imported_paths(text, "stlc::"),
+        ["pipeline", "diag::X", "model", "render::x"]
+    );
+}
+
+/// Front ends speak only the pipeline's language (docs/architecture.md):
+/// `cli`, `serve` and `frontend` import from the library only `pipeline`,
+/// `model` and `diag`; from the binary only `frontend` and themselves;
+/// `serve` nothing from `cli`, and `cli` from `serve` only its entry point
+/// and its config.
+#[test]
+fn front_ends_import_only_the_pipeline_and_not_each_other() {
+    let own: [(&str, &[&str]); 3] = [
+        ("src/cli", &["cli", "frontend", "serve"]),
+        ("src/serve", &["serve", "frontend"]),
+        ("src/frontend", &["frontend"]),
+    ];
+    let mut checked = 0;
+    for (dir, binary) in own {
+        for file in rust_files(&support::manifest_path(dir)) {
+            let text = std::fs::read_to_string(&file).unwrap();
+            for path in imported_paths(&text, "stlc::") {
+                let stage = path.split("::").next().unwrap();
+                assert!(
+                    ["pipeline", "model", "diag"].contains(&stage),
+                    "{} imports stlc::{path}",
+                    file.display()
+                );
+            }
+            for path in imported_paths(&text, "crate::") {
+                let stage = path.split("::").next().unwrap();
+                assert!(
+                    binary.contains(&stage),
+                    "{} imports crate::{path}",
+                    file.display()
+                );
+                if stage == "serve" {
+                    assert!(
+                        ["serve::run", "serve::Config"].contains(&path.as_str()),
+                        "{} reaches into crate::{path}: only serve's entry point and config",
+                        file.display()
+                    );
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 10, "only {checked} files read");
 }
 
 /// Dependencies run one way (docs/architecture.md): syntax, grow and bed
@@ -116,4 +186,29 @@ fn no_source_file_is_over_650_lines() {
         let lines = std::fs::read_to_string(&file).unwrap().lines().count();
         assert!(lines <= 650, "{} has {lines} lines", file.display());
     }
+}
+
+/// The files grammar.pest's comments and docs/architecture.md name exist:
+/// a moved file leaves no stale name behind.
+#[test]
+fn files_named_in_the_grammar_and_the_architecture_exist() {
+    let mut named = 0;
+    for doc in ["grammar.pest", "docs/architecture.md"] {
+        let text = std::fs::read_to_string(support::manifest_path(doc)).unwrap();
+        let mut rest = text.as_str();
+        while let Some(at) = rest.find("src/") {
+            let path: String = rest[at..]
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || "/_.-".contains(*c))
+                .collect();
+            let path = path.trim_end_matches('.');
+            rest = &rest[at + path.len()..];
+            assert!(
+                support::manifest_path(path).exists(),
+                "{doc} names {path}, which does not exist"
+            );
+            named += 1;
+        }
+    }
+    assert!(named >= 8, "only {named} paths found");
 }
