@@ -13,6 +13,7 @@
 //! apart from the connections, so one slow request never stops the others.
 
 mod api;
+mod assets;
 
 use std::convert::Infallible;
 use std::io::Write as _;
@@ -41,8 +42,6 @@ pub static SERVING: AtomicBool = AtomicBool::new(false);
 
 /// The page, embedded: no request leaves the machine.
 const PAGE: &str = include_str!("page/index.html");
-const SCRIPT: &str = include_str!("page/app.js");
-const STYLE: &str = include_str!("page/style.css");
 
 /// The example opened when no file is named.
 const EXAMPLE: &str = include_str!("../../examples/2dtree.od");
@@ -259,10 +258,9 @@ async fn route(state: &Arc<State>, req: Request<Incoming>) -> Answer {
             "text/html; charset=utf-8",
             PAGE.replace("{{TOKEN}}", &state.token),
         ),
-        (&Method::GET, "/app.js") => {
-            answer(StatusCode::OK, "text/javascript; charset=utf-8", SCRIPT)
+        (&Method::GET, p) if let Some(a) = assets::find(p) => {
+            answer(StatusCode::OK, a.media, a.body)
         }
-        (&Method::GET, "/style.css") => answer(StatusCode::OK, "text/css; charset=utf-8", STYLE),
         (&Method::GET, "/api/file") => {
             let (text, kind, name) = &state.opened;
             json_answer(
@@ -363,11 +361,12 @@ async fn route(state: &Arc<State>, req: Request<Incoming>) -> Answer {
                 }
             }
         }
-        (
-            _,
-            "/" | "/app.js" | "/style.css" | "/api/file" | "/api/render" | "/api/export"
-            | "/api/save",
-        ) => error_answer(StatusCode::METHOD_NOT_ALLOWED, "wrong method"),
+        (_, "/" | "/api/file" | "/api/render" | "/api/export" | "/api/save") => {
+            error_answer(StatusCode::METHOD_NOT_ALLOWED, "wrong method")
+        }
+        (_, p) if assets::find(p).is_some() => {
+            error_answer(StatusCode::METHOD_NOT_ALLOWED, "wrong method")
+        }
         _ => error_answer(StatusCode::NOT_FOUND, "not found"),
     }
 }
