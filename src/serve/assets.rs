@@ -170,7 +170,7 @@ mod tests {
     }
 
     #[test]
-    fn every_module_import_names_a_served_module() {
+    fn every_module_import_names_a_served_module_and_modules_stay_small() {
         let mut seen = 0;
         for a in ASSETS.iter().filter(|a| a.path.ends_with(".js")) {
             for spec in imports(a.body) {
@@ -195,5 +195,10 @@ mod tests {
         assert_eq!(resolve("/engine/index.js", "./http.js"), "/engine/http.js");
         assert_eq!(resolve("/engine/http.js", "../dom.js"), "/dom.js");
         assert_eq!(resolve("/app.js", "./engine/index.js"), "/engine/index.js");
+        // Modules of one concern each: none over 400 lines.
+        for a in ASSETS.iter().filter(|a| a.path.ends_with(".js")) {
+            let lines = a.body.lines().count();
+            assert!(lines <= 400, "{} has {lines} lines", a.path);
+        }
     }
 }
