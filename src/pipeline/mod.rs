@@ -409,7 +409,11 @@ pub(crate) fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
 
 /// The depth to derive an L-system to: `depth` if given, else the file's
 /// `generations`, within `limits.max_depth`.
-pub(crate) fn lsys_depth(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<u32, Diagnostics> {
+pub(crate) fn lsys_depth(
+    sys: &LSystem,
+    depth: Option<u32>,
+    limits: &Limits,
+) -> Result<u32, Diagnostics> {
     let d = depth.or(sys.generations).ok_or_else(|| {
         Diagnostic::error(ErrorKind::NoDepth)
             .with_help("add a line `generations N` to the file, or pass --depth N")

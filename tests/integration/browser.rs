@@ -2,7 +2,8 @@
 //! (chromedriver, fantoccini): type an OD, draw a rectangle with the
 //! mouse, switch bfs/dfs, type an error, replay growth, save. Skips with a
 //! message where `chromium` or `chromedriver` is not installed (`.ci/run`
-//! installs Debian's packages). Screenshots go to `tests/store/browser/`.
+//! installs Debian's packages), except under CI (`CI` set), where that
+//! fails. Screenshots go to `tests/store/browser/`.
 
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
@@ -82,7 +83,7 @@ async fn settled(c: &Client) -> Value {
     for _ in 0..400 {
         let v = js(
             c,
-            "const s = window.stlc; const t = document.getElementById('source').value;
+            "const s = window.stlc && window.stlc.state; const t = document.getElementById('source').value;
              if (!s || s.inFlight || s.answerText !== t) return null;
              return {ok: s.answer.ok, stems: s.answer.stems || 0,
                      growth: s.answer.growth ? s.answer.growth.stems : [],
@@ -92,7 +93,7 @@ async fn settled(c: &Client) -> Value {
         if !v.is_null() {
             // The debounce may still hold an edit: settle twice in a row.
             tokio::time::sleep(Duration::from_millis(300)).await;
-            let again = js(c, "return window.stlc.answerText === document.getElementById('source').value && !window.stlc.inFlight").await;
+            let again = js(c, "return window.stlc.state.answerText === document.getElementById('source').value && !window.stlc.state.inFlight").await;
             if again == json!(true) {
                 return v;
             }
@@ -125,12 +126,16 @@ async fn shot(c: &Client, name: &str) {
 const TYPED: &str = "Typed (100, 190)\nL=9(0) B=1.5(0) A=30 C=2\nRULE\nR1: [-F][+F]\nSEED\nFR1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (70, 120), 60, 75\nENDLAYOUT\n";
 
 /// chromium and chromedriver, or `None` after saying why the test skips.
+/// Under CI (the variable `CI` set and not empty, as `.ci/run` sets it) a
+/// missing browser is a failure, not a skip: the install failed.
 fn installed() -> Option<(PathBuf, PathBuf)> {
     let (Some(chromium), Some(driver)) = (which("chromium"), which("chromedriver")) else {
-        eprintln!(
-            "SKIPPED the browser test: chromium and chromedriver are not installed \
-             (apt-get install chromium chromium-driver; .ci/run does)"
-        );
+        let why = "chromium and chromedriver are not installed \
+                   (apt-get install chromium chromium-driver; .ci/run does)";
+        if std::env::var_os("CI").is_some_and(|v| !v.is_empty()) {
+            panic!("CI is set, so the browser test must run, but {why}");
+        }
+        eprintln!("SKIPPED the browser test: {why}");
         return None;
     };
     Some((chromium, driver))
@@ -264,7 +269,7 @@ async fn acceptance(c: &Client) {
     assert_ne!(dfs["growth"], holed["growth"]);
     click(c, "#play").await;
     for _ in 0..600 {
-        if js(c, "return window.stlc.replayTimer === null").await == json!(true) {
+        if js(c, "return window.stlc.state.replayTimer === null").await == json!(true) {
             break;
         }
         tokio::time::sleep(Duration::from_millis(50)).await;
@@ -291,11 +296,11 @@ async fn acceptance(c: &Client) {
         ),
         ("#export-bed", vec!["compile", "--growth", "dfs"]),
     ] {
-        js(c, "window.stlc.lastDownload = null; return 0;").await;
+        js(c, "window.stlc.state.lastDownload = null; return 0;").await;
         click(c, button).await;
         let mut offered = Value::Null;
         for _ in 0..200 {
-            offered = js(c, "return window.stlc.lastDownload").await;
+            offered = js(c, "return window.stlc.state.lastDownload").await;
             if !offered.is_null() {
                 break;
             }
@@ -462,7 +467,7 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     assert_eq!(mid["replaying"], true, "{mid}");
     shot(c, "5-replay").await;
     for _ in 0..600 {
-        let done = js(c, "return window.stlc.replayTimer === null").await;
+        let done = js(c, "return window.stlc.state.replayTimer === null").await;
         if done == json!(true) {
             break;
         }
@@ -764,7 +769,7 @@ async fn answer_bed(c: &Client, want: &str) -> String {
     let mut bed = String::new();
     for _ in 0..40 {
         settled(c).await;
-        bed = js(c, "return window.stlc.answer.bed")
+        bed = js(c, "return window.stlc.state.answer.bed")
             .await
             .as_str()
             .unwrap_or_default()
@@ -796,7 +801,7 @@ async fn view_box(c: &Client) -> Vec<f64> {
 async fn fit_box(c: &Client) -> Vec<f64> {
     let v = js(
         c,
-        "const f = window.stlc.fitView; return [f[0], f[1], f[2] - f[0], f[3] - f[1]];",
+        "const f = window.stlc.state.fitView; return [f[0], f[1], f[2] - f[0], f[3] - f[1]];",
     )
     .await;
     v.as_array()
@@ -859,7 +864,7 @@ async fn wheel(c: &Client, x: f64, y: f64, dy: i64) {
 
 /// The text of the source of the answer the page shows.
 async fn answer_svg(c: &Client) -> String {
-    js(c, "return window.stlc.answer.svg")
+    js(c, "return window.stlc.state.answer.svg")
         .await
         .as_str()
         .unwrap()
@@ -886,6 +891,7 @@ fn the_page_opens_exports_zooms_edits_and_undoes_in_chromium() {
         let c = connect(&driver, &chromium, &chrome_tmp).await;
         renderer(&c, &server, tmp.path(), &chrome_tmp.join("downloads")).await;
         editing(&c, tmp.path(), &chrome_tmp.join("downloads")).await;
+        columns(&c, tmp.path()).await;
         let _ = c.close().await;
     });
 }
@@ -1096,7 +1102,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     let svg = answer_svg(c).await;
     let lib = "return document.querySelector('#preview .lib').innerHTML";
     let picture = js(c, lib).await;
-    let renders = "return window.stlc.timings.length";
+    let renders = "return window.stlc.state.timings.length";
     let rendered = js(c, renders).await;
 
     // The wheel zooms out around the pointer: the canvas point under it
@@ -1182,7 +1188,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     }
     let radius = (nums[2].min(nums[3]) / 8.0 * 10.0).round() / 10.0;
     assert!((nums[4] - radius).abs() < 1e-9, "{rr}");
-    let shape = js(c, "return window.stlc.answer.layout.shapes[1]").await;
+    let shape = js(c, "return window.stlc.state.answer.layout.shapes[1]").await;
     assert_eq!(shape["type"], "RoundRect", "{shape}");
     assert_eq!(shape["rx"], nums[4], "{shape}");
     assert_eq!(shape["ry"], nums[4], "{shape}");
@@ -1192,7 +1198,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     // Raise the rectangle above the RoundRect.
     click(c, "[data-tool=select]").await;
     click_at(c, (100.0, 140.0)).await;
-    assert_eq!(js(c, "return window.stlc.selected").await, 0);
+    assert_eq!(js(c, "return window.stlc.state.selected").await, 0);
     click(c, "#raise").await;
     let raised = settled(c).await;
     let raised_text = raised["text"].as_str().unwrap().to_string();
@@ -1230,7 +1236,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
         assert_eq!(back["text"].as_str().unwrap(), want.as_str());
         assert_eq!(back["ok"], true, "{back}");
     }
-    let shapes = js(c, "return window.stlc.shapes.length").await;
+    let shapes = js(c, "return window.stlc.state.shapes.length").await;
     assert_eq!(shapes, 1);
     chord(c, false, 'y').await;
     assert_eq!(settled(c).await["text"].as_str().unwrap(), drawn_text);
@@ -1314,4 +1320,71 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     ]);
     click(c, "#export-svg").await;
     same_bytes(&downloaded(downloads, "tree.svg").await, &svg, "tree.svg");
+}
+
+/// The JavaScript index (UTF-16 units) of byte offset `byte` of `text`.
+fn js_index(text: &str, byte: usize) -> u64 {
+    text[..byte].encode_utf16().count() as u64
+}
+
+/// Clicks the first error in the diagnostics list and returns the
+/// editor's selection, `[selectionStart, selectionEnd]`.
+async fn click_error(c: &Client) -> Value {
+    click(c, "[data-testid=diagnostics] li.error").await;
+    js(
+        c,
+        "const s = document.getElementById('source'); return [s.selectionStart, s.selectionEnd];",
+    )
+    .await
+}
+
+/// Diagnostics count columns in characters (code points), JavaScript in
+/// UTF-16 units: after an emoji, clicking a diagnostic still selects
+/// exactly the token it is about.
+async fn columns(c: &Client, dir: &Path) {
+    // An emoji in a comment on an earlier line, and the error's whole
+    // token selected (`clWhiet`, columns 2 to 9).
+    let od = dir.join("emoji.od");
+    let text = TYPED.replacen(
+        "LAYOUT\n",
+        "LAYOUT\n# 🌳 tree, a 🌲 comment\n(clWhiet) Ellipse (80, 130), 20, 20\n",
+        1,
+    );
+    std::fs::write(&od, &text).unwrap();
+    open(c, &od).await;
+    let failed = settled(c).await;
+    assert_eq!(failed["ok"], false, "{failed}");
+    let at = text.find("clWhiet").unwrap();
+    let want = json!([js_index(&text, at), js_index(&text, at + "clWhiet".len())]);
+    assert_eq!(click_error(c).await, want, "{text}");
+
+    // An emoji before the error on its own line (an L-system's symbol): the
+    // unbalanced `]` is column 8, JavaScript index 8 of its line.
+    let lsys = dir.join("emoji.lsys");
+    let text = "# 🌳 tree\nangle 20\naxiom 🌳]F\n";
+    std::fs::write(&lsys, text).unwrap();
+    open(c, &lsys).await;
+    let failed = settled(c).await;
+    assert_eq!(failed["ok"], false, "{failed}");
+    let listed = js(
+        c,
+        "const li = document.querySelector('[data-testid=diagnostics] li.error');
+         return li && li.textContent;",
+    )
+    .await;
+    assert!(
+        listed.as_str().unwrap().contains("line 3, column 8"),
+        "{listed}"
+    );
+    let at = text.find(']').unwrap();
+    let want = json!([js_index(text, at), js_index(text, at + 1)]);
+    assert_eq!(click_error(c).await, want, "{text}");
+    let selected = js(
+        c,
+        "const s = document.getElementById('source');
+         return s.value.slice(s.selectionStart, s.selectionEnd);",
+    )
+    .await;
+    assert_eq!(selected, "]");
+    shot(c, "20-emoji-column").await;
 }

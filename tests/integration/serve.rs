@@ -720,3 +720,57 @@ fn the_edge_parses_queries_refuses_unknown_fields_and_doubled_headers() {
     let ours = format!("GET http://{addr}/ HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n");
     assert_eq!(raw(addr, ours.as_bytes()).status, 200);
 }
+
+/// The page's ES modules are all served: from the entry, every
+/// `import ... from './x.js'` is fetched as JavaScript; other methods on
+/// them are 405, other paths 404.
+#[test]
+fn the_page_and_every_module_it_imports_are_served() {
+    let server = Server::start(&[]);
+    let page = request(&server.addr, "GET", "/", &[], b"");
+    assert_eq!(page.status, 200);
+    let html = String::from_utf8(page.body).unwrap();
+    assert!(
+        html.contains(r#"<script type="module" src="/app.js"></script>"#),
+        "{html}"
+    );
+    let css = request(&server.addr, "GET", "/style.css", &[], b"");
+    assert_eq!(css.status, 200);
+    assert!(css.head.contains("content-type: text/css"), "{}", css.head);
+    let mut todo = vec!["/app.js".to_string()];
+    let mut seen = Vec::new();
+    while let Some(path) = todo.pop() {
+        if seen.contains(&path) {
+            continue;
+        }
+        let got = request(&server.addr, "GET", &path, &[], b"");
+        assert_eq!(got.status, 200, "{path}");
+        assert!(
+            got.head.contains("content-type: text/javascript"),
+            "{path}: {}",
+            got.head
+        );
+        let dir = &path[..path.rfind('/').unwrap()];
+        for line in String::from_utf8(got.body).unwrap().lines() {
+            let Some((_, spec)) = line
+                .strip_prefix("import ")
+                .and_then(|l| l.rsplit_once(" from "))
+            else {
+                continue;
+            };
+            let spec = spec.trim_end_matches(';').trim_matches('\'');
+            let target = match spec.strip_prefix("../") {
+                Some(up) => format!("{}/{up}", &dir[..dir.rfind('/').unwrap()]),
+                None => format!("{dir}/{}", spec.trim_start_matches("./")),
+            };
+            todo.push(target);
+        }
+        seen.push(path);
+    }
+    assert!(seen.len() >= 5, "{seen:?}");
+    assert!(seen.contains(&"/engine/http.js".to_string()), "{seen:?}");
+    let post = request(&server.addr, "POST", "/engine/http.js", &[], b"");
+    assert_eq!(post.status, 405);
+    let missing = request(&server.addr, "GET", "/engine/none.js", &[], b"");
+    assert_eq!(missing.status, 404);
+}

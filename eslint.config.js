@@ -1,0 +1,21 @@
+// ESLint for the `stlc serve` page (src/serve/page): ES modules in the
+// browser. Run by .ci/run (`npm ci && npx eslint`); versions pinned in
+// package.json and package-lock.json.
+import js from '@eslint/js';
+import globals from 'globals';
+
+export default [
+  {
+    files: ['src/serve/page/**/*.js'],
+    ...js.configs.recommended,
+    languageOptions: {
+      ecmaVersion: 2022,
+      sourceType: 'module',
+      globals: { ...globals.browser },
+    },
+    rules: {
+      ...js.configs.recommended.rules,
+      'no-undef': 'error',
+    },
+  },
+];

@@ -1,0 +1,53 @@
+// The engine over HTTP: the pipeline runs in `stlc serve`, the server that
+// served this page (the interface: index.js). Nothing leaves 127.0.0.1.
+
+/**
+ * @param {{token: string}} options the page's token, sent as X-Stlc-Token
+ * @returns {import('./index.js').Engine}
+ */
+export function createHttpEngine({ token }) {
+  function post(path, body) {
+    return fetch(path, {
+      method: 'POST',
+      headers: { 'Content-Type': 'application/json', 'X-Stlc-Token': token },
+      body: JSON.stringify(body),
+    });
+  }
+
+  // The JSON of a refused request (400, 403, 413...): `{ok: false, error}`.
+  async function refused(res) {
+    const a = await res.json().catch(() => null);
+    return { ok: false, error: (a && a.error) || res.statusText || `HTTP ${res.status}` };
+  }
+
+  return {
+    async render(request) {
+      const res = await post('/api/render', request);
+      if (!res.ok) return refused(res);
+      return res.json();
+    },
+
+    async export(request, format) {
+      const res = await post('/api/export?format=' + encodeURIComponent(format), request);
+      if (!res.ok) return refused(res);
+      const type = res.headers.get('Content-Type') || '';
+      // An input error comes as the render's diagnostics JSON.
+      if (type.startsWith('application/json')) return res.json();
+      return { ok: true, blob: await res.blob() };
+    },
+
+    async open() {
+      const res = await fetch('/api/file');
+      if (!res.ok) throw new Error(`/api/file: ${res.status} ${res.statusText}`);
+      return res.json();
+    },
+
+    async save(source) {
+      const res = await post('/api/save', { source });
+      const a = await res.json().catch(() => ({}));
+      if (res.ok && a.ok) return { ok: true };
+      if (a.diagnostics) return { ok: false, diagnostics: a.diagnostics };
+      return { ok: false, error: a.error || res.statusText || `HTTP ${res.status}` };
+    },
+  };
+}

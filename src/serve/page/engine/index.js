@@ -1,0 +1,86 @@
+// The engine: the one thing the page asks to render, export, open and
+// save. The editor, the view and the tools call only the methods below;
+// which engine runs is chosen here, so another one (a WebAssembly build of
+// the pipeline in a Web Worker) is added in this folder without touching
+// the other modules.
+//
+// Every answer is the HTTP API's JSON (docs/serve.md, "HTTP API"),
+// whichever engine gives it.
+
+/**
+ * What to render or export: the body of `POST /api/render`.
+ *
+ * @typedef {object} RenderRequest
+ * @property {string} source the text
+ * @property {'od'|'bed'|'lsys'} [kind] guessed from the text when absent
+ * @property {'bfs'|'dfs'} [strategy] the growth order of an `.od` (bfs)
+ * @property {number} [depth] `--depth` of an `.lsys`
+ * @property {number} [clearance] `--clearance`
+ * @property {number} [max_stems] `--max-stems`
+ * @property {string} [seed] `--seed`, a string of digits (64 bits)
+ */
+
+/**
+ * A diagnostic. `line`, `column`, `end_line`, `end_column` are 1-based;
+ * columns count Unicode characters (code points), not UTF-16 units (see
+ * `textIndex` in diagnostics.js); the end is just past the span. `line` is
+ * null for a diagnostic with no place in the text.
+ *
+ * @typedef {object} Diagnostic
+ * @property {string} message
+ * @property {'error'|'warning'} severity
+ * @property {number|null} line
+ * @property {number|null} [column]
+ * @property {number|null} [end_line]
+ * @property {number|null} [end_column]
+ * @property {string|null} [label]
+ * @property {string|null} [help]
+ */
+
+/**
+ * The answer to a render:
+ * - `{ok: true, svg, bed, stems, warnings, growth: {stems, decisions},
+ *   view, root: {x, y, start, end, others}, layout: {start, end, shapes}}`
+ *   (`start`, `end`: UTF-16 offsets into `source`, JavaScript indices);
+ * - `{ok: false, diagnostics: Diagnostic[]}` for an input error;
+ * - `{ok: false, error: string}` when the request itself was refused
+ *   (malformed, too large): there is no answer to the text.
+ *
+ * @typedef {object} RenderAnswer
+ */
+
+/**
+ * The answer to an export: `{ok: true, blob}` with the bytes (a Blob typed
+ * `image/png`, `image/svg+xml` or `text/plain`), else a failed
+ * RenderAnswer (`diagnostics` or `error`).
+ *
+ * @typedef {object} ExportAnswer
+ */
+
+/**
+ * The engine's interface. Every method returns a Promise, which rejects
+ * only when the engine cannot answer at all (the server is gone).
+ *
+ * @typedef {object} Engine
+ * @property {(request: RenderRequest) => Promise<RenderAnswer>} render
+ *   the picture, growth order, root and layout of `request.source`
+ * @property {(request: RenderRequest, format: 'png'|'svg'|'bed') => Promise<ExportAnswer>} export
+ *   the bytes `stlc render -f png|svg --show-layout` or `stlc compile`
+ *   would write
+ * @property {() => Promise<{text: string, kind: 'od'|'bed'|'lsys', name: string, can_save: boolean}>} open
+ *   the file being edited (or the example)
+ * @property {(source: string) => Promise<{ok: true}|{ok: false, error?: string, diagnostics?: Diagnostic[]}>} save
+ *   writes `source` to that file (when `can_save`)
+ */
+
+import { createHttpEngine } from './http.js';
+
+/**
+ * The engine this page uses: today always the HTTP one.
+ *
+ * @param {{token: string}} options the page's Save token
+ * @returns {Engine}
+ */
+export function createEngine(options) {
+  return createHttpEngine(options);
+}

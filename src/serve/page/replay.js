@@ -1,0 +1,99 @@
+// Replay: the stems in the order the grower decided them, from the
+// answer's `growth.stems` (six numbers a stem: from, to, width, decision).
+// The slider picks a decision; ▶ plays them all in about four seconds.
+
+import { byId, el } from './dom.js';
+
+export function createReplay(app) {
+  const { state } = app;
+  const preview = app.view.element;
+  const step = byId('step');
+  const play = byId('play');
+
+  // The stroke colour of the library's tree, for the stems drawn here.
+  function strokeColour() {
+    const p = preview.querySelector('.lib path[fill="none"]');
+    return p ? p.getAttribute('stroke') : '#4a2c12';
+  }
+
+  // Draws the stems of decisions 0..k from the growth order.
+  function showStems(k) {
+    const layer = preview.querySelector('.replay-layer');
+    layer.innerHTML = '';
+    const g = state.answer.growth.stems;
+    const byWidth = new Map();
+    for (let i = 0; i < g.length; i += 6) {
+      if (g[i + 5] > k) continue;
+      const w = g[i + 4];
+      const d = byWidth.get(w) || [];
+      d.push(`M${g[i]} ${g[i + 1]}L${g[i + 2]} ${g[i + 3]}`);
+      byWidth.set(w, d);
+    }
+    const colour = strokeColour();
+    for (const [w, d] of byWidth) {
+      el('path', {
+        d: d.join(''), fill: 'none', stroke: colour, 'stroke-width': Math.max(w, 0.3),
+        'stroke-linecap': 'round', 'stroke-linejoin': 'round',
+      }, layer);
+    }
+  }
+
+  function countStems(k) {
+    const g = state.answer.growth.stems;
+    let n = 0;
+    for (let i = 5; i < g.length; i += 6) if (g[i] <= k) n++;
+    return n;
+  }
+
+  function replayTo(k, fromUser) {
+    const a = state.answer;
+    if (!a || !a.ok || !a.growth) return;
+    const max = a.growth.decisions;
+    const partial = k < max;
+    const grownNoLayout = !a.view && a.root;
+    preview.classList.toggle('replaying', partial && !grownNoLayout);
+    if (partial || grownNoLayout) showStems(k);
+    else preview.querySelector('.replay-layer').innerHTML = '';
+    const stems = countStems(k);
+    byId('step-label').textContent = max ? `decision ${k} of ${max} · ${stems} stems` : '';
+    if (fromUser) stopReplay(true);
+  }
+
+  function stopReplay(keep) {
+    if (state.replayTimer) clearInterval(state.replayTimer);
+    state.replayTimer = null;
+    play.textContent = '▶ Replay';
+    if (!keep) preview.classList.remove('replaying');
+  }
+
+  // A new answer with `decisions` decisions: the slider at its end.
+  function reset(decisions) {
+    step.max = decisions;
+    step.value = decisions;
+    stopReplay();
+  }
+
+  step.addEventListener('input', () => replayTo(Number(step.value), true));
+  play.addEventListener('click', () => {
+    if (state.replayTimer) { stopReplay(true); return; }
+    const max = Number(step.max);
+    if (!max) return;
+    if (Number(step.value) >= max) step.value = 0;
+    // About four seconds whatever the size.
+    const per = Math.max(1, Math.ceil(max / 120));
+    play.textContent = '❚❚ Pause';
+    state.replayTimer = setInterval(() => {
+      const v = Math.min(max, Number(step.value) + per);
+      step.value = v;
+      replayTo(v, false);
+      if (v >= max) stopReplay(false);
+    }, 33);
+  });
+
+  return {
+    showStems,
+    reset,
+    // The slider's decision, after a redraw.
+    show: () => replayTo(Number(step.value), false),
+  };
+}

@@ -1,0 +1,117 @@
+// The render loop: the options in the header, one render at a time
+// through the engine, and each answer applied to the state, the view and
+// the diagnostics. The text is the source of truth: every change of it
+// ends here, and the answer redraws everything.
+
+import { byId } from './dom.js';
+
+export function createSession(app) {
+  const { state } = app;
+
+  // The engine's RenderRequest for the editor's text and the options.
+  function request() {
+    const r = { source: app.editor.text(), kind: byId('kind').value };
+    const num = (id) => byId(id).value.trim();
+    // Each option only for the kinds it applies to: the server warns about
+    // an option that does nothing for the input, as the CLI does.
+    if (r.kind === 'od') {
+      r.strategy = byId('strategy').value;
+      if (num('clearance') !== '') r.clearance = Number(num('clearance'));
+      if (num('max-stems') !== '') r.max_stems = Math.floor(Number(num('max-stems')));
+    }
+    if (r.kind === 'lsys' && num('depth') !== '') r.depth = Math.floor(Number(num('depth')));
+    // A BED has its choices written out: the seed changes nothing there.
+    // As a string: a seed is any 64-bit number, more than a JS number holds.
+    if (r.kind !== 'bed' && num('seed') !== '') r.seed = num('seed');
+    return r;
+  }
+
+  // One request at a time; edits made meanwhile are sent when it returns.
+  async function refresh() {
+    if (state.inFlight) { state.again = true; return; }
+    state.inFlight = true;
+    const req = request();
+    const started = state.editedAt || performance.now();
+    try {
+      const answer = await app.engine.render(req);
+      if (answer.error !== undefined) {
+        // Refused: no answer to this text, the last one stays.
+        app.diagnostics.showError(answer.error);
+      } else {
+        apply(answer, req.source);
+        const ms = performance.now() - started;
+        state.timings.push(ms);
+        status(answer, ms);
+      }
+    } catch (e) {
+      byId('status').textContent = 'The server does not answer: is stlc serve still running? (' + e + ')';
+    } finally {
+      state.inFlight = false;
+      if (state.again) { state.again = false; refresh(); }
+    }
+  }
+
+  function status(answer, ms) {
+    const parts = [];
+    if (answer.ok) {
+      parts.push(`${answer.stems} stems`);
+      if (answer.growth && answer.growth.decisions) parts.push(`${answer.growth.decisions} growth decisions`);
+    } else {
+      parts.push('errors: the last good picture is shown');
+    }
+    parts.push(`${Math.round(ms)} ms from edit to picture`);
+    byId('status').textContent = parts.join(' · ');
+  }
+
+  function apply(answer, text) {
+    state.answer = answer;
+    state.answerText = text;
+    if (!answer.ok) {
+      app.diagnostics.show(answer.diagnostics);
+      app.view.stale();
+      return;
+    }
+    app.diagnostics.show(answer.warnings);
+    if (answer.root) {
+      state.root = [answer.root.x, answer.root.y];
+      state.rootSpan = [answer.root.start, answer.root.end];
+      state.others = (answer.root.others || []).map((r) => [r.x, r.y]);
+      state.layoutSpan = answer.layout ? [answer.layout.start, answer.layout.end] : null;
+      state.shapes = answer.layout ? answer.layout.shapes.map((s) => Object.assign({}, s)) : [];
+    } else {
+      state.root = null;
+      state.others = [];
+      state.shapes = [];
+      state.layoutSpan = null;
+    }
+    if (state.selected >= state.shapes.length) state.selected = -1;
+    app.replay.reset(answer.growth ? answer.growth.decisions : 0);
+    app.view.draw();
+  }
+
+  // The answer's spans are valid only while the text is the one answered.
+  const inSync = () => app.editor.text() === state.answerText;
+
+  function setKind(kind) {
+    byId('kind').value = kind;
+    document.body.classList.toggle('renderer', kind !== 'od');
+    document.body.classList.toggle('lsys', kind === 'lsys');
+    document.body.classList.toggle('bed', kind === 'bed');
+    byId('mode-name').textContent = kind === 'od' ? 'Tree Maker' : 'Tree Renderer';
+    state.refit = true;
+  }
+
+  const edited = () => { state.editedAt = performance.now(); app.editor.schedule(); };
+  byId('kind').addEventListener('change', () => { setKind(byId('kind').value); app.editor.schedule(); });
+  byId('reseed').addEventListener('click', () => {
+    const now = byId('seed').value.trim();
+    let next = 1n;
+    try { if (now !== '') next = BigInt(now) + 1n; } catch { next = 1n; }
+    byId('seed').value = String(next);
+    edited();
+  });
+  ['strategy', 'clearance', 'max-stems', 'depth', 'seed'].forEach((id) => byId(id).addEventListener('input', edited));
+  byId('strategy').addEventListener('change', edited);
+
+  return { request, refresh, setKind, inSync };
+}
