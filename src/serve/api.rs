@@ -128,6 +128,29 @@ impl TryFrom<SeedText> for Seed {
     }
 }
 
+/// The body of `POST /api/save`: `{"source", "version"?}`. `version` is
+/// the version the edit is based on (`null`: the file did not exist yet);
+/// without it the file is written whatever it holds (a script's save).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SaveBody {
+    /// The text to write.
+    pub source: String,
+    /// The base version; `Some(None)` for `null`.
+    #[serde(default, deserialize_with = "present")]
+    pub version: Option<Option<String>>,
+}
+
+/// A field that is present (even as `null`) is `Some`.
+fn present<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<Option<String>>, D::Error> {
+    Option::<String>::deserialize(d).map(Some)
+}
+
+/// Reads a save body.
+pub fn parse_save(body: &[u8]) -> Result<SaveBody, BadRequest> {
+    serde_json::from_slice(body).map_err(|e| BadRequest(format!("malformed request: {e}")))
+}
+
 /// A malformed request (HTTP 400): the JSON is not what the API takes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BadRequest(pub String);
@@ -511,6 +534,13 @@ mod tests {
         ] {
             assert!(parse(bad).is_err(), "{}", String::from_utf8_lossy(bad));
         }
+        let save = |b: &[u8]| parse_save(b).unwrap().version;
+        assert_eq!(save(br#"{"source": "x"}"#), None);
+        assert_eq!(save(br#"{"source": "x", "version": null}"#), Some(None));
+        assert_eq!(
+            save(br#"{"source": "x", "version": "3-ab"}"#),
+            Some(Some("3-ab".into()))
+        );
         let BadRequest(m) = parse(br#"{"source": "x", "clearence": 2}"#).unwrap_err();
         assert!(m.contains("unknown field `clearence`"), "{m}");
     }

@@ -14,6 +14,7 @@
 
 mod api;
 mod assets;
+mod document;
 mod http;
 mod routes;
 
@@ -49,6 +50,11 @@ pub struct Config {
 /// The example opened when no file is named.
 const EXAMPLE: &str = include_str!("../../examples/2dtree.od");
 
+/// What a new file (`stlc serve new.od`, not there yet) starts from.
+const TEMPLATE_OD: &str = include_str!("templates/new.od");
+const TEMPLATE_BED: &str = include_str!("../../examples/paper-worked.bed");
+const TEMPLATE_LSYS: &str = include_str!("templates/new.lsys");
+
 /// Largest request head (request line and headers), bytes.
 const MAX_HEAD: usize = 16 * 1024;
 
@@ -69,10 +75,8 @@ const WORKER_STACK: usize = 256 << 20;
 /// What every request sees.
 struct State {
     settings: api::Settings,
-    /// The file Save writes, if one was named.
-    file: Option<PathBuf>,
-    /// The text opened, its kind and name.
-    opened: (String, InputKind, String),
+    /// The file being edited (or the example).
+    doc: document::Document,
     /// The per-run secret Save requires.
     token: String,
     /// Who may ask.
@@ -95,31 +99,11 @@ pub fn run(config: &Config, color: bool) -> ExitCode {
 
 fn serve(a: &Config) -> Result<(), Diagnostics> {
     let limits = a.limits;
-    let (file, opened) = match &a.file {
-        Some(name) => {
-            let input = Input::parse(name);
-            let Input::Path(path) = input.clone() else {
-                return Err(Diagnostic::error(ErrorKind::Io {
-                    doing: "cannot serve standard input".into(),
-                    error: "Save needs a file to write back".into(),
-                })
-                .with_help("name a file, or leave it out to start from an example")
-                .into());
-            };
-            let bytes = input.read(limits.max_input_bytes)?;
-            let kind = pipeline::detect_kind(Some(&path), &bytes)?;
-            let text = String::from_utf8(bytes).map_err(|_| {
-                Diagnostic::error(ErrorKind::Io {
-                    doing: format!("cannot open `{}` in the editor", path.display()),
-                    error: "it is not UTF-8 text".into(),
-                })
-            })?;
-            (Some(path), (text, kind, name.clone()))
+    let doc = match &a.file {
+        Some(name) => open(name, limits.max_input_bytes)?,
+        None => {
+            document::Document::example(EXAMPLE, "2dtree.od", InputKind::Od, limits.max_input_bytes)
         }
-        None => (
-            None,
-            (EXAMPLE.to_string(), InputKind::Od, "2dtree.od".into()),
-        ),
     };
     let listener = std::net::TcpListener::bind(("127.0.0.1", a.port))
         .and_then(|l| l.set_nonblocking(true).map(|()| l))
@@ -134,8 +118,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             max_stems: a.max_stems,
             max_svg_segments: a.max_svg_segments,
         },
-        file,
-        opened,
+        doc,
         token: http::random_token().map_err(|e| {
             io_error(
                 &std::io::Error::other(e),
@@ -159,6 +142,52 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
     }
     interrupt::stop_is_success();
     runtime.block_on(accept_loop(listener, state))
+}
+
+/// The file named on the command line: one that exists must be UTF-8 text
+/// of a known kind; one that does not yet starts from a template of the
+/// kind its extension names, and the first Save creates it.
+fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
+    let Input::Path(path) = Input::parse(name) else {
+        return Err(Diagnostic::error(ErrorKind::Io {
+            doing: "cannot serve standard input".into(),
+            error: "Save needs a file to write back".into(),
+        })
+        .with_help("name a file, or leave it out to start from an example")
+        .into());
+    };
+    let kind = if path.exists() {
+        let bytes = Input::Path(path.clone()).read(max_bytes)?;
+        pipeline::detect_kind(Some(&path), &bytes)?
+    } else {
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        if !dir.is_dir() {
+            return Err(Diagnostic::error(ErrorKind::Io {
+                doing: format!("cannot start `{}`", path.display()),
+                error: format!("the folder `{}` does not exist", dir.display()),
+            })
+            .with_help("create the folder first, or name a file in an existing one")
+            .into());
+        }
+        InputKind::from_path(&path).ok_or_else(|| {
+            Diagnostics::from(
+                Diagnostic::error(ErrorKind::Io {
+                    doing: format!("cannot start `{}`", path.display()),
+                    error: "it does not exist, and its name says no kind".into(),
+                })
+                .with_help("name a new file .od, .bed or .lsys: it starts from a template"),
+            )
+        })?
+    };
+    let template = match kind {
+        InputKind::Od => TEMPLATE_OD,
+        InputKind::Bed => TEMPLATE_BED,
+        InputKind::Lsys => TEMPLATE_LSYS,
+    };
+    document::Document::file(path, name, kind, template, max_bytes)
 }
 
 /// Accepts connections for ever, at most [`MAX_CONNECTIONS`] at once.

@@ -18,9 +18,9 @@ use serde::Serialize;
 use super::State;
 use super::api::{self, Body, Failed, Kind};
 use super::assets;
+use super::document::Refused;
 use super::http::{self, Answer};
-use crate::frontend::io::Output;
-use stlc::diag::{Diagnostic, io_error};
+use stlc::diag::Diagnostic;
 use stlc::pipeline::ImageFormat;
 
 /// Answers one request.
@@ -66,25 +66,40 @@ fn asset(path: &str) -> Answer {
     }
 }
 
-/// `GET /api/file`: `{"text", "kind", "name", "can_save"}`.
+/// `GET /api/file`: the file as it is now: `{"text", "version", "kind",
+/// "name", "path", "can_save"}`; `version` is `null` for a file that does
+/// not exist yet (its text is a template; Save creates it).
 fn file(state: &State) -> Answer {
     #[derive(Serialize)]
     struct Opened<'a> {
-        text: &'a str,
+        text: String,
+        version: Option<String>,
         kind: Kind,
         name: &'a str,
+        path: String,
         can_save: bool,
     }
-    let (text, kind, name) = &state.opened;
-    http::json(
-        StatusCode::OK,
-        &Opened {
-            text,
-            kind: (*kind).into(),
-            name,
-            can_save: state.file.is_some(),
-        },
-    )
+    let doc = &state.doc;
+    match doc.current() {
+        Ok(now) => http::json(
+            StatusCode::OK,
+            &Opened {
+                text: now.text,
+                version: now.version,
+                kind: doc.kind.into(),
+                name: &doc.name,
+                path: doc.key(),
+                can_save: doc.can_save(),
+            },
+        ),
+        Err(d) => http::error(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            &d.iter()
+                .map(|d| d.kind.to_string())
+                .collect::<Vec<_>>()
+                .join("; "),
+        ),
+    }
 }
 
 /// Reads and parses a request body: the answer to send instead if it is
@@ -145,41 +160,60 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
 }
 
 /// `POST /api/save`: writes the text to the file named on the command
-/// line, atomically; only with this run's token.
+/// line, atomically, only with this run's token, and only over the version
+/// the edit is based on: otherwise 412 with the version there now.
 async fn save(state: Arc<State>, req: Request<Incoming>) -> Answer {
     let token_ok = req
         .headers()
         .get("x-stlc-token")
         .and_then(|t| t.to_str().ok())
         .is_some_and(|t| http::same_secret(t, &state.token));
-    let body = match body(&state, req).await {
+    let bytes = match http::read_body(req, state.settings.limits.max_input_bytes).await {
         Ok(b) => b,
         Err(a) => return a,
+    };
+    let body = match api::parse_save(&bytes) {
+        Ok(b) => b,
+        Err(api::BadRequest(m)) => return http::error(StatusCode::BAD_REQUEST, &m),
     };
     if !token_ok {
         return http::error(StatusCode::FORBIDDEN, "saving needs the page's token");
     }
-    let Some(file) = state.file.clone() else {
-        return http::error(
-            StatusCode::CONFLICT,
-            "no file was named on the command line: the page downloads instead",
-        );
-    };
-    let text = body.source;
-    let done = blocking(move || {
-        Output::Path(file).write_with(|w| {
-            w.write_all(text.as_bytes())
-                .map_err(|e| io_error(&e, "cannot write the file").into())
-        })
-    })
-    .await;
     #[derive(Serialize)]
     struct Saved {
         ok: bool,
+        version: Option<String>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        error: Option<&'static str>,
     }
+    let done = blocking(move || {
+        state
+            .doc
+            .save(&body.source, body.version.as_ref().map(|v| v.as_deref()))
+    })
+    .await;
     match done {
-        Some(Ok(())) => http::json(StatusCode::OK, &Saved { ok: true }),
-        Some(Err(d)) => {
+        Some(Ok(version)) => http::json(
+            StatusCode::OK,
+            &Saved {
+                ok: true,
+                version: Some(version),
+                error: None,
+            },
+        ),
+        Some(Err(Refused::Changed(now))) => http::json(
+            StatusCode::PRECONDITION_FAILED,
+            &Saved {
+                ok: false,
+                version: now,
+                error: Some("the file changed since this edit began (another tab or program)"),
+            },
+        ),
+        Some(Err(Refused::NoFile)) => http::error(
+            StatusCode::CONFLICT,
+            "no file was named on the command line: the page downloads instead",
+        ),
+        Some(Err(Refused::Failed(d))) => {
             let list: Vec<Diagnostic> = d.iter().cloned().collect();
             http::json(
                 StatusCode::OK,

@@ -585,10 +585,11 @@ fn page_token(server: &Server) -> String {
         .to_string()
 }
 
-/// Ctrl-C stops the server with exit status 0; a missing file is an error
+/// Ctrl-C stops the server with exit status 0; a new file in a missing
+/// folder, or one whose name says no kind, is an error
 /// before anything is served.
 #[test]
-fn ctrl_c_stops_cleanly_and_a_missing_file_is_an_error() {
+fn ctrl_c_stops_cleanly_and_a_file_that_cannot_be_made_is_an_error() {
     let server = Server::start(&[]);
     assert_eq!(request(&server.addr, "GET", "/", &[], b"").status, 200);
     let status = server.interrupt();
@@ -599,7 +600,75 @@ fn ctrl_c_stops_cleanly_and_a_missing_file_is_an_error() {
         .unwrap();
     assert_eq!(out.status.code(), Some(1));
     assert!(out.stdout.is_empty());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/file.od"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no/such/file.od") && err.contains("does not exist"),
+        "{err}"
+    );
+    // A new file whose name says no kind: nothing to start from.
+    let dir = tempfile::tempdir().unwrap();
+    let odd = dir.path().join("new.xyz");
+    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+        .args(["serve", odd.to_str().unwrap(), "--port", "0"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains(".od, .bed or .lsys"));
+}
+
+/// `stlc serve new.od` for a file not there yet starts from a template
+/// (`version` null), and the first Save creates it; a save based on an
+/// older version is refused with 412 and the version now there, and
+/// nothing is written; a save based on that version goes through.
+#[test]
+fn a_new_file_is_created_and_a_save_over_another_version_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("oak.od");
+    let server = Server::start(&[file.to_str().unwrap()]);
+    let addr = &server.addr;
+    let opened = request(addr, "GET", "/api/file", &[], b"").json();
+    assert_eq!(opened["version"], Value::Null);
+    assert!(opened["text"].as_str().unwrap().contains("RULE"));
+    assert!(!file.exists(), "nothing is written before Save");
+    // The template grows a tree.
+    let a = render(addr, &json!({"source": opened["text"]}));
+    assert_eq!(a["ok"], true, "{a}");
+    assert!(a["stems"].as_u64().unwrap() > 50, "{a}");
+    let token = page_token(&server);
+    let save = |body: Value| {
+        request(
+            addr,
+            "POST",
+            "/api/save",
+            &[("X-Stlc-Token", &token)],
+            body.to_string().as_bytes(),
+        )
+    };
+    let first = save(json!({"source": "one\n", "version": null}));
+    assert_eq!(
+        first.status,
+        200,
+        "{}",
+        String::from_utf8_lossy(&first.body)
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "one\n");
+    let v1 = first.json()["version"].as_str().unwrap().to_string();
+    assert_eq!(
+        request(addr, "GET", "/api/file", &[], b"").json()["version"],
+        v1.as_str()
+    );
+    // Another program writes; a save based on v1 is refused.
+    std::fs::write(&file, "theirs\n").unwrap();
+    let now = request(addr, "GET", "/api/file", &[], b"").json();
+    assert_eq!(now["text"], "theirs\n", "the file is read as it is now");
+    let refused = save(json!({"source": "mine\n", "version": v1}));
+    assert_eq!(refused.status, 412);
+    assert_eq!(refused.json()["version"], now["version"]);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "theirs\n");
+    // Keep mine: based on the version there now.
+    let kept = save(json!({"source": "mine\n", "version": now["version"]}));
+    assert_eq!(kept.status, 200);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine\n");
 }
 
 /// A forest with alternatives: the request's seed is the CLI's `--seed`
