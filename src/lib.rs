@@ -52,4 +52,4 @@ pub mod syntax;
 pub mod turtle;
 
 pub use diag::{Diagnostic, Diagnostics, ErrorKind, Severity, Span};
-pub use limits::Limits;
+pub use limits::{Bound, Limits};

@@ -56,14 +56,19 @@ pub enum ErrorKind {
         found: usize,
     },
     /// A limit (depth, word length, stems, ...) would be exceeded.
-    #[error("{what}: {} exceeds the limit of {limit}", short_number(value))]
+    #[error("{}: {} exceeds the limit of {limit}", what.as_deref().unwrap_or(bound.describe()), short_number(value))]
     Limit {
-        /// What is limited, in words.
-        what: String,
-        /// The value asked for (decimal; may be a big integer).
+        /// Which limit.
+        bound: crate::limits::Bound,
+        /// What was measured against it, where the bound's own words
+        /// ([`crate::limits::Bound::describe`]) are not precise enough
+        /// (`derived word length at depth 30`).
+        what: Option<String>,
+        /// The value asked for (decimal; may be a big integer, or a bound
+        /// such as `more than 10000`).
         value: String,
         /// The limit in force.
-        limit: String,
+        limit: u64,
     },
     /// The reader of our standard output went away (`stlc expand | head`).
     /// The CLI exits quietly on it.
@@ -421,7 +426,8 @@ pub enum ErrorKind {
     },
     /// Warning: `--max-stems` stopped growth; the BED is cut short.
     #[error(
-        "growth stopped at {stems} stems: the next rule application would pass the limit of --max-stems {limit}"
+        "growth stopped at {stems} stems: the next rule application would pass the limit of {} {limit}",
+        crate::limits::Bound::Stems.flag()
     )]
     GrowthStopped {
         /// Stems grown when growth stopped.
@@ -431,7 +437,8 @@ pub enum ErrorKind {
     },
     /// Warning: growth reached `--max-depth`; deeper branches were not grown.
     #[error(
-        "growth reached the depth limit of {limit} nested rule applications (--max-depth); deeper branches were not grown"
+        "growth reached the depth limit of {limit} nested rule applications ({}); deeper branches were not grown",
+        crate::limits::Bound::Depth.flag()
     )]
     DepthCapped {
         /// The limit in force.

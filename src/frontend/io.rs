@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+use stlc::limits::Bound;
 
 /// The temporary file being written, if any: an interrupt removes it
 /// before the process exits ([`remove_pending`]).
@@ -122,7 +123,7 @@ impl Input {
                 size: buf.len() as u64,
                 limit,
             })
-            .with_help("raise the limit with --max-input BYTES")
+            .with_help(Bound::InputBytes.raise())
             .into());
         }
         Ok(buf)

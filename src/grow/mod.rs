@@ -56,12 +56,15 @@ mod tree;
 
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 use crate::model::{Description, Format, Loc, Seed, StemParams};
 use crate::progress::Progress;
 use crate::turtle::Point;
 
 use grower::Grower;
+
+/// What a seed over `--max-stems` by itself is, in the error message.
+const SEED_STEMS: &str = "stems drawn by the seed alone";
 use occupancy::Backend;
 use region::Region;
 
@@ -231,11 +234,12 @@ fn grow_inner(
     let seed_stems = seed::drawn_stems(od, &seed).saturating_mul(trees);
     if seed_stems > opts.limits.max_stems {
         return Err(Diagnostic::error(ErrorKind::Limit {
-            what: "stems drawn by the seed alone".into(),
+            bound: Bound::Stems,
+            what: Some(SEED_STEMS.into()),
             value: seed_stems.to_string(),
-            limit: opts.limits.max_stems.to_string(),
+            limit: opts.limits.max_stems,
         })
-        .with_help("raise the limit with --max-stems N, or draw a smaller seed")
+        .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
         .into());
     }
     let flat = seed::flatten(od, &seed)?;

@@ -29,6 +29,7 @@ use rstar::{AABB, RTree, RTreeObject};
 use super::occupancy::{Seg, seg_seg_dist2};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::layout::shape_ring;
+use crate::limits::Bound;
 use crate::model::Layout;
 use crate::turtle::{BBox, Point};
 
@@ -216,14 +217,16 @@ fn vertex_count(area: &MultiPolygon<f64>) -> usize {
 
 fn too_many_vertices(vertices: usize, limit: usize, span: crate::diag::Span) -> Diagnostics {
     Diagnostic::error(ErrorKind::Limit {
-        what: "layout outline vertices".into(),
+        bound: Bound::LayoutVertices,
+        what: None,
         value: vertices.to_string(),
-        limit: limit.to_string(),
+        limit: limit as u64,
     })
     .with_span(span)
-    .with_help(
-        "use fewer polygon points or fewer, smaller curved shapes, or raise the limit with --max-layout-vertices N (above 16000 the overlay can take minutes on some shapes)",
-    )
+    .with_help(format!(
+        "use fewer polygon points or fewer, smaller curved shapes, or {} (above 16000 the overlay can take minutes on some shapes)",
+        Bound::LayoutVertices.raise()
+    ))
     .into()
 }
 
@@ -269,7 +272,7 @@ mod tests {
     #[test]
     fn the_vertex_limit_counts_shapes_and_the_painted_area() {
         let limit_of = |e: Diagnostics| match &e.iter().next().unwrap().kind {
-            ErrorKind::Limit { value, limit, .. } => (value.clone(), limit.clone()),
+            ErrorKind::Limit { value, limit, .. } => (value.clone(), limit.to_string()),
             k => panic!("not a limit: {k:?}"),
         };
         // A 12-gon: 12 vertices fit 12, not 11.

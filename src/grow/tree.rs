@@ -2,6 +2,7 @@
 //! what grew in its slots) and the budget it spends against the limits.
 
 use crate::diag::{Diagnostic, ErrorKind};
+use crate::limits::Bound;
 use crate::model::RuleId;
 
 /// Where a decision is recorded.
@@ -91,9 +92,10 @@ impl Budget {
                 stems: self.stems,
                 limit: max_stems,
             })
-            .with_help(
-                "the BED is valid but its tree is cut short; raise the limit with --max-stems N",
-            ),
+            .with_help(format!(
+                "the BED is valid but its tree is cut short; {}",
+                Bound::Stems.raise()
+            )),
         );
     }
 
@@ -104,8 +106,11 @@ impl Budget {
         }
         self.depth_capped = true;
         self.warnings.push(
-            Diagnostic::warning(ErrorKind::DepthCapped { limit: max_depth })
-                .with_help("raise it with --max-depth N"),
+            Diagnostic::warning(ErrorKind::DepthCapped { limit: max_depth }).with_help(format!(
+                "raise it with {} {}",
+                Bound::Depth.flag(),
+                Bound::Depth.value_name()
+            )),
         );
     }
 }

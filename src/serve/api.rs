@@ -10,7 +10,7 @@ use serde_json::{Map, Value, json};
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, line_column};
 use stlc::grow::{GrowOptions, GrowthOrder, PlacedStem};
 use stlc::interpret::Derivation;
-use stlc::limits::Limits;
+use stlc::limits::{Bound, Limits};
 use stlc::model::Description;
 use stlc::model::layout::Shape;
 use stlc::pipeline::{self, Given, Loaded, Look, SceneRequest};
@@ -140,11 +140,15 @@ fn options(req: &Request, s: &Settings) -> Result<(Limits, GrowOptions), Diagnos
     if let Some(n) = req.max_stems {
         if n > s.limits.max_stems {
             return Err(Diagnostic::error(ErrorKind::Limit {
-                what: "max stems asked for".into(),
+                bound: Bound::Stems,
+                what: Some("max stems asked for".into()),
                 value: n.to_string(),
-                limit: s.limits.max_stems.to_string(),
+                limit: s.limits.max_stems,
             })
-            .with_help("ask for fewer, or start `stlc serve` with --max-stems N")
+            .with_help(format!(
+                "ask for fewer, or start `stlc serve` with {} N",
+                Bound::Stems.flag()
+            ))
             .into());
         }
         limits.max_stems = n;

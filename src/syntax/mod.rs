@@ -19,7 +19,7 @@ pub mod lsys;
 pub mod stl;
 
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 
 pub(crate) use grammar::{GrammarParser, Rule, pest_error};
 
@@ -70,7 +70,7 @@ pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnos
             size: bytes.len() as u64,
             limit,
         })
-        .with_help("raise the limit with --max-input BYTES (at most 4 GiB)")
+        .with_help(format!("{} (at most 4 GiB)", Bound::InputBytes.raise()))
         .into());
     }
     let text = match std::str::from_utf8(bytes) {
@@ -99,7 +99,7 @@ pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnos
                     })
                     .with_span(i..i + 1)
                     .with_label("this bracket is nested too deep")
-                    .with_help("raise the limit with --max-nesting N")
+                    .with_help(Bound::Nesting.raise())
                     .into());
                 }
             }

@@ -22,7 +22,7 @@ use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
 use stlc::turtle::{Interp, Op};
 use stlc::turtle::{Point, Recorder, Segment};
-use stlc::{Diagnostics, ErrorKind, Limits, Severity};
+use stlc::{Bound, Diagnostics, ErrorKind, Limits, Severity};
 
 // ------------------------------------------------------------ descriptions
 
@@ -813,9 +813,10 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     assert_eq!(
         e.0[0].kind,
         ErrorKind::Limit {
-            what: "stems drawn by the seed alone".into(),
+            bound: Bound::Stems,
+            what: Some("stems drawn by the seed alone".into()),
             value: "5".into(),
-            limit: "4".into()
+            limit: 4
         }
     );
     // Terms written out in the seed count what their rules draw, all of
@@ -827,9 +828,10 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     assert_eq!(
         e.0[0].kind,
         ErrorKind::Limit {
-            what: "stems drawn by the seed alone".into(),
+            bound: Bound::Stems,
+            what: Some("stems drawn by the seed alone".into()),
             value: "7".into(),
-            limit: "5".into()
+            limit: 5
         },
         "the bare R1 is a growth point and counts nothing"
     );

@@ -7,7 +7,7 @@ use stlc::diag::ErrorKind;
 use stlc::interpret::Derivation;
 use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
 use stlc::interpret::stats::stats;
-use stlc::limits::Limits;
+use stlc::limits::{Bound, Limits};
 use stlc::progress::NoProgress;
 use stlc::turtle::{Point, Recorder, Segment};
 use stlc::{model::lsys::Background, syntax::lsys::parse};
@@ -227,9 +227,10 @@ fn generations_above_max_depth_name_the_flag() {
     assert_eq!(
         d.kind,
         ErrorKind::Limit {
-            what: "generations".into(),
+            bound: Bound::Depth,
+            what: Some("generations".into()),
             value: "11".into(),
-            limit: "10".into()
+            limit: 10
         }
     );
     assert_eq!(d.span, Some(12..14));
@@ -508,9 +509,10 @@ fn bfs_refuses_over_the_word_budget() {
     assert_eq!(
         err.first_kind(),
         Some(&ErrorKind::Limit {
-            what: "bfs word at level 4".into(),
+            bound: Bound::Word,
+            what: Some("bfs word at level 4".into()),
             value: "1561".into(),
-            limit: "1000".into()
+            limit: 1000
         })
     );
     assert!(err.0[0].help.as_deref().unwrap().contains("--max-word"));

@@ -75,8 +75,9 @@ fn stl_err(src: String, format: Format, limits: Limits) -> Diagnostics {
     })
 }
 
+/// A limit error whose message names `what`.
 fn is_limit(e: &Diagnostics, what: &str) -> bool {
-    matches!(e.first_kind(), Some(ErrorKind::Limit { what: w, .. }) if w.contains(what))
+    matches!(e.first_kind(), Some(k @ ErrorKind::Limit { .. }) if k.to_string().contains(what))
 }
 
 fn bed(src: &str) -> Description {

@@ -11,7 +11,7 @@ use stlc::color::Rgb;
 use stlc::diag::{Diagnostics, ErrorKind};
 use stlc::interpret::Derivation;
 use stlc::interpret::bed::{draw_into, expand};
-use stlc::limits::Limits;
+use stlc::limits::{Bound, Limits};
 use stlc::model::{
     Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, Loc, Piece,
     Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Spelling, StemParams, TermId, Terms,
@@ -492,9 +492,10 @@ fn counts_over_the_limit_are_refused() {
     assert_eq!(
         kind,
         ErrorKind::Limit {
-            what: "self-resemblance count".into(),
+            bound: Bound::Repeat,
+            what: None,
             value: "10001".into(),
-            limit: "10000".into()
+            limit: 10000
         }
     );
     assert_eq!(span, at(&src, "10001", 0));

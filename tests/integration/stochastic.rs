@@ -274,7 +274,7 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
             ErrorKind::Limit {
                 value, limit: l, ..
             } => {
-                assert_eq!(l, &limit.to_string());
+                assert_eq!(*l, limit);
                 value.clone()
             }
             other => panic!("{other:?}"),

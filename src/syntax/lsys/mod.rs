@@ -18,7 +18,7 @@ use super::{GrammarParser, Rule};
 use crate::choice::{self, BadProbabilities};
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 use crate::model::Loc;
 use crate::model::lsys::{Background, DEFAULT_HEADING, LSystem, Production};
 
@@ -458,13 +458,17 @@ impl Checker {
             _ => {
                 self.diags.push(
                     Diagnostic::error(ErrorKind::Limit {
-                        what: Key::Generations.name().into(),
+                        bound: Bound::Depth,
+                        what: Some(Key::Generations.name().into()),
                         value: text.trim_start_matches('0').to_string(),
-                        limit: limits.max_depth.to_string(),
+                        limit: limits.max_depth.into(),
                     })
                     .with_span(span)
                     .with_label("too many generations")
-                    .with_help("use fewer generations, or raise the limit with --max-depth N"),
+                    .with_help(format!(
+                        "use fewer generations, or {}",
+                        Bound::Depth.raise()
+                    )),
                 );
                 None
             }

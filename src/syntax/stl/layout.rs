@@ -11,6 +11,7 @@ use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::limits::Bound;
 use crate::model::{Layout, LayoutShape, Loc, Shape, Spelling};
 
 /// A shape a layout line may draw.
@@ -116,14 +117,16 @@ pub(super) fn prescan_polygons(src: &str, max_vertices: usize) -> Result<(), Dia
             // Point at the shape's line: its colour's `(` before the name.
             let start = src[..p].rfind('(').unwrap_or(p);
             return Err(Diagnostic::error(ErrorKind::Limit {
-                what: "layout outline vertices".into(),
+                bound: Bound::LayoutVertices,
+                what: None,
                 value: vertices.to_string(),
-                limit: max_vertices.to_string(),
+                limit: max_vertices as u64,
             })
             .with_span(start..i.min(b.len()))
-            .with_help(
-                "use fewer polygon points, or raise the limit with --max-layout-vertices N (above 16000 the overlay can take minutes on some shapes)",
-            )
+            .with_help(format!(
+                "use fewer polygon points, or {} (above 16000 the overlay can take minutes on some shapes)",
+                Bound::LayoutVertices.raise()
+            ))
             .into());
         }
         at = i.max(p + 1);
@@ -156,13 +159,17 @@ pub(super) fn prescan_shapes(src: &str, max_shapes: usize) -> Result<(), Diagnos
         return Ok(());
     }
     Err(Diagnostic::error(ErrorKind::Limit {
-        what: "layout shapes".into(),
+        bound: Bound::LayoutShapes,
+        what: None,
         value: shapes.to_string(),
-        limit: max_shapes.to_string(),
+        limit: max_shapes as u64,
     })
     .with_span(layout..from)
     .with_label("this section")
-    .with_help("use fewer shapes, or raise the limit with --max-layout-shapes N")
+    .with_help(format!(
+        "use fewer shapes, or {}",
+        Bound::LayoutShapes.raise()
+    ))
     .into())
 }
 
@@ -453,9 +460,10 @@ mod tests {
         assert_eq!(
             e.0[0].kind,
             ErrorKind::Limit {
-                what: "layout shapes".into(),
+                bound: crate::limits::Bound::LayoutShapes,
+                what: None,
                 value: "4".into(),
-                limit: "3".into()
+                limit: 3
             }
         );
         let at = src.find("LAYOUT").unwrap();

@@ -11,6 +11,7 @@ use pest::iterators::Pair;
 
 use super::{Builder, DRAWING_LETTERS, Rule, not_in_grammar};
 use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::limits::Bound;
 use crate::model::{Format, RuleId};
 
 /// One lexical item of a body or seed, words already split.
@@ -239,13 +240,14 @@ impl Builder<'_> {
             _ => {
                 self.err(
                     Diagnostic::error(ErrorKind::Limit {
-                        what: "self-resemblance count".into(),
+                        bound: Bound::Repeat,
+                        what: None,
                         value: text.trim_start_matches('0').to_string(),
-                        limit: limit.to_string(),
+                        limit: limit.into(),
                     })
                     .with_span(span)
                     .with_label("count too large")
-                    .with_help("raise the limit with --max-depth N"),
+                    .with_help(Bound::Repeat.raise()),
                 );
                 None
             }

@@ -7,6 +7,7 @@ use super::layout::find_word;
 use super::{Builder, Rule, span_of};
 use crate::choice::{self, BadProbabilities};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::limits::Bound;
 use crate::model::{Alternative, Format, Loc, RuleDef, RuleId};
 
 /// The drawing letters of bodies and seeds. A word's leftovers after the
@@ -64,13 +65,17 @@ pub(super) fn prescan_rules(src: &str, max_parts: usize) -> Result<(), Diagnosti
         return Ok(());
     }
     Err(Diagnostic::error(ErrorKind::Limit {
-        what: "rule definitions and branches".into(),
+        bound: Bound::RuleParts,
+        what: None,
         value: parts.to_string(),
-        limit: max_parts.to_string(),
+        limit: max_parts as u64,
     })
     .with_span(start..from)
     .with_label("this section")
-    .with_help("use fewer rules or branches, or raise the limit with --max-rule-parts N")
+    .with_help(format!(
+        "use fewer rules or branches, or {}",
+        Bound::RuleParts.raise()
+    ))
     .into())
 }
 
@@ -449,9 +454,10 @@ mod tests {
         assert_eq!(
             e.0[0].kind,
             crate::diag::ErrorKind::Limit {
-                what: "rule definitions and branches".into(),
+                bound: crate::limits::Bound::RuleParts,
+                what: None,
                 value: "5".into(),
-                limit: "4".into()
+                limit: 4
             }
         );
         let at = src.find("RULE").unwrap();
