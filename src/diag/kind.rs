@@ -524,39 +524,6 @@ pub enum ErrorKind {
         /// The operating system's message.
         error: String,
     },
-    /// `-o` names a directory.
-    #[error("`{path}` is a directory")]
-    IsADirectory {
-        /// The path.
-        path: String,
-    },
-    /// `-o` names a chain of symbolic links longer than the limit.
-    #[error("`{path}`: more than {hops} symbolic links in a row")]
-    TooManyLinks {
-        /// The path.
-        path: String,
-        /// The limit.
-        hops: usize,
-    },
-    /// The output file could not be created (its temporary file, in the
-    /// target's directory, could not).
-    #[error("cannot write `{path}`: cannot create a file in `{dir}`: {error}")]
-    CannotCreate {
-        /// The target as named.
-        path: String,
-        /// The target's directory.
-        dir: String,
-        /// The operating system's message.
-        error: String,
-    },
-    /// The finished output could not be renamed over the target.
-    #[error("cannot replace `{path}`: {error}")]
-    CannotReplace {
-        /// The target.
-        path: String,
-        /// The operating system's message.
-        error: String,
-    },
     /// A file's kind cannot be told from its name or its text.
     #[error("cannot tell what kind of file `{name}` is")]
     UnknownInputKind {
@@ -576,10 +543,6 @@ pub enum ErrorKind {
     /// An L-system has no `generations` and no `--depth` was given.
     #[error("no derivation depth")]
     NoDepth,
-    /// Reading standard input, `render` was not told where the picture goes
-    /// (a usage error).
-    #[error("no output named")]
-    NoOutput,
     /// `-f` names one format and the output's extension another (a usage
     /// error).
     #[error("`-f {format}` contradicts the output name `{path}`")]
@@ -597,14 +560,6 @@ pub enum ErrorKind {
         path: String,
         /// Its extension.
         extension: String,
-    },
-    /// The output is the input file: writing would destroy the input.
-    #[error("refusing to write over the input: `{output}` is the same file as `{input}`")]
-    OutputIsInput {
-        /// The input as named.
-        input: String,
-        /// The output as named.
-        output: String,
     },
     /// A flag given that does nothing for this input (a warning).
     #[error("{flag} was ignored: {reason}")]
@@ -625,16 +580,16 @@ pub enum ErrorKind {
         /// `L` or `R`.
         symbol: char,
     },
-    /// A PNG would be written to a terminal.
-    #[error("refusing to write a PNG to a terminal")]
-    PngToTerminal,
-    /// A colour flag names no colour.
-    #[error("{flag}: unknown colour `{text}`")]
-    UnknownColourFlag {
-        /// The flag (`--stroke`, `--background`).
-        flag: String,
-        /// What was given.
-        text: String,
+    /// An error only a front end makes (its command line, the files it
+    /// writes): the front end's own error type (`frontend/error.rs` in the
+    /// binary) converts into this, keeping its message and whether it is a
+    /// usage error.
+    #[error("{message}")]
+    FrontEnd {
+        /// The message.
+        message: String,
+        /// Whether it is a usage error (exit status 2).
+        usage: bool,
     },
 }
 
@@ -645,9 +600,9 @@ impl ErrorKind {
     pub fn is_usage(&self) -> bool {
         matches!(
             self,
-            ErrorKind::NoOutput
-                | ErrorKind::FormatMismatch { .. }
+            ErrorKind::FormatMismatch { .. }
                 | ErrorKind::UnknownOutputExtension { .. }
+                | ErrorKind::FrontEnd { usage: true, .. }
         )
     }
 }

@@ -70,10 +70,10 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     /// An error of `kind` with no location yet.
-    pub fn error(kind: ErrorKind) -> Self {
+    pub fn error(kind: impl Into<ErrorKind>) -> Self {
         Diagnostic {
             severity: Severity::Error,
-            kind,
+            kind: kind.into(),
             span: None,
             label: None,
             labels: Vec::new(),
@@ -82,7 +82,7 @@ impl Diagnostic {
     }
 
     /// A warning of `kind` with no location yet.
-    pub fn warning(kind: ErrorKind) -> Self {
+    pub fn warning(kind: impl Into<ErrorKind>) -> Self {
         Diagnostic {
             severity: Severity::Warning,
             ..Diagnostic::error(kind)

@@ -20,6 +20,8 @@ use std::sync::Mutex;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::limits::Bound;
 
+use super::error::FrontEndError;
+
 /// The temporary file being written, if any: an interrupt removes it
 /// before the process exits ([`remove_pending`]).
 static PENDING: Mutex<Option<PathBuf>> = Mutex::new(None);
@@ -194,7 +196,7 @@ fn resolve_links(target: &Path) -> Result<PathBuf, Diagnostics> {
             _ => return Ok(path),
         }
     }
-    Err(Diagnostic::error(ErrorKind::TooManyLinks {
+    Err(Diagnostic::error(FrontEndError::TooManyLinks {
         path: target.display().to_string(),
         hops: MAX_SYMLINK_HOPS,
     })
@@ -211,7 +213,7 @@ fn write_atomically(
     let existing = fs::metadata(target).ok();
     match &existing {
         Some(m) if m.is_dir() => {
-            return Err(Diagnostic::error(ErrorKind::IsADirectory {
+            return Err(Diagnostic::error(FrontEndError::IsADirectory {
                 path: target.display().to_string(),
             })
             .with_help("give a file name with -o, e.g. -o tree.png")
@@ -238,7 +240,7 @@ fn write_atomically(
             Ok(m) if !m.is_dir() => "not a directory".to_string(),
             Ok(_) => io::Error::from(e.kind()).to_string(),
         };
-        Diagnostic::error(ErrorKind::CannotCreate {
+        Diagnostic::error(FrontEndError::CannotCreate {
             path: target.display().to_string(),
             dir: dir.display().to_string(),
             error,
@@ -272,7 +274,7 @@ fn write_temp(
         .sync_all()
         .map_err(|e| io_error(&e, &format!("cannot write `{}`", target.display())))?;
     tmp.persist(target).map_err(|e| {
-        Diagnostic::error(ErrorKind::CannotReplace {
+        Diagnostic::error(FrontEndError::CannotReplace {
             path: target.display().to_string(),
             error: e.error.to_string(),
         })
