@@ -11,7 +11,7 @@ pub mod write;
 
 use std::collections::BTreeMap;
 
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{BedError, Diagnostic, Diagnostics, ErrorKind, RuleError};
 use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, Step};
 use crate::model::{Description, Fixed, RuleId, Seed, SeedItem, Slot, StemParams, Term};
@@ -292,7 +292,7 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
             let m = rule.branch_count();
             if t.slot_count() != m {
                 diags.push(
-                    Diagnostic::error(ErrorKind::SlotCount {
+                    Diagnostic::error(RuleError::SlotCount {
                         rule: rule.full_name().into_owned(),
                         expected: m,
                         found: t.slot_count(),
@@ -348,7 +348,7 @@ fn rule_name(desc: &Description, id: RuleId) -> String {
 }
 
 fn unknown_id(id: RuleId, span: &crate::diag::Span) -> Diagnostic {
-    Diagnostic::error(ErrorKind::UnknownRule {
+    Diagnostic::error(RuleError::UnknownRule {
         name: format!("#{}", id.0),
     })
     .with_span(span.clone())
@@ -356,7 +356,7 @@ fn unknown_id(id: RuleId, span: &crate::diag::Span) -> Diagnostic {
 }
 
 fn order_error(p: &StemParams, order: u32, span: crate::diag::Span, rule: &str) -> Diagnostic {
-    Diagnostic::error(ErrorKind::OrderTooDeep {
+    Diagnostic::error(BedError::OrderTooDeep {
         rule: rule.to_string(),
         order,
         length: p.length.at(order),
@@ -389,12 +389,12 @@ mod tests {
         let d = order_error(&p, 4, 3..7, "R1");
         assert_eq!(
             d.kind,
-            ErrorKind::OrderTooDeep {
+            ErrorKind::Bed(BedError::OrderTooDeep {
                 rule: "R1".into(),
                 order: 4,
                 length: -10.0,
                 width: 1.0 - 4.0 * 0.3
-            }
+            })
         );
         assert_eq!(d.span, Some(3..7));
         assert_eq!(

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use std::sync::Mutex;
 
-use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, InputError, io_error};
 use stlc::limits::Bound;
 
 use super::error::FrontEndError;
@@ -121,7 +121,7 @@ impl Input {
             return Err(d.into());
         }
         if buf.len() as u64 > limit {
-            return Err(Diagnostic::error(ErrorKind::InputTooLarge {
+            return Err(Diagnostic::error(InputError::InputTooLarge {
                 size: buf.len() as u64,
                 limit,
             })

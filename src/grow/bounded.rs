@@ -10,7 +10,7 @@
 
 use super::seed::SeedGp;
 use super::{GrowOptions, span_of};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, GrowError};
 use crate::limits::Bound;
 use crate::model::walk::{self, Step};
 use crate::model::{Description, RuleGroups, RuleId};
@@ -49,7 +49,7 @@ pub(super) fn check_bounded(
             .find_map(|&r| endless_from(od, &groups, r));
         if let Some(cycle_rule) = endless {
             let name = &od.rule(gp.rule).name;
-            let mut d = Diagnostic::error(ErrorKind::UnboundedGrowth {
+            let mut d = Diagnostic::error(GrowError::UnboundedGrowth {
                 rule: name.clone(),
                 through: od.rule(cycle_rule).name.clone(),
             })

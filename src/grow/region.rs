@@ -27,7 +27,7 @@ use geo::{BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon,
 use rstar::{AABB, RTree, RTreeObject};
 
 use super::occupancy::{Seg, seg_seg_dist2};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, LayoutError};
 use crate::layout::shape_ring;
 use crate::limits::Bound;
 use crate::model::Layout;
@@ -69,7 +69,7 @@ impl Region {
         for s in &layout.shapes {
             let ring = shape_ring(&s.shape);
             if ring.iter().any(|p| !p.x.is_finite() || !p.y.is_finite()) {
-                return Err(Diagnostic::error(ErrorKind::LayoutNotFinite)
+                return Err(Diagnostic::error(LayoutError::LayoutNotFinite)
                     .with_span(s.loc.0.clone())
                     .into());
             }
@@ -93,7 +93,7 @@ impl Region {
             ));
         }
         Region::from_area(area).ok_or_else(|| {
-            Diagnostic::error(ErrorKind::EmptyRegion)
+            Diagnostic::error(LayoutError::EmptyRegion)
             .with_span(layout.loc.0.clone())
             .with_help(
                 "paint at least one coloured (non-white) shape that later white shapes do not cover entirely",
@@ -325,10 +325,16 @@ mod tests {
             shape(Rgb::WHITE, rect(0.0, 0.0, 50.0, 50.0)),
         ]);
         let e = Region::from_layout(&l, 16_000).unwrap_err();
-        assert_eq!(e.first_kind(), Some(&ErrorKind::EmptyRegion));
+        assert_eq!(
+            e.first_kind(),
+            Some(&ErrorKind::Layout(LayoutError::EmptyRegion))
+        );
         let only_white = layout(vec![shape(Rgb::WHITE, rect(0.0, 0.0, 5.0, 5.0))]);
         let e = Region::from_layout(&only_white, 16_000).unwrap_err();
-        assert_eq!(e.first_kind(), Some(&ErrorKind::EmptyRegion));
+        assert_eq!(
+            e.first_kind(),
+            Some(&ErrorKind::Layout(LayoutError::EmptyRegion))
+        );
     }
 
     #[test]

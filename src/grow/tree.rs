@@ -1,7 +1,7 @@
 //! What growth records: the grown tree (every successful application and
 //! what grew in its slots) and the budget it spends against the limits.
 
-use crate::diag::{Diagnostic, ErrorKind};
+use crate::diag::{Diagnostic, GrowError};
 use crate::limits::Bound;
 use crate::model::RuleId;
 
@@ -88,7 +88,7 @@ impl Budget {
         }
         self.stopped = true;
         self.warnings.push(
-            Diagnostic::warning(ErrorKind::GrowthStopped {
+            Diagnostic::warning(GrowError::GrowthStopped {
                 stems: self.stems,
                 limit: max_stems,
             })
@@ -106,7 +106,7 @@ impl Budget {
         }
         self.depth_capped = true;
         self.warnings.push(
-            Diagnostic::warning(ErrorKind::DepthCapped { limit: max_depth }).with_help(format!(
+            Diagnostic::warning(GrowError::DepthCapped { limit: max_depth }).with_help(format!(
                 "raise it with {} {}",
                 Bound::Depth.flag(),
                 Bound::Depth.value_name()

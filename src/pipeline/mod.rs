@@ -33,7 +33,7 @@ use std::io::Write;
 use std::path::Path;
 
 use crate::bed::Bed;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, InputError, LsysError};
 use crate::grow::{GrowOptions, Grown, PlacedStem};
 use crate::interpret::Derivation;
 use crate::limits::Limits;
@@ -88,7 +88,7 @@ pub fn detect_kind(name: Option<&Path>, bytes: &[u8]) -> Result<InputKind, Diagn
         Some(p) => match InputKind::from_path(p) {
             Some(k) => Ok(k),
             None => sniff(bytes).ok_or_else(|| {
-                Diagnostic::error(ErrorKind::UnknownInputKind {
+                Diagnostic::error(InputError::UnknownInputKind {
                     name: p.display().to_string(),
                 })
                 .with_help("name it .od, .bed or .lsys, or say --from od|bed|lsys")
@@ -130,7 +130,7 @@ pub fn load(bytes: &[u8], kind: InputKind, limits: &Limits) -> Result<Loaded, Di
                 "a description needs at least a tree name, a root `(x, y)` and `RULE` with a rule"
             }
         };
-        return Err(Diagnostic::error(ErrorKind::EmptyInput)
+        return Err(Diagnostic::error(InputError::EmptyInput)
             .with_help(help)
             .into());
     }
@@ -161,7 +161,7 @@ fn wrong_kind(command: Command, found: InputKind) -> Diagnostics {
             "for an .od or .bed, `stlc check` prints its rules, terms and stem count",
         ),
     };
-    Diagnostic::error(ErrorKind::WrongInputKind {
+    Diagnostic::error(InputError::WrongInputKind {
         message: message.into(),
     })
     .with_help(help)
@@ -361,7 +361,7 @@ pub fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
                     .map(|p| p.loc.0.clone())
             }?;
             Some(
-                Diagnostic::warning(ErrorKind::InertTurn { symbol: c })
+                Diagnostic::warning(LsysError::InertTurn { symbol: c })
                     .with_span(span)
                     .with_label(format!("`{c}` here turns nothing"))
                     .with_help("write `+` for a left turn and `-` for a right turn"),
@@ -374,7 +374,7 @@ pub fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
 /// `generations`, within `limits.max_depth`.
 pub fn lsys_depth(sys: &LSystem, depth: Option<u32>, limits: &Limits) -> Result<u32, Diagnostics> {
     let d = depth.or(sys.generations).ok_or_else(|| {
-        Diagnostic::error(ErrorKind::NoDepth)
+        Diagnostic::error(LsysError::NoDepth)
             .with_help("add a line `generations N` to the file, or pass --depth N")
     })?;
     limits.check_depth(d)?;

@@ -12,7 +12,7 @@ pub mod svg;
 use std::io::Write;
 
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError, io_error};
 use crate::limits::Bound;
 use crate::num::Linear;
 use crate::progress::{Phase, Progress};
@@ -456,7 +456,10 @@ mod tests {
         for size in [(0, 10), (10, 0), (MAX_SIDE + 1, 10)] {
             let err = Fit::content(None, 0, &Width::Pixels(1.0), Some(size)).unwrap_err();
             let d = &err.0[0];
-            assert!(matches!(d.kind, ErrorKind::ImageSize { .. }));
+            assert!(matches!(
+                d.kind,
+                ErrorKind::Render(RenderError::ImageSize { .. })
+            ));
             assert!(d.to_string().contains("--size"), "{d}");
         }
         assert!(Fit::view(&bbox(0.0, 0.0, 1.0, 1.0), Some((MAX_SIDE, 1))).is_ok());
@@ -471,6 +474,9 @@ mod tests {
             None,
         )
         .unwrap_err();
-        assert_eq!(err.first_kind(), Some(&ErrorKind::DrawingNotFinite));
+        assert_eq!(
+            err.first_kind(),
+            Some(&ErrorKind::Render(RenderError::DrawingNotFinite))
+        );
     }
 }

@@ -11,6 +11,7 @@ use geo::{
 };
 
 use stlc::bed::Bed;
+use stlc::diag::GrowError;
 #[cfg(feature = "spade-index")]
 use stlc::grow::grow_with;
 #[cfg(feature = "spade-index")]
@@ -647,10 +648,10 @@ fn max_stems_stops_growth_with_a_warning() {
     assert_eq!(g.warnings[0].severity, Severity::Warning);
     assert_eq!(
         g.warnings[0].kind,
-        ErrorKind::GrowthStopped {
+        ErrorKind::Grow(GrowError::GrowthStopped {
             stems: 99,
             limit: 100
-        }
+        })
     );
 }
 
@@ -660,10 +661,10 @@ fn unbounded_growth_is_refused_with_a_fix() {
     let d = &e.0[0];
     assert_eq!(
         d.kind,
-        ErrorKind::UnboundedGrowth {
+        ErrorKind::Grow(GrowError::UnboundedGrowth {
             rule: "R1".into(),
             through: "R1".into()
-        }
+        })
     );
     // The default seed has no text: the rule's name is pointed at.
     assert_eq!(d.span, Some(span_of(BINARY, "R1")));
@@ -686,7 +687,10 @@ fn root_outside_the_region_is_an_error() {
         RULE R1: [-F][+F]
         LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT";
     let e = grow_err(&od(text), opts(GrowthOrder::Bfs));
-    assert_eq!(e.0[0].kind, ErrorKind::RootOutside { x: 250.0, y: 100.0 });
+    assert_eq!(
+        e.0[0].kind,
+        ErrorKind::Grow(GrowError::RootOutside { x: 250.0, y: 100.0 })
+    );
     assert_eq!(e.0[0].span, Some(span_of(text, "(250, 100)")));
 }
 
@@ -772,7 +776,10 @@ fn depth_limit_stops_a_vine_with_a_warning() {
     assert_eq!(g.stems, 1 + 5);
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(g.warnings[0].severity, Severity::Warning);
-    assert_eq!(g.warnings[0].kind, ErrorKind::DepthCapped { limit: 5 });
+    assert_eq!(
+        g.warnings[0].kind,
+        ErrorKind::Grow(GrowError::DepthCapped { limit: 5 })
+    );
 }
 
 #[test]

@@ -10,7 +10,7 @@ use pest::iterators::Pair;
 use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, LayoutError, Span, StlError};
 use crate::limits::Bound;
 use crate::model::{Layout, LayoutShape, Loc, Shape, Spelling};
 
@@ -226,7 +226,7 @@ impl Builder<'_> {
         }
         if !closed {
             self.err(
-                Diagnostic::error(ErrorKind::UnclosedSection {
+                Diagnostic::error(StlError::UnclosedSection {
                     open: KW_LAYOUT,
                     close: KW_ENDLAYOUT,
                 })
@@ -301,7 +301,7 @@ impl Builder<'_> {
         let positive = |b: &mut Self, v: f64, s: &Span, what: &'static str| {
             if v <= 0.0 {
                 b.report(
-                    ErrorKind::ShapeSizeNotPositive {
+                    LayoutError::ShapeSizeNotPositive {
                         shape: kind.name(),
                         what,
                     },
@@ -382,7 +382,7 @@ impl Builder<'_> {
         }
         if pts.len() < 3 {
             self.report(
-                ErrorKind::TooFewPoints { points: pts.len() },
+                LayoutError::TooFewPoints { points: pts.len() },
                 span,
                 "too few points",
                 "add points: `Polygon (x1,y1), (x2,y2), (x3,y3)`",
@@ -395,7 +395,7 @@ impl Builder<'_> {
     /// Reports arguments that fit none of `kind`'s spellings.
     fn shape_arguments(&mut self, kind: ShapeName, span: Span) -> Option<(Shape, Spelling)> {
         self.report(
-            ErrorKind::ShapeArguments { shape: kind.name() },
+            LayoutError::ShapeArguments { shape: kind.name() },
             span,
             "these arguments",
             &format!("write {}", kind.usage()),
@@ -417,7 +417,7 @@ impl Builder<'_> {
             .expect("ShapeName::ALL is not empty");
         let all: Vec<&str> = ShapeName::ALL.iter().map(|k| k.name()).collect();
         self.report(
-            ErrorKind::UnknownShape {
+            LayoutError::UnknownShape {
                 name: name.to_string(),
             },
             span,
@@ -472,7 +472,7 @@ mod tests {
     }
 
     use super::ShapeName;
-    use crate::diag::ErrorKind;
+    use crate::diag::{ErrorKind, LayoutError, StlError};
     use crate::limits::Limits;
     use crate::model::Format;
 
@@ -481,15 +481,18 @@ mod tests {
         let bed = |src: &str| super::super::parse(src, Format::Bed, &Limits::default());
         let src = "T (0,0) l=10(0) RULE R1: [F]";
         let e = bed(src).unwrap_err();
-        assert_eq!(e.0[0].kind, ErrorKind::UnknownParam { key: "l".into() });
+        assert_eq!(
+            e.0[0].kind,
+            ErrorKind::Stl(StlError::UnknownParam { key: "l".into() })
+        );
         assert!(e.0[0].help.as_deref().unwrap_or("").contains("`L`"));
         let src = "T (0,0) RULE R1: [F] LAYOUT (clRed) Rect (0,0), 1, 1 ENDLAYOUT";
         let e = bed(src).unwrap_err();
         assert_eq!(
             e.0[0].kind,
-            ErrorKind::UnknownShape {
+            ErrorKind::Layout(LayoutError::UnknownShape {
                 name: "Rect".into()
-            }
+            })
         );
         let at = src.find("Rect ").unwrap();
         assert_eq!(e.0[0].span, Some(at..at + 4));

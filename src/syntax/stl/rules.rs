@@ -6,7 +6,7 @@ use pest::iterators::Pair;
 use super::layout::find_word;
 use super::{Builder, Rule, span_of};
 use crate::choice::{self, BadProbabilities};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, RuleError, Span};
 use crate::limits::Bound;
 use crate::model::{Alternative, Format, Loc, RuleDef, RuleId};
 
@@ -146,7 +146,7 @@ impl Builder<'_> {
                     .expect("grammar: stl_rule_def has `:` or `=`");
                 let at = span_of(&defines).end;
                 self.err(
-                    Diagnostic::error(ErrorKind::MissingBody)
+                    Diagnostic::error(RuleError::MissingBody)
                         .with_span(at..at)
                         .with_label("the rule ends here")
                         .with_help("write what the rule draws, e.g. `R1: [+F][-F]`"),
@@ -204,7 +204,7 @@ impl Builder<'_> {
                 // A BED chooses nothing: a probability only annotates a
                 // recorded alternative (`R1.1 (0.5)`).
                 self.report(
-                    ErrorKind::ProbabilityWithoutAlternative {
+                    RuleError::ProbabilityWithoutAlternative {
                         name: written.to_string(),
                     },
                     span.clone(),
@@ -243,7 +243,7 @@ impl Builder<'_> {
                     format!("alternatives are numbered from 1: `{name}.1`, `{name}.2`")
                 };
                 self.report(
-                    ErrorKind::DottedName {
+                    RuleError::DottedName {
                         name: written.to_string(),
                     },
                     span.clone(),
@@ -304,7 +304,7 @@ impl Builder<'_> {
             match choice::check(&probabilities) {
                 Ok(()) => {}
                 Err(BadProbabilities::NotPositive(k)) => self.report(
-                    ErrorKind::BadProbability {
+                    RuleError::BadProbability {
                         name: name.clone(),
                         value: probabilities[k],
                     },
@@ -313,7 +313,7 @@ impl Builder<'_> {
                     "a probability is a number above 0, e.g. `(0.5)`",
                 ),
                 Err(BadProbabilities::Sum(sum)) => {
-                    let mut d = Diagnostic::error(ErrorKind::ProbabilitySum {
+                    let mut d = Diagnostic::error(RuleError::ProbabilitySum {
                         name: name.clone(),
                         sum,
                     })
@@ -352,7 +352,7 @@ impl Builder<'_> {
         if is_reserved(name) {
             let letters: Vec<String> = DRAWING_LETTERS.iter().map(char::to_string).collect();
             self.report(
-                ErrorKind::ReservedName {
+                RuleError::ReservedName {
                     name: name.to_string(),
                 },
                 span.clone(),
@@ -367,7 +367,7 @@ impl Builder<'_> {
         }
         if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
             self.report(
-                ErrorKind::RuleNameNotLetter {
+                RuleError::RuleNameNotLetter {
                     name: name.to_string(),
                 },
                 span.clone(),
@@ -389,7 +389,7 @@ impl Builder<'_> {
                             (heads[i].1.clone(), span.clone())
                         };
                         self.err(
-                            Diagnostic::error(ErrorKind::MissingProbability {
+                            Diagnostic::error(RuleError::MissingProbability {
                                 name: name.to_string(),
                             })
                             .with_span(at)
@@ -405,7 +405,7 @@ impl Builder<'_> {
                 }
             }
             self.err(
-                Diagnostic::error(ErrorKind::DuplicateRule {
+                Diagnostic::error(RuleError::DuplicateRule {
                     name: written.to_string(),
                 })
                 .with_span(span.clone())
