@@ -35,19 +35,23 @@ use super::number::short_number;
 /// is the `Display` text, the span and hints live on [`super::Diagnostic`].
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ErrorKind {
-    /// A problem with the input text as text, before any format's meaning (`kind/input.rs`).
+    /// A problem with the input text as text, before any format's meaning
+    /// (`kind/input.rs`).
     #[error(transparent)]
     Input(#[from] InputError),
     /// A problem with an `.lsys` file (`kind/lsys.rs`).
     #[error(transparent)]
     Lsys(#[from] LsysError),
-    /// A problem with the text of an `.od` or `.bed` (header, body, seed) (`kind/stl.rs`).
+    /// A problem with the text of an `.od` or `.bed`: header, body, seed
+    /// (`kind/stl.rs`).
     #[error(transparent)]
     Stl(#[from] StlError),
-    /// A problem with a rule, its alternatives or a reference to it (`kind/rules.rs`).
+    /// A problem with a rule, its alternatives or a reference to it
+    /// (`kind/rules.rs`).
     #[error(transparent)]
     Rule(#[from] RuleError),
-    /// A problem with a LAYOUT's shapes or the region they make (`kind/layout.rs`).
+    /// A problem with a LAYOUT's shapes or the region they make
+    /// (`kind/layout.rs`).
     #[error(transparent)]
     Layout(#[from] LayoutError),
     /// A problem, or a warning, of growth (`kind/grow.rs`).
@@ -56,7 +60,8 @@ pub enum ErrorKind {
     /// A BED that reads but does not hold together (`kind/bed.rs`).
     #[error(transparent)]
     Bed(#[from] BedError),
-    /// A problem, or a warning, of drawing and writing the picture (`kind/render.rs`).
+    /// A problem, or a warning, of drawing and writing the picture
+    /// (`kind/render.rs`).
     #[error(transparent)]
     Render(#[from] RenderError),
     /// More diagnostics than [`super::MAX_DIAGNOSTICS`]: the rest are
@@ -67,7 +72,11 @@ pub enum ErrorKind {
         count: usize,
     },
     /// A limit (depth, word length, stems, ...) would be exceeded.
-    #[error("{}: {} exceeds the limit of {limit}", what.as_deref().unwrap_or(bound.describe()), short_number(value))]
+    #[error(
+        "{}: {} exceeds the limit of {limit}",
+        what.as_deref().unwrap_or(bound.describe()),
+        short_number(value)
+    )]
     Limit {
         /// Which limit.
         bound: crate::limits::Bound,
