@@ -137,3 +137,57 @@ impl ErrorKind {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limits::Bound;
+
+    /// A stage's error reads the same wrapped as alone, and a usage error
+    /// is one whichever way it is built.
+    #[test]
+    fn wrapped_kinds_keep_their_message_and_usage() {
+        let grow = GrowError::NothingToGrow;
+        assert_eq!(ErrorKind::from(grow.clone()).to_string(), grow.to_string());
+        let mismatch = RenderError::FormatMismatch {
+            format: "svg".into(),
+            path: "a.png".into(),
+        };
+        assert_eq!(
+            ErrorKind::from(mismatch).to_string(),
+            "`-f svg` contradicts the output name `a.png`"
+        );
+        assert!(
+            ErrorKind::from(RenderError::UnknownOutputExtension {
+                path: "a.gif".into(),
+                extension: "gif".into(),
+            })
+            .is_usage()
+        );
+        assert!(!ErrorKind::from(RenderError::DrawingNotFinite).is_usage());
+        let front = |usage| ErrorKind::FrontEnd {
+            message: "m".into(),
+            usage,
+        };
+        assert!(front(true).is_usage() && !front(false).is_usage());
+    }
+
+    /// A limit's message uses the bound's words unless the site gives its own.
+    #[test]
+    fn a_limit_names_its_bound() {
+        let limit = |what: Option<&str>| ErrorKind::Limit {
+            bound: Bound::Depth,
+            what: what.map(String::from),
+            value: "20000".into(),
+            limit: 10_000,
+        };
+        assert_eq!(
+            limit(None).to_string(),
+            "derivation depth: 20000 exceeds the limit of 10000"
+        );
+        assert_eq!(
+            limit(Some("generations")).to_string(),
+            "generations: 20000 exceeds the limit of 10000"
+        );
+    }
+}
