@@ -73,7 +73,7 @@ pub mod syntax;
 pub mod turtle;
 
 pub use diag::{Diagnostic, Diagnostics, ErrorKind, Severity, Span};
-pub use limits::Limits;
+pub use limits::{Bound, Limits};
 pub use pipeline::{
     Checked, Compiled, Drawn, Loaded, Request, Scene, check, compile, detect_kind, expand, load,
     scene, stats,

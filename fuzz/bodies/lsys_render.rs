@@ -5,7 +5,7 @@
 //! finite, `DrawingNotFinite`), never a panic.
 
 use stlc::color::Rgb;
-use stlc::diag::{Diagnostics, ErrorKind};
+use stlc::diag::{Diagnostics, ErrorKind, RenderError};
 use stlc::interpret::{Derivation, lsys};
 use stlc::limits::Limits;
 use stlc::model::lsys::Background;
@@ -47,7 +47,7 @@ fn bits(b: &Bounds) -> Option<[u64; 4]> {
 fn only_limits(e: &Diagnostics, rendering: bool) {
     for d in e.iter().filter(|d| d.is_error()) {
         let ok = matches!(d.kind, ErrorKind::Limit { .. })
-            || (rendering && matches!(d.kind, ErrorKind::DrawingNotFinite));
+            || (rendering && matches!(d.kind, ErrorKind::Render(RenderError::DrawingNotFinite)));
         assert!(ok, "unexpected error after a successful parse: {d}");
     }
 }

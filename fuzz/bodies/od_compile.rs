@@ -3,7 +3,7 @@
 //! `Bed::new` (or meets only the symbol budget) and draws.
 
 use stlc::bed::{Bed, write::write};
-use stlc::diag::ErrorKind;
+use stlc::diag::{BedError, ErrorKind, GrowError, LayoutError};
 use stlc::grow::{GrowOptions, GrowthOrder, grow};
 use stlc::interpret::{Derivation, bed};
 use stlc::limits::Limits;
@@ -37,15 +37,15 @@ fn acceptable_growth_error(kind: &ErrorKind) -> bool {
         // A budget: seed stems, layout vertices, symbols of the grown BED.
         ErrorKind::Limit { .. }
             // No SEED and no rule.
-            | ErrorKind::NothingToGrow
+            | ErrorKind::Grow(GrowError::NothingToGrow)
             // The layout: the root outside it, no area left, or shapes
             // whose corners overflow (`x + w` infinite).
-            | ErrorKind::RootOutside { .. }
-            | ErrorKind::EmptyRegion
-            | ErrorKind::LayoutNotFinite
+            | ErrorKind::Grow(GrowError::RootOutside { .. })
+            | ErrorKind::Layout(LayoutError::EmptyRegion)
+            | ErrorKind::Layout(LayoutError::LayoutNotFinite)
             // A term written out in the seed at an order where stems have
             // no length or width (`Bed::new` of the grown BED).
-            | ErrorKind::OrderTooDeep { .. }
+            | ErrorKind::Bed(BedError::OrderTooDeep { .. })
     )
 }
 

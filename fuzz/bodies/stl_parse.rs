@@ -6,7 +6,7 @@
 //! bounding turtles under small limits (they must agree bit for bit).
 
 use stlc::bed::{Bed, validate, write::write};
-use stlc::diag::{Diagnostics, ErrorKind};
+use stlc::diag::{BedError, Diagnostics, ErrorKind};
 use stlc::interpret::{Derivation, bed};
 use stlc::limits::Limits;
 use stlc::model::{Description, Format, Shape};
@@ -124,7 +124,7 @@ pub fn run(data: &[u8]) {
                 assert!(
                     matches!(
                         d.kind,
-                        ErrorKind::Limit { .. } | ErrorKind::OrderTooDeep { .. }
+                        ErrorKind::Limit { .. } | ErrorKind::Bed(BedError::OrderTooDeep { .. })
                     ),
                     "unexpected validation error of a parsed BED: {d}"
                 );

@@ -11,8 +11,8 @@ pub mod write;
 
 use std::collections::BTreeMap;
 
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
-use crate::limits::Limits;
+use crate::diag::{BedError, Diagnostic, Diagnostics, ErrorKind, RuleError};
+use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, Step};
 use crate::model::{Description, Fixed, RuleId, Seed, SeedItem, Slot, StemParams, Term};
 
@@ -222,11 +222,12 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
     }
     if total.symbols > limits.max_symbols {
         return Err(Diagnostic::error(ErrorKind::Limit {
-            what: "symbols in the expansion of the forest".into(),
+            bound: Bound::Symbols,
+            what: Some("symbols in the expansion of the forest".into()),
             value: total.symbols.to_string(),
-            limit: limits.max_symbols.to_string(),
+            limit: limits.max_symbols,
         })
-        .with_help("raise the limit with --max-symbols N, or grow fewer trees")
+        .with_help(format!("{}, or grow fewer trees", Bound::Symbols.raise()))
         .into());
     }
     Ok(total)
@@ -249,12 +250,13 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
         if count > limits.max_repeat {
             diags.push(
                 Diagnostic::error(ErrorKind::Limit {
-                    what: "self-resemblance count".into(),
+                    bound: Bound::Repeat,
+                    what: None,
                     value: count.to_string(),
-                    limit: limits.max_repeat.to_string(),
+                    limit: limits.max_repeat.into(),
                 })
                 .with_span(span.clone())
-                .with_help("raise the limit with --max-depth N"),
+                .with_help(Bound::Repeat.raise()),
             );
         }
     };
@@ -290,7 +292,7 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
             let m = rule.branch_count();
             if t.slot_count() != m {
                 diags.push(
-                    Diagnostic::error(ErrorKind::SlotCount {
+                    Diagnostic::error(RuleError::SlotCount {
                         rule: rule.full_name().into_owned(),
                         expected: m,
                         found: t.slot_count(),
@@ -323,16 +325,17 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
     if size.symbols > limits.max_symbols {
         diags.push(
             Diagnostic::error(ErrorKind::Limit {
-                what: "symbols in the expansion".into(),
+                bound: Bound::Symbols,
+                what: None,
                 value: if size.symbols == u64::MAX {
                     format!("more than {}", u64::MAX - 1)
                 } else {
                     size.symbols.to_string()
                 },
-                limit: limits.max_symbols.to_string(),
+                limit: limits.max_symbols,
             })
             .with_span(item_over(desc, seed, limits.max_symbols).unwrap_or(seed.loc.0.clone()))
-            .with_help("raise the limit with --max-symbols N, or lower the counts"),
+            .with_help(format!("{}, or lower the counts", Bound::Symbols.raise())),
         );
     }
     diags.into_result(size)
@@ -345,7 +348,7 @@ fn rule_name(desc: &Description, id: RuleId) -> String {
 }
 
 fn unknown_id(id: RuleId, span: &crate::diag::Span) -> Diagnostic {
-    Diagnostic::error(ErrorKind::UnknownRule {
+    Diagnostic::error(RuleError::UnknownRule {
         name: format!("#{}", id.0),
     })
     .with_span(span.clone())
@@ -353,7 +356,7 @@ fn unknown_id(id: RuleId, span: &crate::diag::Span) -> Diagnostic {
 }
 
 fn order_error(p: &StemParams, order: u32, span: crate::diag::Span, rule: &str) -> Diagnostic {
-    Diagnostic::error(ErrorKind::OrderTooDeep {
+    Diagnostic::error(BedError::OrderTooDeep {
         rule: rule.to_string(),
         order,
         length: p.length.at(order),
@@ -386,12 +389,12 @@ mod tests {
         let d = order_error(&p, 4, 3..7, "R1");
         assert_eq!(
             d.kind,
-            ErrorKind::OrderTooDeep {
+            ErrorKind::Bed(BedError::OrderTooDeep {
                 rule: "R1".into(),
                 order: 4,
                 length: -10.0,
                 width: 1.0 - 4.0 * 0.3
-            }
+            })
         );
         assert_eq!(d.span, Some(3..7));
         assert_eq!(

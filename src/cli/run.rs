@@ -14,6 +14,7 @@ use super::args::{
     CheckArgs, Cli, Command, CompileArgs, ExpandArgs, GrowArgs, InputArgs, RenderArgs, StatsArgs,
 };
 use super::progress::Bar;
+use crate::frontend::error::FrontEndError;
 use crate::frontend::io::{Input, Output, same_file, sibling};
 use crate::frontend::report::{self, SourceText};
 
@@ -132,7 +133,7 @@ fn not_the_input(input: &Input, output: &Output) -> Result<(), Diagnostics> {
         Output::Path(p) => p.display().to_string(),
         Output::Stdout => "-".into(),
     };
-    Err(Diagnostic::error(ErrorKind::OutputIsInput {
+    Err(Diagnostic::error(FrontEndError::OutputIsInput {
         input: input.display_name(),
         output: name(output),
     })
@@ -151,12 +152,12 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
     let output = match &a.output {
         Some(o) => Output::parse(o),
         None => sibling(&input, ext).ok_or_else(|| {
-            Diagnostic::error(ErrorKind::NoOutput)
+            Diagnostic::error(FrontEndError::NoOutput)
                 .with_help("reading standard input, say where the picture goes: -o tree.png, or -o - for standard output")
         })?,
     };
     if format == ImageFormat::Png && output.is_terminal() {
-        return Err(Diagnostic::error(ErrorKind::PngToTerminal)
+        return Err(Diagnostic::error(FrontEndError::PngToTerminal)
             .with_help("redirect standard output to a file, or use -o tree.png")
             .into());
     }
@@ -203,7 +204,7 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
 /// A colour given on the command line.
 fn colour(text: &str, flag: &str) -> Result<Rgb, Diagnostics> {
     Rgb::parse(text).ok_or_else(|| {
-        let d = Diagnostic::error(ErrorKind::UnknownColourFlag {
+        let d = Diagnostic::error(FrontEndError::UnknownColourFlag {
             flag: flag.into(),
             text: text.into(),
         });

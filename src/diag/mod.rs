@@ -25,7 +25,10 @@ mod kind;
 mod number;
 
 pub use excerpt::{Excerpt, line_column};
-pub use kind::ErrorKind;
+pub use kind::{
+    BedError, ErrorKind, GrowError, InputError, LayoutError, LsysError, RenderError, RuleError,
+    StlError,
+};
 pub(crate) use number::plural;
 pub use number::{SHOWN_DIGITS, saturated, short_number};
 
@@ -70,10 +73,10 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     /// An error of `kind` with no location yet.
-    pub fn error(kind: ErrorKind) -> Self {
+    pub fn error(kind: impl Into<ErrorKind>) -> Self {
         Diagnostic {
             severity: Severity::Error,
-            kind,
+            kind: kind.into(),
             span: None,
             label: None,
             labels: Vec::new(),
@@ -82,7 +85,7 @@ impl Diagnostic {
     }
 
     /// A warning of `kind` with no location yet.
-    pub fn warning(kind: ErrorKind) -> Self {
+    pub fn warning(kind: impl Into<ErrorKind>) -> Self {
         Diagnostic {
             severity: Severity::Warning,
             ..Diagnostic::error(kind)
@@ -251,15 +254,15 @@ mod cap_tests {
     fn diagnostics_past_the_cap_are_counted() {
         let mut d = Diagnostics::new();
         for _ in 0..MAX_DIAGNOSTICS {
-            d.push(Diagnostic::warning(ErrorKind::EmptyInput));
+            d.push(Diagnostic::warning(InputError::EmptyInput));
         }
         assert!(!d.has_errors());
         for _ in 0..5 {
-            d.push(Diagnostic::warning(ErrorKind::EmptyInput));
+            d.push(Diagnostic::warning(InputError::EmptyInput));
         }
         assert_eq!(d.0.len(), MAX_DIAGNOSTICS + 1);
         assert!(!d.has_errors(), "five more warnings are no error");
-        d.push(Diagnostic::error(ErrorKind::EmptyInput));
+        d.push(Diagnostic::error(InputError::EmptyInput));
         assert_eq!(d.0.len(), MAX_DIAGNOSTICS + 1);
         assert!(d.has_errors(), "an error among the rest is an error");
         assert_eq!(

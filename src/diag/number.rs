@@ -55,9 +55,10 @@ mod tests {
         assert_eq!(saturated(u64::MAX), "more than 18446744073709551614");
         assert_eq!(short_number("not a number"), "not a number");
         let d = ErrorKind::Limit {
-            what: "derived word length".into(),
+            bound: crate::limits::Bound::Symbols,
+            what: Some("derived word length".into()),
             value: long,
-            limit: "20000000000".into(),
+            limit: 20_000_000_000,
         };
         assert_eq!(
             d.to_string(),

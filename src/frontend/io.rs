@@ -15,7 +15,10 @@ use std::fs;
 use std::io::{self, BufWriter, IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 
-use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, InputError, io_error};
+use stlc::pipeline::Bound;
+
+use super::error::FrontEndError;
 
 /// Whether `output` names the same file as `input` (the same device and
 /// inode, which covers links and different spellings of one path). An
@@ -93,11 +96,11 @@ impl Input {
             return Err(d.into());
         }
         if buf.len() as u64 > limit {
-            return Err(Diagnostic::error(ErrorKind::InputTooLarge {
+            return Err(Diagnostic::error(InputError::InputTooLarge {
                 size: buf.len() as u64,
                 limit,
             })
-            .with_help("raise the limit with --max-input BYTES")
+            .with_help(Bound::InputBytes.raise())
             .into());
         }
         Ok(buf)
@@ -168,7 +171,7 @@ fn resolve_links(target: &Path) -> Result<PathBuf, Diagnostics> {
             _ => return Ok(path),
         }
     }
-    Err(Diagnostic::error(ErrorKind::TooManyLinks {
+    Err(Diagnostic::error(FrontEndError::TooManyLinks {
         path: target.display().to_string(),
         hops: MAX_SYMLINK_HOPS,
     })
@@ -185,7 +188,7 @@ fn write_atomically(
     let existing = fs::metadata(target).ok();
     match &existing {
         Some(m) if m.is_dir() => {
-            return Err(Diagnostic::error(ErrorKind::IsADirectory {
+            return Err(Diagnostic::error(FrontEndError::IsADirectory {
                 path: target.display().to_string(),
             })
             .with_help("give a file name with -o, e.g. -o tree.png")
@@ -212,7 +215,7 @@ fn write_atomically(
             Ok(m) if !m.is_dir() => "not a directory".to_string(),
             Ok(_) => io::Error::from(e.kind()).to_string(),
         };
-        Diagnostic::error(ErrorKind::CannotCreate {
+        Diagnostic::error(FrontEndError::CannotCreate {
             path: target.display().to_string(),
             dir: dir.display().to_string(),
             error,
@@ -244,7 +247,7 @@ fn write_temp(
         .sync_all()
         .map_err(|e| io_error(&e, &format!("cannot write `{}`", target.display())))?;
     tmp.persist(target).map_err(|e| {
-        Diagnostic::error(ErrorKind::CannotReplace {
+        Diagnostic::error(FrontEndError::CannotReplace {
             path: target.display().to_string(),
             error: e.error.to_string(),
         })

@@ -118,7 +118,7 @@ fn widen(span: std::ops::Range<usize>, text: &str) -> std::ops::Range<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use stlc::diag::ErrorKind;
+    use stlc::diag::LsysError;
 
     /// A report on a 2,000-byte line is short and gives the true line and
     /// column of the span in a note.
@@ -127,7 +127,7 @@ mod tests {
         let line = format!("{}X{}", "é".repeat(500), "é".repeat(499));
         let text = format!("first\n{line}\nlast\n");
         let x = text.find('X').unwrap();
-        let d = Diagnostic::error(ErrorKind::NoDepth).with_span(x..x + 1);
+        let d = Diagnostic::error(LsysError::NoDepth).with_span(x..x + 1);
         let src = SourceText {
             name: "t.od",
             text: &text,

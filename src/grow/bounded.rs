@@ -10,7 +10,8 @@
 
 use super::seed::SeedGp;
 use super::{GrowOptions, span_of};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, GrowError};
+use crate::limits::Bound;
 use crate::model::walk::{self, Step};
 use crate::model::{Description, RuleGroups, RuleId};
 
@@ -48,12 +49,13 @@ pub(super) fn check_bounded(
             .find_map(|&r| endless_from(od, &groups, r));
         if let Some(cycle_rule) = endless {
             let name = &od.rule(gp.rule).name;
-            let mut d = Diagnostic::error(ErrorKind::UnboundedGrowth {
+            let mut d = Diagnostic::error(GrowError::UnboundedGrowth {
                 rule: name.clone(),
                 through: od.rule(cycle_rule).name.clone(),
             })
             .with_help(format!(
-                "add a LAYOUT section, write `[I n {name}]` to grow n levels, give L or B a decrement (`L=10(1)`), or pass `--max-stems N` to stop after N stems"
+                "add a LAYOUT section, write `[I n {name}]` to grow n levels, give L or B a decrement (`L=10(1)`), or pass `{} N` to stop after N stems",
+                Bound::Stems.flag()
             ));
             if let Some(s) = span_of(&gp.loc) {
                 d = d.with_span(s).with_label("this growth point");

@@ -16,10 +16,10 @@ use super::occupancy::{Backend, LocalIndex, Occupancy, Seg};
 use super::region::Region;
 use super::seed::{Flat, Instr};
 use super::tree::{Budget, NO_NODE, Parent, Tree};
-use super::{GrowOptions, GrowthOrder};
+use super::{GrowOptions, GrowthOrder, SEED_STEMS};
 use crate::choice::{Alternatives, Key};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, FixedWord, Step};
 use crate::model::{Description, Fixed, RuleDef, RuleId, StemParams};
 use crate::progress::Progress;
@@ -339,11 +339,12 @@ impl<'a> Grower<'a> {
             // a seed beyond the limit by itself is an error.
             if self.budget.seed_stems > self.limits.max_stems {
                 return Err(Diagnostic::error(ErrorKind::Limit {
-                    what: "stems drawn by the seed alone".into(),
+                    bound: Bound::Stems,
+                    what: Some(SEED_STEMS.into()),
                     value: self.budget.seed_stems.to_string(),
-                    limit: self.limits.max_stems.to_string(),
+                    limit: self.limits.max_stems,
                 })
-                .with_help("raise the limit with --max-stems N, or draw a smaller seed")
+                .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
                 .into());
             }
             let seg = seg_of(&s, &self.od.params);

@@ -55,13 +55,16 @@ mod seed;
 mod tree;
 
 use crate::bed::Bed;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
-use crate::limits::Limits;
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, GrowError, Span};
+use crate::limits::{Bound, Limits};
 use crate::model::{Description, Format, Loc, Seed, StemParams};
 use crate::progress::Progress;
 use crate::turtle::Point;
 
 use grower::Grower;
+
+/// What a seed over `--max-stems` by itself is, in the error message.
+const SEED_STEMS: &str = "stems drawn by the seed alone";
 use occupancy::Backend;
 use region::Region;
 
@@ -210,7 +213,7 @@ fn grow_inner(
     progress: &mut dyn Progress,
 ) -> Result<(Grown, Trace), Diagnostics> {
     let seed = od.effective_seed().ok_or_else(|| {
-        Diagnostic::error(ErrorKind::NothingToGrow)
+        Diagnostic::error(GrowError::NothingToGrow)
             .with_help("declare a rule after RULE, or write a SEED")
     })?;
     let clearance = opts
@@ -219,7 +222,7 @@ fn grow_inner(
         .unwrap_or_else(|| default_clearance(&od.params));
     if !clearance.is_finite() || clearance < 0.0 {
         return Err(
-            Diagnostic::error(ErrorKind::BadClearance { value: clearance })
+            Diagnostic::error(GrowError::BadClearance { value: clearance })
                 .with_help("give C= (or --clearance) a value such as 1")
                 .into(),
         );
@@ -231,11 +234,12 @@ fn grow_inner(
     let seed_stems = seed::drawn_stems(od, &seed).saturating_mul(trees);
     if seed_stems > opts.limits.max_stems {
         return Err(Diagnostic::error(ErrorKind::Limit {
-            what: "stems drawn by the seed alone".into(),
+            bound: Bound::Stems,
+            what: Some(SEED_STEMS.into()),
             value: seed_stems.to_string(),
-            limit: opts.limits.max_stems.to_string(),
+            limit: opts.limits.max_stems,
         })
-        .with_help("raise the limit with --max-stems N, or draw a smaller seed")
+        .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
         .into());
     }
     let flat = seed::flatten(od, &seed)?;
@@ -253,7 +257,7 @@ fn grow_inner(
         if let Some(r) = &region
             && !r.covers_point(Point::new(x, y))
         {
-            let mut d = Diagnostic::error(ErrorKind::RootOutside { x, y }).with_help(
+            let mut d = Diagnostic::error(GrowError::RootOutside { x, y }).with_help(
                 "move the root into a coloured (non-white) layout shape, or change the LAYOUT",
             );
             if let Some(s) = span_of(loc) {
@@ -339,7 +343,7 @@ fn shared_roots(roots: &[((f64, f64), &Loc)]) -> Option<Diagnostic> {
             seen.insert(key(point), i);
             continue;
         };
-        let mut d = Diagnostic::warning(ErrorKind::SharedRoot {
+        let mut d = Diagnostic::warning(GrowError::SharedRoot {
             root: i + 1,
             first: first + 1,
         })

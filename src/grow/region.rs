@@ -27,8 +27,9 @@ use geo::{BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon,
 use rstar::{AABB, RTree, RTreeObject};
 
 use super::occupancy::{Seg, seg_seg_dist2};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, LayoutError};
 use crate::layout::shape_ring;
+use crate::limits::Bound;
 use crate::model::Layout;
 use crate::turtle::{BBox, Point};
 
@@ -68,7 +69,7 @@ impl Region {
         for s in &layout.shapes {
             let ring = shape_ring(&s.shape);
             if ring.iter().any(|p| !p.x.is_finite() || !p.y.is_finite()) {
-                return Err(Diagnostic::error(ErrorKind::LayoutNotFinite)
+                return Err(Diagnostic::error(LayoutError::LayoutNotFinite)
                     .with_span(s.loc.0.clone())
                     .into());
             }
@@ -92,7 +93,7 @@ impl Region {
             ));
         }
         Region::from_area(area).ok_or_else(|| {
-            Diagnostic::error(ErrorKind::EmptyRegion)
+            Diagnostic::error(LayoutError::EmptyRegion)
             .with_span(layout.loc.0.clone())
             .with_help(
                 "paint at least one coloured (non-white) shape that later white shapes do not cover entirely",
@@ -216,14 +217,16 @@ fn vertex_count(area: &MultiPolygon<f64>) -> usize {
 
 fn too_many_vertices(vertices: usize, limit: usize, span: crate::diag::Span) -> Diagnostics {
     Diagnostic::error(ErrorKind::Limit {
-        what: "layout outline vertices".into(),
+        bound: Bound::LayoutVertices,
+        what: None,
         value: vertices.to_string(),
-        limit: limit.to_string(),
+        limit: limit as u64,
     })
     .with_span(span)
-    .with_help(
-        "use fewer polygon points or fewer, smaller curved shapes, or raise the limit with --max-layout-vertices N (above 16000 the overlay can take minutes on some shapes)",
-    )
+    .with_help(format!(
+        "use fewer polygon points or fewer, smaller curved shapes, or {} (above 16000 the overlay can take minutes on some shapes)",
+        Bound::LayoutVertices.raise()
+    ))
     .into()
 }
 
@@ -269,7 +272,7 @@ mod tests {
     #[test]
     fn the_vertex_limit_counts_shapes_and_the_painted_area() {
         let limit_of = |e: Diagnostics| match &e.iter().next().unwrap().kind {
-            ErrorKind::Limit { value, limit, .. } => (value.clone(), limit.clone()),
+            ErrorKind::Limit { value, limit, .. } => (value.clone(), limit.to_string()),
             k => panic!("not a limit: {k:?}"),
         };
         // A 12-gon: 12 vertices fit 12, not 11.
@@ -322,10 +325,16 @@ mod tests {
             shape(Rgb::WHITE, rect(0.0, 0.0, 50.0, 50.0)),
         ]);
         let e = Region::from_layout(&l, 16_000).unwrap_err();
-        assert_eq!(e.first_kind(), Some(&ErrorKind::EmptyRegion));
+        assert_eq!(
+            e.first_kind(),
+            Some(&ErrorKind::Layout(LayoutError::EmptyRegion))
+        );
         let only_white = layout(vec![shape(Rgb::WHITE, rect(0.0, 0.0, 5.0, 5.0))]);
         let e = Region::from_layout(&only_white, 16_000).unwrap_err();
-        assert_eq!(e.first_kind(), Some(&ErrorKind::EmptyRegion));
+        assert_eq!(
+            e.first_kind(),
+            Some(&ErrorKind::Layout(LayoutError::EmptyRegion))
+        );
     }
 
     #[test]

@@ -7,7 +7,7 @@
 
 use super::span_of;
 use super::tree::{NO_NODE, Tree};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, RuleError};
 use crate::model::walk::{self, Step};
 use crate::model::{
     Description, Fixed, Loc, RuleDef, RuleId, Seed, SeedItem, Slot, SlotId, Term, Terms,
@@ -101,7 +101,7 @@ fn rule_error(od: &Description, rule: RuleId, loc: &Loc) -> Option<Diagnostic> {
     if rule.0 < od.rules.len() {
         return None;
     }
-    let mut d = Diagnostic::error(ErrorKind::UndeclaredRule { number: rule.0 });
+    let mut d = Diagnostic::error(RuleError::UndeclaredRule { number: rule.0 });
     if let Some(s) = span_of(loc) {
         d = d.with_span(s);
     }
@@ -164,7 +164,7 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
                     continue;
                 }
                 if t.slot_count() != rule.branch_count() {
-                    let mut d = Diagnostic::error(ErrorKind::SlotCount {
+                    let mut d = Diagnostic::error(RuleError::SlotCount {
                         rule: rule.full_name().into_owned(),
                         expected: rule.branch_count(),
                         found: t.slot_count(),

@@ -1,7 +1,8 @@
 //! What growth records: the grown tree (every successful application and
 //! what grew in its slots) and the budget it spends against the limits.
 
-use crate::diag::{Diagnostic, ErrorKind};
+use crate::diag::{Diagnostic, GrowError};
+use crate::limits::Bound;
 use crate::model::RuleId;
 
 /// Where a decision is recorded.
@@ -87,13 +88,14 @@ impl Budget {
         }
         self.stopped = true;
         self.warnings.push(
-            Diagnostic::warning(ErrorKind::GrowthStopped {
+            Diagnostic::warning(GrowError::GrowthStopped {
                 stems: self.stems,
                 limit: max_stems,
             })
-            .with_help(
-                "the BED is valid but its tree is cut short; raise the limit with --max-stems N",
-            ),
+            .with_help(format!(
+                "the BED is valid but its tree is cut short; {}",
+                Bound::Stems.raise()
+            )),
         );
     }
 
@@ -104,8 +106,11 @@ impl Budget {
         }
         self.depth_capped = true;
         self.warnings.push(
-            Diagnostic::warning(ErrorKind::DepthCapped { limit: max_depth })
-                .with_help("raise it with --max-depth N"),
+            Diagnostic::warning(GrowError::DepthCapped { limit: max_depth }).with_help(format!(
+                "raise it with {} {}",
+                Bound::Depth.flag(),
+                Bound::Depth.value_name()
+            )),
         );
     }
 }

@@ -24,7 +24,7 @@ use std::io::Write;
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use crate::interpret::Derivation;
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, FixedWord, Step, Steps};
 use crate::model::{Description, Fixed, RuleDef, RuleId, Seed, SeedItem, Slot, Term};
 use crate::progress::Progress;
@@ -356,11 +356,15 @@ enum Sym<'a> {
 fn check_word(len: u64, limits: &Limits) -> Result<(), Diagnostics> {
     if len > limits.max_word {
         return Err(Diagnostic::error(ErrorKind::Limit {
-            what: "bfs word length".into(),
+            bound: Bound::Word,
+            what: None,
             value: len.to_string(),
-            limit: limits.max_word.to_string(),
+            limit: limits.max_word,
         })
-        .with_help("raise the limit with --max-word N, or use --strategy dfs, which needs no word")
+        .with_help(format!(
+            "{}, or use --strategy dfs, which needs no word",
+            Bound::Word.raise()
+        ))
         .into());
     }
     Ok(())
@@ -562,9 +566,10 @@ mod tests {
         assert_eq!(
             e.first_kind(),
             Some(&ErrorKind::Limit {
-                what: "bfs word length".into(),
+                bound: Bound::Word,
+                what: None,
                 value: "15".into(),
-                limit: "10".into(),
+                limit: 10,
             })
         );
         assert!(ops(&bed, Derivation::Dfs, &limits, &mut NoProgress, none).is_ok());

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use super::{Loaded, Scene, What};
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError};
 use crate::model::lsys::Background;
 use crate::progress::Progress;
 use crate::render::{Frame, ImageFormat, RenderOptions, Style, Width};
@@ -168,7 +168,7 @@ pub fn render(
     };
     let mut warnings = Vec::new();
     if segments == 0 {
-        warnings.push(Diagnostic::warning(ErrorKind::NothingDrawn).with_help(
+        warnings.push(Diagnostic::warning(RenderError::NothingDrawn).with_help(
             "check the axiom or seed and the depth: only `F` draws (and in an .od, a rule that grows)",
         ));
     }
@@ -194,7 +194,7 @@ pub fn image_format(
         Some("png") => Some(ImageFormat::Png),
         Some("svg") => Some(ImageFormat::Svg),
         Some(other) => {
-            return Err(Diagnostic::error(ErrorKind::UnknownOutputExtension {
+            return Err(Diagnostic::error(RenderError::UnknownOutputExtension {
                 path: output.unwrap_or_default().into(),
                 extension: other.into(),
             })
@@ -203,7 +203,7 @@ pub fn image_format(
         }
     };
     match (asked, named) {
-        (Some(a), Some(n)) if a != n => Err(Diagnostic::error(ErrorKind::FormatMismatch {
+        (Some(a), Some(n)) if a != n => Err(Diagnostic::error(RenderError::FormatMismatch {
             format: name(a).into(),
             path: output.unwrap_or_default().into(),
         })

@@ -35,7 +35,7 @@ pub use summary::{Checked, check, stats};
 pub use crate::color::Rgb;
 pub use crate::grow::{GrowthOrder, PlacedStem};
 pub use crate::interpret::Derivation;
-pub use crate::limits::Limits;
+pub use crate::limits::{Bound, Limits};
 pub use crate::progress::{NoProgress, Progress};
 pub use crate::render::{DEFAULT_MAX_SVG_SEGMENTS, ImageFormat, RenderOptions};
 pub use crate::syntax::InputKind;
@@ -45,7 +45,7 @@ use std::io::Write;
 use std::path::Path;
 
 use crate::bed::Bed;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, InputError, LsysError};
 use crate::grow::{GrowOptions, Grown};
 use crate::model::lsys::LSystem;
 use crate::model::{Description, Format};
@@ -98,7 +98,7 @@ pub fn detect_kind(name: Option<&Path>, bytes: &[u8]) -> Result<InputKind, Diagn
         Some(p) => match InputKind::from_path(p) {
             Some(k) => Ok(k),
             None => sniff(bytes).ok_or_else(|| {
-                Diagnostic::error(ErrorKind::UnknownInputKind {
+                Diagnostic::error(InputError::UnknownInputKind {
                     name: p.display().to_string(),
                 })
                 .with_help("name it .od, .bed or .lsys, or say --from od|bed|lsys")
@@ -140,7 +140,7 @@ pub fn load(bytes: &[u8], kind: InputKind, limits: &Limits) -> Result<Loaded, Di
                 "a description needs at least a tree name, a root `(x, y)` and `RULE` with a rule"
             }
         };
-        return Err(Diagnostic::error(ErrorKind::EmptyInput)
+        return Err(Diagnostic::error(InputError::EmptyInput)
             .with_help(help)
             .into());
     }
@@ -171,7 +171,7 @@ fn wrong_kind(command: Command, found: InputKind) -> Diagnostics {
             "for an .od or .bed, `stlc check` prints its rules, terms and stem count",
         ),
     };
-    Diagnostic::error(ErrorKind::WrongInputKind {
+    Diagnostic::error(InputError::WrongInputKind {
         message: message.into(),
     })
     .with_help(help)
@@ -398,7 +398,7 @@ pub(crate) fn inert_turns(sys: &LSystem) -> Vec<Diagnostic> {
                     .map(|p| p.loc.0.clone())
             }?;
             Some(
-                Diagnostic::warning(ErrorKind::InertTurn { symbol: c })
+                Diagnostic::warning(LsysError::InertTurn { symbol: c })
                     .with_span(span)
                     .with_label(format!("`{c}` here turns nothing"))
                     .with_help("write `+` for a left turn and `-` for a right turn"),
@@ -415,7 +415,7 @@ pub(crate) fn lsys_depth(
     limits: &Limits,
 ) -> Result<u32, Diagnostics> {
     let d = depth.or(sys.generations).ok_or_else(|| {
-        Diagnostic::error(ErrorKind::NoDepth)
+        Diagnostic::error(LsysError::NoDepth)
             .with_help("add a line `generations N` to the file, or pass --depth N")
     })?;
     limits.check_depth(d)?;

@@ -26,7 +26,7 @@ use super::{
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::grow::{GrowOptions, GrowthOrder};
 use crate::interpret::Derivation;
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 use crate::model::Description;
 use crate::progress::Progress;
 use crate::render::{ImageFormat, RenderOptions};
@@ -135,11 +135,15 @@ impl Request {
         if let Some(n) = self.max_stems {
             if n > limits.max_stems {
                 return Err(Diagnostic::error(ErrorKind::Limit {
-                    what: "max stems asked for".into(),
+                    bound: Bound::Stems,
+                    what: Some("max stems asked for".into()),
                     value: n.to_string(),
-                    limit: limits.max_stems.to_string(),
+                    limit: limits.max_stems,
                 })
-                .with_help("ask for fewer, or raise the limit (`stlc serve --max-stems N`)")
+                .with_help(format!(
+                    "ask for fewer, or raise the limit (`stlc serve {} N`)",
+                    Bound::Stems.flag()
+                ))
                 .into());
             }
             limits.max_stems = n;

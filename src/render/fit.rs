@@ -39,7 +39,7 @@ impl Fit {
             .iter()
             .all(|v| v.is_finite());
         if !finite || vw < 0.0 || vh < 0.0 {
-            return Err(Diagnostic::error(ErrorKind::BadCanvas {
+            return Err(Diagnostic::error(RenderError::BadCanvas {
                 min_x: view.min_x,
                 min_y: view.min_y,
                 max_x: view.max_x,
@@ -77,7 +77,7 @@ impl Fit {
             .iter()
             .all(|v| v.is_finite());
         if !finite {
-            return Err(Diagnostic::error(ErrorKind::DrawingNotFinite)
+            return Err(Diagnostic::error(RenderError::DrawingNotFinite)
                 .with_help("check the stem length, angle and depth")
                 .into());
         }
@@ -206,7 +206,7 @@ pub(super) fn checked_size((w, h): (u32, u32)) -> Result<(u32, u32), Diagnostics
     if (1..=MAX_SIDE).contains(&w) && (1..=MAX_SIDE).contains(&h) {
         Ok((w, h))
     } else {
-        Err(Diagnostic::error(ErrorKind::ImageSize {
+        Err(Diagnostic::error(RenderError::ImageSize {
             width: w,
             height: h,
             max: MAX_SIDE,

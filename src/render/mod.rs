@@ -12,7 +12,8 @@ pub mod svg;
 use std::io::Write;
 
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError, io_error};
+use crate::limits::Bound;
 use crate::num::Linear;
 use crate::progress::{Phase, Progress};
 use crate::turtle::{BBox, Bounds, Counter, Fill, Point, Turtle};
@@ -139,20 +140,22 @@ impl Turtle for DetailCounter {
 
 /// Default of [`RenderOptions::max_svg_segments`]: about 22 bytes a segment,
 /// so an SVG of at most about 220 MB (already more than browsers open).
-pub const DEFAULT_MAX_SVG_SEGMENTS: u64 = 10_000_000;
+pub const DEFAULT_MAX_SVG_SEGMENTS: u64 = crate::limits::DEFAULT_MAX_SVG_SEGMENTS;
 
 /// The error for an SVG over [`RenderOptions::max_svg_segments`]; `count`
 /// is the exact number when known, else `None` ("more than the limit").
 pub(crate) fn svg_too_large(count: Option<u64>, limit: u64) -> Diagnostics {
     Diagnostic::error(ErrorKind::Limit {
-        what: "segments in the SVG".into(),
+        bound: Bound::SvgSegments,
+        what: None,
         value: count.map_or_else(|| format!("more than {limit}"), |c| c.to_string()),
-        limit: limit.to_string(),
+        limit,
     })
-    .with_help(
+    .with_help(format!(
         "an SVG holds every segment (about 22 bytes each): render a PNG instead, \
-         draw less (a smaller --depth), or raise the limit with --max-svg-segments N",
-    )
+         draw less (a smaller --depth), or {}",
+        Bound::SvgSegments.raise()
+    ))
     .into()
 }
 
@@ -453,7 +456,10 @@ mod tests {
         for size in [(0, 10), (10, 0), (MAX_SIDE + 1, 10)] {
             let err = Fit::content(None, 0, &Width::Pixels(1.0), Some(size)).unwrap_err();
             let d = &err.0[0];
-            assert!(matches!(d.kind, ErrorKind::ImageSize { .. }));
+            assert!(matches!(
+                d.kind,
+                ErrorKind::Render(RenderError::ImageSize { .. })
+            ));
             assert!(d.to_string().contains("--size"), "{d}");
         }
         assert!(Fit::view(&bbox(0.0, 0.0, 1.0, 1.0), Some((MAX_SIDE, 1))).is_ok());
@@ -468,6 +474,9 @@ mod tests {
             None,
         )
         .unwrap_err();
-        assert_eq!(err.first_kind(), Some(&ErrorKind::DrawingNotFinite));
+        assert_eq!(
+            err.first_kind(),
+            Some(&ErrorKind::Render(RenderError::DrawingNotFinite))
+        );
     }
 }

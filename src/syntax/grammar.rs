@@ -5,7 +5,7 @@
 //! grammar rule is put into words; it matches every rule, so a rule added to
 //! `grammar.pest` does not compile until it has a description.
 
-use crate::diag::{Diagnostic, ErrorKind};
+use crate::diag::{Diagnostic, InputError};
 
 mod parser {
     //! The generated parser; `Rule` names are the grammar's.
@@ -47,7 +47,7 @@ pub(crate) fn pest_error(e: pest::error::Error<Rule>) -> Diagnostic {
         }
         ErrorVariant::CustomError { message } => message.clone(),
     };
-    Diagnostic::error(ErrorKind::Syntax(message)).with_span(span)
+    Diagnostic::error(InputError::Syntax(message)).with_span(span)
 }
 
 /// The rules' descriptions, sorted, without repeats, as `a, b or c`.

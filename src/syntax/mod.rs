@@ -18,8 +18,8 @@ mod grammar;
 pub mod lsys;
 pub mod stl;
 
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
-use crate::limits::Limits;
+use crate::diag::{Diagnostic, Diagnostics, InputError};
+use crate::limits::{Bound, Limits};
 
 pub(crate) use grammar::{GrammarParser, Rule, pest_error};
 
@@ -66,18 +66,18 @@ pub const MAX_INPUT_CEILING: u64 = u32::MAX as u64;
 pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnostics> {
     let limit = limits.max_input_bytes.min(MAX_INPUT_CEILING);
     if bytes.len() as u64 > limit {
-        return Err(Diagnostic::error(ErrorKind::InputTooLarge {
+        return Err(Diagnostic::error(InputError::InputTooLarge {
             size: bytes.len() as u64,
             limit,
         })
-        .with_help("raise the limit with --max-input BYTES (at most 4 GiB)")
+        .with_help(format!("{} (at most 4 GiB)", Bound::InputBytes.raise()))
         .into());
     }
     let text = match std::str::from_utf8(bytes) {
         Ok(t) => t,
         Err(e) => {
             let at = e.valid_up_to();
-            return Err(Diagnostic::error(ErrorKind::NotUtf8(at))
+            return Err(Diagnostic::error(InputError::NotUtf8(at))
                 .with_span(at..at)
                 .with_help("stlc reads UTF-8 text files; is this the right file?")
                 .into());
@@ -94,12 +94,12 @@ pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnos
             '[' | '{' | '(' => {
                 depth += 1;
                 if depth > limits.max_nesting {
-                    return Err(Diagnostic::error(ErrorKind::NestingTooDeep {
+                    return Err(Diagnostic::error(InputError::NestingTooDeep {
                         limit: limits.max_nesting,
                     })
                     .with_span(i..i + 1)
                     .with_label("this bracket is nested too deep")
-                    .with_help("raise the limit with --max-nesting N")
+                    .with_help(Bound::Nesting.raise())
                     .into());
                 }
             }
@@ -112,7 +112,7 @@ pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnos
 
 /// The error for a colour name no colour has, at `span`, with `help`.
 pub(crate) fn unknown_colour(text: &str, span: crate::diag::Span, help: String) -> Diagnostic {
-    Diagnostic::error(ErrorKind::UnknownColour {
+    Diagnostic::error(InputError::UnknownColour {
         text: text.to_string(),
     })
     .with_span(span)
@@ -131,6 +131,7 @@ pub fn is_colour_at(text: &str, i: usize) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diag::ErrorKind;
 
     #[test]
     fn nesting_beyond_the_limit_is_refused_before_parsing() {
@@ -142,7 +143,7 @@ mod tests {
         let err = precheck(b"[[[[F]]]]", &limits).unwrap_err();
         assert_eq!(
             err.first_kind(),
-            Some(&ErrorKind::NestingTooDeep { limit: 3 })
+            Some(&ErrorKind::Input(InputError::NestingTooDeep { limit: 3 }))
         );
         assert_eq!(err.0[0].span, Some(3..4));
     }
@@ -162,6 +163,9 @@ mod tests {
     #[test]
     fn invalid_utf8_is_reported_with_its_offset() {
         let err = precheck(b"ab\xffcd", &Limits::default()).unwrap_err();
-        assert_eq!(err.first_kind(), Some(&ErrorKind::NotUtf8(2)));
+        assert_eq!(
+            err.first_kind(),
+            Some(&ErrorKind::Input(InputError::NotUtf8(2)))
+        );
     }
 }

@@ -43,3 +43,49 @@ fn every_error_case_renders_a_pointed_report() {
         insta::assert_snapshot!(name.replace('.', "_"), stderr);
     }
 }
+
+/// Every limit an error can name ([`stlc::Bound`]) is raised by a real
+/// flag: `render --help` (or `serve --help`) lists it with the value name
+/// the hints use, and shows the bound's default as the flag's; and
+/// docs/limits.md names the flag.
+#[test]
+fn every_bound_names_a_real_flag_with_its_default() {
+    let help = |command: &str| {
+        let out = Command::cargo_bin("stlc")
+            .unwrap()
+            .args([command, "--help"])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{command} --help");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let helps = [help("render"), help("serve")];
+    let docs = fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/limits.md"))
+        .unwrap();
+    for bound in stlc::Bound::ALL {
+        let flag = format!("{} <{}>", bound.flag(), bound.value_name());
+        let entry = helps
+            .iter()
+            .find_map(|h| {
+                let at = h.find(&format!("      {flag}\n"))?;
+                let rest = &h[at + flag.len() + 7..];
+                // The flag's entry runs to the next flag.
+                Some(&rest[..rest.find("\n  -").unwrap_or(rest.len())])
+            })
+            .unwrap_or_else(|| panic!("{bound:?}: no `{flag}` in render or serve --help"));
+        // --max-stems has no default of its own on the command line: not
+        // given, growth stops at the default with a warning.
+        if bound != stlc::Bound::Stems {
+            assert!(
+                entry.contains(&format!("[default: {}]", bound.default_value())),
+                "{bound:?}: {flag} does not default to {}:\n{entry}",
+                bound.default_value()
+            );
+        }
+        let written = format!("`{} {}`", bound.flag(), bound.value_name());
+        assert!(
+            docs.contains(&written),
+            "{bound:?}: docs/limits.md lacks {written}"
+        );
+    }
+}

@@ -11,6 +11,7 @@ use geo::{
 };
 
 use stlc::bed::Bed;
+use stlc::diag::GrowError;
 #[cfg(feature = "spade-index")]
 use stlc::grow::grow_with;
 #[cfg(feature = "spade-index")]
@@ -22,7 +23,7 @@ use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
 use stlc::turtle::{Interp, Op};
 use stlc::turtle::{Point, Recorder, Segment};
-use stlc::{Diagnostics, ErrorKind, Limits, Severity};
+use stlc::{Bound, Diagnostics, ErrorKind, Limits, Severity};
 
 // ------------------------------------------------------------ descriptions
 
@@ -647,10 +648,10 @@ fn max_stems_stops_growth_with_a_warning() {
     assert_eq!(g.warnings[0].severity, Severity::Warning);
     assert_eq!(
         g.warnings[0].kind,
-        ErrorKind::GrowthStopped {
+        ErrorKind::Grow(GrowError::GrowthStopped {
             stems: 99,
             limit: 100
-        }
+        })
     );
 }
 
@@ -660,10 +661,10 @@ fn unbounded_growth_is_refused_with_a_fix() {
     let d = &e.0[0];
     assert_eq!(
         d.kind,
-        ErrorKind::UnboundedGrowth {
+        ErrorKind::Grow(GrowError::UnboundedGrowth {
             rule: "R1".into(),
             through: "R1".into()
-        }
+        })
     );
     // The default seed has no text: the rule's name is pointed at.
     assert_eq!(d.span, Some(span_of(BINARY, "R1")));
@@ -686,7 +687,10 @@ fn root_outside_the_region_is_an_error() {
         RULE R1: [-F][+F]
         LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT";
     let e = grow_err(&od(text), opts(GrowthOrder::Bfs));
-    assert_eq!(e.0[0].kind, ErrorKind::RootOutside { x: 250.0, y: 100.0 });
+    assert_eq!(
+        e.0[0].kind,
+        ErrorKind::Grow(GrowError::RootOutside { x: 250.0, y: 100.0 })
+    );
     assert_eq!(e.0[0].span, Some(span_of(text, "(250, 100)")));
 }
 
@@ -772,7 +776,10 @@ fn depth_limit_stops_a_vine_with_a_warning() {
     assert_eq!(g.stems, 1 + 5);
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(g.warnings[0].severity, Severity::Warning);
-    assert_eq!(g.warnings[0].kind, ErrorKind::DepthCapped { limit: 5 });
+    assert_eq!(
+        g.warnings[0].kind,
+        ErrorKind::Grow(GrowError::DepthCapped { limit: 5 })
+    );
 }
 
 #[test]
@@ -813,9 +820,10 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     assert_eq!(
         e.0[0].kind,
         ErrorKind::Limit {
-            what: "stems drawn by the seed alone".into(),
+            bound: Bound::Stems,
+            what: Some("stems drawn by the seed alone".into()),
             value: "5".into(),
-            limit: "4".into()
+            limit: 4
         }
     );
     // Terms written out in the seed count what their rules draw, all of
@@ -827,9 +835,10 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     assert_eq!(
         e.0[0].kind,
         ErrorKind::Limit {
-            what: "stems drawn by the seed alone".into(),
+            bound: Bound::Stems,
+            what: Some("stems drawn by the seed alone".into()),
             value: "7".into(),
-            limit: "5".into()
+            limit: 5
         },
         "the bare R1 is a growth point and counts nothing"
     );

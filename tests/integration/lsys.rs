@@ -3,11 +3,11 @@
 
 use num_bigint::BigUint;
 use proptest::prelude::*;
-use stlc::diag::ErrorKind;
+use stlc::diag::{ErrorKind, InputError, LsysError};
 use stlc::interpret::Derivation;
 use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
 use stlc::interpret::stats::stats;
-use stlc::limits::Limits;
+use stlc::limits::{Bound, Limits};
 use stlc::progress::NoProgress;
 use stlc::turtle::{Point, Recorder, Segment};
 use stlc::{model::lsys::Background, syntax::lsys::parse};
@@ -127,13 +127,16 @@ fn unknown_key_suggests_the_nearest() {
     let d = &err.0[0];
     assert_eq!(
         d.kind,
-        ErrorKind::UnknownKey {
+        ErrorKind::Lsys(LsysError::UnknownKey {
             key: "angel".into()
-        }
+        })
     );
     assert_eq!(d.span, Some(8..13));
     assert_eq!(d.help.as_deref(), Some("did you mean `angle`?"));
-    assert_eq!(err.0[1].kind, ErrorKind::MissingKey { key: "angle" });
+    assert_eq!(
+        err.0[1].kind,
+        ErrorKind::Lsys(LsysError::MissingKey { key: "angle" })
+    );
 }
 
 #[test]
@@ -143,8 +146,14 @@ fn missing_axiom_and_angle_are_both_reported() {
     assert_eq!(
         e,
         vec![
-            (ErrorKind::MissingKey { key: "axiom" }, 24..24),
-            (ErrorKind::MissingKey { key: "angle" }, 24..24),
+            (
+                ErrorKind::Lsys(LsysError::MissingKey { key: "axiom" }),
+                24..24
+            ),
+            (
+                ErrorKind::Lsys(LsysError::MissingKey { key: "angle" }),
+                24..24
+            ),
         ]
     );
 }
@@ -155,7 +164,10 @@ fn two_rules_for_one_symbol_label_both() {
     let err = parse(src, &Limits::default()).unwrap_err();
     assert_eq!(err.0.len(), 1);
     let d = &err.0[0];
-    assert_eq!(d.kind, ErrorKind::DuplicateProduction { symbol: 'F' });
+    assert_eq!(
+        d.kind,
+        ErrorKind::Lsys(LsysError::DuplicateProduction { symbol: 'F' })
+    );
     assert_eq!(d.span, Some(27..37)); // the second rule line
     assert_eq!(d.labels.len(), 1);
     assert_eq!(d.labels[0].span, 17..26); // the first
@@ -171,8 +183,8 @@ fn unbalanced_brackets_point_at_the_unmatched_one() {
     assert_eq!(
         e,
         vec![
-            (ErrorKind::Unbalanced('['), 6..7),
-            (ErrorKind::Unbalanced(']'), 29..30),
+            (ErrorKind::Input(InputError::Unbalanced('[')), 6..7),
+            (ErrorKind::Input(InputError::Unbalanced(']')), 29..30),
         ]
     );
 }
@@ -185,26 +197,29 @@ fn malformed_and_invalid_numbers() {
     assert_eq!(
         e,
         vec![
-            (ErrorKind::MalformedNumber { text: "2x5".into() }, 14..17),
             (
-                ErrorKind::NotPositive {
+                ErrorKind::Lsys(LsysError::MalformedNumber { text: "2x5".into() }),
+                14..17
+            ),
+            (
+                ErrorKind::Lsys(LsysError::NotPositive {
                     key: "length",
                     text: "-1".into()
-                },
+                }),
                 25..27
             ),
             (
-                ErrorKind::NumberTooLarge {
+                ErrorKind::Lsys(LsysError::NumberTooLarge {
                     key: "width",
                     text: "1e999".into()
-                },
+                }),
                 34..39
             ),
             (
-                ErrorKind::NotWholeNumber {
+                ErrorKind::Lsys(LsysError::NotWholeNumber {
                     key: "generations",
                     text: "2.5".into()
-                },
+                }),
                 52..55
             ),
         ]
@@ -212,7 +227,10 @@ fn malformed_and_invalid_numbers() {
     let e = errors("axiom F\nangle nan\n", &Limits::default());
     assert_eq!(
         e,
-        vec![(ErrorKind::MalformedNumber { text: "nan".into() }, 14..17)]
+        vec![(
+            ErrorKind::Lsys(LsysError::MalformedNumber { text: "nan".into() }),
+            14..17
+        )]
     );
 }
 
@@ -227,9 +245,10 @@ fn generations_above_max_depth_name_the_flag() {
     assert_eq!(
         d.kind,
         ErrorKind::Limit {
-            what: "generations".into(),
+            bound: Bound::Depth,
+            what: Some("generations".into()),
             value: "11".into(),
-            limit: "10".into()
+            limit: 10
         }
     );
     assert_eq!(d.span, Some(12..14));
@@ -243,18 +262,21 @@ fn duplicate_key_bad_colour_and_long_predecessor() {
     assert_eq!(
         e,
         vec![
-            (ErrorKind::DuplicateKey { key: "angle" }, 17..22),
             (
-                ErrorKind::UnknownColour {
+                ErrorKind::Lsys(LsysError::DuplicateKey { key: "angle" }),
+                17..22
+            ),
+            (
+                ErrorKind::Input(InputError::UnknownColour {
                     text: "clGren".into()
-                },
+                }),
                 32..38
             ),
             (
-                ErrorKind::LongPredecessor {
+                ErrorKind::Lsys(LsysError::LongPredecessor {
                     predecessor: "FF".into(),
                     symbols: 2
-                },
+                }),
                 44..46
             ),
         ]
@@ -265,10 +287,13 @@ fn duplicate_key_bad_colour_and_long_predecessor() {
 fn syntax_errors_read_like_the_file_not_the_grammar() {
     let err = parse("axiom F\nangle\n", &Limits::default()).unwrap_err();
     let d = &err.0[0];
-    assert_eq!(d.kind, ErrorKind::Syntax("expected a number".into()));
+    assert_eq!(
+        d.kind,
+        ErrorKind::Input(InputError::Syntax("expected a number".into()))
+    );
     assert_eq!(d.span, Some(13..13));
     let err = parse("axiom F\nangle 90\nrule X\n", &Limits::default()).unwrap_err();
-    let ErrorKind::Syntax(m) = &err.0[0].kind else {
+    let ErrorKind::Input(InputError::Syntax(m)) = &err.0[0].kind else {
         panic!("{err}")
     };
     assert_eq!(m, "expected `->`, `=` or a space before the successor");
@@ -276,7 +301,9 @@ fn syntax_errors_read_like_the_file_not_the_grammar() {
     let err = parse("axiom F\n5 F\nangle 90\n", &Limits::default()).unwrap_err();
     assert_eq!(
         err.0[0].kind,
-        ErrorKind::Syntax("expected a line `key value` or a `#` comment".into())
+        ErrorKind::Input(InputError::Syntax(
+            "expected a line `key value` or a `#` comment".into()
+        ))
     );
     assert_eq!(err.0[0].span, Some(8..8));
     assert!(err.0[0].help.is_some());
@@ -508,9 +535,10 @@ fn bfs_refuses_over_the_word_budget() {
     assert_eq!(
         err.first_kind(),
         Some(&ErrorKind::Limit {
-            what: "bfs word at level 4".into(),
+            bound: Bound::Word,
+            what: Some("bfs word at level 4".into()),
             value: "1561".into(),
-            limit: "1000".into()
+            limit: 1000
         })
     );
     assert!(err.0[0].help.as_deref().unwrap().contains("--max-word"));
@@ -734,11 +762,14 @@ fn heading_defaults_to_up_and_is_checked_like_any_number() {
         e[0],
         // `north`, after "axiom F\nangle 90\nheading "
         (
-            ErrorKind::MalformedNumber {
+            ErrorKind::Lsys(LsysError::MalformedNumber {
                 text: "north".into()
-            },
+            }),
             25..30
         )
     );
-    assert_eq!(e[1].0, ErrorKind::DuplicateKey { key: "heading" });
+    assert_eq!(
+        e[1].0,
+        ErrorKind::Lsys(LsysError::DuplicateKey { key: "heading" })
+    );
 }

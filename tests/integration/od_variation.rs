@@ -4,6 +4,7 @@
 
 use assert_cmd::Command;
 use stlc::choice::{Alternatives, Key};
+use stlc::diag::{GrowError, RuleError, StlError};
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow, grow_traced};
 use stlc::model::{Description, Format, SeedItem, Slot};
 use stlc::progress::NoProgress;
@@ -201,7 +202,7 @@ fn probabilities_must_sum_to_one() {
     let e = errors(text, Format::Od);
     let d = &e.0[0];
     assert!(
-        matches!(&d.kind, ErrorKind::ProbabilitySum { name, sum } if name == "R1" && (sum - 0.9).abs() < 1e-12),
+        matches!(&d.kind, ErrorKind::Rule(RuleError::ProbabilitySum { name, sum }) if name == "R1" && (sum - 0.9).abs() < 1e-12),
         "{:?}",
         d.kind
     );
@@ -214,7 +215,7 @@ fn a_probability_must_be_above_zero() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] R1 (0): [-F]";
     let e = errors(text, Format::Od);
     assert!(
-        matches!(&e.0[0].kind, ErrorKind::BadProbability { name, value } if name == "R1" && *value == 0.0)
+        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::BadProbability { name, value }) if name == "R1" && *value == 0.0)
     );
     let second = text.rfind("R1").unwrap();
     assert_eq!(e.0[0].span, Some(second..second + 2));
@@ -224,14 +225,19 @@ fn a_probability_must_be_above_zero() {
 fn every_alternative_needs_a_probability() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F] R1: [-F]";
     let e = errors(text, Format::Od);
-    assert!(matches!(&e.0[0].kind, ErrorKind::MissingProbability { name } if name == "R1"));
+    assert!(
+        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::MissingProbability { name }) if name == "R1")
+    );
     let second = text.rfind("R1").unwrap();
     assert_eq!(e.0[0].span, Some(second..second + 2));
     // Only that: the sum of the bodies that have one (0.5) is no news.
     assert_eq!(e.0.len(), 1, "{e}");
     // One body with a probability other than 1: it needs none.
     let e = errors("T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F]", Format::Od);
-    assert!(matches!(&e.0[0].kind, ErrorKind::ProbabilitySum { .. }));
+    assert!(matches!(
+        &e.0[0].kind,
+        ErrorKind::Rule(RuleError::ProbabilitySum { .. })
+    ));
     let help = e.0[0].help.as_deref().unwrap();
     assert!(
         help.contains("one body needs no probability: write `R1: ...`"),
@@ -239,7 +245,10 @@ fn every_alternative_needs_a_probability() {
     );
     // Two bodies without probabilities stay a duplicate.
     let e = errors("T (0,0) L=1(0) B=1(0) RULE R1: [+F] R1: [-F]", Format::Od);
-    assert!(matches!(&e.0[0].kind, ErrorKind::DuplicateRule { .. }));
+    assert!(matches!(
+        &e.0[0].kind,
+        ErrorKind::Rule(RuleError::DuplicateRule { .. })
+    ));
 }
 
 /// The canonical writer keeps an OD an OD: alternatives as several bodies
@@ -264,11 +273,15 @@ fn an_od_with_alternatives_writes_as_an_od() {
 fn a_dot_in_an_od_is_refused() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1.1: [+F]";
     let e = errors(text, Format::Od);
-    assert!(matches!(&e.0[0].kind, ErrorKind::DottedName { name } if name == "R1.1"));
+    assert!(
+        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::DottedName { name }) if name == "R1.1")
+    );
     assert_eq!(e.0[0].span, Some(span_of(text, "R1.1")));
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] SEED F R1.1 ENDSEED";
     let e = errors(text, Format::Od);
-    assert!(matches!(&e.0[0].kind, ErrorKind::DottedName { name } if name == "R1.1"));
+    assert!(
+        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::DottedName { name }) if name == "R1.1")
+    );
     assert_eq!(
         e.0[0].span,
         Some(span_of(text, "R1.1 ")).map(|s| s.start..s.end - 1)
@@ -281,7 +294,7 @@ fn a_bed_names_alternatives_that_exist() {
     let text = format!("{head}R1.3{{}} ENDSEED");
     let e = errors(&text, Format::Bed);
     assert!(
-        matches!(&e.0[0].kind, ErrorKind::UnknownAlternative { name, number } if name == "R1" && number == "3"),
+        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::UnknownAlternative { name, number }) if name == "R1" && number == "3"),
         "{:?}",
         e.0[0].kind
     );
@@ -289,7 +302,7 @@ fn a_bed_names_alternatives_that_exist() {
     let text = format!("{head}R1{{}} ENDSEED");
     let e = errors(&text, Format::Bed);
     assert!(
-        matches!(&e.0[0].kind, ErrorKind::AlternativeNotNamed { name, count: 2 } if name == "R1")
+        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::AlternativeNotNamed { name, count: 2 }) if name == "R1")
     );
     let text = format!("{head}R1.2{{}} ENDSEED");
     assert!(parse(&text, Format::Bed, &Limits::default()).is_ok());
@@ -303,7 +316,7 @@ fn a_bed_probability_belongs_to_an_alternative() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F][-F] SEED F R1{,} ENDSEED";
     let e = errors(text, Format::Bed);
     assert!(
-        matches!(&e.0[0].kind, ErrorKind::ProbabilityWithoutAlternative { name } if name == "R1"),
+        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::ProbabilityWithoutAlternative { name }) if name == "R1"),
         "{:?}",
         e.0[0].kind
     );
@@ -323,7 +336,7 @@ fn a_bed_repeats_only_rules_without_alternatives() {
         let text = format!("{head}{repeat} ENDSEED");
         let e = errors(&text, Format::Bed);
         assert!(
-            matches!(&e.0[0].kind, ErrorKind::RepeatChooses { name, count: 2 } if name == "R1"),
+            matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::RepeatChooses { name, count: 2 }) if name == "R1"),
             "{repeat}: {:?}",
             e.0[0].kind
         );
@@ -342,7 +355,7 @@ fn a_forest_bed_has_one_seed_per_root() {
     let e = errors(text, Format::Bed);
     assert!(matches!(
         e.0[0].kind,
-        ErrorKind::SeedsPerRoot { roots: 2, seeds: 3 }
+        ErrorKind::Stl(StlError::SeedsPerRoot { roots: 2, seeds: 3 })
     ));
     let text = "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED";
     let d = parse(text, Format::Bed, &Limits::default()).unwrap();
@@ -353,7 +366,7 @@ fn a_forest_bed_has_one_seed_per_root() {
     );
     assert!(matches!(
         e.0[0].kind,
-        ErrorKind::SeedsPerRoot { roots: 1, seeds: 2 }
+        ErrorKind::Stl(StlError::SeedsPerRoot { roots: 1, seeds: 2 })
     ));
 }
 
@@ -369,12 +382,12 @@ fn a_root_on_another_roots_point_is_warned_about() {
     let shared: Vec<_> = g
         .warnings
         .iter()
-        .filter(|w| matches!(w.kind, ErrorKind::SharedRoot { .. }))
+        .filter(|w| matches!(w.kind, ErrorKind::Grow(GrowError::SharedRoot { .. })))
         .collect();
     assert_eq!(shared.len(), 1, "the first repeat only: {:?}", g.warnings);
     assert!(matches!(
         shared[0].kind,
-        ErrorKind::SharedRoot { root: 3, first: 1 }
+        ErrorKind::Grow(GrowError::SharedRoot { root: 3, first: 1 })
     ));
     let third = text.rfind("(10, 0)").unwrap();
     assert_eq!(shared[0].span, Some(third..third + "(10, 0)".len()));
@@ -388,7 +401,7 @@ fn a_root_on_another_roots_point_is_warned_about() {
     let w = grown(&od(signed), GrowthOrder::Bfs, 0).warnings;
     assert!(matches!(
         w[0].kind,
-        ErrorKind::SharedRoot { root: 2, first: 1 }
+        ErrorKind::Grow(GrowError::SharedRoot { root: 2, first: 1 })
     ));
 }
 

@@ -6,7 +6,7 @@
 //! `tests/cases/render/`, compared by [`crate::support`].
 
 use stlc::color::Rgb;
-use stlc::diag::{Diagnostic, Diagnostics, ErrorKind};
+use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError};
 use stlc::num::Linear;
 use stlc::progress::{NoProgress, Progress};
 use stlc::render::{self, DEFAULT_SIDE, Fit, ImageFormat, PngTurtle, RenderOptions, Style, Width};
@@ -517,7 +517,7 @@ fn absurd_sizes_are_refused_before_drawing() {
         .unwrap_err();
         assert!(matches!(
             err.first_kind(),
-            Some(ErrorKind::ImageSize { .. })
+            Some(ErrorKind::Render(RenderError::ImageSize { .. }))
         ));
         assert!(err.to_string().contains("--size"), "{err}");
         assert!(!called && out.is_empty());
@@ -530,7 +530,7 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
     let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
         runs += 1;
         if runs == 2 {
-            return Err(Diagnostic::error(ErrorKind::DrawingNotFinite).into());
+            return Err(Diagnostic::error(RenderError::DrawingNotFinite).into());
         }
         t.segment(Segment {
             from: Point::new(0.0, 0.0),
@@ -550,7 +550,10 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
         &mut NoProgress,
     )
     .unwrap_err();
-    assert_eq!(err.first_kind(), Some(&ErrorKind::DrawingNotFinite));
+    assert_eq!(
+        err.first_kind(),
+        Some(&ErrorKind::Render(RenderError::DrawingNotFinite))
+    );
     assert!(out.is_empty());
 }
 

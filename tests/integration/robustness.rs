@@ -12,7 +12,9 @@
 
 use stlc::bed::validate;
 use stlc::bed::write::write;
-use stlc::diag::{Diagnostics, ErrorKind};
+use stlc::diag::{
+    BedError, Diagnostics, ErrorKind, GrowError, InputError, LayoutError, LsysError, StlError,
+};
 use stlc::interpret::Derivation;
 use stlc::limits::Limits;
 use stlc::model::{Description, Format, Shape};
@@ -75,8 +77,9 @@ fn stl_err(src: String, format: Format, limits: Limits) -> Diagnostics {
     })
 }
 
+/// A limit error whose message names `what`.
 fn is_limit(e: &Diagnostics, what: &str) -> bool {
-    matches!(e.first_kind(), Some(ErrorKind::Limit { what: w, .. }) if w.contains(what))
+    matches!(e.first_kind(), Some(k @ ErrorKind::Limit { .. }) if k.to_string().contains(what))
 }
 
 fn bed(src: &str) -> Description {
@@ -94,7 +97,9 @@ fn lsys_axiom_nested_a_hundred_thousand_deep_is_refused_at_the_limit() {
     let e = lsys_err(src, Limits::default());
     assert_eq!(
         e.first_kind(),
-        Some(&ErrorKind::NestingTooDeep { limit: 10_000 })
+        Some(&ErrorKind::Input(InputError::NestingTooDeep {
+            limit: 10_000
+        }))
     );
     // The 10 001st `[`, after `axiom `.
     assert_eq!(e.0[0].span, Some(6 + 10_000..6 + 10_001));
@@ -110,7 +115,9 @@ fn lsys_successor_nested_a_hundred_thousand_deep_is_refused() {
     let e = lsys_err(src, Limits::default());
     assert_eq!(
         e.first_kind(),
-        Some(&ErrorKind::NestingTooDeep { limit: 10_000 })
+        Some(&ErrorKind::Input(InputError::NestingTooDeep {
+            limit: 10_000
+        }))
     );
 }
 
@@ -155,7 +162,10 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     // An unbalanced one is still pointed at, at its opening bracket.
     let src = format!("axiom F{}\nangle 90\n", "[".repeat(N));
     let e = lsys_err(src, limits);
-    assert_eq!(e.first_kind(), Some(&ErrorKind::Unbalanced('[')));
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::Input(InputError::Unbalanced('[')))
+    );
 }
 
 #[test]
@@ -188,7 +198,9 @@ fn stl_brackets_braces_and_repeats_a_hundred_thousand_deep_are_refused() {
             let e = stl_err(src.clone(), format, Limits::default());
             assert_eq!(
                 e.first_kind(),
-                Some(&ErrorKind::NestingTooDeep { limit: 10_000 }),
+                Some(&ErrorKind::Input(InputError::NestingTooDeep {
+                    limit: 10_000
+                })),
                 "{}",
                 &src[..60]
             );
@@ -237,7 +249,11 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     );
     let at = repeats.find("[I").unwrap();
     let e = stl_err(repeats, Format::Bed, limits);
-    assert_eq!(e.first_kind(), Some(&ErrorKind::Unbalanced('[')), "{e}");
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::Input(InputError::Unbalanced('['))),
+        "{e}"
+    );
     assert_eq!(e.0[0].span, Some(at..at + 1));
 }
 
@@ -448,7 +464,10 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         assert!(
             matches!(
                 e.first_kind(),
-                Some(ErrorKind::NumberTooLarge { .. } | ErrorKind::MalformedNumber { .. })
+                Some(
+                    ErrorKind::Lsys(LsysError::NumberTooLarge { .. })
+                        | ErrorKind::Lsys(LsysError::MalformedNumber { .. })
+                )
             ),
             "{line}: {e}"
         );
@@ -460,7 +479,10 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         assert!(
             matches!(
                 e.first_kind(),
-                Some(ErrorKind::NotPositive { .. } | ErrorKind::NumberTooLarge { .. })
+                Some(
+                    ErrorKind::Lsys(LsysError::NotPositive { .. })
+                        | ErrorKind::Lsys(LsysError::NumberTooLarge { .. })
+                )
             ),
             "{line}: {e}"
         );
@@ -490,7 +512,10 @@ fn stl_numbers_that_overflow_are_refused() {
         let at = src.find(needle).unwrap();
         let e = stl_err(src.clone(), Format::Bed, Limits::default());
         assert!(
-            matches!(e.first_kind(), Some(ErrorKind::NotFinite { .. })),
+            matches!(
+                e.first_kind(),
+                Some(ErrorKind::Input(InputError::NotFinite { .. }))
+            ),
             "{src}: {e}"
         );
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{src}");
@@ -502,7 +527,10 @@ fn stl_numbers_that_overflow_are_refused() {
     ] {
         let e = stl_err(src.into(), Format::Bed, Limits::default());
         assert!(
-            matches!(e.first_kind(), Some(ErrorKind::Syntax(_))),
+            matches!(
+                e.first_kind(),
+                Some(ErrorKind::Input(InputError::Syntax(_)))
+            ),
             "{src}: {e}"
         );
     }
@@ -519,7 +547,10 @@ fn zero_and_negative_sizes_are_refused() {
         assert!(
             matches!(
                 e.first_kind(),
-                Some(ErrorKind::StemSizeNotPositive { .. } | ErrorKind::NegativeDecrement { .. })
+                Some(
+                    ErrorKind::Stl(StlError::StemSizeNotPositive { .. })
+                        | ErrorKind::Stl(StlError::NegativeDecrement { .. })
+                )
             ),
             "{src}: {e}"
         );
@@ -540,7 +571,10 @@ fn zero_and_negative_sizes_are_refused() {
         assert!(
             matches!(
                 e.first_kind(),
-                Some(ErrorKind::ShapeSizeNotPositive { .. } | ErrorKind::TooFewPoints { .. })
+                Some(
+                    ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { .. })
+                        | ErrorKind::Layout(LayoutError::TooFewPoints { .. })
+                )
             ),
             "{shape}: {e}"
         );
@@ -551,7 +585,7 @@ fn zero_and_negative_sizes_are_refused() {
     assert!(
         matches!(
             e.first_kind(),
-            Some(ErrorKind::OrderTooDeep { order: 2, .. })
+            Some(ErrorKind::Bed(BedError::OrderTooDeep { order: 2, .. }))
         ),
         "{e}"
     );
@@ -609,10 +643,10 @@ fn a_hundred_megabyte_input_is_refused_by_its_size_before_its_bytes_are_read() {
     let e = precheck(&big, &Limits::default()).unwrap_err();
     assert_eq!(
         e.first_kind(),
-        Some(&ErrorKind::InputTooLarge {
+        Some(&ErrorKind::Input(InputError::InputTooLarge {
             size: 100 << 20,
             limit: 64 << 20
-        })
+        }))
     );
 }
 
@@ -638,7 +672,7 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
             precheck(&bytes, &Limits::default())
                 .unwrap_err()
                 .first_kind(),
-            Some(ErrorKind::NotUtf8(_))
+            Some(ErrorKind::Input(InputError::NotUtf8(_)))
         ));
         // As text (replacement characters): a syntax error or a limit.
         let e = lsys_err(lossy.clone(), Limits::default());
@@ -646,10 +680,10 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
             matches!(
                 e.first_kind(),
                 Some(
-                    ErrorKind::Syntax(_)
-                        | ErrorKind::NestingTooDeep { .. }
-                        | ErrorKind::UnknownKey { .. }
-                        | ErrorKind::MissingKey { .. }
+                    ErrorKind::Input(InputError::Syntax(_))
+                        | ErrorKind::Input(InputError::NestingTooDeep { .. })
+                        | ErrorKind::Lsys(LsysError::UnknownKey { .. })
+                        | ErrorKind::Lsys(LsysError::MissingKey { .. })
                 )
             ),
             "{e}"
@@ -659,7 +693,10 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
             assert!(
                 matches!(
                     e.first_kind(),
-                    Some(ErrorKind::Syntax(_) | ErrorKind::NestingTooDeep { .. })
+                    Some(
+                        ErrorKind::Input(InputError::Syntax(_))
+                            | ErrorKind::Input(InputError::NestingTooDeep { .. })
+                    )
                 ),
                 "{e}"
             );
@@ -672,11 +709,17 @@ fn invalid_utf8_is_refused_with_its_offset_by_both_parsers_entry() {
     let mut bytes = b"axiom F\nangle 90\n# caf".to_vec();
     bytes.extend_from_slice(&[0xc3, 0x28]);
     let e = precheck(&bytes, &Limits::default()).unwrap_err();
-    assert_eq!(e.first_kind(), Some(&ErrorKind::NotUtf8(22)));
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::Input(InputError::NotUtf8(22)))
+    );
     assert_eq!(e.0[0].span, Some(22..22));
     // A UTF-16 file (BOM FF FE) fails at byte 0.
     let e = precheck(b"\xff\xfea\0x\0", &Limits::default()).unwrap_err();
-    assert_eq!(e.first_kind(), Some(&ErrorKind::NotUtf8(0)));
+    assert_eq!(
+        e.first_kind(),
+        Some(&ErrorKind::Input(InputError::NotUtf8(0)))
+    );
 }
 
 #[test]
@@ -691,7 +734,10 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(src.into(), format, Limits::default());
             assert!(
-                matches!(e.first_kind(), Some(ErrorKind::Syntax(_))),
+                matches!(
+                    e.first_kind(),
+                    Some(ErrorKind::Input(InputError::Syntax(_)))
+                ),
                 "{src:?}: {e}"
             );
             assert_eq!(e.0.len(), 1);
@@ -719,7 +765,10 @@ fn a_layout_whose_shapes_cancel_leaves_nothing_to_grow_in() {
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 (clWhite) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
     assert!(
-        matches!(e.first_kind(), Some(ErrorKind::EmptyRegion)),
+        matches!(
+            e.first_kind(),
+            Some(ErrorKind::Layout(LayoutError::EmptyRegion))
+        ),
         "{e}"
     );
     let at = src.find("LAYOUT").unwrap();
@@ -732,7 +781,10 @@ fn a_root_outside_the_layout_is_refused_at_the_root() {
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
     assert!(
-        matches!(e.first_kind(), Some(ErrorKind::RootOutside { .. })),
+        matches!(
+            e.first_kind(),
+            Some(ErrorKind::Grow(GrowError::RootOutside { .. }))
+        ),
         "{e}"
     );
     assert_eq!(e.0[0].span, Some(2..10));

@@ -8,10 +8,10 @@ use stlc::bed::Bed;
 use stlc::bed::validate;
 use stlc::bed::write::write;
 use stlc::color::Rgb;
-use stlc::diag::{Diagnostics, ErrorKind};
+use stlc::diag::{BedError, Diagnostics, ErrorKind, InputError, LayoutError, RuleError, StlError};
 use stlc::interpret::Derivation;
 use stlc::interpret::bed::{draw_into, expand};
-use stlc::limits::Limits;
+use stlc::limits::{Bound, Limits};
 use stlc::model::{
     Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, Loc, Piece,
     Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Spelling, StemParams, TermId, Terms,
@@ -286,7 +286,10 @@ fn both_definition_forms_and_comments() {
 fn unknown_rule_suggests_the_nearest() {
     let src = format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED");
     let (kind, span, help) = one_error(&src);
-    assert_eq!(kind, ErrorKind::UnknownRule { name: "R3".into() });
+    assert_eq!(
+        kind,
+        ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() })
+    );
     assert_eq!(span, at(&src, "R3", 0));
     assert!(help.contains("`R1`"), "{help}");
 }
@@ -297,11 +300,11 @@ fn slot_count_names_the_rule_and_its_count() {
     let (kind, span, help) = one_error(&src);
     assert_eq!(
         kind,
-        ErrorKind::SlotCount {
+        ErrorKind::Rule(RuleError::SlotCount {
             rule: "R1".into(),
             expected: 2,
             found: 3
-        }
+        })
     );
     assert_eq!(span, at(&src, "R1{,,}", 0));
     assert!(help.contains("R1{,}"), "{help}");
@@ -311,27 +314,27 @@ fn slot_count_names_the_rule_and_its_count() {
 fn unbalanced_brackets_point_at_the_unmatched_one() {
     let src = format!("{HEAD} R1: [F][+F SEED ENDSEED");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Unbalanced('['));
+    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced('[')));
     assert_eq!(span, at(&src, "[", 1));
 
     let src = format!("{HEAD} R1: [F]] SEED ENDSEED");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Unbalanced(']'));
+    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced(']')));
     assert_eq!(span, at(&src, "]", 1));
 
     let src = format!("{HEAD} R1: [F] SEED R1{{R1{{}} ENDSEED");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Unbalanced('{'));
+    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced('{')));
     assert_eq!(span, at(&src, "{", 0));
 
     let src = format!("{HEAD} R1: [F] SEED R1{{}}}} ENDSEED");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Unbalanced('}'));
+    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced('}')));
     assert_eq!(span, at(&src, "}", 1));
 
     let src = format!("{HEAD} R1: [F] SEED [+F R1 ENDSEED");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Unbalanced('['));
+    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced('[')));
     assert_eq!(span, at(&src, "[", 1));
 }
 
@@ -340,7 +343,10 @@ fn duplicate_rule_labels_both() {
     let src = format!("{HEAD} R1: [F] R1: [+F] SEED R1 ENDSEED");
     let e = errors(&src);
     assert_eq!(e.0.len(), 1, "{e}");
-    assert_eq!(e.0[0].kind, ErrorKind::DuplicateRule { name: "R1".into() });
+    assert_eq!(
+        e.0[0].kind,
+        ErrorKind::Rule(RuleError::DuplicateRule { name: "R1".into() })
+    );
     assert_eq!(e.0[0].span, Some(at(&src, "R1", 1)));
     assert_eq!(e.0[0].labels[0].span, at(&src, "R1", 0));
 }
@@ -350,7 +356,10 @@ fn reserved_names_are_refused() {
     for name in ["F", "f", "L", "R", "I", "SEED"] {
         let src = format!("{HEAD} {name}: [F] R1: [F]");
         let (kind, span, _) = one_error(&src);
-        assert_eq!(kind, ErrorKind::ReservedName { name: name.into() });
+        assert_eq!(
+            kind,
+            ErrorKind::Rule(RuleError::ReservedName { name: name.into() })
+        );
         assert_eq!(
             span,
             at(&src, &format!("{name}:"), 0).start..at(&src, ":", 0).start
@@ -362,17 +371,17 @@ fn reserved_names_are_refused() {
 fn rule_names_in_bodies_only_end_branches() {
     let src = format!("{HEAD} R1: [R1 +F][-F]");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::NameNotAtBranchEnd);
+    assert_eq!(kind, ErrorKind::Stl(StlError::NameNotAtBranchEnd));
     assert_eq!(span, at(&src, "R1", 1));
     // in the trunk
     let src = format!("{HEAD} R1: F R1 [-F]");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::NameNotAtBranchEnd);
+    assert_eq!(kind, ErrorKind::Stl(StlError::NameNotAtBranchEnd));
     assert_eq!(span, at(&src, "R1", 1));
     // in a nested bracket
     let src = format!("{HEAD} R1: [F[+F R1]]");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::NameNotAtBranchEnd);
+    assert_eq!(kind, ErrorKind::Stl(StlError::NameNotAtBranchEnd));
     assert_eq!(span, at(&src, "R1", 1));
 }
 
@@ -382,10 +391,10 @@ fn sizes_must_be_positive() {
     let (kind, span, _) = one_error(src);
     assert_eq!(
         kind,
-        ErrorKind::StemSizeNotPositive {
+        ErrorKind::Stl(StlError::StemSizeNotPositive {
             key: "L",
             what: "length"
-        }
+        })
     );
     assert_eq!(span, at(src, "-1", 0));
 
@@ -393,10 +402,10 @@ fn sizes_must_be_positive() {
     let (kind, span, _) = one_error(src);
     assert_eq!(
         kind,
-        ErrorKind::StemSizeNotPositive {
+        ErrorKind::Stl(StlError::StemSizeNotPositive {
             key: "B",
             what: "broadness"
-        }
+        })
     );
     let b = at(src, "B=0", 0).start + 2;
     assert_eq!(span, b..b + 1);
@@ -405,10 +414,10 @@ fn sizes_must_be_positive() {
     let (kind, span, _) = one_error(&src);
     assert_eq!(
         kind,
-        ErrorKind::ShapeSizeNotPositive {
+        ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
             shape: "Rectangle",
             what: "width"
-        }
+        })
     );
     let w = at(&src, "(0,0), 0", 0).end - 1;
     assert_eq!(span, w..w + 1);
@@ -417,10 +426,10 @@ fn sizes_must_be_positive() {
     let (kind, span, _) = one_error(&src);
     assert_eq!(
         kind,
-        ErrorKind::ShapeSizeNotPositive {
+        ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
             shape: "RoundRect",
             what: "corner radius"
-        }
+        })
     );
     assert_eq!(span, at(&src, "-2", 0));
 }
@@ -429,7 +438,10 @@ fn sizes_must_be_positive() {
 fn polygons_need_three_points() {
     let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::TooFewPoints { points: 2 });
+    assert_eq!(
+        kind,
+        ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 })
+    );
     assert_eq!(span, at(&src, "Polygon (0,0), (5,5)", 0));
 }
 
@@ -439,9 +451,9 @@ fn unknown_colour_suggests_one() {
     let (kind, span, help) = one_error(&src);
     assert_eq!(
         kind,
-        ErrorKind::UnknownColour {
+        ErrorKind::Input(InputError::UnknownColour {
             text: "clGren".into()
-        }
+        })
     );
     assert_eq!(span, at(&src, "clGren", 0));
     assert!(help.contains("clGreen"));
@@ -453,10 +465,10 @@ fn missing_section_ends() {
     let (kind, span, _) = one_error(&src);
     assert_eq!(
         kind,
-        ErrorKind::UnclosedSection {
+        ErrorKind::Stl(StlError::UnclosedSection {
             open: "SEED",
             close: "ENDSEED"
-        }
+        })
     );
     assert_eq!(span, at(&src, "SEED", 0));
 
@@ -464,10 +476,10 @@ fn missing_section_ends() {
     let (kind, span, _) = one_error(&src);
     assert_eq!(
         kind,
-        ErrorKind::UnclosedSection {
+        ErrorKind::Stl(StlError::UnclosedSection {
             open: "LAYOUT",
             close: "ENDLAYOUT"
-        }
+        })
     );
     assert_eq!(span, at(&src, "LAYOUT", 0));
 }
@@ -478,9 +490,9 @@ fn numbers_must_be_finite() {
     let (kind, span, _) = one_error(src);
     assert_eq!(
         kind,
-        ErrorKind::NotFinite {
+        ErrorKind::Input(InputError::NotFinite {
             text: "1e999".into()
-        }
+        })
     );
     assert_eq!(span, at(src, "1e999", 0));
 }
@@ -492,9 +504,10 @@ fn counts_over_the_limit_are_refused() {
     assert_eq!(
         kind,
         ErrorKind::Limit {
-            what: "self-resemblance count".into(),
+            bound: Bound::Repeat,
+            what: None,
             value: "10001".into(),
-            limit: "10000".into()
+            limit: 10000
         }
     );
     assert_eq!(span, at(&src, "10001", 0));
@@ -505,7 +518,7 @@ fn counts_over_the_limit_are_refused() {
 fn braces_must_follow_a_rule_name() {
     let src = format!("{HEAD} R1: [F] SEED F{{}} ENDSEED");
     let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::BraceWithoutRule);
+    assert_eq!(kind, ErrorKind::Stl(StlError::BraceWithoutRule));
     assert_eq!(span, at(&src, "{", 0));
 }
 
@@ -521,17 +534,17 @@ fn several_errors_are_reported_together() {
     assert_eq!(
         kinds,
         vec![
-            ErrorKind::UnknownColour {
+            ErrorKind::Input(InputError::UnknownColour {
                 text: "clBlu".into()
-            },
-            ErrorKind::TooFewPoints { points: 1 },
-            ErrorKind::ReservedName { name: "F".into() },
-            ErrorKind::SlotCount {
+            }),
+            ErrorKind::Layout(LayoutError::TooFewPoints { points: 1 }),
+            ErrorKind::Rule(RuleError::ReservedName { name: "F".into() }),
+            ErrorKind::Rule(RuleError::SlotCount {
                 rule: "R1".into(),
                 expected: 2,
                 found: 3
-            },
-            ErrorKind::UnknownRule { name: "R9".into() },
+            }),
+            ErrorKind::Rule(RuleError::UnknownRule { name: "R9".into() }),
         ]
     );
 }
@@ -540,7 +553,7 @@ fn several_errors_are_reported_together() {
 fn syntax_errors_name_what_the_user_types() {
     let src = "T (0,0) RULE R1: SEED R1 ENDSEED";
     let (kind, span, _) = one_error(src);
-    assert_eq!(kind, ErrorKind::MissingBody);
+    assert_eq!(kind, ErrorKind::Rule(RuleError::MissingBody));
     let colon = at(src, ":", 0).end;
     assert_eq!(span, colon..colon);
     // pest's own errors are worded in what the user types, too.
@@ -557,12 +570,12 @@ fn validate_refuses_orders_without_length() {
     let e = validate(&d, &Limits::default()).unwrap_err();
     assert_eq!(
         e.first_kind(),
-        Some(&ErrorKind::OrderTooDeep {
+        Some(&ErrorKind::Bed(BedError::OrderTooDeep {
             rule: "R1".into(),
             order: 2,
             length: 0.0,
             width: 1.0
-        })
+        }))
     );
     let inner = "R1{}";
     let src = "T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED";
@@ -735,7 +748,9 @@ fn nesting_of_a_hundred_thousand_is_refused_before_parsing() {
     let e = parse(&src, Format::Bed, &Limits::default()).unwrap_err();
     assert_eq!(
         e.first_kind(),
-        Some(&ErrorKind::NestingTooDeep { limit: 10_000 })
+        Some(&ErrorKind::Input(InputError::NestingTooDeep {
+            limit: 10_000
+        }))
     );
 }
 

@@ -4,7 +4,7 @@
 
 use proptest::prelude::*;
 use stlc::choice::{Alternatives, Key};
-use stlc::diag::ErrorKind;
+use stlc::diag::{ErrorKind, LsysError, RuleError};
 use stlc::interpret::Derivation;
 use stlc::interpret::expected::{StochasticStats, stochastic_stats};
 use stlc::limits::Limits;
@@ -274,7 +274,7 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
             ErrorKind::Limit {
                 value, limit: l, ..
             } => {
-                assert_eq!(l, &limit.to_string());
+                assert_eq!(*l, limit);
                 value.clone()
             }
             other => panic!("{other:?}"),
@@ -342,7 +342,7 @@ fn probabilities_are_checked() {
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\nrule F (0.4) -> F-F\n";
     let (kind, span) = first_error(src);
     assert!(
-        matches!(&kind, ErrorKind::ProbabilitySum { name, sum } if name == "F" && (sum - 0.9).abs() < 1e-12),
+        matches!(&kind, ErrorKind::Rule(RuleError::ProbabilitySum { name, sum }) if name == "F" && (sum - 0.9).abs() < 1e-12),
         "{kind:?}"
     );
     assert_eq!(&src[span], "rule F (0.5) -> F+F");
@@ -350,18 +350,26 @@ fn probabilities_are_checked() {
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F -> F-F\n";
     let (kind, span) = first_error(src);
-    assert!(matches!(&kind, ErrorKind::MissingProbability { name } if name == "F"));
+    assert!(
+        matches!(&kind, ErrorKind::Rule(RuleError::MissingProbability { name }) if name == "F")
+    );
     assert_eq!(&src[span], "rule F -> F-F");
 
     // Only that: the sum of the rules that have one (0.5) is no news.
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\nrule F -> F-F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
     assert_eq!(e.0.len(), 1, "{e}");
-    assert!(matches!(&e.0[0].kind, ErrorKind::MissingProbability { .. }));
+    assert!(matches!(
+        &e.0[0].kind,
+        ErrorKind::Rule(RuleError::MissingProbability { .. })
+    ));
     // One rule with a probability other than 1: it needs none.
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
-    assert!(matches!(&e.0[0].kind, ErrorKind::ProbabilitySum { .. }));
+    assert!(matches!(
+        &e.0[0].kind,
+        ErrorKind::Rule(RuleError::ProbabilitySum { .. })
+    ));
     let help = e.0[0].help.as_deref().unwrap();
     assert!(
         help.contains("needs no probability: write `rule F -> ...`"),
@@ -370,18 +378,22 @@ fn probabilities_are_checked() {
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (0) -> F-F\n";
     let (kind, span) = first_error(src);
-    assert!(matches!(&kind, ErrorKind::BadProbability { value, .. } if *value == 0.0));
+    assert!(
+        matches!(&kind, ErrorKind::Rule(RuleError::BadProbability { value, .. }) if *value == 0.0)
+    );
     assert_eq!(&src[span], "rule F (0) -> F-F");
 
     let src = "axiom F\nangle 30\nrule F -> F+F\nrule F -> F-F\n";
     assert!(matches!(
         first_error(src).0,
-        ErrorKind::DuplicateProduction { symbol: 'F' }
+        ErrorKind::Lsys(LsysError::DuplicateProduction { symbol: 'F' })
     ));
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (1e400) -> F-F\n";
     let (kind, _) = first_error(src);
-    assert!(matches!(&kind, ErrorKind::BadProbability { value, .. } if value.is_infinite()));
+    assert!(
+        matches!(&kind, ErrorKind::Rule(RuleError::BadProbability { value, .. }) if value.is_infinite())
+    );
     assert!(
         kind.to_string().contains("not a finite number above 0"),
         "{kind}"
@@ -397,7 +409,7 @@ fn probabilities_are_checked() {
         let src = format!("axiom F\nangle 30\n{line}\n");
         let (kind, span) = first_error(&src);
         assert!(
-            matches!(&kind, ErrorKind::UnreadableProbability { text: t } if t == text),
+            matches!(&kind, ErrorKind::Lsys(LsysError::UnreadableProbability { text: t }) if t == text),
             "{line}: {kind:?}"
         );
         assert_eq!(&src[span], text);
@@ -407,7 +419,7 @@ fn probabilities_are_checked() {
     let d = e.iter().next().unwrap();
     assert!(matches!(
         d.kind,
-        ErrorKind::LongPredecessor { symbols: 6, .. }
+        ErrorKind::Lsys(LsysError::LongPredecessor { symbols: 6, .. })
     ));
     assert!(
         d.help.as_deref().unwrap().contains("rule F (0.5)"),
@@ -418,7 +430,10 @@ fn probabilities_are_checked() {
     let src = "axiom F\nangle 30\nseed -3\n";
     let (kind, span) = first_error(src);
     assert!(
-        matches!(kind, ErrorKind::NotWholeNumber { key: "seed", .. }),
+        matches!(
+            kind,
+            ErrorKind::Lsys(LsysError::NotWholeNumber { key: "seed", .. })
+        ),
         "{kind:?}"
     );
     assert_eq!(&src[span], "-3");

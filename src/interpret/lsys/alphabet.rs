@@ -9,7 +9,7 @@ use num_bigint::BigUint;
 
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::interpret::Derivation;
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
 
 /// Most limb additions spent on an exact (big integer) word length for an
@@ -129,25 +129,30 @@ impl Alphabet {
         };
         if lens[depth as usize] > limits.max_symbols {
             return Err(Diagnostic::error(ErrorKind::Limit {
-                what: format!("derived word length at depth {depth}"),
+                bound: Bound::Symbols,
+                what: Some(format!("derived word length at depth {depth}")),
                 value: exact(depth),
-                limit: limits.max_symbols.to_string(),
+                limit: limits.max_symbols,
             })
-            .with_help("use a smaller depth, or raise the traversal budget with --max-symbols N")
+            .with_help(format!(
+                "use a smaller depth, or raise the traversal budget with {} N",
+                Bound::Symbols.flag()
+            ))
             .into());
         }
         if strategy == Derivation::Bfs
             && let Some(r) = (0..=depth).find(|&r| lens[r as usize] > limits.max_word)
         {
             return Err(Diagnostic::error(ErrorKind::Limit {
-                what: format!("bfs word at level {r}"),
+                bound: Bound::Word,
+                what: Some(format!("bfs word at level {r}")),
                 value: exact(r),
-                limit: limits.max_word.to_string(),
+                limit: limits.max_word,
             })
-            .with_help(
-                "use --strategy dfs (it never holds the word), a smaller depth, \
-                 or raise the limit with --max-word N",
-            )
+            .with_help(format!(
+                "use --strategy dfs (it never holds the word), a smaller depth, or {}",
+                Bound::Word.raise()
+            ))
             .into());
         }
         Ok(lens)

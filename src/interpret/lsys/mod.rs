@@ -63,7 +63,7 @@ use num_bigint::BigUint;
 use crate::diag::{Diagnostic, ErrorKind};
 use crate::diag::{Diagnostics, io_error};
 use crate::interpret::Derivation;
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
 use crate::num::Linear;
 use crate::progress::Progress;
@@ -291,13 +291,17 @@ fn lod(
     }
     if units > limits.max_symbols {
         return Err(Diagnostic::error(ErrorKind::Limit {
-            what: format!("symbols to visit at depth {depth} at this level of detail"),
+            bound: Bound::Symbols,
+            what: Some(format!(
+                "symbols to visit at depth {depth} at this level of detail"
+            )),
             value: units.to_string(),
-            limit: limits.max_symbols.to_string(),
+            limit: limits.max_symbols,
         })
-        .with_help(
-            "use a smaller depth or --size, or raise the traversal budget with --max-symbols N",
-        )
+        .with_help(format!(
+            "use a smaller depth or --size, or raise the traversal budget with {} N",
+            Bound::Symbols.flag()
+        ))
         .into());
     }
     progress.start("symbols", units);

@@ -30,7 +30,7 @@ use num_bigint::BigUint;
 
 use crate::choice::{Alternatives, Key};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, saturated};
-use crate::limits::Limits;
+use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
 
 use super::Alphabet;
@@ -127,7 +127,12 @@ impl Stochastic {
         limits: &Limits,
         mut f: impl FnMut(u32),
     ) -> Result<u64, Diagnostics> {
-        self.check_shortest(depth, limits.max_symbols, "derived word length")?;
+        self.check_shortest(
+            depth,
+            Bound::Symbols,
+            limits.max_symbols,
+            "derived word length",
+        )?;
         let mut count = 0u64;
         let mut stack = vec![Frame {
             succ: &self.axiom,
@@ -153,7 +158,12 @@ impl Stochastic {
                 None => {
                     count += 1;
                     if count > limits.max_symbols {
-                        return Err(over(depth, "derived word length", limits.max_symbols));
+                        return Err(over(
+                            depth,
+                            Bound::Symbols,
+                            "derived word length",
+                            limits.max_symbols,
+                        ));
                     }
                     f(s);
                 }
@@ -172,8 +182,13 @@ impl Stochastic {
         limits: &Limits,
         mut f: impl FnMut(u32),
     ) -> Result<u64, Diagnostics> {
-        let budget = (limits.max_word / BFS_BYTES_PER_SYMBOL).min(limits.max_symbols);
-        self.check_shortest(depth, budget, "bfs word (symbols and keys)")?;
+        let word = limits.max_word / BFS_BYTES_PER_SYMBOL;
+        let (bound, budget) = if word <= limits.max_symbols {
+            (Bound::Word, word)
+        } else {
+            (Bound::Symbols, limits.max_symbols)
+        };
+        self.check_shortest(depth, bound, budget, "bfs word (symbols and keys)")?;
         let mut word: Vec<(u32, Key)> = self
             .axiom
             .iter()
@@ -192,7 +207,7 @@ impl Stochastic {
                     None => next.push((s, k)),
                 }
                 if next.len() as u64 > budget {
-                    return Err(over(level, "bfs word (symbols and keys)", budget));
+                    return Err(over(level, bound, "bfs word (symbols and keys)", budget));
                 }
             }
             word = next;
@@ -253,7 +268,13 @@ impl Stochastic {
     /// Refuses at once a depth whose shortest possible word (whatever the
     /// choices) is over `limit`: the traversal would only stop there after
     /// deriving `limit` symbols.
-    fn check_shortest(&self, depth: u32, limit: u64, what: &str) -> Result<(), Diagnostics> {
+    fn check_shortest(
+        &self,
+        depth: u32,
+        bound: Bound,
+        limit: u64,
+        what: &str,
+    ) -> Result<(), Diagnostics> {
         let (least, _) = self.length_bounds(depth);
         if least <= limit {
             return Ok(());
@@ -266,13 +287,14 @@ impl Stochastic {
             saturated(least)
         };
         Err(Diagnostic::error(ErrorKind::Limit {
-            what: format!("{what} at depth {depth} (stochastic: the shortest any choices make)"),
+            bound,
+            what: Some(format!(
+                "{what} at depth {depth} (stochastic: the shortest any choices make)"
+            )),
             value,
-            limit: limit.to_string(),
+            limit,
         })
-        .with_help(
-            "use a smaller depth, or raise the limit with --max-symbols N (--max-word N for bfs)",
-        )
+        .with_help(raise_help())
         .into())
     }
 
@@ -344,14 +366,26 @@ impl Stochastic {
 }
 
 /// The error of a stochastic traversal over a limit.
-fn over(level: u32, what: &str, limit: u64) -> Diagnostics {
+fn over(level: u32, bound: Bound, what: &str, limit: u64) -> Diagnostics {
     Diagnostic::error(ErrorKind::Limit {
-        what: format!("{what} at depth {level} (stochastic: counted while deriving)"),
+        bound,
+        what: Some(format!(
+            "{what} at depth {level} (stochastic: counted while deriving)"
+        )),
         value: format!("more than {limit}"),
-        limit: limit.to_string(),
+        limit,
     })
-    .with_help(
-        "use a smaller depth, or raise the limit with --max-symbols N (--max-word N for bfs)",
-    )
+    .with_help(raise_help())
     .into()
+}
+
+/// The hint of a stochastic traversal over a limit: either limit may be
+/// the one that stopped it.
+fn raise_help() -> String {
+    format!(
+        "use a smaller depth, or {} ({} {} for bfs)",
+        Bound::Symbols.raise(),
+        Bound::Word.flag(),
+        Bound::Word.value_name()
+    )
 }

@@ -40,7 +40,7 @@ use tiny_skia::{
 use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, Style, Width, stroke_px};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
-use crate::diag::{Diagnostic, ErrorKind};
+use crate::diag::{Diagnostic, RenderError};
 use crate::turtle::Fill;
 use crate::turtle::{Point, Segment, Turtle};
 
@@ -98,7 +98,7 @@ impl PngTurtle {
     /// (transparent when there is none).
     pub fn new(fit: Fit, style: &Style) -> Result<PngTurtle, Diagnostics> {
         let mut pixmap = Pixmap::new(fit.width, fit.height).ok_or_else(|| {
-            Diagnostic::error(ErrorKind::NoRaster {
+            Diagnostic::error(RenderError::NoRaster {
                 width: fit.width,
                 height: fit.height,
             })
@@ -244,7 +244,7 @@ impl PngTurtle {
     pub fn finish(mut self) -> Result<Vec<u8>, Diagnostics> {
         self.flush();
         self.pixmap.encode_png().map_err(|e| {
-            Diagnostic::error(ErrorKind::PngEncoding {
+            Diagnostic::error(RenderError::PngEncoding {
                 error: e.to_string(),
             })
             .into()

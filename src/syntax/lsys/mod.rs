@@ -17,8 +17,8 @@ use pest::iterators::{Pair, Pairs};
 use super::{GrammarParser, Rule};
 use crate::choice::{self, BadProbabilities};
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
-use crate::limits::Limits;
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, InputError, LsysError, RuleError, Span};
+use crate::limits::{Bound, Limits};
 use crate::model::Loc;
 use crate::model::lsys::{Background, DEFAULT_HEADING, LSystem, Production};
 
@@ -41,7 +41,9 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
         if let Some(span) = &d.span {
             let line_start = text[..span.start].rfind(['\n', '\r']).map_or(0, |i| i + 1);
             if text[line_start..span.start].trim().is_empty() {
-                d.kind = ErrorKind::Syntax("expected a line `key value` or a `#` comment".into());
+                d.kind = ErrorKind::Input(InputError::Syntax(
+                    "expected a line `key value` or a `#` comment".into(),
+                ));
             }
         }
         Diagnostics::from(d.with_help(format!(
@@ -142,7 +144,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
     let end = src.len()..src.len();
     if !have_axiom {
         ck.diags.push(
-            Diagnostic::error(ErrorKind::MissingKey {
+            Diagnostic::error(LsysError::MissingKey {
                 key: Key::Axiom.name(),
             })
             .with_span(end.clone())
@@ -155,7 +157,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
     }
     if !have_angle {
         ck.diags.push(
-            Diagnostic::error(ErrorKind::MissingKey {
+            Diagnostic::error(LsysError::MissingKey {
                 key: Key::Angle.name(),
             })
             .with_span(end)
@@ -191,7 +193,7 @@ struct Checker {
 impl Checker {
     /// Reports a key that is not one of [`KEYS`], with the nearest known one.
     fn unknown_key(&mut self, key: &str, span: Span) {
-        let d = Diagnostic::error(ErrorKind::UnknownKey {
+        let d = Diagnostic::error(LsysError::UnknownKey {
             key: key.to_string(),
         })
         .with_span(span)
@@ -224,7 +226,7 @@ impl Checker {
                     .to_string()
             };
             self.diags.push(
-                Diagnostic::error(ErrorKind::LongPredecessor {
+                Diagnostic::error(LsysError::LongPredecessor {
                     predecessor: text.to_string(),
                     symbols: text.chars().count(),
                 })
@@ -240,7 +242,7 @@ impl Checker {
         {
             let at = w.as_span().start();
             self.diags.push(
-                Diagnostic::error(ErrorKind::UnreadableProbability {
+                Diagnostic::error(LsysError::UnreadableProbability {
                     text: w.as_str()[..len].to_string(),
                 })
                 .with_span(at..at + len)
@@ -269,7 +271,7 @@ impl Checker {
                 (true, true) => {}
                 (false, false) => {
                     self.diags.push(
-                        Diagnostic::error(ErrorKind::DuplicateProduction { symbol: c })
+                        Diagnostic::error(LsysError::DuplicateProduction { symbol: c })
                             .with_span(span)
                             .with_label("the second rule")
                             .with_note_at(first.loc.0.clone(), "the first rule")
@@ -288,7 +290,7 @@ impl Checker {
                         (first.loc.0.clone(), span)
                     };
                     self.diags.push(
-                        Diagnostic::error(ErrorKind::MissingProbability {
+                        Diagnostic::error(RuleError::MissingProbability {
                             name: c.to_string(),
                         })
                         .with_span(at)
@@ -324,7 +326,7 @@ impl Checker {
             match choice::check(&p) {
                 Ok(()) => {}
                 Err(BadProbabilities::NotPositive(i)) => self.diags.push(
-                    Diagnostic::error(ErrorKind::BadProbability {
+                    Diagnostic::error(RuleError::BadProbability {
                         name: c.to_string(),
                         value: p[i],
                     })
@@ -333,7 +335,7 @@ impl Checker {
                     .with_help("a probability is a number above 0, e.g. `(0.5)`"),
                 ),
                 Err(BadProbabilities::Sum(sum)) => {
-                    let mut d = Diagnostic::error(ErrorKind::ProbabilitySum {
+                    let mut d = Diagnostic::error(RuleError::ProbabilitySum {
                         name: c.to_string(),
                         sum,
                     })
@@ -365,7 +367,7 @@ impl Checker {
             (Rule::integer, Ok(n)) => Some(n),
             _ => {
                 self.diags.push(
-                    Diagnostic::error(ErrorKind::NotWholeNumber {
+                    Diagnostic::error(LsysError::NotWholeNumber {
                         key: Key::Seed.name(),
                         text: text.to_string(),
                     })
@@ -385,7 +387,7 @@ impl Checker {
     fn first_time(&mut self, key: Key, span: Span) -> bool {
         if let Some(first) = self.seen.get(&key) {
             self.diags.push(
-                Diagnostic::error(ErrorKind::DuplicateKey { key: key.name() })
+                Diagnostic::error(LsysError::DuplicateKey { key: key.name() })
                     .with_span(span)
                     .with_label("given again here")
                     .with_note_at(first.clone(), "first given here")
@@ -410,7 +412,7 @@ impl Checker {
                 '[' => open.push(base + i),
                 ']' if open.pop().is_none() => {
                     self.diags.push(
-                        Diagnostic::error(ErrorKind::Unbalanced(']'))
+                        Diagnostic::error(InputError::Unbalanced(']'))
                             .with_span(base + i..base + i + 1)
                             .with_label(format!("this `]` closes no `[` in the {what}"))
                             .with_help("remove it, or add the `[` it should close"),
@@ -421,7 +423,7 @@ impl Checker {
             out.push(c);
         }
         if let Some(&at) = open.last() {
-            let mut d = Diagnostic::error(ErrorKind::Unbalanced('['))
+            let mut d = Diagnostic::error(InputError::Unbalanced('['))
                 .with_span(at..at + 1)
                 .with_label(format!("this `[` is never closed in the {what}"))
                 .with_help(format!(
@@ -440,7 +442,7 @@ impl Checker {
         let (text, span) = value_text(value);
         if value_rule(value) != Rule::integer {
             self.diags.push(
-                Diagnostic::error(ErrorKind::NotWholeNumber {
+                Diagnostic::error(LsysError::NotWholeNumber {
                     key: Key::Generations.name(),
                     text: text.to_string(),
                 })
@@ -458,13 +460,17 @@ impl Checker {
             _ => {
                 self.diags.push(
                     Diagnostic::error(ErrorKind::Limit {
-                        what: Key::Generations.name().into(),
+                        bound: Bound::Depth,
+                        what: Some(Key::Generations.name().into()),
                         value: text.trim_start_matches('0').to_string(),
-                        limit: limits.max_depth.to_string(),
+                        limit: limits.max_depth.into(),
                     })
                     .with_span(span)
                     .with_label("too many generations")
-                    .with_help("use fewer generations, or raise the limit with --max-depth N"),
+                    .with_help(format!(
+                        "use fewer generations, or {}",
+                        Bound::Depth.raise()
+                    )),
                 );
                 None
             }
@@ -484,7 +490,7 @@ impl Checker {
         match parsed {
             None => {
                 self.diags.push(
-                    Diagnostic::error(ErrorKind::MalformedNumber {
+                    Diagnostic::error(LsysError::MalformedNumber {
                         text: text.to_string(),
                     })
                     .with_span(span)
@@ -495,7 +501,7 @@ impl Checker {
             }
             Some(v) if !v.is_finite() => {
                 self.diags.push(
-                    Diagnostic::error(ErrorKind::NumberTooLarge {
+                    Diagnostic::error(LsysError::NumberTooLarge {
                         key: name,
                         text: text.to_string(),
                     })
@@ -507,7 +513,7 @@ impl Checker {
             }
             Some(v) if positive && v <= 0.0 => {
                 self.diags.push(
-                    Diagnostic::error(ErrorKind::NotPositive {
+                    Diagnostic::error(LsysError::NotPositive {
                         key: name,
                         text: text.to_string(),
                     })

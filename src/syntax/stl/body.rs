@@ -8,7 +8,7 @@
 
 use super::Builder;
 use super::lex::Lex;
-use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::diag::{Diagnostic, InputError, Span, StlError};
 use crate::model::{Body, BodyItem, Branch, DrawRun, Fixed, Loc, Piece, Repeat, RuleId, RuleRef};
 
 /// What `[I n ...]` held.
@@ -120,7 +120,7 @@ impl Builder<'_> {
                 None
                 | Some(Lex::LBrace(_) | Lex::RBrace(_) | Lex::Comma(_) | Lex::RepeatOpen(..)) => {
                     self.err(
-                        Diagnostic::error(ErrorKind::Unbalanced('['))
+                        Diagnostic::error(InputError::Unbalanced('['))
                             .with_span(open.start..open.start + 1)
                             .with_label("this `[I n` is never closed")
                             .with_help("close it with `]`: `[I 3 R1]` or `[I 2 F[+F]F]`"),
@@ -133,7 +133,7 @@ impl Builder<'_> {
         let span = open.start..end;
         if let Some(m) = mixed {
             self.report(
-                ErrorKind::MixedRepeat,
+                StlError::MixedRepeat,
                 m,
                 "unexpected here",
                 "write `[I 3 R1]` for a subtree of R1, or `[I 2 F[+F]F]` for a rewritten figure",
@@ -151,7 +151,7 @@ impl Builder<'_> {
             }),
             None if word.is_empty() => {
                 self.report(
-                    ErrorKind::EmptyRepeat,
+                    StlError::EmptyRepeat,
                     span,
                     "nothing to repeat",
                     "write `[I 3 R1]` or `[I 2 F[+F]F]`",
@@ -255,7 +255,7 @@ impl Builder<'_> {
                             }
                         },
                         RepeatBody::Rule(r) => self.report(
-                            ErrorKind::RepeatInBody,
+                            StlError::RepeatInBody,
                             r.loc.0,
                             "a subtree inside a rule",
                             "name the rule at the end of a branch (`[+F R2]`), or put `[I n R2]` in the seed",
@@ -283,7 +283,7 @@ impl Builder<'_> {
 
     fn term_syntax_in_body(&mut self, symbol: char, span: Span) {
         self.report(
-            ErrorKind::TermSyntaxInBody { symbol },
+            StlError::TermSyntaxInBody { symbol },
             span,
             "only in the seed",
             "branch-expansion terms `X{...}` are written in the seed (SEED ... ENDSEED)",
@@ -292,7 +292,7 @@ impl Builder<'_> {
 
     fn not_at_end(&mut self, span: Span) {
         self.report(
-            ErrorKind::NameNotAtBranchEnd,
+            StlError::NameNotAtBranchEnd,
             span,
             "not at the end of a top-level branch",
             "a name in a body says which rule grows at a branch tip: write it last inside a top-level `[...]`, as in `R1: [+F R2][-F]`",
@@ -309,7 +309,7 @@ impl Builder<'_> {
             other => unreachable!("`{other}` is no bracket or brace"),
         };
         self.err(
-            Diagnostic::error(ErrorKind::Unbalanced(c))
+            Diagnostic::error(InputError::Unbalanced(c))
                 .with_span(span)
                 .with_label(label)
                 .with_help(help),

@@ -7,7 +7,7 @@
 use pest::iterators::Pair;
 
 use super::{Builder, Rule, span_of};
-use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::diag::{Diagnostic, Span, StlError};
 use crate::model::{Loc, StemParams};
 use crate::num::Linear;
 
@@ -121,7 +121,7 @@ impl Builder<'_> {
             if let Some((_, first)) = seen.iter().find(|(s, _)| *s == k) {
                 let first = first.clone();
                 self.err(
-                    Diagnostic::error(ErrorKind::DuplicateParam { key: k })
+                    Diagnostic::error(StlError::DuplicateParam { key: k })
                         .with_span(kspan)
                         .with_label("given again here")
                         .with_note_at(first, "first given here")
@@ -142,7 +142,7 @@ impl Builder<'_> {
                     "a number"
                 };
                 self.report(
-                    ErrorKind::ParamValue {
+                    StlError::ParamValue {
                         key: p.key(),
                         expected,
                     },
@@ -184,7 +184,7 @@ impl Builder<'_> {
                     self.no_decrement(p, dec.map(|(s, _)| s));
                     if v < 0.0 {
                         self.report(
-                            ErrorKind::NegativeClearance,
+                            StlError::NegativeClearance,
                             vspan,
                             "negative",
                             "write a clearance of 0 or more",
@@ -199,7 +199,7 @@ impl Builder<'_> {
                         .map(|p| format!("did you mean `{}`? ", p.key()))
                         .unwrap_or_default();
                     self.report(
-                        ErrorKind::UnknownParam { key: k },
+                        StlError::UnknownParam { key: k },
                         kspan,
                         "not a stem parameter",
                         &format!("{sugg}the parameters are {}", param_list()),
@@ -219,7 +219,7 @@ impl Builder<'_> {
         let (key, what) = (p.key(), p.what());
         if v <= 0.0 {
             self.report(
-                ErrorKind::StemSizeNotPositive { key, what },
+                StlError::StemSizeNotPositive { key, what },
                 vspan,
                 "zero or negative",
                 &format!("write a positive {what}, e.g. `{key}=10(0)`"),
@@ -229,7 +229,7 @@ impl Builder<'_> {
             && *dv < 0.0
         {
             self.report(
-                ErrorKind::NegativeDecrement { key },
+                StlError::NegativeDecrement { key },
                 dspan.clone(),
                 "negative decrement",
                 "stems get shorter and slimmer with order: write a decrement of 0 or more",
@@ -242,7 +242,7 @@ impl Builder<'_> {
     fn no_decrement(&mut self, p: Param, dec: Option<Span>) {
         if let Some(span) = dec {
             self.report(
-                ErrorKind::UnexpectedDecrement { key: p.key() },
+                StlError::UnexpectedDecrement { key: p.key() },
                 span,
                 "not allowed here",
                 &format!("write `{}=value` without parentheses", p.key()),

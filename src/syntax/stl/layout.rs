@@ -10,7 +10,8 @@ use pest::iterators::Pair;
 use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, LayoutError, Span, StlError};
+use crate::limits::Bound;
 use crate::model::{Layout, LayoutShape, Loc, Shape, Spelling};
 
 /// A shape a layout line may draw.
@@ -116,14 +117,16 @@ pub(super) fn prescan_polygons(src: &str, max_vertices: usize) -> Result<(), Dia
             // Point at the shape's line: its colour's `(` before the name.
             let start = src[..p].rfind('(').unwrap_or(p);
             return Err(Diagnostic::error(ErrorKind::Limit {
-                what: "layout outline vertices".into(),
+                bound: Bound::LayoutVertices,
+                what: None,
                 value: vertices.to_string(),
-                limit: max_vertices.to_string(),
+                limit: max_vertices as u64,
             })
             .with_span(start..i.min(b.len()))
-            .with_help(
-                "use fewer polygon points, or raise the limit with --max-layout-vertices N (above 16000 the overlay can take minutes on some shapes)",
-            )
+            .with_help(format!(
+                "use fewer polygon points, or {} (above 16000 the overlay can take minutes on some shapes)",
+                Bound::LayoutVertices.raise()
+            ))
             .into());
         }
         at = i.max(p + 1);
@@ -156,13 +159,17 @@ pub(super) fn prescan_shapes(src: &str, max_shapes: usize) -> Result<(), Diagnos
         return Ok(());
     }
     Err(Diagnostic::error(ErrorKind::Limit {
-        what: "layout shapes".into(),
+        bound: Bound::LayoutShapes,
+        what: None,
         value: shapes.to_string(),
-        limit: max_shapes.to_string(),
+        limit: max_shapes as u64,
     })
     .with_span(layout..from)
     .with_label("this section")
-    .with_help("use fewer shapes, or raise the limit with --max-layout-shapes N")
+    .with_help(format!(
+        "use fewer shapes, or {}",
+        Bound::LayoutShapes.raise()
+    ))
     .into())
 }
 
@@ -219,7 +226,7 @@ impl Builder<'_> {
         }
         if !closed {
             self.err(
-                Diagnostic::error(ErrorKind::UnclosedSection {
+                Diagnostic::error(StlError::UnclosedSection {
                     open: KW_LAYOUT,
                     close: KW_ENDLAYOUT,
                 })
@@ -294,7 +301,7 @@ impl Builder<'_> {
         let positive = |b: &mut Self, v: f64, s: &Span, what: &'static str| {
             if v <= 0.0 {
                 b.report(
-                    ErrorKind::ShapeSizeNotPositive {
+                    LayoutError::ShapeSizeNotPositive {
                         shape: kind.name(),
                         what,
                     },
@@ -375,7 +382,7 @@ impl Builder<'_> {
         }
         if pts.len() < 3 {
             self.report(
-                ErrorKind::TooFewPoints { points: pts.len() },
+                LayoutError::TooFewPoints { points: pts.len() },
                 span,
                 "too few points",
                 "add points: `Polygon (x1,y1), (x2,y2), (x3,y3)`",
@@ -388,7 +395,7 @@ impl Builder<'_> {
     /// Reports arguments that fit none of `kind`'s spellings.
     fn shape_arguments(&mut self, kind: ShapeName, span: Span) -> Option<(Shape, Spelling)> {
         self.report(
-            ErrorKind::ShapeArguments { shape: kind.name() },
+            LayoutError::ShapeArguments { shape: kind.name() },
             span,
             "these arguments",
             &format!("write {}", kind.usage()),
@@ -410,7 +417,7 @@ impl Builder<'_> {
             .expect("ShapeName::ALL is not empty");
         let all: Vec<&str> = ShapeName::ALL.iter().map(|k| k.name()).collect();
         self.report(
-            ErrorKind::UnknownShape {
+            LayoutError::UnknownShape {
                 name: name.to_string(),
             },
             span,
@@ -453,9 +460,10 @@ mod tests {
         assert_eq!(
             e.0[0].kind,
             ErrorKind::Limit {
-                what: "layout shapes".into(),
+                bound: crate::limits::Bound::LayoutShapes,
+                what: None,
                 value: "4".into(),
-                limit: "3".into()
+                limit: 3
             }
         );
         let at = src.find("LAYOUT").unwrap();
@@ -464,7 +472,7 @@ mod tests {
     }
 
     use super::ShapeName;
-    use crate::diag::ErrorKind;
+    use crate::diag::{ErrorKind, LayoutError, StlError};
     use crate::limits::Limits;
     use crate::model::Format;
 
@@ -473,15 +481,18 @@ mod tests {
         let bed = |src: &str| super::super::parse(src, Format::Bed, &Limits::default());
         let src = "T (0,0) l=10(0) RULE R1: [F]";
         let e = bed(src).unwrap_err();
-        assert_eq!(e.0[0].kind, ErrorKind::UnknownParam { key: "l".into() });
+        assert_eq!(
+            e.0[0].kind,
+            ErrorKind::Stl(StlError::UnknownParam { key: "l".into() })
+        );
         assert!(e.0[0].help.as_deref().unwrap_or("").contains("`L`"));
         let src = "T (0,0) RULE R1: [F] LAYOUT (clRed) Rect (0,0), 1, 1 ENDLAYOUT";
         let e = bed(src).unwrap_err();
         assert_eq!(
             e.0[0].kind,
-            ErrorKind::UnknownShape {
+            ErrorKind::Layout(LayoutError::UnknownShape {
                 name: "Rect".into()
-            }
+            })
         );
         let at = src.find("Rect ").unwrap();
         assert_eq!(e.0[0].span, Some(at..at + 4));

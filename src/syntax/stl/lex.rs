@@ -10,7 +10,8 @@ use std::collections::VecDeque;
 use pest::iterators::Pair;
 
 use super::{Builder, DRAWING_LETTERS, Rule, not_in_grammar};
-use crate::diag::{Diagnostic, ErrorKind, Span};
+use crate::diag::{Diagnostic, ErrorKind, RuleError, Span, StlError};
+use crate::limits::Bound;
 use crate::model::{Format, RuleId};
 
 /// One lexical item of a body or seed, words already split.
@@ -228,7 +229,7 @@ impl Builder<'_> {
         match text.parse::<u32>() {
             Ok(0) => {
                 self.report(
-                    ErrorKind::ZeroCount,
+                    StlError::ZeroCount,
                     span,
                     "zero",
                     "write `[I 1 X]` or more, or leave the form out",
@@ -239,13 +240,14 @@ impl Builder<'_> {
             _ => {
                 self.err(
                     Diagnostic::error(ErrorKind::Limit {
-                        what: "self-resemblance count".into(),
+                        bound: Bound::Repeat,
+                        what: None,
                         value: text.trim_start_matches('0').to_string(),
-                        limit: limit.to_string(),
+                        limit: limit.into(),
                     })
                     .with_span(span)
                     .with_label("count too large")
-                    .with_help("raise the limit with --max-depth N"),
+                    .with_help(Bound::Repeat.raise()),
                 );
                 None
             }
@@ -260,7 +262,7 @@ impl Builder<'_> {
         if self.format == Format::Od && word.contains('.') {
             let name = word.split('.').next().unwrap_or(word);
             self.report(
-                ErrorKind::DottedName {
+                RuleError::DottedName {
                     name: word.to_string(),
                 },
                 at..at + word.len(),
@@ -333,7 +335,7 @@ impl Builder<'_> {
             format!("the alternatives of `{name}` are {}", known.join(", "))
         };
         self.report(
-            ErrorKind::UnknownAlternative {
+            RuleError::UnknownAlternative {
                 name: name.to_string(),
                 number: number.to_string(),
             },
@@ -348,7 +350,7 @@ impl Builder<'_> {
     fn unknown(&mut self, name: &str, span: Span) {
         if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
             self.report(
-                ErrorKind::UnexpectedInWord {
+                StlError::UnexpectedInWord {
                     text: name.to_string(),
                 },
                 span,
@@ -374,7 +376,7 @@ impl Builder<'_> {
             None => format!("declare it under RULE, e.g. `{name}: [+F][-F]`"),
         };
         self.err(
-            Diagnostic::error(ErrorKind::UnknownRule {
+            Diagnostic::error(RuleError::UnknownRule {
                 name: name.to_string(),
             })
             .with_span(span)
@@ -397,7 +399,7 @@ impl Builder<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::diag::ErrorKind;
+    use crate::diag::{ErrorKind, RuleError, StlError};
     use crate::model::{RuleId, SeedItem};
 
     use super::super::testing::{HEAD, bed};
@@ -407,14 +409,17 @@ mod tests {
         // `FR3`: F is drawing, `R3` the unknown name (not `FR3`, not `3`).
         let e = bed(&format!("{HEAD} SEED FR3R1{{}} ENDSEED")).unwrap_err();
         assert_eq!(e.0.len(), 1, "{e}");
-        assert_eq!(e.0[0].kind, ErrorKind::UnknownRule { name: "R3".into() });
+        assert_eq!(
+            e.0[0].kind,
+            ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() })
+        );
         // `Crwn`: a whole lower-case tail.
         let e = bed(&format!("{HEAD} SEED Crwn ENDSEED")).unwrap_err();
         assert_eq!(
             e.0[0].kind,
-            ErrorKind::UnknownRule {
+            ErrorKind::Rule(RuleError::UnknownRule {
                 name: "Crwn".into()
-            }
+            })
         );
     }
 
@@ -425,7 +430,7 @@ mod tests {
         let e = bed(&src).unwrap_err();
         assert_eq!(
             e.0[0].kind,
-            ErrorKind::UnexpectedInWord { text: "3".into() }
+            ErrorKind::Stl(StlError::UnexpectedInWord { text: "3".into() })
         );
         let at = src.find("f3").unwrap() + 1;
         assert_eq!(e.0[0].span, Some(at..at + 1));
@@ -435,7 +440,10 @@ mod tests {
     fn repeat_needs_a_space_after_i() {
         // `[I2]` is a bracket around the name `I2`, unknown here.
         let e = bed(&format!("{HEAD} SEED [I2] ENDSEED")).unwrap_err();
-        assert_eq!(e.0[0].kind, ErrorKind::UnknownRule { name: "I2".into() });
+        assert_eq!(
+            e.0[0].kind,
+            ErrorKind::Rule(RuleError::UnknownRule { name: "I2".into() })
+        );
         let d = bed(&format!("{HEAD} SEED [I 2 R2] ENDSEED")).unwrap();
         assert!(
             matches!(&d.seed.unwrap().items[0], SeedItem::Repeat(r) if r.count == 2 && r.rule == RuleId(1))
@@ -446,7 +454,7 @@ mod tests {
     fn a_zero_count_is_refused_at_the_count() {
         let src = format!("{HEAD} SEED [I 0 R1] ENDSEED");
         let e = bed(&src).unwrap_err();
-        assert_eq!(e.0[0].kind, ErrorKind::ZeroCount);
+        assert_eq!(e.0[0].kind, ErrorKind::Stl(StlError::ZeroCount));
         let at = src.find(" 0 ").unwrap() + 1;
         assert_eq!(e.0[0].span, Some(at..at + 1));
     }

@@ -35,7 +35,7 @@ use pest::Parser;
 use pest::iterators::Pair;
 
 use super::{GrammarParser, Rule, pest_error, precheck};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, InputError, Span, StlError};
 use crate::limits::Limits;
 use crate::model::{Description, Format, Loc, RuleId};
 
@@ -113,7 +113,7 @@ impl Builder<'_> {
     }
 
     /// An error at `span` with its label and hint.
-    fn report(&mut self, kind: ErrorKind, span: Span, label: &str, help: &str) {
+    fn report(&mut self, kind: impl Into<ErrorKind>, span: Span, label: &str, help: &str) {
         self.err(
             Diagnostic::error(kind)
                 .with_span(span)
@@ -170,7 +170,7 @@ impl Builder<'_> {
                 Format::Bed => "a BED has one SEED per root, in root order",
             };
             self.report(
-                ErrorKind::SeedsPerRoot {
+                StlError::SeedsPerRoot {
                     roots: more.len() + 1,
                     seeds: seeds.len(),
                 },
@@ -214,7 +214,7 @@ impl Builder<'_> {
             Ok(v) if v.is_finite() => v,
             _ => {
                 self.report(
-                    ErrorKind::NotFinite {
+                    InputError::NotFinite {
                         text: p.as_str().to_string(),
                     },
                     span_of(p),

@@ -6,7 +6,8 @@ use pest::iterators::Pair;
 use super::layout::find_word;
 use super::{Builder, Rule, span_of};
 use crate::choice::{self, BadProbabilities};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Span};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, RuleError, Span};
+use crate::limits::Bound;
 use crate::model::{Alternative, Format, Loc, RuleDef, RuleId};
 
 /// The drawing letters of bodies and seeds. A word's leftovers after the
@@ -64,13 +65,17 @@ pub(super) fn prescan_rules(src: &str, max_parts: usize) -> Result<(), Diagnosti
         return Ok(());
     }
     Err(Diagnostic::error(ErrorKind::Limit {
-        what: "rule definitions and branches".into(),
+        bound: Bound::RuleParts,
+        what: None,
         value: parts.to_string(),
-        limit: max_parts.to_string(),
+        limit: max_parts as u64,
     })
     .with_span(start..from)
     .with_label("this section")
-    .with_help("use fewer rules or branches, or raise the limit with --max-rule-parts N")
+    .with_help(format!(
+        "use fewer rules or branches, or {}",
+        Bound::RuleParts.raise()
+    ))
     .into())
 }
 
@@ -141,7 +146,7 @@ impl Builder<'_> {
                     .expect("grammar: stl_rule_def has `:` or `=`");
                 let at = span_of(&defines).end;
                 self.err(
-                    Diagnostic::error(ErrorKind::MissingBody)
+                    Diagnostic::error(RuleError::MissingBody)
                         .with_span(at..at)
                         .with_label("the rule ends here")
                         .with_help("write what the rule draws, e.g. `R1: [+F][-F]`"),
@@ -199,7 +204,7 @@ impl Builder<'_> {
                 // A BED chooses nothing: a probability only annotates a
                 // recorded alternative (`R1.1 (0.5)`).
                 self.report(
-                    ErrorKind::ProbabilityWithoutAlternative {
+                    RuleError::ProbabilityWithoutAlternative {
                         name: written.to_string(),
                     },
                     span.clone(),
@@ -238,7 +243,7 @@ impl Builder<'_> {
                     format!("alternatives are numbered from 1: `{name}.1`, `{name}.2`")
                 };
                 self.report(
-                    ErrorKind::DottedName {
+                    RuleError::DottedName {
                         name: written.to_string(),
                     },
                     span.clone(),
@@ -299,7 +304,7 @@ impl Builder<'_> {
             match choice::check(&probabilities) {
                 Ok(()) => {}
                 Err(BadProbabilities::NotPositive(k)) => self.report(
-                    ErrorKind::BadProbability {
+                    RuleError::BadProbability {
                         name: name.clone(),
                         value: probabilities[k],
                     },
@@ -308,7 +313,7 @@ impl Builder<'_> {
                     "a probability is a number above 0, e.g. `(0.5)`",
                 ),
                 Err(BadProbabilities::Sum(sum)) => {
-                    let mut d = Diagnostic::error(ErrorKind::ProbabilitySum {
+                    let mut d = Diagnostic::error(RuleError::ProbabilitySum {
                         name: name.clone(),
                         sum,
                     })
@@ -347,7 +352,7 @@ impl Builder<'_> {
         if is_reserved(name) {
             let letters: Vec<String> = DRAWING_LETTERS.iter().map(char::to_string).collect();
             self.report(
-                ErrorKind::ReservedName {
+                RuleError::ReservedName {
                     name: name.to_string(),
                 },
                 span.clone(),
@@ -362,7 +367,7 @@ impl Builder<'_> {
         }
         if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
             self.report(
-                ErrorKind::RuleNameNotLetter {
+                RuleError::RuleNameNotLetter {
                     name: name.to_string(),
                 },
                 span.clone(),
@@ -384,7 +389,7 @@ impl Builder<'_> {
                             (heads[i].1.clone(), span.clone())
                         };
                         self.err(
-                            Diagnostic::error(ErrorKind::MissingProbability {
+                            Diagnostic::error(RuleError::MissingProbability {
                                 name: name.to_string(),
                             })
                             .with_span(at)
@@ -400,7 +405,7 @@ impl Builder<'_> {
                 }
             }
             self.err(
-                Diagnostic::error(ErrorKind::DuplicateRule {
+                Diagnostic::error(RuleError::DuplicateRule {
                     name: written.to_string(),
                 })
                 .with_span(span.clone())
@@ -449,9 +454,10 @@ mod tests {
         assert_eq!(
             e.0[0].kind,
             crate::diag::ErrorKind::Limit {
-                what: "rule definitions and branches".into(),
+                bound: crate::limits::Bound::RuleParts,
+                what: None,
                 value: "5".into(),
-                limit: "4".into()
+                limit: 4
             }
         );
         let at = src.find("RULE").unwrap();

@@ -14,7 +14,7 @@ use super::body::{RepeatBody, Run};
 use super::lex::{Lex, TextLex};
 use super::rules::{KW_ENDSEED, KW_SEED};
 use super::{Builder, Rule, not_in_grammar, span_of};
-use crate::diag::{Diagnostic, ErrorKind, Span, plural};
+use crate::diag::{Diagnostic, RuleError, Span, StlError, plural};
 use crate::model::{Format, Loc, Repeat, RuleId, Seed, SeedItem, SlotId, TermId, Terms};
 
 /// A term whose `{` is open.
@@ -62,7 +62,7 @@ impl Builder<'_> {
         }
         if !closed {
             self.err(
-                Diagnostic::error(ErrorKind::UnclosedSection {
+                Diagnostic::error(StlError::UnclosedSection {
                     open: KW_SEED,
                     close: KW_ENDSEED,
                 })
@@ -120,7 +120,7 @@ impl Builder<'_> {
                         }
                         None => {
                             self.report(
-                                ErrorKind::BraceWithoutRule,
+                                StlError::BraceWithoutRule,
                                 s.clone(),
                                 "no rule before it",
                                 "write the rule whose slots these are before `{`, as in `R1{,}`",
@@ -144,7 +144,7 @@ impl Builder<'_> {
                         f.saw_comma = true;
                     }
                     None => self.report(
-                        ErrorKind::CommaOutsideTerm,
+                        StlError::CommaOutsideTerm,
                         s.clone(),
                         "separates nothing",
                         "commas separate the slots of a term `R1{R1{,},}`",
@@ -260,7 +260,7 @@ impl Builder<'_> {
 
     fn in_slot(&mut self, span: Span) {
         self.report(
-            ErrorKind::DrawingInSlot,
+            StlError::DrawingInSlot,
             span,
             "inside a term's `{...}`",
             "a slot holds one term (`R1{,}`), one `[I n R1]`, or nothing; drawing belongs in rule bodies",
@@ -272,7 +272,7 @@ impl Builder<'_> {
         let expected = self.branches[rule.0];
         let empty = format!("{name}{{{}}}", ",".repeat(expected.saturating_sub(1)));
         self.err(
-            Diagnostic::error(ErrorKind::SlotCount {
+            Diagnostic::error(RuleError::SlotCount {
                 rule: name.clone(),
                 expected,
                 found,
@@ -316,7 +316,7 @@ impl Builder<'_> {
             ),
         };
         self.report(
-            ErrorKind::AlternativeNotNamed { name, count },
+            RuleError::AlternativeNotNamed { name, count },
             span.clone(),
             "which alternative?",
             &help,
@@ -339,7 +339,7 @@ impl Builder<'_> {
             "write the terms that grew (`{name}.1{{...}}` to `{name}.{count}{{...}}`), as `stlc compile` does"
         );
         self.report(
-            ErrorKind::RepeatChooses { name, count },
+            RuleError::RepeatChooses { name, count },
             r.loc.0.clone(),
             "a repeat that would choose",
             &help,
@@ -357,7 +357,7 @@ impl Builder<'_> {
                         Made::Repeat(r) => r.loc.0,
                     };
                     self.report(
-                        ErrorKind::TwoTermsInSlot,
+                        StlError::TwoTermsInSlot,
                         span,
                         "second term in this slot",
                         "separate slots with `,`; to grow more at one tip, give the rule more branches",
@@ -384,7 +384,7 @@ impl Builder<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::diag::ErrorKind;
+    use crate::diag::{ErrorKind, InputError, RuleError, StlError};
     use crate::model::SeedItem;
 
     use super::super::testing::{HEAD, bed};
@@ -405,10 +405,13 @@ mod tests {
         let d = bed(&format!("{HEAD} SEED F+ENDSEED")).unwrap();
         assert!(matches!(&d.seed.unwrap().items[..], [SeedItem::Draw(r)] if r.text == "F+"));
         let e = bed(&format!("{HEAD} SEED FENDSEED ENDSEED")).unwrap_err();
-        assert!(matches!(&e.0[0].kind, ErrorKind::UnknownRule { .. }), "{e}");
+        assert!(
+            matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::UnknownRule { .. })),
+            "{e}"
+        );
         assert!(
             !e.iter()
-                .any(|d| matches!(d.kind, ErrorKind::UnclosedSection { .. }))
+                .any(|d| matches!(d.kind, ErrorKind::Stl(StlError::UnclosedSection { .. })))
         );
         // Rule names inside a run split it: `FF+R1-F` is a run, a term and
         // a run.
@@ -453,19 +456,22 @@ mod tests {
         );
         // `#abc` is a colour, not a comment, so the seed stops there.
         let e = bed(&format!("{HEAD} SEED F #abc ENDSEED")).unwrap_err();
-        assert!(matches!(e.0[0].kind, ErrorKind::Syntax(_)), "{e}");
+        assert!(
+            matches!(e.0[0].kind, ErrorKind::Input(InputError::Syntax(_))),
+            "{e}"
+        );
     }
 
     #[test]
     fn a_slot_holds_one_term() {
         let src = format!("{HEAD} SEED R2{{R1{{}}R1{{}},}} ENDSEED");
         let e = bed(&src).unwrap_err();
-        assert_eq!(e.0[0].kind, ErrorKind::TwoTermsInSlot);
+        assert_eq!(e.0[0].kind, ErrorKind::Stl(StlError::TwoTermsInSlot));
         let second = src.rfind("R1{}").unwrap();
         assert_eq!(e.0[0].span, Some(second..second + 4));
         let src = format!("{HEAD} SEED R2{{F,}} ENDSEED");
         let e = bed(&src).unwrap_err();
-        assert_eq!(e.0[0].kind, ErrorKind::DrawingInSlot);
+        assert_eq!(e.0[0].kind, ErrorKind::Stl(StlError::DrawingInSlot));
         let f = src.find("{F").unwrap() + 1;
         assert_eq!(e.0[0].span, Some(f..f + 1));
     }
@@ -486,7 +492,7 @@ mod tests {
     fn a_comma_outside_a_term_separates_nothing() {
         let src = format!("{HEAD} SEED R1, R1 ENDSEED");
         let e = bed(&src).unwrap_err();
-        assert_eq!(e.0[0].kind, ErrorKind::CommaOutsideTerm);
+        assert_eq!(e.0[0].kind, ErrorKind::Stl(StlError::CommaOutsideTerm));
         let at = src.rfind(',').unwrap();
         assert_eq!(e.0[0].span, Some(at..at + 1));
     }
