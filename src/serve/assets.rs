@@ -45,6 +45,11 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/editor.js"),
     },
     Asset {
+        path: "/document.js",
+        media: JS,
+        body: include_str!("page/document.js"),
+    },
+    Asset {
         path: "/files.js",
         media: JS,
         body: include_str!("page/files.js"),

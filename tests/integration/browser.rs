@@ -31,13 +31,13 @@ fn which(name: &str) -> Option<PathBuf> {
 
 /// chromedriver in its own process group, ended with the group (so a
 /// Chromium it started goes too).
-struct Driver {
+pub(super) struct Driver {
     child: Child,
     port: u16,
 }
 
 impl Driver {
-    fn start(driver: &Path, tmp: &Path) -> Driver {
+    pub(super) fn start(driver: &Path, tmp: &Path) -> Driver {
         // A free port, chosen here: chromedriver's own messages are not
         // parsed (they go nowhere, so it never blocks on a full pipe).
         let port = std::net::TcpListener::bind("127.0.0.1:0")
@@ -74,12 +74,12 @@ impl Drop for Driver {
     }
 }
 
-async fn js(c: &Client, script: &str) -> Value {
+pub(super) async fn js(c: &Client, script: &str) -> Value {
     c.execute(script, vec![]).await.expect(script)
 }
 
 /// Waits until the page shows the answer to the text in its editor.
-async fn settled(c: &Client) -> Value {
+pub(super) async fn settled(c: &Client) -> Value {
     for _ in 0..400 {
         let v = js(
             c,
@@ -116,7 +116,7 @@ async fn screen_of(c: &Client, x: f64, y: f64) -> (f64, f64) {
     (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
 }
 
-async fn shot(c: &Client, name: &str) {
+pub(super) async fn shot(c: &Client, name: &str) {
     let dir = manifest_path("tests/store/browser");
     std::fs::create_dir_all(&dir).unwrap();
     let png = c.screenshot().await.unwrap();
@@ -128,7 +128,7 @@ const TYPED: &str = "Typed (100, 190)\nL=9(0) B=1.5(0) A=30 C=2\nRULE\nR1: [-F][
 /// chromium and chromedriver, or `None` after saying why the test skips.
 /// Under CI (the variable `CI` set and not empty, as `.ci/run` sets it) a
 /// missing browser is a failure, not a skip: the install failed.
-fn installed() -> Option<(PathBuf, PathBuf)> {
+pub(super) fn installed() -> Option<(PathBuf, PathBuf)> {
     let (Some(chromium), Some(driver)) = (which("chromium"), which("chromedriver")) else {
         let why = "chromium and chromedriver are not installed \
                    (apt-get install chromium chromium-driver; .ci/run does)";
@@ -169,7 +169,7 @@ async fn drive(server: &Server, driver: &Driver, chromium: &Path, tmp: &Path, fi
 
 /// A WebDriver session in a headless Chromium whose downloads go to
 /// `tmp/downloads`.
-async fn connect(driver: &Driver, chromium: &Path, tmp: &Path) -> Client {
+pub(super) async fn connect(driver: &Driver, chromium: &Path, tmp: &Path) -> Client {
     let mut caps = serde_json::Map::new();
     caps.insert(
         "goog:chromeOptions".into(),
@@ -589,7 +589,7 @@ async fn click_at(c: &Client, a: (f64, f64)) {
     c.perform_actions(mouse).await.unwrap();
 }
 
-async fn click(c: &Client, css: &str) {
+pub(super) async fn click(c: &Client, css: &str) {
     c.find(Locator::Css(css))
         .await
         .unwrap()

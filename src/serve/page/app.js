@@ -18,12 +18,11 @@ import { createView } from './view.js';
 import { createReplay } from './replay.js';
 import { createTools } from './tools.js';
 import { createFiles } from './files.js';
+import { createDocument } from './document.js';
 
 const app = {
   engine: createEngine({ token: document.querySelector('meta[name="stlc-token"]').content }),
   state: {
-    name: 'untitled.od',
-    canSave: false,
     tool: 'select',
     // The last answer and the text it answers.
     answer: null,
@@ -66,6 +65,7 @@ app.view = createView(app);
 app.replay = createReplay(app);
 app.tools = createTools(app);
 app.files = createFiles(app);
+app.document = createDocument(app);
 
 // Keys outside the editor's own: Ctrl-S everywhere, undo and redo out of
 // the number fields (which keep their own), and the tools' letters.
@@ -73,11 +73,11 @@ window.addEventListener('keydown', (e) => {
   const save = (e.ctrlKey || e.metaKey) && e.key === 's';
   if (save) e.preventDefault();
   if (e.target === app.editor.element || e.target.tagName === 'INPUT') {
-    if (save) app.files.save();
+    if (save) app.document.save();
     else if (e.target === app.editor.element) app.editor.undoKey(e);
     return;
   }
-  if (save) { app.files.save(); return; }
+  if (save) { app.document.save(); return; }
   if (app.editor.undoKey(e)) return;
   const tool = { s: 'select', r: 'Rectangle', o: 'RoundRect', e: 'Ellipse', p: 'Polygon' }[e.key];
   if (e.key === 'Escape') app.tools.cancelPolygon();
@@ -87,4 +87,4 @@ window.addEventListener('keydown', (e) => {
 });
 
 app.tools.setTool('select');
-app.files.openServed();
+app.document.openServed();

@@ -59,6 +59,7 @@ export function createEditor(app) {
     state.editedAt = performance.now();
     updateGutter();
     schedule();
+    app.document.edited();
   }
 
   // A drawing edit: one undo step, then the new text.
@@ -117,6 +118,7 @@ export function createEditor(app) {
     state.editedAt = performance.now();
     updateGutter();
     schedule();
+    app.document.edited();
   });
   src.addEventListener('keydown', (e) => {
     if (e.key === 'Tab') {

@@ -1,6 +1,5 @@
-// Files: Open… (a file from disk into the editor), Save (through the
-// engine, or a download when there is no file to write back), and the
-// PNG, SVG and BED exports.
+// Files: Open… (a file from disk into the editor), the Save button (the
+// saving itself is document.js's), and the PNG, SVG and BED exports.
 
 import { byId } from './dom.js';
 
@@ -19,44 +18,13 @@ export function createFiles(app) {
     setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
   }
 
-  const baseName = () => state.name.replace(/\.[^.]*$/, '');
+  const baseName = () => state.doc.name.replace(/\.[^.]*$/, '');
 
   async function exportAs(format) {
     const a = await app.engine.export(app.session.request(), format);
     if (a.ok) download(a.blob, `${baseName()}.${format}`);
     else if (a.diagnostics) app.diagnostics.show(a.diagnostics);
     else app.diagnostics.showError(a.error);
-  }
-
-  async function save() {
-    const text = app.editor.text();
-    if (!state.canSave) {
-      download(new Blob([text], { type: 'text/plain' }), state.name);
-      return;
-    }
-    const a = await app.engine.save(text);
-    if (a.ok) {
-      byId('saved').textContent = `Saved ${state.name} at ${new Date().toLocaleTimeString()}.`;
-      document.title = `${state.name} - stlc`;
-    } else {
-      byId('saved').textContent = 'Not saved: ' + (a.error || a.diagnostics.map((d) => d.message).join('; '));
-    }
-  }
-
-  // The file being edited: its name, whether Save writes it, its text.
-  function opened(name, kind, canSave, note) {
-    state.name = name;
-    state.canSave = canSave;
-    byId('file-name').textContent = name + note;
-    document.title = `${name} - stlc`;
-    app.session.setKind(kind);
-  }
-
-  // The engine's file (the one named on the command line, or the example).
-  async function openServed() {
-    const f = await app.engine.open();
-    opened(f.name, f.kind, f.can_save, f.can_save ? '' : ' (example; Save downloads)');
-    app.editor.load(f.text);
   }
 
   byId('open').addEventListener('click', () => input.click());
@@ -67,16 +35,16 @@ export function createFiles(app) {
     // Cleared, so that opening the same file again reads it again.
     input.value = '';
     const ext = (f.name.split('.').pop() || '').toLowerCase();
-    opened(f.name, ext === 'bed' ? 'bed' : ext === 'lsys' || ext === 'ls' ? 'lsys' : 'od', false, ' (Save downloads)');
+    const kind = ext === 'bed' ? 'bed' : ext === 'lsys' || ext === 'ls' ? 'lsys' : 'od';
     state.selected = -1;
     app.tools.cancelPolygon();
-    // A new file starts a new history.
-    app.editor.load(text);
+    // A new file starts a new history; its unsaved edits are kept by name.
+    app.document.opened({ name: f.name, kind, text, can_save: false, path: null, version: null }, ' (Save downloads)');
   });
-  byId('save').addEventListener('click', save);
+  byId('save').addEventListener('click', () => app.document.save());
   byId('export-png').addEventListener('click', () => exportAs('png'));
   byId('export-svg').addEventListener('click', () => exportAs('svg'));
   byId('export-bed').addEventListener('click', () => exportAs('bed'));
 
-  return { save, openServed };
+  return { download };
 }

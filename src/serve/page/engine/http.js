@@ -42,10 +42,11 @@ export function createHttpEngine({ token }) {
       return res.json();
     },
 
-    async save(source) {
-      const res = await post('/api/save', { source });
+    async save(source, version) {
+      const res = await post('/api/save', { source, version });
       const a = await res.json().catch(() => ({}));
-      if (res.ok && a.ok) return { ok: true };
+      if (res.ok && a.ok) return { ok: true, version: a.version };
+      if (res.status === 412) return { ok: false, conflict: true, version: a.version };
       if (a.diagnostics) return { ok: false, diagnostics: a.diagnostics };
       return { ok: false, error: a.error || res.statusText || `HTTP ${res.status}` };
     },

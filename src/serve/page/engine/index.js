@@ -67,10 +67,13 @@
  * @property {(request: RenderRequest, format: 'png'|'svg'|'bed') => Promise<ExportAnswer>} export
  *   the bytes `stlc render -f png|svg --show-layout` or `stlc compile`
  *   would write
- * @property {() => Promise<{text: string, kind: 'od'|'bed'|'lsys', name: string, can_save: boolean}>} open
- *   the file being edited (or the example)
- * @property {(source: string) => Promise<{ok: true}|{ok: false, error?: string, diagnostics?: Diagnostic[]}>} save
- *   writes `source` to that file (when `can_save`)
+ * @property {() => Promise<{text: string, version: string|null, kind: 'od'|'bed'|'lsys', name: string, path: string, can_save: boolean}>} open
+ *   the file being edited (or the example) as it is now; `version` names
+ *   its contents (`null`: the file does not exist yet; Save creates it)
+ * @property {(source: string, version: string|null) => Promise<{ok: true, version: string}|{ok: false, conflict: true, version: string|null}|{ok: false, error?: string, diagnostics?: Diagnostic[]}>} save
+ *   writes `source` to that file (when `can_save`) if it is still at
+ *   `version`, the version the edit is based on; `conflict` when another
+ *   tab or program changed it since (with the version there now)
  */
 
 import { createHttpEngine } from './http.js';

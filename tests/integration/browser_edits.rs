@@ -1,0 +1,258 @@
+//! The editor never loses an edit, tried in a real Chromium as a user
+//! would: save and reload; unsaved edits kept across a reload and offered
+//! back; a change on disk loaded by itself; two tabs on one file, where
+//! the second Save is refused and nothing is lost.
+
+use std::path::Path;
+use std::time::Duration;
+
+use fantoccini::Client;
+use serde_json::{Value, json};
+
+use super::browser::{Driver, click, connect, installed, js, settled, shot};
+use super::serve::Server;
+use crate::support::manifest_path;
+
+#[test]
+fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
+    let Some((chromium, driver)) = installed() else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("r2.od");
+    std::fs::copy(manifest_path("examples/fig9.od"), &file).unwrap();
+    let server = Server::start(&[file.to_str().unwrap()]);
+    let chrome_tmp = tmp.path().join("chrome");
+    std::fs::create_dir_all(&chrome_tmp).unwrap();
+    let driver = Driver::start(&driver, &chrome_tmp);
+    let rt = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap();
+    rt.block_on(async {
+        let c = connect(&driver, &chromium, &chrome_tmp).await;
+        let url = format!("http://{}/", server.addr);
+        c.goto(&url).await.unwrap();
+        settled(&c).await;
+        reload_keeps_saves_and_drafts(&c, &file).await;
+        disk_changes_are_loaded(&c, &file).await;
+        two_tabs(&c, &url, &file).await;
+        let _ = c.close().await;
+    });
+}
+
+async fn text(c: &Client) -> String {
+    js(c, "return document.getElementById('source').value")
+        .await
+        .as_str()
+        .unwrap()
+        .to_string()
+}
+
+/// Types `line` at the end of the text, as keys.
+async fn type_line(c: &Client, line: &str) {
+    let src = c.find(fantoccini::Locator::Css("#source")).await.unwrap();
+    src.click().await.unwrap();
+    js(c, "const s = document.getElementById('source'); s.selectionStart = s.selectionEnd = s.value.length;").await;
+    src.send_keys(line).await.unwrap();
+}
+
+async fn status(c: &Client) -> String {
+    js(c, "return document.getElementById('saved').textContent")
+        .await
+        .as_str()
+        .unwrap_or("")
+        .to_string()
+}
+
+async fn title(c: &Client) -> String {
+    c.title().await.unwrap()
+}
+
+/// Waits (at most 10 s) until `script` returns true.
+async fn until(c: &Client, script: &str, what: &str) {
+    for _ in 0..100 {
+        if js(c, script).await == json!(true) {
+            return;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    shot(c, &format!("edits-timeout-{}", what.replace(' ', "-"))).await;
+    panic!("timed out waiting until {what}");
+}
+
+/// Reloads, accepting the "leave the page?" prompt if one is shown.
+async fn reload(c: &Client) {
+    let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    let _ = c.accept_alert().await;
+    until(
+        c,
+        "return !!(window.stlc && window.stlc.state.doc && window.stlc.state.answer)",
+        "the page loaded",
+    )
+    .await;
+    settled(c).await;
+}
+
+async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
+    // Problem 1: add a line, Save, reload: the page shows the file as saved.
+    type_line(c, "\n# saved line").await;
+    assert!(
+        title(c).await.starts_with("• "),
+        "unsaved edits are in the title"
+    );
+    assert_eq!(status(c).await, "Unsaved changes");
+    click(c, "[data-testid=save]").await;
+    until(
+        c,
+        "return document.getElementById('saved').textContent.startsWith('Saved')",
+        "saved",
+    )
+    .await;
+    assert!(!title(c).await.starts_with("• "));
+    assert!(
+        std::fs::read_to_string(file)
+            .unwrap()
+            .ends_with("# saved line")
+    );
+    reload(c).await;
+    assert!(
+        text(c).await.ends_with("# saved line"),
+        "the reload shows the save"
+    );
+
+    // Unsaved edits survive a reload: offered back, not applied.
+    type_line(c, "\n# not saved yet").await;
+    tokio::time::sleep(Duration::from_millis(600)).await;
+    reload(c).await;
+    let t = text(c).await;
+    assert!(
+        t.ends_with("# saved line"),
+        "a draft is never applied silently"
+    );
+    until(
+        c,
+        "return !document.getElementById('notice').hidden",
+        "the draft is offered",
+    )
+    .await;
+    shot(c, "30-draft-offered").await;
+    click(c, "[data-testid=restore-draft]").await;
+    assert!(text(c).await.ends_with("# not saved yet"));
+    assert!(title(c).await.starts_with("• "));
+    // Saved, so there is nothing left to offer.
+    click(c, "[data-testid=save]").await;
+    until(
+        c,
+        "return document.getElementById('saved').textContent.startsWith('Saved')",
+        "saved again",
+    )
+    .await;
+    assert!(
+        std::fs::read_to_string(file)
+            .unwrap()
+            .ends_with("# not saved yet")
+    );
+}
+
+async fn disk_changes_are_loaded(c: &Client, file: &Path) {
+    // No unsaved edits: another program's write is loaded by itself.
+    let mut theirs = std::fs::read_to_string(file).unwrap();
+    theirs.push_str("\n# from another program");
+    std::fs::write(file, &theirs).unwrap();
+    until(
+        c,
+        "return document.getElementById('source').value.endsWith('# from another program')",
+        "the disk change is loaded",
+    )
+    .await;
+    assert!(
+        status(c).await.starts_with("Reloaded"),
+        "{}",
+        status(c).await
+    );
+
+    // With unsaved edits: asked, and keeping mine then saving writes mine.
+    type_line(c, "\n# mine").await;
+    theirs.push_str("\n# theirs again");
+    std::fs::write(file, &theirs).unwrap();
+    until(
+        c,
+        "return !document.getElementById('notice').hidden",
+        "the change is asked about",
+    )
+    .await;
+    assert!(text(c).await.ends_with("# mine"), "unsaved edits stay");
+    shot(c, "31-disk-changed").await;
+    click(c, "[data-testid=keep-mine]").await;
+    click(c, "[data-testid=save]").await;
+    until(
+        c,
+        "return document.getElementById('saved').textContent.startsWith('Saved')",
+        "mine saved",
+    )
+    .await;
+    let on_disk = std::fs::read_to_string(file).unwrap();
+    assert!(on_disk.ends_with("# mine") && !on_disk.contains("# theirs again"));
+}
+
+async fn two_tabs(c: &Client, url: &str, file: &Path) {
+    let first = c.window().await.unwrap();
+    let second = c.new_window(true).await.unwrap();
+    c.switch_to_window(second.handle).await.unwrap();
+    c.goto(url).await.unwrap();
+    settled(c).await;
+    type_line(c, "\n# tab two").await;
+    click(c, "[data-testid=save]").await;
+    until(
+        c,
+        "return document.getElementById('saved').textContent.startsWith('Saved')",
+        "tab two saved",
+    )
+    .await;
+
+    // Tab one had an unsaved edit of the older version: its Save is refused.
+    c.switch_to_window(first).await.unwrap();
+    type_line(c, "\n# tab one").await;
+    click(c, "[data-testid=save]").await;
+    until(
+        c,
+        "return !document.getElementById('notice').hidden",
+        "the conflict is shown",
+    )
+    .await;
+    let notice: Value = js(c, "return document.getElementById('notice').textContent").await;
+    assert!(
+        notice.as_str().unwrap().contains("changed since"),
+        "{notice}"
+    );
+    let on_disk = std::fs::read_to_string(file).unwrap();
+    assert!(
+        on_disk.ends_with("# tab two"),
+        "the second save did not overwrite the first"
+    );
+    assert!(
+        text(c).await.ends_with("# tab one"),
+        "nothing is lost in the editor"
+    );
+    // Both side by side.
+    click(c, "[data-testid=compare]").await;
+    let sides = js(c, "return [document.getElementById('compare-theirs').value, document.getElementById('compare-mine').value]").await;
+    assert!(sides[0].as_str().unwrap().ends_with("# tab two"));
+    assert!(sides[1].as_str().unwrap().ends_with("# tab one"));
+    shot(c, "32-two-tabs-compare").await;
+    click(c, "[data-testid=keep-mine]").await;
+    click(c, "[data-testid=save]").await;
+    until(
+        c,
+        "return document.getElementById('saved').textContent.startsWith('Saved')",
+        "tab one saved",
+    )
+    .await;
+    assert!(
+        std::fs::read_to_string(file)
+            .unwrap()
+            .ends_with("# tab one")
+    );
+}
