@@ -65,7 +65,7 @@ pub enum Command {
     ///
     /// Examples:
     ///   stlc render examples/koch-snowflake.lsys -o koch.png
-    ///   stlc render examples/abop-1.24a.lsys --depth 6 --strategy bfs -o tree.svg
+    ///   stlc render examples/abop-1.24a.lsys --depth 6 --derivation bfs -o tree.svg
     ///   stlc render examples/2dtree.od --growth dfs --show-layout -o vine.png
     ///   cat tree.bed | stlc render - --from bed -f svg -o - > tree.svg
     #[command(verbatim_doc_comment)]
@@ -214,10 +214,10 @@ pub struct SymbolLimitArgs {
     pub max_symbols: u64,
 }
 
-/// The limit of the bfs derivation (commands with `--strategy`).
+/// The limit of the bfs derivation (commands with `--derivation`).
 #[derive(Debug, Args, Clone)]
 pub struct WordLimitArgs {
-    /// Most symbols the bfs strategy may hold in memory as one word.
+    /// Most symbols the bfs derivation may hold in memory as one word.
     #[arg(long, value_name = "N", default_value_t = Limits::default().max_word)]
     pub max_word: u64,
 }
@@ -328,10 +328,17 @@ pub struct RenderArgs {
     #[arg(short, long, value_enum)]
     pub format: Option<ImageFormat>,
 
-    /// Derivation strategy: dfs streams, bfs rewrites the whole word first.
-    /// Same picture, different cost. (An .od's growth order is --growth.)
-    #[arg(short, long, value_enum, default_value_t = Derivation::Dfs)]
-    pub strategy: Derivation,
+    /// Derivation order (default dfs): dfs streams, bfs rewrites the whole
+    /// word first. Same picture, different cost. `--strategy` is its old
+    /// name. An .od's growth order, which does change the tree, is --growth.
+    #[arg(
+        short = 's',
+        long,
+        visible_alias = "strategy",
+        value_enum,
+        value_name = "ORDER"
+    )]
+    pub derivation: Option<Derivation>,
 
     /// Derivation depth of an .lsys (overrides its `generations`).
     #[arg(short, long, value_name = "N")]
@@ -386,9 +393,9 @@ pub struct CompileArgs {
     #[arg(short, long, value_name = "OUT")]
     pub output: Option<String>,
 
-    /// The same as --growth (kept for scripts): bfs grows level by level
-    /// (balanced trees), dfs a branch's whole subtree before its sibling
-    /// (vines, ornament).
+    /// The old name of --growth, kept for scripts (with a warning): bfs
+    /// grows level by level (balanced trees), dfs a branch's whole subtree
+    /// before its sibling (vines, ornament).
     #[arg(
         short,
         long,
@@ -418,10 +425,17 @@ pub struct ExpandArgs {
     #[arg(short, long, value_name = "OUT", default_value = "-")]
     pub output: String,
 
-    /// Derivation strategy: dfs streams, bfs builds the word in memory.
-    /// (An .od's growth order is --growth.)
-    #[arg(short, long, value_enum, default_value_t = Derivation::Dfs)]
-    pub strategy: Derivation,
+    /// Derivation order (default dfs): dfs streams, bfs builds the word in
+    /// memory. `--strategy` is its old name. (An .od's growth order is
+    /// --growth.)
+    #[arg(
+        short = 's',
+        long,
+        visible_alias = "strategy",
+        value_enum,
+        value_name = "ORDER"
+    )]
+    pub derivation: Option<Derivation>,
 
     /// Derivation depth of an .lsys (overrides its `generations`).
     #[arg(short, long, value_name = "N")]

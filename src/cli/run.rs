@@ -180,7 +180,7 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         },
     };
     let req = Request {
-        derivation: a.strategy,
+        derivation: a.derivation,
         depth: a.depth,
         look,
         image: RenderOptions {
@@ -240,7 +240,19 @@ fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
         out.write_all(compiled.text.as_bytes())
             .map_err(|e| io_error(&e, "cannot write the BED").into())
     })?;
-    Ok(warnings)
+    let mut all = Vec::new();
+    if let Some(order) = a.strategy {
+        let order = match order {
+            GrowthOrder::Bfs => "bfs",
+            GrowthOrder::Dfs => "dfs",
+        };
+        all.push(
+            Diagnostic::warning(FrontEndError::StrategyMeansGrowth)
+                .with_help(format!("write --growth {order}: on render and expand, --strategy is the derivation order, which cannot change a tree")),
+        );
+    }
+    all.extend(warnings);
+    Ok(all)
 }
 
 fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
@@ -249,7 +261,7 @@ fn expand(a: &ExpandArgs, quiet: bool, source: &mut Source) -> Outcome {
     let output = Output::parse(&a.output);
     not_the_input(&input, &output)?;
     let req = Request {
-        derivation: a.strategy,
+        derivation: a.derivation,
         depth: a.depth,
         ..with_growth(request(&a.input, limits, source)?, a.grow.growth, &a.grow)
     };

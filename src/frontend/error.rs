@@ -56,6 +56,10 @@ pub enum FrontEndError {
         /// The operating system's message.
         error: String,
     },
+    /// `compile --strategy`: the old name of `--growth` (a warning; on
+    /// render and expand `--strategy` is the derivation order).
+    #[error("--strategy on compile is the growth order; its name is --growth")]
+    StrategyMeansGrowth,
     /// The finished output could not be renamed over the target.
     #[error("cannot replace `{path}`: {error}")]
     CannotReplace {

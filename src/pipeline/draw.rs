@@ -220,6 +220,8 @@ pub fn image_format(
 pub(crate) struct Given {
     /// A growth order (`--growth`).
     pub growth: bool,
+    /// A derivation order (`--derivation`, or its old name `--strategy`).
+    pub derivation: bool,
     /// A clearance (`--clearance`).
     pub clearance: bool,
     /// A stem limit (`--max-stems`).
@@ -277,6 +279,15 @@ pub(crate) fn ignored_flags(loaded: &Loaded, given: &Given) -> Vec<Diagnostic> {
             ),
             _ => {}
         }
+    }
+    if given.derivation && !given.growth && matches!(loaded, Loaded::Od(_)) {
+        w.push(
+            Diagnostic::warning(ErrorKind::IgnoredFlag {
+                flag: "--derivation".into(),
+                reason: "it is the derivation order (--strategy is its old name), which draws the same tree at another cost".into(),
+            })
+            .with_help("to grow the tree depth-first, write --growth dfs"),
+        );
     }
     w
 }

@@ -44,8 +44,8 @@ pub struct Request {
     /// guessed from the text ([`super::detect_kind`]).
     pub kind: Option<InputKind>,
     /// How the word is derived (`--derivation`): the same picture at a
-    /// different cost.
-    pub derivation: Derivation,
+    /// different cost; `None`: depth-first.
+    pub derivation: Option<Derivation>,
     /// Growth order of an OD (`--growth`); `None`: breadth-first.
     pub growth: Option<GrowthOrder>,
     /// Derivation depth of an L-system (`--depth`); `None`: its
@@ -78,7 +78,7 @@ impl Default for Request {
             input: Vec::new(),
             name: None,
             kind: None,
-            derivation: Derivation::default(),
+            derivation: None,
             growth: None,
             depth: None,
             seed: None,
@@ -163,6 +163,7 @@ impl Request {
     fn given(&self) -> Given {
         Given {
             growth: self.growth.is_some(),
+            derivation: self.derivation.is_some(),
             clearance: self.clearance.is_some(),
             max_stems: self.max_stems.is_some(),
             depth: self.depth.is_some(),
@@ -190,7 +191,7 @@ impl Request {
         let (limits, grow) = self.options()?;
         Ok(SceneRequest {
             grow,
-            derivation: self.derivation,
+            derivation: self.derivation.unwrap_or_default(),
             depth: self.depth,
             limits,
         })

@@ -15,8 +15,7 @@ use stlc::diag::{Diagnostic, Diagnostics, line_column};
 use stlc::model::Description;
 use stlc::model::layout::Shape;
 use stlc::pipeline::{
-    Derivation, GrowthOrder, ImageFormat, InputKind, Limits, NoProgress, RenderOptions, Request,
-    ShowLayout,
+    GrowthOrder, ImageFormat, InputKind, Limits, NoProgress, RenderOptions, Request, ShowLayout,
 };
 
 /// The server's own settings that every request works within.
@@ -167,7 +166,7 @@ impl Body {
     pub fn request(&self, s: &Settings, format: ImageFormat) -> Request {
         Request {
             kind: self.kind.map(InputKind::from),
-            derivation: Derivation::Dfs,
+            derivation: None,
             growth: self.strategy.map(|o| match o {
                 Order::Bfs => GrowthOrder::Bfs,
                 Order::Dfs => GrowthOrder::Dfs,

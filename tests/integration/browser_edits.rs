@@ -198,6 +198,8 @@ async fn disk_changes_are_loaded(c: &Client, file: &Path) {
 }
 
 async fn two_tabs(c: &Client, url: &str, file: &Path) {
+    // Tab one has an unsaved edit when tab two saves.
+    type_line(c, "\n# tab one").await;
     let first = c.window().await.unwrap();
     let second = c.new_window(true).await.unwrap();
     c.switch_to_window(second.handle).await.unwrap();
@@ -212,9 +214,8 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     )
     .await;
 
-    // Tab one had an unsaved edit of the older version: its Save is refused.
+    // Tab one's edit is of the older version: its Save is refused.
     c.switch_to_window(first).await.unwrap();
-    type_line(c, "\n# tab one").await;
     click(c, "[data-testid=save]").await;
     until(
         c,

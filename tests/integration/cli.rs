@@ -1075,3 +1075,66 @@ fn a_long_generated_layout_line_is_limited_and_reported_short() {
     assert_eq!(code, 1);
     assert!(err.contains("2000 exceeds the limit of 100"), "{err}");
 }
+
+/// One meaning per flag: `--derivation` (old name `--strategy`, `-s`) is
+/// the derivation order on render; on an .od without `--growth` it warns
+/// that it cannot change the tree (the picture is the default growth's);
+/// on compile `--strategy` is still the growth order, with a warning
+/// naming `--growth`.
+#[test]
+fn strategy_means_one_thing_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let od = format!("{}/examples/fig9.od", env!("CARGO_MANIFEST_DIR"));
+    let png = |args: &[&str], name: &str| {
+        let out = dir.path().join(name);
+        let a = Command::cargo_bin("stlc")
+            .unwrap()
+            .args([
+                "render",
+                &od,
+                "--size",
+                "120x120",
+                "-o",
+                out.to_str().unwrap(),
+            ])
+            .args(args)
+            .assert()
+            .success();
+        (
+            std::fs::read(&out).unwrap(),
+            String::from_utf8_lossy(&a.get_output().stderr).into_owned(),
+        )
+    };
+    let (plain, quiet) = png(&[], "plain.png");
+    assert!(quiet.is_empty(), "{quiet}");
+    let (old, warned) = png(&["--strategy", "dfs"], "old.png");
+    let (new, warned_too) = png(&["--derivation", "dfs"], "new.png");
+    assert_eq!(old, plain, "the derivation order does not change the tree");
+    assert_eq!(new, plain);
+    for w in [&warned, &warned_too] {
+        assert!(
+            w.contains("--derivation") && w.contains("--growth dfs"),
+            "{w}"
+        );
+    }
+    let (grown, with_growth) = png(&["--strategy", "dfs", "--growth", "dfs"], "grown.png");
+    assert_ne!(grown, plain, "--growth dfs grows another tree");
+    assert!(with_growth.is_empty(), "{with_growth}");
+    let compiled = Command::cargo_bin("stlc")
+        .unwrap()
+        .args(["compile", &od, "--strategy", "dfs", "-o", "-"])
+        .assert()
+        .success();
+    let out = compiled.get_output();
+    let golden = std::fs::read(format!(
+        "{}/tests/cases/grow/fig9.dfs.bed",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    assert_eq!(
+        out.stdout, golden,
+        "compile --strategy dfs still grows depth-first"
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("its name is --growth"), "{err}");
+}
