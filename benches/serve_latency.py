@@ -31,6 +31,6 @@ for name in sys.argv[4:]:
             if n > i: break
             time.sleep(0.01)
     t = js("return window.stlc.state.timings")
-    stems = js("return window.stlc.state.answer.stems")
+    stems = int(js("return window.stlc.state.answer.stems"))
     print(f"{os.path.basename(name)}: stems {stems}, median {statistics.median(t):.0f} ms, min {min(t):.0f}, max {max(t):.0f} over {len(t)}")
 call('DELETE', f'/session/{sid}')

@@ -109,8 +109,13 @@ pub(crate) fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>
 /// What [`render`] drew.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rendered {
-    /// Segments drawn.
+    /// Segments drawn, saturating at `u64::MAX` (see [`Rendered::count`]).
     pub segments: u64,
+    /// Segments drawn, in decimal digits: exact at any depth (an
+    /// L-system's count past `u64` comes from its exact statistics).
+    /// `None` only where no exact count is known (a BED whose measure
+    /// saturated): at least `u64::MAX` then, never to be shown as a count.
+    pub count: Option<String>,
     /// Warnings (nothing drawn, ...).
     pub warnings: Vec<Diagnostic>,
 }
@@ -166,13 +171,29 @@ pub fn render(
         What::Tree { bed, .. } => bed.size().stems,
         What::Lsys { .. } => counted.unwrap_or(0),
     };
+    let count = match &scene.what {
+        _ if segments < u64::MAX => Some(segments.to_string()),
+        // Saturated: an L-system's exact count is its statistics' (big
+        // integers, memoized per symbol and depth); a stochastic one's word
+        // was walked, so its count never saturates.
+        What::Lsys { sys, depth } if !sys.is_stochastic() => {
+            crate::interpret::stats::stats(sys, *depth, &scene.limits)
+                .ok()
+                .map(|s| s.segments.to_string())
+        }
+        _ => None,
+    };
     let mut warnings = Vec::new();
     if segments == 0 {
         warnings.push(Diagnostic::warning(RenderError::NothingDrawn).with_help(
             "check the axiom or seed and the depth: only `F` draws (and in an .od, a rule that grows)",
         ));
     }
-    Ok(Rendered { segments, warnings })
+    Ok(Rendered {
+        segments,
+        count,
+        warnings,
+    })
 }
 
 /// The image format: `asked` (`-f`) if given, else the output name's

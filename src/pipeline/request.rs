@@ -95,8 +95,12 @@ impl Default for Request {
 /// What [`Request::render`] drew.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Drawn {
-    /// Segments drawn (a tree's stems; an L-system's segments).
+    /// Segments drawn (a tree's stems; an L-system's segments),
+    /// saturating at `u64::MAX`.
     pub segments: u64,
+    /// The same in decimal digits, exact at any depth; `None` where no
+    /// exact count is known (see [`super::Rendered::count`]).
+    pub count: Option<String>,
     /// Stems grown, if an OD was grown.
     pub grown: Option<u64>,
     /// The OD as read, if the input was one (its root and layout, with
@@ -215,6 +219,7 @@ impl Request {
         warnings.extend(rendered.warnings);
         Ok(Drawn {
             segments: rendered.segments,
+            count: rendered.count,
             grown,
             od,
             trace,

@@ -199,8 +199,12 @@ pub struct RenderAnswer {
     pub svg: String,
     /// The grown BED (an .od only), as `stlc compile` writes it.
     pub bed: Option<String>,
-    /// Stems grown (an .od), else segments drawn.
-    pub stems: u64,
+    /// Stems grown (an .od), else segments drawn, as decimal digits:
+    /// exact at any depth (a JSON number is exact only to 2^53).
+    pub stems: String,
+    /// Whether `stems` is exact; `false`: at least that many (a count
+    /// past what the measure holds).
+    pub stems_exact: bool,
     /// Warnings.
     pub warnings: Vec<DiagnosticJson>,
     /// The stems in growth order, for the replay.
@@ -383,7 +387,12 @@ pub fn run(
         ok: true,
         svg,
         bed,
-        stems: drawn.grown.unwrap_or(drawn.segments),
+        stems: match (drawn.grown, &drawn.count) {
+            (Some(n), _) => n.to_string(),
+            (None, Some(c)) => c.clone(),
+            (None, None) => drawn.segments.to_string(),
+        },
+        stems_exact: drawn.grown.is_some() || drawn.count.is_some(),
         warnings: diagnostics_json(text, &drawn.warnings),
         growth: Growth { stems, decisions },
         view: drawn.view.map(|b| [b.min_x, b.min_y, b.max_x, b.max_y]),

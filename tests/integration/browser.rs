@@ -85,7 +85,7 @@ pub(super) async fn settled(c: &Client) -> Value {
             c,
             "const s = window.stlc && window.stlc.state; const t = document.getElementById('source').value;
              if (!s || s.inFlight || s.answerText !== t) return null;
-             return {ok: s.answer.ok, stems: s.answer.stems || 0,
+             return {ok: s.answer.ok, stems: Number(s.answer.stems || 0),
                      growth: s.answer.growth ? s.answer.growth.stems : [],
                      text: t};",
         )
@@ -739,7 +739,7 @@ async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
 
 /// Opens `file` through the page's Open… control (its file input), and
 /// waits until the page has read it into the editor.
-async fn open(c: &Client, file: &Path) {
+pub(super) async fn open(c: &Client, file: &Path) {
     c.find(Locator::Id("open-file"))
         .await
         .unwrap()

@@ -9,7 +9,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Driver, click, connect, installed, js, settled, shot};
+use super::browser::{Driver, click, connect, installed, js, open, settled, shot};
 use super::serve::Server;
 use crate::support::manifest_path;
 
@@ -37,6 +37,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         reload_keeps_saves_and_drafts(&c, &file).await;
         disk_changes_are_loaded(&c, &file).await;
         two_tabs(&c, &url, &file).await;
+        exact_counts(&c).await;
         let _ = c.close().await;
     });
 }
@@ -256,4 +257,20 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
             .unwrap()
             .ends_with("# tab one")
     );
+}
+
+/// Problem 6: abop-1.24a at depth 30 has 5^30 segments, more than a u64
+/// (and far more than a JavaScript number holds exactly): the status shows
+/// every digit.
+async fn exact_counts(c: &Client) {
+    open(c, &manifest_path("examples/abop-1.24a.lsys")).await;
+    settled(c).await;
+    let depth = c.find(fantoccini::Locator::Id("depth")).await.unwrap();
+    depth.send_keys("30").await.unwrap();
+    until(
+        c,
+        "return document.getElementById('status').textContent.includes('931322574615478515625 stems')",
+        "the exact count is shown",
+    )
+    .await;
 }

@@ -54,7 +54,8 @@ export function createSession(app) {
   function status(answer, ms) {
     const parts = [];
     if (answer.ok) {
-      parts.push(`${answer.stems} stems`);
+      // Digits, exact at any depth (a JS number is exact only to 2^53).
+      parts.push(`${answer.stems_exact ? '' : 'at least '}${answer.stems} stems`);
       if (answer.growth && answer.growth.decisions) parts.push(`${answer.growth.decisions} growth decisions`);
     } else {
       parts.push('errors: the last good picture is shown');
