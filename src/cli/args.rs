@@ -159,11 +159,26 @@ pub struct ServeArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SVG_SEGMENTS)]
     pub max_svg_segments: u64,
 
+    /// Seconds one request's work may run before it stops with an error
+    /// (work whose page has gone, or a newer edit replaced, stops at once).
+    #[arg(long, value_name = "SECONDS", default_value_t = 30.0, value_parser = parse_budget)]
+    pub time_budget: f64,
+
     #[command(flatten)]
     pub limits: LimitArgs,
 
     #[command(flatten)]
     pub derive_limits: DeriveLimitArgs,
+}
+
+/// A time budget: a number of seconds, more than 0 and at most a day.
+fn parse_budget(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x > 0.0 && x <= 86_400.0 => Ok(x),
+        _ => Err(format!(
+            "`{s}` is not a number of seconds from 0 (excluded) to 86400"
+        )),
+    }
 }
 
 /// The input file and how to read it.
@@ -253,6 +268,7 @@ impl ServeArgs {
             limits: self.derive_limits.limits(&self.limits, self.max_stems),
             max_stems: self.max_stems,
             max_svg_segments: self.max_svg_segments,
+            time_budget: std::time::Duration::from_secs_f64(self.time_budget),
         }
     }
 }

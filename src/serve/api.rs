@@ -15,7 +15,7 @@ use stlc::diag::{Diagnostic, Diagnostics, line_column};
 use stlc::model::Description;
 use stlc::model::layout::Shape;
 use stlc::pipeline::{
-    GrowthOrder, ImageFormat, InputKind, Limits, NoProgress, RenderOptions, Request, ShowLayout,
+    GrowthOrder, ImageFormat, InputKind, Limits, Progress, RenderOptions, Request, ShowLayout,
 };
 
 /// The server's own settings that every request works within.
@@ -27,6 +27,8 @@ pub struct Settings {
     pub max_stems: Option<u64>,
     /// `--max-svg-segments`.
     pub max_svg_segments: u64,
+    /// `--time-budget`: how long one request's work may run.
+    pub time_budget: std::time::Duration,
 }
 
 /// A request body: `{"source", "kind"?, "strategy"?, "depth"?,
@@ -355,12 +357,13 @@ pub fn run(
     body: &Body,
     s: &Settings,
     format: ImageFormat,
+    progress: &mut dyn Progress,
 ) -> Result<(RenderAnswer, Vec<u8>), Failed> {
     let req = body.request(s, format);
     let text = &body.source;
     let mut image = Vec::new();
     let drawn = req
-        .render(&mut image, &mut NoProgress)
+        .render(&mut image, progress)
         .map_err(|d| Failed::new(text, &d))?;
     let (bed, placed) = match drawn.trace {
         Some(t) => (Some(t.text), t.placed),

@@ -17,6 +17,7 @@ mod assets;
 mod document;
 mod http;
 mod routes;
+mod work;
 
 use std::convert::Infallible;
 use std::io::Write as _;
@@ -45,6 +46,8 @@ pub struct Config {
     pub max_stems: Option<u64>,
     /// `--max-svg-segments`.
     pub max_svg_segments: u64,
+    /// `--time-budget`: how long one request's work may run.
+    pub time_budget: Duration,
 }
 
 /// The example opened when no file is named.
@@ -117,6 +120,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             limits,
             max_stems: a.max_stems,
             max_svg_segments: a.max_svg_segments,
+            time_budget: a.time_budget,
         },
         doc,
         token: http::random_token().map_err(|e| {
@@ -141,6 +145,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             .map_err(|e| io_error(&e, "cannot write to standard output"))?;
     }
     interrupt::stop_is_success();
+    work::quiet_stops();
     runtime.block_on(accept_loop(listener, state))
 }
 

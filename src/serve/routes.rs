@@ -20,6 +20,7 @@ use super::api::{self, Body, Failed, Kind};
 use super::assets;
 use super::document::Refused;
 use super::http::{self, Answer};
+use super::work::{self, Ended, Stopped};
 use stlc::diag::Diagnostic;
 use stlc::pipeline::ImageFormat;
 
@@ -116,11 +117,16 @@ async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
         Ok(b) => b,
         Err(a) => return a,
     };
-    let done = blocking(move || api::run(&body, &state.settings, ImageFormat::Svg)).await;
+    let budget = state.settings.time_budget;
+    let done = work::run(budget, move |w| {
+        api::run(&body, &state.settings, ImageFormat::Svg, w)
+    })
+    .await;
     match done {
-        Some(Ok((answer, _))) => http::json(StatusCode::OK, &answer),
-        Some(Err(failed)) => http::json(StatusCode::OK, &failed),
-        None => crashed(),
+        Ended::Done(Ok((answer, _))) => http::json(StatusCode::OK, &answer),
+        Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),
+        Ended::Stopped(why) => stopped(why),
+        Ended::Crashed => crashed(),
     }
 }
 
@@ -144,18 +150,20 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
         Ok(b) => b,
         Err(a) => return a,
     };
-    let done = blocking(move || api::run(&body, &state.settings, image)).await;
+    let budget = state.settings.time_budget;
+    let done = work::run(budget, move |w| api::run(&body, &state.settings, image, w)).await;
     match done {
-        Some(Ok((answer, _))) if want_bed => match answer.bed {
+        Ended::Done(Ok((answer, _))) if want_bed => match answer.bed {
             Some(bed) => http::answer(StatusCode::OK, media, bed),
             None => http::json(
                 StatusCode::OK,
                 &Failed::message("only an .od grows into a BED", "export a picture instead"),
             ),
         },
-        Some(Ok((_, bytes))) => http::answer(StatusCode::OK, media, bytes),
-        Some(Err(failed)) => http::json(StatusCode::OK, &failed),
-        None => crashed(),
+        Ended::Done(Ok((_, bytes))) => http::answer(StatusCode::OK, media, bytes),
+        Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),
+        Ended::Stopped(why) => stopped(why),
+        Ended::Crashed => crashed(),
     }
 }
 
@@ -224,6 +232,28 @@ async fn save(state: Arc<State>, req: Request<Incoming>) -> Answer {
             )
         }
         None => crashed(),
+    }
+}
+
+/// The answer for stopped work: past the budget, the diagnostics JSON
+/// (HTTP 200, as for any input the work cannot finish); abandoned, a 503
+/// nobody reads.
+fn stopped(why: Stopped) -> Answer {
+    match why {
+        Stopped::OverBudget(budget) => http::json(
+            StatusCode::OK,
+            &Failed::message(
+                &format!(
+                    "stopped: the work ran past the time budget of {} s",
+                    budget.as_secs_f64()
+                ),
+                "ask for less (a smaller depth, --max-stems, a smaller layout), or start stlc serve with --time-budget SECONDS",
+            ),
+        ),
+        Stopped::Abandoned => http::error(
+            StatusCode::SERVICE_UNAVAILABLE,
+            "stopped: the request was abandoned",
+        ),
     }
 }
 

@@ -46,6 +46,16 @@ impl Server {
     }
 
     /// The port.
+    /// CPU time the server has used so far (user + system), in clock
+    /// ticks, from /proc.
+    pub fn cpu_ticks(&self) -> u64 {
+        let stat = std::fs::read_to_string(format!("/proc/{}/stat", self.child.id())).unwrap();
+        // The fields after the command name (which may hold spaces).
+        let rest = &stat[stat.rfind(')').unwrap() + 2..];
+        let f: Vec<&str> = rest.split(' ').collect();
+        f[11].parse::<u64>().unwrap() + f[12].parse::<u64>().unwrap()
+    }
+
     pub fn port(&self) -> &str {
         self.addr.rsplit(':').next().unwrap()
     }
@@ -867,4 +877,47 @@ fn counts_past_a_machine_integer_are_exact_digits() {
         &json!({"source": example("abop-1.24a.lsys"), "kind": "lsys", "depth": 3}),
     );
     assert_eq!(small["stems"], "125");
+}
+
+/// Work stops when nobody waits for it: a heavy render (abop-1.27, three
+/// rules for F, at depth 16: about 30 s of work) whose client closes its
+/// connection after 0.3 s uses no more CPU a second later; and work past
+/// `--time-budget` stops with a diagnostic that names the budget.
+#[test]
+fn abandoned_and_overlong_work_stops() {
+    let server = Server::start(&["--time-budget", "2"]);
+    let addr = &server.addr;
+    let heavy = json!({"source": example("abop-1.27.lsys"), "kind": "lsys", "depth": 16});
+    let started = std::time::Instant::now();
+    let a = render(addr, &heavy);
+    let took = started.elapsed();
+    assert_eq!(a["ok"], false, "{a}");
+    let message = a["diagnostics"][0]["message"].as_str().unwrap();
+    assert!(message.contains("time budget of 2 s"), "{message}");
+    assert!(took < Duration::from_secs(10), "{took:?}");
+
+    let body = heavy.to_string();
+    let head = format!(
+        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
+    let mut s = TcpStream::connect(addr).unwrap();
+    s.write_all(head.as_bytes()).unwrap();
+    s.write_all(body.as_bytes()).unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    drop(s);
+    // Within a second of the disconnect the work has stopped: the CPU
+    // time no longer rises (a tick is 10 ms; allow a few for the server's
+    // own bookkeeping).
+    std::thread::sleep(Duration::from_millis(1000));
+    let t1 = server.cpu_ticks();
+    std::thread::sleep(Duration::from_millis(1000));
+    let t2 = server.cpu_ticks();
+    assert!(
+        t2 - t1 <= 5,
+        "the abandoned work went on: {t1} -> {t2} ticks"
+    );
+    // And the server still answers.
+    let light = render(addr, &json!({"source": example("fig9.od")}));
+    assert_eq!(light["ok"], true);
 }
