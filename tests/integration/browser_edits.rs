@@ -38,6 +38,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         disk_changes_are_loaded(&c, &file).await;
         two_tabs(&c, &url, &file).await;
         exact_counts(&c).await;
+        long_work_is_cancelled(&c, &server).await;
         let _ = c.close().await;
     });
 }
@@ -265,12 +266,76 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
 async fn exact_counts(c: &Client) {
     open(c, &manifest_path("examples/abop-1.24a.lsys")).await;
     settled(c).await;
-    let depth = c.find(fantoccini::Locator::Id("depth")).await.unwrap();
-    depth.send_keys("30").await.unwrap();
+    set_depth(c, "30").await;
     until(
         c,
         "return document.getElementById('status').textContent.includes('931322574615478515625 stems')",
         "the exact count is shown",
     )
     .await;
+}
+
+/// Problem 5: abop-1.27 at depth 16 takes about 30 s; the busy indicator
+/// shows with Cancel, and an edit back to depth 5 cancels the long work
+/// (the server stops it) and shows its picture within a second or two.
+async fn long_work_is_cancelled(c: &Client, server: &Server) {
+    open(c, &manifest_path("examples/abop-1.27.lsys")).await;
+    settled(c).await;
+    set_depth(c, "16").await;
+    until(
+        c,
+        "return !document.getElementById('busy').hidden",
+        "the busy indicator shows",
+    )
+    .await;
+    shot(c, "33-busy").await;
+    let t0 = std::time::Instant::now();
+    set_depth(c, "5").await;
+    until(
+        c,
+        "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok && s.answer.stems === '491'",
+        "the depth-5 picture",
+    )
+    .await;
+    let took = t0.elapsed();
+    assert!(
+        took < Duration::from_secs(3),
+        "the new picture took {took:?}"
+    );
+    // The depth-16 work stopped on the server: its CPU time no longer rises.
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let t1 = server.cpu_ticks();
+    tokio::time::sleep(Duration::from_millis(1000)).await;
+    let t2 = server.cpu_ticks();
+    assert!(
+        t2 - t1 <= 10,
+        "the cancelled work went on: {t1} -> {t2} ticks"
+    );
+    // Cancel: the work stops and the last picture stays.
+    set_depth(c, "16").await;
+    until(
+        c,
+        "return !document.getElementById('busy').hidden",
+        "busy again",
+    )
+    .await;
+    click(c, "[data-testid=cancel]").await;
+    until(
+        c,
+        "return document.getElementById('busy').hidden && document.getElementById('status').textContent.startsWith('Cancelled')",
+        "cancelled",
+    )
+    .await;
+}
+
+/// Types `value` into the emptied depth field.
+async fn set_depth(c: &Client, value: &str) {
+    let depth = c.find(fantoccini::Locator::Id("depth")).await.unwrap();
+    depth.click().await.unwrap();
+    js(
+        c,
+        "document.getElementById('depth').value = ''; return true",
+    )
+    .await;
+    depth.send_keys(value).await.unwrap();
 }

@@ -38,7 +38,6 @@ const app = {
     view: null, // [minx, miny, maxx, maxy] shown
     fitView: null,
     inFlight: false,
-    again: false,
     editedAt: 0,
     timings: [],
     replayTimer: null,

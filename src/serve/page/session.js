@@ -26,14 +26,37 @@ export function createSession(app) {
     return r;
   }
 
-  // One request at a time; edits made meanwhile are sent when it returns.
+  // The request in flight, if any. A newer edit ends it: its fetch is
+  // aborted, which closes its connection, and the server stops its work
+  // (docs/serve.md); the newer request goes at once.
+  let current = null;
+  let busyTimer = null;
+
+  // Long work shows itself after 300 ms, with a way out.
+  function busy(on) {
+    clearTimeout(busyTimer);
+    if (on) busyTimer = setTimeout(() => { byId('busy').hidden = false; }, 300);
+    else byId('busy').hidden = true;
+  }
+
+  function settle(mine) {
+    if (current !== mine) return;
+    current = null;
+    state.inFlight = false;
+    busy(false);
+  }
+
   async function refresh() {
-    if (state.inFlight) { state.again = true; return; }
+    if (current) current.abort();
+    const mine = new AbortController();
+    current = mine;
     state.inFlight = true;
+    busy(true);
     const req = request();
     const started = state.editedAt || performance.now();
     try {
-      const answer = await app.engine.render(req);
+      const answer = await app.engine.render(req, { signal: mine.signal });
+      if (current !== mine) return;
       if (answer.error !== undefined) {
         // Refused: no answer to this text, the last one stays.
         app.diagnostics.showError(answer.error);
@@ -44,12 +67,22 @@ export function createSession(app) {
         status(answer, ms);
       }
     } catch (e) {
+      if (e.name === 'AbortError') return;
       byId('status').textContent = 'The server does not answer: is stlc serve still running? (' + e + ')';
     } finally {
-      state.inFlight = false;
-      if (state.again) { state.again = false; refresh(); }
+      settle(mine);
     }
   }
+
+  // The busy indicator's Cancel: the work stops; the last picture stays.
+  function cancel() {
+    if (!current) return;
+    const mine = current;
+    mine.abort();
+    settle(mine);
+    byId('status').textContent = 'Cancelled: the picture shown is of an earlier text (edit to try again)';
+  }
+  byId('cancel').addEventListener('click', cancel);
 
   function status(answer, ms) {
     const parts = [];
@@ -114,5 +147,5 @@ export function createSession(app) {
   ['strategy', 'clearance', 'max-stems', 'depth', 'seed'].forEach((id) => byId(id).addEventListener('input', edited));
   byId('strategy').addEventListener('change', edited);
 
-  return { request, refresh, setKind, inSync };
+  return { request, refresh, cancel, setKind, inSync };
 }

@@ -6,11 +6,12 @@
  * @returns {import('./index.js').Engine}
  */
 export function createHttpEngine({ token }) {
-  function post(path, body) {
+  function post(path, body, signal) {
     return fetch(path, {
       method: 'POST',
       headers: { 'Content-Type': 'application/json', 'X-Stlc-Token': token },
       body: JSON.stringify(body),
+      signal,
     });
   }
 
@@ -21,8 +22,8 @@ export function createHttpEngine({ token }) {
   }
 
   return {
-    async render(request) {
-      const res = await post('/api/render', request);
+    async render(request, { signal } = {}) {
+      const res = await post('/api/render', request, signal);
       if (!res.ok) return refused(res);
       return res.json();
     },

@@ -62,8 +62,10 @@
  * only when the engine cannot answer at all (the server is gone).
  *
  * @typedef {object} Engine
- * @property {(request: RenderRequest) => Promise<RenderAnswer>} render
- *   the picture, growth order, root and layout of `request.source`
+ * @property {(request: RenderRequest, options?: {signal?: AbortSignal}) => Promise<RenderAnswer>} render
+ *   the picture, growth order, root and layout of `request.source`; an
+ *   aborted `signal` ends the work (the promise rejects with an
+ *   `AbortError`), as a newer edit or the busy indicator's Cancel does
  * @property {(request: RenderRequest, format: 'png'|'svg'|'bed') => Promise<ExportAnswer>} export
  *   the bytes `stlc render -f png|svg --show-layout` or `stlc compile`
  *   would write
