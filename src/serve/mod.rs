@@ -73,7 +73,7 @@ const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
 /// Stack of the pipeline threads (as the CLI's worker: a second line of
 /// defence; no pass recurses on input depth). Pages are committed only
 /// when touched.
-const WORKER_STACK: usize = 256 << 20;
+const WORKER_STACK: usize = 64 << 20;
 
 /// What every request sees.
 struct State {

@@ -1138,3 +1138,29 @@ fn strategy_means_one_thing_and_says_so() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("its name is --growth"), "{err}");
 }
+
+/// stlc runs under a 1 GB address-space limit (an address-space limit
+/// counts the worker's stack reservation): `check` and `render` succeed.
+#[test]
+fn it_runs_under_a_one_gigabyte_address_space_limit() {
+    let bin = assert_cmd::cargo::cargo_bin("stlc");
+    let od = format!("{}/examples/2dtree.od", env!("CARGO_MANIFEST_DIR"));
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("t.png");
+    let script = format!(
+        "ulimit -v 1000000 && '{}' check '{od}' >/dev/null && '{}' render '{od}' -o '{}'",
+        bin.display(),
+        bin.display(),
+        png.display()
+    );
+    let out = std::process::Command::new("sh")
+        .args(["-c", &script])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+}
