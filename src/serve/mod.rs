@@ -2,7 +2,11 @@
 //! (binary only). An HTTP server on 127.0.0.1 serves one embedded page
 //! and a small JSON API ([`api`]) that calls the library's pipeline.
 //!
-//! Security model (docs/serve.md): the server listens on the loopback
+//! Security model (docs/serve.md): only its owner can reach it: the link
+//! it prints carries a per-run secret, which the first visit trades for an
+//! HttpOnly, SameSite=Strict cookie, and every request needs that cookie
+//! or the secret in a header (another local account that can connect to
+//! the port learns nothing and changes nothing). It listens on the loopback
 //! interface only; a request whose `Host` is not `127.0.0.1:PORT` or
 //! `localhost:PORT` is refused (DNS rebinding), as is a POST whose `Origin`
 //! is another site's; no path or file name ever comes from a request (Save
@@ -80,8 +84,8 @@ struct State {
     settings: api::Settings,
     /// The file being edited (or the example).
     doc: document::Document,
-    /// The per-run secret Save requires.
-    token: String,
+    /// The per-run secret every request needs (docs/serve.md).
+    key: http::Key,
     /// Who may ask.
     guard: http::Guard,
 }
@@ -123,12 +127,15 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             time_budget: a.time_budget,
         },
         doc,
-        token: http::random_token().map_err(|e| {
-            io_error(
-                &std::io::Error::other(e),
-                "cannot read the system's random source",
-            )
-        })?,
+        key: http::Key::new(
+            http::random_token().map_err(|e| {
+                io_error(
+                    &std::io::Error::other(e),
+                    "cannot read the system's random source",
+                )
+            })?,
+            port,
+        ),
         guard: http::Guard::new(port),
     });
     let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -140,7 +147,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
         .map_err(|e| io_error(&e, "cannot start the server's threads"))?;
     {
         let mut out = std::io::stdout().lock();
-        writeln!(out, "http://127.0.0.1:{port}/")
+        writeln!(out, "http://127.0.0.1:{port}/?token={}", state.key.token())
             .and_then(|()| out.flush())
             .map_err(|e| io_error(&e, "cannot write to standard output"))?;
     }

@@ -29,6 +29,14 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
     if let Err(refused) = state.guard.check(&req) {
         return refused.answer();
     }
+    // Only the owner: the printed link's token, traded for a cookie; every
+    // other request must carry the cookie or the token in a header.
+    if req.method() == Method::GET && req.uri().path() == "/" && state.key.in_query(&req) {
+        return state.key.welcome();
+    }
+    if !state.key.admits(&req) {
+        return http::locked(req.uri().path().starts_with("/api/"));
+    }
     let method = req.method().clone();
     let path = req.uri().path().to_string();
     let expected = match path.as_str() {
@@ -55,7 +63,7 @@ fn page(state: &State) -> Answer {
     http::answer(
         StatusCode::OK,
         "text/html; charset=utf-8",
-        assets::PAGE.replace("{{TOKEN}}", &state.token),
+        assets::PAGE.replace("{{TOKEN}}", state.key.token()),
     )
 }
 
@@ -171,11 +179,9 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
 /// line, atomically, only with this run's token, and only over the version
 /// the edit is based on: otherwise 412 with the version there now.
 async fn save(state: Arc<State>, req: Request<Incoming>) -> Answer {
-    let token_ok = req
-        .headers()
-        .get("x-stlc-token")
-        .and_then(|t| t.to_str().ok())
-        .is_some_and(|t| http::same_secret(t, &state.token));
+    // A write needs the token in a header too: the cookie alone would let
+    // a page that tricks the browser into a request write.
+    let token_ok = state.key.in_header(&req);
     let bytes = match http::read_body(req, state.settings.limits.max_input_bytes).await {
         Ok(b) => b,
         Err(a) => return a,

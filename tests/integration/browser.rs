@@ -218,7 +218,7 @@ async fn acceptance(c: &Client) {
     let file = tmp.path().join("2dtree.od");
     std::fs::copy(manifest_path("examples/2dtree.od"), &file).unwrap();
     let server = Server::start(&[file.to_str().unwrap()]);
-    c.goto(&format!("http://{}/", server.addr)).await.unwrap();
+    c.goto(&server.url).await.unwrap();
     let opened = settled(c).await;
     assert_eq!(opened["ok"], true, "{opened}");
     let before = opened["stems"].as_u64().unwrap();
@@ -328,7 +328,7 @@ async fn acceptance(c: &Client) {
 }
 
 async fn steps(c: &Client, server: &Server, file: &Path) {
-    c.goto(&format!("http://{}/", server.addr)).await.unwrap();
+    c.goto(&server.url).await.unwrap();
     let first = settled(c).await;
     assert_eq!(first["ok"], true, "{first}");
     assert!(first["text"].as_str().unwrap().contains("Fig9"));
@@ -900,7 +900,7 @@ fn the_page_opens_exports_zooms_edits_and_undoes_in_chromium() {
 /// bytes), a broken BED's diagnostic, an L-system at a depth; each new
 /// file is shown whole.
 async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
-    c.goto(&format!("http://{}/", server.addr)).await.unwrap();
+    c.goto(&server.url).await.unwrap();
     let first = settled(c).await;
     assert_eq!(first["ok"], true, "{first}");
     let typed_view = view_box(c).await;

@@ -31,7 +31,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         .unwrap();
     rt.block_on(async {
         let c = connect(&driver, &chromium, &chrome_tmp).await;
-        let url = format!("http://{}/", server.addr);
+        let url = server.url.clone();
         c.goto(&url).await.unwrap();
         settled(&c).await;
         reload_keeps_saves_and_drafts(&c, &file).await;

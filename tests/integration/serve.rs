@@ -17,6 +17,27 @@ pub struct Server {
     child: Child,
     /// `127.0.0.1:PORT`.
     pub addr: String,
+    /// The link it printed: `http://127.0.0.1:PORT/?token=T`.
+    pub url: String,
+    /// Its per-run token.
+    pub token: String,
+}
+
+/// The token of each server started, by address: [`request`] sends it as
+/// the cookie the printed link gives a browser.
+static TOKENS: std::sync::Mutex<std::collections::BTreeMap<String, String>> =
+    std::sync::Mutex::new(std::collections::BTreeMap::new());
+
+/// The `Cookie` header line of the server at `addr` (empty if unknown).
+pub fn cookie(addr: &str) -> String {
+    let tokens = TOKENS.lock().unwrap();
+    match tokens.get(addr) {
+        Some(t) => {
+            let port = addr.rsplit(':').next().unwrap();
+            format!("Cookie: stlc-{port}={t}\r\n")
+        }
+        None => String::new(),
+    }
 }
 
 impl Server {
@@ -33,16 +54,23 @@ impl Server {
         let mut out = BufReader::new(child.stdout.take().unwrap());
         let mut line = String::new();
         out.read_line(&mut line).unwrap();
-        let addr = line
-            .trim()
+        let url = line.trim().to_string();
+        let (addr, token) = url
             .strip_prefix("http://")
-            .and_then(|r| r.strip_suffix('/'))
-            .unwrap_or_else(|| panic!("first line is not the URL: {line:?}"))
-            .to_string();
+            .and_then(|r| r.split_once("/?token="))
+            .unwrap_or_else(|| panic!("first line is not the URL: {line:?}"));
+        let (addr, token) = (addr.to_string(), token.to_string());
         assert!(addr.starts_with("127.0.0.1:"), "{addr}");
+        assert_eq!(token.len(), 32, "{token}");
+        TOKENS.lock().unwrap().insert(addr.clone(), token.clone());
         // Keep reading, so the server never writes into a closed pipe.
         std::thread::spawn(move || std::io::copy(&mut out, &mut std::io::sink()));
-        Server { child, addr }
+        Server {
+            child,
+            addr,
+            url,
+            token,
+        }
     }
 
     /// The port.
@@ -144,8 +172,9 @@ pub fn request(
     body: &[u8],
 ) -> Answer {
     let mut head = format!(
-        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n",
-        body.len()
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n{}",
+        body.len(),
+        cookie(addr)
     );
     for (k, v) in extra {
         head.push_str(&format!("{k}: {v}\r\n"));
@@ -410,7 +439,11 @@ fn foreign_hosts_and_origins_are_refused() {
     let get = |host: &str| {
         raw(
             addr,
-            format!("GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n").as_bytes(),
+            format!(
+                "GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n{}\r\n",
+                cookie(addr)
+            )
+            .as_bytes(),
         )
     };
     assert_eq!(get(addr).status, 200);
@@ -473,7 +506,8 @@ fn oversize_malformed_and_idle_requests_never_stop_the_server() {
     );
     // Chunked, with no length declared.
     let mut chunked = format!(
-        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nTransfer-Encoding: chunked\r\n\r\n"
+        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nTransfer-Encoding: chunked\r\n{}\r\n",
+        cookie(addr)
     )
     .into_bytes();
     for _ in 0..3 {
@@ -802,7 +836,10 @@ fn the_edge_parses_queries_refuses_unknown_fields_and_doubled_headers() {
     let absolute =
         format!("GET http://evil.example/ HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n");
     assert_eq!(raw(addr, absolute.as_bytes()).status, 403);
-    let ours = format!("GET http://{addr}/ HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n");
+    let ours = format!(
+        "GET http://{addr}/ HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n{}\r\n",
+        cookie(addr)
+    );
     assert_eq!(raw(addr, ours.as_bytes()).status, 200);
 }
 
@@ -898,8 +935,9 @@ fn abandoned_and_overlong_work_stops() {
 
     let body = heavy.to_string();
     let head = format!(
-        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n\r\n",
-        body.len()
+        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
+        body.len(),
+        cookie(addr)
     );
     let mut s = TcpStream::connect(addr).unwrap();
     s.write_all(head.as_bytes()).unwrap();
@@ -920,4 +958,89 @@ fn abandoned_and_overlong_work_stops() {
     // And the server still answers.
     let light = render(addr, &json!({"source": example("fig9.od")}));
     assert_eq!(light["ok"], true);
+}
+
+/// Only the owner (issue 23, problem 1): a client without the printed
+/// link's token gets the bare "open the link" page and nothing else (no
+/// page, no token, no file, no script, no save); the link sets an
+/// HttpOnly, SameSite=Strict cookie named with the port and sends the
+/// browser to `/`; a script with the token in a header is let in, and a
+/// save still needs it in a header, not only the cookie.
+#[test]
+fn only_the_owner_reaches_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("mine.od");
+    std::fs::write(&file, example("fig9.od")).unwrap();
+    let server = Server::start(&[file.to_str().unwrap()]);
+    let addr = &server.addr;
+    let port = server.port().to_string();
+    let stranger = |method: &str, path: &str, extra: &str, body: &str| {
+        raw(
+            addr,
+            format!(
+                "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n{extra}\r\n{body}",
+                body.len()
+            )
+            .as_bytes(),
+        )
+    };
+    let page = stranger("GET", "/", "", "");
+    assert_eq!(page.status, 401);
+    let text = String::from_utf8_lossy(&page.body);
+    assert!(
+        text.contains("Open the link") && !text.contains(&server.token),
+        "{text}"
+    );
+    for path in ["/api/file", "/app.js", "/style.css"] {
+        let a = stranger("GET", path, "", "");
+        assert_eq!(a.status, 401, "{path}");
+        assert!(!String::from_utf8_lossy(&a.body).contains("Fig9"), "{path}");
+    }
+    let save = json!({"source": "x"}).to_string();
+    for extra in [
+        "",
+        "Cookie: stlc-1=wrong\r\n",
+        "Authorization: Bearer 00000000000000000000000000000000\r\n",
+    ] {
+        assert_eq!(
+            stranger("POST", "/api/save", extra, &save).status,
+            401,
+            "{extra}"
+        );
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), example("fig9.od"));
+    // A wrong token in the link is no key either.
+    assert_eq!(stranger("GET", "/?token=0123", "", "").status, 401);
+
+    // The printed link: a cookie for this port, and a redirect to `/`.
+    let link = stranger("GET", &format!("/?token={}", server.token), "", "");
+    assert_eq!(link.status, 303);
+    let set = link
+        .head
+        .lines()
+        .find(|l| l.starts_with("set-cookie:"))
+        .unwrap_or_else(|| panic!("{}", link.head));
+    assert!(
+        set.contains(&format!("stlc-{port}={}", server.token)),
+        "{set}"
+    );
+    assert!(
+        set.contains("httponly") && set.contains("samesite=strict"),
+        "{set}"
+    );
+    assert!(link.head.contains("location: /"), "{}", link.head);
+    let with_cookie = format!("Cookie: stlc-{port}={}\r\n", server.token);
+    assert_eq!(stranger("GET", "/", &with_cookie, "").status, 200);
+    // The cookie alone does not save: a write needs the token in a header.
+    assert_eq!(
+        stranger("POST", "/api/save", &with_cookie, &save).status,
+        403
+    );
+    // A script with the printed token.
+    let bearer = format!("Authorization: Bearer {}\r\n", server.token);
+    let opened = stranger("GET", "/api/file", &bearer, "");
+    assert_eq!(opened.status, 200);
+    assert_eq!(opened.json()["text"], example("fig9.od"));
+    assert_eq!(stranger("POST", "/api/save", &bearer, &save).status, 200);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "x");
 }
