@@ -68,8 +68,13 @@ const MAX_HEAD: usize = 16 * 1024;
 /// Connections served at once; more wait to be accepted.
 const MAX_CONNECTIONS: usize = 64;
 
-/// Threads that run the pipeline; more requests wait for one.
-const WORKERS: usize = 4;
+/// Threads that run the pipeline; more requests wait for one. Light work
+/// runs at once on its own thread; of these, [`HEAVY`] may run heavy work
+/// (past `work::LIGHT`) at a time, so the rest stay free for light work.
+const WORKERS: usize = 16;
+
+/// Heavy works that run at once (the machine's two cores' worth).
+const HEAVY: usize = 2;
 
 /// Time a client has to send a request head.
 const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
@@ -88,6 +93,8 @@ struct State {
     key: http::Key,
     /// Who may ask.
     guard: http::Guard,
+    /// The heavy slots: work running past `work::LIGHT` takes turns.
+    heavy: Arc<work::Slots>,
 }
 
 /// Runs `stlc serve` until Ctrl-C; returns the exit code.
@@ -137,6 +144,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             port,
         ),
         guard: http::Guard::new(port),
+        heavy: Arc::new(work::Slots::new(HEAVY)),
     });
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)

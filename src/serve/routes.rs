@@ -126,7 +126,8 @@ async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
         Err(a) => return a,
     };
     let budget = state.settings.time_budget;
-    let done = work::run(budget, move |w| {
+    let slots = state.heavy.clone();
+    let done = work::run(budget, slots, move |w| {
         api::run(&body, &state.settings, ImageFormat::Svg, w)
     })
     .await;
@@ -159,7 +160,11 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
         Err(a) => return a,
     };
     let budget = state.settings.time_budget;
-    let done = work::run(budget, move |w| api::run(&body, &state.settings, image, w)).await;
+    let slots = state.heavy.clone();
+    let done = work::run(budget, slots, move |w| {
+        api::run(&body, &state.settings, image, w)
+    })
+    .await;
     match done {
         Ended::Done(Ok((answer, _))) if want_bed => match answer.bed {
             Some(bed) => http::answer(StatusCode::OK, media, bed),

@@ -10,9 +10,15 @@
 //! the work's memory and nothing else; the pool thread is reused. The
 //! unwinding is caught where the work was started ([`run`]), and the
 //! panic hook keeps quiet about it (it is no crash).
+//!
+//! Light work never waits behind heavy work: every request starts at once
+//! on its own thread, and work still running after [`LIGHT`] counts as
+//! heavy and must hold one of a few heavy slots ([`Slots`]) to go on, so
+//! heavy work takes turns while a light render, which is done before it
+//! would need a slot, is answered meanwhile.
 
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 use stlc::pipeline::Progress;
@@ -34,6 +40,54 @@ pub enum Ended<T> {
     Stopped(Stopped),
     /// It panicked: a bug (the server goes on).
     Crashed,
+}
+
+/// How long work runs before it counts as heavy.
+pub const LIGHT: Duration = Duration::from_millis(300);
+
+/// The heavy slots: how many heavy works may run at once (a counting
+/// semaphore for the pool's threads, which block).
+pub struct Slots {
+    free: Mutex<usize>,
+    freed: Condvar,
+}
+
+impl Slots {
+    /// `n` slots.
+    pub fn new(n: usize) -> Self {
+        Slots {
+            free: Mutex::new(n),
+            freed: Condvar::new(),
+        }
+    }
+
+    fn free(&self) -> std::sync::MutexGuard<'_, usize> {
+        self.free.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// Takes a slot, waiting for one; `stop` is asked every 100 ms while
+    /// waiting (abandoned work stops waiting too).
+    fn take(&self, stop: impl Fn()) {
+        let mut free = self.free();
+        while *free == 0 {
+            let (f, _) = self
+                .freed
+                .wait_timeout(free, Duration::from_millis(100))
+                .unwrap_or_else(|p| p.into_inner());
+            free = f;
+            if *free == 0 {
+                drop(free);
+                stop();
+                free = self.free();
+            }
+        }
+        *free -= 1;
+    }
+
+    fn give(&self) {
+        *self.free() += 1;
+        self.freed.notify_one();
+    }
 }
 
 /// Set when the request's handler is dropped: its connection closed.
@@ -70,26 +124,53 @@ impl Drop for AbandonOnDrop {
 /// past its deadline.
 pub struct Watch {
     abandon: Abandon,
+    started: Instant,
     deadline: Instant,
     budget: Duration,
+    slots: Arc<Slots>,
+    /// Whether this work holds a heavy slot.
+    heavy: bool,
 }
 
 impl Watch {
-    /// Work that may run for `budget` from now.
-    pub fn new(abandon: Abandon, budget: Duration) -> Self {
+    /// Work that may run for `budget` from now, taking one of `slots`
+    /// once it runs past [`LIGHT`].
+    pub fn new(abandon: Abandon, budget: Duration, slots: Arc<Slots>) -> Self {
+        let started = Instant::now();
         Watch {
             abandon,
-            deadline: Instant::now() + budget,
+            started,
+            deadline: started + budget,
             budget,
+            slots,
+            heavy: false,
         }
     }
 
-    fn check(&self) {
-        if self.abandon.0.load(Ordering::Relaxed) {
+    fn stop_if_due(abandon: &Abandon, deadline: Instant, budget: Duration) {
+        if abandon.0.load(Ordering::Relaxed) {
             std::panic::panic_any(Stopped::Abandoned);
         }
-        if Instant::now() > self.deadline {
-            std::panic::panic_any(Stopped::OverBudget(self.budget));
+        if Instant::now() > deadline {
+            std::panic::panic_any(Stopped::OverBudget(budget));
+        }
+    }
+
+    fn check(&mut self) {
+        Self::stop_if_due(&self.abandon, self.deadline, self.budget);
+        if !self.heavy && self.started.elapsed() > LIGHT {
+            let (abandon, deadline, budget) = (self.abandon.clone(), self.deadline, self.budget);
+            self.slots
+                .take(|| Self::stop_if_due(&abandon, deadline, budget));
+            self.heavy = true;
+        }
+    }
+}
+
+impl Drop for Watch {
+    fn drop(&mut self) {
+        if self.heavy {
+            self.slots.give();
         }
     }
 }
@@ -119,12 +200,16 @@ pub fn quiet_stops() {
 /// the returned future is dropped (the client left) or after `budget`.
 pub async fn run<T: Send + 'static>(
     budget: Duration,
+    slots: Arc<Slots>,
     work: impl FnOnce(&mut Watch) -> T + Send + 'static,
 ) -> Ended<T> {
     let abandon = Abandon::default();
     let guard = abandon.guard();
-    let mut watch = Watch::new(abandon, budget);
-    let joined = tokio::task::spawn_blocking(move || work(&mut watch)).await;
+    let joined = tokio::task::spawn_blocking(move || {
+        let mut watch = Watch::new(abandon, budget, slots);
+        work(&mut watch)
+    })
+    .await;
     guard.disarm();
     match joined {
         Ok(t) => Ended::Done(t),
@@ -139,6 +224,47 @@ pub async fn run<T: Send + 'static>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// With one heavy slot, a second long work waits for the first (it
+    /// reports no progress past the light time until the slot is free),
+    /// and a light work is done meanwhile.
+    #[test]
+    fn heavy_work_takes_turns_and_light_work_does_not_wait() {
+        quiet_stops();
+        let slots = Arc::new(Slots::new(1));
+        let long = |slots: Arc<Slots>| {
+            std::thread::spawn(move || {
+                let mut w = Watch::new(Abandon::default(), Duration::from_secs(60), slots);
+                let t0 = Instant::now();
+                let mut past_light = None;
+                while t0.elapsed() < Duration::from_millis(900) {
+                    w.update(1);
+                    if past_light.is_none() && w.heavy {
+                        past_light = Some(t0.elapsed());
+                    }
+                    std::thread::sleep(Duration::from_millis(5));
+                }
+                (past_light.unwrap(), t0.elapsed())
+            })
+        };
+        let a = long(slots.clone());
+        std::thread::sleep(Duration::from_millis(50));
+        let b = long(slots.clone());
+        std::thread::sleep(Duration::from_millis(100));
+        let t0 = Instant::now();
+        let mut light = Watch::new(Abandon::default(), Duration::from_secs(60), slots.clone());
+        for _ in 0..10 {
+            light.update(1);
+        }
+        assert!(!light.heavy);
+        assert!(t0.elapsed() < Duration::from_millis(100));
+        let (a_slot, _) = a.join().unwrap();
+        let (b_slot, _) = b.join().unwrap();
+        assert!(a_slot < Duration::from_millis(400), "{a_slot:?}");
+        // b became heavy only once a was done (about 0.85 s after b began).
+        assert!(b_slot > Duration::from_millis(700), "{b_slot:?}");
+        assert_eq!(*slots.free(), 1, "every slot is given back");
+    }
 
     fn spin(w: &mut Watch) -> u64 {
         let mut n = 0u64;
@@ -157,13 +283,14 @@ mod tests {
             .build()
             .unwrap();
         let t0 = Instant::now();
-        let ended = rt.block_on(run(Duration::from_millis(50), spin));
+        let slots = Arc::new(Slots::new(1));
+        let ended = rt.block_on(run(Duration::from_millis(50), slots.clone(), spin));
         assert!(matches!(
             ended,
             Ended::Stopped(Stopped::OverBudget(d)) if d == Duration::from_millis(50)
         ));
         assert!(t0.elapsed() < Duration::from_secs(5));
-        let done = rt.block_on(run(Duration::from_secs(5), |w| {
+        let done = rt.block_on(run(Duration::from_secs(5), slots, |w| {
             w.update(1);
             7
         }));
@@ -174,7 +301,11 @@ mod tests {
     fn abandoned_work_stops() {
         quiet_stops();
         let abandon = Abandon::default();
-        let mut w = Watch::new(abandon.clone(), Duration::from_secs(60));
+        let mut w = Watch::new(
+            abandon.clone(),
+            Duration::from_secs(60),
+            Arc::new(Slots::new(1)),
+        );
         drop(abandon.guard());
         let stopped = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| spin(&mut w)));
         let payload = stopped.unwrap_err();

@@ -1044,3 +1044,41 @@ fn only_the_owner_reaches_the_file() {
     assert_eq!(stranger("POST", "/api/save", &bearer, &save).status, 200);
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "x");
 }
+
+/// Light work never waits behind heavy work (issue 23, problem 8): with
+/// eight heavy renders in flight (abop-1.27 at depth 16, about 30 s each),
+/// a light render of fig9 is answered within a second.
+#[test]
+fn a_light_render_is_answered_while_heavy_ones_run() {
+    let server = Server::start(&["--time-budget", "20"]);
+    let addr = server.addr.clone();
+    let heavy =
+        json!({"source": example("abop-1.27.lsys"), "kind": "lsys", "depth": 16}).to_string();
+    let mut streams = Vec::new();
+    for _ in 0..8 {
+        let head = format!(
+            "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
+            heavy.len(),
+            cookie(&addr)
+        );
+        let mut s = TcpStream::connect(&addr).unwrap();
+        s.write_all(head.as_bytes()).unwrap();
+        s.write_all(heavy.as_bytes()).unwrap();
+        streams.push(s);
+    }
+    // Let them start and pass the light time.
+    std::thread::sleep(Duration::from_millis(800));
+    let mut times = Vec::new();
+    for _ in 0..3 {
+        let t0 = std::time::Instant::now();
+        let a = render(&addr, &json!({"source": example("fig9.od")}));
+        times.push(t0.elapsed());
+        assert_eq!(a["ok"], true);
+    }
+    times.sort();
+    assert!(
+        times[1] < Duration::from_secs(1),
+        "a light render waited {times:?}"
+    );
+    drop(streams);
+}
