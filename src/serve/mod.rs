@@ -21,6 +21,7 @@ mod assets;
 mod document;
 mod http;
 mod routes;
+mod stall;
 mod work;
 
 use std::convert::Infallible;
@@ -238,7 +239,10 @@ async fn accept_loop(
                 .timer(TokioTimer::new())
                 .header_read_timeout(HEAD_TIMEOUT)
                 .max_buf_size(MAX_HEAD)
-                .serve_connection(TokioIo::new(stream), service)
+                .serve_connection(
+                    TokioIo::new(stall::Stall::new(stream, stall::WRITE_STALL)),
+                    service,
+                )
                 .await;
         });
     }

@@ -1082,3 +1082,42 @@ fn a_light_render_is_answered_while_heavy_ones_run() {
     );
     drop(streams);
 }
+
+/// A client that pipelines requests and never reads its answers is dropped
+/// once a write makes no progress for 10 s (issue 23, problem 2): reading
+/// afterwards gets far fewer than all the answers, then the end.
+#[test]
+fn a_client_that_never_reads_is_dropped() {
+    let server = Server::start(&[]);
+    let addr = &server.addr;
+    let body =
+        json!({"source": example("abop-1.24a.lsys"), "kind": "lsys", "depth": 7}).to_string();
+    let one = request(addr, "POST", "/api/render", &[], body.as_bytes());
+    assert_eq!(one.status, 200);
+    let size = one.body.len();
+    assert!(size > 1_000_000, "{size}");
+    let n = 40;
+    let mut s = TcpStream::connect(addr).unwrap();
+    let head = format!(
+        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
+        body.len(),
+        cookie(addr)
+    );
+    for _ in 0..n {
+        s.write_all(head.as_bytes()).unwrap();
+        s.write_all(body.as_bytes()).unwrap();
+    }
+    std::thread::sleep(Duration::from_secs(14));
+    s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    let mut got = Vec::new();
+    let _ = s.read_to_end(&mut got);
+    assert!(
+        got.len() < n * size / 2,
+        "{} of {} bytes came: the connection was kept",
+        got.len(),
+        n * size
+    );
+    // The server still answers others.
+    let light = render(addr, &json!({"source": example("fig9.od")}));
+    assert_eq!(light["ok"], true);
+}
