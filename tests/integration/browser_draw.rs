@@ -165,8 +165,8 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     let at = |k: f64, radius: f64, cy: f64| {
         let a = (k * 72.0 - 90.0).to_radians();
         (
-            (rx + radius * a.cos()).round(),
-            (cy + radius * a.sin()).round(),
+            (rx + radius * libm::cos(a)).round(),
+            (cy + radius * libm::sin(a)).round(),
         )
     };
     // A green pentagon around the root, by clicks, closed on its first point.
