@@ -4,13 +4,13 @@
 //! a grid; a click picks the smallest shape under the pointer; a drawing
 //! edit rewrites only its shape's text, keeping comments and the paper's
 //! one-line spelling byte for byte; arrows nudge by 1 (Shift: 10), Ctrl-D
-//! duplicates, Delete removes just that shape's text.
+//! duplicates, Delete removes just that shape's text, Shift draws a circle.
 
 use std::time::Duration;
 
 use fantoccini::Client;
 use fantoccini::actions::{
-    InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
+    Actions, InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
 };
 use serde_json::{Value, json};
 
@@ -330,4 +330,47 @@ async fn edits_keep_the_rest_of_the_text(c: &Client) {
     );
     assert_eq!(settled(c).await["ok"], true);
     shot(c, "draw-6-added-in-file-style").await;
+
+    // Shift held while dragging a box: a circle.
+    let a = screen_of(c, (140.0, 20.0)).await;
+    let b = screen_of(c, (170.0, 35.0)).await;
+    let keys = KeyActions::new("keyboard".into())
+        .then(KeyAction::Down { value: SHIFT })
+        .then(KeyAction::Pause {
+            duration: Duration::ZERO,
+        })
+        .then(KeyAction::Pause {
+            duration: Duration::ZERO,
+        })
+        .then(KeyAction::Pause {
+            duration: Duration::ZERO,
+        })
+        .then(KeyAction::Up { value: SHIFT });
+    let mouse = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x: a.0,
+            y: a.1,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::MoveTo {
+            duration: Some(Duration::from_millis(120)),
+            x: b.0,
+            y: b.1,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(Actions::from(keys).and(mouse))
+        .await
+        .unwrap();
+    assert_eq!(
+        text(c).await,
+        added.replace(
+            "\nENDLAYOUT",
+            "\n(clWhite) Ellipse (140, 20), 30, 30\nENDLAYOUT"
+        )
+    );
 }
