@@ -86,6 +86,7 @@ export function createTools(app) {
       return false;
     }
     const out = fn(d);
+    if (out.text === d.text) { view.drawOverlay(); return false; } // nothing changed: no undo step
     state.drawn = out;
     state.shapes = clone(out.shapes);
     state.layoutSpan = out.layout;
