@@ -23,7 +23,7 @@ const EMPTY: &str =
 
 /// The paper's one-line 2DTree, with comments inside LAYOUT and a shape in
 /// Table 1's spelling on its own line.
-const ONE_LINE: &str = "# the paper's 2DTree, as printed\n2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT (clGreen)< RoundRect (0,0,180,192,7,7)> (clWhite)< RoundRect (55,30,40,15,4,4)> (clWhite)< RoundRect (35,125,76,30,5,5)> # the paper's line\n# a comment inside LAYOUT\n(clGreen) Ellipse (120, 150), 30, 20  # a pond, Table 1's spelling\n\nENDLAYOUT\n";
+const ONE_LINE: &str = "# the paper's 2DTree, as printed\n2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT (clGreen)< RoundRect (0,0,180,192,7,7)> (clWhite)< RoundRect (55,30,40,15,4,4)> (clWhite)< RoundRect (35,125,76,30,5,5)> # the paper's line\n# a comment inside LAYOUT\n(clgreen) Ellipse (120, 150), 30, 20  # a pond, Table 1's spelling, its colour in lower case\n\nENDLAYOUT\n";
 
 #[test]
 fn drawing_edits_touch_only_their_shape_in_chromium() {
@@ -282,11 +282,11 @@ async fn edits_keep_the_rest_of_the_text(c: &Client) {
     let b = screen_of(c, (145.0, 165.0)).await;
     press(c, a, Some(b)).await;
     let moved = text(c).await;
-    let pond = "(clGreen) Ellipse (130, 155), 30, 20  # a pond, Table 1's spelling\n";
+    let pond = "(clgreen) Ellipse (130, 155), 30, 20  # a pond, Table 1's spelling, its colour in lower case\n";
     assert_eq!(
         moved,
         nudged.replace(
-            "(clGreen) Ellipse (120, 150), 30, 20  # a pond, Table 1's spelling\n",
+            "(clgreen) Ellipse (120, 150), 30, 20  # a pond, Table 1's spelling, its colour in lower case\n",
             pond
         )
     );
@@ -300,7 +300,7 @@ async fn edits_keep_the_rest_of_the_text(c: &Client) {
         duplicated,
         moved.replace(
             pond,
-            &format!("{pond}(clGreen) Ellipse (140, 165), 30, 20\n")
+            &format!("{pond}(clgreen) Ellipse (140, 165), 30, 20\n")
         )
     );
     assert_eq!(selected(c).await, 4);

@@ -109,10 +109,11 @@ function fresh(s, st) {
   return `(${s.name})${st.open}${s.type}${st.gap}${args}${st.close}`;
 }
 
-// The text `t` of a shape, rewritten for `s` (its new geometry and colour):
-// only the numbers that changed and the colour, if it changed, are written
-// anew; a spelling that cannot say `s` is written whole in `t`'s style.
-export function shapeText(t, s) {
+// The text `t` of shape `old`, rewritten for `s` (its new geometry and
+// colour): only the numbers that changed and the colour, if it changed, are
+// written anew (`#0f0` stays so when only moved); a spelling that cannot say
+// `s` is written whole in `t`'s style.
+export function shapeText(t, s, old) {
   const p = parts(t);
   const v = p && p.name === s.type ? values(s, s.type !== 'Polygon' && isCorners(p), p.nums.map((n) => n.v)) : null;
   if (!v || v.length !== p.nums.length) return fresh(s, styleOf(t));
@@ -122,7 +123,7 @@ export function shapeText(t, s) {
     if (Math.abs(v[k] - n.v) > 1e-9) out = out.slice(0, n.a) + num(v[k]) + out.slice(n.b);
   }
   const [a, b] = p.colour;
-  if (t.slice(a, b).toLowerCase() !== String(s.name).toLowerCase()) out = out.slice(0, a) + s.name + out.slice(b);
+  if (!old || old.name !== s.name) out = out.slice(0, a) + s.name + out.slice(b);
   return out;
 }
 
@@ -159,7 +160,7 @@ export function rebase(doc, text) {
 // Shape `i` is now `s` (moved, resized, recoloured).
 export function rewriteShape(doc, i, s) {
   const { start, end } = doc.shapes[i];
-  const t = shapeText(doc.text.slice(start, end), s);
+  const t = shapeText(doc.text.slice(start, end), s, doc.shapes[i]);
   const out = splice(doc, start, end, t);
   out.shapes[i] = Object.assign(clone(s), { start, end: start + t.length });
   return out;
@@ -218,7 +219,7 @@ export function insertShape(doc, s) {
 // when `i` ends its line, else beside it; written as `i` is.
 export function duplicateShape(doc, i, s) {
   const { start, end } = doc.shapes[i];
-  const t = shapeText(doc.text.slice(start, end), s);
+  const t = shapeText(doc.text.slice(start, end), s, doc.shapes[i]);
   const [, le] = lineOf(doc.text, end);
   const rest = doc.text.slice(end, le);
   const [lls] = lineOf(doc.text, start);
