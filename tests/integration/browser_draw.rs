@@ -4,7 +4,8 @@
 //! a grid; a click picks the smallest shape under the pointer; a drawing
 //! edit rewrites only its shape's text, keeping comments and the paper's
 //! one-line spelling byte for byte; arrows nudge by 1 (Shift: 10), Ctrl-D
-//! duplicates, Delete removes just that shape's text, Shift draws a circle.
+//! duplicates, Delete removes just that shape's text, Shift draws a circle
+//! and 45-degree polygon edges.
 
 use std::time::Duration;
 
@@ -230,10 +231,53 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     tokio::time::sleep(Duration::from_millis(200)).await;
     assert_eq!(text(c).await, both_text);
     click(c, "#recolour").await;
+    let red = text(c).await;
     assert_eq!(
-        text(c).await,
+        red,
         both_text.replace("(clWhite) Polygon", "(clRed) Polygon")
     );
+
+    // Shift while clicking a polygon's points: edges at 0 and 45 degrees.
+    click(c, "[data-tool=Polygon]").await;
+    click_at(c, (90.0, 145.0)).await;
+    shift_click(c, (105.0, 143.0)).await;
+    shift_click(c, (110.0, 152.0)).await;
+    click_at(c, (90.0, 145.0)).await;
+    assert_eq!(
+        text(c).await,
+        red.replace(
+            "\nENDLAYOUT",
+            "\n(clRed) Polygon (90, 145), (105, 145), (111, 151)\nENDLAYOUT"
+        )
+    );
+}
+
+/// Clicks at canvas point `p` with Shift held.
+async fn shift_click(c: &Client, p: (f64, f64)) {
+    let (x, y) = screen_of(c, p).await;
+    let pause = || KeyAction::Pause {
+        duration: Duration::ZERO,
+    };
+    let keys = KeyActions::new("keyboard".into())
+        .then(KeyAction::Down { value: SHIFT })
+        .then(pause())
+        .then(pause())
+        .then(KeyAction::Up { value: SHIFT });
+    let mouse = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x,
+            y,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(Actions::from(keys).and(mouse))
+        .await
+        .unwrap();
 }
 
 async fn edits_keep_the_rest_of_the_text(c: &Client) {
