@@ -312,11 +312,15 @@ pub struct LayoutJson {
     shapes: Vec<ShapeJson>,
 }
 
-/// A shape as the page draws it.
+/// A shape as the page draws it, and where it is written (UTF-16 offsets
+/// of its `(colour) ...` text, up to its `>` when angled), so the page can
+/// rewrite this one shape and leave the rest of the text as it is.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ShapeJson {
     #[serde(flatten)]
     geometry: Geometry,
+    start: usize,
+    end: usize,
     /// `#rrggbb`.
     color: String,
     /// The colour's Delphi name if it has one, else `#rrggbb`.
@@ -500,6 +504,8 @@ fn layout_json(text: &str, od: &Description) -> Option<LayoutJson> {
                     points: points.iter().map(|&(x, y)| [x, y]).collect(),
                 },
             },
+            start: utf16(text, s.loc.0.start),
+            end: utf16(text, s.loc.0.end),
             color: s.color.to_string(),
             name: s
                 .color
@@ -554,6 +560,37 @@ mod tests {
         );
         let BadRequest(m) = parse(br#"{"source": "x", "clearence": 2}"#).unwrap_err();
         assert!(m.contains("unknown field `clearence`"), "{m}");
+    }
+
+    #[test]
+    fn each_layout_shape_comes_with_its_own_text() {
+        // The paper's one-line spelling, after a comment with a character
+        // of two UTF-16 units: each span is the shape's text, `>` included.
+        let text = "# 𝄞\n2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT \
+                    (clGreen)< RoundRect (0,0,180,192,7,7)> # big\n\
+                    (clWhite) Rectangle (55,30), 40, 15 ENDLAYOUT";
+        let body = parse(format!(r#"{{"source": {text:?}}}"#).as_bytes()).unwrap();
+        let s = Settings {
+            limits: Limits::default(),
+            max_stems: None,
+            max_svg_segments: 1_000_000,
+        };
+        let (answer, _) = run(&body, &s, ImageFormat::Svg).unwrap();
+        let units: Vec<u16> = text.encode_utf16().collect();
+        let slice = |a: usize, b: usize| String::from_utf16(&units[a..b]).unwrap();
+        let layout = answer.layout.flatten().unwrap();
+        let spans: Vec<String> = layout
+            .shapes
+            .iter()
+            .map(|sh| slice(sh.start, sh.end))
+            .collect();
+        assert_eq!(
+            spans,
+            [
+                "(clGreen)< RoundRect (0,0,180,192,7,7)>",
+                "(clWhite) Rectangle (55,30), 40, 15"
+            ]
+        );
     }
 
     #[test]

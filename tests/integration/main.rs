@@ -2,6 +2,7 @@
 
 mod architecture;
 mod browser;
+mod browser_draw;
 mod browser_edits;
 mod cli;
 mod diagnostics;

@@ -1,10 +1,16 @@
-// Drawing with the mouse: the tool bar (Select, Rectangle, RoundRect,
-// Ellipse, Polygon, Root), the paint colour, moving and resizing shapes,
-// panning, Raise / Lower / Delete. Every edit is written into the text by
-// layout.js; the answer to the new text then redraws everything.
+// Drawing with the mouse, as in a painting program: the tool bar (Select,
+// Rectangle, RoundRect, Ellipse, Polygon, Root), the paint colour (for the
+// next shape only) and Recolour (the selection, on purpose), moving and
+// resizing shapes, panning, Raise / Lower / Delete, arrow keys to nudge,
+// Ctrl-D to duplicate, Shift to constrain. Every edit is written into the
+// text by layout.js, which rewrites only the shape (or root) it is about;
+// the answer to the new text then redraws everything.
 
 import { byId, el } from './dom.js';
-import { round, withLayout, withRoot } from './layout.js';
+import {
+  deleteShape, duplicateShape, insertShape, moveRoot as writeRoot, rebase, rewriteShape, round,
+  swapShapes,
+} from './layout.js';
 import { handlesOf, shapeElement } from './view.js';
 
 export const COLOURS = ['clGreen', 'clWhite', 'clLime', 'clOlive', 'clTeal', 'clNavy', 'clBlue',
@@ -19,7 +25,24 @@ function box(a, b) {
   return { x: Math.min(a[0], b[0]), y: Math.min(a[1], b[1]), w: Math.abs(a[0] - b[0]), h: Math.abs(a[1] - b[1]) };
 }
 
-function translate(s, dx, dy) {
+// Shift held: `b` moved so that a..b is a square's diagonal.
+function square(a, b) {
+  const d = Math.max(Math.abs(b[0] - a[0]), Math.abs(b[1] - a[1]));
+  return [a[0] + Math.sign(b[0] - a[0] || 1) * d, a[1] + Math.sign(b[1] - a[1] || 1) * d];
+}
+
+// Shift held: `b` moved so that a..b is horizontal, vertical or at 45 degrees.
+function angle45(a, b) {
+  const dx = b[0] - a[0];
+  const dy = b[1] - a[1];
+  const t = Math.tan(Math.PI * 3 / 8);
+  if (Math.abs(dx) > t * Math.abs(dy)) return [b[0], a[1]];
+  if (Math.abs(dy) > t * Math.abs(dx)) return [a[0], b[1]];
+  const d = (Math.abs(dx) + Math.abs(dy)) / 2;
+  return [a[0] + Math.sign(dx) * d, a[1] + Math.sign(dy) * d];
+}
+
+export function translate(s, dx, dy) {
   const t = clone(s);
   if (t.type === 'Polygon') t.points = t.points.map(([x, y]) => [x + dx, y + dy]);
   else { t.x += dx; t.y += dy; }
@@ -40,34 +63,54 @@ export function createTools(app) {
   const { state, view } = app;
   const preview = view.element;
   const colour = byId('colour');
+  const recolourButton = byId('recolour');
   let drag = null; // what the mouse is doing
   let poly = null; // the polygon being clicked
 
-  // Writes the shapes into the text's LAYOUT section.
-  function commitShapes() {
+  // The text now and where its shapes and root are (layout.js's doc): the
+  // last drawing edit's, or the last good answer's moved past typing that
+  // touched no shape; null until the answer to a typed shape comes.
+  function current() {
     const text = app.editor.text();
-    const span = app.session.inSync() ? state.layoutSpan : null;
-    // Spans of the new text are known only after the next answer; until
-    // then, edits locate the section by its keywords.
-    app.editor.rewrite(withLayout(text, state.shapes, span));
-    view.drawOverlay();
+    const d = state.drawn;
+    if (!d) return null;
+    return d.text === text ? d : rebase(d, text);
   }
 
-  function moveRoot(p) {
-    state.root = snap(p);
-    if (app.session.inSync() && state.rootSpan) {
-      app.editor.rewrite(withRoot(app.editor.text(), state.root, state.rootSpan));
+  // Applies a drawing edit `fn(doc)` to the text; `select` picks the
+  // selection after it (an index, or a function of the new doc).
+  function edit(fn, select) {
+    const d = current();
+    if (!d) {
+      byId('status').textContent = 'Waiting for the picture of the text as typed; draw again in a moment.';
+      return false;
     }
+    const out = fn(d);
+    if (out.text === d.text) { view.drawOverlay(); return false; } // nothing changed: no undo step
+    state.drawn = out;
+    state.shapes = clone(out.shapes);
+    state.layoutSpan = out.layout;
+    state.rootSpan = out.root;
+    state.root = out.rootAt;
+    if (select !== undefined) state.selected = typeof select === 'function' ? select(out) : select;
+    app.editor.rewrite(out.text);
     view.drawOverlay();
+    updateButtons();
+    return true;
   }
 
   function setTool(t) {
     state.tool = t;
     cancelPolygon();
-    // A new shape gets the paint colour; the selection keeps its own.
-    if (t !== 'select' && state.selected >= 0) { state.selected = -1; view.drawOverlay(); }
     document.querySelectorAll('.tool').forEach((b) => b.classList.toggle('active', b.dataset.tool === t));
     preview.classList.toggle('select', t === 'select');
+  }
+
+  // Recolour is for a selected shape whose colour is not the paint's.
+  function updateButtons() {
+    const s = state.shapes[state.selected];
+    recolourButton.disabled = !s || s.name === colour.value;
+    ['raise', 'lower', 'delete'].forEach((id) => { byId(id).disabled = !s; });
   }
 
   const ghostParent = () => view.overlay() || preview;
@@ -88,6 +131,13 @@ export function createTools(app) {
 
   function cancelPolygon() { poly = null; removeGhost(); }
 
+  // The polygon's next point for the pointer at `p`: on 45 degrees from
+  // the last point with Shift.
+  function polygonPoint(p, shift) {
+    const last = poly && poly.points[poly.points.length - 1];
+    return snap(last && shift ? angle45(last, p) : p);
+  }
+
   function finishPolygon() {
     const pts = poly.points;
     poly = null;
@@ -96,27 +146,42 @@ export function createTools(app) {
     addShape({ type: 'Polygon', points: pts, name: colour.value });
   }
 
+  // A new shape, painted last, selected (the paint colour stays the paint
+  // colour: choosing the next one never touches this shape).
   function addShape(s) {
-    state.shapes.push(s);
-    state.selected = state.shapes.length - 1;
-    commitShapes();
+    edit((d) => insertShape(d, s), (d) => d.shapes.length - 1);
   }
 
   function deleteSelected() {
-    if (state.selected < 0) return;
-    state.shapes.splice(state.selected, 1);
-    state.selected = -1;
-    commitShapes();
+    if (state.selected < 0 || !state.shapes[state.selected]) return;
+    const i = state.selected;
+    edit((d) => deleteShape(d, i), -1);
   }
 
   function reorder(by) {
     const i = state.selected;
     const j = i + by;
     if (i < 0 || j < 0 || j >= state.shapes.length) return;
-    const s = state.shapes;
-    [s[i], s[j]] = [s[j], s[i]];
-    state.selected = j;
-    commitShapes();
+    edit((d) => swapShapes(d, i, j), j);
+  }
+
+  function recolour() {
+    const i = state.selected;
+    const s = state.shapes[i];
+    if (!s || s.name === colour.value) return;
+    edit((d) => rewriteShape(d, i, Object.assign(clone(d.shapes[i]), { name: colour.value })), i);
+  }
+
+  function nudge(dx, dy) {
+    const i = state.selected;
+    if (!state.shapes[i]) return;
+    edit((d) => rewriteShape(d, i, translate(d.shapes[i], dx, dy)), i);
+  }
+
+  function duplicate() {
+    const i = state.selected;
+    if (!state.shapes[i]) return;
+    edit((d) => duplicateShape(d, i, translate(d.shapes[i], 10, 10)), i + 1);
   }
 
   preview.addEventListener('mousedown', (e) => {
@@ -124,9 +189,11 @@ export function createTools(app) {
     const p = view.toCanvas(e);
     const t = e.target;
     e.preventDefault();
+    // Keys (arrows, Ctrl-D, Delete) are for the canvas now.
+    preview.focus({ preventScroll: true });
     if (t.classList.contains('root') || state.tool === 'root') {
       drag = { kind: 'root' };
-      if (state.tool === 'root') moveRoot(p);
+      if (state.tool === 'root') { state.root = snap(p); view.drawOverlay(); }
       return;
     }
     if (state.tool === 'select') {
@@ -134,16 +201,17 @@ export function createTools(app) {
         drag = { kind: 'resize', handle: Number(t.dataset.handle), start: p, orig: clone(state.shapes[state.selected]) };
         return;
       }
-      if (t.classList.contains('outline')) {
-        state.selected = Number(t.dataset.index);
-        const s = state.shapes[state.selected];
-        colour.value = COLOURS.includes(s.name) ? s.name : colour.value;
-        drag = { kind: 'move', start: p, orig: clone(s), moved: false };
+      const hit = byId('kind').value === 'od' ? view.hitTest(p) : -1;
+      if (hit >= 0) {
+        state.selected = hit;
+        drag = { kind: 'move', start: p, orig: clone(state.shapes[hit]), moved: false };
         view.drawOverlay();
+        updateButtons();
         return;
       }
       state.selected = -1;
       view.drawOverlay();
+      updateButtons();
       drag = { kind: 'pan', start: [e.clientX, e.clientY], view: state.view.slice(), upp: view.unitsPerPixel() };
       return;
     }
@@ -154,16 +222,16 @@ export function createTools(app) {
         const first = poly.points[0];
         const near = Math.hypot(first[0] - p[0], first[1] - p[1]) < 8 * view.unitsPerPixel();
         if (near && poly.points.length >= 3) { finishPolygon(); return; }
-        poly.points.push(snap(p));
+        poly.points.push(polygonPoint(p, e.shiftKey));
       }
-      drawGhostPolygon(p);
+      drawGhostPolygon(polygonPoint(p, e.shiftKey));
       return;
     }
-    drag = { kind: 'draw', start: p, now: p };
+    drag = { kind: 'draw', start: p };
   });
 
   window.addEventListener('mousemove', (e) => {
-    if (poly && !drag) { drawGhostPolygon(view.toCanvas(e)); return; }
+    if (poly && !drag) { drawGhostPolygon(polygonPoint(view.toCanvas(e), e.shiftKey)); return; }
     if (!drag) return;
     const p = view.toCanvas(e);
     if (drag.kind === 'pan') {
@@ -172,17 +240,20 @@ export function createTools(app) {
       state.root = snap(p);
       view.drawOverlay();
     } else if (drag.kind === 'move') {
-      const dx = Math.round(p[0] - drag.start[0]);
-      const dy = Math.round(p[1] - drag.start[1]);
+      let dx = Math.round(p[0] - drag.start[0]);
+      let dy = Math.round(p[1] - drag.start[1]);
+      // Shift: along one axis only.
+      if (e.shiftKey) { if (Math.abs(dx) > Math.abs(dy)) dy = 0; else dx = 0; }
       drag.moved = drag.moved || Math.hypot(dx, dy) > 0;
-      state.shapes[state.selected] = translate(drag.orig, dx, dy);
+      drag.now = translate(drag.orig, dx, dy);
+      state.shapes[state.selected] = drag.now;
       view.drawOverlay();
     } else if (drag.kind === 'resize') {
-      state.shapes[state.selected] = resize(drag.orig, drag.handle, snap(p));
+      drag.now = resize(drag.orig, drag.handle, snap(p));
+      state.shapes[state.selected] = drag.now;
       view.drawOverlay();
     } else if (drag.kind === 'draw') {
-      drag.now = p;
-      drawGhostBox(drag.start, p);
+      drawGhostBox(drag.start, e.shiftKey ? square(drag.start, p) : p);
     }
   });
 
@@ -190,14 +261,15 @@ export function createTools(app) {
     if (!drag) return;
     const d = drag;
     drag = null;
+    const i = state.selected;
     if (d.kind === 'root') {
-      moveRoot(state.root);
-    } else if (d.kind === 'move') {
-      if (d.moved) commitShapes();
-    } else if (d.kind === 'resize') {
-      commitShapes();
+      const at = state.root;
+      edit((doc) => (doc.root ? writeRoot(doc, at) : doc));
+    } else if ((d.kind === 'move' && d.moved) || (d.kind === 'resize' && d.now)) {
+      edit((doc) => rewriteShape(doc, i, d.now), i);
     } else if (d.kind === 'draw') {
-      const b = box(snap(d.start), snap(view.toCanvas(e)));
+      const end = view.toCanvas(e);
+      const b = box(snap(d.start), snap(e.shiftKey ? square(d.start, end) : end));
       removeGhost();
       const upp = view.unitsPerPixel();
       if (b.w * b.h > 0 && b.w / upp >= 3 && b.h / upp >= 3) {
@@ -217,6 +289,24 @@ export function createTools(app) {
     }
   });
 
+  // Arrow keys nudge the selection by 1 unit (Shift: 10); Ctrl-D
+  // duplicates it. Not while typing in the editor or a field.
+  const ARROWS = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] };
+  window.addEventListener('keydown', (e) => {
+    const t = e.target;
+    if (t === app.editor.element || ['INPUT', 'SELECT', 'TEXTAREA'].includes(t.tagName)) return;
+    if (byId('kind').value !== 'od' || !state.shapes[state.selected] || e.altKey) return;
+    const arrow = ARROWS[e.key];
+    if (arrow && !e.ctrlKey && !e.metaKey) {
+      const k = e.shiftKey ? 10 : 1;
+      nudge(arrow[0] * k, arrow[1] * k);
+      e.preventDefault();
+    } else if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === 'd') {
+      duplicate();
+      e.preventDefault();
+    }
+  });
+
   document.querySelectorAll('.tool').forEach((b) => b.addEventListener('click', () => setTool(b.dataset.tool)));
   for (const c of COLOURS) {
     const o = document.createElement('option');
@@ -224,13 +314,12 @@ export function createTools(app) {
     o.textContent = c + (c === 'clGreen' ? ' (grows)' : c === 'clWhite' ? ' (erases)' : '');
     colour.appendChild(o);
   }
-  colour.addEventListener('change', () => {
-    const s = state.shapes[state.selected];
-    if (s) { s.name = colour.value; commitShapes(); }
-  });
+  // The paint colour is for the next shape: picking it changes no shape.
+  colour.addEventListener('change', updateButtons);
+  recolourButton.addEventListener('click', recolour);
   byId('delete').addEventListener('click', deleteSelected);
   byId('raise').addEventListener('click', () => reorder(1));
   byId('lower').addEventListener('click', () => reorder(-1));
 
-  return { setTool, cancelPolygon, deleteSelected };
+  return { setTool, cancelPolygon, deleteSelected, updateButtons };
 }

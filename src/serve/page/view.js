@@ -36,14 +36,85 @@ export function handlesOf(s) {
   return [[s.x, s.y], [s.x + s.w, s.y], [s.x + s.w, s.y + s.h], [s.x, s.y + s.h]];
 }
 
+// The area of a shape, for picking the smallest under the pointer.
+function area(s) {
+  if (s.type === 'Polygon') {
+    let a = 0;
+    s.points.forEach(([x, y], i) => {
+      const [u, v] = s.points[(i + 1) % s.points.length];
+      a += x * v - u * y;
+    });
+    return Math.abs(a) / 2;
+  }
+  if (s.type === 'Ellipse') return Math.PI * s.w * s.h / 4;
+  return s.w * s.h;
+}
+
+// The distance from `p` to segment a..b.
+function segment(p, a, b) {
+  const [dx, dy] = [b[0] - a[0], b[1] - a[1]];
+  const l = dx * dx + dy * dy;
+  const t = l ? Math.max(0, Math.min(1, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l)) : 0;
+  return Math.hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+}
+
+// Whether `p` is inside `s` or within `tol` of its edge.
+export function near(s, p, tol) {
+  const [x, y] = p;
+  if (s.type === 'Polygon') {
+    let inside = false;
+    const n = s.points.length;
+    for (let i = 0, j = n - 1; i < n; j = i++) {
+      const [xi, yi] = s.points[i];
+      const [xj, yj] = s.points[j];
+      if ((yi > y) !== (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) inside = !inside;
+      if (segment(p, s.points[i], s.points[j]) <= tol) return true;
+    }
+    return inside;
+  }
+  if (s.type === 'Ellipse') {
+    const rx = s.w / 2 + tol;
+    const ry = s.h / 2 + tol;
+    return ((x - s.x - s.w / 2) / rx) ** 2 + ((y - s.y - s.h / 2) / ry) ** 2 <= 1;
+  }
+  return x >= s.x - tol && x <= s.x + s.w + tol && y >= s.y - tol && y <= s.y + s.h + tol;
+}
+
+// A round step for grid lines about `span / 8` apart: 1, 2 or 5 times a power of ten.
+function gridStep(span) {
+  const raw = span / 8;
+  const p = 10 ** Math.floor(Math.log10(raw));
+  return [1, 2, 5, 10].map((k) => k * p).find((s) => s >= raw);
+}
+
 export function createView(app) {
   const { state } = app;
   const preview = byId('preview');
+
+  // The shapes' places in the text come with each good answer (layout.js's
+  // doc, the one drawing edits start from); an answer to a text older than
+  // the last drawing edit leaves that edit's shapes shown.
+  function takeAnswer() {
+    const text = app.editor.text();
+    const d = state.drawn;
+    if (d && d.text === text && state.answerText !== text) {
+      state.shapes = JSON.parse(JSON.stringify(d.shapes));
+      state.root = d.rootAt;
+      state.layoutSpan = d.layout;
+      state.rootSpan = d.root;
+      return;
+    }
+    state.drawn = {
+      text: state.answerText, shapes: JSON.parse(JSON.stringify(state.shapes)),
+      layout: state.layoutSpan, root: state.rootSpan, rootAt: state.root,
+    };
+  }
 
   // Redraws everything from the last good answer.
   function draw() {
     const a = state.answer;
     if (!a || !a.ok) return;
+    takeAnswer();
     preview.innerHTML = '';
     const lib = new DOMParser().parseFromString(a.svg, 'image/svg+xml').documentElement;
     const box = pictureBox(a);
@@ -69,12 +140,56 @@ export function createView(app) {
       state.view = state.fitView.slice();
       state.refit = false;
     }
+    el('g', { class: 'grid' }, preview);
     el('g', { class: 'replay-layer' }, preview);
     if (grownNoLayout) app.replay.showStems(Infinity);
     el('g', { class: 'overlay' }, preview);
     drawOverlay();
     setViewBox();
     app.replay.show();
+    app.tools.updateButtons();
+  }
+
+  // The empty canvas (an .od without layout shapes): a grid with its
+  // coordinates over the view, so the first shape has a reference.
+  function drawGrid() {
+    const g = preview.querySelector('.grid');
+    if (!g) return;
+    g.innerHTML = '';
+    const v = state.view;
+    if (!v || byId('kind').value !== 'od' || state.shapes.length) return;
+    const upp = unitsPerPixel();
+    const r = preview.getBoundingClientRect();
+    // The view box as shown (it keeps its aspect, so it may show more).
+    const [cx, cy] = [(v[0] + v[2]) / 2, (v[1] + v[3]) / 2];
+    const [hw, hh] = [r.width * upp / 2 || (v[2] - v[0]) / 2, r.height * upp / 2 || (v[3] - v[1]) / 2];
+    const box = [cx - hw, cy - hh, cx + hw, cy + hh];
+    const step = gridStep(Math.max(box[2] - box[0], box[3] - box[1]));
+    const font = 10 * upp;
+    for (let x = Math.ceil(box[0] / step) * step; x <= box[2]; x += step) {
+      el('line', { class: x === 0 ? 'axis' : '', x1: x, y1: box[1], x2: x, y2: box[3] }, g);
+      el('text', { x: x + 2 * upp, y: box[1] + font * 1.2, 'font-size': font }, g).textContent = String(Math.round(x * 1000) / 1000);
+    }
+    for (let y = Math.ceil(box[1] / step) * step; y <= box[3]; y += step) {
+      el('line', { class: y === 0 ? 'axis' : '', x1: box[0], y1: y, x2: box[2], y2: y }, g);
+      el('text', { x: box[0] + 2 * upp, y: y - 2 * upp, 'font-size': font }, g).textContent = String(Math.round(y * 1000) / 1000);
+    }
+    g.dataset.step = step;
+  }
+
+  // The shape under canvas point `p` (or within a few pixels of its
+  // edge): the smallest of them by area, so a small shape is never lost
+  // behind a big one, whichever is painted later; -1 for none.
+  function hitTest(p) {
+    const tol = 4 * unitsPerPixel();
+    let best = -1;
+    let bestArea = Infinity;
+    state.shapes.forEach((s, i) => {
+      if (!near(s, p, tol)) return;
+      const a = area(s);
+      if (a <= bestArea) { best = i; bestArea = a; }
+    });
+    return best;
   }
 
   // An answer with errors: the last good picture stays, faded.
@@ -87,6 +202,7 @@ export function createView(app) {
     const ov = overlay();
     if (!ov) return;
     ov.innerHTML = '';
+    drawGrid();
     if (byId('kind').value !== 'od') return;
     state.shapes.forEach((s, i) => {
       const e = shapeElement(s, ov);
@@ -115,6 +231,7 @@ export function createView(app) {
   function setViewBox() {
     const v = state.view;
     preview.setAttribute('viewBox', `${v[0]} ${v[1]} ${v[2] - v[0]} ${v[3] - v[1]}`);
+    drawGrid();
   }
 
   function unitsPerPixel() {
@@ -164,5 +281,5 @@ export function createView(app) {
   byId('zoom-out').addEventListener('click', () => zoom(1.25));
   byId('fit').addEventListener('click', fit);
 
-  return { element: preview, draw, stale, drawOverlay, overlay, unitsPerPixel, toCanvas, pan, fit };
+  return { element: preview, draw, stale, drawOverlay, overlay, unitsPerPixel, toCanvas, pan, fit, hitTest };
 }
