@@ -5,7 +5,8 @@
 //! of [`Step`]s: runs of drawing components, fixed figures, and each branch
 //! as an [`Step::Open`], its pieces, and a [`Step::Tip`] where its slot
 //! grows before the closing `]`. A fixed figure `[I n w]` is expanded by
-//! [`FixedWord`] alone.
+//! [`FixedWord`] alone, a rule repeat `[I n X]` by [`Levels`] alone. The
+//! one walk over a seed is [`super::seed_walk`].
 
 use super::{Body, BodyItem, Branch, DrawRun, Fixed, Piece};
 
@@ -192,6 +193,56 @@ pub fn fixed_counts(word: &str, count: u32) -> (u64, u64) {
         (symbols, stems) = next;
     }
     (symbols, stems)
+}
+
+/// The levels of a rule repeat `[I n X]`, X a rule: the one expander of
+/// rule repeats. `[I n X]` is the growth point rewritten by X `n` times:
+/// X applied here with `[I n-1 X]` in every slot, `n` levels in all. So
+/// `[I 1 X]` is X with its slots empty and `[I 0 X]` applies nothing (an
+/// empty slot), as `[I 0 w]` rewrites nothing ([`FixedWord`]). Measuring
+/// ([`repeat_counts`]), BED expansion and growth all step through these.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Levels(u32);
+
+impl Levels {
+    /// The levels of `[I count X]`: `None` for `count = 0`, nothing applied.
+    pub fn of(count: u32) -> Option<Levels> {
+        (count > 0).then_some(Levels(count))
+    }
+
+    /// How many levels, from this one down (at least 1).
+    pub fn get(self) -> u32 {
+        self.0
+    }
+
+    /// What grows in every slot of this level's application: the next
+    /// level, or `None` (slots empty) below the last.
+    pub fn next(self) -> Option<Levels> {
+        Levels::of(self.0 - 1)
+    }
+}
+
+/// How many symbols and stems `[I count X]` expands to (saturating at
+/// `u64::MAX`), given what one application of X draws itself (`own`, its
+/// slots aside) and X's branch count. Agrees with [`Levels`]: `count = 0`
+/// is nothing.
+pub fn repeat_counts(own: (u64, u64), branches: usize, count: u32) -> (u64, u64) {
+    let Some(levels) = Levels::of(count) else {
+        return (0, 0);
+    };
+    let m = branches as u64;
+    let mut s = own;
+    for _ in 1..levels.get() {
+        let next = (
+            own.0.saturating_add(s.0.saturating_mul(m)),
+            own.1.saturating_add(s.1.saturating_mul(m)),
+        );
+        if next == s {
+            break;
+        }
+        s = next;
+    }
+    s
 }
 
 #[cfg(test)]
