@@ -376,3 +376,161 @@ impl<'a> Iterator for SeedWalk<'a> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::walk::testing::run;
+    use crate::model::{BodyItem, Branch, Loc, Piece, Terms};
+
+    /// `R0: F[+F][-F]`.
+    fn rules() -> Vec<RuleDef> {
+        let branch = |t: &str| {
+            BodyItem::Branch(Branch {
+                pieces: vec![Piece::Draw(run(t))],
+                successor: None,
+                loc: Loc::default(),
+            })
+        };
+        vec![RuleDef {
+            name: "R0".into(),
+            name_loc: Loc::default(),
+            alternative: None,
+            body: Body {
+                items: vec![BodyItem::Draw(run("F")), branch("+F"), branch("-F")],
+            },
+            loc: Loc::default(),
+        }]
+    }
+
+    /// `f R0{R0{,}, [I 2 R0]} [I n R0]`.
+    fn seed(n: u32) -> Seed {
+        let mut terms = Terms::new();
+        let leaf = terms.push(RuleId(0), false, 0..0, &[None, None]);
+        let rep = |count| Repeat {
+            count,
+            rule: RuleId(0),
+            loc: Loc::default(),
+        };
+        let two = terms.repeat(rep(2));
+        let top = terms.push(
+            RuleId(0),
+            false,
+            0..0,
+            &[Some(Terms::slot_of(leaf)), Some(two)],
+        );
+        Seed {
+            items: vec![
+                SeedItem::Draw(Box::new(run("f"))),
+                SeedItem::Term(top),
+                SeedItem::Repeat(Box::new(rep(n))),
+            ],
+            terms,
+            loc: Loc::default(),
+        }
+    }
+
+    fn show(step: SeedStep<'_>) -> String {
+        let at = |at: At| match at {
+            At::Item(i) => format!("item {i}"),
+            At::Slot { index, count } => format!("slot {index}/{count}"),
+        };
+        match step {
+            SeedStep::Run(r) => r.text.clone(),
+            SeedStep::Fixed(f) => format!("[I {} {}]", f.count, f.word),
+            SeedStep::Term { order, at: a, .. } => format!("term {order} {}", at(a)),
+            SeedStep::Repeat {
+                repeat,
+                order,
+                at: a,
+            } => {
+                format!("repeat {} {order} {}", repeat.count, at(a))
+            }
+            SeedStep::Level { levels, order, .. } => format!("level {} {order}", levels.get()),
+            SeedStep::Empty { order, at: a } => format!("empty {order} {}", at(a)),
+            SeedStep::Open => "[".into(),
+            SeedStep::Close => "]".into(),
+            SeedStep::End { order, .. } => format!("end {order}"),
+        }
+    }
+
+    #[test]
+    fn written_order_visits_every_slot_once() {
+        let s = seed(1);
+        let steps: Vec<String> = SeedWalk::written(&s).map(show).collect();
+        assert_eq!(
+            steps,
+            [
+                "f",
+                "term 1 item 1",
+                "term 2 slot 0/2",
+                "empty 3 slot 0/2",
+                "empty 3 slot 1/2",
+                "end 2",
+                "repeat 2 2 slot 1/2",
+                "end 1",
+                "repeat 1 1 item 2",
+            ]
+        );
+        let item1: Vec<String> = SeedWalk::item(&s, 1).map(show).collect();
+        assert_eq!(item1, steps[1..8]);
+        // Stepping over a term leaves out its slots and its end.
+        let mut w = SeedWalk::written(&s);
+        w.next();
+        w.next();
+        w.step_over();
+        assert_eq!(w.map(show).collect::<Vec<_>>(), ["repeat 1 1 item 2"]);
+    }
+
+    #[test]
+    fn drawing_order_puts_slots_at_their_tips_and_unrolls_repeats() {
+        let rules = rules();
+        let s = seed(1);
+        let shown = |points| {
+            SeedWalk::drawing(&s, &rules, points)
+                .map(show)
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        // Growth points stay whole.
+        assert_eq!(
+            shown(Points::Grow),
+            "f term 1 item 1 F [ +F term 2 slot 0/2 F [ +F ] [ -F ] end 2 ] \
+             [ -F repeat 2 2 slot 1/2 ] end 1 repeat 1 1 item 2"
+        );
+        // `[I 2 R0]` is R0 with `[I 1 R0]` in both slots; `[I 1 R0]` is R0.
+        assert_eq!(
+            shown(Points::Expand),
+            "f term 1 item 1 F [ +F term 2 slot 0/2 F [ +F ] [ -F ] end 2 ] \
+             [ -F level 2 2 F [ +F level 1 3 F [ +F ] [ -F ] end 3 ] \
+             [ -F level 1 3 F [ +F ] [ -F ] end 3 ] end 2 ] end 1 \
+             level 1 1 F [ +F ] [ -F ] end 1"
+        );
+        // `[I 0 R0]` unrolled is nothing.
+        let s = seed(0);
+        let tail: Vec<String> = SeedWalk::drawing(&s, &rules, Points::Expand)
+            .map(show)
+            .collect();
+        assert_eq!(tail.last().map(String::as_str), Some("end 1"));
+        assert!(!tail.iter().any(|t| t.starts_with("level 1 1")));
+    }
+
+    /// A chain of terms a million deep is walked without recursion.
+    #[test]
+    fn deep_seeds_walk_without_recursion() {
+        let mut terms = Terms::new();
+        let mut id = terms.push(RuleId(0), false, 0..0, &[None]);
+        for _ in 0..1_000_000 {
+            id = terms.push(RuleId(0), false, 0..0, &[Some(Terms::slot_of(id))]);
+        }
+        let s = Seed {
+            items: vec![SeedItem::Term(id)],
+            terms,
+            loc: Loc::default(),
+        };
+        let ends = SeedWalk::written(&s)
+            .filter(|s| matches!(s, SeedStep::End { .. }))
+            .count();
+        assert_eq!(ends, 1_000_001);
+    }
+}

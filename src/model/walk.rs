@@ -342,6 +342,27 @@ mod tests {
         }
         assert_eq!(fixed_counts("FF", 200), (u64::MAX, u64::MAX));
     }
+
+    /// `[I n X]` is `n` levels: the counts follow the levels, and
+    /// `[I 0 X]` is nothing.
+    #[test]
+    fn repeat_levels_and_counts() {
+        assert_eq!(Levels::of(0), None);
+        let three = Levels::of(3).unwrap();
+        let below: Vec<u32> = std::iter::successors(Some(three), |l| l.next())
+            .map(Levels::get)
+            .collect();
+        assert_eq!(below, [3, 2, 1]);
+        // X draws 11 symbols and 3 stems itself and has 2 branches:
+        // `2^n - 1` applications.
+        for n in 0..10 {
+            let k = (1u64 << n) - 1;
+            assert_eq!(repeat_counts((11, 3), 2, n), (11 * k, 3 * k), "n = {n}");
+        }
+        assert_eq!(repeat_counts((4, 1), 1, 5), (20, 5));
+        assert_eq!(repeat_counts((4, 1), 0, 5), (4, 1));
+        assert_eq!(repeat_counts((1, 1), 2, 200), (u64::MAX, u64::MAX));
+    }
 }
 
 /// Builders the walk and expansion tests share.

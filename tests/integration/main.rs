@@ -13,6 +13,7 @@ mod lsys;
 mod newuser;
 mod od_variation;
 mod render;
+mod repeats;
 mod robustness;
 mod serve;
 mod stl;
