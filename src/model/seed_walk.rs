@@ -343,34 +343,25 @@ impl<'a> Iterator for SeedWalk<'a> {
                     };
                     let at = At::Slot { index, count };
                     let order = order.saturating_add(1);
+                    // The slot's content, then (from the stack) the `]`.
+                    self.stack.push(Frame::Close);
                     let content = match slots {
                         Slots::Term(t) => match t.slot(index) {
                             None => None,
-                            Some(Slot::Term(t)) => {
-                                self.stack.push(Frame::Close);
-                                Some(self.term(t, order, at))
-                            }
-                            Some(Slot::Repeat(r)) => {
-                                self.stack.push(Frame::Close);
-                                self.repeat(r, order, at)
-                            }
+                            Some(Slot::Term(t)) => Some(self.term(t, order, at)),
+                            Some(Slot::Repeat(r)) => self.repeat(r, order, at),
                         },
                         Slots::Level(_, None) => None,
                         Slots::Level(rule, Some(levels)) => {
-                            self.stack.push(Frame::Close);
                             Some(self.level(rule, levels, order, at))
                         }
                     };
-                    match content {
-                        Some(s) => return Some(s),
-                        // An empty slot, or `[I 0 X]` unrolled (its `Close`
-                        // is on the stack): the branch closes.
-                        None => {
-                            if !matches!(self.stack.last(), Some(Frame::Close)) {
-                                return Some(SeedStep::Close);
-                            }
-                        }
+                    if content.is_some() {
+                        return content;
                     }
+                    // An empty slot, or `[I 0 X]` unrolled: the `]` alone.
+                    self.stack.pop();
+                    return Some(SeedStep::Close);
                 }
             }
         }
