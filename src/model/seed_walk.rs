@@ -329,20 +329,22 @@ impl<'a> Iterator for SeedWalk<'a> {
                     order,
                     at,
                 } => {
-                    let step = steps.next();
-                    let (slots, count, order, at) = (*slots, *count, *order, *at);
-                    let index = match step {
-                        None => {
-                            self.stack.pop();
-                            return Some(SeedStep::End { order, at });
-                        }
+                    let index = match steps.next() {
                         Some(Step::Run(r)) => return Some(SeedStep::Run(r)),
                         Some(Step::Fixed(f)) => return Some(SeedStep::Fixed(f)),
                         Some(Step::Open { .. }) => return Some(SeedStep::Open),
                         Some(Step::Tip { index, .. }) => index,
+                        None => {
+                            let (order, at) = (*order, *at);
+                            self.stack.pop();
+                            return Some(SeedStep::End { order, at });
+                        }
                     };
-                    let at = At::Slot { index, count };
-                    let order = order.saturating_add(1);
+                    let (slots, order) = (*slots, order.saturating_add(1));
+                    let at = At::Slot {
+                        index,
+                        count: *count,
+                    };
                     // The slot's content, then (from the stack) the `]`.
                     self.stack.push(Frame::Close);
                     let content = match slots {
