@@ -290,19 +290,16 @@ fn dfs(
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     let mut fixed: Option<FixedWord<'_>> = None;
-    for step in SeedWalk::drawing(seed, &desc.rules, Points::Expand) {
-        match step {
-            SeedStep::Run(r) => emit_text(&r.text, sink)?,
-            SeedStep::Fixed(f) => emit_fixed(f, &mut fixed, sink)?,
-            SeedStep::Term { .. } | SeedStep::Level { .. } => sink(Op::Enter)?,
-            SeedStep::End { .. } => sink(Op::Leave)?,
-            SeedStep::Open => sink(Op::Push)?,
-            SeedStep::Close => sink(Op::Pop)?,
-            // Not in drawing order with repeats expanded.
-            SeedStep::Repeat { .. } | SeedStep::Empty { .. } => {}
-        }
-    }
-    Ok(())
+    SeedWalk::drawing(seed, &desc.rules, Points::Expand).try_each(|step| match step {
+        SeedStep::Run(r) => emit_text(&r.text, sink),
+        SeedStep::Fixed(f) => emit_fixed(f, &mut fixed, sink),
+        SeedStep::Term { .. } | SeedStep::Level { .. } => sink(Op::Enter),
+        SeedStep::End { .. } => sink(Op::Leave),
+        SeedStep::Open => sink(Op::Push),
+        SeedStep::Close => sink(Op::Pop),
+        // Not in drawing order with repeats expanded.
+        SeedStep::Repeat { .. } | SeedStep::Empty { .. } => Ok(()),
+    })
 }
 
 /// One symbol of the breadth-first word.

@@ -274,10 +274,32 @@ impl<'a> SeedWalk<'a> {
     }
 }
 
+impl<'a> SeedWalk<'a> {
+    /// Calls `each` with every step in turn, stopping at its first error:
+    /// the same steps as the iterator, for a hot loop (BED `dfs`), which
+    /// gets the walk's own loop compiled into it.
+    pub fn try_each<E>(
+        mut self,
+        mut each: impl FnMut(SeedStep<'a>) -> Result<(), E>,
+    ) -> Result<(), E> {
+        while let Some(step) = self.step() {
+            each(step)?;
+        }
+        Ok(())
+    }
+}
+
 impl<'a> Iterator for SeedWalk<'a> {
     type Item = SeedStep<'a>;
 
     fn next(&mut self) -> Option<SeedStep<'a>> {
+        self.step()
+    }
+}
+
+impl<'a> SeedWalk<'a> {
+    #[inline(always)]
+    fn step(&mut self) -> Option<SeedStep<'a>> {
         self.entered = false;
         loop {
             let Some(top) = self.stack.last_mut() else {
