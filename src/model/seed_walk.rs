@@ -199,7 +199,7 @@ impl<'a> SeedWalk<'a> {
                 return None;
             }
             first = false;
-            w.next()
+            w.step()
         })
     }
 
