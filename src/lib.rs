@@ -62,13 +62,13 @@ pub mod color;
 pub mod diag;
 pub mod grow;
 pub mod interpret;
-pub mod layout;
 pub mod limits;
 pub mod model;
 pub mod num;
 pub mod pipeline;
 pub mod progress;
 pub mod render;
+pub mod rings;
 pub mod syntax;
 pub mod turtle;
 

@@ -13,8 +13,9 @@ use std::collections::BTreeMap;
 
 use crate::diag::{BedError, Diagnostic, Diagnostics, ErrorKind, RuleError};
 use crate::limits::{Bound, Limits};
+use crate::model::seed_walk::{SeedStep, SeedWalk};
 use crate::model::walk::{self, Step};
-use crate::model::{Description, Fixed, RuleId, Seed, SeedItem, Slot, StemParams, Term};
+use crate::model::{Description, Fixed, RuleId, Seed, StemParams};
 
 /// What a description's seed expands to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -30,13 +31,6 @@ impl Size {
     fn add(&mut self, o: Size) {
         self.symbols = self.symbols.saturating_add(o.symbols);
         self.stems = self.stems.saturating_add(o.stems);
-    }
-
-    fn times(self, k: u64) -> Size {
-        Size {
-            symbols: self.symbols.saturating_mul(k),
-            stems: self.stems.saturating_mul(k),
-        }
     }
 }
 
@@ -94,22 +88,16 @@ impl<'a> Sizer<'a> {
         }
     }
 
-    /// Size of `[I n X]`: X and, at every branch tip, `[I n-1 X]`.
+    /// Size of `[I n X]` (see [`walk::repeat_counts`]; `[I 0 X]` is
+    /// nothing).
     fn repeat(&mut self, rule: RuleId, n: u32) -> Size {
         if let Some(s) = self.repeats.get(&(rule.0, n)) {
             return *s;
         }
         let own = self.own.get(rule.0).copied().unwrap_or_default();
-        let m = self.desc.rules.get(rule.0).map_or(0, |r| r.branch_count()) as u64;
-        let mut s = own;
-        for _ in 1..n {
-            let mut next = own;
-            next.add(s.times(m));
-            if next == s {
-                break;
-            }
-            s = next;
-        }
+        let m = self.desc.rules.get(rule.0).map_or(0, |r| r.branch_count());
+        let (symbols, stems) = walk::repeat_counts((own.symbols, own.stems), m, n);
+        let s = Size { symbols, stems };
         self.repeats.insert((rule.0, n), s);
         s
     }
@@ -126,22 +114,17 @@ pub fn measure_seed(desc: &Description, seed: &Seed) -> Size {
 /// (one at a time: a generated seed can hold millions of items).
 fn item_sizes(desc: &Description, seed: &Seed, mut each: impl FnMut(usize, Size)) {
     let mut z = Sizer::new(desc);
-    let mut stack: Vec<Term<'_>> = Vec::new();
-    for (i, item) in seed.items.iter().enumerate() {
+    for i in 0..seed.items.len() {
         let mut total = Size::default();
-        match item {
-            SeedItem::Draw(d) => total.add(draw_size(&d.text)),
-            SeedItem::Fixed(f) => total.add(fixed_size(f)),
-            SeedItem::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
-            SeedItem::Term(t) => stack.push(seed.term(*t)),
-        }
-        while let Some(t) = stack.pop() {
-            total.add(z.own.get(t.rule().0).copied().unwrap_or_default());
-            for s in t.slots().flatten() {
-                match s {
-                    Slot::Term(t) => stack.push(t),
-                    Slot::Repeat(r) => total.add(z.repeat(r.rule, r.count)),
+        for step in SeedWalk::item(seed, i) {
+            match step {
+                SeedStep::Run(d) => total.add(draw_size(&d.text)),
+                SeedStep::Fixed(f) => total.add(fixed_size(f)),
+                SeedStep::Repeat { repeat: r, .. } => total.add(z.repeat(r.rule, r.count)),
+                SeedStep::Term { term, .. } => {
+                    total.add(z.own.get(term.rule().0).copied().unwrap_or_default());
                 }
+                _ => {}
             }
         }
         each(i, total);
@@ -267,55 +250,43 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
             }
         }
     }
-    // (term, order) pairs, explicit stack.
-    let mut stack: Vec<(Term<'_>, u32)> = Vec::new();
-    for item in &seed.items {
-        match item {
-            SeedItem::Term(t) => stack.push((seed.term(*t), 1)),
-            SeedItem::Repeat(r) => {
+    let mut walk = SeedWalk::written(seed);
+    while let Some(step) = walk.next() {
+        match step {
+            SeedStep::Fixed(f) => check_count(f.count, &f.loc.0, &mut diags),
+            SeedStep::Repeat {
+                repeat: r, order, ..
+            } => {
                 check_count(r.count, &r.loc.0, &mut diags);
-                let name = rule_name(desc, r.rule);
                 if desc.rules.get(r.rule.0).is_none() {
                     diags.push(unknown_id(r.rule, &r.loc.0));
                 } else {
-                    check_order(r.count, &r.loc.0, &name, &mut diags);
+                    // Its last level's order.
+                    let deepest = (order - 1).saturating_add(r.count);
+                    check_order(deepest, &r.loc.0, &rule_name(desc, r.rule), &mut diags);
                 }
             }
-            SeedItem::Fixed(f) => check_count(f.count, &f.loc.0, &mut diags),
-            SeedItem::Draw(_) => {}
-        }
-        while let Some((t, order)) = stack.pop() {
-            let Some(rule) = desc.rules.get(t.rule().0) else {
-                diags.push(unknown_id(t.rule(), &t.loc()));
-                continue;
-            };
-            let m = rule.branch_count();
-            if t.slot_count() != m {
-                diags.push(
-                    Diagnostic::error(RuleError::SlotCount {
-                        rule: rule.full_name().into_owned(),
-                        expected: m,
-                        found: t.slot_count(),
-                    })
-                    .with_span(t.loc())
-                    .with_help("write one slot per branch"),
-                );
-            }
-            check_order(order, &t.loc(), &rule.full_name(), &mut diags);
-            for s in t.slots().flatten() {
-                match s {
-                    Slot::Term(c) => stack.push((c, order.saturating_add(1))),
-                    Slot::Repeat(r) => {
-                        check_count(r.count, &r.loc.0, &mut diags);
-                        if desc.rules.get(r.rule.0).is_none() {
-                            diags.push(unknown_id(r.rule, &r.loc.0));
-                        } else {
-                            let deepest = order.saturating_add(r.count);
-                            check_order(deepest, &r.loc.0, &rule_name(desc, r.rule), &mut diags);
-                        }
-                    }
+            SeedStep::Term { term: t, order, .. } => {
+                let Some(rule) = desc.rules.get(t.rule().0) else {
+                    diags.push(unknown_id(t.rule(), &t.loc()));
+                    walk.step_over();
+                    continue;
+                };
+                let m = rule.branch_count();
+                if t.slot_count() != m {
+                    diags.push(
+                        Diagnostic::error(RuleError::SlotCount {
+                            rule: rule.full_name().into_owned(),
+                            expected: m,
+                            found: t.slot_count(),
+                        })
+                        .with_span(t.loc())
+                        .with_help("write one slot per branch"),
+                    );
                 }
+                check_order(order, &t.loc(), &rule.full_name(), &mut diags);
             }
+            _ => {}
         }
     }
     if diags.has_errors() {

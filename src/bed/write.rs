@@ -48,8 +48,9 @@ pub const MAX_INDENT_DEPTH: usize = 24;
 
 use std::fmt::Write as _;
 
+use crate::model::seed_walk::{At, SeedStep, SeedWalk};
 use crate::model::walk::{self, Step};
-use crate::model::{Body, Description, Fixed, LayoutShape, Repeat, Shape, Slot, Spelling, Term};
+use crate::model::{Body, Description, Fixed, LayoutShape, Repeat, Seed, Shape, Spelling, Term};
 
 /// Writes `desc` as a `.bed` file: header, rules, one seed term per line
 /// indented by depth, at most three decimals, LF line ends, trailing newline.
@@ -102,23 +103,7 @@ pub fn write(desc: &Description) -> String {
         .flatten();
     for seed in seeds {
         out.push_str("SEED\n");
-        for item in &seed.items {
-            match item {
-                crate::model::SeedItem::Draw(d) => {
-                    out.push_str(&w.draw(&d.text));
-                    out.push('\n');
-                }
-                crate::model::SeedItem::Fixed(f) => {
-                    out.push_str(&w.fixed(f));
-                    out.push('\n');
-                }
-                crate::model::SeedItem::Repeat(r) => {
-                    out.push_str(&w.repeat(r));
-                    out.push('\n');
-                }
-                crate::model::SeedItem::Term(t) => w.term(seed.term(*t), &mut out),
-            }
-        }
+        w.seed(seed, &mut out);
         out.push_str("ENDSEED\n");
     }
     if let Some(layout) = &desc.layout {
@@ -259,90 +244,68 @@ impl Writer<'_> {
         })
     }
 
-    /// Writes a term at depth 0, one line per term, with an explicit stack.
-    fn term(&self, root: Term<'_>, out: &mut String) {
-        struct Frame<'t> {
-            term: Term<'t>,
-            next: usize,
-            depth: usize,
-            comma: bool,
-        }
+    /// Writes the seed's items, one line per item and per term of a term
+    /// written out (slots indented by depth), in one walk.
+    fn seed(&self, seed: &Seed, out: &mut String) {
         // Indentation stops growing at MAX_INDENT_DEPTH: a depth-first vine
         // can nest thousands of levels, and indenting each by its depth
         // would make the file grow with the square of the depth.
         let spaces = " ".repeat(2 * MAX_INDENT_DEPTH);
-        let indent = |out: &mut String, depth: usize| {
+        let indent = |out: &mut String, order: u32| {
+            let depth = order.saturating_sub(1) as usize;
             out.push_str(&spaces[..2 * depth.min(MAX_INDENT_DEPTH)]);
         };
-        let mut stack: Vec<Frame<'_>> = Vec::new();
-        // Starts a term: one line if flat, else its opening line and a frame.
-        let start = |t: Term<'_>, depth: usize, comma: bool, out: &mut String| {
-            indent(out, depth);
-            match self.flat(t) {
-                Some(s) => {
-                    out.push_str(&s);
-                    if comma {
-                        out.push(',');
-                    }
-                    out.push('\n');
-                    None
-                }
-                None => {
-                    out.push_str(&self.term_name(t.rule()));
-                    out.push_str("{\n");
-                    Some((depth, comma))
-                }
+        // Ends a line, with the comma of a slot before the last.
+        let end = |out: &mut String, at: At| {
+            if matches!(at, At::Slot { .. }) && !at.last_slot() {
+                out.push(',');
             }
+            out.push('\n');
         };
-        if let Some((depth, comma)) = start(root, 0, false, out) {
-            stack.push(Frame {
-                term: root,
-                next: 0,
-                depth,
-                comma,
-            });
-        }
-        while let Some(top) = stack.last_mut() {
-            let m = top.term.slot_count();
-            if top.next == m {
-                let (depth, comma) = (top.depth, top.comma);
-                stack.pop();
-                indent(out, depth);
-                out.push('}');
-                if comma {
-                    out.push(',');
-                }
-                out.push('\n');
-                continue;
-            }
-            let i = top.next;
-            top.next += 1;
-            let last = i + 1 == m;
-            let depth = top.depth + 1;
-            match top.term.slot(i) {
-                Some(Slot::Term(t)) => {
-                    if let Some((depth, comma)) = start(t, depth, !last, out) {
-                        stack.push(Frame {
-                            term: t,
-                            next: 0,
-                            depth,
-                            comma,
-                        });
-                    }
-                }
-                Some(Slot::Repeat(r)) => {
-                    indent(out, depth);
-                    out.push_str(&self.repeat(r));
-                    if !last {
-                        out.push(',');
-                    }
+        let mut walk = SeedWalk::written(seed);
+        while let Some(step) = walk.next() {
+            match step {
+                SeedStep::Run(d) => {
+                    out.push_str(&self.draw(&d.text));
                     out.push('\n');
                 }
-                None if !last => {
-                    indent(out, depth);
-                    out.push_str(",\n");
+                SeedStep::Fixed(f) => {
+                    out.push_str(&self.fixed(f));
+                    out.push('\n');
                 }
-                None => {}
+                SeedStep::Repeat { repeat, order, at } => {
+                    indent(out, order);
+                    out.push_str(&self.repeat(repeat));
+                    end(out, at);
+                }
+                // A term with no filled slot on one line, else its opening
+                // line, its slots, and its `}` line.
+                SeedStep::Term { term, order, at } => {
+                    indent(out, order);
+                    match self.flat(term) {
+                        Some(line) => {
+                            out.push_str(&line);
+                            end(out, at);
+                            walk.step_over();
+                        }
+                        None => {
+                            out.push_str(&self.term_name(term.rule()));
+                            out.push_str("{\n");
+                        }
+                    }
+                }
+                SeedStep::Empty { order, at } => {
+                    if !at.last_slot() {
+                        indent(out, order);
+                        out.push_str(",\n");
+                    }
+                }
+                SeedStep::End { order, at } => {
+                    indent(out, order);
+                    out.push('}');
+                    end(out, at);
+                }
+                SeedStep::Level { .. } | SeedStep::Open | SeedStep::Close => {}
             }
         }
     }

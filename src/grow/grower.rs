@@ -20,7 +20,7 @@ use super::{GrowOptions, GrowthOrder, SEED_STEMS};
 use crate::choice::{Alternatives, Key};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::limits::{Bound, Limits};
-use crate::model::walk::{self, FixedWord, Step};
+use crate::model::walk::{self, FixedWord, Levels, Step};
 use crate::model::{Description, Fixed, RuleDef, RuleId, StemParams};
 use crate::progress::Progress;
 use crate::turtle::{Interp, Op, Point, Recorder, Segment, State};
@@ -413,8 +413,12 @@ impl<'a> Grower<'a> {
         self.budget.applications += 1;
         let successors = &self.rules[gp.rule.0].successors;
         let first = self.tree.record(gp.rule, successors.len(), gp.parent);
-        let count = gp.count.map(|n| n.saturating_sub(1));
-        if count != Some(0) {
+        // A counted point's tips grow its next level ([`Levels`]), if any.
+        let count = match gp.count {
+            None => Some(None),
+            Some(n) => Levels::of(n).and_then(Levels::next).map(|l| Some(l.get())),
+        };
+        if let Some(count) = count {
             for (j, &rule) in successors.iter().enumerate() {
                 let (state, inside) = self.scratch.tips[j];
                 self.scratch.children.push(Gp {
@@ -440,7 +444,8 @@ impl<'a> Grower<'a> {
         if self.budget.stopped {
             return Err(Miss::Stopped);
         }
-        if gp.count == Some(0) {
+        // `[I 0 X]` applies nothing.
+        if gp.count.is_some_and(|n| Levels::of(n).is_none()) {
             return Err(Miss::Failed);
         }
         let order = gp.state.order + 1;

@@ -6,11 +6,11 @@
 //! growth, with geo's boolean operations: a union for every coloured shape,
 //! a difference for every white one, in painting order.
 //!
-//! Curved shapes become polygons first ([`shape_ring`], in [`crate::layout`]): rounded-rectangle
+//! Curved shapes become polygons first ([`shape_ring`], in [`crate::rings`]): rounded-rectangle
 //! corners and ellipses are flattened with their vertices on the curve and a
-//! maximum deviation (sagitta) of [`FLATTEN_TOLERANCE`](crate::layout::FLATTEN_TOLERANCE) canvas units, so the
+//! maximum deviation (sagitta) of [`FLATTEN_TOLERANCE`](crate::rings::FLATTEN_TOLERANCE) canvas units, so the
 //! polygon lies inside the true curve and no farther than that from it. The
-//! renderer paints exactly these rings ([`crate::layout::fills`]), so the picture and the
+//! renderer paints exactly these rings ([`crate::rings::fills`]), so the picture and the
 //! region agree.
 //!
 //! Self-intersecting polygons are read with the even-odd rule, the rule the
@@ -28,9 +28,9 @@ use rstar::{AABB, RTree, RTreeObject};
 
 use super::occupancy::{Seg, seg_seg_dist2};
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, LayoutError};
-use crate::layout::shape_ring;
 use crate::limits::Bound;
 use crate::model::Layout;
+use crate::rings::shape_ring;
 use crate::turtle::{BBox, Point};
 
 /// The area a tree may grow in.

@@ -2,16 +2,16 @@
 //! fixed figures and growth points before growth, and written back with its
 //! growth points replaced by what grew after it.
 //!
-//! Both walks use explicit stacks: terms written out in a seed may nest as
-//! deep as the input allows.
+//! Both read the seed through the one seed walk
+//! ([`crate::model::seed_walk`]), which keeps its own explicit stack: terms
+//! written out in a seed may nest as deep as the input allows.
 
 use super::span_of;
 use super::tree::{NO_NODE, Tree};
 use crate::diag::{Diagnostic, Diagnostics, RuleError};
+use crate::model::seed_walk::{Points, SeedStep, SeedWalk};
 use crate::model::walk::{self, Step};
-use crate::model::{
-    Description, Fixed, Loc, RuleDef, RuleId, Seed, SeedItem, Slot, SlotId, Term, Terms,
-};
+use crate::model::{Description, Fixed, Loc, RuleDef, RuleId, Seed, SeedItem, SlotId, Term, Terms};
 use crate::turtle::Op;
 
 /// A growth point written in the seed: a bare rule reference (no count) or
@@ -53,28 +53,19 @@ pub(super) struct Flat<'a> {
 pub(super) fn drawn_stems(od: &Description, seed: &Seed) -> u64 {
     let own: Vec<u64> = od.rules.iter().map(own_stems).collect();
     let mut total = 0u64;
-    let mut stack: Vec<Term<'_>> = Vec::new();
-    for item in &seed.items {
-        let n = match item {
-            SeedItem::Draw(r) => stems_of(&r.text),
-            SeedItem::Fixed(f) => walk::fixed_counts(&f.word, f.count).1,
-            SeedItem::Term(t) => {
-                stack.push(seed.term(*t));
+    let mut walk = SeedWalk::written(seed);
+    while let Some(step) = walk.next() {
+        let n = match step {
+            SeedStep::Run(r) => stems_of(&r.text),
+            SeedStep::Fixed(f) => walk::fixed_counts(&f.word, f.count).1,
+            SeedStep::Term { term, .. } if term.bare() => {
+                walk.step_over();
                 0
             }
-            SeedItem::Repeat(_) => 0,
+            SeedStep::Term { term, .. } => own.get(term.rule().0).copied().unwrap_or(0),
+            _ => 0,
         };
         total = total.saturating_add(n);
-        while let Some(t) = stack.pop() {
-            if t.bare() {
-                continue;
-            }
-            total = total.saturating_add(own.get(t.rule().0).copied().unwrap_or(0));
-            stack.extend(t.slots().flatten().filter_map(|s| match s {
-                Slot::Term(c) => Some(c),
-                Slot::Repeat(_) => None,
-            }));
-        }
     }
     total
 }
@@ -112,28 +103,22 @@ fn rule_error(od: &Description, rule: RuleId, loc: &Loc) -> Option<Diagnostic> {
 /// points, in drawing order. A written term is `Enter`, its rule's body with
 /// slot `i` at the tip of branch `i`, `Leave`.
 pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a>, Diagnostics> {
-    enum Task<'a> {
-        Item(&'a SeedItem),
-        Slot(Slot<'a>),
-        Term(Term<'a>),
-        Run(&'a str),
-        Fixed(&'a Fixed),
-        Op(Op),
-    }
     let mut flat = Flat {
         instrs: Vec::new(),
         gps: Vec::new(),
     };
-    let mut stack: Vec<Task<'a>> = seed.items.iter().rev().map(Task::Item).collect();
-    while let Some(task) = stack.pop() {
-        match task {
-            Task::Item(SeedItem::Draw(r)) => stack.push(Task::Run(&r.text)),
-            Task::Item(SeedItem::Fixed(f)) => flat.instrs.push(Instr::Fixed(f)),
-            Task::Fixed(f) => flat.instrs.push(Instr::Fixed(f)),
-            Task::Item(SeedItem::Term(t)) => stack.push(Task::Term(seed.term(*t))),
-            Task::Slot(Slot::Term(t)) => stack.push(Task::Term(t)),
-            Task::Item(SeedItem::Repeat(r)) => stack.push(Task::Slot(Slot::Repeat(r))),
-            Task::Slot(Slot::Repeat(r)) => {
+    for step in SeedWalk::drawing(seed, &od.rules, Points::Grow) {
+        let op = match step {
+            SeedStep::Run(r) => {
+                flat.instrs
+                    .extend(r.text.chars().filter_map(Op::of_stl).map(Instr::Op));
+                continue;
+            }
+            SeedStep::Fixed(f) => {
+                flat.instrs.push(Instr::Fixed(f));
+                continue;
+            }
+            SeedStep::Repeat { repeat: r, .. } => {
                 if let Some(d) = rule_error(od, r.rule, &r.loc) {
                     return Err(d.into());
                 }
@@ -143,12 +128,9 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
                     count: Some(r.count),
                     loc: r.loc.clone(),
                 });
+                continue;
             }
-            Task::Run(text) => flat
-                .instrs
-                .extend(text.chars().filter_map(Op::of_stl).map(Instr::Op)),
-            Task::Op(op) => flat.instrs.push(Instr::Op(op)),
-            Task::Term(t) => {
+            SeedStep::Term { term: t, .. } => {
                 let loc = Loc(t.loc());
                 if let Some(d) = rule_error(od, t.rule(), &loc) {
                     return Err(d.into());
@@ -174,26 +156,15 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
                     }
                     return Err(d.into());
                 }
-                // Enter, the body with slot i at the tip of branch i, Leave;
-                // pushed in reverse.
-                let mut tasks: Vec<Task<'a>> = vec![Task::Op(Op::Enter)];
-                for step in walk::steps(&rule.body) {
-                    match step {
-                        Step::Run(r) => tasks.push(Task::Run(&r.text)),
-                        Step::Fixed(f) => tasks.push(Task::Fixed(f)),
-                        Step::Open { .. } => tasks.push(Task::Op(Op::Push)),
-                        Step::Tip { index, .. } => {
-                            if let Some(s) = t.slot(index) {
-                                tasks.push(Task::Slot(s));
-                            }
-                            tasks.push(Task::Op(Op::Pop));
-                        }
-                    }
-                }
-                tasks.push(Task::Op(Op::Leave));
-                stack.extend(tasks.into_iter().rev());
+                Op::Enter
             }
-        }
+            SeedStep::End { .. } => Op::Leave,
+            SeedStep::Open => Op::Push,
+            SeedStep::Close => Op::Pop,
+            // Not in drawing order with growth points.
+            SeedStep::Level { .. } | SeedStep::Empty { .. } => continue,
+        };
+        flat.instrs.push(Instr::Op(op));
     }
     Ok(flat)
 }
@@ -263,48 +234,40 @@ pub(super) fn grown_seed(
         gp_index += 1;
         (id != NO_NODE).then(|| built[id as usize]).flatten()
     };
-    /// A written term being rebuilt: its slots so far.
-    struct Frame<'t> {
-        term: Term<'t>,
-        next: usize,
-        built: Vec<Option<SlotId>>,
-    }
-    let frame = |term| Frame {
-        term,
-        next: 0,
-        built: Vec::new(),
-    };
     let mut items = Vec::with_capacity(seed.items.len());
-    for item in &seed.items {
-        let top = match item {
-            SeedItem::Draw(_) | SeedItem::Fixed(_) => {
-                items.push(item.clone());
-                continue;
+    // The written terms being rebuilt, each with its slots so far.
+    let mut stack: Vec<(Term<'_>, Vec<Option<SlotId>>)> = Vec::new();
+    // Where a slot's content goes: its term's slots, or the seed's items.
+    fn deliver(
+        stack: &mut [(Term<'_>, Vec<Option<SlotId>>)],
+        items: &mut Vec<SeedItem>,
+        s: Option<SlotId>,
+    ) {
+        match stack.last_mut() {
+            Some((_, built)) => built.push(s),
+            None => items.extend(s.map(|s| SeedItem::Term(Terms::term_of(s)))),
+        }
+    }
+    let mut walk = SeedWalk::written(seed);
+    while let Some(step) = walk.next() {
+        match step {
+            SeedStep::Run(r) => items.push(SeedItem::Draw(Box::new(r.clone()))),
+            SeedStep::Fixed(f) => items.push(SeedItem::Fixed(Box::new(f.clone()))),
+            SeedStep::Term { term, .. } if !term.bare() => stack.push((term, Vec::new())),
+            // A growth point: what grew there, if anything.
+            SeedStep::Term { .. } | SeedStep::Repeat { .. } => {
+                walk.step_over();
+                deliver(&mut stack, &mut items, next_gp());
             }
-            SeedItem::Term(t) if !seed.term(*t).bare() => seed.term(*t),
-            SeedItem::Repeat(_) | SeedItem::Term(_) => {
-                items.extend(next_gp().map(|s| SeedItem::Term(Terms::term_of(s))));
-                continue;
+            SeedStep::Empty { .. } => deliver(&mut stack, &mut items, None),
+            SeedStep::End { .. } => {
+                let Some((term, slots)) = stack.pop() else {
+                    continue;
+                };
+                let id = terms.push(term.rule(), false, term.loc(), &slots);
+                deliver(&mut stack, &mut items, Some(Terms::slot_of(id)));
             }
-        };
-        let mut stack = vec![frame(top)];
-        while let Some(f) = stack.last_mut() {
-            if f.next < f.term.slot_count() {
-                let slot = f.term.slot(f.next);
-                f.next += 1;
-                match slot {
-                    None => f.built.push(None),
-                    Some(Slot::Term(t)) if !t.bare() => stack.push(frame(t)),
-                    Some(Slot::Repeat(_) | Slot::Term(_)) => f.built.push(next_gp()),
-                }
-            } else {
-                let Some(f) = stack.pop() else { break };
-                let id = terms.push(f.term.rule(), false, f.term.loc(), &f.built);
-                match stack.last_mut() {
-                    Some(parent) => parent.built.push(Some(Terms::slot_of(id))),
-                    None => items.push(SeedItem::Term(id)),
-                }
-            }
+            SeedStep::Level { .. } | SeedStep::Open | SeedStep::Close => {}
         }
     }
     (items, terms)

@@ -7,11 +7,13 @@
 //! `R1 = [F][+F][-F]` and `R2 = [++F][-F]`, `R1{R1{,,},R2{,},R1{,,}}` is
 //! `[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]`.
 //!
-//! - `[I n X]`, X a rule: `X`, with `[I n-1 X]` in every slot (`n` levels).
+//! - `[I n X]`, X a rule: `X`, with `[I n-1 X]` in every slot (`n` levels;
+//!   `[I 0 X]` is nothing), by [`Levels`], the one repeat expander.
 //! - `[I n w]`, w drawing components: `F` rewritten by `w`, `n` times
 //!   (`[I 1 w]` is `w`), drawn at the current order; [`FixedWord`] expands it.
 //!
-//! Both strategies read a rule body through [`walk::steps`].
+//! `dfs` reads the seed through the one seed walk ([`SeedWalk`]), `bfs`
+//! its items through it and the rule bodies through [`walk::steps`].
 //! [`Derivation::Dfs`] streams the operations with an explicit stack and never
 //! builds the expanded word (memory grows with nesting depth only);
 //! [`Derivation::Bfs`] rewrites the whole word one level of rule
@@ -25,8 +27,9 @@ use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
-use crate::model::walk::{self, FixedWord, Step, Steps};
-use crate::model::{Description, Fixed, RuleDef, RuleId, Seed, SeedItem, Slot, Term};
+use crate::model::seed_walk::{Points, SeedStep, SeedWalk};
+use crate::model::walk::{self, FixedWord, Levels, Step};
+use crate::model::{Description, Fixed, Repeat, RuleDef, RuleId, Seed, Slot, Term};
 use crate::progress::Progress;
 use crate::turtle::{Interp, Op, State};
 use crate::turtle::{Point, Turtle};
@@ -210,13 +213,13 @@ fn emit_text(
     Ok(())
 }
 
-/// What grows in the slots of one rule application.
+/// What grows in the slots of one rule application (`bfs`).
 #[derive(Clone, Copy)]
 enum Slots<'a> {
     /// A written term's slots.
     Written(Term<'a>),
-    /// `[I n X]` with `n` levels left for the children (0: all empty).
-    Repeat(RuleId, u32),
+    /// A level of `[I n X]`: the next level in every slot, or nothing.
+    Repeat(RuleId, Option<Levels>),
 }
 
 impl<'a> Slots<'a> {
@@ -224,43 +227,35 @@ impl<'a> Slots<'a> {
         match self {
             Slots::Written(t) => match t.slot(i)? {
                 Slot::Term(t) => Some(Child::Term(t)),
-                Slot::Repeat(r) => Some(Child::Repeat(r.rule, r.count)),
+                Slot::Repeat(r) => Child::repeat(r),
             },
-            Slots::Repeat(_, 0) => None,
-            Slots::Repeat(rule, n) => Some(Child::Repeat(rule, n)),
+            Slots::Repeat(rule, levels) => Some(Child::Repeat(rule, levels?)),
         }
     }
 }
 
-/// A rule application to start.
+/// A rule application to start (`bfs`).
 #[derive(Clone, Copy)]
 enum Child<'a> {
     Term(Term<'a>),
-    /// `[I n X]`, `n >= 1`.
-    Repeat(RuleId, u32),
+    /// A level of `[I n X]`.
+    Repeat(RuleId, Levels),
 }
 
 impl<'a> Child<'a> {
+    /// The first level of `r`, if it has one (`[I 0 X]` applies nothing).
+    fn repeat(r: &Repeat) -> Option<Child<'a>> {
+        Some(Child::Repeat(r.rule, Levels::of(r.count)?))
+    }
+
     fn parts(self, desc: &'a Description) -> Option<(&'a RuleDef, Slots<'a>)> {
         match self {
             Child::Term(t) => Some((desc.rules.get(t.rule().0)?, Slots::Written(t))),
-            Child::Repeat(rule, n) => Some((
-                desc.rules.get(rule.0)?,
-                Slots::Repeat(rule, n.saturating_sub(1)),
-            )),
+            Child::Repeat(rule, levels) => {
+                Some((desc.rules.get(rule.0)?, Slots::Repeat(rule, levels.next())))
+            }
         }
     }
-}
-
-/// What the `dfs` stack holds.
-enum Frame<'a> {
-    /// A rule application's body: its steps still to come, and what grows
-    /// in its slots.
-    Body { steps: Steps<'a>, slots: Slots<'a> },
-    /// Start a rule application (a slot's content).
-    Start(Child<'a>),
-    /// Emit one operation (the `]` closing a branch).
-    Emit(Op),
 }
 
 /// Emits the operations of the fixed figure `f`, reusing `word`'s stack.
@@ -284,65 +279,27 @@ fn emit_fixed<'a>(
     Ok(())
 }
 
-/// Depth-first streaming with an explicit stack: one [`Frame::Body`] per
-/// rule application in progress, so memory grows with nesting depth only.
-/// A fixed figure is streamed whole when it is met (it holds no rule
+/// Depth-first streaming: the seed in drawing order, bare references and
+/// repeats expanded ([`SeedWalk::drawing`]), whose stack holds one frame
+/// per rule application in progress, so memory grows with nesting depth
+/// only. A fixed figure is streamed whole when it is met (it holds no rule
 /// application), by one [`FixedWord`] reused for every figure.
 fn dfs(
     desc: &Description,
     seed: &Seed,
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
-    let mut stack: Vec<Frame<'_>> = Vec::new();
     let mut fixed: Option<FixedWord<'_>> = None;
-    for item in &seed.items {
-        match item {
-            SeedItem::Draw(d) => emit_text(&d.text, sink)?,
-            SeedItem::Fixed(f) => emit_fixed(f, &mut fixed, sink)?,
-            SeedItem::Term(t) => stack.push(Frame::Start(Child::Term(seed.term(*t)))),
-            SeedItem::Repeat(r) => stack.push(Frame::Start(Child::Repeat(r.rule, r.count))),
-        }
-        while let Some(top) = stack.last_mut() {
-            let (step, slots) = match top {
-                Frame::Body { steps, slots } => (steps.next(), *slots),
-                Frame::Start(c) => {
-                    let c = *c;
-                    stack.pop();
-                    if let Some((rule, slots)) = c.parts(desc) {
-                        sink(Op::Enter)?;
-                        stack.push(Frame::Body {
-                            steps: walk::steps(&rule.body),
-                            slots,
-                        });
-                    }
-                    continue;
-                }
-                Frame::Emit(op) => {
-                    let op = *op;
-                    stack.pop();
-                    sink(op)?;
-                    continue;
-                }
-            };
-            match step {
-                None => {
-                    stack.pop();
-                    sink(Op::Leave)?;
-                }
-                Some(Step::Run(r)) => emit_text(&r.text, sink)?,
-                Some(Step::Fixed(f)) => emit_fixed(f, &mut fixed, sink)?,
-                Some(Step::Open { .. }) => sink(Op::Push)?,
-                Some(Step::Tip { index, .. }) => match slots.child(index) {
-                    Some(c) => {
-                        stack.push(Frame::Emit(Op::Pop));
-                        stack.push(Frame::Start(c));
-                    }
-                    None => sink(Op::Pop)?,
-                },
-            }
-        }
-    }
-    Ok(())
+    SeedWalk::drawing(seed, &desc.rules, Points::Expand).try_each(|step| match step {
+        SeedStep::Run(r) => emit_text(&r.text, sink),
+        SeedStep::Fixed(f) => emit_fixed(f, &mut fixed, sink),
+        SeedStep::Term { .. } | SeedStep::Level { .. } => sink(Op::Enter),
+        SeedStep::End { .. } => sink(Op::Leave),
+        SeedStep::Open => sink(Op::Push),
+        SeedStep::Close => sink(Op::Pop),
+        // Not in drawing order with repeats expanded.
+        SeedStep::Repeat { .. } | SeedStep::Empty { .. } => Ok(()),
+    })
 }
 
 /// One symbol of the breadth-first word.
@@ -395,12 +352,19 @@ fn bfs(
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     let mut word: Vec<Sym<'_>> = Vec::new();
-    for item in &seed.items {
-        match item {
-            SeedItem::Draw(d) => push_text(&mut word, &d.text),
-            SeedItem::Fixed(f) => push_fixed(&mut word, f, limits)?,
-            SeedItem::Term(t) => word.push(Sym::Apply(Child::Term(seed.term(*t)))),
-            SeedItem::Repeat(r) => word.push(Sym::Apply(Child::Repeat(r.rule, r.count))),
+    // The seed's items: its terms and repeats are rewritten level by level
+    // below.
+    let mut items = SeedWalk::written(seed);
+    while let Some(step) = items.next() {
+        match step {
+            SeedStep::Run(d) => push_text(&mut word, &d.text),
+            SeedStep::Fixed(f) => push_fixed(&mut word, f, limits)?,
+            SeedStep::Term { term, .. } => {
+                items.step_over();
+                word.push(Sym::Apply(Child::Term(term)));
+            }
+            SeedStep::Repeat { repeat, .. } => word.extend(Child::repeat(repeat).map(Sym::Apply)),
+            _ => {}
         }
     }
     check_word(word.len() as u64, limits)?;
@@ -445,7 +409,7 @@ fn bfs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Body, BodyItem, Branch, Format, Loc, Piece, Repeat, StemParams, Terms};
+    use crate::model::{Body, BodyItem, Branch, Format, Loc, Piece, SeedItem, StemParams, Terms};
     use crate::num::Linear;
     use crate::progress::NoProgress;
 

@@ -1,5 +1,5 @@
 //! The layout as written: shapes painted in order on a white canvas.
-//! Geometry (rings, fills, the canvas view) is [`crate::layout`].
+//! Geometry (rings, fills, the canvas view) is [`crate::rings`].
 
 use super::Loc;
 use crate::color::Rgb;

@@ -10,8 +10,10 @@
 //!   validated, measured form the renderer takes.
 //! - [`term`]: branch-expansion terms, the recursive part of a seed.
 //! - [`layout`]: the layout shapes as written.
-//! - [`walk`]: the one walk over a rule body's steps and the one expander
-//!   of fixed figures `[I n w]`, used by every pass.
+//! - [`walk`]: the one walk over a rule body's steps, the one expander
+//!   of fixed figures `[I n w]` and the one of rule repeats `[I n X]`,
+//!   used by every pass.
+//! - [`seed_walk`]: the one walk over a seed, in written or drawing order.
 //! - [`lsys`]: classic L-systems.
 //!
 //! Every node keeps the byte span of its text in a [`Loc`]; locations never
@@ -20,6 +22,7 @@
 
 pub mod layout;
 pub mod lsys;
+pub mod seed_walk;
 pub mod term;
 pub mod walk;
 

@@ -5,7 +5,8 @@
 //! of [`Step`]s: runs of drawing components, fixed figures, and each branch
 //! as an [`Step::Open`], its pieces, and a [`Step::Tip`] where its slot
 //! grows before the closing `]`. A fixed figure `[I n w]` is expanded by
-//! [`FixedWord`] alone.
+//! [`FixedWord`] alone, a rule repeat `[I n X]` by [`Levels`] alone. The
+//! one walk over a seed is [`super::seed_walk`].
 
 use super::{Body, BodyItem, Branch, DrawRun, Fixed, Piece};
 
@@ -194,6 +195,56 @@ pub fn fixed_counts(word: &str, count: u32) -> (u64, u64) {
     (symbols, stems)
 }
 
+/// The levels of a rule repeat `[I n X]`, X a rule: the one expander of
+/// rule repeats. `[I n X]` is the growth point rewritten by X `n` times:
+/// X applied here with `[I n-1 X]` in every slot, `n` levels in all. So
+/// `[I 1 X]` is X with its slots empty and `[I 0 X]` applies nothing (an
+/// empty slot), as `[I 0 w]` rewrites nothing ([`FixedWord`]). Measuring
+/// ([`repeat_counts`]), BED expansion and growth all step through these.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Levels(u32);
+
+impl Levels {
+    /// The levels of `[I count X]`: `None` for `count = 0`, nothing applied.
+    pub fn of(count: u32) -> Option<Levels> {
+        (count > 0).then_some(Levels(count))
+    }
+
+    /// How many levels, from this one down (at least 1).
+    pub fn get(self) -> u32 {
+        self.0
+    }
+
+    /// What grows in every slot of this level's application: the next
+    /// level, or `None` (slots empty) below the last.
+    pub fn next(self) -> Option<Levels> {
+        Levels::of(self.0 - 1)
+    }
+}
+
+/// How many symbols and stems `[I count X]` expands to (saturating at
+/// `u64::MAX`), given what one application of X draws itself (`own`, its
+/// slots aside) and X's branch count. Agrees with [`Levels`]: `count = 0`
+/// is nothing.
+pub fn repeat_counts(own: (u64, u64), branches: usize, count: u32) -> (u64, u64) {
+    let Some(levels) = Levels::of(count) else {
+        return (0, 0);
+    };
+    let m = branches as u64;
+    let mut s = own;
+    for _ in 1..levels.get() {
+        let next = (
+            own.0.saturating_add(s.0.saturating_mul(m)),
+            own.1.saturating_add(s.1.saturating_mul(m)),
+        );
+        if next == s {
+            break;
+        }
+        s = next;
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -290,6 +341,27 @@ mod tests {
             }
         }
         assert_eq!(fixed_counts("FF", 200), (u64::MAX, u64::MAX));
+    }
+
+    /// `[I n X]` is `n` levels: the counts follow the levels, and
+    /// `[I 0 X]` is nothing.
+    #[test]
+    fn repeat_levels_and_counts() {
+        assert_eq!(Levels::of(0), None);
+        let three = Levels::of(3).unwrap();
+        let below: Vec<u32> = std::iter::successors(Some(three), |l| l.next())
+            .map(Levels::get)
+            .collect();
+        assert_eq!(below, [3, 2, 1]);
+        // X draws 11 symbols and 3 stems itself and has 2 branches:
+        // `2^n - 1` applications.
+        for n in 0..10 {
+            let k = (1u64 << n) - 1;
+            assert_eq!(repeat_counts((11, 3), 2, n), (11 * k, 3 * k), "n = {n}");
+        }
+        assert_eq!(repeat_counts((4, 1), 1, 5), (20, 5));
+        assert_eq!(repeat_counts((4, 1), 0, 5), (4, 1));
+        assert_eq!(repeat_counts((1, 1), 2, 200), (u64::MAX, u64::MAX));
     }
 }
 

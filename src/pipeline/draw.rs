@@ -89,11 +89,11 @@ pub(crate) fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>
         return (None, Vec::new());
     };
     let fills = if show {
-        crate::layout::fills(layout)
+        crate::rings::fills(layout)
     } else {
         Vec::new()
     };
-    let view = crate::layout::layout_bbox(layout).map(|b| {
+    let view = crate::rings::layout_bbox(layout).map(|b| {
         let widest = desc.params.width.base.max(0.0);
         let m = crate::render::MARGIN_FRACTION * b.width().max(b.height()) + widest / 2.0;
         BBox {

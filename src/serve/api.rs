@@ -574,8 +574,10 @@ mod tests {
             limits: Limits::default(),
             max_stems: None,
             max_svg_segments: 1_000_000,
+            time_budget: std::time::Duration::from_secs(60),
         };
-        let (answer, _) = run(&body, &s, ImageFormat::Svg).unwrap();
+        let (answer, _) =
+            run(&body, &s, ImageFormat::Svg, &mut stlc::pipeline::NoProgress).unwrap();
         let units: Vec<u16> = text.encode_utf16().collect();
         let slice = |a: usize, b: usize| String::from_utf16(&units[a..b]).unwrap();
         let layout = answer.layout.flatten().unwrap();

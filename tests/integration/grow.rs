@@ -17,9 +17,9 @@ use stlc::grow::grow_with;
 #[cfg(feature = "spade-index")]
 use stlc::grow::occupancy::Backend;
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow};
-use stlc::layout::shape_ring;
 use stlc::model::*;
 use stlc::progress::NoProgress;
+use stlc::rings::shape_ring;
 use stlc::syntax::stl::parse;
 use stlc::turtle::{Interp, Op};
 use stlc::turtle::{Point, Recorder, Segment};

@@ -15,6 +15,7 @@ mod lsys;
 mod newuser;
 mod od_variation;
 mod render;
+mod repeats;
 mod robustness;
 mod serve;
 mod stl;
