@@ -46,10 +46,10 @@ fn drawing_edits_touch_only_their_shape_in_chromium() {
     rt.block_on(async {
         let c = connect(&driver, &chromium, &chrome_tmp).await;
         let server = Server::start(&[empty.to_str().unwrap()]);
-        c.goto(&format!("http://{}/", server.addr)).await.unwrap();
+        c.goto(&server.url).await.unwrap();
         paint_colour_is_for_the_next_shape(&c).await;
         let server = Server::start(&[one_line.to_str().unwrap()]);
-        c.goto(&format!("http://{}/", server.addr)).await.unwrap();
+        c.goto(&server.url).await.unwrap();
         edits_keep_the_rest_of_the_text(&c).await;
         let _ = c.close().await;
     });

@@ -360,6 +360,21 @@ fn a_forest_bed_has_one_seed_per_root() {
     let text = "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED";
     let d = parse(text, Format::Bed, &Limits::default()).unwrap();
     assert_eq!(d.forest.len(), 1);
+    // Fewer SEEDs than roots: an error at the first root without one (it
+    // drew one tree where the file names three).
+    let text = "T (0,0) (10,0) (20,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED";
+    let e = errors(text, Format::Bed);
+    assert!(matches!(
+        e.0[0].kind,
+        ErrorKind::Stl(StlError::SeedsPerRoot { roots: 3, seeds: 1 })
+    ));
+    assert_eq!(e.0[0].span, Some(span_of(text, "(10,0)")));
+    let text = "T (0,0) (10,0) (20,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED";
+    let e = errors(text, Format::Bed);
+    assert_eq!(e.0[0].span, Some(span_of(text, "(20,0)")));
+    // No SEED at all: every root grows the default seed.
+    let none = "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F]";
+    assert!(parse(none, Format::Bed, &Limits::default()).is_ok());
     let e = errors(
         "T (0,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED",
         Format::Od,

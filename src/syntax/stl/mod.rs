@@ -163,8 +163,16 @@ impl Builder<'_> {
             Format::Bed if !more.is_empty() => more.len() + 1,
             _ => 1,
         };
-        if seeds.len() > wanted || (seeds.len() > 1 && seeds.len() != wanted) {
-            let extra = seeds.get(wanted).unwrap_or(&seeds[0]).loc.0.clone();
+        // An OD has one SEED for every root; a BED of a forest one per root,
+        // in root order (none: every root grows the default seed).
+        if seeds.len() > wanted || (!seeds.is_empty() && seeds.len() != wanted) {
+            let (at, label) = if seeds.len() > wanted {
+                (seeds[wanted].loc.0.clone(), "this SEED")
+            } else {
+                // Fewer: the first root without one (roots after the first
+                // take the SEEDs after the first, in order).
+                (more[seeds.len() - 1].1.0.clone(), "this root has no SEED")
+            };
             let help = match self.format {
                 Format::Od => "an OD has one SEED, grown from every root: remove the others",
                 Format::Bed => "a BED has one SEED per root, in root order",
@@ -174,8 +182,8 @@ impl Builder<'_> {
                     roots: more.len() + 1,
                     seeds: seeds.len(),
                 },
-                extra,
-                "this SEED",
+                at,
+                label,
                 help,
             );
         }
