@@ -18,6 +18,7 @@
 
 mod api;
 mod assets;
+mod conns;
 mod document;
 mod http;
 mod routes;
@@ -65,9 +66,6 @@ const TEMPLATE_LSYS: &str = include_str!("templates/new.lsys");
 
 /// Largest request head (request line and headers), bytes.
 const MAX_HEAD: usize = 16 * 1024;
-
-/// Connections served at once; more wait to be accepted.
-const MAX_CONNECTIONS: usize = 64;
 
 /// Threads that run the pipeline; more requests wait for one. Light work
 /// runs at once on its own thread; of these, [`HEAVY`] may run heavy work
@@ -211,18 +209,16 @@ fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
     document::Document::file(path, name, kind, template, max_bytes)
 }
 
-/// Accepts connections for ever, at most [`MAX_CONNECTIONS`] at once.
+/// Accepts connections for ever; past `conns::MAX_CONNECTIONS` the
+/// idlest one makes room for each new one.
 async fn accept_loop(
     listener: std::net::TcpListener,
     state: Arc<State>,
 ) -> Result<(), Diagnostics> {
     let listener =
         tokio::net::TcpListener::from_std(listener).map_err(|e| io_error(&e, "cannot listen"))?;
-    let slots = Arc::new(tokio::sync::Semaphore::new(MAX_CONNECTIONS));
+    let conns = conns::Conns::default();
     loop {
-        let Ok(permit) = slots.clone().acquire_owned().await else {
-            return Ok(());
-        };
         let stream = match listener.accept().await {
             Ok((stream, _)) => stream,
             // Out of file descriptors and the like: wait, then go on.
@@ -232,9 +228,19 @@ async fn accept_loop(
             }
         };
         let state = state.clone();
-        tokio::spawn(async move {
-            let _permit = permit;
-            let service = hyper::service::service_fn(move |req| handle(state.clone(), req));
+        let ticket = conns.open();
+        let mine = ticket.clone();
+        let task = tokio::spawn(async move {
+            let on_request = mine.clone();
+            let service = hyper::service::service_fn(move |req| {
+                let busy = on_request.busy();
+                let state = state.clone();
+                async move {
+                    let answer = handle(state, req).await;
+                    drop(busy);
+                    answer
+                }
+            });
             let _ = hyper::server::conn::http1::Builder::new()
                 .timer(TokioTimer::new())
                 .header_read_timeout(HEAD_TIMEOUT)
@@ -244,7 +250,9 @@ async fn accept_loop(
                     service,
                 )
                 .await;
+            mine.close();
         });
+        ticket.set_abort(task.abort_handle());
     }
 }
 

@@ -1121,3 +1121,32 @@ fn a_client_that_never_reads_is_dropped() {
     let light = render(addr, &json!({"source": example("fig9.od")}));
     assert_eq!(light["ok"], true);
 }
+
+/// Slowloris (issue 23, problem 7): 300 connections that send their head a
+/// byte at a time and never finish do not keep the page from loading: past
+/// the connection count the idlest makes room, so `GET /` and a light
+/// render are answered within a second.
+#[test]
+fn slow_heads_cannot_fill_the_server() {
+    let server = Server::start(&[]);
+    let addr = server.addr.clone();
+    let mut slow: Vec<TcpStream> = Vec::new();
+    for _ in 0..300 {
+        let mut s = TcpStream::connect(&addr).unwrap();
+        s.write_all(b"GET / HTTP/1.1\r\nHo").unwrap();
+        slow.push(s);
+    }
+    for round in 0..3 {
+        for s in slow.iter_mut() {
+            let _ = s.write_all(b"s");
+        }
+        let t0 = std::time::Instant::now();
+        let page = request(&addr, "GET", "/", &[], b"");
+        let light = render(&addr, &json!({"source": example("fig9.od")}));
+        let took = t0.elapsed();
+        assert_eq!(page.status, 200);
+        assert_eq!(light["ok"], true);
+        assert!(took < Duration::from_secs(1), "round {round}: {took:?}");
+    }
+    drop(slow);
+}
