@@ -12,13 +12,14 @@
 use std::collections::VecDeque;
 
 use super::bounded::successors;
-use super::occupancy::{Backend, LocalIndex, Occupancy, Seg};
+use super::explain::RuleTally;
+use super::occupancy::{Backend, LocalIndex, Occupancy, Seg, clearance_distance};
 use super::region::Region;
 use super::seed::{Flat, Instr};
 use super::tree::{Budget, NO_NODE, Parent, Tree};
 use super::{GrowOptions, GrowthOrder, SEED_STEMS};
 use crate::choice::{Alternatives, Key};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Kin, Misfit, MissReason};
 use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, FixedWord, Step};
 use crate::model::{Description, Fixed, RuleDef, RuleId, StemParams};
@@ -55,6 +56,11 @@ struct Scratch {
     /// Whether the turtle was inside the region, saved at each `[` of the
     /// body being drawn (kept to reuse its allocation).
     saved: Vec<bool>,
+    /// The last failed try: the stem that failed (numbered from 1) ...
+    miss_stem: u32,
+    /// ... and, if it came too close to a stem, the two stems (the new
+    /// one first) and whether the other is one of the try's own.
+    clash: (Seg, Seg, bool),
 }
 
 /// The growth points waiting for their decision: a FIFO queue in `bfs`, a
@@ -158,8 +164,8 @@ fn seg_of(s: &Segment, params: &StemParams) -> Seg {
 
 /// Why an application did not grow.
 enum Miss {
-    /// Not here (space, order, count); growth goes on elsewhere.
-    Failed,
+    /// Not here (space, order); growth goes on elsewhere.
+    Failed(MissReason),
     /// A limit stopped all growth.
     Stopped,
 }
@@ -184,6 +190,8 @@ pub(super) struct Grower<'a> {
     tree_key: Key,
     /// `--seed`.
     seed: u64,
+    /// What became of each rule's tries, by [`RuleId`].
+    tallies: Vec<RuleTally>,
     /// When asked for ([`super::grow_traced`]): every stem placed, in the
     /// order growth placed it, with its decision (0: the seed's drawing).
     pub(super) trace: Option<Vec<(Seg, u64)>>,
@@ -225,17 +233,25 @@ impl<'a> Grower<'a> {
                 tips: Vec::new(),
                 children: Vec::new(),
                 saved: Vec::new(),
+                miss_stem: 0,
+                clash: (
+                    Seg::new([0.0; 2], [0.0; 2]),
+                    Seg::new([0.0; 2], [0.0; 2]),
+                    false,
+                ),
             },
             schedule: Schedule::default(),
             tree_key: Key::root(opts.seed).child(0),
             seed: opts.seed,
+            tallies: vec![RuleTally::default(); od.rules.len()],
             trace: None,
         }
     }
 
-    /// The grown tree and what growth spent.
-    pub(super) fn finish(self) -> (Tree, Budget) {
-        (self.tree, self.budget)
+    /// The grown tree, what growth spent, and what became of each rule's
+    /// tries (by [`RuleId`]).
+    pub(super) fn finish(self) -> (Tree, Budget, Vec<RuleTally>) {
+        (self.tree, self.budget, self.tallies)
     }
 
     /// Grows every tree: draws each tree's seed from its root, in root
@@ -391,17 +407,26 @@ impl<'a> Grower<'a> {
     /// application.
     fn decide(&mut self, mut gp: Gp, progress: &mut dyn Progress) -> Option<State> {
         self.scratch.children.clear();
+        if gp.count == Some(0) {
+            return None;
+        }
         if let Some(c) = &self.rules[gp.rule.0].choice {
             gp.rule = c.1[c.0.pick(gp.key)];
         }
+        self.tallies[gp.rule.0].tries += 1;
         let end = match self.apply(&gp) {
             Ok(end) => end,
-            Err(Miss::Failed) => return None,
+            Err(Miss::Failed(reason)) => {
+                self.note_miss(&gp, reason);
+                return None;
+            }
             Err(Miss::Stopped) => {
                 self.budget.stopped = true;
+                self.note_miss(&gp, MissReason::StemLimit);
                 return None;
             }
         };
+        self.tallies[gp.rule.0].fits += 1;
         // Commit.
         self.budget.stems += self.scratch.segs.len() as u64;
         for s in self.scratch.segs.drain() {
@@ -434,22 +459,65 @@ impl<'a> Grower<'a> {
         Some(end)
     }
 
+    /// Counts a failed try of `gp.rule`; for the rule's first, works out the
+    /// numbers from what the try left in the scratch.
+    fn note_miss(&mut self, gp: &Gp, reason: MissReason) {
+        let order = gp.state.order + 1;
+        let (scratch, params, limits) = (&self.scratch, &self.od.params, self.limits);
+        let clearance = self.occ.clearance();
+        self.tallies[gp.rule.0].miss(reason, || match reason {
+            MissReason::Outside => Misfit::Outside {
+                stem: scratch.miss_stem,
+            },
+            MissReason::TooClose(kin) => {
+                let (t, s, own) = scratch.clash;
+                let other = own
+                    .then(|| scratch.segs.position(&s))
+                    .flatten()
+                    .map(|i| i as u32 + 1);
+                Misfit::TooClose {
+                    stem: scratch.miss_stem,
+                    kin,
+                    other,
+                    found: clearance_distance(&t, &s),
+                    needed: clearance + t.r + s.r,
+                    clearance,
+                }
+            }
+            MissReason::TooShort => Misfit::TooShort {
+                order,
+                length: params.length.at(order),
+            },
+            MissReason::TooThin => Misfit::TooThin {
+                order,
+                width: params.width.at(order),
+            },
+            MissReason::Depth => Misfit::Depth {
+                limit: limits.max_depth,
+            },
+            MissReason::StemLimit => Misfit::StemLimit {
+                limit: limits.max_stems,
+            },
+        });
+    }
+
     /// Draws rule `gp.rule` at the growth point into the scratch, testing
     /// every segment; records the branch tips in `scratch.tips`.
     fn apply(&mut self, gp: &Gp) -> Result<State, Miss> {
         if self.budget.stopped {
             return Err(Miss::Stopped);
         }
-        if gp.count == Some(0) {
-            return Err(Miss::Failed);
-        }
         let order = gp.state.order + 1;
         if !self.od.params.can_grow_at(order) {
-            return Err(Miss::Failed);
+            return Err(Miss::Failed(if self.od.params.length.at(order) > 0.0 {
+                MissReason::TooThin
+            } else {
+                MissReason::TooShort
+            }));
         }
         if order > self.limits.max_depth {
             self.budget.cap_depth(self.limits.max_depth);
-            return Err(Miss::Failed);
+            return Err(Miss::Failed(MissReason::Depth));
         }
         if self.budget.applications >= self.limits.max_stems {
             self.budget.stop(self.limits.max_stems);
@@ -544,12 +612,28 @@ impl<'a> Grower<'a> {
         let seg = seg_of(&s, &self.od.params);
         if let Some(r) = &self.region {
             if !r.capsule_inside(s.from, s.to, seg.r, *inside) {
-                return Err(Miss::Failed);
+                self.scratch.miss_stem = self.scratch.segs.len() as u32 + 1;
+                return Err(Miss::Failed(MissReason::Outside));
             }
             *inside = true;
         }
-        if self.occ.conflicts(&seg) || self.scratch.segs.conflicts(&seg) {
-            return Err(Miss::Failed);
+        // The try's own stems first: a rule that clashes with itself says so.
+        let clash = match self.scratch.segs.conflict(&seg) {
+            Some(other) => Some((other, true)),
+            None => self.occ.conflict(&seg).map(|other| (other, false)),
+        };
+        if let Some((other, own)) = clash {
+            // As the joint exception of the clearance test sees them.
+            let kin = if seg.a == other.a {
+                Kin::Sibling
+            } else if seg.a == other.b {
+                Kin::Parent
+            } else {
+                Kin::Other
+            };
+            self.scratch.miss_stem = self.scratch.segs.len() as u32 + 1;
+            self.scratch.clash = (seg, other, own);
+            return Err(Miss::Failed(MissReason::TooClose(kin)));
         }
         self.scratch.segs.insert(seg);
         if self.budget.stems + self.scratch.segs.len() as u64 > self.limits.max_stems {
