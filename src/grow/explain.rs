@@ -7,9 +7,11 @@
 //! Counting costs two increments a try; the numbers of a failure (which
 //! stem, the distance found) are worked out only for a rule's first.
 
+use super::occupancy::{Seg, clearance_distance};
 use super::span_of;
-use crate::diag::{Diagnostic, GrowError, Misfit, MissReason};
-use crate::model::Description;
+use crate::diag::{Diagnostic, GrowError, Kin, Misfit, MissReason};
+use crate::limits::Limits;
+use crate::model::{Description, StemParams};
 
 /// What growth did with one rule: the tries, the fits, the misses by
 /// reason, and the first miss with its numbers.
@@ -51,6 +53,82 @@ impl RuleTally {
         self.misses[reason.index()] += 1;
         if self.first_miss.is_none() {
             self.first_miss = Some(misfit());
+        }
+    }
+}
+
+/// Which stem `other` is to the new stem `new`, as the joint exception of
+/// the clearance test sees them: one starting where it starts is a
+/// sibling, one ending where it starts its parent.
+pub(super) fn kin(new: &Seg, other: &Seg) -> Kin {
+    if new.a == other.a {
+        Kin::Sibling
+    } else if new.a == other.b {
+        Kin::Parent
+    } else {
+        Kin::Other
+    }
+}
+
+/// What a failed try leaves for explaining it: the stem that failed
+/// (numbered from 1) and, if it came too close to a stem, the two stems
+/// (the new one first) and whether the other is one of the try's own.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct LastMiss {
+    stem: u32,
+    clash: Option<(Seg, Seg, bool)>,
+}
+
+impl LastMiss {
+    /// The try failed at its stem number `drawn + 1` (after `drawn` fitted).
+    pub(super) fn at(drawn: usize, clash: Option<(Seg, Seg, bool)>) -> Self {
+        LastMiss {
+            stem: u32::try_from(drawn).unwrap_or(u32::MAX).saturating_add(1),
+            clash,
+        }
+    }
+
+    /// The numbers of a miss for `reason` of a try at `order`; `position`
+    /// finds one of the try's own stems among them (0 for the first).
+    pub(super) fn misfit(
+        &self,
+        reason: MissReason,
+        order: u32,
+        params: &StemParams,
+        limits: &Limits,
+        clearance: f64,
+        position: impl FnOnce(&Seg) -> Option<usize>,
+    ) -> Misfit {
+        match reason {
+            MissReason::Outside => Misfit::Outside { stem: self.stem },
+            MissReason::TooClose(kin) => {
+                let Some((t, s, own)) = self.clash else {
+                    return Misfit::Outside { stem: self.stem };
+                };
+                let other = if own { position(&s) } else { None };
+                Misfit::TooClose {
+                    stem: self.stem,
+                    kin,
+                    other: other.map(|i| u32::try_from(i).unwrap_or(u32::MAX).saturating_add(1)),
+                    found: clearance_distance(&t, &s),
+                    needed: clearance + t.r + s.r,
+                    clearance,
+                }
+            }
+            MissReason::TooShort => Misfit::TooShort {
+                order,
+                length: params.length.at(order),
+            },
+            MissReason::TooThin => Misfit::TooThin {
+                order,
+                width: params.width.at(order),
+            },
+            MissReason::Depth => Misfit::Depth {
+                limit: limits.max_depth,
+            },
+            MissReason::StemLimit => Misfit::StemLimit {
+                limit: limits.max_stems,
+            },
         }
     }
 }

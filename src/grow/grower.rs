@@ -12,14 +12,14 @@
 use std::collections::VecDeque;
 
 use super::bounded::successors;
-use super::explain::RuleTally;
-use super::occupancy::{Backend, LocalIndex, Occupancy, Seg, clearance_distance};
+use super::explain::{LastMiss, RuleTally, kin};
+use super::occupancy::{Backend, LocalIndex, Occupancy, Seg};
 use super::region::Region;
 use super::seed::{Flat, Instr};
 use super::tree::{Budget, NO_NODE, Parent, Tree};
 use super::{GrowOptions, GrowthOrder, SEED_STEMS};
 use crate::choice::{Alternatives, Key};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, Kin, Misfit, MissReason};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, MissReason};
 use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, FixedWord, Step};
 use crate::model::{Description, Fixed, RuleDef, RuleId, StemParams};
@@ -56,11 +56,8 @@ struct Scratch {
     /// Whether the turtle was inside the region, saved at each `[` of the
     /// body being drawn (kept to reuse its allocation).
     saved: Vec<bool>,
-    /// The last failed try: the stem that failed (numbered from 1) ...
-    miss_stem: u32,
-    /// ... and, if it came too close to a stem, the two stems (the new
-    /// one first) and whether the other is one of the try's own.
-    clash: (Seg, Seg, bool),
+    /// What the last failed try left, for explaining it.
+    miss: LastMiss,
 }
 
 /// The growth points waiting for their decision: a FIFO queue in `bfs`, a
@@ -233,12 +230,7 @@ impl<'a> Grower<'a> {
                 tips: Vec::new(),
                 children: Vec::new(),
                 saved: Vec::new(),
-                miss_stem: 0,
-                clash: (
-                    Seg::new([0.0; 2], [0.0; 2]),
-                    Seg::new([0.0; 2], [0.0; 2]),
-                    false,
-                ),
+                miss: LastMiss::default(),
             },
             schedule: Schedule::default(),
             tree_key: Key::root(opts.seed).child(0),
@@ -463,41 +455,14 @@ impl<'a> Grower<'a> {
     /// numbers from what the try left in the scratch.
     fn note_miss(&mut self, gp: &Gp, reason: MissReason) {
         let order = gp.state.order + 1;
-        let (scratch, params, limits) = (&self.scratch, &self.od.params, self.limits);
+        let (scratch, params, limits) = (&self.scratch, &self.od.params, &self.limits);
         let clearance = self.occ.clearance();
-        self.tallies[gp.rule.0].miss(reason, || match reason {
-            MissReason::Outside => Misfit::Outside {
-                stem: scratch.miss_stem,
-            },
-            MissReason::TooClose(kin) => {
-                let (t, s, own) = scratch.clash;
-                let other = own
-                    .then(|| scratch.segs.position(&s))
-                    .flatten()
-                    .map(|i| i as u32 + 1);
-                Misfit::TooClose {
-                    stem: scratch.miss_stem,
-                    kin,
-                    other,
-                    found: clearance_distance(&t, &s),
-                    needed: clearance + t.r + s.r,
-                    clearance,
-                }
-            }
-            MissReason::TooShort => Misfit::TooShort {
-                order,
-                length: params.length.at(order),
-            },
-            MissReason::TooThin => Misfit::TooThin {
-                order,
-                width: params.width.at(order),
-            },
-            MissReason::Depth => Misfit::Depth {
-                limit: limits.max_depth,
-            },
-            MissReason::StemLimit => Misfit::StemLimit {
-                limit: limits.max_stems,
-            },
+        self.tallies[gp.rule.0].miss(reason, || {
+            scratch
+                .miss
+                .misfit(reason, order, params, limits, clearance, |s| {
+                    scratch.segs.position(s)
+                })
         });
     }
 
@@ -612,7 +577,7 @@ impl<'a> Grower<'a> {
         let seg = seg_of(&s, &self.od.params);
         if let Some(r) = &self.region {
             if !r.capsule_inside(s.from, s.to, seg.r, *inside) {
-                self.scratch.miss_stem = self.scratch.segs.len() as u32 + 1;
+                self.scratch.miss = LastMiss::at(self.scratch.segs.len(), None);
                 return Err(Miss::Failed(MissReason::Outside));
             }
             *inside = true;
@@ -623,16 +588,8 @@ impl<'a> Grower<'a> {
             None => self.occ.conflict(&seg).map(|other| (other, false)),
         };
         if let Some((other, own)) = clash {
-            // As the joint exception of the clearance test sees them.
-            let kin = if seg.a == other.a {
-                Kin::Sibling
-            } else if seg.a == other.b {
-                Kin::Parent
-            } else {
-                Kin::Other
-            };
-            self.scratch.miss_stem = self.scratch.segs.len() as u32 + 1;
-            self.scratch.clash = (seg, other, own);
+            let kin = kin(&seg, &other);
+            self.scratch.miss = LastMiss::at(self.scratch.segs.len(), Some((seg, other, own)));
             return Err(Miss::Failed(MissReason::TooClose(kin)));
         }
         self.scratch.segs.insert(seg);
