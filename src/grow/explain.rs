@@ -160,3 +160,31 @@ pub(super) fn never_fitted(od: &Description, tallies: &[RuleTally]) -> Vec<Diagn
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::Kin;
+
+    #[test]
+    fn the_most_common_reason_wins_and_ties_go_to_the_first() {
+        let mut t = RuleTally::default();
+        assert_eq!(t.most_common(), None);
+        t.tries = 6;
+        t.fits = 1;
+        t.miss(MissReason::Outside, || Misfit::Outside { stem: 2 });
+        t.miss(MissReason::TooClose(Kin::Other), || unreachable!());
+        t.miss(MissReason::TooClose(Kin::Other), || unreachable!());
+        assert_eq!(t.most_common(), Some((MissReason::TooClose(Kin::Other), 2)));
+        t.miss(MissReason::Outside, || unreachable!());
+        t.miss(MissReason::TooShort, || unreachable!());
+        // Outside and Other 2 each: Outside comes first.
+        assert_eq!(t.most_common(), Some((MissReason::Outside, 2)));
+        // Only the first miss's numbers are kept.
+        assert_eq!(t.first_miss, Some(Misfit::Outside { stem: 2 }));
+        assert!(!t.never_fitted());
+        for (i, r) in MissReason::ALL.iter().enumerate() {
+            assert_eq!(r.index(), i);
+        }
+    }
+}

@@ -467,6 +467,32 @@ mod tests {
         assert!(conflicts(&left, &br, 9.0));
     }
 
+    /// The distance the clearance test measured: with a joint, the far
+    /// ends' (not the joint itself); without, the segments'. A segment
+    /// conflicts exactly when it is below the threshold.
+    #[test]
+    fn clearance_distance_is_what_the_test_compares() {
+        let stem = seg(0.0, 0.0, 0.0, -10.0);
+        // Siblings 60 degrees apart, length 10: far ends 10 sin 60 off.
+        let br = seg(0.0, -10.0, -5.0, -10.0 - 8.660_254_037_844_386);
+        let left = seg(0.0, -10.0, 5.0, -10.0 - 8.660_254_037_844_386);
+        assert!((clearance_distance(&left, &br) - 8.660_254_037_844_386).abs() < 1e-12);
+        // A straight continuation: only the joint is near, never a conflict.
+        let on = seg(0.0, -10.0, 0.0, -20.0);
+        assert_eq!(clearance_distance(&on, &stem), f64::INFINITY);
+        // Folding back: the far end lies on the stem.
+        let back = seg(0.0, -10.0, 0.5, -1.0);
+        assert!((clearance_distance(&back, &stem) - 0.5).abs() < 1e-12);
+        // No joint: parallel stems 3 apart.
+        let far = seg(3.0, 0.0, 3.0, -10.0);
+        assert_eq!(clearance_distance(&far, &stem), 3.0);
+        for (t, s) in [(left, br), (on, stem), (back, stem), (far, stem)] {
+            for c in [0.4, 0.6, 3.5, 9.0] {
+                assert_eq!(conflicts(&t, &s, c), clearance_distance(&t, &s) < c);
+            }
+        }
+    }
+
     /// Stems as drawn: the threshold is C plus both half widths.
     #[test]
     fn wide_stems_keep_the_clearance_between_their_edges() {
