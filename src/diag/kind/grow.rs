@@ -165,8 +165,8 @@ impl fmt::Display for MissReason {
             MissReason::TooClose(Kin::Sibling) => "too close to a sibling stem",
             MissReason::TooClose(Kin::Parent) => "too close to its parent stem",
             MissReason::TooClose(Kin::Other) => "too close to another stem",
-            MissReason::TooShort => "stem too short (L decremented to 0)",
-            MissReason::TooThin => "stem too thin (B decremented to 0)",
+            MissReason::TooShort => "stem too short: L decremented to 0",
+            MissReason::TooThin => "stem too thin: B decremented to 0",
             MissReason::Depth => "depth limit reached",
             MissReason::StemLimit => "stem limit reached",
         })
