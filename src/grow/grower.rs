@@ -550,6 +550,18 @@ impl<'a> Grower<'a> {
         Ok(())
     }
 
+    /// Keeps what the failed stem left for explaining the miss (outside the
+    /// layout, or too close to `clash`'s other stem): out of line, so the
+    /// tests in [`Grower::step`] stay small.
+    #[inline(never)]
+    fn missed(&mut self, clash: Option<(Seg, Seg, bool)>) -> Miss {
+        self.scratch.miss = LastMiss::at(self.scratch.segs.len(), clash);
+        Miss::Failed(match clash {
+            None => MissReason::Outside,
+            Some((new, other, _)) => MissReason::TooClose(kin(&new, &other)),
+        })
+    }
+
     /// One operation inside an application; a drawn segment is tested.
     /// `floor`: pops below this stack depth are ignored (unbalanced input).
     fn step(
@@ -577,20 +589,16 @@ impl<'a> Grower<'a> {
         let seg = seg_of(&s, &self.od.params);
         if let Some(r) = &self.region {
             if !r.capsule_inside(s.from, s.to, seg.r, *inside) {
-                self.scratch.miss = LastMiss::at(self.scratch.segs.len(), None);
-                return Err(Miss::Failed(MissReason::Outside));
+                return Err(self.missed(None));
             }
             *inside = true;
         }
         // The try's own stems first: a rule that clashes with itself says so.
-        let clash = match self.scratch.segs.conflict(&seg) {
-            Some(other) => Some((other, true)),
-            None => self.occ.conflict(&seg).map(|other| (other, false)),
-        };
-        if let Some((other, own)) = clash {
-            let kin = kin(&seg, &other);
-            self.scratch.miss = LastMiss::at(self.scratch.segs.len(), Some((seg, other, own)));
-            return Err(Miss::Failed(MissReason::TooClose(kin)));
+        if let Some(other) = self.scratch.segs.conflict(&seg) {
+            return Err(self.missed(Some((seg, other, true))));
+        }
+        if let Some(other) = self.occ.conflict(&seg) {
+            return Err(self.missed(Some((seg, other, false))));
         }
         self.scratch.segs.insert(seg);
         if self.budget.stems + self.scratch.segs.len() as u64 > self.limits.max_stems {

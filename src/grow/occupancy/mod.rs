@@ -317,10 +317,22 @@ impl Occupancy {
             return None;
         }
         match &self.inner {
-            Inner::Rstar(tree) => tree
-                .locate_in_envelope_intersecting(&reach(t, widest))
-                .find(|p| conflicts(t, &self.segs[p.index], c))
-                .map(|p| self.segs[p.index]),
+            Inner::Rstar(tree) => {
+                // `any` with the hit kept aside is `find`; the release build
+                // happened to make much faster code of this shape with the
+                // default codegen units (docs/performance.md).
+                let mut hit = None;
+                tree.locate_in_envelope_intersecting(&reach(t, widest))
+                    .any(|p| {
+                        let s = &self.segs[p.index];
+                        let near = conflicts(t, s, c);
+                        if near {
+                            hit = Some(*s);
+                        }
+                        near
+                    });
+                hit
+            }
             #[cfg(feature = "spade-index")]
             Inner::Spade(ix) => ix.conflict(t, c, widest),
         }
