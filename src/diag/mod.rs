@@ -26,8 +26,8 @@ mod number;
 
 pub use excerpt::{Excerpt, line_column};
 pub use kind::{
-    BedError, ErrorKind, GrowError, InputError, LayoutError, LsysError, RenderError, RuleError,
-    StlError,
+    BedError, ErrorKind, GrowError, InputError, Kin, LayoutError, LsysError, Misfit, MissReason,
+    RenderError, RuleError, StlError,
 };
 pub(crate) use number::plural;
 pub use number::{SHOWN_DIGITS, saturated, short_number};

@@ -12,13 +12,14 @@
 use std::collections::VecDeque;
 
 use super::bounded::successors;
+use super::explain::{LastMiss, RuleTally, kin};
 use super::occupancy::{Backend, LocalIndex, Occupancy, Seg};
 use super::region::Region;
 use super::seed::{Flat, Instr};
 use super::tree::{Budget, NO_NODE, Parent, Tree};
 use super::{GrowOptions, GrowthOrder, SEED_STEMS};
 use crate::choice::{Alternatives, Key};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::{Diagnostic, Diagnostics, ErrorKind, MissReason};
 use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, FixedWord, Levels, Step};
 use crate::model::{Description, Fixed, RuleDef, RuleId, StemParams};
@@ -55,6 +56,8 @@ struct Scratch {
     /// Whether the turtle was inside the region, saved at each `[` of the
     /// body being drawn (kept to reuse its allocation).
     saved: Vec<bool>,
+    /// What the last failed try left, for explaining it.
+    miss: LastMiss,
 }
 
 /// The growth points waiting for their decision: a FIFO queue in `bfs`, a
@@ -158,8 +161,8 @@ fn seg_of(s: &Segment, params: &StemParams) -> Seg {
 
 /// Why an application did not grow.
 enum Miss {
-    /// Not here (space, order, count); growth goes on elsewhere.
-    Failed,
+    /// Not here (space, order); growth goes on elsewhere.
+    Failed(MissReason),
     /// A limit stopped all growth.
     Stopped,
 }
@@ -184,6 +187,8 @@ pub(super) struct Grower<'a> {
     tree_key: Key,
     /// `--seed`.
     seed: u64,
+    /// What became of each rule's tries, by [`RuleId`].
+    tallies: Vec<RuleTally>,
     /// When asked for ([`super::grow_traced`]): every stem placed, in the
     /// order growth placed it, with its decision (0: the seed's drawing).
     pub(super) trace: Option<Vec<(Seg, u64)>>,
@@ -225,17 +230,20 @@ impl<'a> Grower<'a> {
                 tips: Vec::new(),
                 children: Vec::new(),
                 saved: Vec::new(),
+                miss: LastMiss::default(),
             },
             schedule: Schedule::default(),
             tree_key: Key::root(opts.seed).child(0),
             seed: opts.seed,
+            tallies: vec![RuleTally::default(); od.rules.len()],
             trace: None,
         }
     }
 
-    /// The grown tree and what growth spent.
-    pub(super) fn finish(self) -> (Tree, Budget) {
-        (self.tree, self.budget)
+    /// The grown tree, what growth spent, and what became of each rule's
+    /// tries (by [`RuleId`]).
+    pub(super) fn finish(self) -> (Tree, Budget, Vec<RuleTally>) {
+        (self.tree, self.budget, self.tallies)
     }
 
     /// Grows every tree: draws each tree's seed from its root, in root
@@ -391,17 +399,26 @@ impl<'a> Grower<'a> {
     /// application.
     fn decide(&mut self, mut gp: Gp, progress: &mut dyn Progress) -> Option<State> {
         self.scratch.children.clear();
+        if gp.count == Some(0) {
+            return None;
+        }
         if let Some(c) = &self.rules[gp.rule.0].choice {
             gp.rule = c.1[c.0.pick(gp.key)];
         }
+        self.tallies[gp.rule.0].tries += 1;
         let end = match self.apply(&gp) {
             Ok(end) => end,
-            Err(Miss::Failed) => return None,
+            Err(Miss::Failed(reason)) => {
+                self.note_miss(&gp, reason);
+                return None;
+            }
             Err(Miss::Stopped) => {
                 self.budget.stopped = true;
+                self.note_miss(&gp, MissReason::StemLimit);
                 return None;
             }
         };
+        self.tallies[gp.rule.0].fits += 1;
         // Commit.
         self.budget.stems += self.scratch.segs.len() as u64;
         for s in self.scratch.segs.drain() {
@@ -438,23 +455,38 @@ impl<'a> Grower<'a> {
         Some(end)
     }
 
+    /// Counts a failed try of `gp.rule`; for the rule's first, works out the
+    /// numbers from what the try left in the scratch.
+    fn note_miss(&mut self, gp: &Gp, reason: MissReason) {
+        let order = gp.state.order + 1;
+        let (scratch, params, limits) = (&self.scratch, &self.od.params, &self.limits);
+        let clearance = self.occ.clearance();
+        self.tallies[gp.rule.0].miss(reason, || {
+            scratch
+                .miss
+                .misfit(reason, order, params, limits, clearance, |s| {
+                    scratch.segs.position(s)
+                })
+        });
+    }
+
     /// Draws rule `gp.rule` at the growth point into the scratch, testing
     /// every segment; records the branch tips in `scratch.tips`.
     fn apply(&mut self, gp: &Gp) -> Result<State, Miss> {
         if self.budget.stopped {
             return Err(Miss::Stopped);
         }
-        // `[I 0 X]` applies nothing.
-        if gp.count.is_some_and(|n| Levels::of(n).is_none()) {
-            return Err(Miss::Failed);
-        }
         let order = gp.state.order + 1;
         if !self.od.params.can_grow_at(order) {
-            return Err(Miss::Failed);
+            return Err(Miss::Failed(if self.od.params.length.at(order) > 0.0 {
+                MissReason::TooThin
+            } else {
+                MissReason::TooShort
+            }));
         }
         if order > self.limits.max_depth {
             self.budget.cap_depth(self.limits.max_depth);
-            return Err(Miss::Failed);
+            return Err(Miss::Failed(MissReason::Depth));
         }
         if self.budget.applications >= self.limits.max_stems {
             self.budget.stop(self.limits.max_stems);
@@ -522,6 +554,18 @@ impl<'a> Grower<'a> {
         Ok(())
     }
 
+    /// Keeps what the failed stem left for explaining the miss (outside the
+    /// layout, or too close to `clash`'s other stem): out of line, so the
+    /// tests in [`Grower::step`] stay small.
+    #[inline(never)]
+    fn missed(&mut self, clash: Option<(Seg, Seg, bool)>) -> Miss {
+        self.scratch.miss = LastMiss::at(self.scratch.segs.len(), clash);
+        Miss::Failed(match clash {
+            None => MissReason::Outside,
+            Some((new, other, _)) => MissReason::TooClose(kin(&new, &other)),
+        })
+    }
+
     /// One operation inside an application; a drawn segment is tested.
     /// `floor`: pops below this stack depth are ignored (unbalanced input).
     fn step(
@@ -549,12 +593,16 @@ impl<'a> Grower<'a> {
         let seg = seg_of(&s, &self.od.params);
         if let Some(r) = &self.region {
             if !r.capsule_inside(s.from, s.to, seg.r, *inside) {
-                return Err(Miss::Failed);
+                return Err(self.missed(None));
             }
             *inside = true;
         }
-        if self.occ.conflicts(&seg) || self.scratch.segs.conflicts(&seg) {
-            return Err(Miss::Failed);
+        // The try's own stems first: a rule that clashes with itself says so.
+        if let Some(other) = self.scratch.segs.conflict(&seg) {
+            return Err(self.missed(Some((seg, other, true))));
+        }
+        if let Some(other) = self.occ.conflict(&seg) {
+            return Err(self.missed(Some((seg, other, false))));
         }
         self.scratch.segs.insert(seg);
         if self.budget.stems + self.scratch.segs.len() as u64 > self.limits.max_stems {

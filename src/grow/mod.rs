@@ -48,6 +48,7 @@
 //! where a segment may go (they alone know the spatial index).
 
 mod bounded;
+pub mod explain;
 mod grower;
 pub mod occupancy;
 pub mod region;
@@ -61,6 +62,7 @@ use crate::model::{Description, Format, Loc, Seed, StemParams};
 use crate::progress::Progress;
 use crate::turtle::Point;
 
+use explain::RuleTally;
 use grower::Grower;
 
 /// What a seed over `--max-stems` by itself is, in the error message.
@@ -140,6 +142,10 @@ pub struct Grown {
     pub warnings: Vec<Diagnostic>,
     /// Number of stems (segments) in the grown tree.
     pub stems: u64,
+    /// What became of each rule's tries, by [`crate::model::RuleId`]
+    /// (each alternative on its own): tries, fits, misses by reason, the
+    /// first miss ([`explain`]).
+    pub tallies: Vec<RuleTally>,
 }
 
 /// Grows `od` into a BED, with the R-tree occupancy index.
@@ -288,7 +294,7 @@ fn grow_inner(
     walked?;
 
     let placed = g.trace.take();
-    let (tree, budget) = g.finish();
+    let (tree, budget, tallies) = g.finish();
     let owner = seed::owners(&tree);
     let mut grown_seeds = (0..roots.len()).map(|t| {
         let (items, terms) = seed::grown_seed(od, &tree, &seed, t, &owner);
@@ -325,8 +331,13 @@ fn grow_inner(
     };
     let grown = Grown {
         bed: Bed::new(desc, &opts.limits)?,
-        warnings: shared.into_iter().chain(budget.warnings).collect(),
+        warnings: shared
+            .into_iter()
+            .chain(budget.warnings)
+            .chain(explain::never_fitted(od, &tallies))
+            .collect(),
         stems: budget.stems,
+        tallies,
     };
     Ok((grown, placed))
 }

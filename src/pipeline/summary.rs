@@ -7,6 +7,7 @@ use super::{Command, Loaded, grow, inert_turns, lsys_depth, wrong_kind};
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::grow::GrowOptions;
+use crate::grow::explain::RuleTally;
 use crate::interpret::Derivation;
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
@@ -79,6 +80,9 @@ pub fn check(loaded: &Loaded, opts: &GrowOptions) -> Result<Checked, Diagnostics
                 crate::grow::GrowthOrder::Dfs => "dfs",
             };
             let _ = writeln!(summary, "  grows       {} stems ({order})", grown.stems);
+            for (rule, tally) in desc.rules.iter().zip(&grown.tallies) {
+                let _ = writeln!(summary, "{}", tally_line(&rule.full_name(), tally));
+            }
             Checked {
                 summary,
                 warnings: grown.warnings,
@@ -89,6 +93,33 @@ pub fn check(loaded: &Loaded, opts: &GrowOptions) -> Result<Checked, Diagnostics
             warnings: Vec::new(),
         },
     })
+}
+
+/// One rule's line in an OD's summary: its tries, its fits, and the reason
+/// most failed tries failed for.
+fn tally_line(name: &str, t: &RuleTally) -> String {
+    let label = format!("rule {name}");
+    let mut line = format!("  {label:<11} ");
+    if t.tries == 0 {
+        line.push_str("never tried");
+        return line;
+    }
+    let _ = write!(
+        line,
+        "{} {}, {} fit{}",
+        t.tries,
+        if t.tries == 1 { "try" } else { "tries" },
+        t.fits,
+        if t.fits == 1 { "" } else { "s" }
+    );
+    if let Some((reason, n)) = t.most_common() {
+        let _ = write!(
+            line,
+            "; most misses: {reason} ({n} of {})",
+            t.tries - t.fits
+        );
+    }
+    line
 }
 
 fn lsys_summary(sys: &LSystem) -> String {

@@ -577,6 +577,7 @@ fn counts_grow_the_full_subtree_when_space_allows() {
             bed: Bed::new(written.clone(), &Limits::default()).unwrap(),
             warnings: vec![],
             stems,
+            tallies: vec![],
         };
         check_invariants(&written, &as_bed);
 

@@ -7,6 +7,7 @@ mod browser_edits;
 mod cli;
 mod diagnostics;
 mod docs;
+mod explain;
 mod fuzz_corpus;
 mod geometry;
 mod golden;

@@ -21,7 +21,7 @@ mod rules;
 mod stl;
 
 pub use bed::BedError;
-pub use grow::GrowError;
+pub use grow::{GrowError, Kin, Misfit, MissReason};
 pub use input::InputError;
 pub use layout::LayoutError;
 pub use lsys::LsysError;

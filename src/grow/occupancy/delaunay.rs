@@ -83,13 +83,13 @@ impl SpadeIndex {
     }
 
     /// `widest`: the largest threshold any held segment can have with `t`.
-    pub(super) fn conflicts(&self, t: &Seg, c: f64, widest: f64) -> bool {
-        if self
+    pub(super) fn conflict(&self, t: &Seg, c: f64, widest: f64) -> Option<Seg> {
+        if let Some(&k) = self
             .odd
             .iter()
-            .any(|&k| conflicts(t, &self.segs[k as usize], c))
+            .find(|&&k| conflicts(t, &self.segs[k as usize], c))
         {
-            return true;
+            return Some(self.segs[k as usize]);
         }
         let mid = Point2::new((t.a[0] + t.b[0]) / 2.0, (t.a[1] + t.b[1]) / 2.0);
         // Slightly larger than needed, so rounding never loses a candidate.
@@ -109,11 +109,11 @@ impl SpadeIndex {
                 if marks[k as usize] != *stamp {
                     marks[k as usize] = *stamp;
                     if conflicts(t, &self.segs[k as usize], c) {
-                        return true;
+                        return Some(self.segs[k as usize]);
                     }
                 }
             }
         }
-        false
+        None
     }
 }

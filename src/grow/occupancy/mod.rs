@@ -175,6 +175,32 @@ pub fn conflicts(t: &Seg, s: &Seg, c: f64) -> bool {
     }
 }
 
+/// The distance between the centre lines of `t` and `s` that the clearance
+/// test of [`conflicts`] measures: with a joint (`t` starts on an end of
+/// `s`), the smaller of the distances from `t`'s far end to `s` and from
+/// `s`'s far end to `t` that are not reached at the joint (infinite if
+/// both are); otherwise the distance between the segments. `t` conflicts
+/// with `s` exactly when it is below `c + t.r + s.r` (and that is above 0).
+pub fn clearance_distance(t: &Seg, s: &Seg) -> f64 {
+    let joint = if t.a == s.a {
+        Some((s.a, s.b))
+    } else if t.a == s.b {
+        Some((s.b, s.a))
+    } else {
+        None
+    };
+    match joint {
+        Some((j, far_s)) => {
+            let away = |p: [f64; 2], seg: &Seg| {
+                let (d2, at) = point_seg_nearest(p, seg);
+                if at != j { d2 } else { f64::INFINITY }
+            };
+            away(t.b, s).min(away(far_s, t)).sqrt()
+        }
+        None => seg_seg_dist2(t, s).sqrt(),
+    }
+}
+
 /// Squared distance from point `p` to segment `s`, and the point of `s`
 /// nearest to `p` (exactly an endpoint of `s` when that is the nearest).
 fn point_seg_nearest(p: [f64; 2], s: &Seg) -> (f64, [f64; 2]) {
@@ -278,18 +304,37 @@ impl Occupancy {
 
     /// Whether `t` conflicts with any placed segment.
     pub fn conflicts(&self, t: &Seg) -> bool {
+        self.conflict(t).is_some()
+    }
+
+    /// A placed segment `t` conflicts with, if any (the first the index
+    /// finds).
+    pub fn conflict(&self, t: &Seg) -> Option<Seg> {
         let c = self.clearance;
         // No placed segment's threshold with `t` is above this.
         let widest = c + t.r + self.max_r;
         if widest <= 0.0 || self.len == 0 {
-            return false;
+            return None;
         }
         match &self.inner {
-            Inner::Rstar(tree) => tree
-                .locate_in_envelope_intersecting(&reach(t, widest))
-                .any(|p| conflicts(t, &self.segs[p.index], c)),
+            Inner::Rstar(tree) => {
+                // `any` with the hit kept aside is `find`; the release build
+                // happened to make much faster code of this shape with the
+                // default codegen units (docs/performance.md).
+                let mut hit = None;
+                tree.locate_in_envelope_intersecting(&reach(t, widest))
+                    .any(|p| {
+                        let s = &self.segs[p.index];
+                        let near = conflicts(t, s, c);
+                        if near {
+                            hit = Some(*s);
+                        }
+                        near
+                    });
+                hit
+            }
             #[cfg(feature = "spade-index")]
-            Inner::Spade(ix) => ix.conflicts(t, c, widest),
+            Inner::Spade(ix) => ix.conflict(t, c, widest),
         }
     }
 
@@ -359,17 +404,29 @@ impl LocalIndex {
 
     /// Whether `t` conflicts with any segment held.
     pub fn conflicts(&self, t: &Seg) -> bool {
+        self.conflict(t).is_some()
+    }
+
+    /// A segment held that `t` conflicts with, if any (the first found).
+    pub fn conflict(&self, t: &Seg) -> Option<Seg> {
         let c = self.clearance;
         let widest = c + t.r + self.max_r;
         if widest <= 0.0 {
-            return false;
+            return None;
         }
         match &self.tree {
             Some(tree) => tree
                 .locate_in_envelope_intersecting(&reach(t, widest))
-                .any(|s| conflicts(t, s, c)),
-            None => self.segs.iter().any(|s| conflicts(t, s, c)),
+                .find(|s| conflicts(t, s, c))
+                .copied(),
+            None => self.segs.iter().find(|s| conflicts(t, s, c)).copied(),
         }
+    }
+
+    /// Where `s` is in drawing order (0 for the first segment held), if it
+    /// is held: linear, for explaining a failure, not for growth.
+    pub fn position(&self, s: &Seg) -> Option<usize> {
+        self.segs.iter().position(|x| x == s)
     }
 
     /// Adds `s`.
@@ -420,6 +477,32 @@ mod tests {
         let left = seg(0.0, -10.0, 5.0, -18.66);
         assert!(!conflicts(&left, &br, 1.0));
         assert!(conflicts(&left, &br, 9.0));
+    }
+
+    /// The distance the clearance test measured: with a joint, the far
+    /// ends' (not the joint itself); without, the segments'. A segment
+    /// conflicts exactly when it is below the threshold.
+    #[test]
+    fn clearance_distance_is_what_the_test_compares() {
+        let stem = seg(0.0, 0.0, 0.0, -10.0);
+        // Siblings 60 degrees apart, length 10: far ends 10 sin 60 off.
+        let br = seg(0.0, -10.0, -5.0, -10.0 - 8.660_254_037_844_386);
+        let left = seg(0.0, -10.0, 5.0, -10.0 - 8.660_254_037_844_386);
+        assert!((clearance_distance(&left, &br) - 8.660_254_037_844_386).abs() < 1e-12);
+        // A straight continuation: only the joint is near, never a conflict.
+        let on = seg(0.0, -10.0, 0.0, -20.0);
+        assert_eq!(clearance_distance(&on, &stem), f64::INFINITY);
+        // Folding back: the far end lies on the stem.
+        let back = seg(0.0, -10.0, 0.5, -1.0);
+        assert!((clearance_distance(&back, &stem) - 0.5).abs() < 1e-12);
+        // No joint: parallel stems 3 apart.
+        let far = seg(3.0, 0.0, 3.0, -10.0);
+        assert_eq!(clearance_distance(&far, &stem), 3.0);
+        for (t, s) in [(left, br), (on, stem), (back, stem), (far, stem)] {
+            for c in [0.4, 0.6, 3.5, 9.0] {
+                assert_eq!(conflicts(&t, &s, c), clearance_distance(&t, &s) < c);
+            }
+        }
     }
 
     /// Stems as drawn: the threshold is C plus both half widths.
