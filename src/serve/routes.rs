@@ -118,19 +118,28 @@ async fn body(state: &State, req: Request<Incoming>) -> Result<Body, Answer> {
     api::parse(&bytes).map_err(|api::BadRequest(m)| http::error(StatusCode::BAD_REQUEST, &m))
 }
 
+/// What drawing a request's body ended in: its body read, the work run on
+/// the pool within the time budget and the heavy slots (`work`).
+async fn draw(
+    state: Arc<State>,
+    req: Request<Incoming>,
+    format: ImageFormat,
+) -> Result<Ended<Result<(api::RenderAnswer, Vec<u8>), Failed>>, Answer> {
+    let body = body(&state, req).await?;
+    let (budget, slots) = (state.settings.time_budget, state.heavy.clone());
+    Ok(work::run(budget, slots, move |w| {
+        api::run(&body, &state.settings, format, w)
+    })
+    .await)
+}
+
 /// `POST /api/render`: the answer as JSON (HTTP 200 once the request itself
 /// is well formed, the input's errors as diagnostics).
 async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
-    let body = match body(&state, req).await {
-        Ok(b) => b,
+    let done = match draw(state, req, ImageFormat::Svg).await {
+        Ok(d) => d,
         Err(a) => return a,
     };
-    let budget = state.settings.time_budget;
-    let slots = state.heavy.clone();
-    let done = work::run(budget, slots, move |w| {
-        api::run(&body, &state.settings, ImageFormat::Svg, w)
-    })
-    .await;
     match done {
         Ended::Done(Ok((answer, _))) => http::json(StatusCode::OK, &answer),
         Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),
@@ -155,16 +164,10 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
         }
     };
     let want_bed = format.as_deref() == Some("bed");
-    let body = match body(&state, req).await {
-        Ok(b) => b,
+    let done = match draw(state, req, image).await {
+        Ok(d) => d,
         Err(a) => return a,
     };
-    let budget = state.settings.time_budget;
-    let slots = state.heavy.clone();
-    let done = work::run(budget, slots, move |w| {
-        api::run(&body, &state.settings, image, w)
-    })
-    .await;
     match done {
         Ended::Done(Ok((answer, _))) if want_bed => match answer.bed {
             Some(bed) => http::answer(StatusCode::OK, media, bed),

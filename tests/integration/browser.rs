@@ -125,6 +125,40 @@ pub(super) async fn shot(c: &Client, name: &str) {
 
 const TYPED: &str = "Typed (100, 190)\nL=9(0) B=1.5(0) A=30 C=2\nRULE\nR1: [-F][+F]\nSEED\nFR1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (70, 120), 60, 75\nENDLAYOUT\n";
 
+/// A browser to test in: chromedriver started in `tmp/chrome` (downloads
+/// and profile there), and a runtime to drive it from; `None` (after
+/// saying why) where Chromium is not installed and `CI` is not set.
+pub(super) struct Browser {
+    pub rt: tokio::runtime::Runtime,
+    pub driver: Driver,
+    pub chromium: PathBuf,
+    pub tmp: PathBuf,
+}
+
+impl Browser {
+    pub(super) fn start(tmp: &Path) -> Option<Browser> {
+        let (chromium, driver) = installed()?;
+        let chrome_tmp = tmp.join("chrome");
+        std::fs::create_dir_all(&chrome_tmp).unwrap();
+        let driver = Driver::start(&driver, &chrome_tmp);
+        let rt = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build()
+            .unwrap();
+        Some(Browser {
+            rt,
+            driver,
+            chromium,
+            tmp: chrome_tmp,
+        })
+    }
+
+    /// A WebDriver session.
+    pub(super) async fn connect(&self) -> Client {
+        connect(&self.driver, &self.chromium, &self.tmp).await
+    }
+}
+
 /// chromium and chromedriver, or `None` after saying why the test skips.
 /// Under CI (the variable `CI` set and not empty, as `.ci/run` sets it) a
 /// missing browser is a failure, not a skip: the install failed.

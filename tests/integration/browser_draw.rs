@@ -15,7 +15,7 @@ use fantoccini::actions::{
 };
 use serde_json::{Value, json};
 
-use super::browser::{Driver, click, connect, installed, js, settled, shot};
+use super::browser::{Browser, click, js, settled, shot};
 use super::serve::Server;
 
 /// No LAYOUT yet: the tree is bounded by its length decrement.
@@ -28,23 +28,16 @@ const ONE_LINE: &str = "# the paper's 2DTree, as printed\n2DTree (76, 150)L=10(0
 
 #[test]
 fn drawing_edits_touch_only_their_shape_in_chromium() {
-    let Some((chromium, driver)) = installed() else {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
         return;
     };
-    let tmp = tempfile::tempdir().unwrap();
     let empty = tmp.path().join("draw.od");
     std::fs::write(&empty, EMPTY).unwrap();
     let one_line = tmp.path().join("one-line.od");
     std::fs::write(&one_line, ONE_LINE).unwrap();
-    let chrome_tmp = tmp.path().join("chrome");
-    std::fs::create_dir_all(&chrome_tmp).unwrap();
-    let driver = Driver::start(&driver, &chrome_tmp);
-    let rt = tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .build()
-        .unwrap();
-    rt.block_on(async {
-        let c = connect(&driver, &chromium, &chrome_tmp).await;
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
         let server = Server::start(&[empty.to_str().unwrap()]);
         c.goto(&server.url).await.unwrap();
         paint_colour_is_for_the_next_shape(&c).await;

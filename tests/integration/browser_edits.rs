@@ -9,28 +9,21 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Driver, click, connect, installed, js, open, settled, shot};
+use super::browser::{Browser, click, js, open, settled, shot};
 use super::serve::Server;
 use crate::support::manifest_path;
 
 #[test]
 fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
-    let Some((chromium, driver)) = installed() else {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
         return;
     };
-    let tmp = tempfile::tempdir().unwrap();
     let file = tmp.path().join("r2.od");
     std::fs::copy(manifest_path("examples/fig9.od"), &file).unwrap();
     let server = Server::start(&[file.to_str().unwrap()]);
-    let chrome_tmp = tmp.path().join("chrome");
-    std::fs::create_dir_all(&chrome_tmp).unwrap();
-    let driver = Driver::start(&driver, &chrome_tmp);
-    let rt = tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .build()
-        .unwrap();
-    rt.block_on(async {
-        let c = connect(&driver, &chromium, &chrome_tmp).await;
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
         let url = server.url.clone();
         c.goto(&url).await.unwrap();
         settled(&c).await;
