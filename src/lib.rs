@@ -36,7 +36,7 @@
 //! - [`turtle`]: the turtle's state machine, its geometry and the backend
 //!   trait.
 //! - [`render`]: PNG (tiny-skia) and SVG backends, fitted to a size.
-//! - [`layout`]: layout shapes as rings, fills and bounds, shared by growth
+//! - [`rings`]: layout shapes as rings, fills and bounds, shared by growth
 //!   and rendering.
 //! - [`choice`]: stochastic choices as pure functions of the seed and the
 //!   place.

@@ -212,3 +212,21 @@ fn files_named_in_the_grammar_and_the_architecture_exist() {
     }
     assert!(named >= 8, "only {named} paths found");
 }
+
+/// lib.rs is the map: every module it declares has its line in the
+/// crate's docs (`//! - [`name`]: ...`).
+#[test]
+fn lib_rs_lists_every_module() {
+    let lib = std::fs::read_to_string(support::manifest_path("src/lib.rs")).unwrap();
+    let modules: Vec<&str> = lib
+        .lines()
+        .filter_map(|l| l.strip_prefix("pub mod ")?.strip_suffix(';'))
+        .collect();
+    assert!(modules.len() >= 12, "{modules:?}");
+    for m in modules {
+        assert!(
+            lib.contains(&format!("//! - [`{m}`]:")),
+            "lib.rs's docs have no line for `{m}`"
+        );
+    }
+}
