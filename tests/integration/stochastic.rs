@@ -2,6 +2,7 @@
 //! seed and place, dfs equal to bfs, the `seed` key and `--seed`, `stats`
 //! counted or expected, diagnostics.
 
+use assert_cmd::Command;
 use proptest::prelude::*;
 use stlc::choice::{Alternatives, Key};
 use stlc::diag::{ErrorKind, LsysError, RuleError};
@@ -274,14 +275,15 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
             ErrorKind::Limit {
                 value, limit: l, ..
             } => {
-                assert_eq!(*l, limit);
+                // A stochastic expansion gets a tenth of --max-symbols.
+                assert_eq!(*l, limit / 10);
                 value.clone()
             }
             other => panic!("{other:?}"),
         }
     };
     for strategy in [Derivation::Dfs, Derivation::Bfs] {
-        assert_eq!(refuse(3, 65, strategy), "at least 66");
+        assert_eq!(refuse(3, 650, strategy), "at least 66");
         assert_eq!(
             refuse(100, 1_000_000, strategy),
             format!("at least {}", fig_1_27_bounds(100).0)
@@ -293,8 +295,9 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
     for seed in 0..20 {
         let mut s = sys(FIG_1_27);
         s.seed = seed;
+        // A tenth of 1,200: 120 symbols.
         let limits = Limits {
-            max_symbols: 120,
+            max_symbols: 1_200,
             ..Limits::default()
         };
         let mut out = Vec::new();
@@ -456,4 +459,52 @@ fn stochastic_rule_forms() {
     // Without an arrow after it, a parenthesis is symbols of the successor.
     let s = sys("axiom F\nangle 30\nrule F (x)F\n");
     assert_eq!(word(&s, 1, Derivation::Dfs), "(x)F");
+}
+
+/// A stochastic derivation may visit a tenth of `--max-symbols` (each of
+/// its symbols costs about ten of a deterministic one's), so the limit
+/// means about the same time: a word whose shortest choice is over the
+/// tenth is refused at once, one that grows past it while deriving stops
+/// there, and both say why the limit is a tenth.
+#[test]
+fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |text: &str, args: &[&str]| {
+        let f = dir.path().join("s.lsys");
+        std::fs::write(&f, text).unwrap();
+        let out = Command::cargo_bin("stlc")
+            .unwrap()
+            .args(["render", f.to_str().unwrap(), "-o"])
+            .arg(dir.path().join("s.png"))
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    // Every choice doubles: 2^20 symbols, over a tenth of 10^6 at once.
+    let doubling = "generations 20\naxiom X\nangle 30\nrule X (0.5) -> XX\nrule X (0.5) -> XX\n";
+    let (code, err) = run(doubling, &["--max-symbols", "1000000"]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("at least 1048576 exceeds the limit of 100000"),
+        "{err}"
+    );
+    assert!(
+        err.contains("a tenth of --max-symbols (100000 of 1000000)"),
+        "{err}"
+    );
+    // Twenty times the limit lets it through: 2^20 < 2 x 10^6.
+    let (code, err) = run(doubling, &["--max-symbols", "20000000"]);
+    assert_eq!(code, Some(0), "{err}");
+    // The shortest word is one symbol, the longest 2^30: counted while
+    // deriving, it stops at the tenth.
+    let growing =
+        "generations 30\naxiom X\nangle 30\nrule X (0.5) -> X\nrule X (0.5) -> XX\nseed 3\n";
+    let (code, err) = run(growing, &["--max-symbols", "1000000"]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(err.contains("more than 100000"), "{err}");
+    assert!(err.contains("a tenth of --max-symbols"), "{err}");
 }

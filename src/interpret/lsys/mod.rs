@@ -93,8 +93,18 @@ pub fn check(
     limits: &Limits,
 ) -> Result<(), Diagnostics> {
     if sys.is_stochastic() {
-        // Its length is known only by deriving (stochastic.rs).
-        return limits.check_depth(depth);
+        // Its length is known only by deriving (stochastic.rs); its
+        // shortest word must fit the stochastic budget.
+        limits.check_depth(depth)?;
+        let within = stochastic::budget(limits);
+        return Stochastic::new(sys)
+            .check_shortest(
+                depth,
+                Bound::Symbols,
+                within.max_symbols,
+                "derived word length",
+            )
+            .map_err(|d| stochastic::explain_budget(d, limits));
     }
     Alphabet::new(sys)
         .check(depth, strategy, limits)
@@ -380,6 +390,7 @@ fn draw_stochastic<T: Turtle>(
     progress: &mut dyn Progress,
 ) -> Result<Point, Diagnostics> {
     limits.check_depth(depth)?;
+    let within = stochastic::budget(limits);
     let st = Stochastic::new(sys);
     let alpha = Alphabet::new(sys);
     let (mut interp, ops) = plain_interp(sys, &alpha, turtle);
@@ -397,11 +408,11 @@ fn draw_stochastic<T: Turtle>(
         }
     };
     let done = match strategy {
-        Derivation::Dfs => st.dfs_each(depth, limits, each),
-        Derivation::Bfs => st.bfs_each(depth, limits, each),
+        Derivation::Dfs => st.dfs_each(depth, &within, each),
+        Derivation::Bfs => st.bfs_each(depth, &within, each),
     };
     progress.finish();
-    done?;
+    done.map_err(|d| stochastic::explain_budget(d, limits))?;
     Ok(interp.state.pos)
 }
 
@@ -435,6 +446,9 @@ pub fn expand(
 ) -> Result<(), Diagnostics> {
     let alpha = Alphabet::new(sys);
     let stochastic = sys.is_stochastic();
+    let asked = limits;
+    let within = stochastic::budget(limits);
+    let limits = if stochastic { &within } else { limits };
     let total = if stochastic {
         limits.check_depth(depth)?;
         let st = Stochastic::new(sys);
@@ -452,7 +466,7 @@ pub fn expand(
                 }
             });
             progress.finish();
-            counted?;
+            counted.map_err(|d| stochastic::explain_budget(d, asked))?;
         }
         most
     } else {
@@ -478,7 +492,7 @@ pub fn expand(
         };
         if let Err(e) = derived {
             progress.finish();
-            return Err(e);
+            return Err(stochastic::explain_budget(e, asked));
         }
     } else {
         match strategy {
