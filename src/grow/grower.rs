@@ -359,7 +359,7 @@ impl<'a> Grower<'a> {
             if let Some(t) = &mut self.trace {
                 t.push((seg, 0));
             }
-            self.occ.insert(seg);
+            self.occ.insert_drawn(seg);
         }
         Ok(())
     }

@@ -260,6 +260,9 @@ pub struct Occupancy {
     max_r: f64,
     /// The placed stems, by [`Placed::index`].
     segs: Vec<Seg>,
+    /// The seed's stems placed, by their bits ([`Occupancy::insert_drawn`]).
+    /// Membership only: never iterated.
+    drawn: std::collections::HashSet<[u64; 5]>,
     inner: Inner,
 }
 
@@ -283,6 +286,7 @@ impl Occupancy {
             len: 0,
             max_r: 0.0,
             segs: Vec::new(),
+            drawn: std::collections::HashSet::new(),
             inner,
         }
     }
@@ -336,6 +340,30 @@ impl Occupancy {
             #[cfg(feature = "spade-index")]
             Inner::Spade(ix) => ix.conflict(t, c, widest),
         }
+    }
+
+    /// Places `s`, a stem the seed draws without a test: one equal to a
+    /// seed stem already placed changes no answer of
+    /// [`Occupancy::conflict`] (the test is a function of the two stems'
+    /// geometry), so it is counted and kept but not indexed again. The
+    /// trees of a forest on one point all draw the same seed stems:
+    /// indexed once, 10^5 roots grow in linear time, not quadratic (every
+    /// try would scan every copy). Grown stems need no such check: a stem
+    /// equal to a placed one conflicts with it and is never placed.
+    pub fn insert_drawn(&mut self, s: Seg) {
+        let bits = [
+            s.a[0].to_bits(),
+            s.a[1].to_bits(),
+            s.b[0].to_bits(),
+            s.b[1].to_bits(),
+            s.r.to_bits(),
+        ];
+        if !self.drawn.insert(bits) && matches!(self.inner, Inner::Rstar(_)) {
+            self.len += 1;
+            self.segs.push(s);
+            return;
+        }
+        self.insert(s);
     }
 
     /// Places `s`.
@@ -462,6 +490,35 @@ mod tests {
 
     fn seg(ax: f64, ay: f64, bx: f64, by: f64) -> Seg {
         Seg::new([ax, ay], [bx, by])
+    }
+
+    /// A seed stem drawn again (the trees of a forest on one point) is
+    /// kept and counted but indexed once, and every answer is the same as
+    /// with one copy; a different stem is indexed.
+    #[test]
+    fn a_seed_stem_drawn_again_is_indexed_once() {
+        let mut occ = Occupancy::new(Backend::Rstar, 1.0);
+        let trunk = seg(0.0, 0.0, 0.0, -10.0);
+        for _ in 0..1000 {
+            occ.insert_drawn(trunk);
+        }
+        occ.insert_drawn(seg(50.0, 0.0, 50.0, -10.0));
+        let Inner::Rstar(tree) = &occ.inner else {
+            unreachable!()
+        };
+        assert_eq!(tree.size(), 2);
+        assert_eq!(occ.segs.len(), 1001);
+        let mut one = Occupancy::new(Backend::Rstar, 1.0);
+        one.insert(trunk);
+        one.insert(seg(50.0, 0.0, 50.0, -10.0));
+        for t in [
+            seg(0.0, -10.0, -5.0, -18.66),
+            seg(0.0, -10.0, 0.0, -20.0),
+            seg(0.5, 0.0, 0.5, -10.0),
+            seg(30.0, 0.0, 30.0, -10.0),
+        ] {
+            assert_eq!(occ.conflicts(&t), one.conflicts(&t), "{t:?}");
+        }
     }
 
     #[test]
