@@ -122,6 +122,17 @@ fn tally_line(name: &str, t: &RuleTally) -> String {
     line
 }
 
+/// A probability as the summary writes it: six decimals, or, below what
+/// six decimals show, in scientific notation (`1e-300`, never a `0` for a
+/// probability that is not).
+fn probability(q: f64) -> String {
+    if q > 0.0 && q < 0.000_000_5 {
+        format!("{q:e}")
+    } else {
+        crate::num::fixed(q, 6, crate::num::Trim::Zeros)
+    }
+}
+
 fn lsys_summary(sys: &LSystem) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "classic L-system: ok");
@@ -132,10 +143,7 @@ fn lsys_summary(sys: &LSystem) -> String {
         .flat_map(|(k, ps)| ps.iter().map(move |p| (k, p)))
     {
         let chance = match p.probability {
-            Some(q) => format!(
-                " (probability {})",
-                crate::num::fixed(q, 6, crate::num::Trim::Zeros)
-            ),
+            Some(q) => format!(" (probability {})", probability(q)),
             None => String::new(),
         };
         let _ = writeln!(
@@ -196,10 +204,7 @@ fn stl_summary(
     for r in &desc.rules {
         let n = r.branch_count();
         let chance = match r.alternative.as_ref().and_then(|a| a.probability) {
-            Some(p) => format!(
-                ", alternative with probability {}",
-                crate::num::fixed(p, 6, crate::num::Trim::Zeros)
-            ),
+            Some(p) => format!(", alternative with probability {}", probability(p)),
             None => String::new(),
         };
         let _ = writeln!(

@@ -508,3 +508,25 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
     assert!(err.contains("more than 100000"), "{err}");
     assert!(err.contains("a tenth of --max-symbols"), "{err}");
 }
+
+/// A tiny probability is never printed as 0: `check` writes it in
+/// scientific notation where six decimals would show nothing.
+#[test]
+fn a_tiny_probability_is_not_printed_as_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("tiny.lsys");
+    std::fs::write(
+        &f,
+        "generations 2\naxiom F\nangle 30\nrule F (1e-300) -> F[+F]\nrule F (1) -> F[-F]\n",
+    )
+    .unwrap();
+    let out = Command::cargo_bin("stlc")
+        .unwrap()
+        .args(["check", f.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("(probability 1e-300)"), "{text}");
+    assert!(text.contains("(probability 1)"), "{text}");
+    assert!(!text.contains("probability 0"), "{text}");
+}

@@ -342,14 +342,11 @@ impl Occupancy {
         }
     }
 
-    /// Places `s`, a stem the seed draws without a test: one equal to a
-    /// seed stem already placed changes no answer of
-    /// [`Occupancy::conflict`] (the test is a function of the two stems'
-    /// geometry), so it is counted and kept but not indexed again. The
-    /// trees of a forest on one point all draw the same seed stems:
-    /// indexed once, 10^5 roots grow in linear time, not quadratic (every
-    /// try would scan every copy). Grown stems need no such check: a stem
-    /// equal to a placed one conflicts with it and is never placed.
+    /// Places `s`, a stem the seed draws untested. A copy of a seed stem
+    /// placed changes no [`Occupancy::conflict`] answer, so it is kept but
+    /// not indexed again: the trees of a forest on one point draw the same
+    /// seed, and 10^5 of them grow in linear time, not quadratic. (A grown
+    /// stem equal to a placed one conflicts with it: never placed.)
     pub fn insert_drawn(&mut self, s: Seg) {
         let bits = [
             s.a[0].to_bits(),
