@@ -32,6 +32,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         two_tabs(&c, &url, &file).await;
         exact_counts(&c).await;
         long_work_is_cancelled(&c, &server).await;
+        a_failing_file_shows_no_other_picture(&c, tmp.path()).await;
         let _ = c.close().await;
     });
 }
@@ -274,6 +275,11 @@ async fn exact_counts(c: &Client) {
 async fn long_work_is_cancelled(c: &Client, server: &Server) {
     open(c, &manifest_path("examples/abop-1.27.lsys")).await;
     settled(c).await;
+    // Problem 4: the last file's depth (30) does not follow to this one.
+    let depth = js(c, "return document.getElementById('depth').value").await;
+    assert_eq!(depth, "", "the depth of the file before leaked");
+    let stems = js(c, "return window.stlc.state.answer.stems").await;
+    assert_eq!(stems, "491", "drawn at its own generations (5)");
     set_depth(c, "16").await;
     until(
         c,
@@ -331,4 +337,37 @@ async fn set_depth(c: &Client, value: &str) {
     )
     .await;
     depth.send_keys(value).await.unwrap();
+}
+
+/// Problem 4: a file opened that fails shows no picture of the file
+/// before it (its errors, and an empty preview).
+async fn a_failing_file_shows_no_other_picture(c: &Client, dir: &Path) {
+    let broken = dir.join("broken.lsys");
+    std::fs::write(
+        &broken,
+        "generations 3\naxiom F\nangle 30\nrule F -> F[+F\n",
+    )
+    .unwrap();
+    open(c, &broken).await;
+    until(
+        c,
+        "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok === false",
+        "the broken file's answer",
+    )
+    .await;
+    let pictures = js(
+        c,
+        "return document.querySelectorAll('#preview .lib').length",
+    )
+    .await;
+    assert_eq!(pictures, 0, "the last file's picture is still shown");
+    let status = js(c, "return document.getElementById('status').textContent").await;
+    assert!(
+        status
+            .as_str()
+            .unwrap()
+            .contains("no picture of this file yet"),
+        "{status}"
+    );
+    shot(c, "34-broken-file-no-picture").await;
 }

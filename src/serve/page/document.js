@@ -181,6 +181,12 @@ export function createDocument(app) {
     });
     askedAbout = null;
     close();
+    // Every per-file control starts from this file (its own keys), never
+    // from the last file's settings; the picture shown is the last file's
+    // until this one's comes.
+    for (const id of ['depth', 'seed', 'clearance', 'max-stems']) byId(id).value = '';
+    byId('strategy').value = 'bfs';
+    state.otherFile = true;
     byId('file-name').textContent = f.name + note;
     app.session.setKind(f.kind);
     const earlier = setAside(f.text);

@@ -91,7 +91,7 @@ export function createSession(app) {
       parts.push(`${answer.stems_exact ? '' : 'at least '}${answer.stems} stems`);
       if (answer.growth && answer.growth.decisions) parts.push(`${answer.growth.decisions} growth decisions`);
     } else {
-      parts.push('errors: the last good picture is shown');
+      parts.push(state.otherFile ? 'errors: no picture of this file yet' : 'errors: the last good picture is shown');
     }
     parts.push(`${Math.round(ms)} ms from edit to picture`);
     byId('status').textContent = parts.join(' · ');
@@ -102,9 +102,13 @@ export function createSession(app) {
     state.answerText = text;
     if (!answer.ok) {
       app.diagnostics.show(answer.diagnostics);
-      app.view.stale();
+      // The last good picture stays, faded, while you fix this file; a
+      // file just opened that fails shows no picture of another file.
+      if (state.otherFile) app.view.forget();
+      else app.view.stale();
       return;
     }
+    state.otherFile = false;
     app.diagnostics.show(answer.warnings);
     if (answer.root) {
       state.root = [answer.root.x, answer.root.y];

@@ -197,6 +197,11 @@ export function createView(app) {
     preview.querySelectorAll('.lib, .replay-layer').forEach((g) => g.classList.add('stale'));
   }
 
+  // No picture: the one shown was of another file.
+  function forget() {
+    preview.querySelectorAll('.lib, .replay-layer').forEach((g) => g.remove());
+  }
+
   // The editable outlines of the shapes, the selection's handles, the root.
   function drawOverlay() {
     const ov = overlay();
@@ -281,5 +286,5 @@ export function createView(app) {
   byId('zoom-out').addEventListener('click', () => zoom(1.25));
   byId('fit').addEventListener('click', fit);
 
-  return { element: preview, draw, stale, drawOverlay, overlay, unitsPerPixel, toCanvas, pan, fit, hitTest };
+  return { element: preview, draw, stale, forget, drawOverlay, overlay, unitsPerPixel, toCanvas, pan, fit, hitTest };
 }
