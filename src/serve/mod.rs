@@ -20,6 +20,7 @@ mod api;
 mod assets;
 mod conns;
 mod document;
+mod examples;
 mod http;
 mod routes;
 mod stall;

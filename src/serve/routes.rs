@@ -40,7 +40,7 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
     let method = req.method().clone();
     let path = req.uri().path().to_string();
     let expected = match path.as_str() {
-        "/" | "/api/file" => Method::GET,
+        "/" | "/api/file" | "/api/examples" => Method::GET,
         "/api/render" | "/api/export" | "/api/save" => Method::POST,
         p if assets::find(p).is_some() => Method::GET,
         _ => return http::error(StatusCode::NOT_FOUND, "not found"),
@@ -51,6 +51,7 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
     match path.as_str() {
         "/" => page(&state),
         "/api/file" => file(&state),
+        "/api/examples" => examples(),
         "/api/render" => render(state, req).await,
         "/api/export" => export(state, req).await,
         "/api/save" => save(state, req).await,
@@ -109,6 +110,34 @@ fn file(state: &State) -> Answer {
                 .join("; "),
         ),
     }
+}
+
+/// `GET /api/examples`: `[{"name", "kind", "text"}]`: the templates a new
+/// file starts from (`new.od`, `new.lsys`), then every example, for the
+/// page's New menu.
+fn examples() -> Answer {
+    #[derive(Serialize)]
+    struct Example {
+        name: &'static str,
+        kind: Kind,
+        text: &'static str,
+    }
+    let templates = [
+        ("new.od", super::TEMPLATE_OD),
+        ("new.lsys", super::TEMPLATE_LSYS),
+    ];
+    let list: Vec<Example> = templates
+        .iter()
+        .chain(super::examples::EXAMPLES)
+        .map(|&(name, text)| Example {
+            name,
+            kind: stlc::pipeline::InputKind::from_path(std::path::Path::new(name))
+                .unwrap_or(stlc::pipeline::InputKind::Od)
+                .into(),
+            text,
+        })
+        .collect();
+    http::json(StatusCode::OK, &list)
 }
 
 /// Reads and parses a request body: the answer to send instead if it is

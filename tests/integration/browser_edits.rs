@@ -33,6 +33,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         exact_counts(&c).await;
         long_work_is_cancelled(&c, &server).await;
         a_failing_file_shows_no_other_picture(&c, tmp.path()).await;
+        new_from_a_template_or_an_example(&c).await;
         let _ = c.close().await;
     });
 }
@@ -370,4 +371,35 @@ async fn a_failing_file_shows_no_other_picture(c: &Client, dir: &Path) {
         "{status}"
     );
     shot(c, "34-broken-file-no-picture").await;
+}
+
+/// New: a template or any example opens as a new document (problem 10):
+/// the `.od` template grows a tree, an example is its file's text.
+async fn new_from_a_template_or_an_example(c: &Client) {
+    let names = js(
+        c,
+        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
+    )
+    .await;
+    let names: Vec<&str> = names
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"new.od (template)"), "{names:?}");
+    assert!(names.contains(&"hilbert.lsys"), "{names:?}");
+    click(c, "#new option[value='0']").await;
+    let grown = settled(c).await;
+    assert_eq!(grown["ok"], true, "{grown}");
+    assert!(grown["stems"].as_u64().unwrap() > 50, "{grown}");
+    let i = names.iter().position(|n| *n == "hilbert.lsys").unwrap() - 1;
+    click(c, &format!("#new option[value='{i}']")).await;
+    let drawn = settled(c).await;
+    assert_eq!(drawn["ok"], true, "{drawn}");
+    assert_eq!(
+        drawn["text"].as_str().unwrap(),
+        std::fs::read_to_string(manifest_path("examples/hilbert.lsys")).unwrap()
+    );
+    shot(c, "35-new-from-example").await;
 }

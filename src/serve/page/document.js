@@ -175,6 +175,10 @@ export function createDocument(app) {
 
   // A file that is now the editor's: its name, path, version, text.
   function opened(f, note) {
+    // The document left keeps its unsaved edits in storage, offered back
+    // when it is opened again.
+    clearTimeout(draftTimer);
+    if (dirty()) writeDraft();
     Object.assign(state.doc, {
       name: f.name, path: f.path || null, version: f.version ?? null,
       savedText: f.text, canSave: !!f.can_save, savedAt: null,

@@ -41,6 +41,26 @@ export function createFiles(app) {
     // A new file starts a new history; its unsaved edits are kept by name.
     app.document.opened({ name: f.name, kind, text, can_save: false, path: null, version: null }, ' (Save downloads)');
   });
+  // New: a template or an example as a new document (Save downloads it).
+  const menu = byId('new');
+  let examples = [];
+  app.engine.examples().then((list) => {
+    examples = list;
+    for (const [i, e] of list.entries()) {
+      const o = document.createElement('option');
+      o.value = String(i);
+      o.textContent = i < 2 ? `${e.name} (template)` : e.name;
+      menu.append(o);
+    }
+  }).catch(() => { menu.disabled = true; });
+  menu.addEventListener('change', () => {
+    const e = examples[Number(menu.value)];
+    menu.value = '';
+    if (!e) return;
+    state.selected = -1;
+    app.tools.cancelPolygon();
+    app.document.opened({ name: e.name, kind: e.kind, text: e.text, can_save: false, path: null, version: null }, ' (new; Save downloads)');
+  });
   byId('save').addEventListener('click', () => app.document.save());
   byId('export-png').addEventListener('click', () => exportAs('png'));
   byId('export-svg').addEventListener('click', () => exportAs('svg'));

@@ -37,6 +37,12 @@ export function createHttpEngine({ token }) {
       return { ok: true, blob: await res.blob() };
     },
 
+    async examples() {
+      const res = await fetch('/api/examples');
+      if (!res.ok) throw new Error(`/api/examples: ${res.status} ${res.statusText}`);
+      return res.json();
+    },
+
     async open() {
       const res = await fetch('/api/file');
       if (!res.ok) throw new Error(`/api/file: ${res.status} ${res.statusText}`);

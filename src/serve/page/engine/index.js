@@ -69,6 +69,9 @@
  * @property {(request: RenderRequest, format: 'png'|'svg'|'bed') => Promise<ExportAnswer>} export
  *   the bytes `stlc render -f png|svg --show-layout` or `stlc compile`
  *   would write
+ * @property {() => Promise<Array<{name: string, kind: 'od'|'bed'|'lsys', text: string}>>} examples
+ *   the templates a new file starts from (`new.od`, `new.lsys`), then
+ *   every example: the New menu
  * @property {() => Promise<{text: string, version: string|null, kind: 'od'|'bed'|'lsys', name: string, path: string, can_save: boolean}>} open
  *   the file being edited (or the example) as it is now; `version` names
  *   its contents (`null`: the file does not exist yet; Save creates it)

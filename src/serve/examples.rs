@@ -1,0 +1,104 @@
+//! The examples, embedded: the page's New menu lists them, and opens each
+//! as a new document (Save downloads it; the file served is not touched).
+
+/// Every example file, by name, with its text. A file added to
+/// `examples/` must be added here (the test below says so).
+pub(crate) static EXAMPLES: &[(&str, &str)] = &[
+    ("2dtree.od", include_str!("../../examples/2dtree.od")),
+    (
+        "abop-1.24a.lsys",
+        include_str!("../../examples/abop-1.24a.lsys"),
+    ),
+    (
+        "abop-1.24b.lsys",
+        include_str!("../../examples/abop-1.24b.lsys"),
+    ),
+    (
+        "abop-1.24c.lsys",
+        include_str!("../../examples/abop-1.24c.lsys"),
+    ),
+    (
+        "abop-1.24d.lsys",
+        include_str!("../../examples/abop-1.24d.lsys"),
+    ),
+    (
+        "abop-1.24e.lsys",
+        include_str!("../../examples/abop-1.24e.lsys"),
+    ),
+    (
+        "abop-1.24f.lsys",
+        include_str!("../../examples/abop-1.24f.lsys"),
+    ),
+    (
+        "abop-1.27.lsys",
+        include_str!("../../examples/abop-1.27.lsys"),
+    ),
+    (
+        "alternatives.od",
+        include_str!("../../examples/alternatives.od"),
+    ),
+    ("crown.od", include_str!("../../examples/crown.od")),
+    ("decrement.od", include_str!("../../examples/decrement.od")),
+    ("fig9.od", include_str!("../../examples/fig9.od")),
+    ("grove.od", include_str!("../../examples/grove.od")),
+    ("hilbert.lsys", include_str!("../../examples/hilbert.lsys")),
+    ("holes.od", include_str!("../../examples/holes.od")),
+    (
+        "koch-snowflake.lsys",
+        include_str!("../../examples/koch-snowflake.lsys"),
+    ),
+    (
+        "paper-worked.bed",
+        include_str!("../../examples/paper-worked.bed"),
+    ),
+    ("pentagon.od", include_str!("../../examples/pentagon.od")),
+    ("polygon.od", include_str!("../../examples/polygon.od")),
+    (
+        "seed-r1r2r2.bed",
+        include_str!("../../examples/seed-r1r2r2.bed"),
+    ),
+    (
+        "sierpinski-arrowhead.lsys",
+        include_str!("../../examples/sierpinski-arrowhead.lsys"),
+    ),
+    (
+        "stl-003-fig4.lsys",
+        include_str!("../../examples/stl-003-fig4.lsys"),
+    ),
+    (
+        "successors.od",
+        include_str!("../../examples/successors.od"),
+    ),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The table holds every `.od`, `.bed` and `.lsys` in examples/, with
+    /// its text, in name order.
+    #[test]
+    fn every_example_is_embedded() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+        let mut on_disk: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .filter_map(|e| {
+                let name = e.unwrap().file_name().into_string().unwrap();
+                [".od", ".bed", ".lsys"]
+                    .iter()
+                    .any(|x| name.ends_with(x))
+                    .then_some(name)
+            })
+            .collect();
+        on_disk.sort();
+        let names: Vec<&str> = EXAMPLES.iter().map(|(n, _)| *n).collect();
+        assert_eq!(names, on_disk);
+        for (name, text) in EXAMPLES {
+            assert_eq!(
+                *text,
+                std::fs::read_to_string(dir.join(name)).unwrap(),
+                "{name}"
+            );
+        }
+    }
+}
