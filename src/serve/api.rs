@@ -15,7 +15,7 @@ use stlc::diag::{Diagnostic, Diagnostics, line_column};
 use stlc::model::Description;
 use stlc::model::layout::Shape;
 use stlc::pipeline::{
-    GrowthOrder, ImageFormat, InputKind, Limits, Progress, RenderOptions, Request, ShowLayout,
+    GrowthOrder, ImageFormat, InputKind, Limits, Progress, RenderOptions, Request, Rgb, ShowLayout,
 };
 
 /// The server's own settings that every request works within.
@@ -58,6 +58,18 @@ pub struct Body {
     /// seed may be any u64, past what a JavaScript number holds exactly).
     #[serde(default)]
     pub seed: Option<Seed>,
+    /// `--size WxH` of the picture, `[w, h]`, each 1 to 16384 pixels;
+    /// `None`: the default size.
+    #[serde(default)]
+    pub size: Option<[u32; 2]>,
+    /// Whether the layout is painted under a tree (`--show-layout`);
+    /// `None`: wherever there is one (the editor's view).
+    #[serde(default)]
+    pub show_layout: Option<bool>,
+    /// `--background`: `"none"` (transparent), `#rrggbb` or a Delphi name;
+    /// `None`: the input's own.
+    #[serde(default)]
+    pub background: Option<String>,
 }
 
 /// `"od"`, `"bed"` or `"lsys"`.
@@ -158,7 +170,24 @@ pub struct BadRequest(pub String);
 
 /// Reads a request body.
 pub fn parse(body: &[u8]) -> Result<Body, BadRequest> {
-    serde_json::from_slice(body).map_err(|e| BadRequest(format!("malformed request: {e}")))
+    let b: Body =
+        serde_json::from_slice(body).map_err(|e| BadRequest(format!("malformed request: {e}")))?;
+    if let Some([w, h]) = b.size
+        && !((1..=16384).contains(&w) && (1..=16384).contains(&h))
+    {
+        return Err(BadRequest(
+            "`size`: each side must be between 1 and 16384 pixels".into(),
+        ));
+    }
+    if let Some(c) = &b.background
+        && c != "none"
+        && Rgb::parse(c).is_none()
+    {
+        return Err(BadRequest(format!(
+            "`background`: unknown colour `{c}` (none, #rrggbb or a Delphi name such as clWhite)"
+        )));
+    }
+    Ok(b)
 }
 
 impl Body {
@@ -179,12 +208,20 @@ impl Body {
             max_stems: self.max_stems.or(s.max_stems),
             limits: s.limits,
             look: stlc::pipeline::Look {
-                show_layout: ShowLayout::IfAny,
+                show_layout: match self.show_layout {
+                    None => ShowLayout::IfAny,
+                    Some(true) => ShowLayout::Yes,
+                    Some(false) => ShowLayout::No,
+                },
+                background: self.background.as_deref().map(|c| match c {
+                    "none" => None,
+                    c => Rgb::parse(c),
+                }),
                 ..Default::default()
             },
             image: RenderOptions {
                 max_svg_segments: s.max_svg_segments,
-                ..RenderOptions::new(format, None)
+                ..RenderOptions::new(format, self.size.map(|[w, h]| (w, h)))
             },
             trace: true,
             ..Request::new(self.source.clone().into_bytes())
@@ -558,6 +595,19 @@ mod tests {
             save(br#"{"source": "x", "version": "3-ab"}"#),
             Some(Some("3-ab".into()))
         );
+        let b = parse(
+            br#"{"source": "x", "size": [300, 200], "show_layout": false, "background": "none"}"#,
+        )
+        .unwrap();
+        assert_eq!((b.size, b.show_layout), (Some([300, 200]), Some(false)));
+        for bad in [
+            &br#"{"source": "x", "size": [0, 10]}"#[..],
+            br#"{"source": "x", "size": [20000, 10]}"#,
+            br#"{"source": "x", "size": [10]}"#,
+            br#"{"source": "x", "background": "clWhiet"}"#,
+        ] {
+            assert!(parse(bad).is_err(), "{}", String::from_utf8_lossy(bad));
+        }
         let BadRequest(m) = parse(br#"{"source": "x", "clearence": 2}"#).unwrap_err();
         assert!(m.contains("unknown field `clearence`"), "{m}");
     }

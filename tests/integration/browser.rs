@@ -758,7 +758,7 @@ fn cli(args: &[&str]) -> Vec<u8> {
 }
 
 /// The bytes of `dir/name` once Chromium has finished downloading it.
-async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
+pub(super) async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
     let path = dir.join(name);
     let partial = dir.join(format!("{name}.crdownload"));
     for _ in 0..200 {

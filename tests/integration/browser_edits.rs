@@ -9,7 +9,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Browser, click, js, open, settled, shot};
+use super::browser::{Browser, click, downloaded, js, open, settled, shot};
 use super::serve::Server;
 use crate::support::manifest_path;
 
@@ -34,6 +34,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         long_work_is_cancelled(&c, &server).await;
         a_failing_file_shows_no_other_picture(&c, tmp.path()).await;
         new_from_a_template_or_an_example(&c).await;
+        export_as_artists_need(&c, &browser.tmp.join("downloads")).await;
         let _ = c.close().await;
     });
 }
@@ -402,4 +403,65 @@ async fn new_from_a_template_or_an_example(c: &Client) {
         std::fs::read_to_string(manifest_path("examples/hilbert.lsys")).unwrap()
     );
     shot(c, "35-new-from-example").await;
+}
+
+/// Problem 10 / item 8: a tree-only, transparent PNG at a chosen size is
+/// the CLI's bytes for the command the page shows.
+async fn export_as_artists_need(c: &Client, downloads: &Path) {
+    let names = js(
+        c,
+        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
+    )
+    .await;
+    let i = names
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|n| n == "2dtree.od")
+        .unwrap()
+        - 1;
+    click(c, &format!("#new option[value='{i}']")).await;
+    settled(c).await;
+    click(c, "#export-options summary").await;
+    js(
+        c,
+        "const set = (id, v) => { const e = document.getElementById(id); e.value = v; e.dispatchEvent(new Event('input')); };
+         set('export-w', '300'); set('export-h', '200');
+         const l = document.getElementById('export-layout'); l.checked = false; l.dispatchEvent(new Event('input'));
+         const t = document.getElementById('export-transparent'); t.checked = true; t.dispatchEvent(new Event('input'));
+         return true",
+    )
+    .await;
+    let shown = js(
+        c,
+        "return document.getElementById('export-cli').textContent",
+    )
+    .await;
+    let shown = shown.as_str().unwrap().to_string();
+    assert!(
+        shown.contains("stlc render 2dtree.od --size 300x200 --background none -o 2dtree.png"),
+        "{shown}"
+    );
+    shot(c, "36-export-options").await;
+    click(c, "#export-png").await;
+    let got = downloaded(downloads, "2dtree.png").await;
+    let od = manifest_path("examples/2dtree.od");
+    let want = crate::support::stlc_stdout(&[
+        "render",
+        od.to_str().unwrap(),
+        "--size",
+        "300x200",
+        "--background",
+        "none",
+        "-o",
+        "-",
+    ]);
+    assert!(got == want, "the export is not the CLI's bytes");
+    let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
+    assert_eq!((png.width(), png.height()), (300, 200));
+    assert_eq!(
+        png.pixel(0, 0).unwrap().alpha(),
+        0,
+        "the background is transparent"
+    );
 }

@@ -20,8 +20,48 @@ export function createFiles(app) {
 
   const baseName = () => state.doc.name.replace(/\.[^.]*$/, '');
 
+  // The export options (size, layout, background) as request fields.
+  function exportOptions() {
+    const w = byId('export-w').value.trim();
+    const h = byId('export-h').value.trim();
+    const o = { show_layout: byId('export-layout').checked };
+    if (w !== '' && h !== '') o.size = [Math.floor(Number(w)), Math.floor(Number(h))];
+    if (byId('export-transparent').checked) o.background = 'none';
+    return o;
+  }
+
+  // The command line that writes the same bytes as an export.
+  function command(format) {
+    const r = app.session.request();
+    const name = state.doc.name;
+    const args = format === 'bed' ? ['stlc', 'compile', name] : ['stlc', 'render', name];
+    if (r.strategy && r.strategy !== 'bfs') args.push('--growth', r.strategy);
+    if (r.seed !== undefined) args.push('--seed', r.seed);
+    if (r.depth !== undefined) args.push('--depth', String(r.depth));
+    if (r.clearance !== undefined) args.push('--clearance', String(r.clearance));
+    if (r.max_stems !== undefined) args.push('--max-stems', String(r.max_stems));
+    if (format !== 'bed') {
+      const o = exportOptions();
+      if (o.size) args.push('--size', `${o.size[0]}x${o.size[1]}`);
+      if (o.show_layout && r.kind !== 'lsys') args.push('--show-layout');
+      if (o.background) args.push('--background', o.background);
+    }
+    args.push('-o', `${baseName()}.${format}`);
+    return args.join(' ');
+  }
+
+  function showCommand() {
+    byId('export-cli').textContent = ['png', 'svg'].map(command).join('\n') +
+      (byId('kind').value === 'od' ? '\n' + command('bed') : '');
+  }
+  byId('export-options').addEventListener('toggle', showCommand);
+  for (const id of ['export-w', 'export-h', 'export-layout', 'export-transparent']) {
+    byId(id).addEventListener('input', showCommand);
+  }
+
   async function exportAs(format) {
-    const a = await app.engine.export(app.session.request(), format);
+    const request = format === 'bed' ? app.session.request() : { ...app.session.request(), ...exportOptions() };
+    const a = await app.engine.export(request, format);
     if (a.ok) download(a.blob, `${baseName()}.${format}`);
     else if (a.diagnostics) app.diagnostics.show(a.diagnostics);
     else app.diagnostics.showError(a.error);
