@@ -11,9 +11,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::shapes;
+
 use stlc::diag::{Diagnostic, Diagnostics, line_column};
-use stlc::model::Description;
-use stlc::model::layout::Shape;
 use stlc::pipeline::{
     GrowthOrder, ImageFormat, InputKind, Limits, Progress, RenderOptions, Request, Rgb, ShowLayout,
 };
@@ -252,10 +252,10 @@ pub struct RenderAnswer {
     pub view: Option<[f64; 4]>,
     /// An .od's root, where it is written.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub root: Option<RootJson>,
+    pub root: Option<shapes::RootJson>,
     /// An .od's LAYOUT as written (`null` without one).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub layout: Option<Option<LayoutJson>>,
+    pub layout: Option<Option<shapes::LayoutJson>>,
 }
 
 /// The stems in growth order: six numbers a stem (`from.x, from.y, to.x,
@@ -320,79 +320,6 @@ pub struct DiagnosticJson {
     help: Option<String>,
 }
 
-/// An .od's root as written, and where (UTF-16 offsets: JavaScript string
-/// indices), so the page can move it; a forest's further roots as
-/// `others` (drawn, not moved by the page).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RootJson {
-    x: f64,
-    y: f64,
-    start: usize,
-    end: usize,
-    others: Vec<Point>,
-}
-
-/// A point.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Point {
-    x: f64,
-    y: f64,
-}
-
-/// The LAYOUT as written: its shapes in painting order, each with its
-/// geometry and colour, and where the section is (UTF-16 offsets), so the
-/// page can draw the shapes and write the section anew.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct LayoutJson {
-    start: usize,
-    end: usize,
-    shapes: Vec<ShapeJson>,
-}
-
-/// A shape as the page draws it, and where it is written (UTF-16 offsets
-/// of its `(colour) ...` text, up to its `>` when angled), so the page can
-/// rewrite this one shape and leave the rest of the text as it is.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ShapeJson {
-    #[serde(flatten)]
-    geometry: Geometry,
-    start: usize,
-    end: usize,
-    /// `#rrggbb`.
-    color: String,
-    /// The colour's Delphi name if it has one, else `#rrggbb`.
-    name: String,
-}
-
-/// A shape's geometry, tagged by its STL name.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "type")]
-enum Geometry {
-    Rectangle {
-        x: f64,
-        y: f64,
-        w: f64,
-        h: f64,
-    },
-    RoundRect {
-        x: f64,
-        y: f64,
-        w: f64,
-        h: f64,
-        rx: f64,
-        ry: f64,
-    },
-    Ellipse {
-        x: f64,
-        y: f64,
-        w: f64,
-        h: f64,
-    },
-    Polygon {
-        points: Vec<[f64; 2]>,
-    },
-}
-
 /// What a render request drew, in the answer's terms, and the image's bytes.
 pub fn run(
     body: &Body,
@@ -440,8 +367,8 @@ pub fn run(
         warnings: diagnostics_json(text, &drawn.warnings),
         growth: Growth { stems, decisions },
         view: drawn.view.map(|b| [b.min_x, b.min_y, b.max_x, b.max_y]),
-        root: drawn.od.as_ref().map(|od| root_json(text, od)),
-        layout: drawn.od.as_ref().map(|od| layout_json(text, od)),
+        root: drawn.od.as_ref().map(|od| shapes::root_json(text, od)),
+        layout: drawn.od.as_ref().map(|od| shapes::layout_json(text, od)),
     };
     Ok((answer, image))
 }
@@ -458,7 +385,7 @@ pub fn diagnostics_json(text: &str, diags: &[Diagnostic]) -> Vec<DiagnosticJson>
         .iter()
         .map(|d| {
             let at = |p: usize| {
-                let p = floor_char(text, p.min(text.len()));
+                let p = shapes::floor_char(text, p.min(text.len()));
                 line_column(text, p)
             };
             let (start, end) = match &d.span {
@@ -477,85 +404,6 @@ pub fn diagnostics_json(text: &str, diags: &[Diagnostic]) -> Vec<DiagnosticJson>
             }
         })
         .collect()
-}
-
-fn floor_char(text: &str, mut i: usize) -> usize {
-    while !text.is_char_boundary(i) {
-        i -= 1;
-    }
-    i
-}
-
-/// A byte offset of `text` as a UTF-16 offset (a JavaScript string index).
-fn utf16(text: &str, byte: usize) -> usize {
-    let b = floor_char(text, byte.min(text.len()));
-    text[..b].encode_utf16().count()
-}
-
-fn root_json(text: &str, od: &Description) -> RootJson {
-    let span = &od.root_loc.0;
-    RootJson {
-        x: od.root.0,
-        y: od.root.1,
-        start: utf16(text, span.start),
-        end: utf16(text, span.end),
-        others: od
-            .forest
-            .iter()
-            .map(|t| Point {
-                x: t.root.0,
-                y: t.root.1,
-            })
-            .collect(),
-    }
-}
-
-fn layout_json(text: &str, od: &Description) -> Option<LayoutJson> {
-    let layout = od.layout.as_ref()?;
-    let shapes = layout
-        .shapes
-        .iter()
-        .map(|s| ShapeJson {
-            geometry: match &s.shape {
-                Shape::Rect { x, y, w, h } => Geometry::Rectangle {
-                    x: *x,
-                    y: *y,
-                    w: *w,
-                    h: *h,
-                },
-                Shape::RoundRect { x, y, w, h, rx, ry } => Geometry::RoundRect {
-                    x: *x,
-                    y: *y,
-                    w: *w,
-                    h: *h,
-                    rx: *rx,
-                    ry: *ry,
-                },
-                Shape::Ellipse { x, y, w, h } => Geometry::Ellipse {
-                    x: *x,
-                    y: *y,
-                    w: *w,
-                    h: *h,
-                },
-                Shape::Polygon(points) => Geometry::Polygon {
-                    points: points.iter().map(|&(x, y)| [x, y]).collect(),
-                },
-            },
-            start: utf16(text, s.loc.0.start),
-            end: utf16(text, s.loc.0.end),
-            color: s.color.to_string(),
-            name: s
-                .color
-                .delphi_name()
-                .map_or_else(|| s.color.to_string(), str::to_string),
-        })
-        .collect();
-    let span = &layout.loc.0;
-    Some(LayoutJson {
-        start: utf16(text, span.start),
-        end: utf16(text, span.end),
-        shapes,
-    })
 }
 
 #[cfg(test)]
@@ -649,11 +497,11 @@ mod tests {
     fn utf16_offsets_count_javascript_units() {
         // `é` is 2 bytes and 1 unit; `𝄞` is 4 bytes and 2 units.
         let t = "é𝄞x";
-        assert_eq!(utf16(t, 0), 0);
-        assert_eq!(utf16(t, 2), 1);
-        assert_eq!(utf16(t, 6), 3);
-        assert_eq!(utf16(t, 7), 4);
+        assert_eq!(shapes::utf16(t, 0), 0);
+        assert_eq!(shapes::utf16(t, 2), 1);
+        assert_eq!(shapes::utf16(t, 6), 3);
+        assert_eq!(shapes::utf16(t, 7), 4);
         // Inside a character: floored to its start.
-        assert_eq!(utf16(t, 3), 1);
+        assert_eq!(shapes::utf16(t, 3), 1);
     }
 }

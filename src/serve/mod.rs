@@ -23,6 +23,7 @@ mod document;
 mod examples;
 mod http;
 mod routes;
+mod shapes;
 mod stall;
 mod work;
 
