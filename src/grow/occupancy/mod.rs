@@ -147,6 +147,17 @@ pub enum Backend {
     Spade,
 }
 
+/// The joint, and `s`'s far end, if `t` starts on an end of `s`.
+fn joint(t: &Seg, s: &Seg) -> Option<([f64; 2], [f64; 2])> {
+    if t.a == s.a {
+        Some((s.a, s.b))
+    } else if t.a == s.b {
+        Some((s.b, s.a))
+    } else {
+        None
+    }
+}
+
 /// Whether a new segment `t` conflicts with a placed segment `s` under
 /// clearance `c` (the rule in the module documentation).
 pub fn conflicts(t: &Seg, s: &Seg, c: f64) -> bool {
@@ -155,15 +166,7 @@ pub fn conflicts(t: &Seg, s: &Seg, c: f64) -> bool {
         return false;
     }
     let c2 = threshold * threshold;
-    // The joint, and `s`'s far end, if `t` starts on an end of `s`.
-    let joint = if t.a == s.a {
-        Some((s.a, s.b))
-    } else if t.a == s.b {
-        Some((s.b, s.a))
-    } else {
-        None
-    };
-    match joint {
+    match joint(t, s) {
         Some((j, far_s)) => {
             let near = |p: [f64; 2], seg: &Seg| {
                 let (d2, at) = point_seg_nearest(p, seg);
@@ -182,14 +185,7 @@ pub fn conflicts(t: &Seg, s: &Seg, c: f64) -> bool {
 /// both are); otherwise the distance between the segments. `t` conflicts
 /// with `s` exactly when it is below `c + t.r + s.r` (and that is above 0).
 pub fn clearance_distance(t: &Seg, s: &Seg) -> f64 {
-    let joint = if t.a == s.a {
-        Some((s.a, s.b))
-    } else if t.a == s.b {
-        Some((s.b, s.a))
-    } else {
-        None
-    };
-    match joint {
+    match joint(t, s) {
         Some((j, far_s)) => {
             let away = |p: [f64; 2], seg: &Seg| {
                 let (d2, at) = point_seg_nearest(p, seg);
