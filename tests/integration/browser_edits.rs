@@ -215,9 +215,11 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     // Tab one's edit is of the older version: its Save is refused.
     c.switch_to_window(first).await.unwrap();
     click(c, "[data-testid=save]").await;
+    // (The watch may have asked about the change already; the refused
+    // Save's notice replaces it.)
     until(
         c,
-        "return !document.getElementById('notice').hidden",
+        "const n = document.getElementById('notice'); return !n.hidden && n.textContent.includes('changed since')",
         "the conflict is shown",
     )
     .await;
@@ -300,7 +302,10 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     .await;
     let took = t0.elapsed();
     assert!(
-        took < Duration::from_secs(3),
+        // The depth-16 work alone takes about 30 s: the picture of depth 5
+        // comes long before it would have ended (a loose bound, for busy
+        // CI machines; measured here well under 3 s).
+        took < Duration::from_secs(10),
         "the new picture took {took:?}"
     );
     // The depth-16 work stopped on the server: its CPU time no longer rises.
