@@ -35,6 +35,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         a_failing_file_shows_no_other_picture(&c, tmp.path()).await;
         new_from_a_template_or_an_example(&c).await;
         export_as_artists_need(&c, &browser.tmp.join("downloads")).await;
+        replay_steps_and_speeds(&c).await;
         let _ = c.close().await;
     });
 }
@@ -469,4 +470,55 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
         0,
         "the background is transparent"
     );
+}
+
+/// Teaching (item 9): the replay steps one decision back and on, and plays
+/// one decision a frame when asked (144 decisions of 2DTree: about 5 s).
+async fn replay_steps_and_speeds(c: &Client) {
+    let label = || async {
+        js(
+            c,
+            "return document.getElementById('step-label').textContent",
+        )
+        .await
+        .as_str()
+        .unwrap()
+        .to_string()
+    };
+    assert!(
+        label().await.starts_with("decision 144 of 144"),
+        "{}",
+        label().await
+    );
+    click(c, "[data-testid=step-back]").await;
+    click(c, "[data-testid=step-back]").await;
+    assert!(
+        label().await.starts_with("decision 142 of 144"),
+        "{}",
+        label().await
+    );
+    click(c, "[data-testid=step-next]").await;
+    assert!(
+        label().await.starts_with("decision 143 of 144"),
+        "{}",
+        label().await
+    );
+    js(
+        c,
+        "const s = document.getElementById('replay-speed'); s.value = '1'; return true",
+    )
+    .await;
+    js(c, "document.getElementById('step').value = 0; return true").await;
+    click(c, "[data-testid=play]").await;
+    tokio::time::sleep(Duration::from_millis(1000)).await;
+    let at: u64 = js(c, "return Number(document.getElementById('step').value)")
+        .await
+        .as_u64()
+        .unwrap();
+    assert!(
+        at > 0 && at < 144,
+        "one decision a frame: at {at} after a second"
+    );
+    click(c, "[data-testid=play]").await;
+    shot(c, "37-replay-step").await;
 }

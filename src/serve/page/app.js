@@ -82,6 +82,8 @@ window.addEventListener('keydown', (e) => {
   if (e.key === 'Escape') app.tools.cancelPolygon();
   else if (e.key === 'Delete' || e.key === 'Backspace') app.tools.deleteSelected();
   else if (e.key === 'f') app.view.fit();
+  else if (e.key === ',') app.replay.nudge(-1);
+  else if (e.key === '.') app.replay.nudge(1);
   else if (tool) app.tools.setTool(tool);
 });
 

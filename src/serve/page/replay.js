@@ -1,6 +1,8 @@
 // Replay: the stems in the order the grower decided them, from the
 // answer's `growth.stems` (six numbers a stem: from, to, width, decision).
-// The slider picks a decision; ▶ plays them all in about four seconds.
+// The slider picks a decision, ◀ and ▶ step one decision, and Replay plays
+// them at the chosen speed: one decision a frame (30 a second), or all of
+// them in 30, 4 or 1 seconds.
 
 import { byId, el } from './dom.js';
 
@@ -74,13 +76,28 @@ export function createReplay(app) {
   }
 
   step.addEventListener('input', () => replayTo(Number(step.value), true));
+  // One decision back or on.
+  function nudge(by) {
+    const v = Math.max(0, Math.min(Number(step.max), Number(step.value) + by));
+    step.value = v;
+    replayTo(v, true);
+  }
+  byId('step-back').addEventListener('click', () => nudge(-1));
+  byId('step-next').addEventListener('click', () => nudge(1));
+
+  // Decisions a frame (33 ms) for the chosen speed.
+  function perFrame(max) {
+    const speed = byId('replay-speed').value;
+    if (speed === '1') return 1;
+    const seconds = speed === '1s' ? 1 : Number(speed);
+    return Math.max(1, Math.ceil(max / (seconds * 30)));
+  }
   play.addEventListener('click', () => {
     if (state.replayTimer) { stopReplay(true); return; }
     const max = Number(step.max);
     if (!max) return;
     if (Number(step.value) >= max) step.value = 0;
-    // About four seconds whatever the size.
-    const per = Math.max(1, Math.ceil(max / 120));
+    const per = perFrame(max);
     play.textContent = '❚❚ Pause';
     state.replayTimer = setInterval(() => {
       const v = Math.min(max, Number(step.value) + per);
@@ -93,6 +110,7 @@ export function createReplay(app) {
   return {
     showStems,
     reset,
+    nudge,
     // The slider's decision, after a redraw.
     show: () => replayTo(Number(step.value), false),
   };
