@@ -6,7 +6,7 @@
 # chromedriver's WebDriver HTTP API: for each example, N edits (a `#`, an
 # empty comment, added at the end of the text and removed again), each timed
 # by the page from the input event to the redrawn picture
-# (window.stlc.state.timings).
+# ((window.stlc.state || window.stlc).timings).
 import json, sys, time, urllib.request, statistics, subprocess, os
 drv, url, runs = sys.argv[1], sys.argv[2], int(sys.argv[3])
 def call(method, path, body=None):
@@ -22,15 +22,15 @@ for name in sys.argv[4:]:
     text = open(name).read()
     js("document.getElementById('source').value = %s; document.getElementById('source').dispatchEvent(new Event('input')); return 0;" % json.dumps(text))
     time.sleep(3)
-    js("window.stlc.state.timings.length = 0; return 0;")
+    js("(window.stlc.state || window.stlc).timings.length = 0; return 0;")
     for i in range(runs):
         edit = text + ('#' if i % 2 == 0 else '')
         js("document.getElementById('source').value = %s; document.getElementById('source').dispatchEvent(new Event('input')); return 0;" % json.dumps(edit))
         for _ in range(200):
-            n = js("return window.stlc.state.timings.length")
+            n = js("return (window.stlc.state || window.stlc).timings.length")
             if n > i: break
             time.sleep(0.01)
-    t = js("return window.stlc.state.timings")
-    stems = int(js("return window.stlc.state.answer.stems"))
+    t = js("return (window.stlc.state || window.stlc).timings")
+    stems = int(js("return (window.stlc.state || window.stlc).answer.stems"))
     print(f"{os.path.basename(name)}: stems {stems}, median {statistics.median(t):.0f} ms, min {min(t):.0f}, max {max(t):.0f} over {len(t)}")
 call('DELETE', f'/session/{sid}')
