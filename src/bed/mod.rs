@@ -355,6 +355,7 @@ mod tests {
             clearance: None,
             stroke: None,
             background: None,
+            design: Default::default(),
             loc: Loc::default(),
         };
         let d = order_error(&p, 4, 3..7, "R1");

@@ -445,6 +445,7 @@ mod tests {
                 clearance: None,
                 stroke: None,
                 background: None,
+                design: Default::default(),
                 loc: Loc::default(),
             },
             rules: vec![RuleDef {

@@ -116,8 +116,34 @@ pub struct StemParams {
     /// `G`: the background (ground) colour, or `none` for transparent
     /// (ours), `None` if not written (white, or `--background`).
     pub background: Option<Colour>,
+    /// `O=`, `V=`, `M=`: how an OD grows, kept in its file.
+    pub design: Design,
     /// Where the parameters are.
     pub loc: Loc,
+}
+
+/// What shapes an OD's growth beyond its rules, kept in the file so that a
+/// tree made in the editor grows the same everywhere
+/// (`stl-language.md` section 10). The command line overrides each for one
+/// run; a BED has none (its decisions are written out).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Design {
+    /// `O=bfs` or `O=dfs`: the growth order (`--growth` overrides it).
+    pub order: Option<Order>,
+    /// `V=n`: the seed of the choices (`--seed` overrides it).
+    pub seed: Option<u64>,
+    /// `M=n`: growth stops after n stems, part of the design (`--max-stems`
+    /// stays the resource limit: the smaller wins).
+    pub max_stems: Option<u64>,
+}
+
+/// A growth order as a file writes it (`O=`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Order {
+    /// `O=bfs`: level by level.
+    Bfs,
+    /// `O=dfs`: a branch's whole subtree before its sibling.
+    Dfs,
 }
 
 /// A colour as a description writes it: `clMaroon`, `#4a2c12`, or `none`

@@ -27,7 +27,7 @@ use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::grow::{GrowOptions, GrowthOrder};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
-use crate::model::Description;
+use crate::model::{Description, Design, Order};
 use crate::progress::Progress;
 use crate::render::{ImageFormat, RenderOptions};
 use crate::syntax::InputKind;
@@ -132,9 +132,11 @@ impl Request {
         }
     }
 
-    /// The limits and growth options of this request: `max_stems`, if
-    /// given, within `limits.max_stems`.
-    fn options(&self) -> Result<(Limits, GrowOptions), Diagnostics> {
+    /// The limits and growth options of this request for an input whose
+    /// file keeps `design` (an OD's `O=`, `V=`, `M=`): the request's own
+    /// options override the file's for this run; `max_stems`, if given,
+    /// within `limits.max_stems`, and the file's `M=` within both.
+    fn options(&self, design: &Design) -> Result<(Limits, GrowOptions), Diagnostics> {
         let mut limits = self.limits;
         if let Some(n) = self.max_stems {
             if n > limits.max_stems {
@@ -152,12 +154,19 @@ impl Request {
             }
             limits.max_stems = n;
         }
+        if let Some(m) = design.max_stems {
+            limits.max_stems = limits.max_stems.min(m);
+        }
+        let order = design.order.map(|o| match o {
+            Order::Bfs => GrowthOrder::Bfs,
+            Order::Dfs => GrowthOrder::Dfs,
+        });
         let grow = GrowOptions {
-            growth: self.growth.unwrap_or_default(),
+            growth: self.growth.or(order).unwrap_or_default(),
             clearance: self.clearance,
             limits,
-            max_stems_explicit: self.max_stems.is_some(),
-            seed: self.seed.unwrap_or(0),
+            max_stems_explicit: self.max_stems.is_some() || design.max_stems.is_some(),
+            seed: self.seed.or(design.seed).unwrap_or(0),
         };
         Ok((limits, grow))
     }
@@ -178,7 +187,7 @@ impl Request {
     /// Loads the input within the limits, with the seed in place, and the
     /// warnings for options that do nothing for it.
     pub fn open(&self) -> Result<(Loaded, Vec<Diagnostic>), Diagnostics> {
-        let (limits, _) = self.options()?;
+        let (limits, _) = self.options(&Design::default())?;
         let loaded = load(&self.input, self.input_kind()?, &limits)?.seeded(self.seed);
         let mut warnings = ignored_flags(&loaded, &self.given());
         if self.look.show_layout == ShowLayout::Yes && !has_layout(&loaded) {
@@ -191,8 +200,8 @@ impl Request {
     }
 
     /// The scene's request: how to grow and derive.
-    fn scene_request(&self) -> Result<SceneRequest, Diagnostics> {
-        let (limits, grow) = self.options()?;
+    fn scene_request(&self, loaded: &Loaded) -> Result<SceneRequest, Diagnostics> {
+        let (limits, grow) = self.options(&design(loaded))?;
         Ok(SceneRequest {
             grow,
             derivation: self.derivation.unwrap_or_default(),
@@ -210,7 +219,7 @@ impl Request {
         progress: &mut dyn Progress,
     ) -> Result<Drawn, Diagnostics> {
         let (loaded, mut warnings) = self.open()?;
-        let req = self.scene_request()?;
+        let req = self.scene_request(&loaded)?;
         let (scene, od, trace) = super::traced_scene(loaded, &req, self.trace, progress)?;
         let rendered = super::render(&scene, &self.look, &self.image, out, progress)?;
         let view = super::layout_view(&scene, false).0;
@@ -237,7 +246,7 @@ impl Request {
         progress: &mut dyn Progress,
     ) -> Result<(Compiled, Vec<Diagnostic>), Diagnostics> {
         let (loaded, mut warnings) = self.open()?;
-        let (_, grow) = self.options()?;
+        let (_, grow) = self.options(&design(&loaded))?;
         let compiled = super::compile(&loaded, &grow, progress)?;
         warnings.extend(compiled.grown.warnings.iter().cloned());
         Ok((compiled, warnings))
@@ -251,7 +260,8 @@ impl Request {
         progress: &mut dyn Progress,
     ) -> Result<Vec<Diagnostic>, Diagnostics> {
         let (loaded, mut warnings) = self.open()?;
-        let scene = super::scene(loaded, &self.scene_request()?, progress)?;
+        let req = self.scene_request(&loaded)?;
+        let scene = super::scene(loaded, &req, progress)?;
         super::expand(&scene, out, progress)?;
         warnings.extend(scene.warnings);
         Ok(warnings)
@@ -260,7 +270,7 @@ impl Request {
     /// `stlc check`'s summary and warnings (see [`super::check`]).
     pub fn check(&self) -> Result<super::Checked, Diagnostics> {
         let (loaded, mut warnings) = self.open()?;
-        let (_, grow) = self.options()?;
+        let (_, grow) = self.options(&design(&loaded))?;
         let checked = super::check(&loaded, &grow)?;
         warnings.extend(checked.warnings);
         Ok(super::Checked {
@@ -272,9 +282,18 @@ impl Request {
     /// `stlc stats`'s text (or JSON) and warnings (see [`super::stats`]).
     pub fn stats(&self, json: bool) -> Result<(String, Vec<Diagnostic>), Diagnostics> {
         let (loaded, warnings) = self.open()?;
-        let (limits, _) = self.options()?;
+        let (limits, _) = self.options(&Design::default())?;
         let text = super::stats(&loaded, self.depth, json, &limits)?;
         Ok((text, warnings))
+    }
+}
+
+/// What an OD's file keeps of its growth (`O=`, `V=`, `M=`); nothing for
+/// other inputs.
+fn design(loaded: &Loaded) -> Design {
+    match loaded {
+        Loaded::Od(d) => d.params.design,
+        _ => Design::default(),
     }
 }
 

@@ -1164,3 +1164,102 @@ fn it_runs_under_a_one_gigabyte_address_space_limit() {
     );
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
 }
+
+/// Every setting in the file (stl-language.md section 10): `O=`, `V=` and
+/// `M=` in an OD's header grow what `--growth`, `--seed` and `--max-stems`
+/// grow, the flags override the file for one run, and a BED refuses them.
+#[test]
+fn growth_settings_kept_in_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = env!("CARGO_MANIFEST_DIR");
+    let fig9 = std::fs::read_to_string(format!("{root}/examples/fig9.od")).unwrap();
+    let with = |keys: &str, name: &str| {
+        let text = fig9.replace(
+            "L=9(0) B=1.5(0) A=30 C=2",
+            &format!("L=9(0) B=1.5(0) A=30 C=2 {keys}"),
+        );
+        assert_ne!(text, fig9, "the header line moved");
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let compile = |p: &std::path::Path, args: &[&str]| {
+        let out = Command::cargo_bin("stlc")
+            .unwrap()
+            .args(["compile", p.to_str().unwrap(), "-o", "-"])
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        out.stdout
+    };
+    let golden =
+        |order: &str| std::fs::read(format!("{root}/tests/cases/grow/fig9.{order}.bed")).unwrap();
+    let dfs = with("O=dfs", "dfs.od");
+    assert_eq!(compile(&dfs, &[]), golden("dfs"), "O=dfs grows depth-first");
+    assert_eq!(
+        compile(&dfs, &["--growth", "bfs"]),
+        golden("bfs"),
+        "--growth overrides O="
+    );
+    // V= and M= grow what --seed and --max-stems grow.
+    let grove = std::fs::read_to_string(format!("{root}/examples/grove.od")).unwrap();
+    let keyed = dir.path().join("grove.od");
+    std::fs::write(&keyed, grove.replace("A=25 C=1", "A=25 C=1 V=7 M=500")).unwrap();
+    let plain = format!("{root}/examples/grove.od");
+    assert_eq!(
+        compile(&keyed, &[]),
+        compile(
+            std::path::Path::new(&plain),
+            &["--seed", "7", "--max-stems", "500"]
+        )
+    );
+    // The flag overrides V= for one run.
+    assert_eq!(
+        compile(&keyed, &["--seed", "8"]),
+        compile(
+            std::path::Path::new(&plain),
+            &["--seed", "8", "--max-stems", "500"]
+        )
+    );
+    // A BED has none of them; a wrong value says what is right.
+    for (text, says) in [
+        (
+            "T (0,0) L=1(0) B=1(0) O=dfs RULE R1: [+F] SEED F R1{,} ENDSEED\n",
+            "in a BED",
+        ),
+        (
+            "T (0,0) L=1(0) B=1(0) V=7 RULE R1: [+F] SEED F R1{,} ENDSEED\n",
+            "in a BED",
+        ),
+    ] {
+        let p = dir.path().join("t.bed");
+        std::fs::write(&p, text).unwrap();
+        let out = Command::cargo_bin("stlc")
+            .unwrap()
+            .args(["check", p.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1));
+        assert!(String::from_utf8_lossy(&out.stderr).contains(says));
+    }
+    for (keys, says) in [
+        ("O=sideways", "`bfs` or `dfs`"),
+        ("V=-1", "whole number"),
+        ("M=2.5", "whole number"),
+    ] {
+        let p = with(keys, "bad.od");
+        let out = Command::cargo_bin("stlc")
+            .unwrap()
+            .args(["check", p.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1), "{keys}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{keys}: {err}");
+    }
+}

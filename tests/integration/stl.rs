@@ -1007,6 +1007,7 @@ fn gen_description(seed: u64) -> Description {
                     text: "#ffffff".into(),
                 },
             }),
+            design: Default::default(),
             loc: Loc::default(),
         },
         rules,

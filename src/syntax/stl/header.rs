@@ -27,17 +27,26 @@ pub enum Param {
     Stroke,
     /// `G=colour` or `G=none`: the background (ground) colour.
     Ground,
+    /// `O=bfs` or `O=dfs`: the growth order of an OD.
+    Order,
+    /// `V=n`: the seed of an OD's choices.
+    Seed,
+    /// `M=n`: the stems an OD's growth stops after.
+    MaxStems,
 }
 
 impl Param {
     /// Every parameter, in the order the docs list them.
-    pub const ALL: [Param; 6] = [
+    pub const ALL: [Param; 9] = [
         Param::Length,
         Param::Broadness,
         Param::Angle,
         Param::Clearance,
         Param::Stroke,
         Param::Ground,
+        Param::Order,
+        Param::Seed,
+        Param::MaxStems,
     ];
 
     /// The key as written: `L`, `B`, `A` or `C`.
@@ -49,6 +58,9 @@ impl Param {
             Param::Clearance => "C",
             Param::Stroke => "S",
             Param::Ground => "G",
+            Param::Order => "O",
+            Param::Seed => "V",
+            Param::MaxStems => "M",
         }
     }
 
@@ -61,12 +73,26 @@ impl Param {
             Param::Clearance => "clearance",
             Param::Stroke => "stroke colour",
             Param::Ground => "background colour",
+            Param::Order => "growth order",
+            Param::Seed => "seed",
+            Param::MaxStems => "max stems",
         }
     }
 
     /// Whether the parameter's value is a colour rather than a number.
     pub fn is_colour(self) -> bool {
         matches!(self, Param::Stroke | Param::Ground)
+    }
+
+    /// Whether the parameter's value is a word (a colour, `bfs`/`dfs`).
+    fn is_word(self) -> bool {
+        self.is_colour() || self == Param::Order
+    }
+
+    /// Whether the parameter is part of an OD's design (`O`, `V`, `M`),
+    /// which a BED, whose decisions are written out, does not have.
+    fn is_design(self) -> bool {
+        matches!(self, Param::Order | Param::Seed | Param::MaxStems)
     }
 
     /// The parameter whose key is `key`, exactly as written.
@@ -96,6 +122,7 @@ impl Builder<'_> {
             clearance: None,
             stroke: None,
             background: None,
+            design: Default::default(),
             loc: Loc(root_loc.0.end..root_loc.0.end),
         };
         let mut seen: Vec<(String, Span)> = Vec::new();
@@ -134,9 +161,29 @@ impl Builder<'_> {
             let param = Param::from_key(&k);
             let colour_given = val.as_rule() == Rule::stl_param_colour;
             if let Some(p) = param
-                && p.is_colour() != colour_given
+                && p.is_design()
+                && self.format == crate::model::Format::Bed
             {
-                let expected = if p.is_colour() {
+                self.report(
+                    StlError::ParamValue {
+                        key: p.key(),
+                        expected: "nothing in a BED: its decisions are written out",
+                    },
+                    kspan.start..vspan.end,
+                    "a BED grows nothing",
+                    &format!(
+                        "remove `{}=`: it belongs in the OD the BED was compiled from",
+                        p.key()
+                    ),
+                );
+                continue;
+            }
+            if let Some(p) = param
+                && p.is_word() != colour_given
+            {
+                let expected = if p == Param::Order {
+                    "`bfs` or `dfs`"
+                } else if p.is_colour() {
                     "a colour (a Delphi name such as `clMaroon`, `#rrggbb`, or `none` for G)"
                 } else {
                     "a number"
@@ -169,6 +216,39 @@ impl Builder<'_> {
                 }
                 continue;
             }
+            if let Some(p @ (Param::Order | Param::Seed | Param::MaxStems)) = param {
+                self.no_decrement(p, dec.as_ref().map(|(s, _)| s.clone()));
+                let text = val.as_str();
+                match p {
+                    Param::Order => match text {
+                        "bfs" => out.design.order = Some(crate::model::Order::Bfs),
+                        "dfs" => out.design.order = Some(crate::model::Order::Dfs),
+                        _ => self.report(
+                            StlError::ParamValue {
+                                key: p.key(),
+                                expected: "`bfs` or `dfs`",
+                            },
+                            vspan,
+                            "not a growth order",
+                            "write `O=bfs` (level by level) or `O=dfs` (a branch's subtree first)",
+                        ),
+                    },
+                    _ => match text.parse::<u64>() {
+                        Ok(n) if p == Param::Seed => out.design.seed = Some(n),
+                        Ok(n) => out.design.max_stems = Some(n),
+                        Err(_) => self.report(
+                            StlError::ParamValue {
+                                key: p.key(),
+                                expected: "a whole number from 0 to 18446744073709551615",
+                            },
+                            vspan,
+                            "not a whole number",
+                            &format!("write `{}=` followed by digits", p.key()),
+                        ),
+                    },
+                }
+                continue;
+            }
             let v = if colour_given { 0.0 } else { self.number(&val) };
             let dv = dec.as_ref().map(|(_, n)| (self.number(n), span_of(n)));
             match Param::from_key(&k) {
@@ -178,8 +258,10 @@ impl Builder<'_> {
                     self.no_decrement(p, dec.map(|(s, _)| s));
                     out.angle = Some(v);
                 }
-                // Colours were read above.
-                Some(Param::Stroke | Param::Ground) => {}
+                // Colours and the design keys were read above.
+                Some(
+                    Param::Stroke | Param::Ground | Param::Order | Param::Seed | Param::MaxStems,
+                ) => {}
                 Some(p @ Param::Clearance) => {
                     self.no_decrement(p, dec.map(|(s, _)| s));
                     if v < 0.0 {
@@ -259,8 +341,8 @@ mod tests {
     fn the_parameter_list_reads_as_prose() {
         assert_eq!(
             param_list(),
-            "L (length), B (broadness), A (angle), C (clearance), S (stroke colour) \
-             and G (background colour)"
+            "L (length), B (broadness), A (angle), C (clearance), S (stroke colour), \
+             G (background colour), O (growth order), V (seed) and M (max stems)"
         );
         assert_eq!(Param::from_key("B"), Some(Param::Broadness));
         assert_eq!(Param::from_key("b"), None);
