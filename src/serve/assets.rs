@@ -50,6 +50,11 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/document.js"),
     },
     Asset {
+        path: "/settings.js",
+        media: JS,
+        body: include_str!("page/settings.js"),
+    },
+    Asset {
         path: "/files.js",
         media: JS,
         body: include_str!("page/files.js"),

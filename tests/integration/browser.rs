@@ -300,6 +300,17 @@ async fn acceptance(c: &Client) {
         dfs = settled(c).await;
     }
     assert_ne!(dfs["growth"], holed["growth"]);
+    // The growth order is kept in the file: `O=dfs` joins the header, and
+    // nothing else in the text changes.
+    let text = dfs["text"].as_str().unwrap();
+    assert_eq!(
+        text,
+        holed["text"]
+            .as_str()
+            .unwrap()
+            .replace("B=1(0)RULE", "B=1(0) O=dfs RULE"),
+        "{text}"
+    );
     click(c, "#play").await;
     for _ in 0..600 {
         if js(c, "return window.stlc.state.replayTimer === null").await == json!(true) {
@@ -729,14 +740,20 @@ async fn tools(c: &Client, start: &str) {
 
     // Tree Renderer: an L-system at a depth.
     click(c, "#kind option[value=lsys]").await;
-    let depth = c.find(Locator::Id("depth")).await.unwrap();
-    depth.send_keys("2").await.unwrap();
     let source = c.find(Locator::Id("source")).await.unwrap();
     source.clear().await.unwrap();
     source
         .send_keys("axiom F++F++F\nangle 60\nrule F F-F++F-F\n")
         .await
         .unwrap();
+    // The depth control writes the file's `generations` line.
+    let depth = c.find(Locator::Id("depth")).await.unwrap();
+    depth.send_keys("2").await.unwrap();
+    let text = js(c, "return document.getElementById('source').value").await;
+    assert!(
+        text.as_str().unwrap().ends_with("generations 2\n"),
+        "{text}"
+    );
     let koch = settled(c).await;
     assert_eq!(koch["ok"], true, "{koch}");
     // Depth 2 of the Koch snowflake: 3 * 4^2 segments.

@@ -36,6 +36,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         new_from_a_template_or_an_example(&c).await;
         export_as_artists_need(&c, &browser.tmp.join("downloads")).await;
         replay_steps_and_speeds(&c).await;
+        settings_are_keys_in_the_text(&c).await;
         let _ = c.close().await;
     });
 }
@@ -280,9 +281,10 @@ async fn exact_counts(c: &Client) {
 async fn long_work_is_cancelled(c: &Client, server: &Server) {
     open(c, &manifest_path("examples/abop-1.27.lsys")).await;
     settled(c).await;
-    // Problem 4: the last file's depth (30) does not follow to this one.
+    // Problem 4: the last file's depth (30) does not follow to this one:
+    // the control shows this file's own `generations`.
     let depth = js(c, "return document.getElementById('depth').value").await;
-    assert_eq!(depth, "", "the depth of the file before leaked");
+    assert_eq!(depth, "5", "the depth of the file before leaked");
     let stems = js(c, "return window.stlc.state.answer.stems").await;
     assert_eq!(stems, "491", "drawn at its own generations (5)");
     set_depth(c, "16").await;
@@ -521,4 +523,55 @@ async fn replay_steps_and_speeds(c: &Client) {
     );
     click(c, "[data-testid=play]").await;
     shot(c, "37-replay-step").await;
+}
+
+/// Item 2: the controls edit keys in the text (only that key), and typing
+/// a key moves its control.
+async fn settings_are_keys_in_the_text(c: &Client) {
+    let names = js(
+        c,
+        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
+    )
+    .await;
+    let i = names
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|n| n == "fig9.od")
+        .unwrap()
+        - 1;
+    click(c, &format!("#new option[value='{i}']")).await;
+    let before = settled(c).await;
+    let fig9 = before["text"].as_str().unwrap().to_string();
+    click(c, "#strategy option[value=dfs]").await;
+    let dfs = settled(c).await;
+    assert_eq!(
+        dfs["text"].as_str().unwrap(),
+        fig9.replace("A=30 C=2\n", "A=30 C=2 O=dfs\n")
+    );
+    assert_ne!(dfs["growth"], before["growth"], "O=dfs grows another tree");
+    // Typing the key back moves the control.
+    js(
+        c,
+        "const s = document.getElementById('source'); s.value = s.value.replace('O=dfs', 'O=bfs'); s.dispatchEvent(new Event('input')); return 0;",
+    )
+    .await;
+    let typed = settled(c).await;
+    assert_eq!(typed["growth"], before["growth"]);
+    let shown = js(c, "return document.getElementById('strategy').value").await;
+    assert_eq!(shown, "bfs");
+    // The seed control writes V=, and emptying it removes the key.
+    let seed = c.find(fantoccini::Locator::Id("seed")).await.unwrap();
+    seed.send_keys("7").await.unwrap();
+    let with_seed = settled(c).await;
+    assert!(
+        with_seed["text"].as_str().unwrap().contains("O=bfs V=7\n"),
+        "{with_seed}"
+    );
+    js(c, "const e = document.getElementById('seed'); e.value = ''; e.dispatchEvent(new Event('input')); return 0;").await;
+    let without = settled(c).await;
+    assert!(
+        !without["text"].as_str().unwrap().contains("V="),
+        "{without}"
+    );
 }

@@ -19,6 +19,7 @@ import { createReplay } from './replay.js';
 import { createTools } from './tools.js';
 import { createFiles } from './files.js';
 import { createDocument } from './document.js';
+import { createSettings } from './settings.js';
 
 const app = {
   engine: createEngine({ token: document.querySelector('meta[name="stlc-token"]').content }),
@@ -58,6 +59,7 @@ const app = {
 window.stlc = app;
 
 app.editor = createEditor(app);
+app.settings = createSettings(app);
 app.diagnostics = createDiagnostics(app);
 app.session = createSession(app);
 app.view = createView(app);

@@ -8,22 +8,13 @@ import { byId } from './dom.js';
 export function createSession(app) {
   const { state } = app;
 
-  // The engine's RenderRequest for the editor's text and the options.
+  // The engine's RenderRequest for the editor's text. An OD's and an
+  // .lsys's settings are keys in the text (settings.js), so the request is
+  // the text and its kind; the controls only show and edit those keys. A
+  // BED grows nothing and chooses nothing: it has no settings.
   function request() {
-    const r = { source: app.editor.text(), kind: byId('kind').value };
-    const num = (id) => byId(id).value.trim();
-    // Each option only for the kinds it applies to: the server warns about
-    // an option that does nothing for the input, as the CLI does.
-    if (r.kind === 'od') {
-      r.strategy = byId('strategy').value;
-      if (num('clearance') !== '') r.clearance = Number(num('clearance'));
-      if (num('max-stems') !== '') r.max_stems = Math.floor(Number(num('max-stems')));
-    }
-    if (r.kind === 'lsys' && num('depth') !== '') r.depth = Math.floor(Number(num('depth')));
-    // A BED has its choices written out: the seed changes nothing there.
-    // As a string: a seed is any 64-bit number, more than a JS number holds.
-    if (r.kind !== 'bed' && num('seed') !== '') r.seed = num('seed');
-    return r;
+    app.settings.sync();
+    return { source: app.editor.text(), kind: byId('kind').value };
   }
 
   // The request in flight, if any. A newer edit ends it: its fetch is
@@ -146,10 +137,12 @@ export function createSession(app) {
     let next = 1n;
     try { if (now !== '') next = BigInt(now) + 1n; } catch { next = 1n; }
     byId('seed').value = String(next);
-    edited();
+    if (!app.settings.changed('seed')) edited();
   });
-  ['strategy', 'clearance', 'max-stems', 'depth', 'seed'].forEach((id) => byId(id).addEventListener('input', edited));
-  byId('strategy').addEventListener('change', edited);
+  // A control edits its key in the text (which renders), else just renders.
+  const control = (id) => () => { if (!app.settings.changed(id)) edited(); };
+  ['clearance', 'max-stems', 'depth', 'seed'].forEach((id) => byId(id).addEventListener('input', control(id)));
+  byId('strategy').addEventListener('change', control('strategy'));
 
   return { request, refresh, cancel, setKind, inSync };
 }
