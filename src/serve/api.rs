@@ -320,6 +320,105 @@ pub struct DiagnosticJson {
     help: Option<String>,
 }
 
+/// Generations [`words`] shows at most (depths 0 to 7).
+pub const WORD_DEPTHS: u32 = 8;
+
+/// Characters of each word [`words`] shows at most.
+pub const WORD_CHARS: usize = 2_000;
+
+/// The answer of `POST /api/words`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WordsAnswer {
+    /// Always `true`.
+    pub ok: bool,
+    /// Depth 0 (the axiom) and on.
+    pub words: Vec<Word>,
+}
+
+/// One generation's word.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Word {
+    /// The generation.
+    pub depth: u32,
+    /// The word, cut at [`WORD_CHARS`] characters.
+    pub word: String,
+    /// Its exact length in symbols, as digits.
+    pub length: String,
+}
+
+/// A writer that keeps the first `cap` bytes and stops the rest.
+struct Capped {
+    kept: Vec<u8>,
+    cap: usize,
+}
+
+impl std::io::Write for Capped {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let room = self.cap - self.kept.len();
+        if room == 0 {
+            return Err(std::io::Error::other("enough"));
+        }
+        let n = buf.len().min(room);
+        self.kept.extend_from_slice(&buf[..n]);
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// An `.lsys`'s word at each depth from 0 to its depth (the request's, else
+/// its `generations`), at most [`WORD_DEPTHS`] of them: the derivation a
+/// teacher shows, the CLI's `stlc expand` and `stlc stats` for each.
+pub fn words(
+    body: &Body,
+    s: &Settings,
+    progress: &mut dyn Progress,
+) -> Result<WordsAnswer, Failed> {
+    let text = &body.source;
+    let base = body.request(s, ImageFormat::Svg);
+    let (loaded, _) = base.open().map_err(|d| Failed::new(text, &d))?;
+    let Some(last) = (match &loaded {
+        stlc::pipeline::Loaded::Lsys(sys) => body.depth.or(sys.generations),
+        _ => {
+            return Err(Failed::message(
+                "only an .lsys has generations to show",
+                "open an .lsys, or kind: .lsys",
+            ));
+        }
+    }) else {
+        return Err(Failed::message(
+            "this .lsys has no depth",
+            "add a line `generations N`",
+        ));
+    };
+    let mut words = Vec::new();
+    for depth in 0..=last.min(WORD_DEPTHS - 1) {
+        let req = Request {
+            depth: Some(depth),
+            ..base.clone()
+        };
+        let (stats, _) = req.stats(true).map_err(|d| Failed::new(text, &d))?;
+        let length = serde_json::from_str::<serde_json::Value>(&stats)
+            .ok()
+            .and_then(|v| v["length"].as_str().map(str::to_string))
+            .unwrap_or_default();
+        let mut out = Capped {
+            kept: Vec::new(),
+            cap: WORD_CHARS,
+        };
+        // A word longer than the cap stops the writer: what was kept is shown.
+        let _ = req.expand(&mut out, progress);
+        let word = String::from_utf8_lossy(&out.kept).trim_end().to_string();
+        words.push(Word {
+            depth,
+            word,
+            length,
+        });
+    }
+    Ok(WordsAnswer { ok: true, words })
+}
+
 /// What a render request drew, in the answer's terms, and the image's bytes.
 pub fn run(
     body: &Body,

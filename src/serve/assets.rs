@@ -55,6 +55,11 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/settings.js"),
     },
     Asset {
+        path: "/words.js",
+        media: JS,
+        body: include_str!("page/words.js"),
+    },
+    Asset {
         path: "/files.js",
         media: JS,
         body: include_str!("page/files.js"),

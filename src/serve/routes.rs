@@ -41,7 +41,7 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
     let path = req.uri().path().to_string();
     let expected = match path.as_str() {
         "/" | "/api/file" | "/api/examples" => Method::GET,
-        "/api/render" | "/api/export" | "/api/save" => Method::POST,
+        "/api/render" | "/api/export" | "/api/save" | "/api/words" => Method::POST,
         p if assets::find(p).is_some() => Method::GET,
         _ => return http::error(StatusCode::NOT_FOUND, "not found"),
     };
@@ -55,6 +55,7 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
         "/api/render" => render(state, req).await,
         "/api/export" => export(state, req).await,
         "/api/save" => save(state, req).await,
+        "/api/words" => words(state, req).await,
         p => asset(p),
     }
 }
@@ -206,6 +207,28 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
             ),
         },
         Ended::Done(Ok((_, bytes))) => http::answer(StatusCode::OK, media, bytes),
+        Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),
+        Ended::Stopped(why) => stopped(why),
+        Ended::Crashed => crashed(),
+    }
+}
+
+/// `POST /api/words`: an `.lsys`'s word generation by generation (depth 0
+/// up to its depth, at most [`api::WORD_DEPTHS`] of them), each cut at
+/// [`api::WORD_CHARS`] characters, with its exact length: for teaching.
+async fn words(state: Arc<State>, req: Request<Incoming>) -> Answer {
+    let body = match body(&state, req).await {
+        Ok(b) => b,
+        Err(a) => return a,
+    };
+    let budget = state.settings.time_budget;
+    let slots = state.heavy.clone();
+    let done = work::run(budget, slots, move |w| {
+        api::words(&body, &state.settings, w)
+    })
+    .await;
+    match done {
+        Ended::Done(Ok(answer)) => http::json(StatusCode::OK, &answer),
         Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),
         Ended::Stopped(why) => stopped(why),
         Ended::Crashed => crashed(),

@@ -37,6 +37,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         export_as_artists_need(&c, &browser.tmp.join("downloads")).await;
         replay_steps_and_speeds(&c).await;
         settings_are_keys_in_the_text(&c).await;
+        words_generation_by_generation(&c).await;
         let _ = c.close().await;
     });
 }
@@ -574,4 +575,56 @@ async fn settings_are_keys_in_the_text(c: &Client) {
         !without["text"].as_str().unwrap().contains("V="),
         "{without}"
     );
+}
+
+/// Teaching (problem 11): an .lsys's word, generation by generation, as
+/// `stlc expand --depth N` writes it, with its exact length.
+async fn words_generation_by_generation(c: &Client) {
+    let names = js(
+        c,
+        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
+    )
+    .await;
+    let i = names
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|n| n == "koch-snowflake.lsys")
+        .unwrap()
+        - 1;
+    click(c, &format!("#new option[value='{i}']")).await;
+    settled(c).await;
+    click(c, "#words summary").await;
+    until(
+        c,
+        "return document.querySelectorAll('#word-list li').length === 5",
+        "five generations",
+    )
+    .await;
+    let items = js(
+        c,
+        "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)",
+    )
+    .await;
+    let items: Vec<&str> = items
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    let koch = manifest_path("examples/koch-snowflake.lsys");
+    for (depth, item) in items.iter().enumerate() {
+        let word = crate::support::stlc_stdout(&[
+            "expand",
+            koch.to_str().unwrap(),
+            "--depth",
+            &depth.to_string(),
+            "-o",
+            "-",
+        ]);
+        let word = String::from_utf8(word).unwrap();
+        let word = word.trim_end();
+        assert_eq!(*item, format!("{word} ({})", word.len()), "depth {depth}");
+    }
+    shot(c, "38-words").await;
 }

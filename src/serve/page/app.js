@@ -20,6 +20,7 @@ import { createTools } from './tools.js';
 import { createFiles } from './files.js';
 import { createDocument } from './document.js';
 import { createSettings } from './settings.js';
+import { createWords } from './words.js';
 
 const app = {
   engine: createEngine({ token: document.querySelector('meta[name="stlc-token"]').content }),
@@ -67,6 +68,7 @@ app.replay = createReplay(app);
 app.tools = createTools(app);
 app.files = createFiles(app);
 app.document = createDocument(app);
+app.words = createWords(app);
 
 // Keys outside the editor's own: Ctrl-S everywhere, undo and redo out of
 // the number fields (which keep their own), and the tools' letters.

@@ -101,6 +101,7 @@ export function createSession(app) {
     }
     state.otherFile = false;
     app.diagnostics.show(answer.warnings);
+    app.words.refresh();
     if (answer.root) {
       state.root = [answer.root.x, answer.root.y];
       state.rootSpan = [answer.root.start, answer.root.end];

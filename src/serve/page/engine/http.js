@@ -37,6 +37,12 @@ export function createHttpEngine({ token }) {
       return { ok: true, blob: await res.blob() };
     },
 
+    async words(request) {
+      const res = await post('/api/words', request);
+      if (!res.ok) return refused(res);
+      return res.json();
+    },
+
     async examples() {
       const res = await fetch('/api/examples');
       if (!res.ok) throw new Error(`/api/examples: ${res.status} ${res.statusText}`);
