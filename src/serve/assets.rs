@@ -60,6 +60,11 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/words.js"),
     },
     Asset {
+        path: "/scrub.js",
+        media: JS,
+        body: include_str!("page/scrub.js"),
+    },
+    Asset {
         path: "/files.js",
         media: JS,
         body: include_str!("page/files.js"),

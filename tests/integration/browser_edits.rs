@@ -38,6 +38,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         replay_steps_and_speeds(&c).await;
         settings_are_keys_in_the_text(&c).await;
         words_generation_by_generation(&c).await;
+        numbers_scrub(&c).await;
         let _ = c.close().await;
     });
 }
@@ -627,4 +628,42 @@ async fn words_generation_by_generation(c: &Client) {
         assert_eq!(*item, format!("{word} ({})", word.len()), "depth {depth}");
     }
     shot(c, "38-words").await;
+}
+
+/// Teaching (item 9): a header number scrubbed with its slider rewrites
+/// only that number, and the tree regrows.
+async fn numbers_scrub(c: &Client) {
+    let names = js(
+        c,
+        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
+    )
+    .await;
+    let i = names
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|n| n == "fig9.od")
+        .unwrap()
+        - 1;
+    click(c, &format!("#new option[value='{i}']")).await;
+    let before = settled(c).await;
+    click(c, "#scrub summary").await;
+    until(
+        c,
+        "return document.querySelector('#scrub-list input[data-key=A]') !== null",
+        "the A slider",
+    )
+    .await;
+    js(
+        c,
+        "const a = document.querySelector('#scrub-list input[data-key=A]'); a.value = 45; a.dispatchEvent(new Event('input')); return 0;",
+    )
+    .await;
+    let after = settled(c).await;
+    assert_eq!(
+        after["text"].as_str().unwrap(),
+        before["text"].as_str().unwrap().replace("A=30", "A=45")
+    );
+    assert_ne!(after["growth"], before["growth"], "the tree regrew");
+    shot(c, "39-numbers").await;
 }

@@ -21,6 +21,7 @@ import { createFiles } from './files.js';
 import { createDocument } from './document.js';
 import { createSettings } from './settings.js';
 import { createWords } from './words.js';
+import { createScrub } from './scrub.js';
 
 const app = {
   engine: createEngine({ token: document.querySelector('meta[name="stlc-token"]').content }),
@@ -69,6 +70,7 @@ app.tools = createTools(app);
 app.files = createFiles(app);
 app.document = createDocument(app);
 app.words = createWords(app);
+app.scrub = createScrub(app);
 
 // Keys outside the editor's own: Ctrl-S everywhere, undo and redo out of
 // the number fields (which keep their own), and the tools' letters.

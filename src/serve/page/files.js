@@ -51,6 +51,7 @@ export function createFiles(app) {
   }
 
   function showCommand() {
+    if (!byId('export-options').open) return;
     byId('export-cli').textContent = ['png', 'svg'].map(command).join('\n') +
       (byId('kind').value === 'od' ? '\n' + command('bed') : '');
   }
@@ -106,5 +107,5 @@ export function createFiles(app) {
   byId('export-svg').addEventListener('click', () => exportAs('svg'));
   byId('export-bed').addEventListener('click', () => exportAs('bed'));
 
-  return { download };
+  return { download, showCommand };
 }

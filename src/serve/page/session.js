@@ -102,6 +102,8 @@ export function createSession(app) {
     state.otherFile = false;
     app.diagnostics.show(answer.warnings);
     app.words.refresh();
+    app.scrub.refresh();
+    app.files.showCommand();
     if (answer.root) {
       state.root = [answer.root.x, answer.root.y];
       state.rootSpan = [answer.root.start, answer.root.end];

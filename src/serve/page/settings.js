@@ -107,5 +107,5 @@ export function createSettings(app) {
     return true;
   }
 
-  return { sync, changed, withKey, odKey };
+  return { sync, changed, withKey, odKey, lsysKey };
 }
