@@ -40,6 +40,7 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
         words_generation_by_generation(&c).await;
         numbers_scrub(&c).await;
         main_thread_stalls(&c).await;
+        a_rule_that_never_fits_says_why(&c).await;
         let _ = c.close().await;
     });
 }
@@ -704,4 +705,32 @@ async fn main_thread_stalls(c: &Client) {
     let longest = js(c, "return window.__longest").await.as_f64().unwrap();
     eprintln!("longest main-thread task while editing grove.od: {longest:.0} ms");
     assert!(longest < 250.0, "a {longest} ms stall");
+}
+
+/// Problem 8 in the page: a rule that never fits is a warning at its line
+/// with the distances and a hint.
+async fn a_rule_that_never_fits_says_why(c: &Client) {
+    let od = "Problem8\n(150, 290)\nL=9(0.3) B=3(0.3) A=25 C=1.5\nRULE\nR1: F[+F][-F][F]\nSEED\nFFFFFFFFF R1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (0, 0), 300, 300\nENDLAYOUT\n";
+    js(
+        c,
+        &format!("const s = document.getElementById('source'); s.value = {}; s.dispatchEvent(new Event('input')); return 0;", serde_json::to_string(od).unwrap()),
+    )
+    .await;
+    let grown = settled(c).await;
+    assert_eq!(grown["ok"], true, "{grown}");
+    let warning = js(c, "const li = document.querySelector('[data-testid=diagnostics] li'); return li && li.textContent").await;
+    let warning = warning.as_str().unwrap_or_default().to_string();
+    assert!(
+        warning.contains("never grew") && warning.contains("3.677") && warning.contains("4.2"),
+        "{warning}"
+    );
+    assert!(warning.contains("raise `A`"), "{warning}");
+    // The Numbers panel follows the text typed.
+    let shown = js(
+        c,
+        "return document.querySelector('#scrub-list input[data-key=A] + output').textContent",
+    )
+    .await;
+    assert_eq!(shown, "25");
+    shot(c, "40-never-fitted").await;
 }

@@ -39,7 +39,10 @@ export function createScrub(app) {
     if (signature === shown) {
       for (const r of rows) {
         const input = list.querySelector(`input[data-key="${r.key}"]`);
-        if (input && input !== document.activeElement) input.value = r.v;
+        if (input && input !== document.activeElement) {
+          input.value = r.v;
+          input.nextElementSibling.textContent = r.v;
+        }
       }
       return;
     }
