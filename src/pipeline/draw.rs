@@ -130,6 +130,19 @@ pub fn render(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
+    // A stochastic system's SVG that even its fewest segments would
+    // overflow is refused before any derivation (its count is otherwise
+    // known only by deriving the word).
+    if let What::Lsys { sys, depth } = &scene.what
+        && sys.is_stochastic()
+        && opts.format == ImageFormat::Svg
+        && crate::interpret::lsys::Stochastic::new(sys)
+            .segment_bounds(*depth)
+            .0
+            > opts.max_svg_segments
+    {
+        return Err(crate::render::svg_too_large(None, opts.max_svg_segments));
+    }
     let style = style(scene, look);
     let (view, underlay) = layout_view(scene, look.show_layout != ShowLayout::No);
     // At a level of detail, an L-system's memoized geometry (when it

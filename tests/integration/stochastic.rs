@@ -530,3 +530,64 @@ fn a_tiny_probability_is_not_printed_as_zero() {
     assert!(text.contains("(probability 1)"), "{text}");
     assert!(!text.contains("probability 0"), "{text}");
 }
+
+/// An SVG that even a stochastic system's fewest segments overflow is
+/// refused before any derivation: abop-1.27 (each F becomes 5, 3 or 3 F)
+/// draws at least 3^16 = 43,046,721 segments at depth 16, over the 10^7
+/// an SVG may hold; at depth 14 (at least 4,782,969) it is not refused
+/// on that ground before deriving.
+#[test]
+fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
+    let dir = tempfile::tempdir().unwrap();
+    let fig = manifest_path("examples/abop-1.27.lsys");
+    let out = Command::cargo_bin("stlc")
+        .unwrap()
+        .args(["render", fig.to_str().unwrap(), "--depth", "16", "-o"])
+        .arg(dir.path().join("a.svg"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("segments in the SVG: more than 10000000"),
+        "{err}"
+    );
+    assert!(!dir.path().join("a.svg").exists());
+    // A smaller limit refuses a smaller depth the same way: 3^6 = 729.
+    let out = Command::cargo_bin("stlc")
+        .unwrap()
+        .args([
+            "render",
+            fig.to_str().unwrap(),
+            "--depth",
+            "6",
+            "--max-svg-segments",
+            "700",
+            "-o",
+        ])
+        .arg(dir.path().join("b.svg"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let out = Command::cargo_bin("stlc")
+        .unwrap()
+        .args([
+            "render",
+            fig.to_str().unwrap(),
+            "--depth",
+            "5",
+            "--max-svg-segments",
+            "700",
+            "-o",
+        ])
+        .arg(dir.path().join("c.svg"))
+        .output()
+        .unwrap();
+    // 3^5 = 243 at the fewest: derived, then counted (this seed draws 491).
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -301,14 +301,26 @@ impl Stochastic {
     /// The fewest and the most symbols the word at `depth` can have,
     /// saturating at `u64::MAX` (for the limit checks and the progress bar).
     pub(crate) fn length_bounds(&self, depth: u32) -> (u64, u64) {
-        self.bounds_with(depth, |a: u64, b| a.saturating_add(*b))
+        self.bounds_with(depth, |_| 1, |a: u64, b| a.saturating_add(*b))
+    }
+
+    /// The fewest and the most segments (`F`s) the word at `depth` can
+    /// draw, saturating: an SVG the fewest already overflow is refused
+    /// before any derivation.
+    pub(crate) fn segment_bounds(&self, depth: u32) -> (u64, u64) {
+        let f = self.chars.iter().position(|&c| c == 'F');
+        self.bounds_with(
+            depth,
+            |s| u8::from(Some(s) == f),
+            |a: u64, b| a.saturating_add(*b),
+        )
     }
 
     /// [`Self::length_bounds`] exactly, in big integers (for `stats`). The
     /// cost grows with the depth times the numbers' size, as the exact
     /// counts of a deterministic system do.
     pub(crate) fn exact_length_bounds(&self, depth: u32) -> (BigUint, BigUint) {
-        self.bounds_with(depth, |a: BigUint, b| a + b)
+        self.bounds_with(depth, |_| 1, |a: BigUint, b| a + b)
     }
 
     /// Limb additions [`Self::exact_length_bounds`] costs at `depth`, about:
@@ -331,6 +343,7 @@ impl Stochastic {
     fn bounds_with<T: Clone + Ord + Default + From<u8>>(
         &self,
         depth: u32,
+        weight: impl Fn(usize) -> u8,
         add: impl Fn(T, &T) -> T,
     ) -> (T, T) {
         let n = self.chars.len();
@@ -341,7 +354,7 @@ impl Stochastic {
         let step = |len: &[T], pick: fn(T, T) -> T| -> Vec<T> {
             (0..n)
                 .map(|s| match &self.rules[s] {
-                    None => T::from(1),
+                    None => T::from(weight(s)),
                     Some(r) => r
                         .succ
                         .iter()
@@ -351,7 +364,7 @@ impl Stochastic {
                 })
                 .collect()
         };
-        let mut lo = vec![T::from(1); n];
+        let mut lo: Vec<T> = (0..n).map(|s| T::from(weight(s))).collect();
         let mut hi = lo.clone();
         for _ in 0..depth {
             let (l, h) = (step(&lo, Ord::min), step(&hi, Ord::max));
