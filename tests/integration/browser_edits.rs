@@ -279,7 +279,7 @@ async fn exact_counts(c: &Client) {
     .await;
 }
 
-/// Problem 5: abop-1.27 at depth 16 takes about 30 s; the busy indicator
+/// Problem 5: abop-1.27 at depth 14 takes about 15 s (its SVG at 16 is now refused at once); the busy indicator
 /// shows with Cancel, and an edit back to depth 5 cancels the long work
 /// (the server stops it) and shows its picture within a second or two.
 async fn long_work_is_cancelled(c: &Client, server: &Server) {
@@ -291,7 +291,7 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     assert_eq!(depth, "5", "the depth of the file before leaked");
     let stems = js(c, "return window.stlc.state.answer.stems").await;
     assert_eq!(stems, "491", "drawn at its own generations (5)");
-    set_depth(c, "16").await;
+    set_depth(c, "14").await;
     until(
         c,
         "return !document.getElementById('busy').hidden",
@@ -309,13 +309,13 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     .await;
     let took = t0.elapsed();
     assert!(
-        // The depth-16 work alone takes about 30 s: the picture of depth 5
+        // The depth-14 work alone takes about 15 s: the picture of depth 5
         // comes long before it would have ended (a loose bound, for busy
         // CI machines; measured here well under 3 s).
         took < Duration::from_secs(10),
         "the new picture took {took:?}"
     );
-    // The depth-16 work stopped on the server: its CPU time no longer rises.
+    // The depth-14 work stopped on the server: its CPU time no longer rises.
     tokio::time::sleep(Duration::from_millis(500)).await;
     let t1 = server.cpu_ticks();
     tokio::time::sleep(Duration::from_millis(1000)).await;
@@ -325,7 +325,7 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
         "the cancelled work went on: {t1} -> {t2} ticks"
     );
     // Cancel: the work stops and the last picture stays.
-    set_depth(c, "16").await;
+    set_depth(c, "14").await;
     until(
         c,
         "return !document.getElementById('busy').hidden",

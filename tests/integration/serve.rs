@@ -917,14 +917,14 @@ fn counts_past_a_machine_integer_are_exact_digits() {
 }
 
 /// Work stops when nobody waits for it: a heavy render (abop-1.27, three
-/// rules for F, at depth 16: about 30 s of work) whose client closes its
+/// rules for F, at depth 14, as an SVG: many seconds of work) whose client closes its
 /// connection after 0.3 s uses no more CPU a second later; and work past
 /// `--time-budget` stops with a diagnostic that names the budget.
 #[test]
 fn abandoned_and_overlong_work_stops() {
     let server = Server::start(&["--time-budget", "2"]);
     let addr = &server.addr;
-    let heavy = json!({"source": example("abop-1.27.lsys"), "kind": "lsys", "depth": 16});
+    let heavy = json!({"source": example("abop-1.27.lsys"), "kind": "lsys", "depth": 14});
     let started = std::time::Instant::now();
     let a = render(addr, &heavy);
     let took = started.elapsed();
@@ -1046,14 +1046,14 @@ fn only_the_owner_reaches_the_file() {
 }
 
 /// Light work never waits behind heavy work (issue 23, problem 8): with
-/// eight heavy renders in flight (abop-1.27 at depth 16, about 30 s each),
+/// eight heavy renders in flight (abop-1.27 at depth 14, many seconds each),
 /// a light render of fig9 is answered within a second.
 #[test]
 fn a_light_render_is_answered_while_heavy_ones_run() {
     let server = Server::start(&["--time-budget", "20"]);
     let addr = server.addr.clone();
     let heavy =
-        json!({"source": example("abop-1.27.lsys"), "kind": "lsys", "depth": 16}).to_string();
+        json!({"source": example("abop-1.27.lsys"), "kind": "lsys", "depth": 14}).to_string();
     let mut streams = Vec::new();
     for _ in 0..8 {
         let head = format!(

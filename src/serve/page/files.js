@@ -27,6 +27,7 @@ export function createFiles(app) {
     const o = { show_layout: byId('export-layout').checked };
     if (w !== '' && h !== '') o.size = [Math.floor(Number(w)), Math.floor(Number(h))];
     if (byId('export-transparent').checked) o.background = 'none';
+    else if (byId('export-coloured').checked) o.background = byId('export-colour').value;
     return o;
   }
 
@@ -44,7 +45,7 @@ export function createFiles(app) {
       const o = exportOptions();
       if (o.size) args.push('--size', `${o.size[0]}x${o.size[1]}`);
       if (o.show_layout && r.kind !== 'lsys') args.push('--show-layout');
-      if (o.background) args.push('--background', o.background);
+      if (o.background) args.push('--background', o.background === 'none' ? 'none' : `'${o.background}'`);
     }
     args.push('-o', `${baseName()}.${format}`);
     return args.join(' ');
@@ -56,7 +57,7 @@ export function createFiles(app) {
       (byId('kind').value === 'od' ? '\n' + command('bed') : '');
   }
   byId('export-options').addEventListener('toggle', showCommand);
-  for (const id of ['export-w', 'export-h', 'export-layout', 'export-transparent']) {
+  for (const id of ['export-w', 'export-h', 'export-layout', 'export-transparent', 'export-coloured', 'export-colour']) {
     byId(id).addEventListener('input', showCommand);
   }
 
