@@ -476,6 +476,46 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
         0,
         "the background is transparent"
     );
+    // A coloured background instead.
+    js(
+        c,
+        "const t = document.getElementById('export-transparent'); t.checked = false; t.dispatchEvent(new Event('input'));
+         const k = document.getElementById('export-coloured'); k.checked = true; k.dispatchEvent(new Event('input'));
+         const v = document.getElementById('export-colour'); v.value = '#336699'; v.dispatchEvent(new Event('input'));
+         return true",
+    )
+    .await;
+    let shown = js(
+        c,
+        "return document.getElementById('export-cli').textContent",
+    )
+    .await;
+    assert!(
+        shown
+            .as_str()
+            .unwrap()
+            .contains("--size 300x200 --background '#336699' -o 2dtree.png"),
+        "{shown}"
+    );
+    click(c, "#export-png").await;
+    let got = downloaded(downloads, "2dtree (1).png").await;
+    let want = crate::support::stlc_stdout(&[
+        "render",
+        od.to_str().unwrap(),
+        "--size",
+        "300x200",
+        "--background",
+        "#336699",
+        "-o",
+        "-",
+    ]);
+    assert!(got == want, "the coloured export is not the CLI's bytes");
+    let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
+    let p = png.pixel(0, 0).unwrap();
+    assert_eq!(
+        (p.red(), p.green(), p.blue(), p.alpha()),
+        (0x33, 0x66, 0x99, 255)
+    );
 }
 
 /// Teaching (item 9): the replay steps one decision back and on, and plays
