@@ -419,7 +419,8 @@ pub fn words(
     Ok(WordsAnswer { ok: true, words })
 }
 
-/// What a render request drew, in the answer's terms, and the image's bytes.
+/// What a render request drew, in the answer's terms, and a PNG's bytes
+/// (an SVG is the answer's `svg`, moved there, not copied).
 pub fn run(
     body: &Body,
     s: &Settings,
@@ -449,9 +450,15 @@ pub fn run(
         ]);
         decisions = decisions.max(p.decision);
     }
-    let svg = match format {
-        ImageFormat::Svg => String::from_utf8_lossy(&image).into_owned(),
-        ImageFormat::Png => String::new(),
+    // An SVG is moved into the answer, not copied (a big one is hundreds
+    // of megabytes); a PNG stays bytes.
+    let (svg, image) = match format {
+        ImageFormat::Svg => (
+            String::from_utf8(image)
+                .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()),
+            Vec::new(),
+        ),
+        ImageFormat::Png => (String::new(), image),
     };
     let answer = RenderAnswer {
         ok: true,

@@ -157,7 +157,8 @@ async fn draw(
 ) -> Result<Ended<Result<(api::RenderAnswer, Vec<u8>), Failed>>, Answer> {
     let body = body(&state, req).await?;
     let (budget, slots) = (state.settings.time_budget, state.heavy.clone());
-    Ok(work::run(budget, slots, move |w| {
+    let heavy = body.source.len() > work::BIG_INPUT;
+    Ok(work::run(budget, slots, heavy, move |w| {
         api::run(&body, &state.settings, format, w)
     })
     .await)
@@ -206,7 +207,13 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
                 &Failed::message("only an .od grows into a BED", "export a picture instead"),
             ),
         },
-        Ended::Done(Ok((_, bytes))) => http::answer(StatusCode::OK, media, bytes),
+        Ended::Done(Ok((answer, bytes))) => {
+            let bytes = match image {
+                ImageFormat::Svg => answer.svg.into_bytes(),
+                ImageFormat::Png => bytes,
+            };
+            http::answer(StatusCode::OK, media, bytes)
+        }
         Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),
         Ended::Stopped(why) => stopped(why),
         Ended::Crashed => crashed(),
@@ -223,7 +230,8 @@ async fn words(state: Arc<State>, req: Request<Incoming>) -> Answer {
     };
     let budget = state.settings.time_budget;
     let slots = state.heavy.clone();
-    let done = work::run(budget, slots, move |w| {
+    let heavy = body.source.len() > work::BIG_INPUT;
+    let done = work::run(budget, slots, heavy, move |w| {
         api::words(&body, &state.settings, w)
     })
     .await;

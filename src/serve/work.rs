@@ -15,7 +15,10 @@
 //! on its own thread, and work still running after [`LIGHT`] counts as
 //! heavy and must hold one of a few heavy slots ([`Slots`]) to go on, so
 //! heavy work takes turns while a light render, which is done before it
-//! would need a slot, is answered meanwhile.
+//! would need a slot, is answered meanwhile. Work known to be heavy before
+//! it starts (an input over [`BIG_INPUT`] bytes, whose reading reports no
+//! progress and whose memory grows with it) takes a slot from the start, so
+//! at most a few big inputs are read at once.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
@@ -41,6 +44,10 @@ pub enum Ended<T> {
     /// It panicked: a bug (the server goes on).
     Crashed,
 }
+
+/// An input larger than this is heavy from the start (reading an input
+/// takes memory in proportion, without reporting progress).
+pub const BIG_INPUT: usize = 1 << 20;
 
 /// How long work runs before it counts as heavy.
 pub const LIGHT: Duration = Duration::from_millis(300);
@@ -159,11 +166,17 @@ impl Watch {
     fn check(&mut self) {
         Self::stop_if_due(&self.abandon, self.deadline, self.budget);
         if !self.heavy && self.started.elapsed() > LIGHT {
-            let (abandon, deadline, budget) = (self.abandon.clone(), self.deadline, self.budget);
-            self.slots
-                .take(|| Self::stop_if_due(&abandon, deadline, budget));
-            self.heavy = true;
+            self.take_slot();
         }
+    }
+
+    /// Takes a heavy slot, waiting for one (and stopping while waiting if
+    /// the work is abandoned or past its budget).
+    fn take_slot(&mut self) {
+        let (abandon, deadline, budget) = (self.abandon.clone(), self.deadline, self.budget);
+        self.slots
+            .take(|| Self::stop_if_due(&abandon, deadline, budget));
+        self.heavy = true;
     }
 }
 
@@ -201,12 +214,18 @@ pub fn quiet_stops() {
 pub async fn run<T: Send + 'static>(
     budget: Duration,
     slots: Arc<Slots>,
+    heavy: bool,
     work: impl FnOnce(&mut Watch) -> T + Send + 'static,
 ) -> Ended<T> {
     let abandon = Abandon::default();
     let guard = abandon.guard();
     let joined = tokio::task::spawn_blocking(move || {
         let mut watch = Watch::new(abandon, budget, slots);
+        if heavy {
+            // Known heavy before it starts (a big input, whose reading
+            // reports no progress): it takes its turn from the start.
+            watch.take_slot();
+        }
         work(&mut watch)
     })
     .await;
@@ -284,13 +303,13 @@ mod tests {
             .unwrap();
         let t0 = Instant::now();
         let slots = Arc::new(Slots::new(1));
-        let ended = rt.block_on(run(Duration::from_millis(50), slots.clone(), spin));
+        let ended = rt.block_on(run(Duration::from_millis(50), slots.clone(), false, spin));
         assert!(matches!(
             ended,
             Ended::Stopped(Stopped::OverBudget(d)) if d == Duration::from_millis(50)
         ));
         assert!(t0.elapsed() < Duration::from_secs(5));
-        let done = rt.block_on(run(Duration::from_secs(5), slots, |w| {
+        let done = rt.block_on(run(Duration::from_secs(5), slots, true, |w| {
             w.update(1);
             7
         }));
