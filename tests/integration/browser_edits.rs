@@ -406,8 +406,7 @@ async fn new_from_a_template_or_an_example(c: &Client) {
     let grown = settled(c).await;
     assert_eq!(grown["ok"], true, "{grown}");
     assert!(grown["stems"].as_u64().unwrap() > 50, "{grown}");
-    let i = names.iter().position(|n| *n == "hilbert.lsys").unwrap() - 1;
-    click(c, &format!("#new option[value='{i}']")).await;
+    new_from(c, "hilbert.lsys").await;
     let drawn = settled(c).await;
     assert_eq!(drawn["ok"], true, "{drawn}");
     assert_eq!(
@@ -420,19 +419,7 @@ async fn new_from_a_template_or_an_example(c: &Client) {
 /// Problem 10 / item 8: a tree-only, transparent PNG at a chosen size is
 /// the CLI's bytes for the command the page shows.
 async fn export_as_artists_need(c: &Client, downloads: &Path) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
-    let i = names
-        .as_array()
-        .unwrap()
-        .iter()
-        .position(|n| n == "2dtree.od")
-        .unwrap()
-        - 1;
-    click(c, &format!("#new option[value='{i}']")).await;
+    new_from(c, "2dtree.od").await;
     settled(c).await;
     click(c, "#export-options summary").await;
     js(
@@ -572,19 +559,7 @@ async fn replay_steps_and_speeds(c: &Client) {
 /// Item 2: the controls edit keys in the text (only that key), and typing
 /// a key moves its control.
 async fn settings_are_keys_in_the_text(c: &Client) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
-    let i = names
-        .as_array()
-        .unwrap()
-        .iter()
-        .position(|n| n == "fig9.od")
-        .unwrap()
-        - 1;
-    click(c, &format!("#new option[value='{i}']")).await;
+    new_from(c, "fig9.od").await;
     let before = settled(c).await;
     let fig9 = before["text"].as_str().unwrap().to_string();
     click(c, "#strategy option[value=dfs]").await;
@@ -623,19 +598,7 @@ async fn settings_are_keys_in_the_text(c: &Client) {
 /// Teaching (problem 11): an .lsys's word, generation by generation, as
 /// `stlc expand --depth N` writes it, with its exact length.
 async fn words_generation_by_generation(c: &Client) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
-    let i = names
-        .as_array()
-        .unwrap()
-        .iter()
-        .position(|n| n == "koch-snowflake.lsys")
-        .unwrap()
-        - 1;
-    click(c, &format!("#new option[value='{i}']")).await;
+    new_from(c, "koch-snowflake.lsys").await;
     settled(c).await;
     click(c, "#words summary").await;
     until(
@@ -675,19 +638,7 @@ async fn words_generation_by_generation(c: &Client) {
 /// Teaching (item 9): a header number scrubbed with its slider rewrites
 /// only that number, and the tree regrows.
 async fn numbers_scrub(c: &Client) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
-    let i = names
-        .as_array()
-        .unwrap()
-        .iter()
-        .position(|n| n == "fig9.od")
-        .unwrap()
-        - 1;
-    click(c, &format!("#new option[value='{i}']")).await;
+    new_from(c, "fig9.od").await;
     let before = settled(c).await;
     click(c, "#scrub summary").await;
     until(
@@ -715,24 +666,12 @@ async fn numbers_scrub(c: &Client) {
 /// the browser's long-task timing (tasks over 50 ms), is printed; it must
 /// stay under a quarter of a second.
 async fn main_thread_stalls(c: &Client) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
-    let i = names
-        .as_array()
-        .unwrap()
-        .iter()
-        .position(|n| n == "grove.od")
-        .unwrap()
-        - 1;
     js(
         c,
         "window.__longest = 0; new PerformanceObserver((l) => { for (const e of l.getEntries()) window.__longest = Math.max(window.__longest, e.duration); }).observe({type: 'longtask', buffered: false}); return 0;",
     )
     .await;
-    click(c, &format!("#new option[value='{i}']")).await;
+    new_from(c, "grove.od").await;
     settled(c).await;
     for k in 0..5 {
         js(
@@ -773,4 +712,21 @@ async fn a_rule_that_never_fits_says_why(c: &Client) {
     .await;
     assert_eq!(shown, "25");
     shot(c, "40-never-fitted").await;
+}
+
+/// Opens the template or example `name` from the New… menu.
+async fn new_from(c: &Client, name: &str) {
+    let names = js(
+        c,
+        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
+    )
+    .await;
+    let i = names
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|n| n == name)
+        .unwrap_or_else(|| panic!("{name} is not in New…: {names}"))
+        - 1;
+    click(c, &format!("#new option[value='{i}']")).await;
 }
