@@ -36,6 +36,11 @@ pub struct Document {
     max_bytes: u64,
     /// Saves one at a time, so the version check and the write are one step.
     saving: Mutex<()>,
+    /// The file's size and modification time when its version was last
+    /// worked out, and that version: a watching page asks every second or
+    /// so, and an unchanged file is then answered from its metadata, not
+    /// read and hashed again.
+    stamp: Mutex<Option<(u64, std::time::SystemTime, String)>>,
 }
 
 /// The file as it is now.
@@ -68,6 +73,7 @@ impl Document {
             template: "",
             max_bytes,
             saving: Mutex::new(()),
+            stamp: Mutex::new(None),
         }
     }
 
@@ -89,6 +95,7 @@ impl Document {
             template,
             max_bytes,
             saving: Mutex::new(()),
+            stamp: Mutex::new(None),
         };
         doc.current()?;
         Ok(doc)
@@ -143,6 +150,12 @@ impl Document {
             .into());
         }
         let v = version(&bytes);
+        if let Ok(m) = std::fs::metadata(path)
+            && let Ok(t) = m.modified()
+            && m.len() == bytes.len() as u64
+        {
+            *self.stamp.lock().unwrap_or_else(|p| p.into_inner()) = Some((m.len(), t, v.clone()));
+        }
         let text = String::from_utf8(bytes).map_err(|_| {
             Diagnostics::from(Diagnostic::error(ErrorKind::Io {
                 doing: format!("cannot open `{}` in the editor", path.display()),
@@ -153,6 +166,23 @@ impl Document {
             text,
             version: Some(v),
         })
+    }
+
+    /// Whether the file is still at `known`, told from its size and
+    /// modification time alone when they are those of the last read (a
+    /// page watching the file asks every second or so). `false` means
+    /// "read it": changed, or not known to be unchanged.
+    pub fn unchanged_since(&self, known: &str) -> bool {
+        let Some(path) = &self.path else {
+            return version(self.example.as_bytes()) == known;
+        };
+        let stamp = self.stamp.lock().unwrap_or_else(|p| p.into_inner());
+        match (std::fs::metadata(path), stamp.as_ref()) {
+            (Ok(m), Some((len, time, v))) => {
+                m.len() == *len && m.modified().ok() == Some(*time) && v == known
+            }
+            _ => false,
+        }
     }
 
     /// Writes `text` (atomically) if the file is still at `base`, the
@@ -183,6 +213,8 @@ impl Document {
                     .map_err(|e| io_error(&e, "cannot write the file").into())
             })
             .map_err(Refused::Failed)?;
+        // The next read works the version out again from the file.
+        *self.stamp.lock().unwrap_or_else(|p| p.into_inner()) = None;
         Ok(version(text.as_bytes()))
     }
 }
@@ -232,6 +264,23 @@ mod tests {
         // A script's save (no version) writes whatever is there.
         d.save("script\n", None).ok().unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "script\n");
+    }
+
+    #[test]
+    fn an_unchanged_file_is_told_from_its_metadata_and_a_changed_one_is_not() {
+        let dir = tempfile::tempdir().unwrap();
+        let (d, path) = doc(&dir);
+        std::fs::write(&path, "one\n").unwrap();
+        let v = d.current().unwrap().version.unwrap();
+        assert!(d.unchanged_since(&v));
+        assert!(!d.unchanged_since("other"));
+        // Another length: changed, whatever the clock says.
+        std::fs::write(&path, "one more\n").unwrap();
+        assert!(!d.unchanged_since(&v));
+        let w = d.current().unwrap().version.unwrap();
+        assert!(d.unchanged_since(&w));
+        d.save("two\n", Some(Some(&w))).ok().unwrap();
+        assert!(!d.unchanged_since(&w), "a save forgets the stamp");
     }
 
     #[test]

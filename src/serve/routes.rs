@@ -50,7 +50,7 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
     }
     match path.as_str() {
         "/" => page(&state),
-        "/api/file" => file(&state),
+        "/api/file" => file(state, req).await,
         "/api/examples" => examples(),
         "/api/render" => render(state, req).await,
         "/api/export" => export(state, req).await,
@@ -79,37 +79,75 @@ fn asset(path: &str) -> Answer {
 
 /// `GET /api/file`: the file as it is now: `{"text", "version", "kind",
 /// "name", "path", "can_save"}`; `version` is `null` for a file that does
-/// not exist yet (its text is a template; Save creates it).
-fn file(state: &State) -> Answer {
+/// not exist yet (its text is a template; Save creates it). With
+/// `?known=V` (a page watching the file) and the file still at version V:
+/// `{"version": V, "unchanged": true}`, told from its metadata when it can
+/// be, without reading or sending the text. The file is read on the pool,
+/// not on the connections' threads.
+async fn file(state: Arc<State>, req: Request<Incoming>) -> Answer {
     #[derive(Serialize)]
-    struct Opened<'a> {
+    struct Opened {
         text: String,
         version: Option<String>,
         kind: Kind,
-        name: &'a str,
+        name: String,
         path: String,
         can_save: bool,
     }
-    let doc = &state.doc;
-    match doc.current() {
-        Ok(now) => http::json(
+    #[derive(Serialize)]
+    struct Unchanged {
+        version: String,
+        unchanged: bool,
+    }
+    let known = http::query_param(req.uri().query(), "known");
+    let done = blocking(move || -> Result<Answer, stlc::diag::Diagnostics> {
+        let doc = &state.doc;
+        if let Some(k) = &known
+            && doc.unchanged_since(k)
+        {
+            return Ok(http::json(
+                StatusCode::OK,
+                &Unchanged {
+                    version: k.clone(),
+                    unchanged: true,
+                },
+            ));
+        }
+        let now = doc.current()?;
+        if let (Some(k), Some(v)) = (&known, &now.version)
+            && k == v
+        {
+            return Ok(http::json(
+                StatusCode::OK,
+                &Unchanged {
+                    version: v.clone(),
+                    unchanged: true,
+                },
+            ));
+        }
+        Ok(http::json(
             StatusCode::OK,
             &Opened {
                 text: now.text,
                 version: now.version,
                 kind: doc.kind.into(),
-                name: &doc.name,
+                name: doc.name.clone(),
                 path: doc.key(),
                 can_save: doc.can_save(),
             },
-        ),
-        Err(d) => http::error(
+        ))
+    })
+    .await;
+    match done {
+        Some(Ok(answer)) => answer,
+        Some(Err(d)) => http::error(
             StatusCode::INTERNAL_SERVER_ERROR,
             &d.iter()
                 .map(|d| d.kind.to_string())
                 .collect::<Vec<_>>()
                 .join("; "),
         ),
+        None => crashed(),
     }
 }
 

@@ -224,10 +224,11 @@ export function createDocument(app) {
     if (!state.doc.canSave || document.hidden) return;
     let f;
     try {
-      f = await app.engine.open();
+      f = await app.engine.open(state.doc.version);
     } catch {
       return;
     }
+    if (f.unchanged) return;
     if (f.path !== state.doc.path || f.version === state.doc.version || f.version === askedAbout) return;
     if (f.text === app.editor.text()) {
       // Saved elsewhere with this very text: nothing to ask.

@@ -49,8 +49,8 @@ export function createHttpEngine({ token }) {
       return res.json();
     },
 
-    async open() {
-      const res = await fetch('/api/file');
+    async open(known) {
+      const res = await fetch('/api/file' + (known ? '?known=' + encodeURIComponent(known) : ''));
       if (!res.ok) throw new Error(`/api/file: ${res.status} ${res.statusText}`);
       return res.json();
     },

@@ -77,7 +77,9 @@
  *   every example: the New menu
  * @property {() => Promise<{text: string, version: string|null, kind: 'od'|'bed'|'lsys', name: string, path: string, can_save: boolean}>} open
  *   the file being edited (or the example) as it is now; `version` names
- *   its contents (`null`: the file does not exist yet; Save creates it)
+ *   its contents (`null`: the file does not exist yet; Save creates it).
+ *   `open(known)` answers `{version, unchanged: true}` instead while the
+ *   file is still at version `known` (a cheap check for watching)
  * @property {(source: string, version: string|null) => Promise<{ok: true, version: string}|{ok: false, conflict: true, version: string|null}|{ok: false, error?: string, diagnostics?: Diagnostic[]}>} save
  *   writes `source` to that file (when `can_save`) if it is still at
  *   `version`, the version the edit is based on; `conflict` when another
