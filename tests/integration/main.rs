@@ -4,6 +4,7 @@ mod architecture;
 mod browser;
 mod browser_draw;
 mod browser_edits;
+mod browser_web;
 mod cli;
 mod diagnostics;
 mod docs;
