@@ -15,7 +15,7 @@ rm -rf "$site"
 mkdir -p "$site/examples" "$site/templates"
 cp -R src/serve/page/. "$site/"
 cp -R web/page/. "$site/"
-cp target/wasm32-unknown-unknown/web/stlc_web.wasm "$site/stlc.wasm"
+cp "${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/web/stlc_web.wasm" "$site/stlc.wasm"
 
 # The page itself: paths relative to it (the site may live in a folder),
 # no token (nothing here saves to a server), site.js as the entry module.

@@ -43,7 +43,11 @@ pub fn cookie(addr: &str) -> String {
 impl Server {
     /// Starts `stlc serve ARGS --port 0` and reads the URL it prints.
     pub fn start(args: &[&str]) -> Server {
-        let mut child = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+        // STLC_SERVE_BIN: another build (benches/web.sh measures a release one).
+        let bin = std::env::var_os("STLC_SERVE_BIN")
+            .map(std::path::PathBuf::from)
+            .unwrap_or_else(|| assert_cmd::cargo::cargo_bin("stlc"));
+        let mut child = Command::new(bin)
             .arg("serve")
             .args(args)
             .args(["--port", "0"])

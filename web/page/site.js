@@ -45,3 +45,10 @@ window.addEventListener('hashchange', async () => {
   if (!shared) return;
   app.document.opened({ ...shared, version: null, path: null, can_save: false }, ' (shared; Save downloads)');
 });
+
+// When the first picture was drawn, in ms from the start of the page's
+// navigation (benches/web.sh measures it; docs/web.md).
+(function firstPicture() {
+  if (app.state.answer && app.state.answer.ok) app.firstPicture = performance.now();
+  else requestAnimationFrame(firstPicture);
+})();
