@@ -15,7 +15,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Browser, cli, click, downloaded, drag, js, same_bytes, settled, shot};
+use super::browser::{Browser, cli, click, downloaded, drag, js, open, same_bytes, settled, shot};
 use crate::support::manifest_path;
 
 /// The first line of the first code block under `## On the web` in the
@@ -243,6 +243,42 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
             "the BED download",
         );
 
+        // Unsaved work survives a reload: kept in the browser's storage,
+        // offered back (never applied by itself), restored on request.
+        let _ = js(&c, "setTimeout(() => location.reload(), 0); return true").await;
+        tokio::time::sleep(Duration::from_millis(300)).await;
+        let _ = c.accept_alert().await;
+        let mut offered = Value::Null;
+        for _ in 0..200 {
+            offered = js(&c, "return !!(window.stlc && window.stlc.state.answer) && !document.getElementById('notice').hidden").await;
+            if offered == json!(true) {
+                break;
+            }
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+        assert_eq!(offered, json!(true), "the unsaved edits are offered back");
+        assert_eq!(settled(&c).await["text"], json!(paper));
+        click(&c, "[data-testid=restore-draft]").await;
+        assert_eq!(settled(&c).await["text"], json!(text));
+
+        // Save downloads the text; Open… reads a file from disk.
+        click(&c, "[data-testid=save]").await;
+        same_bytes(
+            &downloaded(&downloads, "2dtree.od").await,
+            text.as_bytes(),
+            "the saved text",
+        );
+        let koch = manifest_path("examples/koch-snowflake.lsys");
+        open(&c, &koch).await;
+        let opened = settled(&c).await;
+        assert_eq!(opened["ok"], true, "{opened}");
+        let svg = js(&c, "return window.stlc.state.answer.svg").await;
+        same_bytes(
+            svg.as_str().unwrap().as_bytes(),
+            &cli(&["render", koch.to_str().unwrap(), "--show-layout", "-f", "svg"]),
+            "the opened file's picture",
+        );
+
         every_example(&c).await;
         newer_edit_ends_older_work(&c).await;
         let _ = c.close().await;
@@ -332,7 +368,7 @@ async fn share_link(c: &Client) -> String {
 
 /// Opens the example `name` from the New menu and waits for its picture.
 async fn open_example(c: &Client, name: &str) -> Value {
-    let text = std::fs::read_to_string(manifest_path(&format!("examples/{name}"))).unwrap();
+    let text = std::fs::read_to_string(manifest_path(format!("examples/{name}"))).unwrap();
     js(
         c,
         &format!(
@@ -434,7 +470,7 @@ async fn link_lengths(c: &Client) {
     let doc = std::fs::read_to_string(manifest_path("docs/web.md")).unwrap();
     let mut rows = Vec::new();
     for name in examples() {
-        let text = std::fs::read_to_string(manifest_path(&format!("examples/{name}"))).unwrap();
+        let text = std::fs::read_to_string(manifest_path(format!("examples/{name}"))).unwrap();
         let kind = name.rsplit('.').next().unwrap();
         let v = c
             .execute_async(
@@ -609,7 +645,7 @@ fn measure_the_static_site_against_stlc_serve() {
         println!("| example | stlc serve, median ms | static site (wasm), median ms | ratio |");
         println!("| --- | --- | --- | --- |");
         for name in ["2dtree.od", "holes.od", "grove.od"] {
-            let path = manifest_path(&format!("examples/{name}"));
+            let path = manifest_path(format!("examples/{name}"));
             let serve = super::serve::Server::start(&[path.to_str().unwrap()]);
             c.goto(&serve.url).await.unwrap();
             settled(&c).await;

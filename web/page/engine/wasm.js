@@ -6,8 +6,8 @@
 //
 // One call runs at a time; the others wait their turn. A render whose
 // signal is aborted (a newer edit, Cancel) ends at once: its worker is
-// ended mid-work and a fresh one takes the next call (a compiled module
-// instantiates in milliseconds).
+// ended mid-work and a fresh one takes the next call (it instantiates the
+// module compiled once, here).
 //
 // There is no file on a server: the document is an example, a file
 // opened from disk or a share link's text (share.js), and Save downloads.
@@ -18,7 +18,6 @@ import { fromFragment } from '../share.js';
 const MEDIA = { png: 'image/png', svg: 'image/svg+xml', bed: 'text/plain;charset=utf-8' };
 
 /**
- * @param {{start?: {name: string, kind: string, text: string}}} [options]
  * @returns {import('./index.js').Engine}
  */
 export function createWasmEngine() {
