@@ -278,6 +278,21 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
             &cli(&["render", koch.to_str().unwrap(), "--show-layout", "-f", "svg"]),
             "the opened file's picture",
         );
+        // Words, generation by generation, from the module: the Koch
+        // snowflake's axiom `F--F--F` (7 symbols) and first word: each F
+        // becomes `F+F--F+F`, 3 x 8 + 4 = 28 symbols.
+        js(&c, "document.getElementById('words').open = true").await;
+        let mut words = Value::Null;
+        for _ in 0..100 {
+            words = js(&c, "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)").await;
+            if words.as_array().is_some_and(|w| w.len() >= 2) {
+                break;
+            }
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+        assert_eq!(words[0], json!("F--F--F (7)"), "{words}");
+        assert_eq!(words[1], json!("F+F--F+F--F+F--F+F--F+F--F+F (28)"), "{words}");
+        shot(&c, "web-03-words").await;
 
         every_example(&c).await;
         newer_edit_ends_older_work(&c).await;
