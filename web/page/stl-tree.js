@@ -18,7 +18,7 @@
 // another. `element.svg` is the SVG drawn; `data-state` is drawing, drawn
 // or error, and a `stl-tree-drawn` event says when.
 
-import { instantiate, call, parse } from './stlc-wasm.js';
+import { instantiate, call, parse, output } from './stlc-wasm.js';
 
 let module = null;
 const exports = () => (module ||= instantiate());
@@ -114,7 +114,18 @@ class StlTree extends HTMLElement {
       return;
     }
     if (mine !== this.ticket) return;
-    const { status, bytes } = call(wasm, 'export', JSON.stringify(this.request(source)), 'svg');
+    let status;
+    let bytes;
+    try {
+      ({ status, bytes } = call(wasm, 'export', JSON.stringify(this.request(source)), 'svg'));
+    } catch (e) {
+      // The module trapped (a bug, memory exhausted): the next element
+      // gets a fresh instance; a panic left its message as JSON.
+      module = null;
+      const left = output(wasm);
+      this.error(left.length ? parse(left).error : `the work stopped in the WebAssembly module: ${e.message || e}`);
+      return;
+    }
     if (status !== 0) {
       const a = parse(bytes);
       this.error(a.diagnostics ? a.diagnostics.map(describe).join('\n') : a.error);

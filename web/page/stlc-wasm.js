@@ -46,9 +46,16 @@ export function call(exports, op, json, format) {
   } else {
     status = exports['stlc_' + op]();
   }
-  // Copied: the memory may grow (and move) at the next call.
-  const bytes = new Uint8Array(exports.memory.buffer, exports.stlc_output(), exports.stlc_output_len()).slice();
-  return { status, bytes };
+  return { status, bytes: output(exports) };
+}
+
+/**
+ * A copy of the module's output buffer: the last answer, or after a trap
+ * the panic's failed answer (empty when it left none). Copied: the memory
+ * may grow (and move) at the next call.
+ */
+export function output(exports) {
+  return new Uint8Array(exports.memory.buffer, exports.stlc_output(), exports.stlc_output_len()).slice();
 }
 
 /** An answer's bytes as the JSON they are. */

@@ -36,11 +36,43 @@ thread_local! {
 }
 
 /// Runs `call` on the input buffer and keeps its answer; returns its status.
+///
+/// A panic (a bug: the pipeline reports bad input as diagnostics) aborts
+/// the module, which traps; before that, the panic hook puts
+/// `{"ok": false, "error": "..."}` with the panic's message in the output
+/// buffer, so the glue can say what happened. The buffer is emptied
+/// first: after a trap, an empty one means the module stopped without a
+/// message (memory exhausted).
 fn run(call: impl FnOnce(&[u8]) -> calls::Answer) -> u32 {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        // The default hook still runs (it prints, where there is a place
+        // to print: in native tests).
+        let default = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            keep_panic(&info.to_string());
+            default(info);
+        }));
+    });
+    OUTPUT.with(|o| o.borrow_mut().clear());
     let input = INPUT.with(|i| std::mem::take(&mut *i.borrow_mut()));
     let (status, bytes) = call(&input);
     OUTPUT.with(|o| *o.borrow_mut() = bytes);
     status as u32
+}
+
+/// A panic's message as the failed answer, in the output buffer.
+fn keep_panic(message: &str) {
+    let error = format!("the work stopped on a bug in stlc: {message}");
+    let json = format!(
+        "{{\"ok\":false,\"error\":{}}}",
+        serde_json::to_string(&error).unwrap_or_else(|_| "\"\"".into())
+    );
+    OUTPUT.with(|o| {
+        if let Ok(mut o) = o.try_borrow_mut() {
+            *o = json.into_bytes();
+        }
+    });
 }
 
 /// Makes the input buffer `len` bytes long (zeros) and returns its address.
@@ -102,4 +134,26 @@ pub extern "C" fn stlc_compile() -> u32 {
 #[unsafe(no_mangle)]
 pub extern "C" fn stlc_check() -> u32 {
     run(calls::check)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_leaves_its_message_as_a_failed_answer() {
+        // An earlier answer is not left behind for the glue to read.
+        OUTPUT.with(|o| *o.borrow_mut() = b"an earlier answer".to_vec());
+        let unwound = std::panic::catch_unwind(|| run(|_| panic!("boom")));
+        assert!(unwound.is_err());
+        let out = OUTPUT.with(|o| o.borrow().clone());
+        let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(v["ok"], false);
+        let error = v["error"].as_str().unwrap();
+        assert!(
+            error.starts_with("the work stopped on a bug in stlc: panicked at")
+                && error.ends_with("boom"),
+            "{error}"
+        );
+    }
 }

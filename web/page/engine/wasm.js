@@ -35,9 +35,10 @@ export function createWasmEngine() {
       running = null;
       if (e.data.crash !== undefined) {
         // A trapped module may be in any state: the next call gets a
-        // fresh one.
+        // fresh one. A panic's message comes as its failed answer.
         stop();
-        job.resolve({ status: 1, crash: e.data.crash });
+        if (e.data.bytes) job.resolve({ status: 1, bytes: e.data.bytes });
+        else job.resolve({ status: 1, crash: e.data.crash });
       } else {
         job.resolve({ status: e.data.status, bytes: e.data.bytes });
       }

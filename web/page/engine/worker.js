@@ -6,9 +6,10 @@
 // A message is {module, id, op, json, format}: the compiled module (the
 // same for every message; instantiated once), and one call
 // (stlc-wasm.js). The answer is {id, status, bytes} (bytes transferred),
-// or {id, crash} when the module trapped (a panic, memory exhausted).
+// or {id, crash} when the module trapped (a panic, memory exhausted):
+// `crash` is the panic's failed answer (JSON) when the module left one.
 
-import { instantiate, call } from '../stlc-wasm.js';
+import { instantiate, call, output } from '../stlc-wasm.js';
 
 let exports = null;
 
@@ -19,6 +20,12 @@ self.onmessage = async (e) => {
     const { status, bytes } = call(exports, op, json, format);
     self.postMessage({ id, status, bytes }, [bytes.buffer]);
   } catch (err) {
-    self.postMessage({ id, crash: String(err && err.message ? err.message : err) });
+    let left = null;
+    try { left = exports && output(exports); } catch { left = null; }
+    if (left && left.length) {
+      self.postMessage({ id, status: 1, bytes: left, crash: true }, [left.buffer]);
+    } else {
+      self.postMessage({ id, crash: String(err && err.message ? err.message : err) });
+    }
   }
 };
