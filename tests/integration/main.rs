@@ -19,6 +19,7 @@ mod render;
 mod repeats;
 mod robustness;
 mod serve;
+mod soak;
 mod stl;
 mod stochastic;
 mod support;
