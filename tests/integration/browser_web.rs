@@ -661,7 +661,10 @@ fn measure_the_static_site_against_stlc_serve() {
         println!("| --- | --- | --- | --- |");
         for name in ["2dtree.od", "holes.od", "grove.od"] {
             let path = manifest_path(format!("examples/{name}"));
-            let serve = super::serve::Server::start(&[path.to_str().unwrap()]);
+            let serve = match std::env::var_os("STLC_SERVE_BIN") {
+                Some(bin) => super::serve::Server::start_binary(Path::new(&bin), &[path.to_str().unwrap()]),
+                None => super::serve::Server::start(&[path.to_str().unwrap()]),
+            };
             c.goto(&serve.url).await.unwrap();
             settled(&c).await;
             edit_times(&c, 2).await; // warm-up

@@ -20,6 +20,7 @@ mod render;
 mod repeats;
 mod robustness;
 mod serve;
+mod soak;
 mod stl;
 mod stochastic;
 mod support;
