@@ -380,6 +380,12 @@ pub struct RenderArgs {
     #[arg(long)]
     pub exact: bool,
 
+    /// Threads that paint a big PNG (a drawing of 2^20 segments or more,
+    /// painted in bands of 64 rows): the same pixels with any number.
+    /// Default: the machine's cores.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: Option<u16>,
+
     /// Stroke colour (#rrggbb or a Delphi name such as clMaroon).
     #[arg(long, value_name = "COLOR")]
     pub stroke: Option<String>,

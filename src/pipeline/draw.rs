@@ -166,7 +166,10 @@ pub fn render(
         None => scene.draw(t, p),
     };
     let frame = match (view, &memo) {
-        (Some(v), _) => Frame::View(v),
+        (Some(view), _) => Frame::View {
+            view,
+            segments: scene.bed().map(|bed| bed.size().stems),
+        },
         (None, Some((m, _, _))) => {
             let m = m.measured();
             Frame::Known {

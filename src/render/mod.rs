@@ -67,6 +67,12 @@ pub struct RenderOptions {
     /// Draw every segment (`--exact`); otherwise the backends ask for a
     /// level of detail of [`LOD_PX`] ([`crate::turtle::Turtle::detail`]).
     pub exact: bool,
+    /// Threads that paint a PNG's bands (`--threads`): a picture of
+    /// [`BANDED_SEGMENTS`] or more is painted in bands of
+    /// [`png::BAND_ROWS`] rows, the same pixels with any number; 1 (the
+    /// default here; the CLI's is the machine's cores) never starts a
+    /// thread.
+    pub threads: usize,
 }
 
 impl RenderOptions {
@@ -78,6 +84,7 @@ impl RenderOptions {
             size,
             max_svg_segments: DEFAULT_MAX_SVG_SEGMENTS,
             exact: false,
+            threads: 1,
         }
     }
 
@@ -104,13 +111,27 @@ pub const BLOT_DENSITY: f64 = 2.0;
 /// (docs/rendering.md, *Level of detail*: 0.5 to 1.25 tried, 1.0 closest).
 pub const BLOT_EXTRA_PX: f64 = 1.0;
 
+/// A PNG of a drawing of at least this many segments is painted in bands
+/// ([`png::BAND_ROWS`] rows each), which threads can share
+/// ([`RenderOptions::threads`]). Smaller drawings are painted on one
+/// raster as they always were: banding changes the anti-aliasing of lines
+/// that cross a band's edge a little (docs/rendering.md), and a drawing
+/// this small takes well under a second anyway.
+pub const BANDED_SEGMENTS: u64 = 1 << 20;
+
 /// How [`render_framed`] decides what the picture shows.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Frame {
     /// Fit the drawing, measured by a bounding pass (000's GetCurveSize).
     Fit,
-    /// Show exactly this canvas area (a layout's bounds).
-    View(BBox),
+    /// Show exactly this canvas area (a layout's bounds); `segments`: the
+    /// drawing's number of segments, if known (a grown tree's stems).
+    View {
+        /// The canvas area.
+        view: BBox,
+        /// Segments the drawing has, if known.
+        segments: Option<u64>,
+    },
     /// Fit the drawing whose box (`None`: nothing drawn) and number of
     /// segments are already known (an L-system's memoized geometry): no
     /// bounding pass.
@@ -214,7 +235,10 @@ pub fn render(
     progress: &mut dyn Progress,
 ) -> Result<Option<u64>, Diagnostics> {
     let frame = match view {
-        Some(v) => Frame::View(v),
+        Some(view) => Frame::View {
+            view,
+            segments: None,
+        },
         None => Frame::Fit,
     };
     render_framed(drawing, frame, underlay, style, opts, out, progress)
@@ -238,8 +262,8 @@ pub fn render_framed(
     if let Some(size) = opts.size {
         checked_size(size)?;
     }
-    // Segments counted by a first pass, when one runs.
-    let mut counted = None;
+    // Segments counted by a first pass, when one runs, or known.
+    let mut counted;
     let fit = match frame {
         Frame::Known { bbox, segments } => {
             counted = Some(segments);
@@ -269,7 +293,8 @@ pub fn render_framed(
             }
             fit
         }
-        Frame::View(view) => {
+        Frame::View { view, segments } => {
+            counted = segments;
             if opts.format == ImageFormat::Svg {
                 // No bounding pass to count the segments: count them first,
                 // so an SVG over the limit is refused before a byte is written.
@@ -301,12 +326,23 @@ pub fn render_framed(
     };
     match opts.format {
         ImageFormat::Png => {
-            let mut turtle = PngTurtle::new(fit, style)?.with_detail(opts.detail_px());
-            for fill in underlay {
-                turtle.fill(fill);
-            }
-            drawing(&mut turtle, &mut Phase::new(progress, "drawing"))?;
-            let bytes = turtle.finish()?;
+            let bytes = if counted.is_some_and(|n| n >= BANDED_SEGMENTS) {
+                let pixmap = png::draw_in_threads(fit, style, opts.threads, |turtle| {
+                    turtle.set_detail(opts.detail_px());
+                    for fill in underlay {
+                        turtle.fill(fill);
+                    }
+                    drawing(turtle, &mut Phase::new(progress, "drawing"))
+                })?;
+                png::encode(&pixmap)?
+            } else {
+                let mut turtle = PngTurtle::new(fit, style)?.with_detail(opts.detail_px());
+                for fill in underlay {
+                    turtle.fill(fill);
+                }
+                drawing(&mut turtle, &mut Phase::new(progress, "drawing"))?;
+                turtle.finish()?
+            };
             out.write_all(&bytes)
                 .and_then(|()| out.flush())
                 .map_err(|e| io_error(&e, "writing the PNG image"))?;
