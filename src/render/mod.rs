@@ -8,6 +8,7 @@
 mod fit;
 pub mod png;
 pub mod svg;
+mod svg_merge;
 
 use std::io::Write;
 
@@ -143,22 +144,6 @@ pub enum Frame {
     },
 }
 
-/// Counts the segments a drawing hands over at a level of detail.
-struct DetailCounter {
-    count: u64,
-    detail: Option<f64>,
-}
-
-impl Turtle for DetailCounter {
-    fn segment(&mut self, _seg: crate::turtle::Segment) {
-        self.count += 1;
-    }
-
-    fn detail(&self) -> Option<f64> {
-        self.detail
-    }
-}
-
 /// Default of [`RenderOptions::max_svg_segments`]: about 22 bytes a segment,
 /// so an SVG of at most about 220 MB (already more than browsers open).
 pub const DEFAULT_MAX_SVG_SEGMENTS: u64 = crate::limits::DEFAULT_MAX_SVG_SEGMENTS;
@@ -173,8 +158,9 @@ pub(crate) fn svg_too_large(count: Option<u64>, limit: u64) -> Diagnostics {
         limit,
     })
     .with_help(format!(
-        "an SVG holds every segment (about 22 bytes each): render a PNG instead, \
-         draw less (a smaller --depth), or {}",
+        "an SVG holds a path command a segment with --exact, and as many as show the \
+         picture without (about 15 bytes each): render a PNG instead, drop --exact, \
+         draw less (a smaller --depth or --size), or {}",
         Bound::SvgSegments.raise()
     ))
     .into()
@@ -274,28 +260,15 @@ pub fn render_framed(
                     None => bbox = Some(BBox::at(*p)),
                 }
             }
-            let fit = Fit::content(bbox, 0, &style.width, opts.size)?;
-            if opts.format == ImageFormat::Svg {
-                let drawn = match opts.detail_px() {
-                    Some(px) => {
-                        let mut count = DetailCounter {
-                            count: 0,
-                            detail: Some(px / fit.scale),
-                        };
-                        drawing(&mut count, &mut Phase::new(progress, "counting"))?;
-                        count.count
-                    }
-                    None => segments,
-                };
-                if drawn > opts.max_svg_segments {
-                    return Err(svg_too_large(Some(drawn), opts.max_svg_segments));
-                }
+            // A merged SVG's commands are counted as they are written.
+            if opts.format == ImageFormat::Svg && opts.exact && segments > opts.max_svg_segments {
+                return Err(svg_too_large(Some(segments), opts.max_svg_segments));
             }
-            fit
+            Fit::content(bbox, 0, &style.width, opts.size)?
         }
         Frame::View { view, segments } => {
             counted = segments;
-            if opts.format == ImageFormat::Svg {
+            if opts.format == ImageFormat::Svg && opts.exact {
                 // No bounding pass to count the segments: count them first,
                 // so an SVG over the limit is refused before a byte is written.
                 let mut count = Counter::default();
@@ -318,12 +291,30 @@ pub fn render_framed(
                     None => bbox = Some(BBox::at(*p)),
                 }
             }
-            if opts.format == ImageFormat::Svg && bounds.count > opts.max_svg_segments {
+            if opts.format == ImageFormat::Svg && opts.exact && bounds.count > opts.max_svg_segments
+            {
                 return Err(svg_too_large(Some(bounds.count), opts.max_svg_segments));
             }
             Fit::content(bbox, bounds.max_order, &style.width, opts.size)?
         }
     };
+    // A merged SVG has at most a line a segment: only a drawing of more
+    // segments than the limit (or of an unknown number) is counted first,
+    // by the merging writer into nothing, so an SVG over the limit is
+    // refused before a byte is written.
+    if opts.format == ImageFormat::Svg
+        && !opts.exact
+        && counted.is_none_or(|n| n > opts.max_svg_segments)
+    {
+        let mut count = SvgTurtle::new(std::io::sink(), fit, style)?
+            .with_detail(opts.detail_px())
+            .merging();
+        drawing(&mut count, &mut Phase::new(progress, "counting"))?;
+        let lines = count.lines();
+        if lines > opts.max_svg_segments {
+            return Err(svg_too_large(Some(lines), opts.max_svg_segments));
+        }
+    }
     match opts.format {
         ImageFormat::Png => {
             let bytes = if counted.is_some_and(|n| n >= BANDED_SEGMENTS) {
@@ -351,6 +342,9 @@ pub fn render_framed(
             let mut turtle = SvgTurtle::new(std::io::BufWriter::new(&mut *out), fit, style)?
                 .with_max_segments(opts.max_svg_segments)
                 .with_detail(opts.detail_px());
+            if !opts.exact {
+                turtle = turtle.merging();
+            }
             for fill in underlay {
                 turtle.fill(fill);
             }
