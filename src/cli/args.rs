@@ -369,8 +369,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub show_layout: bool,
 
-    /// Most segments an SVG may hold (about 22 bytes each); a PNG has no
-    /// such limit.
+    /// Most lines an SVG may hold (about 22 bytes each): every segment
+    /// with --exact, merged runs without; a PNG has no such limit.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SVG_SEGMENTS)]
     pub max_svg_segments: u64,
 

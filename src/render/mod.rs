@@ -62,8 +62,9 @@ pub struct RenderOptions {
     /// Output size in pixels; `None`: longest side [`DEFAULT_SIDE`], the
     /// other from the picture's aspect ratio.
     pub size: Option<(u32, u32)>,
-    /// Most segments an SVG may hold (`--max-svg-segments`); a PNG's size
-    /// does not grow with the drawing, so it has no such limit.
+    /// Most lines an SVG may hold (`--max-svg-segments`): a segment each
+    /// with `exact`, merged runs without; a PNG's size does not grow with
+    /// the drawing, so it has no such limit.
     pub max_svg_segments: u64,
     /// Draw every segment (`--exact`); otherwise the backends ask for a
     /// level of detail of [`LOD_PX`] ([`crate::turtle::Turtle::detail`]).
@@ -144,8 +145,9 @@ pub enum Frame {
     },
 }
 
-/// Default of [`RenderOptions::max_svg_segments`]: about 22 bytes a segment,
-/// so an SVG of at most about 220 MB (already more than browsers open).
+/// Default of [`RenderOptions::max_svg_segments`] (lines written: a
+/// segment each with `--exact`): about 22 bytes a line, so an SVG of at
+/// most about 220 MB (already more than browsers open).
 pub const DEFAULT_MAX_SVG_SEGMENTS: u64 = crate::limits::DEFAULT_MAX_SVG_SEGMENTS;
 
 /// The error for an SVG over [`RenderOptions::max_svg_segments`]; `count`
@@ -158,9 +160,9 @@ pub(crate) fn svg_too_large(count: Option<u64>, limit: u64) -> Diagnostics {
         limit,
     })
     .with_help(format!(
-        "an SVG holds a path command a segment with --exact, and as many as show the \
-         picture without (about 15 bytes each): render a PNG instead, drop --exact, \
-         draw less (a smaller --depth or --size), or {}",
+        "an SVG holds a line a segment with --exact (about 22 bytes each), and merges \
+         runs into as few lines as show the picture without: render a PNG instead, \
+         drop --exact, draw less (a smaller --depth or --size), or {}",
         Bound::SvgSegments.raise()
     ))
     .into()
@@ -260,7 +262,8 @@ pub fn render_framed(
                     None => bbox = Some(BBox::at(*p)),
                 }
             }
-            // A merged SVG's commands are counted as they are written.
+            // A merged SVG's lines are counted below, when there may be
+            // too many.
             if opts.format == ImageFormat::Svg && opts.exact && segments > opts.max_svg_segments {
                 return Err(svg_too_large(Some(segments), opts.max_svg_segments));
             }

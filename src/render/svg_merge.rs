@@ -10,16 +10,17 @@
 //! - a vertex that continues the last written line in the same direction
 //!   moves that line's end instead of adding a command (collinear runs);
 //! - a line shorter than a cell ([`Cells`], one pixel at the default size)
-//!   that ends in a cell already reached [`CELL_VISITS`] times by lines at
-//!   least as wide is not written: the pen lifts, and the next line
-//!   written starts with a move. Such a line lies within about a pixel of
-//!   ink already there.
+//!   whose two ends lie in cells each already reached [`CELL_VISITS`]
+//!   times by lines at least as wide is not written: the pen lifts, and
+//!   the next line written starts with a move. Such a line lies within
+//!   about a pixel of two line ends already written.
 //!
-//! So short lines cost at most `2 * CELL_VISITS` commands per cell (a
-//! line and the move before it), and every other command is a line at
-//! least a cell long: at most `2 * CELL_VISITS * cells` commands plus two
-//! per drawn segment a cell long or longer, which a deep drawing (whose
-//! segments shrink with depth at a fixed size) does not have.
+//! So a short line is written only when a cell at one of its ends takes
+//! a visit, and every other line is at least a cell long: at most
+//! `CELL_VISITS * cells` short lines per stroke width, a move at most
+//! before each line, plus a line per drawn segment a cell long or longer,
+//! which a deep drawing (whose segments shrink with depth at a fixed size)
+//! does not have.
 
 /// Folding tolerance of a merged SVG, in output pixels.
 pub const SVG_FOLD_PX: f64 = 0.5;
