@@ -166,10 +166,11 @@ impl<W: Write> SvgTurtle<W> {
     /// Writes what is left and the end tag; hands back the writer (not
     /// flushed) or the first write error.
     pub fn finish(mut self) -> Result<W, Diagnostics> {
+        self.flush();
+        self.write_dense();
         if self.written > self.max_segments {
             return Err(super::svg_too_large(None, self.max_segments));
         }
-        self.flush();
         self.write("</svg>\n");
         match self.error {
             Some(e) => Err(io_error(&e, "writing the SVG image").into()),
@@ -290,12 +291,23 @@ impl<W: Write> SvgTurtle<W> {
         run.pending = false;
         let side = i128::from(cells.side());
         let width = self.batch_width as f32;
-        // `|` visits both ends' cells, so that a line reaching a new cell
-        // at either end is written.
-        if distance2(k, q) < side * side && !(cells.visit(q, width) | cells.visit(k, width)) {
-            run.open = false;
-            run.last_line = None;
-            return;
+        if distance2(k, q) < side * side {
+            // Written if a cell at either end takes a visit (both are
+            // counted), else left out (and counted as such).
+            let (at_q, at_k) = (cells.takes(q, width), cells.takes(k, width));
+            if !(at_q || at_k) {
+                cells.left_out(q);
+                cells.left_out(k);
+                run.open = false;
+                run.last_line = None;
+                return;
+            }
+            if at_q {
+                cells.visit(q, width);
+            }
+            if at_k {
+                cells.visit(k, width);
+            }
         }
         // A line that goes on in the last one's direction moves its end
         // (the pen is down: `last_line` is reset whenever it lifts).
@@ -331,7 +343,37 @@ impl<W: Write> SvgTurtle<W> {
     /// into a sink).
     pub fn lines(mut self) -> u64 {
         self.flush();
+        self.write_dense();
         self.written
+    }
+
+    /// Paints the dense cells of a merged SVG whole: each row's runs as
+    /// lines a cell wide with flat ends.
+    fn write_dense(&mut self) {
+        let Some(cells) = self.cells.as_ref() else {
+            return;
+        };
+        let runs = cells.dense_runs();
+        let mut width = String::new();
+        push_num(&mut width, cells.side() as f64 / 100.0);
+        for batch in runs.chunks(BATCH_SEGMENTS) {
+            self.written += batch.len() as u64;
+            if self.written > self.max_segments {
+                return;
+            }
+            let mut d = String::new();
+            for &(a, b) in batch {
+                push_q(&mut d, 'M', a);
+                push_q(&mut d, 'L', b);
+            }
+            let text = format!(
+                "<path fill=\"none\" stroke=\"{}\" stroke-width=\"{width}\" \
+                 stroke-linecap=\"butt\" d=\"{}\"/>\n",
+                self.stroke,
+                d.trim_start()
+            );
+            self.write(&text);
+        }
     }
 }
 
@@ -410,5 +452,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Merging: a run of 200 collinear steps of 0.02 px is one move and one
+    /// line; dots alternating between two points of one cell are written
+    /// until the cell has had its two visits (a dot visits its cell at both
+    /// ends), then left out (each counted twice), and once four are
+    /// counted the cell is dense and painted whole (a line across it, a
+    /// cell wide, flat ends).
+    #[test]
+    fn merged_runs_fold_join_and_fill_crowded_cells() {
+        use crate::turtle::BBox;
+        let mut view = BBox::at(Point::new(0.0, 0.0));
+        view.add(Point::new(10.0, 10.0));
+        let fit = Fit::view(&view, Some((10, 10))).unwrap();
+        let style = Style {
+            stroke: Rgb::BLACK,
+            background: None,
+            width: Width::Pixels(1.0),
+        };
+        let mut t = SvgTurtle::new(Vec::new(), fit, &style).unwrap().merging();
+        let seg = |ax: f64, ay: f64, bx: f64, by: f64| Segment {
+            from: Point::new(ax, ay),
+            to: Point::new(bx, by),
+            order: 0,
+        };
+        // Connected: each step starts exactly where the last one ended.
+        let xs: Vec<f64> = (0..=200).map(|i| 1.0 + f64::from(i) * 0.02).collect();
+        for w in xs.windows(2) {
+            t.segment(seg(w[0], 2.0, w[1], 2.0));
+        }
+        for i in 0..10 {
+            let p = if i % 2 == 0 { 7.3 } else { 7.6 };
+            t.segment(seg(p, p, p, p));
+        }
+        let text = String::from_utf8(t.finish().unwrap()).unwrap();
+        let d: Vec<&str> = text
+            .split("d=\"")
+            .skip(1)
+            .map(|s| s.split('"').next().unwrap())
+            .collect();
+        assert_eq!(
+            d,
+            [
+                "M1.00 2.00 L5.00 2.00 M7.30 7.30 L7.30 7.30",
+                "M7.00 7.50 L8.00 7.50"
+            ],
+            "{text}"
+        );
+        assert!(text.contains("stroke-width=\"1.00\" stroke-linecap=\"butt\""));
     }
 }

@@ -15,6 +15,11 @@
 //!   the next line written starts with a move. Such a line lies within
 //!   about a pixel of two line ends already written.
 //!
+//! A cell where four lines were left out is dense: at the end each row's runs
+//! of dense cells are painted whole, as one line a cell wide with flat
+//! ends (at most one line per two cells), so a crowded area is solid ink,
+//! as the many overlapping lines left out would have made it.
+//!
 //! So a short line is written only when a cell at one of its ends takes
 //! a visit, and every other line is at least a cell long: at most
 //! `CELL_VISITS * cells` short lines per stroke width, a move at most
@@ -28,6 +33,11 @@ pub const SVG_FOLD_PX: f64 = 0.5;
 /// Short lines that may end in one cell (per width) before the cell
 /// counts as inked.
 pub const CELL_VISITS: u8 = 2;
+
+/// A cell's count once this many lines were left out in it (beyond its
+/// [`CELL_VISITS`]): it is dense, and is painted whole at the end
+/// ([`Cells::dense_runs`]).
+const DENSE: u8 = CELL_VISITS + 4;
 
 /// Most cells of the table: a picture of more pixels than this has cells
 /// of several pixels (so the table stays within 32 MB).
@@ -74,6 +84,30 @@ impl Cells {
         self.side
     }
 
+    /// The runs of dense cells, row by row, left to right: `(row, first,
+    /// last)` column, as the picture's grid points of their centre line's
+    /// ends (hundredths of a pixel).
+    pub(super) fn dense_runs(&self) -> Vec<(Q, Q)> {
+        let mut runs = Vec::new();
+        for r in 0..self.rows {
+            let row = &self.cells[(r * self.columns) as usize..((r + 1) * self.columns) as usize];
+            let y = r * self.side + self.side / 2;
+            let mut c = 0;
+            while c < self.columns {
+                if row[c as usize].0 < DENSE {
+                    c += 1;
+                    continue;
+                }
+                let first = c;
+                while c < self.columns && row[c as usize].0 >= DENSE {
+                    c += 1;
+                }
+                runs.push(((first * self.side, y), (c * self.side, y)));
+            }
+        }
+        runs
+    }
+
     /// The cell of `q`, if inside the picture.
     fn index(&self, q: Q) -> Option<usize> {
         let (c, r) = (q.0.div_euclid(self.side), q.1.div_euclid(self.side));
@@ -81,23 +115,37 @@ impl Cells {
             .then(|| (r * self.columns + c) as usize)
     }
 
-    /// Whether a short line `width` wide ending at `q` is to be written;
-    /// if so it is counted.
+    /// Whether the cell of `q` takes a visit of a short line `width` wide:
+    /// it had fewer than [`CELL_VISITS`] at that width, or only thinner
+    /// lines, or `q` is outside the picture (nothing to see or count).
+    pub(super) fn takes(&self, q: Q, width: f32) -> bool {
+        self.index(q)
+            .is_none_or(|i| width > self.cells[i].1 || self.cells[i].0 < CELL_VISITS)
+    }
+
+    /// Counts a visit of a short line `width` wide ending at `q`, if its
+    /// cell [`takes`](Cells::takes) it; returns whether it did.
     pub(super) fn visit(&mut self, q: Q, width: f32) -> bool {
-        let Some(i) = self.index(q) else {
-            // Outside the picture: nothing to see, nothing to count.
-            return true;
-        };
-        let cell = &mut self.cells[i];
-        if width > cell.1 {
-            *cell = (1, width);
-            return true;
-        }
-        if cell.0 >= CELL_VISITS {
+        if !self.takes(q, width) {
             return false;
         }
-        cell.0 += 1;
+        if let Some(i) = self.index(q) {
+            let cell = &mut self.cells[i];
+            *cell = if width > cell.1 {
+                (1, width)
+            } else {
+                (cell.0 + 1, width)
+            };
+        }
         true
+    }
+
+    /// Counts a line left out at `q`, towards its cell being dense.
+    pub(super) fn left_out(&mut self, q: Q) {
+        if let Some(i) = self.index(q) {
+            let cell = &mut self.cells[i];
+            cell.0 = cell.0.saturating_add(1);
+        }
     }
 }
 
@@ -194,6 +242,18 @@ mod tests {
         assert!(c.visit(q, 2.0), "wider: drawn, and the cell counts anew");
         assert!(c.visit(quantise(4.0, 4.7), 1.0), "the next cell");
         assert!(c.visit(quantise(-5.0, 4.7), 1.0), "outside: always");
+        assert_eq!(c.dense_runs(), []);
+        // Cells (5, 4) and (6, 4): two visits, then four lines left out
+        // make a cell dense; (7, 4) has three left out.
+        for (x, out) in [(5.5, 4), (6.5, 4), (7.5, 3)] {
+            let q = quantise(x, 4.5);
+            assert!(c.visit(q, 1.0) && c.visit(q, 1.0));
+            assert!(!c.visit(q, 1.0), "full: no visit");
+            for _ in 0..out {
+                c.left_out(q);
+            }
+        }
+        assert_eq!(c.dense_runs(), [((500, 450), (700, 450))]);
         assert!(c.visit(q, 2.0), "second visit at 2.0");
         assert!(!c.visit(q, 2.0));
     }
