@@ -376,8 +376,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub show_layout: bool,
 
-    /// Most segments an SVG may hold (about 22 bytes each); a PNG has no
-    /// such limit.
+    /// Most lines an SVG may hold (about 22 bytes each): every segment
+    /// with --exact, merged runs without; a PNG has no such limit.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SVG_SEGMENTS)]
     pub max_svg_segments: u64,
 
@@ -386,6 +386,12 @@ pub struct RenderArgs {
     /// any depth renders in bounded time.
     #[arg(long)]
     pub exact: bool,
+
+    /// Threads that paint a big PNG (a drawing of 2^20 segments or more,
+    /// painted in bands of 64 rows): the same pixels with any number.
+    /// Default: the machine's cores.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: Option<u16>,
 
     /// Stroke colour (#rrggbb or a Delphi name such as clMaroon).
     #[arg(long, value_name = "COLOR")]

@@ -188,6 +188,10 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
             size: a.size,
             max_svg_segments: a.max_svg_segments,
             exact: a.exact,
+            threads: a.threads.map_or_else(
+                || std::thread::available_parallelism().map_or(1, |n| n.get()),
+                usize::from,
+            ),
         },
         ..with_growth(request(&a.input, limits, source)?, a.grow.growth, &a.grow)
     };

@@ -130,12 +130,14 @@ pub fn render(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
-    // A stochastic system's SVG that even its fewest segments would
-    // overflow is refused before any derivation (its count is otherwise
-    // known only by deriving the word).
+    // A stochastic system's `--exact` SVG (a command a segment) that even
+    // its fewest segments would overflow is refused before any derivation
+    // (its count is otherwise known only by deriving the word). Without
+    // --exact the SVG is merged, and its commands are counted as written.
     if let What::Lsys { sys, depth } = &scene.what
         && sys.is_stochastic()
         && opts.format == ImageFormat::Svg
+        && opts.exact
         && crate::interpret::lsys::Stochastic::new(sys)
             .segment_bounds(*depth)
             .0
@@ -166,7 +168,10 @@ pub fn render(
         None => scene.draw(t, p),
     };
     let frame = match (view, &memo) {
-        (Some(v), _) => Frame::View(v),
+        (Some(view), _) => Frame::View {
+            view,
+            segments: scene.bed().map(|bed| bed.size().stems),
+        },
         (None, Some((m, _, _))) => {
             let m = m.measured();
             Frame::Known {

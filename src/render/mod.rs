@@ -8,6 +8,7 @@
 mod fit;
 pub mod png;
 pub mod svg;
+mod svg_merge;
 
 use std::io::Write;
 
@@ -61,12 +62,19 @@ pub struct RenderOptions {
     /// Output size in pixels; `None`: longest side [`DEFAULT_SIDE`], the
     /// other from the picture's aspect ratio.
     pub size: Option<(u32, u32)>,
-    /// Most segments an SVG may hold (`--max-svg-segments`); a PNG's size
-    /// does not grow with the drawing, so it has no such limit.
+    /// Most lines an SVG may hold (`--max-svg-segments`): a segment each
+    /// with `exact`, merged runs without; a PNG's size does not grow with
+    /// the drawing, so it has no such limit.
     pub max_svg_segments: u64,
     /// Draw every segment (`--exact`); otherwise the backends ask for a
     /// level of detail of [`LOD_PX`] ([`crate::turtle::Turtle::detail`]).
     pub exact: bool,
+    /// Threads that paint a PNG's bands (`--threads`): a picture of
+    /// [`BANDED_SEGMENTS`] or more is painted in bands of
+    /// [`png::BAND_ROWS`] rows, the same pixels with any number; 1 (the
+    /// default here; the CLI's is the machine's cores) never starts a
+    /// thread.
+    pub threads: usize,
 }
 
 impl RenderOptions {
@@ -78,6 +86,7 @@ impl RenderOptions {
             size,
             max_svg_segments: DEFAULT_MAX_SVG_SEGMENTS,
             exact: false,
+            threads: 1,
         }
     }
 
@@ -104,13 +113,27 @@ pub const BLOT_DENSITY: f64 = 2.0;
 /// (docs/rendering.md, *Level of detail*: 0.5 to 1.25 tried, 1.0 closest).
 pub const BLOT_EXTRA_PX: f64 = 1.0;
 
+/// A PNG of a drawing of at least this many segments is painted in bands
+/// ([`png::BAND_ROWS`] rows each), which threads can share
+/// ([`RenderOptions::threads`]). Smaller drawings are painted on one
+/// raster as they always were: banding changes the anti-aliasing of lines
+/// that cross a band's edge a little (docs/rendering.md), and a drawing
+/// this small takes well under a second anyway.
+pub const BANDED_SEGMENTS: u64 = 1 << 20;
+
 /// How [`render_framed`] decides what the picture shows.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Frame {
     /// Fit the drawing, measured by a bounding pass (000's GetCurveSize).
     Fit,
-    /// Show exactly this canvas area (a layout's bounds).
-    View(BBox),
+    /// Show exactly this canvas area (a layout's bounds); `segments`: the
+    /// drawing's number of segments, if known (a grown tree's stems).
+    View {
+        /// The canvas area.
+        view: BBox,
+        /// Segments the drawing has, if known.
+        segments: Option<u64>,
+    },
     /// Fit the drawing whose box (`None`: nothing drawn) and number of
     /// segments are already known (an L-system's memoized geometry): no
     /// bounding pass.
@@ -122,24 +145,9 @@ pub enum Frame {
     },
 }
 
-/// Counts the segments a drawing hands over at a level of detail.
-struct DetailCounter {
-    count: u64,
-    detail: Option<f64>,
-}
-
-impl Turtle for DetailCounter {
-    fn segment(&mut self, _seg: crate::turtle::Segment) {
-        self.count += 1;
-    }
-
-    fn detail(&self) -> Option<f64> {
-        self.detail
-    }
-}
-
-/// Default of [`RenderOptions::max_svg_segments`]: about 22 bytes a segment,
-/// so an SVG of at most about 220 MB (already more than browsers open).
+/// Default of [`RenderOptions::max_svg_segments`] (lines written: a
+/// segment each with `--exact`): about 22 bytes a line, so an SVG of at
+/// most about 220 MB (already more than browsers open).
 pub const DEFAULT_MAX_SVG_SEGMENTS: u64 = crate::limits::DEFAULT_MAX_SVG_SEGMENTS;
 
 /// The error for an SVG over [`RenderOptions::max_svg_segments`]; `count`
@@ -152,8 +160,9 @@ pub(crate) fn svg_too_large(count: Option<u64>, limit: u64) -> Diagnostics {
         limit,
     })
     .with_help(format!(
-        "an SVG holds every segment (about 22 bytes each): render a PNG instead, \
-         draw less (a smaller --depth), or {}",
+        "an SVG holds a line a segment with --exact (about 22 bytes each), and merges \
+         runs into as few lines as show the picture without: render a PNG instead, \
+         drop --exact, draw less (a smaller --depth or --size), or {}",
         Bound::SvgSegments.raise()
     ))
     .into()
@@ -214,7 +223,10 @@ pub fn render(
     progress: &mut dyn Progress,
 ) -> Result<Option<u64>, Diagnostics> {
     let frame = match view {
-        Some(v) => Frame::View(v),
+        Some(view) => Frame::View {
+            view,
+            segments: None,
+        },
         None => Frame::Fit,
     };
     render_framed(drawing, frame, underlay, style, opts, out, progress)
@@ -238,8 +250,8 @@ pub fn render_framed(
     if let Some(size) = opts.size {
         checked_size(size)?;
     }
-    // Segments counted by a first pass, when one runs.
-    let mut counted = None;
+    // Segments counted by a first pass, when one runs, or known.
+    let mut counted;
     let fit = match frame {
         Frame::Known { bbox, segments } => {
             counted = Some(segments);
@@ -250,27 +262,16 @@ pub fn render_framed(
                     None => bbox = Some(BBox::at(*p)),
                 }
             }
-            let fit = Fit::content(bbox, 0, &style.width, opts.size)?;
-            if opts.format == ImageFormat::Svg {
-                let drawn = match opts.detail_px() {
-                    Some(px) => {
-                        let mut count = DetailCounter {
-                            count: 0,
-                            detail: Some(px / fit.scale),
-                        };
-                        drawing(&mut count, &mut Phase::new(progress, "counting"))?;
-                        count.count
-                    }
-                    None => segments,
-                };
-                if drawn > opts.max_svg_segments {
-                    return Err(svg_too_large(Some(drawn), opts.max_svg_segments));
-                }
+            // A merged SVG's lines are counted below, when there may be
+            // too many.
+            if opts.format == ImageFormat::Svg && opts.exact && segments > opts.max_svg_segments {
+                return Err(svg_too_large(Some(segments), opts.max_svg_segments));
             }
-            fit
+            Fit::content(bbox, 0, &style.width, opts.size)?
         }
-        Frame::View(view) => {
-            if opts.format == ImageFormat::Svg {
+        Frame::View { view, segments } => {
+            counted = segments;
+            if opts.format == ImageFormat::Svg && opts.exact {
                 // No bounding pass to count the segments: count them first,
                 // so an SVG over the limit is refused before a byte is written.
                 let mut count = Counter::default();
@@ -293,20 +294,49 @@ pub fn render_framed(
                     None => bbox = Some(BBox::at(*p)),
                 }
             }
-            if opts.format == ImageFormat::Svg && bounds.count > opts.max_svg_segments {
+            if opts.format == ImageFormat::Svg && opts.exact && bounds.count > opts.max_svg_segments
+            {
                 return Err(svg_too_large(Some(bounds.count), opts.max_svg_segments));
             }
             Fit::content(bbox, bounds.max_order, &style.width, opts.size)?
         }
     };
+    // A merged SVG has at most a line a segment: only a drawing of more
+    // segments than the limit (or of an unknown number) is counted first,
+    // by the merging writer into nothing, so an SVG over the limit is
+    // refused before a byte is written.
+    if opts.format == ImageFormat::Svg
+        && !opts.exact
+        && counted.is_none_or(|n| n > opts.max_svg_segments)
+    {
+        let mut count = SvgTurtle::new(std::io::sink(), fit, style)?
+            .with_detail(opts.detail_px())
+            .merging();
+        drawing(&mut count, &mut Phase::new(progress, "counting"))?;
+        let lines = count.lines();
+        if lines > opts.max_svg_segments {
+            return Err(svg_too_large(Some(lines), opts.max_svg_segments));
+        }
+    }
     match opts.format {
         ImageFormat::Png => {
-            let mut turtle = PngTurtle::new(fit, style)?.with_detail(opts.detail_px());
-            for fill in underlay {
-                turtle.fill(fill);
-            }
-            drawing(&mut turtle, &mut Phase::new(progress, "drawing"))?;
-            let bytes = turtle.finish()?;
+            let bytes = if counted.is_some_and(|n| n >= BANDED_SEGMENTS) {
+                let pixmap = png::draw_in_threads(fit, style, opts.threads, |turtle| {
+                    turtle.set_detail(opts.detail_px());
+                    for fill in underlay {
+                        turtle.fill(fill);
+                    }
+                    drawing(turtle, &mut Phase::new(progress, "drawing"))
+                })?;
+                png::encode(pixmap)?
+            } else {
+                let mut turtle = PngTurtle::new(fit, style)?.with_detail(opts.detail_px());
+                for fill in underlay {
+                    turtle.fill(fill);
+                }
+                drawing(&mut turtle, &mut Phase::new(progress, "drawing"))?;
+                turtle.finish()?
+            };
             out.write_all(&bytes)
                 .and_then(|()| out.flush())
                 .map_err(|e| io_error(&e, "writing the PNG image"))?;
@@ -315,6 +345,9 @@ pub fn render_framed(
             let mut turtle = SvgTurtle::new(std::io::BufWriter::new(&mut *out), fit, style)?
                 .with_max_segments(opts.max_svg_segments)
                 .with_detail(opts.detail_px());
+            if !opts.exact {
+                turtle = turtle.merging();
+            }
             for fill in underlay {
                 turtle.fill(fill);
             }

@@ -15,6 +15,7 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
+use super::svg_merge::{Cells, Run, SVG_FOLD_PX, continues, distance2, push_q, quantise};
 use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, Fit, Style, Width, stroke_px};
 use crate::color::Rgb;
 use crate::diag::{Diagnostics, io_error};
@@ -44,6 +45,11 @@ pub struct SvgTurtle<W: Write> {
     max_segments: u64,
     /// Level of detail in canvas units ([`Turtle::detail`]), `None`: exact.
     detail: Option<f64>,
+    /// Merging ([`super::svg_merge`]): the cells' visits, `None` when every
+    /// segment is written (`--exact`).
+    cells: Option<Cells>,
+    /// The run being merged.
+    run: Option<Run>,
 }
 
 impl<W: Write> SvgTurtle<W> {
@@ -63,6 +69,8 @@ impl<W: Write> SvgTurtle<W> {
             written: 0,
             max_segments: u64::MAX,
             detail: None,
+            cells: None,
+            run: None,
         };
         let (w, h) = (fit.width, fit.height);
         let mut head = format!(
@@ -114,6 +122,14 @@ impl<W: Write> SvgTurtle<W> {
         }
     }
 
+    /// The same turtle merging runs into as few path commands as show the
+    /// same picture ([`super::svg_merge`]); `max_segments` then counts
+    /// path commands.
+    pub fn merging(mut self) -> Self {
+        self.cells = Some(Cells::new(self.fit.width, self.fit.height));
+        self
+    }
+
     /// The same turtle, refusing to write more than `max` segments.
     pub fn with_max_segments(mut self, max: u64) -> Self {
         self.max_segments = max;
@@ -126,6 +142,7 @@ impl<W: Write> SvgTurtle<W> {
     /// Writes the collected path as one `<path>` element and starts an
     /// empty one.
     fn flush(&mut self) {
+        self.end_run();
         self.batch_len = 0;
         self.last_to = None;
         if self.batch.is_empty() {
@@ -149,10 +166,11 @@ impl<W: Write> SvgTurtle<W> {
     /// Writes what is left and the end tag; hands back the writer (not
     /// flushed) or the first write error.
     pub fn finish(mut self) -> Result<W, Diagnostics> {
+        self.flush();
+        self.write_dense();
         if self.written > self.max_segments {
             return Err(super::svg_too_large(None, self.max_segments));
         }
-        self.flush();
         self.write("</svg>\n");
         match self.error {
             Some(e) => Err(io_error(&e, "writing the SVG image").into()),
@@ -199,6 +217,10 @@ impl<W: Write> SvgTurtle<W> {
             // Not writable as a number; the PNG backend skips it too.
             return;
         }
+        if self.cells.is_some() {
+            self.merge(seg, quantise(from.x, from.y), quantise(to.x, to.y), width);
+            return;
+        }
         self.written += 1;
         if self.written > self.max_segments {
             // Over the limit: `finish` reports it; write nothing more.
@@ -214,6 +236,144 @@ impl<W: Write> SvgTurtle<W> {
         push_point(&mut self.batch, 'L', to);
         self.batch_len += 1;
         self.last_to = Some(seg.to);
+    }
+}
+
+impl<W: Write> SvgTurtle<W> {
+    /// Adds `seg` (its ends on the written grid) to the merged batch.
+    fn merge(
+        &mut self,
+        seg: Segment,
+        from: super::svg_merge::Q,
+        to: super::svg_merge::Q,
+        width: f64,
+    ) {
+        if self.batch_len >= BATCH_SEGMENTS || (self.batch_len > 0 && width != self.batch_width) {
+            self.flush();
+        }
+        self.batch_width = width;
+        if self.last_to != Some(seg.from) || self.run.is_none() {
+            self.end_run();
+            self.run = Some(Run::at(from));
+        }
+        self.last_to = Some(seg.to);
+        let Some(run) = self.run.as_mut() else {
+            return;
+        };
+        run.at = to;
+        let fold = (SVG_FOLD_PX * 100.0) as i128;
+        if distance2(run.kept, to) < fold * fold {
+            run.pending = true;
+        } else {
+            self.line_to(to);
+        }
+    }
+
+    /// Ends the run: its exact end is written (unless its cell is inked).
+    fn end_run(&mut self) {
+        if let Some(run) = self.run
+            && run.pending
+        {
+            self.line_to(run.at);
+        }
+        self.run = None;
+    }
+
+    /// Writes the line from the run's last vertex to `q`: not at all when
+    /// it is short and ends in an inked cell (the pen lifts), as a move of
+    /// the last line's end when it goes on in the same direction.
+    fn line_to(&mut self, q: super::svg_merge::Q) {
+        let (Some(run), Some(cells)) = (self.run.as_mut(), self.cells.as_mut()) else {
+            return;
+        };
+        let k = run.kept;
+        run.kept = q;
+        run.pending = false;
+        let side = i128::from(cells.side());
+        let width = self.batch_width as f32;
+        if distance2(k, q) < side * side {
+            // Written if a cell at either end takes a visit (both are
+            // counted), else left out (and counted as such).
+            let (at_q, at_k) = (cells.takes(q, width), cells.takes(k, width));
+            if !(at_q || at_k) {
+                cells.left_out(q);
+                cells.left_out(k);
+                run.open = false;
+                run.last_line = None;
+                return;
+            }
+            if at_q {
+                cells.visit(q, width);
+            }
+            if at_k {
+                cells.visit(k, width);
+            }
+        }
+        // A line that goes on in the last one's direction moves its end
+        // (the pen is down: `last_line` is reset whenever it lifts).
+        let merge = match run.last_line {
+            Some((offset, start)) if continues(start, k, q) && offset <= self.batch.len() => {
+                Some(offset)
+            }
+            _ => None,
+        };
+        if merge.is_none() {
+            // The limit counts lines: a move only ever starts one.
+            self.written += 1;
+            if self.written > self.max_segments {
+                // Over the limit: `finish` reports it; write nothing more.
+                return;
+            }
+        }
+        if !run.open {
+            run.open = true;
+            push_q(&mut self.batch, 'M', k);
+        }
+        match merge {
+            Some(offset) => self.batch.truncate(offset),
+            None => {
+                run.last_line = Some((self.batch.len(), k));
+                self.batch_len += 1;
+            }
+        }
+        push_q(&mut self.batch, 'L', q);
+    }
+
+    /// Writes what is left and returns the lines written (a counting pass
+    /// into a sink).
+    pub fn lines(mut self) -> u64 {
+        self.flush();
+        self.write_dense();
+        self.written
+    }
+
+    /// Paints the dense cells of a merged SVG whole: each row's runs as
+    /// lines a cell wide with flat ends.
+    fn write_dense(&mut self) {
+        let Some(cells) = self.cells.as_ref() else {
+            return;
+        };
+        let runs = cells.dense_runs();
+        let mut width = String::new();
+        push_num(&mut width, cells.side() as f64 / 100.0);
+        for batch in runs.chunks(BATCH_SEGMENTS) {
+            self.written += batch.len() as u64;
+            if self.written > self.max_segments {
+                return;
+            }
+            let mut d = String::new();
+            for &(a, b) in batch {
+                push_q(&mut d, 'M', a);
+                push_q(&mut d, 'L', b);
+            }
+            let text = format!(
+                "<path fill=\"none\" stroke=\"{}\" stroke-width=\"{width}\" \
+                 stroke-linecap=\"butt\" d=\"{}\"/>\n",
+                self.stroke,
+                d.trim_start()
+            );
+            self.write(&text);
+        }
     }
 }
 
@@ -292,5 +452,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Merging: a run of 200 collinear steps of 0.02 px is one move and one
+    /// line; dots alternating between two points of one cell are written
+    /// until the cell has had its two visits (a dot visits its cell at both
+    /// ends), then left out (each counted twice), and once four are
+    /// counted the cell is dense and painted whole (a line across it, a
+    /// cell wide, flat ends).
+    #[test]
+    fn merged_runs_fold_join_and_fill_crowded_cells() {
+        use crate::turtle::BBox;
+        let mut view = BBox::at(Point::new(0.0, 0.0));
+        view.add(Point::new(10.0, 10.0));
+        let fit = Fit::view(&view, Some((10, 10))).unwrap();
+        let style = Style {
+            stroke: Rgb::BLACK,
+            background: None,
+            width: Width::Pixels(1.0),
+        };
+        let mut t = SvgTurtle::new(Vec::new(), fit, &style).unwrap().merging();
+        let seg = |ax: f64, ay: f64, bx: f64, by: f64| Segment {
+            from: Point::new(ax, ay),
+            to: Point::new(bx, by),
+            order: 0,
+        };
+        // Connected: each step starts exactly where the last one ended.
+        let xs: Vec<f64> = (0..=200).map(|i| 1.0 + f64::from(i) * 0.02).collect();
+        for w in xs.windows(2) {
+            t.segment(seg(w[0], 2.0, w[1], 2.0));
+        }
+        for i in 0..10 {
+            let p = if i % 2 == 0 { 7.3 } else { 7.6 };
+            t.segment(seg(p, p, p, p));
+        }
+        let text = String::from_utf8(t.finish().unwrap()).unwrap();
+        let d: Vec<&str> = text
+            .split("d=\"")
+            .skip(1)
+            .map(|s| s.split('"').next().unwrap())
+            .collect();
+        assert_eq!(
+            d,
+            [
+                "M1.00 2.00 L5.00 2.00 M7.30 7.30 L7.30 7.30",
+                "M7.00 7.50 L8.00 7.50"
+            ],
+            "{text}"
+        );
+        assert!(text.contains("stroke-width=\"1.00\" stroke-linecap=\"butt\""));
     }
 }

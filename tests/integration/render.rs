@@ -92,6 +92,31 @@ fn render_full(
     Ok(out)
 }
 
+/// The `--exact` SVG of `text`: every segment written.
+fn exact_svg(text: &str, angle: f64, style: &Style, size: Option<(u32, u32)>) -> String {
+    let ops = ops(text);
+    let mut drawing = |t: &mut dyn Turtle, _p: &mut dyn Progress| {
+        run(&ops, angle, 0.0, t);
+        Ok(())
+    };
+    let mut out = Vec::new();
+    let opts = RenderOptions {
+        exact: true,
+        ..RenderOptions::new(ImageFormat::Svg, size)
+    };
+    render::render(
+        &mut drawing,
+        None,
+        &[],
+        style,
+        &opts,
+        &mut out,
+        &mut NoProgress,
+    )
+    .unwrap();
+    String::from_utf8(out).unwrap()
+}
+
 fn decode(png: &[u8]) -> Pixmap {
     Pixmap::decode_png(png).expect("a valid PNG")
 }
@@ -429,13 +454,32 @@ fn png_and_svg_agree() {
     let st = style(Width::Pixels(3.0), Some(Rgb::WHITE));
     let size = Some((150, 200));
     let png = decode(&render_ops(TREE, 30.0, &st, ImageFormat::Png, size));
-    let svg = String::from_utf8(render_ops(TREE, 30.0, &st, ImageFormat::Svg, size)).unwrap();
+    // `--exact`: a line a segment.
+    let svg = exact_svg(TREE, 30.0, &st, size);
     assert!(svg.contains(" width=\"150\" height=\"200\" viewBox=\"0 0 150 200\""));
     assert_eq!((png.width(), png.height()), (150, 200));
 
     let strokes = svg_strokes(&svg);
     let segs: Vec<(Point, Point)> = strokes.iter().flat_map(|(_, s)| s.clone()).collect();
     assert_eq!(segs.len(), TREE.matches('F').count());
+    // Merged (the default): collinear runs are one line, fewer lines,
+    // and every segment's points lie on one of them.
+    let merged = String::from_utf8(render_ops(TREE, 30.0, &st, ImageFormat::Svg, size)).unwrap();
+    let lines: Vec<(Point, Point)> = svg_strokes(&merged)
+        .iter()
+        .flat_map(|(_, s)| s.clone())
+        .collect();
+    assert!(lines.len() < segs.len(), "{} lines", lines.len());
+    for &(a, b) in &segs {
+        for t in [0.0, 0.5, 1.0] {
+            let p = Point::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+            let d = lines
+                .iter()
+                .map(|&l| distance_to_segment(p, l))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d < 0.01, "{p:?} is {d} px from every merged line");
+        }
+    }
     // Every dark pixel lies within half a stroke (plus a pixel of
     // anti-aliasing) of the SVG's geometry ...
     for y in 0..png.height() {
@@ -622,6 +666,139 @@ fn a_million_tiny_segments_stream_through_the_png_backend() {
             order: 0,
         });
     }
-    let p = turtle.into_pixmap();
+    let p = turtle.into_raster().unwrap();
     assert!(is_dark(&p, 100, 100));
+}
+
+// ---------------------------------------------------------------------------
+// Bands and threads
+
+/// The PNG `stlc render` writes for `args` with `--threads threads`.
+fn threads_png(args: &[&str], threads: &str) -> Vec<u8> {
+    let mut all = vec!["render"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["-f", "png", "-o", "-", "-q", "--threads", threads]);
+    crate::support::stlc_stdout(&all)
+}
+
+/// Pixels darker than `level` in the red channel.
+fn inked(png: &[u8], level: u8) -> usize {
+    decode(png)
+        .pixels()
+        .iter()
+        .filter(|p| p.red() < level)
+        .count()
+}
+
+/// Big drawings (2^20 segments or more) are painted in bands; one thread
+/// and two write the same bytes: a deterministic system drawn exactly
+/// (5^9 = 1,953,125 segments), a stochastic one (1,204,285 segments at
+/// depth 11, `stlc stats`), and a level-of-detail drawing at depth 20.
+#[test]
+fn a_big_png_is_the_same_bytes_with_one_thread_or_two() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let tree = format!("{root}/examples/abop-1.24a.lsys");
+    let plant = format!("{root}/examples/abop-1.27.lsys");
+    for args in [
+        vec![
+            tree.as_str(),
+            "--exact",
+            "--depth",
+            "9",
+            "--size",
+            "300x600",
+        ],
+        vec![
+            plant.as_str(),
+            "--exact",
+            "--depth",
+            "11",
+            "--size",
+            "400x400",
+        ],
+        vec![tree.as_str(), "--depth", "20", "--size", "300x600"],
+    ] {
+        let one = threads_png(&args, "1");
+        let two = threads_png(&args, "2");
+        assert!(one == two, "{args:?}");
+        // A picture, not a blank: thousands of green pixels (clGreen
+        // strokes have no red).
+        assert!(inked(&one, 128) > 2_000, "{args:?}: {}", inked(&one, 128));
+    }
+}
+
+/// A grown tree drawn over its layout in bands (as a tree of 2^20 stems
+/// would be: the count is the frame's): the same bytes with one, two and
+/// three threads, and the picture of one raster but for anti-aliasing at
+/// the bands' edges.
+#[test]
+fn a_tree_over_its_layout_in_bands_is_the_same_with_any_threads() {
+    use stlc::grow::GrowOptions;
+    use stlc::pipeline::{self, Look, SceneRequest, ShowLayout};
+    use stlc::syntax::InputKind;
+    let root = env!("CARGO_MANIFEST_DIR");
+    let text = std::fs::read(format!("{root}/examples/2dtree.od")).unwrap();
+    let opts = GrowOptions::default();
+    let loaded = pipeline::load(&text, InputKind::Od, &opts.limits).unwrap();
+    let pipeline::Loaded::Od(desc) = &loaded else {
+        panic!("an .od");
+    };
+    let layout = desc.layout.clone().unwrap();
+    let req = SceneRequest {
+        grow: opts,
+        derivation: Default::default(),
+        depth: None,
+        limits: opts.limits,
+    };
+    let scene = pipeline::scene(loaded, &req, &mut NoProgress).unwrap();
+    let look = Look {
+        show_layout: ShowLayout::Yes,
+        ..Look::default()
+    };
+    let st = pipeline::style(&scene, &look);
+    let view = stlc::rings::layout_bbox(&layout).unwrap();
+    let fills = stlc::rings::fills(&layout);
+    let png = |segments: u64, threads: usize| {
+        let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
+        let opts = RenderOptions {
+            threads,
+            ..RenderOptions::new(ImageFormat::Png, Some((500, 700)))
+        };
+        let frame = render::Frame::View {
+            view,
+            segments: Some(segments),
+        };
+        let mut out = Vec::new();
+        render::render_framed(
+            &mut drawing,
+            frame,
+            &fills,
+            &st,
+            &opts,
+            &mut out,
+            &mut NoProgress,
+        )
+        .unwrap();
+        decode(&out)
+    };
+    let banded = png(render::BANDED_SEGMENTS, 1);
+    for threads in [2, 3] {
+        assert!(banded == png(render::BANDED_SEGMENTS, threads), "{threads}");
+    }
+    let whole = png(1, 2);
+    assert!(banded != whole, "banded: not one raster's bytes");
+    let differing = banded
+        .pixels()
+        .iter()
+        .zip(whole.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(differing < 500, "{differing} of 350,000 pixels differ");
+    // The layout and the tree are painted: not a white page.
+    let painted = banded
+        .pixels()
+        .iter()
+        .filter(|p| (p.red(), p.green(), p.blue()) != (255, 255, 255))
+        .count();
+    assert!(painted > 10_000, "{painted}");
 }

@@ -1112,10 +1112,10 @@ fn a_light_render_is_answered_while_heavy_ones_run() {
 fn a_client_that_never_reads_is_dropped() {
     let server = Server::start(&[]);
     let addr = &server.addr;
-    let body =
-        json!({"source": example("abop-1.24a.lsys"), "kind": "lsys", "depth": 7}).to_string();
+    let body = json!({"source": example("hilbert.lsys"), "kind": "lsys", "depth": 9}).to_string();
     let one = request(addr, "POST", "/api/render", &[], body.as_bytes());
     assert_eq!(one.status, 200);
+    // A merged SVG of a picture's worth of lines (Hilbert's are 1.4 px).
     let size = one.body.len();
     assert!(size > 1_000_000, "{size}");
     let n = 40;

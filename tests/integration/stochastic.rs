@@ -531,18 +531,26 @@ fn a_tiny_probability_is_not_printed_as_zero() {
     assert!(!text.contains("probability 0"), "{text}");
 }
 
-/// An SVG that even a stochastic system's fewest segments overflow is
-/// refused before any derivation: abop-1.27 (each F becomes 5, 3 or 3 F)
-/// draws at least 3^16 = 43,046,721 segments at depth 16, over the 10^7
-/// an SVG may hold; at depth 14 (at least 4,782,969) it is not refused
-/// on that ground before deriving.
+/// An `--exact` SVG (a line a segment) that even a stochastic system's
+/// fewest segments overflow is refused before any derivation: abop-1.27
+/// (each F becomes 5, 3 or 3 F) draws at least 3^16 = 43,046,721 segments
+/// at depth 16, over the 10^7 an SVG may hold; at depth 14 (at least
+/// 4,782,969) it is not refused on that ground before deriving. (Without
+/// `--exact` the SVG is merged and its lines are counted as written.)
 #[test]
 fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
     let dir = tempfile::tempdir().unwrap();
     let fig = manifest_path("examples/abop-1.27.lsys");
     let out = Command::cargo_bin("stlc")
         .unwrap()
-        .args(["render", fig.to_str().unwrap(), "--depth", "16", "-o"])
+        .args([
+            "render",
+            fig.to_str().unwrap(),
+            "--exact",
+            "--depth",
+            "16",
+            "-o",
+        ])
         .arg(dir.path().join("a.svg"))
         .output()
         .unwrap();
@@ -559,6 +567,7 @@ fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
         .args([
             "render",
             fig.to_str().unwrap(),
+            "--exact",
             "--depth",
             "6",
             "--max-svg-segments",
@@ -574,6 +583,7 @@ fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
         .args([
             "render",
             fig.to_str().unwrap(),
+            "--exact",
             "--depth",
             "5",
             "--max-svg-segments",

@@ -37,6 +37,8 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, Stroke, Transform,
 };
 
+pub use bands::BAND_ROWS;
+
 use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, Style, Width, stroke_px};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
@@ -44,8 +46,10 @@ use crate::diag::{Diagnostic, RenderError};
 use crate::turtle::Fill;
 use crate::turtle::{Point, Segment, Turtle};
 
+mod bands;
 mod raster;
 
+use bands::{Canvas, Ink, Op, Router};
 use raster::Recent;
 
 // ---------------------------------------------------------------------------
@@ -53,10 +57,17 @@ use raster::Recent;
 
 /// A turtle that paints onto a raster and encodes it as PNG.
 pub struct PngTurtle {
-    pixmap: Pixmap,
+    /// The raster, whole or in bands, or the band threads' queues.
+    canvas: Canvas,
     fit: Fit,
     width: Width,
-    paint: Paint<'static>,
+    /// The stroke paint and colour.
+    ink: Ink,
+    /// Blots not yet handed to the bands (banded canvases only).
+    blots: Vec<(Point, Point, f64)>,
+    /// Banded canvases: the batch being split into the bands' paths (in
+    /// place of `batch`).
+    router: Option<Router>,
     /// The path being collected: all its segments share `batch_width`.
     batch: PathBuilder,
     batch_width: f64,
@@ -75,8 +86,8 @@ pub struct PngTurtle {
     pen: Option<Pen>,
     /// Level of detail in canvas units ([`Turtle::detail`]), `None`: exact.
     detail: Option<f64>,
-    /// The stroke colour, for blots painted straight into the raster.
-    ink: Rgb,
+    /// The raster's shorter side (a little less), in pixels.
+    short_side: f64,
     /// A stroke has covered every pixel: the raster is the stroke colour
     /// and nothing drawn later can change it.
     covered: bool,
@@ -95,26 +106,46 @@ struct Pen {
 
 impl PngTurtle {
     /// A `fit.width` x `fit.height` raster filled with the background
-    /// (transparent when there is none).
+    /// (transparent when there is none), painted whole.
     pub fn new(fit: Fit, style: &Style) -> Result<PngTurtle, Diagnostics> {
-        let mut pixmap = Pixmap::new(fit.width, fit.height).ok_or_else(|| {
-            Diagnostic::error(RenderError::NoRaster {
-                width: fit.width,
-                height: fit.height,
-            })
-            .with_help("ask for a smaller `--size`")
-        })?;
-        if let Some(bg) = style.background {
-            pixmap.fill(color(bg));
-        }
+        Ok(PngTurtle::on(
+            Canvas::Whole(raster(fit, style)?),
+            fit,
+            style,
+        ))
+    }
+
+    /// The same raster painted in bands of [`BAND_ROWS`] rows, one after
+    /// the other: the pixels [`draw_in_threads`] paints with any number of
+    /// threads.
+    pub fn banded(fit: Fit, style: &Style) -> Result<PngTurtle, Diagnostics> {
+        Ok(PngTurtle::on(
+            Canvas::Bands(raster(fit, style)?),
+            fit,
+            style,
+        ))
+    }
+
+    /// A turtle painting on `canvas`.
+    fn on(canvas: Canvas, fit: Fit, style: &Style) -> PngTurtle {
+        let router = match canvas {
+            Canvas::Whole(_) => None,
+            _ => Some(Router::new(fit.height)),
+        };
         let mut paint = Paint::default();
         paint.set_color(color(style.stroke));
         paint.anti_alias = true;
-        Ok(PngTurtle {
-            pixmap,
+        PngTurtle {
+            canvas,
             fit,
             width: style.width,
-            paint,
+            ink: Ink {
+                paint,
+                rgb: style.stroke,
+                width: fit.width,
+            },
+            blots: Vec::new(),
+            router,
             batch: PathBuilder::new(),
             batch_width: 0.0,
             batch_len: 0,
@@ -125,16 +156,21 @@ impl PngTurtle {
             last_to: None,
             pen: None,
             detail: None,
-            ink: style.stroke,
+            short_side: 0.99 * f64::from(fit.width.min(fit.height)),
             covered: false,
-        })
+        }
     }
 
     /// The same turtle asking for a level of detail of `px` output pixels
     /// (see [`Turtle::detail`]); `None` draws every segment.
     pub fn with_detail(mut self, px: Option<f64>) -> Self {
-        self.detail = px.map(|px| px / self.fit.scale);
+        self.set_detail(px);
         self
+    }
+
+    /// Asks for a level of detail of `px` output pixels from now on.
+    pub fn set_detail(&mut self, px: Option<f64>) {
+        self.detail = px.map(|px| px / self.fit.scale);
     }
 
     // -----------------------------------------------------------------------
@@ -155,17 +191,29 @@ impl PngTurtle {
                 pb.close();
             }
         }
-        if let Some(path) = pb.finish() {
-            let mut paint = Paint::default();
-            paint.set_color(color(fill.color));
-            paint.anti_alias = true;
-            self.pixmap.fill_path(
-                &path,
-                &paint,
-                FillRule::EvenOdd,
-                Transform::identity(),
-                None,
-            );
+        let Some(path) = pb.finish() else {
+            return;
+        };
+        match &mut self.canvas {
+            Canvas::Whole(pixmap) => {
+                let mut paint = Paint::default();
+                paint.set_color(color(fill.color));
+                paint.anti_alias = true;
+                pixmap.fill_path(
+                    &path,
+                    &paint,
+                    FillRule::EvenOdd,
+                    Transform::identity(),
+                    None,
+                );
+            }
+            canvas => canvas.send(
+                Op::Fill {
+                    path: std::sync::Arc::new(path),
+                    color: color(fill.color),
+                },
+                &self.ink,
+            ),
         }
     }
 
@@ -179,18 +227,40 @@ impl PngTurtle {
         self.batch_len = 0;
         self.batch_ink = 0.0;
         self.last_to = None;
-        if let Some(path) = batch.finish() {
+        self.send_blots();
+        if let Some(router) = &mut self.router {
+            let paths = router.take();
+            if !paths.is_empty() {
+                self.paths += 1;
+                let width = self.batch_width as f32;
+                self.canvas.send(Op::Stroke { paths, width }, &self.ink);
+            }
+            return;
+        }
+        let Some(path) = batch.finish() else {
+            return;
+        };
+        self.paths += 1;
+        if let Canvas::Whole(pixmap) = &mut self.canvas {
             let stroke = Stroke {
                 width: self.batch_width as f32,
                 line_cap: LineCap::Round,
                 line_join: LineJoin::Round,
                 ..Stroke::default()
             };
-            self.pixmap
-                .stroke_path(&path, &self.paint, &stroke, Transform::identity(), None);
-            self.paths += 1;
-            // Keep the allocation for the next batch.
-            self.batch = Path::clear(path);
+            pixmap.stroke_path(&path, &self.ink.paint, &stroke, Transform::identity(), None);
+        }
+        // Keep the allocation for the next batch.
+        self.batch = Path::clear(path);
+    }
+
+    /// Hands the blots gathered so far to the bands (a whole raster has
+    /// none waiting: it stamps them at once).
+    fn send_blots(&mut self) {
+        if !self.blots.is_empty() {
+            let blots = std::mem::take(&mut self.blots);
+            self.canvas
+                .send(Op::Blots(std::sync::Arc::new(blots)), &self.ink);
         }
     }
 
@@ -205,17 +275,37 @@ impl PngTurtle {
         self.batch_ink = 0.0;
         self.pen = None;
         self.last_to = None;
-        self.pixmap.fill(color(self.ink));
+        self.blots.clear();
+        if let Some(router) = &mut self.router {
+            router.clear();
+        }
+        match &mut self.canvas {
+            Canvas::Whole(pixmap) => pixmap.fill(color(self.ink.rgb)),
+            canvas => canvas.send(Op::Cover, &self.ink),
+        }
         self.covered = true;
     }
 
     /// Ends the open subpath: writes the pen's pending end point, so the
     /// exact end of every run is in the path.
     fn end_subpath(&mut self) {
-        if let Some(pen) = self.pen.take()
-            && pen.pending
-        {
-            self.batch.line_to(pen.at.x as f32, pen.at.y as f32);
+        if let Some(pen) = self.pen.take() {
+            if pen.pending {
+                self.put(pen.at, false);
+            }
+            if let Some(router) = &mut self.router {
+                router.end(self.batch_width as f32);
+            }
+        }
+    }
+
+    /// Writes a vertex of the batch (a subpath's start if `start`).
+    #[inline]
+    fn put(&mut self, p: Point, start: bool) {
+        match &mut self.router {
+            Some(router) => router.point(p.x as f32, p.y as f32),
+            None if start => self.batch.move_to(p.x as f32, p.y as f32),
+            None => self.batch.line_to(p.x as f32, p.y as f32),
         }
     }
 
@@ -231,7 +321,7 @@ impl PngTurtle {
         if dx * dx + dy * dy >= FOLD_PX * FOLD_PX {
             pen.kept = q;
             pen.pending = false;
-            self.batch.line_to(q.x as f32, q.y as f32);
+            self.put(q, false);
         } else {
             pen.pending = true;
         }
@@ -246,31 +336,95 @@ impl PngTurtle {
     /// of tiny-skia's `encode_png` (same bytes), which would copy the
     /// whole pixmap first: a 16384 x 16384 picture peaks at its 1 GiB
     /// pixmap plus the compressed bytes, not at twice that.
-    pub fn finish(mut self) -> Result<Vec<u8>, Diagnostics> {
-        self.flush();
-        let (w, h) = (self.pixmap.width(), self.pixmap.height());
-        let rgba = self.pixmap.take_demultiplied();
-        let mut data = Vec::new();
-        let mut encoder = png::Encoder::new(&mut data, w, h);
-        encoder.set_color(png::ColorType::Rgba);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder
-            .write_header()
-            .and_then(|mut writer| writer.write_image_data(&rgba))
-            .map_err(|e| {
-                Diagnostic::error(RenderError::PngEncoding {
-                    error: e.to_string(),
-                })
-            })?;
-        Ok(data)
+    pub fn finish(self) -> Result<Vec<u8>, Diagnostics> {
+        let (width, height) = (self.fit.width, self.fit.height);
+        let pixmap = self
+            .into_raster()
+            .ok_or_else(|| Diagnostic::error(RenderError::NoRaster { width, height }))?;
+        encode(pixmap)
     }
 
-    /// Strokes what is left and hands back the raster (for tests and
-    /// callers that want pixels, not bytes).
-    pub fn into_pixmap(mut self) -> Pixmap {
+    /// Strokes what is left and hands back the raster; `None` for the
+    /// turtle of [`draw_in_threads`], whose threads hold the raster.
+    pub fn into_raster(mut self) -> Option<Pixmap> {
         self.flush();
-        self.pixmap
+        match self.canvas {
+            Canvas::Whole(pixmap) | Canvas::Bands(pixmap) => Some(pixmap),
+            Canvas::Sent(_) => None,
+        }
     }
+}
+
+/// Draws with `threads` threads: a turtle painting in bands (the pixels
+/// of [`PngTurtle::banded`], whatever the number of threads), handed to
+/// `draw`, then the raster once every band has painted everything. More
+/// than one thread only where threads exist (not in the web build).
+pub fn draw_in_threads(
+    fit: Fit,
+    style: &Style,
+    threads: usize,
+    draw: impl FnOnce(&mut PngTurtle) -> Result<(), Diagnostics>,
+) -> Result<Pixmap, Diagnostics> {
+    let threads = if cfg!(target_family = "wasm") {
+        1
+    } else {
+        threads.max(1)
+    };
+    if threads == 1 {
+        let mut turtle = PngTurtle::banded(fit, style)?;
+        draw(&mut turtle)?;
+        let (width, height) = (fit.width, fit.height);
+        return turtle
+            .into_raster()
+            .ok_or_else(|| Diagnostic::error(RenderError::NoRaster { width, height }).into());
+    }
+    let mut pixmap = raster(fit, style)?;
+    let probe = PngTurtle::on(Canvas::Sent(Vec::new()), fit, style);
+    bands::in_threads(&mut pixmap, threads, &probe.ink, |canvas| {
+        let mut turtle = PngTurtle::on(canvas, fit, style);
+        let drawn = draw(&mut turtle);
+        // Flushes the last batch; dropping the queues ends the threads.
+        turtle.into_raster();
+        drawn
+    })?;
+    Ok(pixmap)
+}
+
+/// A `fit.width` x `fit.height` raster filled with the background
+/// (transparent when there is none).
+fn raster(fit: Fit, style: &Style) -> Result<Pixmap, Diagnostics> {
+    let mut pixmap = Pixmap::new(fit.width, fit.height).ok_or_else(|| {
+        Diagnostic::error(RenderError::NoRaster {
+            width: fit.width,
+            height: fit.height,
+        })
+        .with_help("ask for a smaller `--size`")
+    })?;
+    if let Some(bg) = style.background {
+        pixmap.fill(color(bg));
+    }
+    Ok(pixmap)
+}
+
+/// The raster as PNG bytes: demultiplied in place (no copy of the
+/// pixmap) and encoded with tiny-skia's own `encode_png` settings, so the
+/// bytes are the same.
+pub fn encode(pixmap: Pixmap) -> Result<Vec<u8>, Diagnostics> {
+    let (w, h) = (pixmap.width(), pixmap.height());
+    let rgba = pixmap.take_demultiplied();
+    let mut data = Vec::new();
+    let mut encoder = png::Encoder::new(&mut data, w, h);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder
+        .write_header()
+        .and_then(|mut writer| writer.write_image_data(&rgba))
+        .map_err(|e| {
+            Diagnostic::error(RenderError::PngEncoding {
+                error: e.to_string(),
+            })
+        })?;
+    Ok(data)
 }
 
 impl Turtle for PngTurtle {
@@ -291,7 +445,26 @@ impl Turtle for PngTurtle {
             return;
         }
         let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
-        raster::stamp(&mut self.pixmap, self.ink, from, to, radius);
+        match &mut self.canvas {
+            Canvas::Whole(pixmap) => {
+                let (width, rows) = (pixmap.width(), 0..pixmap.height());
+                raster::stamp(
+                    pixmap.data_mut(),
+                    width,
+                    rows,
+                    self.ink.rgb,
+                    from,
+                    to,
+                    radius,
+                );
+            }
+            _ => {
+                self.blots.push((from, to, radius));
+                if self.blots.len() >= BATCH_SEGMENTS {
+                    self.send_blots();
+                }
+            }
+        }
     }
 
     fn segment(&mut self, seg: Segment) {
@@ -304,7 +477,12 @@ impl Turtle for PngTurtle {
             return;
         }
         let width = stroke_px(&self.width, self.fit.scale, seg.order);
-        if width / 2.0 >= raster::farthest_corner(&self.pixmap, from, to) {
+        // A stroke narrower than the picture's shorter side cannot reach
+        // every corner (a capsule holding a rectangle is at least as wide
+        // as its shorter side), so the corners need no measuring.
+        if width >= self.short_side
+            && width / 2.0 >= raster::farthest_corner((self.fit.width, self.fit.height), from, to)
+        {
             self.cover();
             return;
         }
@@ -334,7 +512,7 @@ impl Turtle for PngTurtle {
         self.batch_width = width;
         if self.last_to != Some(seg.from) {
             self.end_subpath();
-            self.batch.move_to(from.x as f32, from.y as f32);
+            self.put(from, true);
             self.pen = Some(Pen {
                 kept: from,
                 at: from,
@@ -376,207 +554,4 @@ fn color(c: Rgb) -> Color {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::render::Style;
-
-    fn turtle() -> PngTurtle {
-        wide_turtle(1.0)
-    }
-
-    /// Draws a connected run through `points` (output pixels, scale 1).
-    fn run(t: &mut PngTurtle, points: &[Point]) {
-        for w in points.windows(2) {
-            t.segment(Segment {
-                from: w[0],
-                to: w[1],
-                order: 0,
-            });
-        }
-        t.end_subpath();
-    }
-
-    #[test]
-    fn a_run_of_sub_pixel_segments_folds_to_its_exact_end() {
-        // 100 steps of 0.001 px zigzagging right: 0.1 px in all, one line.
-        let points: Vec<Point> = (0..=100)
-            .map(|i| Point::new(10.0 + f64::from(i) * 0.001, 10.0 + f64::from(i % 2) * 0.01))
-            .collect();
-        let mut t = turtle();
-        run(&mut t, &points);
-        assert_eq!(t.batch.len(), 2, "move and one line");
-        let end = t.batch.last_point().unwrap();
-        assert_eq!((end.x, end.y), (10.1, 10.0));
-    }
-
-    #[test]
-    fn segments_of_the_tolerance_or_longer_are_all_kept() {
-        let points: Vec<Point> = (0..=40)
-            .map(|i| Point::new(10.0 + f64::from(i) * FOLD_PX, 20.0 + f64::from(i % 2)))
-            .collect();
-        let mut t = turtle();
-        run(&mut t, &points);
-        assert_eq!(t.batch.len(), points.len());
-    }
-
-    #[test]
-    fn a_long_run_keeps_a_vertex_per_tolerance_and_its_end() {
-        // 1000 steps of 0.01 px along a line: 10 px, a vertex every
-        // 0.25 px (25 steps; float sums may need one more step).
-        let points: Vec<Point> = (0..=1000)
-            .map(|i| Point::new(5.0 + f64::from(i) * 0.01, 50.0))
-            .collect();
-        let mut t = turtle();
-        run(&mut t, &points);
-        assert!((40..=42).contains(&t.batch.len()), "{}", t.batch.len());
-        let end = t.batch.last_point().unwrap();
-        assert_eq!((end.x, end.y), (15.0, 50.0));
-    }
-
-    #[test]
-    fn runs_do_not_fold_across_a_jump() {
-        // Two 0.1 px runs 0.05 px apart: two subpaths, both drawn.
-        let mut t = turtle();
-        run(&mut t, &[Point::new(10.0, 10.0), Point::new(10.1, 10.0)]);
-        run(&mut t, &[Point::new(10.15, 10.0), Point::new(10.25, 10.0)]);
-        assert_eq!(t.batch.len(), 4);
-    }
-
-    /// A blot is a capsule painted by distance: full ink within its
-    /// radius less half a pixel, half at its radius, none a pixel out;
-    /// two blots accumulate. A sparse stand-in is an ordinary segment.
-    #[test]
-    fn blots_paint_by_distance_and_accumulate() {
-        // Stems 1 px, so blots are 2 px wide: radius 1 around (10.5, 10.5).
-        let mut t = turtle();
-        let dot = stem(10.5, 10.5, 10.5, 10.5);
-        t.blot(dot, 5.0);
-        let p = t.into_pixmap();
-        let at = |p: &Pixmap, x, y| p.pixel(x, y).unwrap().red();
-        assert_eq!(at(&p, 10, 10), 0, "centre: full ink");
-        // Centre 1 px away: coverage 0.5, 255 * (1 - 128/255) rounded.
-        assert_eq!(at(&p, 11, 10), 127);
-        assert_eq!(at(&p, 10, 9), 127);
-        assert_eq!(at(&p, 12, 10), 255, "1.5 px out: untouched");
-        let mut twice = turtle();
-        twice.blot(dot, 5.0);
-        twice.blot(dot, 5.0);
-        assert_eq!(at(&twice.into_pixmap(), 11, 10), 63, "source-over twice");
-        // Density under BLOT_DENSITY: a 1 px hairline segment, not a blot.
-        let mut sparse = turtle();
-        sparse.blot(stem(20.0, 10.5, 40.0, 10.5), 1.0);
-        assert_eq!(sparse.paths, 0);
-        sparse.flush();
-        assert_eq!(sparse.paths, 1);
-        let p = sparse.into_pixmap();
-        assert!(at(&p, 30, 10) < 128 && at(&p, 30, 12) == 255);
-    }
-
-    fn wide_turtle(width: f64) -> PngTurtle {
-        let fit = Fit {
-            width: 100,
-            height: 100,
-            scale: 1.0,
-            dx: 0.0,
-            dy: 0.0,
-        };
-        let style = Style {
-            stroke: Rgb::BLACK,
-            background: Some(Rgb::WHITE),
-            width: Width::Pixels(width),
-        };
-        PngTurtle::new(fit, &style).unwrap()
-    }
-
-    fn stem(ax: f64, ay: f64, bx: f64, by: f64) -> Segment {
-        Segment {
-            from: Point::new(ax, ay),
-            to: Point::new(bx, by),
-            order: 0,
-        }
-    }
-
-    /// A stroke wider than the picture many times over (tiny-skia 0.12
-    /// panics near 10^10 px) paints every pixel the stroke colour, with no
-    /// path stroked, and later strokes change nothing. One whose half
-    /// width falls short of the farthest corner is a real stroke: a 100 x
-    /// 100 raster's farthest corner from the point (50, 50) is 70.7 px away.
-    #[test]
-    fn a_stroke_wider_than_the_picture_covers_it_without_the_rasteriser() {
-        let all = |p: &Pixmap, v: u8| {
-            (0..100).all(|y| (0..100).all(|x| p.pixel(x, y).unwrap().red() == v))
-        };
-        for width in [1.0e10, 1.0e300, 142.0] {
-            let mut t = wide_turtle(width);
-            t.segment(stem(50.0, 50.0, 50.0, 50.0));
-            t.segment(stem(10.0, 10.0, 20.0, 20.0));
-            assert_eq!(t.paths, 0, "{width}");
-            assert!(t.covered);
-            assert!(all(&t.into_pixmap(), 0), "{width}: all stroke colour");
-        }
-        let mut t = wide_turtle(140.0);
-        t.segment(stem(50.0, 50.0, 50.0, 50.0));
-        assert!(!t.covered, "70 < 70.7: a stroke");
-        t.flush();
-        assert_eq!(t.paths, 1);
-        let mut t = wide_turtle(130.0);
-        t.segment(stem(50.0, 50.0, 50.0, 50.0));
-        let p = t.into_pixmap();
-        // The corner pixel's centre is 70.0 px from (50, 50), 5 px out.
-        assert_eq!(p.pixel(0, 0).unwrap().red(), 255);
-        assert_eq!(p.pixel(50, 50).unwrap().red(), 0);
-        // Far outside the picture, too far to reach it even 10^10 px wide:
-        // drawn at the widest the rasteriser takes, and nothing panics.
-        let mut t = wide_turtle(1.0e10);
-        t.segment(stem(1.0e11, 0.0, 1.0e11, 10.0));
-        assert!(!t.covered);
-        assert!(all(&t.into_pixmap(), 255));
-    }
-
-    /// One path unions its strokes, so the same wide stem drawn 10,000 times
-    /// (more than a batch) paints exactly what drawing it once paints, and
-    /// is stroked once.
-    #[test]
-    fn a_repeated_wide_stem_paints_what_one_paints_and_is_stroked_once() {
-        let mut once = wide_turtle(12.0);
-        once.segment(stem(20.0, 80.0, 70.0, 30.0));
-        let mut many = wide_turtle(12.0);
-        for _ in 0..10_000 {
-            many.segment(stem(20.0, 80.0, 70.0, 30.0));
-            many.segment(stem(70.0, 30.0, 60.0, 10.0));
-        }
-        many.flush();
-        assert_eq!(many.paths, 1);
-        let mut twice = wide_turtle(12.0);
-        twice.segment(stem(20.0, 80.0, 70.0, 30.0));
-        twice.segment(stem(70.0, 30.0, 60.0, 10.0));
-        assert_eq!(many.into_pixmap(), twice.into_pixmap());
-        assert_ne!(
-            once.into_pixmap().data(),
-            wide_turtle(12.0).into_pixmap().data()
-        );
-    }
-
-    /// Overlapping wide strokes are split into paths of at most
-    /// INK_PER_BATCH images' worth of ink: 100 x 100 px allows 20,000 px;
-    /// each 90 px stroke 10 px wide counts 10 x (90 + 10) = 1,000, so 20 go
-    /// in a path and 100 distinct strokes make 5 paths.
-    #[test]
-    fn overlapping_wide_strokes_are_drawn_in_paths_of_bounded_ink() {
-        let mut t = wide_turtle(10.0);
-        for i in 0..100 {
-            let x = 5.0 + f64::from(i) * 0.5;
-            t.segment(stem(x, 5.0, x, 95.0));
-        }
-        t.flush();
-        assert_eq!(t.paths, 5);
-        // Hairlines never count as wide: 100 of them go in one path.
-        let mut h = turtle();
-        for i in 0..100 {
-            let x = 5.0 + f64::from(i) * 0.5;
-            h.segment(stem(x, 5.0, x, 95.0));
-        }
-        h.flush();
-        assert_eq!(h.paths, 1);
-    }
-}
+mod tests;

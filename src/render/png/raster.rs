@@ -2,8 +2,6 @@
 //! by distance, the test for a stroke that covers the whole picture, and
 //! the table of recently drawn wide capsules. Points are output pixels.
 
-use tiny_skia::Pixmap;
-
 use crate::color::Rgb;
 use crate::turtle::Point;
 
@@ -12,18 +10,33 @@ use crate::turtle::Point;
 /// (clamped to 0..1), blended source-over in `ink`. Overlapping blots
 /// accumulate, as the hairlines they stand for do. A few dozen pixels
 /// each, instead of a stroked path's outline and scan conversion.
-pub(super) fn stamp(pixmap: &mut Pixmap, ink: Rgb, a: Point, b: Point, radius: f64) {
-    let (w, h) = (f64::from(pixmap.width()), f64::from(pixmap.height()));
+///
+/// `rows` is the part of the picture `data` holds: a band of whole rows
+/// (`data` is `width` pixels wide, its first row the picture's row
+/// `rows.start`); `a`, `b` are in the whole picture's pixels, so every
+/// pixel gets the same value whichever band paints it.
+pub(super) fn stamp(
+    data: &mut [u8],
+    width: u32,
+    rows: std::ops::Range<u32>,
+    ink: Rgb,
+    a: Point,
+    b: Point,
+    radius: f64,
+) {
+    let w = f64::from(width);
+    let (top, bottom) = (f64::from(rows.start), f64::from(rows.end));
     let reach = radius + 0.5;
     let (lo_x, hi_x) = (a.x.min(b.x) - reach, a.x.max(b.x) + reach);
     let (lo_y, hi_y) = (a.y.min(b.y) - reach, a.y.max(b.y) + reach);
-    if hi_x < 0.0 || hi_y < 0.0 || lo_x >= w || lo_y >= h {
+    if hi_x < 0.0 || hi_y < top || lo_x >= w || lo_y >= bottom {
         return;
     }
     let x0 = libm::floor(lo_x.max(0.0)) as usize;
-    let y0 = libm::floor(lo_y.max(0.0)) as usize;
+    let y0 = libm::floor(lo_y.max(top)) as usize;
     let x1 = libm::ceil(hi_x.min(w - 1.0)) as usize;
-    let y1 = libm::ceil(hi_y.min(h - 1.0)) as usize;
+    let y1 = libm::ceil(hi_y.min(bottom - 1.0)) as usize;
+    let first_row = rows.start as usize;
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     let len2 = dx * dx + dy * dy;
     let inv = if len2 > 0.0 { 1.0 / len2 } else { 0.0 };
@@ -34,9 +47,8 @@ pub(super) fn stamp(pixmap: &mut Pixmap, ink: Rgb, a: Point, b: Point, radius: f
     } else {
         -1.0
     };
-    let stride = pixmap.width() as usize;
+    let stride = width as usize;
     let src = [u32::from(ink.r), u32::from(ink.g), u32::from(ink.b), 255];
-    let data = pixmap.data_mut();
     for y in y0..=y1 {
         let py = y as f64 + 0.5;
         for x in x0..=x1 {
@@ -53,7 +65,7 @@ pub(super) fn stamp(pixmap: &mut Pixmap, ink: Rgb, a: Point, b: Point, radius: f
                 (reach - libm::sqrt(d2)).clamp(0.0, 1.0)
             };
             let c = (cov * 255.0 + 0.5) as u32;
-            let i = (y * stride + x) * 4;
+            let i = ((y - first_row) * stride + x) * 4;
             for (ch, &s) in src.iter().enumerate() {
                 let d = u32::from(data[i + ch]);
                 data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
@@ -66,8 +78,8 @@ pub(super) fn stamp(pixmap: &mut Pixmap, ink: Rgb, a: Point, b: Point, radius: f
 /// the distance to a segment is convex, so its largest value over the
 /// raster is at a corner.
 #[inline]
-pub(super) fn farthest_corner(pixmap: &Pixmap, a: Point, b: Point) -> f64 {
-    let (w, h) = (f64::from(pixmap.width()), f64::from(pixmap.height()));
+pub(super) fn farthest_corner((width, height): (u32, u32), a: Point, b: Point) -> f64 {
+    let (w, h) = (f64::from(width), f64::from(height));
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     let len2 = dx * dx + dy * dy;
     [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)]
@@ -134,13 +146,13 @@ mod tests {
     /// Corner distances worked by hand on a 100 x 50 raster.
     #[test]
     fn the_farthest_corner_is_measured_to_the_segment_not_its_ends() {
-        let p = Pixmap::new(100, 50).unwrap();
+        let p = (100, 50);
         let pt = Point::new;
         // From the centre point: every corner is hypot(50, 25) away.
-        let c = farthest_corner(&p, pt(50.0, 25.0), pt(50.0, 25.0));
+        let c = farthest_corner(p, pt(50.0, 25.0), pt(50.0, 25.0));
         assert!((c - libm::hypot(50.0, 25.0)).abs() < 1e-12);
         // A horizontal segment across the middle: each corner is 25 away.
-        let c = farthest_corner(&p, pt(0.0, 25.0), pt(100.0, 25.0));
+        let c = farthest_corner(p, pt(0.0, 25.0), pt(100.0, 25.0));
         assert!((c - 25.0).abs() < 1e-12);
     }
 
