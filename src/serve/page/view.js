@@ -3,6 +3,7 @@
 // fit). Zoom and pan move only the view: nothing is rendered again.
 
 import { byId, el } from './dom.js';
+import { createTreeCanvas } from './bigtree.js';
 
 // The box the picture lives in, in canvas units.
 function pictureBox(answer) {
@@ -90,6 +91,8 @@ function gridStep(span) {
 export function createView(app) {
   const { state } = app;
   const preview = byId('preview');
+  // A big grown tree's canvas (bigtree.js): the answer's SVG has no tree.
+  const tree = createTreeCanvas();
 
   // The shapes' places in the text come with each good answer (layout.js's
   // doc, the one drawing edits start from); an answer to a text older than
@@ -140,9 +143,12 @@ export function createView(app) {
       state.view = state.fitView.slice();
       state.refit = false;
     }
+    // A big tree is drawn from its stems, over the picture's box, at the
+    // screen's resolution (replay.show below draws it).
+    if (a.tree_in_svg === false) tree.place(libLayer, a, box, (window.devicePixelRatio || 1) / unitsPerPixel());
     el('g', { class: 'grid' }, preview);
     el('g', { class: 'replay-layer' }, preview);
-    if (grownNoLayout) app.replay.showStems(Infinity);
+    if (grownNoLayout && a.tree_in_svg !== false) app.replay.showStems(Infinity);
     el('g', { class: 'overlay' }, preview);
     drawOverlay();
     setViewBox();
@@ -286,5 +292,5 @@ export function createView(app) {
   byId('zoom-out').addEventListener('click', () => zoom(1.25));
   byId('fit').addEventListener('click', fit);
 
-  return { element: preview, draw, stale, forget, drawOverlay, overlay, unitsPerPixel, toCanvas, pan, fit, hitTest };
+  return { element: preview, tree, draw, stale, forget, drawOverlay, overlay, unitsPerPixel, toCanvas, pan, fit, hitTest };
 }

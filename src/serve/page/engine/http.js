@@ -1,15 +1,29 @@
 // The engine over HTTP: the pipeline runs in `stlc serve`, the server that
 // served this page (the interface: index.js). Nothing leaves 127.0.0.1.
 
+// The compact render answer of a big grown tree (docs/serve.md, "Big
+// trees"): a JSON head, then `growth.stems` as doubles, put back into the
+// answer. The stems stay a view of the body's bytes (a Float64Array): no
+// numbers to parse.
+const COMPACT = 'application/x-stlc-render';
+
+function unpack(buf) {
+  const n = new DataView(buf).getUint32(0, true);
+  const head = JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 4, n)));
+  const answer = head.answer;
+  answer.growth.stems = new Float64Array(buf, 4 + n, head.stems);
+  return answer;
+}
+
 /**
  * @param {{token: string}} options the page's token, sent as X-Stlc-Token
  * @returns {import('./index.js').Engine}
  */
 export function createHttpEngine({ token }) {
-  function post(path, body, signal) {
+  function post(path, body, signal, accept = 'application/json') {
     return fetch(path, {
       method: 'POST',
-      headers: { 'Content-Type': 'application/json', 'X-Stlc-Token': token },
+      headers: { 'Content-Type': 'application/json', 'X-Stlc-Token': token, Accept: accept },
       body: JSON.stringify(body),
       signal,
     });
@@ -23,8 +37,10 @@ export function createHttpEngine({ token }) {
 
   return {
     async render(request, { signal } = {}) {
-      const res = await post('/api/render', request, signal);
+      // A big grown tree may come compact, anything else as JSON.
+      const res = await post('/api/render', request, signal, `${COMPACT}, application/json`);
       if (!res.ok) return refused(res);
+      if ((res.headers.get('Content-Type') || '').startsWith(COMPACT)) return unpack(await res.arrayBuffer());
       return res.json();
     },
 
