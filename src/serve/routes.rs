@@ -219,7 +219,7 @@ async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
         Ended::Done(Ok((answer, _))) if compact && !answer.tree_in_svg => {
             match compact::body(answer) {
                 Ok(bytes) => http::answer(StatusCode::OK, compact::MEDIA, bytes),
-                Err(_) => http::error(StatusCode::INTERNAL_SERVER_ERROR, "cannot write the answer"),
+                Err(answer) => http::json(StatusCode::OK, &answer),
             }
         }
         Ended::Done(Ok((answer, _))) => http::json(StatusCode::OK, &answer),

@@ -12,12 +12,14 @@ use serde_json::{Value, json};
 use super::browser::{Browser, click, js, shot};
 use super::serve::{Server, render, request};
 
-/// An .od that grows `1 + 3k` stems for `M=1+3k` in a 400 x 400 square:
+/// An .od that grows `1 + 3k` stems for `M=1+3k` in a 1200 x 1200 square:
 /// one stem from the root, then `[-F][F][+F]` at every tip, bfs, until the
-/// next application would pass `M`.
+/// next application would pass `M`. Its stems shorten from 2.5 units by
+/// 0.01 an order: in the page's view of about 0.45 pixels a unit, the
+/// first orders are strokes over a pixel long, the rest dots.
 fn big(m: u64) -> String {
     format!(
-        "Big\n(200, 399)\nL=1(0) B=0.1(0) M={m}\nRULE\nR1: [-F][F][+F]\nLAYOUT\n(clGreen) Rectangle (0,0), 400, 400\nENDLAYOUT\n"
+        "Big\n(600, 1199)\nL=2.5(0.01) B=0.1(0) M={m}\nRULE\nR1: [-F][F][+F]\nLAYOUT\n(clGreen) Rectangle (0,0), 1200, 1200\nENDLAYOUT\n"
     )
 }
 
@@ -29,15 +31,17 @@ fn stems(a: &Value) -> u64 {
 /// head's answer with `growth.stems` put back.
 fn unpack(body: &[u8]) -> Value {
     let n = u32::from_le_bytes(body[..4].try_into().unwrap()) as usize;
-    assert_eq!((4 + n) % 8, 0, "the stems start on an 8-byte boundary");
+    assert_eq!((4 + n) % 4, 0, "the stems start on a 4-byte boundary");
     let head: Value = serde_json::from_slice(&body[4..4 + n]).unwrap();
     let mut answer = head["answer"].clone();
     assert_eq!(answer["growth"]["stems"], json!([]));
     let k = head["stems"].as_u64().unwrap() as usize;
-    assert_eq!(body.len(), 4 + n + 8 * k);
+    assert_eq!(body.len(), 4 + n + 4 * k);
     let numbers: Vec<f64> = body[4 + n..]
-        .chunks(8)
-        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .chunks(4)
+        .map(|c| f64::from(i32::from_le_bytes(c.try_into().unwrap())))
+        .enumerate()
+        .map(|(i, x)| if i % 6 == 5 { x } else { x / 1000.0 })
         .collect();
     answer["growth"]["stems"] = json!(numbers);
     answer
@@ -132,6 +136,7 @@ fn past_20000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
         compact.head
     );
     assert_eq!(unpack(&compact.body), a);
+    assert!(compact.body.len() < a.to_string().len() * 2 / 3);
 }
 
 /// Waits until the page shows the answer to its text and its tree canvas
@@ -169,18 +174,24 @@ async fn drawn(c: &Client) -> u64 {
     panic!("the page never drew the answer to its text");
 }
 
-/// The canvas's alpha at each canvas point (canvas units) in `points`, the
-/// number of inked pixels, and the mean colour of the pixels inked at
-/// least half.
+/// The tree's alpha (its strokes' canvas and its dots' canvas over it) at
+/// each canvas point (canvas units) in `points`, the number of inked
+/// pixels, and the mean colour of the pixels inked at least half.
 async fn ink(c: &Client, points: &[(f64, f64)]) -> (Vec<u8>, u64, [f64; 3]) {
     let v = js(
         c,
         &format!(
-            "const cv = document.querySelector('#preview [data-testid=tree-canvas]');
-             const fo = cv.parentNode;
+            "const strokes = document.querySelector('#preview [data-testid=tree-canvas]');
+             const dots = document.querySelector('#preview [data-testid=tree-dots]');
+             const cv = document.createElement('canvas');
+             [cv.width, cv.height] = [strokes.width, strokes.height];
+             const cx = cv.getContext('2d');
+             cx.drawImage(strokes, 0, 0);
+             cx.drawImage(dots, 0, 0);
+             const fo = strokes.closest('foreignObject');
              const [x0, y0, w] = ['x', 'y', 'width'].map((a) => Number(fo.getAttribute(a)));
              const k = cv.width / w;
-             const d = cv.getContext('2d').getImageData(0, 0, cv.width, cv.height).data;
+             const d = cx.getImageData(0, 0, cv.width, cv.height).data;
              let inked = 0; const rgb = [0, 0, 0]; let strong = 0;
              for (let i = 3; i < d.length; i += 4) {{
                if (d[i] > 0) inked++;
@@ -240,14 +251,14 @@ fn stem_list(a: &Value) -> Vec<Stem> {
         .collect()
 }
 
-/// Points of a 24 x 24 grid over the layout farther than 3 units from
-/// every stem in `stems`: where the canvas must have no ink.
+/// Points of a 25 x 25 grid over the layout farther than 8 units (over 3
+/// pixels) from every stem in `stems`: where the canvas must have no ink.
 fn bare(stems: &[Stem]) -> Vec<(f64, f64)> {
     let mut out = Vec::new();
-    for i in 0..24 {
-        for j in 0..24 {
-            let p = (8.0 + 16.0 * f64::from(i), 8.0 + 16.0 * f64::from(j));
-            if stems.iter().all(|&(a, b, _)| distance(p, a, b) > 3.0) {
+    for i in 0..25 {
+        for j in 0..25 {
+            let p = (24.0 + 48.0 * f64::from(i), 24.0 + 48.0 * f64::from(j));
+            if stems.iter().all(|&(a, b, _)| distance(p, a, b) > 8.0) {
                 out.push(p);
             }
         }
@@ -287,7 +298,14 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         let page = js(
             &c,
             "const a = window.stlc.state.answer;
-             return {compact: a.growth.stems instanceof Float64Array, n: a.growth.stems.length,
+             const inked = (id) => {
+               const c = document.querySelector(`#preview [data-testid=${id}]`);
+               const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+               let n = 0;
+               for (let i = 3; i < d.length; i += 4) if (d[i]) n++;
+               return n;
+             };
+             return {strokes: inked('tree-canvas'), dots: inked('tree-dots'), compact: a.growth.stems instanceof Float64Array, n: a.growth.stems.length,
                      paths: document.querySelectorAll('#preview .lib path[fill=\"none\"]').length,
                      layout: document.querySelectorAll('#preview .lib path[fill=\"#008000\"]').length,
                      canvases: document.querySelectorAll('#preview canvas').length,
@@ -298,7 +316,10 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         assert_eq!(page["n"], 6 * 30_001);
         assert_eq!(page["paths"], 0, "no stem in the SVG");
         assert_eq!(page["layout"], 1, "the layout under it");
-        assert_eq!(page["canvases"], 1);
+        assert_eq!(page["canvases"], 2, "strokes and dots");
+        // The first orders' stems are over a pixel long, the rest under.
+        assert!(page["strokes"].as_u64().unwrap() > 100, "{page}");
+        assert!(page["dots"].as_u64().unwrap() > 100, "{page}");
         assert_eq!(page["bed"], Value::Null);
         assert_eq!(
             page["label"],

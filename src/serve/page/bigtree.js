@@ -8,6 +8,11 @@
 // (a <foreignObject> over the picture's box, so zoom and pan move it with
 // the rest), a slice at a time: the page gets the thread back every few
 // milliseconds, and a newer answer or replay step stops an older drawing.
+// A stem shorter and thinner than a pixel is not stroked (a stroke costs
+// the canvas far more than the pixel it touches): its area, the coverage
+// an anti-aliased stroke would give it, is added to the pixel under its
+// middle on a second canvas over the first (a dot), as the library's PNG
+// renderer paints sub-pixel blots.
 //
 // Replay draws the stems up to a decision: growth order puts them first,
 // so a replay that moves on adds only the new stems.
@@ -45,9 +50,26 @@ export function stemsUpTo(g, k) {
   return lo;
 }
 
+// A canvas filling its parent, in `parent`.
+function canvasIn(parent, w, h, testid) {
+  const c = document.createElementNS(XHTML, 'canvas');
+  c.width = w;
+  c.height = h;
+  c.style.cssText = 'position:absolute;left:0;top:0;width:100%;height:100%';
+  c.dataset.testid = testid;
+  parent.appendChild(c);
+  return c;
+}
+
 export function createTreeCanvas() {
   let canvas = null;
   let ctx = null;
+  // The dots' canvas, and per pixel what its dots leave uncovered (1 - alpha).
+  let dots = null;
+  let keep = null;
+  let rgb = [0, 0, 0];
+  // The dots' pixels changed since they were last painted: x0, y0, x1, y1.
+  let dirty = null;
   // The stems, their colour, the canvas box (canvas units) and pixels a unit.
   let g = [];
   let colour = '#000';
@@ -68,15 +90,52 @@ export function createTreeCanvas() {
     const [w, h] = [box[2] - box[0], box[3] - box[1]];
     k = Math.min(pxPerUnit, MAX_SIDE / Math.max(w, h, 1e-9));
     const fo = el('foreignObject', { x: box[0], y: box[1], width: w, height: h, 'pointer-events': 'none', class: 'tree' }, layer);
-    canvas = document.createElementNS(XHTML, 'canvas');
-    canvas.width = Math.max(1, Math.round(w * k));
-    canvas.height = Math.max(1, Math.round(h * k));
-    canvas.style.cssText = 'display:block;width:100%;height:100%';
-    canvas.dataset.testid = 'tree-canvas';
-    fo.appendChild(canvas);
+    const div = document.createElementNS(XHTML, 'div');
+    div.style.cssText = 'position:relative;width:100%;height:100%';
+    fo.appendChild(div);
+    const [pw, ph] = [Math.max(1, Math.round(w * k)), Math.max(1, Math.round(h * k))];
+    canvas = canvasIn(div, pw, ph, 'tree-canvas');
+    dots = canvasIn(div, pw, ph, 'tree-dots');
     ctx = canvas.getContext('2d');
     ctx.lineJoin = 'round';
+    keep = new Float32Array(pw * ph);
+    const c = /^#([0-9a-f]{2})([0-9a-f]{2})([0-9a-f]{2})$/i.exec(colour);
+    rgb = c ? [1, 2, 3].map((i) => parseInt(c[i], 16)) : [0, 0, 0];
     drawn = 0;
+  }
+
+  // A dot for stem `o` (its offset in the stems) if it is under a pixel
+  // long and wide: true if it was one.
+  function dot(o) {
+    const [dx, dy] = [g[o + 2] - g[o], g[o + 3] - g[o + 1]];
+    const len = Math.sqrt(dx * dx + dy * dy) * k;
+    const wide = Math.max(g[o + 4] * k, HAIRLINE);
+    if (len >= 1 || wide > 1) return false;
+    const x = Math.floor(((g[o] + g[o + 2]) / 2 - box[0]) * k);
+    const y = Math.floor(((g[o + 1] + g[o + 3]) / 2 - box[1]) * k);
+    if (x < 0 || y < 0 || x >= dots.width || y >= dots.height) return true;
+    keep[y * dots.width + x] *= 1 - len * wide;
+    if (!dirty) dirty = [x, y, x + 1, y + 1];
+    else dirty = [Math.min(dirty[0], x), Math.min(dirty[1], y), Math.max(dirty[2], x + 1), Math.max(dirty[3], y + 1)];
+    return true;
+  }
+
+  // Paints the dots' changed pixels.
+  function paintDots() {
+    if (!dirty) return;
+    const [x0, y0, x1, y1] = dirty;
+    const img = new ImageData(x1 - x0, y1 - y0);
+    const d = img.data;
+    for (let y = y0, i = 0; y < y1; y++) {
+      for (let x = x0, p = y * dots.width + x0; x < x1; x++, p++, i += 4) {
+        d[i] = rgb[0];
+        d[i + 1] = rgb[1];
+        d[i + 2] = rgb[2];
+        d[i + 3] = Math.round(255 * (1 - keep[p]));
+      }
+    }
+    dots.getContext('2d').putImageData(img, x0, y0);
+    dirty = null;
   }
 
   // Strokes the path of stems `w` wide: round ends where a stroke is
@@ -93,6 +152,7 @@ export function createTreeCanvas() {
     ctx.beginPath();
     for (let s = from; s < to; s++) {
       const o = s * 6;
+      if (dot(o)) continue;
       if (g[o + 4] !== w) {
         strokeAt(w);
         ctx.beginPath();
@@ -109,6 +169,9 @@ export function createTreeCanvas() {
     ctx.clearRect(0, 0, canvas.width, canvas.height);
     ctx.setTransform(k, 0, 0, k, -box[0] * k, -box[1] * k);
     ctx.strokeStyle = colour;
+    dots.getContext('2d').clearRect(0, 0, dots.width, dots.height);
+    keep.fill(1);
+    dirty = null;
     drawn = 0;
   }
 
@@ -129,6 +192,7 @@ export function createTreeCanvas() {
           stroke(drawn, end);
           drawn = end;
         }
+        paintDots();
         if (drawn < to) later(step);
         else resolve(true);
       };

@@ -2,16 +2,22 @@
 // served this page (the interface: index.js). Nothing leaves 127.0.0.1.
 
 // The compact render answer of a big grown tree (docs/serve.md, "Big
-// trees"): a JSON head, then `growth.stems` as doubles, put back into the
-// answer. The stems stay a view of the body's bytes (a Float64Array): no
-// numbers to parse.
+// trees"): a JSON head, then `growth.stems` as 32-bit integers
+// (thousandths of a unit, then the decision), put back into the answer as
+// the numbers its JSON would hold (a Float64Array): no text to parse.
 const COMPACT = 'application/x-stlc-render';
 
 function unpack(buf) {
   const n = new DataView(buf).getUint32(0, true);
   const head = JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 4, n)));
+  const ints = new Int32Array(buf, 4 + n, head.stems);
+  const g = new Float64Array(head.stems);
+  for (let i = 0; i < g.length; i += 6) {
+    for (let j = i; j < i + 5; j++) g[j] = ints[j] / 1000;
+    g[i + 5] = ints[i + 5];
+  }
   const answer = head.answer;
-  answer.growth.stems = new Float64Array(buf, 4 + n, head.stems);
+  answer.growth.stems = g;
   return answer;
 }
 
