@@ -130,13 +130,17 @@ finally:
         p.wait()
 med = lambda b, k: statistics.median(r[k] for r in results[b])
 print(f"{os.path.basename(od)}: {results[bins[0]][0]['stems']} stems, {len(results[bins[0]])} edits each, medians (ms)")
-print("| stlc | server alone, JSON | server alone, compact | server (page) | page: transfer | page: first byte to answer applied | page: first byte to picture | edit to picture | longest task | answer bytes | server peak MB |")
-print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+print("| stlc | server alone, JSON | server alone, compact | server (page) | page: transfer | page: first byte to answer applied | page: first byte to picture | edit to picture | longest task | edits with a task over 50 ms | answer bytes | server peak MB |")
+print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
 for b, (_, _, out) in zip(bins, servers):
     (j, js_size), (c, c_size) = alone[b]
     stall = max(r['stall'] for r in results[b])
     kb = peak_kb(out)
     print(f"| {b} | {j:.0f} ({js_size/1e6:.1f} MB) | {c:.0f} ({c_size/1e6:.1f} MB) | {med(b, 'server'):.0f} | {med(b, 'transfer'):.0f} | {med(b, 'answered'):.0f} | "
           f"{med(b, 'page'):.0f} | {med(b, 'total'):.0f} | {med(b, 'stall'):.0f} (max {stall:.0f}) | "
+          f"{sum(r['stall'] > 0 for r in results[b])} of {len(results[b])} | "
           f"{results[b][0]['bytes']/1e6:.1f} MB | {kb/1024 if kb else 0:.0f} |")
+if os.environ.get('VERBOSE'):
+    for b in bins:
+        print(b, [(round(r['page']), round(r['stall'])) for r in results[b]])
 shutil.rmtree(tmp, ignore_errors=True)

@@ -68,8 +68,9 @@ export function createTreeCanvas() {
   let dots = null;
   let keep = null;
   let rgb = [0, 0, 0];
-  // The dots' pixels changed since they were last painted: x0, y0, x1, y1.
-  let dirty = null;
+  // The box of the dots' pixels changed since they were last painted
+  // (empty: x0 > x1).
+  let [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
   // The stems, their colour, the canvas box (canvas units) and pixels a unit.
   let g = [];
   let colour = '#000';
@@ -106,24 +107,28 @@ export function createTreeCanvas() {
 
   // A dot for stem `o` (its offset in the stems) if it is under a pixel
   // long and wide: true if it was one.
+  // (Called for every stem: no allocation in it.)
   function dot(o) {
-    const [dx, dy] = [g[o + 2] - g[o], g[o + 3] - g[o + 1]];
+    const dx = g[o + 2] - g[o];
+    const dy = g[o + 3] - g[o + 1];
     const len = Math.sqrt(dx * dx + dy * dy) * k;
+    if (len >= 1) return false;
     const wide = Math.max(g[o + 4] * k, HAIRLINE);
-    if (len >= 1 || wide > 1) return false;
-    const x = Math.floor(((g[o] + g[o + 2]) / 2 - box[0]) * k);
-    const y = Math.floor(((g[o + 1] + g[o + 3]) / 2 - box[1]) * k);
+    if (wide > 1) return false;
+    const x = Math.floor(((g[o] + g[o + 2]) * 0.5 - box[0]) * k);
+    const y = Math.floor(((g[o + 1] + g[o + 3]) * 0.5 - box[1]) * k);
     if (x < 0 || y < 0 || x >= dots.width || y >= dots.height) return true;
     keep[y * dots.width + x] *= 1 - len * wide;
-    if (!dirty) dirty = [x, y, x + 1, y + 1];
-    else dirty = [Math.min(dirty[0], x), Math.min(dirty[1], y), Math.max(dirty[2], x + 1), Math.max(dirty[3], y + 1)];
+    if (x < x0) x0 = x;
+    if (x >= x1) x1 = x + 1;
+    if (y < y0) y0 = y;
+    if (y >= y1) y1 = y + 1;
     return true;
   }
 
   // Paints the dots' changed pixels.
   function paintDots() {
-    if (!dirty) return;
-    const [x0, y0, x1, y1] = dirty;
+    if (x0 >= x1) return;
     const img = new ImageData(x1 - x0, y1 - y0);
     const d = img.data;
     for (let y = y0, i = 0; y < y1; y++) {
@@ -135,7 +140,7 @@ export function createTreeCanvas() {
       }
     }
     dots.getContext('2d').putImageData(img, x0, y0);
-    dirty = null;
+    [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
   }
 
   // Strokes the path of stems `w` wide: round ends where a stroke is
@@ -171,7 +176,7 @@ export function createTreeCanvas() {
     ctx.strokeStyle = colour;
     dots.getContext('2d').clearRect(0, 0, dots.width, dots.height);
     keep.fill(1);
-    dirty = null;
+    [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
     drawn = 0;
   }
 
@@ -183,6 +188,7 @@ export function createTreeCanvas() {
     const my = ++job;
     const to = stemsUpTo(g, decision);
     if (to < drawn || drawn === 0) clear();
+    let painted = performance.now();
     finished = new Promise((resolve) => {
       const step = () => {
         if (my !== job) { resolve(false); return; }
@@ -192,7 +198,11 @@ export function createTreeCanvas() {
           stroke(drawn, end);
           drawn = end;
         }
-        paintDots();
+        // The dots show every few slices, and at the end.
+        if (drawn >= to || performance.now() - painted > 4 * SLICE_MS) {
+          paintDots();
+          painted = performance.now();
+        }
         if (drawn < to) later(step);
         else resolve(true);
       };
