@@ -342,6 +342,32 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
             "{rgb:?} is not the stroke #4a2c12"
         );
 
+        // Zoomed in, the canvas stays over the library's picture of the
+        // layout (both placed over the same box), and so after Fit.
+        for zoom in ["#zoom-in", "#zoom-in", "#zoom-in", "#fit"] {
+            click(&c, zoom).await;
+            // The tree's base in the middle.
+            js(
+                &c,
+                "const v = window.stlc.state.view;
+                 window.stlc.view.pan(v, (v[0] + v[2]) / 2 - 600, (v[1] + v[3]) / 2 - 1100); return 0;",
+            )
+            .await;
+            let r = js(
+                &c,
+                "const r = (e) => { const b = e.getBoundingClientRect(); return [b.left, b.top, b.right, b.bottom]; };
+                 return [r(document.querySelector('#preview foreignObject.tree')), r(document.querySelector('#preview .lib svg'))];",
+            )
+            .await;
+            for i in 0..4 {
+                let (a, b) = (r[0][i].as_f64().unwrap(), r[1][i].as_f64().unwrap());
+                assert!((a - b).abs() < 1.0, "{zoom}: {r}");
+            }
+            if zoom == "#zoom-in" {
+                shot(&c, "bigtree-zoomed").await;
+            }
+        }
+
         // Replay to a decision halfway: the stems up to it, no more.
         let k = last / 2;
         js(

@@ -206,7 +206,8 @@ export function createTreeCanvas() {
         if (drawn < to) later(step);
         else resolve(true);
       };
-      step();
+      // Not in the caller's task: that one applies a whole answer.
+      later(step);
     });
     return finished;
   }
