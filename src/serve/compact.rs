@@ -24,9 +24,10 @@ use serde::Serialize;
 use super::api::RenderAnswer;
 
 /// A grown tree of more stems than this is drawn by the page from its
-/// stems, not from the SVG: an SVG of 20,000 stems costs the page about
-/// 60 ms to parse and draw, and its cost grows with the stems.
-pub const BIG_TREE_STEMS: u64 = 20_000;
+/// stems, not from the SVG: the page reads and imports an SVG in one task,
+/// about 20 ms at 10,000 stems, 30 ms at 20,000 and 370 ms at 200,000
+/// (docs/performance.md), and a task over 50 ms stalls it.
+pub const BIG_TREE_STEMS: u64 = 10_000;
 
 /// The media type of the compact body.
 pub const MEDIA: &str = "application/x-stlc-render";

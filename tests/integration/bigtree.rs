@@ -1,5 +1,5 @@
 //! Big grown trees in the editor (docs/serve.md, "Big trees"): past
-//! 20,000 stems the render answer's SVG leaves the tree out, a client that
+//! 10,000 stems the render answer's SVG leaves the tree out, a client that
 //! asks gets the stems as a compact binary body (the same answer, number
 //! for number), and the page draws the tree on a canvas from them, replay
 //! included; small trees keep their SVG `<path>`s.
@@ -50,13 +50,13 @@ fn unpack(body: &[u8]) -> Value {
 const COMPACT: (&str, &str) = ("Accept", "application/x-stlc-render, application/json");
 
 #[test]
-fn past_20000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
+fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     let server = Server::start(&[]);
-    // 19,999 stems: today's answer, the tree in its SVG, JSON even to a
+    // 10,000 stems: today's answer, the tree in its SVG, JSON even to a
     // client that takes the compact body.
-    let small = json!({"source": big(19_999), "kind": "od"});
+    let small = json!({"source": big(10_000), "kind": "od"});
     let a = render(&server.addr, &small);
-    assert_eq!(stems(&a), 19_999);
+    assert_eq!(stems(&a), 10_000);
     assert_eq!(a["tree_in_svg"], true);
     assert_eq!(a["stroke"], "#4a2c12");
     assert!(
@@ -79,16 +79,16 @@ fn past_20000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     );
     assert_eq!(asked.json(), a);
 
-    // 20,002 stems: the SVG has the layout, not the tree.
-    let body = json!({"source": big(20_002), "kind": "od"});
+    // 10,003 stems: the SVG has the layout, not the tree.
+    let body = json!({"source": big(10_003), "kind": "od"});
     let a = render(&server.addr, &body);
-    assert_eq!(stems(&a), 20_002);
+    assert_eq!(stems(&a), 10_003);
     assert_eq!(a["tree_in_svg"], false);
     assert_eq!(a["stroke"], "#4a2c12");
     let svg = a["svg"].as_str().unwrap();
     assert!(!svg.contains("stroke="), "no stem in the SVG");
     assert!(svg.contains(r##"fill="#008000""##), "the layout is there");
-    assert_eq!(a["growth"]["stems"].as_array().unwrap().len(), 6 * 20_002);
+    assert_eq!(a["growth"]["stems"].as_array().unwrap().len(), 6 * 10_003);
     // Its BED is left out too (megabytes); the export writes it.
     assert_eq!(a["bed"], Value::Null);
     let bed = request(
@@ -101,7 +101,7 @@ fn past_20000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     let bed = String::from_utf8(bed.body).unwrap();
     assert!(bed.starts_with("Big"), "{}", &bed[..bed.len().min(200)]);
     // The seed's F, then three stems an application of R1.
-    assert_eq!(bed.matches("R1{").count(), 6_667);
+    assert_eq!(bed.matches("R1{").count(), 3_334);
     // The export is the CLI's picture: every stem in it.
     let export = request(
         &server.addr,

@@ -1,5 +1,5 @@
 // A big grown tree, drawn on a canvas from the answer's stems. Past
-// 20,000 stems the server leaves the tree out of the answer's SVG
+// 10,000 stems the server leaves the tree out of the answer's SVG
 // (`tree_in_svg: false`; docs/serve.md, "Big trees"): an SVG of 200,000
 // stems is megabytes of text that the page would parse, import and
 // rasterise in one go, stalling it for a third of a second. Instead the
