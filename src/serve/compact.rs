@@ -55,9 +55,9 @@ fn integers(stems: &[f64]) -> Option<Vec<i32>> {
 
 /// The answer as a compact body (module docs); `Err` with the answer
 /// when a number does not fit.
-pub fn body(mut answer: RenderAnswer) -> Result<Vec<u8>, RenderAnswer> {
+pub fn body(mut answer: RenderAnswer) -> Result<Vec<u8>, Box<RenderAnswer>> {
     let Some(numbers) = integers(&answer.growth.stems) else {
-        return Err(answer);
+        return Err(Box::new(answer));
     };
     #[derive(Serialize)]
     struct Head<'a> {
@@ -70,7 +70,7 @@ pub fn body(mut answer: RenderAnswer) -> Result<Vec<u8>, RenderAnswer> {
         stems: stems.len(),
     }) else {
         answer.growth.stems = stems;
-        return Err(answer);
+        return Err(Box::new(answer));
     };
     while !(4 + head.len()).is_multiple_of(4) {
         head.push(b' ');
