@@ -16,6 +16,11 @@
 //
 // Replay draws the stems up to a decision: growth order puts them first,
 // so a replay that moves on adds only the new stems.
+//
+// The canvas covers the part of the picture in view, at the screen's
+// resolution: zoomed in (or panned to a part it does not cover), a new
+// one is drawn for the new view once the view rests, and replaces the old
+// when it is done. So a zoomed tree is as sharp as the screen.
 
 import { el } from './dom.js';
 
@@ -76,21 +81,54 @@ export function createTreeCanvas() {
   let colour = '#000';
   let box = [0, 0, 1, 1];
   let k = 1;
+  // Where canvases go, the whole picture's box, the decision shown, the
+  // canvas's <foreignObject> and those it replaces.
+  let layer = null;
+  let full = [0, 0, 1, 1];
+  let shown = Infinity;
+  let fo = null;
+  let old = [];
+  let resting = null;
   // Stems on the canvas (a prefix of `g`), and the drawing under way.
   let drawn = 0;
   let job = 0;
   let finished = Promise.resolve(true);
 
-  // A canvas over `pictureBox` in `layer`, for `answer`'s stems, at
-  // `pxPerUnit` device pixels a canvas unit (at most MAX_SIDE a side).
-  function place(layer, answer, pictureBox, pxPerUnit) {
-    job++;
+  // The part of the picture in `view` (all of it without a view), and
+  // pixels a unit there: `pxPerUnit`, at most MAX_SIDE a side.
+  function region(view, pxPerUnit) {
+    let r = full;
+    if (view) {
+      r = [Math.max(full[0], view[0]), Math.max(full[1], view[1]), Math.min(full[2], view[2]), Math.min(full[3], view[3])];
+      if (r[2] <= r[0] || r[3] <= r[1]) r = full;
+    }
+    return [r, Math.min(pxPerUnit, MAX_SIDE / Math.max(r[2] - r[0], r[3] - r[1], 1e-9))];
+  }
+
+  // A canvas over the picture's box `pictureBox` in `where`, for
+  // `answer`'s stems, covering `view` at `pxPerUnit` device pixels a unit.
+  function place(where, answer, pictureBox, view, pxPerUnit) {
+    layer = where;
     g = answer.growth.stems;
     colour = answer.stroke || '#000';
-    box = pictureBox;
+    const c = /^#([0-9a-f]{2})([0-9a-f]{2})([0-9a-f]{2})$/i.exec(colour);
+    rgb = c ? [1, 2, 3].map((i) => parseInt(c[i], 16)) : [0, 0, 0];
+    full = pictureBox;
+    shown = Infinity;
+    fo = null;
+    old = [];
+    focus(...region(view, pxPerUnit));
+  }
+
+  // A new canvas over `r` at `scale` pixels a unit (the old one stays
+  // until the new one is drawn).
+  function focus(r, scale) {
+    job++;
+    if (fo) old.push(fo);
+    box = r;
+    k = scale;
     const [w, h] = [box[2] - box[0], box[3] - box[1]];
-    k = Math.min(pxPerUnit, MAX_SIDE / Math.max(w, h, 1e-9));
-    const fo = el('foreignObject', { x: box[0], y: box[1], width: w, height: h, 'pointer-events': 'none', class: 'tree' }, layer);
+    fo = el('foreignObject', { x: box[0], y: box[1], width: w, height: h, 'pointer-events': 'none', class: 'tree' }, layer);
     const div = document.createElementNS(XHTML, 'div');
     div.style.cssText = 'position:relative;width:100%;height:100%';
     fo.appendChild(div);
@@ -100,9 +138,22 @@ export function createTreeCanvas() {
     ctx = canvas.getContext('2d');
     ctx.lineJoin = 'round';
     keep = new Float32Array(pw * ph);
-    const c = /^#([0-9a-f]{2})([0-9a-f]{2})([0-9a-f]{2})$/i.exec(colour);
-    rgb = c ? [1, 2, 3].map((i) => parseInt(c[i], 16)) : [0, 0, 0];
     drawn = 0;
+  }
+
+  // The view changed: once it rests, a canvas for it if the one shown
+  // does not cover it or is too coarse for it.
+  function viewChanged(view, pxPerUnit) {
+    clearTimeout(resting);
+    if (!ctx) return;
+    resting = setTimeout(() => {
+      if (!fo || !fo.isConnected) return;
+      const [r, scale] = region(view, pxPerUnit);
+      const covers = r[0] >= box[0] - 1e-9 && r[1] >= box[1] - 1e-9 && r[2] <= box[2] + 1e-9 && r[3] <= box[3] + 1e-9;
+      if (covers && k >= 0.8 * scale) return;
+      focus(r, scale);
+      show(shown);
+    }, 150);
   }
 
   // A dot for stem `o` (its offset in the stems) if it is under a pixel
@@ -185,6 +236,7 @@ export function createTreeCanvas() {
   // once they are drawn, false if a newer call took over.
   function show(decision) {
     if (!ctx) return Promise.resolve(false);
+    shown = decision;
     const my = ++job;
     const to = stemsUpTo(g, decision);
     if (to < drawn || drawn === 0) clear();
@@ -203,8 +255,10 @@ export function createTreeCanvas() {
           paintDots();
           painted = performance.now();
         }
-        if (drawn < to) later(step);
-        else resolve(true);
+        if (drawn < to) { later(step); return; }
+        old.forEach((f) => f.remove());
+        old = [];
+        resolve(true);
       };
       // Not in the caller's task: that one applies a whole answer.
       later(step);
@@ -215,6 +269,7 @@ export function createTreeCanvas() {
   return {
     place,
     show,
+    viewChanged,
     // Resolves once the drawing under way (if any) has ended.
     settled: () => finished,
     // Stems on the canvas now.
