@@ -1,12 +1,12 @@
-// ESLint for the `stlc serve` page (src/serve/page): ES modules in the
-// browser. Run by .ci/run (`npm ci && npx eslint`); versions pinned in
+// ESLint for the `stlc serve` page (src/serve/page) and the static
+// site's own modules (web/page): ES modules in the browser. Run by .ci/run (`npm ci && npx eslint`); versions pinned in
 // package.json and package-lock.json.
 import js from '@eslint/js';
 import globals from 'globals';
 
 export default [
   {
-    files: ['src/serve/page/**/*.js'],
+    files: ['src/serve/page/**/*.js', 'web/page/**/*.js'],
     ...js.configs.recommended,
     languageOptions: {
       ecmaVersion: 2022,
@@ -17,5 +17,10 @@ export default [
       ...js.configs.recommended.rules,
       'no-undef': 'error',
     },
+  },
+  {
+    // The WebAssembly engine's worker.
+    files: ['web/page/engine/worker.js'],
+    languageOptions: { globals: { ...globals.worker } },
   },
 ];

@@ -164,6 +164,12 @@ pub struct ServeArgs {
     #[arg(long, value_name = "SECONDS", default_value_t = 30.0, value_parser = parse_budget)]
     pub time_budget: f64,
 
+    /// Most heap memory, in MiB, the server holds for all requests together
+    /// (one request may have half): a request that does not fit waits, then
+    /// gets 503 "busy"; heavy work stops past it (docs/limits.md).
+    #[arg(long, value_name = "MIB", default_value_t = 2048, value_parser = clap::value_parser!(u64).range(64..=1 << 30))]
+    pub memory_budget: u64,
+
     #[command(flatten)]
     pub limits: LimitArgs,
 
@@ -269,6 +275,7 @@ impl ServeArgs {
             max_stems: self.max_stems,
             max_svg_segments: self.max_svg_segments,
             time_budget: std::time::Duration::from_secs_f64(self.time_budget),
+            memory_budget: self.memory_budget << 20,
         }
     }
 }

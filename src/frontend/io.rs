@@ -179,6 +179,48 @@ fn resolve_links(target: &Path) -> Result<PathBuf, Diagnostics> {
     .into())
 }
 
+/// How a temporary file of process `pid` begins (`.stlc-PID-`): a process
+/// killed (SIGKILL, a power cut) while writing leaves it behind, and
+/// [`sweep_stale_temps`] knows it by the process that is gone.
+fn temp_prefix(pid: u32) -> String {
+    format!(".stlc-{pid}-")
+}
+
+const TEMP_SUFFIX: &str = ".tmp";
+
+/// Removes from `dir` the temporary files of stlc processes that no longer
+/// run (where `/proc` tells which run; elsewhere nothing is removed).
+/// Returns how many were removed. `stlc serve FILE` calls it on FILE's
+/// folder when it starts: a save killed midway leaves nothing for long.
+pub fn sweep_stale_temps(dir: &Path) -> usize {
+    let proc = Path::new("/proc");
+    if !proc.join("self").exists() {
+        return 0;
+    }
+    let Ok(entries) = fs::read_dir(dir) else {
+        return 0;
+    };
+    let mut removed = 0;
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(pid) = name
+            .to_str()
+            .and_then(|n| n.strip_prefix(".stlc-"))
+            .filter(|n| n.ends_with(TEMP_SUFFIX))
+            .and_then(|n| n.split_once('-'))
+            .and_then(|(pid, _)| pid.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && !proc.join(pid.to_string()).exists() && fs::remove_file(entry.path()).is_ok()
+        {
+            removed += 1;
+        }
+    }
+    removed
+}
+
 fn write_atomically(
     target: &Path,
     write: impl FnOnce(&mut dyn Write) -> Result<(), Diagnostics>,
@@ -202,7 +244,8 @@ fn write_atomically(
         _ => PathBuf::from("."),
     };
     let mut builder = tempfile::Builder::new();
-    builder.prefix(".stlc-").suffix(".tmp");
+    let prefix = temp_prefix(std::process::id());
+    builder.prefix(&prefix).suffix(TEMP_SUFFIX);
     // A new file gets the usual mode (0666 less the umask), not the 0600 of
     // a temporary file; a replaced file keeps its own mode below.
     #[cfg(unix)]

@@ -489,7 +489,8 @@ impl<'a> Grower<'a> {
             return Err(Miss::Failed(MissReason::Depth));
         }
         if self.budget.applications >= self.limits.max_stems {
-            self.budget.stop(self.limits.max_stems);
+            self.budget
+                .stop(self.limits.max_stems, self.od.params.design.max_stems);
             return Err(Miss::Stopped);
         }
         self.scratch.segs.clear();
@@ -606,7 +607,8 @@ impl<'a> Grower<'a> {
         }
         self.scratch.segs.insert(seg);
         if self.budget.stems + self.scratch.segs.len() as u64 > self.limits.max_stems {
-            self.budget.stop(self.limits.max_stems);
+            self.budget
+                .stop(self.limits.max_stems, self.od.params.design.max_stems);
             return Err(Miss::Stopped);
         }
         Ok(())

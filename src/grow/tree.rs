@@ -81,13 +81,22 @@ pub(super) struct Budget {
 }
 
 impl Budget {
-    /// Stops all growth at `--max-stems` (once, with a warning).
-    pub(super) fn stop(&mut self, max_stems: u64) {
+    /// Stops all growth at `--max-stems` or the file's `M=` (once, with a
+    /// warning that names the one in force: `design` is the file's `M=`).
+    pub(super) fn stop(&mut self, max_stems: u64, design: Option<u64>) {
         if self.stopped {
             return;
         }
         self.stopped = true;
-        self.warnings.push(
+        let warning = if design == Some(max_stems) {
+            Diagnostic::warning(GrowError::DesignStemCount {
+                stems: self.stems,
+                limit: max_stems,
+            })
+            .with_help(
+                "the file's M= caps its stems (a part of its design); raise or remove M= in the header to grow more",
+            )
+        } else {
             Diagnostic::warning(GrowError::GrowthStopped {
                 stems: self.stems,
                 limit: max_stems,
@@ -95,8 +104,9 @@ impl Budget {
             .with_help(format!(
                 "the BED is valid but its tree is cut short; {}",
                 Bound::Stems.raise()
-            )),
-        );
+            ))
+        };
+        self.warnings.push(warning);
     }
 
     /// Notes that `--max-depth` refused an application (warned once).

@@ -238,8 +238,8 @@ pub struct RenderAnswer {
     /// a big grown tree (`tree_in_svg` false), without the tree.
     pub svg: String,
     /// Whether `svg` shows the tree: `false` for a grown tree of more than
-    /// [`super::compact::BIG_TREE_STEMS`] stems, which the page draws from
-    /// `growth` instead (the export's SVG always has it).
+    /// [`BIG_TREE_STEMS`] stems, which the page draws from `growth` instead
+    /// (the export's SVG always has it).
     pub tree_in_svg: bool,
     /// The tree's stroke colour, `#rrggbb`.
     pub stroke: String,
@@ -265,6 +265,12 @@ pub struct RenderAnswer {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub layout: Option<Option<shapes::LayoutJson>>,
 }
+
+/// A grown tree of more stems than this is drawn by the page from its
+/// stems, not from the SVG: the page reads and imports an SVG in one task,
+/// about 20 ms at 10,000 stems, 30 ms at 20,000 and 370 ms at 200,000
+/// (docs/performance.md), and a task over 50 ms stalls it.
+pub const BIG_TREE_STEMS: u64 = 10_000;
 
 /// The stems in growth order: six numbers a stem (`from.x, from.y, to.x,
 /// to.y, width, decision`), three decimals; and the last decision.

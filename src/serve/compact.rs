@@ -1,4 +1,5 @@
-//! Big grown trees in the render answer: past [`BIG_TREE_STEMS`] stems the
+//! Big grown trees in the render answer: past [`BIG_TREE_STEMS`] stems (a
+//! constant of `api.rs`, which the WebAssembly engine shares) the
 //! tree is left out of the answer's SVG (which keeps the background and
 //! the layout underneath) and out of its BED text, and the page draws it
 //! on a canvas from the stems in growth order; and the compact body that
@@ -21,13 +22,8 @@
 
 use serde::Serialize;
 
+pub use super::api::BIG_TREE_STEMS;
 use super::api::RenderAnswer;
-
-/// A grown tree of more stems than this is drawn by the page from its
-/// stems, not from the SVG: the page reads and imports an SVG in one task,
-/// about 20 ms at 10,000 stems, 30 ms at 20,000 and 370 ms at 200,000
-/// (docs/performance.md), and a task over 50 ms stalls it.
-pub const BIG_TREE_STEMS: u64 = 10_000;
 
 /// The media type of the compact body.
 pub const MEDIA: &str = "application/x-stlc-render";

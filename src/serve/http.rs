@@ -258,11 +258,7 @@ pub async fn read_body(req: Request<Incoming>, limit: u64) -> Result<Bytes, Answ
             "the request is larger than --max-input",
         )
     };
-    let declared = req
-        .headers()
-        .get(CONTENT_LENGTH)
-        .and_then(|v| v.to_str().ok())
-        .and_then(|v| v.parse::<u64>().ok());
+    let declared = declared_length(&req);
     if declared.is_some_and(|n| n > limit) {
         return Err(too_large());
     }
@@ -287,6 +283,14 @@ pub fn same_secret(a: &str, b: &str) -> bool {
             .zip(b.bytes())
             .fold(0u8, |acc, (x, y)| acc | (x ^ y))
             == 0
+}
+
+/// The body length a request declares (`Content-Length`), if it does.
+pub fn declared_length(req: &Request<Incoming>) -> Option<u64> {
+    req.headers()
+        .get(CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.parse::<u64>().ok())
 }
 
 /// 128 bits from the operating system's random source, as hex.

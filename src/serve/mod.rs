@@ -23,6 +23,7 @@ mod conns;
 mod document;
 mod examples;
 mod http;
+mod memory;
 mod routes;
 mod shapes;
 mod stall;
@@ -43,7 +44,7 @@ use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::pipeline::{self, InputKind, Limits};
 
 /// What `stlc serve` is started with (the CLI builds it from its flags).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Config {
     /// The file to open and save; `None`: an example, and Save downloads.
     pub file: Option<String>,
@@ -57,6 +58,9 @@ pub struct Config {
     pub max_svg_segments: u64,
     /// `--time-budget`: how long one request's work may run.
     pub time_budget: Duration,
+    /// `--memory-budget`, bytes: the most heap the server holds
+    /// (`memory`).
+    pub memory_budget: u64,
 }
 
 /// The example opened when no file is named.
@@ -97,6 +101,8 @@ struct State {
     guard: http::Guard,
     /// The heavy slots: work running past `work::LIGHT` takes turns.
     heavy: Arc<work::Slots>,
+    /// The memory budget requests reserve from.
+    memory: Arc<memory::Memory>,
 }
 
 /// Runs `stlc serve` until Ctrl-C; returns the exit code.
@@ -147,6 +153,10 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
         ),
         guard: http::Guard::new(port),
         heavy: Arc::new(work::Slots::new(HEAVY)),
+        memory: Arc::new(memory::Memory::new(
+            a.memory_budget,
+            Some(crate::frontend::heap::live_bytes),
+        )),
     });
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
@@ -178,6 +188,13 @@ fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
         .with_help("name a file, or leave it out to start from an example")
         .into());
     };
+    // A save killed midway (SIGKILL) left its temporary file beside the
+    // file: remove those of processes that are gone.
+    let folder = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    crate::frontend::io::sweep_stale_temps(folder);
     let kind = if path.exists() {
         let bytes = Input::Path(path.clone()).read(max_bytes)?;
         pipeline::detect_kind(Some(&path), &bytes)?

@@ -21,6 +21,7 @@ use super::assets;
 use super::compact;
 use super::document::Refused;
 use super::http::{self, Answer};
+use super::memory::{self, Reservation};
 use super::work::{self, Ended, Stopped};
 use stlc::diag::Diagnostic;
 use stlc::pipeline::ImageFormat;
@@ -187,18 +188,62 @@ async fn body(state: &State, req: Request<Incoming>) -> Result<Body, Answer> {
     api::parse(&bytes).map_err(|api::BadRequest(m)| http::error(StatusCode::BAD_REQUEST, &m))
 }
 
-/// What drawing a request's body ended in: its body read, the work run on
-/// the pool within the time budget and the heavy slots (`work`).
+/// Memory for a request's work, reserved before its body is read (from
+/// its declared length; an undeclared one may be as long as
+/// `--max-input`): the answer to send instead if there is none.
+async fn admit(state: &State, req: &Request<Incoming>) -> Result<Reservation, Answer> {
+    let max = state.settings.limits.max_input_bytes;
+    let len = http::declared_length(req).unwrap_or(max).min(max);
+    reserve(state, memory::need(len)).await
+}
+
+/// Reserves `need` bytes of the memory budget, or says why not.
+async fn reserve(state: &State, need: u64) -> Result<Reservation, Answer> {
+    state
+        .memory
+        .admit(need, memory::ADMIT_WAIT)
+        .await
+        .map_err(refused)
+}
+
+/// The answer to a request the memory budget has no room for.
+fn refused(r: memory::Refused) -> Answer {
+    let message = match r {
+        memory::Refused::TooBig { need, per_request } => format!(
+            "this request would need about {} MiB, more than one request may have ({} MiB, half of --memory-budget): render it with the command line, or start stlc serve with a larger --memory-budget",
+            memory::mib(need),
+            memory::mib(per_request)
+        ),
+        memory::Refused::Busy { need, budget } => format!(
+            "the server is busy: this request needs about {} MiB and other requests hold its memory budget of {} MiB; try again in a moment",
+            memory::mib(need),
+            memory::mib(budget)
+        ),
+    };
+    http::error(StatusCode::SERVICE_UNAVAILABLE, &message)
+}
+
+/// What drawing a request's body ended in: its memory reserved, its body
+/// read, the work run on the pool within the time budget, the heavy slots
+/// and the memory budget (`work`, `memory`).
 async fn draw(
     state: Arc<State>,
     req: Request<Incoming>,
     format: ImageFormat,
     tree_up_to: Option<u64>,
 ) -> Result<Ended<Result<(api::RenderAnswer, Vec<u8>), Failed>>, Answer> {
+    let reserved = admit(&state, &req).await?;
     let body = body(&state, req).await?;
+    // A big PNG's pixels, reserved once the body says its size.
+    let pixels = match (format, body.size) {
+        (ImageFormat::Png, Some([w, h])) => Some(reserve(&state, memory::png_need(w, h)).await?),
+        _ => None,
+    };
     let (budget, slots) = (state.settings.time_budget, state.heavy.clone());
-    let heavy = body.source.len() > work::BIG_INPUT;
-    Ok(work::run(budget, slots, heavy, move |w| {
+    let memory = Some(state.memory.clone());
+    let heavy = body.source.len() > work::BIG_INPUT || pixels.is_some();
+    Ok(work::run(budget, slots, memory, heavy, move |w| {
+        let _held = (reserved, pixels);
         api::run(&body, &state.settings, format, tree_up_to, w)
     })
     .await)
@@ -274,14 +319,20 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
 /// up to its depth, at most [`api::WORD_DEPTHS`] of them), each cut at
 /// [`api::WORD_CHARS`] characters, with its exact length: for teaching.
 async fn words(state: Arc<State>, req: Request<Incoming>) -> Answer {
+    let reserved = match admit(&state, &req).await {
+        Ok(r) => r,
+        Err(a) => return a,
+    };
     let body = match body(&state, req).await {
         Ok(b) => b,
         Err(a) => return a,
     };
     let budget = state.settings.time_budget;
     let slots = state.heavy.clone();
+    let memory = Some(state.memory.clone());
     let heavy = body.source.len() > work::BIG_INPUT;
-    let done = work::run(budget, slots, heavy, move |w| {
+    let done = work::run(budget, slots, memory, heavy, move |w| {
+        let _held = reserved;
         api::words(&body, &state.settings, w)
     })
     .await;
@@ -372,6 +423,14 @@ fn stopped(why: Stopped) -> Answer {
                     budget.as_secs_f64()
                 ),
                 "ask for less (a smaller depth, --max-stems, a smaller layout), or start stlc serve with --time-budget SECONDS",
+            ),
+        ),
+        Stopped::OverMemory { live, budget } => http::error(
+            StatusCode::SERVICE_UNAVAILABLE,
+            &format!(
+                "stopped: the server held {} MiB, over its memory budget of {} MiB (--memory-budget); try again in a moment, or ask for less",
+                memory::mib(live),
+                memory::mib(budget)
             ),
         ),
         Stopped::Abandoned => http::error(

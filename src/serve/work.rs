@@ -26,6 +26,8 @@ use std::time::{Duration, Instant};
 
 use stlc::pipeline::Progress;
 
+use super::memory::Memory;
+
 /// Why work stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Stopped {
@@ -33,6 +35,14 @@ pub enum Stopped {
     Abandoned,
     /// It ran past the time budget.
     OverBudget(Duration),
+    /// The process held more heap than its memory budget (`live` bytes
+    /// against `budget`), and this was heavy work.
+    OverMemory {
+        /// Heap bytes in use when it stopped.
+        live: u64,
+        /// The budget, bytes.
+        budget: u64,
+    },
 }
 
 /// What work ended in.
@@ -137,6 +147,8 @@ pub struct Watch {
     slots: Arc<Slots>,
     /// Whether this work holds a heavy slot.
     heavy: bool,
+    /// The server's memory, measured at every report of heavy work.
+    memory: Option<Arc<Memory>>,
 }
 
 impl Watch {
@@ -151,7 +163,15 @@ impl Watch {
             budget,
             slots,
             heavy: false,
+            memory: None,
         }
+    }
+
+    /// Heavy work that also stops when the process holds more heap than
+    /// `memory`'s budget.
+    pub fn with_memory(mut self, memory: Arc<Memory>) -> Self {
+        self.memory = Some(memory);
+        self
     }
 
     fn stop_if_due(abandon: &Abandon, deadline: Instant, budget: Duration) {
@@ -167,6 +187,16 @@ impl Watch {
         Self::stop_if_due(&self.abandon, self.deadline, self.budget);
         if !self.heavy && self.started.elapsed() > LIGHT {
             self.take_slot();
+        }
+        // Light work is short; heavy work is what grows.
+        if self.heavy
+            && let Some(m) = &self.memory
+            && let Some(live) = m.over()
+        {
+            std::panic::panic_any(Stopped::OverMemory {
+                live,
+                budget: m.budget(),
+            });
         }
     }
 
@@ -214,6 +244,7 @@ pub fn quiet_stops() {
 pub async fn run<T: Send + 'static>(
     budget: Duration,
     slots: Arc<Slots>,
+    memory: Option<Arc<Memory>>,
     heavy: bool,
     work: impl FnOnce(&mut Watch) -> T + Send + 'static,
 ) -> Ended<T> {
@@ -221,6 +252,9 @@ pub async fn run<T: Send + 'static>(
     let guard = abandon.guard();
     let joined = tokio::task::spawn_blocking(move || {
         let mut watch = Watch::new(abandon, budget, slots);
+        if let Some(m) = memory {
+            watch = watch.with_memory(m);
+        }
         if heavy {
             // Known heavy before it starts (a big input, whose reading
             // reports no progress): it takes its turn from the start.
@@ -303,13 +337,19 @@ mod tests {
             .unwrap();
         let t0 = Instant::now();
         let slots = Arc::new(Slots::new(1));
-        let ended = rt.block_on(run(Duration::from_millis(50), slots.clone(), false, spin));
+        let ended = rt.block_on(run(
+            Duration::from_millis(50),
+            slots.clone(),
+            None,
+            false,
+            spin,
+        ));
         assert!(matches!(
             ended,
             Ended::Stopped(Stopped::OverBudget(d)) if d == Duration::from_millis(50)
         ));
         assert!(t0.elapsed() < Duration::from_secs(5));
-        let done = rt.block_on(run(Duration::from_secs(5), slots, true, |w| {
+        let done = rt.block_on(run(Duration::from_secs(5), slots, None, true, |w| {
             w.update(1);
             7
         }));
@@ -333,5 +373,39 @@ mod tests {
         let kept = Abandon::default();
         kept.guard().disarm();
         assert!(!kept.0.load(Ordering::Relaxed));
+    }
+
+    /// Heavy work stops when the process holds more than its memory
+    /// budget; light work (short by definition) goes on.
+    #[test]
+    fn heavy_work_over_the_memory_budget_stops() {
+        quiet_stops();
+        fn live() -> u64 {
+            2000
+        }
+        let memory = Arc::new(Memory::new(1000, Some(live)));
+        let watch = |heavy: bool| {
+            let mut w = Watch::new(
+                Abandon::default(),
+                Duration::from_secs(60),
+                Arc::new(Slots::new(1)),
+            )
+            .with_memory(memory.clone());
+            if heavy {
+                w.take_slot();
+            }
+            w
+        };
+        let mut light = watch(false);
+        light.update(1);
+        let mut heavy = watch(true);
+        let stopped = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| heavy.update(1)));
+        assert_eq!(
+            stopped.unwrap_err().downcast_ref::<Stopped>(),
+            Some(&Stopped::OverMemory {
+                live: 2000,
+                budget: 1000
+            })
+        );
     }
 }

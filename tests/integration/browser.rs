@@ -587,7 +587,7 @@ fn layout_lines(text: &str) -> Vec<String> {
 }
 
 /// Presses at canvas point `a`, moves to `b` and releases.
-async fn drag(c: &Client, a: (f64, f64), b: (f64, f64)) {
+pub(super) async fn drag(c: &Client, a: (f64, f64), b: (f64, f64)) {
     let (x0, y0) = screen_of(c, a.0, a.1).await;
     let (x1, y1) = screen_of(c, b.0, b.1).await;
     let mouse = MouseActions::new("mouse".into())
@@ -768,7 +768,7 @@ async fn tools(c: &Client, start: &str) {
 }
 
 /// What `stlc ARGS -o -` writes.
-fn cli(args: &[&str]) -> Vec<u8> {
+pub(super) fn cli(args: &[&str]) -> Vec<u8> {
     let mut all = args.to_vec();
     all.extend(["-o", "-"]);
     crate::support::stlc_stdout(&all)
@@ -862,7 +862,7 @@ async fn fit_box(c: &Client) -> Vec<f64> {
 }
 
 /// Asserts `got` is `want`, saying where they part (not all the bytes).
-fn same_bytes(got: &[u8], want: &[u8], what: &str) {
+pub(super) fn same_bytes(got: &[u8], want: &[u8], what: &str) {
     if got != want {
         let at = got.iter().zip(want).take_while(|(a, b)| a == b).count();
         let show = |b: &[u8]| {

@@ -1218,6 +1218,25 @@ fn growth_settings_kept_in_the_file() {
             &["--seed", "7", "--max-stems", "500"]
         )
     );
+    // The warning names the limit in force: M= (the file's design), or
+    // --max-stems where it is the lower.
+    let warning = |p: &std::path::Path, args: &[&str]| {
+        let out = Command::cargo_bin("stlc")
+            .unwrap()
+            .args(["compile", p.to_str().unwrap(), "-o", "-"])
+            .args(args)
+            .output()
+            .unwrap();
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let by_m = warning(&keyed, &[]);
+    assert!(by_m.contains("would pass the file's M=500"), "{by_m}");
+    assert!(!by_m.contains("--max-stems"), "{by_m}");
+    let by_flag = warning(&keyed, &["--max-stems", "300"]);
+    assert!(
+        by_flag.contains("the limit of --max-stems 300"),
+        "{by_flag}"
+    );
     // The flag overrides V= for one run.
     assert_eq!(
         compile(&keyed, &["--seed", "8"]),

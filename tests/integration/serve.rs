@@ -43,7 +43,12 @@ pub fn cookie(addr: &str) -> String {
 impl Server {
     /// Starts `stlc serve ARGS --port 0` and reads the URL it prints.
     pub fn start(args: &[&str]) -> Server {
-        let mut child = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
+        Server::start_binary(&assert_cmd::cargo::cargo_bin("stlc"), args)
+    }
+
+    /// Starts `BINARY serve ARGS --port 0` (another build of stlc).
+    pub fn start_binary(binary: &std::path::Path, args: &[&str]) -> Server {
+        let mut child = Command::new(binary)
             .arg("serve")
             .args(args)
             .args(["--port", "0"])
@@ -82,6 +87,23 @@ impl Server {
         let rest = &stat[stat.rfind(')').unwrap() + 2..];
         let f: Vec<&str> = rest.split(' ').collect();
         f[11].parse::<u64>().unwrap() + f[12].parse::<u64>().unwrap()
+    }
+
+    /// The server's process id.
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
+    /// Whether the server is still running.
+    pub fn alive(&mut self) -> bool {
+        matches!(self.child.try_wait(), Ok(None))
+    }
+
+    /// Kills the server at once (SIGKILL), as a crash or a power cut would.
+    pub fn kill(mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        std::mem::forget(self);
     }
 
     pub fn port(&self) -> &str {
@@ -204,7 +226,7 @@ fn stems(a: &Value) -> u64 {
     a["stems"].as_str().unwrap().parse().unwrap()
 }
 
-fn example(name: &str) -> String {
+pub fn example(name: &str) -> String {
     std::fs::read_to_string(manifest_path("examples").join(name)).unwrap()
 }
 

@@ -60,6 +60,16 @@ pub enum GrowError {
         /// The limit in force.
         limit: u64,
     },
+    /// Warning: growth stopped at the file's `M=` (its design's stem count).
+    #[error(
+        "growth stopped at {stems} stems: the next rule application would pass the file's M={limit}"
+    )]
+    DesignStemCount {
+        /// Stems grown when growth stopped.
+        stems: u64,
+        /// The file's `M=`.
+        limit: u64,
+    },
     /// Warning: growth reached `--max-depth`; deeper branches were not grown.
     #[error(
         "growth reached the depth limit of {limit} nested rule applications ({}); deeper branches were not grown",

@@ -241,14 +241,28 @@ impl PngTurtle {
     // Output
 
     /// Strokes what is left and encodes the raster as PNG bytes.
+    ///
+    /// The pixels are demultiplied in place and encoded with the settings
+    /// of tiny-skia's `encode_png` (same bytes), which would copy the
+    /// whole pixmap first: a 16384 x 16384 picture peaks at its 1 GiB
+    /// pixmap plus the compressed bytes, not at twice that.
     pub fn finish(mut self) -> Result<Vec<u8>, Diagnostics> {
         self.flush();
-        self.pixmap.encode_png().map_err(|e| {
-            Diagnostic::error(RenderError::PngEncoding {
-                error: e.to_string(),
-            })
-            .into()
-        })
+        let (w, h) = (self.pixmap.width(), self.pixmap.height());
+        let rgba = self.pixmap.take_demultiplied();
+        let mut data = Vec::new();
+        let mut encoder = png::Encoder::new(&mut data, w, h);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder
+            .write_header()
+            .and_then(|mut writer| writer.write_image_data(&rgba))
+            .map_err(|e| {
+                Diagnostic::error(RenderError::PngEncoding {
+                    error: e.to_string(),
+                })
+            })?;
+        Ok(data)
     }
 
     /// Strokes what is left and hands back the raster (for tests and

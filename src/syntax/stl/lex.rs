@@ -204,6 +204,11 @@ impl Builder<'_> {
         (1..=self.longest_name.min(text.len()))
             .rev()
             .filter(|&n| text.is_char_boundary(n))
+            // An alternative's number is read whole: `R1.1` is not the
+            // start of `R1.18`.
+            .filter(|&n| {
+                !(text[..n].contains('.') && text.as_bytes().get(n).is_some_and(u8::is_ascii_digit))
+            })
             .find_map(|n| self.by_name.get(&text[..n]).map(|&id| (id, n)))
     }
 

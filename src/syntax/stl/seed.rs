@@ -119,12 +119,23 @@ impl Builder<'_> {
                             (Some(id), ns.start)
                         }
                         None => {
-                            self.report(
-                                StlError::BraceWithoutRule,
-                                s.clone(),
-                                "no rule before it",
-                                "write the rule whose slots these are before `{`, as in `R1{,}`",
-                            );
+                            // Right after a word already reported (an
+                            // unknown rule or alternative), the `{` is that
+                            // word's: no second error.
+                            let after_error = self
+                                .diags
+                                .iter()
+                                .last()
+                                .and_then(|d| d.span.as_ref())
+                                .is_some_and(|e| e.end == s.start);
+                            if !after_error {
+                                self.report(
+                                    StlError::BraceWithoutRule,
+                                    s.clone(),
+                                    "no rule before it",
+                                    "write the rule whose slots these are before `{`, as in `R1{,}`",
+                                );
+                            }
                             (None, s.start)
                         }
                     };

@@ -88,12 +88,25 @@
 
 import { createHttpEngine } from './http.js';
 
+let chosen = createHttpEngine;
+
 /**
- * The engine this page uses: today always the HTTP one.
+ * Chooses another engine for this page, before app.js creates it: the
+ * static site's entry module (web/page/site.js) chooses the WebAssembly
+ * one (web/page/engine/wasm.js). `stlc serve` chooses none: HTTP.
+ *
+ * @param {(options: {token: string}) => Engine} create
+ */
+export function useEngine(create) {
+  chosen = create;
+}
+
+/**
+ * The engine this page uses: the HTTP one unless another was chosen.
  *
  * @param {{token: string}} options the page's Save token
  * @returns {Engine}
  */
 export function createEngine(options) {
-  return createHttpEngine(options);
+  return chosen(options);
 }
