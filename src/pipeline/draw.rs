@@ -130,6 +130,20 @@ pub fn render(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
+    render_tree(scene, look, opts, true, out, progress)
+}
+
+/// [`render`], with a tree's stems left out of the picture unless `tree`
+/// (its background and layout underlay are drawn, and counted as ever):
+/// for an editor that draws a big traced tree itself.
+pub(crate) fn render_tree(
+    scene: &Scene,
+    look: &Look,
+    opts: &RenderOptions,
+    tree: bool,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<Rendered, Diagnostics> {
     // A stochastic system's `--exact` SVG (a command a segment) that even
     // its fewest segments would overflow is refused before any derivation
     // (its count is otherwise known only by deriving the word). Without
@@ -165,6 +179,7 @@ pub fn render(
         Some((m, sys, depth)) => {
             crate::interpret::lsys::draw_with(m, sys, *depth, &scene.limits, t, p)
         }
+        None if !tree => Ok(()),
         None => scene.draw(t, p),
     };
     let frame = match (view, &memo) {

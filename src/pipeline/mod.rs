@@ -25,7 +25,7 @@ mod draw;
 mod request;
 mod summary;
 
-pub(crate) use draw::{Given, ignored_flags, layout_view};
+pub(crate) use draw::{Given, ignored_flags, layout_view, render_tree};
 pub use draw::{Look, Rendered, ShowLayout, TREE_BROWN, image_format, render, style};
 pub use request::{Drawn, Request};
 pub use summary::{Checked, check, stats};

@@ -23,6 +23,7 @@ use super::{
     Compiled, Given, Loaded, Look, SceneRequest, ShowLayout, TraceTree, detect_kind, ignored_flags,
     load,
 };
+use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::grow::{GrowOptions, GrowthOrder};
 use crate::interpret::Derivation;
@@ -69,6 +70,11 @@ pub struct Request {
     /// [`Request::render`] also returns the grown tree's BED text and its
     /// stems in the order growth placed them (an editor's replay).
     pub trace: bool,
+    /// With [`Request::trace`]: a grown tree of more stems than this is
+    /// left out of [`Request::render`]'s picture (its background and
+    /// layout underlay are drawn; [`Drawn::tree_left_out`]), for an editor
+    /// that draws the traced stems itself; `None`: always drawn.
+    pub tree_up_to: Option<u64>,
 }
 
 impl Default for Request {
@@ -88,6 +94,7 @@ impl Default for Request {
             look: Look::default(),
             image: RenderOptions::new(ImageFormat::Png, None),
             trace: false,
+            tree_up_to: None,
         }
     }
 }
@@ -113,6 +120,11 @@ pub struct Drawn {
     pub view: Option<BBox>,
     /// Warnings, in the order the work met them.
     pub warnings: Vec<Diagnostic>,
+    /// The colour the tree's stems are (or would be) drawn in.
+    pub stroke: Rgb,
+    /// Whether the tree was left out of the picture for its size
+    /// ([`Request::tree_up_to`]): the trace has its stems.
+    pub tree_left_out: bool,
 }
 
 impl Request {
@@ -221,9 +233,19 @@ impl Request {
         let (loaded, mut warnings) = self.open()?;
         let req = self.scene_request(&loaded)?;
         let (scene, od, trace) = super::traced_scene(loaded, &req, self.trace, progress)?;
-        let rendered = super::render(&scene, &self.look, &self.image, out, progress)?;
-        let view = super::layout_view(&scene, false).0;
         let grown = scene.grown_stems();
+        let tree_left_out = trace.is_some()
+            && matches!((self.tree_up_to, grown), (Some(most), Some(n)) if n > most);
+        let rendered = super::render_tree(
+            &scene,
+            &self.look,
+            &self.image,
+            !tree_left_out,
+            out,
+            progress,
+        )?;
+        let stroke = super::style(&scene, &self.look).stroke;
+        let view = super::layout_view(&scene, false).0;
         warnings.extend(scene.warnings);
         warnings.extend(rendered.warnings);
         Ok(Drawn {
@@ -234,6 +256,8 @@ impl Request {
             trace,
             view,
             warnings,
+            stroke,
+            tree_left_out,
         })
     }
 

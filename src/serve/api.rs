@@ -234,9 +234,17 @@ impl Body {
 pub struct RenderAnswer {
     /// Always `true`.
     pub ok: bool,
-    /// The picture, as `stlc render -f svg --show-layout` writes it.
+    /// The picture, as `stlc render -f svg --show-layout` writes it; for
+    /// a big grown tree (`tree_in_svg` false), without the tree.
     pub svg: String,
-    /// The grown BED (an .od only), as `stlc compile` writes it.
+    /// Whether `svg` shows the tree: `false` for a grown tree of more than
+    /// [`BIG_TREE_STEMS`] stems, which the page draws from `growth` instead
+    /// (the export's SVG always has it).
+    pub tree_in_svg: bool,
+    /// The tree's stroke colour, `#rrggbb`.
+    pub stroke: String,
+    /// The grown BED (an .od only), as `stlc compile` writes it; `None`
+    /// for a big grown tree (`tree_in_svg` false): `/api/export` writes it.
     pub bed: Option<String>,
     /// Stems grown (an .od), else segments drawn, as decimal digits:
     /// exact at any depth (a JSON number is exact only to 2^53).
@@ -257,6 +265,12 @@ pub struct RenderAnswer {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub layout: Option<Option<shapes::LayoutJson>>,
 }
+
+/// A grown tree of more stems than this is drawn by the page from its
+/// stems, not from the SVG: the page reads and imports an SVG in one task,
+/// about 20 ms at 10,000 stems, 30 ms at 20,000 and 370 ms at 200,000
+/// (docs/performance.md), and a task over 50 ms stalls it.
+pub const BIG_TREE_STEMS: u64 = 10_000;
 
 /// The stems in growth order: six numbers a stem (`from.x, from.y, to.x,
 /// to.y, width, decision`), three decimals; and the last decision.
@@ -420,14 +434,19 @@ pub fn words(
 }
 
 /// What a render request drew, in the answer's terms, and a PNG's bytes
-/// (an SVG is the answer's `svg`, moved there, not copied).
+/// (an SVG is the answer's `svg`, moved there, not copied); a grown tree
+/// of more than `tree_up_to` stems left out of the picture.
 pub fn run(
     body: &Body,
     s: &Settings,
     format: ImageFormat,
+    tree_up_to: Option<u64>,
     progress: &mut dyn Progress,
 ) -> Result<(RenderAnswer, Vec<u8>), Failed> {
-    let req = body.request(s, format);
+    let req = Request {
+        tree_up_to,
+        ..body.request(s, format)
+    };
     let text = &body.source;
     let mut image = Vec::new();
     let drawn = req
@@ -463,7 +482,9 @@ pub fn run(
     let answer = RenderAnswer {
         ok: true,
         svg,
-        bed,
+        tree_in_svg: !drawn.tree_left_out,
+        stroke: drawn.stroke.to_string(),
+        bed: bed.filter(|_| !drawn.tree_left_out),
         stems: match (drawn.grown, &drawn.count) {
             (Some(n), _) => n.to_string(),
             (None, Some(c)) => c.clone(),
@@ -580,8 +601,14 @@ mod tests {
             max_svg_segments: 1_000_000,
             time_budget: std::time::Duration::from_secs(60),
         };
-        let (answer, _) =
-            run(&body, &s, ImageFormat::Svg, &mut stlc::pipeline::NoProgress).unwrap();
+        let (answer, _) = run(
+            &body,
+            &s,
+            ImageFormat::Svg,
+            None,
+            &mut stlc::pipeline::NoProgress,
+        )
+        .unwrap();
         let units: Vec<u16> = text.encode_utf16().collect();
         let slice = |a: usize, b: usize| String::from_utf16(&units[a..b]).unwrap();
         let layout = answer.layout.flatten().unwrap();

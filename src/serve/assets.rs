@@ -80,6 +80,11 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/replay.js"),
     },
     Asset {
+        path: "/bigtree.js",
+        media: JS,
+        body: include_str!("page/bigtree.js"),
+    },
+    Asset {
         path: "/session.js",
         media: JS,
         body: include_str!("page/session.js"),

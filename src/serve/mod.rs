@@ -18,6 +18,7 @@
 
 mod api;
 mod assets;
+mod compact;
 mod conns;
 mod document;
 mod examples;

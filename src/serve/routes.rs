@@ -18,6 +18,7 @@ use serde::Serialize;
 use super::State;
 use super::api::{self, Body, Failed, Kind};
 use super::assets;
+use super::compact;
 use super::document::Refused;
 use super::http::{self, Answer};
 use super::memory::{self, Reservation};
@@ -229,6 +230,7 @@ async fn draw(
     state: Arc<State>,
     req: Request<Incoming>,
     format: ImageFormat,
+    tree_up_to: Option<u64>,
 ) -> Result<Ended<Result<(api::RenderAnswer, Vec<u8>), Failed>>, Answer> {
     let reserved = admit(&state, &req).await?;
     let body = body(&state, req).await?;
@@ -242,19 +244,29 @@ async fn draw(
     let heavy = body.source.len() > work::BIG_INPUT || pixels.is_some();
     Ok(work::run(budget, slots, memory, heavy, move |w| {
         let _held = (reserved, pixels);
-        api::run(&body, &state.settings, format, w)
+        api::run(&body, &state.settings, format, tree_up_to, w)
     })
     .await)
 }
 
 /// `POST /api/render`: the answer as JSON (HTTP 200 once the request itself
-/// is well formed, the input's errors as diagnostics).
+/// is well formed, the input's errors as diagnostics); a big grown tree
+/// is left out of the SVG, and its stems come as a compact body to a
+/// client that accepts one (`compact`).
 async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
-    let done = match draw(state, req, ImageFormat::Svg).await {
+    let accept = req.headers().get(hyper::header::ACCEPT);
+    let compact = compact::accepted(accept.and_then(|v| v.to_str().ok()));
+    let done = match draw(state, req, ImageFormat::Svg, Some(compact::BIG_TREE_STEMS)).await {
         Ok(d) => d,
         Err(a) => return a,
     };
     match done {
+        Ended::Done(Ok((answer, _))) if compact && !answer.tree_in_svg => {
+            match compact::body(answer) {
+                Ok(bytes) => http::answer(StatusCode::OK, compact::MEDIA, bytes),
+                Err(answer) => http::json(StatusCode::OK, &answer),
+            }
+        }
         Ended::Done(Ok((answer, _))) => http::json(StatusCode::OK, &answer),
         Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),
         Ended::Stopped(why) => stopped(why),
@@ -278,7 +290,7 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
         }
     };
     let want_bed = format.as_deref() == Some("bed");
-    let done = match draw(state, req, image).await {
+    let done = match draw(state, req, image, None).await {
         Ok(d) => d,
         Err(a) => return a,
     };

@@ -1,6 +1,7 @@
 //! One integration-test binary; each area is a module.
 
 mod architecture;
+mod bigtree;
 mod browser;
 mod browser_draw;
 mod browser_edits;

@@ -77,7 +77,9 @@ pub fn render(input: &[u8]) -> Answer {
         Ok(b) => b,
         Err(a) => return a,
     };
-    match api::run(&body, &settings(), ImageFormat::Svg, &mut NoProgress) {
+    // A big grown tree is left out of the SVG, as stlc serve's render does.
+    let big = Some(api::BIG_TREE_STEMS);
+    match api::run(&body, &settings(), ImageFormat::Svg, big, &mut NoProgress) {
         Ok((answer, _)) => json(Status::Done, &answer),
         Err(failed) => json(Status::Failed, &failed),
     }
@@ -121,7 +123,7 @@ pub fn export(input: &[u8], format: Option<Format>) -> Answer {
         Format::Png => ImageFormat::Png,
         Format::Svg | Format::Bed => ImageFormat::Svg,
     };
-    match api::run(&body, &settings(), image, &mut NoProgress) {
+    match api::run(&body, &settings(), image, None, &mut NoProgress) {
         Ok((answer, _)) if format == Format::Bed => match answer.bed {
             Some(bed) => (Status::Done, bed.into_bytes()),
             None => json(

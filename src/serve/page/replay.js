@@ -5,6 +5,7 @@
 // them in 30, 4 or 1 seconds.
 
 import { byId, el } from './dom.js';
+import { stemsUpTo } from './bigtree.js';
 
 export function createReplay(app) {
   const { state } = app;
@@ -14,6 +15,7 @@ export function createReplay(app) {
 
   // The stroke colour of the library's tree, for the stems drawn here.
   function strokeColour() {
+    if (state.answer.stroke) return state.answer.stroke;
     const p = preview.querySelector('.lib path[fill="none"]');
     return p ? p.getAttribute('stroke') : '#4a2c12';
   }
@@ -53,10 +55,13 @@ export function createReplay(app) {
     const max = a.growth.decisions;
     const partial = k < max;
     const grownNoLayout = !a.view && a.root;
-    preview.classList.toggle('replaying', partial && !grownNoLayout);
-    if (partial || grownNoLayout) showStems(k);
+    // A big tree is on its canvas (bigtree.js), which replays it itself.
+    const big = a.tree_in_svg === false;
+    preview.classList.toggle('replaying', partial && !grownNoLayout && !big);
+    if (big) app.view.tree.show(k);
+    else if (partial || grownNoLayout) showStems(k);
     else preview.querySelector('.replay-layer').innerHTML = '';
-    const stems = countStems(k);
+    const stems = big ? stemsUpTo(a.growth.stems, k) : countStems(k);
     byId('step-label').textContent = max ? `decision ${k} of ${max} · ${stems} stems` : '';
     if (fromUser) stopReplay(true);
   }

@@ -3,6 +3,7 @@
 // fit). Zoom and pan move only the view: nothing is rendered again.
 
 import { byId, el } from './dom.js';
+import { createTreeCanvas } from './bigtree.js';
 
 // The box the picture lives in, in canvas units.
 function pictureBox(answer) {
@@ -90,6 +91,8 @@ function gridStep(span) {
 export function createView(app) {
   const { state } = app;
   const preview = byId('preview');
+  // A big grown tree's canvas (bigtree.js): the answer's SVG has no tree.
+  const tree = createTreeCanvas();
 
   // The shapes' places in the text come with each good answer (layout.js's
   // doc, the one drawing edits start from); an answer to a text older than
@@ -140,9 +143,12 @@ export function createView(app) {
       state.view = state.fitView.slice();
       state.refit = false;
     }
+    // A big tree is drawn from its stems, over the picture's box, at the
+    // screen's resolution (replay.show below draws it).
+    if (a.tree_in_svg === false) tree.place(libLayer, a, box, shownBox(), (window.devicePixelRatio || 1) / unitsPerPixel());
     el('g', { class: 'grid' }, preview);
     el('g', { class: 'replay-layer' }, preview);
-    if (grownNoLayout) app.replay.showStems(Infinity);
+    if (grownNoLayout && a.tree_in_svg !== false) app.replay.showStems(Infinity);
     el('g', { class: 'overlay' }, preview);
     drawOverlay();
     setViewBox();
@@ -159,11 +165,7 @@ export function createView(app) {
     const v = state.view;
     if (!v || byId('kind').value !== 'od' || state.shapes.length) return;
     const upp = unitsPerPixel();
-    const r = preview.getBoundingClientRect();
-    // The view box as shown (it keeps its aspect, so it may show more).
-    const [cx, cy] = [(v[0] + v[2]) / 2, (v[1] + v[3]) / 2];
-    const [hw, hh] = [r.width * upp / 2 || (v[2] - v[0]) / 2, r.height * upp / 2 || (v[3] - v[1]) / 2];
-    const box = [cx - hw, cy - hh, cx + hw, cy + hh];
+    const box = shownBox();
     const step = gridStep(Math.max(box[2] - box[0], box[3] - box[1]));
     const font = 10 * upp;
     for (let x = Math.ceil(box[0] / step) * step; x <= box[2]; x += step) {
@@ -175,6 +177,16 @@ export function createView(app) {
       el('text', { x: box[0] + 2 * upp, y: y - 2 * upp, 'font-size': font }, g).textContent = String(Math.round(y * 1000) / 1000);
     }
     g.dataset.step = step;
+  }
+
+  // The view box as shown (it keeps its aspect, so it may show more).
+  function shownBox() {
+    const v = state.view;
+    const upp = unitsPerPixel();
+    const r = preview.getBoundingClientRect();
+    const [cx, cy] = [(v[0] + v[2]) / 2, (v[1] + v[3]) / 2];
+    const [hw, hh] = [r.width * upp / 2 || (v[2] - v[0]) / 2, r.height * upp / 2 || (v[3] - v[1]) / 2];
+    return [cx - hw, cy - hh, cx + hw, cy + hh];
   }
 
   // The shape under canvas point `p` (or within a few pixels of its
@@ -237,6 +249,7 @@ export function createView(app) {
     const v = state.view;
     preview.setAttribute('viewBox', `${v[0]} ${v[1]} ${v[2] - v[0]} ${v[3] - v[1]}`);
     drawGrid();
+    tree.viewChanged(shownBox(), (window.devicePixelRatio || 1) / unitsPerPixel());
   }
 
   function unitsPerPixel() {
@@ -286,5 +299,5 @@ export function createView(app) {
   byId('zoom-out').addEventListener('click', () => zoom(1.25));
   byId('fit').addEventListener('click', fit);
 
-  return { element: preview, draw, stale, forget, drawOverlay, overlay, unitsPerPixel, toCanvas, pan, fit, hitTest };
+  return { element: preview, tree, draw, stale, forget, drawOverlay, overlay, unitsPerPixel, toCanvas, pan, fit, hitTest };
 }

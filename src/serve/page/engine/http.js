@@ -1,15 +1,35 @@
 // The engine over HTTP: the pipeline runs in `stlc serve`, the server that
 // served this page (the interface: index.js). Nothing leaves 127.0.0.1.
 
+// The compact render answer of a big grown tree (docs/serve.md, "Big
+// trees"): a JSON head, then `growth.stems` as 32-bit integers
+// (thousandths of a unit, then the decision), put back into the answer as
+// the numbers its JSON would hold (a Float64Array): no text to parse.
+const COMPACT = 'application/x-stlc-render';
+
+function unpack(buf) {
+  const n = new DataView(buf).getUint32(0, true);
+  const head = JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 4, n)));
+  const ints = new Int32Array(buf, 4 + n, head.stems);
+  const g = new Float64Array(head.stems);
+  for (let i = 0; i < g.length; i += 6) {
+    for (let j = i; j < i + 5; j++) g[j] = ints[j] / 1000;
+    g[i + 5] = ints[i + 5];
+  }
+  const answer = head.answer;
+  answer.growth.stems = g;
+  return answer;
+}
+
 /**
  * @param {{token: string}} options the page's token, sent as X-Stlc-Token
  * @returns {import('./index.js').Engine}
  */
 export function createHttpEngine({ token }) {
-  function post(path, body, signal) {
+  function post(path, body, signal, accept = 'application/json') {
     return fetch(path, {
       method: 'POST',
-      headers: { 'Content-Type': 'application/json', 'X-Stlc-Token': token },
+      headers: { 'Content-Type': 'application/json', 'X-Stlc-Token': token, Accept: accept },
       body: JSON.stringify(body),
       signal,
     });
@@ -23,8 +43,10 @@ export function createHttpEngine({ token }) {
 
   return {
     async render(request, { signal } = {}) {
-      const res = await post('/api/render', request, signal);
+      // A big grown tree may come compact, anything else as JSON.
+      const res = await post('/api/render', request, signal, `${COMPACT}, application/json`);
       if (!res.ok) return refused(res);
+      if ((res.headers.get('Content-Type') || '').startsWith(COMPACT)) return unpack(await res.arrayBuffer());
       return res.json();
     },
 
