@@ -37,6 +37,7 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 
 mod lod;
+mod solid;
 
 use super::{Alphabet, PROGRESS_STEP};
 use crate::model::lsys::LSystem;
@@ -161,6 +162,9 @@ pub(crate) struct Geometry {
     /// shared by the render's passes).
     headings: RefCell<Headings>,
     len: f64,
+    /// Coverage masks of the solid test (geometry/solid.rs), for the
+    /// detail last asked.
+    masks: RefCell<solid::Masks>,
 }
 
 /// The period of `angle` in turns: the least `p` in `1..=MAX_PERIOD` with
@@ -232,6 +236,7 @@ impl Geometry {
             pieces: Vec::new(),
             headings: RefCell::new(Headings::starting(sys.heading, sys.angle)),
             len,
+            masks: RefCell::new(solid::Masks::default()),
         };
         g.turns()?;
         g.demand(budget)?;
