@@ -535,14 +535,23 @@ fn a_tiny_probability_is_not_printed_as_zero() {
 /// refused before any derivation: abop-1.27 (each F becomes 5, 3 or 3 F)
 /// draws at least 3^16 = 43,046,721 segments at depth 16, over the 10^7
 /// an SVG may hold; at depth 14 (at least 4,782,969) it is not refused
-/// on that ground before deriving.
+/// on that ground before deriving. This is `--exact`'s refusal: at a level
+/// of detail (the default) the SVG holds stand-ins, counted by a pass at
+/// that level (tests/integration/lod.rs).
 #[test]
 fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
     let dir = tempfile::tempdir().unwrap();
     let fig = manifest_path("examples/abop-1.27.lsys");
     let out = Command::cargo_bin("stlc")
         .unwrap()
-        .args(["render", fig.to_str().unwrap(), "--depth", "16", "-o"])
+        .args([
+            "render",
+            fig.to_str().unwrap(),
+            "--depth",
+            "16",
+            "--exact",
+            "-o",
+        ])
         .arg(dir.path().join("a.svg"))
         .output()
         .unwrap();
@@ -558,6 +567,7 @@ fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
         .unwrap()
         .args([
             "render",
+            "--exact",
             fig.to_str().unwrap(),
             "--depth",
             "6",
@@ -573,6 +583,7 @@ fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
         .unwrap()
         .args([
             "render",
+            "--exact",
             fig.to_str().unwrap(),
             "--depth",
             "5",

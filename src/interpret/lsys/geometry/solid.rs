@@ -91,11 +91,18 @@ fn cell_of(x: f64, y: f64, p: &Piece, d: f64) -> Option<usize> {
 impl Geometry {
     /// Whether piece `(c, r)` at heading `k`, of box `p`, is solid at
     /// `detail` (see the module documentation): it draws, its box is
-    /// between [`SOLID_MIN`] and [`SOLID_MAX`] details, and its mask is
-    /// covered.
+    /// between [`SOLID_MIN`] and [`SOLID_MAX`] details and at least two
+    /// thick (a thinner one is as well drawn by its chord), and its mask
+    /// is covered.
     pub(super) fn solid(&self, c: u32, r: u32, k: i64, p: &Piece, detail: f64) -> bool {
         let e = p.extent();
-        if !p.draws() || !(detail > 0.0) || e < SOLID_MIN * detail || e >= SOLID_MAX * detail {
+        let thin = (p.max_x - p.min_x).min(p.max_y - p.min_y) < 2.0 * detail;
+        if !p.draws()
+            || !(detail > 0.0)
+            || thin
+            || e < SOLID_MIN * detail
+            || e >= SOLID_MAX * detail
+        {
             return false;
         }
         let mut masks = self.masks.borrow_mut();
