@@ -140,7 +140,7 @@ fn png(file: &str, depth: u32, exact: bool) -> tiny_skia::Pixmap {
     let out = dir.path().join("out.png");
     let mut c = stlc();
     c.arg("render")
-        .arg(crate::support::manifest_path(&format!(
+        .arg(crate::support::manifest_path(format!(
             "examples/{file}.lsys"
         )))
         .args(["--depth", &depth.to_string(), "--size", "256x256", "-o"])

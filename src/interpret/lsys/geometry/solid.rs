@@ -98,7 +98,7 @@ impl Geometry {
         let e = p.extent();
         let thin = (p.max_x - p.min_x).min(p.max_y - p.min_y) < 2.0 * detail;
         if !p.draws()
-            || !(detail > 0.0)
+            || detail.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
             || thin
             || e < SOLID_MIN * detail
             || e >= SOLID_MAX * detail
