@@ -104,6 +104,17 @@ pub const BLOT_DENSITY: f64 = 2.0;
 /// (docs/rendering.md, *Level of detail*: 0.5 to 1.25 tried, 1.0 closest).
 pub const BLOT_EXTRA_PX: f64 = 1.0;
 
+/// A bush's stand-in with its spread ([`Turtle::blot_spread`]) is a
+/// capsule of radius half the stem, plus the spread, plus this many output
+/// pixels: the exact drawing's overlapping anti-aliased hairlines darken
+/// a little beyond the strokes' own reach. Chosen by measurement against
+/// `--exact` (docs/rendering.md, *Silhouette*).
+pub const SPREAD_EXTRA_PX: f64 = 0.0;
+
+/// A sparse bush (density under [`BLOT_DENSITY`]) whose spread is under
+/// this many output pixels is drawn as its chord, an ordinary segment.
+pub const SPREAD_MIN_PX: f64 = 0.1;
+
 /// How [`render_framed`] decides what the picture shows.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Frame {

@@ -39,6 +39,8 @@ use std::collections::HashMap;
 mod lod;
 mod solid;
 
+pub(crate) use lod::across;
+
 use super::{Alphabet, PROGRESS_STEP};
 use crate::model::lsys::LSystem;
 use crate::progress::Progress;

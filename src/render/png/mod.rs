@@ -37,7 +37,10 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, Stroke, Transform,
 };
 
-use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, Style, Width, stroke_px};
+use super::{
+    BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, SPREAD_EXTRA_PX, SPREAD_MIN_PX,
+    Style, Width, stroke_px,
+};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
 use crate::diag::{Diagnostic, RenderError};
@@ -278,6 +281,37 @@ impl Turtle for PngTurtle {
         }
         let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
         raster::stamp(&mut self.pixmap, self.ink, from, to, radius);
+    }
+
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
+        if self.covered {
+            return;
+        }
+        let spread = spread * self.fit.scale;
+        if density < BLOT_DENSITY && spread < SPREAD_MIN_PX {
+            self.segment(seg);
+            return;
+        }
+        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
+        if ![from.x, from.y, to.x, to.y, spread]
+            .iter()
+            .all(|v| v.is_finite())
+        {
+            return;
+        }
+        let stroke = stroke_px(&self.width, self.fit.scale, seg.order);
+        raster::stamp(
+            &mut self.pixmap,
+            self.ink,
+            from,
+            to,
+            stroke / 2.0
+                + spread
+                + std::env::var("STLC_SPREAD_EXTRA")
+                    .ok()
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or(SPREAD_EXTRA_PX),
+        );
     }
 
     fn segment(&mut self, seg: Segment) {

@@ -143,10 +143,18 @@ impl Chance {
                     } else {
                         1.0
                     };
-                    turtle.blot(
-                        Segment { from, to, order: 0 },
-                        if density.is_finite() { density } else { 1.0 },
-                    );
+                    let density = if density.is_finite() { density } else { 1.0 };
+                    if self.jumps[at] {
+                        let (seg, spread) = crate::interpret::lsys::geometry::across(
+                            from,
+                            to,
+                            Point::new(pen.x + sg * p.min_x, pen.y + sg * p.min_y),
+                            Point::new(pen.x + sg * p.max_x, pen.y + sg * p.max_y),
+                        );
+                        turtle.blot_spread(seg, density, spread);
+                    } else {
+                        turtle.blot(Segment { from, to, order: 0 }, density);
+                    }
                 }
                 let at = self.at(c, r);
                 pen = Pen {

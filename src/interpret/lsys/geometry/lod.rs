@@ -5,6 +5,34 @@
 
 use super::*;
 
+/// A bush's stand-in along `from`-`to`, moved across onto the middle of
+/// the box `a`-`b` (opposite corners), and the box's half-width across
+/// it: what [`Turtle::blot_spread`] takes.
+pub(crate) fn across(from: Point, to: Point, a: Point, b: Point) -> (Segment, f64) {
+    let (dx, dy) = (to.x - from.x, to.y - from.y);
+    let l = libm::hypot(dx, dy);
+    let (nx, ny) = if l > 0.0 {
+        (-dy / l, dx / l)
+    } else {
+        (1.0, 0.0)
+    };
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for (x, y) in [(a.x, a.y), (a.x, b.y), (b.x, a.y), (b.x, b.y)] {
+        let t = (x - from.x) * nx + (y - from.y) * ny;
+        lo = lo.min(t);
+        hi = hi.max(t);
+    }
+    let mid = (lo + hi) / 2.0;
+    let (ox, oy) = (nx * mid, ny * mid);
+    let seg = Segment {
+        from: Point::new(from.x + ox, from.y + oy),
+        to: Point::new(to.x + ox, to.y + oy),
+        order: 0,
+    };
+    (seg, (hi - lo) / 2.0)
+}
+
 /// Draws a solid piece's box (at `x`, `y`, turned around if `sg` is -1)
 /// as one zigzag of rows at most `detail` apart: one connected run, so
 /// the backend strokes it as one outline, which covers the box widened
@@ -212,10 +240,18 @@ impl Geometry {
                         } else {
                             (n as f64 * len.abs() / seg_len).max(1.0)
                         };
-                        turtle.blot(
-                            Segment { from, to, order: 0 },
-                            if density.is_finite() { density } else { 1.0 },
-                        );
+                        let density = if density.is_finite() { density } else { 1.0 };
+                        if self.jumps[at] == 0 {
+                            turtle.blot(Segment { from, to, order: 0 }, density);
+                        } else {
+                            let (seg, spread) = across(
+                                from,
+                                to,
+                                Point::new(x + sg * p.min_x, y + sg * p.min_y),
+                                Point::new(x + sg * p.max_x, y + sg * p.max_y),
+                            );
+                            turtle.blot_spread(seg, density, spread);
+                        }
                     }
                     (x, y) = (ex, ey);
                     k = k.wrapping_add(self.turn_of(c, r));
