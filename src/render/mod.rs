@@ -105,11 +105,12 @@ pub const BLOT_DENSITY: f64 = 2.0;
 pub const BLOT_EXTRA_PX: f64 = 1.0;
 
 /// A bush's stand-in with its spread ([`Turtle::blot_spread`]) is a
-/// capsule of radius half the stem, plus the spread, plus this many output
-/// pixels: the exact drawing's overlapping anti-aliased hairlines darken
-/// a little beyond the strokes' own reach. Chosen by measurement against
-/// `--exact` (docs/rendering.md, *Silhouette*).
-pub const SPREAD_EXTRA_PX: f64 = 0.0;
+/// capsule of radius half the stem, plus the spread, plus up to this many
+/// output pixels: `SPREAD_EXTRA_PX * (1 - 1 / sqrt(density))`. The exact
+/// drawing's overlapping anti-aliased hairlines darken a little beyond
+/// the strokes' own reach, the more so the more of them there are. Chosen
+/// by measurement against `--exact` (docs/rendering.md, *Silhouette*).
+pub const SPREAD_EXTRA_PX: f64 = 0.5;
 
 /// A sparse bush (density under [`BLOT_DENSITY`]) whose spread is under
 /// this many output pixels is drawn as its chord, an ordinary segment.

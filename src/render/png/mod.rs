@@ -305,12 +305,7 @@ impl Turtle for PngTurtle {
             self.ink,
             from,
             to,
-            stroke / 2.0
-                + spread
-                + std::env::var("STLC_SPREAD_EXTRA")
-                    .ok()
-                    .and_then(|v| v.parse().ok())
-                    .unwrap_or(SPREAD_EXTRA_PX),
+            stroke / 2.0 + spread + SPREAD_EXTRA_PX * (1.0 - 1.0 / libm::sqrt(density.max(1.0))),
         );
     }
 
