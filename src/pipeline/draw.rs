@@ -180,7 +180,7 @@ pub fn render(
     let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| match &lod {
         Some((Lod::Memo(m), sys, depth)) => lsys::draw_with(m, sys, *depth, &scene.limits, t, p),
         Some((Lod::Chance(c), _, _)) => match fixed.or(t.detail()) {
-            Some(detail) => lsys::draw_chance(c, detail, &scene.limits, t, p),
+            Some(detail) => lsys::draw_chance(c, detail, &scene.limits, t, p).map(|_| ()),
             None => scene.draw(t, p),
         },
         None => scene.draw(t, p),
@@ -257,7 +257,7 @@ fn chance_frame(
         let mut bounds = Bounds::default();
         let mut phase = Phase::new(progress, "measuring");
         lsys::draw_chance(chance, detail, &scene.limits, &mut bounds, &mut phase)
-            .map(|()| bounds.bbox())
+            .map(|_| bounds.bbox())
     };
     let first = bounded(detail_of(chance.expected_box())?, progress)?;
     let detail = detail_of(first)?;

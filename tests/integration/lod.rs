@@ -81,41 +81,40 @@ fn a_stochastic_walk_at_detail_zero_is_the_exact_drawing() {
     }
 }
 
-/// With stand-ins, each stand-in ends exactly where its subtree ends (its
-/// trunk was walked with the seed's choices): its chord runs between two
-/// points of the exact drawing, bit for bit (a stand-in whose chord is
-/// under half its box is the box's diagonal instead: at most a few).
-/// Depth 7 expands to about 9,000 segments; a detail of 8 steps cuts
-/// subtrees of depth 1 and 2.
+/// With stand-ins, each ends exactly where its subtree ends (its trunk
+/// was walked with the seed's choices, with the exact drawing's steps),
+/// so the walk ends where the exact drawing does, bit for bit, at any
+/// detail. Depth 7 expands to about 9,000 segments; a detail of 8 steps
+/// cuts subtrees of depth 1 and 2, of 30 steps depth 3 too.
 #[test]
 fn stochastic_stand_ins_end_where_their_subtrees_end() {
     for seed in [1, 7] {
         let s = plant(seed);
         let all = exact(&s, 7);
-        let points: std::collections::HashSet<(u64, u64)> = all
-            .iter()
-            .flat_map(|g| [g.from, g.to])
-            .map(|p| (p.x.to_bits(), p.y.to_bits()))
-            .collect();
-        let w = walked(&s, 7, 8.0);
-        let n = w.stand_ins.len() + w.segments.len();
-        assert!(
-            n > 100 && n < all.len() / 4,
-            "seed {seed}: {n} of {}",
-            all.len()
-        );
-        let on = |p: stlc::turtle::Point| points.contains(&(p.x.to_bits(), p.y.to_bits()));
-        let exact_ends = w
-            .stand_ins
-            .iter()
-            .filter(|g| on(g.from) && on(g.to))
-            .count();
-        assert!(
-            exact_ends * 10 >= w.stand_ins.len() * 9,
-            "seed {seed}: {exact_ends} of {} stand-ins end on the exact drawing",
-            w.stand_ins.len()
-        );
-        assert!(w.segments.iter().all(|g| all.contains(g)));
+        let end = all.last().unwrap().to;
+        for detail in [8.0, 30.0] {
+            let chance = Chance::new(&s, 7).unwrap();
+            let mut split = Split::default();
+            let walked = draw_chance(
+                &chance,
+                detail,
+                &Limits::default(),
+                &mut split,
+                &mut NoProgress,
+            )
+            .unwrap();
+            let n = split.stand_ins.len() + split.segments.len();
+            assert!(
+                n > 10 && n < all.len() / 4,
+                "seed {seed}: {n} of {}",
+                all.len()
+            );
+            assert_eq!(
+                (walked.x.to_bits(), walked.y.to_bits()),
+                (end.x.to_bits(), end.y.to_bits()),
+                "seed {seed}, detail {detail}"
+            );
+        }
     }
 }
 

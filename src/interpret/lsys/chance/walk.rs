@@ -207,7 +207,7 @@ fn step(pen: &mut Pen, op: Option<Op>, hd: &mut Headings, len: f64, mut draw: im
 
 /// Draws stochastic `sys`'s [`Chance`] at `detail` canvas units into
 /// `turtle`, with exact ends where [`Chance::plan`] says they fit
-/// [`LOD_WORK`]. Refused when the walk would visit more than the
+/// [`LOD_WORK`]; returns where the turtle ends. Refused when the walk would visit more than the
 /// stochastic traversal budget (a tenth of `limits.max_symbols`).
 pub fn draw_chance(
     chance: &Chance,
@@ -215,7 +215,7 @@ pub fn draw_chance(
     limits: &Limits,
     turtle: &mut dyn Turtle,
     progress: &mut dyn Progress,
-) -> Result<(), Diagnostics> {
+) -> Result<Point, Diagnostics> {
     let plan = chance.plan(detail);
     let within = super::super::stochastic::budget(limits);
     if plan.visits > within.max_symbols as f64 {
@@ -234,7 +234,7 @@ pub fn draw_chance(
         ));
     }
     progress.start("symbols", plan.visits as u64);
-    chance.walk(detail, plan.exact_ends, turtle, progress);
+    let (end, _) = chance.walk(detail, plan.exact_ends, turtle, progress);
     progress.finish();
-    Ok(())
+    Ok(end)
 }
