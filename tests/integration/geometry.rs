@@ -365,7 +365,7 @@ fn level_of_detail_is_bounded_and_stays_in_the_box() {
     let mid = (b.min_x + b.max_x) / 2.0;
     assert!((seg.from.x - mid).abs() < 1e-9 * size && (seg.to.x - mid).abs() < 1e-9 * size);
     assert_eq!((seg.from.y, seg.to.y), (0.0, m.end.y));
-    assert_eq!(m.end.x.abs() < 1e-9 * size, true);
+    assert!(m.end.x.abs() < 1e-9 * size, "{:?}", m.end);
     // 1/200 of the picture: a few thousand stand-ins at depth 57 (the word
     // has 10^40 symbols).
     let fine = lod(&s, depth, size / 200.0);
