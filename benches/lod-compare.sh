@@ -8,7 +8,9 @@
 #   benches/lod-compare.sh BEFORE_STLC AFTER_STLC
 #   RUNS=5 DEPTHS="6 8 10" benches/lod-compare.sh /tmp/before/stlc target/release/stlc
 #
-# System: examples/abop-1.24a.lsys (F -> F[+F]F[-F]F, 25.7 degrees).
+# System: LSYS, default examples/abop-1.24a.lsys (F -> F[+F]F[-F]F, 25.7
+# degrees); also run with LSYS=examples/abop-1.27.lsys (stochastic) and
+# LSYS=examples/hilbert.lsys (a space-filling curve) for issue 24.
 # "before" is run only where it finishes in reasonable time (word up to
 # depth MAX_BEFORE, default 11, and not at all where it refuses: it has no
 # memo, so depth 57 is over --max-symbols). AFTER also runs with --exact at
@@ -21,7 +23,7 @@ RUNS=${RUNS:-3}
 DEPTHS=${DEPTHS:-"6 7 8 9 10 11 12 13 15 20 30 40 57"}
 SIZES=${SIZES:-"800 2048x2048"}
 MAX_BEFORE=${MAX_BEFORE:-11}
-LSYS=examples/abop-1.24a.lsys
+LSYS=${LSYS:-examples/abop-1.24a.lsys}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 

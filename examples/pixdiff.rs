@@ -3,12 +3,13 @@
 //!
 //! ```sh
 //! cargo run --release --example pixdiff -- A.png B.png
-//! #   mean 0.41/255 max 96/255 differing 3012 (>16: 512, >64: 20) of 262144
+//! #   mean 0.41/255 max 96/255 differing 3012 (>16: 512, >64: 20) of 262144 inked 9233 9761
 //! cargo run --release --example pixdiff -- A.png B.png side.png [ZOOM X Y W H]
 //! ```
 //!
 //! The difference of a pixel is the largest of its channels' absolute
-//! differences; the mean is over every pixel. With a third argument, writes
+//! differences; the mean is over every pixel; "inked" counts each
+//! image's pixels at least half inked (over 127 from the background). With a third argument, writes
 //! A and B side by side (optionally the `W` x `H` crop at `X`, `Y` of each,
 //! magnified `ZOOM` times, nearest neighbour) with a grey rule between.
 
@@ -45,8 +46,10 @@ fn main() {
     }
     let n = a.pixels().len() as u64;
     println!(
-        "mean {:.3}/255 max {max}/255 differing {differing} (>16: {over16}, >64: {over64}) of {n}",
-        sum as f64 / n as f64
+        "mean {:.3}/255 max {max}/255 differing {differing} (>16: {over16}, >64: {over64}) of {n} inked {} {}",
+        sum as f64 / n as f64,
+        inked(&a),
+        inked(&b)
     );
     if let Some(out) = args.get(2) {
         let num = |i: usize, d: u32| args.get(i).and_then(|s| s.parse().ok()).unwrap_or(d);
@@ -69,4 +72,22 @@ fn main() {
         }
         side.save_png(out).expect("write");
     }
+}
+
+/// Pixels at least half inked: the largest channel difference from the
+/// background (the top-left pixel) over 127.
+fn inked(p: &Pixmap) -> u64 {
+    let bg = p.pixels()[0];
+    let diff = |q: &tiny_skia::PremultipliedColorU8| {
+        [
+            q.red().abs_diff(bg.red()),
+            q.green().abs_diff(bg.green()),
+            q.blue().abs_diff(bg.blue()),
+            q.alpha().abs_diff(bg.alpha()),
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0)
+    };
+    p.pixels().iter().filter(|q| diff(q) > 127).count() as u64
 }

@@ -8,10 +8,13 @@ use std::path::Path;
 use super::{Loaded, Scene, What};
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError};
+use crate::interpret::lsys;
 use crate::model::lsys::Background;
+use crate::progress::Phase;
 use crate::progress::Progress;
+use crate::render::{Fit, LOD_PX};
 use crate::render::{Frame, ImageFormat, RenderOptions, Style, Width};
-use crate::turtle::{BBox, Fill, Turtle};
+use crate::turtle::{BBox, Bounds, Fill, Turtle};
 
 /// How a picture looks: the options of [`render`] beyond size and format.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -144,6 +147,26 @@ pub(crate) fn render_tree(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
+    let style = style(scene, look);
+    let (view, underlay) = layout_view(scene, look.show_layout != ShowLayout::No);
+    // At a level of detail, an L-system's memoized geometry (when it
+    // applies) is built once and serves the whole render: fitting (no
+    // bounding pass), an SVG's count and the drawing; a stochastic one's
+    // expected geometry likewise (its fit: see `chance_frame`).
+    let lod = match &scene.what {
+        What::Lsys { sys, depth }
+            if !opts.exact && scene.derivation == crate::interpret::Derivation::Dfs =>
+        {
+            scene.limits.check_depth(*depth)?;
+            if sys.is_stochastic() {
+                lsys::Chance::new(sys, *depth).ok().map(Lod::Chance)
+            } else {
+                lsys::Memo::new(sys, *depth).ok().map(Lod::Memo)
+            }
+            .map(|m| (m, sys, *depth))
+        }
+        _ => None,
+    };
     // A stochastic system's `--exact` SVG (a command a segment) that even
     // its fewest segments would overflow is refused before any derivation
     // (its count is otherwise known only by deriving the word). Without
@@ -152,49 +175,35 @@ pub(crate) fn render_tree(
         && sys.is_stochastic()
         && opts.format == ImageFormat::Svg
         && opts.exact
-        && crate::interpret::lsys::Stochastic::new(sys)
-            .segment_bounds(*depth)
-            .0
+        && lsys::Stochastic::new(sys).segment_bounds(*depth).0
             > opts.max_svg_segments
     {
         return Err(crate::render::svg_too_large(None, opts.max_svg_segments));
     }
-    let style = style(scene, look);
-    let (view, underlay) = layout_view(scene, look.show_layout != ShowLayout::No);
-    // At a level of detail, an L-system's memoized geometry (when it
-    // applies) is built once and serves the whole render: fitting (no
-    // bounding pass), an SVG's count and the drawing.
-    let memo = match &scene.what {
-        What::Lsys { sys, depth }
-            if !opts.exact && scene.derivation == crate::interpret::Derivation::Dfs =>
-        {
-            scene.limits.check_depth(*depth)?;
-            crate::interpret::lsys::Memo::new(sys, *depth)
-                .ok()
-                .map(|m| (m, sys, *depth))
+    let (frame, fixed) = match (view, &lod) {
+        (Some(view), _) => {
+            let segments = scene.bed().map(|bed| bed.size().stems);
+            (Frame::View { view, segments }, None)
         }
-        _ => None,
-    };
-    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| match &memo {
-        Some((m, sys, depth)) => {
-            crate::interpret::lsys::draw_with(m, sys, *depth, &scene.limits, t, p)
-        }
-        None if !tree => Ok(()),
-        None => scene.draw(t, p),
-    };
-    let frame = match (view, &memo) {
-        (Some(view), _) => Frame::View {
-            view,
-            segments: scene.bed().map(|bed| bed.size().stems),
-        },
-        (None, Some((m, _, _))) => {
+        (None, Some((Lod::Memo(m), _, _))) => {
             let m = m.measured();
-            Frame::Known {
+            let known = Frame::Known {
                 bbox: m.bbox,
                 segments: m.segments,
-            }
+            };
+            (known, None)
         }
-        (None, None) => Frame::Fit,
+        (None, Some((Lod::Chance(c), _, _))) => chance_frame(scene, c, &style, opts, progress)?,
+        (None, None) => (Frame::Fit, None),
+    };
+    let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| match &lod {
+        Some((Lod::Memo(m), sys, depth)) => lsys::draw_with(m, sys, *depth, &scene.limits, t, p),
+        Some((Lod::Chance(c), _, _)) => match fixed.or(t.detail()) {
+            Some(detail) => lsys::draw_chance(c, detail, &scene.limits, t, p).map(|_| ()),
+            None => scene.draw(t, p),
+        },
+        None if !tree => Ok(()),
+        None => scene.draw(t, p),
     };
     let counted =
         crate::render::render_framed(&mut drawing, frame, &underlay, &style, opts, out, progress)?;
@@ -227,6 +236,56 @@ pub(crate) fn render_tree(
         count,
         warnings,
     })
+}
+
+/// The memo an L-system is drawn with at a level of detail.
+enum Lod {
+    /// A deterministic system's memoized geometry.
+    Memo(lsys::Memo),
+    /// A stochastic system's expected geometry.
+    Chance(lsys::Chance),
+}
+
+/// The frame of a stochastic system at a level of detail, and the detail
+/// (canvas units) to draw at when it must be the one the frame was
+/// measured at. A word expected within [`lsys::FIT_SYMBOLS`] gets the
+/// exact bounding pass (the box and count `--exact` uses); a longer one is
+/// fitted to a bounding walk at the level of detail, at the detail of a
+/// first fit from the expected box, then again at the detail of that fit,
+/// whose box and detail the drawing then uses (its count is the expected
+/// one).
+fn chance_frame(
+    scene: &Scene,
+    chance: &lsys::Chance,
+    style: &Style,
+    opts: &RenderOptions,
+    progress: &mut dyn Progress,
+) -> Result<(Frame, Option<f64>), Diagnostics> {
+    if chance.expected_symbols() <= lsys::FIT_SYMBOLS {
+        let mut bounds = Bounds::default();
+        scene.draw(&mut bounds, &mut Phase::new(progress, "measuring"))?;
+        let known = Frame::Known {
+            bbox: bounds.bbox(),
+            segments: bounds.count,
+        };
+        return Ok((known, None));
+    }
+    let detail_of = |bbox: Option<BBox>| -> Result<f64, Diagnostics> {
+        Ok(LOD_PX / Fit::content(bbox, 0, &style.width, opts.size)?.scale)
+    };
+    let bounded = |detail: f64, progress: &mut dyn Progress| {
+        let mut bounds = Bounds::default();
+        let mut phase = Phase::new(progress, "measuring");
+        lsys::draw_chance(chance, detail, &scene.limits, &mut bounds, &mut phase)
+            .map(|_| bounds.bbox())
+    };
+    let first = bounded(detail_of(chance.expected_box())?, progress)?;
+    let detail = detail_of(first)?;
+    let known = Frame::Known {
+        bbox: bounded(detail, progress)?,
+        segments: libm::round(chance.expected_segments()).min(u64::MAX as f64) as u64,
+    };
+    Ok((known, Some(detail)))
 }
 
 /// The image format: `asked` (`-f`) if given, else the output name's

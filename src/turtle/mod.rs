@@ -84,6 +84,16 @@ pub trait Turtle {
         let _ = density;
         self.segment(seg);
     }
+
+    /// A stand-in for a part of the drawing that breaks off in branches
+    /// (a bush), as [`Turtle::blot`], whose subtree reaches `spread`
+    /// canvas units to either side of `seg` (its box's half-width across
+    /// it; `seg` runs along the box's middle). The default ignores the
+    /// spread; a raster backend paints the bush's own footprint.
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
+        let _ = spread;
+        self.blot(seg, density);
+    }
 }
 
 impl<T: Turtle + ?Sized> Turtle for &mut T {
@@ -98,6 +108,10 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
 
     fn blot(&mut self, seg: Segment, density: f64) {
         (**self).blot(seg, density)
+    }
+
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
+        (**self).blot_spread(seg, density, spread)
     }
 }
 

@@ -24,7 +24,7 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use crate::serve::{Server, cookie, example, request};
+use crate::serve::{HEAVY, Server, cookie, example, request};
 
 /// Memory budget of the soaked server, MiB.
 const BUDGET_MIB: u64 = 256;
@@ -120,10 +120,11 @@ fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHan
     })
 }
 
-/// One client sending heavy renders until `stop`: long ones (abop-1.27 at
-/// depth 14: many seconds), or with `big`, ones whose answers are big
-/// (depth 12: an SVG of about 100 MB); `abandon`: it closes each after
-/// 0.3 s instead of reading the answer.
+/// One client sending heavy renders until `stop`: long ones ([`HEAVY`] at
+/// depth 12: many seconds of derivation), or with `big`, ones that take
+/// memory (an OD growing 300,000 stems in a wide square: its occupancy
+/// index, its trace and an answer of megabytes); `abandon`: it closes each
+/// after 0.3 s instead of reading the answer.
 fn heavy(
     addr: String,
     abandon: bool,
@@ -131,9 +132,15 @@ fn heavy(
     stop: Arc<AtomicBool>,
 ) -> std::thread::JoinHandle<()> {
     std::thread::spawn(move || {
-        let depth = if big { 12 } else { 14 };
-        let body = json!({"source": example("abop-1.27.lsys"), "kind": "lsys", "depth": depth})
-            .to_string();
+        let body = if big {
+            json!({
+                "source": "Big (5000, 5000) L=2(0) B=1(0) RULE R1: [+F][-F] LAYOUT (clGreen)< Rectangle (0,0,10000,10000)>\nENDLAYOUT\n",
+                "max_stems": 300000
+            })
+        } else {
+            json!({"source": HEAVY, "kind": "lsys", "depth": 12})
+        }
+        .to_string();
         while !stop.load(Ordering::Relaxed) {
             if abandon {
                 let head = format!(
@@ -161,7 +168,7 @@ fn quantile(sorted: &[Duration], q: f64) -> Duration {
 }
 
 /// Under 200 slowloris connections, 64 that never read and 8 heavy
-/// renders (4 of them abandoned), light requests are all answered, the
+/// renders (4 of them abandoned, 2 growing big trees), light requests are all answered, the
 /// server keeps under its memory budget and never exits.
 #[test]
 fn the_server_holds_under_hostile_clients() {

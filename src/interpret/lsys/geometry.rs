@@ -37,6 +37,9 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 
 mod lod;
+mod solid;
+
+pub(crate) use lod::across;
 
 use super::{Alphabet, PROGRESS_STEP};
 use crate::model::lsys::LSystem;
@@ -63,6 +66,10 @@ pub enum Refusal {
     /// The system has stochastic rules: occurrences of one symbol at one
     /// depth differ, so no piece can stand for all of them.
     Stochastic,
+    /// A stochastic rule's alternatives turn or flip differently (outside
+    /// their brackets, at some depth): the heading after a subtree would
+    /// depend on its choices.
+    Choices,
 }
 
 /// The drawing of one `(symbol, remaining depth, heading)` relative to its
@@ -86,7 +93,7 @@ pub(crate) struct Piece {
 }
 
 impl Piece {
-    const EMPTY: Piece = Piece {
+    pub(super) const EMPTY: Piece = Piece {
         dx: 0.0,
         dy: 0.0,
         min_x: f64::INFINITY,
@@ -112,7 +119,7 @@ impl Piece {
 
     /// Adds the point `(x, y)` to the box.
     #[inline]
-    fn add(&mut self, x: f64, y: f64) {
+    pub(super) fn add(&mut self, x: f64, y: f64) {
         self.min_x = self.min_x.min(x);
         self.min_y = self.min_y.min(y);
         self.max_x = self.max_x.max(x);
@@ -157,11 +164,14 @@ pub(crate) struct Geometry {
     /// shared by the render's passes).
     headings: RefCell<Headings>,
     len: f64,
+    /// Coverage masks of the solid test (geometry/solid.rs), for the
+    /// detail last asked.
+    masks: RefCell<solid::Masks>,
 }
 
 /// The period of `angle` in turns: the least `p` in `1..=MAX_PERIOD` with
 /// `p * angle` a whole number of full turns (within 1e-9 of a degree).
-fn period_of(angle: f64) -> Option<i64> {
+pub(super) fn period_of(angle: f64) -> Option<i64> {
     if !angle.is_finite() {
         return None;
     }
@@ -173,7 +183,7 @@ fn period_of(angle: f64) -> Option<i64> {
 
 /// Whether `word` is bracket-balanced: never more `]` than `[` so far, and
 /// as many of each in all.
-fn balanced(word: &[u32], ops: &[Option<Op>]) -> bool {
+pub(super) fn balanced(word: &[u32], ops: &[Option<Op>]) -> bool {
     let mut open = 0usize;
     for &c in word {
         match ops[c as usize] {
@@ -228,6 +238,7 @@ impl Geometry {
             pieces: Vec::new(),
             headings: RefCell::new(Headings::starting(sys.heading, sys.angle)),
             len,
+            masks: RefCell::new(solid::Masks::default()),
         };
         g.turns()?;
         g.demand(budget)?;

@@ -46,10 +46,13 @@
 //! - `geometry.rs`: the memoized geometry (net move, turn and box per
 //!   `(symbol, depth, heading)`), for `bbox`/`end` at any depth, the
 //!   renderer's fitting and its level of detail;
+//! - `chance.rs`: the expected geometry of a stochastic system and its
+//!   level-of-detail walk, which follows the seed's choices;
 //! - `bfs.rs`: Saupe's level-by-level rewriting.
 
 mod alphabet;
 mod bfs;
+mod chance;
 mod exec;
 mod geometry;
 mod program;
@@ -71,6 +74,7 @@ use crate::turtle::{BBox, Headings, Point, Turtle};
 use crate::turtle::{Interp, Op};
 
 pub(crate) use alphabet::Alphabet;
+pub use chance::{Chance, ChancePlan, FIT_SYMBOLS, LOD_WORK, draw_chance};
 use exec::Exec;
 use geometry::Geometry;
 pub use geometry::{GEOMETRY_ENTRIES, MAX_PERIOD, Refusal};

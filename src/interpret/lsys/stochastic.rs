@@ -110,11 +110,40 @@ impl Stochastic {
     /// The successor of symbol `s` at key `k`, if `s` has a rule.
     fn successor(&self, s: u32, k: Key) -> Option<&[u32]> {
         let r = self.rules[s as usize].as_ref()?;
-        let i = r
-            .table
-            .as_ref()
-            .map_or(0, |t| t.pick(k).min(r.succ.len() - 1));
-        Some(&r.succ[i])
+        Some(&r.succ[self.choose(s, k)?])
+    }
+
+    /// Which alternative of symbol `s`'s rule the place with key `k`
+    /// takes, if `s` has a rule (0 for a deterministic one).
+    #[inline]
+    pub(crate) fn choose(&self, s: u32, k: Key) -> Option<usize> {
+        let r = self.rules[s as usize].as_ref()?;
+        Some(
+            r.table
+                .as_ref()
+                .map_or(0, |t| t.pick(k).min(r.succ.len() - 1)),
+        )
+    }
+
+    /// Symbol `s`'s alternatives as `(probability, successor)`, empty
+    /// when it has no rule.
+    pub(crate) fn alternatives(&self, s: u32) -> Vec<(f64, &[u32])> {
+        let Some(r) = self.rules[s as usize].as_ref() else {
+            return Vec::new();
+        };
+        r.succ
+            .iter()
+            .enumerate()
+            .map(|(i, w)| {
+                let p = r.table.as_ref().map_or(1.0, |t| t.probability(i));
+                (p, w.as_slice())
+            })
+            .collect()
+    }
+
+    /// `Key::root(seed)`: the axiom's symbols are its children.
+    pub(crate) fn root(&self) -> Key {
+        self.root
     }
 
     /// Calls `f` with every symbol of the word at `depth`, in order, by an

@@ -39,7 +39,10 @@ use tiny_skia::{
 
 pub use bands::BAND_ROWS;
 
-use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, Style, Width, stroke_px};
+use super::{
+    BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, SPREAD_EXTRA_PX, SPREAD_MIN_PX,
+    Style, Width, stroke_px,
+};
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
 use crate::diag::{Diagnostic, RenderError};
@@ -327,6 +330,32 @@ impl PngTurtle {
         }
     }
 
+    /// Stamps a capsule of `radius` output pixels from `from` to `to` in
+    /// the ink: at once on a whole raster, else with the batch's blots,
+    /// which every band stamps in order.
+    fn stamp(&mut self, from: crate::turtle::Point, to: crate::turtle::Point, radius: f64) {
+        match &mut self.canvas {
+            Canvas::Whole(pixmap) => {
+                let (width, rows) = (pixmap.width(), 0..pixmap.height());
+                raster::stamp(
+                    pixmap.data_mut(),
+                    width,
+                    rows,
+                    self.ink.rgb,
+                    from,
+                    to,
+                    radius,
+                );
+            }
+            _ => {
+                self.blots.push((from, to, radius));
+                if self.blots.len() >= BATCH_SEGMENTS {
+                    self.send_blots();
+                }
+            }
+        }
+    }
+
     // -----------------------------------------------------------------------
     // Output
 
@@ -445,26 +474,31 @@ impl Turtle for PngTurtle {
             return;
         }
         let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
-        match &mut self.canvas {
-            Canvas::Whole(pixmap) => {
-                let (width, rows) = (pixmap.width(), 0..pixmap.height());
-                raster::stamp(
-                    pixmap.data_mut(),
-                    width,
-                    rows,
-                    self.ink.rgb,
-                    from,
-                    to,
-                    radius,
-                );
-            }
-            _ => {
-                self.blots.push((from, to, radius));
-                if self.blots.len() >= BATCH_SEGMENTS {
-                    self.send_blots();
-                }
-            }
+        self.stamp(from, to, radius);
+    }
+
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
+        if self.covered {
+            return;
         }
+        let spread = spread * self.fit.scale;
+        if density < BLOT_DENSITY && spread < SPREAD_MIN_PX {
+            self.segment(seg);
+            return;
+        }
+        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
+        if ![from.x, from.y, to.x, to.y, spread]
+            .iter()
+            .all(|v| v.is_finite())
+        {
+            return;
+        }
+        let stroke = stroke_px(&self.width, self.fit.scale, seg.order);
+        self.stamp(
+            from,
+            to,
+            stroke / 2.0 + spread + SPREAD_EXTRA_PX * (1.0 - 1.0 / libm::sqrt(density.max(1.0))),
+        );
     }
 
     fn segment(&mut self, seg: Segment) {

@@ -5,14 +5,71 @@
 
 use super::*;
 
+/// A bush's stand-in along `from`-`to`, moved across onto the middle of
+/// the box `a`-`b` (opposite corners), and the box's half-width across
+/// it: what [`Turtle::blot_spread`] takes.
+pub(crate) fn across(from: Point, to: Point, a: Point, b: Point) -> (Segment, f64) {
+    let (dx, dy) = (to.x - from.x, to.y - from.y);
+    let l = libm::hypot(dx, dy);
+    let (nx, ny) = if l > 0.0 {
+        (-dy / l, dx / l)
+    } else {
+        (1.0, 0.0)
+    };
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for (x, y) in [(a.x, a.y), (a.x, b.y), (b.x, a.y), (b.x, b.y)] {
+        let t = (x - from.x) * nx + (y - from.y) * ny;
+        lo = lo.min(t);
+        hi = hi.max(t);
+    }
+    let mid = (lo + hi) / 2.0;
+    let (ox, oy) = (nx * mid, ny * mid);
+    let seg = Segment {
+        from: Point::new(from.x + ox, from.y + oy),
+        to: Point::new(to.x + ox, to.y + oy),
+        order: 0,
+    };
+    (seg, (hi - lo) / 2.0)
+}
+
+/// Draws a solid piece's box (at `x`, `y`, turned around if `sg` is -1)
+/// as one zigzag of rows at most `detail` apart: one connected run, so
+/// the backend strokes it as one outline, which covers the box widened
+/// by half the stroke, as the exact drawing does (geometry/solid.rs).
+fn hatch<T: Turtle>(turtle: &mut T, x: f64, y: f64, sg: f64, p: &Piece, rows: u64) {
+    let (x0, x1) = (x + sg * p.min_x, x + sg * p.max_x);
+    let (y0, y1) = (y + sg * p.min_y, y + sg * p.max_y);
+    let row_y = |i: u64| y0 + (y1 - y0) * i as f64 / (rows - 1).max(1) as f64;
+    let mut at = Point::new(x0, row_y(0));
+    for i in 0..rows {
+        let yi = row_y(i);
+        let (a, b) = if i % 2 == 0 { (x0, x1) } else { (x1, x0) };
+        let from = Point::new(a, yi);
+        if from != at {
+            turtle.segment(Segment {
+                from: at,
+                to: from,
+                order: 0,
+            });
+        }
+        let to = Point::new(b, yi);
+        turtle.segment(Segment { from, to, order: 0 });
+        at = to;
+    }
+}
+
 impl Geometry {
     /// Whether a piece is drawn as a stand-in at `detail`: one whose box is
     /// smaller than `detail`, or one that draws nothing and moves less than
     /// `detail` or not at all (only its net turn matters; exact). At
     /// `detail` 0 nothing that draws or moves is cut, so the segments are
     /// the exact drawing's, bit for bit.
-    fn cut(&self, c: u32, r: u32, p: &Piece, detail: f64) -> bool {
+    fn cut(&self, c: u32, r: u32, k: i64, p: &Piece, detail: f64) -> bool {
         if p.draws() {
+            if self.solid(c, r, k, p, detail) {
+                return true;
+            }
             // A connected run's stand-in is its chord, one line where the
             // exact drawing folds a winding line at FOLD_PX: cut it at half
             // the detail, about that tolerance.
@@ -47,8 +104,13 @@ impl Geometry {
             if self.is_piece(c, r) {
                 let i = self.index.get(&(c, r, self.key(k))).copied().unwrap_or(0) as usize;
                 let p = self.pieces.get(i).copied().unwrap_or(Piece::EMPTY);
-                if self.cut(c, r, &p, detail) {
-                    [1, u64::from(p.draws()), u64::from(p.draws() || p.moves)]
+                if self.cut(c, r, k, &p, detail) {
+                    let drawn = if self.solid(c, r, k, &p, detail) {
+                        2 * solid::hatch_rows(&p, detail)
+                    } else {
+                        u64::from(p.draws())
+                    };
+                    [1, drawn, u64::from(p.draws() || p.moves)]
                 } else {
                     add([1, 0, 0], cost.get(i).copied().unwrap_or([0; 3]))
                 }
@@ -152,10 +214,13 @@ impl Geometry {
             }
             if self.is_piece(c, r) {
                 let p = self.piece(c, r, k);
-                if self.cut(c, r, &p, detail) {
+                if self.cut(c, r, k, &p, detail) {
                     let sg = if flip { -1.0 } else { 1.0 };
                     let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
-                    if p.draws() {
+                    if self.solid(c, r, k, &p, detail) {
+                        let rows = solid::hatch_rows(&p, detail);
+                        hatch(&mut turtle, x, y, sg, &p, rows);
+                    } else if p.draws() {
                         let chord = libm::hypot(p.dx, p.dy);
                         let (from, to) = if chord * 2.0 >= p.extent() {
                             (Point::new(x, y), Point::new(ex, ey))
@@ -175,10 +240,18 @@ impl Geometry {
                         } else {
                             (n as f64 * len.abs() / seg_len).max(1.0)
                         };
-                        turtle.blot(
-                            Segment { from, to, order: 0 },
-                            if density.is_finite() { density } else { 1.0 },
-                        );
+                        let density = if density.is_finite() { density } else { 1.0 };
+                        if self.jumps[at] == 0 {
+                            turtle.blot(Segment { from, to, order: 0 }, density);
+                        } else {
+                            let (seg, spread) = across(
+                                from,
+                                to,
+                                Point::new(x + sg * p.min_x, y + sg * p.min_y),
+                                Point::new(x + sg * p.max_x, y + sg * p.max_y),
+                            );
+                            turtle.blot_spread(seg, density, spread);
+                        }
                     }
                     (x, y) = (ex, ey);
                     k = k.wrapping_add(self.turn_of(c, r));
