@@ -7,7 +7,9 @@
 
 mod fit;
 pub mod png;
+pub mod mesh;
 pub mod svg;
+pub mod view;
 
 use std::io::Write;
 

@@ -87,6 +87,7 @@ pub(crate) fn describe(rule: Rule) -> String {
         Rule::lsys_color => "`color C`",
         Rule::lsys_background => "`background C`",
         Rule::lsys_seed => "`seed N`",
+        Rule::lsys_dimensions => "`dimensions N`",
         Rule::lsys_probability => "a probability like `(0.5)`",
         Rule::lsys_unknown | Rule::lsys_key => {
             return format!("a key ({})", lsys::KEYS.join(", "));

@@ -53,6 +53,7 @@ mod bfs;
 mod exec;
 mod geometry;
 mod program;
+pub mod space;
 mod stochastic;
 mod units;
 
