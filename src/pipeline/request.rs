@@ -29,6 +29,8 @@ use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
 use crate::model::{Description, Design, Order};
 use crate::progress::Progress;
+use crate::render::mesh::{MeshFormat, MeshOptions};
+use crate::render::view::View;
 use crate::render::{ImageFormat, RenderOptions};
 use crate::syntax::InputKind;
 use crate::turtle::BBox;
@@ -69,6 +71,13 @@ pub struct Request {
     /// [`Request::render`] also returns the grown tree's BED text and its
     /// stems in the order growth placed them (an editor's replay).
     pub trace: bool,
+    /// The view of a 3D input (`--view AZ,EL`); `None`:
+    /// [`View::DEFAULT`]. A 2D input has only its front view: given for
+    /// one, a warning.
+    pub view: Option<View>,
+    /// How [`Request::mesh`] makes tubes (`--sides`, `--unit`,
+    /// `--max-triangles`).
+    pub mesh: MeshOptions,
 }
 
 impl Default for Request {
@@ -88,6 +97,8 @@ impl Default for Request {
             look: Look::default(),
             image: RenderOptions::new(ImageFormat::Png, None),
             trace: false,
+            view: None,
+            mesh: MeshOptions::default(),
         }
     }
 }
@@ -190,6 +201,12 @@ impl Request {
         let (limits, _) = self.options(&Design::default())?;
         let loaded = load(&self.input, self.input_kind()?, &limits)?.seeded(self.seed);
         let mut warnings = ignored_flags(&loaded, &self.given());
+        if self.view.is_some() && !matches!(&loaded, Loaded::Lsys(s) if s.is_3d()) {
+            warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
+                flag: "--view".into(),
+                reason: "this input is flat: its picture is its front view (`dimensions 3` makes an .lsys 3D)".into(),
+            }));
+        }
         if self.look.show_layout == ShowLayout::Yes && !has_layout(&loaded) {
             warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
                 flag: "--show-layout".into(),
@@ -221,7 +238,12 @@ impl Request {
         let (loaded, mut warnings) = self.open()?;
         let req = self.scene_request(&loaded)?;
         let (scene, od, trace) = super::traced_scene(loaded, &req, self.trace, progress)?;
-        let rendered = super::render(&scene, &self.look, &self.image, out, progress)?;
+        let rendered = if super::space::space_lsys(&scene).is_some() {
+            let view = self.view.unwrap_or(View::DEFAULT);
+            super::space::render_view(&scene, view, &self.look, &self.image, out, progress)?
+        } else {
+            super::render(&scene, &self.look, &self.image, out, progress)?
+        };
         let view = super::layout_view(&scene, false).0;
         let grown = scene.grown_stems();
         warnings.extend(scene.warnings);
@@ -235,6 +257,25 @@ impl Request {
             view,
             warnings,
         })
+    }
+
+    /// Writes the input as a mesh in `format` (docs/3d.md): an OD grown
+    /// first, an L-system at its depth (a 2D one, and any tree, lifted to
+    /// z = 0); returns what was written with the warnings.
+    pub fn mesh(
+        &self,
+        format: MeshFormat,
+        out: &mut dyn Write,
+        progress: &mut dyn Progress,
+    ) -> Result<super::Meshed, Diagnostics> {
+        let (loaded, mut warnings) = self.open()?;
+        let req = self.scene_request(&loaded)?;
+        let scene = super::scene(loaded, &req, progress)?;
+        let mut meshed = super::space::mesh(&scene, &self.look, format, &self.mesh, out, progress)?;
+        warnings.extend(scene.warnings);
+        warnings.append(&mut meshed.warnings);
+        meshed.warnings = warnings;
+        Ok(meshed)
     }
 
     /// Grows an OD into a BED and writes its canonical text. Any other
