@@ -230,3 +230,46 @@ fn the_command_line_writes_meshes_and_views() {
         .success();
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
 }
+
+/// Every example's glTF (3D and 2D, `.glb` and `.gltf`) passes the Khronos
+/// glTF validator with no error and no warning. It runs from npm
+/// (`npm ci` installs it, as for ESLint); without it the test fails under
+/// CI and is skipped, saying so, elsewhere.
+#[test]
+fn the_khronos_validator_finds_no_issue() {
+    let root = manifest_path("");
+    if !root.join("node_modules/gltf-validator").is_dir() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "node_modules/gltf-validator is missing: run `npm ci`"
+        );
+        eprintln!("skipped: node_modules/gltf-validator is missing (run `npm ci`)");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mut files = Vec::new();
+    for (example, format, ext) in [
+        ("hilbert3d.lsys", MeshFormat::Glb, "glb"),
+        ("plant3d.lsys", MeshFormat::Gltf, "gltf"),
+        ("paper-worked.bed", MeshFormat::Glb, "glb"),
+        ("koch-snowflake.lsys", MeshFormat::Gltf, "gltf"),
+    ] {
+        let path = manifest_path("examples").join(example);
+        let req = Request {
+            name: Some(path.clone()),
+            ..Request::new(std::fs::read(&path).unwrap())
+        };
+        let out = dir.path().join(format!("{example}.{ext}"));
+        std::fs::write(&out, mesh(&req, format)).unwrap();
+        files.push(out);
+    }
+    let run = std::process::Command::new("node")
+        .arg(root.join("tests/js/gltf-validate.mjs"))
+        .args(&files)
+        .current_dir(&root)
+        .output()
+        .expect("node runs");
+    let said = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{said}{}", String::from_utf8_lossy(&run.stderr));
+    assert_eq!(said.lines().filter(|l| l.ends_with(" 0 0")).count(), 4, "{said}");
+}
