@@ -544,7 +544,9 @@ fn parse_view(s: &str) -> Result<View, String> {
 fn parse_unit(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(u) if u.is_finite() && u > 0.0 => Ok(u),
-        _ => Err(format!("`{s}` is not a positive number of metres, e.g. 0.01")),
+        _ => Err(format!(
+            "`{s}` is not a positive number of metres, e.g. 0.01"
+        )),
     }
 }
 

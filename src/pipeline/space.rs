@@ -160,7 +160,14 @@ pub(crate) fn mesh(
         check_stems(sys, depth, &scene.limits, most, |_| {
             mesh::mesh_too_large(most, true, opts)
         })?;
-        draw3(sys, depth, scene.derivation, &scene.limits, &mut keep, &mut phase)?;
+        draw3(
+            sys,
+            depth,
+            scene.derivation,
+            &scene.limits,
+            &mut keep,
+            &mut phase,
+        )?;
     } else {
         let mut lift = Lift(&mut keep);
         scene.draw(&mut lift, &mut phase)?;
@@ -310,7 +317,10 @@ fn text3(s: &Stats, geo: &Geometry3) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "depth     {} (3D)", s.depth);
     if let Some(seed) = s.seed {
-        let _ = writeln!(out, "seed      {seed} (stochastic: the counts of this seed's word)");
+        let _ = writeln!(
+            out,
+            "seed      {seed} (stochastic: the counts of this seed's word)"
+        );
     }
     let _ = writeln!(out, "length    {}", s.length);
     let _ = writeln!(out, "segments  {}", s.segments);

@@ -6,8 +6,8 @@
 //! backend. Layout shapes can be painted underneath ([`Fill`]).
 
 mod fit;
-pub mod png;
 pub mod mesh;
+pub mod png;
 pub mod svg;
 pub mod view;
 

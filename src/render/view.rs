@@ -82,9 +82,7 @@ pub fn view_too_large(segments: String) -> Diagnostics {
         segments,
         limit: MAX_VIEW_SEGMENTS,
     })
-    .with_help(
-        "a 3D view sorts every stem far to near and so holds them all: use a smaller depth",
-    )
+    .with_help("a 3D view sorts every stem far to near and so holds them all: use a smaller depth")
     .into()
 }
 
@@ -143,7 +141,10 @@ mod tests {
     #[test]
     fn the_front_view_is_the_canvas() {
         let pr = View::FRONT.projection();
-        assert_eq!(pr.project(p(3.5, -2.25, 7.0)), (Point::new(3.5, -2.25), 7.0));
+        assert_eq!(
+            pr.project(p(3.5, -2.25, 7.0)),
+            (Point::new(3.5, -2.25), 7.0)
+        );
     }
 
     #[test]
@@ -178,7 +179,13 @@ mod tests {
     #[test]
     fn views_are_read_as_two_numbers() {
         assert_eq!(View::parse("30,20"), Some(View::DEFAULT));
-        assert_eq!(View::parse(" -45 , 10.5"), Some(View { az: -45.0, el: 10.5 }));
+        assert_eq!(
+            View::parse(" -45 , 10.5"),
+            Some(View {
+                az: -45.0,
+                el: 10.5
+            })
+        );
         assert_eq!(View::parse("30"), None);
         assert_eq!(View::parse("a,b"), None);
         assert_eq!(View::parse("inf,0"), None);

@@ -298,7 +298,10 @@ mod tests {
     fn the_start_frame_is_up_left_and_toward_the_viewer() {
         let mut t = Turtle3::new(90.0, 30.0, 1.0, |_| {});
         let (h, l, u) = t.hlu();
-        assert_eq!((h, l, u), ([0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]));
+        assert_eq!(
+            (h, l, u),
+            ([0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0])
+        );
     }
 
     #[test]

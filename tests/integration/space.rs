@@ -75,10 +75,22 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
         ("F&F", [0.0, -1.0, 1.0], [0.0, -1.0, 0.0, 0.0, 0.0, 1.0]),
         ("F/+F", [0.0, -1.0, -1.0], [0.0, -1.0, -1.0, 0.0, 0.0, 0.0]),
     ] {
-        let j = stats_json(&format!("dimensions 3\nangle 90\ngenerations 0\naxiom {word}\n"));
-        let got: Vec<f64> = j["end"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let j = stats_json(&format!(
+            "dimensions 3\nangle 90\ngenerations 0\naxiom {word}\n"
+        ));
+        let got: Vec<f64> = j["end"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
         assert_eq!(got, end, "{word}");
-        let got: Vec<f64> = j["bbox"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let got: Vec<f64> = j["bbox"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
         assert_eq!(got, bbox, "{word}");
         assert_eq!(j["segments"], "2");
     }
@@ -92,7 +104,12 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
     .unwrap();
     let j: serde_json::Value = serde_json::from_str(&s).unwrap();
     assert_eq!(j["segments"], "511");
-    let b: Vec<f64> = j["bbox"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let b: Vec<f64> = j["bbox"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
     assert_eq!((b[3] - b[0], b[4] - b[1], b[5] - b[2]), (7.0, 7.0, 7.0));
 }
 
@@ -129,7 +146,12 @@ fn dimensions_other_than_2_or_3_are_refused_with_help() {
 #[test]
 fn a_2d_file_keeps_its_meaning_and_warns_of_a_view() {
     let j = stats_json("angle 90\ngenerations 0\naxiom F&F\n");
-    let end: Vec<f64> = j["end"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let end: Vec<f64> = j["end"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
     assert_eq!(end, [0.0, -2.0]);
     let drawn = Request {
         view: Some(View::DEFAULT),
@@ -137,7 +159,12 @@ fn a_2d_file_keeps_its_meaning_and_warns_of_a_view() {
     }
     .render(&mut Vec::new(), &mut stlc::pipeline::NoProgress)
     .unwrap();
-    assert!(drawn.warnings.iter().any(|w| w.to_string().contains("--view")));
+    assert!(
+        drawn
+            .warnings
+            .iter()
+            .any(|w| w.to_string().contains("--view"))
+    );
 }
 
 fn mesh(req: &Request, format: MeshFormat) -> Vec<u8> {
@@ -206,7 +233,11 @@ fn a_2d_tree_exports_an_obj_and_the_limit_refuses() {
         ..req.clone()
     };
     let err = too_small
-        .mesh(MeshFormat::Obj, &mut Vec::new(), &mut stlc::pipeline::NoProgress)
+        .mesh(
+            MeshFormat::Obj,
+            &mut Vec::new(),
+            &mut stlc::pipeline::NoProgress,
+        )
         .unwrap_err();
     assert!(err.to_string().contains("--max-triangles"), "{err}");
 }
@@ -220,12 +251,24 @@ fn the_command_line_writes_meshes_and_views() {
     let png = dir.path().join("h.png");
     let input = manifest_path("examples/hilbert3d.lsys");
     stlc()
-        .args(["render", input.to_str().unwrap(), "-o", glb.to_str().unwrap()])
+        .args([
+            "render",
+            input.to_str().unwrap(),
+            "-o",
+            glb.to_str().unwrap(),
+        ])
         .assert()
         .success();
     assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
     stlc()
-        .args(["render", input.to_str().unwrap(), "--view", "-45,10", "-o", png.to_str().unwrap()])
+        .args([
+            "render",
+            input.to_str().unwrap(),
+            "--view",
+            "-45,10",
+            "-o",
+            png.to_str().unwrap(),
+        ])
         .assert()
         .success();
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
@@ -270,6 +313,14 @@ fn the_khronos_validator_finds_no_issue() {
         .output()
         .expect("node runs");
     let said = String::from_utf8_lossy(&run.stdout);
-    assert!(run.status.success(), "{said}{}", String::from_utf8_lossy(&run.stderr));
-    assert_eq!(said.lines().filter(|l| l.ends_with(" 0 0")).count(), 4, "{said}");
+    assert!(
+        run.status.success(),
+        "{said}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_eq!(
+        said.lines().filter(|l| l.ends_with(" 0 0")).count(),
+        4,
+        "{said}"
+    );
 }

@@ -31,7 +31,7 @@ pub fn draw3(
     sink: &mut dyn FnMut(Segment3),
     progress: &mut dyn Progress,
 ) -> Result<Point3, Diagnostics> {
-    let mut turtle = Turtle3::new(sys.heading, sys.angle, sys.length, |s| sink(s));
+    let mut turtle = Turtle3::new(sys.heading, sys.angle, sys.length, sink);
     if sys.is_stochastic() {
         limits.check_depth(depth)?;
         let within = stochastic::budget(limits);
@@ -203,7 +203,15 @@ mod tests {
             super::super::draw_into(&flat, 5, d, &Limits::DEFAULT, &mut rec, &mut NoProgress)
                 .unwrap();
             let mut got = Vec::new();
-            draw3(&deep, 5, d, &Limits::DEFAULT, &mut |s| got.push(s), &mut NoProgress).unwrap();
+            draw3(
+                &deep,
+                5,
+                d,
+                &Limits::DEFAULT,
+                &mut |s| got.push(s),
+                &mut NoProgress,
+            )
+            .unwrap();
             assert_eq!(rec.segments.len(), got.len());
             assert!(rec.segments.len() > 20);
             for (a, b) in rec.segments.iter().zip(&got) {

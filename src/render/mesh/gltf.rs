@@ -113,7 +113,11 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, Vec<u8>) {
     }
     j.push_str(", \"scene\": 0, \"scenes\": [{\"nodes\": [0]}]");
     j.push_str(", \"nodes\": [{\"mesh\": 0, \"name\": \"tree\"}]");
-    let _ = write!(j, ", \"meshes\": [{{\"name\": \"tree\", \"primitives\": [{}]}}]", prims.join(", "));
+    let _ = write!(
+        j,
+        ", \"meshes\": [{{\"name\": \"tree\", \"primitives\": [{}]}}]",
+        prims.join(", ")
+    );
     let _ = write!(j, ", \"materials\": [{}]", materials.join(", "));
     let _ = write!(j, ", \"accessors\": [{}]", accessors.join(", "));
     let _ = write!(j, ", \"bufferViews\": [{}]", views.join(", "));
@@ -172,12 +176,14 @@ pub fn write_glb(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
     let bin_chunk = if bin.is_empty() { 0 } else { 8 + bin.len() };
     let total = 12 + 8 + json.len() + bin_chunk;
     if u32::try_from(total).is_err() {
-        return Err(crate::diag::Diagnostic::error(crate::diag::RenderError::MeshTooLarge {
-            triangles: mesh.triangles().to_string(),
-            limit: mesh.triangles(),
-        })
-        .with_help("a .glb holds at most 4 GiB: write fewer triangles (--sides, --depth)")
-        .into());
+        return Err(
+            crate::diag::Diagnostic::error(crate::diag::RenderError::MeshTooLarge {
+                triangles: mesh.triangles().to_string(),
+                limit: mesh.triangles(),
+            })
+            .with_help("a .glb holds at most 4 GiB: write fewer triangles (--sides, --depth)")
+            .into(),
+        );
     }
     let mut w = |b: &[u8]| out.write_all(b);
     let res = w(b"glTF")

@@ -202,7 +202,11 @@ pub fn build(tubes: &[Tube], opts: &MeshOptions) -> Mesh {
         if d == [0.0; 3] || !d.iter().all(|v| v.is_finite()) {
             continue;
         }
-        let idx = match mesh.primitives.iter().position(|p| p.color == Some(t.color)) {
+        let idx = match mesh
+            .primitives
+            .iter()
+            .position(|p| p.color == Some(t.color))
+        {
             Some(i) => i,
             None => {
                 mesh.primitives.push(Primitive {
@@ -212,7 +216,14 @@ pub fn build(tubes: &[Tube], opts: &MeshOptions) -> Mesh {
                 mesh.primitives.len() - 1
             }
         };
-        tube(&mut mesh.primitives[idx], a, b, d, t.width * opts.unit / 2.0, &ring);
+        tube(
+            &mut mesh.primitives[idx],
+            a,
+            b,
+            d,
+            t.width * opts.unit / 2.0,
+            &ring,
+        );
     }
     mesh
 }
@@ -231,7 +242,13 @@ fn tube(p: &mut Primitive, a: V, b: V, d: V, r: f64, ring: &[(f64, f64)]) {
     let v = cross(dn, u);
     let off: Vec<V> = ring
         .iter()
-        .map(|&(c, s)| [u[0] * c + v[0] * s, u[1] * c + v[1] * s, u[2] * c + v[2] * s])
+        .map(|&(c, s)| {
+            [
+                u[0] * c + v[0] * s,
+                u[1] * c + v[1] * s,
+                u[2] * c + v[2] * s,
+            ]
+        })
         .collect();
     let at = |base: V, o: V| [base[0] + r * o[0], base[1] + r * o[1], base[2] + r * o[2]];
     let base = p.positions.len() as u32;
@@ -254,7 +271,12 @@ fn tube(p: &mut Primitive, a: V, b: V, d: V, r: f64, ring: &[(f64, f64)]) {
     }
     for j in 0..n {
         let k = (j + 1) % n;
-        let (aj, bj, ak, bk) = (base + 2 * j, base + 2 * j + 1, base + 2 * k, base + 2 * k + 1);
+        let (aj, bj, ak, bk) = (
+            base + 2 * j,
+            base + 2 * j + 1,
+            base + 2 * k,
+            base + 2 * k + 1,
+        );
         p.indices.extend([aj, ak, bk, aj, bk, bj]);
     }
     let start = base + 2 * n;

@@ -12,10 +12,30 @@ fn tubes() -> Vec<Tube> {
     let brown = Rgb::new(0x4a, 0x2c, 0x12);
     let green = Rgb::new(0, 0x80, 0);
     vec![
-        Tube { from: p(0.0, 0.0, 0.0), to: p(0.0, -10.0, 0.0), width: 2.0, color: brown },
-        Tube { from: p(0.0, -10.0, 0.0), to: p(3.0, -14.0, 5.0), width: 1.0, color: green },
-        Tube { from: p(1.0, 2.0, 3.0), to: p(1.0, 2.0, 3.0), width: 1.0, color: green },
-        Tube { from: p(0.0, -10.0, 0.0), to: p(-2.5, -13.0, -1.0), width: 0.5, color: brown },
+        Tube {
+            from: p(0.0, 0.0, 0.0),
+            to: p(0.0, -10.0, 0.0),
+            width: 2.0,
+            color: brown,
+        },
+        Tube {
+            from: p(0.0, -10.0, 0.0),
+            to: p(3.0, -14.0, 5.0),
+            width: 1.0,
+            color: green,
+        },
+        Tube {
+            from: p(1.0, 2.0, 3.0),
+            to: p(1.0, 2.0, 3.0),
+            width: 1.0,
+            color: green,
+        },
+        Tube {
+            from: p(0.0, -10.0, 0.0),
+            to: p(-2.5, -13.0, -1.0),
+            width: 0.5,
+            color: brown,
+        },
     ]
 }
 
@@ -26,7 +46,10 @@ fn tubes() -> Vec<Tube> {
 #[test]
 fn every_tube_is_closed_and_faces_outward() {
     for sides in [3, 4, 6, 11] {
-        let opts = MeshOptions { sides, ..MeshOptions::default() };
+        let opts = MeshOptions {
+            sides,
+            ..MeshOptions::default()
+        };
         let mesh = build(&tubes(), &opts);
         assert_eq!(mesh.primitives.len(), 2, "one primitive per colour");
         // The zero-length tube is left out: 3 tubes.
@@ -50,9 +73,14 @@ fn every_tube_is_closed_and_faces_outward() {
                         let (a, b) = (key(tri[e]), key(tri[(e + 1) % 3]));
                         *edges.entry((a, b)).or_default() += 1;
                     }
-                    let q: Vec<[f64; 3]> = tri.iter().map(|&i| prim.positions[i as usize].map(f64::from)).collect();
+                    let q: Vec<[f64; 3]> = tri
+                        .iter()
+                        .map(|&i| prim.positions[i as usize].map(f64::from))
+                        .collect();
                     let nrm = cross(sub(q[1], q[0]), sub(q[2], q[0]));
-                    let mid: Vec<f64> = (0..3).map(|k| (q[0][k] + q[1][k] + q[2][k]) / 3.0 - centre[k]).collect();
+                    let mid: Vec<f64> = (0..3)
+                        .map(|k| (q[0][k] + q[1][k] + q[2][k]) / 3.0 - centre[k])
+                        .collect();
                     let dot: f64 = (0..3).map(|k| nrm[k] * mid[k]).sum();
                     assert!(dot > 0.0, "a triangle faces inward (sides {sides})");
                     // Vertex normals agree with the face.
@@ -74,14 +102,19 @@ fn every_tube_is_closed_and_faces_outward() {
 fn axes_and_units_are_the_files() {
     // A canvas stem up the screen (-y) from the origin, 100 units, at the
     // default 0.01 m a unit: from y = 0 to y = +1 m (y up in the file).
-    let t = [Tube { from: p(0.0, 0.0, 0.0), to: p(0.0, -100.0, 0.0), width: 2.0, color: Rgb::BLACK }];
+    let t = [Tube {
+        from: p(0.0, 0.0, 0.0),
+        to: p(0.0, -100.0, 0.0),
+        width: 2.0,
+        color: Rgb::BLACK,
+    }];
     let mesh = build(&t, &MeshOptions::default());
     let ys: Vec<f32> = mesh.primitives[0].positions.iter().map(|v| v[1]).collect();
     assert_eq!(ys.iter().copied().fold(f32::MAX, f32::min), 0.0);
     assert_eq!(ys.iter().copied().fold(f32::MIN, f32::max), 1.0);
     // Radius 1 unit = 0.01 m: every side vertex is 0.01 from the axis.
     for v in &mesh.primitives[0].positions {
-        assert!((f64::from(v[0]).hypot(f64::from(v[2])) - 0.01).abs() < 1e-7);
+        assert!((libm::hypot(f64::from(v[0]), f64::from(v[2])) - 0.01).abs() < 1e-7);
     }
     // Away from the viewer (+z on the canvas) is -z in the file.
     assert_eq!(to_file_axes(p(1.0, 2.0, 3.0), 0.5), [0.5, -1.0, -1.5]);
@@ -105,7 +138,12 @@ fn unbase64(s: &str) -> Vec<u8> {
     };
     let mut out = Vec::new();
     for q in s.as_bytes().chunks(4) {
-        let n = q.iter().take_while(|&&c| c != b'=').fold((0u32, 0), |(n, k), &c| (n | (u32::from(val(c)) << (18 - 6 * k)), k + 1));
+        let n = q
+            .iter()
+            .take_while(|&&c| c != b'=')
+            .fold((0u32, 0), |(n, k), &c| {
+                (n | (u32::from(val(c)) << (18 - 6 * k)), k + 1)
+            });
         let bytes = [(n.0 >> 16) as u8, (n.0 >> 8) as u8, n.0 as u8];
         out.extend_from_slice(&bytes[..n.1 - 1]);
     }
@@ -123,8 +161,14 @@ fn the_gltf_reads_back_and_agrees_with_its_data() {
     let j: serde_json::Value = serde_json::from_slice(&text).unwrap();
     assert_eq!(j["asset"]["version"], "2.0");
     let uri = j["buffers"][0]["uri"].as_str().unwrap();
-    let data = unbase64(uri.strip_prefix("data:application/octet-stream;base64,").unwrap());
-    assert_eq!(j["buffers"][0]["byteLength"].as_u64(), Some(data.len() as u64));
+    let data = unbase64(
+        uri.strip_prefix("data:application/octet-stream;base64,")
+            .unwrap(),
+    );
+    assert_eq!(
+        j["buffers"][0]["byteLength"].as_u64(),
+        Some(data.len() as u64)
+    );
     let prims = j["meshes"][0]["primitives"].as_array().unwrap();
     assert_eq!(prims.len(), 2);
     assert_eq!(j["materials"].as_array().unwrap().len(), 2);
@@ -137,7 +181,10 @@ fn the_gltf_reads_back_and_agrees_with_its_data() {
         assert_eq!(idx["componentType"], 5125);
         let view = &j["bufferViews"][pos["bufferView"].as_u64().unwrap() as usize];
         let off = view["byteOffset"].as_u64().unwrap() as usize;
-        assert_eq!(view["byteLength"].as_u64(), Some(12 * ours.positions.len() as u64));
+        assert_eq!(
+            view["byteLength"].as_u64(),
+            Some(12 * ours.positions.len() as u64)
+        );
         // min/max read as f32 equal the data's.
         for k in 0..3 {
             let vals: Vec<f32> = (0..ours.positions.len())
@@ -163,7 +210,10 @@ fn the_gltf_reads_back_and_agrees_with_its_data() {
     let mut glb = Vec::new();
     write_glb(&mesh, &mut glb).unwrap();
     assert_eq!(&glb[0..4], b"glTF");
-    assert_eq!(u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize, glb.len());
+    assert_eq!(
+        u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize,
+        glb.len()
+    );
     let jl = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
     assert_eq!(jl % 4, 0);
     let bin_at = 20 + jl;
@@ -203,7 +253,11 @@ fn the_obj_has_a_vertex_and_normal_per_vertex_and_a_face_per_triangle() {
 
 #[test]
 fn the_limit_is_counted_in_triangles() {
-    let opts = MeshOptions { sides: 6, max_triangles: 200, ..MeshOptions::default() };
+    let opts = MeshOptions {
+        sides: 6,
+        max_triangles: 200,
+        ..MeshOptions::default()
+    };
     assert_eq!(opts.max_tubes(), 10);
     assert!(check_tubes(10, false, &opts).is_ok());
     let err = check_tubes(11, false, &opts).unwrap_err();

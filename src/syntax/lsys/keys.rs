@@ -113,19 +113,20 @@ pub(super) fn dimensions(
     text: &str,
     span: crate::diag::Span,
     integer: bool,
-) -> Result<u8, crate::diag::Diagnostic> {
+) -> Result<u8, Box<crate::diag::Diagnostic>> {
+    use crate::diag::{Diagnostic, LsysError};
     match text.parse::<u8>() {
         Ok(n @ (2 | 3)) if integer => Ok(n),
-        _ => Err(crate::diag::Diagnostic::error(
-            crate::diag::LsysError::BadDimensions {
+        _ => Err(Box::new(
+            Diagnostic::error(LsysError::BadDimensions {
                 text: text.to_string(),
-            },
-        )
-        .with_span(span)
-        .with_label("not 2 or 3")
-        .with_help(
-            "write `dimensions 3` for a 3D system (`& ^ \\ /` pitch and roll the turtle), \
-             or leave the line out for a flat one (2, the default)",
+            })
+            .with_span(span)
+            .with_label("not 2 or 3")
+            .with_help(
+                "write `dimensions 3` for a 3D system (`& ^ \\ /` pitch and roll the \
+                 turtle), or leave the line out for a flat one (2, the default)",
+            ),
         )),
     }
 }

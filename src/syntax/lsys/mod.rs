@@ -144,7 +144,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
                 let (text, span) = value_text(&v);
                 match keys::dimensions(text, span, value_rule(&v) == Rule::integer) {
                     Ok(n) => sys.dimensions = n,
-                    Err(d) => ck.diags.push(d),
+                    Err(d) => ck.diags.push(*d),
                 }
             }
         }
