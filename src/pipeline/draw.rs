@@ -121,7 +121,8 @@ pub struct Rendered {
 }
 
 /// Draws `scene` as a PNG or SVG into `out`, with its style and layout
-/// view (see [`style`]; the view is the layout's bounds with a margin). A picture with no stem in it
+/// view (see [`style`]; the view is the layout's bounds with a margin); a
+/// 3D `.lsys` from the default view (docs/3d.md). A picture with no stem in it
 /// is written all the same, with a warning.
 pub fn render(
     scene: &Scene,
@@ -130,6 +131,12 @@ pub fn render(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
+    // A 3D .lsys is drawn as a view ([`Request`]'s `view`; here the
+    // default one).
+    if super::space::space_lsys(scene).is_some() {
+        let view = crate::render::view::View::DEFAULT;
+        return super::space::render_view(scene, view, look, opts, out, progress);
+    }
     // A stochastic system's SVG that even its fewest segments would
     // overflow is refused before any derivation (its count is otherwise
     // known only by deriving the word).

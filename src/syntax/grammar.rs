@@ -166,7 +166,8 @@ mod tests {
     fn key_and_shape_lists_come_from_their_tables() {
         assert_eq!(
             describe(Rule::lsys_key),
-            "a key (generations, axiom, rule, angle, heading, length, width, color, background, seed)"
+            "a key (generations, axiom, rule, angle, heading, length, width, color, background, seed, \
+             dimensions)"
         );
         assert_eq!(
             describe(Rule::stl_shape_name),
