@@ -5,7 +5,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use stlc::pipeline::{
     DEFAULT_MAX_SVG_SEGMENTS, DEFAULT_MAX_TRIANGLES, DEFAULT_SIDES, DEFAULT_UNIT, Derivation,
-    GrowthOrder, ImageFormat, InputKind, Limits, View,
+    GrowthOrder, ImageFormat, InputKind, Limits, MeshFormat, View,
 };
 
 /// Compile and render Structural Tree Language trees and classic L-systems.
@@ -393,6 +393,11 @@ pub struct RenderArgs {
     /// vertical axis (toward +x), then raised EL (docs/3d.md). Default 30,20.
     #[arg(long, value_name = "AZ,EL", value_parser = parse_view, allow_hyphen_values = true)]
     pub view: Option<View>,
+
+    /// Write a mesh instead of a picture (default: from the output's
+    /// extension, .glb, .gltf or .obj); needed for `-o -`.
+    #[arg(long, value_enum, value_name = "FORMAT", conflicts_with = "format")]
+    pub mesh: Option<MeshFormat>,
 
     /// Sides of each stem's tube in a mesh (.glb, .gltf, .obj), 3 to 64.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_SIDES,

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::process::ExitCode;
 
-use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, Severity, io_error};
+use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError, Severity, io_error};
 use stlc::pipeline::{
     self, GrowthOrder, ImageFormat, Limits, Look, MeshFormat, MeshOptions, Progress as _,
     RenderOptions, Request, Rgb, ShowLayout,
@@ -144,13 +144,24 @@ fn not_the_input(input: &Input, output: &Output) -> Result<(), Diagnostics> {
 fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
     let limits = a.derive_limits.limits(&a.limits, a.grow.max_stems);
     let input = Input::parse(&a.input.input);
-    let mesh_format = a
+    let named = a
         .output
         .as_deref()
         .and_then(|o| std::path::Path::new(o).extension())
         .and_then(|e| MeshFormat::from_extension(&e.to_string_lossy()));
-    if let Some(format) = mesh_format.filter(|_| a.format.is_none()) {
-        return render_mesh(a, format, limits, quiet, source);
+    match (a.mesh, named) {
+        (Some(m), Some(n)) if m != n => {
+            return Err(Diagnostic::error(RenderError::FormatMismatch {
+                format: m.extension().into(),
+                path: a.output.clone().unwrap_or_default(),
+            })
+            .with_help("leave out --mesh (the extension decides), or name the output to match")
+            .into());
+        }
+        (Some(format), _) | (None, Some(format)) if a.format.is_none() => {
+            return render_mesh(a, format, limits, quiet, source);
+        }
+        _ => {}
     }
     let format = pipeline::image_format(a.format, a.output.as_deref().filter(|o| *o != "-"))?;
     let ext = match format {
@@ -219,7 +230,14 @@ fn render_mesh(
     source: &mut Source,
 ) -> Outcome {
     let input = Input::parse(&a.input.input);
-    let output = Output::parse(a.output.as_deref().unwrap_or("-"));
+    let output = match &a.output {
+        Some(o) => Output::parse(o),
+        None => sibling(&input, format.extension()).ok_or_else(|| {
+            Diagnostic::error(FrontEndError::NoOutput).with_help(
+                "reading standard input, say where the mesh goes: -o tree.glb, or -o - for standard output",
+            )
+        })?,
+    };
     if format == MeshFormat::Glb && output.is_terminal() {
         return Err(Diagnostic::error(FrontEndError::GlbToTerminal)
             .with_help("a .glb is binary: redirect standard output to a file, or use -o tree.glb")

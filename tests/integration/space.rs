@@ -324,3 +324,40 @@ fn the_khronos_validator_finds_no_issue() {
         "{said}"
     );
 }
+
+/// `--mesh obj -o -` writes the OBJ to standard output; `--mesh` against
+/// the output's extension is a usage error.
+#[test]
+fn a_mesh_goes_to_standard_output_when_asked() {
+    let input = manifest_path("examples/hilbert3d.lsys");
+    let out = stlc()
+        .args([
+            "render",
+            input.to_str().unwrap(),
+            "--mesh",
+            "obj",
+            "-o",
+            "-",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let text = String::from_utf8(out).unwrap();
+    assert_eq!(
+        text.lines().filter(|l| l.starts_with("f ")).count(),
+        63 * 20
+    );
+    stlc()
+        .args([
+            "render",
+            input.to_str().unwrap(),
+            "--mesh",
+            "obj",
+            "-o",
+            "x.glb",
+        ])
+        .assert()
+        .code(2);
+}

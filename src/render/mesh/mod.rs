@@ -23,8 +23,10 @@ use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::turtle::space::{Point3, cos_sin};
 
-/// A mesh file format (from the output's extension).
+/// A mesh file format (from the output's extension, or `--mesh`). The
+/// variants' doc comments are the help of `--mesh`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum MeshFormat {
     /// Binary glTF.
     Glb,
@@ -42,6 +44,15 @@ impl MeshFormat {
             "gltf" => Some(MeshFormat::Gltf),
             "obj" => Some(MeshFormat::Obj),
             _ => None,
+        }
+    }
+
+    /// The format's extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            MeshFormat::Glb => "glb",
+            MeshFormat::Gltf => "gltf",
+            MeshFormat::Obj => "obj",
         }
     }
 }
