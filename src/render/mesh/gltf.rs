@@ -12,7 +12,7 @@
 use std::fmt::Write as _;
 use std::io::Write;
 
-use super::{Mesh, le_bytes};
+use super::{Mesh, le_f32s};
 use crate::color::Rgb;
 use crate::diag::{Diagnostics, io_error};
 use crate::num::{Trim, fixed};
@@ -45,7 +45,6 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, Vec<u8>) {
         if p.indices.is_empty() {
             continue;
         }
-        let (pos, nor, idx) = le_bytes(p);
         let mut lo = [f32::INFINITY; 3];
         let mut hi = [f32::NEG_INFINITY; 3];
         for v in &p.positions {
@@ -55,13 +54,18 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, Vec<u8>) {
             }
         }
         let first = views.len();
-        for (bytes, target) in [(&pos, 34962), (&nor, 34962), (&idx, 34963)] {
+        for part in 0..3 {
+            let start = buffer.len();
+            match part {
+                0 => le_f32s(&p.positions, &mut buffer),
+                1 => le_f32s(&p.normals, &mut buffer),
+                _ => buffer.extend(p.indices.iter().flat_map(|i| i.to_le_bytes())),
+            }
+            let target = if part == 2 { 34963 } else { 34962 };
             views.push(format!(
-                "{{\"buffer\": 0, \"byteOffset\": {}, \"byteLength\": {}, \"target\": {target}}}",
-                buffer.len(),
-                bytes.len()
+                "{{\"buffer\": 0, \"byteOffset\": {start}, \"byteLength\": {}, \"target\": {target}}}",
+                buffer.len() - start
             ));
-            buffer.extend_from_slice(bytes);
         }
         let three = |a: [f32; 3]| {
             format!(

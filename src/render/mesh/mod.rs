@@ -298,15 +298,13 @@ fn tube(p: &mut Primitive, a: V, b: V, d: V, r: f64, ring: &[(f64, f64)]) {
     }
 }
 
-/// Bytes of a buffer of `f32` triples and `u32` indices, little-endian.
-fn le_bytes(p: &Primitive) -> (Vec<u8>, Vec<u8>, Vec<u8>) {
-    let v3 = |v: &[[f32; 3]]| -> Vec<u8> {
+/// Appends `f32` triples to `buf`, little-endian.
+fn le_f32s(v: &[[f32; 3]], buf: &mut Vec<u8>) {
+    buf.reserve(12 * v.len());
+    buf.extend(
         v.iter()
-            .flat_map(|t| t.iter().flat_map(|x| x.to_le_bytes()))
-            .collect()
-    };
-    let idx: Vec<u8> = p.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
-    (v3(&p.positions), v3(&p.normals), idx)
+            .flat_map(|t| t.iter().flat_map(|x| x.to_le_bytes())),
+    );
 }
 
 /// Whether `n` tubes are within the limit; the refusal otherwise.

@@ -5,12 +5,26 @@
 //! `-o -` writes all of it. Positions have 6 decimals (micrometres at the
 //! default unit), normals and colours 4.
 
+use std::fmt::Write as _;
 use std::io::Write;
 
 use super::Mesh;
 use crate::color::Rgb;
 use crate::diag::{Diagnostics, io_error};
-use crate::num::{Trim, push_fixed};
+/// Appends `x` with `decimals` digits after the point: `x * 10^decimals`
+/// rounded half away from zero, as integers (fast: an OBJ writes tens of
+/// millions of numbers); never `-0`.
+fn push_fixed(buf: &mut String, x: f64, decimals: u32) {
+    use std::fmt::Write as _;
+    let scale = 10i64.pow(decimals);
+    let n = (x * scale as f64).round() as i64;
+    if n < 0 {
+        buf.push('-');
+    }
+    let a = n.unsigned_abs();
+    let s = scale as u64;
+    let _ = write!(buf, "{}.{:0w$}", a / s, a % s, w = decimals as usize);
+}
 
 /// Writes `mesh` as OBJ text.
 pub fn write_obj(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
@@ -28,18 +42,18 @@ pub fn write_obj(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
     let mut base = 1u64;
     for p in &mesh.primitives {
         let c = p.color.unwrap_or(Rgb::BLACK);
-        line.push_str(&format!("g stem_{:02x}{:02x}{:02x}", c.r, c.g, c.b));
+        let _ = write!(line, "g stem_{:02x}{:02x}{:02x}", c.r, c.g, c.b);
         put(&mut w, &mut line).map_err(fail)?;
         let rgb = [c.r, c.g, c.b].map(|x| f64::from(x) / 255.0);
         for v in &p.positions {
             line.push('v');
             for x in v {
                 line.push(' ');
-                push_fixed(&mut line, f64::from(*x), 6, Trim::Keep);
+                push_fixed(&mut line, f64::from(*x), 6);
             }
             for x in rgb {
                 line.push(' ');
-                push_fixed(&mut line, x, 4, Trim::Keep);
+                push_fixed(&mut line, x, 4);
             }
             put(&mut w, &mut line).map_err(fail)?;
         }
@@ -47,7 +61,7 @@ pub fn write_obj(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
             line.push_str("vn");
             for x in n {
                 line.push(' ');
-                push_fixed(&mut line, f64::from(*x), 4, Trim::Keep);
+                push_fixed(&mut line, f64::from(*x), 4);
             }
             put(&mut w, &mut line).map_err(fail)?;
         }
@@ -55,11 +69,29 @@ pub fn write_obj(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
             line.push('f');
             for &i in t {
                 let k = base + u64::from(i);
-                line.push_str(&format!(" {k}//{k}"));
+                let _ = write!(line, " {k}//{k}");
             }
             put(&mut w, &mut line).map_err(fail)?;
         }
         base += p.positions.len() as u64;
     }
     w.flush().map_err(fail)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn fixed_decimals_round_half_away_and_never_write_minus_zero() {
+        let f = |x: f64, d: u32| {
+            let mut s = String::new();
+            super::push_fixed(&mut s, x, d);
+            s
+        };
+        assert_eq!(f(1.5, 6), "1.500000");
+        assert_eq!(f(-0.0000004, 6), "0.000000");
+        assert_eq!(f(-0.0000006, 6), "-0.000001");
+        assert_eq!(f(-12.34567, 4), "-12.3457");
+        assert_eq!(f(0.00005, 4), "0.0001");
+        assert_eq!(f(3.0, 4), "3.0000");
+    }
 }
