@@ -162,7 +162,7 @@ mod tests {
     #[test]
     fn the_hilbert_curve_visits_every_lattice_point_of_its_cube_once() {
         let sys = parse(HILBERT);
-        for depth in 1..=4u32 {
+        for depth in 1..=5u32 {
             for d in [Derivation::Dfs, Derivation::Bfs] {
                 let pts = points(&sys, depth, d);
                 let n = 1usize << (3 * depth);

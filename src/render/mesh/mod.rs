@@ -77,8 +77,9 @@ pub const MAX_SIDES: u32 = 64;
 /// Default of [`MeshOptions::unit`]: a canvas unit is a centimetre, so a
 /// 300-unit tree is 3 m tall.
 pub const DEFAULT_UNIT: f64 = 0.01;
-/// Default of [`MeshOptions::max_triangles`]: about 40 bytes a triangle in
-/// memory and in a `.glb` (vertices, normals, indices), so about 400 MB.
+/// Default of [`MeshOptions::max_triangles`]: about 41 bytes a triangle in
+/// a `.glb` (vertices, normals, indices) and 85 at the peak in memory
+/// (docs/3d.md, *Cost*).
 pub const DEFAULT_MAX_TRIANGLES: u64 = 10_000_000;
 
 impl Default for MeshOptions {
