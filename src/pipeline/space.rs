@@ -108,7 +108,7 @@ fn nothing_drawn(n: u64) -> Vec<Diagnostic> {
     ]
 }
 
-/// What [`mesh`] wrote.
+/// What [`super::Request::mesh`] wrote.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Meshed {
     /// Stems meshed.

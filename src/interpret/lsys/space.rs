@@ -3,8 +3,8 @@
 //! The word is streamed exactly as the 2D paths stream it, by the same
 //! derivations: for a deterministic system `plain_each` (dfs, an explicit
 //! stack of successors, memory O(depth)) or `bfs_each` (Saupe's levels);
-//! for a stochastic one [`Stochastic::dfs_each`] or
-//! [`Stochastic::bfs_each`], so the choices are the 2D drawing's for the
+//! for a stochastic one `Stochastic::dfs_each` or `Stochastic::bfs_each`
+//! (keyed by place), so the choices are the 2D drawing's for the
 //! same seed. Every symbol goes through [`Turtle3`] (no compiled program or
 //! memoized geometry yet: those are 2D). The same refusals as 2D apply
 //! before any work: the derived word over `--max-symbols` (a stochastic
@@ -87,8 +87,8 @@ pub fn draw3(
 
 /// The box `[minx, miny, minz, maxx, maxy, maxz]` of every drawn stem
 /// (`None`: nothing drawn), where the turtle ends, and the number of
-/// stems: one traversal with unit steps... or `sys.length` steps as the
-/// file says (`stats` passes a unit-step copy).
+/// stems, with the file's step `sys.length` (`stats` passes a unit-step
+/// copy).
 pub type Bounds3 = (Option<[f64; 6]>, Point3, u64);
 
 /// [`Bounds3`] of `sys` at `depth` by a dfs traversal within `limits`.
