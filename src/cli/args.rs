@@ -4,7 +4,8 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use stlc::pipeline::{
-    DEFAULT_MAX_SVG_SEGMENTS, Derivation, GrowthOrder, ImageFormat, InputKind, Limits,
+    DEFAULT_MAX_SVG_SEGMENTS, DEFAULT_MAX_TRIANGLES, DEFAULT_SIDES, DEFAULT_UNIT, Derivation,
+    GrowthOrder, ImageFormat, InputKind, Limits, MeshFormat, View,
 };
 
 /// Compile and render Structural Tree Language trees and classic L-systems.
@@ -342,8 +343,9 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub input: InputArgs,
 
-    /// Output file (.png or .svg), or `-` for standard output. Default: the
-    /// input's name with the format's extension.
+    /// Output file (.png or .svg; a mesh: .glb, .gltf or .obj), or `-` for
+    /// standard output. Default: the input's name with the format's
+    /// extension.
     #[arg(short, long, value_name = "OUT")]
     pub output: Option<String>,
 
@@ -392,6 +394,29 @@ pub struct RenderArgs {
     /// Default: the machine's cores.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
+
+    /// The view of a 3D input, degrees: the camera turned AZ about the
+    /// vertical axis (toward +x), then raised EL (docs/3d.md). Default 30,20.
+    #[arg(long, value_name = "AZ,EL", value_parser = parse_view, allow_hyphen_values = true)]
+    pub view: Option<View>,
+
+    /// Write a mesh instead of a picture (default: from the output's
+    /// extension, .glb, .gltf or .obj); needed for `-o -`.
+    #[arg(long, value_enum, value_name = "FORMAT", conflicts_with = "format")]
+    pub mesh: Option<MeshFormat>,
+
+    /// Sides of each stem's tube in a mesh (.glb, .gltf, .obj), 3 to 64.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_SIDES,
+          value_parser = clap::value_parser!(u32).range(3..=64))]
+    pub sides: u32,
+
+    /// Metres per canvas unit in a mesh (default 0.01: a 300-unit tree is 3 m).
+    #[arg(long, value_name = "M", default_value_t = DEFAULT_UNIT, value_parser = parse_unit)]
+    pub unit: f64,
+
+    /// Most triangles a mesh may have (each stem is 4 x sides - 4).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_TRIANGLES)]
+    pub max_triangles: u64,
 
     /// Stroke colour (#rrggbb or a Delphi name such as clMaroon).
     #[arg(long, value_name = "COLOR")]
@@ -519,6 +544,21 @@ pub struct CheckArgs {
 
     #[command(flatten)]
     pub layout_limits: LayoutLimitArgs,
+}
+
+/// Parses `AZ,EL`.
+fn parse_view(s: &str) -> Result<View, String> {
+    View::parse(s).ok_or_else(|| format!("`{s}` is not AZ,EL (two numbers of degrees, e.g. 30,20)"))
+}
+
+/// Parses a positive, finite number of metres.
+fn parse_unit(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(u) if u.is_finite() && u > 0.0 => Ok(u),
+        _ => Err(format!(
+            "`{s}` is not a positive number of metres, e.g. 0.01"
+        )),
+    }
 }
 
 /// Parses `WxH`.

@@ -4,10 +4,10 @@
 use std::io::Write;
 use std::process::ExitCode;
 
-use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, Severity, io_error};
+use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError, Severity, io_error};
 use stlc::pipeline::{
-    self, GrowthOrder, ImageFormat, Limits, Look, Progress as _, RenderOptions, Request, Rgb,
-    ShowLayout,
+    self, GrowthOrder, ImageFormat, Limits, Look, MeshFormat, MeshOptions, Progress as _,
+    RenderOptions, Request, Rgb, ShowLayout,
 };
 
 use super::args::{
@@ -144,6 +144,25 @@ fn not_the_input(input: &Input, output: &Output) -> Result<(), Diagnostics> {
 fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
     let limits = a.derive_limits.limits(&a.limits, a.grow.max_stems);
     let input = Input::parse(&a.input.input);
+    let named = a
+        .output
+        .as_deref()
+        .and_then(|o| std::path::Path::new(o).extension())
+        .and_then(|e| MeshFormat::from_extension(&e.to_string_lossy()));
+    match (a.mesh, named) {
+        (Some(m), Some(n)) if m != n => {
+            return Err(Diagnostic::error(RenderError::FormatMismatch {
+                format: m.extension().into(),
+                path: a.output.clone().unwrap_or_default(),
+            })
+            .with_help("leave out --mesh (the extension decides), or name the output to match")
+            .into());
+        }
+        (Some(format), _) | (None, Some(format)) if a.format.is_none() => {
+            return render_mesh(a, format, limits, quiet, source);
+        }
+        _ => {}
+    }
     let format = pipeline::image_format(a.format, a.output.as_deref().filter(|o| *o != "-"))?;
     let ext = match format {
         ImageFormat::Png => "png",
@@ -193,6 +212,7 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
                 usize::from,
             ),
         },
+        view: a.view,
         ..with_growth(request(&a.input, limits, source)?, a.grow.growth, &a.grow)
     };
     let mut bar = Bar::new(quiet);
@@ -203,6 +223,58 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
     })?;
     bar.finish();
     Ok(drawn.map(|d| d.warnings).unwrap_or_default())
+}
+
+/// `render -o x.glb|x.gltf|x.obj`: the input as a mesh (docs/3d.md).
+fn render_mesh(
+    a: &RenderArgs,
+    format: MeshFormat,
+    limits: Limits,
+    quiet: bool,
+    source: &mut Source,
+) -> Outcome {
+    let input = Input::parse(&a.input.input);
+    let output = match &a.output {
+        Some(o) => Output::parse(o),
+        None => sibling(&input, format.extension()).ok_or_else(|| {
+            Diagnostic::error(FrontEndError::NoOutput).with_help(
+                "reading standard input, say where the mesh goes: -o tree.glb, or -o - for standard output",
+            )
+        })?,
+    };
+    if format == MeshFormat::Glb && output.is_terminal() {
+        return Err(Diagnostic::error(FrontEndError::GlbToTerminal)
+            .with_help("a .glb is binary: redirect standard output to a file, or use -o tree.glb")
+            .into());
+    }
+    not_the_input(&input, &output)?;
+    let req = Request {
+        derivation: a.derivation,
+        depth: a.depth,
+        look: Look {
+            stroke: a
+                .stroke
+                .as_deref()
+                .map(|c| colour(c, "--stroke"))
+                .transpose()?,
+            ..Look::default()
+        },
+        view: a.view,
+        mesh: MeshOptions {
+            sides: a.sides,
+            unit: a.unit,
+            max_triangles: a.max_triangles,
+        },
+        ..with_growth(request(&a.input, limits, source)?, a.grow.growth, &a.grow)
+    };
+    let mut bar = Bar::new(quiet);
+    let mut warnings = Vec::new();
+    output.write_with(|out| {
+        warnings = req.mesh(format, out, &mut bar)?.warnings;
+        Ok(())
+    })?;
+    bar.finish();
+    Ok(warnings)
 }
 
 /// A colour given on the command line.

@@ -23,6 +23,9 @@ pub enum FrontEndError {
     /// A PNG would be written to a terminal.
     #[error("refusing to write a PNG to a terminal")]
     PngToTerminal,
+    /// A binary glTF (`.glb`) would be written to a terminal.
+    #[error("refusing to write a binary glTF to a terminal")]
+    GlbToTerminal,
     /// A colour flag names no colour.
     #[error("{flag}: unknown colour `{text}`")]
     UnknownColourFlag {

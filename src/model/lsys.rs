@@ -40,6 +40,10 @@ pub struct LSystem {
     /// `seed N`: the seed of stochastic rules (default 0; `--seed`
     /// overrides it). See [`crate::choice`].
     pub seed: u64,
+    /// `dimensions N`: 2 (the default) or 3. In a 3D system `& ^ \ /`
+    /// pitch and roll the turtle (docs/3d.md); in a 2D one they are
+    /// ordinary symbols.
+    pub dimensions: u8,
 }
 
 /// One production `X -> successor`, or one alternative of a stochastic rule
@@ -82,6 +86,11 @@ impl LSystem {
         self.rules
             .values()
             .any(|ps| ps.iter().any(|p| p.probability.is_some()))
+    }
+
+    /// Whether the system is 3D (`dimensions 3`).
+    pub fn is_3d(&self) -> bool {
+        self.dimensions == 3
     }
 
     /// Every symbol of the system (axiom, predecessors, successors), sorted.

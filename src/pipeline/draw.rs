@@ -124,7 +124,8 @@ pub struct Rendered {
 }
 
 /// Draws `scene` as a PNG or SVG into `out`, with its style and layout
-/// view (see [`style`]; the view is the layout's bounds with a margin). A picture with no stem in it
+/// view (see [`style`]; the view is the layout's bounds with a margin); a
+/// 3D `.lsys` from the default view (docs/3d.md). A picture with no stem in it
 /// is written all the same, with a warning.
 pub fn render(
     scene: &Scene,
@@ -133,6 +134,12 @@ pub fn render(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
+    // A 3D .lsys is drawn as a view ([`Request`]'s `view`; here the
+    // default one).
+    if super::space::space_lsys(scene).is_some() {
+        let view = crate::render::view::View::DEFAULT;
+        return super::space::render_view(scene, view, look, opts, out, progress);
+    }
     render_tree(scene, look, opts, true, out, progress)
 }
 
@@ -175,8 +182,7 @@ pub(crate) fn render_tree(
         && sys.is_stochastic()
         && opts.format == ImageFormat::Svg
         && opts.exact
-        && lsys::Stochastic::new(sys).segment_bounds(*depth).0
-            > opts.max_svg_segments
+        && lsys::Stochastic::new(sys).segment_bounds(*depth).0 > opts.max_svg_segments
     {
         return Err(crate::render::svg_too_large(None, opts.max_svg_segments));
     }

@@ -23,11 +23,13 @@
 
 mod draw;
 mod request;
+mod space;
 mod summary;
 
 pub(crate) use draw::{Given, ignored_flags, layout_view, render_tree};
 pub use draw::{Look, Rendered, ShowLayout, TREE_BROWN, image_format, render, style};
 pub use request::{Drawn, Request};
+pub use space::Meshed;
 pub use summary::{Checked, check, stats};
 
 // What front ends name, reached through the pipeline: the enums their
@@ -37,6 +39,10 @@ pub use crate::grow::{GrowthOrder, PlacedStem};
 pub use crate::interpret::Derivation;
 pub use crate::limits::{Bound, Limits};
 pub use crate::progress::{NoProgress, Progress};
+pub use crate::render::mesh::{
+    DEFAULT_MAX_TRIANGLES, DEFAULT_SIDES, DEFAULT_UNIT, MeshFormat, MeshOptions,
+};
+pub use crate::render::view::View;
 pub use crate::render::{DEFAULT_MAX_SVG_SEGMENTS, ImageFormat, RenderOptions};
 pub use crate::syntax::InputKind;
 pub use crate::turtle::BBox;

@@ -30,6 +30,8 @@ use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
 use crate::model::{Description, Design, Order};
 use crate::progress::Progress;
+use crate::render::mesh::{MeshFormat, MeshOptions};
+use crate::render::view::View;
 use crate::render::{ImageFormat, RenderOptions};
 use crate::syntax::InputKind;
 use crate::turtle::BBox;
@@ -75,6 +77,13 @@ pub struct Request {
     /// layout underlay are drawn; [`Drawn::tree_left_out`]), for an editor
     /// that draws the traced stems itself; `None`: always drawn.
     pub tree_up_to: Option<u64>,
+    /// The view of a 3D input (`--view AZ,EL`); `None`:
+    /// [`View::DEFAULT`]. A 2D input has only its front view: given for
+    /// one, a warning.
+    pub view: Option<View>,
+    /// How [`Request::mesh`] makes tubes (`--sides`, `--unit`,
+    /// `--max-triangles`).
+    pub mesh: MeshOptions,
 }
 
 impl Default for Request {
@@ -95,6 +104,8 @@ impl Default for Request {
             image: RenderOptions::new(ImageFormat::Png, None),
             trace: false,
             tree_up_to: None,
+            view: None,
+            mesh: MeshOptions::default(),
         }
     }
 }
@@ -202,6 +213,12 @@ impl Request {
         let (limits, _) = self.options(&Design::default())?;
         let loaded = load(&self.input, self.input_kind()?, &limits)?.seeded(self.seed);
         let mut warnings = ignored_flags(&loaded, &self.given());
+        if self.view.is_some() && !matches!(&loaded, Loaded::Lsys(s) if s.is_3d()) {
+            warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
+                flag: "--view".into(),
+                reason: "this input is flat: its picture is its front view (`dimensions 3` makes an .lsys 3D)".into(),
+            }));
+        }
         if self.look.show_layout == ShowLayout::Yes && !has_layout(&loaded) {
             warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
                 flag: "--show-layout".into(),
@@ -236,14 +253,19 @@ impl Request {
         let grown = scene.grown_stems();
         let tree_left_out = trace.is_some()
             && matches!((self.tree_up_to, grown), (Some(most), Some(n)) if n > most);
-        let rendered = super::render_tree(
-            &scene,
-            &self.look,
-            &self.image,
-            !tree_left_out,
-            out,
-            progress,
-        )?;
+        let rendered = if super::space::space_lsys(&scene).is_some() {
+            let view = self.view.unwrap_or(View::DEFAULT);
+            super::space::render_view(&scene, view, &self.look, &self.image, out, progress)?
+        } else {
+            super::render_tree(
+                &scene,
+                &self.look,
+                &self.image,
+                !tree_left_out,
+                out,
+                progress,
+            )?
+        };
         let stroke = super::style(&scene, &self.look).stroke;
         let view = super::layout_view(&scene, false).0;
         warnings.extend(scene.warnings);
@@ -259,6 +281,25 @@ impl Request {
             stroke,
             tree_left_out,
         })
+    }
+
+    /// Writes the input as a mesh in `format` (docs/3d.md): an OD grown
+    /// first, an L-system at its depth (a 2D one, and any tree, lifted to
+    /// z = 0); returns what was written with the warnings.
+    pub fn mesh(
+        &self,
+        format: MeshFormat,
+        out: &mut dyn Write,
+        progress: &mut dyn Progress,
+    ) -> Result<super::Meshed, Diagnostics> {
+        let (loaded, mut warnings) = self.open()?;
+        let req = self.scene_request(&loaded)?;
+        let scene = super::scene(loaded, &req, progress)?;
+        let mut meshed = super::space::mesh(&scene, &self.look, format, &self.mesh, out, progress)?;
+        warnings.extend(scene.warnings);
+        warnings.append(&mut meshed.warnings);
+        meshed.warnings = warnings;
+        Ok(meshed)
     }
 
     /// Grows an OD into a BED and writes its canonical text. Any other

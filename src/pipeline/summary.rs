@@ -25,6 +25,9 @@ pub fn stats(
         return Err(wrong_kind(Command::Stats, loaded.kind()));
     };
     let depth = lsys_depth(sys, depth, limits)?;
+    if sys.is_3d() {
+        return super::space::stats3(sys, depth, json, limits);
+    }
     if sys.is_stochastic() {
         let stats = crate::interpret::expected::stochastic_stats(sys, depth, limits)?;
         return Ok(if json {

@@ -6,9 +6,11 @@
 //! backend. Layout shapes can be painted underneath ([`Fill`]).
 
 mod fit;
+pub mod mesh;
 pub mod png;
 pub mod svg;
 mod svg_merge;
+pub mod view;
 
 use std::io::Write;
 

@@ -42,6 +42,10 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
     ("fig9.od", include_str!("../../examples/fig9.od")),
     ("grove.od", include_str!("../../examples/grove.od")),
     ("hilbert.lsys", include_str!("../../examples/hilbert.lsys")),
+    (
+        "hilbert3d.lsys",
+        include_str!("../../examples/hilbert3d.lsys"),
+    ),
     ("holes.od", include_str!("../../examples/holes.od")),
     (
         "koch-snowflake.lsys",
@@ -52,6 +56,7 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
         include_str!("../../examples/paper-worked.bed"),
     ),
     ("pentagon.od", include_str!("../../examples/pentagon.od")),
+    ("plant3d.lsys", include_str!("../../examples/plant3d.lsys")),
     ("polygon.od", include_str!("../../examples/polygon.od")),
     (
         "seed-r1r2r2.bed",

@@ -87,6 +87,7 @@ pub(crate) fn describe(rule: Rule) -> String {
         Rule::lsys_color => "`color C`",
         Rule::lsys_background => "`background C`",
         Rule::lsys_seed => "`seed N`",
+        Rule::lsys_dimensions => "`dimensions N`",
         Rule::lsys_probability => "a probability like `(0.5)`",
         Rule::lsys_unknown | Rule::lsys_key => {
             return format!("a key ({})", lsys::KEYS.join(", "));
@@ -165,7 +166,8 @@ mod tests {
     fn key_and_shape_lists_come_from_their_tables() {
         assert_eq!(
             describe(Rule::lsys_key),
-            "a key (generations, axiom, rule, angle, heading, length, width, color, background, seed)"
+            "a key (generations, axiom, rule, angle, heading, length, width, color, background, seed, \
+             dimensions)"
         );
         assert_eq!(
             describe(Rule::stl_shape_name),

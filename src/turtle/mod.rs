@@ -18,6 +18,7 @@
 //! the same operations computes bit-identical positions.
 
 mod interp;
+pub mod space;
 
 pub use interp::{Interp, Op, State};
 

@@ -23,6 +23,7 @@ mod repeats;
 mod robustness;
 mod serve;
 mod soak;
+mod space;
 mod stl;
 mod stochastic;
 mod support;

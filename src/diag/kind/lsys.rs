@@ -75,6 +75,12 @@ pub enum LsysError {
         /// The parenthesis as written.
         text: String,
     },
+    /// `dimensions` is neither 2 nor 3.
+    #[error("`dimensions` is 2 or 3, not `{text}`")]
+    BadDimensions {
+        /// The value as written.
+        text: String,
+    },
     /// An L-system has no `generations` and no `--depth` was given.
     #[error("no derivation depth")]
     NoDepth,

@@ -44,6 +44,22 @@ pub enum RenderError {
         /// The encoder's message.
         error: String,
     },
+    /// A 3D view would hold more stems than it may sort.
+    #[error("a 3D view of {segments} stems is over the limit of {limit}")]
+    ViewTooLarge {
+        /// The stems, in decimal digits (or "more than N").
+        segments: String,
+        /// The limit.
+        limit: u64,
+    },
+    /// A mesh would have more triangles than `--max-triangles`.
+    #[error("a mesh of {triangles} triangles is over the limit of {limit}")]
+    MeshTooLarge {
+        /// The triangles, in decimal digits.
+        triangles: String,
+        /// The limit.
+        limit: u64,
+    },
     /// Nothing was drawn: the picture is only its background (a warning).
     #[error("the picture is empty: the derivation draws no stem")]
     NothingDrawn,

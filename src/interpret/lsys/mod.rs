@@ -56,6 +56,7 @@ mod chance;
 mod exec;
 mod geometry;
 mod program;
+pub mod space;
 mod stochastic;
 mod units;
 

@@ -16,6 +16,7 @@ pub const KEYS: &[&str] = &[
     "color",
     "background",
     "seed",
+    "dimensions",
 ];
 
 /// A key of a `.lsys` file.
@@ -41,11 +42,13 @@ pub enum Key {
     Background,
     /// `seed N`: the seed of stochastic rules.
     Seed,
+    /// `dimensions N`: 2 (the default) or 3 (docs/3d.md).
+    Dimensions,
 }
 
 impl Key {
     /// Every key, in the order of [`KEYS`].
-    pub const ALL: [Key; 10] = [
+    pub const ALL: [Key; 11] = [
         Key::Generations,
         Key::Axiom,
         Key::Rule,
@@ -56,6 +59,7 @@ impl Key {
         Key::Color,
         Key::Background,
         Key::Seed,
+        Key::Dimensions,
     ];
 
     /// The key as written in a file.
@@ -76,6 +80,7 @@ impl Key {
             Key::Color => "`color clGreen`",
             Key::Background => "`background none`",
             Key::Seed => "`seed 7`",
+            Key::Dimensions => "`dimensions 3`",
         }
     }
 
@@ -92,11 +97,36 @@ impl Key {
             Key::Color => Rule::lsys_color,
             Key::Background => Rule::lsys_background,
             Key::Seed => Rule::lsys_seed,
+            Key::Dimensions => Rule::lsys_dimensions,
         }
     }
 
     /// The key whose line `rule` reads, if any.
     pub(super) fn of_rule(rule: Rule) -> Option<Key> {
         Key::ALL.into_iter().find(|k| k.rule() == rule)
+    }
+}
+
+/// The value of `dimensions`: 2 or 3; anything else is an error that says
+/// what each means. `integer`: whether the text read as a whole number.
+pub(super) fn dimensions(
+    text: &str,
+    span: crate::diag::Span,
+    integer: bool,
+) -> Result<u8, Box<crate::diag::Diagnostic>> {
+    use crate::diag::{Diagnostic, LsysError};
+    match text.parse::<u8>() {
+        Ok(n @ (2 | 3)) if integer => Ok(n),
+        _ => Err(Box::new(
+            Diagnostic::error(LsysError::BadDimensions {
+                text: text.to_string(),
+            })
+            .with_span(span)
+            .with_label("not 2 or 3")
+            .with_help(
+                "write `dimensions 3` for a 3D system (`& ^ \\ /` pitch and roll the \
+                 turtle), or leave the line out for a flat one (2, the default)",
+            ),
+        )),
     }
 }

@@ -68,6 +68,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
         color: None,
         background: Background::White,
         seed: 0,
+        dimensions: 2,
     };
     let mut have_axiom = false;
     let mut have_angle = false;
@@ -136,6 +137,14 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
             Key::Seed => {
                 if let Some(n) = ck.seed(&value(&mut inner)) {
                     sys.seed = n;
+                }
+            }
+            Key::Dimensions => {
+                let v = value(&mut inner);
+                let (text, span) = value_text(&v);
+                match keys::dimensions(text, span, value_rule(&v) == Rule::integer) {
+                    Ok(n) => sys.dimensions = n,
+                    Err(d) => ck.diags.push(*d),
                 }
             }
         }

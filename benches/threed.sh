@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# 3D against 2D, side by side in one run (docs/3d.md, *Cost*): the same
+# planar system drawn as a 2D picture (`--exact`, every segment, as a 3D
+# view draws) and as a 3D view (`dimensions 3`, from the front and from
+# 30,20); and mesh exports of about 10^5 stems. Medians of RUNS runs (runs
+# interleaved, so machine noise hits every row alike); peak RSS from GNU
+# time. Needs a release build: `cargo build --release`.
+#
+#   benches/threed.sh [STLC]
+set -euo pipefail
+B=${1:-target/release/stlc}
+RUNS=${RUNS:-5}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+# F -> F[+F]F[-F]F at 25.7 degrees, depth 7: 5^7 = 78125 segments.
+printf 'generations 7\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\n' >"$T/flat.lsys"
+printf 'dimensions 3\n' | cat - "$T/flat.lsys" >"$T/deep.lsys"
+median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+rows=(
+  "2D picture --exact, 78125 stems|render $T/flat.lsys --exact -o $T/a.png"
+  "3D view 0,0, 78125 stems|render $T/deep.lsys --view 0,0 -o $T/b.png"
+  "3D view 30,20, 78125 stems|render $T/deep.lsys -o $T/c.png"
+  "3D bush (plant3d) depth 10, view|render examples/plant3d.lsys --depth 10 -o $T/d.png"
+  "3D bush depth 10 to .glb|render examples/plant3d.lsys --depth 10 -o $T/e.glb"
+  "3D bush depth 10 to .obj|render examples/plant3d.lsys --depth 10 -o $T/f.obj"
+  "2D picture as a mesh .glb, 78125 stems|render $T/flat.lsys -o $T/g.glb"
+)
+declare -A wall rss
+for _ in $(seq "$RUNS"); do
+  for i in "${!rows[@]}"; do
+    IFS='|' read -r _ args <<<"${rows[$i]}"
+    # shellcheck disable=SC2086
+    o=$(/usr/bin/time -f "RSS %M WALL %e" "$B" $args 2>&1 >/dev/null | tail -1)
+    wall[$i]+="$(sed -n 's/.*WALL \([0-9.]*\).*/\1/p' <<<"$o") "
+    rss[$i]+="$(sed -n 's/^RSS \([0-9]*\).*/\1/p' <<<"$o") "
+  done
+done
+echo "| work | median s | peak MB |"
+echo "| --- | ---: | ---: |"
+for i in "${!rows[@]}"; do
+  IFS='|' read -r label _ <<<"${rows[$i]}"
+  w=$(tr ' ' '\n' <<<"${wall[$i]}" | grep . | median)
+  r=$(tr ' ' '\n' <<<"${rss[$i]}" | grep . | median)
+  awk -v l="$label" -v w="$w" -v r="$r" 'BEGIN { printf "| %s | %.3f | %.1f |\n", l, w, r / 1024 }'
+done

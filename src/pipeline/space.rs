@@ -1,0 +1,362 @@
+//! Three dimensions in the pipeline (docs/3d.md): a 3D `.lsys`'s pictures
+//! are views (`--view AZ,EL`), any input's mesh (`.glb`, `.gltf`, `.obj`),
+//! and a 3D `.lsys`'s `stats` with a 3D box and end.
+
+use std::fmt::Write as _;
+use std::io::Write;
+
+use super::{Rendered, Scene, What, style};
+use crate::diag::{Diagnostic, Diagnostics, RenderError};
+use crate::interpret::lsys::space::{bounds3, draw3};
+use crate::interpret::stats::{STATS_TRAVERSAL_SYMBOLS, Stats, stats_with_budget};
+use crate::limits::Limits;
+use crate::model::lsys::LSystem;
+use crate::num::{Trim, fixed};
+use crate::progress::{NoProgress, Phase, Progress};
+use crate::render::mesh::{self, MeshFormat, MeshOptions, Tube};
+use crate::render::view::{Gathered, MAX_VIEW_SEGMENTS, View, view_too_large};
+use crate::render::{Frame, RenderOptions, Width, render_framed};
+use crate::turtle::space::{Point3, Segment3};
+use crate::turtle::{Segment, Turtle};
+
+/// The 3D `.lsys` of a scene, and its depth, if it is one.
+pub(crate) fn space_lsys(scene: &Scene) -> Option<(&LSystem, u32)> {
+    match &scene.what {
+        What::Lsys { sys, depth } if sys.is_3d() => Some((sys, *depth)),
+        _ => None,
+    }
+}
+
+/// Refuses, before deriving, a deterministic 3D system with more stems
+/// than `most` (`over` makes the refusal).
+fn check_stems(
+    sys: &LSystem,
+    depth: u32,
+    limits: &Limits,
+    most: u64,
+    over: impl Fn(String) -> Diagnostics,
+) -> Result<(), Diagnostics> {
+    if sys.is_stochastic() {
+        let fewest = crate::interpret::lsys::Stochastic::new(sys)
+            .segment_bounds(depth)
+            .0;
+        if fewest > most {
+            return Err(over(format!("at least {fewest}")));
+        }
+        return Ok(());
+    }
+    let stems = stats_with_budget(sys, depth, limits, 0)?.segments;
+    if stems > most.into() {
+        return Err(over(stems.to_string()));
+    }
+    Ok(())
+}
+
+/// Draws a 3D `.lsys` seen from `view` as the PNG or SVG `opts` asks: its
+/// stems projected, drawn far to near, fitted as a 2D drawing is. Every
+/// stem is drawn (no level of detail yet).
+pub(crate) fn render_view(
+    scene: &Scene,
+    view: View,
+    look: &super::Look,
+    opts: &RenderOptions,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<Rendered, Diagnostics> {
+    let (sys, depth) = space_lsys(scene).expect("render_view is called for a 3D .lsys");
+    check_stems(sys, depth, &scene.limits, MAX_VIEW_SEGMENTS, view_too_large)?;
+    let mut gathered = Gathered::new(view);
+    draw3(
+        sys,
+        depth,
+        scene.derivation,
+        &scene.limits,
+        &mut |s| gathered.push(s),
+        &mut Phase::new(progress, "deriving"),
+    )?;
+    if gathered.over {
+        return Err(view_too_large(format!("more than {MAX_VIEW_SEGMENTS}")));
+    }
+    let stems = gathered.sorted();
+    let n = stems.len() as u64;
+    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
+        for s in &stems {
+            t.segment(*s);
+        }
+        Ok(())
+    };
+    let exact = RenderOptions {
+        exact: true,
+        ..*opts
+    };
+    let style = style(scene, look);
+    render_framed(&mut drawing, Frame::Fit, &[], &style, &exact, out, progress)?;
+    Ok(Rendered {
+        segments: n,
+        count: Some(n.to_string()),
+        warnings: nothing_drawn(n),
+    })
+}
+
+fn nothing_drawn(n: u64) -> Vec<Diagnostic> {
+    if n > 0 {
+        return Vec::new();
+    }
+    vec![
+        Diagnostic::warning(RenderError::NothingDrawn)
+            .with_help("check the axiom or seed and the depth: only `F` draws"),
+    ]
+}
+
+/// What [`super::Request::mesh`] wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Meshed {
+    /// Stems meshed.
+    pub stems: u64,
+    /// Triangles written.
+    pub triangles: u64,
+    /// Warnings (nothing drawn).
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Writes the scene as a mesh: every stem a tube (a 2D input's lifted to
+/// z = 0), its diameter the stem's width (an `.lsys`'s `width` is in
+/// pixels in a picture; in a mesh it is a tenth of a step per pixel), its
+/// colour the stroke's.
+pub(crate) fn mesh(
+    scene: &Scene,
+    look: &super::Look,
+    format: MeshFormat,
+    opts: &MeshOptions,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<Meshed, Diagnostics> {
+    let style = style(scene, look);
+    let color = style.stroke;
+    let width = move |order: u32| match style.width {
+        Width::Canvas(lin) => lin.at(order).max(0.0),
+        Width::Pixels(w) => match &scene.what {
+            What::Lsys { sys, .. } => w * sys.length / 10.0,
+            What::Tree { .. } => w,
+        },
+    };
+    let most = opts.max_tubes();
+    let mut tubes: Vec<Tube> = Vec::new();
+    let mut over = false;
+    let mut keep = |s: Segment3| {
+        if tubes.len() as u64 >= most {
+            over = true;
+            return;
+        }
+        tubes.push(Tube {
+            from: s.from,
+            to: s.to,
+            width: width(s.order),
+            color,
+        });
+    };
+    let mut phase = Phase::new(progress, "deriving");
+    if let Some((sys, depth)) = space_lsys(scene) {
+        check_stems(sys, depth, &scene.limits, most, |_| {
+            mesh::mesh_too_large(most, true, opts)
+        })?;
+        draw3(
+            sys,
+            depth,
+            scene.derivation,
+            &scene.limits,
+            &mut keep,
+            &mut phase,
+        )?;
+    } else {
+        let mut lift = Lift(&mut keep);
+        scene.draw(&mut lift, &mut phase)?;
+    }
+    mesh::check_tubes(tubes.len() as u64, over, opts)?;
+    let m = mesh::build(&tubes, opts);
+    match format {
+        MeshFormat::Glb => mesh::write_glb(&m, out)?,
+        MeshFormat::Gltf => mesh::write_gltf(&m, out)?,
+        MeshFormat::Obj => mesh::write_obj(&m, out)?,
+    }
+    let n = tubes.len() as u64;
+    Ok(Meshed {
+        stems: n,
+        triangles: m.triangles(),
+        warnings: nothing_drawn(n),
+    })
+}
+
+/// A 2D turtle backend that lifts every segment to z = 0.
+struct Lift<'a>(&'a mut dyn FnMut(Segment3));
+
+impl Turtle for Lift<'_> {
+    fn segment(&mut self, s: Segment) {
+        (self.0)(Segment3 {
+            from: Point3::new(s.from.x, s.from.y, 0.0),
+            to: Point3::new(s.to.x, s.to.y, 0.0),
+            order: s.order,
+        });
+    }
+}
+
+/// The 3D box and end of a stats report, or the bound that stands for
+/// them past the traversal budget.
+enum Geometry3 {
+    Traversed {
+        bbox: Option<[f64; 6]>,
+        end: Point3,
+    },
+    /// Over the budget: every point is within this many unit steps of the
+    /// origin (the word's `F` and `f` count).
+    Bound(f64),
+}
+
+/// `stats` of a 3D `.lsys`: the counts of the 2D statistics (exact, or
+/// this seed's counted word), and the unit-step turtle's box
+/// `[minx, miny, minz, maxx, maxy, maxz]` and end `[x, y, z]` by a
+/// traversal when the word is at most
+/// `min(--max-symbols, STATS_TRAVERSAL_SYMBOLS)` symbols; past that
+/// `bbox` and `end` are `null` and `bound` is the cube every point lies
+/// in (steps counted exactly, as `[-n, -n, -n, n, n, n]`).
+pub(crate) fn stats3(
+    sys: &LSystem,
+    depth: u32,
+    json: bool,
+    limits: &Limits,
+) -> Result<String, Diagnostics> {
+    let budget = limits.max_symbols.min(STATS_TRAVERSAL_SYMBOLS);
+    let mut unit = sys.clone();
+    unit.length = 1.0;
+    // A stochastic traversal may visit a tenth of its limit (the cost of
+    // its choices, interpret::lsys::stochastic); stats counted this word
+    // within `budget`, so the traversal gets ten times that.
+    let capped = Limits {
+        max_symbols: if sys.is_stochastic() {
+            budget.saturating_mul(10)
+        } else {
+            budget
+        },
+        ..*limits
+    };
+    let stats = if sys.is_stochastic() {
+        match crate::interpret::expected::stochastic_stats(sys, depth, limits)? {
+            crate::interpret::expected::StochasticStats::Counted(s) => s,
+            e => {
+                return Ok(if json { e.to_json() } else { e.to_text() });
+            }
+        }
+    } else {
+        stats_with_budget(sys, depth, limits, 0)?
+    };
+    let fits = u64::try_from(&stats.length).is_ok_and(|l| l <= budget);
+    let geo = if fits {
+        let (bbox, end, _) = bounds3(&unit, depth, &capped, &mut NoProgress)?;
+        Geometry3::Traversed { bbox, end }
+    } else {
+        let steps = ['F', 'f']
+            .iter()
+            .filter_map(|c| stats.symbols.get(c))
+            .map(|n| n.to_string().parse::<f64>().unwrap_or(f64::INFINITY))
+            .sum();
+        Geometry3::Bound(steps)
+    };
+    Ok(if json {
+        json3(&stats, &geo)
+    } else {
+        text3(&stats, &geo)
+    })
+}
+
+fn num(x: f64) -> String {
+    fixed(x, crate::interpret::stats::DECIMALS, Trim::Keep)
+}
+
+fn list(v: &[f64]) -> String {
+    let parts: Vec<String> = v.iter().map(|&x| num(x)).collect();
+    format!("[{}]", parts.join(", "))
+}
+
+fn json3(s: &Stats, geo: &Geometry3) -> String {
+    let mut out = String::from("{");
+    if let Some(seed) = s.seed {
+        let _ = write!(out, "\"seed\": {seed}, ");
+    }
+    let _ = write!(
+        out,
+        "\"dimensions\": 3, \"length\": \"{}\", \"segments\": \"{}\", ",
+        s.length, s.segments
+    );
+    match geo {
+        Geometry3::Traversed { bbox, end } => {
+            let _ = write!(
+                out,
+                "\"bbox\": {}, \"end\": {}, ",
+                list(&bbox.unwrap_or([0.0; 6])),
+                list(&end.to_array())
+            );
+        }
+        Geometry3::Bound(n) => {
+            let _ = write!(
+                out,
+                "\"bbox\": null, \"end\": null, \"bound\": {}, ",
+                list(&[-n, -n, -n, *n, *n, *n])
+            );
+        }
+    }
+    out.push_str("\"symbols\": {");
+    for (i, (c, n)) in s.symbols.iter().enumerate() {
+        let key = serde_json::to_string(&c.to_string()).unwrap_or_default();
+        let _ = write!(out, "{}{key}: \"{n}\"", if i > 0 { ", " } else { "" });
+    }
+    out.push_str("}}");
+    out
+}
+
+fn text3(s: &Stats, geo: &Geometry3) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "depth     {} (3D)", s.depth);
+    if let Some(seed) = s.seed {
+        let _ = writeln!(
+            out,
+            "seed      {seed} (stochastic: the counts of this seed's word)"
+        );
+    }
+    let _ = writeln!(out, "length    {}", s.length);
+    let _ = writeln!(out, "segments  {}", s.segments);
+    match geo {
+        Geometry3::Traversed { bbox, end } => {
+            let b = bbox.unwrap_or([0.0; 6]);
+            let _ = writeln!(
+                out,
+                "bbox      x {} .. {}, y {} .. {}, z {} .. {} (unit steps, y down, z away)",
+                num(b[0]),
+                num(b[3]),
+                num(b[1]),
+                num(b[4]),
+                num(b[2]),
+                num(b[5])
+            );
+            let _ = writeln!(
+                out,
+                "end       ({}, {}, {})",
+                num(end.x),
+                num(end.y),
+                num(end.z)
+            );
+        }
+        Geometry3::Bound(n) => {
+            let _ = writeln!(
+                out,
+                "bbox      (not traversed: the word is too long) within {} unit steps of the start on every axis",
+                num(*n)
+            );
+            let _ = writeln!(out, "end       (not traversed)");
+        }
+    }
+    let _ = writeln!(out, "symbols");
+    for (c, n) in &s.symbols {
+        let _ = writeln!(out, "  {c}  {n}");
+    }
+    out
+}

@@ -1,0 +1,320 @@
+//! Meshes: stems as closed tubes, written as glTF 2.0 (`.glb`, `.gltf`)
+//! or Wavefront OBJ (`.obj`). docs/3d.md describes the files.
+//!
+//! A stem is a tube of `sides` sides around its axis, its diameter the
+//! stem's width, closed by a flat cap at each end: `4 * sides` vertices
+//! (the sides' with normals pointing away from the axis, each cap's with
+//! the axis's direction), `4 * sides - 4` triangles, counter-clockwise
+//! seen from outside, every edge shared by exactly two of its triangles.
+//! Widths fall with a stem's order (STL's `B`), so a branch tapers stem by
+//! stem. Axes: glTF and OBJ are y up, right-handed; a canvas point
+//! (x, y, z) (y down, z away from the viewer) is written at
+//! (x, -y, -z) times `unit` (metres per canvas unit), a rotation, so
+//! windings stay outward. Stems are grouped by colour, one material (glTF)
+//! or group (OBJ) per colour, in the order colours first appear.
+
+mod gltf;
+mod obj;
+
+pub use gltf::{write_glb, write_gltf};
+pub use obj::write_obj;
+
+use crate::color::Rgb;
+use crate::diag::{Diagnostic, Diagnostics, RenderError};
+use crate::turtle::space::{Point3, cos_sin};
+
+/// A mesh file format (from the output's extension, or `--mesh`). The
+/// variants' doc comments are the help of `--mesh`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum MeshFormat {
+    /// Binary glTF.
+    Glb,
+    /// glTF JSON with its buffer embedded (base64).
+    Gltf,
+    /// Wavefront OBJ with vertex colours.
+    Obj,
+}
+
+impl MeshFormat {
+    /// The mesh format an output's extension names, if any.
+    pub fn from_extension(ext: &str) -> Option<MeshFormat> {
+        match ext.to_ascii_lowercase().as_str() {
+            "glb" => Some(MeshFormat::Glb),
+            "gltf" => Some(MeshFormat::Gltf),
+            "obj" => Some(MeshFormat::Obj),
+            _ => None,
+        }
+    }
+
+    /// The format's extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            MeshFormat::Glb => "glb",
+            MeshFormat::Gltf => "gltf",
+            MeshFormat::Obj => "obj",
+        }
+    }
+}
+
+/// How meshes are made.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshOptions {
+    /// Sides of each tube (`--sides`), [`MIN_SIDES`] to [`MAX_SIDES`].
+    pub sides: u32,
+    /// Metres per canvas unit (`--unit`).
+    pub unit: f64,
+    /// Most triangles a mesh may have (`--max-triangles`).
+    pub max_triangles: u64,
+}
+
+/// Default of [`MeshOptions::sides`].
+pub const DEFAULT_SIDES: u32 = 6;
+/// Fewest sides a tube may have.
+pub const MIN_SIDES: u32 = 3;
+/// Most sides a tube may have.
+pub const MAX_SIDES: u32 = 64;
+/// Default of [`MeshOptions::unit`]: a canvas unit is a centimetre, so a
+/// 300-unit tree is 3 m tall.
+pub const DEFAULT_UNIT: f64 = 0.01;
+/// Default of [`MeshOptions::max_triangles`]: about 41 bytes a triangle in
+/// a `.glb` (vertices, normals, indices) and 85 at the peak in memory
+/// (docs/3d.md, *Cost*).
+pub const DEFAULT_MAX_TRIANGLES: u64 = 10_000_000;
+
+impl Default for MeshOptions {
+    fn default() -> Self {
+        MeshOptions {
+            sides: DEFAULT_SIDES,
+            unit: DEFAULT_UNIT,
+            max_triangles: DEFAULT_MAX_TRIANGLES,
+        }
+    }
+}
+
+impl MeshOptions {
+    /// Triangles of one tube.
+    pub fn triangles_per_tube(&self) -> u64 {
+        4 * u64::from(self.sides) - 4
+    }
+
+    /// Most tubes within [`MeshOptions::max_triangles`].
+    pub fn max_tubes(&self) -> u64 {
+        self.max_triangles / self.triangles_per_tube()
+    }
+}
+
+/// The refusal of a mesh of `tubes` stems (or more, `more`) over the
+/// triangle limit.
+pub fn mesh_too_large(tubes: u64, more: bool, opts: &MeshOptions) -> Diagnostics {
+    let tri = tubes.saturating_mul(opts.triangles_per_tube());
+    Diagnostic::error(RenderError::MeshTooLarge {
+        triangles: if more {
+            format!("more than {tri}")
+        } else {
+            tri.to_string()
+        },
+        limit: opts.max_triangles,
+    })
+    .with_help(format!(
+        "each stem is {} triangles at --sides {}: draw less (a smaller --depth), use fewer \
+         --sides, or raise the limit with --max-triangles N",
+        opts.triangles_per_tube(),
+        opts.sides
+    ))
+    .into()
+}
+
+/// One stem to mesh: its ends (canvas units), its width, its colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tube {
+    /// Start.
+    pub from: Point3,
+    /// End.
+    pub to: Point3,
+    /// Diameter, canvas units.
+    pub width: f64,
+    /// Colour.
+    pub color: Rgb,
+}
+
+/// The triangles of one colour, in the files' axes and metres.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Primitive {
+    /// Its colour.
+    pub color: Option<Rgb>,
+    /// Vertex positions.
+    pub positions: Vec<[f32; 3]>,
+    /// Vertex normals (unit).
+    pub normals: Vec<[f32; 3]>,
+    /// Triangles, three vertex indices each, counter-clockwise from
+    /// outside.
+    pub indices: Vec<u32>,
+}
+
+/// A mesh: one [`Primitive`] per colour.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Mesh {
+    /// The primitives, in the order their colours first appear.
+    pub primitives: Vec<Primitive>,
+}
+
+impl Mesh {
+    /// Triangles in all.
+    pub fn triangles(&self) -> u64 {
+        self.primitives
+            .iter()
+            .map(|p| p.indices.len() as u64 / 3)
+            .sum()
+    }
+}
+
+type V = [f64; 3];
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: V, b: V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn unit(a: V) -> V {
+    let n = libm::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    [a[0] / n, a[1] / n, a[2] / n]
+}
+
+fn f32s(a: V) -> [f32; 3] {
+    // Never -0: the same bytes whichever way a zero was reached.
+    a.map(|v| if v == 0.0 { 0.0 } else { v as f32 })
+}
+
+/// A canvas point in the files' axes: (x, -y, -z) times `unit`.
+pub fn to_file_axes(p: Point3, unit: f64) -> V {
+    [p.x * unit, -p.y * unit, -p.z * unit]
+}
+
+/// Builds the mesh of `tubes` (zero-length ones are left out). The caller
+/// keeps the number of tubes within [`MeshOptions::max_tubes`].
+pub fn build(tubes: &[Tube], opts: &MeshOptions) -> Mesh {
+    let n = opts.sides.clamp(MIN_SIDES, MAX_SIDES) as usize;
+    // The ring's directions, exact at multiples of 90 degrees.
+    let ring: Vec<(f64, f64)> = (0..n)
+        .map(|j| cos_sin(360.0 * j as f64 / n as f64))
+        .collect();
+    let mut mesh = Mesh::default();
+    for t in tubes {
+        let a = to_file_axes(t.from, opts.unit);
+        let b = to_file_axes(t.to, opts.unit);
+        let d = sub(b, a);
+        if d == [0.0; 3] || !d.iter().all(|v| v.is_finite()) {
+            continue;
+        }
+        let idx = match mesh
+            .primitives
+            .iter()
+            .position(|p| p.color == Some(t.color))
+        {
+            Some(i) => i,
+            None => {
+                mesh.primitives.push(Primitive {
+                    color: Some(t.color),
+                    ..Primitive::default()
+                });
+                mesh.primitives.len() - 1
+            }
+        };
+        tube(
+            &mut mesh.primitives[idx],
+            a,
+            b,
+            d,
+            t.width * opts.unit / 2.0,
+            &ring,
+        );
+    }
+    mesh
+}
+
+/// Appends one closed tube from `a` to `b` (axis `d = b - a`), radius `r`.
+fn tube(p: &mut Primitive, a: V, b: V, d: V, r: f64, ring: &[(f64, f64)]) {
+    let n = ring.len() as u32;
+    let dn = unit(d);
+    // A helper axis least aligned with d, then (u, v, dn) right-handed.
+    let k = (0..3)
+        .min_by(|&i, &j| dn[i].abs().total_cmp(&dn[j].abs()))
+        .unwrap_or(0);
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let u = unit(cross(dn, e));
+    let v = cross(dn, u);
+    let off: Vec<V> = ring
+        .iter()
+        .map(|&(c, s)| {
+            [
+                u[0] * c + v[0] * s,
+                u[1] * c + v[1] * s,
+                u[2] * c + v[2] * s,
+            ]
+        })
+        .collect();
+    let at = |base: V, o: V| [base[0] + r * o[0], base[1] + r * o[1], base[2] + r * o[2]];
+    let base = p.positions.len() as u32;
+    // Sides: bottom and top of each direction, normals outward.
+    for o in &off {
+        p.positions.push(f32s(at(a, *o)));
+        p.normals.push(f32s(*o));
+        p.positions.push(f32s(at(b, *o)));
+        p.normals.push(f32s(*o));
+    }
+    // Caps: the start's facing -d, the end's +d.
+    let back = dn.map(|x| -x);
+    for o in &off {
+        p.positions.push(f32s(at(a, *o)));
+        p.normals.push(f32s(back));
+    }
+    for o in &off {
+        p.positions.push(f32s(at(b, *o)));
+        p.normals.push(f32s(dn));
+    }
+    for j in 0..n {
+        let k = (j + 1) % n;
+        let (aj, bj, ak, bk) = (
+            base + 2 * j,
+            base + 2 * j + 1,
+            base + 2 * k,
+            base + 2 * k + 1,
+        );
+        p.indices.extend([aj, ak, bk, aj, bk, bj]);
+    }
+    let start = base + 2 * n;
+    let end = base + 3 * n;
+    for j in 1..n - 1 {
+        p.indices.extend([start, start + j + 1, start + j]);
+        p.indices.extend([end, end + j, end + j + 1]);
+    }
+}
+
+/// Appends `f32` triples to `buf`, little-endian.
+fn le_f32s(v: &[[f32; 3]], buf: &mut Vec<u8>) {
+    buf.reserve(12 * v.len());
+    buf.extend(
+        v.iter()
+            .flat_map(|t| t.iter().flat_map(|x| x.to_le_bytes())),
+    );
+}
+
+/// Whether `n` tubes are within the limit; the refusal otherwise.
+pub fn check_tubes(n: u64, more: bool, opts: &MeshOptions) -> Result<(), Diagnostics> {
+    if more || n > opts.max_tubes() {
+        return Err(mesh_too_large(n, more, opts));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;
