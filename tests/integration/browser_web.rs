@@ -346,9 +346,12 @@ async fn every_example(c: &Client) {
 }
 
 /// A render a newer one supersedes ends at once (its promise rejects with
-/// an AbortError) and the newer one answers.
+/// an AbortError) and the newer one answers (the long work: a stochastic
+/// system with no level of detail at depth 14, many seconds; at depth 2
+/// it draws 1 + (4^2 - 1) / 3 = 6 segments).
 async fn newer_edit_ends_older_work(c: &Client) {
-    let source = std::fs::read_to_string(manifest_path("examples/abop-1.27.lsys")).unwrap();
+    let source =
+        std::fs::read_to_string(manifest_path("tests/cases/render/slow-stochastic.lsys")).unwrap();
     let v = c
         .execute_async(
             "const [source, done] = arguments;
@@ -367,6 +370,7 @@ async fn newer_edit_ends_older_work(c: &Client) {
         .unwrap();
     assert_eq!(v["slow"], "AbortError", "{v}");
     assert_eq!(v["fast"], true, "{v}");
+    assert_eq!(v["stems"], "6", "{v}");
 }
 
 /// The page's share link for its document as it is now.
