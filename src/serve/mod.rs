@@ -107,6 +107,7 @@ struct State {
 
 /// Runs `stlc serve` until Ctrl-C; returns the exit code.
 pub fn run(config: &Config, color: bool) -> ExitCode {
+    memory::tune_allocator();
     match serve(config) {
         Ok(()) => ExitCode::SUCCESS,
         Err(diags) => {
