@@ -123,7 +123,7 @@ impl<W: Write> SvgTurtle<W> {
     }
 
     /// The same turtle merging runs into as few path commands as show the
-    /// same picture ([`super::svg_merge`]); `max_segments` then counts
+    /// same picture (`render/svg_merge.rs`); `max_segments` then counts
     /// path commands.
     pub fn merging(mut self) -> Self {
         self.cells = Some(Cells::new(self.fit.width, self.fit.height));
