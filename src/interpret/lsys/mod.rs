@@ -394,31 +394,48 @@ fn draw_stochastic<T: Turtle>(
     turtle: T,
     progress: &mut dyn Progress,
 ) -> Result<Point, Diagnostics> {
-    limits.check_depth(depth)?;
-    let within = stochastic::budget(limits);
     let st = Stochastic::new(sys);
     let alpha = Alphabet::new(sys);
     let (mut interp, ops) = plain_interp(sys, &alpha, turtle);
+    stream_stochastic(&st, depth, strategy, limits, progress, |s| {
+        if let Some(op) = ops[s as usize] {
+            interp.apply(op);
+        }
+    })?;
+    Ok(interp.state.pos)
+}
+
+/// Streams a stochastic system's word (symbol ids of `st`, in order) to
+/// `each`, within its budget (`stochastic::budget`), with progress; the
+/// one derivation loop the 2D and 3D interpreters share.
+pub(crate) fn stream_stochastic(
+    st: &Stochastic,
+    depth: u32,
+    strategy: Derivation,
+    limits: &Limits,
+    progress: &mut dyn Progress,
+    mut each: impl FnMut(u32),
+) -> Result<(), Diagnostics> {
+    limits.check_depth(depth)?;
+    let within = stochastic::budget(limits);
     // The progress bar's end is the longest word the choices can make.
     let (_, most) = st.length_bounds(depth);
     progress.start("symbols", most);
     let mut i = 0u64;
-    let each = |s: u32| {
-        if let Some(op) = ops[s as usize] {
-            interp.apply(op);
-        }
+    let step = |s: u32| {
+        each(s);
         i += 1;
         if i.is_multiple_of(PROGRESS_STEP) {
             progress.update(i);
         }
     };
     let done = match strategy {
-        Derivation::Dfs => st.dfs_each(depth, &within, each),
-        Derivation::Bfs => st.bfs_each(depth, &within, each),
+        Derivation::Dfs => st.dfs_each(depth, &within, step),
+        Derivation::Bfs => st.bfs_each(depth, &within, step),
     };
     progress.finish();
-    done.map_err(|d| stochastic::explain_budget(d, limits))?;
-    Ok(interp.state.pos)
+    done.map(|_| ())
+        .map_err(|d| stochastic::explain_budget(d, limits))
 }
 
 /// The turtle state machine at `sys`'s start, and each symbol's operation:

@@ -10,7 +10,7 @@
 //! before any work: the derived word over `--max-symbols` (a stochastic
 //! system's budget a tenth of it), bfs's word over `--max-word`.
 
-use super::stochastic::{self, Stochastic};
+use super::stochastic::Stochastic;
 use super::{Alphabet, PROGRESS_STEP};
 use crate::diag::Diagnostics;
 use crate::interpret::Derivation;
@@ -33,28 +33,13 @@ pub fn draw3(
 ) -> Result<Point3, Diagnostics> {
     let mut turtle = Turtle3::new(sys.heading, sys.angle, sys.length, sink);
     if sys.is_stochastic() {
-        limits.check_depth(depth)?;
-        let within = stochastic::budget(limits);
         let st = Stochastic::new(sys);
         let ops: Vec<Option<Op3>> = st.chars.iter().map(|&c| Op3::of_lsys(c)).collect();
-        let (_, most) = st.length_bounds(depth);
-        progress.start("symbols", most);
-        let mut i = 0u64;
-        let each = |s: u32| {
+        super::stream_stochastic(&st, depth, strategy, limits, progress, |s| {
             if let Some(op) = ops[s as usize] {
                 turtle.apply(op);
             }
-            i += 1;
-            if i.is_multiple_of(PROGRESS_STEP) {
-                progress.update(i);
-            }
-        };
-        let done = match strategy {
-            Derivation::Dfs => st.dfs_each(depth, &within, each),
-            Derivation::Bfs => st.bfs_each(depth, &within, each),
-        };
-        progress.finish();
-        done.map_err(|d| stochastic::explain_budget(d, limits))?;
+        })?;
         return Ok(turtle.state.pos);
     }
     let alpha = Alphabet::new(sys);
