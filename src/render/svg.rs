@@ -415,10 +415,10 @@ mod tests {
         assert_eq!(num(-3.5), "-3.50");
     }
 
-    #[test]
-    fn past_its_segment_limit_the_turtle_writes_nothing_more_and_finish_refuses() {
-        use crate::turtle::BBox;
-        let mut view = BBox::at(Point::new(0.0, 0.0));
+    /// A 10 x 10 px picture of the view (0, 0)-(10, 10), black 1 px
+    /// strokes on no background.
+    fn ten_by_ten() -> (Fit, Style) {
+        let mut view = crate::turtle::BBox::at(Point::new(0.0, 0.0));
         view.add(Point::new(10.0, 10.0));
         let fit = Fit::view(&view, Some((10, 10))).unwrap();
         let style = Style {
@@ -426,6 +426,12 @@ mod tests {
             background: None,
             width: Width::Pixels(1.0),
         };
+        (fit, style)
+    }
+
+    #[test]
+    fn past_its_segment_limit_the_turtle_writes_nothing_more_and_finish_refuses() {
+        let (fit, style) = ten_by_ten();
         let seg = |i: f64| Segment {
             from: Point::new(i, 0.0),
             to: Point::new(i + 1.0, 0.0),
@@ -462,15 +468,7 @@ mod tests {
     /// cell wide, flat ends).
     #[test]
     fn merged_runs_fold_join_and_fill_crowded_cells() {
-        use crate::turtle::BBox;
-        let mut view = BBox::at(Point::new(0.0, 0.0));
-        view.add(Point::new(10.0, 10.0));
-        let fit = Fit::view(&view, Some((10, 10))).unwrap();
-        let style = Style {
-            stroke: Rgb::BLACK,
-            background: None,
-            width: Width::Pixels(1.0),
-        };
+        let (fit, style) = ten_by_ten();
         let mut t = SvgTurtle::new(Vec::new(), fit, &style).unwrap().merging();
         let seg = |ax: f64, ay: f64, bx: f64, by: f64| Segment {
             from: Point::new(ax, ay),
