@@ -353,6 +353,7 @@ mod tests {
             width: Linear::new(1.0, 0.3),
             angle: None,
             clearance: None,
+            divergence: None,
             stroke: None,
             background: None,
             design: Default::default(),

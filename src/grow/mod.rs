@@ -311,6 +311,7 @@ fn grow_inner(
         .zip(grown_seeds)
         .map(|(t, s)| crate::model::Tree {
             root: t.root,
+            root_z: t.root_z,
             root_loc: t.root_loc.clone(),
             seed: Some(s),
         })
@@ -322,6 +323,7 @@ fn grow_inner(
         name: od.name.clone(),
         name_loc: od.name_loc.clone(),
         root: od.root,
+        root_z: od.root_z,
         root_loc: od.root_loc.clone(),
         params,
         rules: od.rules.clone(),

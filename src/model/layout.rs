@@ -7,8 +7,12 @@ use crate::color::Rgb;
 /// `LAYOUT ... ENDLAYOUT`: shapes painted in order on a white canvas.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Layout {
-    /// Shapes in painting order.
+    /// Shapes in painting order (a 2D layout).
     pub shapes: Vec<LayoutShape>,
+    /// Volumes in painting order (a 3D layout; `stl-language.md` section
+    /// 11). A layout holds shapes or volumes, never both: a 2D shape in a
+    /// 3D layout must be extruded or revolved.
+    pub solids: Vec<LayoutSolid>,
     /// The section.
     pub loc: Loc,
 }
@@ -50,9 +54,76 @@ impl Layout {
     pub fn new(shapes: Vec<LayoutShape>) -> Self {
         Layout {
             shapes,
+            solids: Vec::new(),
             loc: Loc::default(),
         }
     }
+}
+
+/// `(clGreen) Sphere (150, 150, 0), 100`: one volume of a 3D layout.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayoutSolid {
+    /// Fill colour; white carves.
+    pub color: Rgb,
+    /// The colour as written (`clGreen`, `#00ff00`), kept for the writer.
+    pub color_text: String,
+    /// The volume.
+    pub solid: Solid,
+    /// The whole line.
+    pub loc: Loc,
+}
+
+/// A volume of a 3D layout, in canvas units (x right, y down, z away from
+/// the viewer), as `stl-language.md` section 11 defines them.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Solid {
+    /// `Box (x, y, z), w, h, d`: the corner with the smallest coordinates,
+    /// then the (positive) sizes along +x, +y and +z.
+    Box {
+        /// The smallest corner.
+        corner: [f64; 3],
+        /// Sizes along x, y, z.
+        size: [f64; 3],
+    },
+    /// `Sphere (cx, cy, cz), r`.
+    Sphere {
+        /// Centre.
+        centre: [f64; 3],
+        /// Radius.
+        r: f64,
+    },
+    /// `Ellipsoid (cx, cy, cz), rx, ry, rz`.
+    Ellipsoid {
+        /// Centre.
+        centre: [f64; 3],
+        /// Radii along x, y, z.
+        radii: [f64; 3],
+    },
+    /// `Cylinder (x, y, z), r, h`: vertical, the bottom centre given,
+    /// rising `h` up the screen (towards -y).
+    Cylinder {
+        /// The bottom centre.
+        base: [f64; 3],
+        /// Radius.
+        r: f64,
+        /// Height (upwards, -y).
+        h: f64,
+    },
+    /// `Extrude <2D shape>, z1, z2`: the shape between `z1` and `z2`.
+    Extrude {
+        /// The 2D shape.
+        shape: Shape,
+        /// The smaller z.
+        z1: f64,
+        /// The larger z.
+        z2: f64,
+    },
+    /// `Revolve <2D shape>`: turned about the vertical line through the
+    /// first root (its x and z).
+    Revolve {
+        /// The 2D profile.
+        shape: Shape,
+    },
 }
 
 /// The two ways the paper writes shape arguments.

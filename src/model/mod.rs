@@ -26,7 +26,7 @@ pub mod seed_walk;
 pub mod term;
 pub mod walk;
 
-pub use layout::{Layout, LayoutShape, Shape, Spelling};
+pub use layout::{Layout, LayoutShape, LayoutSolid, Shape, Solid, Spelling};
 pub use term::{Repeat, Slot, SlotId, Term, TermId, Terms};
 
 use crate::diag::Span;
@@ -68,6 +68,9 @@ pub struct Description {
     pub name_loc: Loc,
     /// Root coordinate, canvas units.
     pub root: (f64, f64),
+    /// The root's third coordinate: `Some` makes the description 3D
+    /// (`stl-language.md` section 11; every root of a forest alike).
+    pub root_z: Option<f64>,
     /// Where the root is.
     pub root_loc: Loc,
     /// Stem parameters.
@@ -93,6 +96,8 @@ pub type TreeSeed<'a> = ((f64, f64), Option<std::borrow::Cow<'a, Seed>>);
 pub struct Tree {
     /// Root coordinate, canvas units.
     pub root: (f64, f64),
+    /// The root's third coordinate in a 3D forest (as [`Description::root_z`]).
+    pub root_z: Option<f64>,
     /// Where the root is.
     pub root_loc: Loc,
     /// In a BED, what grew from it; `None` in an OD.
@@ -110,6 +115,9 @@ pub struct StemParams {
     pub angle: Option<f64>,
     /// `C`: clearance between stems (ours), `None` if not written.
     pub clearance: Option<f64>,
+    /// `D`: divergence in degrees, 3D only (section 11: every rule
+    /// application first rolls its frame by it), `None` if not written.
+    pub divergence: Option<f64>,
     /// `S`: the stroke colour the tree is drawn with (ours), `None` if not
     /// written (the renderer's default, or `--stroke`).
     pub stroke: Option<Colour>,
@@ -388,6 +396,11 @@ impl Fixed {
 }
 
 impl Description {
+    /// Whether the description is 3D (its root has three coordinates).
+    pub fn is_3d(&self) -> bool {
+        self.root_z.is_some()
+    }
+
     /// The rule a [`RuleId`] names.
     pub fn rule(&self, id: RuleId) -> &RuleDef {
         &self.rules[id.0]

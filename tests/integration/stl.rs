@@ -980,6 +980,7 @@ fn gen_description(seed: u64) -> Description {
     }
     let layout = g.chance(60).then(|| Layout {
         shapes: (0..g.below(4)).map(|_| gen_shape(&mut g)).collect(),
+        solids: Vec::new(),
         loc: Loc::default(),
     });
     Description {
@@ -987,12 +988,14 @@ fn gen_description(seed: u64) -> Description {
         name: g.pick(&["T", "2DTree", "tree_1"]).to_string(),
         name_loc: Loc::default(),
         root: (g.milli(-100, 100), g.milli(-100, 100)),
+        root_z: None,
         root_loc: Loc::default(),
         params: StemParams {
             length: Linear::new(g.milli(20, 100), g.milli(0, 2)),
             width: Linear::new(g.milli(1, 10), if g.chance(50) { 0.0 } else { 0.125 }),
             angle: g.chance(50).then(|| g.milli(0, 90)),
             clearance: g.chance(50).then(|| g.milli(0, 5)),
+            divergence: None,
             stroke: g.chance(30).then(|| stlc::model::Colour {
                 rgb: Some(stlc::color::Rgb::new(0x80, 0, 0)),
                 text: g.pick(&["clMaroon", "#800000"]).to_string(),

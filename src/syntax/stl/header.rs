@@ -120,6 +120,7 @@ impl Builder<'_> {
             width: Linear::constant(1.0),
             angle: None,
             clearance: None,
+            divergence: None,
             stroke: None,
             background: None,
             design: Default::default(),

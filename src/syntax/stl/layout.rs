@@ -237,6 +237,7 @@ impl Builder<'_> {
         }
         Layout {
             shapes,
+            solids: Vec::new(),
             loc: Loc(span),
         }
     }

@@ -192,6 +192,7 @@ impl Builder<'_> {
             .into_iter()
             .map(|(root, root_loc)| crate::model::Tree {
                 root,
+                root_z: None,
                 root_loc,
                 seed: match self.format {
                     Format::Bed => later.next(),
@@ -206,6 +207,7 @@ impl Builder<'_> {
             name,
             name_loc,
             root,
+            root_z: None,
             root_loc,
             params,
             rules,
