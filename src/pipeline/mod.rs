@@ -29,7 +29,7 @@ mod summary;
 pub(crate) use draw::{Given, ignored_flags, layout_view, render_tree};
 pub use draw::{Look, Rendered, ShowLayout, TREE_BROWN, image_format, render, style};
 pub use request::{Drawn, Request};
-pub use space::Meshed;
+pub use space::{MAX_EDITOR_STEMS, Meshed, Space};
 pub use summary::{Checked, check, stats};
 
 // What front ends name, reached through the pipeline: the enums their

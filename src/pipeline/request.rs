@@ -136,6 +136,10 @@ pub struct Drawn {
     /// Whether the tree was left out of the picture for its size
     /// ([`Request::tree_up_to`]): the trace has its stems.
     pub tree_left_out: bool,
+    /// With [`Request::trace`] and [`Request::tree_up_to`], a 3D input's
+    /// stems for an editor that draws them itself: then no picture is
+    /// drawn.
+    pub space: Option<super::Space>,
 }
 
 impl Request {
@@ -253,7 +257,17 @@ impl Request {
         let grown = scene.grown_stems();
         let tree_left_out = trace.is_some()
             && matches!((self.tree_up_to, grown), (Some(most), Some(n)) if n > most);
-        let rendered = if super::space::space_lsys(&scene).is_some() {
+        let space = match self.tree_up_to {
+            Some(_) if self.trace => super::space::editor_space(&scene, &self.look, progress)?,
+            _ => None,
+        };
+        let (space, rendered) = match space {
+            Some((space, rendered)) => (Some(space), Some(rendered)),
+            None => (None, None),
+        };
+        let rendered = if let Some(r) = rendered {
+            r
+        } else if super::space::space_lsys(&scene).is_some() {
             let view = self.view.unwrap_or(View::DEFAULT);
             super::space::render_view(&scene, view, &self.look, &self.image, out, progress)?
         } else {
@@ -280,6 +294,7 @@ impl Request {
             warnings,
             stroke,
             tree_left_out,
+            space,
         })
     }
 

@@ -108,6 +108,85 @@ fn nothing_drawn(n: u64) -> Vec<Diagnostic> {
     ]
 }
 
+/// Most stems the editor's 3D view takes: its page holds each in 32 bytes
+/// of a WebGL buffer (a 2D answer's SVG has its own limit).
+pub const MAX_EDITOR_STEMS: u64 = 1_000_000;
+
+/// A 3D input for an editor that draws it itself (its own WebGL view):
+/// [`super::Request::render`] with `trace` and `tree_up_to` gives this in
+/// [`super::Drawn::space`] instead of drawing a picture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Space {
+    /// Eight numbers a stem, in drawing (or growth) order: from x, y, z,
+    /// to x, y, z, width, decision (0 for an `.lsys`).
+    pub stems: Vec<f64>,
+    /// Whether widths are screen pixels (an `.lsys`'s `width`), not canvas
+    /// units (a tree's `B`).
+    pub width_in_pixels: bool,
+    /// The background, `None` for transparent.
+    pub background: Option<crate::color::Rgb>,
+}
+
+/// The scene's stems in 3D for an editor ([`Space`]), with what a picture
+/// would have counted; `None` for a flat input.
+pub(crate) fn editor_space(
+    scene: &Scene,
+    look: &super::Look,
+    progress: &mut dyn Progress,
+) -> Result<Option<(Space, Rendered)>, Diagnostics> {
+    let Some((sys, depth)) = space_lsys(scene) else {
+        return Ok(None);
+    };
+    let too_many = |n: String| -> Diagnostics {
+        Diagnostic::error(RenderError::ViewTooLarge {
+            segments: n,
+            limit: MAX_EDITOR_STEMS,
+        })
+        .with_help("the editor's 3D view holds every stem: use a smaller depth, or `stlc render --view AZ,EL`")
+        .into()
+    };
+    check_stems(sys, depth, &scene.limits, MAX_EDITOR_STEMS, too_many)?;
+    let style = style(scene, look);
+    let w = match style.width {
+        Width::Pixels(w) => w,
+        Width::Canvas(lin) => lin.at(0),
+    };
+    let mut stems = Vec::new();
+    let mut over = false;
+    let mut keep = |s: Segment3| {
+        if stems.len() as u64 >= 8 * MAX_EDITOR_STEMS {
+            over = true;
+            return;
+        }
+        let (a, b) = (s.from, s.to);
+        stems.extend([a.x, a.y, a.z, b.x, b.y, b.z, w, 0.0]);
+    };
+    let mut phase = Phase::new(progress, "deriving");
+    draw3(
+        sys,
+        depth,
+        scene.derivation,
+        &scene.limits,
+        &mut keep,
+        &mut phase,
+    )?;
+    if over {
+        return Err(too_many(format!("more than {MAX_EDITOR_STEMS}")));
+    }
+    let n = stems.len() as u64 / 8;
+    let space = Space {
+        stems,
+        width_in_pixels: matches!(style.width, Width::Pixels(_)),
+        background: style.background,
+    };
+    let rendered = Rendered {
+        segments: n,
+        count: Some(n.to_string()),
+        warnings: nothing_drawn(n),
+    };
+    Ok(Some((space, rendered)))
+}
+
 /// What [`super::Request::mesh`] wrote.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Meshed {

@@ -11,7 +11,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::shapes;
+use super::{shapes, space};
 
 use stlc::diag::{Diagnostic, Diagnostics, line_column};
 use stlc::pipeline::{
@@ -70,6 +70,9 @@ pub struct Body {
     /// `None`: the input's own.
     #[serde(default)]
     pub background: Option<String>,
+    /// `--view AZ,EL` of a 3D input's picture, `[az, el]` degrees.
+    #[serde(default)]
+    pub view: Option<[f64; 2]>,
 }
 
 /// `"od"`, `"bed"` or `"lsys"`.
@@ -224,6 +227,7 @@ impl Body {
                 ..RenderOptions::new(format, self.size.map(|[w, h]| (w, h)))
             },
             trace: true,
+            view: self.view.map(|[az, el]| stlc::pipeline::View { az, el }),
             ..Request::new(self.source.clone().into_bytes())
         }
     }
@@ -264,6 +268,9 @@ pub struct RenderAnswer {
     /// An .od's LAYOUT as written (`null` without one).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub layout: Option<Option<shapes::LayoutJson>>,
+    /// A 3D input's stems and volumes, drawn by the page (`svg` is empty).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub space: Option<space::SpaceJson>,
 }
 
 /// A grown tree of more stems than this is drawn by the page from its
@@ -482,7 +489,7 @@ pub fn run(
     let answer = RenderAnswer {
         ok: true,
         svg,
-        tree_in_svg: !drawn.tree_left_out,
+        tree_in_svg: !drawn.tree_left_out && drawn.space.is_none(),
         stroke: drawn.stroke.to_string(),
         bed: bed.filter(|_| !drawn.tree_left_out),
         stems: match (drawn.grown, &drawn.count) {
@@ -496,6 +503,7 @@ pub fn run(
         view: drawn.view.map(|b| [b.min_x, b.min_y, b.max_x, b.max_y]),
         root: drawn.od.as_ref().map(|od| shapes::root_json(text, od)),
         layout: drawn.od.as_ref().map(|od| shapes::layout_json(text, od)),
+        space: (drawn.space).map(|s| space::space_json(s, drawn.od.as_ref(), round)),
     };
     Ok((answer, image))
 }

@@ -100,6 +100,16 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/view.js"),
     },
     Asset {
+        path: "/view3d.js",
+        media: JS,
+        body: include_str!("page/view3d.js"),
+    },
+    Asset {
+        path: "/meshes.js",
+        media: JS,
+        body: include_str!("page/meshes.js"),
+    },
+    Asset {
         path: "/engine/index.js",
         media: JS,
         body: include_str!("page/engine/index.js"),

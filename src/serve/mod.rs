@@ -26,6 +26,7 @@ mod http;
 mod memory;
 mod routes;
 mod shapes;
+mod space;
 mod stall;
 mod work;
 

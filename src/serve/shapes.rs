@@ -54,7 +54,7 @@ pub struct ShapeJson {
 /// A shape's geometry, tagged by its STL name.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "type")]
-enum Geometry {
+pub(super) enum Geometry {
     Rectangle {
         x: f64,
         y: f64,
@@ -78,6 +78,35 @@ enum Geometry {
     Polygon {
         points: Vec<[f64; 2]>,
     },
+}
+
+/// A 2D shape's geometry as the page draws it.
+pub(super) fn geometry(shape: &Shape) -> Geometry {
+    match shape {
+        Shape::Rect { x, y, w, h } => Geometry::Rectangle {
+            x: *x,
+            y: *y,
+            w: *w,
+            h: *h,
+        },
+        Shape::RoundRect { x, y, w, h, rx, ry } => Geometry::RoundRect {
+            x: *x,
+            y: *y,
+            w: *w,
+            h: *h,
+            rx: *rx,
+            ry: *ry,
+        },
+        Shape::Ellipse { x, y, w, h } => Geometry::Ellipse {
+            x: *x,
+            y: *y,
+            w: *w,
+            h: *h,
+        },
+        Shape::Polygon(points) => Geometry::Polygon {
+            points: points.iter().map(|&(x, y)| [x, y]).collect(),
+        },
+    }
 }
 
 pub(super) fn floor_char(text: &str, mut i: usize) -> usize {
@@ -117,31 +146,7 @@ pub(super) fn layout_json(text: &str, od: &Description) -> Option<LayoutJson> {
         .shapes
         .iter()
         .map(|s| ShapeJson {
-            geometry: match &s.shape {
-                Shape::Rect { x, y, w, h } => Geometry::Rectangle {
-                    x: *x,
-                    y: *y,
-                    w: *w,
-                    h: *h,
-                },
-                Shape::RoundRect { x, y, w, h, rx, ry } => Geometry::RoundRect {
-                    x: *x,
-                    y: *y,
-                    w: *w,
-                    h: *h,
-                    rx: *rx,
-                    ry: *ry,
-                },
-                Shape::Ellipse { x, y, w, h } => Geometry::Ellipse {
-                    x: *x,
-                    y: *y,
-                    w: *w,
-                    h: *h,
-                },
-                Shape::Polygon(points) => Geometry::Polygon {
-                    points: points.iter().map(|&(x, y)| [x, y]).collect(),
-                },
-            },
+            geometry: geometry(&s.shape),
             start: utf16(text, s.loc.0.start),
             end: utf16(text, s.loc.0.end),
             color: s.color.to_string(),

@@ -23,6 +23,9 @@ mod api;
 #[allow(dead_code, missing_docs)]
 #[path = "../../src/serve/shapes.rs"]
 mod shapes;
+#[allow(dead_code, missing_docs)]
+#[path = "../../src/serve/space.rs"]
+mod space;
 
 pub mod calls;
 

@@ -28,6 +28,8 @@ export function createFiles(app) {
     if (w !== '' && h !== '') o.size = [Math.floor(Number(w)), Math.floor(Number(h))];
     if (byId('export-transparent').checked) o.background = 'none';
     else if (byId('export-coloured').checked) o.background = byId('export-colour').value;
+    // A 3D input's picture from the angles the 3D view shows.
+    if (state.answer && state.answer.ok && state.answer.space) o.view = app.view3d.angles();
     return o;
   }
 
@@ -44,6 +46,7 @@ export function createFiles(app) {
     if (format !== 'bed') {
       const o = exportOptions();
       if (o.size) args.push('--size', `${o.size[0]}x${o.size[1]}`);
+      if (o.view) args.push('--view', o.view.join(','));
       if (o.show_layout && r.kind !== 'lsys') args.push('--show-layout');
       if (o.background) args.push('--background', o.background === 'none' ? 'none' : `'${o.background}'`);
     }

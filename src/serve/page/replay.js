@@ -49,8 +49,23 @@ export function createReplay(app) {
     return n;
   }
 
+  // A 3D input's stems of decisions up to `k`, on the 3D view.
+  function replay3d(a, k) {
+    const max = a.space.decisions;
+    app.view3d.upTo(k < max ? k : Infinity);
+    const g = a.space.stems;
+    let n = 0;
+    for (let i = 7; i < g.length; i += 8) if (g[i] <= k) n++;
+    byId('step-label').textContent = max ? `decision ${k} of ${max} · ${n} stems` : '';
+  }
+
   function replayTo(k, fromUser) {
     const a = state.answer;
+    if (a && a.ok && a.space) {
+      replay3d(a, k);
+      if (fromUser) stopReplay(true);
+      return;
+    }
     if (!a || !a.ok || !a.growth) return;
     const max = a.growth.decisions;
     const partial = k < max;

@@ -117,7 +117,7 @@ export function createSession(app) {
       state.layoutSpan = null;
     }
     if (state.selected >= state.shapes.length) state.selected = -1;
-    app.replay.reset(answer.growth ? answer.growth.decisions : 0);
+    app.replay.reset(answer.space ? answer.space.decisions : answer.growth ? answer.growth.decisions : 0);
     app.view.draw();
   }
 

@@ -119,6 +119,15 @@ export function createView(app) {
     if (!a || !a.ok) return;
     takeAnswer();
     preview.innerHTML = '';
+    // A 3D input: its own WebGL view (view3d.js) instead of this one.
+    document.body.classList.toggle('space', !!a.space);
+    if (a.space) {
+      app.view3d.show(a, state.refit && app.session.inSync());
+      if (app.session.inSync()) state.refit = false;
+      app.replay.show();
+      return;
+    }
+    app.view3d.hide();
     const lib = new DOMParser().parseFromString(a.svg, 'image/svg+xml').documentElement;
     const box = pictureBox(a);
     const libLayer = el('g', { class: 'lib' }, preview);
@@ -206,11 +215,13 @@ export function createView(app) {
 
   // An answer with errors: the last good picture stays, faded.
   function stale() {
+    app.view3d.stale();
     preview.querySelectorAll('.lib, .replay-layer').forEach((g) => g.classList.add('stale'));
   }
 
   // No picture: the one shown was of another file.
   function forget() {
+    app.view3d.hide();
     preview.querySelectorAll('.lib, .replay-layer').forEach((g) => g.remove());
   }
 
@@ -244,6 +255,8 @@ export function createView(app) {
   }
 
   const overlay = () => preview.querySelector('.overlay');
+  // Whether the answer shown is a 3D input's.
+  const space = () => !!(state.answer && state.answer.ok && state.answer.space);
 
   function setViewBox() {
     const v = state.view;
@@ -271,6 +284,7 @@ export function createView(app) {
   }
 
   function zoom(factor, at) {
+    if (space()) { app.view3d.zoom(factor); return; }
     const v = state.view;
     if (!v) return;
     const [cx, cy] = at || [(v[0] + v[2]) / 2, (v[1] + v[3]) / 2];
@@ -285,6 +299,7 @@ export function createView(app) {
   }
 
   function fit() {
+    if (space()) { app.view3d.reset(); return; }
     if (!state.fitView) return;
     state.view = state.fitView.slice();
     setViewBox();

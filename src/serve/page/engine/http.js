@@ -7,17 +7,24 @@
 // the numbers its JSON would hold (a Float64Array): no text to parse.
 const COMPACT = 'application/x-stlc-render';
 
+// `count` integers from byte `at`, `per` a stem, the last the decision.
+function numbers(buf, at, count, per) {
+  const ints = new Int32Array(buf, at, count);
+  const g = new Float64Array(count);
+  for (let i = 0; i < g.length; i += per) {
+    for (let j = i; j < i + per - 1; j++) g[j] = ints[j] / 1000;
+    g[i + per - 1] = ints[i + per - 1];
+  }
+  return g;
+}
+
 function unpack(buf) {
   const n = new DataView(buf).getUint32(0, true);
   const head = JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 4, n)));
-  const ints = new Int32Array(buf, 4 + n, head.stems);
-  const g = new Float64Array(head.stems);
-  for (let i = 0; i < g.length; i += 6) {
-    for (let j = i; j < i + 5; j++) g[j] = ints[j] / 1000;
-    g[i + 5] = ints[i + 5];
-  }
   const answer = head.answer;
-  answer.growth.stems = g;
+  answer.growth.stems = numbers(buf, 4 + n, head.stems, 6);
+  // A 3D input's stems follow, eight numbers a stem.
+  if (head.space !== undefined) answer.space.stems = numbers(buf, 4 + n + 4 * head.stems, head.space, 8);
   return answer;
 }
 

@@ -1,0 +1,387 @@
+// The 3D view: a 3D input's answer (`answer.space`: its stems, eight
+// numbers a stem, and its layout's volumes) drawn with WebGL 2 on a
+// canvas shown instead of the 2D preview. Orthographic, like `stlc render
+// --view AZ,EL`: the camera starts at the answer's view (30,20, the CLI's
+// default), dragging orbits it (AZ with the mouse across, EL up and down),
+// the wheel zooms, Fit resets both. The volumes are drawn translucent
+// (meshes.js), the tree over them: each stem a band of its width (screen
+// pixels for an .lsys, canvas units for a tree), one instance of a
+// four-corner strip, so the page holds 32 bytes a stem. Replay shows the
+// stems up to a decision (a uniform: nothing is uploaded again).
+
+import { byId } from './dom.js';
+import { volumeMesh } from './meshes.js';
+
+const STEM_VS = `#version 300 es
+in vec2 corner;
+in vec3 a;
+in vec3 b;
+in vec2 wd;
+uniform mat3 rot;
+uniform vec3 centre;
+uniform float scale;
+uniform vec2 viewport;
+uniform float pixelWidths;
+uniform float upTo;
+uniform float range;
+out float fade;
+void main() {
+  if (wd.y > upTo) { gl_Position = vec4(2.0, 2.0, 2.0, 1.0); return; }
+  vec3 pa = rot * (a - centre);
+  vec3 pb = rot * (b - centre);
+  vec2 sa = pa.xy * scale;
+  vec2 sb = pb.xy * scale;
+  vec2 d = sb - sa;
+  float len = length(d);
+  vec2 dir = len > 1e-6 ? d / len : vec2(1.0, 0.0);
+  vec2 nrm = vec2(-dir.y, dir.x);
+  float w = max(pixelWidths > 0.0 ? wd.x * pixelWidths : wd.x * scale, 1.0) * 0.5;
+  vec2 p = mix(sa, sb, corner.x) + nrm * corner.y * w + dir * (corner.x * 2.0 - 1.0) * w;
+  float z = mix(pa.z, pb.z, corner.x) / range;
+  fade = clamp(z * 0.5 + 0.5, 0.0, 1.0);
+  gl_Position = vec4(p.x * 2.0 / viewport.x, -p.y * 2.0 / viewport.y, z, 1.0);
+}`;
+
+const STEM_FS = `#version 300 es
+precision mediump float;
+in float fade;
+uniform vec3 colour;
+uniform vec3 background;
+out vec4 outColour;
+void main() {
+  outColour = vec4(mix(colour, background, 0.35 * fade), 1.0);
+}`;
+
+const VOLUME_VS = `#version 300 es
+in vec3 position;
+in vec3 normal;
+uniform mat3 rot;
+uniform vec3 centre;
+uniform float scale;
+uniform vec2 viewport;
+out float light;
+void main() {
+  vec3 p = rot * (position - centre);
+  vec3 n = rot * normal;
+  light = 0.45 + 0.55 * abs(normalize(n).z);
+  gl_Position = vec4(p.x * scale * 2.0 / viewport.x, -p.y * scale * 2.0 / viewport.y, 0.0, 1.0);
+}`;
+
+const VOLUME_FS = `#version 300 es
+precision mediump float;
+in float light;
+uniform vec4 colour;
+out vec4 outColour;
+void main() {
+  outColour = vec4(colour.rgb * light, colour.a);
+}`;
+
+// The drawing angles of a drag: degrees a pixel.
+const DEG_PER_PX = 0.4;
+
+function rgb(hex, fallback) {
+  const m = /^#([0-9a-f]{2})([0-9a-f]{2})([0-9a-f]{2})$/i.exec(hex || '');
+  return m ? [1, 2, 3].map((i) => parseInt(m[i], 16) / 255) : fallback;
+}
+
+// The rows of the camera's rotation for `az`, `el` (degrees): right, down
+// and forward, as render/view.rs projects (a point p is drawn at p.right,
+// p.down, at depth p.forward).
+export function camera(az, el) {
+  const [a, e] = [az * Math.PI / 180, el * Math.PI / 180];
+  const [ca, sa, ce, se] = [Math.cos(a), Math.sin(a), Math.cos(e), Math.sin(e)];
+  return [[ca, 0, sa], [sa * se, ce, -ca * se], [-sa * ce, se, ca * ce]];
+}
+
+function compile(gl, vs, fs) {
+  const prog = gl.createProgram();
+  for (const [type, text] of [[gl.VERTEX_SHADER, vs], [gl.FRAGMENT_SHADER, fs]]) {
+    const s = gl.createShader(type);
+    gl.shaderSource(s, text);
+    gl.compileShader(s);
+    if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
+    gl.attachShader(prog, s);
+  }
+  gl.linkProgram(prog);
+  if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(prog));
+  const u = {};
+  const n = gl.getProgramParameter(prog, gl.ACTIVE_UNIFORMS);
+  for (let i = 0; i < n; i++) {
+    const name = gl.getActiveUniform(prog, i).name;
+    u[name] = gl.getUniformLocation(prog, name);
+  }
+  return { prog, u, attr: (name) => gl.getAttribLocation(prog, name) };
+}
+
+export function createView3d() {
+  const host = byId('view');
+  const canvas = document.createElement('canvas');
+  canvas.id = 'view3d';
+  canvas.dataset.testid = 'view3d';
+  canvas.tabIndex = 0;
+  canvas.hidden = true;
+  host.appendChild(canvas);
+  const gl = canvas.getContext('webgl2', { antialias: true, preserveDrawingBuffer: true, premultipliedAlpha: false });
+  const label = document.createElement('div');
+  label.id = 'view3d-label';
+  label.dataset.testid = 'view3d-label';
+  label.hidden = true;
+  host.appendChild(label);
+
+  // The camera, the stems' box and what is drawn.
+  const cam = { az: 30, el: 20, scale: 1, home: [30, 20] };
+  let centre = [0, 0, 0];
+  let range = 1;
+  let points = new Float32Array(0);
+  let count = 0;
+  let upTo = Infinity;
+  let pixelWidths = true;
+  let colour = [0, 0, 0];
+  let background = [1, 1, 1];
+  let volumes = [];
+  let frame = 0;
+  let fitted = false;
+  let stemProg = null;
+  let volumeProg = null;
+  let stemVao = null;
+  let stemBuf = null;
+
+  if (gl) {
+    stemProg = compile(gl, STEM_VS, STEM_FS);
+    volumeProg = compile(gl, VOLUME_VS, VOLUME_FS);
+    stemVao = gl.createVertexArray();
+    gl.bindVertexArray(stemVao);
+    const corners = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, corners);
+    gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([0, -1, 0, 1, 1, -1, 1, 1]), gl.STATIC_DRAW);
+    gl.enableVertexAttribArray(stemProg.attr('corner'));
+    gl.vertexAttribPointer(stemProg.attr('corner'), 2, gl.FLOAT, false, 0, 0);
+    stemBuf = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, stemBuf);
+    for (const [name, size, offset] of [['a', 3, 0], ['b', 3, 12], ['wd', 2, 24]]) {
+      const at = stemProg.attr(name);
+      gl.enableVertexAttribArray(at);
+      gl.vertexAttribPointer(at, size, gl.FLOAT, false, 32, offset);
+      gl.vertexAttribDivisor(at, 1);
+    }
+    gl.bindVertexArray(null);
+  } else {
+    label.textContent = 'This browser has no WebGL 2: the 3D view cannot be shown (export a PNG instead).';
+  }
+
+  // Every point of the stems and the volumes' corners: their box's centre
+  // is what the camera turns about.
+  function bounds() {
+    const b = [Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity];
+    const add = (x, y, z) => {
+      b[0] = Math.min(b[0], x); b[1] = Math.min(b[1], y); b[2] = Math.min(b[2], z);
+      b[3] = Math.max(b[3], x); b[4] = Math.max(b[4], y); b[5] = Math.max(b[5], z);
+    };
+    for (let i = 0; i < points.length; i += 8) {
+      add(points[i], points[i + 1], points[i + 2]);
+      add(points[i + 3], points[i + 4], points[i + 5]);
+    }
+    for (const v of volumes) for (let i = 0; i < v.pos.length; i += 3) add(v.pos[i], v.pos[i + 1], v.pos[i + 2]);
+    return b[0] > b[3] ? [0, 0, 0, 1, 1, 1] : b;
+  }
+
+  // The scale that fits everything in the canvas from the current angles.
+  function fitScale() {
+    const [r, d] = camera(cam.az, cam.el);
+    let [mx, my] = [1e-9, 1e-9];
+    const see = (x, y, z) => {
+      const [px, py, pz] = [x - centre[0], y - centre[1], z - centre[2]];
+      mx = Math.max(mx, Math.abs(px * r[0] + py * r[1] + pz * r[2]));
+      my = Math.max(my, Math.abs(px * d[0] + py * d[1] + pz * d[2]));
+    };
+    for (let i = 0; i < points.length; i += 8) {
+      see(points[i], points[i + 1], points[i + 2]);
+      see(points[i + 3], points[i + 4], points[i + 5]);
+    }
+    for (const v of volumes) for (let i = 0; i < v.pos.length; i += 3) see(v.pos[i], v.pos[i + 1], v.pos[i + 2]);
+    const { width, height } = canvas;
+    return 0.92 * Math.min(width / (2 * mx), height / (2 * my));
+  }
+
+  function resize() {
+    const dpr = window.devicePixelRatio || 1;
+    const w = Math.max(1, Math.round(canvas.clientWidth * dpr));
+    const h = Math.max(1, Math.round(canvas.clientHeight * dpr));
+    if (canvas.width !== w || canvas.height !== h) {
+      canvas.width = w;
+      canvas.height = h;
+      if (!fitted) cam.scale = fitScale();
+    }
+  }
+
+  function render() {
+    frame = 0;
+    if (!gl || canvas.hidden) return;
+    resize();
+    const dpr = window.devicePixelRatio || 1;
+    gl.viewport(0, 0, canvas.width, canvas.height);
+    gl.clearColor(background[0], background[1], background[2], 1);
+    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    const rot = new Float32Array(camera(cam.az, cam.el).flat());
+    // Column-major: the rows above are the matrix's rows, so transpose.
+    const setCommon = (p) => {
+      gl.useProgram(p.prog);
+      gl.uniformMatrix3fv(p.u.rot, true, rot);
+      gl.uniform3fv(p.u.centre, centre);
+      gl.uniform1f(p.u.scale, cam.scale);
+      gl.uniform2f(p.u.viewport, canvas.width, canvas.height);
+    };
+    // The volumes, translucent, under the tree: no depth.
+    gl.disable(gl.DEPTH_TEST);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
+    setCommon(volumeProg);
+    for (const v of volumes) {
+      gl.bindVertexArray(v.vao);
+      gl.uniform4fv(volumeProg.u.colour, v.colour);
+      gl.drawArrays(gl.TRIANGLES, 0, v.pos.length / 3);
+    }
+    gl.disable(gl.BLEND);
+    // The tree, near over far.
+    gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LEQUAL);
+    setCommon(stemProg);
+    // Pixel widths are CSS pixels, as in the 2D picture.
+    gl.uniform1f(stemProg.u.pixelWidths, pixelWidths ? dpr : 0);
+    gl.uniform1f(stemProg.u.upTo, upTo === Infinity ? 3.4e38 : upTo);
+    gl.uniform1f(stemProg.u.range, range);
+    gl.uniform3fv(stemProg.u.colour, colour);
+    gl.uniform3fv(stemProg.u.background, background);
+    gl.bindVertexArray(stemVao);
+    gl.drawArraysInstanced(gl.TRIANGLE_STRIP, 0, 4, count);
+    gl.bindVertexArray(null);
+    label.textContent = `view ${Math.round(cam.az)},${Math.round(cam.el)} · drag to turn, wheel to zoom, Fit to reset`;
+  }
+
+  function redraw() {
+    if (!frame) frame = requestAnimationFrame(render);
+  }
+
+  function volumeVao(pos, nrm) {
+    const vao = gl.createVertexArray();
+    gl.bindVertexArray(vao);
+    for (const [name, data] of [['position', pos], ['normal', nrm]]) {
+      const buf = gl.createBuffer();
+      gl.bindBuffer(gl.ARRAY_BUFFER, buf);
+      gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
+      const at = volumeProg.attr(name);
+      gl.enableVertexAttribArray(at);
+      gl.vertexAttribPointer(at, 3, gl.FLOAT, false, 0, 0);
+    }
+    gl.bindVertexArray(null);
+    return vao;
+  }
+
+  // Shows `answer` (one with `space`); `refit`: the camera back home.
+  function show(answer, refit) {
+    const s = answer.space;
+    canvas.hidden = false;
+    label.hidden = false;
+    canvas.classList.remove('stale');
+    if (!gl) return;
+    points = Float32Array.from(s.stems);
+    count = points.length / 8;
+    gl.bindBuffer(gl.ARRAY_BUFFER, stemBuf);
+    gl.bufferData(gl.ARRAY_BUFFER, points, gl.STATIC_DRAW);
+    pixelWidths = s.width_in_pixels;
+    colour = rgb(answer.stroke, [0, 0, 0]);
+    background = rgb(s.background, [1, 1, 1]);
+    volumes.forEach((v) => gl.deleteVertexArray(v.vao));
+    volumes = (s.volumes || []).map((v) => {
+      const { pos, nrm } = volumeMesh(v, s.axis || [0, 0]);
+      const c = rgb(v.color, [0, 0.5, 0]);
+      // White carves: shown grey, fainter.
+      const carve = c.every((x) => x > 0.99);
+      return { pos, vao: volumeVao(pos, nrm), colour: carve ? [0.45, 0.45, 0.45, 0.12] : [...c, 0.22] };
+    });
+    const b = bounds();
+    centre = [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2];
+    range = 1.01 * Math.max(1e-6, Math.hypot(b[3] - b[0], b[4] - b[1], b[5] - b[2]) / 2);
+    if (refit || !fitted) {
+      cam.home = s.view.slice();
+      reset();
+    } else {
+      redraw();
+    }
+  }
+
+  // The camera at its first view, fitted.
+  function reset() {
+    [cam.az, cam.el] = cam.home;
+    resize();
+    cam.scale = fitScale();
+    fitted = true;
+    redraw();
+  }
+
+  function hide() {
+    canvas.hidden = true;
+    label.hidden = true;
+  }
+
+  // Orbit by drag, zoom by wheel.
+  let drag = null;
+  canvas.addEventListener('pointerdown', (e) => {
+    drag = { x: e.clientX, y: e.clientY, az: cam.az, el: cam.el };
+    canvas.setPointerCapture(e.pointerId);
+    canvas.focus({ preventScroll: true });
+  });
+  canvas.addEventListener('pointermove', (e) => {
+    if (!drag) return;
+    cam.az = drag.az - (e.clientX - drag.x) * DEG_PER_PX;
+    cam.el = Math.max(-90, Math.min(90, drag.el + (e.clientY - drag.y) * DEG_PER_PX));
+    redraw();
+  });
+  const end = () => { drag = null; };
+  canvas.addEventListener('pointerup', end);
+  canvas.addEventListener('pointercancel', end);
+  canvas.addEventListener('wheel', (e) => {
+    e.preventDefault();
+    zoom(e.deltaY > 0 ? 1.15 : 1 / 1.15);
+  }, { passive: false });
+
+  function zoom(factor) {
+    cam.scale /= factor;
+    redraw();
+  }
+
+  if (window.ResizeObserver) new ResizeObserver(redraw).observe(host);
+
+  // Pixels that are not the background, read back from the canvas (for
+  // tests and scripts): `count`, and a checksum of the whole picture.
+  function pixels() {
+    if (!gl) return { count: 0, sum: 0 };
+    render();
+    const { width, height } = canvas;
+    const px = new Uint8Array(width * height * 4);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const bg = background.map((x) => Math.round(x * 255));
+    let n = 0;
+    let sum = 0;
+    for (let i = 0; i < px.length; i += 4) {
+      if (Math.abs(px[i] - bg[0]) + Math.abs(px[i + 1] - bg[1]) + Math.abs(px[i + 2] - bg[2]) > 6) n++;
+      sum = (sum * 31 + px[i] + 7 * px[i + 1] + 13 * px[i + 2]) % 1000000007;
+    }
+    return { count: n, sum, width, height };
+  }
+
+  return {
+    element: canvas,
+    show,
+    hide,
+    reset,
+    zoom,
+    // Replay: the stems of decisions up to `k` (Infinity: all).
+    upTo(k) { upTo = k; redraw(); },
+    stale() { canvas.classList.add('stale'); },
+    angles: () => [Math.round(cam.az * 10) / 10, Math.round(cam.el * 10) / 10],
+    turn(az, el) { cam.az = az; cam.el = el; redraw(); },
+    available: () => !!gl,
+    pixels,
+  };
+}
