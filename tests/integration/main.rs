@@ -3,6 +3,7 @@
 mod architecture;
 mod bigtree;
 mod browser;
+mod browser_3d;
 mod browser_draw;
 mod browser_edits;
 mod browser_web;

@@ -129,7 +129,8 @@ export function createView3d() {
   host.appendChild(label);
 
   // The camera, the stems' box and what is drawn.
-  const cam = { az: 30, el: 20, scale: 1, home: [30, 20] };
+  // `moved`: turned or zoomed since the last fit (else a resize refits).
+  const cam = { az: 30, el: 20, scale: 1, home: [30, 20], moved: false };
   let centre = [0, 0, 0];
   let range = 1;
   let points = new Float32Array(0);
@@ -210,7 +211,7 @@ export function createView3d() {
     if (canvas.width !== w || canvas.height !== h) {
       canvas.width = w;
       canvas.height = h;
-      if (!fitted) cam.scale = fitScale();
+      if (!fitted || !cam.moved) cam.scale = fitScale();
     }
   }
 
@@ -299,9 +300,12 @@ export function createView3d() {
       const carve = c.every((x) => x > 0.99);
       return { pos, vao: volumeVao(pos, nrm), colour: carve ? [0.45, 0.45, 0.45, 0.12] : [...c, 0.22] };
     });
+    // An edit keeps the camera (as the 2D view keeps its box); a new
+    // file turns about its own centre, fitted.
     const b = bounds();
-    centre = [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2];
-    range = 1.01 * Math.max(1e-6, Math.hypot(b[3] - b[0], b[4] - b[1], b[5] - b[2]) / 2);
+    if (refit || !fitted) centre = [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2];
+    const far = [0, 1, 2].map((i) => Math.max(Math.abs(b[i] - centre[i]), Math.abs(b[i + 3] - centre[i])));
+    range = 1.01 * Math.max(1e-6, Math.hypot(...far));
     if (refit || !fitted) {
       cam.home = s.view.slice();
       reset();
@@ -315,6 +319,7 @@ export function createView3d() {
     [cam.az, cam.el] = cam.home;
     resize();
     cam.scale = fitScale();
+    cam.moved = false;
     fitted = true;
     redraw();
   }
@@ -335,6 +340,7 @@ export function createView3d() {
     if (!drag) return;
     cam.az = drag.az - (e.clientX - drag.x) * DEG_PER_PX;
     cam.el = Math.max(-90, Math.min(90, drag.el + (e.clientY - drag.y) * DEG_PER_PX));
+    cam.moved = true;
     redraw();
   });
   const end = () => { drag = null; };
@@ -347,6 +353,7 @@ export function createView3d() {
 
   function zoom(factor) {
     cam.scale /= factor;
+    cam.moved = true;
     redraw();
   }
 

@@ -1,0 +1,299 @@
+//! The editor's 3D view in a real Chromium (software WebGL 2 even with
+//! `--disable-gpu`): a 3D `.lsys` opens in the WebGL canvas instead of
+//! the SVG preview, with pixels read back from it; dragging orbits the
+//! camera, the wheel zooms, Fit comes back to the first picture exactly;
+//! an edit of the text regrows it; a save and a reload keep the text; and
+//! the page's volumes and replay, shown from an answer made here.
+//! Screenshots go to `tests/store/browser/3d-*.png`.
+
+use std::time::Duration;
+
+use fantoccini::Client;
+use fantoccini::actions::{
+    InputSource, MOUSE_BUTTON_LEFT, MouseActions, PointerAction, WheelAction, WheelActions,
+};
+use serde_json::{Value, json};
+
+use super::browser::{Browser, click, js, settled, shot};
+use super::serve::Server;
+use crate::support::manifest_path;
+
+#[test]
+fn a_3d_file_orbits_regrows_and_reloads_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let file = tmp.path().join("hilbert.lsys");
+    std::fs::copy(manifest_path("examples/hilbert3d.lsys"), &file).unwrap();
+    let server = Server::start(&[file.to_str().unwrap()]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        let first = opens_in_the_3d_view(&c).await;
+        orbit_zoom_and_fit(&c, &first).await;
+        an_edit_regrows(&c, &first).await;
+        a_reload_keeps_the_text(&c, &file).await;
+        volumes_and_replay(&c).await;
+        let _ = c.close().await;
+    });
+}
+
+/// The 3D canvas's pixels: `{count, sum, width, height}` (count: pixels
+/// not the background; sum: a checksum of the whole picture).
+async fn pixels(c: &Client) -> Value {
+    js(c, "return window.stlc.view3d.pixels()").await
+}
+
+async fn angles(c: &Client) -> Vec<f64> {
+    js(c, "return window.stlc.view3d.angles()")
+        .await
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect()
+}
+
+/// The centre of the 3D canvas in viewport pixels.
+async fn centre(c: &Client) -> (f64, f64) {
+    let v = js(
+        c,
+        "const r = document.getElementById('view3d').getBoundingClientRect();
+         return [r.left + r.width / 2, r.top + r.height / 2];",
+    )
+    .await;
+    (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
+}
+
+async fn opens_in_the_3d_view(c: &Client) -> Value {
+    let shown = js(
+        c,
+        "const v = document.getElementById('view3d');
+         return {canvas: !v.hidden && v.getBoundingClientRect().width > 100,
+                 svg: getComputedStyle(document.getElementById('preview')).display,
+                 gl: window.stlc.view3d.available(),
+                 stems: Array.from(window.stlc.state.answer.space.stems)};",
+    )
+    .await;
+    assert_eq!(shown["canvas"], true, "{shown}");
+    assert_eq!(shown["svg"], "none", "the 2D preview is hidden");
+    assert_eq!(shown["gl"], true, "headless Chromium has WebGL 2");
+    // The 3D Hilbert curve at depth 2 visits 8^2 lattice points: 63 unit
+    // steps, each one lattice unit (the file's `length`) long, and every
+    // next stem starts where the last ended.
+    let s: Vec<f64> = shown["stems"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(s.len(), 63 * 8);
+    let len =
+        |t: &[f64]| ((t[3] - t[0]).powi(2) + (t[4] - t[1]).powi(2) + (t[5] - t[2]).powi(2)).sqrt();
+    let unit = len(&s[0..8]);
+    assert!(unit > 0.0);
+    let mut points = std::collections::BTreeSet::new();
+    for (i, t) in s.chunks(8).enumerate() {
+        assert!((len(t) - unit).abs() < 1e-3, "stem {i} is {} long", len(t));
+        assert_eq!(t[6], 3.0, "the file's width, in pixels");
+        assert_eq!(t[7], 0.0, "an .lsys has no decisions");
+        if i > 0 {
+            assert_eq!(&t[0..3], &s[(i - 1) * 8 + 3..(i - 1) * 8 + 6]);
+        }
+        points.insert(
+            t[3..6]
+                .iter()
+                .map(|x| (x / unit).round() as i64)
+                .collect::<Vec<_>>(),
+        );
+    }
+    points.insert(s[0..3].iter().map(|x| (x / unit).round() as i64).collect());
+    assert_eq!(points.len(), 64, "64 distinct lattice points");
+    assert_eq!(angles(c).await, [30.0, 20.0], "the CLI's default view");
+    let p = pixels(c).await;
+    let all = p["width"].as_f64().unwrap() * p["height"].as_f64().unwrap();
+    let n = p["count"].as_f64().unwrap();
+    assert!(n > 3000.0 && n < all / 4.0, "{p}");
+    shot(c, "3d-01-hilbert").await;
+    p
+}
+
+async fn orbit_zoom_and_fit(c: &Client, first: &Value) {
+    let (x, y) = centre(c).await;
+    let mouse = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x,
+            y,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::MoveTo {
+            duration: Some(Duration::from_millis(100)),
+            x: x + 60.0,
+            y: y + 25.0,
+        })
+        .then(PointerAction::MoveTo {
+            duration: Some(Duration::from_millis(100)),
+            x: x + 120.0,
+            y: y + 50.0,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(mouse).await.unwrap();
+    // 0.4 degrees a pixel: 120 px across turns AZ by -48, 50 px down
+    // raises EL by 20.
+    assert_eq!(angles(c).await, [-18.0, 40.0]);
+    let turned = pixels(c).await;
+    assert_ne!(turned["sum"], first["sum"], "the picture turned");
+    assert!(turned["count"].as_f64().unwrap() > 3000.0, "{turned}");
+    shot(c, "3d-02-orbited").await;
+    let w = WheelActions::new("wheel".into()).then(WheelAction::Scroll {
+        duration: None,
+        x: x.round() as i64,
+        y: y.round() as i64,
+        delta_x: 0,
+        delta_y: -240,
+    });
+    c.perform_actions(w).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    let zoomed = pixels(c).await;
+    assert_ne!(zoomed["sum"], turned["sum"], "the wheel zooms");
+    // Fit: the first view again, pixel for pixel.
+    click(c, "#fit").await;
+    assert_eq!(angles(c).await, [30.0, 20.0]);
+    assert_eq!(pixels(c).await, *first);
+}
+
+/// Puts the caret over `from` in the text and types `to` in its place.
+async fn replace(c: &Client, from: &str, to: &str) {
+    let src = c.find(fantoccini::Locator::Css("#source")).await.unwrap();
+    src.click().await.unwrap();
+    js(
+        c,
+        &format!(
+            "const s = document.getElementById('source'); const i = s.value.indexOf({from:?});
+             s.selectionStart = i; s.selectionEnd = i + {};",
+            from.chars().count()
+        ),
+    )
+    .await;
+    src.send_keys(to).await.unwrap();
+}
+
+async fn an_edit_regrows(c: &Client, first: &Value) {
+    replace(c, "generations 2", "generations 1").await;
+    let mut now = settled(c).await;
+    for _ in 0..50 {
+        if now["stems"] == json!(7) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+        now = settled(c).await;
+    }
+    // Depth 1: 8 points, 7 steps.
+    assert_eq!(now["stems"], 7, "{now}");
+    assert_eq!(
+        js(c, "return window.stlc.state.answer.space.stems.length").await,
+        7 * 8
+    );
+    let p = pixels(c).await;
+    assert_ne!(p["sum"], first["sum"]);
+    assert!(p["count"].as_f64().unwrap() > 500.0, "{p}");
+    shot(c, "3d-03-depth-1").await;
+}
+
+async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
+    click(c, "[data-testid=save]").await;
+    for _ in 0..100 {
+        if std::fs::read_to_string(file)
+            .unwrap()
+            .contains("generations 1")
+        {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    assert!(
+        std::fs::read_to_string(file)
+            .unwrap()
+            .contains("generations 1")
+    );
+    let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    let _ = c.accept_alert().await;
+    for _ in 0..100 {
+        let up = js(c, "return !!(window.stlc && window.stlc.state.answer)").await;
+        if up == json!(true) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    let after = settled(c).await;
+    assert!(
+        after["text"].as_str().unwrap().contains("generations 1"),
+        "{after}"
+    );
+    assert_eq!(after["stems"], 7);
+    assert!(pixels(c).await["count"].as_f64().unwrap() > 500.0);
+}
+
+/// The volumes (one of each kind) and the replay, from an answer made
+/// here: two stems, decisions 1 and 2, inside a translucent box.
+async fn volumes_and_replay(c: &Client) {
+    let shown = js(
+        c,
+        r##"const app = window.stlc;
+        const ellipse = {type: 'Ellipse', x: -40, y: -160, w: 80, h: 100};
+        const answer = Object.assign({}, app.state.answer, {
+          stroke: '#5a3a1a',
+          space: {
+            stems: [0, 0, 0, 0, -60, 0, 2, 1, 0, -60, 0, 30, -110, 10, 2, 2],
+            decisions: 2, width_in_pixels: false, background: '#ffffff', view: [30, 20], axis: [0, 0],
+            volumes: [
+              {type: 'Box', corner: [-100, -200, -50], size: [200, 200, 100], color: '#c0c0c0'},
+              {type: 'Sphere', centre: [60, -150, 0], r: 25, color: '#0000ff'},
+              {type: 'Ellipsoid', centre: [-60, -150, 0], radii: [20, 30, 15], color: '#ff0000'},
+              {type: 'Cylinder', base: [0, 0, 0], r: 8, h: 60, color: '#808000'},
+              {type: 'Extrude', shape: {type: 'Polygon', points: [[60, -20], [90, -20], [75, -60]]}, z1: -10, z2: 10, color: '#800080'},
+              {type: 'Revolve', shape: ellipse, color: '#008000'},
+              {type: 'Sphere', centre: [0, -110, 0], r: 15, color: '#ffffff'},
+            ],
+          },
+        });
+        app.state.answer = answer;
+        app.state.answerText = app.editor.text();
+        app.state.refit = true;
+        // As session.js applies an answer: the slider at its end, then the view.
+        app.replay.reset(2);
+        app.view.draw();
+        return app.view3d.pixels();"##,
+    )
+    .await;
+    assert!(shown["count"].as_f64().unwrap() > 20000.0, "{shown}");
+    shot(c, "3d-04-volumes").await;
+    let step = |k: u32| {
+        format!(
+            "const s = document.getElementById('step'); s.value = {k};
+             s.dispatchEvent(new Event('input'));
+             return [document.getElementById('step-label').textContent, window.stlc.view3d.pixels()];"
+        )
+    };
+    let one = js(c, &step(1)).await;
+    assert_eq!(one[0], "decision 1 of 2 · 1 stems");
+    let none = js(c, &step(0)).await;
+    assert_eq!(none[0], "decision 0 of 2 · 0 stems");
+    let two = js(c, &step(2)).await;
+    assert_eq!(two[0], "decision 2 of 2 · 2 stems");
+    assert_eq!(two[1], shown, "the whole tree again");
+    // Each decision adds its stem over the volumes: another picture.
+    let sum = |v: &Value| v[1]["sum"].clone();
+    assert_ne!(sum(&none), sum(&one));
+    assert_ne!(sum(&one), sum(&two));
+    js(c, &step(1)).await;
+    shot(c, "3d-05-replay-1-of-2").await;
+}
