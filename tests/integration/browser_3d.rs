@@ -14,9 +14,97 @@ use fantoccini::actions::{
 };
 use serde_json::{Value, json};
 
-use super::browser::{Browser, click, js, settled, shot};
-use super::serve::Server;
+use super::browser::{Browser, cli, click, js, settled, shot};
+use super::serve::{Server, render, request};
 use crate::support::manifest_path;
+
+/// A compact body decoded as the page decodes it (engine/http.js): the
+/// head's answer with `growth.stems` and `space.stems` put back.
+fn unpack(body: &[u8]) -> Value {
+    let n = u32::from_le_bytes(body[..4].try_into().unwrap()) as usize;
+    let head: Value = serde_json::from_slice(&body[4..4 + n]).unwrap();
+    let mut answer = head["answer"].clone();
+    let (k, m) = (
+        head["stems"].as_u64().unwrap() as usize,
+        head["space"].as_u64().unwrap() as usize,
+    );
+    assert_eq!(answer["space"]["stems"], json!([]));
+    assert_eq!(body.len(), 4 + n + 4 * (k + m));
+    let numbers = |from: usize, count: usize, per: usize| -> Vec<f64> {
+        body[from..from + 4 * count]
+            .chunks(4)
+            .map(|c| f64::from(i32::from_le_bytes(c.try_into().unwrap())))
+            .enumerate()
+            .map(|(i, x)| if i % per == per - 1 { x } else { x / 1000.0 })
+            .collect()
+    };
+    answer["growth"]["stems"] = json!(numbers(4 + n, k, 6));
+    answer["space"]["stems"] = json!(numbers(4 + n + 4 * k, m, 8));
+    answer
+}
+
+#[test]
+fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
+    let server = Server::start(&[]);
+    let text = std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap();
+    let body = json!({"source": text, "kind": "lsys"});
+    let a = render(&server.addr, &body);
+    assert_eq!(a["ok"], true, "{a}");
+    assert_eq!((&a["svg"], &a["tree_in_svg"]), (&json!(""), &json!(false)));
+    assert_eq!(a["stems"], "63");
+    assert_eq!(a["stroke"], "#1f4e79");
+    let space = &a["space"];
+    assert_eq!(space["stems"].as_array().unwrap().len(), 63 * 8);
+    assert_eq!(space["view"], json!([30.0, 20.0]));
+    assert_eq!(space["width_in_pixels"], true);
+    assert_eq!(space["volumes"], json!([]));
+    assert_eq!(space["axis"], Value::Null);
+    // The turtle starts at the origin.
+    assert_eq!(space["stems"].as_array().unwrap()[0..3], [0.0, 0.0, 0.0]);
+    // The compact body: the same answer, number for number.
+    let compact = request(
+        &server.addr,
+        "POST",
+        "/api/render",
+        &[("Accept", "application/x-stlc-render, application/json")],
+        body.to_string().as_bytes(),
+    );
+    assert!(
+        compact
+            .head
+            .contains("content-type: application/x-stlc-render"),
+        "{}",
+        compact.head
+    );
+    assert_eq!(unpack(&compact.body), a);
+    // The export draws the view asked for: the CLI's bytes.
+    let view = json!({"source": text, "kind": "lsys", "view": [-60, 35]});
+    let svg = request(
+        &server.addr,
+        "POST",
+        "/api/export?format=svg",
+        &[],
+        view.to_string().as_bytes(),
+    );
+    let path = manifest_path("examples/hilbert3d.lsys");
+    let want = cli(&[
+        "render",
+        path.to_str().unwrap(),
+        "--view",
+        "-60,35",
+        "-f",
+        "svg",
+    ]);
+    assert_eq!(svg.body, want);
+    // A 2D answer has no `space`.
+    let flat = render(
+        &server.addr,
+        &json!({"source": "axiom F+F\nangle 90\ngenerations 0\n", "kind": "lsys"}),
+    );
+    assert_eq!(flat["ok"], true, "{flat}");
+    assert!(flat.get("space").is_none(), "{flat}");
+    assert_eq!(flat["tree_in_svg"], true);
+}
 
 #[test]
 fn a_3d_file_orbits_regrows_and_reloads_in_chromium() {
