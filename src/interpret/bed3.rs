@@ -1,0 +1,189 @@
+//! A 3D BED (`../shared/stl-language.md` section 11: a root with three
+//! coordinates) drawn with the 3D turtle ([`Turtle3`]).
+//!
+//! The operations are the 2D interpreter's ([`super::bed::stream`], the
+//! same `dfs` and `bfs` expansions), read as [`Op3`]s: `& ^ \ /` pitch
+//! and roll by `A`, and every rule application (`Enter`: a term from the
+//! seed or a slot, each level of `[I n X]`) raises the stem order and
+//! first rolls the frame by the divergence `D=` about its heading
+//! ([`crate::turtle::space::Divergence`]). Each tree starts at its root,
+//! `(x, y, z)`, heading up the screen. A planar 3D BED (`D=0` or none, no
+//! 3D turn) keeps the 2D turtle's exact frame, so its stems are the 2D
+//! BED's, x and y bit for bit, at z = its root's.
+
+use crate::bed::Bed;
+use crate::diag::Diagnostics;
+use crate::interpret::Derivation;
+use crate::interpret::bed::{Event, stream};
+use crate::limits::Limits;
+use crate::progress::Progress;
+use crate::turtle::UP;
+use crate::turtle::space::{Op3, Point3, Segment3, Turtle3};
+
+/// Draws a 3D BED's trees, in root order, handing every stem to `sink` in
+/// drawing order (its `order` the number of rule applications above it);
+/// returns where the turtle ends (the last tree's end).
+pub fn draw3(
+    bed: &Bed,
+    strategy: Derivation,
+    limits: &Limits,
+    sink: &mut dyn FnMut(Segment3),
+    progress: &mut dyn Progress,
+) -> Result<Point3, Diagnostics> {
+    let desc = bed.description();
+    let p = &desc.params;
+    let zs: Vec<f64> = std::iter::once(desc.root_z)
+        .chain(desc.forest.iter().map(|t| t.root_z))
+        .map(|z| z.unwrap_or(0.0))
+        .collect();
+    let mut turtle = Turtle3::new(UP, p.angle(), 1.0, sink)
+        .with_length(p.length)
+        .with_divergence(p.divergence.unwrap_or(0.0));
+    stream::<Op3>(bed, strategy, limits, progress, &mut |e| {
+        match e {
+            Event::Tree(i, root) => turtle.start_at(Point3::new(root.x, root.y, zs[i])),
+            Event::Op(op) => turtle.apply(op),
+        }
+        Ok(())
+    })?;
+    Ok(turtle.state.pos)
+}
+
+/// The box `[minx, miny, minz, maxx, maxy, maxz]` of every drawn stem's
+/// ends (`None`: nothing drawn), where the turtle ends, and the number of
+/// stems: a 3D BED's geometry in canvas units, for `stats`.
+pub fn bounds3(
+    bed: &Bed,
+    limits: &Limits,
+    progress: &mut dyn Progress,
+) -> Result<crate::interpret::lsys::space::Bounds3, Diagnostics> {
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    let mut n = 0u64;
+    let mut add = |p: Point3| {
+        for (i, v) in p.to_array().into_iter().enumerate() {
+            b[i] = b[i].min(v);
+            b[i + 3] = b[i + 3].max(v);
+        }
+    };
+    let end = draw3(
+        bed,
+        Derivation::Dfs,
+        limits,
+        &mut |s| {
+            add(s.from);
+            add(s.to);
+            n += 1;
+        },
+        progress,
+    )?;
+    Ok(((n > 0).then_some(b), end, n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Format;
+    use crate::progress::NoProgress;
+
+    fn bed(src: &str) -> Bed {
+        let d = crate::syntax::stl::parse(src, Format::Bed, &Limits::DEFAULT).unwrap();
+        Bed::new(d, &Limits::DEFAULT).unwrap()
+    }
+
+    fn stems(b: &Bed, d: Derivation) -> Vec<Segment3> {
+        let mut out = Vec::new();
+        draw3(
+            b,
+            d,
+            &Limits::DEFAULT,
+            &mut |s| out.push(s),
+            &mut NoProgress,
+        )
+        .unwrap();
+        out
+    }
+
+    fn end(seed: &str, head: &str) -> Point3 {
+        let src = format!("T (0, 0, 0) L=1(0) A=90 {head} RULE R1: [F] SEED {seed} ENDSEED");
+        let b = bed(&src);
+        draw3(
+            &b,
+            Derivation::Dfs,
+            &Limits::DEFAULT,
+            &mut |_| {},
+            &mut NoProgress,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn the_worked_ends_of_section_11_in_a_bed() {
+        assert_eq!(end("F+F", ""), Point3::new(-1.0, -1.0, 0.0));
+        assert_eq!(end("F&F", ""), Point3::new(0.0, -1.0, 1.0));
+        assert_eq!(end("F/+F", ""), Point3::new(0.0, -1.0, -1.0));
+        // `L` and `R` turn as `+` and `-`.
+        assert_eq!(end("FLF", ""), Point3::new(-1.0, -1.0, 0.0));
+    }
+
+    /// `D=90`, `R1: [+F]`, seed `F R1{R1{}}`, `A=90`, `L=1(0)`, by hand:
+    /// the trunk ends at (0, -1, 0). The first R1 rolls L = (-1, 0, 0) to
+    /// L cos 90 - U sin 90 = -U = (0, 0, 1); `+` heads along it: (0, -1, 1).
+    /// The second R1, from that frame (H = (0, 0, 1), L = (0, 1, 0)
+    /// (L' = L cos - H sin: -H of before), U = (-1, 0, 0)), rolls L to
+    /// -U = (1, 0, 0); `+` heads there: (1, -1, 1).
+    #[test]
+    fn divergence_rolls_every_application_by_hand() {
+        let src = "T (0, 0, 0) L=1(0) A=90 D=90 RULE R1: [+F] SEED F R1{R1{}} ENDSEED";
+        let b = bed(src);
+        for d in [Derivation::Dfs, Derivation::Bfs] {
+            let got: Vec<(Point3, u32)> = stems(&b, d).iter().map(|s| (s.to, s.order)).collect();
+            assert_eq!(
+                got,
+                vec![
+                    (Point3::new(0.0, -1.0, 0.0), 0),
+                    (Point3::new(0.0, -1.0, 1.0), 1),
+                    (Point3::new(1.0, -1.0, 1.0), 2),
+                ],
+                "{d:?}"
+            );
+        }
+        // `[I 2 R1]` is two applications too: the same stems.
+        let rep = bed("T (0, 0, 0) L=1(0) A=90 D=90 RULE R1: [+F] SEED F [I 2 R1] ENDSEED");
+        assert_eq!(stems(&rep, Derivation::Dfs), stems(&b, Derivation::Dfs));
+    }
+
+    /// A planar 3D BED draws the 2D BED's stems, x and y bit for bit, at
+    /// its root's z; a forest's trees start at their own roots.
+    #[test]
+    fn a_planar_bed_draws_the_2d_stems() {
+        let rules = "L=10(1.5) B=1(0) A=25.7 RULE R1: [+F][-F R1]F SEED F R1{R1{,R1{,}},R1{,}} [I 3 R1] ENDSEED SEED FF+F ENDSEED";
+        let flat = bed(&format!("T (3, 200) (50, 100) {rules}"));
+        let deep = bed(&format!("T (3, 200, 7) (50, 100, -2) D=0 {rules}"));
+        let mut rec = crate::turtle::Recorder::default();
+        crate::interpret::bed::draw(
+            &flat,
+            Derivation::Dfs,
+            &Limits::DEFAULT,
+            &mut rec,
+            &mut NoProgress,
+        )
+        .unwrap();
+        let got = stems(&deep, Derivation::Bfs);
+        assert_eq!(rec.segments.len(), got.len());
+        assert!(got.len() > 20);
+        let first_tree = flat.size().stems as usize - 3;
+        for (i, (a, b)) in rec.segments.iter().zip(&got).enumerate() {
+            let z = if i < first_tree { 7.0 } else { -2.0 };
+            assert_eq!((a.from.x, a.from.y, z), (b.from.x, b.from.y, b.from.z));
+            assert_eq!((a.to.x, a.to.y, z), (b.to.x, b.to.y, b.to.z));
+            assert_eq!(a.order, b.order);
+        }
+    }
+}
