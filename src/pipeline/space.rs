@@ -117,14 +117,18 @@ pub const MAX_EDITOR_STEMS: u64 = 1_000_000;
 /// [`super::Drawn::space`] instead of drawing a picture.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Space {
-    /// Eight numbers a stem, in drawing (or growth) order: from x, y, z,
-    /// to x, y, z, width, decision (0 for an `.lsys`).
+    /// Eight numbers a stem, in drawing order: from x, y, z, to x, y, z,
+    /// width, decision (0: a drawing has no decisions).
     pub stems: Vec<f64>,
     /// Whether widths are screen pixels (an `.lsys`'s `width`), not canvas
     /// units (a tree's `B`).
     pub width_in_pixels: bool,
     /// The background, `None` for transparent.
     pub background: Option<crate::color::Rgb>,
+    /// A tree's layout volumes, in painting order.
+    pub volumes: Vec<crate::model::LayoutSolid>,
+    /// A tree's first root's x and z: the axis a `Revolve` turns about.
+    pub axis: Option<[f64; 2]>,
 }
 
 /// The scene's stems in 3D for an editor ([`Space`]), with what a picture
@@ -134,9 +138,6 @@ pub(crate) fn editor_space(
     look: &super::Look,
     progress: &mut dyn Progress,
 ) -> Result<Option<(Space, Rendered)>, Diagnostics> {
-    let Some((sys, depth)) = space_lsys(scene) else {
-        return Ok(None);
-    };
     let too_many = |n: String| -> Diagnostics {
         Diagnostic::error(RenderError::ViewTooLarge {
             segments: n,
@@ -145,12 +146,7 @@ pub(crate) fn editor_space(
         .with_help("the editor's 3D view holds every stem: use a smaller depth, or `stlc render --view AZ,EL`")
         .into()
     };
-    check_stems(sys, depth, &scene.limits, MAX_EDITOR_STEMS, too_many)?;
     let style = style(scene, look);
-    let w = match style.width {
-        Width::Pixels(w) => w,
-        Width::Canvas(lin) => lin.at(0),
-    };
     let mut stems = Vec::new();
     let mut over = false;
     let mut keep = |s: Segment3| {
@@ -158,18 +154,34 @@ pub(crate) fn editor_space(
             over = true;
             return;
         }
+        let w = match style.width {
+            Width::Pixels(w) => w,
+            Width::Canvas(lin) => lin.at(s.order).max(0.0),
+        };
         let (a, b) = (s.from, s.to);
         stems.extend([a.x, a.y, a.z, b.x, b.y, b.z, w, 0.0]);
     };
     let mut phase = Phase::new(progress, "deriving");
-    draw3(
-        sys,
-        depth,
-        scene.derivation,
-        &scene.limits,
-        &mut keep,
-        &mut phase,
-    )?;
+    let (mut volumes, mut axis) = (Vec::new(), None);
+    match &scene.what {
+        What::Lsys { sys, depth } if sys.is_3d() => {
+            check_stems(sys, *depth, &scene.limits, MAX_EDITOR_STEMS, too_many)?;
+            let d = scene.derivation;
+            draw3(sys, *depth, d, &scene.limits, &mut keep, &mut phase)?;
+        }
+        What::Tree { bed, .. } if bed.description().is_3d() => {
+            let n = bed.size().stems;
+            if n > MAX_EDITOR_STEMS {
+                return Err(too_many(n.to_string()));
+            }
+            let desc = bed.description();
+            volumes = desc.layout.iter().flat_map(|l| l.solids.clone()).collect();
+            axis = Some([desc.root.0, desc.root_z.unwrap_or(0.0)]);
+            let d = scene.derivation;
+            crate::interpret::bed3::draw3(bed, d, &scene.limits, &mut keep, &mut phase)?;
+        }
+        _ => return Ok(None),
+    }
     if over {
         return Err(too_many(format!("more than {MAX_EDITOR_STEMS}")));
     }
@@ -178,6 +190,8 @@ pub(crate) fn editor_space(
         stems,
         width_in_pixels: matches!(style.width, Width::Pixels(_)),
         background: style.background,
+        volumes,
+        axis,
     };
     let rendered = Rendered {
         segments: n,

@@ -503,7 +503,7 @@ pub fn run(
         view: drawn.view.map(|b| [b.min_x, b.min_y, b.max_x, b.max_y]),
         root: drawn.od.as_ref().map(|od| shapes::root_json(text, od)),
         layout: drawn.od.as_ref().map(|od| shapes::layout_json(text, od)),
-        space: (drawn.space).map(|s| space::space_json(s, drawn.od.as_ref(), round)),
+        space: drawn.space.map(|s| space::space_json(s, round)),
     };
     Ok((answer, image))
 }

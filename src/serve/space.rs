@@ -6,7 +6,7 @@
 use serde::Serialize;
 
 use super::shapes::{self, Geometry};
-use stlc::model::{Description, Solid};
+use stlc::model::Solid;
 use stlc::pipeline::{Space, View};
 
 /// The 3D part of a render answer.
@@ -83,9 +83,8 @@ fn solid(s: &Solid) -> SolidJson {
     }
 }
 
-/// The answer's 3D part for `space`, with the volumes of `od` if the
-/// input was one.
-pub fn space_json(space: Space, od: Option<&Description>, round: fn(f64) -> f64) -> SpaceJson {
+/// The answer's 3D part for `space`.
+pub fn space_json(space: Space, round: fn(f64) -> f64) -> SpaceJson {
     let mut stems = space.stems;
     let mut decisions = 0;
     for (i, x) in stems.iter_mut().enumerate() {
@@ -95,18 +94,14 @@ pub fn space_json(space: Space, od: Option<&Description>, round: fn(f64) -> f64)
             *x = round(*x);
         }
     }
-    let volumes = od
-        .and_then(|d| d.layout.as_ref())
-        .map(|l| {
-            l.solids
-                .iter()
-                .map(|s| VolumeJson {
-                    solid: solid(&s.solid),
-                    color: s.color.to_string(),
-                })
-                .collect()
+    let volumes = space
+        .volumes
+        .iter()
+        .map(|s| VolumeJson {
+            solid: solid(&s.solid),
+            color: s.color.to_string(),
         })
-        .unwrap_or_default();
+        .collect();
     SpaceJson {
         stems,
         decisions,
@@ -114,7 +109,7 @@ pub fn space_json(space: Space, od: Option<&Description>, round: fn(f64) -> f64)
         background: space.background.map(|c| c.to_string()),
         view: [View::DEFAULT.az, View::DEFAULT.el],
         volumes,
-        axis: od.map(|d| [d.root.0, d.root_z.unwrap_or(0.0)]),
+        axis: space.axis,
     }
 }
 
