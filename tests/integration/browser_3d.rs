@@ -96,6 +96,31 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
         "svg",
     ]);
     assert_eq!(svg.body, want);
+    // A 3D BED: its stems worked by hand (`&` at 90 degrees turns the
+    // heading (0, -1, 0) to +z, `^` to -z; B=2(0.5): 2 wide at order 0,
+    // 1.5 in the rule), its volumes as written, the axis at its root.
+    let bed = "T\n(10, 100, 5)\nL=10(0) B=2(0.5) A=90\nRULE\nR1: [&F][^F]\nSEED\nF\nR1{,}\nENDSEED\n\
+               LAYOUT\n(clGreen) Sphere (10, 90, 5), 30\n(clWhite) Box (0, 0, 0), 5, 5, 5\nENDLAYOUT\n";
+    let b = render(&server.addr, &json!({"source": bed, "kind": "bed"}));
+    assert_eq!(b["ok"], true, "{b}");
+    let space = &b["space"];
+    assert_eq!(
+        space["stems"],
+        json!([
+            10.0, 100.0, 5.0, 10.0, 90.0, 5.0, 2.0, 0.0, //
+            10.0, 90.0, 5.0, 10.0, 90.0, 15.0, 1.5, 0.0, //
+            10.0, 90.0, 5.0, 10.0, 90.0, -5.0, 1.5, 0.0
+        ])
+    );
+    assert_eq!(space["width_in_pixels"], false);
+    assert_eq!(
+        space["volumes"],
+        json!([
+            {"type": "Sphere", "centre": [10.0, 90.0, 5.0], "r": 30.0, "color": "#008000"},
+            {"type": "Box", "corner": [0.0, 0.0, 0.0], "size": [5.0, 5.0, 5.0], "color": "#ffffff"}
+        ])
+    );
+    assert_eq!(space["axis"], json!([10.0, 5.0]));
     // A 2D answer has no `space`.
     let flat = render(
         &server.addr,
