@@ -410,3 +410,39 @@ async fn volumes_and_replay(c: &Client) {
     js(c, &step(1)).await;
     shot(c, "3d-05-replay-1-of-2").await;
 }
+
+/// The static site (web/, the WebAssembly engine) shows a 3D example in
+/// the same 3D view: its stems as many as `stlc stats` counts.
+#[test]
+fn the_static_site_shows_a_3d_file_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some((_, server, browser)) = super::browser_web::start(tmp.path()) else {
+        return;
+    };
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        let opened = super::browser_web::open_example(&c, "plant3d.lsys").await;
+        assert_eq!(opened["ok"], true, "{opened}");
+        let stats: Value = serde_json::from_slice(&crate::support::stlc_stdout(&[
+            "stats",
+            "--json",
+            manifest_path("examples/plant3d.lsys").to_str().unwrap(),
+        ]))
+        .unwrap();
+        let segments: usize = stats["segments"].as_str().unwrap().parse().unwrap();
+        let shown = js(
+            &c,
+            "const v = document.getElementById('view3d');
+             return {canvas: !v.hidden, stems: window.stlc.state.answer.space.stems.length};",
+        )
+        .await;
+        assert_eq!(shown["canvas"], true, "{shown}");
+        assert_eq!(shown["stems"], json!(8 * segments));
+        let p = pixels(&c).await;
+        assert!(p["count"].as_f64().unwrap() > 3000.0, "{p}");
+        shot(&c, "3d-06-static-site").await;
+        let _ = c.close().await;
+    });
+}

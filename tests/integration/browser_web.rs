@@ -386,7 +386,7 @@ async fn share_link(c: &Client) -> String {
 }
 
 /// Opens the example `name` from the New menu and waits for its picture.
-async fn open_example(c: &Client, name: &str) -> Value {
+pub(super) async fn open_example(c: &Client, name: &str) -> Value {
     let text = std::fs::read_to_string(manifest_path(format!("examples/{name}"))).unwrap();
     js(
         c,
