@@ -119,6 +119,62 @@ pub fn draw3(
     Ok(turtle.state.pos)
 }
 
+/// Writes a 3D BED's expansion to `out` as drawing components (`F f + - &
+/// ^ \\ / | [ ]`; `L` and `R` come out as `+` and `-`), one line per tree,
+/// as [`super::bed::expand`] writes a 2D one. The divergence is no symbol:
+/// the word draws the BED's tree only with `D=0` (an `.lsys` of it has no
+/// rule applications to roll at).
+pub fn expand3(
+    bed: &Bed,
+    strategy: Derivation,
+    limits: &Limits,
+    out: &mut dyn std::io::Write,
+    progress: &mut dyn Progress,
+) -> Result<(), Diagnostics> {
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    let flush = |buf: &mut Vec<u8>, out: &mut dyn std::io::Write| -> Result<(), Diagnostics> {
+        out.write_all(buf)
+            .map_err(|e| Diagnostics::from(crate::diag::io_error(&e, "writing the expansion")))?;
+        buf.clear();
+        Ok(())
+    };
+    let mut trees = 0usize;
+    stream::<Op3s>(bed, strategy, limits, progress, &mut |e| {
+        let c = match e {
+            Event::Tree(..) => {
+                trees += 1;
+                if trees == 1 {
+                    return Ok(());
+                }
+                b'\n'
+            }
+            Event::Op(Op3s::Enter | Op3s::Leave) => return Ok(()),
+            Event::Op(Op3s::Turtle(op)) => match op {
+                Op3::Draw => b'F',
+                Op3::Move => b'f',
+                Op3::Turn(n) if n > 0 => b'+',
+                Op3::Turn(_) => b'-',
+                Op3::Pitch(n) if n > 0 => b'&',
+                Op3::Pitch(_) => b'^',
+                Op3::Roll(n) if n > 0 => b'\\',
+                Op3::Roll(_) => b'/',
+                Op3::Flip => b'|',
+                Op3::Push => b'[',
+                Op3::Pop => b']',
+            },
+        };
+        buf.push(c);
+        if buf.len() >= 1 << 16 {
+            flush(&mut buf, out)?;
+        }
+        Ok(())
+    })?;
+    buf.push(b'\n');
+    flush(&mut buf, out)?;
+    out.flush()
+        .map_err(|e| crate::diag::io_error(&e, "writing the expansion").into())
+}
+
 /// The box `[minx, miny, minz, maxx, maxy, maxz]` of every drawn stem's
 /// ends (`None`: nothing drawn), where the turtle ends, and the number of
 /// stems: a 3D BED's geometry in canvas units, for `stats`.
@@ -191,6 +247,20 @@ mod tests {
             &mut NoProgress,
         )
         .unwrap()
+    }
+
+    #[test]
+    fn a_3d_expansion_writes_the_3d_turns() {
+        let b = bed("T (0, 0, 0) (1, 1, 1) RULE R1: [&F][\\LF] R2: [^/RF] \
+             SEED F R1{R2{},} ENDSEED SEED [I 2 F&F] ENDSEED");
+        for d in [Derivation::Dfs, Derivation::Bfs] {
+            let mut out = Vec::new();
+            expand3(&b, d, &Limits::DEFAULT, &mut out, &mut NoProgress).unwrap();
+            assert_eq!(
+                String::from_utf8(out).unwrap(),
+                "F[&F[^/-F]][\\+F]\nF&F&F&F\n"
+            );
+        }
     }
 
     #[test]
