@@ -187,6 +187,23 @@ impl<S: FnMut(Segment3)> Turtle3<S> {
         }
     }
 
+    /// Sets the step length (growth steps a tree's `L` at each order).
+    pub fn set_step(&mut self, len: f64) {
+        self.len = len;
+    }
+
+    /// Rolls the frame about H by the angle of `cos` and `sin`, as `\`
+    /// rolls by its angle: the divergence `D=` of section 11, which every
+    /// rule application applies first ([`cos_sin`] of `D`).
+    pub fn roll_by(&mut self, cos: f64, sin: f64) {
+        let (h, l, u) = self.hlu();
+        self.state.frame = Frame::Free {
+            h,
+            l: comb(l, cos, u, -sin),
+            u: comb(u, cos, l, sin),
+        };
+    }
+
     /// The frame's vectors (H, L, U).
     pub fn hlu(&mut self) -> (V, V, V) {
         match self.state.frame {
