@@ -193,32 +193,28 @@ pub fn grow_traced(
 ) -> Result<(Grown, Vec<PlacedStem>), Diagnostics> {
     if od.is_3d() {
         let (grown, trace) = grow_3d(od, opts, true, progress)?;
-        let placed = trace
-            .unwrap_or_default()
-            .into_iter()
-            .map(|(s, decision)| PlacedStem {
-                from: Point::new(s.a[0], s.a[1]),
-                to: Point::new(s.b[0], s.b[1]),
-                z: [s.a[2], s.b[2]],
-                width: 2.0 * s.r,
-                decision,
-            })
-            .collect();
-        return Ok((grown, placed));
+        return Ok((grown, placed(trace, |s| [s.a[2], s.b[2]])));
     }
     let (grown, trace) = grow_inner(od, opts, Backend::Rstar, true, progress)?;
-    let placed = trace
+    Ok((grown, placed(trace, |_| [0.0; 2])))
+}
+
+/// The stems of a trace, each with the z of its ends (`z`).
+fn placed<const N: usize>(
+    trace: Trace<N>,
+    z: impl Fn(&occupancy::Cap<N>) -> [f64; 2],
+) -> Vec<PlacedStem> {
+    trace
         .unwrap_or_default()
         .into_iter()
         .map(|(s, decision)| PlacedStem {
             from: Point::new(s.a[0], s.a[1]),
             to: Point::new(s.b[0], s.b[1]),
-            z: [0.0; 2],
+            z: z(&s),
             width: 2.0 * s.r,
             decision,
         })
-        .collect();
-    Ok((grown, placed))
+        .collect()
 }
 
 /// Grows `od` into a BED with a chosen occupancy index. Every [`Backend`]

@@ -18,9 +18,8 @@ use stlc::syntax::stl::parse;
 
 const GREEN: Rgb = Rgb::new(0, 128, 0);
 
-/// `text` read as a 2D OD, made 3D: root z 0 (every root), `D`, volumes.
-fn od3(text: &str, d: f64, solids: Vec<(Rgb, Solid)>) -> Description {
-    let mut od = parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}"));
+/// `od` made 3D: root z 0 (every root), `D`, the volumes `solids`.
+fn lift(mut od: Description, d: f64, solids: Vec<(Rgb, Solid)>) -> Description {
     od.root_z = Some(0.0);
     for t in &mut od.forest {
         t.root_z = Some(0.0);
@@ -38,6 +37,15 @@ fn od3(text: &str, d: f64, solids: Vec<(Rgb, Solid)>) -> Description {
         .collect();
     od.layout = Some(layout);
     od
+}
+
+fn parsed(text: &str) -> Description {
+    parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// `text` read as a 2D OD, made 3D by [`lift`].
+fn od3(text: &str, d: f64, solids: Vec<(Rgb, Solid)>) -> Description {
+    lift(parsed(text), d, solids)
 }
 
 fn opts(growth: GrowthOrder) -> GrowOptions {
@@ -242,6 +250,17 @@ fn check(od: &Description, growth: GrowthOrder) -> usize {
 
 const TREE: &str = "T (100, 200)L=10(0.6) B=2(0.1) A=40 C=1 RULE R1: [+F][-F]";
 
+/// A spheroid crown: an ellipse revolved about the root's vertical line.
+fn crown() -> Solid {
+    let shape = Shape::Ellipse {
+        x: 50.0,
+        y: 95.0,
+        w: 100.0,
+        h: 110.0,
+    };
+    Solid::Revolve { shape }
+}
+
 #[test]
 fn a_tree_grows_inside_each_kind_of_volume_and_keeps_clearance() {
     let cases: Vec<(&str, Vec<(Rgb, Solid)>)> = vec![
@@ -286,20 +305,7 @@ fn a_tree_grows_inside_each_kind_of_volume_and_keeps_clearance() {
                 },
             )],
         ),
-        (
-            "revolved ellipse",
-            vec![(
-                GREEN,
-                Solid::Revolve {
-                    shape: Shape::Ellipse {
-                        x: 50.0,
-                        y: 95.0,
-                        w: 100.0,
-                        h: 110.0,
-                    },
-                },
-            )],
-        ),
+        ("revolved ellipse", vec![(GREEN, crown())]),
         (
             "box with a sphere carved out",
             vec![
@@ -376,17 +382,7 @@ fn a_forest_shares_the_volume_and_the_clearance() {
 
 #[test]
 fn growth_in_space_is_deterministic() {
-    let solids = vec![(
-        GREEN,
-        Solid::Revolve {
-            shape: Shape::Ellipse {
-                x: 50.0,
-                y: 95.0,
-                w: 100.0,
-                h: 110.0,
-            },
-        },
-    )];
+    let solids = vec![(GREEN, crown())];
     let od = od3(TREE, 137.5, solids);
     for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         let a = grow(&od, &opts(growth), &mut NoProgress).unwrap();
@@ -398,32 +394,22 @@ fn growth_in_space_is_deterministic() {
 
 /// An example's OD made 3D: root z 0, `D=0`, its layout extruded far
 /// beyond the tree in z.
-fn extruded(text: &str) -> Description {
-    let mut od = parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}"));
-    let mut od3 = od.clone();
-    od3.root_z = Some(0.0);
-    for t in &mut od3.forest {
-        t.root_z = Some(0.0);
-    }
-    od3.params.divergence = Some(0.0);
-    let layout = od.layout.take().expect("a layout");
-    let mut l3 = Layout::new(Vec::new());
-    l3.solids = layout
+fn extruded(flat: &Description) -> Description {
+    let solids = flat
+        .layout
+        .as_ref()
+        .expect("a layout")
         .shapes
         .iter()
-        .map(|s| LayoutSolid {
-            color: s.color,
-            color_text: String::new(),
-            solid: Solid::Extrude {
+        .map(|s| {
+            let solid = Solid::Extrude {
                 shape: s.shape.clone(),
                 z1: -1000.0,
                 z2: 1000.0,
-            },
-            loc: Loc::default(),
-        })
-        .collect();
-    od3.layout = Some(l3);
-    od3
+            };
+            (s.color, solid)
+        });
+    lift(flat.clone(), 0.0, solids.collect())
 }
 
 #[test]
@@ -435,12 +421,12 @@ fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();
-        let flat = parse(&text, Format::Od, &Limits::default()).unwrap();
+        let flat = parsed(&text);
         if flat.layout.is_none() {
             continue;
         }
         tried += 1;
-        let space = extruded(&text);
+        let space = extruded(&flat);
         for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let (g2, p2) = grow_traced(&flat, &opts(growth), &mut NoProgress).unwrap();
             let (g3, p3) = grow_traced(&space, &opts(growth), &mut NoProgress).unwrap();
