@@ -43,7 +43,11 @@
 //! operations and growth points, and writes the grown seed back;
 //! `bounded.rs` refuses growth that nothing bounds; `grower.rs` draws the
 //! seeds (one per root of a forest) and decides the growth points, choosing
-//! among a rule's alternatives by [`crate::choice`]; `tree.rs` holds what it
+//! among a rule's alternatives by [`crate::choice`], once for the plane and
+//! for space: `plane.rs` says what it draws with (the `Space` trait, and
+//! the 2D turtle and region), [`space`] the 3D turtle with `D=` and the
+//! volumes (`stl-language.md` section 11); `rules.rs` works out what growth
+//! needs of each rule; `tree.rs` holds what it
 //! records (the grown tree, the budget spent against the limits); [`region`] and [`occupancy`] answer
 //! where a segment may go (they alone know the spatial index).
 

@@ -1,7 +1,7 @@
 //! Growth in space: the 3D turtle ([`crate::turtle::space`]) with stem
 //! orders and `D=` divergence, and the region of a 3D layout's volumes
-//! ([`region`]), for the one grower ([`super::grower`], over
-//! [`Space`]).
+//! ([`region`]), for the one grower (`grower.rs`, over the `Space` of
+//! `plane.rs`).
 //!
 //! `stl-language.md` section 11: every rule application (from the seed, a
 //! slot, a count or a successor; a term written in the seed too) first

@@ -395,4 +395,133 @@ mod tests {
             assert!(b - worst < 1e-3 * (1.0 + b), "{worst} << {b}");
         }
     }
+
+    fn region(solids: Vec<(Rgb, Solid)>) -> Region3 {
+        let mut l = Layout::new(Vec::new());
+        l.solids = solids
+            .into_iter()
+            .map(|(color, solid)| crate::model::LayoutSolid {
+                color,
+                color_text: String::new(),
+                solid,
+                loc: crate::model::Loc::default(),
+            })
+            .collect();
+        Region3::from_layout(&l, [0.0, 0.0], 16_000).unwrap()
+    }
+
+    const GREEN: Rgb = Rgb::new(0, 128, 0);
+
+    /// A trunk and a crown: a stem from one into the other is in neither
+    /// alone, and grows (its halves are); one leaving both does not.
+    #[test]
+    fn a_stem_from_the_trunk_into_the_crown_fits_in_halves() {
+        let r = region(vec![
+            (
+                GREEN,
+                Solid::Cylinder {
+                    base: [0.0, 0.0, 0.0],
+                    r: 2.0,
+                    h: 20.0,
+                },
+            ),
+            (
+                GREEN,
+                Solid::Sphere {
+                    centre: [0.0, -30.0, 0.0],
+                    r: 12.0,
+                },
+            ),
+        ]);
+        let up = Seg3::capsule([0.0, -15.0, 0.0], [0.0, -25.0, 0.0], 0.5);
+        assert!(r.capsule_inside(&up, false));
+        // Out through the sphere's top (it reaches y = -42).
+        let out = Seg3::capsule([0.0, -35.0, 0.0], [0.0, -42.5, 0.0], 0.5);
+        assert!(!r.capsule_inside(&out, false));
+        // Sideways out of the trunk below the crown.
+        let side = Seg3::capsule([0.0, -5.0, 0.0], [0.0, -5.0, 1.8], 0.5);
+        assert!(!r.capsule_inside(&side, false));
+        assert!(r.capsule_inside(
+            &Seg3::capsule([0.0, -5.0, 0.0], [0.0, -5.0, 1.4], 0.5),
+            false
+        ));
+    }
+
+    /// A box with a sphere carved out: stems through or into the hole are
+    /// refused, stems beside it grow.
+    #[test]
+    fn a_carved_sphere_keeps_stems_out() {
+        let r = region(vec![
+            (
+                GREEN,
+                Solid::Box {
+                    corner: [-50.0; 3],
+                    size: [100.0; 3],
+                },
+            ),
+            (
+                Rgb::WHITE,
+                Solid::Sphere {
+                    centre: [0.0; 3],
+                    r: 10.0,
+                },
+            ),
+        ]);
+        let through = Seg3::capsule([-20.0, 0.0, 0.0], [20.0, 0.0, 0.0], 0.5);
+        assert!(!r.capsule_inside(&through, false));
+        // Passing 11 from the centre: the capsule's edge 0.5 off the sphere.
+        let beside = Seg3::capsule([-20.0, 11.0, 0.0], [20.0, 11.0, 0.0], 0.5);
+        assert!(r.capsule_inside(&beside, false));
+        let grazing = Seg3::capsule([-20.0, 10.4, 0.0], [20.0, 10.4, 0.0], 0.5);
+        assert!(!r.capsule_inside(&grazing, false));
+        assert!(!r.covers_point([0.0, 5.0, 0.0]));
+        assert!(r.covers_point([0.0, 15.0, 0.0]));
+        // Out of the box.
+        let out = Seg3::capsule([40.0, 40.0, 40.0], [49.8, 40.0, 40.0], 0.5);
+        assert!(!r.capsule_inside(&out, false));
+    }
+
+    /// Extrusions between one z1 and z2 are a prism: the 2D test and the
+    /// z interval, exactly.
+    #[test]
+    fn extrusions_between_the_same_planes_are_one_prism() {
+        let rect = Shape::Rect {
+            x: 0.0,
+            y: 0.0,
+            w: 10.0,
+            h: 10.0,
+        };
+        let hole = Shape::Rect {
+            x: 4.0,
+            y: 4.0,
+            w: 2.0,
+            h: 2.0,
+        };
+        let r = region(vec![
+            (
+                GREEN,
+                Solid::Extrude {
+                    shape: rect,
+                    z1: -1.0,
+                    z2: 1.0,
+                },
+            ),
+            (
+                Rgb::WHITE,
+                Solid::Extrude {
+                    shape: hole,
+                    z1: -1.0,
+                    z2: 1.0,
+                },
+            ),
+        ]);
+        assert!(matches!(r.kind, Kind::Prism { .. }));
+        let s = |z: f64, rad: f64| Seg3::capsule([1.0, 1.0, z], [1.0, 3.0, z], rad);
+        assert!(r.capsule_inside(&s(0.0, 0.5), false));
+        assert!(r.capsule_inside(&s(0.49, 0.5), false));
+        assert!(!r.capsule_inside(&s(0.5, 0.5), false));
+        // Across the hole.
+        let across = Seg3::capsule([2.0, 5.0, 0.0], [8.0, 5.0, 0.0], 0.1);
+        assert!(!r.capsule_inside(&across, false));
+    }
 }
