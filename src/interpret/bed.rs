@@ -31,7 +31,6 @@ use crate::model::seed_walk::{Points, SeedStep, SeedWalk};
 use crate::model::walk::{self, FixedWord, Levels, Step};
 use crate::model::{Description, Fixed, Repeat, RuleDef, RuleId, Seed, Slot, Term};
 use crate::progress::Progress;
-use crate::turtle::space::Op3;
 use crate::turtle::{Interp, Op, State};
 use crate::turtle::{Point, Turtle};
 
@@ -173,8 +172,9 @@ pub fn tree_ops(
     })
 }
 
-/// A turtle operation a BED's stream is made of: the 2D [`Op`], or the 3D
-/// [`Op3`] of a 3D BED (whose `& ^ \ /` turn; `Enter` also rolls by `D=`).
+/// A turtle operation a BED's stream is made of: the 2D [`Op`], or a 3D
+/// BED's ([`super::bed3::Op3s`]: `& ^ \ /` turn, and a rule application
+/// also rolls by `D=`).
 pub trait StlOp: Copy {
     /// The operation of a drawing component, if it has one.
     fn of_byte(c: u8) -> Option<Self>;
@@ -197,17 +197,6 @@ impl StlOp for Op {
     const LEAVE: Op = Op::Leave;
     const PUSH: Op = Op::Push;
     const POP: Op = Op::Pop;
-}
-
-impl StlOp for Op3 {
-    #[inline]
-    fn of_byte(c: u8) -> Option<Op3> {
-        Op3::of_stl(char::from(c))
-    }
-    const ENTER: Op3 = Op3::Enter;
-    const LEAVE: Op3 = Op3::Leave;
-    const PUSH: Op3 = Op3::Push;
-    const POP: Op3 = Op3::Pop;
 }
 
 /// What [`stream`] emits: a tree starts (its index in

@@ -6,19 +6,58 @@
 //! and roll by `A`, and every rule application (`Enter`: a term from the
 //! seed or a slot, each level of `[I n X]`) raises the stem order and
 //! first rolls the frame by the divergence `D=` about its heading
-//! ([`crate::turtle::space::Divergence`]). Each tree starts at its root,
+//! ([`Turtle3::roll_by`], as growth does). Each tree starts at its root,
 //! `(x, y, z)`, heading up the screen. A planar 3D BED (`D=0` or none, no
 //! 3D turn) keeps the 2D turtle's exact frame, so its stems are the 2D
 //! BED's, x and y bit for bit, at z = its root's.
 
+use std::cell::Cell;
+
 use crate::bed::Bed;
 use crate::diag::Diagnostics;
 use crate::interpret::Derivation;
-use crate::interpret::bed::{Event, stream};
+use crate::interpret::bed::{Event, StlOp, stream};
 use crate::limits::Limits;
+use crate::num::Linear;
 use crate::progress::Progress;
 use crate::turtle::UP;
-use crate::turtle::space::{Op3, Point3, Segment3, Turtle3};
+use crate::turtle::space::{Op3, Point3, Segment3, Turtle3, cos_sin};
+
+/// An operation of a 3D BED's stream: a 3D turtle operation, or a rule
+/// application starting or ending.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Op3s {
+    /// A turtle operation.
+    Turtle(Op3),
+    /// A rule application starts: one order higher, rolled by `D=`.
+    Enter,
+    /// It ends: one order lower (the roll is kept, as a `\` in its body
+    /// would be).
+    Leave,
+}
+
+impl StlOp for Op3s {
+    #[inline]
+    fn of_byte(c: u8) -> Option<Op3s> {
+        match c {
+            b'L' => Some(Op3::Turn(1)),
+            b'R' => Some(Op3::Turn(-1)),
+            c => Op3::of_lsys(char::from(c)),
+        }
+        .map(Op3s::Turtle)
+    }
+    const ENTER: Op3s = Op3s::Enter;
+    const LEAVE: Op3s = Op3s::Leave;
+    const PUSH: Op3s = Op3s::Turtle(Op3::Push);
+    const POP: Op3s = Op3s::Turtle(Op3::Pop);
+}
+
+/// `cos` and `sin` of a divergence, `None` for none (a multiple of 360
+/// degrees, 0 included: a planar frame stays planar). Growth
+/// (`grow::space`) rolls by the same.
+pub fn divergence(d: Option<f64>) -> Option<(f64, f64)> {
+    d.filter(|d| d.rem_euclid(360.0) != 0.0).map(cos_sin)
+}
 
 /// Draws a 3D BED's trees, in root order, handing every stem to `sink` in
 /// drawing order (its `order` the number of rule applications above it);
@@ -36,17 +75,104 @@ pub fn draw3(
         .chain(desc.forest.iter().map(|t| t.root_z))
         .map(|z| z.unwrap_or(0.0))
         .collect();
-    let mut turtle = Turtle3::new(UP, p.angle(), 1.0, sink)
-        .with_length(p.length)
-        .with_divergence(p.divergence.unwrap_or(0.0));
-    stream::<Op3>(bed, strategy, limits, progress, &mut |e| {
+    // The order of the stem being drawn, read by the sink; kept here and
+    // saved at each `[` beside the turtle's own stack.
+    let order = Cell::new(0u32);
+    let mut orders: Vec<u32> = Vec::new();
+    let length: Linear = p.length;
+    let roll = divergence(p.divergence);
+    let mut turtle = Turtle3::new(UP, p.angle(), length.at(0), |mut s: Segment3| {
+        s.order = order.get();
+        sink(s)
+    });
+    stream::<Op3s>(bed, strategy, limits, progress, &mut |e| {
         match e {
-            Event::Tree(i, root) => turtle.start_at(Point3::new(root.x, root.y, zs[i])),
-            Event::Op(op) => turtle.apply(op),
+            Event::Tree(i, root) => {
+                turtle.state.pos = Point3::new(root.x, root.y, zs[i]);
+                turtle.state.frame = crate::turtle::space::Frame::Planar { k: 0, flip: false };
+                order.set(0);
+                orders.clear();
+            }
+            Event::Op(Op3s::Turtle(op)) => {
+                match op {
+                    Op3::Draw | Op3::Move => turtle.set_step(length.at(order.get())),
+                    Op3::Push => orders.push(order.get()),
+                    Op3::Pop => {
+                        if let Some(o) = orders.pop() {
+                            order.set(o);
+                        }
+                    }
+                    _ => {}
+                }
+                turtle.apply(op);
+            }
+            Event::Op(Op3s::Enter) => {
+                order.set(order.get() + 1);
+                if let Some((c, s)) = roll {
+                    turtle.roll_by(c, s);
+                }
+            }
+            Event::Op(Op3s::Leave) => order.set(order.get().saturating_sub(1)),
         }
         Ok(())
     })?;
     Ok(turtle.state.pos)
+}
+
+/// Writes a 3D BED's expansion to `out` as drawing components (`F f + - &
+/// ^ \\ / | [ ]`; `L` and `R` come out as `+` and `-`), one line per tree,
+/// as [`super::bed::expand`] writes a 2D one. The divergence is no symbol:
+/// the word draws the BED's tree only with `D=0` (an `.lsys` of it has no
+/// rule applications to roll at).
+pub fn expand3(
+    bed: &Bed,
+    strategy: Derivation,
+    limits: &Limits,
+    out: &mut dyn std::io::Write,
+    progress: &mut dyn Progress,
+) -> Result<(), Diagnostics> {
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    let flush = |buf: &mut Vec<u8>, out: &mut dyn std::io::Write| -> Result<(), Diagnostics> {
+        out.write_all(buf)
+            .map_err(|e| Diagnostics::from(crate::diag::io_error(&e, "writing the expansion")))?;
+        buf.clear();
+        Ok(())
+    };
+    let mut trees = 0usize;
+    stream::<Op3s>(bed, strategy, limits, progress, &mut |e| {
+        let c = match e {
+            Event::Tree(..) => {
+                trees += 1;
+                if trees == 1 {
+                    return Ok(());
+                }
+                b'\n'
+            }
+            Event::Op(Op3s::Enter | Op3s::Leave) => return Ok(()),
+            Event::Op(Op3s::Turtle(op)) => match op {
+                Op3::Draw => b'F',
+                Op3::Move => b'f',
+                Op3::Turn(n) if n > 0 => b'+',
+                Op3::Turn(_) => b'-',
+                Op3::Pitch(n) if n > 0 => b'&',
+                Op3::Pitch(_) => b'^',
+                Op3::Roll(n) if n > 0 => b'\\',
+                Op3::Roll(_) => b'/',
+                Op3::Flip => b'|',
+                Op3::Push => b'[',
+                Op3::Pop => b']',
+            },
+        };
+        buf.push(c);
+        if buf.len() >= 1 << 16 {
+            flush(&mut buf, out)?;
+        }
+        Ok(())
+    })?;
+    buf.push(b'\n');
+    flush(&mut buf, out)?;
+    out.flush()
+        .map_err(|e| crate::diag::io_error(&e, "writing the expansion").into())
 }
 
 /// The box `[minx, miny, minz, maxx, maxy, maxz]` of every drawn stem's
@@ -121,6 +247,20 @@ mod tests {
             &mut NoProgress,
         )
         .unwrap()
+    }
+
+    #[test]
+    fn a_3d_expansion_writes_the_3d_turns() {
+        let b = bed("T (0, 0, 0) (1, 1, 1) RULE R1: [&F][\\LF] R2: [^/RF] \
+             SEED F R1{R2{},} ENDSEED SEED [I 2 F&F] ENDSEED");
+        for d in [Derivation::Dfs, Derivation::Bfs] {
+            let mut out = Vec::new();
+            expand3(&b, d, &Limits::DEFAULT, &mut out, &mut NoProgress).unwrap();
+            assert_eq!(
+                String::from_utf8(out).unwrap(),
+                "F[&F[^/-F]][\\+F]\nF&F&F&F\n"
+            );
+        }
     }
 
     #[test]

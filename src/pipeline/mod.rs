@@ -25,6 +25,7 @@ mod draw;
 mod request;
 mod space;
 mod summary;
+mod tree3;
 
 pub(crate) use draw::{Given, ignored_flags, layout_view, render_tree};
 pub use draw::{Look, Rendered, ShowLayout, TREE_BROWN, image_format, render, style};
@@ -77,6 +78,16 @@ impl Loaded {
             Loaded::Lsys(_) => InputKind::Lsys,
             Loaded::Od(_) => InputKind::Od,
             Loaded::Bed(_) => InputKind::Bed,
+        }
+    }
+
+    /// Whether the input is 3D: an `.lsys` with `dimensions 3`, an OD or
+    /// BED whose roots have three coordinates.
+    pub fn is_3d(&self) -> bool {
+        match self {
+            Loaded::Lsys(sys) => sys.is_3d(),
+            Loaded::Od(d) => d.is_3d(),
+            Loaded::Bed(b) => b.description().is_3d(),
         }
     }
 
@@ -467,6 +478,9 @@ pub fn expand(
             out,
             progress,
         ),
+        What::Tree { bed, .. } if bed.description().is_3d() => {
+            crate::interpret::bed3::expand3(bed, scene.derivation, &scene.limits, out, progress)
+        }
         What::Tree { bed, .. } => {
             crate::interpret::bed::expand(bed, scene.derivation, &scene.limits, out, progress)
         }

@@ -217,10 +217,10 @@ impl Request {
         let (limits, _) = self.options(&Design::default())?;
         let loaded = load(&self.input, self.input_kind()?, &limits)?.seeded(self.seed);
         let mut warnings = ignored_flags(&loaded, &self.given());
-        if self.view.is_some() && !matches!(&loaded, Loaded::Lsys(s) if s.is_3d()) {
+        if self.view.is_some() && !loaded.is_3d() {
             warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
                 flag: "--view".into(),
-                reason: "this input is flat: its picture is its front view (`dimensions 3` makes an .lsys 3D)".into(),
+                reason: "this input is flat: its picture is its front view (`dimensions 3` makes an .lsys 3D, a root `(x, y, z)` an .od or .bed)".into(),
             }));
         }
         if self.look.show_layout == ShowLayout::Yes && !has_layout(&loaded) {
@@ -258,7 +258,10 @@ impl Request {
         let tree_left_out = trace.is_some()
             && matches!((self.tree_up_to, grown), (Some(most), Some(n)) if n > most);
         let space = match self.tree_up_to {
-            Some(_) if self.trace => super::space::editor_space(&scene, &self.look, progress)?,
+            Some(_) if self.trace => {
+                let placed = trace.as_ref().map_or(&[][..], |t| &t.placed[..]);
+                super::space::editor_space(&scene, &self.look, placed, progress)?
+            }
             _ => None,
         };
         let (space, rendered) = match space {
@@ -267,9 +270,9 @@ impl Request {
         };
         let rendered = if let Some(r) = rendered {
             r
-        } else if super::space::space_lsys(&scene).is_some() {
+        } else if super::tree3::is_3d(&scene) {
             let view = self.view.unwrap_or(View::DEFAULT);
-            super::space::render_view(&scene, view, &self.look, &self.image, out, progress)?
+            super::tree3::render_view(&scene, view, &self.look, &self.image, out, progress)?
         } else {
             super::render_tree(
                 &scene,

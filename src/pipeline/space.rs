@@ -132,10 +132,12 @@ pub struct Space {
 }
 
 /// The scene's stems in 3D for an editor ([`Space`]), with what a picture
-/// would have counted; `None` for a flat input.
+/// would have counted; `None` for a flat input. A grown tree's stems are
+/// `placed`, its growth's, in growth order with their decisions.
 pub(crate) fn editor_space(
     scene: &Scene,
     look: &super::Look,
+    placed: &[crate::grow::PlacedStem],
     progress: &mut dyn Progress,
 ) -> Result<Option<(Space, Rendered)>, Diagnostics> {
     let too_many = |n: String| -> Diagnostics {
@@ -178,12 +180,19 @@ pub(crate) fn editor_space(
             volumes = desc.layout.iter().flat_map(|l| l.solids.clone()).collect();
             axis = Some([desc.root.0, desc.root_z.unwrap_or(0.0)]);
             let d = scene.derivation;
-            crate::interpret::bed3::draw3(bed, d, &scene.limits, &mut keep, &mut phase)?;
+            if placed.is_empty() {
+                crate::interpret::bed3::draw3(bed, d, &scene.limits, &mut keep, &mut phase)?;
+            }
         }
         _ => return Ok(None),
     }
     if over {
         return Err(too_many(format!("more than {MAX_EDITOR_STEMS}")));
+    }
+    for p in placed {
+        let (a, b) = (p.from, p.to);
+        let (w, k) = (p.width, p.decision as f64);
+        stems.extend([a.x, a.y, p.z[0], b.x, b.y, p.z[1], w, k]);
     }
     let n = stems.len() as u64 / 8;
     let space = Space {
@@ -261,7 +270,7 @@ pub(crate) fn mesh(
             &mut keep,
             &mut phase,
         )?;
-    } else {
+    } else if !super::tree3::draw_tree3(scene, &mut keep, &mut phase)? {
         let mut lift = Lift(&mut keep);
         scene.draw(&mut lift, &mut phase)?;
     }

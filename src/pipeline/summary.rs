@@ -21,6 +21,11 @@ pub fn stats(
     json: bool,
     limits: &Limits,
 ) -> Result<String, Diagnostics> {
+    if let Loaded::Bed(bed) = loaded
+        && bed.description().is_3d()
+    {
+        return super::tree3::stats_bed3(bed, json, limits);
+    }
     let Loaded::Lsys(sys) = loaded else {
         return Err(wrong_kind(Command::Stats, loaded.kind()));
     };

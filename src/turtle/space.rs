@@ -16,21 +16,8 @@
 //! multiples of 90 degrees those are exactly 0 and +-1 ([`cos_sin`]), so
 //! the vectors stay integer and nothing drifts (the 3D Hilbert curve lands
 //! on lattice points at any depth). Elsewhere `libm`.
-//!
-//! Rule applications (a BED's or a grown OD's terms, `Op3::Enter`) raise
-//! the stem order, so a stem's length is `L - k*dL` ([`Turtle3::with_length`]),
-//! and first roll the frame by the divergence `D=` about H
-//! ([`Divergence`], [`Turtle3::with_divergence`]): section 11's "every rule
-//! application first rolls its frame by d about H, as `\` does by d,
-//! relative to the frame it grows from". The roll is part of the
-//! application, like a `\` written at the start of its body: whatever the
-//! application leaves the turtle at (a seed's `F R1 F`: the second `F`)
-//! keeps it, as it keeps the trunk's turns; branches restore it with `]`
-//! as always. A divergence of 0 (or any multiple of 360) rolls nothing, so
-//! a planar tree stays [`Frame::Planar`].
 
 use super::Headings;
-use crate::num::Linear;
 
 /// A point (or vector) in 3D canvas units: x right, y down, z away from
 /// the viewer.
@@ -117,51 +104,7 @@ pub enum Frame {
     },
 }
 
-/// The divergence `D=` of a 3D OD or BED, in degrees (section 11): the
-/// roll about H every rule application starts with. Its cos and sin are
-/// computed once, exactly at multiples of 90 degrees ([`cos_sin`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Divergence {
-    cos: f64,
-    sin: f64,
-}
-
-impl Divergence {
-    /// The roll by `deg` degrees; `None` for no roll (`deg` a multiple of
-    /// 360, 0 included), which leaves a planar frame planar.
-    pub fn new(deg: f64) -> Option<Divergence> {
-        let (cos, sin) = cos_sin(deg);
-        (sin != 0.0 || cos != 1.0).then_some(Divergence { cos, sin })
-    }
-
-    /// `frame` rolled by this divergence about its heading, as `\` rolls
-    /// by the turtle's angle (L <- L cos d - U sin d, U <- U cos d + L sin d).
-    /// `headings` are the turtle's (a planar frame's vectors come from them).
-    pub fn roll(self, frame: Frame, headings: &mut Headings) -> Frame {
-        let (h, l, u) = frame.hlu(headings);
-        Frame::Free {
-            h,
-            l: comb(l, self.cos, u, -self.sin),
-            u: comb(u, self.cos, l, self.sin),
-        }
-    }
-}
-
-impl Frame {
-    /// The frame's vectors (H, L, U); a planar frame's from `headings`.
-    pub fn hlu(self, headings: &mut Headings) -> (V, V, V) {
-        match self {
-            Frame::Planar { k, flip } => {
-                let (hx, hy) = headings.dir(k, flip);
-                ([hx, hy, 0.0], [hy, -hx, 0.0], [0.0, 0.0, -1.0])
-            }
-            Frame::Free { h, l, u } => (h, l, u),
-        }
-    }
-}
-
-/// A 3D turtle operation: what a symbol of a 3D `.lsys` (or a 3D OD's or
-/// BED's drawing component) means.
+/// A 3D turtle operation: what a symbol of a 3D `.lsys` means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Op3 {
     /// `F`: draw one step.
@@ -180,12 +123,6 @@ pub enum Op3 {
     Push,
     /// `]`: restore it.
     Pop,
-    /// Start of a rule application (an OD's or BED's term, each level of
-    /// `[I n X]`): stems one order higher from here, the frame first
-    /// rolled by the divergence.
-    Enter,
-    /// End of a rule application: one order lower.
-    Leave,
 }
 
 impl Op3 {
@@ -206,16 +143,6 @@ impl Op3 {
             _ => return None,
         })
     }
-
-    /// The operation of a drawing component of a 3D OD or BED: as in a 3D
-    /// `.lsys`, with `L` and `R` turning as `+` and `-` (the STL alphabet).
-    pub fn of_stl(c: char) -> Option<Op3> {
-        match c {
-            'L' => Some(Op3::Turn(1)),
-            'R' => Some(Op3::Turn(-1)),
-            c => Op3::of_lsys(c),
-        }
-    }
 }
 
 /// The turtle's state.
@@ -225,20 +152,6 @@ pub struct State3 {
     pub pos: Point3,
     /// Its orientation.
     pub frame: Frame,
-    /// Stem order: rule applications entered and not left (0 in an
-    /// `.lsys`).
-    pub order: u32,
-}
-
-impl State3 {
-    /// The state at a root: at `pos`, heading first (up), order 0.
-    pub fn start(pos: Point3) -> State3 {
-        State3 {
-            pos,
-            frame: Frame::Planar { k: 0, flip: false },
-            order: 0,
-        }
-    }
 }
 
 /// The 3D turtle state machine: applies [`Op3`]s, hands each drawn stem to
@@ -250,8 +163,7 @@ pub struct Turtle3<S: FnMut(Segment3)> {
     headings: Headings,
     cos: f64,
     sin: f64,
-    length: Linear,
-    divergence: Option<Divergence>,
+    len: f64,
     sink: S,
 }
 
@@ -262,45 +174,45 @@ impl<S: FnMut(Segment3)> Turtle3<S> {
     pub fn new(start_deg: f64, angle_deg: f64, len: f64, sink: S) -> Self {
         let (cos, sin) = cos_sin(angle_deg);
         Turtle3 {
-            state: State3::start(Point3::default()),
+            state: State3 {
+                pos: Point3::default(),
+                frame: Frame::Planar { k: 0, flip: false },
+            },
             stack: Vec::new(),
             headings: Headings::starting(start_deg, angle_deg),
             cos,
             sin,
-            length: Linear::constant(len),
-            divergence: None,
+            len,
             sink,
         }
     }
 
-    /// The same turtle with stems `length.at(order)` long (an OD's or
-    /// BED's `L`).
-    pub fn with_length(mut self, length: Linear) -> Self {
-        self.length = length;
-        self
+    /// Sets the step length (growth steps a tree's `L` at each order).
+    pub fn set_step(&mut self, len: f64) {
+        self.len = len;
     }
 
-    /// The same turtle rolling by `deg` degrees at every rule application
-    /// ([`Op3::Enter`]; `D=`, see [`Divergence`]).
-    pub fn with_divergence(mut self, deg: f64) -> Self {
-        self.divergence = Divergence::new(deg);
-        self
-    }
-
-    /// Starts a tree at `pos`: heading first, order 0, stack emptied.
-    pub fn start_at(&mut self, pos: Point3) {
-        self.state = State3::start(pos);
-        self.stack.clear();
+    /// Rolls the frame about H by the angle of `cos` and `sin`, as `\`
+    /// rolls by its angle: the divergence `D=` of section 11, which every
+    /// rule application applies first ([`cos_sin`] of `D`).
+    pub fn roll_by(&mut self, cos: f64, sin: f64) {
+        let (h, l, u) = self.hlu();
+        self.state.frame = Frame::Free {
+            h,
+            l: comb(l, cos, u, -sin),
+            u: comb(u, cos, l, sin),
+        };
     }
 
     /// The frame's vectors (H, L, U).
     pub fn hlu(&mut self) -> (V, V, V) {
-        self.state.frame.hlu(&mut self.headings)
-    }
-
-    /// Hands the sink back.
-    pub fn into_sink(self) -> S {
-        self.sink
+        match self.state.frame {
+            Frame::Planar { k, flip } => {
+                let (hx, hy) = self.headings.dir(k, flip);
+                ([hx, hy, 0.0], [hy, -hx, 0.0], [0.0, 0.0, -1.0])
+            }
+            Frame::Free { h, l, u } => (h, l, u),
+        }
     }
 
     /// Applies one operation.
@@ -313,7 +225,7 @@ impl<S: FnMut(Segment3)> Turtle3<S> {
                 (self.sink)(Segment3 {
                     from: self.state.pos,
                     to,
-                    order: self.state.order,
+                    order: 0,
                 });
                 self.state.pos = to;
             }
@@ -357,13 +269,6 @@ impl<S: FnMut(Segment3)> Turtle3<S> {
                     self.state = st;
                 }
             }
-            Op3::Enter => {
-                self.state.order += 1;
-                if let Some(d) = self.divergence {
-                    self.state.frame = d.roll(self.state.frame, &mut self.headings);
-                }
-            }
-            Op3::Leave => self.state.order = self.state.order.saturating_sub(1),
         }
     }
 
@@ -373,7 +278,7 @@ impl<S: FnMut(Segment3)> Turtle3<S> {
     #[inline]
     fn forward(&mut self) -> Point3 {
         let p = self.state.pos;
-        let len = self.length.at(self.state.order);
+        let len = self.len;
         match self.state.frame {
             Frame::Planar { k, flip } => {
                 let (dx, dy) = self.headings.dir(k, flip);
@@ -451,57 +356,6 @@ mod tests {
         assert!((h[1] + 1.0).abs() < 1e-12 && h[0].abs() < 1e-12 && h[2].abs() < 1e-12);
     }
 
-    /// Where a unit-step turtle at 90 degrees ends after `ops`, rolling by
-    /// `d` at each `Enter`.
-    fn end_diverging(d: f64, ops: &[Op3]) -> (Point3, Frame) {
-        let mut t = Turtle3::new(90.0, 90.0, 1.0, |_| {}).with_divergence(d);
-        for &op in ops {
-            t.apply(op);
-        }
-        (t.state.pos, t.state.frame)
-    }
-
-    #[test]
-    fn divergence_rolls_at_each_rule_application_as_a_backslash() {
-        use Op3::*;
-        // By hand: after `F` at (0, -1, 0), rolling by 90 makes
-        // L = L*0 - U*1 = (0, 0, 1), so `+` heads H = L = (0, 0, 1) and the
-        // second `F` ends at (0, -1, 1): what `F\+F` draws.
-        let (p, _) = end_diverging(90.0, &[Draw, Enter, Turn(1), Draw]);
-        assert_eq!(p, Point3::new(0.0, -1.0, 1.0));
-        assert_eq!(p, end("F\\+F"));
-        // Two applications roll twice: L = -L, `+` heads (1, 0, 0).
-        let (p, _) = end_diverging(90.0, &[Enter, Enter, Turn(1), Draw]);
-        assert_eq!(p, Point3::new(1.0, 0.0, 0.0));
-        // `Leave` does not unroll (the application's roll is kept, as a
-        // `\` in its body would be); `]` restores the frame before it.
-        let (p, _) = end_diverging(90.0, &[Enter, Leave, Turn(1), Draw]);
-        assert_eq!(p, Point3::new(0.0, 0.0, 1.0));
-        let (p, _) = end_diverging(90.0, &[Push, Enter, Pop, Turn(1), Draw]);
-        assert_eq!(p, Point3::new(-1.0, 0.0, 0.0));
-        // No divergence (0, 360): the frame stays planar.
-        for d in [0.0, 360.0, -720.0] {
-            let (_, f) = end_diverging(d, &[Enter, Turn(1), Enter]);
-            assert_eq!(f, Frame::Planar { k: 1, flip: false }, "D={d}");
-        }
-    }
-
-    #[test]
-    fn orders_shorten_stems_and_are_kept_by_the_stack() {
-        use Op3::*;
-        let mut got = Vec::new();
-        let mut t = Turtle3::new(90.0, 90.0, 1.0, |s: Segment3| got.push((s.to, s.order)))
-            .with_length(Linear::new(10.0, 2.0));
-        for op in [Draw, Enter, Push, Enter, Draw, Pop, Draw, Leave, Draw] {
-            t.apply(op);
-        }
-        let p = |y| Point3::new(0.0, y, 0.0);
-        assert_eq!(
-            got,
-            vec![(p(-10.0), 0), (p(-16.0), 2), (p(-18.0), 1), (p(-28.0), 0)]
-        );
-    }
-
     #[test]
     fn pitching_a_full_turn_at_90_degrees_is_exact() {
         // Four `&` bring the frame back exactly, however often repeated.
@@ -537,5 +391,27 @@ mod tests {
         for (a, b) in flat.iter().zip(&got) {
             assert_eq!((a.to.x, a.to.y, 0.0), (b.to.x, b.to.y, b.to.z));
         }
+    }
+
+    /// The divergence `D=` as [`Turtle3::roll_by`] applies it, by hand: at
+    /// 90 degrees after `F` at (0, -1, 0), rolling makes L = L*0 - U*1 =
+    /// (0, 0, 1), so `+` heads along it and the next `F` ends at
+    /// (0, -1, 1), where `F\+F` ends; rolling twice makes L = -L, and `+`
+    /// then heads right.
+    #[test]
+    fn rolling_by_an_angle_is_a_backslash_by_it() {
+        let mut t = Turtle3::new(90.0, 90.0, 1.0, |_| {});
+        t.apply(Op3::Draw);
+        t.roll_by(0.0, 1.0);
+        t.apply(Op3::Turn(1));
+        t.apply(Op3::Draw);
+        assert_eq!(t.state.pos, Point3::new(0.0, -1.0, 1.0));
+        assert_eq!(t.state.pos, end("F\\+F"));
+        let mut t = Turtle3::new(90.0, 90.0, 1.0, |_| {});
+        t.roll_by(0.0, 1.0);
+        t.roll_by(0.0, 1.0);
+        t.apply(Op3::Turn(1));
+        t.apply(Op3::Draw);
+        assert_eq!(t.state.pos, Point3::new(1.0, 0.0, 0.0));
     }
 }

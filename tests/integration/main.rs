@@ -15,6 +15,7 @@ mod fuzz_corpus;
 mod geometry;
 mod golden;
 mod grow;
+mod grow3d;
 mod lod;
 mod lsys;
 mod newuser;
@@ -28,6 +29,7 @@ mod space;
 mod stl;
 mod stochastic;
 mod support;
+mod tree3d;
 
 use std::collections::BTreeSet;
 
