@@ -148,6 +148,7 @@ fn a_3d_file_orbits_regrows_and_reloads_in_chromium() {
         orbit_zoom_and_fit(&c, &first).await;
         an_edit_regrows(&c, &first).await;
         a_reload_keeps_the_text(&c, &file).await;
+        the_camera_is_the_clis(&c).await;
         volumes_and_replay(&c).await;
         let _ = c.close().await;
     });
@@ -353,6 +354,88 @@ async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
     );
     assert_eq!(after["stems"], 7);
     assert!(pixels(c).await["count"].as_f64().unwrap() > 500.0);
+}
+
+/// The page's camera at 30,20 projects the bush's stems where `stlc render
+/// --view 30,20` draws them, up to the picture's scale and offset: every
+/// end the page projects is an end of a line in the CLI's SVG and back,
+/// within 0.05 px: the answer's three decimals of a unit are up to 0.02
+/// px at this picture's 29 px a unit, the SVG's two decimals 0.005 px (a
+/// view a degree off moves the ends by pixels).
+async fn the_camera_is_the_clis(c: &Client) {
+    let opened = super::browser_web::open_example(c, "plant3d.lsys").await;
+    assert_eq!(opened["ok"], true);
+    let page = c
+        .execute_async(
+            "const done = arguments[arguments.length - 1];
+             import('/view3d.js').then((m) => {
+               const [r, d] = m.camera(30, 20);
+               const s = window.stlc.state.answer.space.stems;
+               const out = [];
+               for (let i = 0; i < s.length; i += 8) {
+                 for (const o of [i, i + 3]) {
+                   out.push([r[0] * s[o] + r[1] * s[o + 1] + r[2] * s[o + 2], d[0] * s[o] + d[1] * s[o + 1] + d[2] * s[o + 2]]);
+                 }
+               }
+               done(out);
+             });",
+            vec![],
+        )
+        .await
+        .unwrap();
+    let page: Vec<(f64, f64)> = page
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+        .collect();
+    let path = manifest_path("examples/plant3d.lsys");
+    let svg = String::from_utf8(cli(&["render", path.to_str().unwrap(), "-f", "svg"])).unwrap();
+    let d = svg
+        .split(" d=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap();
+    let numbers: Vec<f64> = d
+        .split(|c: char| c == ' ' || c == 'M' || c == 'L')
+        .filter(|t| !t.is_empty())
+        .map(|t| t.parse().unwrap())
+        .collect();
+    let cli_points: Vec<(f64, f64)> = numbers.chunks(2).map(|p| (p[0], p[1])).collect();
+    // (A line that goes on from the last end writes only its `L`: the
+    // CLI's points are the ends without repeats.)
+    assert!(cli_points.len() > 2000, "{}", cli_points.len());
+    let bbox = |v: &[(f64, f64)]| {
+        v.iter()
+            .fold((f64::MAX, f64::MAX, f64::MIN, f64::MIN), |b, p| {
+                (b.0.min(p.0), b.1.min(p.1), b.2.max(p.0), b.3.max(p.1))
+            })
+    };
+    let (a, b) = (bbox(&page), bbox(&cli_points));
+    let scale = (b.2 - b.0) / (a.2 - a.0);
+    let height = (a.3 - a.1) * scale;
+    assert!((height - (b.3 - b.1)).abs() < 0.02, "{height} {b:?}");
+    let mapped: Vec<(f64, f64)> = page
+        .iter()
+        .map(|p| ((p.0 - a.0) * scale + b.0, (p.1 - a.1) * scale + b.1))
+        .collect();
+    let near =
+        |p: &(f64, f64), q: &(f64, f64)| (p.0 - q.0).abs() < 0.05 && (p.1 - q.1).abs() < 0.05;
+    for q in &mapped {
+        assert!(
+            cli_points.iter().any(|c| near(c, q)),
+            "{q:?} is not an end in the CLI's picture"
+        );
+    }
+    for c in &cli_points {
+        assert!(
+            mapped.iter().any(|q| near(c, q)),
+            "{c:?} is not an end the page draws"
+        );
+    }
+    shot(c, "3d-07-bush").await;
 }
 
 /// The volumes (one of each kind) and the replay, from an answer made
