@@ -399,7 +399,7 @@ async fn the_camera_is_the_clis(c: &Client) {
         .next()
         .unwrap();
     let numbers: Vec<f64> = d
-        .split(|c: char| c == ' ' || c == 'M' || c == 'L')
+        .split([' ', 'M', 'L'])
         .filter(|t| !t.is_empty())
         .map(|t| t.parse().unwrap())
         .collect();
