@@ -465,7 +465,8 @@ pub fn run(
     };
     let mut stems = Vec::with_capacity(placed.len() * 6);
     let mut decisions = 0;
-    for p in &placed {
+    // A 3D tree's stems are in `space`, with their third coordinates.
+    for p in placed.iter().filter(|_| drawn.space.is_none()) {
         stems.extend([
             round(p.from.x),
             round(p.from.y),

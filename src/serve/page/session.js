@@ -80,7 +80,8 @@ export function createSession(app) {
     if (answer.ok) {
       // Digits, exact at any depth (a JS number is exact only to 2^53).
       parts.push(`${answer.stems_exact ? '' : 'at least '}${answer.stems} stems`);
-      if (answer.growth && answer.growth.decisions) parts.push(`${answer.growth.decisions} growth decisions`);
+      const decisions = answer.space ? answer.space.decisions : answer.growth && answer.growth.decisions;
+      if (decisions) parts.push(`${decisions} growth decisions`);
     } else {
       parts.push(state.otherFile ? 'errors: no picture of this file yet' : 'errors: the last good picture is shown');
     }
