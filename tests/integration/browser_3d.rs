@@ -529,3 +529,79 @@ fn the_static_site_shows_a_3d_file_in_chromium() {
         let _ = c.close().await;
     });
 }
+
+/// The issue's oak (examples/oak3d.od) grows in its volumes in the editor
+/// and replays: its stems as many as `stlc check` says it grows, each
+/// decision adding one application of `R1: [+F][-F][&F]` (three stems)
+/// to the seed's ten, the last decision the whole tree again.
+#[test]
+fn the_3d_oak_grows_and_replays_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let file = tmp.path().join("oak3d.od");
+    std::fs::copy(manifest_path("examples/oak3d.od"), &file).unwrap();
+    let check = String::from_utf8(crate::support::stlc_stdout(&[
+        "check",
+        file.to_str().unwrap(),
+    ]))
+    .unwrap();
+    // "grows       5656 stems (bfs)" and "1882 fits".
+    let grows: usize = check
+        .split("grows")
+        .nth(1)
+        .and_then(|t| t.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    let fits: usize = check
+        .split(" fits")
+        .next()
+        .and_then(|t| t.rsplit(' ').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(grows, 10 + 3 * fits, "{check}");
+    let server = Server::start(&[file.to_str().unwrap()]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        let opened = settled(&c).await;
+        assert_eq!(opened["ok"], true, "{opened}");
+        let space = js(
+            &c,
+            "const s = window.stlc.state.answer.space;
+             return {stems: s.stems.length / 8, decisions: s.decisions, volumes: s.volumes.map((v) => v.type),
+                     shown: !document.getElementById('view3d').hidden};",
+        )
+        .await;
+        assert_eq!(space["stems"], json!(grows));
+        assert_eq!(space["decisions"], json!(fits));
+        assert_eq!(space["volumes"], json!(["Cylinder", "Revolve"]));
+        assert_eq!(space["shown"], true);
+        let whole = pixels(&c).await;
+        shot(&c, "3d-08-oak").await;
+        let step = |k: usize| {
+            format!(
+                "const s = document.getElementById('step'); s.value = {k};
+                 s.dispatchEvent(new Event('input'));
+                 return [document.getElementById('step-label').textContent, window.stlc.view3d.pixels()];"
+            )
+        };
+        let seed = js(&c, &step(0)).await;
+        assert_eq!(seed[0], format!("decision 0 of {fits} · 10 stems"));
+        let one = js(&c, &step(1)).await;
+        assert_eq!(one[0], format!("decision 1 of {fits} · 13 stems"));
+        assert_ne!(one[1]["sum"], seed[1]["sum"]);
+        let half = js(&c, &step(fits / 2)).await;
+        assert_eq!(
+            half[0],
+            format!("decision {} of {fits} · {} stems", fits / 2, 10 + 3 * (fits / 2))
+        );
+        shot(&c, "3d-09-oak-half-grown").await;
+        let all = js(&c, &step(fits)).await;
+        assert_eq!(all[1], whole, "the whole tree again");
+        let _ = c.close().await;
+    });
+}
