@@ -31,7 +31,10 @@
 //!   empty last slot writes nothing. Drawing runs, `[I n X]` and fixed
 //!   figures get their own lines. In a BED every term is written in full
 //!   (`R1{,}`); a growth point of an OD (`bare`) stays a bare name;
-//! - layout shapes in the spelling they were read in;
+//! - layout shapes in the spelling they were read in; a 3D layout's
+//!   volumes as section 11 spells them (`Extrude <Ellipse (0, 0), 10, 20>,
+//!   -5, 5`, the inner shape in its start-and-size spelling);
+//! - a 3D description's roots with three coordinates and its `D=`;
 //! - numbers with at most three decimals, integers without a dot (the root
 //!   and the stem parameters with more when three would change them: the
 //!   BED must draw the tree that grew); LF line
@@ -50,7 +53,9 @@ use std::fmt::Write as _;
 
 use crate::model::seed_walk::{At, SeedStep, SeedWalk};
 use crate::model::walk::{self, Step};
-use crate::model::{Body, Description, Fixed, LayoutShape, Repeat, Seed, Shape, Spelling, Term};
+use crate::model::{
+    Body, Description, Fixed, LayoutShape, Repeat, Seed, Shape, Solid, Spelling, Term,
+};
 
 /// Writes `desc` as a `.bed` file: header, rules, one seed term per line
 /// indented by depth, at most three decimals, LF line ends, trailing newline.
@@ -59,9 +64,10 @@ pub fn write(desc: &Description) -> String {
     let mut out = String::new();
     out.push_str(&desc.name);
     out.push('\n');
-    let _ = write!(out, "({}, {})", exact(desc.root.0), exact(desc.root.1));
+    out.push_str(&root(desc.root, desc.root_z));
     for t in &desc.forest {
-        let _ = write!(out, " ({}, {})", exact(t.root.0), exact(t.root.1));
+        out.push(' ');
+        out.push_str(&root(t.root, t.root_z));
     }
     out.push('\n');
     let p = &desc.params;
@@ -78,6 +84,9 @@ pub fn write(desc: &Description) -> String {
     }
     if let Some(c) = p.clearance {
         let _ = write!(out, " C={}", exact(c));
+    }
+    if let Some(d) = p.divergence {
+        let _ = write!(out, " D={}", exact(d));
     }
     if let Some(s) = &p.stroke {
         let _ = write!(out, " S={}", s.text);
@@ -112,9 +121,20 @@ pub fn write(desc: &Description) -> String {
             out.push_str(&shape_line(s));
             out.push('\n');
         }
+        for s in &layout.solids {
+            let _ = writeln!(out, "({}) {}", s.color_text, solid(&s.solid));
+        }
         out.push_str("ENDLAYOUT\n");
     }
     out
+}
+
+/// A root: `(x, y)`, or `(x, y, z)` in a 3D description.
+fn root((x, y): (f64, f64), z: Option<f64>) -> String {
+    match z {
+        Some(z) => format!("({}, {}, {})", exact(x), exact(y), exact(z)),
+        None => format!("({}, {})", exact(x), exact(y)),
+    }
 }
 
 /// A probability: up to six decimals (they must sum to 1 within 1e-6),
@@ -318,6 +338,47 @@ fn shape_line(s: &LayoutShape) -> String {
         format!("({}) <{}>", s.color_text, body)
     } else {
         format!("({}) {}", s.color_text, body)
+    }
+}
+
+/// A volume as section 11 spells it; an extruded or revolved shape in
+/// angle brackets, in its start-and-size spelling (a round rectangle with
+/// two corner radii, a polygon: their own).
+fn solid(s: &Solid) -> String {
+    let n = |v: f64| num(v);
+    let p = |v: [f64; 3]| format!("({}, {}, {})", n(v[0]), n(v[1]), n(v[2]));
+    match s {
+        Solid::Box { corner, size } => format!(
+            "Box {}, {}, {}, {}",
+            p(*corner),
+            n(size[0]),
+            n(size[1]),
+            n(size[2])
+        ),
+        Solid::Sphere { centre, r } => format!("Sphere {}, {}", p(*centre), n(*r)),
+        Solid::Ellipsoid { centre, radii } => format!(
+            "Ellipsoid {}, {}, {}, {}",
+            p(*centre),
+            n(radii[0]),
+            n(radii[1]),
+            n(radii[2])
+        ),
+        Solid::Cylinder { base, r, h } => format!("Cylinder {}, {}, {}", p(*base), n(*r), n(*h)),
+        Solid::Extrude { shape: s, z1, z2 } => format!(
+            "Extrude <{}>, {}, {}",
+            shape(s, canonical(s)),
+            n(*z1),
+            n(*z2)
+        ),
+        Solid::Revolve { shape: s } => format!("Revolve <{}>", shape(s, canonical(s))),
+    }
+}
+
+/// The spelling a shape inside a volume is written in.
+fn canonical(s: &Shape) -> Spelling {
+    match s {
+        Shape::Polygon(_) => Spelling::Points,
+        _ => Spelling::StartSize,
     }
 }
 

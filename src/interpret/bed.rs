@@ -166,24 +166,77 @@ pub fn tree_ops(
     progress: &mut dyn Progress,
     sink: &mut dyn FnMut(Emit) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
+    stream(bed, strategy, limits, progress, &mut |e| match e {
+        Event::Tree(_, root) => sink(Emit::Tree(root)),
+        Event::Op(op) => sink(Emit::Op(op)),
+    })
+}
+
+/// A turtle operation a BED's stream is made of: the 2D [`Op`], or a 3D
+/// BED's ([`super::bed3::Op3s`]: `& ^ \ /` turn, and a rule application
+/// also rolls by `D=`).
+pub trait StlOp: Copy {
+    /// The operation of a drawing component, if it has one.
+    fn of_byte(c: u8) -> Option<Self>;
+    /// A rule application starts.
+    const ENTER: Self;
+    /// It ends.
+    const LEAVE: Self;
+    /// `[`.
+    const PUSH: Self;
+    /// `]`.
+    const POP: Self;
+}
+
+impl StlOp for Op {
+    #[inline]
+    fn of_byte(c: u8) -> Option<Op> {
+        Op::of_stl(char::from(c))
+    }
+    const ENTER: Op = Op::Enter;
+    const LEAVE: Op = Op::Leave;
+    const PUSH: Op = Op::Push;
+    const POP: Op = Op::Pop;
+}
+
+/// What [`stream`] emits: a tree starts (its index in
+/// [`Description::trees`] and its root), or an operation.
+#[derive(Debug, Clone, Copy)]
+pub enum Event<O> {
+    /// Tree `i` starts at this root (its `x` and `y`), before its
+    /// operations.
+    Tree(usize, Point),
+    /// A turtle operation.
+    Op(O),
+}
+
+/// [`tree_ops`] for either kind of operation: every tree's operations, in
+/// root order, each tree announced with its index.
+pub fn stream<O: StlOp>(
+    bed: &Bed,
+    strategy: Derivation,
+    limits: &Limits,
+    progress: &mut dyn Progress,
+    sink: &mut dyn FnMut(Event<O>) -> Result<(), Diagnostics>,
+) -> Result<(), Diagnostics> {
     let desc = bed.description();
     let total = bed.size().symbols;
     progress.start("symbols", total);
     let mut done = 0u64;
     let mut r = Ok(());
-    for (root, seed) in desc.trees() {
+    for (i, (root, seed)) in desc.trees().into_iter().enumerate() {
         let Some(seed) = seed else { continue };
         let seed: &Seed = &seed;
-        r = sink(Emit::Tree(Point::new(root.0, root.1)));
+        r = sink(Event::Tree(i, Point::new(root.0, root.1)));
         if r.is_err() {
             break;
         }
-        let mut counted = |op: Op| -> Result<(), Diagnostics> {
+        let mut counted = |op: O| -> Result<(), Diagnostics> {
             done += 1;
             if done.is_multiple_of(PROGRESS_EVERY) {
                 progress.update(done);
             }
-            sink(Emit::Op(op))
+            sink(Event::Op(op))
         };
         r = match strategy {
             Derivation::Dfs => dfs(desc, seed, &mut counted),
@@ -197,16 +250,17 @@ pub fn tree_ops(
     r
 }
 
+#[cfg(test)]
 fn op_of(c: u8) -> Option<Op> {
     Op::of_stl(char::from(c))
 }
 
-fn emit_text(
+fn emit_text<O: StlOp>(
     text: &str,
-    sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
+    sink: &mut dyn FnMut(O) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     for b in text.bytes() {
-        if let Some(op) = op_of(b) {
+        if let Some(op) = O::of_byte(b) {
             sink(op)?;
         }
     }
@@ -259,10 +313,10 @@ impl<'a> Child<'a> {
 }
 
 /// Emits the operations of the fixed figure `f`, reusing `word`'s stack.
-fn emit_fixed<'a>(
+fn emit_fixed<'a, O: StlOp>(
     f: &'a Fixed,
     word: &mut Option<FixedWord<'a>>,
-    sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
+    sink: &mut dyn FnMut(O) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     let word = match word {
         Some(w) => {
@@ -272,7 +326,7 @@ fn emit_fixed<'a>(
         None => word.insert(FixedWord::new(f)),
     };
     for c in word {
-        if let Some(op) = op_of(c) {
+        if let Some(op) = O::of_byte(c) {
             sink(op)?;
         }
     }
@@ -284,19 +338,19 @@ fn emit_fixed<'a>(
 /// per rule application in progress, so memory grows with nesting depth
 /// only. A fixed figure is streamed whole when it is met (it holds no rule
 /// application), by one [`FixedWord`] reused for every figure.
-fn dfs(
+fn dfs<O: StlOp>(
     desc: &Description,
     seed: &Seed,
-    sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
+    sink: &mut dyn FnMut(O) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
     let mut fixed: Option<FixedWord<'_>> = None;
     SeedWalk::drawing(seed, &desc.rules, Points::Expand).try_each(|step| match step {
         SeedStep::Run(r) => emit_text(&r.text, sink),
         SeedStep::Fixed(f) => emit_fixed(f, &mut fixed, sink),
-        SeedStep::Term { .. } | SeedStep::Level { .. } => sink(Op::Enter),
-        SeedStep::End { .. } => sink(Op::Leave),
-        SeedStep::Open => sink(Op::Push),
-        SeedStep::Close => sink(Op::Pop),
+        SeedStep::Term { .. } | SeedStep::Level { .. } => sink(O::ENTER),
+        SeedStep::End { .. } => sink(O::LEAVE),
+        SeedStep::Open => sink(O::PUSH),
+        SeedStep::Close => sink(O::POP),
         // Not in drawing order with repeats expanded.
         SeedStep::Repeat { .. } | SeedStep::Empty { .. } => Ok(()),
     })
@@ -304,8 +358,8 @@ fn dfs(
 
 /// One symbol of the breadth-first word.
 #[derive(Clone, Copy)]
-enum Sym<'a> {
-    Op(Op),
+enum Sym<'a, O> {
+    Op(O),
     Apply(Child<'a>),
 }
 
@@ -328,30 +382,34 @@ fn check_word(len: u64, limits: &Limits) -> Result<(), Diagnostics> {
 }
 
 /// Appends the drawing components of `text` to `word`.
-fn push_text(word: &mut Vec<Sym<'_>>, text: &str) {
-    word.extend(text.bytes().filter_map(op_of).map(Sym::Op));
+fn push_text<O: StlOp>(word: &mut Vec<Sym<'_, O>>, text: &str) {
+    word.extend(text.bytes().filter_map(O::of_byte).map(Sym::Op));
 }
 
 /// Appends the fixed figure `f`, whole: it holds no rule application, so it
 /// is drawn at the level that meets it. Its length is checked against
 /// `limits.max_word` before it is built.
-fn push_fixed(word: &mut Vec<Sym<'_>>, f: &Fixed, limits: &Limits) -> Result<(), Diagnostics> {
+fn push_fixed<O: StlOp>(
+    word: &mut Vec<Sym<'_, O>>,
+    f: &Fixed,
+    limits: &Limits,
+) -> Result<(), Diagnostics> {
     let (symbols, _) = walk::fixed_counts(&f.word, f.count);
     check_word((word.len() as u64).saturating_add(symbols), limits)?;
-    word.extend(FixedWord::new(f).filter_map(op_of).map(Sym::Op));
+    word.extend(FixedWord::new(f).filter_map(O::of_byte).map(Sym::Op));
     Ok(())
 }
 
 /// Breadth-first rewriting: the whole word, one level of rule applications
 /// at a time, then interpreted. Every level is checked against
 /// `limits.max_word` as it grows.
-fn bfs(
+fn bfs<O: StlOp>(
     desc: &Description,
     seed: &Seed,
     limits: &Limits,
-    sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
+    sink: &mut dyn FnMut(O) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
-    let mut word: Vec<Sym<'_>> = Vec::new();
+    let mut word: Vec<Sym<'_, O>> = Vec::new();
     // The seed's items: its terms and repeats are rewritten level by level
     // below.
     let mut items = SeedWalk::written(seed);
@@ -369,7 +427,7 @@ fn bfs(
     }
     check_word(word.len() as u64, limits)?;
     while word.iter().any(|s| matches!(s, Sym::Apply(_))) {
-        let mut next: Vec<Sym<'_>> = Vec::with_capacity(word.len() * 2);
+        let mut next: Vec<Sym<'_, O>> = Vec::with_capacity(word.len() * 2);
         for s in &word {
             match *s {
                 Sym::Op(op) => next.push(Sym::Op(op)),
@@ -377,21 +435,21 @@ fn bfs(
                     let Some((rule, slots)) = c.parts(desc) else {
                         continue;
                     };
-                    next.push(Sym::Op(Op::Enter));
+                    next.push(Sym::Op(O::ENTER));
                     for step in walk::steps(&rule.body) {
                         match step {
                             Step::Run(r) => push_text(&mut next, &r.text),
                             Step::Fixed(f) => push_fixed(&mut next, f, limits)?,
-                            Step::Open { .. } => next.push(Sym::Op(Op::Push)),
+                            Step::Open { .. } => next.push(Sym::Op(O::PUSH)),
                             Step::Tip { index, .. } => {
                                 if let Some(c) = slots.child(index) {
                                     next.push(Sym::Apply(c));
                                 }
-                                next.push(Sym::Op(Op::Pop));
+                                next.push(Sym::Op(O::POP));
                             }
                         }
                     }
-                    next.push(Sym::Op(Op::Leave));
+                    next.push(Sym::Op(O::LEAVE));
                 }
             }
             check_word(next.len() as u64, limits)?;

@@ -19,12 +19,14 @@
 //!   `exact_lengths`).
 //! - [`bed`]: expansion of Branch-Expansion Descriptions (`draw`, `expand`,
 //!   `ops`).
+//! - [`bed3`]: a 3D BED (three-coordinate roots) drawn with the 3D turtle.
 //! - [`stats`]: exact word statistics of classic L-systems.
 //!
 //! [`Op`]: crate::turtle::Op
 //! [`Interp`]: crate::turtle::Interp
 
 pub mod bed;
+pub mod bed3;
 pub mod expected;
 pub mod lsys;
 pub mod stats;

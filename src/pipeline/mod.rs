@@ -25,6 +25,7 @@ mod draw;
 mod request;
 mod space;
 mod summary;
+mod tree3;
 
 pub(crate) use draw::{Given, ignored_flags, layout_view, render_tree};
 pub use draw::{Look, Rendered, ShowLayout, TREE_BROWN, image_format, render, style};
@@ -77,6 +78,16 @@ impl Loaded {
             Loaded::Lsys(_) => InputKind::Lsys,
             Loaded::Od(_) => InputKind::Od,
             Loaded::Bed(_) => InputKind::Bed,
+        }
+    }
+
+    /// Whether the input is 3D: an `.lsys` with `dimensions 3`, an OD or
+    /// BED whose roots have three coordinates.
+    pub fn is_3d(&self) -> bool {
+        match self {
+            Loaded::Lsys(sys) => sys.is_3d(),
+            Loaded::Od(d) => d.is_3d(),
+            Loaded::Bed(b) => b.description().is_3d(),
         }
     }
 
@@ -234,7 +245,27 @@ fn grow(
     opts: &GrowOptions,
     progress: &mut dyn Progress,
 ) -> Result<Grown, Diagnostics> {
+    growable(od)?;
     crate::grow::grow(od, opts, &mut Phase::new(progress, "growing"))
+}
+
+/// Refuses to grow a 3D OD while growth is 2D only (issue 26 builds
+/// growth in volumes in `grow`; this check goes when it lands): the 2D
+/// grower would drop its 3D turns and ignore its volumes.
+fn growable(od: &Description) -> Result<(), Diagnostics> {
+    if !od.is_3d() {
+        return Ok(());
+    }
+    Err(Diagnostic::error(crate::diag::StlError::NotYet3d {
+        what: "growing a 3D Outline Description",
+    })
+    .with_span(od.root_loc.0.clone())
+    .with_label("a 3D root")
+    .with_help(
+        "a 3D BED (its decisions written out) can be drawn, viewed and meshed today; \
+         or give the root two coordinates to grow the tree in 2D",
+    )
+    .into())
 }
 
 // --------------------------------------------------------------- scene --
@@ -321,6 +352,7 @@ fn traced_scene(
         return Ok((scene(loaded, req, progress)?, None, None));
     };
     let (grown, traced) = if trace {
+        growable(&od)?;
         let (grown, placed) =
             crate::grow::grow_traced(&od, &req.grow, &mut Phase::new(progress, "growing"))?;
         let text = crate::bed::write::write(grown.bed.description());
@@ -446,6 +478,9 @@ pub fn expand(
             out,
             progress,
         ),
+        What::Tree { bed, .. } if bed.description().is_3d() => {
+            crate::interpret::bed3::expand3(bed, scene.derivation, &scene.limits, out, progress)
+        }
         What::Tree { bed, .. } => {
             crate::interpret::bed::expand(bed, scene.derivation, &scene.limits, out, progress)
         }

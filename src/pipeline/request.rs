@@ -213,10 +213,10 @@ impl Request {
         let (limits, _) = self.options(&Design::default())?;
         let loaded = load(&self.input, self.input_kind()?, &limits)?.seeded(self.seed);
         let mut warnings = ignored_flags(&loaded, &self.given());
-        if self.view.is_some() && !matches!(&loaded, Loaded::Lsys(s) if s.is_3d()) {
+        if self.view.is_some() && !loaded.is_3d() {
             warnings.push(Diagnostic::warning(ErrorKind::IgnoredFlag {
                 flag: "--view".into(),
-                reason: "this input is flat: its picture is its front view (`dimensions 3` makes an .lsys 3D)".into(),
+                reason: "this input is flat: its picture is its front view (`dimensions 3` makes an .lsys 3D, a root `(x, y, z)` an .od or .bed)".into(),
             }));
         }
         if self.look.show_layout == ShowLayout::Yes && !has_layout(&loaded) {
@@ -253,9 +253,9 @@ impl Request {
         let grown = scene.grown_stems();
         let tree_left_out = trace.is_some()
             && matches!((self.tree_up_to, grown), (Some(most), Some(n)) if n > most);
-        let rendered = if super::space::space_lsys(&scene).is_some() {
+        let rendered = if super::tree3::is_3d(&scene) {
             let view = self.view.unwrap_or(View::DEFAULT);
-            super::space::render_view(&scene, view, &self.look, &self.image, out, progress)?
+            super::tree3::render_view(&scene, view, &self.look, &self.image, out, progress)?
         } else {
             super::render_tree(
                 &scene,

@@ -168,7 +168,7 @@ pub(crate) fn mesh(
             &mut keep,
             &mut phase,
         )?;
-    } else {
+    } else if !super::tree3::draw_tree3(scene, &mut keep, &mut phase)? {
         let mut lift = Lift(&mut keep);
         scene.draw(&mut lift, &mut phase)?;
     }

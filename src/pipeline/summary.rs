@@ -21,6 +21,11 @@ pub fn stats(
     json: bool,
     limits: &Limits,
 ) -> Result<String, Diagnostics> {
+    if let Loaded::Bed(bed) = loaded
+        && bed.description().is_3d()
+    {
+        return super::tree3::stats_bed3(bed, json, limits);
+    }
     let Loaded::Lsys(sys) = loaded else {
         return Err(wrong_kind(Command::Stats, loaded.kind()));
     };
@@ -183,7 +188,18 @@ fn stl_summary(
     };
     let _ = writeln!(s, "{what} `{}`: ok", desc.name);
     if desc.forest.is_empty() {
-        let _ = writeln!(s, "  root        ({}, {})", desc.root.0, desc.root.1);
+        match desc.root_z {
+            Some(z) => {
+                let _ = writeln!(
+                    s,
+                    "  root        ({}, {}, {z}) (3D)",
+                    desc.root.0, desc.root.1
+                );
+            }
+            None => {
+                let _ = writeln!(s, "  root        ({}, {})", desc.root.0, desc.root.1);
+            }
+        }
     } else {
         // A few roots say where the forest stands; a root line of
         // thousands would bury the rest of the summary.
@@ -192,7 +208,11 @@ fn stl_summary(
         let mut roots: Vec<String> = trees
             .iter()
             .take(SHOWN)
-            .map(|((x, y), _)| format!("({x}, {y})"))
+            .zip(std::iter::once(desc.root_z).chain(desc.forest.iter().map(|t| t.root_z)))
+            .map(|(((x, y), _), z)| match z {
+                Some(z) => format!("({x}, {y}, {z})"),
+                None => format!("({x}, {y})"),
+            })
             .collect();
         if trees.len() > SHOWN {
             roots.push(format!("... and {} more", trees.len() - SHOWN));
@@ -234,6 +254,14 @@ fn stl_summary(
         let _ = writeln!(s, "  stems       {}", bed.size().stems);
     }
     match &desc.layout {
+        Some(l) if desc.is_3d() => {
+            let _ = writeln!(
+                s,
+                "  layout      {} volume{}",
+                l.solids.len(),
+                crate::diag::plural(l.solids.len(), "s")
+            );
+        }
         Some(l) => {
             let area = match crate::grow::region::Region::from_layout(l, limits.max_layout_vertices)
             {

@@ -101,7 +101,7 @@ pub(crate) fn describe(rule: Rule) -> String {
         // -- od / bed
         Rule::stl_file => "an STL description",
         Rule::stl_tree_name => "a tree name",
-        Rule::stl_root => "a root `(x, y)`",
+        Rule::stl_root => "a root `(x, y)` or `(x, y, z)`",
         Rule::stl_param => "a stem parameter like `L=10(0)`",
         Rule::stl_param_key => "a parameter name",
         Rule::stl_param_dec => "a decrement `(d)`",
@@ -133,8 +133,18 @@ pub(crate) fn describe(rule: Rule) -> String {
                 .iter()
                 .map(|s| format!("`{}`", s.name()))
                 .collect();
-            return format!("a shape name ({})", names.join(", "));
+            let volumes: Vec<String> = stl::SolidName::ALL
+                .iter()
+                .map(|s| format!("`{}`", s.name()))
+                .collect();
+            return format!(
+                "a shape name ({}) or a volume ({})",
+                names.join(", "),
+                volumes.join(", ")
+            );
         }
+        Rule::stl_inner => "a 2D shape like `Ellipse (0,0), 10, 20`",
+        Rule::stl_inner_angled => "`<`",
         Rule::stl_shape_arg => "a shape argument",
         Rule::stl_point_list => "a point `(x, y)`",
 
@@ -153,7 +163,8 @@ pub(crate) fn describe(rule: Rule) -> String {
         | Rule::lsys_comment
         | Rule::stl_name_char
         | Rule::stl_keyword
-        | Rule::stl_body_end => return format!("{rule:?}").replace('_', " "),
+        | Rule::stl_body_end
+        | Rule::stl_turn3 => return format!("{rule:?}").replace('_', " "),
     };
     text.to_string()
 }
@@ -171,7 +182,8 @@ mod tests {
         );
         assert_eq!(
             describe(Rule::stl_shape_name),
-            "a shape name (`Rectangle`, `RoundRect`, `Ellipse`, `Polygon`)"
+            "a shape name (`Rectangle`, `RoundRect`, `Ellipse`, `Polygon`) or a volume \
+             (`Box`, `Sphere`, `Ellipsoid`, `Cylinder`, `Extrude`, `Revolve`)"
         );
     }
 

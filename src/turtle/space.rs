@@ -392,4 +392,26 @@ mod tests {
             assert_eq!((a.to.x, a.to.y, 0.0), (b.to.x, b.to.y, b.to.z));
         }
     }
+
+    /// The divergence `D=` as [`Turtle3::roll_by`] applies it, by hand: at
+    /// 90 degrees after `F` at (0, -1, 0), rolling makes L = L*0 - U*1 =
+    /// (0, 0, 1), so `+` heads along it and the next `F` ends at
+    /// (0, -1, 1), where `F\+F` ends; rolling twice makes L = -L, and `+`
+    /// then heads right.
+    #[test]
+    fn rolling_by_an_angle_is_a_backslash_by_it() {
+        let mut t = Turtle3::new(90.0, 90.0, 1.0, |_| {});
+        t.apply(Op3::Draw);
+        t.roll_by(0.0, 1.0);
+        t.apply(Op3::Turn(1));
+        t.apply(Op3::Draw);
+        assert_eq!(t.state.pos, Point3::new(0.0, -1.0, 1.0));
+        assert_eq!(t.state.pos, end("F\\+F"));
+        let mut t = Turtle3::new(90.0, 90.0, 1.0, |_| {});
+        t.roll_by(0.0, 1.0);
+        t.roll_by(0.0, 1.0);
+        t.apply(Op3::Turn(1));
+        t.apply(Op3::Draw);
+        assert_eq!(t.state.pos, Point3::new(1.0, 0.0, 0.0));
+    }
 }

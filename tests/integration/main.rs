@@ -28,6 +28,7 @@ mod space;
 mod stl;
 mod stochastic;
 mod support;
+mod tree3d;
 
 use std::collections::BTreeSet;
 

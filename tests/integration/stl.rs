@@ -13,8 +13,9 @@ use stlc::interpret::Derivation;
 use stlc::interpret::bed::{draw_into, expand};
 use stlc::limits::{Bound, Limits};
 use stlc::model::{
-    Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, Loc, Piece,
-    Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Spelling, StemParams, TermId, Terms,
+    Body, BodyItem, Branch, Description, DrawRun, Fixed, Format, Layout, LayoutShape, LayoutSolid,
+    Loc, Piece, Repeat, RuleDef, RuleId, RuleRef, Seed, SeedItem, Shape, Solid, Spelling,
+    StemParams, TermId, Terms,
 };
 use stlc::num::Linear;
 use stlc::progress::NoProgress;
@@ -79,6 +80,23 @@ fn segments(d: &Description, strategy: Derivation) -> Result<Vec<Segment>, Diagn
         &mut NoProgress,
     )
     .map(|r| r.segments)
+}
+
+/// A 3D description's stems, drawn by the 3D interpreter.
+fn segments3(
+    d: &Description,
+    strategy: Derivation,
+) -> Result<Vec<stlc::turtle::space::Segment3>, Diagnostics> {
+    let bed = Bed::new(d.clone(), &Limits::default())?;
+    let mut out = Vec::new();
+    stlc::interpret::bed3::draw3(
+        &bed,
+        strategy,
+        &Limits::default(),
+        &mut |s| out.push(s),
+        &mut NoProgress,
+    )?;
+    Ok(out)
 }
 
 const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
@@ -757,8 +775,9 @@ fn nesting_of_a_hundred_thousand_is_refused_before_parsing() {
 // ------------------------------------------------------------ proptests --
 
 /// A small deterministic generator of BEDs (xorshift), so a failing case is
-/// reproducible from its seed.
-struct Gen(u64);
+/// reproducible from its seed; the flag makes a 3D BED (its drawing with
+/// `& ^ \ /`).
+struct Gen(u64, bool);
 
 impl Gen {
     fn next(&mut self) -> u64 {
@@ -785,8 +804,13 @@ impl Gen {
         (1 + self.below(hi * 8)) as f64 / 8.0
     }
     fn letters(&mut self, max: u64) -> String {
+        let symbols: &[&str] = if self.1 {
+            &["F", "f", "+", "-", "L", "R", "|", "F", "&", "^", "\\", "/"]
+        } else {
+            &["F", "f", "+", "-", "L", "R", "|", "F"]
+        };
         (0..1 + self.below(max))
-            .map(|_| self.pick(&["F", "f", "+", "-", "L", "R", "|", "F"]))
+            .map(|_| self.pick(symbols))
             .collect()
     }
     /// Drawing with balanced nested brackets.
@@ -930,8 +954,53 @@ fn gen_shape(g: &mut Gen) -> LayoutShape {
     }
 }
 
+/// A volume of a 3D layout, sizes in eighths (exact, positive).
+fn gen_solid(g: &mut Gen) -> LayoutSolid {
+    let color_text = g.pick(&["clGreen", "clWhite", "#00ff00", "clRed", "#abc"]);
+    let mut p = || [g.eighth(100) - 50.0, g.eighth(100), g.eighth(40) - 20.0];
+    let point = p();
+    let solid = match g.below(6) {
+        0 => Solid::Box {
+            corner: point,
+            size: [g.eighth(50), g.eighth(50), g.eighth(50)],
+        },
+        1 => Solid::Sphere {
+            centre: point,
+            r: g.eighth(50),
+        },
+        2 => Solid::Ellipsoid {
+            centre: point,
+            radii: [g.eighth(50), g.eighth(50), g.eighth(50)],
+        },
+        3 => Solid::Cylinder {
+            base: point,
+            r: g.eighth(20),
+            h: g.eighth(80),
+        },
+        4 => {
+            let z1 = g.eighth(40) - 40.0;
+            Solid::Extrude {
+                shape: gen_shape(g).shape,
+                z1,
+                z2: z1 + g.eighth(40),
+            }
+        }
+        _ => Solid::Revolve {
+            shape: gen_shape(g).shape,
+        },
+    };
+    LayoutSolid {
+        color: Rgb::parse(color_text).unwrap(),
+        color_text: color_text.to_string(),
+        solid,
+        loc: Loc::default(),
+    }
+}
+
 fn gen_description(seed: u64) -> Description {
-    let mut g = Gen(seed | 1);
+    let mut g = Gen(seed | 1, false);
+    g.1 = g.chance(40);
+    let three = g.1;
     let pool = ["R1", "R2", "Crown", "FL", "Rn_2"];
     let n = 1 + g.below(3) as usize;
     let start = g.below(pool.len() as u64) as usize;
@@ -978,24 +1047,52 @@ fn gen_description(seed: u64) -> Description {
             }
         }
     }
-    let layout = g.chance(60).then(|| Layout {
-        shapes: (0..g.below(4)).map(|_| gen_shape(&mut g)).collect(),
-        solids: Vec::new(),
+    let layout = g.chance(60).then(|| match three {
+        false => Layout {
+            shapes: (0..g.below(4)).map(|_| gen_shape(&mut g)).collect(),
+            solids: Vec::new(),
+            loc: Loc::default(),
+        },
+        true => Layout {
+            shapes: Vec::new(),
+            solids: (0..g.below(4)).map(|_| gen_solid(&mut g)).collect(),
+            loc: Loc::default(),
+        },
+    });
+    let root_z = three.then(|| g.milli(-100, 100));
+    let divergence = (three && g.chance(60)).then(|| g.milli(-360, 360));
+    let seed = g.chance(90).then_some(Seed {
+        items,
+        terms,
         loc: Loc::default(),
     });
+    // A 3D forest: a second root, with a seed of its own.
+    let forest = match (three && g.chance(30), &seed) {
+        (true, Some(_)) => vec![stlc::model::Tree {
+            root: (g.milli(-100, 100), g.milli(-100, 100)),
+            root_z: Some(g.milli(-100, 100)),
+            root_loc: Loc::default(),
+            seed: Some(Seed {
+                items: vec![SeedItem::Draw(Box::new(run(g.drawing())))],
+                terms: Terms::new(),
+                loc: Loc::default(),
+            }),
+        }],
+        _ => Vec::new(),
+    };
     Description {
         format: Format::Bed,
         name: g.pick(&["T", "2DTree", "tree_1"]).to_string(),
         name_loc: Loc::default(),
         root: (g.milli(-100, 100), g.milli(-100, 100)),
-        root_z: None,
+        root_z,
         root_loc: Loc::default(),
         params: StemParams {
             length: Linear::new(g.milli(20, 100), g.milli(0, 2)),
             width: Linear::new(g.milli(1, 10), if g.chance(50) { 0.0 } else { 0.125 }),
             angle: g.chance(50).then(|| g.milli(0, 90)),
             clearance: g.chance(50).then(|| g.milli(0, 5)),
-            divergence: None,
+            divergence,
             stroke: g.chance(30).then(|| stlc::model::Colour {
                 rgb: Some(stlc::color::Rgb::new(0x80, 0, 0)),
                 text: g.pick(&["clMaroon", "#800000"]).to_string(),
@@ -1014,14 +1111,46 @@ fn gen_description(seed: u64) -> Description {
             loc: Loc::default(),
         },
         rules,
-        seed: g.chance(90).then_some(Seed {
-            items,
-            terms,
-            loc: Loc::default(),
-        }),
+        seed,
         layout,
-        forest: Vec::new(),
+        forest,
     }
+}
+
+fn solid_kind(s: &Solid) -> usize {
+    match s {
+        Solid::Box { .. } => 0,
+        Solid::Sphere { .. } => 1,
+        Solid::Ellipsoid { .. } => 2,
+        Solid::Cylinder { .. } => 3,
+        Solid::Extrude { .. } => 4,
+        Solid::Revolve { .. } => 5,
+    }
+}
+
+/// The round trip's generator makes 3D descriptions too: roots with z, a
+/// forest, `D=`, volumes of every kind and 3D turns in bodies and seeds.
+#[test]
+fn the_generator_makes_3d_descriptions_with_everything_3d() {
+    let (mut roots, mut forests, mut divergences, mut turns) = (0, 0, 0, 0);
+    let mut kinds = std::collections::BTreeSet::new();
+    for seed in 0..400 {
+        let d = gen_description(seed);
+        if !d.is_3d() {
+            continue;
+        }
+        roots += 1;
+        forests += usize::from(d.forest.iter().any(|t| t.root_z.is_some()));
+        divergences += usize::from(d.params.divergence.is_some());
+        let text = write(&d);
+        turns += usize::from(text.contains('&') || text.contains('\\'));
+        for s in d.layout.iter().flat_map(|l| &l.solids) {
+            kinds.insert(solid_kind(&s.solid));
+        }
+        assert_eq!(bed(&text), d, "{text}");
+    }
+    assert!(roots > 100 && forests > 10 && divergences > 50 && turns > 50);
+    assert_eq!(kinds.len(), 6);
 }
 
 proptest! {
@@ -1045,6 +1174,9 @@ proptest! {
         let a = segments(&d, Derivation::Dfs);
         let b = segments(&d, Derivation::Bfs);
         prop_assert_eq!(&a, &b);
+        if d.is_3d() {
+            prop_assert_eq!(segments3(&d, Derivation::Dfs), segments3(&d, Derivation::Bfs));
+        }
         if a.is_ok() {
             prop_assert_eq!(expanded(&d, Derivation::Dfs), expanded(&d, Derivation::Bfs));
         }
@@ -1067,4 +1199,175 @@ fn the_example_files_parse_and_expand_as_the_paper_says() {
     );
     let od = parse(&read("2dtree.od"), Format::Od, &Limits::default()).unwrap();
     assert_eq!(od.layout.unwrap().shapes.len(), 3);
+}
+
+// ---------------------------------------------------------------- 3D --
+
+/// Section 11's 3D header and volumes, read as written; both spellings of
+/// `Extrude` (plain, the last two numbers z1 and z2, or the shape in angle
+/// brackets) are the same volume.
+#[test]
+fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
+    let d = bed(
+        "Oak (150, 298, 0) (60, 280, -12.5) L=10(1) B=2(0.2) A=30 D=137.5 \
+         RULE R1: [+F&F][-F^F][\\F/F] SEED F R1{,,} ENDSEED SEED F ENDSEED \
+         LAYOUT (clGreen) Box (1, 2, 3), 4, 5, 6 \
+         (clWhite) Sphere (150, 150, 0), 40 \
+         (#00ff00) Ellipsoid (1, 2, 3), 4, 5, 6 \
+         (clGreen) Cylinder (150, 298, 0), 10, 60 \
+         (clGreen) Extrude Ellipse (50, 40), 200, 180, -30, 30 \
+         (clGreen) Extrude <Ellipse (50, 40), 200, 180>, -30, 30 \
+         (clGreen) <Revolve <RoundRect (0, 0), 10, 20, 2>> \
+         ENDLAYOUT",
+    );
+    assert_eq!((d.root, d.root_z), ((150.0, 298.0), Some(0.0)));
+    assert_eq!(d.forest[0].root_z, Some(-12.5));
+    assert_eq!(d.params.divergence, Some(137.5));
+    let l = d.layout.as_ref().unwrap();
+    assert!(l.shapes.is_empty());
+    let solids: Vec<&Solid> = l.solids.iter().map(|s| &s.solid).collect();
+    let ellipse = Shape::Ellipse {
+        x: 50.0,
+        y: 40.0,
+        w: 200.0,
+        h: 180.0,
+    };
+    assert_eq!(
+        solids,
+        [
+            &Solid::Box {
+                corner: [1.0, 2.0, 3.0],
+                size: [4.0, 5.0, 6.0]
+            },
+            &Solid::Sphere {
+                centre: [150.0, 150.0, 0.0],
+                r: 40.0
+            },
+            &Solid::Ellipsoid {
+                centre: [1.0, 2.0, 3.0],
+                radii: [4.0, 5.0, 6.0]
+            },
+            &Solid::Cylinder {
+                base: [150.0, 298.0, 0.0],
+                r: 10.0,
+                h: 60.0
+            },
+            &Solid::Extrude {
+                shape: ellipse.clone(),
+                z1: -30.0,
+                z2: 30.0
+            },
+            &Solid::Extrude {
+                shape: ellipse,
+                z1: -30.0,
+                z2: 30.0
+            },
+            &Solid::Revolve {
+                shape: Shape::RoundRect {
+                    x: 0.0,
+                    y: 0.0,
+                    w: 10.0,
+                    h: 20.0,
+                    rx: 2.0,
+                    ry: 2.0
+                }
+            },
+        ]
+    );
+    assert_eq!(l.solids[1].color, Rgb::WHITE);
+    let text = write(&d);
+    assert!(
+        text.starts_with("Oak\n(150, 298, 0) (60, 280, -12.5)\nL=10(1) B=2(0.2) A=30 D=137.5\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("(clGreen) Extrude <Ellipse (50, 40), 200, 180>, -30, 30\n"),
+        "{text}"
+    );
+    assert!(text.contains("R1: [+F&F][-F^F][\\F/F]\n"), "{text}");
+    assert_eq!(bed(&text), d);
+}
+
+/// Mixing 2D and 3D: each mistake is reported where it is, and the 2D
+/// forms keep working in a 2D file.
+#[test]
+fn mixing_2d_and_3d_is_reported_where_it_happens() {
+    let one = |src: &str| {
+        let e = errors(src);
+        (e.0[0].kind.clone(), e.0[0].span.clone().unwrap())
+    };
+    let src = "T (0, 0, 0) (1, 1) RULE R1: [F]";
+    let at = src.find("(1, 1)").unwrap();
+    assert_eq!(
+        one(src),
+        (
+            ErrorKind::Stl(StlError::MixedRoots { first: 3, this: 2 }),
+            at..at + 6
+        )
+    );
+    let src = "T (0, 0) RULE R1: [F/F]";
+    let at = src.find('/').unwrap();
+    let (kind, span) = one(src);
+    assert_eq!(span, at..at + 1);
+    assert!(matches!(kind, ErrorKind::Stl(StlError::Needs3d { .. })));
+    let e = errors(src);
+    assert!(e.0[0].help.as_deref().unwrap().contains("`(0, 0, 0)`"));
+    // In a seed and in `[I n w]` alike.
+    let src = "T (0, 0) RULE R1: [F] SEED [I 2 F^F] ENDSEED";
+    assert_eq!(one(src).1, src.find('^').map(|a| a..a + 1).unwrap());
+    let src = "T (0, 0) D=5 RULE R1: [F]";
+    let at = src.find("D=5").unwrap();
+    assert_eq!(one(src).1, at..at + 3);
+    let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Rectangle (0, 0), 5, 5 ENDLAYOUT";
+    let at = src.find("Rectangle").unwrap();
+    let e = errors(src);
+    assert_eq!(
+        e.0[0].kind,
+        ErrorKind::Layout(LayoutError::FlatShapeIn3d { shape: "Rectangle" })
+    );
+    assert_eq!(e.0[0].span, Some(at..src.find(" ENDLAYOUT").unwrap()));
+    let help = e.0[0].help.as_deref().unwrap();
+    assert!(
+        help.contains("`Extrude Rectangle (0, 0), 5, 5, z1, z2`")
+            && help.contains("`Revolve Rectangle (0, 0), 5, 5`"),
+        "{help}"
+    );
+    let src = "T (0, 0) RULE R1: [F] LAYOUT (clGreen) Sphere (0, 0, 0), 5 ENDLAYOUT";
+    assert_eq!(
+        one(src).0,
+        ErrorKind::Layout(LayoutError::SolidIn2d { shape: "Sphere" })
+    );
+    // Sizes and depths.
+    let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Box (0, 0, 0), 5, 0, 5 ENDLAYOUT";
+    let at = src.find("5, 0, 5").unwrap() + 3;
+    assert_eq!(
+        one(src),
+        (
+            ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
+                shape: "Box",
+                what: "height"
+            }),
+            at..at + 1
+        )
+    );
+    let src =
+        "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Extrude Ellipse (0, 0), 5, 5, 3, 3 ENDLAYOUT";
+    assert_eq!(one(src).0, ErrorKind::Layout(LayoutError::ExtrudeRange));
+    for bad in [
+        "Sphere (0, 0), 5",
+        "Sphere (0, 0, 0), 5, 6",
+        "Extrude Ellipse (0, 0), 5, 5",
+        "Revolve <Ellipse (0, 0), 5, 5>, 1",
+        "Extrude Sphere (0, 0, 0), 5, 1, 2",
+        "Box Ellipse (0, 0), 5, 5",
+    ] {
+        let src = format!("T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) {bad} ENDLAYOUT");
+        assert!(
+            matches!(
+                one(&src).0,
+                ErrorKind::Layout(LayoutError::ShapeArguments { .. })
+            ),
+            "{bad}"
+        );
+    }
 }

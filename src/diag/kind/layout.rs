@@ -31,6 +31,21 @@ pub enum LayoutError {
         /// `width`, `height`, `corner width`, `corner height` or `corner radius`.
         what: &'static str,
     },
+    /// A 2D shape in the layout of a 3D description.
+    #[error("`{shape}` is a 2D shape, but this description is 3D")]
+    FlatShapeIn3d {
+        /// The shape's name.
+        shape: &'static str,
+    },
+    /// A volume in the layout of a 2D description.
+    #[error("`{shape}` is a volume: it needs a 3D root")]
+    SolidIn2d {
+        /// The volume's name.
+        shape: &'static str,
+    },
+    /// `Extrude <shape>, z1, z2` with z1 not below z2.
+    #[error("`Extrude` needs z1 below z2")]
+    ExtrudeRange,
     /// A layout shape has a coordinate that is not a finite number.
     #[error("a layout shape has a coordinate that is not a finite number")]
     LayoutNotFinite,

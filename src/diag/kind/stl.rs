@@ -105,6 +105,28 @@ pub enum StlError {
     /// A `{` that follows no rule name.
     #[error("`{{` must follow a rule name")]
     BraceWithoutRule,
+    /// A root of a forest with a different number of coordinates than the
+    /// first (section 11: every root alike).
+    #[error("this root has {this} coordinates, but the first root has {first}")]
+    MixedRoots {
+        /// The first root's coordinates (2 or 3).
+        first: usize,
+        /// This root's.
+        this: usize,
+    },
+    /// Something only a 3D description has (`D=`, a 3D turn `& ^ \ /`)
+    /// in a 2D one.
+    #[error("{what} needs a 3D root")]
+    Needs3d {
+        /// What was written, in words (`` `D=` (divergence) ``).
+        what: String,
+    },
+    /// Something 3D that stlc does not do yet.
+    #[error("{what} is not built yet")]
+    NotYet3d {
+        /// What, in words.
+        what: &'static str,
+    },
     /// A `,` outside any term.
     #[error("`,` outside a term")]
     CommaOutsideTerm,

@@ -23,6 +23,8 @@ pub enum Param {
     Angle,
     /// `C=distance`: the clearance between stems.
     Clearance,
+    /// `D=degrees`: the divergence of a 3D description (section 11).
+    Divergence,
     /// `S=colour`: the stroke colour.
     Stroke,
     /// `G=colour` or `G=none`: the background (ground) colour.
@@ -37,11 +39,12 @@ pub enum Param {
 
 impl Param {
     /// Every parameter, in the order the docs list them.
-    pub const ALL: [Param; 9] = [
+    pub const ALL: [Param; 10] = [
         Param::Length,
         Param::Broadness,
         Param::Angle,
         Param::Clearance,
+        Param::Divergence,
         Param::Stroke,
         Param::Ground,
         Param::Order,
@@ -56,6 +59,7 @@ impl Param {
             Param::Broadness => "B",
             Param::Angle => "A",
             Param::Clearance => "C",
+            Param::Divergence => "D",
             Param::Stroke => "S",
             Param::Ground => "G",
             Param::Order => "O",
@@ -71,6 +75,7 @@ impl Param {
             Param::Broadness => "broadness",
             Param::Angle => "angle",
             Param::Clearance => "clearance",
+            Param::Divergence => "divergence",
             Param::Stroke => "stroke colour",
             Param::Ground => "background colour",
             Param::Order => "growth order",
@@ -263,6 +268,18 @@ impl Builder<'_> {
                 Some(
                     Param::Stroke | Param::Ground | Param::Order | Param::Seed | Param::MaxStems,
                 ) => {}
+                Some(p @ Param::Divergence) => {
+                    self.no_decrement(p, dec.map(|(s, _)| s));
+                    if self.three_d {
+                        out.divergence = Some(v);
+                    } else {
+                        self.needs_3d(
+                            "`D=` (divergence)".into(),
+                            kspan.start..vspan.end,
+                            "divergence turns about the stem in 3D",
+                        );
+                    }
+                }
                 Some(p @ Param::Clearance) => {
                     self.no_decrement(p, dec.map(|(s, _)| s));
                     if v < 0.0 {
@@ -342,7 +359,7 @@ mod tests {
     fn the_parameter_list_reads_as_prose() {
         assert_eq!(
             param_list(),
-            "L (length), B (broadness), A (angle), C (clearance), S (stroke colour), \
+            "L (length), B (broadness), A (angle), C (clearance), D (divergence), S (stroke colour), \
              G (background colour), O (growth order), V (seed) and M (max stems)"
         );
         assert_eq!(Param::from_key("B"), Some(Param::Broadness));

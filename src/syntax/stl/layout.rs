@@ -8,11 +8,12 @@
 use pest::iterators::Pair;
 
 use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
+use super::solid::SolidName;
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, LayoutError, Span, StlError};
 use crate::limits::Bound;
-use crate::model::{Layout, LayoutShape, Loc, Shape, Spelling};
+use crate::model::{Layout, LayoutShape, LayoutSolid, Loc, Shape, Spelling};
 
 /// A shape a layout line may draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -52,7 +53,7 @@ impl ShapeName {
     }
 
     /// Its spellings, for hints.
-    fn usage(self) -> &'static str {
+    pub(super) fn usage(self) -> &'static str {
         match self {
             ShapeName::Rectangle => "`Rectangle (x,y), w, h` or `Rectangle (x1,y1,x2,y2)`",
             ShapeName::Ellipse => "`Ellipse (x,y), w, h` or `Ellipse (x1,y1,x2,y2)`",
@@ -63,7 +64,7 @@ impl ShapeName {
 }
 
 /// A shape argument, with spans: a parenthesised group or a single number.
-enum Arg {
+pub(super) enum Arg {
     Group(Vec<(f64, Span)>),
     Num(f64, Span),
 }
@@ -137,18 +138,22 @@ pub(super) fn prescan_polygons(src: &str, max_vertices: usize) -> Result<(), Dia
 /// Refuses a LAYOUT of more shapes than `--max-layout-shapes` before the
 /// parser reads it: each shape line costs the parser and the model about a
 /// kilobyte however short it is (docs/limits.md). A byte scan of the text
-/// after `LAYOUT` counting shape names.
+/// after `LAYOUT` counting shape and volume names (an extruded or revolved
+/// shape counts twice).
 pub(super) fn prescan_shapes(src: &str, max_shapes: usize) -> Result<(), Diagnostics> {
     let Some(layout) = find_word(src, 0, KW_LAYOUT) else {
         return Ok(());
     };
     let from = layout + KW_LAYOUT.len();
-    let shapes: usize = ShapeName::ALL
+    let names = ShapeName::ALL
         .iter()
-        .map(|s| {
+        .map(|s| s.name())
+        .chain(SolidName::ALL.iter().map(|s| s.name()));
+    let shapes: usize = names
+        .map(|name| {
             let mut n = 0;
             let mut at = from;
-            while let Some(p) = find_word(src, at, s.name()) {
+            while let Some(p) = find_word(src, at, name) {
                 n += 1;
                 at = p + 1;
             }
@@ -210,17 +215,18 @@ impl Builder<'_> {
     pub(super) fn layout(&mut self, p: Pair<'_, Rule>) -> Layout {
         let span = span_of(&p);
         let mut shapes = Vec::new();
+        let mut solids = Vec::new();
         let mut kw = None;
         let mut closed = false;
         for c in p.into_inner() {
             match c.as_rule() {
                 Rule::stl_kw_layout => kw = Some(span_of(&c)),
                 Rule::stl_kw_endlayout => closed = true,
-                Rule::stl_shape_line => {
-                    if let Some(s) = self.shape_line(c) {
-                        shapes.push(s);
-                    }
-                }
+                Rule::stl_shape_line => match self.shape_line(c) {
+                    Some(Line::Shape(s)) => shapes.push(s),
+                    Some(Line::Solid(s)) => solids.push(s),
+                    None => {}
+                },
                 other => not_in_grammar("stl_layout", other),
             }
         }
@@ -237,13 +243,14 @@ impl Builder<'_> {
         }
         Layout {
             shapes,
-            solids: Vec::new(),
+            solids,
             loc: Loc(span),
         }
     }
 
-    /// `(colour) shape` or `(colour)< shape >`.
-    fn shape_line(&mut self, p: Pair<'_, Rule>) -> Option<LayoutShape> {
+    /// `(colour) shape` or `(colour)< shape >`: a 2D shape in a 2D
+    /// description, a volume in a 3D one.
+    fn shape_line(&mut self, p: Pair<'_, Rule>) -> Option<Line> {
         let loc = Loc(span_of(&p));
         let mut it = p.into_inner();
         let col = it
@@ -257,15 +264,44 @@ impl Builder<'_> {
         }
         let color_text = col.as_str().to_string();
         let color = self.colour(&color_text, span_of(&col));
+        if !self.dimensions_fit(&shape) {
+            return None;
+        }
+        if self.three_d {
+            let solid = self.solid(shape)?;
+            return Some(Line::Solid(LayoutSolid {
+                color: color?,
+                color_text,
+                solid,
+                loc,
+            }));
+        }
         let (shape, spelling) = self.shape(shape)?;
-        Some(LayoutShape {
+        Some(Line::Shape(LayoutShape {
             color: color?,
             color_text,
             shape,
             spelling,
             angled,
             loc,
-        })
+        }))
+    }
+
+    /// A shape argument's numbers (`stl_shape_arg`).
+    pub(super) fn arg(&mut self, a: Pair<'_, Rule>) -> Arg {
+        let inner = a.into_inner().next();
+        let inner = inner.expect("grammar: stl_shape_arg holds a point list or a number");
+        let s = span_of(&inner);
+        match inner.as_rule() {
+            Rule::stl_point_list => Arg::Group(
+                inner
+                    .into_inner()
+                    .map(|n| (self.number(&n), span_of(&n)))
+                    .collect(),
+            ),
+            Rule::number => Arg::Num(self.number(&inner), s),
+            other => not_in_grammar("stl_shape_arg", other),
+        }
     }
 
     /// A shape: its name and arguments checked against the name's spellings.
@@ -276,27 +312,35 @@ impl Builder<'_> {
         let name = name_pair.as_str();
         let mut args = Vec::new();
         for a in it {
-            let inner = a.into_inner().next();
-            let inner = inner.expect("grammar: stl_shape_arg holds a point list or a number");
-            let s = span_of(&inner);
-            match inner.as_rule() {
-                Rule::stl_point_list => {
-                    let nums: Vec<(f64, Span)> = inner
-                        .into_inner()
-                        .map(|n| (self.number(&n), span_of(&n)))
-                        .collect();
-                    args.push(Arg::Group(nums));
+            match a.as_rule() {
+                Rule::stl_shape_arg => args.push(self.arg(a)),
+                // `Rectangle Ellipse (...)`, `Rectangle <...>`: a 2D shape
+                // holds no shape.
+                Rule::stl_inner | Rule::stl_inner_angled => {
+                    if let Some(kind) = ShapeName::from_name(name) {
+                        return self.shape_arguments(kind, span);
+                    }
                 }
-                Rule::number => args.push(Arg::Num(self.number(&inner), s)),
-                other => not_in_grammar("stl_shape_arg", other),
+                other => not_in_grammar("stl_shape", other),
             }
         }
         let Some(kind) = ShapeName::from_name(name) else {
             self.unknown_shape(name, span_of(&name_pair));
             return None;
         };
+        self.shape_of(kind, &args, span)
+    }
+
+    /// A 2D shape of `kind` from its arguments, checked against its
+    /// spellings.
+    pub(super) fn shape_of(
+        &mut self,
+        kind: ShapeName,
+        args: &[Arg],
+        span: Span,
+    ) -> Option<(Shape, Spelling)> {
         if kind == ShapeName::Polygon {
-            return self.polygon(&args, span);
+            return self.polygon(args, span);
         }
         let round = kind == ShapeName::RoundRect;
         let positive = |b: &mut Self, v: f64, s: &Span, what: &'static str| {
@@ -323,7 +367,7 @@ impl Builder<'_> {
             ShapeName::Rectangle => Shape::Rect { x, y, w, h },
             ShapeName::Polygon => unreachable!("polygons are read above"),
         };
-        match args.as_slice() {
+        match args {
             // Delphi's corner spelling.
             [Arg::Group(g)] if g.len() == if round { 6 } else { 4 } => {
                 let (x1, x2, y1, y2) = (g[0].0, g[2].0, g[1].0, g[3].0);
@@ -406,26 +450,37 @@ impl Builder<'_> {
 
     /// Reports a shape name that is none of [`ShapeName::ALL`], with the
     /// nearest one.
-    fn unknown_shape(&mut self, name: &str, span: Span) {
-        let (_, best) = ShapeName::ALL
+    pub(super) fn unknown_shape(&mut self, name: &str, span: Span) {
+        // The names of this description's dimensions.
+        let all: Vec<&str> = if self.three_d {
+            SolidName::ALL.iter().map(|k| k.name()).collect()
+        } else {
+            ShapeName::ALL.iter().map(|k| k.name()).collect()
+        };
+        let (_, best) = all
             .iter()
             .map(|k| {
-                let d =
-                    strsim::levenshtein(&k.name().to_ascii_lowercase(), &name.to_ascii_lowercase());
-                (d, k.name())
+                let d = strsim::levenshtein(&k.to_ascii_lowercase(), &name.to_ascii_lowercase());
+                (d, *k)
             })
             .min()
-            .expect("ShapeName::ALL is not empty");
-        let all: Vec<&str> = ShapeName::ALL.iter().map(|k| k.name()).collect();
+            .expect("the name lists are not empty");
+        let what = if self.three_d { "Volumes" } else { "Shapes" };
         self.report(
             LayoutError::UnknownShape {
                 name: name.to_string(),
             },
             span,
             "not a shape",
-            &format!("did you mean `{best}`? Shapes: {}", all.join(", ")),
+            &format!("did you mean `{best}`? {what}: {}", all.join(", ")),
         );
     }
+}
+
+/// A layout line as read: a 2D shape or a volume.
+enum Line {
+    Shape(LayoutShape),
+    Solid(LayoutSolid),
 }
 
 #[cfg(test)]

@@ -58,6 +58,16 @@ pub(super) struct TextLex<'s> {
     word: Vec<Lex>,
 }
 
+/// What a 3D turn does, in words.
+fn turn3_name(c: char) -> &'static str {
+    match c {
+        '&' => "pitch down",
+        '^' => "pitch up",
+        '\\' => "roll left",
+        _ => "roll right",
+    }
+}
+
 /// Whether `b` can be part of a word (the grammar's `stl_name_char`).
 fn name_char(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_'
@@ -100,6 +110,17 @@ impl<'s> TextLex<'s> {
             b'#' => self.i = self.skip_space(i),
             b'+' | b'-' | b'|' => {
                 self.draw(char::from(bytes[i]), here);
+                self.i += 1;
+            }
+            // The 3D turns: drawing components of a 3D description only.
+            b'&' | b'^' | b'\\' | b'/' => {
+                let c = char::from(bytes[i]);
+                if b.three_d {
+                    self.draw(c, here);
+                } else if !b.turn3_reported {
+                    b.turn3_reported = true;
+                    b.needs_3d(format!("`{c}` ({})", turn3_name(c)), here, "a 3D turn");
+                }
                 self.i += 1;
             }
             b'{' => self.token(Lex::LBrace(here), i + 1),

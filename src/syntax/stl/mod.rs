@@ -19,7 +19,8 @@
 //! One file per part: this one holds the entry point and the builder;
 //! `header` the stem parameters, `rules` the rule definitions and reserved
 //! names, `lex` the tokens and word splitting, `body` rule bodies and
-//! `[I n X]`, `seed` the seed's terms, `layout` the shapes.
+//! `[I n X]`, `seed` the seed's terms, `layout` the shapes, `solid` a 3D layout's
+//! volumes.
 //!
 //! It does not check what needs the whole tree (stem orders, derived size):
 //! that is [`crate::bed::validate`].
@@ -30,6 +31,7 @@ mod layout;
 mod lex;
 mod rules;
 mod seed;
+mod solid;
 
 use pest::Parser;
 use pest::iterators::Pair;
@@ -42,6 +44,7 @@ use crate::model::{Description, Format, Loc, RuleId};
 pub use header::Param;
 pub use layout::ShapeName;
 pub use rules::{DRAWING_LETTERS, KEYWORDS, REPEAT_MARK, is_reserved};
+pub use solid::SolidName;
 
 /// Parses an Outline Description (`Format::Od`) or a Branch-Expansion
 /// Description (`Format::Bed`).
@@ -72,6 +75,9 @@ pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, 
         longest_name: 0,
         branches: Vec::new(),
         alternatives: Vec::new(),
+        three_d: false,
+        flat_root: None,
+        turn3_reported: false,
     };
     let desc = b.file(file);
     b.diags.into_result(desc)
@@ -94,7 +100,20 @@ struct Builder<'l> {
     /// How many alternatives the name of each rule has (0: it has one
     /// body, without a probability), by [`RuleId`](crate::model::RuleId).
     alternatives: Vec<usize>,
+    /// Whether the first root has three coordinates (section 11: the
+    /// description is 3D). Known before the header, bodies, seed and
+    /// layout are read: the grammar puts the roots first.
+    three_d: bool,
+    /// In a 2D description, the first root's span and its text with `, 0`
+    /// added (`(150, 298, 0)`), for the hint of what needs a 3D root.
+    flat_root: Option<(Span, String)>,
+    /// Whether a 3D turn in a 2D description has been reported (the first
+    /// one is; the rest would repeat it).
+    turn3_reported: bool,
 }
+
+/// A root as read: `(x, y)`, its `z` if it has one, and where it is.
+type RootRead = ((f64, f64), Option<f64>, Loc);
 
 fn span_of(p: &Pair<'_, Rule>) -> Span {
     let s = p.as_span();
@@ -136,13 +155,19 @@ impl Builder<'_> {
                 Rule::stl_tree_name => name = Some((p.as_str().to_string(), Loc(span_of(&p)))),
                 Rule::stl_root => {
                     let loc = Loc(span_of(&p));
-                    let mut it = p.into_inner();
-                    let mut coordinate = || {
-                        let n = it.next().expect("grammar: stl_root holds two numbers");
-                        self.number(&n)
-                    };
-                    let (x, y) = (coordinate(), coordinate());
-                    roots.push(((x, y), loc));
+                    let text = p.as_str().to_string();
+                    let nums: Vec<f64> = p.into_inner().map(|n| self.number(&n)).collect();
+                    let z = nums.get(2).copied();
+                    if roots.is_empty() {
+                        self.three_d = z.is_some();
+                        if z.is_none() {
+                            let open = text.trim_end().trim_end_matches(')').trim_end();
+                            self.flat_root = Some((loc.0.clone(), format!("{open}, 0)")));
+                        }
+                    } else if z.is_some() != self.three_d {
+                        self.mixed_root(&roots, z.is_some(), &loc);
+                    }
+                    roots.push(((nums[0], nums[1]), z, loc));
                 }
                 Rule::stl_param => params.push(p),
                 Rule::stl_rule_def => defs.push(p),
@@ -154,7 +179,7 @@ impl Builder<'_> {
         }
         let (name, name_loc) = name.expect("grammar: stl_file starts with stl_tree_name");
         let mut roots = roots.into_iter();
-        let (root, root_loc) = roots.next().expect("grammar: stl_file has stl_root");
+        let (root, root_z, root_loc) = roots.next().expect("grammar: stl_file has stl_root");
         let params = self.params(params, &root_loc);
         let rules = self.rules(defs);
         let mut seeds: Vec<_> = seed_pairs.into_iter().map(|p| self.seed(p)).collect();
@@ -171,7 +196,7 @@ impl Builder<'_> {
             } else {
                 // Fewer: the first root without one (roots after the first
                 // take the SEEDs after the first, in order).
-                (more[seeds.len() - 1].1.0.clone(), "this root has no SEED")
+                (more[seeds.len() - 1].2.0.clone(), "this root has no SEED")
             };
             let help = match self.format {
                 Format::Od => "an OD has one SEED, grown from every root: remove the others",
@@ -190,9 +215,9 @@ impl Builder<'_> {
         let mut later = seeds.drain(1.min(seeds.len())..);
         let forest = more
             .into_iter()
-            .map(|(root, root_loc)| crate::model::Tree {
+            .map(|(root, root_z, root_loc)| crate::model::Tree {
                 root,
-                root_z: None,
+                root_z,
                 root_loc,
                 seed: match self.format {
                     Format::Bed => later.next(),
@@ -207,7 +232,7 @@ impl Builder<'_> {
             name,
             name_loc,
             root,
-            root_z: None,
+            root_z,
             root_loc,
             params,
             rules,
@@ -215,6 +240,41 @@ impl Builder<'_> {
             layout,
             forest,
         }
+    }
+
+    /// Reports a root whose coordinates are not as many as the first
+    /// root's (`roots`, read so far).
+    fn mixed_root(&mut self, roots: &[RootRead], three: bool, loc: &Loc) {
+        let (first, this) = if three { (2, 3) } else { (3, 2) };
+        let help = if three {
+            "every root of a forest is 2D or every one 3D: give the first root a third \
+             coordinate too, or remove this one's"
+        } else {
+            "every root of a forest is 2D or every one 3D: give this root a third \
+             coordinate, as in `(140, 280, 0)`"
+        };
+        self.err(
+            Diagnostic::error(StlError::MixedRoots { first, this })
+                .with_span(loc.0.clone())
+                .with_label(format!("{this} coordinates"))
+                .with_note_at(roots[0].2.0.clone(), format!("the first root has {first}"))
+                .with_help(help),
+        );
+    }
+
+    /// Reports `what` (a 3D turn, `D=`) at `span` in a 2D description:
+    /// a 3D root is needed, the first root shown with `, 0` added.
+    fn needs_3d(&mut self, what: String, span: Span, label: &str) {
+        let mut d = Diagnostic::error(StlError::Needs3d { what })
+            .with_span(span)
+            .with_label(label);
+        if let Some((root, fixed)) = self.flat_root.clone() {
+            d = d.with_note_at(root, "a 2D root").with_help(format!(
+                "give the root a third coordinate to make the description 3D: `{fixed}` \
+                 (docs/language.md, Three dimensions)"
+            ));
+        }
+        self.err(d);
     }
 
     /// A number of the grammar's `number` rule; a value too large for a

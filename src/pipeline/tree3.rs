@@ -1,0 +1,204 @@
+//! A 3D tree in the pipeline (docs/3d.md): a BED whose roots have three
+//! coordinates (read, or grown from a 3D OD) is drawn by
+//! [`crate::interpret::bed3`] with the 3D turtle; its pictures are views
+//! (`--view AZ,EL`), its mesh has its stems in space, its `stats` a 3D box
+//! and end. The 3D `.lsys` has the same in `space.rs`; this file only adds
+//! trees, so the two read side by side.
+
+use std::fmt::Write as _;
+use std::io::Write;
+
+use super::{Rendered, Scene, style};
+use crate::bed::Bed;
+use crate::diag::{Diagnostic, Diagnostics, RenderError};
+use crate::interpret::bed3::{bounds3, draw3};
+use crate::interpret::stats::{DECIMALS, STATS_TRAVERSAL_SYMBOLS};
+use crate::limits::Limits;
+use crate::num::{Trim, fixed};
+use crate::progress::{NoProgress, Phase, Progress};
+use crate::render::view::{Gathered, MAX_VIEW_SEGMENTS, View, view_too_large};
+use crate::render::{Frame, RenderOptions, render_framed};
+use crate::turtle::Turtle;
+use crate::turtle::space::Segment3;
+
+/// The 3D tree of a scene, if it is one.
+pub(crate) fn space_bed(scene: &Scene) -> Option<&Bed> {
+    scene.bed().filter(|b| b.description().is_3d())
+}
+
+/// Whether a scene is drawn in 3D: a 3D `.lsys` or a 3D tree.
+pub(crate) fn is_3d(scene: &Scene) -> bool {
+    space_bed(scene).is_some() || super::space::space_lsys(scene).is_some()
+}
+
+/// Draws a 3D scene seen from `view`: a 3D tree here, a 3D `.lsys` by
+/// [`super::space::render_view`].
+pub(crate) fn render_view(
+    scene: &Scene,
+    view: View,
+    look: &super::Look,
+    opts: &RenderOptions,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<Rendered, Diagnostics> {
+    let Some(bed) = space_bed(scene) else {
+        return super::space::render_view(scene, view, look, opts, out, progress);
+    };
+    let stems = bed.size().stems;
+    if stems > MAX_VIEW_SEGMENTS {
+        return Err(view_too_large(stems.to_string()));
+    }
+    let mut gathered = Gathered::new(view);
+    draw3(
+        bed,
+        scene.derivation,
+        &scene.limits,
+        &mut |s| gathered.push(s),
+        &mut Phase::new(progress, "drawing"),
+    )?;
+    let stems = gathered.sorted();
+    let n = stems.len() as u64;
+    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
+        for s in &stems {
+            t.segment(*s);
+        }
+        Ok(())
+    };
+    let style = style(scene, look);
+    render_framed(&mut drawing, Frame::Fit, &[], &style, opts, out, progress)?;
+    let mut warnings = Vec::new();
+    if n == 0 {
+        warnings.push(
+            Diagnostic::warning(RenderError::NothingDrawn)
+                .with_help("check the seed: only `F` draws (and in an .od, a rule that grows)"),
+        );
+    }
+    Ok(Rendered {
+        segments: n,
+        count: Some(n.to_string()),
+        warnings,
+    })
+}
+
+/// Hands a 3D tree's stems to `sink` (for a mesh); `false` if the scene
+/// is no 3D tree.
+pub(crate) fn draw_tree3(
+    scene: &Scene,
+    sink: &mut dyn FnMut(Segment3),
+    progress: &mut dyn Progress,
+) -> Result<bool, Diagnostics> {
+    let Some(bed) = space_bed(scene) else {
+        return Ok(false);
+    };
+    draw3(bed, scene.derivation, &scene.limits, sink, progress)?;
+    Ok(true)
+}
+
+/// `stats` of a 3D BED: its symbols (turtle operations, one `Enter` and
+/// one `Leave` per rule application included, as the BED's measure counts
+/// them) and stems, and the box `[minx, miny, minz, maxx, maxy, maxz]` of
+/// its stems and the turtle's `end` `[x, y, z]` in canvas units (the
+/// BED's own lengths, from its roots), by drawing it when it has at most
+/// `min(--max-symbols, STATS_TRAVERSAL_SYMBOLS)` symbols. Past that `bbox`
+/// and `end` are `null` and `bound` is a box every point lies in: its
+/// roots' box grown by the longest stem (`L`'s base) times the symbols.
+pub(crate) fn stats_bed3(bed: &Bed, json: bool, limits: &Limits) -> Result<String, Diagnostics> {
+    let size = bed.size();
+    let budget = limits.max_symbols.min(STATS_TRAVERSAL_SYMBOLS);
+    let geo = if size.symbols <= budget {
+        let (bbox, end, _) = bounds3(bed, limits, &mut NoProgress)?;
+        Ok((bbox, end.to_array()))
+    } else {
+        let d = bed.description();
+        let reach = d.params.length.base * size.symbols as f64;
+        let mut b = [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        let roots =
+            std::iter::once((d.root, d.root_z)).chain(d.forest.iter().map(|t| (t.root, t.root_z)));
+        for ((x, y), z) in roots {
+            for (i, v) in [x, y, z.unwrap_or(0.0)].into_iter().enumerate() {
+                b[i] = b[i].min(v - reach);
+                b[i + 3] = b[i + 3].max(v + reach);
+            }
+        }
+        Err(b)
+    };
+    let num = |x: f64| fixed(x, DECIMALS, Trim::Keep);
+    let list = |v: &[f64]| {
+        let parts: Vec<String> = v.iter().map(|&x| num(x)).collect();
+        format!("[{}]", parts.join(", "))
+    };
+    let mut out = String::new();
+    if json {
+        let _ = write!(
+            out,
+            "{{\"dimensions\": 3, \"symbols\": \"{}\", \"stems\": \"{}\", ",
+            size.symbols, size.stems
+        );
+        let _ = match &geo {
+            Ok((bbox, end)) => write!(
+                out,
+                "\"bbox\": {}, \"end\": {}}}",
+                bbox.map_or("null".to_string(), |b| list(&b)),
+                list(end)
+            ),
+            Err(bound) => write!(
+                out,
+                "\"bbox\": null, \"end\": null, \"bound\": {}}}",
+                list(bound)
+            ),
+        };
+        return Ok(out);
+    }
+    let _ = writeln!(out, "tree      {} (3D BED)", bed.description().name);
+    let _ = writeln!(out, "symbols   {}", size.symbols);
+    let _ = writeln!(out, "stems     {}", size.stems);
+    match &geo {
+        Ok((bbox, end)) => {
+            match bbox {
+                Some(b) => {
+                    let _ = writeln!(
+                        out,
+                        "bbox      x {} .. {}, y {} .. {}, z {} .. {} (canvas units, y down, z away)",
+                        num(b[0]),
+                        num(b[3]),
+                        num(b[1]),
+                        num(b[4]),
+                        num(b[2]),
+                        num(b[5])
+                    );
+                }
+                None => {
+                    let _ = writeln!(out, "bbox      (nothing drawn)");
+                }
+            }
+            let _ = writeln!(
+                out,
+                "end       ({}, {}, {})",
+                num(end[0]),
+                num(end[1]),
+                num(end[2])
+            );
+        }
+        Err(b) => {
+            let _ = writeln!(
+                out,
+                "bbox      (not traversed: too many symbols) within x {} .. {}, y {} .. {}, z {} .. {}",
+                num(b[0]),
+                num(b[3]),
+                num(b[1]),
+                num(b[4]),
+                num(b[2]),
+                num(b[5])
+            );
+            let _ = writeln!(out, "end       (not traversed)");
+        }
+    }
+    Ok(out)
+}

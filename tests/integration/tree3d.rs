@@ -1,0 +1,207 @@
+//! 3D ODs and BEDs (section 11, docs/language.md *Three dimensions*): a
+//! BED whose root has three coordinates drawn with the 3D turtle, in
+//! `stats`, views and meshes. Expected values are worked by hand.
+
+use assert_cmd::Command;
+use stlc::pipeline::{ImageFormat, MeshFormat, RenderOptions, Request, View};
+
+use crate::support::manifest_path;
+
+fn stlc() -> Command {
+    let mut c = Command::cargo_bin("stlc").expect("binary");
+    c.env("NO_COLOR", "1");
+    c
+}
+
+fn bed_request(text: &str) -> Request {
+    Request {
+        name: Some("x.bed".into()),
+        ..Request::new(text.as_bytes().to_vec())
+    }
+}
+
+/// `stlc stats --json` of a BED given as text (through standard input).
+fn stats_json(text: &str) -> serde_json::Value {
+    let out = stlc()
+        .args(["stats", "--from", "bed", "--json", "-"])
+        .write_stdin(text)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// Section 11's worked ends with A=90 and unit steps, from a 3D BED's seed.
+#[test]
+fn stats_of_a_3d_bed_give_the_worked_ends_of_section_11() {
+    for (word, end, bbox) in [
+        ("F+F", [-1.0, -1.0, 0.0], [-1.0, -1.0, 0.0, 0.0, 0.0, 0.0]),
+        ("F&F", [0.0, -1.0, 1.0], [0.0, -1.0, 0.0, 0.0, 0.0, 1.0]),
+        ("F/+F", [0.0, -1.0, -1.0], [0.0, -1.0, -1.0, 0.0, 0.0, 0.0]),
+    ] {
+        let j = stats_json(&format!(
+            "T\n(0, 0, 0)\nL=1(0) A=90\nRULE\nR1: [F]\nSEED\n{word}\nENDSEED\n"
+        ));
+        assert_eq!(j["dimensions"], 3, "{word}");
+        assert_eq!(j["stems"], "2", "{word}");
+        assert_eq!(numbers(&j["end"]), end, "{word}");
+        assert_eq!(numbers(&j["bbox"]), bbox, "{word}");
+    }
+}
+
+/// `D=90`, `A=90`, seed `R1{} +F` with `R1: [F]`, by hand: the
+/// application of R1 first rolls L = (-1, 0, 0) to L cos 90 - U sin 90 =
+/// -U = (0, 0, 1); its branch draws up, `]` returns to the root with the
+/// rolled frame, which the application keeps, so `+` heads along (0, 0, 1)
+/// and the last `F` ends at (0, 0, 1). Without `D=` the same seed turns
+/// left: (-1, 0, 0). The root (5, 6, 7) shifts everything.
+#[test]
+fn divergence_rolls_each_rule_application_in_stats() {
+    let bed = |d: &str| format!("T (5, 6, 7) L=1(0) A=90 {d} RULE R1: [F] SEED R1{{}} +F ENDSEED");
+    let j = stats_json(&bed("D=90"));
+    assert_eq!(numbers(&j["end"]), [5.0, 6.0, 8.0]);
+    assert_eq!(numbers(&j["bbox"]), [5.0, 5.0, 7.0, 5.0, 6.0, 8.0]);
+    // 1 R1 application (Enter, `[`, F, `]`, Leave), then `+F`.
+    assert_eq!(j["symbols"], "7");
+    let j = stats_json(&bed(""));
+    assert_eq!(numbers(&j["end"]), [4.0, 6.0, 7.0]);
+    // D=360 is no roll either.
+    assert_eq!(numbers(&stats_json(&bed("D=360"))["end"]), [4.0, 6.0, 7.0]);
+    // `[I 2 R1]`: the second level grows at the first's branch tip
+    // (5, 5, 7), rolled once more, and draws up to (5, 4, 7); the first's
+    // `]` then restores the frame rolled once, so `+F` ends as above.
+    let j = stats_json("T (5, 6, 7) L=1(0) A=90 D=90 RULE R1: [F] SEED [I 2 R1] +F ENDSEED");
+    assert_eq!(numbers(&j["end"]), [5.0, 6.0, 8.0]);
+    assert_eq!(numbers(&j["bbox"]), [5.0, 4.0, 7.0, 5.0, 6.0, 8.0]);
+}
+
+/// A BED grown in 2D and the same BED with its root at z = 0 and `D=0`:
+/// the 3D front view is the 2D picture byte for byte, PNG and SVG.
+#[test]
+fn the_front_view_of_a_planar_3d_bed_is_the_2d_picture() {
+    let out = stlc()
+        .args(["compile", "-o", "-"])
+        .arg(manifest_path("examples/successors.od"))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    // Without its LAYOUT (a 2D layout frames the 2D picture; a 3D BED's
+    // volumes are not drawn yet).
+    let flat = &text[..text.find("LAYOUT").unwrap()];
+    let root = "(150, 296)";
+    assert!(flat.contains(root), "{flat}");
+    let deep = flat
+        .replacen(root, "(150, 296, 0)", 1)
+        .replacen("RULE", "D=0\nRULE", 1);
+    for format in [ImageFormat::Png, ImageFormat::Svg] {
+        let image = RenderOptions::new(format, Some((300, 240)));
+        let draw = |req: Request| {
+            let mut out = Vec::new();
+            req.render(&mut out, &mut stlc::pipeline::NoProgress)
+                .unwrap();
+            out
+        };
+        let a = draw(Request {
+            image,
+            ..bed_request(flat)
+        });
+        let b = draw(Request {
+            image,
+            view: Some(View::FRONT),
+            ..bed_request(&deep)
+        });
+        assert!(a.len() > 1000);
+        assert!(a == b, "{format:?} differs");
+        // The default view (30, 20) is another picture.
+        let c = draw(Request {
+            image,
+            ..bed_request(&deep)
+        });
+        assert!(c != b, "{format:?}");
+    }
+}
+
+/// OBJ vertices: `(x, y, z)` lines after `v`.
+fn obj_vertices(obj: &str) -> Vec<[f64; 3]> {
+    obj.lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .take(3)
+                .map(|x| x.parse().unwrap())
+                .collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect()
+}
+
+fn obj(text: &str) -> String {
+    let mut out = Vec::new();
+    bed_request(text)
+        .mesh(MeshFormat::Obj, &mut out, &mut stlc::pipeline::NoProgress)
+        .unwrap();
+    String::from_utf8(out).unwrap()
+}
+
+/// A 3D BED's mesh has its stems in space, each as wide as `B` at its
+/// order; a planar one at z = 0 is the 2D BED's mesh.
+#[test]
+fn a_3d_bed_meshes_in_space() {
+    // D=90 as above: a stem up from (0, 0, 0) (order 1, width 0.5 with
+    // B=1(0.5)) and one from (0, 0, 0) to (0, 0, 1) (order 0, width 1).
+    // OBJ maps z to -z times 0.01: the second spans z in [-0.01, 0] plus
+    // nothing across (its radius is across x and y); the first, vertical,
+    // reaches 0.25 across z: [-0.0025, 0.0025].
+    let m = obj("T (0, 0, 0) L=1(0) B=1(0.5) A=90 D=90 RULE R1: [F] SEED R1{} +F ENDSEED");
+    let zs: Vec<f64> = obj_vertices(&m).iter().map(|v| v[2]).collect();
+    let min = zs.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    assert!((min + 0.01).abs() < 1e-6, "{min}");
+    assert!((max - 0.0025).abs() < 1e-6, "{max}");
+    let flat = "T (3, 4) L=2(0.5) B=1(0.25) A=30 RULE R1: [+F][-F] SEED F R1{R1{,},} ENDSEED";
+    let deep = flat.replacen("(3, 4)", "(3, 4, 0)", 1);
+    assert_eq!(obj(flat), obj(&deep));
+}
+
+/// `stlc expand` of a 3D BED writes its 3D turns.
+#[test]
+fn a_3d_bed_expands_with_its_turns() {
+    let out = stlc()
+        .args(["expand", "--from", "bed", "-"])
+        .write_stdin("T (0, 0, 0) RULE R1: [&F][/F] SEED F R1{,} ENDSEED")
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "F[&F][/F]\n");
+}
+
+/// A 3D OD cannot grow until growth in volumes lands: a clear refusal at
+/// its root, not a flat tree.
+#[test]
+fn a_3d_od_is_refused_clearly_until_it_can_grow() {
+    let out = stlc()
+        .args(["compile", "--from", "od", "-o", "-", "-"])
+        .write_stdin("T (0, 0, 0) RULE R1: [&F][/F]")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("growing a 3D Outline Description is not built yet"),
+        "{err}"
+    );
+}
