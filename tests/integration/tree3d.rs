@@ -189,19 +189,24 @@ fn a_3d_bed_expands_with_its_turns() {
     assert_eq!(String::from_utf8(out.stdout).unwrap(), "F[&F][/F]\n");
 }
 
-/// A 3D OD cannot grow until growth in volumes lands: a clear refusal at
-/// its root, not a flat tree.
+/// A 3D OD grows (growth in volumes, `tests/integration/grow3d.rs`): its
+/// BED keeps the three coordinates and the 3D turns.
 #[test]
-fn a_3d_od_is_refused_clearly_until_it_can_grow() {
+fn a_3d_od_compiles_to_a_3d_bed() {
     let out = stlc()
         .args(["compile", "--from", "od", "-o", "-", "-"])
-        .write_stdin("T (0, 0, 0) RULE R1: [&F][/F]")
+        .write_stdin("T (0, 0, 0) L=10(4) RULE R1: [&F][/F]")
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bed = String::from_utf8(out.stdout).unwrap();
     assert!(
-        err.contains("growing a 3D Outline Description is not built yet"),
-        "{err}"
+        bed.contains("(0, 0, 0)") && bed.contains("[&F][/F]"),
+        "{bed}"
     );
 }
