@@ -518,3 +518,45 @@ fn a_3d_od_grows_a_bed_that_draws_the_stems_growth_placed() {
         assert_eq!(grew, drawn, "{growth:?}");
     }
 }
+
+/// `stlc compile` of an OD text: the BED written, and the messages.
+fn compile(text: &str) -> (String, String) {
+    let out = assert_cmd::Command::cargo_bin("stlc")
+        .unwrap()
+        .env("NO_COLOR", "1")
+        .args(["compile", "--from", "od", "-o", "-", "-"])
+        .write_stdin(text)
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.success(), "{err}");
+    (String::from_utf8(out.stdout).unwrap(), err)
+}
+
+/// Alternatives chosen by `V=`, `M=` and the explanation work in space as
+/// in the plane (through `stlc compile`): the same seed grows the same
+/// tree, another seed another; growth stops at `M=` with its warning; a
+/// rule that never fits says so.
+#[test]
+fn seeds_alternatives_m_and_explanations_in_space() {
+    let text = |header: &str| {
+        format!(
+            "A\n(0, 0, 0)\nL=10(0.6) B=2(0.1) A=40 D=90 {header}\nRULE\nR1 (0.5): [+F][-F]\nR1 (0.5): [&F][^F]\nR2: [F F F F F F F F F F]\nSEED\nF R1 R2\nENDSEED\nLAYOUT\n(clGreen) Sphere (0, -40, 0), 45\nENDLAYOUT\n"
+        )
+    };
+    let (a, warned) = compile(&text("V=3"));
+    assert_eq!(a, compile(&text("V=3")).0);
+    assert_ne!(a, compile(&text("V=4")).0);
+    assert!(a.contains("R1.1{") && a.contains("R1.2{"), "{a}");
+    // R2 draws 100 units straight up from the trunk's tip: out of the sphere.
+    assert!(
+        warned.contains("R2") && warned.contains("never"),
+        "{warned}"
+    );
+    let (m, warned) = compile(&text("V=3 M=40"));
+    // The seed's trunk, and two stems for each application in the seed.
+    let seed = &m[m.find("SEED\n").unwrap()..];
+    let stems = 1 + 2 * seed.matches("R1.").count();
+    assert!((30..=40).contains(&stems), "{stems} stems\n{m}");
+    assert!(warned.contains("M=40"), "{warned}");
+}
