@@ -14,13 +14,20 @@
 //! middle of the bottom edge: far more room than 10^6 stems take, so every
 //! run stops at the limit and the number of stems is exactly the one asked
 //! for (up to the last application's size).
+//!
+//! A sixth argument grows the same tree in space (issue 26): `prism`, the
+//! root at z = 0 and the rectangle extruded from z = -side/2 to side/2
+//! (a planar tree: the 2D decisions, through the 3D grower), or `cube`,
+//! the rectangle's cube as a `Box` with `D=137.5` (the tree spreads around
+//! its stems in all three dimensions). `benches/grow3d.sh` runs the three
+//! side by side.
 
 use std::time::Instant;
 
 use stlc::grow::occupancy::Backend;
 use stlc::grow::{GrowOptions, GrowthOrder, grow_with};
 use stlc::limits::Limits;
-use stlc::model::Format;
+use stlc::model::{Format, LayoutSolid, Loc, Shape, Solid};
 use stlc::progress::NoProgress;
 
 fn main() {
@@ -51,8 +58,38 @@ fn main() {
         side / 2.0,
         side - 1.0
     );
-    let od =
+    let mut od =
         stlc::syntax::stl::parse(&text, Format::Od, &Limits::default()).expect("the OD parses");
+    let space = args.get(6).map(String::as_str).unwrap_or("plane");
+    if space != "plane" {
+        od.root_z = Some(0.0);
+        let solid = if space == "cube" {
+            od.params.divergence = Some(137.5);
+            Solid::Box {
+                corner: [0.0, 0.0, -side / 2.0],
+                size: [side; 3],
+            }
+        } else {
+            Solid::Extrude {
+                shape: Shape::Rect {
+                    x: 0.0,
+                    y: 0.0,
+                    w: side,
+                    h: side,
+                },
+                z1: -side / 2.0,
+                z2: side / 2.0,
+            }
+        };
+        let layout = od.layout.as_mut().expect("a layout");
+        layout.solids = vec![LayoutSolid {
+            color: layout.shapes[0].color,
+            color_text: String::new(),
+            solid,
+            loc: Loc::default(),
+        }];
+        layout.shapes.clear();
+    }
     let opts = GrowOptions {
         growth,
         clearance: None,
@@ -69,7 +106,7 @@ fn main() {
     let g = grow_with(&od, &opts, backend, &mut NoProgress).expect("growth");
     let secs = t.elapsed().as_secs_f64();
     println!(
-        "{growth:?} {backend:?} stems={} time={secs:.3}s per_stem={:.2}us warnings={}",
+        "{growth:?} {backend:?} {space} stems={} time={secs:.3}s per_stem={:.2}us warnings={}",
         g.stems,
         secs * 1e6 / g.stems as f64,
         g.warnings.len()

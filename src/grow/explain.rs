@@ -7,7 +7,7 @@
 //! Counting costs two increments a try; the numbers of a failure (which
 //! stem, the distance found) are worked out only for a rule's first.
 
-use super::occupancy::{Seg, clearance_distance};
+use super::occupancy::{Cap, Dim, clearance_distance};
 use super::span_of;
 use crate::diag::{Diagnostic, GrowError, Kin, Misfit, MissReason};
 use crate::limits::Limits;
@@ -60,7 +60,7 @@ impl RuleTally {
 /// Which stem `other` is to the new stem `new`, as the joint exception of
 /// the clearance test sees them: one starting where it starts is a
 /// sibling, one ending where it starts its parent.
-pub(super) fn kin(new: &Seg, other: &Seg) -> Kin {
+pub(super) fn kin<const N: usize>(new: &Cap<N>, other: &Cap<N>) -> Kin {
     if new.a == other.a {
         Kin::Sibling
     } else if new.a == other.b {
@@ -73,15 +73,27 @@ pub(super) fn kin(new: &Seg, other: &Seg) -> Kin {
 /// What a failed try leaves for explaining it: the stem that failed
 /// (numbered from 1) and, if it came too close to a stem, the two stems
 /// (the new one first) and whether the other is one of the try's own.
-#[derive(Debug, Clone, Copy, Default)]
-pub(super) struct LastMiss {
+#[derive(Debug, Clone, Copy)]
+pub(super) struct LastMiss<const N: usize> {
     stem: u32,
-    clash: Option<(Seg, Seg, bool)>,
+    clash: Option<(Cap<N>, Cap<N>, bool)>,
 }
 
-impl LastMiss {
+impl<const N: usize> Default for LastMiss<N> {
+    fn default() -> Self {
+        LastMiss {
+            stem: 0,
+            clash: None,
+        }
+    }
+}
+
+impl<const N: usize> LastMiss<N>
+where
+    Cap<N>: Dim,
+{
     /// The try failed at its stem number `drawn + 1` (after `drawn` fitted).
-    pub(super) fn at(drawn: usize, clash: Option<(Seg, Seg, bool)>) -> Self {
+    pub(super) fn at(drawn: usize, clash: Option<(Cap<N>, Cap<N>, bool)>) -> Self {
         LastMiss {
             stem: u32::try_from(drawn).unwrap_or(u32::MAX).saturating_add(1),
             clash,
@@ -97,7 +109,7 @@ impl LastMiss {
         params: &StemParams,
         limits: &Limits,
         clearance: f64,
-        position: impl FnOnce(&Seg) -> Option<usize>,
+        position: impl FnOnce(&Cap<N>) -> Option<usize>,
     ) -> Misfit {
         match reason {
             MissReason::Outside => Misfit::Outside { stem: self.stem },

@@ -11,25 +11,24 @@
 
 use std::collections::VecDeque;
 
-use super::bounded::successors;
 use super::explain::{LastMiss, RuleTally, kin};
-use super::occupancy::{Backend, LocalIndex, Occupancy, Seg};
-use super::region::Region;
+use super::occupancy::{Backend, Cap, Dim, LocalIndex, Occupancy};
+use super::plane::{Class, Space};
+use super::rules::RuleInfo;
 use super::seed::{Flat, Instr};
 use super::tree::{Budget, NO_NODE, Parent, Tree};
 use super::{GrowOptions, GrowthOrder, SEED_STEMS};
-use crate::choice::{Alternatives, Key};
+use crate::choice::Key;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, MissReason};
 use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, FixedWord, Levels, Step};
-use crate::model::{Description, Fixed, RuleDef, RuleId, StemParams};
+use crate::model::{Description, Fixed, RuleId};
 use crate::progress::Progress;
-use crate::turtle::{Interp, Op, Point, Recorder, Segment, State};
 
 /// A growth point waiting for its decision.
 #[derive(Debug, Clone, Copy)]
-struct Gp {
-    state: State,
+struct Gp<St> {
+    state: St,
     /// The rule named there (with alternatives: any of them; the decision
     /// chooses by `key`).
     rule: RuleId,
@@ -45,118 +44,30 @@ struct Gp {
 
 /// The scratch of one application, reused from one to the next.
 #[derive(Debug)]
-struct Scratch {
+struct Scratch<const N: usize, St>
+where
+    Cap<N>: Dim,
+{
     /// The segments drawn so far, placed only if all of them fit.
-    segs: LocalIndex,
+    segs: LocalIndex<N>,
     /// The turtle state at each branch tip, and whether it is known to be
     /// inside the region.
-    tips: Vec<(State, bool)>,
+    tips: Vec<(St, bool)>,
     /// The growth points made by the last success, in branch order.
-    children: Vec<Gp>,
+    children: Vec<Gp<St>>,
     /// Whether the turtle was inside the region, saved at each `[` of the
     /// body being drawn (kept to reuse its allocation).
     saved: Vec<bool>,
     /// What the last failed try left, for explaining it.
-    miss: LastMiss,
+    miss: LastMiss<N>,
 }
 
 /// The growth points waiting for their decision: a FIFO queue in `bfs`, a
 /// stack in `dfs`.
-#[derive(Debug, Default)]
-struct Schedule {
-    queue: VecDeque<Gp>,
-    stack: Vec<Gp>,
-}
-
-/// What growth needs to know of a rule, worked out once.
 #[derive(Debug)]
-struct RuleInfo {
-    /// The rule, and every alternative of its name, leaves the turtle
-    /// where it found it: its trunk neither draws, moves nor turns (its
-    /// branches restore the turtle). Drawing after it in the seed does not
-    /// depend on its decision.
-    neutral: bool,
-    /// The rule that grows at each branch tip, in branch order.
-    successors: Vec<RuleId>,
-    /// With alternatives: the probabilities and the rules they choose.
-    choice: Option<std::sync::Arc<(Alternatives, Vec<RuleId>)>>,
-}
-
-impl RuleInfo {
-    /// The information of every rule, by [`RuleId`].
-    fn all(od: &Description) -> Vec<RuleInfo> {
-        let groups = od.groups();
-        let choices: Vec<_> = groups
-            .groups
-            .iter()
-            .map(|g| {
-                let p: Vec<f64> = g
-                    .iter()
-                    .filter_map(|&r| od.rule(r).alternative.as_ref()?.probability)
-                    .collect();
-                // An OD's alternatives passed the parser's check; a
-                // description made otherwise chooses the first.
-                let alts = Alternatives::new(&p).unwrap_or_else(|_| {
-                    Alternatives::new(&[1.0]).expect("a single certain choice")
-                });
-                od.rule(g[0])
-                    .alternative
-                    .is_some()
-                    .then(|| std::sync::Arc::new((alts, g.clone())))
-            })
-            .collect();
-        let own: Vec<bool> = od.rules.iter().map(is_neutral).collect();
-        (0..od.rules.len())
-            .map(|i| {
-                let members = groups.members(RuleId(i));
-                RuleInfo {
-                    neutral: members.iter().all(|r| own[r.0]),
-                    successors: successors(od, RuleId(i)).collect(),
-                    choice: choices[groups.of_rule[i]].clone(),
-                }
-            })
-            .collect()
-    }
-}
-
-/// Whether the trunk of `rule` leaves the turtle's position and heading
-/// alone (fixed figures on the trunk count as moving it).
-fn is_neutral(rule: &RuleDef) -> bool {
-    let mut in_branch = false;
-    walk::steps(&rule.body).all(|step| match step {
-        Step::Open { .. } => {
-            in_branch = true;
-            true
-        }
-        Step::Tip { .. } => {
-            in_branch = false;
-            true
-        }
-        Step::Run(r) => {
-            in_branch
-                || r.text.chars().all(|c| {
-                    !matches!(
-                        Op::of_stl(c),
-                        Some(Op::Draw | Op::Move | Op::Turn(_) | Op::Flip)
-                    )
-                })
-        }
-        Step::Fixed(_) => in_branch,
-    })
-}
-
-/// The turtle operations of a fixed figure.
-fn fixed_ops(f: &Fixed) -> impl Iterator<Item = Op> + '_ {
-    FixedWord::new(f).filter_map(|c| Op::of_stl(char::from(c)))
-}
-
-/// The stem `s` as drawn: a capsule of half its stroke width at its order.
-fn seg_of(s: &Segment, params: &StemParams) -> Seg {
-    Seg::capsule(
-        [s.from.x, s.from.y],
-        [s.to.x, s.to.y],
-        params.width.at(s.order) / 2.0,
-    )
+struct Schedule<St> {
+    queue: VecDeque<Gp<St>>,
+    stack: Vec<Gp<St>>,
 }
 
 /// Why an application did not grow.
@@ -167,21 +78,26 @@ enum Miss {
     Stopped,
 }
 
-/// The grower's state: what it works in (the description, the region, the
-/// placed segments, the turtle) and the four groups it keeps up to date.
-pub(super) struct Grower<'a> {
+/// The grower's state: what it works in (the description, the space with
+/// its turtle and region, the placed segments) and the four groups it
+/// keeps up to date. Written once for the plane and for space (`N` = 2
+/// or 3, [`Space`]).
+pub(super) struct Grower<'a, const N: usize, S: Space<N>>
+where
+    Cap<N>: Dim,
+{
     od: &'a Description,
     growth: GrowthOrder,
     limits: Limits,
     /// By [`RuleId`].
     rules: Vec<RuleInfo>,
-    region: Option<Region>,
-    occ: Occupancy,
-    interp: Interp<Recorder>,
+    occ: Occupancy<N>,
+    /// The turtle and the region.
+    space: S,
     tree: Tree,
     budget: Budget,
-    scratch: Scratch,
-    schedule: Schedule,
+    scratch: Scratch<N, S::State>,
+    schedule: Schedule<S::State>,
     /// The key of the tree being grown: `Key::root(seed).child(r)` for
     /// root `r` ([`Gp::key`]).
     tree_key: Key,
@@ -191,34 +107,43 @@ pub(super) struct Grower<'a> {
     tallies: Vec<RuleTally>,
     /// When asked for ([`super::grow_traced`]): every stem placed, in the
     /// order growth placed it, with its decision (0: the seed's drawing).
-    pub(super) trace: Option<Vec<(Seg, u64)>>,
+    pub(super) trace: Option<Vec<(Cap<N>, u64)>>,
 }
 
-impl<'a> Grower<'a> {
-    /// A grower for `od`, for `trees` trees of a
+/// The turtle operations of a fixed figure.
+fn fixed_ops<const N: usize, S: Space<N>>(f: &Fixed) -> impl Iterator<Item = S::Op> + '_
+where
+    Cap<N>: Dim,
+{
+    FixedWord::new(f).filter_map(|c| S::op(char::from(c)))
+}
+
+impl<'a, const N: usize, S: Space<N>> Grower<'a, N, S>
+where
+    Cap<N>: Dim,
+{
+    /// A grower for `od` in `space`, for `trees` trees of a
     /// seed with `seed_gps` growth points each.
     pub(super) fn new(
         od: &'a Description,
         opts: &GrowOptions,
         backend: Backend,
         clearance: f64,
-        region: Option<Region>,
+        space: S,
         seed_gps: usize,
         trees: usize,
     ) -> Self {
+        let moves = |c| {
+            S::op(c)
+                .is_some_and(|o| matches!(S::class(o), Class::Draws | Class::Moves | Class::Turns))
+        };
         Grower {
             od,
             growth: opts.growth,
             limits: opts.limits,
-            rules: RuleInfo::all(od),
-            region,
+            rules: RuleInfo::all(od, moves),
             occ: Occupancy::new(backend, clearance),
-            interp: Interp::new(
-                Recorder::default(),
-                Point::new(od.root.0, od.root.1),
-                od.params.angle(),
-                od.params.length,
-            ),
+            space,
             tree: Tree {
                 seed_result: vec![NO_NODE; seed_gps * trees],
                 trees,
@@ -232,7 +157,10 @@ impl<'a> Grower<'a> {
                 saved: Vec::new(),
                 miss: LastMiss::default(),
             },
-            schedule: Schedule::default(),
+            schedule: Schedule {
+                queue: VecDeque::new(),
+                stack: Vec::new(),
+            },
             tree_key: Key::root(opts.seed).child(0),
             seed: opts.seed,
             tallies: vec![RuleTally::default(); od.rules.len()],
@@ -256,12 +184,12 @@ impl<'a> Grower<'a> {
     pub(super) fn grow_trees(
         &mut self,
         flat: &Flat<'_>,
-        roots: &[Point],
+        roots: usize,
         progress: &mut dyn Progress,
     ) -> Result<(), Diagnostics> {
-        let mut pending = Vec::with_capacity(roots.len());
-        for (t, &root) in roots.iter().enumerate() {
-            pending.push(self.walk_seed(flat, t, root, progress)?);
+        let mut pending = Vec::with_capacity(roots);
+        for t in 0..roots {
+            pending.push(self.walk_seed(flat, t, progress)?);
         }
         for tree in pending {
             for p in tree {
@@ -272,31 +200,36 @@ impl<'a> Grower<'a> {
         Ok(())
     }
 
-    /// Draws the seed of tree `t` from `root`, deciding the growth points
+    /// Draws the seed of tree `t` from its root, deciding the growth points
     /// the drawing after them depends on; returns the others, in order.
     fn walk_seed(
         &mut self,
         flat: &Flat<'_>,
         t: usize,
-        root: Point,
         progress: &mut dyn Progress,
-    ) -> Result<Vec<Gp>, Diagnostics> {
-        self.interp.state = State::start(root);
+    ) -> Result<Vec<Gp<S::State>>, Diagnostics> {
+        self.space.start(t);
         self.tree_key = Key::root(self.seed).child(t as u64);
         let first_gp = t * flat.gps.len();
-        let mut pending: Vec<Gp> = Vec::new();
+        let mut pending: Vec<Gp<S::State>> = Vec::new();
         for (idx, instr) in flat.instrs.iter().enumerate() {
             match instr {
-                Instr::Op(op) => self.seed_op(*op)?,
-                Instr::Fixed(f) => {
-                    for op in fixed_ops(f) {
+                Instr::Op(c) => {
+                    if let Some(op) = S::op(*c) {
                         self.seed_op(op)?;
                     }
                 }
+                Instr::Fixed(f) => {
+                    for op in fixed_ops::<N, S>(f) {
+                        self.seed_op(op)?;
+                    }
+                }
+                Instr::Enter => self.space.enter(),
+                Instr::Leave => self.space.leave(),
                 Instr::Gp(i) => {
                     let sg = &flat.gps[*i];
                     let gp = Gp {
-                        state: self.interp.state,
+                        state: self.space.state(),
                         rule: sg.rule,
                         key: self.tree_key.child(*i as u64),
                         count: sg.count,
@@ -304,16 +237,16 @@ impl<'a> Grower<'a> {
                         parent: Parent::Seed((first_gp + *i) as u32),
                     };
                     let later_drawing_fixed = self.rules[sg.rule.0].neutral
-                        || matches!(flat.instrs.get(idx + 1), None | Some(Instr::Op(Op::Pop)));
+                        || matches!(flat.instrs.get(idx + 1), None | Some(Instr::Op(']')));
                     if later_drawing_fixed {
                         pending.push(gp);
                     } else {
-                        let here = self.interp.state;
+                        let here = self.space.state();
                         for p in pending.drain(..) {
                             self.decide_with_subtree(p, progress);
                         }
                         let end = self.decide_with_subtree(gp, progress);
-                        self.interp.state = end.unwrap_or(here);
+                        self.space.set_state(end.unwrap_or(here));
                     }
                 }
             }
@@ -338,9 +271,8 @@ impl<'a> Grower<'a> {
     }
 
     /// One drawing operation of the seed: drawn and placed without a test.
-    fn seed_op(&mut self, op: Op) -> Result<(), Diagnostics> {
-        self.interp.apply(op);
-        if let Some(s) = self.interp.turtle.segments.pop() {
+    fn seed_op(&mut self, op: S::Op) -> Result<(), Diagnostics> {
+        if let Some(seg) = self.space.apply(op) {
             self.budget.stems += 1;
             self.budget.seed_stems += 1;
             // The seed is always drawn whole (a stop only ends growth), but
@@ -355,7 +287,6 @@ impl<'a> Grower<'a> {
                 .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
                 .into());
             }
-            let seg = seg_of(&s, &self.od.params);
             if let Some(t) = &mut self.trace {
                 t.push((seg, 0));
             }
@@ -367,7 +298,11 @@ impl<'a> Grower<'a> {
     /// Decides a seed growth point: in `bfs` its children join the queue, in
     /// `dfs` its whole subtree is grown now. Returns the turtle state after
     /// the application if it grew. The turtle's state is clobbered.
-    fn decide_with_subtree(&mut self, gp: Gp, progress: &mut dyn Progress) -> Option<State> {
+    fn decide_with_subtree(
+        &mut self,
+        gp: Gp<S::State>,
+        progress: &mut dyn Progress,
+    ) -> Option<S::State> {
         if self.budget.stopped {
             return None;
         }
@@ -397,7 +332,7 @@ impl<'a> Grower<'a> {
     /// Decides one growth point. On success records the node, leaves its
     /// children in `scratch.children` and returns the turtle state after the
     /// application.
-    fn decide(&mut self, mut gp: Gp, progress: &mut dyn Progress) -> Option<State> {
+    fn decide(&mut self, mut gp: Gp<S::State>, progress: &mut dyn Progress) -> Option<S::State> {
         self.scratch.children.clear();
         if gp.count == Some(0) {
             return None;
@@ -457,8 +392,8 @@ impl<'a> Grower<'a> {
 
     /// Counts a failed try of `gp.rule`; for the rule's first, works out the
     /// numbers from what the try left in the scratch.
-    fn note_miss(&mut self, gp: &Gp, reason: MissReason) {
-        let order = gp.state.order + 1;
+    fn note_miss(&mut self, gp: &Gp<S::State>, reason: MissReason) {
+        let order = S::order(&gp.state) + 1;
         let (scratch, params, limits) = (&self.scratch, &self.od.params, &self.limits);
         let clearance = self.occ.clearance();
         self.tallies[gp.rule.0].miss(reason, || {
@@ -472,11 +407,11 @@ impl<'a> Grower<'a> {
 
     /// Draws rule `gp.rule` at the growth point into the scratch, testing
     /// every segment; records the branch tips in `scratch.tips`.
-    fn apply(&mut self, gp: &Gp) -> Result<State, Miss> {
+    fn apply(&mut self, gp: &Gp<S::State>) -> Result<S::State, Miss> {
         if self.budget.stopped {
             return Err(Miss::Stopped);
         }
-        let order = gp.state.order + 1;
+        let order = S::order(&gp.state) + 1;
         if !self.od.params.can_grow_at(order) {
             return Err(Miss::Failed(if self.od.params.length.at(order) > 0.0 {
                 MissReason::TooThin
@@ -495,20 +430,20 @@ impl<'a> Grower<'a> {
         }
         self.scratch.segs.clear();
         self.scratch.tips.clear();
-        let base_depth = self.interp.stack_depth();
-        self.interp.state = gp.state;
-        self.interp.apply(Op::Enter);
+        let base_depth = self.space.stack_depth();
+        self.space.set_state(gp.state);
+        self.space.enter();
         let result = self.draw_body(gp);
         // Unwind whatever the body left on the stack (only after a miss).
-        while self.interp.stack_depth() > base_depth {
-            self.interp.apply(Op::Pop);
+        while self.space.stack_depth() > base_depth {
+            self.space.apply(S::pop());
         }
         result?;
-        self.interp.apply(Op::Leave);
-        Ok(self.interp.state)
+        self.space.leave();
+        Ok(self.space.state())
     }
 
-    fn draw_body(&mut self, gp: &Gp) -> Result<(), Miss> {
+    fn draw_body(&mut self, gp: &Gp<S::State>) -> Result<(), Miss> {
         let mut saved = std::mem::take(&mut self.scratch.saved);
         saved.clear();
         let drawn = self.draw_body_with(gp, &mut saved);
@@ -517,36 +452,36 @@ impl<'a> Grower<'a> {
     }
 
     /// [`Grower::draw_body`] with the stack of saved inside-flags.
-    fn draw_body_with(&mut self, gp: &Gp, saved: &mut Vec<bool>) -> Result<(), Miss> {
+    fn draw_body_with(&mut self, gp: &Gp<S::State>, saved: &mut Vec<bool>) -> Result<(), Miss> {
         let od = self.od;
         let rule = od.rule(gp.rule);
         // Whether the turtle's position is known to be inside the region,
         // saved and restored with the turtle's stack.
         let mut inside = gp.inside;
-        let base = self.interp.stack_depth();
+        let base = self.space.stack_depth();
         // Pops below this depth are ignored: the body's own depth on the
         // trunk, the depth just inside the `[` in a branch.
         let mut floor = base;
         for step in walk::steps(&rule.body) {
             match step {
                 Step::Run(r) => {
-                    for op in r.text.chars().filter_map(Op::of_stl) {
+                    for op in r.text.chars().filter_map(S::op) {
                         self.step(op, &mut inside, saved, floor)?;
                     }
                 }
                 Step::Fixed(f) => {
-                    for op in fixed_ops(f) {
+                    for op in fixed_ops::<N, S>(f) {
                         self.step(op, &mut inside, saved, floor)?;
                     }
                 }
                 Step::Open { .. } => {
-                    self.step(Op::Push, &mut inside, saved, base)?;
-                    floor = self.interp.stack_depth();
+                    self.step(S::push(), &mut inside, saved, base)?;
+                    floor = self.space.stack_depth();
                 }
                 Step::Tip { .. } => {
-                    self.scratch.tips.push((self.interp.state, inside));
-                    while self.interp.stack_depth() >= floor {
-                        self.step(Op::Pop, &mut inside, saved, base)?;
+                    self.scratch.tips.push((self.space.state(), inside));
+                    while self.space.stack_depth() >= floor {
+                        self.step(S::pop(), &mut inside, saved, base)?;
                     }
                     floor = base;
                 }
@@ -559,7 +494,7 @@ impl<'a> Grower<'a> {
     /// layout, or too close to `clash`'s other stem): out of line, so the
     /// tests in [`Grower::step`] stay small.
     #[inline(never)]
-    fn missed(&mut self, clash: Option<(Seg, Seg, bool)>) -> Miss {
+    fn missed(&mut self, clash: Option<(Cap<N>, Cap<N>, bool)>) -> Miss {
         self.scratch.miss = LastMiss::at(self.scratch.segs.len(), clash);
         Miss::Failed(match clash {
             None => MissReason::Outside,
@@ -571,29 +506,27 @@ impl<'a> Grower<'a> {
     /// `floor`: pops below this stack depth are ignored (unbalanced input).
     fn step(
         &mut self,
-        op: Op,
+        op: S::Op,
         inside: &mut bool,
         saved: &mut Vec<bool>,
         floor: usize,
     ) -> Result<(), Miss> {
-        match op {
-            Op::Push => saved.push(*inside),
-            Op::Pop => {
-                if self.interp.stack_depth() <= floor {
+        match S::class(op) {
+            Class::Push => saved.push(*inside),
+            Class::Pop => {
+                if self.space.stack_depth() <= floor {
                     return Ok(());
                 }
                 *inside = saved.pop().unwrap_or(false);
             }
-            Op::Move => *inside = false,
-            _ => {}
+            Class::Moves => *inside = false,
+            Class::Draws | Class::Turns => {}
         }
-        self.interp.apply(op);
-        let Some(s) = self.interp.turtle.segments.pop() else {
+        let Some(seg) = self.space.apply(op) else {
             return Ok(());
         };
-        let seg = seg_of(&s, &self.od.params);
-        if let Some(r) = &self.region {
-            if !r.capsule_inside(s.from, s.to, seg.r, *inside) {
+        if self.space.bounded() {
+            if !self.space.inside(&seg, *inside) {
                 return Err(self.missed(None));
             }
             *inside = true;

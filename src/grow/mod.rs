@@ -43,7 +43,11 @@
 //! operations and growth points, and writes the grown seed back;
 //! `bounded.rs` refuses growth that nothing bounds; `grower.rs` draws the
 //! seeds (one per root of a forest) and decides the growth points, choosing
-//! among a rule's alternatives by [`crate::choice`]; `tree.rs` holds what it
+//! among a rule's alternatives by [`crate::choice`], once for the plane and
+//! for space: `plane.rs` says what it draws with (the `Space` trait, and
+//! the 2D turtle and region), [`space`] the 3D turtle with `D=` and the
+//! volumes (`stl-language.md` section 11); `rules.rs` works out what growth
+//! needs of each rule; `tree.rs` holds what it
 //! records (the grown tree, the budget spent against the limits); [`region`] and [`occupancy`] answer
 //! where a segment may go (they alone know the spatial index).
 
@@ -51,8 +55,11 @@ mod bounded;
 pub mod explain;
 mod grower;
 pub mod occupancy;
+mod plane;
 pub mod region;
+mod rules;
 mod seed;
+pub mod space;
 mod tree;
 
 use crate::bed::Bed;
@@ -61,9 +68,13 @@ use crate::limits::{Bound, Limits};
 use crate::model::{Description, Format, Loc, Seed, StemParams};
 use crate::progress::Progress;
 use crate::turtle::Point;
+use crate::turtle::space::Point3;
 
 use explain::RuleTally;
 use grower::Grower;
+use plane::{Plane, Space};
+use space::Volume;
+use space::region::Region3;
 
 /// What a seed over `--max-stems` by itself is, in the error message.
 const SEED_STEMS: &str = "stems drawn by the seed alone";
@@ -164,6 +175,8 @@ pub struct PlacedStem {
     pub from: Point,
     /// Where it went.
     pub to: Point,
+    /// The third coordinates of `from` and `to` (0 in a 2D tree).
+    pub z: [f64; 2],
     /// The stroke width, canvas units.
     pub width: f64,
     /// Which decision placed it: 0 for the seed's own drawing, `k` for the
@@ -182,42 +195,118 @@ pub fn grow_traced(
     opts: &GrowOptions,
     progress: &mut dyn Progress,
 ) -> Result<(Grown, Vec<PlacedStem>), Diagnostics> {
+    if od.is_3d() {
+        let (grown, trace) = grow_3d(od, opts, true, progress)?;
+        return Ok((grown, placed(trace, |s| [s.a[2], s.b[2]])));
+    }
     let (grown, trace) = grow_inner(od, opts, Backend::Rstar, true, progress)?;
-    let placed = trace
+    Ok((grown, placed(trace, |_| [0.0; 2])))
+}
+
+/// The stems of a trace, each with the z of its ends (`z`).
+fn placed<const N: usize>(
+    trace: Trace<N>,
+    z: impl Fn(&occupancy::Cap<N>) -> [f64; 2],
+) -> Vec<PlacedStem> {
+    trace
         .unwrap_or_default()
         .into_iter()
         .map(|(s, decision)| PlacedStem {
             from: Point::new(s.a[0], s.a[1]),
             to: Point::new(s.b[0], s.b[1]),
+            z: z(&s),
             width: 2.0 * s.r,
             decision,
         })
-        .collect();
-    Ok((grown, placed))
+        .collect()
 }
 
 /// Grows `od` into a BED with a chosen occupancy index. Every [`Backend`]
 /// gives the same result; the choice is for measuring (the Delaunay one
-/// exists only with the feature `spade-index`).
+/// exists only with the feature `spade-index`, and only in the plane: a
+/// 3D description grows with the R*-tree whatever is asked).
 pub fn grow_with(
     od: &Description,
     opts: &GrowOptions,
     backend: Backend,
     progress: &mut dyn Progress,
 ) -> Result<Grown, Diagnostics> {
+    if od.is_3d() {
+        return grow_3d(od, opts, false, progress).map(|(g, _)| g);
+    }
     grow_inner(od, opts, backend, false, progress).map(|(g, _)| g)
 }
 
 /// The trace of placed stems, with their decisions, when asked for.
-type Trace = Option<Vec<(occupancy::Seg, u64)>>;
+type Trace<const N: usize> = Option<Vec<(occupancy::Cap<N>, u64)>>;
 
+/// The roots of `od`, in root order, with their places in the text.
+type Roots<'a> = Vec<((f64, f64), &'a Loc)>;
+
+/// Grows a 2D description.
 fn grow_inner(
     od: &Description,
     opts: &GrowOptions,
     backend: Backend,
     trace: bool,
     progress: &mut dyn Progress,
-) -> Result<(Grown, Trace), Diagnostics> {
+) -> Result<(Grown, Trace<2>), Diagnostics> {
+    grow_in(od, opts, backend, trace, progress, |roots: &Roots<'_>| {
+        let region = match &od.layout {
+            Some(l) => Some(Region::from_layout(l, opts.limits.max_layout_vertices)?),
+            None => None,
+        };
+        let points = roots.iter().map(|&((x, y), _)| Point::new(x, y)).collect();
+        Ok(Plane::new(od, region, points))
+    })
+}
+
+/// Grows a 3D description (`stl-language.md` section 11).
+fn grow_3d(
+    od: &Description,
+    opts: &GrowOptions,
+    trace: bool,
+    progress: &mut dyn Progress,
+) -> Result<(Grown, Trace<3>), Diagnostics> {
+    grow_in(
+        od,
+        opts,
+        Backend::Rstar,
+        trace,
+        progress,
+        |roots: &Roots<'_>| {
+            let z = |t: usize| match t {
+                0 => od.root_z,
+                t => od.forest[t - 1].root_z,
+            };
+            let points: Vec<Point3> = (0..roots.len())
+                .map(|t| Point3::new(roots[t].0.0, roots[t].0.1, z(t).unwrap_or(0.0)))
+                .collect();
+            let region = match &od.layout {
+                Some(l) => Some(Region3::from_layout(
+                    l,
+                    [points[0].x, points[0].z],
+                    opts.limits.max_layout_vertices,
+                )?),
+                None => None,
+            };
+            Ok(Volume::new(od, region, points))
+        },
+    )
+}
+
+/// Grows `od` in the space `make` builds for its roots.
+fn grow_in<'a, const N: usize, S: Space<N>>(
+    od: &'a Description,
+    opts: &GrowOptions,
+    backend: Backend,
+    trace: bool,
+    progress: &mut dyn Progress,
+    make: impl FnOnce(&Roots<'a>) -> Result<S, Diagnostics>,
+) -> Result<(Grown, Trace<N>), Diagnostics>
+where
+    occupancy::Cap<N>: occupancy::Dim,
+{
     let seed = od.effective_seed().ok_or_else(|| {
         Diagnostic::error(GrowError::NothingToGrow)
             .with_help("declare a rule after RULE, or write a SEED")
@@ -251,18 +340,13 @@ fn grow_inner(
     let flat = seed::flatten(od, &seed)?;
     bounded::check_bounded(od, &flat.gps, opts)?;
 
-    let region = match &od.layout {
-        Some(l) => Some(Region::from_layout(l, opts.limits.max_layout_vertices)?),
-        None => None,
-    };
     // The roots, in root order (one for a tree, several for a forest).
-    let roots: Vec<((f64, f64), &Loc)> = std::iter::once((od.root, &od.root_loc))
+    let roots: Roots<'_> = std::iter::once((od.root, &od.root_loc))
         .chain(od.forest.iter().map(|t| (t.root, &t.root_loc)))
         .collect();
-    for &((x, y), loc) in &roots {
-        if let Some(r) = &region
-            && !r.covers_point(Point::new(x, y))
-        {
+    let space = make(&roots)?;
+    for (t, &((x, y), loc)) in roots.iter().enumerate() {
+        if !space.covers_root(t) {
             let mut d = Diagnostic::error(GrowError::RootOutside { x, y }).with_help(
                 "move the root into a coloured (non-white) layout shape, or change the LAYOUT",
             );
@@ -280,7 +364,7 @@ fn grow_inner(
         opts,
         backend,
         clearance,
-        region,
+        space,
         flat.gps.len(),
         roots.len(),
     );
@@ -288,8 +372,7 @@ fn grow_inner(
         g.trace = Some(Vec::new());
     }
     progress.start("stems", opts.limits.max_stems);
-    let points: Vec<Point> = roots.iter().map(|&((x, y), _)| Point::new(x, y)).collect();
-    let walked = g.grow_trees(&flat, &points, progress);
+    let walked = g.grow_trees(&flat, roots.len(), progress);
     progress.finish();
     walked?;
 

@@ -29,12 +29,23 @@ pub(super) struct SeedGp {
 /// One instruction of the flattened seed.
 #[derive(Debug)]
 pub(super) enum Instr<'a> {
-    /// A drawing operation (`Enter`/`Leave` around a written term's body).
-    Op(Op),
+    /// A drawing component, as written (`[` and `]` included); what it
+    /// does is the turtle's business ([`super::plane::Space::op`]).
+    Op(char),
+    /// A written term's body starts (a rule application).
+    Enter,
+    /// It ends.
+    Leave,
     /// A fixed figure `[I n w]`, drawn as given.
     Fixed(&'a Fixed),
     /// Growth point number `i` of [`Flat::gps`].
     Gp(usize),
+}
+
+/// Whether `c` is a drawing component in 2D or 3D (`F f + - L R | [ ]`,
+/// and the 3D turtle's `& ^ \ /`).
+fn draws(c: char) -> bool {
+    Op::of_stl(c).is_some() || matches!(c, '&' | '^' | '\\' | '/')
 }
 
 /// The seed as a flat program, in drawing order.
@@ -111,7 +122,7 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
         let op = match step {
             SeedStep::Run(r) => {
                 flat.instrs
-                    .extend(r.text.chars().filter_map(Op::of_stl).map(Instr::Op));
+                    .extend(r.text.chars().filter(|&c| draws(c)).map(Instr::Op));
                 continue;
             }
             SeedStep::Fixed(f) => {
@@ -156,15 +167,15 @@ pub(super) fn flatten<'a>(od: &'a Description, seed: &'a Seed) -> Result<Flat<'a
                     }
                     return Err(d.into());
                 }
-                Op::Enter
+                Instr::Enter
             }
-            SeedStep::End { .. } => Op::Leave,
-            SeedStep::Open => Op::Push,
-            SeedStep::Close => Op::Pop,
+            SeedStep::End { .. } => Instr::Leave,
+            SeedStep::Open => Instr::Op('['),
+            SeedStep::Close => Instr::Op(']'),
             // Not in drawing order with growth points.
             SeedStep::Level { .. } | SeedStep::Empty { .. } => continue,
         };
-        flat.instrs.push(Instr::Op(op));
+        flat.instrs.push(op);
     }
     Ok(flat)
 }

@@ -14,6 +14,7 @@ mod fuzz_corpus;
 mod geometry;
 mod golden;
 mod grow;
+mod grow3d;
 mod lod;
 mod lsys;
 mod newuser;

@@ -1,7 +1,7 @@
 //! The spade index (feature `spade-index`): an experiment kept for
 //! measuring, see the module documentation of [`super`].
 
-use super::{Seg, conflicts};
+use super::{PointIndex, Seg, conflicts};
 use spade::{
     DelaunayTriangulation, FloatTriangulation, HasPosition, HierarchyHintGenerator, Point2,
     Triangulation,
@@ -64,8 +64,10 @@ impl SpadeIndex {
         self.at.push(Vec::new());
         Some(id)
     }
+}
 
-    pub(super) fn insert(&mut self, s: Seg) {
+impl PointIndex<Seg> for SpadeIndex {
+    fn insert(&mut self, s: Seg) {
         let k = self.segs.len() as u32;
         self.segs.push(s);
         self.max_len = self.max_len.max(len(&s));
@@ -82,8 +84,7 @@ impl SpadeIndex {
         }
     }
 
-    /// `widest`: the largest threshold any held segment can have with `t`.
-    pub(super) fn conflict(&self, t: &Seg, c: f64, widest: f64) -> Option<Seg> {
+    fn conflict(&self, t: &Seg, c: f64, widest: f64) -> Option<Seg> {
         if let Some(&k) = self
             .odd
             .iter()

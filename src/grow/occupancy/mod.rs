@@ -53,6 +53,11 @@
 //! `docs/growth.md` has the timings that made rstar the choice (3.7 to 12
 //! times faster).
 
+mod capsule;
+
+pub use capsule::{
+    Cap, Seg, Seg3, SegDist, clearance_distance, conflicts, point_seg_dist2, seg_seg_dist2,
+};
 use rstar::{AABB, RStarInsertionStrategy, RTree, RTreeObject, RTreeParams};
 
 /// The occupancy tree's node sizes: rstar's 3 to 6 entries, but no forced
@@ -72,41 +77,6 @@ impl RTreeParams for OccupancyParams {
     type DefaultInsertionStrategy = RStarInsertionStrategy;
 }
 
-/// One straight stem from `a` to `b` (the turtle's direction), drawn
-/// `2 r` wide, canvas units.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Seg {
-    /// Start (where the turtle was).
-    pub a: [f64; 2],
-    /// End (where the turtle went).
-    pub b: [f64; 2],
-    /// Half the stroke width: the radius of the capsule it is drawn as.
-    pub r: f64,
-}
-
-impl Seg {
-    /// A hairline segment (radius 0) from two points.
-    pub fn new(a: [f64; 2], b: [f64; 2]) -> Self {
-        Seg { a, b, r: 0.0 }
-    }
-
-    /// A segment drawn `2 r` wide (a negative radius counts as 0).
-    pub fn capsule(a: [f64; 2], b: [f64; 2], r: f64) -> Self {
-        Seg {
-            a,
-            b,
-            r: r.max(0.0),
-        }
-    }
-}
-
-impl RTreeObject for Seg {
-    type Envelope = AABB<[f64; 2]>;
-    fn envelope(&self) -> Self::Envelope {
-        AABB::from_corners(self.a, self.b)
-    }
-}
-
 /// A placed stem in the occupancy tree: its box, computed once (the R*-tree
 /// asks an entry for its box at every comparison while it inserts and
 /// splits; computing it from the ends each time was a third of growth's
@@ -114,25 +84,16 @@ impl RTreeObject for Seg {
 /// exact test finds it. A small entry keeps the tree small: 64 bytes a
 /// node entry against 80 with the stem inside (docs/performance.md).
 #[derive(Debug, Clone, Copy)]
-struct Placed {
-    env: AABB<[f64; 2]>,
+struct Placed<const N: usize> {
+    env: AABB<[f64; N]>,
     index: usize,
 }
 
-impl RTreeObject for Placed {
-    type Envelope = AABB<[f64; 2]>;
+impl<const N: usize> RTreeObject for Placed<N> {
+    type Envelope = AABB<[f64; N]>;
     fn envelope(&self) -> Self::Envelope {
         self.env
     }
-}
-
-/// The box of the points within `c` of `t`'s bounding box: every segment
-/// that can conflict with `t` has its box meet it.
-fn reach(t: &Seg, c: f64) -> AABB<[f64; 2]> {
-    AABB::from_corners(
-        [t.a[0].min(t.b[0]) - c, t.a[1].min(t.b[1]) - c],
-        [t.a[0].max(t.b[0]) + c, t.a[1].max(t.b[1]) + c],
-    )
 }
 
 /// Which spatial index answers the clearance query.
@@ -147,135 +108,78 @@ pub enum Backend {
     Spade,
 }
 
-/// The joint, and `s`'s far end, if `t` starts on an end of `s`.
-fn joint(t: &Seg, s: &Seg) -> Option<([f64; 2], [f64; 2])> {
-    if t.a == s.a {
-        Some((s.a, s.b))
-    } else if t.a == s.b {
-        Some((s.b, s.a))
-    } else {
+/// What the indexes need of a dimension: the distance of two stems and,
+/// with the feature `spade-index`, the Delaunay index (the plane's only).
+pub trait Dim: SegDist + Copy + PartialEq + std::fmt::Debug {
+    /// The Delaunay index for these stems, if there is one.
+    #[cfg(feature = "spade-index")]
+    fn delaunay() -> Option<Box<dyn PointIndex<Self>>>;
+}
+
+impl Dim for Seg {
+    #[cfg(feature = "spade-index")]
+    fn delaunay() -> Option<Box<dyn PointIndex<Self>>> {
+        Some(Box::new(delaunay::SpadeIndex::default()))
+    }
+}
+
+/// Space has no Delaunay index: `Backend::Spade` grows with the R*-tree.
+impl Dim for Seg3 {
+    #[cfg(feature = "spade-index")]
+    fn delaunay() -> Option<Box<dyn PointIndex<Self>>> {
         None
     }
 }
 
-/// Whether a new segment `t` conflicts with a placed segment `s` under
-/// clearance `c` (the rule in the module documentation).
-pub fn conflicts(t: &Seg, s: &Seg, c: f64) -> bool {
-    let threshold = c + t.r + s.r;
-    if threshold <= 0.0 {
-        return false;
-    }
-    let c2 = threshold * threshold;
-    match joint(t, s) {
-        Some((j, far_s)) => {
-            let near = |p: [f64; 2], seg: &Seg| {
-                let (d2, at) = point_seg_nearest(p, seg);
-                d2 < c2 && at != j
-            };
-            near(t.b, s) || near(far_s, t)
-        }
-        None => seg_seg_dist2(t, s) < c2,
-    }
+/// An index over the stems' endpoints (the spade experiment).
+#[cfg(feature = "spade-index")]
+pub trait PointIndex<S>: std::fmt::Debug {
+    /// A held stem `t` conflicts with; `widest`: the largest threshold any
+    /// held segment can have with `t`.
+    fn conflict(&self, t: &S, c: f64, widest: f64) -> Option<S>;
+    /// Adds `s`.
+    fn insert(&mut self, s: S);
 }
 
-/// The distance between the centre lines of `t` and `s` that the clearance
-/// test of [`conflicts`] measures: with a joint (`t` starts on an end of
-/// `s`), the smaller of the distances from `t`'s far end to `s` and from
-/// `s`'s far end to `t` that are not reached at the joint (infinite if
-/// both are); otherwise the distance between the segments. `t` conflicts
-/// with `s` exactly when it is below `c + t.r + s.r` (and that is above 0).
-pub fn clearance_distance(t: &Seg, s: &Seg) -> f64 {
-    match joint(t, s) {
-        Some((j, far_s)) => {
-            let away = |p: [f64; 2], seg: &Seg| {
-                let (d2, at) = point_seg_nearest(p, seg);
-                if at != j { d2 } else { f64::INFINITY }
-            };
-            away(t.b, s).min(away(far_s, t)).sqrt()
-        }
-        None => seg_seg_dist2(t, s).sqrt(),
-    }
-}
-
-/// Squared distance from point `p` to segment `s`, and the point of `s`
-/// nearest to `p` (exactly an endpoint of `s` when that is the nearest).
-fn point_seg_nearest(p: [f64; 2], s: &Seg) -> (f64, [f64; 2]) {
-    let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
-    let (px, py) = (p[0] - s.a[0], p[1] - s.a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        ((px * dx + py * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let at = if t <= 0.0 {
-        s.a
-    } else if t >= 1.0 {
-        s.b
-    } else {
-        [s.a[0] + t * dx, s.a[1] + t * dy]
-    };
-    let (ex, ey) = (px - t * dx, py - t * dy);
-    (ex * ex + ey * ey, at)
-}
-
-/// Squared distance from point `p` to segment `s`.
-pub fn point_seg_dist2(p: [f64; 2], s: &Seg) -> f64 {
-    point_seg_nearest(p, s).0
-}
-
-fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-}
-
-/// Squared distance between two segments (0 if they cross).
-pub fn seg_seg_dist2(t: &Seg, s: &Seg) -> f64 {
-    let d1 = orient(s.a, s.b, t.a);
-    let d2 = orient(s.a, s.b, t.b);
-    let d3 = orient(t.a, t.b, s.a);
-    let d4 = orient(t.a, t.b, s.b);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return 0.0;
-    }
-    // Not properly crossing: the distance is reached at an endpoint (touching
-    // cases give 0 here too).
-    point_seg_dist2(t.a, s)
-        .min(point_seg_dist2(t.b, s))
-        .min(point_seg_dist2(s.a, t))
-        .min(point_seg_dist2(s.b, t))
-}
-
-/// The grown segments and the clearance query.
+/// The grown segments and the clearance query, in the plane (`N = 2`, the
+/// default) or in space (`N = 3`).
 #[derive(Debug)]
-pub struct Occupancy {
+pub struct Occupancy<const N: usize = 2>
+where
+    Cap<N>: Dim,
+{
     clearance: f64,
     len: usize,
     /// The largest radius placed (the query's reach grows by it).
     max_r: f64,
     /// The placed stems, by [`Placed::index`].
-    segs: Vec<Seg>,
+    segs: Vec<Cap<N>>,
     /// The seed's stems placed, by their bits ([`Occupancy::insert_drawn`]).
     /// Membership only: never iterated.
-    drawn: std::collections::HashSet<[u64; 5]>,
-    inner: Inner,
+    drawn: std::collections::HashSet<([u64; N], [u64; N], u64)>,
+    inner: Inner<N>,
 }
 
 #[derive(Debug)]
-enum Inner {
-    Rstar(RTree<Placed, OccupancyParams>),
+enum Inner<const N: usize> {
+    Rstar(RTree<Placed<N>, OccupancyParams>),
     #[cfg(feature = "spade-index")]
-    Spade(delaunay::SpadeIndex),
+    Spade(Box<dyn PointIndex<Cap<N>>>),
 }
 
-impl Occupancy {
+impl<const N: usize> Occupancy<N>
+where
+    Cap<N>: Dim,
+{
     /// An empty index keeping clearance `clearance` (>= 0).
     pub fn new(backend: Backend, clearance: f64) -> Self {
         let inner = match backend {
             Backend::Rstar => Inner::Rstar(RTree::new_with_params()),
             #[cfg(feature = "spade-index")]
-            Backend::Spade => Inner::Spade(delaunay::SpadeIndex::default()),
+            Backend::Spade => match Cap::<N>::delaunay() {
+                Some(ix) => Inner::Spade(ix),
+                None => Inner::Rstar(RTree::new_with_params()),
+            },
         };
         Occupancy {
             clearance,
@@ -303,13 +207,13 @@ impl Occupancy {
     }
 
     /// Whether `t` conflicts with any placed segment.
-    pub fn conflicts(&self, t: &Seg) -> bool {
+    pub fn conflicts(&self, t: &Cap<N>) -> bool {
         self.conflict(t).is_some()
     }
 
     /// A placed segment `t` conflicts with, if any (the first the index
     /// finds).
-    pub fn conflict(&self, t: &Seg) -> Option<Seg> {
+    pub fn conflict(&self, t: &Cap<N>) -> Option<Cap<N>> {
         let c = self.clearance;
         // No placed segment's threshold with `t` is above this.
         let widest = c + t.r + self.max_r;
@@ -322,7 +226,7 @@ impl Occupancy {
                 // happened to make much faster code of this shape with the
                 // default codegen units (docs/performance.md).
                 let mut hit = None;
-                tree.locate_in_envelope_intersecting(&reach(t, widest))
+                tree.locate_in_envelope_intersecting(&t.reach(widest))
                     .any(|p| {
                         let s = &self.segs[p.index];
                         let near = conflicts(t, s, c);
@@ -343,15 +247,8 @@ impl Occupancy {
     /// not indexed again: the trees of a forest on one point draw the same
     /// seed, and 10^5 of them grow in linear time, not quadratic. (A grown
     /// stem equal to a placed one conflicts with it: never placed.)
-    pub fn insert_drawn(&mut self, s: Seg) {
-        let bits = [
-            s.a[0].to_bits(),
-            s.a[1].to_bits(),
-            s.b[0].to_bits(),
-            s.b[1].to_bits(),
-            s.r.to_bits(),
-        ];
-        if !self.drawn.insert(bits) && matches!(self.inner, Inner::Rstar(_)) {
+    pub fn insert_drawn(&mut self, s: Cap<N>) {
+        if !self.drawn.insert(s.bits()) && matches!(self.inner, Inner::Rstar(_)) {
             self.len += 1;
             self.segs.push(s);
             return;
@@ -360,7 +257,7 @@ impl Occupancy {
     }
 
     /// Places `s`.
-    pub fn insert(&mut self, s: Seg) {
+    pub fn insert(&mut self, s: Cap<N>) {
         self.len += 1;
         self.max_r = self.max_r.max(s.r);
         match &mut self.inner {
@@ -387,15 +284,18 @@ pub const LOCAL_LINEAR: usize = 64;
 /// draw a few segments, which a scan tests fastest; one that passes
 /// [`LOCAL_LINEAR`] (a large fixed figure) gets an R*-tree.
 #[derive(Debug)]
-pub struct LocalIndex {
+pub struct LocalIndex<const N: usize = 2> {
     clearance: f64,
-    segs: Vec<Seg>,
-    tree: Option<RTree<Seg>>,
+    segs: Vec<Cap<N>>,
+    tree: Option<RTree<Cap<N>>>,
     /// The largest radius held.
     max_r: f64,
 }
 
-impl LocalIndex {
+impl<const N: usize> LocalIndex<N>
+where
+    Cap<N>: Dim,
+{
     /// An empty index keeping clearance `clearance` (>= 0).
     pub fn new(clearance: f64) -> Self {
         LocalIndex {
@@ -424,12 +324,12 @@ impl LocalIndex {
     }
 
     /// Whether `t` conflicts with any segment held.
-    pub fn conflicts(&self, t: &Seg) -> bool {
+    pub fn conflicts(&self, t: &Cap<N>) -> bool {
         self.conflict(t).is_some()
     }
 
     /// A segment held that `t` conflicts with, if any (the first found).
-    pub fn conflict(&self, t: &Seg) -> Option<Seg> {
+    pub fn conflict(&self, t: &Cap<N>) -> Option<Cap<N>> {
         let c = self.clearance;
         let widest = c + t.r + self.max_r;
         if widest <= 0.0 {
@@ -437,7 +337,7 @@ impl LocalIndex {
         }
         match &self.tree {
             Some(tree) => tree
-                .locate_in_envelope_intersecting(&reach(t, widest))
+                .locate_in_envelope_intersecting(&t.reach(widest))
                 .find(|s| conflicts(t, s, c))
                 .copied(),
             None => self.segs.iter().find(|s| conflicts(t, s, c)).copied(),
@@ -446,12 +346,12 @@ impl LocalIndex {
 
     /// Where `s` is in drawing order (0 for the first segment held), if it
     /// is held: linear, for explaining a failure, not for growth.
-    pub fn position(&self, s: &Seg) -> Option<usize> {
+    pub fn position(&self, s: &Cap<N>) -> Option<usize> {
         self.segs.iter().position(|x| x == s)
     }
 
     /// Adds `s`.
-    pub fn insert(&mut self, s: Seg) {
+    pub fn insert(&mut self, s: Cap<N>) {
         self.segs.push(s);
         self.max_r = self.max_r.max(s.r);
         match &mut self.tree {
@@ -465,7 +365,7 @@ impl LocalIndex {
     }
 
     /// Hands the segments over in drawing order, leaving the index empty.
-    pub fn drain(&mut self) -> impl Iterator<Item = Seg> + '_ {
+    pub fn drain(&mut self) -> impl Iterator<Item = Cap<N>> + '_ {
         self.tree = None;
         self.max_r = 0.0;
         self.segs.drain(..)

@@ -1,0 +1,451 @@
+//! Growth in volumes (issue 26, item 3): a 3D OD grown into a BED.
+//!
+//! Until the 3D syntax reads them, the descriptions are 2D `.od` texts read
+//! by the real parser and made 3D here (a root z, `D=`, volumes). Every
+//! grown stem is checked independently of the grower: its capsule sampled
+//! (points along the centre line and around it at the radius) against
+//! point-membership tests written here, and every pair of stems against
+//! the clearance with a distance computed here (a ternary search of the
+//! point-to-segment distance, which is convex along a segment).
+
+use stlc::Limits;
+use stlc::color::Rgb;
+use stlc::diag::MissReason;
+use stlc::grow::{GrowOptions, GrowthOrder, PlacedStem, grow, grow_traced};
+use stlc::model::*;
+use stlc::progress::NoProgress;
+use stlc::syntax::stl::parse;
+
+const GREEN: Rgb = Rgb::new(0, 128, 0);
+
+/// `od` made 3D: root z 0 (every root), `D`, the volumes `solids`.
+fn lift(mut od: Description, d: f64, solids: Vec<(Rgb, Solid)>) -> Description {
+    od.root_z = Some(0.0);
+    for t in &mut od.forest {
+        t.root_z = Some(0.0);
+    }
+    od.params.divergence = Some(d);
+    let mut layout = Layout::new(Vec::new());
+    layout.solids = solids
+        .into_iter()
+        .map(|(color, solid)| LayoutSolid {
+            color,
+            color_text: String::new(),
+            solid,
+            loc: Loc::default(),
+        })
+        .collect();
+    od.layout = Some(layout);
+    od
+}
+
+fn parsed(text: &str) -> Description {
+    parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// `text` read as a 2D OD, made 3D by [`lift`].
+fn od3(text: &str, d: f64, solids: Vec<(Rgb, Solid)>) -> Description {
+    lift(parsed(text), d, solids)
+}
+
+fn opts(growth: GrowthOrder) -> GrowOptions {
+    GrowOptions {
+        growth,
+        ..GrowOptions::default()
+    }
+}
+
+fn traced(od: &Description, growth: GrowthOrder) -> Vec<PlacedStem> {
+    grow_traced(od, &opts(growth), &mut NoProgress)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .1
+}
+
+type P = [f64; 3];
+
+fn ends(s: &PlacedStem) -> (P, P) {
+    ([s.from.x, s.from.y, s.z[0]], [s.to.x, s.to.y, s.z[1]])
+}
+
+fn dist(p: P, q: P) -> f64 {
+    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+}
+
+fn lerp(a: P, b: P, t: f64) -> P {
+    [
+        a[0] + (b[0] - a[0]) * t,
+        a[1] + (b[1] - a[1]) * t,
+        a[2] + (b[2] - a[2]) * t,
+    ]
+}
+
+/// Distance from `p` to the segment `a`-`b`, and where along it (0..1).
+fn to_segment(p: P, a: P, b: P) -> (f64, f64) {
+    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = if len2 == 0.0 {
+        0.0
+    } else {
+        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1] + (p[2] - a[2]) * d[2]) / len2)
+            .clamp(0.0, 1.0)
+    };
+    (dist(p, lerp(a, b, t)), t)
+}
+
+/// Distance between two segments: ternary search along the first.
+fn seg_dist(a: P, b: P, c: P, d: P) -> f64 {
+    let f = |t: f64| to_segment(lerp(a, b, t), c, d).0;
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..100 {
+        let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+        if f(m1) <= f(m2) {
+            hi = m2;
+        } else {
+            lo = m1;
+        }
+    }
+    f(lo).min(f(0.0)).min(f(1.0))
+}
+
+/// Points of the capsule of `s`: along its centre line, and at its radius
+/// around it in 26 directions.
+fn capsule_points(s: &PlacedStem) -> Vec<P> {
+    let (a, b) = ends(s);
+    let r = s.width / 2.0;
+    let mut dirs = Vec::new();
+    for i in -1..=1 {
+        for j in -1..=1 {
+            for k in -1..=1 {
+                if (i, j, k) != (0, 0, 0) {
+                    let n = ((i * i + j * j + k * k) as f64).sqrt();
+                    dirs.push([i as f64 / n, j as f64 / n, k as f64 / n]);
+                }
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for step in 0..=16 {
+        let c = lerp(a, b, step as f64 / 16.0);
+        out.push(c);
+        for d in &dirs {
+            out.push([c[0] + d[0] * r, c[1] + d[1] * r, c[2] + d[2] * r]);
+        }
+    }
+    out
+}
+
+/// Whether `p` is in `solid` (the layout's semantics, written again);
+/// `axis`: the first root's x and z.
+fn holds(solid: &Solid, p: P, axis: [f64; 2]) -> bool {
+    match solid {
+        Solid::Box { corner, size } => {
+            (0..3).all(|i| corner[i] < p[i] && p[i] < corner[i] + size[i])
+        }
+        Solid::Sphere { centre, r } => dist(p, *centre) < *r,
+        Solid::Ellipsoid { centre, radii } => {
+            (0..3)
+                .map(|i| ((p[i] - centre[i]) / radii[i]).powi(2))
+                .sum::<f64>()
+                < 1.0
+        }
+        Solid::Cylinder { base, r, h } => {
+            let rho = ((p[0] - base[0]).powi(2) + (p[2] - base[2]).powi(2)).sqrt();
+            rho < *r && base[1] - h < p[1] && p[1] < base[1]
+        }
+        Solid::Revolve {
+            shape: Shape::Ellipse { x, y, w, h },
+        } => {
+            let rho = ((p[0] - axis[0]).powi(2) + (p[2] - axis[1]).powi(2)).sqrt();
+            let (cx, cy) = (x + w / 2.0, y + h / 2.0);
+            [axis[0] + rho, axis[0] - rho]
+                .iter()
+                .any(|px| ((px - cx) / (w / 2.0)).powi(2) + ((p[1] - cy) / (h / 2.0)).powi(2) < 1.0)
+        }
+        other => panic!("no test for {other:?}"),
+    }
+}
+
+fn in_layout(od: &Description, p: P) -> bool {
+    let axis = [od.root.0, od.root_z.unwrap_or(0.0)];
+    od.layout
+        .as_ref()
+        .unwrap()
+        .solids
+        .iter()
+        .fold(false, |inside, s| {
+            if holds(&s.solid, p, axis) {
+                s.color != Rgb::WHITE
+            } else {
+                inside
+            }
+        })
+}
+
+/// Every stem lies in the volumes and keeps the clearance; returns how
+/// many stems grew.
+fn check(od: &Description, growth: GrowthOrder) -> usize {
+    let (grown, stems) = grow_traced(od, &opts(growth), &mut NoProgress).unwrap();
+    // The volume, not the orders, bounds the tree: tries fell outside.
+    let outside: u64 = grown
+        .tallies
+        .iter()
+        .map(|t| t.misses[MissReason::Outside.index()])
+        .sum();
+    assert!(outside > 0, "no try outside");
+    let c = od.params.clearance.unwrap_or(od.params.length.base / 10.0);
+    for (i, s) in stems.iter().enumerate() {
+        if s.decision == 0 {
+            continue;
+        }
+        for p in capsule_points(s) {
+            assert!(in_layout(od, p), "stem {i} {s:?}: {p:?} outside");
+        }
+    }
+    for (i, t) in stems.iter().enumerate() {
+        if t.decision == 0 {
+            continue;
+        }
+        let (ta, tb) = ends(t);
+        for s in &stems[..i] {
+            let (sa, sb) = ends(s);
+            let need = c + (t.width + s.width) / 2.0;
+            // Boxes farther apart than that on some axis cannot conflict.
+            if (0..3).any(|k| {
+                ta[k].max(tb[k]) + need < sa[k].min(sb[k])
+                    || sa[k].max(sb[k]) + need < ta[k].min(tb[k])
+            }) {
+                continue;
+            }
+            // A joint: the far ends keep the clearance unless nearest at the joint.
+            let joint = if ta == sa {
+                Some(sb)
+            } else if ta == sb {
+                Some(sa)
+            } else {
+                None
+            };
+            match joint {
+                Some(far) => {
+                    let (d1, at1) = to_segment(tb, sa, sb);
+                    let at_joint = if ta == sa { 0.0 } else { 1.0 };
+                    assert!(
+                        d1 >= need - 1e-9 || at1 == at_joint,
+                        "stem {i}: far end {d1} < {need}"
+                    );
+                    let (d2, at2) = to_segment(far, ta, tb);
+                    assert!(
+                        d2 >= need - 1e-9 || at2 == 0.0,
+                        "stem {i}: other's far end {d2} < {need}"
+                    );
+                }
+                None => {
+                    let d = seg_dist(ta, tb, sa, sb);
+                    assert!(d >= need - 1e-6, "stem {i} {t:?} and {s:?}: {d} < {need}");
+                }
+            }
+        }
+    }
+    stems.len()
+}
+
+const TREE: &str = "T (100, 200)L=10(0.6) B=2(0.1) A=40 C=1 RULE R1: [+F][-F]";
+
+/// A spheroid crown: an ellipse revolved about the root's vertical line.
+fn crown() -> Solid {
+    let shape = Shape::Ellipse {
+        x: 50.0,
+        y: 95.0,
+        w: 100.0,
+        h: 110.0,
+    };
+    Solid::Revolve { shape }
+}
+
+#[test]
+fn a_tree_grows_inside_each_kind_of_volume_and_keeps_clearance() {
+    let cases: Vec<(&str, Vec<(Rgb, Solid)>)> = vec![
+        (
+            "sphere",
+            vec![(
+                GREEN,
+                Solid::Sphere {
+                    centre: [100.0, 150.0, 0.0],
+                    r: 55.0,
+                },
+            )],
+        ),
+        (
+            "box",
+            vec![(
+                GREEN,
+                Solid::Box {
+                    corner: [60.0, 110.0, -30.0],
+                    size: [80.0, 95.0, 60.0],
+                },
+            )],
+        ),
+        (
+            "cylinder",
+            vec![(
+                GREEN,
+                Solid::Cylinder {
+                    base: [100.0, 205.0, 0.0],
+                    r: 35.0,
+                    h: 100.0,
+                },
+            )],
+        ),
+        (
+            "ellipsoid",
+            vec![(
+                GREEN,
+                Solid::Ellipsoid {
+                    centre: [100.0, 150.0, 0.0],
+                    radii: [50.0, 60.0, 25.0],
+                },
+            )],
+        ),
+        ("revolved ellipse", vec![(GREEN, crown())]),
+        (
+            "box with a sphere carved out",
+            vec![
+                (
+                    GREEN,
+                    Solid::Box {
+                        corner: [40.0, 90.0, -40.0],
+                        size: [120.0, 115.0, 80.0],
+                    },
+                ),
+                (
+                    Rgb::WHITE,
+                    Solid::Sphere {
+                        centre: [100.0, 140.0, 15.0],
+                        r: 25.0,
+                    },
+                ),
+            ],
+        ),
+    ];
+    for (name, solids) in cases {
+        for d in [0.0, 137.5] {
+            let od = od3(TREE, d, solids.clone());
+            for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+                let n = check(&od, growth);
+                assert!(n > 20, "{name} D={d} {growth:?}: only {n} stems");
+            }
+        }
+    }
+}
+
+#[test]
+fn divergence_spreads_a_planar_rule_around_the_stem() {
+    let solids = vec![(
+        GREEN,
+        Solid::Sphere {
+            centre: [100.0, 150.0, 0.0],
+            r: 55.0,
+        },
+    )];
+    let flat = traced(&od3(TREE, 0.0, solids.clone()), GrowthOrder::Bfs);
+    assert!(flat.iter().all(|s| s.z == [0.0, 0.0]));
+    let spread = traced(&od3(TREE, 137.5, solids), GrowthOrder::Bfs);
+    let off = spread.iter().filter(|s| s.z[1].abs() > 1.0).count();
+    assert!(
+        off * 2 > spread.len(),
+        "{off} of {} stems off the plane",
+        spread.len()
+    );
+    // Room in the third dimension: more stems than in the plane.
+    assert!(
+        spread.len() > flat.len(),
+        "{} <= {}",
+        spread.len(),
+        flat.len()
+    );
+}
+
+#[test]
+fn a_forest_shares_the_volume_and_the_clearance() {
+    let text = "F (70, 200) (130, 200) L=10(0.6) B=2(0.1) A=40 C=1 RULE R1: [+F][-F]";
+    let solids = vec![(
+        GREEN,
+        Solid::Box {
+            corner: [20.0, 100.0, -40.0],
+            size: [160.0, 105.0, 80.0],
+        },
+    )];
+    let od = od3(text, 90.0, solids);
+    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        assert!(check(&od, growth) > 40);
+    }
+}
+
+#[test]
+fn growth_in_space_is_deterministic() {
+    let solids = vec![(GREEN, crown())];
+    let od = od3(TREE, 137.5, solids);
+    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        let a = grow(&od, &opts(growth), &mut NoProgress).unwrap();
+        let b = grow(&od, &opts(growth), &mut NoProgress).unwrap();
+        assert_eq!(a, b);
+        assert_eq!(traced(&od, growth), traced(&od, growth));
+    }
+}
+
+/// An example's OD made 3D: root z 0, `D=0`, its layout extruded far
+/// beyond the tree in z.
+fn extruded(flat: &Description) -> Description {
+    let solids = flat
+        .layout
+        .as_ref()
+        .expect("a layout")
+        .shapes
+        .iter()
+        .map(|s| {
+            let solid = Solid::Extrude {
+                shape: s.shape.clone(),
+                z1: -1000.0,
+                z2: 1000.0,
+            };
+            (s.color, solid)
+        });
+    lift(flat.clone(), 0.0, solids.collect())
+}
+
+#[test]
+fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
+    let mut tried = 0;
+    for entry in std::fs::read_dir("examples").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().and_then(|e| e.to_str()) != Some("od") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        let flat = parsed(&text);
+        if flat.layout.is_none() {
+            continue;
+        }
+        tried += 1;
+        let space = extruded(&flat);
+        for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+            let (g2, p2) = grow_traced(&flat, &opts(growth), &mut NoProgress).unwrap();
+            let (g3, p3) = grow_traced(&space, &opts(growth), &mut NoProgress).unwrap();
+            let (d2, d3) = (g2.bed.description(), g3.bed.description());
+            assert_eq!(d2.seed, d3.seed, "{path:?} {growth:?}");
+            let seeds =
+                |d: &Description| d.forest.iter().map(|t| t.seed.clone()).collect::<Vec<_>>();
+            assert_eq!(seeds(d2), seeds(d3), "{path:?} {growth:?}");
+            assert_eq!(g2.stems, g3.stems);
+            assert_eq!(p2.len(), p3.len());
+            for (a, b) in p2.iter().zip(&p3) {
+                assert_eq!(
+                    (a.from, a.to, a.decision),
+                    (b.from, b.to, b.decision),
+                    "{path:?}"
+                );
+                assert_eq!(b.z, [0.0, 0.0]);
+            }
+        }
+    }
+    assert!(tried >= 5, "only {tried} examples with layouts");
+}
