@@ -395,7 +395,8 @@ impl Scene {
         }
     }
 
-    /// Draws the scene's segments into `turtle`.
+    /// Draws the scene's segments into `turtle` (a 3D tree's front view:
+    /// its stems' x and y).
     pub fn draw(
         &self,
         turtle: &mut dyn Turtle,
@@ -410,6 +411,19 @@ impl Scene {
                 turtle,
                 progress,
             ),
+            // A 3D tree drawn flat is its front view: its stems' x and y.
+            What::Tree { bed, .. } if bed.description().is_3d() => {
+                let mut flat = |s: crate::turtle::space::Segment3| {
+                    turtle.segment(crate::turtle::Segment {
+                        from: crate::turtle::Point::new(s.from.x, s.from.y),
+                        to: crate::turtle::Point::new(s.to.x, s.to.y),
+                        order: s.order,
+                    })
+                };
+                let limits = &self.limits;
+                crate::interpret::bed3::draw3(bed, self.derivation, limits, &mut flat, progress)
+                    .map(|_| ())
+            }
             What::Tree { bed, .. } => {
                 crate::interpret::bed::draw(bed, self.derivation, &self.limits, turtle, progress)
             }

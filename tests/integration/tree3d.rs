@@ -205,3 +205,33 @@ fn a_3d_od_is_refused_clearly_until_it_can_grow() {
         "{err}"
     );
 }
+
+/// Drawn flat (what 2D-only consumers of a scene get), a 3D tree is its
+/// front view: a planar 3D BED gives the 2D BED's segments exactly; pitched
+/// stems keep their x and y.
+#[test]
+fn a_3d_tree_drawn_flat_is_its_front_view() {
+    use stlc::pipeline::{self, InputKind, Limits, NoProgress, SceneRequest};
+    let flat_draw = |text: &str| {
+        let limits = Limits::default();
+        let loaded = pipeline::load(text.as_bytes(), InputKind::Bed, &limits).unwrap();
+        let req = SceneRequest {
+            grow: Default::default(),
+            derivation: Default::default(),
+            depth: None,
+            limits,
+        };
+        let scene = pipeline::scene(loaded, &req, &mut NoProgress).unwrap();
+        let mut rec = stlc::turtle::Recorder::default();
+        scene.draw(&mut rec, &mut NoProgress).unwrap();
+        rec.segments
+    };
+    let flat = "T (3, 4) L=2(0.5) B=1(0.25) A=30 RULE R1: [+F][-F] SEED F R1{R1{,},} ENDSEED";
+    let a = flat_draw(flat);
+    assert_eq!(a.len(), 5);
+    assert_eq!(a, flat_draw(&flat.replacen("(3, 4)", "(3, 4, 9)", 1)));
+    // `F&F` at A=90: the second stem goes away from the viewer, a point.
+    let b = flat_draw("T (0, 0, 0) L=1(0) A=90 RULE R1: [F] SEED F&F ENDSEED");
+    let ends: Vec<(f64, f64)> = b.iter().map(|s| (s.to.x, s.to.y)).collect();
+    assert_eq!(ends, [(0.0, -1.0), (0.0, -1.0)]);
+}
