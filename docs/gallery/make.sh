@@ -29,11 +29,17 @@ $B render examples/tutorial/step4.od --growth dfs --show-layout --size 240x240 -
 for s in 1 2; do
   $B render examples/tutorial/step6.od --seed $s --show-layout --size 240x240 -o $T/step6-seed$s.png
 done
+$B render examples/tutorial/step7.od --show-layout --size 240x240 -o $T/step7.png
+$B render examples/tutorial/step7.od --view 0,90 --show-layout --size 240x240 -o $T/step7-above.png
 # 3D (docs/3d.md): two views each.
 $B render examples/hilbert3d.lsys --depth 3 --size 240x240 -o $G/hilbert3d-30-20.png
 $B render examples/hilbert3d.lsys --depth 3 --view -60,35 --size 240x240 -o $G/hilbert3d-m60-35.png
 $B render examples/plant3d.lsys --size 240x240 -o $G/plant3d-30-20.png
 $B render examples/plant3d.lsys --view 120,60 --size 240x240 -o $G/plant3d-120-60.png
+$B render examples/oak3d.od --show-layout --size 320x320 -o $G/oak3d-layout.png
+$B render examples/oak3d.od --view 120,50 --size 320x320 -o $G/oak3d-120-50.png
+$B render examples/forest3d.od --view 30,35 --show-layout --size 320x320 -o $G/forest3d-layout.png
+$B render examples/forest3d.od --view -40,10 --size 320x320 -o $G/forest3d-m40-10.png
 # Depth 7 is a solid grey square at thumbnail size.
 $B render examples/hilbert.lsys --depth 5 --size 240x240 -o $G/hilbert.png
 # Variation (docs/language.md): alternatives under bfs and dfs, and a grove

@@ -357,7 +357,11 @@ where
         }
     }
 
-    let shared = shared_roots(&roots);
+    let zs: Vec<f64> = std::iter::once(od.root_z)
+        .chain(od.forest.iter().map(|t| t.root_z))
+        .map(|z| z.unwrap_or(0.0))
+        .collect();
+    let shared = shared_roots(&roots, &zs);
 
     let mut g = Grower::new(
         od,
@@ -429,14 +433,16 @@ where
 
 /// A warning for the first root on the very point of an earlier one (two
 /// clicks of the Root tool in one place, a point typed twice), if any: its
-/// tree starts on top of the earlier tree and finds its room taken.
-fn shared_roots(roots: &[((f64, f64), &Loc)]) -> Option<Diagnostic> {
+/// tree starts on top of the earlier tree and finds its room taken. `zs`
+/// are the roots' third coordinates (0 in 2D): 3D roots over one another
+/// at different depths are different points.
+fn shared_roots(roots: &[((f64, f64), &Loc)], zs: &[f64]) -> Option<Diagnostic> {
     // `+ 0.0` makes -0 and 0 one point.
-    let key = |(x, y): (f64, f64)| ((x + 0.0).to_bits(), (y + 0.0).to_bits());
+    let key = |(x, y): (f64, f64), z: f64| [x, y, z].map(|c| (c + 0.0).to_bits());
     let mut seen = std::collections::BTreeMap::new();
-    for (i, &(point, loc)) in roots.iter().enumerate() {
-        let Some(&first) = seen.get(&key(point)) else {
-            seen.insert(key(point), i);
+    for (i, (&(point, loc), &z)) in roots.iter().zip(zs).enumerate() {
+        let Some(&first) = seen.get(&key(point, z)) else {
+            seen.insert(key(point, z), i);
             continue;
         };
         let mut d = Diagnostic::warning(GrowError::SharedRoot {

@@ -245,27 +245,7 @@ fn grow(
     opts: &GrowOptions,
     progress: &mut dyn Progress,
 ) -> Result<Grown, Diagnostics> {
-    growable(od)?;
     crate::grow::grow(od, opts, &mut Phase::new(progress, "growing"))
-}
-
-/// Refuses to grow a 3D OD while growth is 2D only (issue 26 builds
-/// growth in volumes in `grow`; this check goes when it lands): the 2D
-/// grower would drop its 3D turns and ignore its volumes.
-fn growable(od: &Description) -> Result<(), Diagnostics> {
-    if !od.is_3d() {
-        return Ok(());
-    }
-    Err(Diagnostic::error(crate::diag::StlError::NotYet3d {
-        what: "growing a 3D Outline Description",
-    })
-    .with_span(od.root_loc.0.clone())
-    .with_label("a 3D root")
-    .with_help(
-        "a 3D BED (its decisions written out) can be drawn, viewed and meshed today; \
-         or give the root two coordinates to grow the tree in 2D",
-    )
-    .into())
 }
 
 // --------------------------------------------------------------- scene --
@@ -352,7 +332,6 @@ fn traced_scene(
         return Ok((scene(loaded, req, progress)?, None, None));
     };
     let (grown, traced) = if trace {
-        growable(&od)?;
         let (grown, placed) =
             crate::grow::grow_traced(&od, &req.grow, &mut Phase::new(progress, "growing"))?;
         let text = crate::bed::write::write(grown.bed.description());

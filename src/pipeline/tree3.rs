@@ -65,7 +65,26 @@ pub(crate) fn render_view(
         Ok(())
     };
     let style = style(scene, look);
-    render_framed(&mut drawing, Frame::Fit, &[], &style, opts, out, progress)?;
+    let underlay = match &bed.description().layout {
+        Some(layout) if look.show_layout != super::ShowLayout::No => {
+            let desc = bed.description();
+            let axis = [desc.root.0, desc.root_z.unwrap_or(0.0)];
+            crate::render::volumes::outlines(layout, axis, &view.projection())
+                .into_iter()
+                .map(faint)
+                .collect()
+        }
+        _ => Vec::new(),
+    };
+    render_framed(
+        &mut drawing,
+        Frame::Fit,
+        &underlay,
+        &style,
+        opts,
+        out,
+        progress,
+    )?;
     let mut warnings = Vec::new();
     if n == 0 {
         warnings.push(
@@ -78,6 +97,16 @@ pub(crate) fn render_view(
         count: Some(n.to_string()),
         warnings,
     })
+}
+
+/// A volume's outline painted faintly: its colour a third of the way from
+/// white (white, which carves, stays white), so the tree stands out over
+/// volumes that overlap on the screen.
+fn faint(mut fill: crate::turtle::Fill) -> crate::turtle::Fill {
+    let [r, g, b] =
+        [fill.color.r, fill.color.g, fill.color.b].map(|c| (255 - (255 - u16::from(c)) / 3) as u8);
+    fill.color = crate::color::Rgb::new(r, g, b);
+    fill
 }
 
 /// Hands a 3D tree's stems to `sink` (for a mesh); `false` if the scene

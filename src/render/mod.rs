@@ -11,6 +11,7 @@ pub mod png;
 pub mod svg;
 mod svg_merge;
 pub mod view;
+pub mod volumes;
 
 use std::io::Write;
 

@@ -422,7 +422,7 @@ fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
         }
         let text = std::fs::read_to_string(&path).unwrap();
         let flat = parsed(&text);
-        if flat.layout.is_none() {
+        if flat.layout.is_none() || flat.is_3d() {
             continue;
         }
         tried += 1;
@@ -448,4 +448,29 @@ fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
         }
     }
     assert!(tried >= 5, "only {tried} examples with layouts");
+}
+
+/// The 3D examples (`oak3d.od`, `forest3d.od`): every stem inside the
+/// volumes and clear of the others, by the brute force of [`check`].
+#[test]
+fn every_3d_example_grows_inside_its_volumes_and_keeps_clearance() {
+    let mut tried = Vec::new();
+    let mut paths: Vec<_> = std::fs::read_dir("examples")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().and_then(|e| e.to_str()) == Some("od"))
+        .collect();
+    paths.sort();
+    for path in paths {
+        let od = parsed(&std::fs::read_to_string(&path).unwrap());
+        if !od.is_3d() {
+            continue;
+        }
+        for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+            let n = check(&od, growth);
+            assert!(n > 1000, "{path:?} {growth:?}: only {n} stems");
+        }
+        tried.push(path.file_name().unwrap().to_string_lossy().into_owned());
+    }
+    assert_eq!(tried, ["forest3d.od", "oak3d.od"]);
 }

@@ -296,6 +296,8 @@ fn the_khronos_validator_finds_no_issue() {
         ("plant3d.lsys", MeshFormat::Gltf, "gltf"),
         ("paper-worked.bed", MeshFormat::Glb, "glb"),
         ("koch-snowflake.lsys", MeshFormat::Gltf, "gltf"),
+        ("oak3d.od", MeshFormat::Glb, "glb"),
+        ("forest3d.od", MeshFormat::Gltf, "gltf"),
     ] {
         let path = manifest_path("examples").join(example);
         let req = Request {
@@ -320,7 +322,7 @@ fn the_khronos_validator_finds_no_issue() {
     );
     assert_eq!(
         said.lines().filter(|l| l.ends_with(" 0 0")).count(),
-        4,
+        6,
         "{said}"
     );
 }

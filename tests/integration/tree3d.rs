@@ -189,20 +189,35 @@ fn a_3d_bed_expands_with_its_turns() {
     assert_eq!(String::from_utf8(out.stdout).unwrap(), "F[&F][/F]\n");
 }
 
-/// A 3D OD cannot grow until growth in volumes lands: a clear refusal at
-/// its root, not a flat tree.
+/// A 3D OD grows into a 3D BED: the trunk (L=10) and, at order 1 (L=5),
+/// `&F` pitched down to +z and `/F` rolled (straight on); at order 2 the
+/// length is 0, so the slots stay empty. Worked by hand: the box is
+/// x 0..0, y -15..0, z 0..5 and the trunk ends at (0, -10, 0).
 #[test]
-fn a_3d_od_is_refused_clearly_until_it_can_grow() {
+fn a_3d_od_grows_into_a_3d_bed() {
+    let dir = tempfile::tempdir().unwrap();
+    let bed = dir.path().join("t.bed");
     let out = stlc()
-        .args(["compile", "--from", "od", "-o", "-", "-"])
-        .write_stdin("T (0, 0, 0) RULE R1: [&F][/F]")
+        .args(["compile", "--from", "od", "-o"])
+        .arg(&bed)
+        .arg("-")
+        .write_stdin("T (0, 0, 0) L=10(5) B=1(0) A=90 RULE R1: [&F][/F] SEED F R1 ENDSEED")
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let err = String::from_utf8(out.stderr).unwrap();
     assert!(
-        err.contains("growing a 3D Outline Description is not built yet"),
-        "{err}"
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&bed).unwrap();
+    assert!(text.starts_with("T\n(0, 0, 0)\n"), "{text}");
+    let out = stlc().args(["stats", "--json"]).arg(&bed).output().unwrap();
+    assert!(out.status.success());
+    assert_eq!(
+        String::from_utf8(out.stdout).unwrap().trim(),
+        "{\"dimensions\": 3, \"symbols\": \"11\", \"stems\": \"3\", \
+         \"bbox\": [0.000000, -15.000000, 0.000000, 0.000000, 0.000000, 5.000000], \
+         \"end\": [0.000000, -10.000000, 0.000000]}"
     );
 }
 
@@ -234,4 +249,59 @@ fn a_3d_tree_drawn_flat_is_its_front_view() {
     let b = flat_draw("T (0, 0, 0) L=1(0) A=90 RULE R1: [F] SEED F&F ENDSEED");
     let ends: Vec<(f64, f64)> = b.iter().map(|s| (s.to.x, s.to.y)).collect();
     assert_eq!(ends, [(0.0, -1.0), (0.0, -1.0)]);
+}
+
+/// `--show-layout` paints a 3D tree's volumes faintly under it: a Box seen
+/// from the front is its 40 x 40 face, painted clGreen a third of the way
+/// from white (#aad5aa), at the scale of the 15-unit trunk drawn over it;
+/// without the flag nothing is painted.
+#[test]
+fn show_layout_paints_the_volumes_of_a_3d_tree() {
+    let od = "T (0, 0, 0) L=10(5) B=1(0) A=90 RULE R1: [&F][/F] SEED F R1 ENDSEED \
+              LAYOUT (clGreen) Box (-20, -30, -20), 40, 40, 40 ENDLAYOUT";
+    let svg = |flag: Option<&str>| {
+        let mut cmd = stlc();
+        cmd.args([
+            "render", "--from", "od", "--view", "0,0", "-f", "svg", "-o", "-", "-",
+        ]);
+        if let Some(f) = flag {
+            cmd.arg(f);
+        }
+        let out = cmd.write_stdin(od).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    assert!(!svg(None).contains("#aad5aa"));
+    let shown = svg(Some("--show-layout"));
+    let line = shown
+        .lines()
+        .find(|l| l.contains("fill=\"#aad5aa\""))
+        .unwrap_or_else(|| panic!("{shown}"));
+    // The points of a path's `d`, as (xs, ys).
+    let points = |line: &str| -> (Vec<f64>, Vec<f64>) {
+        let d = line.split("d=\"").nth(1).unwrap();
+        let v: Vec<f64> = d
+            .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+            .filter(|t| !t.is_empty())
+            .map(|t| t.parse().unwrap())
+            .collect();
+        v.chunks(2).map(|p| (p[0], p[1])).unzip()
+    };
+    let (xs, ys) = points(line);
+    let span = |v: &[f64]| {
+        v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
+    };
+    // The trunk and the rolled branch: one vertical line 15 units long.
+    let trunk = shown
+        .lines()
+        .find(|l| l.contains("stroke=\"#4a2c12\""))
+        .unwrap();
+    let (_, ty) = points(trunk);
+    let unit = span(&ty) / 15.0;
+    assert!((span(&xs) / unit - 40.0).abs() < 0.01, "{line}");
+    assert!((span(&ys) / unit - 40.0).abs() < 0.01, "{line}");
 }

@@ -121,12 +121,6 @@ pub enum StlError {
         /// What was written, in words (`` `D=` (divergence) ``).
         what: String,
     },
-    /// Something 3D that stlc does not do yet.
-    #[error("{what} is not built yet")]
-    NotYet3d {
-        /// What, in words.
-        what: &'static str,
-    },
     /// A `,` outside any term.
     #[error("`,` outside a term")]
     CommaOutsideTerm,
