@@ -40,6 +40,7 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
     ("crown.od", include_str!("../../examples/crown.od")),
     ("decrement.od", include_str!("../../examples/decrement.od")),
     ("fig9.od", include_str!("../../examples/fig9.od")),
+    ("forest3d.od", include_str!("../../examples/forest3d.od")),
     ("grove.od", include_str!("../../examples/grove.od")),
     ("hilbert.lsys", include_str!("../../examples/hilbert.lsys")),
     (
@@ -51,6 +52,7 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
         "koch-snowflake.lsys",
         include_str!("../../examples/koch-snowflake.lsys"),
     ),
+    ("oak3d.od", include_str!("../../examples/oak3d.od")),
     (
         "paper-worked.bed",
         include_str!("../../examples/paper-worked.bed"),

@@ -305,3 +305,28 @@ fn show_layout_paints_the_volumes_of_a_3d_tree() {
     assert!((span(&xs) / unit - 40.0).abs() < 0.01, "{line}");
     assert!((span(&ys) / unit - 40.0).abs() < 0.01, "{line}");
 }
+
+/// Growth, pictures and meshes of a 3D tree are the same bytes run after
+/// run: the oak grown twice gives one BED, one PNG view, one `.glb`.
+#[test]
+fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
+    let od = manifest_path("examples/oak3d.od");
+    let run = |args: &[&str]| {
+        let out = stlc().args(args).arg(&od).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        out.stdout
+    };
+    for args in [
+        &["compile", "-o", "-"][..],
+        &["render", "--view", "30,20", "-f", "png", "-o", "-"],
+        &["render", "--mesh", "glb", "-o", "-"],
+    ] {
+        let first = run(args);
+        assert!(first.len() > 1000, "{args:?}");
+        assert_eq!(first, run(args), "{args:?}");
+    }
+}
