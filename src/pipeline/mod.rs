@@ -184,8 +184,9 @@ fn wrong_kind(command: Command, found: InputKind) -> Diagnostics {
             "draw it with `stlc render`; if it is an outline, name it .od or pass --from od",
         ),
         (Command::Stats, _) => (
-            "stats counts classic L-system words (.lsys)",
-            "for an .od or .bed, `stlc check` prints its rules, terms and stem count",
+            "stats counts classic L-system words (.lsys) and measures 3D BEDs",
+            "for an .od or a 2D .bed, `stlc check` prints its rules, terms and stem count; \
+             `stlc compile` makes a 3D .od's BED",
         ),
     };
     Diagnostic::error(InputError::WrongInputKind {
