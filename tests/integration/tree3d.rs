@@ -330,3 +330,54 @@ fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
         assert_eq!(first, run(args), "{args:?}");
     }
 }
+
+/// Growth and interpretation agree on `D=` and the 3D turtle: the stems a
+/// 3D OD's growth placed (its trace) are the stems its BED draws, the same
+/// set bit for bit (growth places them in another order), for the 3D
+/// examples, both growth orders.
+#[test]
+fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
+    use stlc::grow::{GrowOptions, GrowthOrder, grow_traced};
+    use stlc::interpret::{Derivation, bed3::draw3};
+    use stlc::progress::NoProgress;
+    for name in ["examples/oak3d.od", "examples/forest3d.od"] {
+        let text = std::fs::read_to_string(manifest_path(name)).unwrap();
+        let od = stlc::syntax::stl::parse(
+            &text,
+            stlc::model::Format::Od,
+            &stlc::limits::Limits::default(),
+        )
+        .unwrap();
+        for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+            let opts = GrowOptions {
+                growth,
+                ..GrowOptions::default()
+            };
+            let (grown, placed) = grow_traced(&od, &opts, &mut NoProgress).unwrap();
+            let key = |a: [f64; 6]| a.map(f64::to_bits);
+            let mut grew: Vec<[u64; 6]> = placed
+                .iter()
+                .map(|p| key([p.from.x, p.from.y, p.z[0], p.to.x, p.to.y, p.z[1]]))
+                .collect();
+            let mut drawn = Vec::new();
+            draw3(
+                &grown.bed,
+                Derivation::Dfs,
+                &opts.limits,
+                &mut |s| {
+                    let (a, b) = (s.from, s.to);
+                    drawn.push(key([a.x, a.y, a.z, b.x, b.y, b.z]));
+                },
+                &mut NoProgress,
+            )
+            .unwrap();
+            assert!(grew.len() > 100, "{name}");
+            grew.sort_unstable();
+            drawn.sort_unstable();
+            assert!(
+                grew == drawn,
+                "{name} {growth:?}: growth and the BED differ"
+            );
+        }
+    }
+}
