@@ -24,7 +24,7 @@ rows=(
   "3D extruded rectangle (planar), dfs|dfs rstar $N 4000 0.1 prism"
   "3D cube, D=137.5, dfs|dfs rstar $N 4000 0.1 cube"
 )
-declare -A wall rss stems
+declare -A wall rss stems tries
 for _ in $(seq "$RUNS"); do
   for i in "${!rows[@]}"; do
     IFS='|' read -r _ args <<<"${rows[$i]}"
@@ -33,14 +33,15 @@ for _ in $(seq "$RUNS"); do
     wall[$i]+="$(sed -n 's/.*time=\([0-9.]*\)s.*/\1/p' <<<"$o") "
     rss[$i]+="$(sed -n 's/.*Maximum resident set size (kbytes): \([0-9]*\).*/\1/p' <<<"$o") "
     stems[$i]=$(sed -n 's/.*stems=\([0-9]*\).*/\1/p' <<<"$o")
+    tries[$i]=$(sed -n 's/.*tries=\([0-9]*\).*/\1/p' <<<"$o")
   done
 done
-echo "| growth | stems | median s (growth) | peak MB |"
-echo "| --- | ---: | ---: | ---: |"
+echo "| growth | stems | tries | median s (growth) | peak MB |"
+echo "| --- | ---: | ---: | ---: | ---: |"
 for i in "${!rows[@]}"; do
   IFS='|' read -r label _ <<<"${rows[$i]}"
   w=$(tr ' ' '\n' <<<"${wall[$i]}" | grep . | median)
   r=$(tr ' ' '\n' <<<"${rss[$i]}" | grep . | median)
-  awk -v l="$label" -v n="${stems[$i]}" -v w="$w" -v r="$r" \
-    'BEGIN { printf "| %s | %d | %.3f | %.1f |\n", l, n, w, r / 1024 }'
+  awk -v l="$label" -v n="${stems[$i]}" -v t="${tries[$i]}" -v w="$w" -v r="$r" \
+    'BEGIN { printf "| %s | %d | %d | %.3f | %.1f |\n", l, n, t, w, r / 1024 }'
 done

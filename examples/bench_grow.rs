@@ -106,8 +106,9 @@ fn main() {
     let g = grow_with(&od, &opts, backend, &mut NoProgress).expect("growth");
     let secs = t.elapsed().as_secs_f64();
     println!(
-        "{growth:?} {backend:?} {space} stems={} time={secs:.3}s per_stem={:.2}us warnings={}",
+        "{growth:?} {backend:?} {space} stems={} tries={} time={secs:.3}s per_stem={:.2}us warnings={}",
         g.stems,
+        g.tallies.iter().map(|t| t.tries).sum::<u64>(),
         secs * 1e6 / g.stems as f64,
         g.warnings.len()
     );

@@ -161,6 +161,16 @@ fn holds(solid: &Solid, p: P, axis: [f64; 2]) -> bool {
                 .iter()
                 .any(|px| ((px - cx) / (w / 2.0)).powi(2) + ((p[1] - cy) / (h / 2.0)).powi(2) < 1.0)
         }
+        Solid::Extrude {
+            shape: Shape::Ellipse { x, y, w, h },
+            z1,
+            z2,
+        } => {
+            let (cx, cy) = (x + w / 2.0, y + h / 2.0);
+            *z1 < p[2]
+                && p[2] < *z2
+                && ((p[0] - cx) / (w / 2.0)).powi(2) + ((p[1] - cy) / (h / 2.0)).powi(2) < 1.0
+        }
         other => panic!("no test for {other:?}"),
     }
 }
@@ -473,4 +483,105 @@ fn every_3d_example_grows_inside_its_volumes_and_keeps_clearance() {
         tried.push(path.file_name().unwrap().to_string_lossy().into_owned());
     }
     assert_eq!(tried, ["forest3d.od", "oak3d.od"]);
+}
+
+/// docs/language.md's 3D example, read by the real parser: a trunk
+/// `Cylinder` into a crown `Sphere`, an extruded ellipse, a white box
+/// carved out, `D=137.5`, 3D turns in the rule.
+const BUSH: &str = "Bush3D
+(0, 0, 0)
+L=10(1.5) B=2(0.3) A=40 D=137.5
+RULE
+R1: [+F][-F][&F/F]
+SEED
+F R1{,,} F R1
+ENDSEED
+LAYOUT
+(clGreen) Sphere (0, -40, 0), 30
+(clGreen) Cylinder (0, 0, 0), 3, 20
+(clGreen) Extrude <Ellipse (-20, -60), 40, 20>, -10, 10
+(clWhite) Box (-5, -75, -5), 10, 10, 10
+ENDLAYOUT
+";
+
+/// The bits of a stem's ends, for comparing sets of stems.
+fn key(a: P, b: P) -> [u64; 6] {
+    [a[0], a[1], a[2], b[0], b[1], b[2]].map(f64::to_bits)
+}
+
+/// The grown BED, drawn again by the 3D BED interpreter (which rolls by
+/// `D=` at every rule application on its own), gives exactly the stems
+/// growth placed, bit for bit; and they lie in the volumes and keep the
+/// clearance.
+#[test]
+fn a_3d_od_grows_a_bed_that_draws_the_stems_growth_placed() {
+    let od = parsed(BUSH);
+    assert!(od.is_3d());
+    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        let (grown, placed) = grow_traced(&od, &opts(growth), &mut NoProgress).unwrap();
+        assert!(placed.len() > 30, "{growth:?}: {} stems", placed.len());
+        // The volumes: sphere, cylinder, extruded ellipse, minus the box.
+        assert!(check(&od, growth) > 30);
+        let mut grew: Vec<[u64; 6]> = placed
+            .iter()
+            .map(|s| {
+                let (a, b) = ends(s);
+                key(a, b)
+            })
+            .collect();
+        let mut drawn = Vec::new();
+        stlc::interpret::bed3::draw3(
+            &grown.bed,
+            stlc::interpret::Derivation::Dfs,
+            &Limits::default(),
+            &mut |s| drawn.push(key(s.from.to_array(), s.to.to_array())),
+            &mut NoProgress,
+        )
+        .unwrap();
+        grew.sort_unstable();
+        drawn.sort_unstable();
+        assert_eq!(grew, drawn, "{growth:?}");
+    }
+}
+
+/// `stlc compile` of an OD text: the BED written, and the messages.
+fn compile(text: &str) -> (String, String) {
+    let out = assert_cmd::Command::cargo_bin("stlc")
+        .unwrap()
+        .env("NO_COLOR", "1")
+        .args(["compile", "--from", "od", "-o", "-", "-"])
+        .write_stdin(text)
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.success(), "{err}");
+    (String::from_utf8(out.stdout).unwrap(), err)
+}
+
+/// Alternatives chosen by `V=`, `M=` and the explanation work in space as
+/// in the plane (through `stlc compile`): the same seed grows the same
+/// tree, another seed another; growth stops at `M=` with its warning; a
+/// rule that never fits says so.
+#[test]
+fn seeds_alternatives_m_and_explanations_in_space() {
+    let text = |header: &str| {
+        format!(
+            "A\n(0, 0, 0)\nL=10(0.6) B=2(0.1) A=40 D=90 {header}\nRULE\nR1 (0.5): [+F][-F]\nR1 (0.5): [&F][^F]\nR2: [F F F F F F F F F F]\nSEED\nF R1 R2\nENDSEED\nLAYOUT\n(clGreen) Sphere (0, -40, 0), 45\nENDLAYOUT\n"
+        )
+    };
+    let (a, warned) = compile(&text("V=3"));
+    assert_eq!(a, compile(&text("V=3")).0);
+    assert_ne!(a, compile(&text("V=4")).0);
+    assert!(a.contains("R1.1{") && a.contains("R1.2{"), "{a}");
+    // R2 draws 100 units straight up from the trunk's tip: out of the sphere.
+    assert!(
+        warned.contains("R2") && warned.contains("never"),
+        "{warned}"
+    );
+    let (m, warned) = compile(&text("V=3 M=40"));
+    // The seed's trunk, and two stems for each application in the seed.
+    let seed = &m[m.find("SEED\n").unwrap()..];
+    let stems = 1 + 2 * seed.matches("R1.").count();
+    assert!((30..=40).contains(&stems), "{stems} stems\n{m}");
+    assert!(warned.contains("M=40"), "{warned}");
 }

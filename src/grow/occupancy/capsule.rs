@@ -52,6 +52,26 @@ impl<const N: usize> Cap<N> {
         AABB::from_corners(lo, hi)
     }
 
+    /// The box a placed stem has in the occupancy tree: any box holding
+    /// its centre line will do (queries find candidates by it and test
+    /// them exactly). In the plane its bounding box. In space grown by the
+    /// radius, and where it is flat, to a thousandth of the stem's length:
+    /// a planar tree's boxes would otherwise all be flat in z, and the
+    /// R*-tree, which chooses where to insert by volumes, builds a poor
+    /// tree of boxes that have none (growth in a prism took 3.2 times the
+    /// 2D time; with an eighth of the length, growth in a cube 1.6 times
+    /// as long as with none, from the looser boxes).
+    pub fn placed_box(&self) -> AABB<[f64; N]> {
+        if N == 2 {
+            return self.envelope();
+        }
+        let d = sub(self.b, self.a);
+        let thin = dot(d, d).sqrt() / 1024.0;
+        let lo = std::array::from_fn(|i| self.a[i].min(self.b[i]) - self.r.max(thin - d[i].abs()));
+        let hi = std::array::from_fn(|i| self.a[i].max(self.b[i]) + self.r.max(thin - d[i].abs()));
+        AABB::from_corners(lo, hi)
+    }
+
     /// The bits of the stem, for telling a copy of it.
     pub(super) fn bits(&self) -> ([u64; N], [u64; N], u64) {
         (

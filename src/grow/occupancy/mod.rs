@@ -263,7 +263,7 @@ where
         match &mut self.inner {
             Inner::Rstar(tree) => {
                 tree.insert(Placed {
-                    env: s.envelope(),
+                    env: s.placed_box(),
                     index: self.segs.len(),
                 });
                 self.segs.push(s);

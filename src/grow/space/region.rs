@@ -147,14 +147,23 @@ impl Region3 {
         })
     }
 
-    /// Whether the point `p` lies in the region (for a prism, on its
-    /// boundary too, as in 2D; otherwise strictly inside).
+    /// Whether the point `p` lies in the region or on its boundary, as in
+    /// 2D (a root at the foot of a trunk `Cylinder` is in it): in a
+    /// coloured volume or on it, and not strictly inside a white one
+    /// painted later.
     pub fn covers_point(&self, p: [f64; 3]) -> bool {
         match &self.kind {
             Kind::Prism { area, z1, z2 } => {
                 *z1 <= p[2] && p[2] <= *z2 && area.covers_point(Point::new(p[0], p[1]))
             }
-            Kind::Paint(_) => self.capsule_inside(&Seg3::new(p, p), false),
+            Kind::Paint(ops) => {
+                ops.iter().fold(
+                    false,
+                    |inside, (adds, vol)| {
+                        if vol.holds(p, *adds) { *adds } else { inside }
+                    },
+                )
+            }
         }
     }
 
@@ -218,6 +227,33 @@ fn xz(s: &Seg3) -> Seg {
 }
 
 impl Vol {
+    /// Whether the volume holds `p`: on its boundary too if `closed`.
+    fn holds(&self, p: [f64; 3], closed: bool) -> bool {
+        let below = |a: f64, b: f64| if closed { a <= b } else { a < b };
+        let rho = |axis: [f64; 2]| ((p[0] - axis[0]).powi(2) + (p[2] - axis[1]).powi(2)).sqrt();
+        match self {
+            Vol::Box { lo, hi } => (0..3).all(|i| below(lo[i], p[i]) && below(p[i], hi[i])),
+            Vol::Ellipsoid { centre, radii } => below(
+                (0..3)
+                    .map(|i| ((p[i] - centre[i]) / radii[i]).powi(2))
+                    .sum(),
+                1.0,
+            ),
+            Vol::Cylinder {
+                axis,
+                r,
+                top,
+                bottom,
+            } => below(rho(*axis), *r) && below(*top, p[1]) && below(p[1], *bottom),
+            Vol::Extrude { area, z1, z2 } => {
+                below(*z1, p[2]) && below(p[2], *z2) && area.covers_point(Point::new(p[0], p[1]))
+            }
+            Vol::Revolve { profile, axis } => [1.0, -1.0]
+                .iter()
+                .any(|side| profile.covers_point(Point::new(axis[0] + side * rho(*axis), p[1]))),
+        }
+    }
+
     fn rel(&self, s: &Seg3) -> Rel {
         match self {
             Vol::Box { lo, hi } => {
