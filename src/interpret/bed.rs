@@ -65,10 +65,10 @@ pub fn draw_into<T: Turtle>(
         p.angle(),
         p.length,
     );
-    tree_ops(bed, strategy, limits, progress, &mut |e| {
+    stream::<Op>(bed, strategy, limits, progress, &mut |e| {
         match e {
-            Emit::Tree(root) => interp.state = State::start(root),
-            Emit::Op(op) => interp.apply(op),
+            Event::Tree(_, root) => interp.state = State::start(root),
+            Event::Op(op) => interp.apply(op),
         }
         Ok(())
     })?;
@@ -94,16 +94,16 @@ pub fn expand(
         Ok(())
     };
     let mut trees = 0usize;
-    tree_ops(bed, strategy, limits, progress, &mut |e| {
+    stream::<Op>(bed, strategy, limits, progress, &mut |e| {
         let op = match e {
-            Emit::Tree(_) => {
+            Event::Tree(..) => {
                 trees += 1;
                 if trees > 1 {
                     buf.push(b'\n');
                 }
                 return Ok(());
             }
-            Emit::Op(op) => op,
+            Event::Op(op) => op,
         };
         match op {
             Op::Draw => buf.push(b'F'),
@@ -141,9 +141,9 @@ pub fn ops(
     progress: &mut dyn Progress,
     sink: &mut dyn FnMut(Op) -> Result<(), Diagnostics>,
 ) -> Result<(), Diagnostics> {
-    tree_ops(bed, strategy, limits, progress, &mut |e| match e {
-        Emit::Op(op) => sink(op),
-        Emit::Tree(_) => Ok(()),
+    stream::<Op>(bed, strategy, limits, progress, &mut |e| match e {
+        Event::Op(op) => sink(op),
+        Event::Tree(..) => Ok(()),
     })
 }
 

@@ -184,8 +184,9 @@ fn wrong_kind(command: Command, found: InputKind) -> Diagnostics {
             "draw it with `stlc render`; if it is an outline, name it .od or pass --from od",
         ),
         (Command::Stats, _) => (
-            "stats counts classic L-system words (.lsys)",
-            "for an .od or .bed, `stlc check` prints its rules, terms and stem count",
+            "stats counts classic L-system words (.lsys) and measures 3D BEDs",
+            "for an .od or a 2D .bed, `stlc check` prints its rules, terms and stem count; \
+             `stlc compile` makes a 3D .od's BED",
         ),
     };
     Diagnostic::error(InputError::WrongInputKind {
@@ -374,7 +375,8 @@ impl Scene {
         }
     }
 
-    /// Draws the scene's segments into `turtle`.
+    /// Draws the scene's segments into `turtle` (a 3D tree's front view:
+    /// its stems' x and y).
     pub fn draw(
         &self,
         turtle: &mut dyn Turtle,
@@ -389,6 +391,19 @@ impl Scene {
                 turtle,
                 progress,
             ),
+            // A 3D tree drawn flat is its front view: its stems' x and y.
+            What::Tree { bed, .. } if bed.description().is_3d() => {
+                let mut flat = |s: crate::turtle::space::Segment3| {
+                    turtle.segment(crate::turtle::Segment {
+                        from: crate::turtle::Point::new(s.from.x, s.from.y),
+                        to: crate::turtle::Point::new(s.to.x, s.to.y),
+                        order: s.order,
+                    })
+                };
+                let limits = &self.limits;
+                crate::interpret::bed3::draw3(bed, self.derivation, limits, &mut flat, progress)
+                    .map(|_| ())
+            }
             What::Tree { bed, .. } => {
                 crate::interpret::bed::draw(bed, self.derivation, &self.limits, turtle, progress)
             }

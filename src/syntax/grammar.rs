@@ -101,7 +101,7 @@ pub(crate) fn describe(rule: Rule) -> String {
         // -- od / bed
         Rule::stl_file => "an STL description",
         Rule::stl_tree_name => "a tree name",
-        Rule::stl_root => "a root `(x, y)` or `(x, y, z)`",
+        Rule::stl_root => "a root `(x, y)`",
         Rule::stl_param => "a stem parameter like `L=10(0)`",
         Rule::stl_param_key => "a parameter name",
         Rule::stl_param_dec => "a decrement `(d)`",

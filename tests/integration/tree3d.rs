@@ -221,6 +221,36 @@ fn a_3d_od_grows_into_a_3d_bed() {
     );
 }
 
+/// Drawn flat (what 2D-only consumers of a scene get), a 3D tree is its
+/// front view: a planar 3D BED gives the 2D BED's segments exactly; pitched
+/// stems keep their x and y.
+#[test]
+fn a_3d_tree_drawn_flat_is_its_front_view() {
+    use stlc::pipeline::{self, InputKind, Limits, NoProgress, SceneRequest};
+    let flat_draw = |text: &str| {
+        let limits = Limits::default();
+        let loaded = pipeline::load(text.as_bytes(), InputKind::Bed, &limits).unwrap();
+        let req = SceneRequest {
+            grow: Default::default(),
+            derivation: Default::default(),
+            depth: None,
+            limits,
+        };
+        let scene = pipeline::scene(loaded, &req, &mut NoProgress).unwrap();
+        let mut rec = stlc::turtle::Recorder::default();
+        scene.draw(&mut rec, &mut NoProgress).unwrap();
+        rec.segments
+    };
+    let flat = "T (3, 4) L=2(0.5) B=1(0.25) A=30 RULE R1: [+F][-F] SEED F R1{R1{,},} ENDSEED";
+    let a = flat_draw(flat);
+    assert_eq!(a.len(), 5);
+    assert_eq!(a, flat_draw(&flat.replacen("(3, 4)", "(3, 4, 9)", 1)));
+    // `F&F` at A=90: the second stem goes away from the viewer, a point.
+    let b = flat_draw("T (0, 0, 0) L=1(0) A=90 RULE R1: [F] SEED F&F ENDSEED");
+    let ends: Vec<(f64, f64)> = b.iter().map(|s| (s.to.x, s.to.y)).collect();
+    assert_eq!(ends, [(0.0, -1.0), (0.0, -1.0)]);
+}
+
 /// `--show-layout` paints a 3D tree's volumes faintly under it: a Box seen
 /// from the front is its 40 x 40 face, painted clGreen a third of the way
 /// from white (#aad5aa), at the scale of the 15-unit trunk drawn over it;
@@ -298,5 +328,56 @@ fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
         let first = run(args);
         assert!(first.len() > 1000, "{args:?}");
         assert_eq!(first, run(args), "{args:?}");
+    }
+}
+
+/// Growth and interpretation agree on `D=` and the 3D turtle: the stems a
+/// 3D OD's growth placed (its trace) are the stems its BED draws, the same
+/// set bit for bit (growth places them in another order), for the 3D
+/// examples, both growth orders.
+#[test]
+fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
+    use stlc::grow::{GrowOptions, GrowthOrder, grow_traced};
+    use stlc::interpret::{Derivation, bed3::draw3};
+    use stlc::progress::NoProgress;
+    for name in ["examples/oak3d.od", "examples/forest3d.od"] {
+        let text = std::fs::read_to_string(manifest_path(name)).unwrap();
+        let od = stlc::syntax::stl::parse(
+            &text,
+            stlc::model::Format::Od,
+            &stlc::limits::Limits::default(),
+        )
+        .unwrap();
+        for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+            let opts = GrowOptions {
+                growth,
+                ..GrowOptions::default()
+            };
+            let (grown, placed) = grow_traced(&od, &opts, &mut NoProgress).unwrap();
+            let key = |a: [f64; 6]| a.map(f64::to_bits);
+            let mut grew: Vec<[u64; 6]> = placed
+                .iter()
+                .map(|p| key([p.from.x, p.from.y, p.z[0], p.to.x, p.to.y, p.z[1]]))
+                .collect();
+            let mut drawn = Vec::new();
+            draw3(
+                &grown.bed,
+                Derivation::Dfs,
+                &opts.limits,
+                &mut |s| {
+                    let (a, b) = (s.from, s.to);
+                    drawn.push(key([a.x, a.y, a.z, b.x, b.y, b.z]));
+                },
+                &mut NoProgress,
+            )
+            .unwrap();
+            assert!(grew.len() > 100, "{name}");
+            grew.sort_unstable();
+            drawn.sort_unstable();
+            assert!(
+                grew == drawn,
+                "{name} {growth:?}: growth and the BED differ"
+            );
+        }
     }
 }

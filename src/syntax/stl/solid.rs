@@ -187,7 +187,13 @@ impl Builder<'_> {
                 }
                 let Some(sname) = ShapeName::from_name(iname.as_str()) else {
                     if SolidName::from_name(iname.as_str()).is_some() {
-                        return wrong(self);
+                        self.report(
+                            LayoutError::ShapeArguments { shape: kind.name() },
+                            span_of(&iname),
+                            &format!("a volume: `{}` takes a 2D shape", kind.name()),
+                            &format!("write {}", kind.usage()),
+                        );
+                        return None;
                     }
                     self.unknown_shape(iname.as_str(), span_of(&iname));
                     return None;
