@@ -345,11 +345,18 @@ where
         .chain(od.forest.iter().map(|t| (t.root, &t.root_loc)))
         .collect();
     let space = make(&roots)?;
+    let zs: Vec<Option<f64>> = std::iter::once(od.root_z)
+        .chain(od.forest.iter().map(|t| t.root_z))
+        .collect();
     for (t, &((x, y), loc)) in roots.iter().enumerate() {
         if !space.covers_root(t) {
-            let mut d = Diagnostic::error(GrowError::RootOutside { x, y }).with_help(
-                "move the root into a coloured (non-white) layout shape, or change the LAYOUT",
-            );
+            let (z, what) = match zs[t] {
+                Some(z) => (Some(z), "volume"),
+                None => (None, "layout shape"),
+            };
+            let mut d = Diagnostic::error(GrowError::RootOutside { x, y, z }).with_help(format!(
+                "move the root into a coloured (non-white) {what}, or change the LAYOUT"
+            ));
             if let Some(s) = span_of(loc) {
                 d = d.with_span(s).with_label("the root");
             }
@@ -357,10 +364,7 @@ where
         }
     }
 
-    let zs: Vec<f64> = std::iter::once(od.root_z)
-        .chain(od.forest.iter().map(|t| t.root_z))
-        .map(|z| z.unwrap_or(0.0))
-        .collect();
+    let zs: Vec<f64> = zs.iter().map(|z| z.unwrap_or(0.0)).collect();
     let shared = shared_roots(&roots, &zs);
 
     let mut g = Grower::new(

@@ -693,7 +693,11 @@ fn root_outside_the_region_is_an_error() {
     let e = grow_err(&od(text), opts(GrowthOrder::Bfs));
     assert_eq!(
         e.0[0].kind,
-        ErrorKind::Grow(GrowError::RootOutside { x: 250.0, y: 100.0 })
+        ErrorKind::Grow(GrowError::RootOutside {
+            x: 250.0,
+            y: 100.0,
+            z: None
+        })
     );
     assert_eq!(e.0[0].span, Some(span_of(text, "(250, 100)")));
 }

@@ -381,3 +381,21 @@ fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
         }
     }
 }
+
+/// A 3D root outside its volumes is named with its three coordinates,
+/// and the help speaks of volumes.
+#[test]
+fn a_3d_root_outside_its_volumes_is_named_in_full() {
+    let out = stlc()
+        .env("NO_COLOR", "1")
+        .args(["check", "--from", "od", "-"])
+        .write_stdin(
+            "T (0, 0, 50) RULE R1: [+F][-F] LAYOUT (clGreen) Sphere (0, 0, 0), 10 ENDLAYOUT",
+        )
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.contains("the root (0, 0, 50) lies outside"), "{err}");
+    assert!(err.contains("non-white) volume"), "{err}");
+}

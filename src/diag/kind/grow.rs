@@ -30,12 +30,14 @@ pub enum GrowError {
         first: usize,
     },
     /// The root lies outside the layout region, so nothing can grow.
-    #[error("the root ({x}, {y}) lies outside the layout region")]
+    #[error("the root {} lies outside the layout region", point(*.x, *.y, *.z))]
     RootOutside {
         /// The root's x, as written.
         x: f64,
         /// The root's y, as written.
         y: f64,
+        /// The root's z in a 3D description.
+        z: Option<f64>,
     },
     /// Growth with nothing to bound it: a growth point without a count whose
     /// rules can branch forever, and no layout, decrement or explicit
@@ -341,5 +343,13 @@ impl fmt::Display for Misfit {
                 write!(f, "it would have passed the stem limit of {limit}")
             }
         }
+    }
+}
+
+/// A root as written: `(x, y)`, or `(x, y, z)` in 3D.
+fn point(x: f64, y: f64, z: Option<f64>) -> String {
+    match z {
+        Some(z) => format!("({x}, {y}, {z})"),
+        None => format!("({x}, {y})"),
     }
 }
