@@ -89,10 +89,13 @@ pub trait Turtle {
     /// A stand-in for a part of the drawing that breaks off in branches
     /// (a bush), as [`Turtle::blot`], whose subtree reaches `spread`
     /// canvas units to either side of `seg` (its box's half-width across
-    /// it; `seg` runs along the box's middle). The default ignores the
-    /// spread; a raster backend paints the bush's own footprint.
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
-        let _ = spread;
+    /// it; `seg` runs along the box's middle), drawn in about `runs`
+    /// separate runs (one per `]` or `f` inside: each run of a stroke has
+    /// its own caps). The default ignores the spread and the runs; a raster
+    /// backend paints the bush's own footprint with the ink so many strokes
+    /// leave there.
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
+        let _ = (spread, runs);
         self.blot(seg, density);
     }
 }
@@ -111,8 +114,8 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
         (**self).blot(seg, density)
     }
 
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
-        (**self).blot_spread(seg, density, spread)
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
+        (**self).blot_spread(seg, density, spread, runs)
     }
 }
 

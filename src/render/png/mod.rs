@@ -40,8 +40,8 @@ use tiny_skia::{
 pub use bands::BAND_ROWS;
 
 use super::{
-    BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, SPREAD_EXTRA_PX, SPREAD_MIN_PX,
-    Style, Width, stroke_px,
+    BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, SPREAD_MIN_PX, Style, Width,
+    stroke_px,
 };
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
@@ -53,7 +53,7 @@ mod bands;
 mod raster;
 
 use bands::{Canvas, Ink, Op, Router};
-use raster::Recent;
+use raster::{Bush, Recent, Shape};
 
 // ---------------------------------------------------------------------------
 // Canvas
@@ -67,7 +67,7 @@ pub struct PngTurtle {
     /// The stroke paint and colour.
     ink: Ink,
     /// Blots not yet handed to the bands (banded canvases only).
-    blots: Vec<(Point, Point, f64)>,
+    blots: Vec<(Point, Point, Shape)>,
     /// Banded canvases: the batch being split into the bands' paths (in
     /// place of `batch`).
     router: Option<Router>,
@@ -330,10 +330,10 @@ impl PngTurtle {
         }
     }
 
-    /// Stamps a capsule of `radius` output pixels from `from` to `to` in
-    /// the ink: at once on a whole raster, else with the batch's blots,
-    /// which every band stamps in order.
-    fn stamp(&mut self, from: crate::turtle::Point, to: crate::turtle::Point, radius: f64) {
+    /// Stamps `shape` around `from`-`to` (output pixels) in the ink: at
+    /// once on a whole raster, else with the batch's blots, which every
+    /// band stamps in order.
+    fn stamp(&mut self, from: crate::turtle::Point, to: crate::turtle::Point, shape: Shape) {
         match &mut self.canvas {
             Canvas::Whole(pixmap) => {
                 let (width, rows) = (pixmap.width(), 0..pixmap.height());
@@ -344,11 +344,11 @@ impl PngTurtle {
                     self.ink.rgb,
                     from,
                     to,
-                    radius,
+                    shape,
                 );
             }
             _ => {
-                self.blots.push((from, to, radius));
+                self.blots.push((from, to, shape));
                 if self.blots.len() >= BATCH_SEGMENTS {
                     self.send_blots();
                 }
@@ -474,10 +474,10 @@ impl Turtle for PngTurtle {
             return;
         }
         let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
-        self.stamp(from, to, radius);
+        self.stamp(from, to, Shape::Capsule(radius));
     }
 
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
         if self.covered {
             return;
         }
@@ -487,18 +487,16 @@ impl Turtle for PngTurtle {
             return;
         }
         let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
-        if ![from.x, from.y, to.x, to.y, spread]
+        if ![from.x, from.y, to.x, to.y, spread, density, runs]
             .iter()
             .all(|v| v.is_finite())
         {
             return;
         }
         let stroke = stroke_px(&self.width, self.fit.scale, seg.order);
-        self.stamp(
-            from,
-            to,
-            stroke / 2.0 + spread + SPREAD_EXTRA_PX * (1.0 - 1.0 / libm::sqrt(density.max(1.0))),
-        );
+        let chord = libm::hypot(to.x - from.x, to.y - from.y);
+        let bush = Bush::new(stroke, spread, chord, density * chord, runs);
+        self.stamp(from, to, Shape::Bush(bush));
     }
 
     fn segment(&mut self, seg: Segment) {

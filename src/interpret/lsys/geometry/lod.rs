@@ -250,7 +250,7 @@ impl Geometry {
                                 Point::new(x + sg * p.min_x, y + sg * p.min_y),
                                 Point::new(x + sg * p.max_x, y + sg * p.max_y),
                             );
-                            turtle.blot_spread(seg, density, spread);
+                            turtle.blot_spread(seg, density, spread, self.jumps[at] as f64);
                         }
                     }
                     (x, y) = (ex, ey);
