@@ -98,6 +98,16 @@ pub trait Turtle {
         let _ = (spread, runs);
         self.blot(seg, density);
     }
+
+    /// A stand-in for one connected run of `segments` segments (a
+    /// straight or winding line, no jump inside) no larger than half of
+    /// [`Turtle::detail`]: `seg` is its chord (or its box's diagonal).
+    /// The default draws it as one segment; a raster backend folds it as
+    /// it would fold the run.
+    fn run(&mut self, seg: Segment, segments: f64) {
+        let _ = segments;
+        self.segment(seg);
+    }
 }
 
 impl<T: Turtle + ?Sized> Turtle for &mut T {
@@ -116,6 +126,10 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
 
     fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
         (**self).blot_spread(seg, density, spread, runs)
+    }
+
+    fn run(&mut self, seg: Segment, segments: f64) {
+        (**self).run(seg, segments)
     }
 }
 

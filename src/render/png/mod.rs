@@ -94,6 +94,9 @@ pub struct PngTurtle {
     /// A stroke has covered every pixel: the raster is the stroke colour
     /// and nothing drawn later can change it.
     covered: bool,
+    /// Segments drawn or stood for so far (at a level of detail, where
+    /// the exact drawing would be in its batches).
+    stood: f64,
 }
 
 /// The pen of the open subpath, in output pixels, for [`FOLD_PX`] folding.
@@ -161,6 +164,7 @@ impl PngTurtle {
             detail: None,
             short_side: 0.99 * f64::from(fit.width.min(fit.height)),
             covered: false,
+            stood: 0.0,
         }
     }
 
@@ -328,6 +332,45 @@ impl PngTurtle {
         } else {
             pen.pending = true;
         }
+    }
+
+    /// Moves the pen of the open subpath along a stand-in's chord to `q`
+    /// (output pixels), folding it as [`PngTurtle::pen_to`] folds the run
+    /// of segments it stands for: a vertex wherever the run is `spacing`
+    /// from the last vertex written (the first segment end at least
+    /// [`FOLD_PX`] on), not only at the chord's end. Folding at the
+    /// chord's end alone would write vertices farther apart than the
+    /// exact drawing's, and a hairline drawn in fewer, longer segments is
+    /// darker (each segment's coverage of a pixel is blended over the
+    /// others').
+    fn pen_along(&mut self, q: Point, spacing: f64) {
+        let Some(mut pen) = self.pen else {
+            return;
+        };
+        let a = pen.at;
+        let (dx, dy) = (q.x - a.x, q.y - a.y);
+        let d2 = dx * dx + dy * dy;
+        if d2 > 0.0 && spacing > 0.0 {
+            // The first vertex: where the chord leaves the circle of
+            // `spacing` around the last vertex (the larger root; at once if
+            // `a` is outside it), then one every `spacing` along the chord.
+            let (ax, ay) = (a.x - pen.kept.x, a.y - pen.kept.y);
+            let b = ax * dx + ay * dy;
+            let c = ax * ax + ay * ay - spacing * spacing;
+            let mut t = ((-b + libm::sqrt((b * b - d2 * c).max(0.0))) / d2).max(0.0);
+            let step = spacing / libm::sqrt(d2);
+            while t < 1.0 {
+                let v = Point::new(a.x + t * dx, a.y + t * dy);
+                if v != pen.kept {
+                    self.put(v, false);
+                    pen.kept = v;
+                }
+                t += step;
+            }
+        }
+        pen.at = q;
+        pen.pending = pen.kept != q;
+        self.pen = Some(pen);
     }
 
     /// Stamps `shape` around `from`-`to` (output pixels) in the ink: at
@@ -499,7 +542,48 @@ impl Turtle for PngTurtle {
         self.stamp(from, to, Shape::Bush(bush));
     }
 
+    fn run(&mut self, seg: Segment, segments: f64) {
+        if self.covered {
+            return;
+        }
+        let segments = if segments.is_finite() {
+            segments.max(1.0)
+        } else {
+            1.0
+        };
+        // The run's segments, in output pixels: the chord over their
+        // number for a straight run, shorter for a winding one, where
+        // they are far under FOLD_PX anyway.
+        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
+        let each = libm::hypot(to.x - from.x, to.y - from.y) / segments;
+        let spacing = if each > 0.0 && each.is_finite() {
+            each * libm::ceil(FOLD_PX / each)
+        } else {
+            FOLD_PX
+        };
+        self.draw(seg, Some(spacing));
+        // The exact drawing strokes every BATCH_SEGMENTS segments as one
+        // path and starts the next path with a new run, whose hairline
+        // caps overlap the last one's: break the run where it would.
+        let batch = BATCH_SEGMENTS as f64;
+        let before = libm::floor(self.stood / batch);
+        self.stood += segments - 1.0;
+        if libm::floor(self.stood / batch) > before {
+            self.end_subpath();
+            self.last_to = None;
+        }
+    }
+
     fn segment(&mut self, seg: Segment) {
+        self.draw(seg, None);
+    }
+}
+
+impl PngTurtle {
+    /// Draws a segment; with a `spacing`, a stand-in's chord, folded as
+    /// the run it stands for ([`PngTurtle::pen_along`]).
+    fn draw(&mut self, seg: Segment, spacing: Option<f64>) {
+        self.stood += 1.0;
         if self.covered {
             return;
         }
@@ -551,7 +635,10 @@ impl Turtle for PngTurtle {
                 pending: false,
             });
         }
-        self.pen_to(to);
+        match spacing {
+            Some(spacing) => self.pen_along(to, spacing),
+            None => self.pen_to(to),
+        }
         self.batch_len += 1;
         self.last_to = Some(seg.to);
     }

@@ -153,7 +153,7 @@ impl Chance {
                         );
                         turtle.blot_spread(seg, density, spread, self.runs[at]);
                     } else {
-                        turtle.blot(Segment { from, to, order: 0 }, density);
+                        turtle.run(Segment { from, to, order: 0 }, self.count[at]);
                     }
                 }
                 let at = self.at(c, r);

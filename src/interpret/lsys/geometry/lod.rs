@@ -242,7 +242,7 @@ impl Geometry {
                         };
                         let density = if density.is_finite() { density } else { 1.0 };
                         if self.jumps[at] == 0 {
-                            turtle.blot(Segment { from, to, order: 0 }, density);
+                            turtle.run(Segment { from, to, order: 0 }, n as f64);
                         } else {
                             let (seg, spread) = across(
                                 from,
