@@ -357,15 +357,22 @@ impl PngTurtle {
             let (ax, ay) = (a.x - pen.kept.x, a.y - pen.kept.y);
             let b = ax * dx + ay * dy;
             let c = ax * ax + ay * ay - spacing * spacing;
-            let mut t = ((-b + libm::sqrt((b * b - d2 * c).max(0.0))) / d2).max(0.0);
+            let first = ((-b + libm::sqrt((b * b - d2 * c).max(0.0))) / d2).max(0.0);
             let step = spacing / libm::sqrt(d2);
-            while t < 1.0 {
+            // A vertex within a billionth of the end is the end, written
+            // as the pen's pending point.
+            let mut i = 0.0;
+            loop {
+                let t = first + i * step;
+                if t >= 1.0 - 1e-9 {
+                    break;
+                }
                 let v = Point::new(a.x + t * dx, a.y + t * dy);
                 if v != pen.kept {
                     self.put(v, false);
                     pen.kept = v;
                 }
-                t += step;
+                i += 1.0;
             }
         }
         pen.at = q;

@@ -58,7 +58,12 @@ impl Bush {
             let outset = std::f64::consts::PI / 8.0;
             (stroke, 0.0, 2.0 * outset, outset)
         } else {
-            (1.0, stroke / 2.0 - 0.5, std::f64::consts::PI * stroke / 4.0, 0.0)
+            (
+                1.0,
+                stroke / 2.0 - 0.5,
+                std::f64::consts::PI * stroke / 4.0,
+                0.0,
+            )
         };
         let caps = runs * cap / (length + runs * cap);
         let caps = if caps.is_finite() { caps } else { 0.0 };
@@ -280,6 +285,68 @@ mod tests {
         // A horizontal segment across the middle: each corner is 25 away.
         let c = farthest_corner(p, pt(0.0, 25.0), pt(100.0, 25.0));
         assert!((c - 25.0).abs() < 1e-12);
+    }
+
+    /// A bush's profile worked by hand. Hairlines 1 px wide, no spread:
+    /// one stroke's coverage `1 - r`, whose integral over the plane around
+    /// a 10 px chord is 10 + pi / 3; 100 px of strokes there give
+    /// lambda = 100 / (10 + pi / 3) (1 - r). Spread 0.5: the coverage
+    /// averaged over [-0.5, 0.5] is 0.75 on the chord, 0 from 1.5 px on.
+    /// A run's caps (pi / 8 px at each end) widen the spread to
+    /// sqrt(spread^2 + (pi / 8)^2 / 2) when they are all its ink.
+    #[test]
+    fn a_bushs_ink_is_its_strokes_coverage_spread_over_its_footprint() {
+        let b = Bush::new(1.0, 0.0, 10.0, 100.0, 0.0);
+        let lambda = 100.0 / (10.0 + std::f64::consts::PI / 3.0);
+        for r in [0.0, 0.25, 0.5, 0.9] {
+            let want = 1.0 - libm::exp(-lambda * (1.0 - r));
+            assert!((b.ink(r) - want).abs() < 1e-4, "{r}: {} {want}", b.ink(r));
+        }
+        assert_eq!(b.ink(1.0), 0.0);
+        let b = Bush::new(1.0, 0.5, 10.0, 100.0, 0.0);
+        assert!((b.profile(0.0) - 0.75).abs() < 1e-12);
+        assert!((b.profile(1.0) - 0.125).abs() < 1e-12);
+        assert_eq!(b.profile(1.5), 0.0);
+        assert_eq!(b.reach(), 1.5);
+        let dot = Bush::new(1.0, 0.0, 0.0, 0.0, 1.0);
+        let o = std::f64::consts::PI / 8.0;
+        assert!((dot.spread - o / std::f64::consts::SQRT_2).abs() < 1e-12);
+        // Wider strokes: full coverage within half the width less half a
+        // pixel, falling to 0 over the next pixel.
+        let wide = Bush::new(3.0, 0.0, 10.0, 100.0, 0.0);
+        assert_eq!(
+            (wide.profile(1.0), wide.profile(1.5), wide.profile(2.0)),
+            (1.0, 0.5, 0.0)
+        );
+    }
+
+    /// Stamped: the pixel on the chord gets the ink at its distance, the
+    /// more strokes the darker, nothing beyond the reach.
+    #[test]
+    fn a_bush_is_stamped_by_its_ink() {
+        let white = Rgb {
+            r: 255,
+            g: 255,
+            b: 255,
+        };
+        let black = Rgb { r: 0, g: 0, b: 0 };
+        let paint = |length: f64| {
+            let mut data = vec![255u8; 20 * 20 * 4];
+            let bush = Bush::new(1.0, 0.0, 4.0, length, 0.0);
+            let (a, b) = (Point::new(8.0, 10.5), Point::new(12.0, 10.5));
+            stamp(&mut data, 20, 0..20, black, a, b, Shape::Bush(bush));
+            let at = |x: usize, y: usize| data[(y * 20 + x) * 4];
+            let want = 255.0 * (1.0 - bush.ink(0.0));
+            assert!(
+                (f64::from(at(10, 10)) - want).abs() <= 1.0,
+                "{} {want}",
+                at(10, 10)
+            );
+            // (10.5, 11.5) is 1 px from the chord: the reach.
+            assert_eq!((at(10, 11), at(10, 9), at(3, 10)), (255, 255, 255));
+            at(10, 10)
+        };
+        assert!(paint(40.0) < paint(4.0));
     }
 
     #[test]
