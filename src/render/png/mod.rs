@@ -26,9 +26,13 @@
 //! segments, dense ones as blots: anti-aliased capsules [`BLOT_EXTRA_PX`]
 //! wider than the stems, painted straight into the raster by distance
 //! (tiny-skia's stroker costs about 4 us a blot, the stamp a few dozen
-//! pixel blends; docs/rendering.md, *Level of detail*). Blots and segments
-//! are one colour, source-over, so the order in which they land does not
-//! matter.
+//! pixel blends; docs/rendering.md, *Level of detail*). A bush's stand-in
+//! ([`Turtle::blot_spread`]) is painted with the ink its strokes leave on
+//! average over its footprint ([`raster::Bush`]); a connected run's
+//! ([`Turtle::run`]) is folded as the run it stands for and broken where
+//! the exact drawing would start a new path (docs/rendering.md,
+//! *Silhouette*). Blots and segments are one colour, source-over, so the
+//! order in which they land does not matter.
 //!
 //! It does not decide sizes or widths: [`Fit`] and [`stroke_px`] in the
 //! parent module do. Its sections mirror `svg.rs`, so the two read side by side.
@@ -50,9 +54,11 @@ use crate::turtle::Fill;
 use crate::turtle::{Point, Segment, Turtle};
 
 mod bands;
+mod fold;
 mod raster;
 
 use bands::{Canvas, Ink, Op, Router};
+use fold::Pen;
 use raster::{Bush, Recent, Shape};
 
 // ---------------------------------------------------------------------------
@@ -97,17 +103,6 @@ pub struct PngTurtle {
     /// Segments drawn or stood for so far (at a level of detail, where
     /// the exact drawing would be in its batches).
     stood: f64,
-}
-
-/// The pen of the open subpath, in output pixels, for [`FOLD_PX`] folding.
-#[derive(Debug, Clone, Copy)]
-struct Pen {
-    /// The last vertex written into the path.
-    kept: Point,
-    /// Where the pen is: the end of the last segment.
-    at: Point,
-    /// `at` is not written yet (it is closer than [`FOLD_PX`] to `kept`).
-    pending: bool,
 }
 
 impl PngTurtle {
@@ -291,93 +286,6 @@ impl PngTurtle {
             canvas => canvas.send(Op::Cover, &self.ink),
         }
         self.covered = true;
-    }
-
-    /// Ends the open subpath: writes the pen's pending end point, so the
-    /// exact end of every run is in the path.
-    fn end_subpath(&mut self) {
-        if let Some(pen) = self.pen.take() {
-            if pen.pending {
-                self.put(pen.at, false);
-            }
-            if let Some(router) = &mut self.router {
-                router.end(self.batch_width as f32);
-            }
-        }
-    }
-
-    /// Writes a vertex of the batch (a subpath's start if `start`).
-    #[inline]
-    fn put(&mut self, p: Point, start: bool) {
-        match &mut self.router {
-            Some(router) => router.point(p.x as f32, p.y as f32),
-            None if start => self.batch.move_to(p.x as f32, p.y as f32),
-            None => self.batch.line_to(p.x as f32, p.y as f32),
-        }
-    }
-
-    /// Moves the pen of the open subpath along a segment to `q` (output
-    /// pixels): written as a vertex once it is [`FOLD_PX`] or more from the
-    /// last vertex written, else held as the pending end.
-    fn pen_to(&mut self, q: Point) {
-        let Some(pen) = self.pen.as_mut() else {
-            return;
-        };
-        pen.at = q;
-        let (dx, dy) = (q.x - pen.kept.x, q.y - pen.kept.y);
-        if dx * dx + dy * dy >= FOLD_PX * FOLD_PX {
-            pen.kept = q;
-            pen.pending = false;
-            self.put(q, false);
-        } else {
-            pen.pending = true;
-        }
-    }
-
-    /// Moves the pen of the open subpath along a stand-in's chord to `q`
-    /// (output pixels), folding it as [`PngTurtle::pen_to`] folds the run
-    /// of segments it stands for: a vertex wherever the run is `spacing`
-    /// from the last vertex written (the first segment end at least
-    /// [`FOLD_PX`] on), not only at the chord's end. Folding at the
-    /// chord's end alone would write vertices farther apart than the
-    /// exact drawing's, and a hairline drawn in fewer, longer segments is
-    /// darker (each segment's coverage of a pixel is blended over the
-    /// others').
-    fn pen_along(&mut self, q: Point, spacing: f64) {
-        let Some(mut pen) = self.pen else {
-            return;
-        };
-        let a = pen.at;
-        let (dx, dy) = (q.x - a.x, q.y - a.y);
-        let d2 = dx * dx + dy * dy;
-        if d2 > 0.0 && spacing > 0.0 {
-            // The first vertex: where the chord leaves the circle of
-            // `spacing` around the last vertex (the larger root; at once if
-            // `a` is outside it), then one every `spacing` along the chord.
-            let (ax, ay) = (a.x - pen.kept.x, a.y - pen.kept.y);
-            let b = ax * dx + ay * dy;
-            let c = ax * ax + ay * ay - spacing * spacing;
-            let first = ((-b + libm::sqrt((b * b - d2 * c).max(0.0))) / d2).max(0.0);
-            let step = spacing / libm::sqrt(d2);
-            // A vertex within a billionth of the end is the end, written
-            // as the pen's pending point.
-            let mut i = 0.0;
-            loop {
-                let t = first + i * step;
-                if t >= 1.0 - 1e-9 {
-                    break;
-                }
-                let v = Point::new(a.x + t * dx, a.y + t * dy);
-                if v != pen.kept {
-                    self.put(v, false);
-                    pen.kept = v;
-                }
-                i += 1.0;
-            }
-        }
-        pen.at = q;
-        pen.pending = pen.kept != q;
-        self.pen = Some(pen);
     }
 
     /// Stamps `shape` around `from`-`to` (output pixels) in the ink: at
