@@ -324,11 +324,6 @@ mod tests {
     /// more strokes the darker, nothing beyond the reach.
     #[test]
     fn a_bush_is_stamped_by_its_ink() {
-        let white = Rgb {
-            r: 255,
-            g: 255,
-            b: 255,
-        };
         let black = Rgb { r: 0, g: 0, b: 0 };
         let paint = |length: f64| {
             let mut data = vec![255u8; 20 * 20 * 4];
