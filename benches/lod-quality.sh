@@ -10,6 +10,7 @@
 #
 #   benches/lod-quality.sh                  # builds stlc and pixdiff (release)
 #   STLC=target/release/stlc PIXDIFF=target/release/examples/pixdiff SIZE=800x800 benches/lod-quality.sh
+#   SIZE=default benches/lod-quality.sh     # no --size: the default (800 on the longer side)
 #
 # 1.24c is left out past depth 9 (8^10 = 10^9 segments: minutes with --exact),
 # 1.24b past 10 with DEPTHS_B (default "8 9 10"; 11 takes 10 s --exact).
@@ -22,6 +23,8 @@ if [ -z "${STLC:-}" ] || [ -z "${PIXDIFF:-}" ]; then
     PIXDIFF=${PIXDIFF:-$T/release/examples/pixdiff}
 fi
 SIZE=${SIZE:-512x512}
+SZ=(--size "$SIZE")
+[ "$SIZE" = default ] && SZ=()
 DEPTHS=${DEPTHS:-"8 9 10 11"}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
@@ -41,9 +44,9 @@ for t in a b c d e f; do
         if [ "$t" = b ] && ! grep -qw "$d" <<<"${DEPTHS_B:-8 9 10}"; then continue; fi
         f=examples/abop-1.24$t.lsys
         t0=$(date +%s%N)
-        "$STLC" render "$f" --depth "$d" --size "$SIZE" --exact -o "$OUT/x.png" 2>/dev/null
+        "$STLC" render "$f" --depth "$d" "${SZ[@]}" --exact -o "$OUT/x.png" 2>/dev/null
         t1=$(date +%s%N)
-        "$STLC" render "$f" --depth "$d" --size "$SIZE" -o "$OUT/l.png" 2>/dev/null
+        "$STLC" render "$f" --depth "$d" "${SZ[@]}" -o "$OUT/l.png" 2>/dev/null
         t2=$(date +%s%N)
         row "1.24$t" "$d" "$t0" "$t1" "$t2"
     done
@@ -54,9 +57,9 @@ for curve in "abop-1.27 8 9 10 11" "koch-snowflake 8 9 10 11" "sierpinski-arrowh
     for d in $ds; do
         f=examples/$name.lsys
         t0=$(date +%s%N)
-        "$STLC" render "$f" --depth "$d" --size "$SIZE" --exact -o "$OUT/x.png" 2>/dev/null
+        "$STLC" render "$f" --depth "$d" "${SZ[@]}" --exact -o "$OUT/x.png" 2>/dev/null
         t1=$(date +%s%N)
-        "$STLC" render "$f" --depth "$d" --size "$SIZE" -o "$OUT/l.png" 2>/dev/null
+        "$STLC" render "$f" --depth "$d" "${SZ[@]}" -o "$OUT/l.png" 2>/dev/null
         t2=$(date +%s%N)
         row "$name" "$d" "$t0" "$t1" "$t2"
     done

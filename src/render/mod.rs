@@ -124,14 +124,6 @@ pub const BLOT_EXTRA_PX: f64 = 1.0;
 /// this small takes well under a second anyway.
 pub const BANDED_SEGMENTS: u64 = 1 << 20;
 
-/// A bush's stand-in with its spread ([`Turtle::blot_spread`]) is a
-/// capsule of radius half the stem, plus the spread, plus up to this many
-/// output pixels: `SPREAD_EXTRA_PX * (1 - 1 / sqrt(density))`. The exact
-/// drawing's overlapping anti-aliased hairlines darken a little beyond
-/// the strokes' own reach, the more so the more of them there are. Chosen
-/// by measurement against `--exact` (docs/rendering.md, *Silhouette*).
-pub const SPREAD_EXTRA_PX: f64 = 0.5;
-
 /// A sparse bush (density under [`BLOT_DENSITY`]) whose spread is under
 /// this many output pixels is drawn as its chord, an ordinary segment.
 pub const SPREAD_MIN_PX: f64 = 0.1;

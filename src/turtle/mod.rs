@@ -89,11 +89,24 @@ pub trait Turtle {
     /// A stand-in for a part of the drawing that breaks off in branches
     /// (a bush), as [`Turtle::blot`], whose subtree reaches `spread`
     /// canvas units to either side of `seg` (its box's half-width across
-    /// it; `seg` runs along the box's middle). The default ignores the
-    /// spread; a raster backend paints the bush's own footprint.
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
-        let _ = spread;
+    /// it; `seg` runs along the box's middle), drawn in about `runs`
+    /// separate runs (one per `]` or `f` inside: each run of a stroke has
+    /// its own caps). The default ignores the spread and the runs; a raster
+    /// backend paints the bush's own footprint with the ink so many strokes
+    /// leave there.
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
+        let _ = (spread, runs);
         self.blot(seg, density);
+    }
+
+    /// A stand-in for one connected run of `segments` segments (a
+    /// straight or winding line, no jump inside) no larger than half of
+    /// [`Turtle::detail`]: `seg` is its chord (or its box's diagonal).
+    /// The default draws it as one segment; a raster backend folds it as
+    /// it would fold the run.
+    fn run(&mut self, seg: Segment, segments: f64) {
+        let _ = segments;
+        self.segment(seg);
     }
 }
 
@@ -111,8 +124,12 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
         (**self).blot(seg, density)
     }
 
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
-        (**self).blot_spread(seg, density, spread)
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
+        (**self).blot_spread(seg, density, spread, runs)
+    }
+
+    fn run(&mut self, seg: Segment, segments: f64) {
+        (**self).run(seg, segments)
     }
 }
 

@@ -79,6 +79,8 @@ struct Detailed {
     rec: Recorder,
     blots: u64,
     detail: f64,
+    /// Segments the runs' stand-ins stand for.
+    stood: f64,
 }
 
 impl Turtle for Detailed {
@@ -90,6 +92,12 @@ impl Turtle for Detailed {
     }
     fn blot(&mut self, seg: Segment, density: f64) {
         assert!(density >= 1.0, "{density}");
+        self.blots += 1;
+        self.rec.segments.push(seg);
+    }
+    fn run(&mut self, seg: Segment, segments: f64) {
+        assert!(segments >= 1.0, "{segments}");
+        self.stood += segments;
         self.blots += 1;
         self.rec.segments.push(seg);
     }
@@ -386,7 +394,8 @@ fn level_of_detail_is_bounded_and_stays_in_the_box() {
 }
 
 /// A straight line (`F -> FF`) cut into stand-ins is still the same line:
-/// every stand-in is a chord of density 1, joined end to end.
+/// every stand-in is a run's chord ([`Turtle::run`]), of 2^30 segments,
+/// joined end to end.
 #[test]
 fn a_straight_run_is_drawn_as_its_chords() {
     let s = sys("axiom F\nrule F FF\nangle 90\n");
@@ -396,6 +405,8 @@ fn a_straight_run_is_drawn_as_its_chords() {
     let segs = &t.rec.segments;
     assert_eq!(segs.len(), 1024);
     assert_eq!(t.blots, 1024);
+    // Each stands for 2^30 of the 2^40 segments.
+    assert_eq!(t.stood, 2f64.powi(40));
     for w in segs.windows(2) {
         assert_eq!(w[0].to, w[1].from);
         assert_eq!(w[0].from.x, 0.0);

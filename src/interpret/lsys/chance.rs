@@ -114,6 +114,9 @@ pub struct Chance {
     count: Vec<f64>,
     /// Whether some choice has a `]` or `f` inside, same index.
     jumps: Vec<bool>,
+    /// Expected number of `]` and `f` (where a drawn run breaks off),
+    /// same index.
+    runs: Vec<f64>,
     /// Expected symbols a trunk walk of `(s, r)` visits, same index.
     trunk: Vec<f64>,
     /// Expected word length, same index.
@@ -173,6 +176,7 @@ impl Chance {
             flip: vec![false; n * levels],
             count: vec![0.0; n * levels],
             jumps: vec![false; n * levels],
+            runs: vec![0.0; n * levels],
             trunk: vec![0.0; n * levels],
             size: vec![0.0; n * levels],
             index: HashMap::new(),
@@ -224,6 +228,7 @@ impl Chance {
             self.flip[s] = f;
             self.count[s] = f64::from(u8::from(self.ops[s] == Some(Op::Draw)));
             self.jumps[s] = matches!(self.ops[s], Some(Op::Pop | Op::Move));
+            self.runs[s] = f64::from(u8::from(self.jumps[s]));
             self.size[s] = 1.0;
         }
         for r in 1..=self.depth {
@@ -234,11 +239,13 @@ impl Chance {
                     self.flip[here] = self.flip[below];
                     self.count[here] = self.count[below];
                     self.jumps[here] = self.jumps[below];
+                    self.runs[here] = self.runs[below];
                     self.size[here] = 1.0;
                     continue;
                 }
                 let mut net: Option<(i64, bool)> = None;
                 let (mut count, mut jumps, mut trunk, mut size) = (0.0, false, 0.0, 0.0);
+                let mut runs = 0.0;
                 for alt in &self.alts[s as usize] {
                     let (mut t, mut f) = (0i64, false);
                     for &(_, c) in &alt.trunk {
@@ -257,6 +264,7 @@ impl Chance {
                         count += alt.p * self.count[i];
                         size += alt.p * self.size[i];
                         jumps |= self.jumps[i];
+                        runs += alt.p * self.runs[i];
                     }
                 }
                 let (t, f) = net.unwrap_or((0, false));
@@ -264,6 +272,7 @@ impl Chance {
                 self.flip[here] = f;
                 self.count[here] = count;
                 self.jumps[here] = jumps;
+                self.runs[here] = runs;
                 self.trunk[here] = trunk;
                 self.size[here] = size;
             }

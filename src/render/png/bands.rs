@@ -30,7 +30,7 @@ use tiny_skia::{
     Transform,
 };
 
-use super::raster;
+use super::raster::{self, Shape};
 use crate::color::Rgb;
 use crate::turtle::Point;
 
@@ -66,8 +66,8 @@ pub(super) enum Op {
         /// Its colour.
         color: Color,
     },
-    /// Blots ([`raster::stamp`]): ends and radius in output pixels.
-    Blots(Arc<Vec<(Point, Point, f64)>>),
+    /// Blots ([`raster::stamp`]): ends in output pixels and shape.
+    Blots(Arc<Vec<(Point, Point, Shape)>>),
     /// A stroke covered the whole picture: every pixel the ink.
     Cover,
 }
@@ -204,9 +204,9 @@ impl Band<'_> {
                 );
             }
             Op::Blots(blots) => {
-                for &(a, b, radius) in blots.iter() {
+                for &(a, b, shape) in blots.iter() {
                     let rows = self.rows.clone();
-                    raster::stamp(self.data, ink.width, rows, ink.rgb, a, b, radius);
+                    raster::stamp(self.data, ink.width, rows, ink.rgb, a, b, shape);
                 }
             }
             Op::Cover => pixmap.fill(super::color(ink.rgb)),

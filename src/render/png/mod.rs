@@ -26,9 +26,13 @@
 //! segments, dense ones as blots: anti-aliased capsules [`BLOT_EXTRA_PX`]
 //! wider than the stems, painted straight into the raster by distance
 //! (tiny-skia's stroker costs about 4 us a blot, the stamp a few dozen
-//! pixel blends; docs/rendering.md, *Level of detail*). Blots and segments
-//! are one colour, source-over, so the order in which they land does not
-//! matter.
+//! pixel blends; docs/rendering.md, *Level of detail*). A bush's stand-in
+//! ([`Turtle::blot_spread`]) is painted with the ink its strokes leave on
+//! average over its footprint ([`raster::Bush`]); a connected run's
+//! ([`Turtle::run`]) is folded as the run it stands for and broken where
+//! the exact drawing would start a new path (docs/rendering.md,
+//! *Silhouette*). Blots and segments are one colour, source-over, so the
+//! order in which they land does not matter.
 //!
 //! It does not decide sizes or widths: [`Fit`] and [`stroke_px`] in the
 //! parent module do. Its sections mirror `svg.rs`, so the two read side by side.
@@ -40,8 +44,8 @@ use tiny_skia::{
 pub use bands::BAND_ROWS;
 
 use super::{
-    BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, SPREAD_EXTRA_PX, SPREAD_MIN_PX,
-    Style, Width, stroke_px,
+    BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, SPREAD_MIN_PX, Style, Width,
+    stroke_px,
 };
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
@@ -50,10 +54,12 @@ use crate::turtle::Fill;
 use crate::turtle::{Point, Segment, Turtle};
 
 mod bands;
+mod fold;
 mod raster;
 
 use bands::{Canvas, Ink, Op, Router};
-use raster::Recent;
+use fold::Pen;
+use raster::{Bush, Recent, Shape};
 
 // ---------------------------------------------------------------------------
 // Canvas
@@ -67,7 +73,7 @@ pub struct PngTurtle {
     /// The stroke paint and colour.
     ink: Ink,
     /// Blots not yet handed to the bands (banded canvases only).
-    blots: Vec<(Point, Point, f64)>,
+    blots: Vec<(Point, Point, Shape)>,
     /// Banded canvases: the batch being split into the bands' paths (in
     /// place of `batch`).
     router: Option<Router>,
@@ -94,17 +100,9 @@ pub struct PngTurtle {
     /// A stroke has covered every pixel: the raster is the stroke colour
     /// and nothing drawn later can change it.
     covered: bool,
-}
-
-/// The pen of the open subpath, in output pixels, for [`FOLD_PX`] folding.
-#[derive(Debug, Clone, Copy)]
-struct Pen {
-    /// The last vertex written into the path.
-    kept: Point,
-    /// Where the pen is: the end of the last segment.
-    at: Point,
-    /// `at` is not written yet (it is closer than [`FOLD_PX`] to `kept`).
-    pending: bool,
+    /// Segments drawn or stood for so far (at a level of detail, where
+    /// the exact drawing would be in its batches).
+    stood: f64,
 }
 
 impl PngTurtle {
@@ -161,6 +159,7 @@ impl PngTurtle {
             detail: None,
             short_side: 0.99 * f64::from(fit.width.min(fit.height)),
             covered: false,
+            stood: 0.0,
         }
     }
 
@@ -289,51 +288,10 @@ impl PngTurtle {
         self.covered = true;
     }
 
-    /// Ends the open subpath: writes the pen's pending end point, so the
-    /// exact end of every run is in the path.
-    fn end_subpath(&mut self) {
-        if let Some(pen) = self.pen.take() {
-            if pen.pending {
-                self.put(pen.at, false);
-            }
-            if let Some(router) = &mut self.router {
-                router.end(self.batch_width as f32);
-            }
-        }
-    }
-
-    /// Writes a vertex of the batch (a subpath's start if `start`).
-    #[inline]
-    fn put(&mut self, p: Point, start: bool) {
-        match &mut self.router {
-            Some(router) => router.point(p.x as f32, p.y as f32),
-            None if start => self.batch.move_to(p.x as f32, p.y as f32),
-            None => self.batch.line_to(p.x as f32, p.y as f32),
-        }
-    }
-
-    /// Moves the pen of the open subpath along a segment to `q` (output
-    /// pixels): written as a vertex once it is [`FOLD_PX`] or more from the
-    /// last vertex written, else held as the pending end.
-    fn pen_to(&mut self, q: Point) {
-        let Some(pen) = self.pen.as_mut() else {
-            return;
-        };
-        pen.at = q;
-        let (dx, dy) = (q.x - pen.kept.x, q.y - pen.kept.y);
-        if dx * dx + dy * dy >= FOLD_PX * FOLD_PX {
-            pen.kept = q;
-            pen.pending = false;
-            self.put(q, false);
-        } else {
-            pen.pending = true;
-        }
-    }
-
-    /// Stamps a capsule of `radius` output pixels from `from` to `to` in
-    /// the ink: at once on a whole raster, else with the batch's blots,
-    /// which every band stamps in order.
-    fn stamp(&mut self, from: crate::turtle::Point, to: crate::turtle::Point, radius: f64) {
+    /// Stamps `shape` around `from`-`to` (output pixels) in the ink: at
+    /// once on a whole raster, else with the batch's blots, which every
+    /// band stamps in order.
+    fn stamp(&mut self, from: crate::turtle::Point, to: crate::turtle::Point, shape: Shape) {
         match &mut self.canvas {
             Canvas::Whole(pixmap) => {
                 let (width, rows) = (pixmap.width(), 0..pixmap.height());
@@ -344,11 +302,11 @@ impl PngTurtle {
                     self.ink.rgb,
                     from,
                     to,
-                    radius,
+                    shape,
                 );
             }
             _ => {
-                self.blots.push((from, to, radius));
+                self.blots.push((from, to, shape));
                 if self.blots.len() >= BATCH_SEGMENTS {
                     self.send_blots();
                 }
@@ -474,10 +432,10 @@ impl Turtle for PngTurtle {
             return;
         }
         let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
-        self.stamp(from, to, radius);
+        self.stamp(from, to, Shape::Capsule(radius));
     }
 
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64) {
+    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
         if self.covered {
             return;
         }
@@ -487,21 +445,60 @@ impl Turtle for PngTurtle {
             return;
         }
         let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
-        if ![from.x, from.y, to.x, to.y, spread]
+        if ![from.x, from.y, to.x, to.y, spread, density, runs]
             .iter()
             .all(|v| v.is_finite())
         {
             return;
         }
         let stroke = stroke_px(&self.width, self.fit.scale, seg.order);
-        self.stamp(
-            from,
-            to,
-            stroke / 2.0 + spread + SPREAD_EXTRA_PX * (1.0 - 1.0 / libm::sqrt(density.max(1.0))),
-        );
+        let chord = libm::hypot(to.x - from.x, to.y - from.y);
+        let bush = Bush::new(stroke, spread, chord, density * chord, runs);
+        self.stamp(from, to, Shape::Bush(bush));
+    }
+
+    fn run(&mut self, seg: Segment, segments: f64) {
+        if self.covered {
+            return;
+        }
+        let segments = if segments.is_finite() {
+            segments.max(1.0)
+        } else {
+            1.0
+        };
+        // The run's segments, in output pixels: the chord over their
+        // number for a straight run, shorter for a winding one, where
+        // they are far under FOLD_PX anyway.
+        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
+        let each = libm::hypot(to.x - from.x, to.y - from.y) / segments;
+        let spacing = if each > 0.0 && each.is_finite() {
+            each * libm::ceil(FOLD_PX / each)
+        } else {
+            FOLD_PX
+        };
+        self.draw(seg, Some(spacing));
+        // The exact drawing strokes every BATCH_SEGMENTS segments as one
+        // path and starts the next path with a new run, whose hairline
+        // caps overlap the last one's: break the run where it would.
+        let batch = BATCH_SEGMENTS as f64;
+        let before = libm::floor(self.stood / batch);
+        self.stood += segments - 1.0;
+        if libm::floor(self.stood / batch) > before {
+            self.end_subpath();
+            self.last_to = None;
+        }
     }
 
     fn segment(&mut self, seg: Segment) {
+        self.draw(seg, None);
+    }
+}
+
+impl PngTurtle {
+    /// Draws a segment; with a `spacing`, a stand-in's chord, folded as
+    /// the run it stands for ([`PngTurtle::pen_along`]).
+    fn draw(&mut self, seg: Segment, spacing: Option<f64>) {
+        self.stood += 1.0;
         if self.covered {
             return;
         }
@@ -553,7 +550,10 @@ impl Turtle for PngTurtle {
                 pending: false,
             });
         }
-        self.pen_to(to);
+        match spacing {
+            Some(spacing) => self.pen_along(to, spacing),
+            None => self.pen_to(to),
+        }
         self.batch_len += 1;
         self.last_to = Some(seg.to);
     }

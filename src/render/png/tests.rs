@@ -56,6 +56,43 @@ fn a_long_run_keeps_a_vertex_per_tolerance_and_its_end() {
     assert_eq!((end.x, end.y), (15.0, 50.0));
 }
 
+/// A connected run's stand-in is folded as the run it stands for: the
+/// 10 px chord of 1000 segments of 0.01 px gets a vertex every 0.25 px
+/// (39 inside, the move and the end: 41 points, as the run itself gets
+/// 40 to 42 above); of 10 segments of 1 px, one at every segment end
+/// (11 points, as 10 segments); and the end is exact.
+#[test]
+fn a_runs_stand_in_is_folded_as_the_run() {
+    let chord = stem(5.0, 50.0, 15.0, 50.0);
+    for (segments, points) in [(1000.0, 41), (10.0, 11)] {
+        let mut t = turtle();
+        t.run(chord, segments);
+        t.end_subpath();
+        assert_eq!(t.batch.len(), points, "{segments} segments");
+        let end = t.batch.last_point().unwrap();
+        assert_eq!((end.x, end.y), (15.0, 50.0));
+    }
+    let mut exact = turtle();
+    let ten: Vec<Point> = (0..=10)
+        .map(|i| Point::new(5.0 + f64::from(i), 50.0))
+        .collect();
+    run(&mut exact, &ten);
+    assert_eq!(exact.batch.len(), 11);
+}
+
+/// `--exact` strokes every BATCH_SEGMENTS segments as a path and starts
+/// the next with a new run; a stand-in's run breaks where that happens:
+/// after runs of 1000 segments, at the fifth (4096 crossed), not before.
+#[test]
+fn a_runs_stand_in_breaks_where_the_exact_drawing_starts_a_path() {
+    let mut t = turtle();
+    for i in 0..5 {
+        let x = 5.0 + f64::from(i) * 0.1;
+        t.run(stem(x, 50.0, x + 0.1, 50.0), 1000.0);
+        assert_eq!(t.last_to.is_none(), i == 4, "run {i}");
+    }
+}
+
 #[test]
 fn runs_do_not_fold_across_a_jump() {
     // Two 0.1 px runs 0.05 px apart: two subpaths, both drawn.

@@ -151,9 +151,9 @@ impl Chance {
                             Point::new(pen.x + sg * p.min_x, pen.y + sg * p.min_y),
                             Point::new(pen.x + sg * p.max_x, pen.y + sg * p.max_y),
                         );
-                        turtle.blot_spread(seg, density, spread);
+                        turtle.blot_spread(seg, density, spread, self.runs[at]);
                     } else {
-                        turtle.blot(Segment { from, to, order: 0 }, density);
+                        turtle.run(Segment { from, to, order: 0 }, self.count[at]);
                     }
                 }
                 let at = self.at(c, r);

@@ -242,7 +242,7 @@ impl Geometry {
                         };
                         let density = if density.is_finite() { density } else { 1.0 };
                         if self.jumps[at] == 0 {
-                            turtle.blot(Segment { from, to, order: 0 }, density);
+                            turtle.run(Segment { from, to, order: 0 }, n as f64);
                         } else {
                             let (seg, spread) = across(
                                 from,
@@ -250,7 +250,7 @@ impl Geometry {
                                 Point::new(x + sg * p.min_x, y + sg * p.min_y),
                                 Point::new(x + sg * p.max_x, y + sg * p.max_y),
                             );
-                            turtle.blot_spread(seg, density, spread);
+                            turtle.blot_spread(seg, density, spread, self.jumps[at] as f64);
                         }
                     }
                     (x, y) = (ex, ey);
