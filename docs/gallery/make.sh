@@ -38,6 +38,7 @@ $B render examples/plant3d.lsys --size 240x240 -o $G/plant3d-30-20.png
 $B render examples/plant3d.lsys --view 120,60 --size 240x240 -o $G/plant3d-120-60.png
 $B render examples/oak3d.od --show-layout --size 320x320 -o $G/oak3d-layout.png
 $B render examples/oak3d.od --view 120,50 --size 320x320 -o $G/oak3d-120-50.png
+$B render examples/oak3d.od -o $G/oak3d.glb
 $B render examples/forest3d.od --view 30,35 --show-layout --size 320x320 -o $G/forest3d-layout.png
 $B render examples/forest3d.od --view -40,10 --size 320x320 -o $G/forest3d-m40-10.png
 # Depth 7 is a solid grey square at thumbnail size.
