@@ -438,3 +438,7 @@ fn balanced(word: &[u32], ops: &[Option<Op3>]) -> bool {
     }
     open == 0
 }
+
+#[cfg(test)]
+#[path = "reach_tests.rs"]
+mod tests;
