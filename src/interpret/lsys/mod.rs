@@ -50,7 +50,8 @@
 //!   level-of-detail walk, which follows the seed's choices;
 //! - `reach.rs`, `reach_lod.rs`: the memoized reach of a 3D system (end,
 //!   frame, a ball about the start, per `(symbol, depth)`) and the 3D
-//!   views' level of detail on it;
+//!   views' level of detail on it; `space.rs`, `space_program.rs`: 3D
+//!   derivation (the compiled program over 3D units);
 //! - `bfs.rs`: Saupe's level-by-level rewriting.
 
 mod alphabet;
@@ -62,6 +63,7 @@ mod program;
 mod reach;
 mod reach_lod;
 pub mod space;
+mod space_program;
 mod stochastic;
 mod units;
 
