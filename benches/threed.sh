@@ -24,6 +24,13 @@ rows=(
   "3D bush depth 10 to .glb|render examples/plant3d.lsys --depth 10 -o $T/e.glb"
   "3D bush depth 10 to .obj|render examples/plant3d.lsys --depth 10 -o $T/f.obj"
   "2D picture as a mesh .glb, 78125 stems|render $T/flat.lsys -o $T/g.glb"
+  "3D bush depth 10, view --exact|render examples/plant3d.lsys --depth 10 --exact -o $T/h.png"
+  "3D bush depth 13 stats (traversal, 29 M symbols)|stats examples/plant3d.lsys --depth 13 --json"
+  "3D bush depth 20, view (level of detail)|render examples/plant3d.lsys --depth 20 -o $T/i.png"
+  "3D bush depth 20, SVG view|render examples/plant3d.lsys --depth 20 -o $T/j.svg"
+  "3D Hilbert depth 7, view --exact (2 M stems)|render examples/hilbert3d.lsys --depth 7 --exact -o $T/k.png"
+  "3D Hilbert depth 20, view (level of detail)|render examples/hilbert3d.lsys --depth 20 -o $T/l.png"
+  "3D Hilbert depth 20 stats (exact box)|stats examples/hilbert3d.lsys --depth 20 --json"
 )
 declare -A wall rss
 for _ in $(seq "$RUNS"); do
