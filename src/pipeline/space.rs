@@ -71,8 +71,9 @@ pub(crate) fn render_view(
     if !opts.exact
         && scene.derivation == Derivation::Dfs
         && let Ok(memo) = ReachMemo::new(sys, depth, sys.length)
+        && let Some(r) = render_view_lod(scene, &memo, view, look, opts, out, progress)?
     {
-        return render_view_lod(scene, &memo, view, look, opts, out, progress);
+        return Ok(r);
     }
     check_stems(sys, depth, &scene.limits, MAX_VIEW_SEGMENTS, view_too_large)?;
     let mut gathered = Gathered::new(view);
@@ -104,6 +105,10 @@ pub const VIEW_VISITS: u64 = 10_000_000;
 /// (48 bytes each: about 50 MB).
 pub const VIEW_MARKS: u64 = 1_000_000;
 
+/// The walk draws a view only when it visits at most this percentage of
+/// the word (else the compiled exact path does), 2D's threshold.
+const LOD_MAX_VISITS_PERCENT: u128 = 35;
+
 /// Most visits of the first walk, which measures the view.
 const MEASURE_VISITS: u64 = 200_000;
 
@@ -112,7 +117,8 @@ const MEASURE_VISITS: u64 = 200_000;
 /// start), the detail half a pixel of the fit from that box, raised by
 /// quarter-octaves while the walk would visit more than [`VIEW_VISITS`] or
 /// hand out more than [`VIEW_MARKS`] (a warning says so), then the walk
-/// gathered and drawn far to near.
+/// gathered and drawn far to near. `None`: the walk would visit more than
+/// 35 % of a word the exact path may draw, which then draws it.
 fn render_view_lod(
     scene: &Scene,
     memo: &ReachMemo,
@@ -121,7 +127,7 @@ fn render_view_lod(
     opts: &RenderOptions,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
-) -> Result<Rendered, Diagnostics> {
+) -> Result<Option<Rendered>, Diagnostics> {
     let (sys, _) = space_lsys(scene).expect("a 3D .lsys");
     let style = style(scene, look);
     let reach = memo.whole().radius;
@@ -168,6 +174,15 @@ fn render_view_lod(
     let ideal = LOD_PX / scale;
     let mut detail = ideal;
     let mut plan = memo.plan(detail);
+    // Little cut: the compiled exact path is faster than the walk (as in
+    // 2D, docs/rendering.md), and draws the exact picture.
+    let whole = memo.whole();
+    if u128::from(plan.visits) * 100 > u128::from(whole.syms) * LOD_MAX_VISITS_PERCENT
+        && whole.syms <= scene.limits.max_symbols
+        && whole.stems <= MAX_VIEW_SEGMENTS
+    {
+        return Ok(None);
+    }
     for _ in 0..400 {
         if plan.visits <= VIEW_VISITS && plan.marks <= VIEW_MARKS {
             break;
@@ -205,11 +220,11 @@ fn render_view_lod(
             )),
         );
     }
-    Ok(Rendered {
+    Ok(Some(Rendered {
         segments: n,
         count: Some(n.to_string()),
         warnings,
-    })
+    }))
 }
 
 /// Draws gathered stems (far to near) with the scene's style, fitted.
