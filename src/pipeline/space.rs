@@ -117,8 +117,9 @@ const MEASURE_VISITS: u64 = 200_000;
 /// start), the detail half a pixel of the fit from that box, raised by
 /// quarter-octaves while the walk would visit more than [`VIEW_VISITS`] or
 /// hand out more than [`VIEW_MARKS`] (a warning says so), then the walk
-/// gathered and drawn far to near. `None`: the walk would visit more than
-/// 35 % of a word the exact path may draw, which then draws it.
+/// gathered and drawn far to near. `None`: at half a pixel the walk fits
+/// its budgets but would visit more than 35 % of a word the exact path may
+/// draw, which then draws it.
 fn render_view_lod(
     scene: &Scene,
     memo: &ReachMemo,
@@ -174,10 +175,13 @@ fn render_view_lod(
     let ideal = LOD_PX / scale;
     let mut detail = ideal;
     let mut plan = memo.plan(detail);
-    // Little cut: the compiled exact path is faster than the walk (as in
-    // 2D, docs/rendering.md), and draws the exact picture.
+    // Little cut at half a pixel, and within the walk's budgets: the
+    // compiled exact path costs about what the walk would (as in 2D,
+    // docs/rendering.md), and draws the exact picture.
     let whole = memo.whole();
-    if u128::from(plan.visits) * 100 > u128::from(whole.syms) * LOD_MAX_VISITS_PERCENT
+    if plan.visits <= VIEW_VISITS
+        && plan.marks <= VIEW_MARKS
+        && u128::from(plan.visits) * 100 > u128::from(whole.syms) * LOD_MAX_VISITS_PERCENT
         && whole.syms <= scene.limits.max_symbols
         && whole.stems <= MAX_VIEW_SEGMENTS
     {

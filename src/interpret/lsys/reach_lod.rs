@@ -140,7 +140,7 @@ impl ReachMemo {
             top.1 += 1;
             let r = top.2;
             visited += 1;
-            if visited % PROGRESS_STEP == 0 {
+            if visited.is_multiple_of(PROGRESS_STEP) {
                 progress.update(visited);
             }
             if self.is_piece(s, r) {

@@ -3,6 +3,8 @@
 //! word with the 3D turtle; the walk at detail 0 against the exact
 //! drawing; the plan's counts against the walk's.
 
+#![allow(clippy::needless_range_loop)] // vectors compared by coordinate
+
 use super::*;
 use crate::interpret::Derivation;
 use crate::interpret::lsys::reach_lod::Mark3;
