@@ -32,8 +32,9 @@ fn render(req: &Request) -> Vec<u8> {
 const PLANAR: &str = "generations 4\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\nwidth 2\n";
 
 /// `--view 0,0` of a planar system with `dimensions 3` is its 2D picture,
-/// byte for byte, PNG and SVG. The 2D side is drawn `--exact`: the 3D view
-/// draws every stem (no level of detail yet), and so does `--exact`.
+/// byte for byte, PNG and SVG. The 2D side is drawn `--exact`: this small
+/// view cuts nothing, so it draws every stem by the exact path, as
+/// `--exact` does.
 #[test]
 fn the_front_view_of_a_planar_system_is_its_2d_picture() {
     for format in [ImageFormat::Png, ImageFormat::Svg] {
@@ -386,4 +387,28 @@ fn a_mesh_goes_to_standard_output_when_asked() {
         ])
         .assert()
         .code(2);
+}
+
+/// A view at a depth whose stems no view could hold (the Hilbert curve at
+/// depth 12: 6.9 x 10^10 stems) is drawn at a level of detail within its
+/// budget of 10^6 stems and stand-ins, and a warning gives the detail.
+#[test]
+fn a_deep_view_is_drawn_at_a_level_of_detail_within_its_budget() {
+    let text = std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap();
+    let req = Request {
+        depth: Some(12),
+        ..lsys_request(&text)
+    };
+    let mut out = Vec::new();
+    let drawn = req
+        .render(&mut out, &mut stlc::pipeline::NoProgress)
+        .unwrap();
+    assert!(out.starts_with(b"\x89PNG"));
+    assert!(
+        drawn.segments > 0 && drawn.segments <= 1_000_000,
+        "{}",
+        drawn.segments
+    );
+    let w: Vec<String> = drawn.warnings.iter().map(|d| d.to_string()).collect();
+    assert!(w.iter().any(|m| m.contains("level of detail of")), "{w:?}");
 }
