@@ -7,17 +7,19 @@ use std::io::Write;
 
 use super::{Rendered, Scene, What, style};
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
+use crate::interpret::Derivation;
 use crate::interpret::lsys::space::{bounds3, draw3};
+use crate::interpret::lsys::{Mark3, ReachMemo};
 use crate::interpret::stats::{STATS_TRAVERSAL_SYMBOLS, Stats, stats_with_budget};
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 use crate::num::{Trim, fixed};
 use crate::progress::{NoProgress, Phase, Progress};
 use crate::render::mesh::{self, MeshFormat, MeshOptions, Tube};
-use crate::render::view::{Gathered, MAX_VIEW_SEGMENTS, View, view_too_large};
-use crate::render::{Frame, RenderOptions, Width, render_framed};
+use crate::render::view::{Gathered, MAX_VIEW_SEGMENTS, View, draw_sorted, view_too_large};
+use crate::render::{Frame, LOD_PX, RenderOptions, Width, render_framed};
 use crate::turtle::space::{Point3, Segment3};
-use crate::turtle::{Segment, Turtle};
+use crate::turtle::{BBox, Segment, Turtle};
 
 /// The 3D `.lsys` of a scene, and its depth, if it is one.
 pub(crate) fn space_lsys(scene: &Scene) -> Option<(&LSystem, u32)> {
@@ -53,8 +55,10 @@ fn check_stems(
 }
 
 /// Draws a 3D `.lsys` seen from `view` as the PNG or SVG `opts` asks: its
-/// stems projected, drawn far to near, fitted as a 2D drawing is. Every
-/// stem is drawn (no level of detail yet).
+/// stems projected, drawn far to near, fitted as a 2D drawing is. At a
+/// level of detail (the default, `dfs`, a deterministic system the reach
+/// memo takes) parts under half a pixel are stand-ins
+/// ([`render_view_lod`]); otherwise every stem is drawn.
 pub(crate) fn render_view(
     scene: &Scene,
     view: View,
@@ -64,6 +68,13 @@ pub(crate) fn render_view(
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
     let (sys, depth) = space_lsys(scene).expect("render_view is called for a 3D .lsys");
+    if !opts.exact
+        && scene.derivation == Derivation::Dfs
+        && let Ok(memo) = ReachMemo::new(sys, depth, sys.length)
+        && let Some(r) = render_view_lod(scene, &memo, view, look, opts, out, progress)?
+    {
+        return Ok(r);
+    }
     check_stems(sys, depth, &scene.limits, MAX_VIEW_SEGMENTS, view_too_large)?;
     let mut gathered = Gathered::new(view);
     draw3(
@@ -79,10 +90,158 @@ pub(crate) fn render_view(
     }
     let stems = gathered.sorted();
     let n = stems.len() as u64;
-    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
-        for s in &stems {
-            t.segment(*s);
+    draw_view(scene, look, opts, &stems, out, progress)?;
+    Ok(Rendered {
+        segments: n,
+        count: Some(n.to_string()),
+        warnings: nothing_drawn(n),
+    })
+}
+
+/// Most symbols and stand-ins a 3D view's walk visits (about half a second).
+pub const VIEW_VISITS: u64 = 10_000_000;
+
+/// Most stems and stand-ins a 3D view at a level of detail holds and sorts
+/// (48 bytes each: about 50 MB).
+pub const VIEW_MARKS: u64 = 1_000_000;
+
+/// The walk draws a view only when it visits at most this percentage of
+/// the word (else the compiled exact path does), 2D's threshold.
+const LOD_MAX_VISITS_PERCENT: u128 = 35;
+
+/// Most visits of the first walk, which measures the view.
+const MEASURE_VISITS: u64 = 200_000;
+
+/// A 3D view at a level of detail (docs/3d.md): the view's box measured
+/// by a coarse walk (every part cut there lies within its reach of its
+/// start), the detail half a pixel of the fit from that box, raised by
+/// quarter-octaves while the walk would visit more than [`VIEW_VISITS`] or
+/// hand out more than [`VIEW_MARKS`] (a warning says so), then the walk
+/// gathered and drawn far to near. `None`: at half a pixel the walk fits
+/// its budgets but would visit more than 35 % of a word the exact path may
+/// draw, which then draws it.
+fn render_view_lod(
+    scene: &Scene,
+    memo: &ReachMemo,
+    view: View,
+    look: &super::Look,
+    opts: &RenderOptions,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<Option<Rendered>, Diagnostics> {
+    let (sys, _) = space_lsys(scene).expect("a 3D .lsys");
+    let style = style(scene, look);
+    let reach = memo.whole().radius;
+    // The coarse walk: the smallest detail, halving from the whole, whose
+    // walk visits at most MEASURE_VISITS.
+    let mut coarse = 4.0 * reach;
+    for _ in 0..64 {
+        let half = coarse / 2.0;
+        if memo.plan(half).visits > MEASURE_VISITS || half == 0.0 {
+            break;
         }
+        coarse = half;
+    }
+    let projection = view.projection();
+    let mut bbox: Option<BBox> = None;
+    let mut add = |p: Point3| {
+        let (q, _) = projection.project(p);
+        match &mut bbox {
+            Some(b) => b.add(q),
+            None => bbox = Some(BBox::at(q)),
+        }
+    };
+    let plan = memo.plan(coarse);
+    memo.draw_lod(
+        sys.heading,
+        sys.angle,
+        coarse,
+        plan.visits,
+        &mut |m| match m {
+            Mark3::Stem(s) | Mark3::StandIn { seg: s, .. } => {
+                add(s.from);
+                add(s.to);
+            }
+        },
+        &mut Phase::new(progress, "measuring"),
+    );
+    let bbox = bbox.map(|b| BBox {
+        min_x: b.min_x - coarse,
+        min_y: b.min_y - coarse,
+        max_x: b.max_x + coarse,
+        max_y: b.max_y + coarse,
+    });
+    let scale = crate::render::Fit::content(bbox, 0, &style.width, opts.size)?.scale;
+    let ideal = LOD_PX / scale;
+    let mut detail = ideal;
+    let mut plan = memo.plan(detail);
+    // Little cut at half a pixel, and within the walk's budgets: the
+    // compiled exact path costs about what the walk would (as in 2D,
+    // docs/rendering.md), and draws the exact picture.
+    let whole = memo.whole();
+    if plan.visits <= VIEW_VISITS
+        && plan.marks <= VIEW_MARKS
+        && u128::from(plan.visits) * 100 > u128::from(whole.syms) * LOD_MAX_VISITS_PERCENT
+        && whole.syms <= scene.limits.max_symbols
+        && whole.stems <= MAX_VIEW_SEGMENTS
+    {
+        return Ok(None);
+    }
+    for _ in 0..400 {
+        if plan.visits <= VIEW_VISITS && plan.marks <= VIEW_MARKS {
+            break;
+        }
+        detail *= libm::pow(2.0, 0.25);
+        plan = memo.plan(detail);
+    }
+    if plan.visits > VIEW_VISITS || plan.marks > VIEW_MARKS {
+        return Err(view_too_large(plan.marks.to_string()));
+    }
+    let mut gathered = Gathered::new(view);
+    memo.draw_lod(
+        sys.heading,
+        sys.angle,
+        detail,
+        plan.visits,
+        &mut |m| match m {
+            Mark3::Stem(s) => gathered.push(s),
+            Mark3::StandIn { seg, spread, .. } => gathered.push_stand_in(seg, spread),
+        },
+        &mut Phase::new(progress, "deriving"),
+    );
+    let stems = gathered.sorted();
+    let n = stems.len() as u64;
+    draw_view(scene, look, opts, &stems, out, progress)?;
+    let mut warnings = nothing_drawn(n);
+    if detail > ideal {
+        warnings.push(
+            Diagnostic::warning(RenderError::CoarseView {
+                px: fixed(detail * scale, 2, Trim::Keep),
+            })
+            .with_help(format!(
+                "a 3D view visits at most {VIEW_VISITS} symbols and holds at most {VIEW_MARKS} stems: \
+                 a smaller --depth or --size draws finer"
+            )),
+        );
+    }
+    Ok(Some(Rendered {
+        segments: n,
+        count: Some(n.to_string()),
+        warnings,
+    }))
+}
+
+/// Draws gathered stems (far to near) with the scene's style, fitted.
+fn draw_view(
+    scene: &Scene,
+    look: &super::Look,
+    opts: &RenderOptions,
+    stems: &[Segment],
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<(), Diagnostics> {
+    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
+        draw_sorted(stems, t);
         Ok(())
     };
     let exact = RenderOptions {
@@ -91,11 +250,7 @@ pub(crate) fn render_view(
     };
     let style = style(scene, look);
     render_framed(&mut drawing, Frame::Fit, &[], &style, &exact, out, progress)?;
-    Ok(Rendered {
-        segments: n,
-        count: Some(n.to_string()),
-        warnings: nothing_drawn(n),
-    })
+    Ok(())
 }
 
 fn nothing_drawn(n: u64) -> Vec<Diagnostic> {
@@ -310,17 +465,20 @@ enum Geometry3 {
         end: Point3,
     },
     /// Over the budget: every point is within this many unit steps of the
-    /// origin (the word's `F` and `f` count).
+    /// origin (the reach memo's ball, or the word's `F` and `f` count).
     Bound(f64),
 }
 
 /// `stats` of a 3D `.lsys`: the counts of the 2D statistics (exact, or
 /// this seed's counted word), and the unit-step turtle's box
-/// `[minx, miny, minz, maxx, maxy, maxz]` and end `[x, y, z]` by a
-/// traversal when the word is at most
+/// `[minx, miny, minz, maxx, maxy, maxz]` and end `[x, y, z]`: composed
+/// from the reach memo at any depth when the angle and the start heading
+/// are multiples of 90 degrees (exact: frames are signed permutations),
+/// else by a traversal when the word is at most
 /// `min(--max-symbols, STATS_TRAVERSAL_SYMBOLS)` symbols; past that
-/// `bbox` and `end` are `null` and `bound` is the cube every point lies
-/// in (steps counted exactly, as `[-n, -n, -n, n, n, n]`).
+/// `bbox` and `end` are `null` and `bound` is a cube every point lies in,
+/// `[-n, -n, -n, n, n, n]`: `n` the memo's reach (a ball about the start)
+/// where it applies, else the number of `F` and `f`.
 pub(crate) fn stats3(
     sys: &LSystem,
     depth: u32,
@@ -352,16 +510,34 @@ pub(crate) fn stats3(
         stats_with_budget(sys, depth, limits, 0)?
     };
     let fits = u64::try_from(&stats.length).is_ok_and(|l| l <= budget);
-    let geo = if fits {
-        let (bbox, end, _) = bounds3(&unit, depth, &capped, &mut NoProgress)?;
-        Geometry3::Traversed { bbox, end }
+    // The reach memo (deterministic systems with balanced successors):
+    // exact where frames stay signed permutations, else a tighter bound.
+    let memo = if sys.is_stochastic() {
+        None
     } else {
-        let steps = ['F', 'f']
-            .iter()
-            .filter_map(|c| stats.symbols.get(c))
-            .map(|n| n.to_string().parse::<f64>().unwrap_or(f64::INFINITY))
-            .sum();
-        Geometry3::Bound(steps)
+        ReachMemo::new(&unit, depth, 1.0).ok()
+    };
+    let geo = match &memo {
+        Some(m) if m.ortho => {
+            let whole = m.whole();
+            Geometry3::Traversed {
+                bbox: whole.bbox.filter(|_| whole.draws()),
+                end: Point3::new(whole.end[0], whole.end[1], whole.end[2]),
+            }
+        }
+        _ if fits => {
+            let (bbox, end, _) = bounds3(&unit, depth, &capped, &mut NoProgress)?;
+            Geometry3::Traversed { bbox, end }
+        }
+        Some(m) => Geometry3::Bound(m.whole().radius),
+        None => {
+            let steps = ['F', 'f']
+                .iter()
+                .filter_map(|c| stats.symbols.get(c))
+                .map(|n| n.to_string().parse::<f64>().unwrap_or(f64::INFINITY))
+                .sum();
+            Geometry3::Bound(steps)
+        }
     };
     Ok(if json {
         json3(&stats, &geo)

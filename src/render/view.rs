@@ -15,7 +15,7 @@
 
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::turtle::space::{Point3, Segment3, cos_sin};
-use crate::turtle::{Point, Segment};
+use crate::turtle::{Point, Segment, Turtle};
 
 /// A view direction, degrees.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,10 +123,41 @@ impl Gathered {
         ));
     }
 
+    /// Projects and keeps one stand-in of the level of detail: a capsule
+    /// about `s` reaching `spread` canvas units to either side, drawn with
+    /// [`Turtle::blot_spread`] by [`draw_sorted`]. (The spread travels in
+    /// the stem's order, as an `f32` under [`BLOT_MARK`]: an `.lsys`'s
+    /// stems are all of order 0.)
+    pub fn push_stand_in(&mut self, s: Segment3, spread: f64) {
+        let before = self.items.len();
+        self.push(s);
+        if let Some(item) = self.items.get_mut(before) {
+            let bits = (spread.max(0.0) as f32).to_bits() & !BLOT_MARK;
+            item.1.order = BLOT_MARK | bits;
+        }
+    }
+
     /// The projected stems, far to near, ties in the order they came.
     pub fn sorted(mut self) -> Vec<Segment> {
         self.items.sort_by(|a, b| b.0.total_cmp(&a.0));
         self.items.into_iter().map(|(_, s)| s).collect()
+    }
+}
+
+/// The bit of a gathered stem's order that marks a stand-in.
+const BLOT_MARK: u32 = 1 << 31;
+
+/// Draws [`Gathered::sorted`] stems into `t`: a stand-in as a blot of its
+/// spread.
+pub fn draw_sorted(stems: &[Segment], t: &mut dyn Turtle) {
+    for s in stems {
+        if s.order & BLOT_MARK != 0 {
+            let spread = f64::from(f32::from_bits(s.order & !BLOT_MARK));
+            let seg = Segment { order: 0, ..*s };
+            t.blot_spread(seg, super::BLOT_DENSITY, spread);
+        } else {
+            t.segment(*s);
+        }
     }
 }
 

@@ -272,6 +272,32 @@ impl<S: FnMut(Segment3)> Turtle3<S> {
         }
     }
 
+    /// Moves the turtle as a part of the drawing started here would: by
+    /// the local vector `end` (along its H, L, U), its frame turned by the
+    /// local frame `rot` (the columns H, L, U in the start's coordinates).
+    /// A planar state whose part turns only in the plane (`turn`: turns
+    /// and flip) stays planar, with the 2D turtle's exact heading.
+    pub fn jump(&mut self, end: [f64; 3], rot: &[[f64; 3]; 3], turn: Option<(i64, bool)>) {
+        let (h, l, u) = self.hlu();
+        let w = |v: V| comb(comb(h, v[0], l, v[1]), 1.0, u, v[2]);
+        let d = w(end);
+        let p = self.state.pos;
+        self.state.pos = Point3::new(p.x + d[0], p.y + d[1], p.z + d[2]);
+        self.state.frame = match (self.state.frame, turn) {
+            (Frame::Planar { k, flip }, Some((dk, df))) if k.checked_add(dk).is_some() => {
+                Frame::Planar {
+                    k: k + dk,
+                    flip: flip != df,
+                }
+            }
+            _ => Frame::Free {
+                h: w(rot[0]),
+                l: w(rot[1]),
+                u: w(rot[2]),
+            },
+        };
+    }
+
     /// The point one step ahead: in the plane with the 2D turtle's
     /// expression, so a planar drawing's x and y are the 2D ones bit for
     /// bit.

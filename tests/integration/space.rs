@@ -32,8 +32,9 @@ fn render(req: &Request) -> Vec<u8> {
 const PLANAR: &str = "generations 4\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\nwidth 2\n";
 
 /// `--view 0,0` of a planar system with `dimensions 3` is its 2D picture,
-/// byte for byte, PNG and SVG. The 2D side is drawn `--exact`: the 3D view
-/// draws every stem (no level of detail yet), and so does `--exact`.
+/// byte for byte, PNG and SVG. The 2D side is drawn `--exact`: this small
+/// view cuts nothing, so it draws every stem by the exact path, as
+/// `--exact` does.
 #[test]
 fn the_front_view_of_a_planar_system_is_its_2d_picture() {
     for format in [ImageFormat::Png, ImageFormat::Svg] {
@@ -113,22 +114,48 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
     assert_eq!((b[3] - b[0], b[4] - b[1], b[5] - b[2]), (7.0, 7.0, 7.0));
 }
 
-/// Past the traversal budget stats give a bound, marked as such.
+/// Past the traversal budget stats give a bound, marked as such; at right
+/// angles the reach memo gives the exact box at any depth instead.
 #[test]
 fn stats_past_the_budget_give_a_bound() {
+    let small = stlc::Limits {
+        max_symbols: 100,
+        ..stlc::Limits::DEFAULT
+    };
+    let plant = std::fs::read_to_string(manifest_path("examples/plant3d.lsys")).unwrap();
     let req = Request {
-        limits: stlc::Limits {
-            max_symbols: 100,
-            ..stlc::Limits::DEFAULT
-        },
+        limits: small,
         depth: Some(2),
-        ..lsys_request(&std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap())
+        ..lsys_request(&plant)
     };
     let (s, _) = req.stats(true).unwrap();
     let j: serde_json::Value = serde_json::from_str(&s).unwrap();
     assert!(j["bbox"].is_null() && j["end"].is_null());
-    // 63 `F`, no `f`: every point within 63 steps of the start.
-    assert_eq!(j["bound"][3].as_f64(), Some(63.0));
+    // Depth 2: two steps, the second pitched 22.5 degrees from the first,
+    // so the farthest point is 2 cos 11.25 = 1.9616 steps from the start;
+    // the reach memo's ball (triangle inequality) has radius 2, where the
+    // step count (12 `F`) bounded before.
+    let n = j["bound"][3].as_f64().unwrap();
+    assert!((n - 2.0).abs() < 1e-9, "{n}");
+    assert_eq!(j["segments"], "12");
+    // The Hilbert curve at depth 16 (2.8 * 10^14 symbols): exact, a cube
+    // of side 2^16 - 1, on the lattice.
+    let hilbert = std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap();
+    for depth in [2, 10, 16] {
+        let (s, _) = Request {
+            limits: small,
+            depth: Some(depth),
+            ..lsys_request(&hilbert)
+        }
+        .stats(true)
+        .unwrap();
+        let j: serde_json::Value = serde_json::from_str(&s).unwrap();
+        assert!(j["bound"].is_null(), "{s}");
+        let b: Vec<f64> = (0..6).map(|i| j["bbox"][i].as_f64().unwrap()).collect();
+        let side = f64::from((1u32 << depth) - 1);
+        assert_eq!((b[3] - b[0], b[4] - b[1], b[5] - b[2]), (side, side, side));
+        assert!(b.iter().all(|v| v.fract() == 0.0));
+    }
 }
 
 #[test]
@@ -362,4 +389,28 @@ fn a_mesh_goes_to_standard_output_when_asked() {
         ])
         .assert()
         .code(2);
+}
+
+/// A view at a depth whose stems no view could hold (the Hilbert curve at
+/// depth 12: 6.9 x 10^10 stems) is drawn at a level of detail within its
+/// budget of 10^6 stems and stand-ins, and a warning gives the detail.
+#[test]
+fn a_deep_view_is_drawn_at_a_level_of_detail_within_its_budget() {
+    let text = std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap();
+    let req = Request {
+        depth: Some(12),
+        ..lsys_request(&text)
+    };
+    let mut out = Vec::new();
+    let drawn = req
+        .render(&mut out, &mut stlc::pipeline::NoProgress)
+        .unwrap();
+    assert!(out.starts_with(b"\x89PNG"));
+    assert!(
+        drawn.segments > 0 && drawn.segments <= 1_000_000,
+        "{}",
+        drawn.segments
+    );
+    let w: Vec<String> = drawn.warnings.iter().map(|d| d.to_string()).collect();
+    assert!(w.iter().any(|m| m.contains("level of detail of")), "{w:?}");
 }

@@ -52,6 +52,15 @@ pub enum RenderError {
         /// The limit.
         limit: u64,
     },
+    /// A 3D view drawn at a coarser level of detail than half a pixel, to
+    /// stay within its work (a warning).
+    #[error(
+        "the 3D view is drawn at a level of detail of {px} px, not 0.5 px: parts of the tree smaller than that are stand-ins"
+    )]
+    CoarseView {
+        /// The detail used, in output pixels (fixed decimals).
+        px: String,
+    },
     /// A mesh would have more triangles than `--max-triangles`.
     #[error("a mesh of {triangles} triangles is over the limit of {limit}")]
     MeshTooLarge {

@@ -48,6 +48,10 @@
 //!   renderer's fitting and its level of detail;
 //! - `chance.rs`: the expected geometry of a stochastic system and its
 //!   level-of-detail walk, which follows the seed's choices;
+//! - `reach.rs`, `reach_lod.rs`: the memoized reach of a 3D system (end,
+//!   frame, a ball about the start, per `(symbol, depth)`) and the 3D
+//!   views' level of detail on it; `space.rs`, `space_program.rs`: 3D
+//!   derivation (the compiled program over 3D units);
 //! - `bfs.rs`: Saupe's level-by-level rewriting.
 
 mod alphabet;
@@ -56,7 +60,10 @@ mod chance;
 mod exec;
 mod geometry;
 mod program;
+mod reach;
+mod reach_lod;
 pub mod space;
+mod space_program;
 mod stochastic;
 mod units;
 
@@ -81,6 +88,9 @@ use geometry::Geometry;
 pub use geometry::{GEOMETRY_ENTRIES, MAX_PERIOD, Refusal};
 use program::Program;
 pub use program::{MACRO_CAP, PROGRAM_CAP};
+pub use reach::REACH_ENTRIES;
+pub(crate) use reach::ReachMemo;
+pub use reach_lod::{Mark3, Plan3};
 pub use stochastic::BFS_BYTES_PER_SYMBOL;
 pub(crate) use stochastic::Stochastic;
 pub use units::FastOp;

@@ -5,11 +5,17 @@
 //! stack of successors, memory O(depth)) or `bfs_each` (Saupe's levels);
 //! for a stochastic one `Stochastic::dfs_each` or `Stochastic::bfs_each`
 //! (keyed by place), so the choices are the 2D drawing's for the
-//! same seed. Every symbol goes through [`Turtle3`] (no compiled program or
-//! memoized geometry yet: those are 2D). The same refusals as 2D apply
+//! same seed. A deterministic dfs runs the compiled program of 2D over 3D
+//! units (space_program.rs: inert symbols dropped, runs of `F` counted),
+//! or, when the program would be too large, the plain stream; every
+//! operation goes through [`Turtle3`] either way, so both draw the same
+//! stems. (Views at a level of detail walk the reach memo instead:
+//! reach_lod.rs.) The same refusals as 2D apply
 //! before any work: the derived word over `--max-symbols` (a stochastic
 //! system's budget a tenth of it), bfs's word over `--max-word`.
 
+use super::program::Program;
+use super::space_program::Fast3;
 use super::stochastic::Stochastic;
 use super::{Alphabet, PROGRESS_STEP};
 use crate::diag::Diagnostics;
@@ -48,14 +54,21 @@ pub fn draw3(
     let ops: Vec<Option<Op3>> = alpha.chars.iter().map(|&c| Op3::of_lsys(c)).collect();
     progress.start("symbols", total);
     match strategy {
-        Derivation::Dfs => alpha.plain_each(depth, |i, s| {
-            if let Some(op) = ops[s as usize] {
-                turtle.apply(op);
-            }
-            if i % PROGRESS_STEP == PROGRESS_STEP - 1 {
-                progress.update(i + 1);
-            }
-        }),
+        Derivation::Dfs => match Program::<Fast3>::compile(&alpha, depth) {
+            Some(program) => program.run(
+                &alpha.axiom,
+                |units| super::space_program::run(&mut turtle, units),
+                progress,
+            ),
+            None => alpha.plain_each(depth, |i, s| {
+                if let Some(op) = ops[s as usize] {
+                    turtle.apply(op);
+                }
+                if i % PROGRESS_STEP == PROGRESS_STEP - 1 {
+                    progress.update(i + 1);
+                }
+            }),
+        },
         Derivation::Bfs => alpha.bfs_each(depth, |i, s| {
             if let Some(op) = ops[s as usize] {
                 turtle.apply(op);
@@ -202,6 +215,34 @@ mod tests {
             for (a, b) in rec.segments.iter().zip(&got) {
                 assert_eq!((a.to.x, a.to.y, 0.0), (b.to.x, b.to.y, b.to.z));
             }
+        }
+    }
+
+    #[test]
+    fn the_compiled_program_draws_the_plain_streams_stems() {
+        // dfs runs the compiled program (macros and, at these depths,
+        // plans); bfs feeds every symbol of the rewritten word to the
+        // turtle: the same stems, bit for bit.
+        let plant = std::fs::read_to_string("examples/plant3d.lsys").unwrap();
+        let odd = "dimensions 3\nangle 37\naxiom XA\nrule A F[&A]X/F[^\\A]|-A\nrule X fF+X\n";
+        for (src, depth) in [(HILBERT, 5), (plant.as_str(), 8), (odd, 9)] {
+            let sys = parse(src);
+            let run = |d| {
+                let mut got = Vec::new();
+                draw3(
+                    &sys,
+                    depth,
+                    d,
+                    &Limits::DEFAULT,
+                    &mut |s| got.push(s),
+                    &mut NoProgress,
+                )
+                .unwrap();
+                got
+            };
+            let (dfs, bfs) = (run(Derivation::Dfs), run(Derivation::Bfs));
+            assert!(dfs.len() > 4096, "{}", dfs.len());
+            assert!(dfs == bfs, "{src}");
         }
     }
 

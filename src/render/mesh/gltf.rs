@@ -35,8 +35,11 @@ fn linear(c: u8) -> f64 {
 
 /// The JSON and the one buffer's bytes; `uri`: the buffer's data URI
 /// (`.gltf`) or none (`.glb`, whose BIN chunk holds it).
-fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, Vec<u8>) {
+fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, usize) {
+    // The buffer is built only to embed it (base64); a .glb streams it
+    // from the mesh ([`write_buffer`]), so its bytes are never held twice.
     let mut buffer = Vec::new();
+    let mut len = 0usize;
     let mut views = Vec::new();
     let mut accessors = Vec::new();
     let mut prims = Vec::new();
@@ -55,16 +58,23 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, Vec<u8>) {
         }
         let first = views.len();
         for part in 0..3 {
-            let start = buffer.len();
-            match part {
-                0 => le_f32s(&p.positions, &mut buffer),
-                1 => le_f32s(&p.normals, &mut buffer),
-                _ => buffer.extend(p.indices.iter().flat_map(|i| i.to_le_bytes())),
+            let start = len;
+            len += match part {
+                0 => 12 * p.positions.len(),
+                1 => 12 * p.normals.len(),
+                _ => 4 * p.indices.len(),
+            };
+            if embed {
+                match part {
+                    0 => le_f32s(&p.positions, &mut buffer),
+                    1 => le_f32s(&p.normals, &mut buffer),
+                    _ => buffer.extend(p.indices.iter().flat_map(|i| i.to_le_bytes())),
+                }
             }
             let target = if part == 2 { 34963 } else { 34962 };
             views.push(format!(
                 "{{\"buffer\": 0, \"byteOffset\": {start}, \"byteLength\": {}, \"target\": {target}}}",
-                buffer.len() - start
+                len - start
             ));
         }
         let three = |a: [f32; 3]| {
@@ -113,7 +123,7 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, Vec<u8>) {
     if prims.is_empty() {
         // Nothing drawn: an empty scene (a mesh needs a primitive).
         j.push_str(", \"scene\": 0, \"scenes\": [{\"nodes\": []}]}");
-        return (j, Vec::new());
+        return (j, 0);
     }
     j.push_str(", \"scene\": 0, \"scenes\": [{\"nodes\": [0]}]");
     j.push_str(", \"nodes\": [{\"mesh\": 0, \"name\": \"tree\"}]");
@@ -129,13 +139,35 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, Vec<u8>) {
         let _ = write!(
             j,
             ", \"buffers\": [{{\"byteLength\": {}, \"uri\": \"data:application/octet-stream;base64,{}\"}}]}}",
-            buffer.len(),
+            len,
             base64(&buffer)
         );
     } else {
-        let _ = write!(j, ", \"buffers\": [{{\"byteLength\": {}}}]}}", buffer.len());
+        let _ = write!(j, ", \"buffers\": [{{\"byteLength\": {len}}}]}}");
     }
-    (j, buffer)
+    (j, len)
+}
+
+/// Writes the buffer [`json_and_buffer`] laid out (positions, normals,
+/// indices of each primitive that has triangles), a few thousand values
+/// at a time.
+fn write_buffer(mesh: &Mesh, out: &mut dyn Write) -> std::io::Result<()> {
+    let mut chunk: Vec<u8> = Vec::with_capacity(1 << 16);
+    for p in mesh.primitives.iter().filter(|p| !p.indices.is_empty()) {
+        for v in [&p.positions, &p.normals] {
+            for part in v.chunks(4096) {
+                chunk.clear();
+                le_f32s(part, &mut chunk);
+                out.write_all(&chunk)?;
+            }
+        }
+        for part in p.indices.chunks(4096) {
+            chunk.clear();
+            chunk.extend(part.iter().flat_map(|i| i.to_le_bytes()));
+            out.write_all(&chunk)?;
+        }
+    }
+    Ok(())
 }
 
 /// Standard base64 with padding.
@@ -169,15 +201,14 @@ pub fn write_gltf(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
 /// Writes `mesh` as binary glTF: a 12-byte header, the JSON chunk (padded
 /// with spaces to 4 bytes), the BIN chunk (padded with zeros).
 pub fn write_glb(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
-    let (json, mut bin) = json_and_buffer(mesh, false);
+    let (json, bin) = json_and_buffer(mesh, false);
     let mut json = json.into_bytes();
     while json.len() % 4 != 0 {
         json.push(b' ');
     }
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let bin_chunk = if bin.is_empty() { 0 } else { 8 + bin.len() };
+    let pad = (4 - bin % 4) % 4;
+    let padded = bin + pad;
+    let bin_chunk = if bin == 0 { 0 } else { 8 + padded };
     let total = 12 + 8 + json.len() + bin_chunk;
     if u32::try_from(total).is_err() {
         return Err(
@@ -189,21 +220,20 @@ pub fn write_glb(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
             .into(),
         );
     }
-    let mut w = |b: &[u8]| out.write_all(b);
-    let res = w(b"glTF")
-        .and_then(|()| w(&2u32.to_le_bytes()))
-        .and_then(|()| w(&(total as u32).to_le_bytes()))
-        .and_then(|()| w(&(json.len() as u32).to_le_bytes()))
-        .and_then(|()| w(b"JSON"))
-        .and_then(|()| w(&json))
-        .and_then(|()| {
-            if bin.is_empty() {
-                return Ok(());
-            }
-            w(&(bin.len() as u32).to_le_bytes())
-                .and_then(|()| w(b"BIN\0"))
-                .and_then(|()| w(&bin))
-        })
-        .and_then(|()| out.flush());
+    let res = (|| {
+        out.write_all(b"glTF")?;
+        out.write_all(&2u32.to_le_bytes())?;
+        out.write_all(&(total as u32).to_le_bytes())?;
+        out.write_all(&(json.len() as u32).to_le_bytes())?;
+        out.write_all(b"JSON")?;
+        out.write_all(&json)?;
+        if bin > 0 {
+            out.write_all(&(padded as u32).to_le_bytes())?;
+            out.write_all(b"BIN\0")?;
+            write_buffer(mesh, out)?;
+            out.write_all(&[0u8; 3][..pad])?;
+        }
+        out.flush()
+    })();
     res.map_err(|e| io_error(&e, "writing the glTF").into())
 }

@@ -1,0 +1,208 @@
+//! The level of detail of 3D views on the reach memo (reach.rs): which
+//! parts are cut at a detail, what a walk at that detail visits and hands
+//! out (counted from the memo before walking), and the walk itself.
+//!
+//! A part `W(s, r)` lies in a ball of its [`Reach::radius`] about its
+//! start whatever the frame, so under any orthographic view it covers at
+//! most `2 radius` on the screen: the cut depends on `(s, r)` alone, not
+//! on where or how the part is turned. That makes the count exact: the
+//! plan of a detail is computed level by level over the alphabet, and the
+//! walk visits exactly that. A part within the detail (half of it for one
+//! connected run, as in 2D) is handed out as one stand-in and the turtle
+//! jumps to its end ([`Turtle3::jump`]: the local end and frame turned by
+//! the current frame; exact at right angles, within rounding elsewhere);
+//! a part that draws nothing is jumped over without a stand-in, and one
+//! straight run (its stems end to end along one line: an internode
+//! `F -> FF`) is its chord whatever its size. Every
+//! other symbol goes through [`Turtle3::apply`], so at detail 0 the walk
+//! is the exact drawing, stem for stem.
+
+use std::cell::RefCell;
+
+use super::PROGRESS_STEP;
+use super::reach::{Reach, ReachMemo, V, apply};
+use crate::progress::Progress;
+use crate::turtle::space::{Op3, Point3, Segment3, Turtle3};
+
+/// What a walk at a level of detail hands out, in drawing order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Mark3 {
+    /// A stem of the exact drawing, or the chord of a cut connected run
+    /// (which joins the stems before and after it).
+    Stem(Segment3),
+    /// A stand-in for a part that breaks off in branches, or a connected
+    /// run that folds on itself (its stems at least twice its chord): a
+    /// capsule about `seg` reaching `spread` to either side of it.
+    StandIn {
+        /// From the part's start through twice its centroid (clamped to
+        /// its reach): the segment a straight part would be.
+        seg: Segment3,
+        /// Length stood for over `seg`'s length (infinite for a dot).
+        density: f64,
+        /// How far the part spreads about `seg`: its radius of gyration
+        /// left after the segment's own.
+        spread: f64,
+    },
+}
+
+/// What a walk at one detail costs, counted before walking.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Plan3 {
+    /// Symbols and stand-ins visited (saturating).
+    pub visits: u64,
+    /// Stems and stand-ins handed out (saturating).
+    pub marks: u64,
+}
+
+/// A cut connected run whose stems are at least this many times its chord
+/// long folds on itself (a space-filling curve's piece): a capsule, not
+/// its chord (the renderer's `BLOT_DENSITY`).
+const FOLD_DENSITY: f64 = 2.0;
+
+fn norm(v: V) -> f64 {
+    libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+}
+
+/// Whether a part is cut at `detail` (never at 0).
+fn cut(r: &Reach, detail: f64) -> bool {
+    if detail <= 0.0 || detail.is_nan() {
+        return false;
+    }
+    if !r.draws() || r.straight() {
+        return true;
+    }
+    let d = 2.0 * r.radius;
+    if r.jumps {
+        d < detail
+    } else {
+        d < detail / 2.0
+    }
+}
+
+impl ReachMemo {
+    /// What a walk at `detail` visits and hands out, level by level.
+    pub(crate) fn plan(&self, detail: f64) -> Plan3 {
+        let n = self.alpha.chars.len();
+        let terminal: Vec<(u64, u64)> = (0..n)
+            .map(|s| (1, u64::from(self.ops[s] == Some(Op3::Draw))))
+            .collect();
+        let mut prev = terminal.clone();
+        for r in 1..=self.depth {
+            let mut row = terminal.clone();
+            for (s, slot) in row.iter_mut().enumerate() {
+                let Some(succ) = &self.alpha.succ[s] else {
+                    continue;
+                };
+                let me = self.get(s as u32, r);
+                *slot = if cut(me, detail) {
+                    (1, u64::from(me.draws()))
+                } else {
+                    succ.iter().fold((1u64, 0u64), |(v, m), &c| {
+                        let (cv, cm) = prev[c as usize];
+                        (v.saturating_add(cv), m.saturating_add(cm))
+                    })
+                };
+            }
+            prev = row;
+        }
+        let (visits, marks) = self.alpha.axiom.iter().fold((0u64, 0u64), |(v, m), &c| {
+            let (cv, cm) = prev[c as usize];
+            (v.saturating_add(cv), m.saturating_add(cm))
+        });
+        Plan3 { visits, marks }
+    }
+
+    /// Walks the word at `detail` (canvas units) from the origin, heading
+    /// `heading` degrees, handing every mark to `sink` in drawing order;
+    /// returns where the turtle ends. `visits` (the plan's) is reported to
+    /// `progress` as the work.
+    pub(crate) fn draw_lod(
+        &self,
+        heading: f64,
+        angle: f64,
+        detail: f64,
+        visits: u64,
+        sink: &mut dyn FnMut(Mark3),
+        progress: &mut dyn Progress,
+    ) -> Point3 {
+        let sink = RefCell::new(sink);
+        let mut turtle = Turtle3::new(heading, angle, self.len(), |s| {
+            (sink.borrow_mut())(Mark3::Stem(s));
+        });
+        progress.start("symbols", visits);
+        let mut frames: Vec<(&[u32], usize, u32)> = vec![(&self.alpha.axiom, 0, self.depth)];
+        let mut visited = 0u64;
+        while let Some(top) = frames.last_mut() {
+            let Some(&s) = top.0.get(top.1) else {
+                frames.pop();
+                continue;
+            };
+            top.1 += 1;
+            let r = top.2;
+            visited += 1;
+            if visited.is_multiple_of(PROGRESS_STEP) {
+                progress.update(visited);
+            }
+            if self.is_piece(s, r) {
+                let p = self.get(s, r);
+                if cut(p, detail) {
+                    if p.draws() {
+                        let mark = stand_in(&mut turtle, p);
+                        (sink.borrow_mut())(mark);
+                    }
+                    turtle.jump(p.end, &p.rot, p.planar);
+                } else {
+                    let succ = self.alpha.succ[s as usize].as_deref().unwrap_or(&[]);
+                    frames.push((succ, 0, r - 1));
+                }
+                continue;
+            }
+            if let Some(op) = self.ops[s as usize] {
+                turtle.apply(op);
+            }
+        }
+        progress.update(visited);
+        progress.finish();
+        turtle.state.pos
+    }
+}
+
+/// The stand-in of part `p` drawn from the turtle's state.
+fn stand_in<S: FnMut(Segment3)>(t: &mut Turtle3<S>, p: &Reach) -> Mark3 {
+    let (h, l, u) = t.hlu();
+    let from = t.state.pos;
+    let at = |v: V| {
+        let d = apply(&[h, l, u], v);
+        Point3::new(from.x + d[0], from.y + d[1], from.z + d[2])
+    };
+    let chord = norm(p.end);
+    if !p.jumps && p.length < FOLD_DENSITY * chord {
+        return Mark3::Stem(Segment3 {
+            from,
+            to: at(p.end),
+            order: 0,
+        });
+    }
+    let (c, g) = p.centroid();
+    let mut q = c.map(|v| 2.0 * v);
+    let nq = norm(q);
+    if nq > p.radius && nq > 0.0 {
+        q = q.map(|v| v * (p.radius / nq));
+    }
+    let len = norm(q);
+    // A uniform segment of length `len` about its middle: len^2 / 12.
+    let spread = libm::sqrt((g * g - len * len / 12.0).max(0.0));
+    Mark3::StandIn {
+        seg: Segment3 {
+            from,
+            to: at(q),
+            order: 0,
+        },
+        density: if len > 0.0 {
+            p.length / len
+        } else {
+            f64::INFINITY
+        },
+        spread,
+    }
+}
