@@ -154,7 +154,7 @@ pub fn draw_sorted(stems: &[Segment], t: &mut dyn Turtle) {
         if s.order & BLOT_MARK != 0 {
             let spread = f64::from(f32::from_bits(s.order & !BLOT_MARK));
             let seg = Segment { order: 0, ..*s };
-            t.blot_spread(seg, super::BLOT_DENSITY, spread);
+            t.blot_spread(seg, super::BLOT_DENSITY, spread, 1.0);
         } else {
             t.segment(*s);
         }
