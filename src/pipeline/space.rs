@@ -16,7 +16,7 @@ use crate::model::lsys::LSystem;
 use crate::num::{Trim, fixed};
 use crate::progress::{NoProgress, Phase, Progress};
 use crate::render::mesh::{self, MeshFormat, MeshOptions, Tube};
-use crate::render::view::{Gathered, MAX_VIEW_SEGMENTS, View, draw_sorted, view_too_large};
+use crate::render::view::{Bush, Gathered, MAX_VIEW_SEGMENTS, View, draw_sorted, view_too_large};
 use crate::render::{Frame, LOD_PX, RenderOptions, Width, render_framed};
 use crate::turtle::space::{Point3, Segment3};
 use crate::turtle::{BBox, Segment, Turtle};
@@ -90,7 +90,7 @@ pub(crate) fn render_view(
     }
     let stems = gathered.sorted();
     let n = stems.len() as u64;
-    draw_view(scene, look, opts, &stems, out, progress)?;
+    draw_view(scene, look, opts, &stems, &[], out, progress)?;
     Ok(Rendered {
         segments: n,
         count: Some(n.to_string()),
@@ -205,13 +205,19 @@ fn render_view_lod(
         plan.visits,
         &mut |m| match m {
             Mark3::Stem(s) => gathered.push(s),
-            Mark3::StandIn { seg, spread, .. } => gathered.push_stand_in(seg, spread),
+            Mark3::StandIn {
+                seg,
+                spread,
+                length,
+                runs,
+                ..
+            } => gathered.push_stand_in(seg, spread, length, runs),
         },
         &mut Phase::new(progress, "deriving"),
     );
-    let stems = gathered.sorted();
+    let (stems, bushes) = gathered.sorted_with_bushes();
     let n = stems.len() as u64;
-    draw_view(scene, look, opts, &stems, out, progress)?;
+    draw_view(scene, look, opts, &stems, &bushes, out, progress)?;
     let mut warnings = nothing_drawn(n);
     if detail > ideal {
         warnings.push(
@@ -237,11 +243,12 @@ fn draw_view(
     look: &super::Look,
     opts: &RenderOptions,
     stems: &[Segment],
+    bushes: &[Bush],
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
     let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
-        draw_sorted(stems, t);
+        draw_sorted(stems, bushes, t);
         Ok(())
     };
     let exact = RenderOptions {

@@ -91,6 +91,8 @@ pub fn view_too_large(segments: String) -> Diagnostics {
 pub struct Gathered {
     projection: Projection,
     items: Vec<(f64, Segment)>,
+    /// The stand-ins' bushes, indexed from their stems' orders.
+    bushes: Vec<Bush>,
     /// More stems came than [`MAX_VIEW_SEGMENTS`] (the rest were dropped).
     pub over: bool,
 }
@@ -101,6 +103,7 @@ impl Gathered {
         Gathered {
             projection: view.projection(),
             items: Vec::new(),
+            bushes: Vec::new(),
             over: false,
         }
     }
@@ -124,37 +127,80 @@ impl Gathered {
     }
 
     /// Projects and keeps one stand-in of the level of detail: a capsule
-    /// about `s` reaching `spread` canvas units to either side, drawn with
-    /// [`Turtle::blot_spread`] by [`draw_sorted`]. (The spread travels in
-    /// the stem's order, as an `f32` under [`BLOT_MARK`]: an `.lsys`'s
-    /// stems are all of order 0.)
-    pub fn push_stand_in(&mut self, s: Segment3, spread: f64) {
+    /// about `s` reaching `spread` canvas units to either side, standing
+    /// for `length` of strokes in `runs` runs, drawn with
+    /// [`Turtle::blot_spread`] by [`draw_sorted`]. (Its stem's order, under
+    /// [`BLOT_MARK`], indexes the bush: an `.lsys`'s stems are all of
+    /// order 0.)
+    pub fn push_stand_in(&mut self, s: Segment3, spread: f64, length: f64, runs: f64) {
         let before = self.items.len();
         self.push(s);
         if let Some(item) = self.items.get_mut(before) {
-            let bits = (spread.max(0.0) as f32).to_bits() & !BLOT_MARK;
-            item.1.order = BLOT_MARK | bits;
+            item.1.order = BLOT_MARK | self.bushes.len() as u32;
+            self.bushes.push(Bush {
+                spread,
+                length,
+                runs,
+            });
         }
     }
 
     /// The projected stems, far to near, ties in the order they came.
-    pub fn sorted(mut self) -> Vec<Segment> {
+    pub fn sorted(self) -> Vec<Segment> {
+        self.sorted_with_bushes().0
+    }
+
+    /// [`Gathered::sorted`], with the stand-ins' bushes for [`draw_sorted`].
+    pub fn sorted_with_bushes(mut self) -> (Vec<Segment>, Vec<Bush>) {
         self.items.sort_by(|a, b| b.0.total_cmp(&a.0));
-        self.items.into_iter().map(|(_, s)| s).collect()
+        let stems = self.items.into_iter().map(|(_, s)| s).collect();
+        (stems, self.bushes)
     }
 }
+
+/// What a stand-in of a 3D view stands for.
+#[derive(Debug, Clone, Copy)]
+pub struct Bush {
+    /// How far it reaches to either side of its segment, canvas units.
+    spread: f64,
+    /// The length of its strokes in space, canvas units.
+    length: f64,
+    /// The runs they come in (one, and one more for each `]` and `f`).
+    runs: f64,
+}
+
+/// The mean length on the screen of a unit stroke turned every way
+/// alike (the mean of `sin` over the sphere): a bush's strokes turn every
+/// way, so it inks this share of their length.
+const SEEN_SHARE: f64 = std::f64::consts::FRAC_PI_4;
 
 /// The bit of a gathered stem's order that marks a stand-in.
 const BLOT_MARK: u32 = 1 << 31;
 
-/// Draws [`Gathered::sorted`] stems into `t`: a stand-in as a blot of its
-/// spread.
-pub fn draw_sorted(stems: &[Segment], t: &mut dyn Turtle) {
+/// Draws [`Gathered::sorted_with_bushes`] stems into `t`: a stand-in as
+/// the bush of its strokes' ink ([`Turtle::blot_spread`]; the strokes'
+/// length seen on the screen over the projected segment's is its density).
+pub fn draw_sorted(stems: &[Segment], bushes: &[Bush], t: &mut dyn Turtle) {
     for s in stems {
         if s.order & BLOT_MARK != 0 {
-            let spread = f64::from(f32::from_bits(s.order & !BLOT_MARK));
-            let seg = Segment { order: 0, ..*s };
-            t.blot_spread(seg, super::BLOT_DENSITY, spread, 1.0);
+            let Some(b) = bushes.get((s.order & !BLOT_MARK) as usize) else {
+                continue;
+            };
+            let mut seg = Segment { order: 0, ..*s };
+            let chord = libm::hypot(seg.to.x - seg.from.x, seg.to.y - seg.from.y);
+            // Seen end-on, the segment is a point: a short one across the
+            // screen carries the ink.
+            let chord = if chord > 1e-9 * (1.0 + b.spread) {
+                chord
+            } else {
+                let e = 1e-6 * (1.0 + b.spread);
+                seg.to = crate::turtle::Point::new(seg.from.x + e, seg.from.y);
+                e
+            };
+            let density = b.length * SEEN_SHARE / chord;
+            if density.is_finite() {
+                t.blot_spread(seg, density, b.spread, b.runs);
+            }
         } else {
             t.segment(*s);
         }

@@ -114,6 +114,9 @@ pub(crate) struct Reach {
     /// Whether it moves without drawing (an `f`) or returns (a `]`)
     /// somewhere: not one connected run.
     pub jumps: bool,
+    /// How many times it moves without drawing or returns (each `f` and
+    /// `]`): the runs its strokes come in, less one.
+    pub breaks: f64,
     /// The box of every drawn point `[minx, miny, minz, maxx, maxy, maxz]`
     /// in local coordinates, kept only where frames are signed
     /// permutations (then exact); `min > max` when nothing is drawn.
@@ -149,6 +152,7 @@ impl Reach {
             stems: 0,
             syms: 0,
             jumps: false,
+            breaks: 0.0,
             bbox: boxed.then_some(EMPTY_BOX),
         }
     }
@@ -314,6 +318,7 @@ impl ReachMemo {
             Some(Op3::Move) => {
                 pen.pos = axpy(pen.pos, h, self.len);
                 acc.jumps = true;
+                acc.breaks += 1.0;
             }
             Some(Op3::Turn(n)) => {
                 let s = s * f64::from(n);
@@ -359,6 +364,7 @@ impl ReachMemo {
                         pen = saved;
                     }
                     acc.jumps = true;
+                    acc.breaks += 1.0;
                     acc.syms = acc.syms.saturating_add(1);
                 }
                 _ if self.is_piece(c, r) => {
@@ -403,6 +409,7 @@ impl ReachMemo {
         acc.stems = acc.stems.saturating_add(child.stems);
         acc.syms = acc.syms.saturating_add(child.syms);
         acc.jumps |= child.jumps;
+        acc.breaks += child.breaks;
         pen.pos = axpy(pen.pos, apply(f, child.end), 1.0);
         pen.frame = compose(f, &child.rot);
         pen.planar = match (pen.planar, child.planar) {

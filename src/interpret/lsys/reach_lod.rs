@@ -42,6 +42,10 @@ pub enum Mark3 {
         /// How far the part spreads about `seg`: its radius of gyration
         /// left after the segment's own.
         spread: f64,
+        /// The length of its strokes.
+        length: f64,
+        /// The runs they come in (one more than its `]` and `f`).
+        runs: f64,
     },
 }
 
@@ -204,5 +208,7 @@ fn stand_in<S: FnMut(Segment3)>(t: &mut Turtle3<S>, p: &Reach) -> Mark3 {
             f64::INFINITY
         },
         spread,
+        length: p.length,
+        runs: p.breaks + 1.0,
     }
 }
