@@ -130,7 +130,7 @@ impl Gathered {
     /// about `s` reaching `spread` canvas units to either side, standing
     /// for `length` of strokes in `runs` runs, drawn with
     /// [`Turtle::blot_spread`] by [`draw_sorted`]. (Its stem's order, under
-    /// [`BLOT_MARK`], indexes the bush: an `.lsys`'s stems are all of
+    /// `BLOT_MARK`, indexes the bush: an `.lsys`'s stems are all of
     /// order 0.)
     pub fn push_stand_in(&mut self, s: Segment3, spread: f64, length: f64, runs: f64) {
         let before = self.items.len();

@@ -3,7 +3,7 @@
 //! the tree like a 2D layout's shapes.
 //!
 //! Each volume's surface is cut into small planar pieces (quads and caps:
-//! [`surface`]), every piece is projected, and their union is the
+//! `surface`), every piece is projected, and their union is the
 //! volume's outline, holes included (a ring seen down its axis). The union
 //! is `geo`'s ([`geo::unary_union`]), so a Revolve of a notched profile or an
 //! Extrude of a concave polygon gets its true outline, not a convex hull.

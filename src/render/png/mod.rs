@@ -28,7 +28,7 @@
 //! (tiny-skia's stroker costs about 4 us a blot, the stamp a few dozen
 //! pixel blends; docs/rendering.md, *Level of detail*). A bush's stand-in
 //! ([`Turtle::blot_spread`]) is painted with the ink its strokes leave on
-//! average over its footprint ([`raster::Bush`]); a connected run's
+//! average over its footprint (`raster::Bush`); a connected run's
 //! ([`Turtle::run`]) is folded as the run it stands for and broken where
 //! the exact drawing would start a new path (docs/rendering.md,
 //! *Silhouette*). Blots and segments are one colour, source-over, so the
