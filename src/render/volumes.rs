@@ -4,7 +4,9 @@
 //!
 //! Each volume's surface is cut into small planar pieces (quads and caps:
 //! `surface`), every piece is projected, and their union is the
-//! volume's outline, holes included (a ring seen down its axis). The union
+//! volume's outline, holes included (a ring seen down its axis); for the
+//! convex volumes (Box, Sphere, Ellipsoid, Cylinder) that union is the
+//! convex hull of the projected corners, which is what is computed. The union
 //! is `geo`'s ([`geo::unary_union`]), so a Revolve of a notched profile or an
 //! Extrude of a concave polygon gets its true outline, not a convex hull.
 //! Curved surfaces are cut into [`SIDES`] pieces round, so their outlines are
@@ -15,7 +17,7 @@
 //! so a hollow shows in every view, even one inside its volume.
 
 use geo::orient::{Direction, Orient};
-use geo::{Area, Coord, LineString, MultiPolygon, Polygon};
+use geo::{Area, ConvexHull, Coord, LineString, MultiPolygon, Polygon};
 
 use super::view::Projection;
 use crate::model::{Layout, Solid};
@@ -37,18 +39,43 @@ pub fn outlines(layout: &Layout, axis: [f64; 2], projection: &Projection) -> Vec
         .solids
         .iter()
         .map(|s| {
-            let pieces: Vec<Polygon> = surface(&s.solid, axis)
-                .into_iter()
-                .map(|face| polygon(&face, projection))
-                // Pieces seen edge-on (and the poles' slivers) cover nothing.
-                .filter(|p| p.unsigned_area() > EDGE_ON)
-                .collect();
+            let faces = surface(&s.solid, axis);
+            let outline = if convex(&s.solid) {
+                // A convex polyhedron's outline is the hull of its
+                // projected corners: no union needed.
+                let points: Vec<geo::Point> = faces
+                    .iter()
+                    .flatten()
+                    .map(|&p| {
+                        let (q, _) = projection.project(p);
+                        geo::Point::new(q.x, q.y)
+                    })
+                    .collect();
+                MultiPolygon::new(vec![geo::MultiPoint::new(points).convex_hull()])
+            } else {
+                let pieces: Vec<Polygon> = faces
+                    .iter()
+                    .map(|face| polygon(face, projection))
+                    // Pieces seen edge-on (and the poles' slivers) cover nothing.
+                    .filter(|p| p.unsigned_area() > EDGE_ON)
+                    .collect();
+                geo::unary_union(&pieces)
+            };
             Fill {
                 color: s.color,
-                rings: rings(geo::unary_union(&pieces)),
+                rings: rings(outline),
             }
         })
         .collect()
+}
+
+/// Whether `solid` is convex (its surface pieces make a convex
+/// polyhedron).
+fn convex(solid: &Solid) -> bool {
+    matches!(
+        solid,
+        Solid::Box { .. } | Solid::Sphere { .. } | Solid::Ellipsoid { .. } | Solid::Cylinder { .. }
+    )
 }
 
 /// A planar piece of a surface: its corners in order.
