@@ -21,7 +21,7 @@ use crate::limits::Limits;
 use crate::num::Linear;
 use crate::progress::Progress;
 use crate::turtle::UP;
-use crate::turtle::space::{Op3, Point3, Segment3, Turtle3, cos_sin};
+use crate::turtle::space::{Op3, Point3, Segment3, Turtle3, divergence};
 
 /// An operation of a 3D BED's stream: a 3D turtle operation, or a rule
 /// application starting or ending.
@@ -50,13 +50,6 @@ impl StlOp for Op3s {
     const LEAVE: Op3s = Op3s::Leave;
     const PUSH: Op3s = Op3s::Turtle(Op3::Push);
     const POP: Op3s = Op3s::Turtle(Op3::Pop);
-}
-
-/// `cos` and `sin` of a divergence, `None` for none (a multiple of 360
-/// degrees, 0 included: a planar frame stays planar). Growth
-/// (`grow::space`) rolls by the same.
-pub fn divergence(d: Option<f64>) -> Option<(f64, f64)> {
-    d.filter(|d| d.rem_euclid(360.0) != 0.0).map(cos_sin)
 }
 
 /// Draws a 3D BED's trees, in root order, handing every stem to `sink` in

@@ -54,6 +54,13 @@ pub struct Segment3 {
     pub order: u32,
 }
 
+/// `cos` and `sin` of a divergence (`D=`), `None` for none (a multiple
+/// of 360 degrees, 0 included: a planar frame stays planar). Growth and
+/// a 3D BED's drawing roll every rule application by it ([`Turtle3::roll_by`]).
+pub fn divergence(d: Option<f64>) -> Option<(f64, f64)> {
+    d.filter(|d| d.rem_euclid(360.0) != 0.0).map(cos_sin)
+}
+
 /// `cos` and `sin` of `deg` degrees: exactly 0 and +-1 at multiples of 90
 /// degrees, `libm` elsewhere.
 pub fn cos_sin(deg: f64) -> (f64, f64) {

@@ -16,7 +16,7 @@ pub mod region;
 use super::occupancy::Seg3;
 use super::plane::{Class, Space};
 use crate::model::{Description, StemParams};
-use crate::turtle::space::{Frame, Op3, Point3, Segment3, State3, Turtle3, cos_sin};
+use crate::turtle::space::{Frame, Op3, Point3, Segment3, State3, Turtle3, divergence};
 use region::Region3;
 
 /// The 3D turtle with stem orders, and the region of the volumes.
@@ -36,11 +36,7 @@ pub(crate) struct Volume<'a> {
 impl<'a> Volume<'a> {
     /// The space of `od`, with its region and its roots in root order.
     pub(crate) fn new(od: &'a Description, region: Option<Region3>, roots: Vec<Point3>) -> Self {
-        let divergence = od
-            .params
-            .divergence
-            .filter(|d| d.rem_euclid(360.0) != 0.0)
-            .map(cos_sin);
+        let divergence = divergence(od.params.divergence);
         Volume {
             turtle: Turtle3::new(90.0, od.params.angle(), 0.0, |_| {}),
             order: 0,
