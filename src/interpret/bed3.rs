@@ -176,33 +176,9 @@ pub fn bounds3(
     limits: &Limits,
     progress: &mut dyn Progress,
 ) -> Result<crate::interpret::lsys::space::Bounds3, Diagnostics> {
-    let mut b = [
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
-    ];
-    let mut n = 0u64;
-    let mut add = |p: Point3| {
-        for (i, v) in p.to_array().into_iter().enumerate() {
-            b[i] = b[i].min(v);
-            b[i + 3] = b[i + 3].max(v);
-        }
-    };
-    let end = draw3(
-        bed,
-        Derivation::Dfs,
-        limits,
-        &mut |s| {
-            add(s.from);
-            add(s.to);
-            n += 1;
-        },
-        progress,
-    )?;
-    Ok(((n > 0).then_some(b), end, n))
+    let mut acc = crate::turtle::space::StemBox::default();
+    let end = draw3(bed, Derivation::Dfs, limits, &mut |s| acc.add(s), progress)?;
+    Ok(acc.finish(end))
 }
 
 #[cfg(test)]

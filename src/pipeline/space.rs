@@ -553,11 +553,25 @@ pub(crate) fn stats3(
     })
 }
 
-fn num(x: f64) -> String {
+pub(super) fn num(x: f64) -> String {
     fixed(x, crate::interpret::stats::DECIMALS, Trim::Keep)
 }
 
-fn list(v: &[f64]) -> String {
+/// A box `[minx, miny, minz, maxx, maxy, maxz]` as `stats` writes it in
+/// text: `x a .. b, y c .. d, z e .. f`.
+pub(super) fn box_text(b: &[f64; 6]) -> String {
+    format!(
+        "x {} .. {}, y {} .. {}, z {} .. {}",
+        num(b[0]),
+        num(b[3]),
+        num(b[1]),
+        num(b[4]),
+        num(b[2]),
+        num(b[5])
+    )
+}
+
+pub(super) fn list(v: &[f64]) -> String {
     let parts: Vec<String> = v.iter().map(|&x| num(x)).collect();
     format!("[{}]", parts.join(", "))
 }
@@ -614,13 +628,8 @@ fn text3(s: &Stats, geo: &Geometry3) -> String {
             let b = bbox.unwrap_or([0.0; 6]);
             let _ = writeln!(
                 out,
-                "bbox      x {} .. {}, y {} .. {}, z {} .. {} (unit steps, y down, z away)",
-                num(b[0]),
-                num(b[3]),
-                num(b[1]),
-                num(b[4]),
-                num(b[2]),
-                num(b[5])
+                "bbox      {} (unit steps, y down, z away)",
+                box_text(&b)
             );
             let _ = writeln!(
                 out,

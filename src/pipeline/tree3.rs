@@ -8,13 +8,13 @@
 use std::fmt::Write as _;
 use std::io::Write;
 
+use super::space::{box_text, list, num};
 use super::{Rendered, Scene, style};
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::interpret::bed3::{bounds3, draw3};
-use crate::interpret::stats::{DECIMALS, STATS_TRAVERSAL_SYMBOLS};
+use crate::interpret::stats::STATS_TRAVERSAL_SYMBOLS;
 use crate::limits::Limits;
-use crate::num::{Trim, fixed};
 use crate::progress::{NoProgress, Phase, Progress};
 use crate::render::view::{Gathered, MAX_VIEW_SEGMENTS, View, view_too_large};
 use crate::render::{Frame, RenderOptions, render_framed};
@@ -158,11 +158,6 @@ pub(crate) fn stats_bed3(bed: &Bed, json: bool, limits: &Limits) -> Result<Strin
         }
         Err(b)
     };
-    let num = |x: f64| fixed(x, DECIMALS, Trim::Keep);
-    let list = |v: &[f64]| {
-        let parts: Vec<String> = v.iter().map(|&x| num(x)).collect();
-        format!("[{}]", parts.join(", "))
-    };
     let mut out = String::new();
     if json {
         let _ = write!(
@@ -194,13 +189,8 @@ pub(crate) fn stats_bed3(bed: &Bed, json: bool, limits: &Limits) -> Result<Strin
                 Some(b) => {
                     let _ = writeln!(
                         out,
-                        "bbox      x {} .. {}, y {} .. {}, z {} .. {} (canvas units, y down, z away)",
-                        num(b[0]),
-                        num(b[3]),
-                        num(b[1]),
-                        num(b[4]),
-                        num(b[2]),
-                        num(b[5])
+                        "bbox      {} (canvas units, y down, z away)",
+                        box_text(b)
                     );
                 }
                 None => {
@@ -218,13 +208,8 @@ pub(crate) fn stats_bed3(bed: &Bed, json: bool, limits: &Limits) -> Result<Strin
         Err(b) => {
             let _ = writeln!(
                 out,
-                "bbox      (not traversed: too many symbols) within x {} .. {}, y {} .. {}, z {} .. {}",
-                num(b[0]),
-                num(b[3]),
-                num(b[1]),
-                num(b[4]),
-                num(b[2]),
-                num(b[5])
+                "bbox      (not traversed: too many symbols) within {}",
+                box_text(b)
             );
             let _ = writeln!(out, "end       (not traversed)");
         }

@@ -54,6 +54,50 @@ pub struct Segment3 {
     pub order: u32,
 }
 
+/// The box of 3D stems as they are drawn, and how many: what `stats`
+/// reports of a 3D `.lsys` or BED.
+#[derive(Debug, Clone, Copy)]
+pub struct StemBox {
+    /// `[minx, miny, minz, maxx, maxy, maxz]`, empty (min > max) at first.
+    b: [f64; 6],
+    /// Stems added.
+    n: u64,
+}
+
+impl Default for StemBox {
+    fn default() -> Self {
+        StemBox {
+            b: [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ],
+            n: 0,
+        }
+    }
+}
+
+impl StemBox {
+    /// Takes in one stem's ends.
+    pub fn add(&mut self, s: Segment3) {
+        for p in [s.from, s.to] {
+            for (i, v) in p.to_array().into_iter().enumerate() {
+                self.b[i] = self.b[i].min(v);
+                self.b[i + 3] = self.b[i + 3].max(v);
+            }
+        }
+        self.n += 1;
+    }
+
+    /// The box (`None` when nothing was drawn), `end` and the stem count.
+    pub fn finish(self, end: Point3) -> (Option<[f64; 6]>, Point3, u64) {
+        ((self.n > 0).then_some(self.b), end, self.n)
+    }
+}
+
 /// `cos` and `sin` of a divergence (`D=`), `None` for none (a multiple
 /// of 360 degrees, 0 included: a planar frame stays planar). Growth and
 /// a 3D BED's drawing roll every rule application by it ([`Turtle3::roll_by`]).
