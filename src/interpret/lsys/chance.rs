@@ -43,7 +43,7 @@ mod walk;
 pub use walk::draw_chance;
 
 use super::PROGRESS_STEP;
-use super::geometry::{GEOMETRY_ENTRIES, Piece, Refusal, balanced, period_of};
+use super::geometry::{GEOMETRY_ENTRIES, Period, Piece, Refusal, balanced};
 use super::stochastic::Stochastic;
 use crate::choice::Key;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
@@ -105,7 +105,7 @@ pub struct Chance {
     /// By symbol: its alternatives (empty without a rule).
     alts: Vec<Vec<Alt>>,
     depth: u32,
-    period: Option<i64>,
+    period: Period,
     /// Net turn of `(s, r)` at `r * n + s`, the same for every choice.
     turn: Vec<i64>,
     /// Net flip, same index.
@@ -171,7 +171,7 @@ impl Chance {
             ops,
             alts,
             depth,
-            period: period_of(sys.angle),
+            period: Period::of(sys.angle),
             turn: vec![0; n * levels],
             flip: vec![false; n * levels],
             count: vec![0.0; n * levels],
@@ -189,21 +189,6 @@ impl Chance {
         c.demand(GEOMETRY_ENTRIES)?;
         c.compose_all();
         Ok(c)
-    }
-
-    fn key(&self, k: i64) -> i64 {
-        match self.period {
-            Some(p) => k.rem_euclid(p),
-            None => k,
-        }
-    }
-
-    fn add_turn(&self, k: i64, t: i64) -> Option<i64> {
-        match (k.checked_add(t), self.period) {
-            (Some(v), _) => Some(v),
-            (None, Some(p)) => Some(k.rem_euclid(p) + t.rem_euclid(p)),
-            (None, None) => None,
-        }
     }
 
     fn at(&self, s: u32, r: u32) -> usize {
@@ -250,7 +235,10 @@ impl Chance {
                     let (mut t, mut f) = (0i64, false);
                     for &(_, c) in &alt.trunk {
                         let i = self.at(c, r - 1);
-                        t = self.add_turn(t, self.turn[i]).ok_or(Refusal::Turns)?;
+                        t = self
+                            .period
+                            .add_turn(t, self.turn[i])
+                            .ok_or(Refusal::Turns)?;
                         f ^= self.flip[i];
                         trunk += alt.p * (1.0 + self.trunk[i]);
                     }
@@ -294,9 +282,12 @@ impl Chance {
                     }
                 }
                 _ if self.is_piece(c, r) => {
-                    k = self.add_turn(k, self.turn[self.at(c, r)]).unwrap_or(k);
+                    k = self
+                        .period
+                        .add_turn(k, self.turn[self.at(c, r)])
+                        .unwrap_or(k);
                 }
-                Some(Op::Turn(t)) => k = self.add_turn(k, i64::from(t)).unwrap_or(k),
+                Some(Op::Turn(t)) => k = self.period.add_turn(k, i64::from(t)).unwrap_or(k),
                 _ => {}
             }
         }
@@ -322,7 +313,7 @@ impl Chance {
         let depth = self.depth;
         self.headings_of(&self.st.axiom, depth, 0, |c, k| {
             if self.is_piece(c, depth) {
-                add(c, depth, self.key(k), &mut needed);
+                add(c, depth, self.period.key(k), &mut needed);
             }
         });
         for r in (2..=depth).rev() {
@@ -331,7 +322,7 @@ impl Chance {
                 for alt in &self.alts[s as usize] {
                     self.headings_of(&alt.succ, r - 1, key, |c, k| {
                         if self.is_piece(c, r - 1) {
-                            add(c, r - 1, self.key(k), &mut needed);
+                            add(c, r - 1, self.period.key(k), &mut needed);
                         }
                     });
                 }
@@ -357,7 +348,7 @@ impl Chance {
     }
 
     fn piece(&self, c: u32, r: u32, k: i64) -> Piece {
-        match self.index.get(&(c, r, self.key(k))) {
+        match self.index.get(&(c, r, self.period.key(k))) {
             Some(&i) => self.pieces.get(i as usize).copied().unwrap_or(Piece::EMPTY),
             None => Piece::EMPTY,
         }
@@ -393,7 +384,7 @@ impl Chance {
                     pen.x += sg * p.dx;
                     pen.y += sg * p.dy;
                     let i = self.at(c, r);
-                    pen.k = self.add_turn(pen.k, self.turn[i]).unwrap_or(pen.k);
+                    pen.k = self.period.add_turn(pen.k, self.turn[i]).unwrap_or(pen.k);
                     pen.flip ^= self.flip[i];
                 }
                 op => {
@@ -411,7 +402,7 @@ impl Chance {
                             acc.moves = true;
                         }
                         Some(Op::Turn(t)) => {
-                            pen.k = self.add_turn(pen.k, i64::from(t)).unwrap_or(pen.k);
+                            pen.k = self.period.add_turn(pen.k, i64::from(t)).unwrap_or(pen.k);
                         }
                         Some(Op::Flip) => pen.flip = !pen.flip,
                         _ => {}
@@ -513,7 +504,11 @@ impl Chance {
                 if !self.is_piece(c, r) {
                     return;
                 }
-                let i = self.index.get(&(c, r, self.key(k))).copied().unwrap_or(0) as usize;
+                let i = self
+                    .index
+                    .get(&(c, r, self.period.key(k)))
+                    .copied()
+                    .unwrap_or(0) as usize;
                 let p = self.pieces.get(i).copied().unwrap_or(Piece::EMPTY);
                 if self.cut(c, r, &p, detail) {
                     acc[1] += self.trunk[self.at(c, r)];

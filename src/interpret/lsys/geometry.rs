@@ -144,7 +144,7 @@ pub(crate) struct Geometry {
     depth: u32,
     /// Terminal op of every symbol.
     ops: Vec<Option<Op>>,
-    period: Option<i64>,
+    period: Period,
     /// Net turn of `(s, r)`: `turn[r * n + s]` (reduced modulo the period
     /// only if it would not fit 64 bits).
     turn: Vec<i64>,
@@ -169,16 +169,41 @@ pub(crate) struct Geometry {
     masks: RefCell<solid::Masks>,
 }
 
-/// The period of `angle` in turns: the least `p` in `1..=MAX_PERIOD` with
-/// `p * angle` a whole number of full turns (within 1e-9 of a degree).
-pub(super) fn period_of(angle: f64) -> Option<i64> {
-    if !angle.is_finite() {
-        return None;
+/// Headings counted in turns of the angle, and the angle's period: the
+/// least `p` in `1..=MAX_PERIOD` with `p * angle` a whole number of full
+/// turns (within 1e-9 of a degree), if it has one.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Period(Option<i64>);
+
+impl Period {
+    /// The period of `angle`.
+    pub(super) fn of(angle: f64) -> Period {
+        if !angle.is_finite() {
+            return Period(None);
+        }
+        Period((1..=MAX_PERIOD).find(|&p| {
+            let turns = p as f64 * angle / 360.0;
+            (turns - libm::round(turns)).abs() * 360.0 < 1e-9
+        }))
     }
-    (1..=MAX_PERIOD).find(|&p| {
-        let turns = p as f64 * angle / 360.0;
-        (turns - libm::round(turns)).abs() * 360.0 < 1e-9
-    })
+
+    /// The memo key of heading `k`: modulo the period, if any.
+    pub(super) fn key(self, k: i64) -> i64 {
+        match self.0 {
+            Some(p) => k.rem_euclid(p),
+            None => k,
+        }
+    }
+
+    /// `k + t`, exact when it fits, else modulo the period; `None` when it
+    /// does not fit and there is no period.
+    pub(super) fn add_turn(self, k: i64, t: i64) -> Option<i64> {
+        match (k.checked_add(t), self.0) {
+            (Some(v), _) => Some(v),
+            (None, Some(p)) => Some(k.rem_euclid(p) + t.rem_euclid(p)),
+            (None, None) => None,
+        }
+    }
 }
 
 /// Whether `word` is bracket-balanced: never more `]` than `[` so far, and
@@ -221,7 +246,7 @@ impl Geometry {
         if n.saturating_mul(levels) > budget.saturating_mul(4) {
             return Err(Refusal::Budget);
         }
-        let period = period_of(sys.angle);
+        let period = Period::of(sys.angle);
         let word = alpha.word_lengths(depth)[depth as usize];
         let mut g = Geometry {
             alpha,
@@ -244,23 +269,6 @@ impl Geometry {
         g.demand(budget)?;
         g.compose_all();
         Ok(g)
-    }
-
-    fn key(&self, k: i64) -> i64 {
-        match self.period {
-            Some(p) => k.rem_euclid(p),
-            None => k,
-        }
-    }
-
-    /// `k + t`, exact when it fits, else modulo the period; `None` when it
-    /// does not fit and there is no period.
-    fn add_turn(&self, k: i64, t: i64) -> Option<i64> {
-        match (k.checked_add(t), self.period) {
-            (Some(v), _) => Some(v),
-            (None, Some(p)) => Some(k.rem_euclid(p) + t.rem_euclid(p)),
-            (None, None) => None,
-        }
     }
 
     /// Net turns, flips and `F` counts of every `(s, r)`, level by level.
@@ -297,7 +305,10 @@ impl Geometry {
                                 Some(Op::Push) => open += 1,
                                 Some(Op::Pop) => open -= 1,
                                 _ if open == 0 => {
-                                    t = self.add_turn(t, self.turn[i]).ok_or(Refusal::Turns)?;
+                                    t = self
+                                        .period
+                                        .add_turn(t, self.turn[i])
+                                        .ok_or(Refusal::Turns)?;
                                     f ^= self.flip[i];
                                 }
                                 _ => {}
@@ -361,11 +372,17 @@ impl Geometry {
                     }
                 }
                 _ if self.is_piece(c, r) => {
-                    need(c, self.key(k))?;
-                    k = self.add_turn(k, self.turn_of(c, r)).ok_or(Refusal::Turns)?;
+                    need(c, self.period.key(k))?;
+                    k = self
+                        .period
+                        .add_turn(k, self.turn_of(c, r))
+                        .ok_or(Refusal::Turns)?;
                 }
                 Some(Op::Turn(t)) => {
-                    k = self.add_turn(k, i64::from(t)).ok_or(Refusal::Turns)?;
+                    k = self
+                        .period
+                        .add_turn(k, i64::from(t))
+                        .ok_or(Refusal::Turns)?;
                 }
                 _ => {}
             }
@@ -423,7 +440,7 @@ impl Geometry {
 
     /// The piece of `(c, r)` at heading `k` (which must have been needed).
     fn piece(&self, c: u32, r: u32, k: i64) -> Piece {
-        match self.index.get(&(c, r, self.key(k))) {
+        match self.index.get(&(c, r, self.period.key(k))) {
             Some(&i) => self.pieces[i as usize],
             None => Piece::EMPTY,
         }
@@ -447,7 +464,10 @@ impl Geometry {
             }
             pen.x += sg * p.dx;
             pen.y += sg * p.dy;
-            pen.k = self.add_turn(pen.k, self.turn_of(c, r)).unwrap_or(pen.k);
+            pen.k = self
+                .period
+                .add_turn(pen.k, self.turn_of(c, r))
+                .unwrap_or(pen.k);
             pen.flip ^= self.flip_of(c, r);
             return;
         }
@@ -465,7 +485,7 @@ impl Geometry {
                 pen.y += dy * self.len;
                 acc.moves = true;
             }
-            Some(Op::Turn(t)) => pen.k = self.add_turn(pen.k, i64::from(t)).unwrap_or(pen.k),
+            Some(Op::Turn(t)) => pen.k = self.period.add_turn(pen.k, i64::from(t)).unwrap_or(pen.k),
             Some(Op::Flip) => pen.flip = !pen.flip,
             _ => {}
         }

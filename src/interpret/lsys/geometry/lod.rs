@@ -102,7 +102,11 @@ impl Geometry {
         let mut cost: Vec<[u64; 3]> = Vec::with_capacity(n);
         let child = |c: u32, r: u32, k: i64, cost: &[[u64; 3]]| -> [u64; 3] {
             if self.is_piece(c, r) {
-                let i = self.index.get(&(c, r, self.key(k))).copied().unwrap_or(0) as usize;
+                let i = self
+                    .index
+                    .get(&(c, r, self.period.key(k)))
+                    .copied()
+                    .unwrap_or(0) as usize;
                 let p = self.pieces.get(i).copied().unwrap_or(Piece::EMPTY);
                 if self.cut(c, r, k, &p, detail) {
                     let drawn = if self.solid(c, r, k, &p, detail) {
@@ -154,8 +158,8 @@ impl Geometry {
                         k = saved;
                     }
                 }
-                _ if self.is_piece(c, r) => k = self.add_turn(k, self.turn_of(c, r))?,
-                Some(Op::Turn(t)) => k = self.add_turn(k, i64::from(t))?,
+                _ if self.is_piece(c, r) => k = self.period.add_turn(k, self.turn_of(c, r))?,
+                Some(Op::Turn(t)) => k = self.period.add_turn(k, i64::from(t))?,
                 _ => {}
             }
         }

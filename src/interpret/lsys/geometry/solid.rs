@@ -117,7 +117,7 @@ impl Geometry {
 
     /// The coverage mask of piece `(c, r)` at heading `k`.
     fn mask(&self, masks: &mut Masks, c: u32, r: u32, k: i64) -> u64 {
-        let key = (c, r, self.key(k));
+        let key = (c, r, self.period.key(k));
         if let Some(&m) = masks.masks.get(&key) {
             return m;
         }
@@ -225,7 +225,10 @@ impl Geometry {
                     }
                     pen.x += sg * p.dx;
                     pen.y += sg * p.dy;
-                    pen.k = self.add_turn(pen.k, self.turn_of(s, r)).unwrap_or(pen.k);
+                    pen.k = self
+                        .period
+                        .add_turn(pen.k, self.turn_of(s, r))
+                        .unwrap_or(pen.k);
                     pen.flip ^= self.flip_of(s, r);
                 }
                 Some(Op::Draw) => {
@@ -239,7 +242,9 @@ impl Geometry {
                     pen.x += dx * self.len;
                     pen.y += dy * self.len;
                 }
-                Some(Op::Turn(t)) => pen.k = self.add_turn(pen.k, i64::from(t)).unwrap_or(pen.k),
+                Some(Op::Turn(t)) => {
+                    pen.k = self.period.add_turn(pen.k, i64::from(t)).unwrap_or(pen.k)
+                }
                 Some(Op::Flip) => pen.flip = !pen.flip,
                 _ => {}
             }
