@@ -86,6 +86,33 @@ pub fn expand(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
+    write_expansion::<Op>(bed, strategy, limits, out, progress, |op, buf| match op {
+        Op::Draw => buf.push(b'F'),
+        Op::Move => buf.push(b'f'),
+        Op::Turn(n) => {
+            let c = if n >= 0 { b'+' } else { b'-' };
+            for _ in 0..n.unsigned_abs() {
+                buf.push(c);
+            }
+        }
+        Op::Flip => buf.push(b'|'),
+        Op::Push => buf.push(b'['),
+        Op::Pop => buf.push(b']'),
+        Op::Enter | Op::Leave => {}
+    })
+}
+
+/// Writes the stream of `bed`'s operations to `out`, each spelled by
+/// `spell`, a line per tree, in pieces of 64 KiB as they come: the one
+/// writer of [`expand`] and the 3D BED's `expand3`.
+pub(crate) fn write_expansion<O: StlOp>(
+    bed: &Bed,
+    strategy: Derivation,
+    limits: &Limits,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+    mut spell: impl FnMut(O, &mut Vec<u8>),
+) -> Result<(), Diagnostics> {
     let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
     let flush = |buf: &mut Vec<u8>, out: &mut dyn Write| -> Result<(), Diagnostics> {
         out.write_all(buf)
@@ -94,30 +121,15 @@ pub fn expand(
         Ok(())
     };
     let mut trees = 0usize;
-    stream::<Op>(bed, strategy, limits, progress, &mut |e| {
-        let op = match e {
+    stream::<O>(bed, strategy, limits, progress, &mut |e| {
+        match e {
             Event::Tree(..) => {
                 trees += 1;
                 if trees > 1 {
                     buf.push(b'\n');
                 }
-                return Ok(());
             }
-            Event::Op(op) => op,
-        };
-        match op {
-            Op::Draw => buf.push(b'F'),
-            Op::Move => buf.push(b'f'),
-            Op::Turn(n) => {
-                let c = if n >= 0 { b'+' } else { b'-' };
-                for _ in 0..n.unsigned_abs() {
-                    buf.push(c);
-                }
-            }
-            Op::Flip => buf.push(b'|'),
-            Op::Push => buf.push(b'['),
-            Op::Pop => buf.push(b']'),
-            Op::Enter | Op::Leave => {}
+            Event::Op(op) => spell(op, &mut buf),
         }
         if buf.len() >= 1 << 16 {
             flush(&mut buf, out)?;

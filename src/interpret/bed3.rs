@@ -16,7 +16,7 @@ use std::cell::Cell;
 use crate::bed::Bed;
 use crate::diag::Diagnostics;
 use crate::interpret::Derivation;
-use crate::interpret::bed::{Event, StlOp, stream};
+use crate::interpret::bed::{Event, StlOp, stream, write_expansion};
 use crate::limits::Limits;
 use crate::num::Linear;
 use crate::progress::Progress;
@@ -124,48 +124,24 @@ pub fn expand3(
     out: &mut dyn std::io::Write,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
-    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
-    let flush = |buf: &mut Vec<u8>, out: &mut dyn std::io::Write| -> Result<(), Diagnostics> {
-        out.write_all(buf)
-            .map_err(|e| Diagnostics::from(crate::diag::io_error(&e, "writing the expansion")))?;
-        buf.clear();
-        Ok(())
-    };
-    let mut trees = 0usize;
-    stream::<Op3s>(bed, strategy, limits, progress, &mut |e| {
-        let c = match e {
-            Event::Tree(..) => {
-                trees += 1;
-                if trees == 1 {
-                    return Ok(());
-                }
-                b'\n'
-            }
-            Event::Op(Op3s::Enter | Op3s::Leave) => return Ok(()),
-            Event::Op(Op3s::Turtle(op)) => match op {
-                Op3::Draw => b'F',
-                Op3::Move => b'f',
-                Op3::Turn(n) if n > 0 => b'+',
-                Op3::Turn(_) => b'-',
-                Op3::Pitch(n) if n > 0 => b'&',
-                Op3::Pitch(_) => b'^',
-                Op3::Roll(n) if n > 0 => b'\\',
-                Op3::Roll(_) => b'/',
-                Op3::Flip => b'|',
-                Op3::Push => b'[',
-                Op3::Pop => b']',
-            },
+    write_expansion::<Op3s>(bed, strategy, limits, out, progress, |op, buf| {
+        let Op3s::Turtle(op) = op else {
+            return;
         };
-        buf.push(c);
-        if buf.len() >= 1 << 16 {
-            flush(&mut buf, out)?;
-        }
-        Ok(())
-    })?;
-    buf.push(b'\n');
-    flush(&mut buf, out)?;
-    out.flush()
-        .map_err(|e| crate::diag::io_error(&e, "writing the expansion").into())
+        buf.push(match op {
+            Op3::Draw => b'F',
+            Op3::Move => b'f',
+            Op3::Turn(n) if n > 0 => b'+',
+            Op3::Turn(_) => b'-',
+            Op3::Pitch(n) if n > 0 => b'&',
+            Op3::Pitch(_) => b'^',
+            Op3::Roll(n) if n > 0 => b'\\',
+            Op3::Roll(_) => b'/',
+            Op3::Flip => b'|',
+            Op3::Push => b'[',
+            Op3::Pop => b']',
+        })
+    })
 }
 
 /// The box `[minx, miny, minz, maxx, maxy, maxz]` of every drawn stem's
