@@ -197,6 +197,27 @@ pub(super) fn find_word(src: &str, from: usize, word: &str) -> Option<usize> {
 }
 
 impl Builder<'_> {
+    /// Whether a size `what` of a `shape` (`v`, written at `s`) is
+    /// positive; if not, reports it (2D shapes and volumes alike).
+    pub(super) fn positive_size(
+        &mut self,
+        shape: &'static str,
+        v: f64,
+        s: &Span,
+        what: &'static str,
+    ) -> bool {
+        if v > 0.0 {
+            return true;
+        }
+        self.report(
+            LayoutError::ShapeSizeNotPositive { shape, what },
+            s.clone(),
+            "zero or negative",
+            &format!("write a positive {what}"),
+        );
+        false
+    }
+
     /// A colour as written (`clGreen`, `#rrggbb`), or an error at `span`
     /// with the nearest colour name.
     pub(super) fn colour(&mut self, text: &str, span: Span) -> Option<Rgb> {
@@ -343,22 +364,8 @@ impl Builder<'_> {
             return self.polygon(args, span);
         }
         let round = kind == ShapeName::RoundRect;
-        let positive = |b: &mut Self, v: f64, s: &Span, what: &'static str| {
-            if v <= 0.0 {
-                b.report(
-                    LayoutError::ShapeSizeNotPositive {
-                        shape: kind.name(),
-                        what,
-                    },
-                    s.clone(),
-                    "zero or negative",
-                    &format!("write a positive {what}"),
-                );
-                false
-            } else {
-                true
-            }
-        };
+        let positive =
+            |b: &mut Self, v: f64, s: &Span, what| b.positive_size(kind.name(), v, s, what);
         // The shape of `kind` at (x, y), w by h; a round rectangle's corner
         // radii are given.
         let boxed = |x, y, w, h, (rx, ry)| match kind {

@@ -153,21 +153,8 @@ impl Builder<'_> {
             );
             None
         };
-        let positive = |b: &mut Self, v: f64, s: &Span, what: &'static str| {
-            if v > 0.0 {
-                return true;
-            }
-            b.report(
-                LayoutError::ShapeSizeNotPositive {
-                    shape: kind.name(),
-                    what,
-                },
-                s.clone(),
-                "zero or negative",
-                &format!("write a positive {what}"),
-            );
-            false
-        };
+        let positive =
+            |b: &mut Self, v: f64, s: &Span, what| b.positive_size(kind.name(), v, s, what);
         match kind {
             SolidName::Extrude | SolidName::Revolve => {
                 let Some((inner, angled)) = inner else {
