@@ -24,6 +24,7 @@
 mod draw;
 mod request;
 mod space;
+mod stats3;
 mod summary;
 mod tree3;
 

@@ -31,7 +31,7 @@ pub fn stats(
     };
     let depth = lsys_depth(sys, depth, limits)?;
     if sys.is_3d() {
-        return super::space::stats3(sys, depth, json, limits);
+        return super::stats3::stats3(sys, depth, json, limits);
     }
     if sys.is_stochastic() {
         let stats = crate::interpret::expected::stochastic_stats(sys, depth, limits)?;

@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 use std::io::Write;
 
-use super::space::{box_text, list, num};
+use super::stats3::{box_text, list, num};
 use super::{Rendered, Scene, style};
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
