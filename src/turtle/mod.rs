@@ -99,6 +99,18 @@ pub trait Turtle {
         self.blot(seg, density);
     }
 
+    /// A bush's stand-in, as [`Turtle::blot_spread`], that can also be
+    /// drawn from the bush itself: `sample` draws its subtree (starting at
+    /// the origin, so it lands at `at` when moved there), and equal keys
+    /// draw equal subtrees. The default is [`Turtle::blot_spread`]; the
+    /// PNG backend rasterises each distinct bush once, exactly where
+    /// that is cheap, and stamps the ink it measured wherever the bush
+    /// recurs (docs/rendering.md, *Silhouette*).
+    fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
+        let _ = sample;
+        self.blot_spread(seg, density, spread, runs);
+    }
+
     /// A stand-in for one connected run of `segments` segments (a
     /// straight or winding line, no jump inside) no larger than half of
     /// [`Turtle::detail`]: `seg` is its chord (or its box's diagonal).
@@ -128,9 +140,31 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
         (**self).blot_spread(seg, density, spread, runs)
     }
 
+    fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
+        (**self).bush(seg, density, spread, runs, sample)
+    }
+
     fn run(&mut self, seg: Segment, segments: f64) {
         (**self).run(seg, segments)
     }
+}
+
+/// A bush handed over by [`Turtle::bush`]: where it is, which one it is,
+/// and how to draw it.
+pub struct Sample<'a> {
+    /// Where the subtree starts (canvas units).
+    pub at: Point,
+    /// Within one drawing, equal keys stand for equal subtrees, the same
+    /// way up, drawn from their start.
+    pub key: u128,
+    /// The subtree's box relative to its start: its least and greatest
+    /// corners (canvas units).
+    pub bounds: (Point, Point),
+    /// Segments its exact drawing has (saturating).
+    pub segments: u64,
+    /// Draws the subtree from the origin into a turtle, at a level of
+    /// detail of the given canvas units (0: exactly).
+    pub draw: &'a dyn Fn(f64, &mut dyn Turtle),
 }
 
 /// Records every segment: the test backend.

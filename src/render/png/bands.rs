@@ -204,7 +204,7 @@ impl Band<'_> {
                 );
             }
             Op::Blots(blots) => {
-                for &(a, b, shape) in blots.iter() {
+                for (a, b, shape) in blots.iter().cloned() {
                     let rows = self.rows.clone();
                     raster::stamp(self.data, ink.width, rows, ink.rgb, a, b, shape);
                 }

@@ -51,11 +51,12 @@ use crate::color::Rgb;
 use crate::diag::Diagnostics;
 use crate::diag::{Diagnostic, RenderError};
 use crate::turtle::Fill;
-use crate::turtle::{Point, Segment, Turtle};
+use crate::turtle::{Point, Sample, Segment, Turtle};
 
 mod bands;
 mod fold;
 mod raster;
+mod sample;
 
 use bands::{Canvas, Ink, Op, Router};
 use fold::Pen;
@@ -103,6 +104,9 @@ pub struct PngTurtle {
     /// Segments drawn or stood for so far (at a level of detail, where
     /// the exact drawing would be in its batches).
     stood: f64,
+    /// The bushes sampled so far ([`Turtle::bush`]); `None` in a bush's
+    /// own sample, whose bushes are modelled.
+    fields: Option<sample::Fields>,
 }
 
 impl PngTurtle {
@@ -160,6 +164,7 @@ impl PngTurtle {
             short_side: 0.99 * f64::from(fit.width.min(fit.height)),
             covered: false,
             stood: 0.0,
+            fields: Some(sample::Fields::default()),
         }
     }
 
@@ -455,6 +460,25 @@ impl Turtle for PngTurtle {
         let chord = libm::hypot(to.x - from.x, to.y - from.y);
         let bush = Bush::new(stroke, spread, chord, density * chord, runs);
         self.stamp(from, to, Shape::Bush(bush));
+    }
+
+    fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
+        if self.covered {
+            return;
+        }
+        if density < BLOT_DENSITY && spread * self.fit.scale < SPREAD_MIN_PX {
+            self.segment(seg);
+            return;
+        }
+        match self.sampled_bush(sample) {
+            Some(field) => {
+                let at = self.fit.map(sample.at);
+                if at.x.is_finite() && at.y.is_finite() {
+                    self.stamp(at, at, Shape::Field(field));
+                }
+            }
+            None => self.blot_spread(seg, density, spread, runs),
+        }
     }
 
     fn run(&mut self, seg: Segment, segments: f64) {

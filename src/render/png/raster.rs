@@ -7,7 +7,7 @@ use crate::turtle::Point;
 
 /// What a stand-in paints around its chord: the ink of a pixel as a
 /// function of its centre's distance to the chord.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone)]
 pub(super) enum Shape {
     /// A solid capsule of this radius: covered by `radius + 0.5` minus the
     /// distance, clamped to 0..1 ([`Turtle::blot`](crate::turtle::Turtle::blot)).
@@ -15,6 +15,9 @@ pub(super) enum Shape {
     /// A bush's hairlines spread evenly across its footprint
     /// ([`Bush::new`]).
     Bush(Bush),
+    /// A bush's own ink, sampled ([`sample`](super::sample)): `a` is
+    /// its start.
+    Field(std::sync::Arc<super::sample::Field>),
 }
 
 /// The expected ink of a bush's stand-in: the strokes it stands for,
@@ -159,9 +162,12 @@ pub(super) fn stamp(
 ) {
     let w = f64::from(width);
     let (top, bottom) = (f64::from(rows.start), f64::from(rows.end));
-    let reach = match shape {
+    let reach = match &shape {
         Shape::Capsule(radius) => radius + 0.5,
         Shape::Bush(bush) => bush.reach(),
+        Shape::Field(field) => {
+            return super::sample::stamp(data, width, rows, ink, a, field);
+        }
     };
     let (lo_x, hi_x) = (a.x.min(b.x) - reach, a.x.max(b.x) + reach);
     let (lo_y, hi_y) = (a.y.min(b.y) - reach, a.y.max(b.y) + reach);
@@ -194,10 +200,11 @@ pub(super) fn stamp(
             if d2 >= outer {
                 continue;
             }
-            let cov = match shape {
+            let cov = match &shape {
                 _ if d2 <= inner => 1.0,
                 Shape::Capsule(_) => (reach - libm::sqrt(d2)).clamp(0.0, 1.0),
                 Shape::Bush(bush) => bush.ink(libm::sqrt(d2)),
+                Shape::Field(_) => 0.0,
             };
             let c = (cov * 255.0 + 0.5) as u32;
             if c == 0 {
@@ -245,8 +252,10 @@ pub(super) struct Recent {
 
 impl Recent {
     pub(super) fn new() -> Recent {
+        // Allocated on first use: most turtles (and every bush's sample
+        // turtle) never draw a wide capsule.
         Recent {
-            buckets: vec![[None; 2]; RECENT_BUCKETS],
+            buckets: Vec::new(),
         }
     }
 
@@ -255,6 +264,9 @@ impl Recent {
     #[inline]
     pub(super) fn repeats(&mut self, from: Point, to: Point, width: f64) -> bool {
         let key = [from.x, from.y, to.x, to.y, width].map(f64::to_bits);
+        if self.buckets.is_empty() {
+            self.buckets = vec![[None; 2]; RECENT_BUCKETS];
+        }
         let bucket = &mut self.buckets[bucket_of(&key)];
         if bucket.contains(&Some(key)) {
             return true;

@@ -4,6 +4,8 @@
 //! stand-in and every other symbol as the exact drawing does.
 
 use super::*;
+use crate::progress::NoProgress;
+use crate::turtle::Sample;
 
 /// A bush's stand-in along `from`-`to`, moved across onto the middle of
 /// the box `a`-`b` (opposite corners), and the box's half-width across
@@ -176,6 +178,20 @@ impl Geometry {
     pub(crate) fn draw_lod<T: Turtle>(
         &self,
         detail: f64,
+        turtle: T,
+        progress: &mut dyn Progress,
+    ) -> Point {
+        self.draw_word(&self.alpha.axiom, self.depth, (0, false), detail, turtle, progress)
+    }
+
+    /// [`Geometry::draw_lod`] of `word` at remaining depth `r`, starting
+    /// at the origin with heading and flip `start`.
+    fn draw_word<T: Turtle>(
+        &self,
+        word: &[u32],
+        r: u32,
+        start: (i64, bool),
+        detail: f64,
         mut turtle: T,
         progress: &mut dyn Progress,
     ) -> Point {
@@ -195,12 +211,8 @@ impl Geometry {
         let alpha = &self.alpha;
         let len = self.len;
         let mut headings = self.headings.borrow().clone();
-        let mut frames = vec![Frame {
-            word: &alpha.axiom,
-            at: 0,
-            r: self.depth,
-        }];
-        let (mut x, mut y, mut k, mut flip) = (0.0f64, 0.0f64, 0i64, false);
+        let mut frames = vec![Frame { word, at: 0, r }];
+        let (mut x, mut y, mut k, mut flip) = (0.0f64, 0.0f64, start.0, start.1);
         let mut stack: Vec<Saved> = Vec::new();
         let mut done = 0u64;
         let mut next_report = PROGRESS_STEP;
@@ -254,7 +266,28 @@ impl Geometry {
                                 Point::new(x + sg * p.min_x, y + sg * p.min_y),
                                 Point::new(x + sg * p.max_x, y + sg * p.max_y),
                             );
-                            turtle.blot_spread(seg, density, spread, self.jumps[at] as f64);
+                            let (lo, hi) = (
+                                Point::new(sg * p.min_x, sg * p.min_y),
+                                Point::new(sg * p.max_x, sg * p.max_y),
+                            );
+                            let draw = |detail: f64, t: &mut dyn Turtle| {
+                                self.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
+                            };
+                            let sample = Sample {
+                                at: Point::new(x, y),
+                                key: u128::from(c) << 96
+                                    | u128::from(r) << 64
+                                    | u128::from(self.period.key(k) as u64) << 1
+                                    | u128::from(flip),
+                                bounds: (
+                                    Point::new(lo.x.min(hi.x), lo.y.min(hi.y)),
+                                    Point::new(lo.x.max(hi.x), lo.y.max(hi.y)),
+                                ),
+                                segments: n,
+                                draw: &draw,
+                            };
+                            let runs = self.jumps[at] as f64;
+                            turtle.bush(seg, density, spread, runs, &sample);
                         }
                     }
                     (x, y) = (ex, ey);

@@ -1,0 +1,229 @@
+//! Bushes drawn from themselves ([`Turtle::bush`]): each distinct bush
+//! is rasterised once, by this backend, at sixteen sub-pixel positions
+//! (a grid a quarter pixel apart), into the ink it leaves around its
+//! start; wherever the bush recurs that ink is stamped, interpolated
+//! between the grid's points. So a stand-in inks what its own strokes
+//! ink, caps, folds and hairline coverage included, instead of a model
+//! of them (docs/rendering.md, *Silhouette*).
+//!
+//! The ink is kept as `lambda = -ln(1 - coverage)`: a pixel under bushes
+//! of `lambda1, lambda2, ...` is `1 - exp(-(lambda1 + lambda2 + ...))`
+//! inked, as under the strokes themselves (each blended over the others).
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use super::PngTurtle;
+use crate::color::Rgb;
+use crate::render::{Fit, Style, Width, stroke_px};
+use crate::turtle::{Point, Sample};
+
+/// The grid's step, pixels: the sample is drawn at `SUB x SUB` offsets.
+const SUB: usize = 4;
+const STEP: f64 = 1.0 / SUB as f64;
+
+/// A bush of at most this many segments is sampled exactly; a larger one
+/// at a sixteenth of the detail (its own bushes then stand-ins as
+/// [`Bush`](super::raster::Bush) models them).
+pub(super) const EXACT_SEGMENTS: u64 = 4096;
+
+/// At most this many bushes are sampled in one drawing (about 1 KB each);
+/// past it, the rest are modelled.
+const MAX_FIELDS: usize = 16_384;
+
+/// Past `ln(510)` the ink rounds to full.
+const FULL: f32 = 6.24;
+
+/// A bush's ink around its start: `lambda` at grid points `STEP` apart,
+/// the first at `min` (output pixels, relative to the bush's start).
+#[derive(Debug)]
+pub(super) struct Field {
+    min: Point,
+    nx: usize,
+    ny: usize,
+    lambda: Vec<f32>,
+}
+
+impl Field {
+    /// The corners of the area the field inks, relative to the start.
+    pub(super) fn area(&self) -> (Point, Point) {
+        let max = Point::new(
+            self.min.x + (self.nx - 1) as f64 * STEP,
+            self.min.y + (self.ny - 1) as f64 * STEP,
+        );
+        (self.min, max)
+    }
+
+    /// `lambda` of a pixel whose centre is at `q` from the start:
+    /// bilinear between the grid's points, 0 outside.
+    pub(super) fn lambda(&self, q: Point) -> f64 {
+        let u = (q.x - self.min.x) / STEP;
+        let v = (q.y - self.min.y) / STEP;
+        if !(u >= 0.0 && v >= 0.0) {
+            return 0.0;
+        }
+        let (i, j) = (u as usize, v as usize);
+        if i + 1 >= self.nx || j + 1 >= self.ny {
+            return 0.0;
+        }
+        let (fu, fv) = (u - i as f64, v - j as f64);
+        let at = |i: usize, j: usize| f64::from(self.lambda[j * self.nx + i]);
+        let top = at(i, j) * (1.0 - fu) + at(i + 1, j) * fu;
+        let bottom = at(i, j + 1) * (1.0 - fu) + at(i + 1, j + 1) * fu;
+        top * (1.0 - fv) + bottom * fv
+    }
+}
+
+/// The bushes sampled so far in one drawing.
+#[derive(Default)]
+pub(super) struct Fields {
+    by_key: HashMap<u128, Option<Arc<Field>>>,
+}
+
+impl Fields {
+    /// The field of `sample`, drawn with strokes of `width` at `fit`'s
+    /// scale and (past [`EXACT_SEGMENTS`]) a sixteenth of `detail_px`;
+    /// `None` when there are too many or it cannot be drawn.
+    pub(super) fn get(
+        &mut self,
+        sample: &Sample,
+        scale: f64,
+        width: Width,
+        detail_px: f64,
+    ) -> Option<Arc<Field>> {
+        if let Some(f) = self.by_key.get(&sample.key) {
+            return f.clone();
+        }
+        if self.by_key.len() >= MAX_FIELDS {
+            return None;
+        }
+        let field = build(sample, scale, width, detail_px).map(Arc::new);
+        self.by_key.insert(sample.key, field.clone());
+        field
+    }
+}
+
+/// Rasterises `sample` at the `SUB x SUB` offsets, each on its own small
+/// transparent raster in black, and reads `lambda` off the coverage.
+fn build(sample: &Sample, scale: f64, width: Width, detail_px: f64) -> Option<Field> {
+    let (lo, hi) = sample.bounds;
+    let stroke = stroke_px(&width, scale, 0).max(1.0);
+    // A hairline reaches a pixel beyond its line, its caps `pi / 8` past
+    // its ends; a wider stroke half its width and the pixel's half.
+    let margin = stroke / 2.0 + 1.5;
+    let min = Point::new(lo.x * scale - margin, lo.y * scale - margin);
+    let span = |a: f64, b: f64| ((b - a) * scale + 2.0 * margin) / STEP;
+    let (sx, sy) = (span(lo.x, hi.x), span(lo.y, hi.y));
+    if !(sx.is_finite() && sy.is_finite() && sx < 4096.0 && sy < 4096.0) {
+        return None;
+    }
+    let (nx, ny) = (sx.ceil() as usize + 1, sy.ceil() as usize + 1);
+    let (tw, th) = (nx.div_ceil(SUB), ny.div_ceil(SUB));
+    let style = Style {
+        stroke: Rgb { r: 0, g: 0, b: 0 },
+        background: None,
+        width,
+    };
+    let exact = sample.segments <= EXACT_SEGMENTS;
+    let mut lambda = vec![0.0f32; nx * ny];
+    for j in 0..SUB {
+        for i in 0..SUB {
+            // Tile pixel (px, py) has its centre at
+            // `min + ((SUB px + i) STEP, (SUB py + j) STEP)` from the start.
+            let fit = Fit {
+                width: tw as u32,
+                height: th as u32,
+                scale,
+                dx: 0.5 - min.x - i as f64 * STEP,
+                dy: 0.5 - min.y - j as f64 * STEP,
+            };
+            let detail = (!exact).then_some(detail_px / 16.0);
+            let mut turtle = PngTurtle::new(fit, &style).ok()?.with_detail(detail);
+            // Its own bushes are modelled, not sampled again.
+            turtle.fields = None;
+            (sample.draw)(detail.map_or(0.0, |d| d / scale), &mut turtle);
+            let raster = turtle.into_raster()?;
+            let data = raster.data();
+            for py in 0..th {
+                let gy = SUB * py + j;
+                if gy >= ny {
+                    break;
+                }
+                for px in 0..tw {
+                    let gx = SUB * px + i;
+                    if gx >= nx {
+                        break;
+                    }
+                    let a = f32::from(data[(py * tw + px) * 4 + 3]) / 255.0;
+                    lambda[gy * nx + gx] = if a >= 1.0 {
+                        FULL
+                    } else {
+                        -libm::logf(1.0 - a)
+                    };
+                }
+            }
+        }
+    }
+    Some(Field {
+        min,
+        nx,
+        ny,
+        lambda,
+    })
+}
+
+/// Paints `field`, its start at `at` (whole-picture pixels), blended
+/// source-over in `ink` into the band `rows` of `data` (`width` pixels
+/// wide), as [`raster::stamp`](super::raster::stamp) paints a blot.
+pub(super) fn stamp(
+    data: &mut [u8],
+    width: u32,
+    rows: std::ops::Range<u32>,
+    ink: Rgb,
+    at: Point,
+    field: &Field,
+) {
+    let (lo, hi) = field.area();
+    let w = f64::from(width);
+    let (top, bottom) = (f64::from(rows.start), f64::from(rows.end));
+    let (lo_x, hi_x) = (at.x + lo.x - 0.5, at.x + hi.x - 0.5);
+    let (lo_y, hi_y) = (at.y + lo.y - 0.5, at.y + hi.y - 0.5);
+    if hi_x < 0.0 || hi_y < top || lo_x >= w || lo_y >= bottom {
+        return;
+    }
+    let x0 = libm::floor(lo_x.max(0.0)) as usize;
+    let y0 = libm::floor(lo_y.max(top)) as usize;
+    let x1 = libm::ceil(hi_x.min(w - 1.0)) as usize;
+    let y1 = libm::ceil(hi_y.min(bottom - 1.0)) as usize;
+    let first_row = rows.start as usize;
+    let stride = width as usize;
+    let src = [u32::from(ink.r), u32::from(ink.g), u32::from(ink.b), 255];
+    for y in y0..=y1 {
+        let qy = y as f64 + 0.5 - at.y;
+        for x in x0..=x1 {
+            let lambda = field.lambda(Point::new(x as f64 + 0.5 - at.x, qy));
+            if lambda <= 0.0 {
+                continue;
+            }
+            let cov = 1.0 - libm::exp(-lambda);
+            let c = (cov * 255.0 + 0.5) as u32;
+            if c == 0 {
+                continue;
+            }
+            let i = ((y - first_row) * stride + x) * 4;
+            for (ch, &s) in src.iter().enumerate() {
+                let d = u32::from(data[i + ch]);
+                data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
+            }
+        }
+    }
+}
+
+impl PngTurtle {
+    /// [`Turtle::bush`]: the bush's sampled field, or its model.
+    pub(super) fn sampled_bush(&mut self, sample: &Sample) -> Option<Arc<Field>> {
+        let detail = self.detail? * self.fit.scale;
+        let fields = self.fields.as_mut()?;
+        fields.get(sample, self.fit.scale, self.width, detail)
+    }
+}
