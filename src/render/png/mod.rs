@@ -466,10 +466,7 @@ impl Turtle for PngTurtle {
         if self.covered {
             return;
         }
-        if density < BLOT_DENSITY && spread * self.fit.scale < SPREAD_MIN_PX {
-            self.segment(seg);
-            return;
-        }
+        // Sparse or dense, the bush's own drawing: no threshold.
         match self.sampled_bush(sample) {
             Some(field) => {
                 let at = self.fit.map(sample.at);

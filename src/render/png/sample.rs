@@ -54,23 +54,21 @@ impl Field {
         (self.min, max)
     }
 
-    /// `lambda` of a pixel whose centre is at `q` from the start:
-    /// bilinear between the grid's points, 0 outside.
+    /// `lambda` of a pixel whose centre is at `q` from the start: that
+    /// of the nearest grid point (the bush's own ink, drawn at most an
+    /// eighth of a pixel off each way; interpolating between the grid's
+    /// points would blur it), 0 outside.
     pub(super) fn lambda(&self, q: Point) -> f64 {
-        let u = (q.x - self.min.x) / STEP;
-        let v = (q.y - self.min.y) / STEP;
+        let u = libm::round((q.x - self.min.x) / STEP);
+        let v = libm::round((q.y - self.min.y) / STEP);
         if !(u >= 0.0 && v >= 0.0) {
             return 0.0;
         }
         let (i, j) = (u as usize, v as usize);
-        if i + 1 >= self.nx || j + 1 >= self.ny {
+        if i >= self.nx || j >= self.ny {
             return 0.0;
         }
-        let (fu, fv) = (u - i as f64, v - j as f64);
-        let at = |i: usize, j: usize| f64::from(self.lambda[j * self.nx + i]);
-        let top = at(i, j) * (1.0 - fu) + at(i + 1, j) * fu;
-        let bottom = at(i, j + 1) * (1.0 - fu) + at(i + 1, j + 1) * fu;
-        top * (1.0 - fv) + bottom * fv
+        f64::from(self.lambda[j * self.nx + i])
     }
 }
 
@@ -225,5 +223,125 @@ impl PngTurtle {
         let detail = self.detail? * self.fit.scale;
         let fields = self.fields.as_mut()?;
         fields.get(sample, self.fit.scale, self.width, detail)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::turtle::{Segment, Turtle};
+    use tiny_skia::Pixmap;
+
+    /// A twig of 1.24a's shape, `F[+F]F[-F]F` twice over (25 segments of
+    /// `len` px, 25.7 degrees), from the origin upwards, into `t` moved
+    /// by `at`.
+    fn twig(t: &mut dyn Turtle, at: Point, len: f64) {
+        fn go(t: &mut dyn Turtle, p: &mut (f64, f64, f64), depth: u32, len: f64, at: Point) {
+            if depth == 0 {
+                let (x, y, a) = *p;
+                let (nx, ny) = (x + len * libm::sin(a), y - len * libm::cos(a));
+                t.segment(Segment {
+                    from: Point::new(at.x + x, at.y + y),
+                    to: Point::new(at.x + nx, at.y + ny),
+                    order: 0,
+                });
+                *p = (nx, ny, a);
+                return;
+            }
+            let turn = 25.7f64.to_radians();
+            for part in 0..5 {
+                if part % 2 == 1 {
+                    let saved = *p;
+                    p.2 += if part == 1 { turn } else { -turn };
+                    go(t, p, depth - 1, len, at);
+                    *p = saved;
+                } else {
+                    go(t, p, depth - 1, len, at);
+                }
+            }
+        }
+        go(t, &mut (0.0, 0.0, 0.0), 2, len, at);
+    }
+
+    fn picture() -> PngTurtle {
+        let fit = Fit {
+            width: 16,
+            height: 16,
+            scale: 1.0,
+            dx: 0.0,
+            dy: 0.0,
+        };
+        let style = Style {
+            stroke: Rgb::BLACK,
+            background: Some(Rgb::WHITE),
+            width: Width::Pixels(1.0),
+        };
+        PngTurtle::new(fit, &style).unwrap().with_detail(Some(0.5))
+    }
+
+    /// The twig drawn exactly at `at`, and stood in for by its sample.
+    fn both(at: Point, len: f64, lo: Point) -> (Vec<u8>, Vec<u8>) {
+        let mut exact = picture().with_detail(None);
+        twig(&mut exact, at, len);
+        let exact = exact.into_raster().unwrap();
+        let draw = |_: f64, t: &mut dyn Turtle| twig(t, Point::new(0.0, 0.0), len);
+        let sample = Sample {
+            at,
+            key: 1,
+            bounds: (lo, Point::new(0.5, 0.0)),
+            segments: 25,
+            draw: &draw,
+        };
+        let mut stood = picture();
+        let seg = Segment {
+            from: at,
+            to: at,
+            order: 0,
+        };
+        stood.bush(seg, 25.0, 0.5, 8.0, &sample);
+        let red = |p: Pixmap| p.data().chunks(4).map(|c| c[0]).collect();
+        (red(exact), red(stood.into_raster().unwrap()))
+    }
+
+    /// Where the bush starts on the sample's grid (a quarter pixel), its
+    /// stand-in is its own drawing, to the rounding of the stamp.
+    #[test]
+    fn a_bush_on_the_grid_is_stamped_as_drawn() {
+        for (at, len) in [
+            (Point::new(8.25, 9.5), 0.04),
+            (Point::new(7.75, 9.25), 0.02),
+            (Point::new(8.5, 8.0), 0.1),
+        ] {
+            let (exact, stood) = both(at, len, Point::new(-0.5, -1.0));
+            assert!(exact.iter().any(|&v| v < 128), "{at:?} draws");
+            for (i, (a, b)) in exact.iter().zip(&stood).enumerate() {
+                assert!(a.abs_diff(*b) <= 2, "{at:?} {len} pixel {i}: {a} drawn, {b} stamped");
+            }
+        }
+    }
+
+    /// Anywhere else it is its drawing moved by at most an eighth of a
+    /// pixel each way: over 169 starts a thirteenth of a pixel apart,
+    /// about as much ink and as many pixels half inked as its drawing.
+    /// (Measured: ink +1.4 %, +2.0 %, -0.1 %, inked pixels -1.7 %,
+    /// +3.5 %, +2.4 %: a bush this small inks very differently a
+    /// fraction of a pixel apart, and 16 offsets sample that.)
+    #[test]
+    fn a_bush_off_the_grid_inks_about_what_it_draws() {
+        for len in [0.02, 0.04, 0.1] {
+            let (mut ink, mut inked) = ([0u32; 2], [0usize; 2]);
+            for i in 0..13 {
+                for j in 0..13 {
+                    let at = Point::new(8.0 + f64::from(i) / 13.0, 9.0 + f64::from(j) / 13.0);
+                    let (exact, stood) = both(at, len, Point::new(-0.537, -1.013));
+                    for (k, p) in [exact, stood].iter().enumerate() {
+                        ink[k] += p.iter().map(|&v| 255 - u32::from(v)).sum::<u32>();
+                        inked[k] += p.iter().filter(|&&v| v < 128).count();
+                    }
+                }
+            }
+            assert!(ink[0].abs_diff(ink[1]) * 100 <= 3 * ink[0], "{len}: ink {ink:?}");
+            assert!(inked[0].abs_diff(inked[1]) * 100 <= 5 * inked[0], "{len}: {inked:?}");
+        }
     }
 }
