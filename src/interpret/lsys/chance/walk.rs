@@ -3,6 +3,8 @@
 //! the detail, their ends from trunk walks or expectation.
 
 use super::*;
+use crate::progress::NoProgress;
+use crate::turtle::Sample;
 
 impl Chance {
     /// Where the subtree of `c` (remaining depth `r`, key `key`) started
@@ -64,6 +66,27 @@ impl Chance {
         &self,
         detail: f64,
         exact_ends: bool,
+        turtle: T,
+        progress: &mut dyn Progress,
+    ) -> (Point, u64) {
+        let start = Pen {
+            x: 0.0,
+            y: 0.0,
+            k: 0,
+            flip: false,
+        };
+        let word = (&self.st.axiom[..], self.depth, self.st.root());
+        self.walk_word(word, start, detail, exact_ends, turtle, progress)
+    }
+
+    /// [`Chance::walk`] of `word` (its symbols, remaining depth and key)
+    /// from `pen`.
+    fn walk_word<T: Turtle>(
+        &self,
+        word: (&[u32], u32, Key),
+        pen: Pen,
+        detail: f64,
+        exact_ends: bool,
         mut turtle: T,
         progress: &mut dyn Progress,
     ) -> (Point, u64) {
@@ -76,17 +99,12 @@ impl Chance {
         let mut hd = self.headings.clone();
         let len = self.len;
         let mut frames = vec![Frame {
-            word: &self.st.axiom,
+            word: word.0,
             at: 0,
-            r: self.depth,
-            key: self.st.root(),
+            r: word.1,
+            key: word.2,
         }];
-        let mut pen = Pen {
-            x: 0.0,
-            y: 0.0,
-            k: 0,
-            flip: false,
-        };
+        let mut pen = pen;
         let mut stack: Vec<Pen> = Vec::new();
         let (mut done, mut work) = (0u64, 0u64);
         let mut next_report = PROGRESS_STEP;
@@ -151,7 +169,42 @@ impl Chance {
                             Point::new(pen.x + sg * p.min_x, pen.y + sg * p.min_y),
                             Point::new(pen.x + sg * p.max_x, pen.y + sg * p.max_y),
                         );
-                        turtle.blot_spread(seg, density, spread, self.runs[at]);
+                        // Each call draws the subtree with other choices
+                        // (keyed from the first stand-in that asks): the
+                        // sample is of the alternatives, as the stand-in
+                        // is of the seed's choices.
+                        let calls = std::cell::Cell::new(0u64);
+                        let draw = |detail: f64, t: &mut dyn Turtle| {
+                            let i = calls.replace(calls.get() + 1);
+                            let start = Pen {
+                                x: 0.0,
+                                y: 0.0,
+                                ..pen
+                            };
+                            let word = (&[c][..], r, kc.child(u64::MAX - i));
+                            let _ = self.walk_word(word, start, detail, false, t, &mut NoProgress);
+                        };
+                        // Other choices may reach farther than the
+                        // expected box: it is widened by its size.
+                        let (w, h) = (p.max_x - p.min_x, p.max_y - p.min_y);
+                        let (lo, hi) = (
+                            Point::new(sg * p.min_x, sg * p.min_y),
+                            Point::new(sg * p.max_x, sg * p.max_y),
+                        );
+                        let sample = Sample {
+                            at: Point::new(pen.x, pen.y),
+                            key: u128::from(c) << 96
+                                | u128::from(r) << 64
+                                | u128::from(self.period.key(pen.k) as u64) << 1
+                                | u128::from(pen.flip),
+                            bounds: (
+                                Point::new(lo.x.min(hi.x) - w, lo.y.min(hi.y) - h),
+                                Point::new(lo.x.max(hi.x) + w, lo.y.max(hi.y) + h),
+                            ),
+                            segments: self.count[at] as u64,
+                            draw: &draw,
+                        };
+                        turtle.bush(seg, density, spread, self.runs[at], &sample);
                     } else {
                         turtle.run(Segment { from, to, order: 0 }, self.count[at]);
                     }
