@@ -111,6 +111,14 @@ pub trait Turtle {
         self.blot_spread(seg, density, spread, runs);
     }
 
+    /// A piece of a dense curve whose strokes cover its whole box (a
+    /// solid stand-in): `true` if the backend drew it from `sample`,
+    /// `false` (the default) to have it drawn as its hatched box.
+    fn solid(&mut self, sample: &Sample) -> bool {
+        let _ = sample;
+        false
+    }
+
     /// A stand-in for one connected run of `segments` segments (a
     /// straight or winding line, no jump inside) no larger than half of
     /// [`Turtle::detail`]: `seg` is its chord (or its box's diagonal).
@@ -142,6 +150,10 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
 
     fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
         (**self).bush(seg, density, spread, runs, sample)
+    }
+
+    fn solid(&mut self, sample: &Sample) -> bool {
+        (**self).solid(sample)
     }
 
     fn run(&mut self, seg: Segment, segments: f64) {

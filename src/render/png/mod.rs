@@ -478,6 +478,20 @@ impl Turtle for PngTurtle {
         }
     }
 
+    fn solid(&mut self, sample: &Sample) -> bool {
+        if self.covered {
+            return true;
+        }
+        let Some(field) = self.sampled_solid(sample) else {
+            return false;
+        };
+        let at = self.fit.map(sample.at);
+        if at.x.is_finite() && at.y.is_finite() {
+            self.stamp(at, at, Shape::Field(field));
+        }
+        true
+    }
+
     fn run(&mut self, seg: Segment, segments: f64) {
         if self.covered {
             return;

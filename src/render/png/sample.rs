@@ -18,14 +18,19 @@ use crate::color::Rgb;
 use crate::render::{Fit, Style, Width, stroke_px};
 use crate::turtle::{Point, Sample};
 
-/// The grid's step, pixels: the sample is drawn at `SUB x SUB` offsets.
+/// A bush is drawn at `SUB x SUB` offsets: a grid `1 / SUB` px apart.
 const SUB: usize = 4;
-const STEP: f64 = 1.0 / SUB as f64;
 
 /// A bush of at most this many segments is sampled exactly; a larger one
 /// at a sixteenth of the detail (its own bushes then stand-ins as
 /// [`Bush`](super::raster::Bush) models them).
 pub(super) const EXACT_SEGMENTS: u64 = 4096;
+
+/// A solid piece (docs/rendering.md, *Dense curves*) of at most this
+/// many segments is drawn exactly, at one offset (its tone is what
+/// matters, its edges lie inside the curve's own); a larger one is
+/// left to its hatch, which is what the exact drawing's ink converges to.
+pub(super) const SOLID_SEGMENTS: u64 = 1 << 16;
 
 /// At most this many bushes are sampled in one drawing (about 1 KB each);
 /// past it, the rest are modelled.
@@ -34,10 +39,11 @@ const MAX_FIELDS: usize = 16_384;
 /// Past `ln(510)` the ink rounds to full.
 const FULL: f32 = 6.24;
 
-/// A bush's ink around its start: `lambda` at grid points `STEP` apart,
+/// A bush's ink around its start: `lambda` at grid points `step` apart,
 /// the first at `min` (output pixels, relative to the bush's start).
 #[derive(Debug)]
 pub(super) struct Field {
+    step: f64,
     min: Point,
     nx: usize,
     ny: usize,
@@ -48,8 +54,8 @@ impl Field {
     /// The corners of the area the field inks, relative to the start.
     pub(super) fn area(&self) -> (Point, Point) {
         let max = Point::new(
-            self.min.x + (self.nx - 1) as f64 * STEP,
-            self.min.y + (self.ny - 1) as f64 * STEP,
+            self.min.x + (self.nx - 1) as f64 * self.step,
+            self.min.y + (self.ny - 1) as f64 * self.step,
         );
         (self.min, max)
     }
@@ -59,8 +65,8 @@ impl Field {
     /// eighth of a pixel off each way; interpolating between the grid's
     /// points would blur it), 0 outside.
     pub(super) fn lambda(&self, q: Point) -> f64 {
-        let u = libm::round((q.x - self.min.x) / STEP);
-        let v = libm::round((q.y - self.min.y) / STEP);
+        let u = libm::round((q.x - self.min.x) / self.step);
+        let v = libm::round((q.y - self.min.y) / self.step);
         if !(u >= 0.0 && v >= 0.0) {
             return 0.0;
         }
@@ -80,14 +86,14 @@ pub(super) struct Fields {
 
 impl Fields {
     /// The field of `sample`, drawn with strokes of `width` at `fit`'s
-    /// scale and (past [`EXACT_SEGMENTS`]) a sixteenth of `detail_px`;
-    /// `None` when there are too many or it cannot be drawn.
+    /// scale at `sub x sub` offsets, exactly or at a level of detail of
+    /// `detail_px`; `None` when there are too many or it cannot be drawn.
     pub(super) fn get(
         &mut self,
         sample: &Sample,
         scale: f64,
         width: Width,
-        detail_px: f64,
+        (sub, detail_px): (usize, Option<f64>),
     ) -> Option<Arc<Field>> {
         if let Some(f) = self.by_key.get(&sample.key) {
             return f.clone();
@@ -95,47 +101,52 @@ impl Fields {
         if self.by_key.len() >= MAX_FIELDS {
             return None;
         }
-        let field = build(sample, scale, width, detail_px).map(Arc::new);
+        let field = build(sample, scale, width, sub, detail_px).map(Arc::new);
         self.by_key.insert(sample.key, field.clone());
         field
     }
 }
 
-/// Rasterises `sample` at the `SUB x SUB` offsets, each on its own small
+/// Rasterises `sample` at `sub x sub` offsets, each on its own small
 /// transparent raster in black, and reads `lambda` off the coverage.
-fn build(sample: &Sample, scale: f64, width: Width, detail_px: f64) -> Option<Field> {
+fn build(
+    sample: &Sample,
+    scale: f64,
+    width: Width,
+    sub: usize,
+    detail: Option<f64>,
+) -> Option<Field> {
+    let step = 1.0 / sub as f64;
     let (lo, hi) = sample.bounds;
     let stroke = stroke_px(&width, scale, 0).max(1.0);
     // A hairline reaches a pixel beyond its line, its caps `pi / 8` past
     // its ends; a wider stroke half its width and the pixel's half.
     let margin = stroke / 2.0 + 1.5;
     let min = Point::new(lo.x * scale - margin, lo.y * scale - margin);
-    let span = |a: f64, b: f64| ((b - a) * scale + 2.0 * margin) / STEP;
+    let span = |a: f64, b: f64| ((b - a) * scale + 2.0 * margin) / step;
     let (sx, sy) = (span(lo.x, hi.x), span(lo.y, hi.y));
-    if !(sx.is_finite() && sy.is_finite() && sx < 4096.0 && sy < 4096.0) {
+    if !(sx.is_finite() && sy.is_finite() && sx < 1024.0 && sy < 1024.0) {
         return None;
     }
     let (nx, ny) = (sx.ceil() as usize + 1, sy.ceil() as usize + 1);
-    let (tw, th) = (nx.div_ceil(SUB), ny.div_ceil(SUB));
+    let (tw, th) = (nx.div_ceil(sub), ny.div_ceil(sub));
     let style = Style {
         stroke: Rgb { r: 0, g: 0, b: 0 },
         background: None,
         width,
     };
-    let exact = sample.segments <= EXACT_SEGMENTS;
     let mut lambda = vec![0.0f32; nx * ny];
-    for j in 0..SUB {
-        for i in 0..SUB {
+    for j in 0..sub {
+        for i in 0..sub {
             // Tile pixel (px, py) has its centre at
-            // `min + ((SUB px + i) STEP, (SUB py + j) STEP)` from the start.
+            // `min + ((sub px + i) step, (sub py + j) step)` from the start.
             let fit = Fit {
                 width: tw as u32,
                 height: th as u32,
                 scale,
-                dx: 0.5 - min.x - i as f64 * STEP,
-                dy: 0.5 - min.y - j as f64 * STEP,
+                dx: 0.5 - min.x - i as f64 * step,
+                dy: 0.5 - min.y - j as f64 * step,
             };
-            let detail = (!exact).then_some(detail_px / 16.0);
             let mut turtle = PngTurtle::new(fit, &style).ok()?.with_detail(detail);
             // Its own bushes are modelled, not sampled again.
             turtle.fields = None;
@@ -143,26 +154,23 @@ fn build(sample: &Sample, scale: f64, width: Width, detail_px: f64) -> Option<Fi
             let raster = turtle.into_raster()?;
             let data = raster.data();
             for py in 0..th {
-                let gy = SUB * py + j;
+                let gy = sub * py + j;
                 if gy >= ny {
                     break;
                 }
                 for px in 0..tw {
-                    let gx = SUB * px + i;
+                    let gx = sub * px + i;
                     if gx >= nx {
                         break;
                     }
                     let a = f32::from(data[(py * tw + px) * 4 + 3]) / 255.0;
-                    lambda[gy * nx + gx] = if a >= 1.0 {
-                        FULL
-                    } else {
-                        -libm::logf(1.0 - a)
-                    };
+                    lambda[gy * nx + gx] = if a >= 1.0 { FULL } else { -libm::logf(1.0 - a) };
                 }
             }
         }
     }
     Some(Field {
+        step,
         min,
         nx,
         ny,
@@ -218,11 +226,24 @@ pub(super) fn stamp(
 }
 
 impl PngTurtle {
-    /// [`Turtle::bush`]: the bush's sampled field, or its model.
+    /// [`Turtle::bush`]: the bush's sampled field, exactly up to
+    /// [`EXACT_SEGMENTS`], past them at a sixteenth of the detail.
     pub(super) fn sampled_bush(&mut self, sample: &Sample) -> Option<Arc<Field>> {
         let detail = self.detail? * self.fit.scale;
+        let detail = (sample.segments > EXACT_SEGMENTS).then_some(detail / 16.0);
         let fields = self.fields.as_mut()?;
-        fields.get(sample, self.fit.scale, self.width, detail)
+        fields.get(sample, self.fit.scale, self.width, (SUB, detail))
+    }
+
+    /// [`Turtle::solid`]: the solid piece's field, drawn exactly, if it
+    /// has at most [`SOLID_SEGMENTS`].
+    pub(super) fn sampled_solid(&mut self, sample: &Sample) -> Option<Arc<Field>> {
+        self.detail?;
+        if sample.segments > SOLID_SEGMENTS {
+            return None;
+        }
+        let fields = self.fields.as_mut()?;
+        fields.get(sample, self.fit.scale, self.width, (4, None))
     }
 }
 
@@ -315,7 +336,10 @@ mod tests {
             let (exact, stood) = both(at, len, Point::new(-0.5, -1.0));
             assert!(exact.iter().any(|&v| v < 128), "{at:?} draws");
             for (i, (a, b)) in exact.iter().zip(&stood).enumerate() {
-                assert!(a.abs_diff(*b) <= 2, "{at:?} {len} pixel {i}: {a} drawn, {b} stamped");
+                assert!(
+                    a.abs_diff(*b) <= 2,
+                    "{at:?} {len} pixel {i}: {a} drawn, {b} stamped"
+                );
             }
         }
     }
@@ -340,8 +364,14 @@ mod tests {
                     }
                 }
             }
-            assert!(ink[0].abs_diff(ink[1]) * 100 <= 3 * ink[0], "{len}: ink {ink:?}");
-            assert!(inked[0].abs_diff(inked[1]) * 100 <= 5 * inked[0], "{len}: {inked:?}");
+            assert!(
+                ink[0].abs_diff(ink[1]) * 100 <= 3 * ink[0],
+                "{len}: ink {ink:?}"
+            );
+            assert!(
+                inked[0].abs_diff(inked[1]) * 100 <= 5 * inked[0],
+                "{len}: {inked:?}"
+            );
         }
     }
 }

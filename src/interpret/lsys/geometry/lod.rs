@@ -168,6 +168,35 @@ impl Geometry {
         Some(())
     }
 
+    /// The piece `c` at remaining depth `r`, heading `k` and `flip`,
+    /// starting at `at`, as [`Turtle::bush`] and [`Turtle::solid`] take it.
+    fn sample<'a>(
+        &self,
+        (c, r, k, flip): (u32, u32, i64, bool),
+        at: (f64, f64),
+        p: &Piece,
+        draw: &'a dyn Fn(f64, &mut dyn Turtle),
+    ) -> Sample<'a> {
+        let sg = if flip { -1.0 } else { 1.0 };
+        let (lo, hi) = (
+            Point::new(sg * p.min_x, sg * p.min_y),
+            Point::new(sg * p.max_x, sg * p.max_y),
+        );
+        Sample {
+            at: Point::new(at.0, at.1),
+            key: u128::from(c) << 96
+                | u128::from(r) << 64
+                | u128::from(self.period.key(k) as u64) << 1
+                | u128::from(flip),
+            bounds: (
+                Point::new(lo.x.min(hi.x), lo.y.min(hi.y)),
+                Point::new(lo.x.max(hi.x), lo.y.max(hi.y)),
+            ),
+            segments: self.count[r as usize * self.alpha.chars.len() + c as usize],
+            draw,
+        }
+    }
+
     /// Draws the word into `turtle` with a level of detail: a subtree whose
     /// box fits inside `detail` canvas units is one stand-in segment (its
     /// chord, or its box's diagonal when the chord is less than half the
@@ -181,7 +210,14 @@ impl Geometry {
         turtle: T,
         progress: &mut dyn Progress,
     ) -> Point {
-        self.draw_word(&self.alpha.axiom, self.depth, (0, false), detail, turtle, progress)
+        self.draw_word(
+            &self.alpha.axiom,
+            self.depth,
+            (0, false),
+            detail,
+            turtle,
+            progress,
+        )
     }
 
     /// [`Geometry::draw_lod`] of `word` at remaining depth `r`, starting
@@ -234,8 +270,13 @@ impl Geometry {
                     let sg = if flip { -1.0 } else { 1.0 };
                     let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
                     if self.solid(c, r, k, &p, detail) {
-                        let rows = solid::hatch_rows(&p, detail);
-                        hatch(&mut turtle, x, y, sg, &p, rows);
+                        let draw = |detail: f64, t: &mut dyn Turtle| {
+                            self.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
+                        };
+                        if !turtle.solid(&self.sample((c, r, k, flip), (x, y), &p, &draw)) {
+                            let rows = solid::hatch_rows(&p, detail);
+                            hatch(&mut turtle, x, y, sg, &p, rows);
+                        }
                     } else if p.draws() {
                         let chord = libm::hypot(p.dx, p.dy);
                         let (from, to) = if chord * 2.0 >= p.extent() {
@@ -266,26 +307,10 @@ impl Geometry {
                                 Point::new(x + sg * p.min_x, y + sg * p.min_y),
                                 Point::new(x + sg * p.max_x, y + sg * p.max_y),
                             );
-                            let (lo, hi) = (
-                                Point::new(sg * p.min_x, sg * p.min_y),
-                                Point::new(sg * p.max_x, sg * p.max_y),
-                            );
                             let draw = |detail: f64, t: &mut dyn Turtle| {
                                 self.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
                             };
-                            let sample = Sample {
-                                at: Point::new(x, y),
-                                key: u128::from(c) << 96
-                                    | u128::from(r) << 64
-                                    | u128::from(self.period.key(k) as u64) << 1
-                                    | u128::from(flip),
-                                bounds: (
-                                    Point::new(lo.x.min(hi.x), lo.y.min(hi.y)),
-                                    Point::new(lo.x.max(hi.x), lo.y.max(hi.y)),
-                                ),
-                                segments: n,
-                                draw: &draw,
-                            };
+                            let sample = self.sample((c, r, k, flip), (x, y), &p, &draw);
                             let runs = self.jumps[at] as f64;
                             turtle.bush(seg, density, spread, runs, &sample);
                         }
