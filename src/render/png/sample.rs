@@ -32,9 +32,13 @@ pub(super) const EXACT_SEGMENTS: u64 = 4096;
 /// left to its hatch, which is what the exact drawing's ink converges to.
 pub(super) const SOLID_SEGMENTS: u64 = 1 << 16;
 
-/// At most this many bushes are sampled in one drawing (about 1 KB each);
-/// past it, the rest are modelled.
+/// At most this many bushes are sampled in one drawing (about 1.5 KB
+/// each with hairlines); past it, the rest are modelled.
 const MAX_FIELDS: usize = 16_384;
+
+/// And at most this many grid points in all (32 MB): wide strokes make
+/// wide fields.
+const MAX_POINTS: usize = 1 << 23;
 
 /// Past `ln(510)` the ink rounds to full.
 const FULL: f32 = 6.24;
@@ -82,6 +86,8 @@ impl Field {
 #[derive(Default)]
 pub(super) struct Fields {
     by_key: HashMap<u128, Option<Arc<Field>>>,
+    /// Grid points held.
+    points: usize,
 }
 
 impl Fields {
@@ -98,23 +104,34 @@ impl Fields {
         if let Some(f) = self.by_key.get(&sample.key) {
             return f.clone();
         }
-        if self.by_key.len() >= MAX_FIELDS {
+        if self.by_key.len() >= MAX_FIELDS || self.points >= MAX_POINTS {
             return None;
         }
-        let field = build(sample, scale, width, sub, detail_px).map(Arc::new);
+        let field = build(
+            sample,
+            scale,
+            width,
+            sub,
+            detail_px,
+            MAX_POINTS - self.points,
+        );
+        let field = field.map(Arc::new);
+        self.points += field.as_ref().map_or(0, |f| f.lambda.len());
         self.by_key.insert(sample.key, field.clone());
         field
     }
 }
 
 /// Rasterises `sample` at `sub x sub` offsets, each on its own small
-/// transparent raster in black, and reads `lambda` off the coverage.
+/// transparent raster in black, and reads `lambda` off the coverage;
+/// `None` if the grid would have more than `room` points.
 fn build(
     sample: &Sample,
     scale: f64,
     width: Width,
     sub: usize,
     detail: Option<f64>,
+    room: usize,
 ) -> Option<Field> {
     let step = 1.0 / sub as f64;
     let (lo, hi) = sample.bounds;
@@ -129,6 +146,9 @@ fn build(
         return None;
     }
     let (nx, ny) = (sx.ceil() as usize + 1, sy.ceil() as usize + 1);
+    if nx * ny > room {
+        return None;
+    }
     let (tw, th) = (nx.div_ceil(sub), ny.div_ceil(sub));
     let style = Style {
         stroke: Rgb { r: 0, g: 0, b: 0 },
@@ -230,6 +250,9 @@ impl PngTurtle {
     /// [`EXACT_SEGMENTS`], past them at a sixteenth of the detail.
     pub(super) fn sampled_bush(&mut self, sample: &Sample) -> Option<Arc<Field>> {
         let detail = self.detail? * self.fit.scale;
+        if !self.hairline() {
+            return None;
+        }
         let detail = (sample.segments > EXACT_SEGMENTS).then_some(detail / 16.0);
         let fields = self.fields.as_mut()?;
         fields.get(sample, self.fit.scale, self.width, (SUB, detail))
@@ -239,11 +262,20 @@ impl PngTurtle {
     /// has at most [`SOLID_SEGMENTS`].
     pub(super) fn sampled_solid(&mut self, sample: &Sample) -> Option<Arc<Field>> {
         self.detail?;
-        if sample.segments > SOLID_SEGMENTS {
+        if sample.segments > SOLID_SEGMENTS || !self.hairline() {
             return None;
         }
         let fields = self.fields.as_mut()?;
         fields.get(sample, self.fit.scale, self.width, (4, None))
+    }
+
+    /// Whether the strokes are hairlines (at most a pixel wide), whose
+    /// every segment blends over the others, so stamps that blend over
+    /// each other ink what they stand for. A wider stroke's path is
+    /// filled as one outline (a union: overlaps ink once), which stamps
+    /// cannot be: its bushes keep the model.
+    fn hairline(&self) -> bool {
+        stroke_px(&self.width, self.fit.scale, 0) <= 1.0
     }
 }
 
