@@ -95,12 +95,7 @@ impl RenderOptions {
 
     /// The level of detail the backends ask for, in output pixels.
     pub fn detail_px(&self) -> Option<f64> {
-        (!self.exact).then_some(
-            std::env::var("STLC_LOD_PX")
-                .ok()
-                .and_then(|v| v.parse().ok())
-                .unwrap_or(LOD_PX),
-        )
+        (!self.exact).then_some(LOD_PX)
     }
 }
 
