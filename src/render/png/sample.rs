@@ -6,9 +6,10 @@
 //! ink, caps, folds and hairline coverage included, instead of a model
 //! of them (docs/rendering.md, *Silhouette*).
 //!
-//! The ink is kept as `lambda = -ln(1 - coverage)`: a pixel under bushes
-//! of `lambda1, lambda2, ...` is `1 - exp(-(lambda1 + lambda2 + ...))`
-//! inked, as under the strokes themselves (each blended over the others).
+//! The ink is kept as the sample's coverage (0-255) at each grid point,
+//! and stamped source-over: a pixel under bushes of coverages `c1, c2,
+//! ...` keeps `(1 - c1)(1 - c2)...` of its colour, as under the strokes
+//! themselves, each blended over the others.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -40,45 +41,27 @@ const MAX_FIELDS: usize = 16_384;
 /// wide fields.
 const MAX_POINTS: usize = 1 << 23;
 
-/// Past `ln(510)` the ink rounds to full.
-const FULL: f32 = 6.24;
 
-/// A bush's ink around its start: `lambda` at grid points `step` apart,
-/// the first at `min` (output pixels, relative to the bush's start).
+/// A bush's ink around its start: its coverage at grid points `1 / sub`
+/// px apart, the first at `min` (output pixels, relative to the start).
 #[derive(Debug)]
 pub(super) struct Field {
-    step: f64,
+    sub: usize,
     min: Point,
     nx: usize,
     ny: usize,
-    lambda: Vec<f32>,
+    cov: Vec<u8>,
 }
 
 impl Field {
-    /// The corners of the area the field inks, relative to the start.
-    pub(super) fn area(&self) -> (Point, Point) {
-        let max = Point::new(
-            self.min.x + (self.nx - 1) as f64 * self.step,
-            self.min.y + (self.ny - 1) as f64 * self.step,
-        );
-        (self.min, max)
-    }
-
-    /// `lambda` of a pixel whose centre is at `q` from the start: that
-    /// of the nearest grid point (the bush's own ink, drawn at most an
-    /// eighth of a pixel off each way; interpolating between the grid's
-    /// points would blur it), 0 outside.
-    pub(super) fn lambda(&self, q: Point) -> f64 {
-        let u = libm::round((q.x - self.min.x) / self.step);
-        let v = libm::round((q.y - self.min.y) / self.step);
-        if !(u >= 0.0 && v >= 0.0) {
-            return 0.0;
-        }
-        let (i, j) = (u as usize, v as usize);
-        if i >= self.nx || j >= self.ny {
-            return 0.0;
-        }
-        f64::from(self.lambda[j * self.nx + i])
+    /// The grid point nearest a pixel whose centre is at `q` from the
+    /// start: the bush's own drawing moved at most half a grid step each
+    /// way (interpolating between the grid's points would blur it).
+    fn nearest(&self, q: Point) -> (i64, i64) {
+        let s = self.sub as f64;
+        let u = libm::round((q.x - self.min.x) * s);
+        let v = libm::round((q.y - self.min.y) * s);
+        (u as i64, v as i64)
     }
 }
 
@@ -116,14 +99,14 @@ impl Fields {
             MAX_POINTS - self.points,
         );
         let field = field.map(Arc::new);
-        self.points += field.as_ref().map_or(0, |f| f.lambda.len());
+        self.points += field.as_ref().map_or(0, |f| f.cov.len());
         self.by_key.insert(sample.key, field.clone());
         field
     }
 }
 
 /// Rasterises `sample` at `sub x sub` offsets, each on its own small
-/// transparent raster in black, and reads `lambda` off the coverage;
+/// transparent raster in black, and keeps its coverage (alpha);
 /// `None` if the grid would have more than `room` points.
 fn build(
     sample: &Sample,
@@ -155,7 +138,7 @@ fn build(
         background: None,
         width,
     };
-    let mut lambda = vec![0.0f32; nx * ny];
+    let mut cov = vec![0u8; nx * ny];
     for j in 0..sub {
         for i in 0..sub {
             // Tile pixel (px, py) has its centre at
@@ -183,18 +166,17 @@ fn build(
                     if gx >= nx {
                         break;
                     }
-                    let a = f32::from(data[(py * tw + px) * 4 + 3]) / 255.0;
-                    lambda[gy * nx + gx] = if a >= 1.0 { FULL } else { -libm::logf(1.0 - a) };
+                    cov[gy * nx + gx] = data[(py * tw + px) * 4 + 3];
                 }
             }
         }
     }
     Some(Field {
-        step,
+        sub,
         min,
         nx,
         ny,
-        lambda,
+        cov,
     })
 }
 
@@ -209,34 +191,34 @@ pub(super) fn stamp(
     at: Point,
     field: &Field,
 ) {
-    let (lo, hi) = field.area();
-    let w = f64::from(width);
-    let (top, bottom) = (f64::from(rows.start), f64::from(rows.end));
-    let (lo_x, hi_x) = (at.x + lo.x - 0.5, at.x + hi.x - 0.5);
-    let (lo_y, hi_y) = (at.y + lo.y - 0.5, at.y + hi.y - 0.5);
-    if hi_x < 0.0 || hi_y < top || lo_x >= w || lo_y >= bottom {
+    // Pixel (x, y)'s nearest grid point is (u0 + sub x, v0 + sub y): a
+    // pixel further is `sub` grid points further.
+    let (u0, v0) = field.nearest(Point::new(0.5 - at.x, 0.5 - at.y));
+    let sub = field.sub as i64;
+    let (nx, ny) = (field.nx as i64, field.ny as i64);
+    // The pixels whose grid points are inside the grid.
+    let first = |o: i64| (-o).max(0).div_euclid(sub) + i64::from((-o).max(0) % sub != 0);
+    let last = |o: i64, n: i64| (n - 1 - o).div_euclid(sub);
+    let (x0, x1) = (first(u0).max(0), last(u0, nx).min(i64::from(width) - 1));
+    let (y0, y1) = (
+        first(v0).max(i64::from(rows.start)),
+        last(v0, ny).min(i64::from(rows.end) - 1),
+    );
+    if x0 > x1 || y0 > y1 {
         return;
     }
-    let x0 = libm::floor(lo_x.max(0.0)) as usize;
-    let y0 = libm::floor(lo_y.max(top)) as usize;
-    let x1 = libm::ceil(hi_x.min(w - 1.0)) as usize;
-    let y1 = libm::ceil(hi_y.min(bottom - 1.0)) as usize;
-    let first_row = rows.start as usize;
+    let first_row = i64::from(rows.start);
     let stride = width as usize;
     let src = [u32::from(ink.r), u32::from(ink.g), u32::from(ink.b), 255];
     for y in y0..=y1 {
-        let qy = y as f64 + 0.5 - at.y;
+        let grid = ((v0 + sub * y) * nx) as usize;
+        let line = (y - first_row) as usize * stride;
         for x in x0..=x1 {
-            let lambda = field.lambda(Point::new(x as f64 + 0.5 - at.x, qy));
-            if lambda <= 0.0 {
-                continue;
-            }
-            let cov = 1.0 - libm::exp(-lambda);
-            let c = (cov * 255.0 + 0.5) as u32;
+            let c = u32::from(field.cov[grid + (u0 + sub * x) as usize]);
             if c == 0 {
                 continue;
             }
-            let i = ((y - first_row) * stride + x) * 4;
+            let i = (line + x as usize) * 4;
             for (ch, &s) in src.iter().enumerate() {
                 let d = u32::from(data[i + ch]);
                 data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
