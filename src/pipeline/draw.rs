@@ -211,6 +211,19 @@ pub(crate) fn render_tree(
         None if !tree => Ok(()),
         None => scene.draw(t, p),
     };
+    // A deterministic L-system at a level of detail is painted on one
+    // thread: its walk then skips subtrees whose reach is already full
+    // ink (docs/rendering.md, *Full ink*), which the band threads' raster
+    // would hide from it. Its pixels are the same either way.
+    let one = RenderOptions {
+        threads: 1,
+        ..*opts
+    };
+    let opts = if matches!(lod, Some((Lod::Memo(_), _, _))) {
+        &one
+    } else {
+        opts
+    };
     let counted =
         crate::render::render_framed(&mut drawing, frame, &underlay, &style, opts, out, progress)?;
     // A tree's stems are known from its measure; an L-system's were counted

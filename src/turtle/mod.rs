@@ -111,6 +111,16 @@ pub trait Turtle {
         self.blot_spread(seg, density, spread, runs);
     }
 
+    /// Whether drawing anything inside the canvas box `lo`-`hi` (corners;
+    /// the strokes' reach around it included) would change nothing: a
+    /// raster backend whose pixels there are all the opaque stroke colour
+    /// says so, and the level-of-detail walk then skips that part of the
+    /// drawing. The default: `false`.
+    fn covered(&mut self, lo: Point, hi: Point) -> bool {
+        let _ = (lo, hi);
+        false
+    }
+
     /// A piece of a dense curve whose strokes cover its whole box (a
     /// solid stand-in): `true` if the backend drew it from `sample`,
     /// `false` (the default) to have it drawn as its hatched box.
@@ -150,6 +160,10 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
 
     fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
         (**self).bush(seg, density, spread, runs, sample)
+    }
+
+    fn covered(&mut self, lo: Point, hi: Point) -> bool {
+        (**self).covered(lo, hi)
     }
 
     fn solid(&mut self, sample: &Sample) -> bool {

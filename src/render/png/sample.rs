@@ -41,7 +41,6 @@ const MAX_FIELDS: usize = 16_384;
 /// wide fields.
 const MAX_POINTS: usize = 1 << 23;
 
-
 /// A bush's ink around its start: its coverage at grid points `1 / sub`
 /// px apart, the first at `min` (output pixels, relative to the start).
 #[derive(Debug)]
