@@ -391,7 +391,9 @@ pub struct RenderArgs {
 
     /// Threads that paint a big PNG (a drawing of 2^20 segments or more,
     /// painted in bands of 64 rows): the same pixels with any number.
-    /// Default: the machine's cores.
+    /// Default: the machine's cores. A deterministic .lsys at its level of
+    /// detail (no --exact) is painted on one thread, so that it can skip
+    /// what is already full ink.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
 
