@@ -28,6 +28,7 @@ rows=(
   "hilbert --depth 13 --size 2048x2048"
   "hilbert --depth 30 --size 2048x2048"
   "hilbert --depth 11 --size 512x512"
+  "abop-1.24b --depth 30"
 )
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 largest() { sort -g | tail -1; }
