@@ -1,8 +1,9 @@
 //! Bushes drawn from themselves ([`Turtle::bush`]): each distinct bush
 //! is rasterised once, by this backend, at sixteen sub-pixel positions
 //! (a grid a quarter pixel apart), into the ink it leaves around its
-//! start; wherever the bush recurs that ink is stamped, interpolated
-//! between the grid's points. So a stand-in inks what its own strokes
+//! start; wherever the bush recurs the ink of the grid point nearest
+//! each pixel is stamped (its own drawing moved at most an eighth of a
+//! pixel each way). So a stand-in inks what its own strokes
 //! ink, caps, folds and hairline coverage included, instead of a model
 //! of them (docs/rendering.md, *Silhouette*).
 //!
@@ -28,17 +29,17 @@ const SUB: usize = 4;
 pub(super) const EXACT_SEGMENTS: u64 = 4096;
 
 /// A solid piece (docs/rendering.md, *Dense curves*) of at most this
-/// many segments is drawn exactly, at one offset (its tone is what
-/// matters, its edges lie inside the curve's own); a larger one is
-/// left to its hatch, which is what the exact drawing's ink converges to.
+/// many segments is drawn exactly, as a bush is, so it has the exact
+/// drawing's tone (a dark grey where hairlines blended in 8 bits stall);
+/// a larger one is left to its hatch, which is what the exact drawing's
+/// ink converges to (black).
 pub(super) const SOLID_SEGMENTS: u64 = 1 << 16;
 
-/// At most this many bushes are sampled in one drawing (about 1.5 KB
-/// each with hairlines); past it, the rest are modelled.
+/// At most this many bushes are sampled in one drawing (a few hundred
+/// bytes each with hairlines); past it, the rest are modelled.
 const MAX_FIELDS: usize = 16_384;
 
-/// And at most this many grid points in all (32 MB): wide strokes make
-/// wide fields.
+/// And at most this many grid points (bytes) in all: 8 MB.
 const MAX_POINTS: usize = 1 << 23;
 
 /// A bush's ink around its start: its coverage at grid points `1 / sub`
