@@ -110,6 +110,11 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/meshes.js"),
     },
     Asset {
+        path: "/orbit.js",
+        media: JS,
+        body: include_str!("page/orbit.js"),
+    },
+    Asset {
         path: "/engine/index.js",
         media: JS,
         body: include_str!("page/engine/index.js"),

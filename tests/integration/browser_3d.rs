@@ -281,6 +281,25 @@ async fn orbit_zoom_and_fit(c: &Client, first: &Value) {
     click(c, "#fit").await;
     assert_eq!(angles(c).await, [30.0, 20.0]);
     assert_eq!(pixels(c).await, *first);
+    // The keyboard, the view focused: right twice turns AZ by -5 each,
+    // Shift+up raises EL by 15, + zooms in, 0 fits again.
+    let view = c.find(fantoccini::Locator::Css("#view3d")).await.unwrap();
+    view.send_keys("\u{E014}\u{E014}").await.unwrap();
+    view.send_keys("\u{E008}\u{E013}\u{E008}").await.unwrap();
+    assert_eq!(angles(c).await, [20.0, 35.0]);
+    let keyed = pixels(c).await;
+    assert_ne!(keyed["sum"], first["sum"], "the keys turned the picture");
+    view.send_keys("+").await.unwrap();
+    assert_ne!(pixels(c).await["sum"], keyed["sum"], "+ zooms");
+    let label = js(
+        c,
+        "return document.querySelector('#view3d-label').textContent",
+    )
+    .await;
+    assert!(label.to_string().contains("arrow keys"), "{label}");
+    view.send_keys("0").await.unwrap();
+    assert_eq!(angles(c).await, [30.0, 20.0]);
+    assert_eq!(pixels(c).await, *first);
 }
 
 /// Puts the caret over `from` in the text and types `to` in its place.

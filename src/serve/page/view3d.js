@@ -2,8 +2,8 @@
 // numbers a stem, and its layout's volumes) drawn with WebGL 2 on a
 // canvas shown instead of the 2D preview. Orthographic, like `stlc render
 // --view AZ,EL`: the camera starts at the answer's view (30,20, the CLI's
-// default), dragging orbits it (AZ with the mouse across, EL up and down),
-// the wheel zooms, Fit resets both. The volumes are drawn translucent
+// default), dragging or the arrow keys orbit it, the wheel or + and -
+// zoom, Fit or 0 resets both (orbit.js). The volumes are drawn translucent
 // (meshes.js), the tree over them: each stem a band of its width (screen
 // pixels for an .lsys, canvas units for a tree), one instance of a
 // four-corner strip, so the page holds 32 bytes a stem. Replay shows the
@@ -11,6 +11,7 @@
 
 import { byId } from './dom.js';
 import { volumeMesh } from './meshes.js';
+import { orbit } from './orbit.js';
 
 const STEM_VS = `#version 300 es
 in vec2 corner;
@@ -75,9 +76,6 @@ out vec4 outColour;
 void main() {
   outColour = vec4(colour.rgb * light, colour.a);
 }`;
-
-// The drawing angles of a drag: degrees a pixel.
-const DEG_PER_PX = 0.4;
 
 function rgb(hex, fallback) {
   const m = /^#([0-9a-f]{2})([0-9a-f]{2})([0-9a-f]{2})$/i.exec(hex || '');
@@ -256,7 +254,7 @@ export function createView3d() {
     gl.bindVertexArray(stemVao);
     gl.drawArraysInstanced(gl.TRIANGLE_STRIP, 0, 4, count);
     gl.bindVertexArray(null);
-    label.textContent = `view ${Math.round(cam.az)},${Math.round(cam.el)} · drag to turn, wheel to zoom, Fit to reset`;
+    label.textContent = `view ${Math.round(cam.az)},${Math.round(cam.el)} · drag or arrow keys to turn, wheel or +/− to zoom, Fit or 0 to reset`;
   }
 
   function redraw() {
@@ -329,27 +327,7 @@ export function createView3d() {
     label.hidden = true;
   }
 
-  // Orbit by drag, zoom by wheel.
-  let drag = null;
-  canvas.addEventListener('pointerdown', (e) => {
-    drag = { x: e.clientX, y: e.clientY, az: cam.az, el: cam.el };
-    canvas.setPointerCapture(e.pointerId);
-    canvas.focus({ preventScroll: true });
-  });
-  canvas.addEventListener('pointermove', (e) => {
-    if (!drag) return;
-    cam.az = drag.az - (e.clientX - drag.x) * DEG_PER_PX;
-    cam.el = Math.max(-90, Math.min(90, drag.el + (e.clientY - drag.y) * DEG_PER_PX));
-    cam.moved = true;
-    redraw();
-  });
-  const end = () => { drag = null; };
-  canvas.addEventListener('pointerup', end);
-  canvas.addEventListener('pointercancel', end);
-  canvas.addEventListener('wheel', (e) => {
-    e.preventDefault();
-    zoom(e.deltaY > 0 ? 1.15 : 1 / 1.15);
-  }, { passive: false });
+  orbit(canvas, cam, { redraw, zoom: (f) => zoom(f), reset: () => reset() });
 
   function zoom(factor) {
     cam.scale /= factor;
