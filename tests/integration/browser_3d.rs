@@ -511,6 +511,33 @@ async fn volumes_and_replay(c: &Client) {
     assert_ne!(sum(&one), sum(&two));
     js(c, &step(1)).await;
     shot(c, "3d-05-replay-1-of-2").await;
+    // A Revolve of a shape off the axis is a torus (its hole shown): its
+    // vertices lie between the shape's nearest and farthest x, 40 and 80;
+    // one across the axis is its outer edge turned, from the axis (0) to
+    // 40.
+    let radii = js(
+        c,
+        r##"return import('/meshes.js').then(({ volumeMesh }) => {
+          const r = (shape) => {
+            const { pos } = volumeMesh({type: 'Revolve', shape, color: '#008000'}, [0, 0]);
+            let lo = Infinity; let hi = 0;
+            for (let i = 0; i < pos.length; i += 3) {
+              const d = Math.hypot(pos[i], pos[i + 2]);
+              lo = Math.min(lo, d); hi = Math.max(hi, d);
+            }
+            return [lo, hi];
+          };
+          return [r({type: 'Ellipse', x: 40, y: -100, w: 40, h: 60}),
+                  r({type: 'Ellipse', x: -40, y: -100, w: 80, h: 60})];
+        });"##,
+    )
+    .await;
+    let r = |i: usize, j: usize| radii[i][j].as_f64().unwrap();
+    assert!(
+        (r(0, 0) - 40.0).abs() < 1e-6 && (r(0, 1) - 80.0).abs() < 1e-6,
+        "{radii}"
+    );
+    assert!(r(1, 0) < 1e-9 && (r(1, 1) - 40.0).abs() < 0.1, "{radii}");
 }
 
 /// The static site (web/, the WebAssembly engine) shows a 3D example in

@@ -3,9 +3,11 @@
 // Cylinder, Extrude and Revolve of a 2D shape; stl-language.md section
 // 11) as flat-shaded triangles, positions and normals in canvas units.
 // A picture to see the volumes by, not the growth's geometry: curves are
-// cut into 32 segments around, and a Revolve is the surface of its
-// profile's outer edge (the farthest point of the shape from the axis at
-// each height), as a modeller's lathe draws it.
+// cut into 32 segments around, and a Revolve is its shape's outline
+// turned about the axis when the shape lies on one side of it (a ring
+// shows its hole), else the surface of its profile's outer edge (the
+// farthest point of the shape from the axis at each height), as a
+// modeller's lathe draws it.
 
 const AROUND = 32;
 
@@ -171,7 +173,16 @@ export function volumeMesh(v, axis) {
       break;
     }
     case 'Extrude': extrude(tri, outline(v.shape), v.z1, v.z2); break;
-    case 'Revolve': lathe(tri, axis, profileOf(outline(v.shape), axis[0])); break;
+    case 'Revolve': {
+      // A shape on one side of the axis turns as it is (a ring's hole
+      // shows: a torus); one across it as its outer edge.
+      const pts = outline(v.shape);
+      const side = pts.map((p) => Math.sign(p[0] - axis[0])).filter((s) => s !== 0);
+      const oneSide = side.every((s) => s === side[0]);
+      const ring = pts.concat([pts[0]]).map(([x, y]) => [Math.abs(x - axis[0]), y]);
+      lathe(tri, axis, oneSide ? ring : profileOf(pts, axis[0]));
+      break;
+    }
     default: break;
   }
   return withNormals(tri);
