@@ -33,12 +33,12 @@ fn linear(c: u8) -> f64 {
     }
 }
 
-/// The JSON and the one buffer's bytes; `uri`: the buffer's data URI
-/// (`.gltf`) or none (`.glb`, whose BIN chunk holds it).
-fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, usize) {
-    // The buffer is built only to embed it (base64); a .glb streams it
-    // from the mesh ([`write_buffer`]), so its bytes are never held twice.
-    let mut buffer = Vec::new();
+/// The JSON around the one buffer, and the buffer's length. With
+/// `embed` (`.gltf`) the JSON is cut where the buffer's base64 goes (the
+/// second part follows it); else (`.glb`, whose BIN chunk holds the
+/// buffer) the second part is empty. Either way the buffer is streamed
+/// from the mesh ([`write_buffer`]), never held.
+fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
     let mut len = 0usize;
     let mut views = Vec::new();
     let mut accessors = Vec::new();
@@ -64,13 +64,6 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, usize) {
                 1 => 12 * p.normals.len(),
                 _ => 4 * p.indices.len(),
             };
-            if embed {
-                match part {
-                    0 => le_f32s(&p.positions, &mut buffer),
-                    1 => le_f32s(&p.normals, &mut buffer),
-                    _ => buffer.extend(p.indices.iter().flat_map(|i| i.to_le_bytes())),
-                }
-            }
             let target = if part == 2 { 34963 } else { 34962 };
             views.push(format!(
                 "{{\"buffer\": 0, \"byteOffset\": {start}, \"byteLength\": {}, \"target\": {target}}}",
@@ -123,7 +116,7 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, usize) {
     if prims.is_empty() {
         // Nothing drawn: an empty scene (a mesh needs a primitive).
         j.push_str(", \"scene\": 0, \"scenes\": [{\"nodes\": []}]}");
-        return (j, 0);
+        return (j, String::new(), 0);
     }
     j.push_str(", \"scene\": 0, \"scenes\": [{\"nodes\": [0]}]");
     j.push_str(", \"nodes\": [{\"mesh\": 0, \"name\": \"tree\"}]");
@@ -138,14 +131,13 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, usize) {
     if embed {
         let _ = write!(
             j,
-            ", \"buffers\": [{{\"byteLength\": {}, \"uri\": \"data:application/octet-stream;base64,{}\"}}]}}",
-            len,
-            base64(&buffer)
+            ", \"buffers\": [{{\"byteLength\": {len}, \"uri\": \"data:application/octet-stream;base64,"
         );
+        (j, "\"}]}".to_string(), len)
     } else {
         let _ = write!(j, ", \"buffers\": [{{\"byteLength\": {len}}}]}}");
+        (j, String::new(), len)
     }
-    (j, len)
 }
 
 /// Writes the buffer [`json_and_buffer`] laid out (positions, normals,
@@ -171,37 +163,103 @@ fn write_buffer(mesh: &Mesh, out: &mut dyn Write) -> std::io::Result<()> {
 }
 
 /// Standard base64 with padding.
+#[cfg(test)]
 pub(super) fn base64(bytes: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for c in bytes.chunks(3) {
-        let n = (u32::from(c[0]) << 16)
-            | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
-            | u32::from(*c.get(2).unwrap_or(&0));
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
+    let mut out = Vec::new();
+    let mut w = Base64::new(&mut out);
+    // Into a Vec: cannot fail.
+    let _ = w.write_all(bytes);
+    let _ = w.finish();
+    String::from_utf8(out).unwrap_or_default()
+}
+
+/// Writes what it is given as base64 (RFC 4648, padded) to `out`, a few
+/// kilobytes at a time.
+struct Base64<'a> {
+    out: &'a mut dyn Write,
+    /// Bytes not yet encoded (fewer than three).
+    rest: [u8; 3],
+    n: usize,
+    text: Vec<u8>,
+}
+
+impl<'a> Base64<'a> {
+    fn new(out: &'a mut dyn Write) -> Base64<'a> {
+        Base64 {
+            out,
+            rest: [0; 3],
+            n: 0,
+            text: Vec::with_capacity(1 << 13),
         }
     }
-    s
+
+    /// Encodes `rest[..n]` (with padding when fewer than three).
+    fn encode(&mut self) {
+        const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        let [a, b, c] = self.rest;
+        let v = (u32::from(a) << 16) | (u32::from(b) << 8) | u32::from(c);
+        for k in 0..4 {
+            self.text.push(if k <= self.n {
+                A[(v >> (18 - 6 * k) & 63) as usize]
+            } else {
+                b'='
+            });
+        }
+        self.rest = [0; 3];
+        self.n = 0;
+    }
+
+    /// Encodes what is left, padded, and writes everything out.
+    fn finish(mut self) -> std::io::Result<()> {
+        if self.n > 0 {
+            self.encode();
+        }
+        self.out.write_all(&self.text)
+    }
+}
+
+impl Write for Base64<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        for &byte in buf {
+            self.rest[self.n] = byte;
+            self.n += 1;
+            if self.n == 3 {
+                self.encode();
+                if self.text.len() >= 1 << 13 {
+                    self.out.write_all(&self.text)?;
+                    self.text.clear();
+                }
+            }
+        }
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.out.flush()
+    }
 }
 
 /// Writes `mesh` as glTF JSON with its buffer embedded.
 pub fn write_gltf(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
-    let (json, _) = json_and_buffer(mesh, true);
-    out.write_all(json.as_bytes())
-        .and_then(|()| out.write_all(b"\n"))
-        .and_then(|()| out.flush())
-        .map_err(|e| io_error(&e, "writing the glTF").into())
+    let (head, tail, len) = json_and_buffer(mesh, true);
+    let res = (|| {
+        out.write_all(head.as_bytes())?;
+        if len > 0 {
+            let mut b64 = Base64::new(out);
+            write_buffer(mesh, &mut b64)?;
+            b64.finish()?;
+        }
+        out.write_all(tail.as_bytes())?;
+        out.write_all(b"\n")?;
+        out.flush()
+    })();
+    res.map_err(|e| io_error(&e, "writing the glTF").into())
 }
 
 /// Writes `mesh` as binary glTF: a 12-byte header, the JSON chunk (padded
 /// with spaces to 4 bytes), the BIN chunk (padded with zeros).
 pub fn write_glb(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
-    let (json, bin) = json_and_buffer(mesh, false);
+    let (json, _, bin) = json_and_buffer(mesh, false);
     let mut json = json.into_bytes();
     while json.len() % 4 != 0 {
         json.push(b' ');
