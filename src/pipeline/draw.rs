@@ -215,17 +215,12 @@ pub(crate) fn render_tree(
     // thread: its walk then skips subtrees whose reach is already full
     // ink (docs/rendering.md, *Full ink*), which the band threads' raster
     // would hide from it. Its pixels are the same either way.
-    let one = RenderOptions {
-        threads: 1,
-        ..*opts
-    };
-    let opts = if matches!(lod, Some((Lod::Memo(_), _, _))) {
-        &one
-    } else {
-        opts
-    };
+    let mut opts = *opts;
+    if matches!(lod, Some((Lod::Memo(_), _, _))) {
+        opts.threads = 1;
+    }
     let counted =
-        crate::render::render_framed(&mut drawing, frame, &underlay, &style, opts, out, progress)?;
+        crate::render::render_framed(&mut drawing, frame, &underlay, &style, &opts, out, progress)?;
     // A tree's stems are known from its measure; an L-system's were counted
     // by the bounding pass (it has no layout view, so one always runs).
     let segments = match &scene.what {

@@ -193,6 +193,26 @@ pub struct Sample<'a> {
     pub draw: &'a dyn Fn(f64, &mut dyn Turtle),
 }
 
+impl Sample<'_> {
+    /// The key of an L-system's piece: `symbol` at remaining depth
+    /// `depth`, starting with heading `heading` (the memo's key of it)
+    /// and `flip`.
+    pub fn piece_key(symbol: u32, depth: u32, heading: i64, flip: bool) -> u128 {
+        u128::from(symbol) << 96
+            | u128::from(depth) << 64
+            | u128::from(heading as u64) << 1
+            | u128::from(flip)
+    }
+
+    /// The least and greatest corners of the box with corners `a` and `b`.
+    pub fn corners(a: Point, b: Point) -> (Point, Point) {
+        (
+            Point::new(a.x.min(b.x), a.y.min(b.y)),
+            Point::new(a.x.max(b.x), a.y.max(b.y)),
+        )
+    }
+}
+
 /// Records every segment: the test backend.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Recorder {

@@ -9,7 +9,6 @@
 
 use super::PngTurtle;
 use super::bands::Canvas;
-use crate::render::stroke_px;
 use crate::turtle::Point;
 
 /// Side of a tile, pixels.
@@ -84,9 +83,7 @@ impl PngTurtle {
         };
         let (w, h) = (f64::from(pixmap.width()), f64::from(pixmap.height()));
         let (a, b) = (self.fit.map(lo), self.fit.map(hi));
-        // A hairline inks a pixel beyond its line and its caps `pi / 8`
-        // beyond its ends; a wider stroke half its width and a pixel.
-        let reach = stroke_px(&self.width, self.fit.scale, 0).max(1.0) / 2.0 + 1.5;
+        let reach = super::sample::reach_px(self.width, self.fit.scale);
         let (x0, x1) = (a.x.min(b.x) - reach, a.x.max(b.x) + reach);
         let (y0, y1) = (a.y.min(b.y) - reach, a.y.max(b.y) + reach);
         if !([x0, x1, y0, y1].iter().all(|v| v.is_finite())) {

@@ -204,6 +204,7 @@ pub(super) fn stamp(
                 _ if d2 <= inner => 1.0,
                 Shape::Capsule(_) => (reach - libm::sqrt(d2)).clamp(0.0, 1.0),
                 Shape::Bush(bush) => bush.ink(libm::sqrt(d2)),
+                // Stamped by `sample::stamp` above.
                 Shape::Field(_) => 0.0,
             };
             let c = (cov * 255.0 + 0.5) as u32;

@@ -105,6 +105,14 @@ impl Fields {
     }
 }
 
+/// How far beyond its lines a drawing of strokes `width` wide at `scale`
+/// can ink, output pixels: a hairline a pixel beyond its line and its
+/// caps `pi / 8` past its ends; a wider stroke half its width and the
+/// pixel's half. (A little more, to be sure.)
+pub(super) fn reach_px(width: Width, scale: f64) -> f64 {
+    stroke_px(&width, scale, 0).max(1.0) / 2.0 + 1.5
+}
+
 /// Rasterises `sample` at `sub x sub` offsets, each on its own small
 /// transparent raster in black, and keeps its coverage (alpha);
 /// `None` if the grid would have more than `room` points.
@@ -118,10 +126,7 @@ fn build(
 ) -> Option<Field> {
     let step = 1.0 / sub as f64;
     let (lo, hi) = sample.bounds;
-    let stroke = stroke_px(&width, scale, 0).max(1.0);
-    // A hairline reaches a pixel beyond its line, its caps `pi / 8` past
-    // its ends; a wider stroke half its width and the pixel's half.
-    let margin = stroke / 2.0 + 1.5;
+    let margin = reach_px(width, scale);
     let min = Point::new(lo.x * scale - margin, lo.y * scale - margin);
     let span = |a: f64, b: f64| ((b - a) * scale + 2.0 * margin) / step;
     let (sx, sy) = (span(lo.x, hi.x), span(lo.y, hi.y));

@@ -187,19 +187,16 @@ impl Chance {
                         // Other choices may reach farther than the
                         // expected box: it is widened by its size.
                         let (w, h) = (p.max_x - p.min_x, p.max_y - p.min_y);
-                        let (lo, hi) = (
+                        let (lo, hi) = Sample::corners(
                             Point::new(sg * p.min_x, sg * p.min_y),
                             Point::new(sg * p.max_x, sg * p.max_y),
                         );
                         let sample = Sample {
                             at: Point::new(pen.x, pen.y),
-                            key: u128::from(c) << 96
-                                | u128::from(r) << 64
-                                | u128::from(self.period.key(pen.k) as u64) << 1
-                                | u128::from(pen.flip),
+                            key: Sample::piece_key(c, r, self.period.key(pen.k), pen.flip),
                             bounds: (
-                                Point::new(lo.x.min(hi.x) - w, lo.y.min(hi.y) - h),
-                                Point::new(lo.x.max(hi.x) + w, lo.y.max(hi.y) + h),
+                                Point::new(lo.x - w, lo.y - h),
+                                Point::new(hi.x + w, hi.y + h),
                             ),
                             segments: self.count[at] as u64,
                             draw: &draw,

@@ -183,19 +183,12 @@ impl Geometry {
         draw: &'a dyn Fn(f64, &mut dyn Turtle),
     ) -> Sample<'a> {
         let sg = if flip { -1.0 } else { 1.0 };
-        let (lo, hi) = (
-            Point::new(sg * p.min_x, sg * p.min_y),
-            Point::new(sg * p.max_x, sg * p.max_y),
-        );
         Sample {
             at: Point::new(at.0, at.1),
-            key: u128::from(c) << 96
-                | u128::from(r) << 64
-                | u128::from(self.period.key(k) as u64) << 1
-                | u128::from(flip),
-            bounds: (
-                Point::new(lo.x.min(hi.x), lo.y.min(hi.y)),
-                Point::new(lo.x.max(hi.x), lo.y.max(hi.y)),
+            key: Sample::piece_key(c, r, self.period.key(k), flip),
+            bounds: Sample::corners(
+                Point::new(sg * p.min_x, sg * p.min_y),
+                Point::new(sg * p.max_x, sg * p.max_y),
             ),
             segments: self.count[r as usize * self.alpha.chars.len() + c as usize],
             draw,
@@ -271,13 +264,26 @@ impl Geometry {
             }
             if self.is_piece(c, r) {
                 let p = self.piece(c, r, k);
-                if self.cut(c, r, k, &p, detail) {
-                    let sg = if flip { -1.0 } else { 1.0 };
+                let sg = if flip { -1.0 } else { 1.0 };
+                let (lo, hi) = (
+                    Point::new(x + sg * p.min_x, y + sg * p.min_y),
+                    Point::new(x + sg * p.max_x, y + sg * p.max_y),
+                );
+                let at = r as usize * alpha.chars.len() + c as usize;
+                let cut = self.cut(c, r, k, &p, detail);
+                // A piece not cut whose reach is all full ink already
+                // (and big enough to be worth asking about) is skipped.
+                let full =
+                    !cut && self.count[at] >= PRUNE_SEGMENTS && p.draws() && turtle.covered(lo, hi);
+                if cut || full {
                     let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
-                    if self.solid(c, r, k, &p, detail) {
-                        let draw = |detail: f64, t: &mut dyn Turtle| {
-                            self.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
-                        };
+                    // Draws the piece itself, for a backend that samples it.
+                    let draw = |detail: f64, t: &mut dyn Turtle| {
+                        self.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
+                    };
+                    if full {
+                        // Its move and turn only, as a stand-in's.
+                    } else if self.solid(c, r, k, &p, detail) {
                         if !turtle.solid(&self.sample((c, r, k, flip), (x, y), &p, &draw)) {
                             let rows = solid::hatch_rows(&p, detail);
                             hatch(&mut turtle, x, y, sg, &p, rows);
@@ -287,12 +293,8 @@ impl Geometry {
                         let (from, to) = if chord * 2.0 >= p.extent() {
                             (Point::new(x, y), Point::new(ex, ey))
                         } else {
-                            (
-                                Point::new(x + sg * p.min_x, y + sg * p.min_y),
-                                Point::new(x + sg * p.max_x, y + sg * p.max_y),
-                            )
+                            (lo, hi)
                         };
-                        let at = r as usize * alpha.chars.len() + c as usize;
                         let n = self.count[at];
                         let seg_len = libm::hypot(to.x - from.x, to.y - from.y);
                         // A connected run (no jump inside) is drawn as one
@@ -306,37 +308,13 @@ impl Geometry {
                         if self.jumps[at] == 0 {
                             turtle.run(Segment { from, to, order: 0 }, n as f64);
                         } else {
-                            let (seg, spread) = across(
-                                from,
-                                to,
-                                Point::new(x + sg * p.min_x, y + sg * p.min_y),
-                                Point::new(x + sg * p.max_x, y + sg * p.max_y),
-                            );
-                            let draw = |detail: f64, t: &mut dyn Turtle| {
-                                self.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
-                            };
+                            let (seg, spread) = across(from, to, lo, hi);
                             let sample = self.sample((c, r, k, flip), (x, y), &p, &draw);
                             let runs = self.jumps[at] as f64;
                             turtle.bush(seg, density, spread, runs, &sample);
                         }
                     }
                     (x, y) = (ex, ey);
-                    k = k.wrapping_add(self.turn_of(c, r));
-                    flip ^= self.flip_of(c, r);
-                } else if self.count[r as usize * alpha.chars.len() + c as usize] >= PRUNE_SEGMENTS
-                    && p.draws()
-                    && {
-                        let sg = if flip { -1.0 } else { 1.0 };
-                        turtle.covered(
-                            Point::new(x + sg * p.min_x, y + sg * p.min_y),
-                            Point::new(x + sg * p.max_x, y + sg * p.max_y),
-                        )
-                    }
-                {
-                    // All it could ink is full ink already: its move and
-                    // turn only, as a stand-in's.
-                    let sg = if flip { -1.0 } else { 1.0 };
-                    (x, y) = (x + sg * p.dx, y + sg * p.dy);
                     k = k.wrapping_add(self.turn_of(c, r));
                     flip ^= self.flip_of(c, r);
                 } else {
@@ -389,55 +367,36 @@ mod tests {
     use crate::limits::Limits;
     use crate::render::{Fit, LOD_PX, PngTurtle, Style, Width};
 
-    /// Forwards everything but [`Turtle::covered`]: nothing is skipped.
-    struct Blind<'a>(&'a mut PngTurtle);
-
-    impl Turtle for Blind<'_> {
-        fn segment(&mut self, seg: Segment) {
-            self.0.segment(seg);
-        }
-        fn detail(&self) -> Option<f64> {
-            self.0.detail()
-        }
-        fn blot(&mut self, seg: Segment, density: f64) {
-            self.0.blot(seg, density);
-        }
-        fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
-            self.0.blot_spread(seg, density, spread, runs);
-        }
-        fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
-            self.0.bush(seg, density, spread, runs, sample);
-        }
-        fn solid(&mut self, sample: &Sample) -> bool {
-            self.0.solid(sample)
-        }
-        fn run(&mut self, seg: Segment, segments: f64) {
-            self.0.run(seg, segments);
-        }
+    /// Forwards everything, [`Turtle::covered`] too unless `blind`
+    /// (then nothing is skipped), and counts the parts skipped.
+    struct Watch<'a> {
+        t: &'a mut PngTurtle,
+        blind: bool,
+        skipped: u64,
     }
 
-    /// Counts the parts skipped.
-    struct Skips<'a>(&'a mut PngTurtle, u64);
-
-    impl Turtle for Skips<'_> {
+    impl Turtle for Watch<'_> {
         fn segment(&mut self, seg: Segment) {
-            self.0.segment(seg);
+            self.t.segment(seg);
         }
         fn detail(&self) -> Option<f64> {
-            self.0.detail()
+            self.t.detail()
+        }
+        fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
+            self.t.blot_spread(seg, density, spread, runs);
         }
         fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
-            self.0.bush(seg, density, spread, runs, sample);
+            self.t.bush(seg, density, spread, runs, sample);
         }
         fn solid(&mut self, sample: &Sample) -> bool {
-            self.0.solid(sample)
+            self.t.solid(sample)
         }
         fn run(&mut self, seg: Segment, segments: f64) {
-            self.0.run(seg, segments);
+            self.t.run(seg, segments);
         }
         fn covered(&mut self, lo: Point, hi: Point) -> bool {
-            let full = self.0.covered(lo, hi);
-            self.1 += u64::from(full);
+            let full = !self.blind && self.t.covered(lo, hi);
+            self.skipped += u64::from(full);
             full
         }
     }
@@ -464,10 +423,20 @@ mod tests {
         };
         let (mut a, mut b) = (turtle(), turtle());
         let detail = a.detail().unwrap();
-        let mut skips = Skips(&mut a, 0);
-        memo.g.draw_lod(detail, &mut skips, &mut NoProgress);
-        let skipped = skips.1;
-        memo.g.draw_lod(detail, Blind(&mut b), &mut NoProgress);
+        let mut skipping = Watch {
+            t: &mut a,
+            blind: false,
+            skipped: 0,
+        };
+        memo.g.draw_lod(detail, &mut skipping, &mut NoProgress);
+        let skipped = skipping.skipped;
+        let mut blind = Watch {
+            t: &mut b,
+            blind: true,
+            skipped: 0,
+        };
+        memo.g.draw_lod(detail, &mut blind, &mut NoProgress);
+        assert_eq!(blind.skipped, 0);
         let (a, b) = (a.into_raster().unwrap(), b.into_raster().unwrap());
         assert!(skipped > 100, "{skipped} skipped");
         assert!(a.data() == b.data(), "the pixels differ");
