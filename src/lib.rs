@@ -25,6 +25,9 @@
 //!
 //! - [`pipeline`]: the front door: [`Request`], load, compile, scene,
 //!   render, expand, check, stats; every enum a front end needs.
+//! - [`api`] (feature `serde`): the product's JSON API, the request and
+//!   answer types and the calls `stlc serve` and the WebAssembly module
+//!   carry.
 //! - [`syntax`]: text to model: one pest grammar (`grammar.pest`) for all
 //!   three formats, typed trees with byte spans, every error a diagnostic.
 //! - [`model`]: the types every stage shares: descriptions, rules, seeds and
@@ -56,6 +59,8 @@
     clippy::dbg_macro
 )]
 
+#[cfg(feature = "serde")]
+pub mod api;
 pub mod bed;
 pub mod choice;
 pub mod color;

@@ -318,10 +318,6 @@ fn compile(a: &CompileArgs, quiet: bool, source: &mut Source) -> Outcome {
     })?;
     let mut all = Vec::new();
     if let Some(order) = a.strategy {
-        let order = match order {
-            GrowthOrder::Bfs => "bfs",
-            GrowthOrder::Dfs => "dfs",
-        };
         all.push(
             Diagnostic::warning(FrontEndError::StrategyMeansGrowth)
                 .with_help(format!("write --growth {order}: on render and expand, --strategy is the derivation order, which cannot change a tree")),

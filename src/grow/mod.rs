@@ -92,22 +92,7 @@ pub fn default_clearance(params: &StemParams) -> f64 {
     (params.length.base * DEFAULT_CLEARANCE_FRACTION).max(0.0)
 }
 
-/// The order in which growth points are decided (`--strategy` of `compile`):
-/// the two orders grow different trees from one outline (section 7 of the
-/// language notes). The default is breadth-first, the paper's conventional
-/// order: balanced trees, level by level. The variants' doc comments are
-/// the help of `--growth`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-pub enum GrowthOrder {
-    /// Breadth-first growth (the default): every growth point of a level
-    /// before the next; balanced trees.
-    #[default]
-    Bfs,
-    /// Depth-first growth: a branch's whole subtree before its sibling;
-    /// vines and spirals.
-    Dfs,
-}
+pub use crate::model::GrowthOrder;
 
 /// Options of one growth.
 #[derive(Debug, Clone, Copy, PartialEq)]

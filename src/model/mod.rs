@@ -137,7 +137,7 @@ pub struct StemParams {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Design {
     /// `O=bfs` or `O=dfs`: the growth order (`--growth` overrides it).
-    pub order: Option<Order>,
+    pub order: Option<GrowthOrder>,
     /// `V=n`: the seed of the choices (`--seed` overrides it).
     pub seed: Option<u64>,
     /// `M=n`: growth stops after n stems, part of the design (`--max-stems`
@@ -145,13 +145,40 @@ pub struct Design {
     pub max_stems: Option<u64>,
 }
 
-/// A growth order as a file writes it (`O=`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Order {
-    /// `O=bfs`: level by level.
+/// The order in which growth points are decided: `O=` in a file,
+/// `--growth` of `compile` and `render`, `growth` in the API: the two
+/// orders grow different trees from one outline (section 7 of the
+/// language notes). The default is breadth-first, the paper's
+/// conventional order: balanced trees, level by level. The variants' doc
+/// comments are the help of `--growth`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
+pub enum GrowthOrder {
+    /// Breadth-first growth (the default): every growth point of a level
+    /// before the next; balanced trees.
+    #[default]
     Bfs,
-    /// `O=dfs`: a branch's whole subtree before its sibling.
+    /// Depth-first growth: a branch's whole subtree before its sibling;
+    /// vines and spirals.
     Dfs,
+}
+
+impl GrowthOrder {
+    /// The name a file, the command line and the API write: `bfs`, `dfs`.
+    pub fn name(self) -> &'static str {
+        match self {
+            GrowthOrder::Bfs => "bfs",
+            GrowthOrder::Dfs => "dfs",
+        }
+    }
+}
+
+impl std::fmt::Display for GrowthOrder {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// A colour as a description writes it: `clMaroon`, `#4a2c12`, or `none`

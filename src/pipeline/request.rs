@@ -28,7 +28,7 @@ use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
 use crate::grow::{GrowOptions, GrowthOrder};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
-use crate::model::{Description, Design, Order};
+use crate::model::{Description, Design};
 use crate::progress::Progress;
 use crate::render::mesh::{MeshFormat, MeshOptions};
 use crate::render::view::View;
@@ -184,12 +184,8 @@ impl Request {
         if let Some(m) = design.max_stems {
             limits.max_stems = limits.max_stems.min(m);
         }
-        let order = design.order.map(|o| match o {
-            Order::Bfs => GrowthOrder::Bfs,
-            Order::Dfs => GrowthOrder::Dfs,
-        });
         let grow = GrowOptions {
-            growth: self.growth.or(order).unwrap_or_default(),
+            growth: self.growth.or(design.order).unwrap_or_default(),
             clearance: self.clearance,
             limits,
             max_stems_explicit: self.max_stems.is_some() || design.max_stems.is_some(),

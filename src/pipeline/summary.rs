@@ -83,10 +83,7 @@ pub fn check(loaded: &Loaded, opts: &GrowOptions) -> Result<Checked, Diagnostics
         Loaded::Od(desc) => {
             let grown = grow(desc, opts, &mut crate::progress::NoProgress)?;
             let mut summary = stl_summary(desc, None, limits)?;
-            let order = match opts.growth {
-                crate::grow::GrowthOrder::Bfs => "bfs",
-                crate::grow::GrowthOrder::Dfs => "dfs",
-            };
+            let order = opts.growth;
             let _ = writeln!(summary, "  grows       {} stems ({order})", grown.stems);
             for (rule, tally) in desc.rules.iter().zip(&grown.tallies) {
                 let _ = writeln!(summary, "{}", tally_line(&rule.full_name(), tally));

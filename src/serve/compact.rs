@@ -23,8 +23,8 @@
 
 use serde::Serialize;
 
-pub use super::api::BIG_TREE_STEMS;
-use super::api::RenderAnswer;
+pub use stlc::api::BIG_TREE_STEMS;
+use stlc::api::RenderAnswer;
 
 /// The media type of the compact body.
 pub const MEDIA: &str = "application/x-stlc-render";

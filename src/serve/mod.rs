@@ -16,7 +16,6 @@
 //! must arrive in time, and the pipeline runs on a small pool of threads
 //! apart from the connections, so one slow request never stops the others.
 
-mod api;
 mod assets;
 mod compact;
 mod conns;
@@ -25,8 +24,6 @@ mod examples;
 mod http;
 mod memory;
 mod routes;
-mod shapes;
-mod space;
 mod stall;
 mod work;
 
@@ -41,6 +38,7 @@ use hyper_util::rt::{TokioIo, TokioTimer};
 
 use crate::frontend::io::Input;
 use crate::frontend::{interrupt, report};
+use stlc::api;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::pipeline::{self, InputKind, Limits};
 

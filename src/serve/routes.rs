@@ -16,13 +16,13 @@ use hyper::{Method, Request, StatusCode};
 use serde::Serialize;
 
 use super::State;
-use super::api::{self, Body, Failed, Kind};
 use super::assets;
 use super::compact;
 use super::document::Refused;
 use super::http::{self, Answer};
 use super::memory::{self, Reservation};
 use super::work::{self, Ended, Stopped};
+use stlc::api::{self, Body, Failed, Format, Kind};
 use stlc::diag::Diagnostic;
 use stlc::pipeline::ImageFormat;
 
@@ -223,20 +223,21 @@ fn refused(r: memory::Refused) -> Answer {
     http::error(StatusCode::SERVICE_UNAVAILABLE, &message)
 }
 
-/// What drawing a request's body ended in: its memory reserved, its body
-/// read, the work run on the pool within the time budget, the heavy slots
-/// and the memory budget (`work`, `memory`).
-async fn draw(
+/// What a call on a request's body ended in: its memory reserved, its
+/// body read, the call run on the pool within the time budget, the heavy
+/// slots and the memory budget (`work`, `memory`). `png` says whether the
+/// call paints a PNG (its pixels reserved once the body says its size).
+async fn call<T: Send + 'static>(
     state: Arc<State>,
     req: Request<Incoming>,
-    format: ImageFormat,
-    tree_up_to: Option<u64>,
-) -> Result<Ended<Result<(api::RenderAnswer, Vec<u8>), Failed>>, Answer> {
+    png: bool,
+    call: impl FnOnce(&Body, &api::Settings, &mut dyn stlc::pipeline::Progress) -> T + Send + 'static,
+) -> Result<Ended<T>, Answer> {
     let reserved = admit(&state, &req).await?;
     let body = body(&state, req).await?;
     // A big PNG's pixels, reserved once the body says its size.
-    let pixels = match (format, body.size) {
-        (ImageFormat::Png, Some([w, h])) => Some(reserve(&state, memory::png_need(w, h)).await?),
+    let pixels = match (png, body.size) {
+        (true, Some([w, h])) => Some(reserve(&state, memory::png_need(w, h)).await?),
         _ => None,
     };
     let (budget, slots) = (state.settings.time_budget, state.heavy.clone());
@@ -244,7 +245,7 @@ async fn draw(
     let heavy = body.source.len() > work::BIG_INPUT || pixels.is_some();
     Ok(work::run(budget, slots, memory, heavy, move |w| {
         let _held = (reserved, pixels);
-        api::run(&body, &state.settings, format, tree_up_to, w)
+        call(&body, &state.settings, w)
     })
     .await)
 }
@@ -256,7 +257,12 @@ async fn draw(
 async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
     let accept = req.headers().get(hyper::header::ACCEPT);
     let compact = compact::accepted(accept.and_then(|v| v.to_str().ok()));
-    let done = match draw(state, req, ImageFormat::Svg, Some(compact::BIG_TREE_STEMS)).await {
+    let big = Some(compact::BIG_TREE_STEMS);
+    let done = match call(state, req, false, move |b, s, w| {
+        api::render(b, s, ImageFormat::Svg, big, w)
+    })
+    .await
+    {
         Ok(d) => d,
         Err(a) => return a,
     };
@@ -278,37 +284,19 @@ async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
 /// or the diagnostics as JSON.
 async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
     let format = http::query_param(req.uri().query(), "format");
-    let (image, media) = match format.as_deref() {
-        Some("png") => (ImageFormat::Png, "image/png"),
-        Some("svg") => (ImageFormat::Svg, "image/svg+xml"),
-        Some("bed") => (ImageFormat::Svg, "text/plain; charset=utf-8"),
-        _ => {
-            return http::error(
-                StatusCode::BAD_REQUEST,
-                "say ?format=png, ?format=svg or ?format=bed",
-            );
-        }
+    let Some(format) = format.as_deref().and_then(Format::from_name) else {
+        return http::error(
+            StatusCode::BAD_REQUEST,
+            "say ?format=png, ?format=svg or ?format=bed",
+        );
     };
-    let want_bed = format.as_deref() == Some("bed");
-    let done = match draw(state, req, image, None).await {
+    let png = format == Format::Png;
+    let done = match call(state, req, png, move |b, s, w| api::export(b, s, format, w)).await {
         Ok(d) => d,
         Err(a) => return a,
     };
     match done {
-        Ended::Done(Ok((answer, _))) if want_bed => match answer.bed {
-            Some(bed) => http::answer(StatusCode::OK, media, bed),
-            None => http::json(
-                StatusCode::OK,
-                &Failed::message("only an .od grows into a BED", "export a picture instead"),
-            ),
-        },
-        Ended::Done(Ok((answer, bytes))) => {
-            let bytes = match image {
-                ImageFormat::Svg => answer.svg.into_bytes(),
-                ImageFormat::Png => bytes,
-            };
-            http::answer(StatusCode::OK, media, bytes)
-        }
+        Ended::Done(Ok(bytes)) => http::answer(StatusCode::OK, format.media(), bytes),
         Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),
         Ended::Stopped(why) => stopped(why),
         Ended::Crashed => crashed(),
@@ -319,23 +307,10 @@ async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
 /// up to its depth, at most [`api::WORD_DEPTHS`] of them), each cut at
 /// [`api::WORD_CHARS`] characters, with its exact length: for teaching.
 async fn words(state: Arc<State>, req: Request<Incoming>) -> Answer {
-    let reserved = match admit(&state, &req).await {
-        Ok(r) => r,
+    let done = match call(state, req, false, api::words).await {
+        Ok(d) => d,
         Err(a) => return a,
     };
-    let body = match body(&state, req).await {
-        Ok(b) => b,
-        Err(a) => return a,
-    };
-    let budget = state.settings.time_budget;
-    let slots = state.heavy.clone();
-    let memory = Some(state.memory.clone());
-    let heavy = body.source.len() > work::BIG_INPUT;
-    let done = work::run(budget, slots, memory, heavy, move |w| {
-        let _held = reserved;
-        api::words(&body, &state.settings, w)
-    })
-    .await;
     match done {
         Ended::Done(Ok(answer)) => http::json(StatusCode::OK, &answer),
         Ended::Done(Err(failed)) => http::json(StatusCode::OK, &failed),

@@ -1,13 +1,12 @@
-//! The calls the page makes, in safe Rust: a request's JSON in, the
-//! answer's bytes out. The request and answer shapes are `stlc serve`'s
-//! (`POST /api/render`, `/api/export`, `/api/words`; docs/serve.md, "HTTP
-//! API"), read and written by the same code (src/serve/api.rs, compiled
-//! into this crate), so the two engines of the page answer alike.
+//! The calls the page makes, as bytes: a request's JSON in, the answer's
+//! bytes out. Each is the library's call ([`stlc::api`]), the one `stlc
+//! serve` answers `POST /api/render`, `/api/export` and `/api/words` with
+//! (docs/serve.md, "HTTP API"), so the page's two engines answer alike;
+//! this file only reads the body and writes the answer.
 
 use serde::Serialize;
+use stlc::api::{self, BadRequest, Body, Format};
 use stlc::pipeline::{DEFAULT_MAX_SVG_SEGMENTS, ImageFormat, Limits, NoProgress};
-
-use crate::api::{self, BadRequest, Body, Failed};
 
 /// How a call ended: what the bytes out are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -70,41 +69,30 @@ fn body(input: &[u8]) -> Result<Body, Answer> {
     api::parse(input).map_err(|BadRequest(m)| refused(&m))
 }
 
-/// `POST /api/render`: the picture (SVG), the BED, the growth order, the
-/// root and layout with their places in the text; or the diagnostics.
-pub fn render(input: &[u8]) -> Answer {
-    let body = match body(input) {
-        Ok(b) => b,
-        Err(a) => return a,
-    };
-    // A big grown tree is left out of the SVG, as stlc serve's render does.
-    let big = Some(api::BIG_TREE_STEMS);
-    match api::run(&body, &settings(), ImageFormat::Svg, big, &mut NoProgress) {
-        Ok((answer, _)) => json(Status::Done, &answer),
+/// Writes a call's answer: its bytes, or its failure as JSON.
+fn answer<T>(done: Result<T, api::Failed>, bytes: impl FnOnce(T) -> Vec<u8>) -> Answer {
+    match done {
+        Ok(t) => (Status::Done, bytes(t)),
         Err(failed) => json(Status::Failed, &failed),
     }
 }
 
-/// What an export writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Format {
-    /// `stlc render -f png`.
-    Png,
-    /// `stlc render -f svg`.
-    Svg,
-    /// `stlc compile`.
-    Bed,
+/// JSON bytes of a value.
+fn to_json(value: &impl Serialize) -> Vec<u8> {
+    json(Status::Done, value).1
 }
 
-impl Format {
-    /// The format numbered `n` by the JavaScript glue (0 PNG, 1 SVG, 2 BED).
-    pub fn from_number(n: u32) -> Option<Format> {
-        match n {
-            0 => Some(Format::Png),
-            1 => Some(Format::Svg),
-            2 => Some(Format::Bed),
-            _ => None,
-        }
+/// `POST /api/render`: the picture (SVG), the BED, the growth order, the
+/// root and layout with their places in the text; or the diagnostics. A
+/// big grown tree is left out of the SVG, as `stlc serve`'s render does.
+pub fn render(input: &[u8]) -> Answer {
+    let big = Some(api::BIG_TREE_STEMS);
+    match body(input) {
+        Ok(b) => answer(
+            api::render(&b, &settings(), ImageFormat::Svg, big, &mut NoProgress),
+            |(a, _)| to_json(&a),
+        ),
+        Err(a) => a,
     }
 }
 
@@ -115,80 +103,34 @@ pub fn export(input: &[u8], format: Option<Format>) -> Answer {
     let Some(format) = format else {
         return refused("say format png, svg or bed");
     };
-    let body = match body(input) {
-        Ok(b) => b,
-        Err(a) => return a,
-    };
-    let image = match format {
-        Format::Png => ImageFormat::Png,
-        Format::Svg | Format::Bed => ImageFormat::Svg,
-    };
-    match api::run(&body, &settings(), image, None, &mut NoProgress) {
-        Ok((answer, _)) if format == Format::Bed => match answer.bed {
-            Some(bed) => (Status::Done, bed.into_bytes()),
-            None => json(
-                Status::Failed,
-                &Failed::message("only an .od grows into a BED", "export a picture instead"),
-            ),
-        },
-        Ok((answer, png)) => match format {
-            Format::Png => (Status::Done, png),
-            _ => (Status::Done, answer.svg.into_bytes()),
-        },
-        Err(failed) => json(Status::Failed, &failed),
+    match body(input) {
+        Ok(b) => answer(api::export(&b, &settings(), format, &mut NoProgress), |x| x),
+        Err(a) => a,
     }
 }
 
 /// `POST /api/words`: an `.lsys`'s word generation by generation.
 pub fn words(input: &[u8]) -> Answer {
-    let body = match body(input) {
-        Ok(b) => b,
-        Err(a) => return a,
-    };
-    match api::words(&body, &settings(), &mut NoProgress) {
-        Ok(answer) => json(Status::Done, &answer),
-        Err(failed) => json(Status::Failed, &failed),
+    match body(input) {
+        Ok(b) => answer(api::words(&b, &settings(), &mut NoProgress), |a| to_json(&a)),
+        Err(a) => a,
     }
 }
 
 /// `stlc compile`: an OD grown into its BED text, or the diagnostics.
 pub fn compile(input: &[u8]) -> Answer {
-    let body = match body(input) {
-        Ok(b) => b,
-        Err(a) => return a,
-    };
-    match body
-        .request(&settings(), ImageFormat::Svg)
-        .compile(&mut NoProgress)
-    {
-        Ok((compiled, _)) => (Status::Done, compiled.text.into_bytes()),
-        Err(d) => json(Status::Failed, &Failed::new(&body.source, &d)),
+    match body(input) {
+        Ok(b) => answer(api::compile(&b, &settings(), &mut NoProgress), String::into_bytes),
+        Err(a) => a,
     }
 }
 
 /// `stlc check`: `{ok: true, summary, warnings}` (the summary's lines of
 /// text, as the CLI prints them), or the diagnostics.
 pub fn check(input: &[u8]) -> Answer {
-    #[derive(Serialize)]
-    struct Checked {
-        ok: bool,
-        summary: String,
-        warnings: Vec<api::DiagnosticJson>,
-    }
-    let body = match body(input) {
-        Ok(b) => b,
-        Err(a) => return a,
-    };
-    match body.request(&settings(), ImageFormat::Svg).check() {
-        Ok(c) => json(
-            Status::Done,
-            &Checked {
-                ok: true,
-                warnings: api::diagnostics_json(&body.source, &c.warnings),
-                summary: c.summary,
-            },
-        ),
-        Err(d) => json(Status::Failed, &Failed::new(&body.source, &d)),
+    match body(input) {
+        Ok(b) => answer(api::check(&b, &settings()), |c| to_json(&c)),
+        Err(a) => a,
     }
 }
 
@@ -249,7 +191,7 @@ mod tests {
     fn exports_are_the_cli_bytes_for_the_same_request() {
         // The CLI's own call for the same options: Request::render and
         // Request::compile with the body's request.
-        let input = request(TREE, ", \"strategy\": \"dfs\"");
+        let input = request(TREE, ", \"growth\": \"dfs\"");
         let body = api::parse(&input).unwrap();
         let mut svg = Vec::new();
         body.request(&settings(), ImageFormat::Svg)

@@ -17,17 +17,9 @@
 //! memory, and there is no `unsafe` block: only the exports' unmangled
 //! names need `#[unsafe(no_mangle)]`.
 
-#[allow(dead_code, missing_docs)]
-#[path = "../../src/serve/api.rs"]
-mod api;
-#[allow(dead_code, missing_docs)]
-#[path = "../../src/serve/shapes.rs"]
-mod shapes;
-#[allow(dead_code, missing_docs)]
-#[path = "../../src/serve/space.rs"]
-mod space;
-
 pub mod calls;
+
+use stlc::api::Format;
 
 use std::cell::RefCell;
 
@@ -115,7 +107,13 @@ pub extern "C" fn stlc_render() -> u32 {
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 pub extern "C" fn stlc_export(format: u32) -> u32 {
-    run(|i| calls::export(i, calls::Format::from_number(format)))
+    let format = match format {
+        0 => Some(Format::Png),
+        1 => Some(Format::Svg),
+        2 => Some(Format::Bed),
+        _ => None,
+    };
+    run(|i| calls::export(i, format))
 }
 
 /// `POST /api/words` (see [`calls::words`]).

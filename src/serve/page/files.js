@@ -38,7 +38,7 @@ export function createFiles(app) {
     const r = app.session.request();
     const name = state.doc.name;
     const args = format === 'bed' ? ['stlc', 'compile', name] : ['stlc', 'render', name];
-    if (r.strategy && r.strategy !== 'bfs') args.push('--growth', r.strategy);
+    if (r.growth && r.growth !== 'bfs') args.push('--growth', r.growth);
     if (r.seed !== undefined) args.push('--seed', r.seed);
     if (r.depth !== undefined) args.push('--depth', String(r.depth));
     if (r.clearance !== undefined) args.push('--clearance', String(r.clearance));

@@ -227,8 +227,8 @@ impl Builder<'_> {
                 let text = val.as_str();
                 match p {
                     Param::Order => match text {
-                        "bfs" => out.design.order = Some(crate::model::Order::Bfs),
-                        "dfs" => out.design.order = Some(crate::model::Order::Dfs),
+                        "bfs" => out.design.order = Some(crate::model::GrowthOrder::Bfs),
+                        "dfs" => out.design.order = Some(crate::model::GrowthOrder::Dfs),
                         _ => self.report(
                             StlError::ParamValue {
                                 key: p.key(),

@@ -4,8 +4,8 @@
 
 use serde::Serialize;
 
-use stlc::model::Description;
-use stlc::model::layout::Shape;
+use crate::model::Description;
+use crate::model::layout::Shape;
 
 /// An .od's root as written, and where (UTF-16 offsets: JavaScript string
 /// indices), so the page can move it; a forest's further roots as

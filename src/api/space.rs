@@ -6,8 +6,8 @@
 use serde::Serialize;
 
 use super::shapes::{self, Geometry};
-use stlc::model::Solid;
-use stlc::pipeline::{Space, View};
+use crate::model::Solid;
+use crate::pipeline::{Space, View};
 
 /// The 3D part of a render answer.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -121,7 +121,7 @@ mod tests {
     fn volumes_are_tagged_by_their_stl_names_with_their_colours() {
         let v = VolumeJson {
             solid: solid(&Solid::Revolve {
-                shape: stlc::model::Shape::Ellipse {
+                shape: crate::model::Shape::Ellipse {
                     x: 1.0,
                     y: 2.0,
                     w: 3.0,
