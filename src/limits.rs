@@ -5,6 +5,8 @@
 //! out-of-memory kill, a stack overflow or a hang. `docs/limits.md` explains
 //! each default.
 
+pub use crate::diag::Bound;
+
 /// The limits in force for one run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Limits {
@@ -57,18 +59,13 @@ impl Limits {
 
     /// Refuses a derivation depth over [`Limits::max_depth`], naming the flag.
     pub fn check_depth(&self, depth: u32) -> Result<(), crate::diag::Diagnostics> {
-        use crate::diag::{Diagnostic, ErrorKind};
         if depth <= self.max_depth {
             return Ok(());
         }
-        Err(Diagnostic::error(ErrorKind::Limit {
-            bound: Bound::Depth,
-            what: None,
-            value: depth.to_string(),
-            limit: self.max_depth.into(),
-        })
-        .with_help(format!("use a smaller depth, or {}", Bound::Depth.raise()))
-        .into())
+        Err(Bound::Depth
+            .exceeded(depth, self.max_depth.into())
+            .with_help(format!("use a smaller depth, or {}", Bound::Depth.raise()))
+            .into())
     }
 
     /// The value of `bound` in force.
@@ -95,106 +92,6 @@ impl Limits {
 /// open).
 pub const DEFAULT_MAX_SVG_SEGMENTS: u64 = 10_000_000;
 
-/// Which limit: one variant per `--max-*` flag's quantity, as named by
-/// [`crate::diag::ErrorKind::Limit`]. Each knows its flag, its default and
-/// the words the error message uses for it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Bound {
-    /// Input size in bytes ([`Limits::max_input_bytes`]).
-    InputBytes,
-    /// Nesting of brackets and braces ([`Limits::max_nesting`]).
-    Nesting,
-    /// Derivation depth, an `.lsys`'s `generations` ([`Limits::max_depth`]).
-    Depth,
-    /// The count `n` of `[I n X]` ([`Limits::max_repeat`], raised with
-    /// `--max-depth`).
-    Repeat,
-    /// Symbols one traversal may visit ([`Limits::max_symbols`]).
-    Symbols,
-    /// Symbols the `bfs` strategy may hold as one word ([`Limits::max_word`]).
-    Word,
-    /// Stems growth may draw ([`Limits::max_stems`]).
-    Stems,
-    /// Vertices of a layout's outline ([`Limits::max_layout_vertices`]).
-    LayoutVertices,
-    /// Rule definitions and top-level bracket groups of bodies
-    /// ([`Limits::max_rule_parts`]).
-    RuleParts,
-    /// Shapes of a LAYOUT ([`Limits::max_layout_shapes`]).
-    LayoutShapes,
-    /// Segments an SVG may hold ([`DEFAULT_MAX_SVG_SEGMENTS`]).
-    SvgSegments,
-}
-
-impl Bound {
-    /// Every limit.
-    pub const ALL: [Bound; 11] = [
-        Bound::InputBytes,
-        Bound::Nesting,
-        Bound::Depth,
-        Bound::Repeat,
-        Bound::Symbols,
-        Bound::Word,
-        Bound::Stems,
-        Bound::LayoutVertices,
-        Bound::RuleParts,
-        Bound::LayoutShapes,
-        Bound::SvgSegments,
-    ];
-
-    /// The command-line flag that raises it.
-    pub fn flag(self) -> &'static str {
-        match self {
-            Bound::InputBytes => "--max-input",
-            Bound::Nesting => "--max-nesting",
-            Bound::Depth | Bound::Repeat => "--max-depth",
-            Bound::Symbols => "--max-symbols",
-            Bound::Word => "--max-word",
-            Bound::Stems => "--max-stems",
-            Bound::LayoutVertices => "--max-layout-vertices",
-            Bound::RuleParts => "--max-rule-parts",
-            Bound::LayoutShapes => "--max-layout-shapes",
-            Bound::SvgSegments => "--max-svg-segments",
-        }
-    }
-
-    /// The flag's value placeholder, as its help shows it.
-    pub fn value_name(self) -> &'static str {
-        match self {
-            Bound::InputBytes => "BYTES",
-            _ => "N",
-        }
-    }
-
-    /// Its default ([`Limits::DEFAULT`]).
-    pub fn default_value(self) -> u64 {
-        Limits::DEFAULT.get(self)
-    }
-
-    /// What is limited, in the words of an error message
-    /// (`derivation depth: 20000 exceeds the limit of 10000`).
-    pub fn describe(self) -> &'static str {
-        match self {
-            Bound::InputBytes => "input size in bytes",
-            Bound::Nesting => "nesting depth",
-            Bound::Depth => "derivation depth",
-            Bound::Repeat => "self-resemblance count",
-            Bound::Symbols => "symbols in the expansion",
-            Bound::Word => "bfs word length",
-            Bound::Stems => "stems",
-            Bound::LayoutVertices => "layout outline vertices",
-            Bound::RuleParts => "rule definitions and branches",
-            Bound::LayoutShapes => "layout shapes",
-            Bound::SvgSegments => "segments in the SVG",
-        }
-    }
-
-    /// The end of a hint: `raise the limit with --max-depth N`.
-    pub fn raise(self) -> String {
-        format!("raise the limit with {} {}", self.flag(), self.value_name())
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -219,7 +116,7 @@ mod tests {
                 Bound::LayoutShapes => (d.max_layout_shapes as u64, "--max-layout-shapes"),
                 Bound::SvgSegments => (10_000_000, "--max-svg-segments"),
             };
-            assert_eq!(b.default_value(), field, "{b:?}");
+            assert_eq!(Limits::DEFAULT.get(b), field, "{b:?}");
             assert_eq!(b.flag(), flag, "{b:?}");
         }
     }

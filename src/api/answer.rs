@@ -168,4 +168,3 @@ pub fn diagnostics_json(text: &str, diags: &[Diagnostic]) -> Vec<DiagnosticJson>
         })
         .collect()
 }
-

@@ -216,7 +216,6 @@ impl Body {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,7 +11,7 @@ pub mod write;
 
 use std::collections::BTreeMap;
 
-use crate::diag::{BedError, Diagnostic, Diagnostics, ErrorKind, RuleError};
+use crate::diag::{BedError, Diagnostic, Diagnostics, RuleError};
 use crate::limits::{Bound, Limits};
 use crate::model::seed_walk::{SeedStep, SeedWalk};
 use crate::model::walk::{self, Step};
@@ -204,14 +204,14 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
         }
     }
     if total.symbols > limits.max_symbols {
-        return Err(Diagnostic::error(ErrorKind::Limit {
-            bound: Bound::Symbols,
-            what: Some("symbols in the expansion of the forest".into()),
-            value: total.symbols.to_string(),
-            limit: limits.max_symbols,
-        })
-        .with_help(format!("{}, or grow fewer trees", Bound::Symbols.raise()))
-        .into());
+        return Err(Bound::Symbols
+            .exceeded_by(
+                "symbols in the expansion of the forest",
+                total.symbols,
+                limits.max_symbols,
+            )
+            .with_help(format!("{}, or grow fewer trees", Bound::Symbols.raise()))
+            .into());
     }
     Ok(total)
 }
@@ -232,14 +232,9 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
     let check_count = |count: u32, span: &crate::diag::Span, diags: &mut Diagnostics| {
         if count > limits.max_repeat {
             diags.push(
-                Diagnostic::error(ErrorKind::Limit {
-                    bound: Bound::Repeat,
-                    what: None,
-                    value: count.to_string(),
-                    limit: limits.max_repeat.into(),
-                })
-                .with_span(span.clone())
-                .with_help(Bound::Repeat.raise()),
+                Bound::Repeat
+                    .exceeded(count, limits.max_repeat.into())
+                    .with_span(span.clone()),
             );
         }
     };
@@ -295,18 +290,17 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
     let size = measure_seed(desc, seed);
     if size.symbols > limits.max_symbols {
         diags.push(
-            Diagnostic::error(ErrorKind::Limit {
-                bound: Bound::Symbols,
-                what: None,
-                value: if size.symbols == u64::MAX {
-                    format!("more than {}", u64::MAX - 1)
-                } else {
-                    size.symbols.to_string()
-                },
-                limit: limits.max_symbols,
-            })
-            .with_span(item_over(desc, seed, limits.max_symbols).unwrap_or(seed.loc.0.clone()))
-            .with_help(format!("{}, or lower the counts", Bound::Symbols.raise())),
+            Bound::Symbols
+                .exceeded(
+                    if size.symbols == u64::MAX {
+                        format!("more than {}", u64::MAX - 1)
+                    } else {
+                        size.symbols.to_string()
+                    },
+                    limits.max_symbols,
+                )
+                .with_span(item_over(desc, seed, limits.max_symbols).unwrap_or(seed.loc.0.clone()))
+                .with_help(format!("{}, or lower the counts", Bound::Symbols.raise())),
         );
     }
     diags.into_result(size)
@@ -341,6 +335,7 @@ fn order_error(p: &StemParams, order: u32, span: crate::diag::Span, rule: &str) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diag::ErrorKind;
 
     use crate::model::Loc;
     use crate::num::Linear;

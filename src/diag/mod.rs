@@ -20,10 +20,12 @@ pub enum Severity {
     Error,
 }
 
+mod bound;
 pub mod excerpt;
 mod kind;
 mod number;
 
+pub use bound::Bound;
 pub use excerpt::{Excerpt, line_column};
 pub use kind::{
     BedError, ErrorKind, GrowError, InputError, Kin, LayoutError, LsysError, Misfit, MissReason,

@@ -55,7 +55,7 @@ mod tests {
         assert_eq!(saturated(u64::MAX), "more than 18446744073709551614");
         assert_eq!(short_number("not a number"), "not a number");
         let d = ErrorKind::Limit {
-            bound: crate::limits::Bound::Symbols,
+            bound: crate::diag::Bound::Symbols,
             what: Some("derived word length".into()),
             value: long,
             limit: 20_000_000_000,

@@ -19,7 +19,7 @@ use super::seed::{Flat, Instr};
 use super::tree::{Budget, NO_NODE, Parent, Tree};
 use super::{GrowOptions, GrowthOrder, SEED_STEMS};
 use crate::choice::Key;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, MissReason};
+use crate::diag::{Diagnostics, MissReason};
 use crate::limits::{Bound, Limits};
 use crate::model::walk::{self, FixedWord, Levels, Step};
 use crate::model::{Description, Fixed, RuleId};
@@ -278,14 +278,10 @@ where
             // The seed is always drawn whole (a stop only ends growth), but
             // a seed beyond the limit by itself is an error.
             if self.budget.seed_stems > self.limits.max_stems {
-                return Err(Diagnostic::error(ErrorKind::Limit {
-                    bound: Bound::Stems,
-                    what: Some(SEED_STEMS.into()),
-                    value: self.budget.seed_stems.to_string(),
-                    limit: self.limits.max_stems,
-                })
-                .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
-                .into());
+                return Err(Bound::Stems
+                    .exceeded_by(SEED_STEMS, self.budget.seed_stems, self.limits.max_stems)
+                    .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
+                    .into());
             }
             if let Some(t) = &mut self.trace {
                 t.push((seg, 0));

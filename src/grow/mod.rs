@@ -63,7 +63,7 @@ pub mod space;
 mod tree;
 
 use crate::bed::Bed;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, GrowError, Span};
+use crate::diag::{Diagnostic, Diagnostics, GrowError, Span};
 use crate::limits::{Bound, Limits};
 use crate::model::{Description, Format, Loc, Seed, StemParams};
 use crate::progress::Progress;
@@ -313,14 +313,10 @@ where
     let trees = 1 + od.forest.len() as u64;
     let seed_stems = seed::drawn_stems(od, &seed).saturating_mul(trees);
     if seed_stems > opts.limits.max_stems {
-        return Err(Diagnostic::error(ErrorKind::Limit {
-            bound: Bound::Stems,
-            what: Some(SEED_STEMS.into()),
-            value: seed_stems.to_string(),
-            limit: opts.limits.max_stems,
-        })
-        .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
-        .into());
+        return Err(Bound::Stems
+            .exceeded_by(SEED_STEMS, seed_stems, opts.limits.max_stems)
+            .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
+            .into());
     }
     let flat = seed::flatten(od, &seed)?;
     bounded::check_bounded(od, &flat.gps, opts)?;

@@ -27,7 +27,7 @@ use geo::{BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon,
 use rstar::{AABB, RTree, RTreeObject};
 
 use super::occupancy::{Seg, seg_seg_dist2};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, LayoutError};
+use crate::diag::{Diagnostic, Diagnostics, LayoutError};
 use crate::limits::Bound;
 use crate::model::Layout;
 use crate::rings::shape_ring;
@@ -216,12 +216,7 @@ fn vertex_count(area: &MultiPolygon<f64>) -> usize {
 }
 
 fn too_many_vertices(vertices: usize, limit: usize, span: crate::diag::Span) -> Diagnostics {
-    Diagnostic::error(ErrorKind::Limit {
-        bound: Bound::LayoutVertices,
-        what: None,
-        value: vertices.to_string(),
-        limit: limit as u64,
-    })
+    Bound::LayoutVertices.exceeded(vertices, limit as u64)
     .with_span(span)
     .with_help(format!(
         "use fewer polygon points or fewer, smaller curved shapes, or {} (above 16000 the overlay can take minutes on some shapes)",
@@ -242,6 +237,7 @@ fn polygon_of(ring: &[Point]) -> Polygon<f64> {
 mod tests {
     use super::*;
     use crate::color::Rgb;
+    use crate::diag::ErrorKind;
     use crate::model::Shape;
     use crate::model::layout::testing::{GREEN, layout, rect, shape};
     use geo::Area;

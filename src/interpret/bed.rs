@@ -24,7 +24,7 @@
 use std::io::Write;
 
 use crate::bed::Bed;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
+use crate::diag::{Diagnostics, io_error};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
 use crate::model::seed_walk::{Points, SeedStep, SeedWalk};
@@ -378,17 +378,13 @@ enum Sym<'a, O> {
 /// Refuses a `bfs` word of `len` symbols over `limits.max_word`.
 fn check_word(len: u64, limits: &Limits) -> Result<(), Diagnostics> {
     if len > limits.max_word {
-        return Err(Diagnostic::error(ErrorKind::Limit {
-            bound: Bound::Word,
-            what: None,
-            value: len.to_string(),
-            limit: limits.max_word,
-        })
-        .with_help(format!(
-            "{}, or use --strategy dfs, which needs no word",
-            Bound::Word.raise()
-        ))
-        .into());
+        return Err(Bound::Word
+            .exceeded(len, limits.max_word)
+            .with_help(format!(
+                "{}, or use --strategy dfs, which needs no word",
+                Bound::Word.raise()
+            ))
+            .into());
     }
     Ok(())
 }
@@ -479,6 +475,7 @@ fn bfs<O: StlOp>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diag::ErrorKind;
     use crate::model::{Body, BodyItem, Branch, Format, Loc, Piece, SeedItem, StemParams, Terms};
     use crate::num::Linear;
     use crate::progress::NoProgress;

@@ -167,17 +167,13 @@ impl Request {
         let mut limits = self.limits;
         if let Some(n) = self.max_stems {
             if n > limits.max_stems {
-                return Err(Diagnostic::error(ErrorKind::Limit {
-                    bound: Bound::Stems,
-                    what: Some("max stems asked for".into()),
-                    value: n.to_string(),
-                    limit: limits.max_stems,
-                })
-                .with_help(format!(
-                    "ask for fewer, or raise the limit (`stlc serve {} N`)",
-                    Bound::Stems.flag()
-                ))
-                .into());
+                return Err(Bound::Stems
+                    .exceeded_by("max stems asked for", n, limits.max_stems)
+                    .with_help(format!(
+                        "ask for fewer, or raise the limit (`stlc serve {} N`)",
+                        Bound::Stems.flag()
+                    ))
+                    .into());
             }
             limits.max_stems = n;
         }

@@ -16,7 +16,7 @@ pub mod volumes;
 use std::io::Write;
 
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError, io_error};
+use crate::diag::{Diagnostic, Diagnostics, RenderError, io_error};
 use crate::limits::Bound;
 use crate::num::Linear;
 use crate::progress::{Phase, Progress};
@@ -160,19 +160,18 @@ pub const DEFAULT_MAX_SVG_SEGMENTS: u64 = crate::limits::DEFAULT_MAX_SVG_SEGMENT
 /// The error for an SVG over [`RenderOptions::max_svg_segments`]; `count`
 /// is the exact number when known, else `None` ("more than the limit").
 pub(crate) fn svg_too_large(count: Option<u64>, limit: u64) -> Diagnostics {
-    Diagnostic::error(ErrorKind::Limit {
-        bound: Bound::SvgSegments,
-        what: None,
-        value: count.map_or_else(|| format!("more than {limit}"), |c| c.to_string()),
-        limit,
-    })
-    .with_help(format!(
-        "an SVG holds a line a segment with --exact (about 22 bytes each), and merges \
+    Bound::SvgSegments
+        .exceeded(
+            count.map_or_else(|| format!("more than {limit}"), |c| c.to_string()),
+            limit,
+        )
+        .with_help(format!(
+            "an SVG holds a line a segment with --exact (about 22 bytes each), and merges \
          runs into as few lines as show the picture without: render a PNG instead, \
          drop --exact, draw less (a smaller --depth or --size), or {}",
-        Bound::SvgSegments.raise()
-    ))
-    .into()
+            Bound::SvgSegments.raise()
+        ))
+        .into()
 }
 
 /// Longest side of the output when no size is asked for.
@@ -371,6 +370,7 @@ pub fn render_framed(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diag::ErrorKind;
 
     fn bbox(min_x: f64, min_y: f64, max_x: f64, max_y: f64) -> BBox {
         BBox {

@@ -77,9 +77,12 @@ fn every_bound_names_a_real_flag_with_its_default() {
         // given, growth stops at the default with a warning.
         if bound != stlc::Bound::Stems {
             assert!(
-                entry.contains(&format!("[default: {}]", bound.default_value())),
+                entry.contains(&format!(
+                    "[default: {}]",
+                    stlc::limits::Limits::DEFAULT.get(bound)
+                )),
                 "{bound:?}: {flag} does not default to {}:\n{entry}",
-                bound.default_value()
+                stlc::limits::Limits::DEFAULT.get(bound)
             );
         }
         let written = format!("`{} {}`", bound.flag(), bound.value_name());

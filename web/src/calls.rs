@@ -112,7 +112,9 @@ pub fn export(input: &[u8], format: Option<Format>) -> Answer {
 /// `POST /api/words`: an `.lsys`'s word generation by generation.
 pub fn words(input: &[u8]) -> Answer {
     match body(input) {
-        Ok(b) => answer(api::words(&b, &settings(), &mut NoProgress), |a| to_json(&a)),
+        Ok(b) => answer(api::words(&b, &settings(), &mut NoProgress), |a| {
+            to_json(&a)
+        }),
         Err(a) => a,
     }
 }
@@ -120,7 +122,10 @@ pub fn words(input: &[u8]) -> Answer {
 /// `stlc compile`: an OD grown into its BED text, or the diagnostics.
 pub fn compile(input: &[u8]) -> Answer {
     match body(input) {
-        Ok(b) => answer(api::compile(&b, &settings(), &mut NoProgress), String::into_bytes),
+        Ok(b) => answer(
+            api::compile(&b, &settings(), &mut NoProgress),
+            String::into_bytes,
+        ),
         Err(a) => a,
     }
 }

@@ -54,7 +54,7 @@ pub enum GrowError {
     /// Warning: `--max-stems` stopped growth; the BED is cut short.
     #[error(
         "growth stopped at {stems} stems: the next rule application would pass the limit of {} {limit}",
-        crate::limits::Bound::Stems.flag()
+        crate::diag::Bound::Stems.flag()
     )]
     GrowthStopped {
         /// Stems grown when growth stopped.
@@ -75,7 +75,7 @@ pub enum GrowError {
     /// Warning: growth reached `--max-depth`; deeper branches were not grown.
     #[error(
         "growth reached the depth limit of {limit} nested rule applications ({}); deeper branches were not grown",
-        crate::limits::Bound::Depth.flag()
+        crate::diag::Bound::Depth.flag()
     )]
     DepthCapped {
         /// The limit in force.

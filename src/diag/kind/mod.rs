@@ -79,9 +79,9 @@ pub enum ErrorKind {
     )]
     Limit {
         /// Which limit.
-        bound: crate::limits::Bound,
+        bound: crate::diag::Bound,
         /// What was measured against it, where the bound's own words
-        /// ([`crate::limits::Bound::describe`]) are not precise enough
+        /// ([`crate::diag::Bound::describe`]) are not precise enough
         /// (`derived word length at depth 30`).
         what: Option<String>,
         /// The value asked for (decimal; may be a big integer, or a bound
@@ -141,7 +141,7 @@ impl ErrorKind {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::limits::Bound;
+    use crate::diag::Bound;
 
     /// A stage's error reads the same wrapped as alone, and a usage error
     /// is one whichever way it is built.

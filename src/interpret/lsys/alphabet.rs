@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 
 use num_bigint::BigUint;
 
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::Diagnostics;
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
@@ -128,32 +128,28 @@ impl Alphabet {
             }
         };
         if lens[depth as usize] > limits.max_symbols {
-            return Err(Diagnostic::error(ErrorKind::Limit {
-                bound: Bound::Symbols,
-                what: Some(format!("derived word length at depth {depth}")),
-                value: exact(depth),
-                limit: limits.max_symbols,
-            })
-            .with_help(format!(
-                "use a smaller depth, or raise the traversal budget with {} N",
-                Bound::Symbols.flag()
-            ))
-            .into());
+            return Err(Bound::Symbols
+                .exceeded_by(
+                    format!("derived word length at depth {depth}"),
+                    exact(depth),
+                    limits.max_symbols,
+                )
+                .with_help(format!(
+                    "use a smaller depth, or raise the traversal budget with {} N",
+                    Bound::Symbols.flag()
+                ))
+                .into());
         }
         if strategy == Derivation::Bfs
             && let Some(r) = (0..=depth).find(|&r| lens[r as usize] > limits.max_word)
         {
-            return Err(Diagnostic::error(ErrorKind::Limit {
-                bound: Bound::Word,
-                what: Some(format!("bfs word at level {r}")),
-                value: exact(r),
-                limit: limits.max_word,
-            })
-            .with_help(format!(
-                "use --strategy dfs (it never holds the word), a smaller depth, or {}",
-                Bound::Word.raise()
-            ))
-            .into());
+            return Err(Bound::Word
+                .exceeded_by(format!("bfs word at level {r}"), exact(r), limits.max_word)
+                .with_help(format!(
+                    "use --strategy dfs (it never holds the word), a smaller depth, or {}",
+                    Bound::Word.raise()
+                ))
+                .into());
         }
         Ok(lens)
     }

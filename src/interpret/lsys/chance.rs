@@ -46,7 +46,7 @@ use super::PROGRESS_STEP;
 use super::geometry::{GEOMETRY_ENTRIES, Period, Piece, Refusal, balanced};
 use super::stochastic::Stochastic;
 use crate::choice::Key;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind};
+use crate::diag::Diagnostics;
 use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
 use crate::num::Linear;

@@ -71,7 +71,6 @@ use std::io::Write;
 
 use num_bigint::BigUint;
 
-use crate::diag::{Diagnostic, ErrorKind};
 use crate::diag::{Diagnostics, io_error};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
@@ -315,19 +314,17 @@ fn lod(
         return Ok(false);
     }
     if units > limits.max_symbols {
-        return Err(Diagnostic::error(ErrorKind::Limit {
-            bound: Bound::Symbols,
-            what: Some(format!(
-                "symbols to visit at depth {depth} at this level of detail"
-            )),
-            value: units.to_string(),
-            limit: limits.max_symbols,
-        })
-        .with_help(format!(
-            "use a smaller depth or --size, or raise the traversal budget with {} N",
-            Bound::Symbols.flag()
-        ))
-        .into());
+        return Err(Bound::Symbols
+            .exceeded_by(
+                format!("symbols to visit at depth {depth} at this level of detail"),
+                units,
+                limits.max_symbols,
+            )
+            .with_help(format!(
+                "use a smaller depth or --size, or raise the traversal budget with {} N",
+                Bound::Symbols.flag()
+            ))
+            .into());
     }
     progress.start("symbols", units);
     g.draw_lod(detail, turtle, progress);

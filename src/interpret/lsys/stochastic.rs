@@ -29,7 +29,7 @@
 use num_bigint::BigUint;
 
 use crate::choice::{Alternatives, Key};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, saturated};
+use crate::diag::{Diagnostics, ErrorKind, saturated};
 use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
 
@@ -315,16 +315,14 @@ impl Stochastic {
         } else {
             saturated(least)
         };
-        Err(Diagnostic::error(ErrorKind::Limit {
-            bound,
-            what: Some(format!(
-                "{what} at depth {depth} (stochastic: the shortest any choices make)"
-            )),
-            value,
-            limit,
-        })
-        .with_help(raise_help())
-        .into())
+        Err(bound
+            .exceeded_by(
+                format!("{what} at depth {depth} (stochastic: the shortest any choices make)"),
+                value,
+                limit,
+            )
+            .with_help(raise_help())
+            .into())
     }
 
     /// The fewest and the most symbols the word at `depth` can have,
@@ -409,16 +407,14 @@ impl Stochastic {
 
 /// The error of a stochastic traversal over a limit.
 fn over(level: u32, bound: Bound, what: &str, limit: u64) -> Diagnostics {
-    Diagnostic::error(ErrorKind::Limit {
-        bound,
-        what: Some(format!(
-            "{what} at depth {level} (stochastic: counted while deriving)"
-        )),
-        value: format!("more than {limit}"),
-        limit,
-    })
-    .with_help(raise_help())
-    .into()
+    bound
+        .exceeded_by(
+            format!("{what} at depth {level} (stochastic: counted while deriving)"),
+            format!("more than {limit}"),
+            limit,
+        )
+        .with_help(raise_help())
+        .into()
 }
 
 /// The hint of a stochastic traversal over a limit: either limit may be

@@ -468,18 +468,18 @@ impl Checker {
             Ok(n) if n <= limits.max_depth => Some(n),
             _ => {
                 self.diags.push(
-                    Diagnostic::error(ErrorKind::Limit {
-                        bound: Bound::Depth,
-                        what: Some(Key::Generations.name().into()),
-                        value: text.trim_start_matches('0').to_string(),
-                        limit: limits.max_depth.into(),
-                    })
-                    .with_span(span)
-                    .with_label("too many generations")
-                    .with_help(format!(
-                        "use fewer generations, or {}",
-                        Bound::Depth.raise()
-                    )),
+                    Bound::Depth
+                        .exceeded_by(
+                            Key::Generations.name(),
+                            text.trim_start_matches('0').to_string(),
+                            limits.max_depth.into(),
+                        )
+                        .with_span(span)
+                        .with_label("too many generations")
+                        .with_help(format!(
+                            "use fewer generations, or {}",
+                            Bound::Depth.raise()
+                        )),
                 );
                 None
             }

@@ -11,7 +11,7 @@ use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
 use super::solid::SolidName;
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, LayoutError, Span, StlError};
+use crate::diag::{Diagnostic, Diagnostics, LayoutError, Span, StlError};
 use crate::limits::Bound;
 use crate::model::{Layout, LayoutShape, LayoutSolid, Loc, Shape, Spelling};
 
@@ -117,12 +117,7 @@ pub(super) fn prescan_polygons(src: &str, max_vertices: usize) -> Result<(), Dia
         if vertices > max_vertices {
             // Point at the shape's line: its colour's `(` before the name.
             let start = src[..p].rfind('(').unwrap_or(p);
-            return Err(Diagnostic::error(ErrorKind::Limit {
-                bound: Bound::LayoutVertices,
-                what: None,
-                value: vertices.to_string(),
-                limit: max_vertices as u64,
-            })
+            return Err(Bound::LayoutVertices.exceeded(vertices, max_vertices as u64)
             .with_span(start..i.min(b.len()))
             .with_help(format!(
                 "use fewer polygon points, or {} (above 16000 the overlay can take minutes on some shapes)",
@@ -163,19 +158,15 @@ pub(super) fn prescan_shapes(src: &str, max_shapes: usize) -> Result<(), Diagnos
     if shapes <= max_shapes {
         return Ok(());
     }
-    Err(Diagnostic::error(ErrorKind::Limit {
-        bound: Bound::LayoutShapes,
-        what: None,
-        value: shapes.to_string(),
-        limit: max_shapes as u64,
-    })
-    .with_span(layout..from)
-    .with_label("this section")
-    .with_help(format!(
-        "use fewer shapes, or {}",
-        Bound::LayoutShapes.raise()
-    ))
-    .into())
+    Err(Bound::LayoutShapes
+        .exceeded(shapes, max_shapes as u64)
+        .with_span(layout..from)
+        .with_label("this section")
+        .with_help(format!(
+            "use fewer shapes, or {}",
+            Bound::LayoutShapes.raise()
+        ))
+        .into())
 }
 
 /// The first occurrence of `word` at or after `from` that stands alone

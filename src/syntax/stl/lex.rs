@@ -10,7 +10,7 @@ use std::collections::VecDeque;
 use pest::iterators::Pair;
 
 use super::{Builder, DRAWING_LETTERS, Rule, not_in_grammar};
-use crate::diag::{Diagnostic, ErrorKind, RuleError, Span, StlError};
+use crate::diag::{Diagnostic, RuleError, Span, StlError};
 use crate::limits::Bound;
 use crate::model::{Format, RuleId};
 
@@ -265,15 +265,10 @@ impl Builder<'_> {
             Ok(n) if n <= limit => Some(n),
             _ => {
                 self.err(
-                    Diagnostic::error(ErrorKind::Limit {
-                        bound: Bound::Repeat,
-                        what: None,
-                        value: text.trim_start_matches('0').to_string(),
-                        limit: limit.into(),
-                    })
-                    .with_span(span)
-                    .with_label("count too large")
-                    .with_help(Bound::Repeat.raise()),
+                    Bound::Repeat
+                        .exceeded(text.trim_start_matches('0').to_string(), limit.into())
+                        .with_span(span)
+                        .with_label("count too large"),
                 );
                 None
             }

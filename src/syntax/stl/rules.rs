@@ -6,7 +6,7 @@ use pest::iterators::Pair;
 use super::layout::find_word;
 use super::{Builder, Rule, span_of};
 use crate::choice::{self, BadProbabilities};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, RuleError, Span};
+use crate::diag::{Diagnostic, Diagnostics, RuleError, Span};
 use crate::limits::Bound;
 use crate::model::{Alternative, Format, Loc, RuleDef, RuleId};
 
@@ -64,19 +64,15 @@ pub(super) fn prescan_rules(src: &str, max_parts: usize) -> Result<(), Diagnosti
     if parts <= max_parts {
         return Ok(());
     }
-    Err(Diagnostic::error(ErrorKind::Limit {
-        bound: Bound::RuleParts,
-        what: None,
-        value: parts.to_string(),
-        limit: max_parts as u64,
-    })
-    .with_span(start..from)
-    .with_label("this section")
-    .with_help(format!(
-        "use fewer rules or branches, or {}",
-        Bound::RuleParts.raise()
-    ))
-    .into())
+    Err(Bound::RuleParts
+        .exceeded(parts, max_parts as u64)
+        .with_span(start..from)
+        .with_label("this section")
+        .with_help(format!(
+            "use fewer rules or branches, or {}",
+            Bound::RuleParts.raise()
+        ))
+        .into())
 }
 
 /// The section keywords (`grammar.pest` spells them again in its

@@ -270,16 +270,16 @@ pub fn draw_chance(
     let within = super::super::stochastic::budget(limits);
     if plan.visits > within.max_symbols as f64 {
         return Err(super::super::stochastic::explain_budget(
-            Diagnostic::error(ErrorKind::Limit {
-                bound: Bound::Symbols,
-                what: Some(format!(
-                    "symbols to visit at depth {} at this level of detail (expected)",
-                    chance.depth
-                )),
-                value: format!("{:.0}", plan.visits),
-                limit: within.max_symbols,
-            })
-            .into(),
+            Bound::Symbols
+                .exceeded_by(
+                    format!(
+                        "symbols to visit at depth {} at this level of detail (expected)",
+                        chance.depth
+                    ),
+                    format!("{:.0}", plan.visits),
+                    within.max_symbols,
+                )
+                .into(),
             limits,
         ));
     }
