@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use super::{shapes, space};
+use super::{shapes, stems3};
 use crate::diag::{Diagnostic, Diagnostics, line_column};
 
 /// The answer of `POST /api/render` when the input could be drawn.
@@ -44,8 +44,10 @@ pub struct RenderAnswer {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub layout: Option<Option<shapes::LayoutJson>>,
     /// A 3D input's stems and volumes, drawn by the page (`svg` is empty).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub space: Option<space::SpaceJson>,
+    /// On the wire `space`, its name before 3D was named with a `3` (the
+    /// page and scripts read it so).
+    #[serde(rename = "space", skip_serializing_if = "Option::is_none")]
+    pub stems3: Option<stems3::Stems3Json>,
 }
 
 /// A grown tree of more stems than this is drawn by the page from its
@@ -116,10 +118,10 @@ pub struct DiagnosticJson {
     help: Option<String>,
 }
 
-/// Generations [`words`] shows at most (depths 0 to 7).
+/// Generations [`super::words`] shows at most (depths 0 to 7).
 pub const WORD_DEPTHS: u32 = 8;
 
-/// Characters of each word [`words`] shows at most.
+/// Characters of each word [`super::words`] shows at most.
 pub const WORD_CHARS: usize = 2_000;
 
 /// The answer of `POST /api/words`.

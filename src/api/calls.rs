@@ -9,7 +9,7 @@ use super::answer::{
     diagnostics_json,
 };
 use super::body::{Body, Settings};
-use super::{shapes, space};
+use super::{shapes, stems3};
 use crate::pipeline::{ImageFormat, Progress, Request};
 
 /// A writer that keeps the first `cap` bytes and stops the rest.
@@ -111,7 +111,7 @@ pub fn render(
     let mut stems = Vec::with_capacity(placed.len() * 6);
     let mut decisions = 0;
     // A 3D tree's stems are in `space`, with their third coordinates.
-    for p in placed.iter().filter(|_| drawn.space.is_none()) {
+    for p in placed.iter().filter(|_| drawn.stems3.is_none()) {
         stems.extend([
             round(p.from.x),
             round(p.from.y),
@@ -135,7 +135,7 @@ pub fn render(
     let answer = RenderAnswer {
         ok: true,
         svg,
-        tree_in_svg: !drawn.tree_left_out && drawn.space.is_none(),
+        tree_in_svg: !drawn.tree_left_out && drawn.stems3.is_none(),
         stroke: drawn.stroke.to_string(),
         bed: bed.filter(|_| !drawn.tree_left_out),
         stems: match (drawn.grown, &drawn.count) {
@@ -149,7 +149,7 @@ pub fn render(
         view: drawn.view.map(|b| [b.min_x, b.min_y, b.max_x, b.max_y]),
         root: drawn.od.as_ref().map(|od| shapes::root_json(text, od)),
         layout: drawn.od.as_ref().map(|od| shapes::layout_json(text, od)),
-        space: drawn.space.map(|s| space::space_json(s, round)),
+        stems3: drawn.stems3.map(|s| stems3::stems3_json(s, round)),
     };
     Ok((answer, image))
 }

@@ -14,7 +14,7 @@ mod answer;
 mod body;
 mod calls;
 pub mod shapes;
-pub mod space;
+pub mod stems3;
 
 pub use answer::{
     BIG_TREE_STEMS, DiagnosticJson, Failed, Growth, RenderAnswer, WORD_CHARS, WORD_DEPTHS, Word,

@@ -45,7 +45,7 @@
 //! seeds (one per root of a forest) and decides the growth points, choosing
 //! among a rule's alternatives by [`crate::choice`], once for the plane and
 //! for space: `plane.rs` says what it draws with (the `Space` trait, and
-//! the 2D turtle and region), [`space`] the 3D turtle with `D=` and the
+//! the 2D turtle and region), [`grow3`] the 3D turtle with `D=` and the
 //! volumes (`stl-language.md` section 11); `rules.rs` works out what growth
 //! needs of each rule; `tree.rs` holds what it
 //! records (the grown tree, the budget spent against the limits); [`region`] and [`occupancy`] answer
@@ -53,13 +53,13 @@
 
 mod bounded;
 pub mod explain;
+pub mod grow3;
 mod grower;
 pub mod occupancy;
 mod plane;
 pub mod region;
 mod rules;
 mod seed;
-pub mod space;
 mod tree;
 
 use crate::bed::Bed;
@@ -68,13 +68,13 @@ use crate::limits::{Bound, Limits};
 use crate::model::{Description, Format, Loc, Seed, StemParams};
 use crate::progress::Progress;
 use crate::turtle::Point;
-use crate::turtle::space::Point3;
+use crate::turtle::turtle3::Point3;
 
 use explain::RuleTally;
+use grow3::Volume;
+use grow3::region::Region3;
 use grower::Grower;
 use plane::{Plane, Space};
-use space::Volume;
-use space::region::Region3;
 
 /// What a seed over `--max-stems` by itself is, in the error message.
 const SEED_STEMS: &str = "stems drawn by the seed alone";

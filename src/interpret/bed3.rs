@@ -21,7 +21,7 @@ use crate::limits::Limits;
 use crate::num::Linear;
 use crate::progress::Progress;
 use crate::turtle::UP;
-use crate::turtle::space::{Op3, Point3, Segment3, Turtle3, divergence};
+use crate::turtle::turtle3::{Op3, Point3, Segment3, Turtle3, divergence};
 
 /// An operation of a 3D BED's stream: a 3D turtle operation, or a rule
 /// application starting or ending.
@@ -82,7 +82,7 @@ pub fn draw3(
         match e {
             Event::Tree(i, root) => {
                 turtle.state.pos = Point3::new(root.x, root.y, zs[i]);
-                turtle.state.frame = crate::turtle::space::Frame::Planar { k: 0, flip: false };
+                turtle.state.frame = crate::turtle::turtle3::Frame::Planar { k: 0, flip: false };
                 order.set(0);
                 orders.clear();
             }
@@ -151,8 +151,8 @@ pub fn bounds3(
     bed: &Bed,
     limits: &Limits,
     progress: &mut dyn Progress,
-) -> Result<crate::interpret::lsys::space::Bounds3, Diagnostics> {
-    let mut acc = crate::turtle::space::StemBox::default();
+) -> Result<crate::interpret::lsys::lsys3::Bounds3, Diagnostics> {
+    let mut acc = crate::turtle::turtle3::StemBox::default();
     let end = draw3(bed, Derivation::Dfs, limits, &mut |s| acc.add(s), progress)?;
     Ok(acc.finish(end))
 }

@@ -136,9 +136,9 @@ pub fn render(
 ) -> Result<Rendered, Diagnostics> {
     // A 3D .lsys is drawn as a view ([`Request`]'s `view`; here the
     // default one).
-    if super::tree3::is_3d(scene) {
+    if super::view3::is_3d(scene) {
         let view = crate::render::view::View::DEFAULT;
-        return super::tree3::render_view(scene, view, look, opts, out, progress);
+        return super::view3::render_view(scene, view, look, opts, out, progress);
     }
     render_tree(scene, look, opts, true, out, progress)
 }

@@ -22,17 +22,18 @@
 //! failure is a [`Diagnostics`] value.
 
 mod draw;
+mod lsys3;
 mod request;
-mod space;
 mod stats3;
 mod summary;
 mod tree3;
+mod view3;
 
 pub(crate) use draw::{Given, ignored_flags, layout_view, render_tree};
 pub use draw::{Look, Rendered, ShowLayout, TREE_BROWN, image_format, render, style};
 pub use request::{Drawn, Request};
-pub use space::{MAX_EDITOR_STEMS, Meshed, Space};
 pub use summary::{Checked, check, stats};
+pub use view3::{MAX_EDITOR_STEMS, Meshed, Stems3};
 
 // What front ends name, reached through the pipeline: the enums their
 // options take, the limits, colours, progress sinks and what comes back.
@@ -394,7 +395,7 @@ impl Scene {
             ),
             // A 3D tree drawn flat is its front view: its stems' x and y.
             What::Tree { bed, .. } if bed.description().is_3d() => {
-                let mut flat = |s: crate::turtle::space::Segment3| {
+                let mut flat = |s: crate::turtle::turtle3::Segment3| {
                     turtle.segment(crate::turtle::Segment {
                         from: crate::turtle::Point::new(s.from.x, s.from.y),
                         to: crate::turtle::Point::new(s.to.x, s.to.y),

@@ -139,7 +139,7 @@ pub struct Drawn {
     /// With [`Request::trace`] and [`Request::tree_up_to`], a 3D input's
     /// stems for an editor that draws them itself: then no picture is
     /// drawn.
-    pub space: Option<super::Space>,
+    pub stems3: Option<super::Stems3>,
 }
 
 impl Request {
@@ -249,22 +249,22 @@ impl Request {
         let grown = scene.grown_stems();
         let tree_left_out = trace.is_some()
             && matches!((self.tree_up_to, grown), (Some(most), Some(n)) if n > most);
-        let space = match self.tree_up_to {
+        let stems3 = match self.tree_up_to {
             Some(_) if self.trace => {
                 let placed = trace.as_ref().map_or(&[][..], |t| &t.placed[..]);
-                super::space::editor_space(&scene, &self.look, placed, progress)?
+                super::view3::editor_stems3(&scene, &self.look, placed, progress)?
             }
             _ => None,
         };
-        let (space, rendered) = match space {
-            Some((space, rendered)) => (Some(space), Some(rendered)),
+        let (stems3, rendered) = match stems3 {
+            Some((stems3, rendered)) => (Some(stems3), Some(rendered)),
             None => (None, None),
         };
         let rendered = if let Some(r) = rendered {
             r
-        } else if super::tree3::is_3d(&scene) {
+        } else if super::view3::is_3d(&scene) {
             let view = self.view.unwrap_or(View::DEFAULT);
-            super::tree3::render_view(&scene, view, &self.look, &self.image, out, progress)?
+            super::view3::render_view(&scene, view, &self.look, &self.image, out, progress)?
         } else {
             super::render_tree(
                 &scene,
@@ -289,7 +289,7 @@ impl Request {
             warnings,
             stroke,
             tree_left_out,
-            space,
+            stems3,
         })
     }
 
@@ -305,7 +305,7 @@ impl Request {
         let (loaded, mut warnings) = self.open()?;
         let req = self.scene_request(&loaded)?;
         let scene = super::scene(loaded, &req, progress)?;
-        let mut meshed = super::space::mesh(&scene, &self.look, format, &self.mesh, out, progress)?;
+        let mut meshed = super::view3::mesh(&scene, &self.look, format, &self.mesh, out, progress)?;
         warnings.extend(scene.warnings);
         warnings.append(&mut meshed.warnings);
         meshed.warnings = warnings;

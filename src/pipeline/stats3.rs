@@ -6,13 +6,13 @@ use std::fmt::Write as _;
 
 use crate::diag::Diagnostics;
 use crate::interpret::lsys::ReachMemo;
-use crate::interpret::lsys::space::bounds3;
+use crate::interpret::lsys::lsys3::bounds3;
 use crate::interpret::stats::{STATS_TRAVERSAL_SYMBOLS, Stats, stats_with_budget};
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 use crate::num::{Trim, fixed};
 use crate::progress::NoProgress;
-use crate::turtle::space::Point3;
+use crate::turtle::turtle3::Point3;
 
 /// The 3D box and end of a stats report, or the bound that stands for
 /// them past the traversal budget.

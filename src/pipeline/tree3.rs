@@ -2,7 +2,7 @@
 //! coordinates (read, or grown from a 3D OD) is drawn by
 //! [`crate::interpret::bed3`] with the 3D turtle; its pictures are views
 //! (`--view AZ,EL`), its mesh has its stems in space, its `stats` a 3D box
-//! and end. The 3D `.lsys` has the same in `space.rs`; this file only adds
+//! and end. The 3D `.lsys` has the same in `lsys3.rs`; this file only adds
 //! trees, so the two read side by side.
 
 use std::fmt::Write as _;
@@ -19,31 +19,23 @@ use crate::progress::{NoProgress, Phase, Progress};
 use crate::render::view::{Gathered, MAX_VIEW_SEGMENTS, View, view_too_large};
 use crate::render::{Frame, RenderOptions, render_framed};
 use crate::turtle::Turtle;
-use crate::turtle::space::Segment3;
+use crate::turtle::turtle3::Segment3;
 
 /// The 3D tree of a scene, if it is one.
-pub(crate) fn space_bed(scene: &Scene) -> Option<&Bed> {
+pub(crate) fn bed3(scene: &Scene) -> Option<&Bed> {
     scene.bed().filter(|b| b.description().is_3d())
 }
 
-/// Whether a scene is drawn in 3D: a 3D `.lsys` or a 3D tree.
-pub(crate) fn is_3d(scene: &Scene) -> bool {
-    space_bed(scene).is_some() || super::space::space_lsys(scene).is_some()
-}
-
-/// Draws a 3D scene seen from `view`: a 3D tree here, a 3D `.lsys` by
-/// [`super::space::render_view`].
+/// Draws a 3D tree, `bed`, the scene's, seen from `view`.
 pub(crate) fn render_view(
     scene: &Scene,
+    bed: &Bed,
     view: View,
     look: &super::Look,
     opts: &RenderOptions,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
-    let Some(bed) = space_bed(scene) else {
-        return super::space::render_view(scene, view, look, opts, out, progress);
-    };
     let stems = bed.size().stems;
     if stems > MAX_VIEW_SEGMENTS {
         return Err(view_too_large(stems.to_string()));
@@ -116,7 +108,7 @@ pub(crate) fn draw_tree3(
     sink: &mut dyn FnMut(Segment3),
     progress: &mut dyn Progress,
 ) -> Result<bool, Diagnostics> {
-    let Some(bed) = space_bed(scene) else {
+    let Some(bed) = bed3(scene) else {
         return Ok(false);
     };
     draw3(bed, scene.derivation, &scene.limits, sink, progress)?;

@@ -14,7 +14,7 @@
 //! exactly (cos and sin of multiples of 90 degrees are exact).
 
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
-use crate::turtle::space::{Point3, Segment3, cos_sin};
+use crate::turtle::turtle3::{Point3, Segment3, cos_sin};
 use crate::turtle::{Point, Segment, Turtle};
 
 /// A view direction, degrees.

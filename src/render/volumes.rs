@@ -21,7 +21,7 @@ use geo::{Area, ConvexHull, Coord, LineString, MultiPolygon, Polygon};
 
 use super::view::Projection;
 use crate::model::{Layout, Solid};
-use crate::turtle::space::Point3;
+use crate::turtle::turtle3::Point3;
 use crate::turtle::{Fill, Point};
 
 /// Projected pieces with less area than this (square canvas units) are
@@ -239,7 +239,7 @@ fn on_circle(r: f64, y: f64, axis: [f64; 2], k: usize, per_turn: usize) -> Point
 
 /// `cos` and `sin` of `k` of `per_turn` steps of a whole turn (`libm`).
 fn turn(k: usize, per_turn: usize) -> (f64, f64) {
-    crate::turtle::space::cos_sin(360.0 * k as f64 / per_turn as f64)
+    crate::turtle::turtle3::cos_sin(360.0 * k as f64 / per_turn as f64)
 }
 
 #[cfg(test)]

@@ -61,7 +61,7 @@ pub fn body(mut answer: RenderAnswer) -> Result<Vec<u8>, Box<RenderAnswer>> {
     let Some(numbers) = integers(&answer.growth.stems, 6) else {
         return Err(Box::new(answer));
     };
-    let space = answer.space.as_ref().map(|s| integers(&s.stems, 8));
+    let space = answer.stems3.as_ref().map(|s| integers(&s.stems, 8));
     let space = match space {
         Some(None) => return Err(Box::new(answer)),
         Some(Some(n)) => Some(n),
@@ -75,14 +75,14 @@ pub fn body(mut answer: RenderAnswer) -> Result<Vec<u8>, Box<RenderAnswer>> {
         space: Option<usize>,
     }
     let stems = std::mem::take(&mut answer.growth.stems);
-    let space_stems = answer.space.as_mut().map(|s| std::mem::take(&mut s.stems));
+    let stems3_stems = answer.stems3.as_mut().map(|s| std::mem::take(&mut s.stems));
     let Ok(mut head) = serde_json::to_vec(&Head {
         answer: &answer,
         stems: stems.len(),
         space: space.as_ref().map(Vec::len),
     }) else {
         answer.growth.stems = stems;
-        if let (Some(s), Some(kept)) = (answer.space.as_mut(), space_stems) {
+        if let (Some(s), Some(kept)) = (answer.stems3.as_mut(), stems3_stems) {
             s.stems = kept;
         }
         return Err(Box::new(answer));

@@ -18,7 +18,7 @@
 //! the same operations computes bit-identical positions.
 
 mod interp;
-pub mod space;
+pub mod turtle3;
 
 pub use interp::{Interp, Op, State};
 

@@ -703,7 +703,7 @@ fn every_example_parses_and_draws_the_same_both_ways() {
         let lim = Limits::default();
         if s.is_3d() {
             // 3D (docs/3d.md): the same segments both ways, in 3D.
-            use stlc::interpret::lsys::space::draw3;
+            use stlc::interpret::lsys::lsys3::draw3;
             let mut a = Vec::new();
             let mut b = Vec::new();
             draw3(

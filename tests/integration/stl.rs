@@ -86,7 +86,7 @@ fn segments(d: &Description, strategy: Derivation) -> Result<Vec<Segment>, Diagn
 fn segments3(
     d: &Description,
     strategy: Derivation,
-) -> Result<Vec<stlc::turtle::space::Segment3>, Diagnostics> {
+) -> Result<Vec<stlc::turtle::turtle3::Segment3>, Diagnostics> {
     let bed = Bed::new(d.clone(), &Limits::default())?;
     let mut out = Vec::new();
     stlc::interpret::bed3::draw3(

@@ -50,7 +50,7 @@
 //!   level-of-detail walk, which follows the seed's choices;
 //! - `reach.rs`, `reach_lod.rs`: the memoized reach of a 3D system (end,
 //!   frame, a ball about the start, per `(symbol, depth)`) and the 3D
-//!   views' level of detail on it; `space.rs`, `space_program.rs`: 3D
+//!   views' level of detail on it; `space.rs`, `program3.rs`: 3D
 //!   derivation (the compiled program over 3D units);
 //! - `bfs.rs`: Saupe's level-by-level rewriting.
 
@@ -59,11 +59,11 @@ mod bfs;
 mod chance;
 mod exec;
 mod geometry;
+pub mod lsys3;
 mod program;
+mod program3;
 mod reach;
 mod reach_lod;
-pub mod space;
-mod space_program;
 mod stochastic;
 mod units;
 

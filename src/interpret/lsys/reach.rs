@@ -31,7 +31,7 @@
 use super::Alphabet;
 use super::geometry::Refusal;
 use crate::model::lsys::LSystem;
-use crate::turtle::space::{Op3, cos_sin};
+use crate::turtle::turtle3::{Op3, cos_sin};
 
 /// A vector (or point) in 3D.
 pub(crate) type V = [f64; 3];

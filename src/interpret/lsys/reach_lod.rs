@@ -22,7 +22,7 @@ use std::cell::RefCell;
 use super::PROGRESS_STEP;
 use super::reach::{Reach, ReachMemo, V, apply};
 use crate::progress::Progress;
-use crate::turtle::space::{Op3, Point3, Segment3, Turtle3};
+use crate::turtle::turtle3::{Op3, Point3, Segment3, Turtle3};
 
 /// What a walk at a level of detail hands out, in drawing order.
 #[derive(Debug, Clone, Copy, PartialEq)]

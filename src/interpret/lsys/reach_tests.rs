@@ -7,11 +7,11 @@
 
 use super::*;
 use crate::interpret::Derivation;
+use crate::interpret::lsys::lsys3::draw3;
 use crate::interpret::lsys::reach_lod::Mark3;
-use crate::interpret::lsys::space::draw3;
 use crate::limits::Limits;
 use crate::progress::{NoProgress, Progress};
-use crate::turtle::space::{Point3, Segment3, Turtle3};
+use crate::turtle::turtle3::{Point3, Segment3, Turtle3};
 
 fn parse(src: &str) -> LSystem {
     crate::syntax::lsys::parse(src, &Limits::DEFAULT).unwrap()

@@ -21,7 +21,7 @@ pub use obj::write_obj;
 
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
-use crate::turtle::space::{Point3, cos_sin};
+use crate::turtle::turtle3::{Point3, cos_sin};
 
 /// A mesh file format (from the output's extension, or `--mesh`). The
 /// variants' doc comments are the help of `--mesh`.

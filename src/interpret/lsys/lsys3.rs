@@ -6,7 +6,7 @@
 //! for a stochastic one `Stochastic::dfs_each` or `Stochastic::bfs_each`
 //! (keyed by place), so the choices are the 2D drawing's for the
 //! same seed. A deterministic dfs runs the compiled program of 2D over 3D
-//! units (space_program.rs: inert symbols dropped, runs of `F` counted),
+//! units (program3.rs: inert symbols dropped, runs of `F` counted),
 //! or, when the program would be too large, the plain stream; every
 //! operation goes through [`Turtle3`] either way, so both draw the same
 //! stems. (Views at a level of detail walk the reach memo instead:
@@ -15,7 +15,7 @@
 //! system's budget a tenth of it), bfs's word over `--max-word`.
 
 use super::program::Program;
-use super::space_program::Fast3;
+use super::program3::Fast3;
 use super::stochastic::Stochastic;
 use super::{Alphabet, PROGRESS_STEP};
 use crate::diag::Diagnostics;
@@ -23,7 +23,7 @@ use crate::interpret::Derivation;
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 use crate::progress::Progress;
-use crate::turtle::space::{Op3, Point3, Segment3, Turtle3};
+use crate::turtle::turtle3::{Op3, Point3, Segment3, Turtle3};
 
 /// Derives `sys` to `depth` with `strategy` and hands every drawn stem to
 /// `sink`, in drawing order, from the origin with step `sys.length`;
@@ -57,7 +57,7 @@ pub fn draw3(
         Derivation::Dfs => match Program::<Fast3>::compile(&alpha, depth) {
             Some(program) => program.run(
                 &alpha.axiom,
-                |units| super::space_program::run(&mut turtle, units),
+                |units| super::program3::run(&mut turtle, units),
                 progress,
             ),
             None => alpha.plain_each(depth, |i, s| {
@@ -96,7 +96,7 @@ pub fn bounds3(
     limits: &Limits,
     progress: &mut dyn Progress,
 ) -> Result<Bounds3, Diagnostics> {
-    let mut acc = crate::turtle::space::StemBox::default();
+    let mut acc = crate::turtle::turtle3::StemBox::default();
     let end = draw3(
         sys,
         depth,

@@ -6,7 +6,7 @@
 //! the plain stream's (tested against it).
 
 use super::units::Unit;
-use crate::turtle::space::{Op3, Segment3, Turtle3};
+use crate::turtle::turtle3::{Op3, Segment3, Turtle3};
 
 /// One unit of a compiled 3D program.
 #[derive(Debug, Clone, Copy, PartialEq)]

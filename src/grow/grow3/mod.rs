@@ -1,4 +1,4 @@
-//! Growth in space: the 3D turtle ([`crate::turtle::space`]) with stem
+//! Growth in space: the 3D turtle ([`crate::turtle::turtle3`]) with stem
 //! orders and `D=` divergence, and the region of a 3D layout's volumes
 //! ([`region`]), for the one grower (`grower.rs`, over the `Space` of
 //! `plane.rs`).
@@ -16,7 +16,7 @@ pub mod region;
 use super::occupancy::Seg3;
 use super::plane::{Class, Space};
 use crate::model::{Description, StemParams};
-use crate::turtle::space::{Frame, Op3, Point3, Segment3, State3, Turtle3, divergence};
+use crate::turtle::turtle3::{Frame, Op3, Point3, Segment3, State3, Turtle3, divergence};
 use region::Region3;
 
 /// The 3D turtle with stem orders, and the region of the volumes.

@@ -7,11 +7,11 @@ use serde::Serialize;
 
 use super::shapes::{self, Geometry};
 use crate::model::Solid;
-use crate::pipeline::{Space, View};
+use crate::pipeline::{Stems3, View};
 
 /// The 3D part of a render answer.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SpaceJson {
+pub struct Stems3Json {
     /// Eight numbers a stem: from x, y, z, to x, y, z, width, decision
     /// (0 for an `.lsys`), three decimals; the compact body carries them as
     /// integers (compact.rs).
@@ -84,8 +84,8 @@ fn solid(s: &Solid) -> SolidJson {
 }
 
 /// The answer's 3D part for `space`.
-pub fn space_json(space: Space, round: fn(f64) -> f64) -> SpaceJson {
-    let mut stems = space.stems;
+pub fn stems3_json(stems3: Stems3, round: fn(f64) -> f64) -> Stems3Json {
+    let mut stems = stems3.stems;
     let mut decisions = 0;
     for (i, x) in stems.iter_mut().enumerate() {
         if i % 8 == 7 {
@@ -94,7 +94,7 @@ pub fn space_json(space: Space, round: fn(f64) -> f64) -> SpaceJson {
             *x = round(*x);
         }
     }
-    let volumes = space
+    let volumes = stems3
         .volumes
         .iter()
         .map(|s| VolumeJson {
@@ -102,14 +102,14 @@ pub fn space_json(space: Space, round: fn(f64) -> f64) -> SpaceJson {
             color: s.color.to_string(),
         })
         .collect();
-    SpaceJson {
+    Stems3Json {
         stems,
         decisions,
-        width_in_pixels: space.width_in_pixels,
-        background: space.background.map(|c| c.to_string()),
+        width_in_pixels: stems3.width_in_pixels,
+        background: stems3.background.map(|c| c.to_string()),
         view: [View::DEFAULT.az, View::DEFAULT.el],
         volumes,
-        axis: space.axis,
+        axis: stems3.axis,
     }
 }
 
