@@ -8,8 +8,8 @@
 //! form a successor graph: each branch of rule `X` leads to the rule named
 //! at its end, or to `X` itself.
 
+use super::options::{GrowOptions, span_of};
 use super::seed::SeedGp;
-use super::{GrowOptions, span_of};
 use crate::diag::{Diagnostic, Diagnostics, GrowError};
 use crate::limits::Bound;
 use crate::model::walk::{self, Step};

@@ -8,7 +8,7 @@
 //! stem, the distance found) are worked out only for a rule's first.
 
 use super::occupancy::{Cap, Dim, clearance_distance};
-use super::span_of;
+use super::options::span_of;
 use crate::diag::{Diagnostic, GrowError, Kin, Misfit, MissReason};
 use crate::limits::Limits;
 use crate::model::{Description, StemParams};

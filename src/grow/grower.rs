@@ -13,14 +13,15 @@ use std::collections::VecDeque;
 
 use super::explain::{LastMiss, RuleTally, kin};
 use super::occupancy::{Backend, Cap, Dim, LocalIndex, Occupancy};
+use super::options::{GrowOptions, SEED_STEMS};
 use super::plane::{Class, Space};
 use super::rules::RuleInfo;
 use super::seed::{Flat, Instr};
 use super::tree::{Budget, NO_NODE, Parent, Tree};
-use super::{GrowOptions, GrowthOrder, SEED_STEMS};
 use crate::choice::Key;
 use crate::diag::{Diagnostics, MissReason};
 use crate::limits::{Bound, Limits};
+use crate::model::GrowthOrder;
 use crate::model::walk::{self, FixedWord, Levels, Step};
 use crate::model::{Description, Fixed, RuleId};
 use crate::progress::Progress;

@@ -6,7 +6,7 @@
 //! ([`crate::model::seed_walk`]), which keeps its own explicit stack: terms
 //! written out in a seed may nest as deep as the input allows.
 
-use super::span_of;
+use super::options::span_of;
 use super::tree::{NO_NODE, Tree};
 use crate::diag::{Diagnostic, Diagnostics, RuleError};
 use crate::model::seed_walk::{Points, SeedStep, SeedWalk};

@@ -16,6 +16,7 @@ mod geometry;
 mod golden;
 mod grow;
 mod grow3d;
+mod import_graph;
 mod lod;
 mod lsys;
 mod lsys3d;
