@@ -10,12 +10,7 @@ use assert_cmd::Command;
 use predicates::prelude::*;
 
 use crate::support::assert_golden;
-
-fn stlc() -> Command {
-    let mut c = Command::cargo_bin("stlc").expect("binary");
-    c.env("NO_COLOR", "1");
-    c
-}
+use crate::support::stlc;
 
 /// `F -> F+F` at 90 degrees: depth 2 is `F+F+F+F`, a unit square traced
 /// anticlockwise on screen from the origin: up, left, down, right.

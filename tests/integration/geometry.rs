@@ -13,6 +13,8 @@ use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{BBox, Bounds, Recorder, Segment, Turtle};
 
+use crate::support::stlc;
+
 fn sys(src: &str) -> LSystem {
     stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -415,12 +417,6 @@ fn a_straight_run_is_drawn_as_its_chords() {
 }
 
 // ------------------------------------------------------------ the CLI --
-
-fn stlc() -> assert_cmd::Command {
-    let mut c = assert_cmd::Command::cargo_bin("stlc").expect("binary");
-    c.env("NO_COLOR", "1");
-    c
-}
 
 /// Depth 57 (10^40 symbols) renders to PNG and to an SVG of bounded size;
 /// with --exact it is refused by the traversal budget, naming the flag.

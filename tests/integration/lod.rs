@@ -11,6 +11,8 @@ use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{Recorder, Segment, Turtle};
 
+use crate::support::stlc;
+
 fn sys(src: &str) -> LSystem {
     stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -127,12 +129,6 @@ fn alternatives_that_turn_differently_are_refused() {
 }
 
 // ------------------------------------------------------------ pictures --
-
-fn stlc() -> assert_cmd::Command {
-    let mut c = assert_cmd::Command::cargo_bin("stlc").expect("binary");
-    c.env("NO_COLOR", "1");
-    c
-}
 
 fn png(file: &str, depth: u32, exact: bool) -> tiny_skia::Pixmap {
     png_sized(file, depth, exact, Some("256x256"))

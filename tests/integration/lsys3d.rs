@@ -3,16 +3,10 @@
 
 use std::collections::BTreeMap;
 
-use assert_cmd::Command;
 use stlc::pipeline::{ImageFormat, MeshFormat, MeshOptions, RenderOptions, Request, View};
 
 use crate::support::manifest_path;
-
-fn stlc() -> Command {
-    let mut c = Command::cargo_bin("stlc").expect("binary");
-    c.env("NO_COLOR", "1");
-    c
-}
+use crate::support::stlc;
 
 fn lsys_request(text: &str) -> Request {
     Request {

@@ -5,13 +5,7 @@
 use std::fs;
 use std::path::Path;
 
-use assert_cmd::Command;
-
-fn stlc() -> Command {
-    let mut c = Command::cargo_bin("stlc").expect("binary");
-    c.env("NO_COLOR", "1");
-    c
-}
+use crate::support::stlc;
 
 fn root() -> &'static str {
     env!("CARGO_MANIFEST_DIR")

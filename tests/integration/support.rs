@@ -362,6 +362,14 @@ fn an_image_off_by_one_matches_and_off_by_two_does_not() {
     assert!(png_difference(&reference, &Pixmap::new(2, 3).unwrap()).is_some());
 }
 
+/// The `stlc` binary as a user runs it, without colours (`NO_COLOR`), so
+/// its messages compare as plain text.
+pub fn stlc() -> assert_cmd::Command {
+    let mut c = assert_cmd::Command::cargo_bin("stlc").expect("binary");
+    c.env("NO_COLOR", "1");
+    c
+}
+
 /// What the `stlc` binary writes to standard output for `args`; its
 /// standard error in the panic if it fails.
 pub fn stlc_stdout(args: &[&str]) -> Vec<u8> {

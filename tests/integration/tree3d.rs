@@ -2,16 +2,10 @@
 //! BED whose root has three coordinates drawn with the 3D turtle, in
 //! `stats`, views and meshes. Expected values are worked by hand.
 
-use assert_cmd::Command;
 use stlc::pipeline::{ImageFormat, MeshFormat, RenderOptions, Request, View};
 
 use crate::support::manifest_path;
-
-fn stlc() -> Command {
-    let mut c = Command::cargo_bin("stlc").expect("binary");
-    c.env("NO_COLOR", "1");
-    c
-}
+use crate::support::stlc;
 
 fn bed_request(text: &str) -> Request {
     Request {
