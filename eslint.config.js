@@ -6,7 +6,7 @@ import globals from 'globals';
 
 export default [
   {
-    files: ['src/serve/page/**/*.js', 'web/page/**/*.js'],
+    files: ['src/serve/page/**/*.js', 'web/page/**/*.js', 'tests/page/**/*.js'],
     ...js.configs.recommended,
     languageOptions: {
       ecmaVersion: 2022,
@@ -17,6 +17,11 @@ export default [
       ...js.configs.recommended.rules,
       'no-undef': 'error',
     },
+  },
+  {
+    // The page's pure modules tested in Node (`node --test tests/page`).
+    files: ['tests/page/**/*.js'],
+    languageOptions: { globals: { ...globals.node } },
   },
   {
     // The WebAssembly engine's worker.
