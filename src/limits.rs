@@ -64,7 +64,7 @@ impl Limits {
         }
         Err(Bound::Depth
             .exceeded(depth, self.max_depth.into())
-            .with_help(format!("use a smaller depth, or {}", Bound::Depth.raise()))
+            .with_help(crate::diag::Help::from("use a smaller depth, or ") + Bound::Depth)
             .into())
     }
 

@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use super::{shapes, stems3};
+use super::{Page, shapes, stems3};
 use crate::diag::{Diagnostic, Diagnostics, line_column};
 
 /// The answer of `POST /api/render` when the input could be drawn.
@@ -77,11 +77,11 @@ pub struct Failed {
 
 impl Failed {
     /// The answer for `diags` about `text`.
-    pub fn new(text: &str, diags: &Diagnostics) -> Self {
+    pub fn new(text: &str, diags: &Diagnostics, page: Page) -> Self {
         let list: Vec<Diagnostic> = diags.iter().cloned().collect();
         Failed {
             ok: false,
-            diagnostics: diagnostics_json(text, &list),
+            diagnostics: diagnostics_json(text, &list, page),
         }
     }
 
@@ -144,8 +144,8 @@ pub struct Word {
     pub length: String,
 }
 
-/// Diagnostics in the answer's terms.
-pub fn diagnostics_json(text: &str, diags: &[Diagnostic]) -> Vec<DiagnosticJson> {
+/// Diagnostics in the answer's terms, their hints spelt for `page`.
+pub fn diagnostics_json(text: &str, diags: &[Diagnostic], page: Page) -> Vec<DiagnosticJson> {
     diags
         .iter()
         .map(|d| {
@@ -165,7 +165,7 @@ pub fn diagnostics_json(text: &str, diags: &[Diagnostic]) -> Vec<DiagnosticJson>
                 end_line: end.map(|e| e.0),
                 end_column: end.map(|e| e.1),
                 label: d.label.clone(),
-                help: d.help.clone(),
+                help: d.help.as_ref().map(|h| h.spell(&page)),
             }
         })
         .collect()

@@ -23,6 +23,8 @@ pub struct Settings {
     pub max_svg_segments: u64,
     /// `--time-budget`: how long one request's work may run.
     pub time_budget: std::time::Duration,
+    /// The page that reads the answers: how their hints name options.
+    pub page: super::Page,
 }
 
 /// A request body: `{"source", "kind"?, "growth"?, "depth"?,

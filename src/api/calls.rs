@@ -43,7 +43,7 @@ pub fn words(
 ) -> Result<WordsAnswer, Failed> {
     let text = &body.source;
     let base = body.request(s, ImageFormat::Svg);
-    let (loaded, _) = base.open().map_err(|d| Failed::new(text, &d))?;
+    let (loaded, _) = base.open().map_err(|d| Failed::new(text, &d, s.page))?;
     let Some(last) = (match &loaded {
         crate::pipeline::Loaded::Lsys(sys) => body.depth.or(sys.generations),
         _ => {
@@ -64,7 +64,7 @@ pub fn words(
             depth: Some(depth),
             ..base.clone()
         };
-        let (stats, _) = req.stats(true).map_err(|d| Failed::new(text, &d))?;
+        let (stats, _) = req.stats(true).map_err(|d| Failed::new(text, &d, s.page))?;
         let length = serde_json::from_str::<serde_json::Value>(&stats)
             .ok()
             .and_then(|v| v["length"].as_str().map(str::to_string))
@@ -103,7 +103,7 @@ pub fn render(
     let mut image = Vec::new();
     let drawn = req
         .render(&mut image, progress)
-        .map_err(|d| Failed::new(text, &d))?;
+        .map_err(|d| Failed::new(text, &d, s.page))?;
     let (bed, placed) = match drawn.trace {
         Some(t) => (Some(t.text), t.placed),
         None => (None, Vec::new()),
@@ -144,7 +144,7 @@ pub fn render(
             (None, None) => drawn.segments.to_string(),
         },
         stems_exact: drawn.grown.is_some() || drawn.count.is_some(),
-        warnings: diagnostics_json(text, &drawn.warnings),
+        warnings: diagnostics_json(text, &drawn.warnings, s.page),
         growth: Growth { stems, decisions },
         view: drawn.view.map(|b| [b.min_x, b.min_y, b.max_x, b.max_y]),
         root: drawn.od.as_ref().map(|od| shapes::root_json(text, od)),
@@ -219,7 +219,7 @@ pub fn compile(body: &Body, s: &Settings, progress: &mut dyn Progress) -> Result
     body.request(s, ImageFormat::Svg)
         .compile(progress)
         .map(|(compiled, _)| compiled.text)
-        .map_err(|d| Failed::new(&body.source, &d))
+        .map_err(|d| Failed::new(&body.source, &d, s.page))
 }
 
 /// The answer of `stlc check`: the summary's lines of text, as the CLI
@@ -239,10 +239,10 @@ pub fn check(body: &Body, s: &Settings) -> Result<Checked, Failed> {
     match body.request(s, ImageFormat::Svg).check() {
         Ok(c) => Ok(Checked {
             ok: true,
-            warnings: diagnostics_json(&body.source, &c.warnings),
+            warnings: diagnostics_json(&body.source, &c.warnings, s.page),
             summary: c.summary,
         }),
-        Err(d) => Err(Failed::new(&body.source, &d)),
+        Err(d) => Err(Failed::new(&body.source, &d, s.page)),
     }
 }
 
@@ -265,6 +265,7 @@ mod tests {
             max_stems: None,
             max_svg_segments: 1_000_000,
             time_budget: std::time::Duration::from_secs(60),
+            page: crate::api::Page::Served,
         };
         let (answer, _) = render(
             &body,
@@ -288,6 +289,55 @@ mod tests {
                 "(clGreen)< RoundRect (0,0,180,192,7,7)>",
                 "(clWhite) Rectangle (55,30), 40, 15"
             ]
+        );
+    }
+
+    /// The page reads a hint with its own words: the stem limit that cut a
+    /// tree short is named as the server's flag to restart with, never as
+    /// a flag the page would take; the command line keeps its flags.
+    #[test]
+    fn hints_on_the_page_name_no_flag_the_page_takes() {
+        let tree = include_str!("../../examples/2dtree.od");
+        let body = parse(
+            format!(
+                r#"{{"source": {}, "max_stems": 3}}"#,
+                serde_json::to_string(tree).unwrap()
+            )
+            .as_bytes(),
+        )
+        .unwrap();
+        let s = Settings {
+            limits: Limits::default(),
+            max_stems: None,
+            max_svg_segments: 1_000_000,
+            time_budget: std::time::Duration::from_secs(60),
+            page: crate::api::Page::Served,
+        };
+        let (answer, _) = render(
+            &body,
+            &s,
+            ImageFormat::Svg,
+            None,
+            &mut crate::pipeline::NoProgress,
+        )
+        .unwrap();
+        let w = serde_json::to_value(&answer.warnings[0]).unwrap();
+        assert_eq!(
+            w["message"],
+            "growth stopped at 3 stems: the next rule application would pass the stem limit of 3"
+        );
+        assert_eq!(
+            w["help"],
+            "the BED is valid but its tree is cut short; raise the limit with \
+             `stlc serve --max-stems N` (restart the server with it)"
+        );
+        let cli = body
+            .request(&s, ImageFormat::Svg)
+            .render(&mut Vec::new(), &mut crate::pipeline::NoProgress)
+            .unwrap();
+        assert_eq!(
+            cli.warnings[0].help_text().unwrap(),
+            "the BED is valid but its tree is cut short; raise the limit with --max-stems N"
         );
     }
 

@@ -14,6 +14,7 @@ mod answer;
 mod body;
 mod calls;
 pub mod shapes;
+mod spelling;
 pub mod stems3;
 
 pub use answer::{
@@ -22,3 +23,4 @@ pub use answer::{
 };
 pub use body::{BadRequest, Body, Kind, SaveBody, Seed, Settings, parse, parse_save};
 pub use calls::{Checked, Format, check, compile, export, render, words};
+pub use spelling::Page;

@@ -210,7 +210,7 @@ pub fn validate(desc: &Description, limits: &Limits) -> Result<Size, Diagnostics
                 total.symbols,
                 limits.max_symbols,
             )
-            .with_help(format!("{}, or grow fewer trees", Bound::Symbols.raise()))
+            .with_help(Bound::Symbols.raise() + ", or grow fewer trees")
             .into());
     }
     Ok(total)
@@ -300,7 +300,7 @@ fn validate_seed(desc: &Description, seed: &Seed, limits: &Limits) -> Result<Siz
                     limits.max_symbols,
                 )
                 .with_span(item_over(desc, seed, limits.max_symbols).unwrap_or(seed.loc.0.clone()))
-                .with_help(format!("{}, or lower the counts", Bound::Symbols.raise())),
+                .with_help(Bound::Symbols.raise() + ", or lower the counts"),
         );
     }
     diags.into_result(size)

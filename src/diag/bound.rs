@@ -3,7 +3,7 @@
 //! error in stlc is built one way. The values in force are
 //! [`crate::limits::Limits`]'s (which imports this, not the other way).
 
-use super::{Diagnostic, ErrorKind};
+use super::{Diagnostic, ErrorKind, Help};
 
 /// Which limit: one variant per `--max-*` flag's quantity, as named by
 /// [`ErrorKind::Limit`]. Each knows its flag, its default and
@@ -94,9 +94,10 @@ impl Bound {
         }
     }
 
-    /// The end of a hint: `raise the limit with --max-depth N`.
-    pub fn raise(self) -> String {
-        format!("raise the limit with {} {}", self.flag(), self.value_name())
+    /// The end of a hint: how to raise the limit (`raise the limit with
+    /// --max-depth N` on the command line; each front end spells it).
+    pub fn raise(self) -> Help {
+        Help::from(self)
     }
 
     /// The error for `value` over this bound's `limit` in force: `derivation

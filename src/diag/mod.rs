@@ -22,11 +22,13 @@ pub enum Severity {
 
 mod bound;
 pub mod excerpt;
+mod help;
 mod kind;
 mod number;
 
 pub use bound::Bound;
 pub use excerpt::{Excerpt, line_column};
+pub use help::{Flags, Help, Knob, Part, Spelling};
 pub use kind::{
     BedError, ErrorKind, GrowError, InputError, Kin, LayoutError, LsysError, Misfit, MissReason,
     RenderError, RuleError, StlError,
@@ -69,8 +71,9 @@ pub struct Diagnostic {
     pub label: Option<String>,
     /// Further places worth pointing at.
     pub labels: Vec<Label>,
-    /// How to fix it, in one sentence.
-    pub help: Option<String>,
+    /// How to fix it, in one sentence, the options it names as data
+    /// (each front end spells them: [`Help::spell`]).
+    pub help: Option<Help>,
 }
 
 impl Diagnostic {
@@ -116,9 +119,14 @@ impl Diagnostic {
     }
 
     /// Sets the hint that says how to fix it.
-    pub fn with_help(mut self, help: impl Into<String>) -> Self {
+    pub fn with_help(mut self, help: impl Into<Help>) -> Self {
         self.help = Some(help.into());
         self
+    }
+
+    /// The hint as the command line writes it (options as flags).
+    pub fn help_text(&self) -> Option<String> {
+        self.help.as_ref().map(Help::flags)
     }
 
     /// True for errors (as opposed to warnings).
@@ -137,7 +145,7 @@ impl fmt::Display for Diagnostic {
             write!(f, " (at bytes {}..{})", span.start, span.end)?;
         }
         if let Some(help) = &self.help {
-            write!(f, "; help: {help}")?;
+            write!(f, "; help: {}", help.flags())?;
         }
         Ok(())
     }

@@ -35,7 +35,7 @@ pub fn write(out: &mut dyn Write, d: &Diagnostic, src: Option<&SourceText<'_>>, 
         let place = src.map(|s| format!("{}: ", s.name)).unwrap_or_default();
         let _ = writeln!(out, "{word}: {place}{headline}");
         if let Some(help) = &d.help {
-            let _ = writeln!(out, "  help: {help}");
+            let _ = writeln!(out, "  help: {}", help.flags());
         }
         return;
     };
@@ -91,7 +91,7 @@ pub fn write(out: &mut dyn Write, d: &Diagnostic, src: Option<&SourceText<'_>>, 
         ));
     }
     if let Some(help) = &d.help {
-        report = report.with_help(help);
+        report = report.with_help(help.flags());
     }
     // ariadne writes in many small pieces: render into memory, write once.
     let mut buf = Vec::new();

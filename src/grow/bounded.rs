@@ -10,7 +10,7 @@
 
 use super::options::{GrowOptions, span_of};
 use super::seed::SeedGp;
-use crate::diag::{Diagnostic, Diagnostics, GrowError};
+use crate::diag::{Diagnostic, Diagnostics, GrowError, Help, Knob};
 use crate::limits::Bound;
 use crate::model::walk::{self, Step};
 use crate::model::{Description, RuleGroups, RuleId};
@@ -53,10 +53,11 @@ pub(super) fn check_bounded(
                 rule: name.clone(),
                 through: od.rule(cycle_rule).name.clone(),
             })
-            .with_help(format!(
-                "add a LAYOUT section, write `[I n {name}]` to grow n levels, give L or B a decrement (`L=10(1)`), or pass `{} N` to stop after N stems",
-                Bound::Stems.flag()
-            ));
+            .with_help(
+                Help::from(format!(
+                    "add a LAYOUT section, write `[I n {name}]` to grow n levels, give L or B a decrement (`L=10(1)`), or stop after N stems with "
+                )) + Help::knob(Knob::Limit(Bound::Stems), "N"),
+            );
             if let Some(s) = span_of(&gp.loc) {
                 d = d.with_span(s).with_label("this growth point");
             } else if let Some(s) = span_of(&od.rule(gp.rule).name_loc) {

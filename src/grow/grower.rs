@@ -281,7 +281,7 @@ where
             if self.budget.seed_stems > self.limits.max_stems {
                 return Err(Bound::Stems
                     .exceeded_by(SEED_STEMS, self.budget.seed_stems, self.limits.max_stems)
-                    .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
+                    .with_help(Bound::Stems.raise() + ", or draw a smaller seed")
                     .into());
             }
             if let Some(t) = &mut self.trace {

@@ -270,7 +270,7 @@ where
     if seed_stems > opts.limits.max_stems {
         return Err(Bound::Stems
             .exceeded_by(SEED_STEMS, seed_stems, opts.limits.max_stems)
-            .with_help(format!("{}, or draw a smaller seed", Bound::Stems.raise()))
+            .with_help(Bound::Stems.raise() + ", or draw a smaller seed")
             .into());
     }
     let flat = seed::flatten(od, &seed)?;

@@ -27,6 +27,7 @@ use geo::{BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon,
 use rstar::{AABB, RTree, RTreeObject};
 
 use super::occupancy::{Seg, seg_seg_dist2};
+use crate::diag::Help;
 use crate::diag::{Diagnostic, Diagnostics, LayoutError};
 use crate::limits::Bound;
 use crate::model::Layout;
@@ -216,13 +217,15 @@ fn vertex_count(area: &MultiPolygon<f64>) -> usize {
 }
 
 fn too_many_vertices(vertices: usize, limit: usize, span: crate::diag::Span) -> Diagnostics {
-    Bound::LayoutVertices.exceeded(vertices, limit as u64)
-    .with_span(span)
-    .with_help(format!(
-        "use fewer polygon points or fewer, smaller curved shapes, or {} (above 16000 the overlay can take minutes on some shapes)",
-        Bound::LayoutVertices.raise()
-    ))
-    .into()
+    Bound::LayoutVertices
+        .exceeded(vertices, limit as u64)
+        .with_span(span)
+        .with_help(
+            Help::from("use fewer polygon points or fewer, smaller curved shapes, or ")
+                + Bound::LayoutVertices
+                + " (above 16000 the overlay can take minutes on some shapes)",
+        )
+        .into()
 }
 
 fn polygon_of(ring: &[Point]) -> Polygon<f64> {

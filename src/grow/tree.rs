@@ -2,6 +2,7 @@
 //! what grew in its slots) and the budget it spends against the limits.
 
 use crate::diag::{Diagnostic, GrowError};
+use crate::diag::{Help, Knob};
 use crate::limits::Bound;
 use crate::model::RuleId;
 
@@ -101,10 +102,7 @@ impl Budget {
                 stems: self.stems,
                 limit: max_stems,
             })
-            .with_help(format!(
-                "the BED is valid but its tree is cut short; {}",
-                Bound::Stems.raise()
-            ))
+            .with_help(Help::from("the BED is valid but its tree is cut short; ") + Bound::Stems)
         };
         self.warnings.push(warning);
     }
@@ -116,11 +114,9 @@ impl Budget {
         }
         self.depth_capped = true;
         self.warnings.push(
-            Diagnostic::warning(GrowError::DepthCapped { limit: max_depth }).with_help(format!(
-                "raise it with {} {}",
-                Bound::Depth.flag(),
-                Bound::Depth.value_name()
-            )),
+            Diagnostic::warning(GrowError::DepthCapped { limit: max_depth }).with_help(
+                Help::from("raise it with ") + Help::knob(Knob::Limit(Bound::Depth), "N"),
+            ),
         );
     }
 }

@@ -25,6 +25,7 @@ use std::io::Write;
 
 use crate::bed::Bed;
 use crate::diag::{Diagnostics, io_error};
+use crate::diag::{Help, Knob};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
 use crate::model::seed_walk::{Points, SeedStep, SeedWalk};
@@ -380,10 +381,12 @@ fn check_word(len: u64, limits: &Limits) -> Result<(), Diagnostics> {
     if len > limits.max_word {
         return Err(Bound::Word
             .exceeded(len, limits.max_word)
-            .with_help(format!(
-                "{}, or use --strategy dfs, which needs no word",
+            .with_help(
                 Bound::Word.raise()
-            ))
+                    + ", or use "
+                    + Help::knob(Knob::Derivation, "dfs")
+                    + ", which needs no word",
+            )
             .into());
     }
     Ok(())

@@ -169,10 +169,7 @@ impl Request {
             if n > limits.max_stems {
                 return Err(Bound::Stems
                     .exceeded_by("max stems asked for", n, limits.max_stems)
-                    .with_help(format!(
-                        "ask for fewer, or raise the limit (`stlc serve {} N`)",
-                        Bound::Stems.flag()
-                    ))
+                    .with_help(crate::diag::Help::from("ask for fewer, or ") + Bound::Stems)
                     .into());
             }
             limits.max_stems = n;

@@ -16,6 +16,7 @@ pub mod volumes;
 use std::io::Write;
 
 use crate::color::Rgb;
+use crate::diag::Help;
 use crate::diag::{Diagnostic, Diagnostics, RenderError, io_error};
 use crate::limits::Bound;
 use crate::num::Linear;
@@ -165,12 +166,13 @@ pub(crate) fn svg_too_large(count: Option<u64>, limit: u64) -> Diagnostics {
             count.map_or_else(|| format!("more than {limit}"), |c| c.to_string()),
             limit,
         )
-        .with_help(format!(
-            "an SVG holds a line a segment with --exact (about 22 bytes each), and merges \
-         runs into as few lines as show the picture without: render a PNG instead, \
-         drop --exact, draw less (a smaller --depth or --size), or {}",
-            Bound::SvgSegments.raise()
-        ))
+        .with_help(
+            Help::from(
+                "an SVG holds a line a segment with --exact (about 22 bytes each), and merges \
+                 runs into as few lines as show the picture without: render a PNG instead, \
+                 drop --exact, draw less (a smaller --depth or --size), or ",
+            ) + Bound::SvgSegments,
+        )
         .into()
 }
 

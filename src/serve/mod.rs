@@ -140,6 +140,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             max_stems: a.max_stems,
             max_svg_segments: a.max_svg_segments,
             time_budget: a.time_budget,
+            page: api::Page::Served,
         },
         doc,
         key: http::Key::new(

@@ -377,7 +377,7 @@ async fn save(state: Arc<State>, req: Request<Incoming>) -> Answer {
                 StatusCode::OK,
                 &Failed {
                     ok: false,
-                    diagnostics: api::diagnostics_json("", &list),
+                    diagnostics: api::diagnostics_json("", &list, api::Page::Served),
                 },
             )
         }

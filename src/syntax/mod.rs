@@ -70,7 +70,7 @@ pub fn precheck<'a>(bytes: &'a [u8], limits: &Limits) -> Result<&'a str, Diagnos
             size: bytes.len() as u64,
             limit,
         })
-        .with_help(format!("{} (at most 4 GiB)", Bound::InputBytes.raise()))
+        .with_help(Bound::InputBytes.raise() + " (at most 4 GiB)")
         .into());
     }
     let text = match std::str::from_utf8(bytes) {

@@ -103,7 +103,7 @@ fn assert_problem_8_warning(warnings: &[Diagnostic], text: &str) {
     );
     let rule_at = text.find("R1: F[+F][-F][F]").unwrap();
     assert_eq!(w.span, Some(rule_at..rule_at + "R1: F[+F][-F][F]".len()));
-    assert!(w.help.as_deref().unwrap().contains("raise `A`"), "{w:?}");
+    assert!(w.help_text().unwrap().contains("raise `A`"), "{w:?}");
 }
 
 #[test]

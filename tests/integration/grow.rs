@@ -672,7 +672,7 @@ fn unbounded_growth_is_refused_with_a_fix() {
     );
     // The default seed has no text: the rule's name is pointed at.
     assert_eq!(d.span, Some(span_of(BINARY, "R1")));
-    let help = d.help.as_deref().unwrap();
+    let help = d.help_text().unwrap();
     for fix in ["LAYOUT", "[I n R1]", "L=10(1)", "--max-stems"] {
         assert!(help.contains(fix), "help lacks {fix}: {help}");
     }

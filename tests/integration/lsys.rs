@@ -132,7 +132,7 @@ fn unknown_key_suggests_the_nearest() {
         })
     );
     assert_eq!(d.span, Some(8..13));
-    assert_eq!(d.help.as_deref(), Some("did you mean `angle`?"));
+    assert_eq!(d.help_text().as_deref(), Some("did you mean `angle`?"));
     assert_eq!(
         err.0[1].kind,
         ErrorKind::Lsys(LsysError::MissingKey { key: "angle" })
@@ -252,7 +252,7 @@ fn generations_above_max_depth_name_the_flag() {
         }
     );
     assert_eq!(d.span, Some(12..14));
-    assert!(d.help.as_deref().unwrap().contains("--max-depth"));
+    assert!(d.help_text().unwrap().contains("--max-depth"));
 }
 
 #[test]
@@ -541,7 +541,7 @@ fn bfs_refuses_over_the_word_budget() {
             limit: 1000
         })
     );
-    assert!(err.0[0].help.as_deref().unwrap().contains("--max-word"));
+    assert!(err.0[0].help_text().unwrap().contains("--max-word"));
     assert!(rec.segments.is_empty());
     // dfs holds no word: fine.
     draw_into(&s, 4, Derivation::Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
@@ -580,9 +580,9 @@ fn both_strategies_refuse_over_max_symbols_and_max_depth() {
         assert!(
             matches!(err.first_kind(), Some(ErrorKind::Limit { value, .. }) if value == "1561")
         );
-        assert!(err.0[0].help.as_deref().unwrap().contains("--max-symbols"));
+        assert!(err.0[0].help_text().unwrap().contains("--max-symbols"));
         let err = draw_into(&s, 21, strategy, &limits, &mut rec, &mut NoProgress).unwrap_err();
-        assert!(err.0[0].help.as_deref().unwrap().contains("--max-depth"));
+        assert!(err.0[0].help_text().unwrap().contains("--max-depth"));
         let mut out = Vec::new();
         assert!(expand(&s, 4, strategy, &limits, &mut out, &mut NoProgress).is_err());
         assert!(out.is_empty());

@@ -238,7 +238,7 @@ fn every_alternative_needs_a_probability() {
         &e.0[0].kind,
         ErrorKind::Rule(RuleError::ProbabilitySum { .. })
     ));
-    let help = e.0[0].help.as_deref().unwrap();
+    let help = e.0[0].help_text().unwrap();
     assert!(
         help.contains("one body needs no probability: write `R1: ...`"),
         "{help}"

@@ -46,7 +46,7 @@ fn one_error(src: &str) -> (ErrorKind, std::ops::Range<usize>, String) {
     (
         d.kind.clone(),
         d.span.clone().expect("a span"),
-        d.help.clone().unwrap_or_default(),
+        d.help_text().unwrap_or_default(),
     )
 }
 
@@ -633,7 +633,12 @@ fn bfs_refuses_words_over_the_limit() {
         })
         .unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
-    assert!(e.0[0].help.as_deref().unwrap_or("").contains("--max-word"));
+    assert!(
+        e.0[0]
+            .help_text()
+            .unwrap_or_default()
+            .contains("--max-word")
+    );
     // dfs needs no word.
     let r = stlc::bed::Bed::new(d.clone(), &limits)
         .and_then(|bed| {
@@ -1311,7 +1316,7 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
     assert_eq!(span, at..at + 1);
     assert!(matches!(kind, ErrorKind::Stl(StlError::Needs3d { .. })));
     let e = errors(src);
-    assert!(e.0[0].help.as_deref().unwrap().contains("`(0, 0, 0)`"));
+    assert!(e.0[0].help_text().unwrap().contains("`(0, 0, 0)`"));
     // In a seed and in `[I n w]` alike.
     let src = "T (0, 0) RULE R1: [F] SEED [I 2 F^F] ENDSEED";
     assert_eq!(one(src).1, src.find('^').map(|a| a..a + 1).unwrap());
@@ -1326,7 +1331,7 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
         ErrorKind::Layout(LayoutError::FlatShapeIn3d { shape: "Rectangle" })
     );
     assert_eq!(e.0[0].span, Some(at..src.find(" ENDLAYOUT").unwrap()));
-    let help = e.0[0].help.as_deref().unwrap();
+    let help = e.0[0].help_text().unwrap();
     assert!(
         help.contains("`Extrude Rectangle (0, 0), 5, 5, z1, z2`")
             && help.contains("`Revolve Rectangle (0, 0), 5, 5`"),

@@ -373,7 +373,7 @@ fn probabilities_are_checked() {
         &e.0[0].kind,
         ErrorKind::Rule(RuleError::ProbabilitySum { .. })
     ));
-    let help = e.0[0].help.as_deref().unwrap();
+    let help = e.0[0].help_text().unwrap();
     assert!(
         help.contains("needs no probability: write `rule F -> ...`"),
         "{help}"
@@ -425,7 +425,7 @@ fn probabilities_are_checked() {
         ErrorKind::Lsys(LsysError::LongPredecessor { symbols: 6, .. })
     ));
     assert!(
-        d.help.as_deref().unwrap().contains("rule F (0.5)"),
+        d.help_text().unwrap().contains("rule F (0.5)"),
         "{:?}",
         d.help
     );

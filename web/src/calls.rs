@@ -31,6 +31,7 @@ pub fn settings() -> api::Settings {
         max_stems: None,
         max_svg_segments: DEFAULT_MAX_SVG_SEGMENTS,
         time_budget: std::time::Duration::MAX,
+        page: api::Page::Web,
     }
 }
 

@@ -51,10 +51,11 @@ pub enum GrowError {
         /// A rule on the endless cycle reachable from it.
         through: String,
     },
-    /// Warning: `--max-stems` stopped growth; the BED is cut short.
+    /// Warning: the stem limit (`--max-stems`) stopped growth; the BED is
+    /// cut short. The message names no flag: the hint names the option as
+    /// data, for each front end to spell.
     #[error(
-        "growth stopped at {stems} stems: the next rule application would pass the limit of {} {limit}",
-        crate::diag::Bound::Stems.flag()
+        "growth stopped at {stems} stems: the next rule application would pass the stem limit of {limit}"
     )]
     GrowthStopped {
         /// Stems grown when growth stopped.
@@ -72,10 +73,10 @@ pub enum GrowError {
         /// The file's `M=`.
         limit: u64,
     },
-    /// Warning: growth reached `--max-depth`; deeper branches were not grown.
+    /// Warning: growth reached the depth limit (`--max-depth`); deeper
+    /// branches were not grown.
     #[error(
-        "growth reached the depth limit of {limit} nested rule applications ({}); deeper branches were not grown",
-        crate::diag::Bound::Depth.flag()
+        "growth reached the depth limit of {limit} nested rule applications; deeper branches were not grown"
     )]
     DepthCapped {
         /// The limit in force.

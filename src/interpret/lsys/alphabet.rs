@@ -8,6 +8,7 @@ use std::collections::BTreeMap;
 use num_bigint::BigUint;
 
 use crate::diag::Diagnostics;
+use crate::diag::{Help, Knob};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
@@ -134,10 +135,10 @@ impl Alphabet {
                     exact(depth),
                     limits.max_symbols,
                 )
-                .with_help(format!(
-                    "use a smaller depth, or raise the traversal budget with {} N",
-                    Bound::Symbols.flag()
-                ))
+                .with_help(
+                    Help::from("use a smaller depth, or raise the traversal budget with ")
+                        + Help::knob(Knob::Limit(Bound::Symbols), "N"),
+                )
                 .into());
         }
         if strategy == Derivation::Bfs
@@ -145,10 +146,12 @@ impl Alphabet {
         {
             return Err(Bound::Word
                 .exceeded_by(format!("bfs word at level {r}"), exact(r), limits.max_word)
-                .with_help(format!(
-                    "use --strategy dfs (it never holds the word), a smaller depth, or {}",
-                    Bound::Word.raise()
-                ))
+                .with_help(
+                    Help::from("use ")
+                        + Help::knob(Knob::Derivation, "dfs")
+                        + " (it never holds the word), a smaller depth, or "
+                        + Bound::Word,
+                )
                 .into());
         }
         Ok(lens)

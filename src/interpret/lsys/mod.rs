@@ -71,7 +71,7 @@ use std::io::Write;
 
 use num_bigint::BigUint;
 
-use crate::diag::{Diagnostics, io_error};
+use crate::diag::{Diagnostics, Help, Knob, io_error};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
@@ -320,10 +320,12 @@ fn lod(
                 units,
                 limits.max_symbols,
             )
-            .with_help(format!(
-                "use a smaller depth or --size, or raise the traversal budget with {} N",
-                Bound::Symbols.flag()
-            ))
+            .with_help(
+                Help::from("use a smaller depth or ")
+                    + Help::knob(Knob::Size, "")
+                    + ", or raise the traversal budget with "
+                    + Help::knob(Knob::Limit(Bound::Symbols), "N"),
+            )
             .into());
     }
     progress.start("symbols", units);

@@ -30,6 +30,7 @@ use num_bigint::BigUint;
 
 use crate::choice::{Alternatives, Key};
 use crate::diag::{Diagnostics, ErrorKind, saturated};
+use crate::diag::{Help, Knob};
 use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
 
@@ -445,24 +446,26 @@ pub(crate) fn explain_budget(mut d: Diagnostics, limits: &Limits) -> Diagnostics
             ..
         } = x.kind
         {
-            x.help = Some(format!(
-                "a stochastic system may visit a tenth of {} ({} of {}): each of its symbols costs \
-                 about ten of a deterministic one's; use a smaller depth, or {}",
-                Bound::Symbols.flag(),
-                budget(limits).max_symbols,
-                limits.max_symbols,
-                Bound::Symbols.raise()
-            ));
+            x.help = Some(
+                Help::from("a stochastic system may visit a tenth of ")
+                    + Help::knob(Knob::Limit(Bound::Symbols), "")
+                    + format!(
+                        " ({} of {}): each of its symbols costs about ten of a deterministic \
+                         one's; use a smaller depth, or ",
+                        budget(limits).max_symbols,
+                        limits.max_symbols,
+                    )
+                    + Bound::Symbols,
+            );
         }
     }
     d
 }
 
-fn raise_help() -> String {
-    format!(
-        "use a smaller depth, or {} ({} {} for bfs)",
-        Bound::Symbols.raise(),
-        Bound::Word.flag(),
-        Bound::Word.value_name()
-    )
+fn raise_help() -> Help {
+    Help::from("use a smaller depth, or ")
+        + Bound::Symbols
+        + " ("
+        + Help::knob(Knob::Limit(Bound::Word), Bound::Word.value_name())
+        + " for bfs)"
 }

@@ -17,6 +17,7 @@ use pest::iterators::{Pair, Pairs};
 use super::{GrammarParser, Rule};
 use crate::choice::{self, BadProbabilities};
 use crate::color::Rgb;
+use crate::diag::Help;
 use crate::diag::{Diagnostic, Diagnostics, ErrorKind, InputError, LsysError, RuleError, Span};
 use crate::limits::{Bound, Limits};
 use crate::model::Loc;
@@ -476,10 +477,7 @@ impl Checker {
                         )
                         .with_span(span)
                         .with_label("too many generations")
-                        .with_help(format!(
-                            "use fewer generations, or {}",
-                            Bound::Depth.raise()
-                        )),
+                        .with_help(Help::from("use fewer generations, or ") + Bound::Depth),
                 );
                 None
             }

@@ -11,6 +11,7 @@ use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
 use super::solid::SolidName;
 use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::color::Rgb;
+use crate::diag::Help;
 use crate::diag::{Diagnostic, Diagnostics, LayoutError, Span, StlError};
 use crate::limits::Bound;
 use crate::model::{Layout, LayoutShape, LayoutSolid, Loc, Shape, Spelling};
@@ -117,13 +118,15 @@ pub(super) fn prescan_polygons(src: &str, max_vertices: usize) -> Result<(), Dia
         if vertices > max_vertices {
             // Point at the shape's line: its colour's `(` before the name.
             let start = src[..p].rfind('(').unwrap_or(p);
-            return Err(Bound::LayoutVertices.exceeded(vertices, max_vertices as u64)
-            .with_span(start..i.min(b.len()))
-            .with_help(format!(
-                "use fewer polygon points, or {} (above 16000 the overlay can take minutes on some shapes)",
-                Bound::LayoutVertices.raise()
-            ))
-            .into());
+            return Err(Bound::LayoutVertices
+                .exceeded(vertices, max_vertices as u64)
+                .with_span(start..i.min(b.len()))
+                .with_help(
+                    Help::from("use fewer polygon points, or ")
+                        + Bound::LayoutVertices
+                        + " (above 16000 the overlay can take minutes on some shapes)",
+                )
+                .into());
         }
         at = i.max(p + 1);
     }
@@ -162,10 +165,7 @@ pub(super) fn prescan_shapes(src: &str, max_shapes: usize) -> Result<(), Diagnos
         .exceeded(shapes, max_shapes as u64)
         .with_span(layout..from)
         .with_label("this section")
-        .with_help(format!(
-            "use fewer shapes, or {}",
-            Bound::LayoutShapes.raise()
-        ))
+        .with_help(Help::from("use fewer shapes, or ") + Bound::LayoutShapes)
         .into())
 }
 
@@ -539,7 +539,14 @@ mod tests {
             e.0[0].kind,
             ErrorKind::Stl(StlError::UnknownParam { key: "l".into() })
         );
-        assert!(e.0[0].help.as_deref().unwrap_or("").contains("`L`"));
+        assert!(
+            e.0[0]
+                .help
+                .as_ref()
+                .map(|h| h.flags())
+                .unwrap_or_default()
+                .contains("`L`")
+        );
         let src = "T (0,0) RULE R1: [F] LAYOUT (clRed) Rect (0,0), 1, 1 ENDLAYOUT";
         let e = bed(src).unwrap_err();
         assert_eq!(
@@ -550,7 +557,14 @@ mod tests {
         );
         let at = src.find("Rect ").unwrap();
         assert_eq!(e.0[0].span, Some(at..at + 4));
-        assert!(e.0[0].help.as_deref().unwrap_or("").contains("Rectangle"));
+        assert!(
+            e.0[0]
+                .help
+                .as_ref()
+                .map(|h| h.flags())
+                .unwrap_or_default()
+                .contains("Rectangle")
+        );
     }
 
     #[test]

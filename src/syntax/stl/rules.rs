@@ -6,6 +6,7 @@ use pest::iterators::Pair;
 use super::layout::find_word;
 use super::{Builder, Rule, span_of};
 use crate::choice::{self, BadProbabilities};
+use crate::diag::Help;
 use crate::diag::{Diagnostic, Diagnostics, RuleError, Span};
 use crate::limits::Bound;
 use crate::model::{Alternative, Format, Loc, RuleDef, RuleId};
@@ -68,10 +69,7 @@ pub(super) fn prescan_rules(src: &str, max_parts: usize) -> Result<(), Diagnosti
         .exceeded(parts, max_parts as u64)
         .with_span(start..from)
         .with_label("this section")
-        .with_help(format!(
-            "use fewer rules or branches, or {}",
-            Bound::RuleParts.raise()
-        ))
+        .with_help(Help::from("use fewer rules or branches, or ") + Bound::RuleParts)
         .into())
 }
 
