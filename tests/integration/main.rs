@@ -30,6 +30,7 @@ mod stl;
 mod stochastic;
 mod support;
 mod tree3d;
+mod web_build;
 
 use std::collections::BTreeSet;
 
