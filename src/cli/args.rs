@@ -564,7 +564,10 @@ fn parse_view(s: &str) -> Result<View, String> {
         // Over the top is the other side, upright: turn the azimuth instead.
         let over = (180.0 - view.el.abs()) * view.el.signum();
         if range.contains(&over) {
-            msg += &format!("; to look over the top, turn the azimuth: {},{over}", view.az + 180.0);
+            msg += &format!(
+                "; to look over the top, turn the azimuth: {},{over}",
+                view.az + 180.0
+            );
         }
         return Err(msg);
     }

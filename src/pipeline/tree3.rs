@@ -86,15 +86,7 @@ pub(crate) fn render_view(
     } else {
         Vec::new()
     };
-    render_framed(
-        &mut drawing,
-        frame,
-        &underlay,
-        &style,
-        opts,
-        out,
-        progress,
-    )?;
+    render_framed(&mut drawing, frame, &underlay, &style, opts, out, progress)?;
     let mut warnings = Vec::new();
     if n == 0 {
         warnings.push(

@@ -417,7 +417,12 @@ fn a_view_past_the_top_is_a_usage_error() {
     let input = manifest_path("examples/hilbert3d.lsys");
     let run = |view: &str| {
         stlc()
-            .args(["render", input.to_str().unwrap(), "-o", png.to_str().unwrap()])
+            .args([
+                "render",
+                input.to_str().unwrap(),
+                "-o",
+                png.to_str().unwrap(),
+            ])
             .args(["--view", view])
             .output()
             .unwrap()
@@ -426,14 +431,21 @@ fn a_view_past_the_top_is_a_usage_error() {
         let out = run(view);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{view}: {err}");
-        assert!(err.contains("from -90") && err.contains("to 90"), "{view}: {err}");
+        assert!(
+            err.contains("from -90") && err.contains("to 90"),
+            "{view}: {err}"
+        );
         assert!(!png.exists(), "{view} wrote a picture");
     }
     let err = String::from_utf8_lossy(&run("30,100").stderr).into_owned();
     assert!(err.contains("210,80"), "{err}");
     for view in ["30,90", "-45,-90", "400,0"] {
         let out = run(view);
-        assert!(out.status.success(), "{view}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{view}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
         std::fs::remove_file(&png).unwrap();
     }

@@ -409,7 +409,11 @@ fn render_od(od: &str, view: Option<&str>) -> Vec<u8> {
         cmd.args(["--view", v]);
     }
     let out = cmd.write_stdin(od).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     out.stdout
 }
 
@@ -444,7 +448,10 @@ fn the_front_view_of_a_planar_3d_od_is_fitted_as_its_2d_picture() {
     // The 2D picture: the layout 300 x 240 (plus margins) fitted to 800 wide.
     assert_eq!(png_size(&a), (800, 653));
     assert_eq!(png_size(&b), png_size(&a));
-    assert!(a == b, "the front view's pixels differ from the 2D picture's");
+    assert!(
+        a == b,
+        "the front view's pixels differ from the 2D picture's"
+    );
     // Another view of the same OD is framed by the volume seen from there.
     assert_ne!(png_size(&render_od(&deep, Some("30,20"))), (800, 653));
 }

@@ -44,9 +44,18 @@ fn two_builds_at_once_then_a_third_all_succeed_and_leave_one_whole_site() {
 
     let first = build(&site);
     let second = build(&site);
-    succeeded(first.wait_with_output().unwrap(), "the first of two builds at once");
-    succeeded(second.wait_with_output().unwrap(), "the second of two builds at once");
-    succeeded(build(&site).wait_with_output().unwrap(), "a third build after them");
+    succeeded(
+        first.wait_with_output().unwrap(),
+        "the first of two builds at once",
+    );
+    succeeded(
+        second.wait_with_output().unwrap(),
+        "the second of two builds at once",
+    );
+    succeeded(
+        build(&site).wait_with_output().unwrap(),
+        "a third build after them",
+    );
 
     // One whole site: the page, the module, every example and their list.
     let index = std::fs::read_to_string(site.join("index.html")).unwrap();
@@ -55,8 +64,14 @@ fn two_builds_at_once_then_a_third_all_succeed_and_leave_one_whole_site() {
     assert_eq!(&wasm[..4], b"\0asm");
     let list = std::fs::read_to_string(site.join("examples/index.json")).unwrap();
     for name in examples() {
-        assert!(site.join("examples").join(&name).is_file(), "{name} is missing");
-        assert!(list.contains(&format!("\"{name}\"")), "{name} is not in {list}");
+        assert!(
+            site.join("examples").join(&name).is_file(),
+            "{name} is missing"
+        );
+        assert!(
+            list.contains(&format!("\"{name}\"")),
+            "{name} is not in {list}"
+        );
     }
     // Nothing left beside it: no half-built or set-aside folders.
     let beside: Vec<String> = std::fs::read_dir(parent.path())

@@ -1,0 +1,79 @@
+//! The static Tree Maker's own behaviour (docs/web.md) in Chromium, one
+//! behaviour a test, on browser_web.rs's site and helpers: share links
+//! that inflate past the input limit, and the trip-ups of new users.
+//! Screenshots go to `tests/store/browser/`.
+
+use fantoccini::Client;
+use serde_json::{Value, json};
+
+use super::browser::{js, settled, shot};
+use super::browser_web::{Static, start};
+use crate::browser::Browser;
+
+/// The site, a browser on it showing its first picture, and `body` run
+/// with the session; skips (returns) where the site or Chromium is
+/// missing, as browser_web.rs's tests do.
+fn on_site<F>(body: F)
+where
+    F: AsyncFnOnce(&Client, &Static, &Browser),
+{
+    let tmp = tempfile::tempdir().unwrap();
+    let Some((_, server, browser)) = start(tmp.path()) else {
+        return;
+    };
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        body(&c, &server, &browser).await;
+        let _ = c.close().await;
+    });
+}
+
+/// A share-link fragment whose text is `mib` MiB of zero bytes (valid
+/// UTF-8), deflated in the page (1 MiB chunks streamed through
+/// CompressionStream, so the page never holds the whole text).
+async fn bomb_fragment(c: &Client, mib: u32) -> String {
+    let v = c
+        .execute_async(
+            "const [mib, done] = arguments;
+             const zeros = new Uint8Array(1 << 20);
+             let n = 0;
+             const src = new ReadableStream({ pull(ctl) { if (n++ < mib) ctl.enqueue(zeros); else ctl.close(); } });
+             new Response(src.pipeThrough(new CompressionStream('deflate-raw'))).arrayBuffer().then((buf) => {
+               const b = new Uint8Array(buf);
+               let s = '';
+               for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
+               done('#k=od&n=bomb.od&s=' + btoa(s).replace(/\\+/g, '-').replace(/\\//g, '_').replace(/=+$/, ''));
+             }, (e) => done(String(e)));",
+            vec![json!(mib)],
+        )
+        .await
+        .unwrap();
+    v.as_str().unwrap().to_string()
+}
+
+/// Issue 36, 6: a share link of 3 x 10^8 bytes (286 MiB of text in under
+/// 400 KB of link) crashed the tab, inflated with no cap. It inflates to
+/// at most the input limit (64 MiB) and the page says the link is too
+/// large, in the editor, and goes on working.
+#[test]
+fn a_share_link_that_inflates_past_the_input_limit_is_refused_in_chromium() {
+    on_site(async |c, server, _| {
+        let fragment = bomb_fragment(c, 286).await;
+        assert!(fragment.starts_with("#k=od&n=bomb.od&s="), "{fragment}");
+        assert!(fragment.len() < 400_000, "{} characters", fragment.len());
+        // Opened afresh, as a link is.
+        c.goto("about:blank").await.unwrap();
+        c.goto(&format!("{}{fragment}", server.url)).await.unwrap();
+        let v: Value = settled(c).await;
+        let text = v["text"].as_str().unwrap();
+        assert!(
+            text.starts_with("# This share link's text is too large")
+                && text.contains("the input limit of 67108864 bytes (64 MiB)"),
+            "{text}"
+        );
+        assert_eq!(js(c, "return document.title.length > 0").await, json!(true));
+        shot(c, "page-share-too-large").await;
+    });
+}
