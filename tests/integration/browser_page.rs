@@ -77,3 +77,84 @@ fn a_share_link_that_inflates_past_the_input_limit_is_refused_in_chromium() {
         shot(c, "page-share-too-large").await;
     });
 }
+
+/// Sets the Export panel's inputs (`[id, value]`), as typing does, and
+/// returns the command the panel shows once it has caught up (with
+/// `want` in it).
+async fn export_command(c: &Client, inputs: &[(&str, &str)], want: &str) -> String {
+    if js(c, "return document.getElementById('export-options').open").await != json!(true) {
+        super::browser::click(c, "#export-options summary").await;
+    }
+    for (id, value) in inputs {
+        c.execute(
+            "const [id, v] = arguments; const e = document.getElementById(id);
+             e.value = v; e.dispatchEvent(new Event('input'));",
+            vec![json!(id), json!(value)],
+        )
+        .await
+        .unwrap();
+    }
+    let mut shown = String::new();
+    for _ in 0..200 {
+        shown = js(
+            c,
+            "return document.getElementById('export-cli').textContent",
+        )
+        .await
+        .as_str()
+        .unwrap()
+        .to_string();
+        if shown.contains(want) {
+            return shown;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    panic!("the Export panel never showed `{want}`: {shown}");
+}
+
+/// Issue 36, 11: "4000 x auto", as the placeholders invite, exported the
+/// default size and showed no `--size`. A width alone exports at that
+/// width with the height from the picture's aspect (successors.od is
+/// 800 x 653 at the default size: 1600 wide is 1306 high), the command
+/// shown has that `--size` and writes the same bytes; a height alone
+/// likewise.
+#[test]
+fn an_export_with_only_a_width_keeps_the_aspect_in_chromium() {
+    on_site(async |c, _, browser| {
+        let v = super::browser_web::open_example(c, "successors.od").await;
+        assert_eq!(v["ok"], json!(true));
+        let svg = js(c, "return window.stlc.state.answer.svg.slice(0, 120)").await;
+        assert!(
+            svg.as_str()
+                .unwrap()
+                .contains("width=\"800\" height=\"653\""),
+            "{svg}"
+        );
+        let want = "stlc render successors.od --size 1600x1306 --show-layout -o successors.png";
+        let shown = export_command(c, &[("export-w", "1600"), ("export-h", "")], want).await;
+        shot(c, "page-export-width-only").await;
+        assert!(
+            shown.contains("--size 1600x1306 --show-layout -o successors.svg"),
+            "{shown}"
+        );
+        super::browser::click(c, "#export-png").await;
+        let got =
+            super::browser::downloaded(&browser.tmp.join("downloads"), "successors.png").await;
+        let od = crate::support::manifest_path("examples/successors.od");
+        let cli = super::browser::cli(&[
+            "render",
+            od.to_str().unwrap(),
+            "--size",
+            "1600x1306",
+            "--show-layout",
+        ]);
+        super::browser::same_bytes(&got, &cli, "the width-only export");
+        // A height alone: the width from the aspect (653 high is 800 wide).
+        export_command(
+            c,
+            &[("export-w", ""), ("export-h", "653")],
+            "--size 800x653 --show-layout",
+        )
+        .await;
+    });
+}
