@@ -158,3 +158,139 @@ fn an_export_with_only_a_width_keeps_the_aspect_in_chromium() {
         .await;
     });
 }
+
+/// Writes `files` (`[path, text]`, below the site) and opens the first,
+/// on the site's server; waits until no `<stl-tree>` is drawing (or none
+/// appeared after 10 s) and returns their states.
+async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Value {
+    let site = super::browser_web::site().unwrap();
+    for (path, text) in files {
+        let path = site.join(path);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    c.goto(&format!("{}{}", server.url, files[0].0))
+        .await
+        .unwrap();
+    let states =
+        "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state || null)";
+    for _ in 0..600 {
+        let s = js(c, states).await;
+        if !s
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|x| x.is_null() || x == "drawing")
+        {
+            break;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    js(c, states).await
+}
+
+/// The text an element shows for an error.
+async fn element_error(c: &Client, id: &str) -> String {
+    let v = js(c, &format!("const p = document.querySelector('#{id} pre.stl-tree-error'); return p && p.textContent")).await;
+    v.as_str()
+        .unwrap_or_else(|| panic!("#{id} shows no error"))
+        .to_string()
+}
+
+const ONE_TREE: &str = "<stl-tree id=t><script type=\"text/stl\">\nT (100, 190) L=9(0) B=1.5(0) A=30 RULE R1: [-F R1][+F R1] SEED F [I 4 R1] ENDSEED\n</script></stl-tree>\n";
+
+/// Issue 36, 12: `<stl-tree>` copied as the snippet shows (one file) drew
+/// nothing and said nothing. Included from another folder by its URL, it
+/// finds stlc.wasm beside itself and draws; copied alone, the element says
+/// it needs stlc.wasm and where it looked.
+#[test]
+fn stl_tree_is_one_script_and_names_what_is_missing_in_chromium() {
+    on_site(async |c, server, _| {
+        let tag = std::process::id();
+        // From a page in another folder: the script by its URL.
+        let page = format!(
+            "<!doctype html><meta charset=utf-8><script type=module src=\"../stl-tree.js\"></script>\n{ONE_TREE}"
+        );
+        let there = format!("embed-{tag}/page.html");
+        assert_eq!(
+            elements(c, server, &[(&there, page)]).await,
+            json!(["drawn"])
+        );
+        // The script alone, copied into a folder of its own.
+        let script =
+            std::fs::read_to_string(super::browser_web::site().unwrap().join("stl-tree.js"))
+                .unwrap();
+        let page = format!(
+            "<!doctype html><meta charset=utf-8><script type=module src=\"stl-tree.js\"></script>\n{ONE_TREE}"
+        );
+        let alone = format!("alone-{tag}/page.html");
+        let states = elements(
+            c,
+            server,
+            &[
+                (&alone, page),
+                (&format!("alone-{tag}/stl-tree.js"), script),
+            ],
+        )
+        .await;
+        assert_eq!(states, json!(["error"]));
+        let error = element_error(c, "t").await;
+        let url = format!("{}alone-{tag}/stlc.wasm", server.url);
+        assert!(
+            error.contains("needs stlc.wasm beside stl-tree.js") && error.contains(&url),
+            "{error}"
+        );
+        assert!(error.contains("404"), "{error}");
+        shot(c, "page-stl-tree-alone").await;
+        let site = super::browser_web::site().unwrap();
+        for dir in [format!("embed-{tag}"), format!("alone-{tag}")] {
+            std::fs::remove_dir_all(site.join(dir)).unwrap();
+        }
+    });
+}
+
+/// A tree whose growth takes seconds (126,293 stems in a 1000 x 1000
+/// rectangle: about 5 s of a debug CLI), 133 bytes of text.
+const SLOW_TREE: &str = "T (500, 1000) L=3(0) B=0.5(0) A=30 RULE R1: [+F R1][-F R1] SEED F R1 ENDSEED LAYOUT (clGreen) Rectangle (0, 0), 1000, 1000 ENDLAYOUT";
+
+/// Issue 36, 7: `<stl-tree>` ran on the embedding page's thread with no
+/// time limit (a small system froze a page for 10.8 s). It draws in a
+/// worker: while a slow tree draws, the page's own timers keep running
+/// (a 20 ms interval never waits 400 ms, where the draw takes a second or more), and an element whose
+/// `time-budget` passes shows that in itself and lets the next draw.
+#[test]
+fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
+    on_site(async |c, server, _| {
+        let tag = std::process::id();
+        let page = format!(
+            "<!doctype html><meta charset=utf-8>
+             <script>window.gap = 0; let last = performance.now();
+               setInterval(() => {{ const t = performance.now(); window.gap = Math.max(window.gap, t - last); last = t; }}, 20);</script>
+             <script type=module src=\"stl-tree.js\"></script>
+             <stl-tree id=slow time-budget=0.3><script type=\"text/stl\">\n{SLOW_TREE}\n</script></stl-tree>
+             <stl-tree id=long><script type=\"text/stl\">\n{SLOW_TREE}\n</script></stl-tree>
+             {ONE_TREE}"
+        );
+        let name = format!("budget-{tag}.html");
+        let states = elements(c, server, &[(&name, page)]).await;
+        assert_eq!(states, json!(["error", "drawn", "drawn"]));
+        let error = element_error(c, "slow").await;
+        assert!(
+            error.starts_with("stopped after 0.3 s, the time budget of this element"),
+            "{error}"
+        );
+        let v = js(
+            c,
+            "return [window.gap, performance.now(), document.getElementById('long').svg.length]",
+        )
+        .await;
+        eprintln!(
+            "longest wait of the page's 20 ms timer: {} ms; page open {} ms",
+            v[0], v[1]
+        );
+        assert!(v[1].as_f64().unwrap() > 1000.0, "{v}");
+        assert!(v[0].as_f64().unwrap() < 400.0, "the page froze: {v}");
+        shot(c, "page-stl-tree-budget").await;
+        std::fs::remove_file(super::browser_web::site().unwrap().join(name)).unwrap();
+    });
+}
