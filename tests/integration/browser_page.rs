@@ -294,3 +294,65 @@ fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
         std::fs::remove_file(super::browser_web::site().unwrap().join(name)).unwrap();
     });
 }
+
+/// Reloads the page (accepting the "leave with unsaved edits?" question)
+/// and waits until it shows a picture again.
+async fn reload(c: &Client) -> Value {
+    let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
+    tokio::time::sleep(std::time::Duration::from_millis(300)).await;
+    let _ = c.accept_alert().await;
+    for _ in 0..200 {
+        if js(c, "return !!(window.stlc && window.stlc.state.answer)").await == json!(true) {
+            break;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    settled(c).await
+}
+
+/// Issue 36, 10: reloading the web Tree Maker mid-edit landed on
+/// 2dtree.od, with no sign of the draft. It comes back to the document
+/// this tab was editing (successors.od, from New), offers its unsaved
+/// edits as after any reload, and restores them on request.
+#[test]
+fn a_reload_returns_to_the_document_and_its_draft_in_chromium() {
+    on_site(async |c, _, _| {
+        let original = super::browser_web::open_example(c, "successors.od").await["text"]
+            .as_str()
+            .unwrap()
+            .to_string();
+        let edited = format!("{original}# my edit\n");
+        c.execute(
+            "window.stlc.editor.rewrite(arguments[0])",
+            vec![json!(edited)],
+        )
+        .await
+        .unwrap();
+        assert_eq!(settled(c).await["text"], json!(edited));
+        // The draft is written a quarter second after the last edit.
+        tokio::time::sleep(std::time::Duration::from_millis(600)).await;
+        let v = reload(c).await;
+        assert_eq!(
+            v["text"],
+            json!(original),
+            "the reload shows the document, not 2dtree.od"
+        );
+        let name = js(c, "return document.getElementById('file-name').textContent").await;
+        assert!(
+            name.as_str().unwrap().starts_with("successors.od"),
+            "{name}"
+        );
+        let notice = js(
+            c,
+            "const n = document.getElementById('notice'); return n.hidden ? null : n.textContent",
+        )
+        .await;
+        assert!(
+            notice.as_str().is_some_and(|n| n.contains("Unsaved edits")),
+            "{notice}"
+        );
+        shot(c, "page-reload-draft").await;
+        super::browser::click(c, "[data-testid=restore-draft]").await;
+        assert_eq!(settled(c).await["text"], json!(edited));
+    });
+}

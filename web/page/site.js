@@ -3,12 +3,21 @@
 // with the WebAssembly engine instead of the HTTP one, and a Share button.
 
 import { useEngine } from './engine/index.js';
-import { createWasmEngine } from './engine/wasm.js';
+import { createWasmEngine, remember } from './engine/wasm.js';
 import { toFragment, fromFragment } from './share.js';
 
 useEngine(createWasmEngine);
 await import('./app.js');
 const app = window.stlc;
+
+// Each document opened (New, Open..., a share link) is remembered for
+// this tab, so a reload comes back to it and offers its draft
+// (engine/wasm.js's open, which remembers the one shown first).
+const opened = app.document.opened;
+app.document.opened = (f, note) => {
+  remember(f);
+  opened(f, note);
+};
 
 /** The address that opens this document as it is now. */
 async function shareLink() {
