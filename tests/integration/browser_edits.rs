@@ -266,14 +266,14 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
 
 /// Problem 6: abop-1.24a at depth 30 has 5^30 segments, more than a u64
 /// (and far more than a JavaScript number holds exactly): the status shows
-/// every digit.
+/// every digit, grouped by threes.
 async fn exact_counts(c: &Client) {
     open(c, &manifest_path("examples/abop-1.24a.lsys")).await;
     settled(c).await;
     set_depth(c, "30").await;
     until(
         c,
-        "return document.getElementById('status').textContent.includes('931322574615478515625 stems')",
+        "return document.getElementById('status').textContent.includes('931,322,574,615,478,515,625 stems')",
         "the exact count is shown",
     )
     .await;

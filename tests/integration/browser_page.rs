@@ -443,3 +443,59 @@ fn the_template_grows_into_what_one_draws_and_says_why_it_stops_in_chromium() {
         shot(c, "page-template-ran-out").await;
     });
 }
+
+/// Issue 36, 15: `1131266948 stems` had no digit grouping. The status and
+/// the replay's label group digits by threes, from the exact decimal
+/// digits: 5^12 = 244,140,625 segments of `F -> F[+F]F[-F]F` at depth 12.
+#[test]
+fn stem_counts_have_their_digits_grouped_in_chromium() {
+    on_site(async |c, _, _| {
+        super::browser_web::open_example(c, "abop-1.24a.lsys").await;
+        let text = "generations 12\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
+        c.execute(
+            "window.stlc.editor.rewrite(arguments[0])",
+            vec![json!(text)],
+        )
+        .await
+        .unwrap();
+        let mut v = settled(c).await;
+        while v["text"] != json!(text) {
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+            v = settled(c).await;
+        }
+        assert_eq!(v["ok"], json!(true), "{v}");
+        let status = js(c, "return document.getElementById('status').textContent").await;
+        assert!(
+            status.as_str().unwrap().starts_with("244,140,625 stems · "),
+            "{status}"
+        );
+        // A grown tree: 6,237 stems and 3,118 decisions (as `stlc check`
+        // counts: 3,118 fits), in the status and the replay's label.
+        let od = "T (150, 300) L=4(0) B=0.5(0) A=30 RULE R1: [+F R1][-F R1] SEED F R1 ENDSEED \
+                  LAYOUT (clGreen) Rectangle (0, 0), 300, 300 ENDLAYOUT\n";
+        super::browser_web::open_example(c, "fig9.od").await;
+        c.execute("window.stlc.editor.rewrite(arguments[0])", vec![json!(od)])
+            .await
+            .unwrap();
+        let mut v = settled(c).await;
+        while v["text"] != json!(od) {
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+            v = settled(c).await;
+        }
+        let status = js(c, "return document.getElementById('status').textContent").await;
+        assert!(
+            status
+                .as_str()
+                .unwrap()
+                .starts_with("6,237 stems · 3,118 growth decisions · "),
+            "{status}"
+        );
+        let label = js(
+            c,
+            "return document.getElementById('step-label').textContent",
+        )
+        .await;
+        assert_eq!(label, json!("decision 3,118 of 3,118 · 6,237 stems"));
+        shot(c, "page-grouped-digits").await;
+    });
+}

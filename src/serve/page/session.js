@@ -3,7 +3,7 @@
 // the diagnostics. The text is the source of truth: every change of it
 // ends here, and the answer redraws everything.
 
-import { byId } from './dom.js';
+import { byId, grouped } from './dom.js';
 
 export function createSession(app) {
   const { state } = app;
@@ -79,9 +79,9 @@ export function createSession(app) {
     const parts = [];
     if (answer.ok) {
       // Digits, exact at any depth (a JS number is exact only to 2^53).
-      parts.push(`${answer.stems_exact ? '' : 'at least '}${answer.stems} stems`);
+      parts.push(`${answer.stems_exact ? '' : 'at least '}${grouped(answer.stems)} stems`);
       const decisions = answer.space ? answer.space.decisions : answer.growth && answer.growth.decisions;
-      if (decisions) parts.push(`${decisions} growth decisions`);
+      if (decisions) parts.push(`${grouped(decisions)} growth decisions`);
     } else {
       parts.push(state.otherFile ? 'errors: no picture of this file yet' : 'errors: the last good picture is shown');
     }
