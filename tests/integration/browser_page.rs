@@ -499,3 +499,42 @@ fn stem_counts_have_their_digits_grouped_in_chromium() {
         shot(c, "page-grouped-digits").await;
     });
 }
+
+/// Issue 36, 15: the open Export panel covered other controls (the tool
+/// bar's Raise, Lower, Delete, zoom and Fit). Open, it is a row of the
+/// header: every control of the header, the tool bar and the replay bar
+/// is the element found at its own centre.
+#[test]
+fn the_open_export_panel_covers_no_control_in_chromium() {
+    on_site(async |c, _, _| {
+        super::browser::click(c, "#export-options summary").await;
+        assert_eq!(
+            js(c, "return document.getElementById('export-options').open").await,
+            json!(true)
+        );
+        let covered = js(
+            c,
+            "const panel = document.querySelector('#export-options .export-panel');
+             const all = [...document.querySelectorAll('header button, header select, header input, #tools button, #tools select, #replay button, #replay select, #replay input')];
+             const shown = all.filter((e) => e.getClientRects().length > 0 && getComputedStyle(e).visibility !== 'hidden' && !panel.contains(e));
+             const out = [];
+             for (const e of shown) {
+               const r = e.getBoundingClientRect();
+               const at = document.elementFromPoint(r.left + r.width / 2, r.top + r.height / 2);
+               if (!(at === e || e.contains(at) || (at && at.contains(e) && at.tagName === 'LABEL'))) out.push((e.id || e.textContent.trim() || e.tagName) + ' under ' + (at ? at.tagName + '#' + at.id : 'nothing'));
+             }
+             return [shown.length, out];",
+        )
+        .await;
+        assert!(covered[0].as_u64().unwrap() > 20, "{covered}");
+        assert_eq!(covered[1], json!([]), "controls covered by the open panel");
+        // The panel itself shows its command.
+        let cli = js(
+            c,
+            "return document.getElementById('export-cli').getBoundingClientRect().height",
+        )
+        .await;
+        assert!(cli.as_f64().unwrap() > 10.0, "{cli}");
+        shot(c, "page-export-panel-open").await;
+    });
+}
