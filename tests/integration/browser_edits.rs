@@ -245,7 +245,7 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     );
     // Both side by side.
     click(c, "[data-testid=compare]").await;
-    let sides = js(c, "return [document.getElementById('compare-theirs').value, document.getElementById('compare-mine').value]").await;
+    let sides = js(c, "return [document.getElementById('compare-theirs').textContent, document.getElementById('compare-mine').textContent]").await;
     assert!(sides[0].as_str().unwrap().ends_with("# tab two"));
     assert!(sides[1].as_str().unwrap().ends_with("# tab one"));
     shot(c, "32-two-tabs-compare").await;

@@ -538,3 +538,51 @@ fn the_open_export_panel_covers_no_control_in_chromium() {
         shot(c, "page-export-panel-open").await;
     });
 }
+
+/// Issue 36, 15: Compare showed the two texts side by side with nothing
+/// marked. The lines that differ (a line diff) are marked on each side,
+/// and each side says how many: a draft of successors.od with its angle
+/// changed and a line added, compared after a reload.
+#[test]
+fn compare_marks_the_lines_that_differ_in_chromium() {
+    on_site(async |c, _, _| {
+        let original = super::browser_web::open_example(c, "successors.od").await["text"]
+            .as_str()
+            .unwrap()
+            .to_string();
+        assert!(original.contains("\nL=22(1.6) B=3.2(0.25) A=30 C=1\n"));
+        let edited = original.replace("A=30 C=1\n", "A=35 C=1\n").replacen(
+            "\nSEED\n",
+            "\nSEED\n# my seed\n",
+            1,
+        );
+        c.execute(
+            "window.stlc.editor.rewrite(arguments[0])",
+            vec![json!(edited)],
+        )
+        .await
+        .unwrap();
+        assert_eq!(settled(c).await["text"], json!(edited));
+        tokio::time::sleep(std::time::Duration::from_millis(600)).await;
+        reload(c).await;
+        super::browser::click(c, "[data-testid=compare]").await;
+        let sides = js(
+            c,
+            "const side = (id) => [document.getElementById(id).textContent,
+               [...document.querySelectorAll('#' + id + ' span.differs')].map((s) => s.textContent),
+               document.getElementById(id + '-count').textContent];
+             return [side('compare-theirs'), side('compare-mine')];",
+        )
+        .await;
+        assert_eq!(sides[0][0], json!(original));
+        assert_eq!(sides[1][0], json!(edited));
+        assert_eq!(sides[0][1], json!(["L=22(1.6) B=3.2(0.25) A=30 C=1\n"]));
+        assert_eq!(
+            sides[1][1],
+            json!(["L=22(1.6) B=3.2(0.25) A=35 C=1\n", "# my seed\n"])
+        );
+        assert_eq!(sides[0][2], json!(": 1 line differs"));
+        assert_eq!(sides[1][2], json!(": 2 lines differ"));
+        shot(c, "page-compare-marks").await;
+    });
+}
