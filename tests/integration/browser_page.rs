@@ -586,3 +586,73 @@ fn compare_marks_the_lines_that_differ_in_chromium() {
         shot(c, "page-compare-marks").await;
     });
 }
+
+/// Issue 36, 15: `stlc serve` had no Share. Its page has the web page's:
+/// the whole text in a link after the page's address (never its token),
+/// in the address bar; a share link put into the tab's address opens its
+/// document (Save downloads it).
+#[test]
+fn stlc_serve_shares_like_the_web_page_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let file = tmp.path().join("tree.od");
+    std::fs::copy(crate::support::manifest_path("examples/fig9.od"), &file).unwrap();
+    let server = super::serve::Server::start(&[file.to_str().unwrap()]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        let v = settled(&c).await;
+        assert_eq!(v["text"], json!(std::fs::read_to_string(&file).unwrap()));
+        super::browser::click(&c, "[data-testid=share]").await;
+        let mut said = Value::Null;
+        for _ in 0..100 {
+            said = js(&c, "return document.getElementById('saved').textContent").await;
+            if said.as_str().unwrap().starts_with("Share link: ") {
+                break;
+            }
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+        }
+        assert!(said.as_str().unwrap().starts_with("Share link: "), "{said}");
+        let link = js(&c, "return location.href")
+            .await
+            .as_str()
+            .unwrap()
+            .to_string();
+        let base = format!("http://{}/#k=od&n=tree.od&s=", server.addr);
+        assert!(link.starts_with(&base), "{link}");
+        assert!(
+            !link.contains(&server.token),
+            "the link carries the token: {link}"
+        );
+        shot(&c, "page-serve-share").await;
+        // Another document's link, put into this tab's address.
+        let other = "T (0, 0) L=10(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 1 R1] ENDSEED\n";
+        c.execute_async(
+            "const [text, done] = arguments;
+             import('./share.js').then((m) => m.toFragment({name: 'other.od', kind: 'od', text}))
+               .then((f) => { location.hash = f; done(true); });",
+            vec![json!(other)],
+        )
+        .await
+        .unwrap();
+        let mut v = settled(&c).await;
+        for _ in 0..100 {
+            if v["text"] == json!(other) {
+                break;
+            }
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+            v = settled(&c).await;
+        }
+        assert_eq!(v["text"], json!(other));
+        assert_eq!(v["stems"], json!(3), "{v}");
+        let name = js(
+            &c,
+            "return document.getElementById('file-name').textContent",
+        )
+        .await;
+        assert_eq!(name, json!("other.od (shared; Save downloads)"));
+        let _ = c.close().await;
+    });
+}
