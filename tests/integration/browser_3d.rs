@@ -636,17 +636,7 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
             )
         };
         // Counts are shown with their digits grouped by threes.
-        let grouped = |n: usize| {
-            let d = n.to_string();
-            let mut out = String::new();
-            for (i, ch) in d.chars().enumerate() {
-                if i > 0 && (d.len() - i).is_multiple_of(3) {
-                    out.push(',');
-                }
-                out.push(ch);
-            }
-            out
-        };
+        let grouped = |n: usize| crate::support::grouped(n as u64);
         let all_of = grouped(fits);
         let seed = js(&c, &step(0)).await;
         assert_eq!(seed[0], format!("decision 0 of {all_of} · 10 stems"));
