@@ -549,8 +549,29 @@ pub struct CheckArgs {
 }
 
 /// Parses `AZ,EL`.
+/// Parses `AZ,EL`: any azimuth, an elevation from -90 (looking up from
+/// below) to 90 (straight down), as the editor's view clamps it.
 fn parse_view(s: &str) -> Result<View, String> {
-    View::parse(s).ok_or_else(|| format!("`{s}` is not AZ,EL (two numbers of degrees, e.g. 30,20)"))
+    let view = View::parse(s)
+        .ok_or_else(|| format!("`{s}` is not AZ,EL (two numbers of degrees, e.g. 30,20)"))?;
+    let range = -90.0..=90.0;
+    if !range.contains(&view.el) {
+        let mut msg = format!(
+            "the elevation {} is past 90 degrees: it goes from -90 (looking from below) \
+             to 90 (from above)",
+            view.el
+        );
+        // Over the top is the other side, upright: turn the azimuth instead.
+        let over = (180.0 - view.el.abs()) * view.el.signum();
+        if range.contains(&over) {
+            msg += &format!(
+                "; to look over the top, turn the azimuth: {},{over}",
+                view.az + 180.0
+            );
+        }
+        return Err(msg);
+    }
+    Ok(view)
 }
 
 /// Parses a positive, finite number of metres.

@@ -173,6 +173,46 @@ pub(super) fn never_fitted(od: &Description, tallies: &[RuleTally]) -> Vec<Diagn
         .collect()
 }
 
+/// A warning for every rule of `od` that grew and then ran out: most of
+/// its failed tries failed because its stems' width or length reached zero
+/// (the reasons `stlc check` gives), so growth stopped there and not at
+/// the layout's edges; `stems`: the stems grown in all.
+pub(super) fn ran_out(od: &Description, tallies: &[RuleTally], stems: u64) -> Vec<Diagnostic> {
+    od.rules
+        .iter()
+        .zip(tallies)
+        .filter(|(_, t)| t.fits > 0)
+        .filter_map(|(rule, t)| {
+            let (reason, count) = t.most_common()?;
+            let hint = match reason {
+                MissReason::TooThin => Misfit::TooThin {
+                    order: 0,
+                    width: 0.0,
+                }
+                .hint(),
+                MissReason::TooShort => Misfit::TooShort {
+                    order: 0,
+                    length: 0.0,
+                }
+                .hint(),
+                _ => return None,
+            };
+            let mut d = Diagnostic::warning(GrowError::RanOut {
+                stems,
+                rule: rule.full_name().into_owned(),
+                reason,
+                count,
+                misses: t.tries - t.fits,
+            })
+            .with_help(hint);
+            if let Some(s) = span_of(&rule.loc) {
+                d = d.with_span(s).with_label("this rule ran out here");
+            }
+            Some(d)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -364,6 +364,7 @@ where
             .into_iter()
             .chain(budget.warnings)
             .chain(explain::never_fitted(od, &tallies))
+            .chain(explain::ran_out(od, &tallies, budget.stems))
             .collect(),
         stems: budget.stems,
         tallies,

@@ -57,26 +57,28 @@ pub(crate) fn render_view(
         Ok(())
     };
     let style = style(scene, look);
-    let underlay = match &bed.description().layout {
-        Some(layout) if look.show_layout != super::ShowLayout::No => {
-            let desc = bed.description();
+    // Framed by its volumes' outlines, as a 2D picture by its layout.
+    let desc = bed.description();
+    let outlines = match &desc.layout {
+        Some(layout) => {
             let axis = [desc.root.0, desc.root_z.unwrap_or(0.0)];
             crate::render::volumes::outlines(layout, axis, &view.projection())
-                .into_iter()
-                .map(faint)
-                .collect()
         }
-        _ => Vec::new(),
+        None => Vec::new(),
     };
-    render_framed(
-        &mut drawing,
-        Frame::Fit,
-        &underlay,
-        &style,
-        opts,
-        out,
-        progress,
-    )?;
+    let frame = match super::draw::fills_bbox(&outlines) {
+        Some(b) => Frame::View {
+            view: super::draw::layout_frame(b, desc.params.width.base),
+            segments: Some(n),
+        },
+        None => Frame::Fit,
+    };
+    let underlay: Vec<_> = if look.show_layout != super::ShowLayout::No {
+        outlines.into_iter().map(faint).collect()
+    } else {
+        Vec::new()
+    };
+    render_framed(&mut drawing, frame, &underlay, &style, opts, out, progress)?;
     let mut warnings = Vec::new();
     if n == 0 {
         warnings.push(

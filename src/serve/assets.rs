@@ -50,6 +50,21 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/document.js"),
     },
     Asset {
+        path: "/diff.js",
+        media: JS,
+        body: include_str!("page/diff.js"),
+    },
+    Asset {
+        path: "/share.js",
+        media: JS,
+        body: include_str!("page/share.js"),
+    },
+    Asset {
+        path: "/sharing.js",
+        media: JS,
+        body: include_str!("page/sharing.js"),
+    },
+    Asset {
         path: "/settings.js",
         media: JS,
         body: include_str!("page/settings.js"),

@@ -340,7 +340,10 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         assert_eq!(page["bed"], Value::Null);
         assert_eq!(
             page["label"],
-            format!("decision {last} of {last} · 30001 stems")
+            format!(
+                "decision {0} of {0} · 30,001 stems",
+                crate::support::grouped(last as u64)
+            )
         );
 
         // Ink on every 97th stem's midpoint, none far from all stems, in

@@ -290,7 +290,7 @@ async fn acceptance(c: &Client) {
         !g.chunks(6).any(|s| inside(s[2], s[3])),
         "a stem grew in the hole"
     );
-    click(c, "#strategy option[value=dfs]").await;
+    click(c, "#growth option[value=dfs]").await;
     let mut dfs = settled(c).await;
     for _ in 0..20 {
         if dfs["growth"] != holed["growth"] {
@@ -458,7 +458,7 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     shot(c, "3-drawn").await;
 
     // dfs grows another tree from the same outline.
-    c.find(Locator::Css("#strategy option[value=dfs]"))
+    c.find(Locator::Css("#growth option[value=dfs]"))
         .await
         .unwrap()
         .click()
@@ -1350,7 +1350,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     shot(c, "18-pasted").await;
 
     // Tree Maker's SVG export, grown depth-first: `stlc render`'s bytes.
-    click(c, "#strategy option[value=dfs]").await;
+    click(c, "#growth option[value=dfs]").await;
     let mut dfs = settled(c).await;
     for _ in 0..20 {
         if dfs["growth"] != pasted["growth"] {

@@ -635,15 +635,22 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
                  return [document.getElementById('step-label').textContent, window.stlc.view3d.pixels()];"
             )
         };
+        // Counts are shown with their digits grouped by threes.
+        let grouped = |n: usize| crate::support::grouped(n as u64);
+        let all_of = grouped(fits);
         let seed = js(&c, &step(0)).await;
-        assert_eq!(seed[0], format!("decision 0 of {fits} · 10 stems"));
+        assert_eq!(seed[0], format!("decision 0 of {all_of} · 10 stems"));
         let one = js(&c, &step(1)).await;
-        assert_eq!(one[0], format!("decision 1 of {fits} · 13 stems"));
+        assert_eq!(one[0], format!("decision 1 of {all_of} · 13 stems"));
         assert_ne!(one[1]["sum"], seed[1]["sum"]);
         let half = js(&c, &step(fits / 2)).await;
         assert_eq!(
             half[0],
-            format!("decision {} of {fits} · {} stems", fits / 2, 10 + 3 * (fits / 2))
+            format!(
+                "decision {} of {all_of} · {} stems",
+                grouped(fits / 2),
+                grouped(10 + 3 * (fits / 2))
+            )
         );
         shot(&c, "3d-09-oak-half-grown").await;
         let all = js(&c, &step(fits)).await;

@@ -245,7 +245,7 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     );
     // Both side by side.
     click(c, "[data-testid=compare]").await;
-    let sides = js(c, "return [document.getElementById('compare-theirs').value, document.getElementById('compare-mine').value]").await;
+    let sides = js(c, "return [document.getElementById('compare-theirs').textContent, document.getElementById('compare-mine').textContent]").await;
     assert!(sides[0].as_str().unwrap().ends_with("# tab two"));
     assert!(sides[1].as_str().unwrap().ends_with("# tab one"));
     shot(c, "32-two-tabs-compare").await;
@@ -266,14 +266,14 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
 
 /// Problem 6: abop-1.24a at depth 30 has 5^30 segments, more than a u64
 /// (and far more than a JavaScript number holds exactly): the status shows
-/// every digit.
+/// every digit, grouped by threes.
 async fn exact_counts(c: &Client) {
     open(c, &manifest_path("examples/abop-1.24a.lsys")).await;
     settled(c).await;
     set_depth(c, "30").await;
     until(
         c,
-        "return document.getElementById('status').textContent.includes('931322574615478515625 stems')",
+        "return document.getElementById('status').textContent.includes('931,322,574,615,478,515,625 stems')",
         "the exact count is shown",
     )
     .await;
@@ -565,7 +565,7 @@ async fn settings_are_keys_in_the_text(c: &Client) {
     new_from(c, "fig9.od").await;
     let before = settled(c).await;
     let fig9 = before["text"].as_str().unwrap().to_string();
-    click(c, "#strategy option[value=dfs]").await;
+    click(c, "#growth option[value=dfs]").await;
     let dfs = settled(c).await;
     assert_eq!(
         dfs["text"].as_str().unwrap(),
@@ -580,7 +580,7 @@ async fn settings_are_keys_in_the_text(c: &Client) {
     .await;
     let typed = settled(c).await;
     assert_eq!(typed["growth"], before["growth"]);
-    let shown = js(c, "return document.getElementById('strategy').value").await;
+    let shown = js(c, "return document.getElementById('growth').value").await;
     assert_eq!(shown, "bfs");
     // The seed control writes V=, and emptying it removes the key.
     let seed = c.find(fantoccini::Locator::Id("seed")).await.unwrap();

@@ -38,17 +38,7 @@ pub(super) fn build_command() -> String {
 pub(super) fn site() -> Option<&'static Path> {
     static SITE: OnceLock<Option<PathBuf>> = OnceLock::new();
     SITE.get_or_init(|| {
-        let sysroot = Command::new("rustc")
-            .args(["--print", "sysroot"])
-            .output()
-            .expect("rustc --print sysroot");
-        let sysroot = String::from_utf8(sysroot.stdout).unwrap();
-        let target = Path::new(sysroot.trim()).join("lib/rustlib/wasm32-unknown-unknown");
-        if !target.is_dir() {
-            eprintln!(
-                "SKIPPED the web tests: the wasm32-unknown-unknown target is not installed \
-                 (rustup target add wasm32-unknown-unknown; .ci/run does where it can)"
-            );
+        if !wasm_target() {
             return None;
         }
         let line = build_command();
@@ -66,6 +56,24 @@ pub(super) fn site() -> Option<&'static Path> {
         Some(manifest_path("target/site"))
     })
     .as_deref()
+}
+
+/// Whether the wasm32-unknown-unknown target is installed (after saying
+/// loudly that the web tests skip, where it is not).
+pub(super) fn wasm_target() -> bool {
+    let sysroot = Command::new("rustc")
+        .args(["--print", "sysroot"])
+        .output()
+        .expect("rustc --print sysroot");
+    let sysroot = String::from_utf8(sysroot.stdout).unwrap();
+    let target = Path::new(sysroot.trim()).join("lib/rustlib/wasm32-unknown-unknown");
+    if !target.is_dir() {
+        eprintln!(
+            "SKIPPED the web tests: the wasm32-unknown-unknown target is not installed \
+             (rustup target add wasm32-unknown-unknown; .ci/run does where it can)"
+        );
+    }
+    target.is_dir()
 }
 
 /// `python3 -m http.server` serving a folder on loopback, in its own
@@ -318,7 +326,7 @@ async fn every_example(c: &Client) {
             let mut request = json!({"source": source, "kind": kind, "show_layout": true});
             let mut flags = vec![];
             if let Some(o) = order {
-                request["strategy"] = json!(o);
+                request["growth"] = json!(o);
                 flags = vec!["--growth", o];
             }
             let what = format!("{name} {order:?}");
@@ -428,7 +436,7 @@ fn a_share_link_restores_the_tree_in_a_fresh_profile_in_chromium() {
         settled(&c).await;
         open_example(&c, "grove.od").await;
         // Depth-first, seed 7: keys the controls write into the text.
-        click(&c, "#strategy option[value=dfs]").await;
+        click(&c, "#growth option[value=dfs]").await;
         let seed = c.find(fantoccini::Locator::Id("seed")).await.unwrap();
         seed.send_keys("7").await.unwrap();
         let mut v = settled(&c).await;

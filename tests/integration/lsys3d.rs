@@ -400,3 +400,47 @@ fn a_deep_view_is_drawn_at_a_level_of_detail_within_its_budget() {
     let w: Vec<String> = drawn.warnings.iter().map(|d| d.to_string()).collect();
     assert!(w.iter().any(|m| m.contains("level of detail of")), "{w:?}");
 }
+
+/// `--view` takes an elevation from -90 to 90, as the editor's view
+/// clamps it: `30,100` is a usage error (exit 2, before any work, nothing
+/// written) that says the range and the view meant; both ends draw.
+#[test]
+fn a_view_past_the_top_is_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("h.png");
+    let input = manifest_path("examples/hilbert3d.lsys");
+    let run = |view: &str| {
+        stlc()
+            .args([
+                "render",
+                input.to_str().unwrap(),
+                "-o",
+                png.to_str().unwrap(),
+            ])
+            .args(["--view", view])
+            .output()
+            .unwrap()
+    };
+    for view in ["30,100", "30,-90.5", "0,270"] {
+        let out = run(view);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{view}: {err}");
+        assert!(
+            err.contains("from -90") && err.contains("to 90"),
+            "{view}: {err}"
+        );
+        assert!(!png.exists(), "{view} wrote a picture");
+    }
+    let err = String::from_utf8_lossy(&run("30,100").stderr).into_owned();
+    assert!(err.contains("210,80"), "{err}");
+    for view in ["30,90", "-45,-90", "400,0"] {
+        let out = run(view);
+        assert!(
+            out.status.success(),
+            "{view}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+        std::fs::remove_file(&png).unwrap();
+    }
+}

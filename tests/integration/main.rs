@@ -6,6 +6,7 @@ mod browser;
 mod browser_3d;
 mod browser_draw;
 mod browser_edits;
+mod browser_page;
 mod browser_web;
 mod cli;
 mod diagnostics;
@@ -31,6 +32,7 @@ mod stl;
 mod stochastic;
 mod support;
 mod tree3d;
+mod web_build;
 
 use std::collections::BTreeSet;
 

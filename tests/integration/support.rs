@@ -384,3 +384,17 @@ pub fn stlc_stdout(args: &[&str]) -> Vec<u8> {
     );
     out.stdout
 }
+
+/// `n` with its digits grouped by threes, as the editor shows counts
+/// (`30,001`).
+pub fn grouped(n: u64) -> String {
+    let d = n.to_string();
+    let mut out = String::new();
+    for (i, ch) in d.chars().enumerate() {
+        if i > 0 && (d.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(ch);
+    }
+    out
+}

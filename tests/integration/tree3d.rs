@@ -393,3 +393,59 @@ fn a_3d_root_outside_its_volumes_is_named_in_full() {
     assert!(err.contains("the root (0, 0, 50) lies outside"), "{err}");
     assert!(err.contains("non-white) volume"), "{err}");
 }
+
+/// `stlc render FILE [--view 0,0] -o -` (default size) of an OD given as
+/// text: the PNG's bytes.
+fn render_od(od: &str, view: Option<&str>) -> Vec<u8> {
+    let mut cmd = stlc();
+    cmd.args(["render", "--from", "od", "-f", "png", "-o", "-", "-"]);
+    if let Some(v) = view {
+        cmd.args(["--view", v]);
+    }
+    let out = cmd.write_stdin(od).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+/// Width and height of a PNG, from its header.
+fn png_size(png: &[u8]) -> (u32, u32) {
+    let be = |i: usize| u32::from_be_bytes(png[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+/// Section 11: `--view 0,0` of a planar tree is its 2D picture. The
+/// tutorial's successors.od made 3D (its root at z = 0, `D=0`, its
+/// ellipse extruded through the tree's plane) grows the same tree, and its
+/// front view at the default size is the 2D picture, size and bytes: both
+/// are framed by the layout (the 2D one by the ellipse, the 3D one by the
+/// volume's outline, the same ellipse seen from the front). It was fitted
+/// to the stems instead: 800 x 549 against 800 x 653.
+#[test]
+fn the_front_view_of_a_planar_3d_od_is_fitted_as_its_2d_picture() {
+    let flat = std::fs::read_to_string(manifest_path("examples/successors.od")).unwrap();
+    let deep = flat
+        .replacen("(150, 296)", "(150, 296, 0)", 1)
+        .replacen("A=30 C=1", "A=30 C=1 D=0", 1)
+        .replacen(
+            "(clGreen) Ellipse (0, 60), 300, 240",
+            "(clGreen) Extrude <Ellipse (0, 60), 300, 240>, -200, 200",
+            1,
+        );
+    assert_ne!(flat, deep);
+    assert!(deep.contains("Extrude") && deep.contains("D=0") && deep.contains("296, 0)"));
+    let a = render_od(&flat, None);
+    let b = render_od(&deep, Some("0,0"));
+    // The 2D picture: the layout 300 x 240 (plus margins) fitted to 800 wide.
+    assert_eq!(png_size(&a), (800, 653));
+    assert_eq!(png_size(&b), png_size(&a));
+    assert!(
+        a == b,
+        "the front view's pixels differ from the 2D picture's"
+    );
+    // Another view of the same OD is framed by the volume seen from there.
+    assert_ne!(png_size(&render_od(&deep, Some("30,20"))), (800, 653));
+}

@@ -3,8 +3,9 @@
 // call, the answer's bytes copied out. The module imports nothing and
 // owns both buffers, so nothing here allocates or frees its memory.
 //
-// Used by the Tree Maker's worker (engine/worker.js) and by <stl-tree>
-// (stl-tree.js).
+// Used by the Tree Maker's worker (engine/worker.js). <stl-tree>
+// (stl-tree.js) has the same few lines in its own worker, so that it is
+// one script to include.
 
 const encoder = new TextEncoder();
 const decoder = new TextDecoder();

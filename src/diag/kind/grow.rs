@@ -93,6 +93,25 @@ pub enum GrowError {
         /// Why the first try failed.
         why: Misfit,
     },
+    /// Warning: a rule grew, and then most of its tries failed because its
+    /// stems' length or width reached zero (`L` or `B`'s decrement): growth
+    /// stopped there, short of the room the layout gives.
+    #[error(
+        "growth stopped at {stems} stems: rule `{rule}` ran out (most misses: {reason}, {count} of {misses})"
+    )]
+    RanOut {
+        /// Stems grown in all.
+        stems: u64,
+        /// The rule (`R1`, or `R1.2` for an alternative).
+        rule: String,
+        /// Its most common reason: [`MissReason::TooThin`] or
+        /// [`MissReason::TooShort`].
+        reason: MissReason,
+        /// Tries that failed for it.
+        count: u64,
+        /// Tries that failed.
+        misses: u64,
+    },
 }
 
 /// "its one try failed" or "all its N tries failed, the first".

@@ -23,6 +23,7 @@ import { createDocument } from './document.js';
 import { createSettings } from './settings.js';
 import { createWords } from './words.js';
 import { createScrub } from './scrub.js';
+import { addShare } from './sharing.js';
 
 const app = {
   engine: createEngine({ token: document.querySelector('meta[name="stlc-token"]').content }),
@@ -96,4 +97,5 @@ window.addEventListener('keydown', (e) => {
 });
 
 app.tools.setTool('select');
+addShare(app);
 app.document.openServed();

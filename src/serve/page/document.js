@@ -13,6 +13,7 @@
 //   close with unsaved edits asks first.
 
 import { byId } from './dom.js';
+import { differing } from './diff.js';
 
 const WATCH_MS = 1500;
 const DRAFT_MS = 250;
@@ -110,10 +111,22 @@ export function createDocument(app) {
   }
 
   // Theirs and mine side by side, with the same choices.
+  // The lines that differ are marked (a line diff), on both sides.
   function compare(theirs, choices, mine = app.editor.text()) {
     const dialog = byId('compare');
-    byId('compare-theirs').value = theirs;
-    byId('compare-mine').value = mine;
+    const sides = [theirs.split('\n'), mine.split('\n')];
+    const marks = differing(...sides);
+    for (const [k, id] of ['compare-theirs', 'compare-mine'].entries()) {
+      const lines = sides[k];
+      byId(id).replaceChildren(...lines.map((line, i) => {
+        const span = document.createElement('span');
+        span.textContent = i < lines.length - 1 ? line + '\n' : line;
+        if (marks[k][i]) span.className = 'differs';
+        return span;
+      }));
+      const n = marks[k].filter(Boolean).length;
+      byId(id + '-count').textContent = n ? `: ${n} line${n === 1 ? '' : 's'} differ${n === 1 ? 's' : ''}` : ': the same';
+    }
     const buttons = byId('compare-choices');
     buttons.replaceChildren();
     for (const [label, act, testid] of [...choices, ['Close', () => {}, 'compare-close']]) {
@@ -189,7 +202,7 @@ export function createDocument(app) {
     // from the last file's settings; the picture shown is the last file's
     // until this one's comes.
     for (const id of ['depth', 'seed', 'clearance', 'max-stems']) byId(id).value = '';
-    byId('strategy').value = 'bfs';
+    byId('growth').value = 'bfs';
     state.otherFile = true;
     byId('file-name').textContent = f.name + note;
     app.session.setKind(f.kind);

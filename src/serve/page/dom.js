@@ -15,3 +15,12 @@ export function el(name, attrs, parent) {
 export function escapeHtml(s) {
   return String(s).replace(/[&<>"']/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;', "'": '&#39;' }[c]));
 }
+
+// A count with its digits grouped by threes ("1,131,266,948"): from its
+// decimal digits (a string, exact at any size) or a number.
+export function grouped(n) {
+  const s = String(n);
+  const m = /^(\D*)(\d+)(.*)$/.exec(s);
+  if (!m) return s;
+  return m[1] + m[2].replace(/\B(?=(\d{3})+$)/g, ',') + m[3];
+}

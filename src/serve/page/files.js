@@ -20,21 +20,59 @@ export function createFiles(app) {
 
   const baseName = () => state.doc.name.replace(/\.[^.]*$/, '');
 
+  // The width and height of the picture at the default size: the shown
+  // answer's SVG when it is this text's 2D picture, else (a 3D view at
+  // the view's angles, a text not drawn yet) an export at the default
+  // size, remembered per request. Null when there is none (errors).
+  const defaultSizes = new Map();
+  async function defaultSize(request) {
+    const header = (svg) => {
+      const m = /<svg[^>]* width="(\d+)" height="(\d+)"/.exec(svg.slice(0, 400));
+      return m ? [Number(m[1]), Number(m[2])] : null;
+    };
+    const a = state.answer;
+    if (a && a.ok && !a.space && !request.view && state.answerText === request.source) return header(a.svg);
+    const key = JSON.stringify(request);
+    if (!defaultSizes.has(key)) {
+      defaultSizes.clear();
+      defaultSizes.set(key, app.engine.export(request, 'svg').then(async (e) => (e.ok ? header(await e.blob.text()) : null)));
+    }
+    return defaultSizes.get(key);
+  }
+
+  // The size asked for, `[w, h]`, or undefined for the default. With one
+  // side only ("4000 x auto"), the other comes from the default picture's
+  // aspect, rounded, so the picture keeps its shape and the command shown
+  // writes the same bytes.
+  async function exportSize(request) {
+    const side = (id) => {
+      const v = byId(id).value.trim();
+      return v === '' ? null : Math.floor(Number(v));
+    };
+    const w = side('export-w');
+    const h = side('export-h');
+    if (w !== null && h !== null) return [w, h];
+    if (w === null && h === null) return undefined;
+    const d = await defaultSize(request);
+    if (!d) return undefined;
+    const other = (n) => Math.min(16384, Math.max(1, Math.round(n)));
+    return w !== null ? [w, other((w * d[1]) / d[0])] : [other((h * d[0]) / d[1]), h];
+  }
+
   // The export options (size, layout, background) as request fields.
-  function exportOptions() {
-    const w = byId('export-w').value.trim();
-    const h = byId('export-h').value.trim();
+  async function exportOptions() {
     const o = { show_layout: byId('export-layout').checked };
-    if (w !== '' && h !== '') o.size = [Math.floor(Number(w)), Math.floor(Number(h))];
     if (byId('export-transparent').checked) o.background = 'none';
     else if (byId('export-coloured').checked) o.background = byId('export-colour').value;
     // A 3D input's picture from the angles the 3D view shows.
     if (state.answer && state.answer.ok && state.answer.space) o.view = app.view3d.angles();
+    const size = await exportSize({ ...app.session.request(), ...o });
+    if (size) o.size = size;
     return o;
   }
 
   // The command line that writes the same bytes as an export.
-  function command(format) {
+  function command(format, o) {
     const r = app.session.request();
     const name = state.doc.name;
     const args = format === 'bed' ? ['stlc', 'compile', name] : ['stlc', 'render', name];
@@ -44,7 +82,6 @@ export function createFiles(app) {
     if (r.clearance !== undefined) args.push('--clearance', String(r.clearance));
     if (r.max_stems !== undefined) args.push('--max-stems', String(r.max_stems));
     if (format !== 'bed') {
-      const o = exportOptions();
       if (o.size) args.push('--size', `${o.size[0]}x${o.size[1]}`);
       if (o.view) args.push('--view', o.view.join(','));
       if (o.show_layout && r.kind !== 'lsys') args.push('--show-layout');
@@ -54,10 +91,20 @@ export function createFiles(app) {
     return args.join(' ');
   }
 
-  function showCommand() {
+  let shown = 0;
+  async function showCommand() {
     if (!byId('export-options').open) return;
-    byId('export-cli').textContent = ['png', 'svg'].map(command).join('\n') +
-      (byId('kind').value === 'od' ? '\n' + command('bed') : '');
+    const asked = ++shown;
+    const o = await exportOptions();
+    // A later call (a newer keystroke) writes instead.
+    if (asked !== shown) return;
+    // The side left empty shows what it will be.
+    for (const [id, i] of [['export-w', 0], ['export-h', 1]]) {
+      const e = byId(id);
+      e.placeholder = e.value.trim() === '' && o.size ? `auto: ${o.size[i]}` : 'auto';
+    }
+    byId('export-cli').textContent = ['png', 'svg'].map((f) => command(f, o)).join('\n') +
+      (byId('kind').value === 'od' ? '\n' + command('bed', o) : '');
   }
   byId('export-options').addEventListener('toggle', showCommand);
   for (const id of ['export-w', 'export-h', 'export-layout', 'export-transparent', 'export-coloured', 'export-colour']) {
@@ -65,7 +112,7 @@ export function createFiles(app) {
   }
 
   async function exportAs(format) {
-    const request = format === 'bed' ? app.session.request() : { ...app.session.request(), ...exportOptions() };
+    const request = format === 'bed' ? app.session.request() : { ...app.session.request(), ...(await exportOptions()) };
     const a = await app.engine.export(request, format);
     if (a.ok) download(a.blob, `${baseName()}.${format}`);
     else if (a.diagnostics) app.diagnostics.show(a.diagnostics);

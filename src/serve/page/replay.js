@@ -4,7 +4,7 @@
 // them at the chosen speed: one decision a frame (30 a second), or all of
 // them in 30, 4 or 1 seconds.
 
-import { byId, el } from './dom.js';
+import { byId, el, grouped } from './dom.js';
 import { stemsUpTo } from './bigtree.js';
 
 export function createReplay(app) {
@@ -56,7 +56,7 @@ export function createReplay(app) {
     const g = a.space.stems;
     let n = 0;
     for (let i = 7; i < g.length; i += 8) if (g[i] <= k) n++;
-    byId('step-label').textContent = max ? `decision ${k} of ${max} · ${n} stems` : '';
+    byId('step-label').textContent = max ? `decision ${grouped(k)} of ${grouped(max)} · ${grouped(n)} stems` : '';
   }
 
   function replayTo(k, fromUser) {
@@ -77,7 +77,7 @@ export function createReplay(app) {
     else if (partial || grownNoLayout) showStems(k);
     else preview.querySelector('.replay-layer').innerHTML = '';
     const stems = big ? stemsUpTo(a.growth.stems, k) : countStems(k);
-    byId('step-label').textContent = max ? `decision ${k} of ${max} · ${stems} stems` : '';
+    byId('step-label').textContent = max ? `decision ${grouped(k)} of ${grouped(max)} · ${grouped(stems)} stems` : '';
     if (fromUser) stopReplay(true);
   }
 

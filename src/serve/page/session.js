@@ -3,7 +3,7 @@
 // the diagnostics. The text is the source of truth: every change of it
 // ends here, and the answer redraws everything.
 
-import { byId } from './dom.js';
+import { byId, grouped } from './dom.js';
 
 export function createSession(app) {
   const { state } = app;
@@ -79,9 +79,9 @@ export function createSession(app) {
     const parts = [];
     if (answer.ok) {
       // Digits, exact at any depth (a JS number is exact only to 2^53).
-      parts.push(`${answer.stems_exact ? '' : 'at least '}${answer.stems} stems`);
+      parts.push(`${answer.stems_exact ? '' : 'at least '}${grouped(answer.stems)} stems`);
       const decisions = answer.space ? answer.space.decisions : answer.growth && answer.growth.decisions;
-      if (decisions) parts.push(`${decisions} growth decisions`);
+      if (decisions) parts.push(`${grouped(decisions)} growth decisions`);
     } else {
       parts.push(state.otherFile ? 'errors: no picture of this file yet' : 'errors: the last good picture is shown');
     }
@@ -146,7 +146,7 @@ export function createSession(app) {
   // A control edits its key in the text (which renders), else just renders.
   const control = (id) => () => { if (!app.settings.changed(id)) edited(); };
   ['clearance', 'max-stems', 'depth', 'seed'].forEach((id) => byId(id).addEventListener('input', control(id)));
-  byId('strategy').addEventListener('change', control('strategy'));
+  byId('growth').addEventListener('change', control('growth'));
 
   return { request, refresh, cancel, setKind, inSync };
 }

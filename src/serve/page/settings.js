@@ -9,7 +9,7 @@
 import { byId } from './dom.js';
 
 // Control id -> key, per kind.
-const OD = { strategy: 'O', seed: 'V', 'max-stems': 'M', clearance: 'C' };
+const OD = { growth: 'O', seed: 'V', 'max-stems': 'M', clearance: 'C' };
 const LSYS = { depth: 'generations', seed: 'seed' };
 
 // Where an OD's header ends: its `RULE` keyword (outside comments).
@@ -90,7 +90,7 @@ export function createSettings(app) {
       const k = kind === 'od' ? odKey(text, key) : lsysKey(text, key);
       const v = k ? k.value : '';
       const control = byId(id);
-      if (id === 'strategy') control.value = v === 'dfs' ? 'dfs' : 'bfs';
+      if (id === 'growth') control.value = v === 'dfs' ? 'dfs' : 'bfs';
       else if (control !== document.activeElement || control.value !== v) control.value = v;
     }
   }
@@ -101,7 +101,7 @@ export function createSettings(app) {
     const key = keys(kind)[id];
     if (!key) return false;
     let value = byId(id).value.trim();
-    if (id === 'strategy' && value === 'bfs' && !odKey(app.editor.text(), 'O')) value = '';
+    if (id === 'growth' && value === 'bfs' && !odKey(app.editor.text(), 'O')) value = '';
     const text = withKey(app.editor.text(), kind, key, value);
     if (text !== app.editor.text()) app.editor.rewrite(text);
     return true;

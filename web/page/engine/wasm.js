@@ -15,6 +15,31 @@
 import { parse } from '../stlc-wasm.js';
 import { fromFragment } from '../share.js';
 
+/**
+ * The document this tab shows, kept in `sessionStorage` (this tab's
+ * only; it outlives a reload) by site.js each time one is opened:
+ * `{name, kind, text, hash}`, its text as opened (its unsaved edits are
+ * the draft, kept apart) and the address's fragment then.
+ */
+const SHOWN_KEY = 'stlc-shown';
+
+/** Remembers `f` as the document this tab shows. */
+export function remember(f) {
+  try {
+    sessionStorage.setItem(SHOWN_KEY, JSON.stringify({ name: f.name, kind: f.kind, text: f.text, hash: location.hash }));
+  } catch {
+    // Storage refused or full: a reload starts from the 2DTree.
+  }
+}
+
+function shown() {
+  try {
+    return JSON.parse(sessionStorage.getItem(SHOWN_KEY) || 'null');
+  } catch {
+    return null;
+  }
+}
+
 const MEDIA = { png: 'image/png', svg: 'image/svg+xml', bed: 'text/plain;charset=utf-8' };
 
 /**
@@ -150,13 +175,19 @@ export function createWasmEngine() {
       return listed;
     },
 
-    // The document the page starts with: a share link's text, else the
-    // paper's 2DTree. Nothing to watch: `known` is always current.
+    // The document the page starts with: the one this tab showed before
+    // a reload (its draft is then offered as after any reload), else a
+    // share link's text, else the paper's 2DTree. A share link newer than
+    // that document (pasted into the address) wins. Nothing to watch:
+    // `known` is always current.
     async open(known) {
       if (known !== undefined) return { unchanged: true, version: known };
-      const shared = await fromFragment(location.hash);
-      if (shared) return { ...shared, version: null, path: null, can_save: false };
-      return { name: '2dtree.od', kind: 'od', text: await text('examples/2dtree.od'), version: null, path: null, can_save: false };
+      const before = shown();
+      const f = before && (before.hash === location.hash || !location.hash.includes('s='))
+        ? before
+        : await fromFragment(location.hash) || { name: '2dtree.od', kind: 'od', text: await text('examples/2dtree.od') };
+      remember(f);
+      return { name: f.name, kind: f.kind, text: f.text, version: null, path: null, can_save: false };
     },
 
     async save() {

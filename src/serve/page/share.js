@@ -7,9 +7,42 @@
 
 const KINDS = ['od', 'bed', 'lsys'];
 
+/**
+ * The engine's input limit in bytes (`--max-input`'s default, 64 MiB;
+ * src/limits.rs): a link's text inflates to at most this much, or is
+ * refused. A few hundred KB of link can inflate to gigabytes.
+ */
+export const MAX_INPUT_BYTES = 64 * 1024 * 1024;
+
 async function through(stream, bytes) {
   const out = new Blob([bytes]).stream().pipeThrough(stream);
   return new Uint8Array(await new Response(out).arrayBuffer());
+}
+
+// Inflates deflate-raw `bytes`, reading at most `limit` bytes of output:
+// past that the stream is cancelled (nothing more is inflated) and null
+// is returned.
+async function inflate(bytes, limit) {
+  const reader = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate-raw')).getReader();
+  const chunks = [];
+  let total = 0;
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    total += value.length;
+    if (total > limit) {
+      await reader.cancel();
+      return null;
+    }
+    chunks.push(value);
+  }
+  const out = new Uint8Array(total);
+  let at = 0;
+  for (const c of chunks) {
+    out.set(c, at);
+    at += c.length;
+  }
+  return out;
 }
 
 function base64url(bytes) {
@@ -50,7 +83,16 @@ export async function fromFragment(hash) {
   const kind = KINDS.includes(p.get('k')) ? p.get('k') : 'od';
   const name = p.get('n') || `shared.${kind}`;
   try {
-    const bytes = await through(new DecompressionStream('deflate-raw'), unbase64url(s));
+    const bytes = await inflate(unbase64url(s), MAX_INPUT_BYTES);
+    if (!bytes) {
+      return {
+        name, kind,
+        text: '# This share link\'s text is too large: it inflates to more\n'
+          + `# than the input limit of ${MAX_INPUT_BYTES} bytes (64 MiB),\n`
+          + '# so it was not read. Share a smaller text, or open\n'
+          + '# the file itself with Open... or New.\n',
+      };
+    }
     return { name, kind, text: new TextDecoder('utf-8', { fatal: true }).decode(bytes) };
   } catch (e) {
     return { name, kind, text: `# This share link is damaged (${e.message}): its text could not be read.\n` };

@@ -1,0 +1,82 @@
+//! `sh web/build.sh [FOLDER]` (docs/web.md): it builds into a fresh folder
+//! and swaps it in, so builds one after the other, or two at once, all
+//! succeed and leave one whole site. The old script emptied and refilled
+//! the folder in place: a second build running beside the first failed
+//! with "cp: cannot create regular file 'target/site/examples/'".
+
+use std::process::{Command, Output, Stdio};
+
+use super::browser_web::{examples, wasm_target};
+use crate::support::manifest_path;
+
+/// `sh web/build.sh folder`, from the crate's root.
+fn build(folder: &std::path::Path) -> std::process::Child {
+    Command::new("sh")
+        .arg("web/build.sh")
+        .arg(folder)
+        .current_dir(manifest_path(""))
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+fn succeeded(out: Output, what: &str) {
+    assert!(
+        out.status.success(),
+        "{what} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn two_builds_at_once_then_a_third_all_succeed_and_leave_one_whole_site() {
+    if !wasm_target() {
+        return;
+    }
+    // Beside target/site (the same file system, so the swap is a rename),
+    // its own name so the other web tests' site is left alone.
+    let parent = manifest_path("target/web-build-test");
+    std::fs::create_dir_all(&parent).unwrap();
+    let parent = tempfile::tempdir_in(&parent).unwrap();
+    let site = parent.path().join("site");
+
+    let first = build(&site);
+    let second = build(&site);
+    succeeded(
+        first.wait_with_output().unwrap(),
+        "the first of two builds at once",
+    );
+    succeeded(
+        second.wait_with_output().unwrap(),
+        "the second of two builds at once",
+    );
+    succeeded(
+        build(&site).wait_with_output().unwrap(),
+        "a third build after them",
+    );
+
+    // One whole site: the page, the module, every example and their list.
+    let index = std::fs::read_to_string(site.join("index.html")).unwrap();
+    assert!(index.contains("src=\"site.js\""), "{index}");
+    let wasm = std::fs::read(site.join("stlc.wasm")).unwrap();
+    assert_eq!(&wasm[..4], b"\0asm");
+    let list = std::fs::read_to_string(site.join("examples/index.json")).unwrap();
+    for name in examples() {
+        assert!(
+            site.join("examples").join(&name).is_file(),
+            "{name} is missing"
+        );
+        assert!(
+            list.contains(&format!("\"{name}\"")),
+            "{name} is not in {list}"
+        );
+    }
+    // Nothing left beside it: no half-built or set-aside folders.
+    let beside: Vec<String> = std::fs::read_dir(parent.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert_eq!(beside, ["site"]);
+}
