@@ -96,31 +96,9 @@ pub(crate) fn layout_view(scene: &Scene, show: bool) -> (Option<BBox>, Vec<Fill>
     } else {
         Vec::new()
     };
-    let view = crate::rings::layout_bbox(layout).map(|b| layout_frame(b, desc.params.width.base));
+    let view = crate::rings::layout_bbox(layout)
+        .map(|b| crate::render::layout_frame(b, desc.params.width.base));
     (view, fills)
-}
-
-/// The box of every point of `fills`' rings; `None` for no point.
-pub(crate) fn fills_bbox(fills: &[Fill]) -> Option<BBox> {
-    let mut points = fills.iter().flat_map(|f| &f.rings).flatten();
-    let mut b = BBox::at(*points.next()?);
-    points.for_each(|p| b.add(*p));
-    Some(b)
-}
-
-/// The canvas area a picture framed by its layout shows: the layout's box
-/// `b` with the fitted picture's margin and half the widest stem (`widest`,
-/// the description's `B` base) around it. A 3D tree's view is framed by
-/// its volumes' outlines the same way, so `--view 0,0` of a planar tree is
-/// its 2D picture, size included.
-pub(crate) fn layout_frame(b: BBox, widest: f64) -> BBox {
-    let m = crate::render::MARGIN_FRACTION * b.width().max(b.height()) + widest.max(0.0) / 2.0;
-    BBox {
-        min_x: b.min_x - m,
-        min_y: b.min_y - m,
-        max_x: b.max_x + m,
-        max_y: b.max_y + m,
-    }
 }
 
 /// What [`render`] drew.

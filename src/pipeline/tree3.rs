@@ -66,9 +66,9 @@ pub(crate) fn render_view(
         }
         None => Vec::new(),
     };
-    let frame = match super::draw::fills_bbox(&outlines) {
+    let frame = match crate::render::fills_bbox(&outlines) {
         Some(b) => Frame::View {
-            view: super::draw::layout_frame(b, desc.params.width.base),
+            view: crate::render::layout_frame(b, desc.params.width.base),
             segments: Some(n),
         },
         None => Frame::Fit,

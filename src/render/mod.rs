@@ -24,7 +24,7 @@ use crate::progress::{Phase, Progress};
 use crate::turtle::{BBox, Bounds, Counter, Fill, Point, Turtle};
 
 use fit::checked_size;
-pub use fit::{Fit, stroke_px};
+pub use fit::{Fit, fills_bbox, layout_frame, stroke_px};
 pub use png::PngTurtle;
 pub use svg::SvgTurtle;
 

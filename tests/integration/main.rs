@@ -11,6 +11,7 @@ mod browser_web;
 mod cli;
 mod diagnostics;
 mod docs;
+mod docs_drift;
 mod explain;
 mod fuzz_corpus;
 mod geometry;

@@ -1,0 +1,191 @@
+//! The docs name what exists, and what exists is named in the docs: the
+//! page's modules in docs/serve.md's module table and docs/web.md's site
+//! table, the API's request fields and answer fields in docs/serve.md. A
+//! module added, moved or removed, or a field renamed, fails here until the
+//! docs say so.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use stlc::api::{self, Page, Settings};
+use stlc::pipeline::{ImageFormat, Limits, NoProgress};
+
+use crate::support::manifest_path;
+
+/// The names in backticks of the first cell of each row of the table whose
+/// header row starts with `| {first} |`.
+fn table_names(doc: &str, first: &str) -> BTreeSet<String> {
+    let text = std::fs::read_to_string(manifest_path(doc)).unwrap();
+    let header = format!("| {first} |");
+    let start = text
+        .find(&header)
+        .unwrap_or_else(|| panic!("{doc}: no table `{header}`"));
+    let mut names = BTreeSet::new();
+    for line in text[start..].lines().skip(2) {
+        let Some(row) = line.strip_prefix("| ") else {
+            break;
+        };
+        let cell = row.split(" |").next().unwrap_or("");
+        for name in cell.split('`').skip(1).step_by(2) {
+            names.insert(name.to_string());
+        }
+    }
+    names
+}
+
+/// The files under `dir` with one of `exts`, as paths relative to it.
+fn files(dir: &str, exts: &[&str]) -> BTreeSet<String> {
+    fn walk(root: &Path, dir: &Path, exts: &[&str], out: &mut BTreeSet<String>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(root, &path, exts, out);
+            } else if path
+                .extension()
+                .is_some_and(|e| exts.contains(&e.to_string_lossy().as_ref()))
+            {
+                let rel = path
+                    .strip_prefix(root)
+                    .unwrap()
+                    .to_string_lossy()
+                    .replace('\\', "/");
+                out.insert(rel);
+            }
+        }
+    }
+    let root = manifest_path(dir);
+    let mut out = BTreeSet::new();
+    walk(&root, &root, exts, &mut out);
+    out
+}
+
+#[test]
+fn every_page_module_is_in_the_serve_docs_and_every_named_one_exists() {
+    let named = table_names("docs/serve.md", "module");
+    let modules = files("src/serve/page", &["js"]);
+    assert!(modules.len() >= 20, "{modules:?}");
+    let undocumented: Vec<_> = modules.difference(&named).collect();
+    let missing: Vec<_> = named.difference(&modules).collect();
+    assert!(
+        undocumented.is_empty(),
+        "page modules without a row in docs/serve.md: {undocumented:?}"
+    );
+    assert!(
+        missing.is_empty(),
+        "docs/serve.md names modules that do not exist: {missing:?}"
+    );
+}
+
+#[test]
+fn every_web_page_file_is_in_the_web_docs_and_every_named_one_exists() {
+    let named = table_names("docs/web.md", "file");
+    let own = files("web/page", &["js", "html"]);
+    let undocumented: Vec<_> = own.difference(&named).collect();
+    assert!(
+        undocumented.is_empty(),
+        "web/page files without a row in docs/web.md: {undocumented:?}"
+    );
+    let shared = files("src/serve/page", &["js", "html"]);
+    for name in &named {
+        // What the build makes (the module, the folders of examples).
+        let built = name == "stlc.wasm" || name.ends_with('/');
+        assert!(
+            built || own.contains(name) || shared.contains(name),
+            "docs/web.md names `{name}`, which is neither in web/page nor src/serve/page"
+        );
+    }
+}
+
+/// The request body's fields: those serde names when it refuses an
+/// unknown one (`expected one of `source`, `kind`, ...`).
+fn body_fields() -> BTreeSet<String> {
+    let api::BadRequest(m) = api::parse(br#"{"source": "x", "no such field": 1}"#).unwrap_err();
+    let list = &m[m.find("expected one of").expect(&m)..];
+    list.split('`')
+        .skip(1)
+        .step_by(2)
+        .map(str::to_string)
+        .collect()
+}
+
+/// The names listed between `open` and `close` after `lead` in
+/// docs/serve.md: those in backticks, or else each comma-separated item up
+/// to its `:` (`{ok: true, svg, ...}`).
+fn documented(lead: &str, open: char, close: char) -> BTreeSet<String> {
+    let text = std::fs::read_to_string(manifest_path("docs/serve.md")).unwrap();
+    let at = text
+        .find(lead)
+        .unwrap_or_else(|| panic!("docs/serve.md: no `{lead}`"));
+    let rest = &text[at + lead.len()..];
+    let rest = &rest[rest.find(open).unwrap() + 1..];
+    let list = &rest[..rest.find(close).unwrap()];
+    if list.contains('`') {
+        return list
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect();
+    }
+    list.split(',')
+        .map(|f| {
+            f.trim()
+                .trim_matches('`')
+                .split(':')
+                .next()
+                .unwrap()
+                .trim()
+                .to_string()
+        })
+        .filter(|f| !f.is_empty())
+        .collect()
+}
+
+#[test]
+fn the_api_fields_in_the_serve_docs_are_the_api_s() {
+    // The request: every field the API reads, and no other.
+    let mut fields = body_fields();
+    assert!(
+        fields.contains("source") && fields.contains("growth"),
+        "{fields:?}"
+    );
+    // `strategy` is `growth`'s old name, still read: the docs say so in
+    // prose, not as a field of its own.
+    assert!(fields.remove("strategy"), "{fields:?}");
+    let serve = std::fs::read_to_string(manifest_path("docs/serve.md")).unwrap();
+    assert!(serve.contains("`strategy`, its old name, is still read"));
+    let named = documented(
+        "| `render(request)` | `POST /api/render`'s JSON for `request`",
+        '(',
+        ')',
+    );
+    assert_eq!(
+        named, fields,
+        "docs/serve.md's render(request) row against the API's body"
+    );
+    // The answer: the keys of a real render answer (an .od has a root and
+    // a layout; a 3D input's `space` is named as the answer says it is).
+    let tree = std::fs::read_to_string(manifest_path("examples/2dtree.od")).unwrap();
+    let body = api::parse(serde_json::json!({ "source": tree }).to_string().as_bytes()).unwrap();
+    let s = Settings {
+        limits: Limits::default(),
+        max_stems: None,
+        max_svg_segments: 1_000_000,
+        time_budget: std::time::Duration::from_secs(60),
+        page: Page::Served,
+    };
+    let (answer, _) = api::render(&body, &s, ImageFormat::Svg, None, &mut NoProgress).unwrap();
+    let mut keys: BTreeSet<String> = serde_json::to_value(&answer)
+        .unwrap()
+        .as_object()
+        .unwrap()
+        .keys()
+        .cloned()
+        .collect();
+    keys.insert("space".into());
+    let named = documented("| `render(request)` |", '{', '}');
+    assert_eq!(
+        named, keys,
+        "docs/serve.md's render answer against the API's"
+    );
+}
