@@ -190,6 +190,71 @@ fn no_source_file_is_over_650_lines() {
     }
 }
 
+/// Test files of more lines than this are a sign that one holds several
+/// behaviours: split where the behaviour changes.
+const TEST_FILE_LINES: usize = 1000;
+
+/// Test files over [`TEST_FILE_LINES`] when the ceiling came, with the
+/// lines they had then: each may shrink, not grow, and leaves the list
+/// once under the ceiling (the test says so).
+const TEST_FILES_OVER: &[(&str, usize)] = &[
+    ("browser.rs", 1443),
+    ("cli.rs", 1204),
+    ("serve.rs", 1184),
+    ("stl.rs", 1378),
+];
+
+/// Ceilings for tests and the page's JavaScript, as src/ has its 650
+/// lines: a test file at most [`TEST_FILE_LINES`] (those listed in
+/// [`TEST_FILES_OVER`] at most what they had), a JavaScript module at
+/// most 400 lines, in the page, the static site and the page's Node tests.
+#[test]
+fn test_files_and_javascript_have_ceilings() {
+    let tests = rust_files(&support::manifest_path("tests/integration"));
+    assert!(tests.len() >= 30, "only {} test files found", tests.len());
+    for file in tests {
+        let lines = std::fs::read_to_string(&file).unwrap().lines().count();
+        let name = file.file_name().unwrap().to_string_lossy().into_owned();
+        match TEST_FILES_OVER.iter().find(|(n, _)| *n == name) {
+            Some((_, had)) => {
+                assert!(
+                    lines <= *had,
+                    "{name} has {lines} lines, more than its {had}: split it"
+                );
+                assert!(
+                    lines > TEST_FILE_LINES,
+                    "{name} is under {TEST_FILE_LINES} lines now: strike it from TEST_FILES_OVER"
+                );
+            }
+            None => assert!(
+                lines <= TEST_FILE_LINES,
+                "{name} has {lines} lines (at most {TEST_FILE_LINES}): split it where the behaviour changes"
+            ),
+        }
+    }
+    let mut scripts = 0;
+    for dir in ["src/serve/page", "web/page", "tests/page"] {
+        let mut stack = vec![support::manifest_path(dir)];
+        while let Some(d) = stack.pop() {
+            for entry in std::fs::read_dir(&d).unwrap() {
+                let path = entry.unwrap().path();
+                if path.is_dir() {
+                    stack.push(path);
+                } else if path.extension().is_some_and(|e| e == "js") {
+                    let lines = std::fs::read_to_string(&path).unwrap().lines().count();
+                    assert!(
+                        lines <= 400,
+                        "{} has {lines} lines (at most 400)",
+                        path.display()
+                    );
+                    scripts += 1;
+                }
+            }
+        }
+    }
+    assert!(scripts >= 30, "only {scripts} scripts found");
+}
+
 /// The files grammar.pest's comments and docs/architecture.md name exist:
 /// a moved file leaves no stale name behind.
 #[test]

@@ -656,3 +656,34 @@ fn stlc_serve_shares_like_the_web_page_in_chromium() {
         let _ = c.close().await;
     });
 }
+
+/// The page's state has one declared shape (src/serve/page/app.js): `app`
+/// and `app.state` are sealed, so a field no one declared cannot be added
+/// by any module, while declared ones still change.
+#[test]
+fn the_page_state_has_one_declared_shape_in_chromium() {
+    on_site(async |c, _, _| {
+        let v = js(
+            c,
+            // Strict, as the page's modules are: a sealed object refuses a
+            // new field with a TypeError (sloppy code is ignored silently).
+            "'use strict';
+             const app = window.stlc;
+             let added = 'no error';
+             try { app.state.undeclared = 1; } catch (e) { added = e.name; }
+             let module = 'no error';
+             try { app.undeclaredModule = {}; } catch (e) { module = e.name; }
+             app.state.selected = app.state.selected;
+             return {sealed: Object.isSealed(app) && Object.isSealed(app.state),
+                     added, module, has: 'undeclared' in app.state,
+                     doc: typeof app.state.doc.name};",
+        )
+        .await;
+        assert_eq!(
+            v,
+            json!({"sealed": true, "added": "TypeError", "module": "TypeError",
+                   "has": false, "doc": "string"}),
+            "{v}"
+        );
+    });
+}

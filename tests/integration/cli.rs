@@ -47,37 +47,6 @@ fn help_teaches_every_command_with_an_example() {
 }
 
 #[test]
-fn usage_errors_exit_2() {
-    stlc().assert().code(2);
-    stlc().args(["render"]).assert().code(2);
-    stlc().args(["frobnicate"]).assert().code(2);
-    stlc()
-        .args(["render", "x.lsys", "--size", "0x5"])
-        .assert()
-        .code(2);
-}
-
-#[test]
-fn expand_streams_the_derived_word() {
-    let dir = tempfile::tempdir().unwrap();
-    let f = dir.path().join("sq.lsys");
-    fs::write(&f, SQUARE).unwrap();
-    for strategy in ["dfs", "bfs"] {
-        stlc()
-            .args(["expand", f.to_str().unwrap(), "--strategy", strategy])
-            .assert()
-            .success()
-            .stdout("F+F+F+F\n");
-    }
-    // --depth overrides generations: depth 3 doubles it again.
-    stlc()
-        .args(["expand", f.to_str().unwrap(), "--depth", "3"])
-        .assert()
-        .success()
-        .stdout("F+F+F+F+F+F+F+F\n");
-}
-
-#[test]
 fn stdin_and_stdout_with_dash() {
     stlc()
         .args(["expand", "-", "--from", "lsys"])
@@ -286,51 +255,6 @@ fn a_broken_pipe_exits_quietly() {
     let out = child.wait_with_output().unwrap();
     assert!(out.status.success(), "{:?}", out.status);
     assert_eq!(String::from_utf8_lossy(&out.stderr), "");
-}
-
-#[test]
-fn expand_of_a_bed_prints_drawing_components_only() {
-    stlc()
-        .args(["expand", "-", "--from", "bed"])
-        .write_stdin(WORKED_BED)
-        .assert()
-        .success()
-        .stdout("[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n");
-}
-
-#[test]
-fn check_summarises_each_kind() {
-    stlc()
-        .args(["check", "-", "--from", "bed"])
-        .write_stdin(WORKED_BED)
-        .assert()
-        .success()
-        .stdout(predicate::str::contains("R1 (3 branches)"))
-        .stdout(predicate::str::contains("R2 (2 branches)"))
-        // 3 + (3 + 2 + 3) segments.
-        .stdout(predicate::str::contains("stems       11"));
-    stlc()
-        .args(["check", "-", "--from", "lsys"])
-        .write_stdin(SQUARE)
-        .assert()
-        .success()
-        .stdout(predicate::str::contains("F -> F+F"));
-}
-
-#[test]
-fn compile_and_stats_refuse_the_wrong_kind_with_a_hint() {
-    stlc()
-        .args(["compile", "-", "--from", "lsys"])
-        .write_stdin(SQUARE)
-        .assert()
-        .code(1)
-        .stderr(predicate::str::contains("stlc render"));
-    stlc()
-        .args(["stats", "-", "--from", "bed"])
-        .write_stdin(WORKED_BED)
-        .assert()
-        .code(1)
-        .stderr(predicate::str::contains("stlc check"));
 }
 
 #[test]

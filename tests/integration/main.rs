@@ -9,6 +9,7 @@ mod browser_edits;
 mod browser_page;
 mod browser_web;
 mod cli;
+mod cli_cases;
 mod diagnostics;
 mod docs;
 mod docs_drift;

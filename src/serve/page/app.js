@@ -8,7 +8,9 @@
 // `app.engine`, and each module's functions (`app.editor`, `app.view`...).
 // Modules reach each other only through it, so none keeps loose state of
 // its own. It is the page's one global, `window.stlc`, for scripts and the
-// browser test.
+// browser test. Its shape is declared here, whole, and sealed: a module
+// that sets a field this literal does not declare throws at once (ES
+// modules are strict), so the state cannot grow fields in other files.
 
 import { createEngine } from './engine/index.js';
 import { createEditor } from './editor.js';
@@ -58,8 +60,34 @@ const app = {
     marks: new Map(),
     // What was offered for download last.
     lastDownload: null,
+    // The document: its name, path, version and saved text (document.js).
+    doc: null,
+    // The shape being drawn with the mouse, if any (tools.js).
+    drawn: null,
+    // Whether another file was opened since the last good picture.
+    otherFile: false,
   },
+  // Each module's functions, set below, in this order.
+  editor: null,
+  settings: null,
+  diagnostics: null,
+  session: null,
+  view3d: null,
+  view: null,
+  replay: null,
+  tools: null,
+  files: null,
+  document: null,
+  words: null,
+  scrub: null,
+  // The share link of the document shown (sharing.js).
+  shareLink: null,
+  // When the first picture was drawn, ms from navigation (the static site's
+  // site.js sets it for benches/web.sh).
+  firstPicture: null,
 };
+Object.seal(app);
+Object.seal(app.state);
 window.stlc = app;
 
 app.editor = createEditor(app);
