@@ -33,6 +33,14 @@ pub fn stats(
     if sys.is_3d() {
         return super::stats3::stats3(sys, depth, json, limits);
     }
+    if sys.parametric.is_some() {
+        let stats = crate::interpret::stats::stats(sys, depth, limits)?;
+        return Ok(if json {
+            stats.to_json()
+        } else {
+            stats.to_text()
+        });
+    }
     if sys.is_stochastic() {
         let stats = crate::interpret::expected::stochastic_stats(sys, depth, limits)?;
         return Ok(if json {
