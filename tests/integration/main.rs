@@ -20,6 +20,7 @@ mod lod;
 mod lsys;
 mod newuser;
 mod od_variation;
+mod param;
 mod render;
 mod repeats;
 mod robustness;

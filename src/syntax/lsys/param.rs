@@ -292,7 +292,20 @@ fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Diagnostic
         if s[next..].starts_with('(') {
             let (parts, after) = args(s, next, at)?;
             for (text, off) in parts {
-                m.args.push(expr::parse(text, at + off, scope)?);
+                let e = expr::parse(text, at + off, scope)?;
+                // Without formals (the axiom) the value is known now.
+                if scope.formals.is_empty() {
+                    let v = crate::model::param::eval_const(&e);
+                    if !v.is_finite() {
+                        let lead = text.len() - text.trim_start().len();
+                        return Err(error(
+                            format!("this parameter is not a finite number ({v})"),
+                            at + off + lead..at + off + text.trim_end().len(),
+                            "check for a division by zero or an overflow",
+                        ));
+                    }
+                }
+                m.args.push(e);
             }
             while it.peek().is_some_and(|&(j, _)| j < after) {
                 it.next();
@@ -473,10 +486,24 @@ fn rule(l: &Line, defines: &[(String, f64)]) -> Result<(ParamRule, Span), Diagno
 /// symbol is made with (in the axiom or a successor) can never apply:
 /// an error that says how many the symbol has.
 fn arities(p: &Parametric, heads: &[Span], diags: &mut Diagnostics) {
+    // The modules the axiom makes and, to a fixed point, the successors
+    // of the rules that can apply to them.
+    let mut reach: BTreeSet<(char, usize)> =
+        p.axiom.iter().map(|m| (m.symbol, m.args.len())).collect();
+    loop {
+        let before = reach.len();
+        for r in &p.rules {
+            if reach.contains(&(r.pred.symbol, r.pred.arity)) {
+                reach.extend(r.successor.iter().map(|m| (m.symbol, m.args.len())));
+            }
+        }
+        if reach.len() == before {
+            break;
+        }
+    }
     let mut made: BTreeMap<char, BTreeSet<usize>> = BTreeMap::new();
-    let words = std::iter::once(&p.axiom).chain(p.rules.iter().map(|r| &r.successor));
-    for m in words.flatten() {
-        made.entry(m.symbol).or_default().insert(m.args.len());
+    for (c, n) in reach {
+        made.entry(c).or_default().insert(n);
     }
     for (r, head) in p.rules.iter().zip(heads) {
         let f = r.pred;
@@ -486,7 +513,7 @@ fn arities(p: &Parametric, heads: &[Span], diags: &mut Diagnostics) {
             let list: Vec<String> = ns.iter().map(usize::to_string).collect();
             diags.push(error(
                 format!(
-                    "`{}` is made with {} parameter(s), but this rule's predecessor has {}",
+                    "`{}` is made with {} parameter(s), but this rule's predecessor has {}: it never applies",
                     f.symbol,
                     list.join(" or "),
                     f.arity
