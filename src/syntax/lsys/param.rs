@@ -146,7 +146,9 @@ pub fn parse(text: &str) -> Result<Parametric, Diagnostics> {
             }
             "tropism" => numbers(l, &scope, 3).map(|v| p.tropism = Some([v[0], v[1], v[2]])),
             "elasticity" => numbers(l, &scope, 1).map(|v| p.elasticity = v[0]),
-            "axiom" => word(l.rest, l.at, &scope).map(|w| p.axiom = w),
+            "axiom" => word(l.rest, l.at, &scope)
+                .and_then(|w| balanced(w, l.at..l.end))
+                .map(|w| p.axiom = w),
             "rule" => rule(l, &defines).map(|(r, head)| {
                 p.rules.push(r);
                 heads.push(head);
@@ -316,6 +318,29 @@ fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Diagnostic
     Ok(out)
 }
 
+/// `w` if its brackets balance, else an error at `span` (the word).
+fn balanced(w: Vec<ModuleExpr>, span: Span) -> Result<Vec<ModuleExpr>, Diagnostic> {
+    let mut depth = 0i64;
+    for m in &w {
+        match m.symbol {
+            '[' => depth += 1,
+            ']' => depth -= 1,
+            _ => {}
+        }
+        if depth < 0 {
+            break;
+        }
+    }
+    if depth != 0 {
+        return Err(error(
+            "the brackets of this word do not balance",
+            span,
+            "close every `[` with a `]` in the same word (the axiom, or one successor)",
+        ));
+    }
+    Ok(w)
+}
+
 /// A word of modules with formal parameters (a predecessor or context);
 /// their names are appended to `names`.
 fn formals(s: &str, at: usize, names: &mut Vec<String>) -> Result<Vec<Formal>, Diagnostic> {
@@ -467,7 +492,7 @@ fn rule(l: &Line, defines: &[(String, f64)]) -> Result<(ParamRule, Span), Diagno
         }
         None => None,
     };
-    let successor = word(succ, l.at + soff, &scope)?;
+    let successor = balanced(word(succ, l.at + soff, &scope)?, l.at + soff..l.end)?;
     Ok((
         ParamRule {
             left,
