@@ -14,6 +14,12 @@ pub const MAX_PARAMS: usize = 64;
 /// The deepest an expression may nest (parentheses, operators, calls).
 pub const MAX_EXPR_DEPTH: usize = 64;
 
+/// The step of the widths a parametric system's segments carry: a
+/// segment's stem order is its width in canvas units over this quantum,
+/// rounded (the renderer's `Canvas` width `0 + order x quantum` gives it
+/// back within half a quantum).
+pub const WIDTH_QUANTUM: f64 = 1.0 / 1024.0;
+
 /// A binary operator of an expression.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BinOp {
@@ -205,6 +211,16 @@ impl Parametric {
     /// Whether some rule is a stochastic alternative.
     pub fn is_stochastic(&self) -> bool {
         self.rules.iter().any(|r| r.probability.is_some())
+    }
+
+    /// Whether some module sets the width (`!(w)`): its pictures then
+    /// stroke each segment with the width in force, in canvas units
+    /// ([`WIDTH_QUANTUM`]).
+    pub fn sets_width(&self) -> bool {
+        std::iter::once(&self.axiom)
+            .chain(self.rules.iter().map(|r| &r.successor))
+            .flatten()
+            .any(|m| m.symbol == '!' && !m.args.is_empty())
     }
 
     /// Whether the turtle bends toward the tropism vector.

@@ -8,7 +8,7 @@
 //! never leaves the canvas plane (U stays (0, 0, -1)).
 
 use crate::model::lsys::LSystem;
-use crate::model::param::Parametric;
+use crate::model::param::{Parametric, WIDTH_QUANTUM};
 use crate::turtle::space::{Point3, Segment3, cos_sin};
 use crate::turtle::{Point, Segment, Turtle};
 
@@ -193,6 +193,16 @@ impl Turtle3P {
     }
 }
 
+/// The stem order that carries width `w` ([`WIDTH_QUANTUM`]).
+fn order_of(w: f64) -> u32 {
+    let q = libm::round(w.max(0.0) / WIDTH_QUANTUM);
+    if q.is_finite() {
+        q.min(f64::from(u32::MAX)) as u32
+    } else {
+        0
+    }
+}
+
 /// Draws `sys` derived to `depth` into a 2D turtle backend. Returns where
 /// the turtle ends.
 pub(crate) fn draw2<T: Turtle>(
@@ -205,11 +215,12 @@ pub(crate) fn draw2<T: Turtle>(
 ) -> Result<Point, crate::diag::Diagnostics> {
     let d = super::Deriver::new(sys, p);
     let mut t = Turtle3P::new(sys, p);
-    let mut sink = |s: Segment3, _w: f64| {
+    let widths = p.sets_width();
+    let mut sink = |s: Segment3, w: f64| {
         turtle.segment(Segment {
             from: Point::new(s.from.x, s.from.y),
             to: Point::new(s.to.x, s.to.y),
-            order: 0,
+            order: if widths { order_of(w) } else { 0 },
         });
     };
     d.each(depth, strategy, limits, |sym, ps| {
@@ -231,7 +242,13 @@ pub(crate) fn draw3(
 ) -> Result<Point3, crate::diag::Diagnostics> {
     let d = super::Deriver::new(sys, p);
     let mut t = Turtle3P::new(sys, p);
-    let mut each = |s: Segment3, _w: f64| sink(s);
+    let widths = p.sets_width();
+    let mut each = |mut s: Segment3, w: f64| {
+        if widths {
+            s.order = order_of(w);
+        }
+        sink(s)
+    };
     d.each(depth, strategy, limits, |sym, ps| {
         t.module(sym, ps, &mut each)
     })?;
