@@ -28,16 +28,22 @@ impl Scope<'_> {
 }
 
 /// An error of the parametric syntax at `span`, with a help.
-pub(crate) fn error(message: impl Into<String>, span: Span, help: impl Into<String>) -> Diagnostic {
-    Diagnostic::error(LsysError::Param {
-        message: message.into(),
-    })
-    .with_span(span)
-    .with_help(help)
+pub(crate) fn error(
+    message: impl Into<String>,
+    span: Span,
+    help: impl Into<String>,
+) -> Box<Diagnostic> {
+    Box::new(
+        Diagnostic::error(LsysError::Param {
+            message: message.into(),
+        })
+        .with_span(span)
+        .with_help(help),
+    )
 }
 
 /// Reads `text` (found at byte `at` of the file) as one expression.
-pub(crate) fn parse(text: &str, at: usize, scope: &Scope) -> Result<Expr, Diagnostic> {
+pub(crate) fn parse(text: &str, at: usize, scope: &Scope) -> Result<Expr, Box<Diagnostic>> {
     let mut p = P {
         s: text.as_bytes(),
         text,
@@ -118,7 +124,7 @@ impl P<'_> {
         }
     }
 
-    fn deeper(&mut self) -> Result<(), Diagnostic> {
+    fn deeper(&mut self) -> Result<(), Box<Diagnostic>> {
         self.depth += 1;
         if self.depth > MAX_EXPR_DEPTH {
             return Err(error(
@@ -130,7 +136,7 @@ impl P<'_> {
         Ok(())
     }
 
-    fn or(&mut self) -> Result<Expr, Diagnostic> {
+    fn or(&mut self) -> Result<Expr, Box<Diagnostic>> {
         self.deeper()?;
         let mut e = self.and()?;
         while self.eat("||") {
@@ -140,7 +146,7 @@ impl P<'_> {
         Ok(e)
     }
 
-    fn and(&mut self) -> Result<Expr, Diagnostic> {
+    fn and(&mut self) -> Result<Expr, Box<Diagnostic>> {
         let mut e = self.cmp()?;
         while self.eat("&&") {
             e = Expr::Bin(BinOp::And, Box::new(e), Box::new(self.cmp()?));
@@ -148,7 +154,7 @@ impl P<'_> {
         Ok(e)
     }
 
-    fn cmp(&mut self) -> Result<Expr, Diagnostic> {
+    fn cmp(&mut self) -> Result<Expr, Box<Diagnostic>> {
         let e = self.add()?;
         let ops = [
             ("<=", BinOp::Le),
@@ -166,7 +172,7 @@ impl P<'_> {
         Ok(e)
     }
 
-    fn add(&mut self) -> Result<Expr, Diagnostic> {
+    fn add(&mut self) -> Result<Expr, Box<Diagnostic>> {
         let mut e = self.mul()?;
         loop {
             let op = if self.eat("+") {
@@ -180,7 +186,7 @@ impl P<'_> {
         }
     }
 
-    fn mul(&mut self) -> Result<Expr, Diagnostic> {
+    fn mul(&mut self) -> Result<Expr, Box<Diagnostic>> {
         let mut e = self.unary()?;
         loop {
             let op = if self.eat("*") {
@@ -194,7 +200,7 @@ impl P<'_> {
         }
     }
 
-    fn unary(&mut self) -> Result<Expr, Diagnostic> {
+    fn unary(&mut self) -> Result<Expr, Box<Diagnostic>> {
         self.deeper()?;
         let e = if self.eat("-") {
             Expr::Neg(Box::new(self.unary()?))
@@ -214,7 +220,7 @@ impl P<'_> {
         Ok(e)
     }
 
-    fn unexpected(&self) -> Diagnostic {
+    fn unexpected(&self) -> Box<Diagnostic> {
         let rest = &self.text[self.i..];
         let shown = rest
             .chars()
@@ -227,7 +233,7 @@ impl P<'_> {
         )
     }
 
-    fn atom(&mut self) -> Result<Expr, Diagnostic> {
+    fn atom(&mut self) -> Result<Expr, Box<Diagnostic>> {
         self.ws();
         let start = self.i;
         let Some(&c) = self.s.get(self.i) else {
@@ -316,7 +322,7 @@ impl P<'_> {
         arity: usize,
         name: &str,
         span: Span,
-    ) -> Result<Expr, Diagnostic> {
+    ) -> Result<Expr, Box<Diagnostic>> {
         if !self.eat("(") {
             return Err(error(
                 format!("`{name}` is a function"),

@@ -130,7 +130,7 @@ pub fn parse(text: &str) -> Result<Parametric, Diagnostics> {
                 defines.push((name.clone(), v));
                 p.defines.push((name, v, Loc(l.start..l.end)));
             }
-            Err(d) => diags.push(d),
+            Err(d) => diags.push(*d),
         }
     }
     let scope = Scope {
@@ -156,7 +156,7 @@ pub fn parse(text: &str) -> Result<Parametric, Diagnostics> {
             _ => Ok(()),
         };
         if let Err(d) = r {
-            diags.push(d);
+            diags.push(*d);
         }
     }
     if diags.is_empty() {
@@ -166,7 +166,7 @@ pub fn parse(text: &str) -> Result<Parametric, Diagnostics> {
     diags.into_result(p)
 }
 
-fn define(l: &Line, defines: &[(String, f64)]) -> Result<(String, f64), Diagnostic> {
+fn define(l: &Line, defines: &[(String, f64)]) -> Result<(String, f64), Box<Diagnostic>> {
     let t = l.rest.trim_start();
     let at = l.at + l.rest.len() - t.len();
     let n = t.find(char::is_whitespace).unwrap_or(t.len());
@@ -207,7 +207,7 @@ fn define(l: &Line, defines: &[(String, f64)]) -> Result<(String, f64), Diagnost
     Ok((name.to_string(), v))
 }
 
-fn numbers(l: &Line, scope: &Scope, n: usize) -> Result<Vec<f64>, Diagnostic> {
+fn numbers(l: &Line, scope: &Scope, n: usize) -> Result<Vec<f64>, Box<Diagnostic>> {
     let t = l.rest.trim_start();
     let mut at = l.at + l.rest.len() - t.len();
     let mut out = Vec::new();
@@ -237,7 +237,11 @@ fn text_offset(whole: &str, part: &str) -> usize {
 
 /// The parenthesised arguments starting at byte `open` of `s` (a `(`):
 /// each argument's text and offset, and the index after the `)`.
-fn args(s: &str, open: usize, at: usize) -> Result<(Vec<(&str, usize)>, usize), Diagnostic> {
+/// The arguments of a module: each one's text and offset, and the index
+/// after the `)`.
+type Args<'a> = (Vec<(&'a str, usize)>, usize);
+
+fn args(s: &str, open: usize, at: usize) -> Result<Args<'_>, Box<Diagnostic>> {
     let b = s.as_bytes();
     let (mut depth, mut from, mut parts) = (0usize, open + 1, Vec::new());
     for (i, &c) in b.iter().enumerate().skip(open) {
@@ -272,7 +276,7 @@ fn args(s: &str, open: usize, at: usize) -> Result<(Vec<(&str, usize)>, usize), 
 }
 
 /// A word of modules with parameter expressions (an axiom or successor).
-fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Diagnostic> {
+fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Box<Diagnostic>> {
     let mut out = Vec::new();
     let mut it = s.char_indices().peekable();
     while let Some((i, c)) = it.next() {
@@ -319,7 +323,7 @@ fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Diagnostic
 }
 
 /// `w` if its brackets balance, else an error at `span` (the word).
-fn balanced(w: Vec<ModuleExpr>, span: Span) -> Result<Vec<ModuleExpr>, Diagnostic> {
+fn balanced(w: Vec<ModuleExpr>, span: Span) -> Result<Vec<ModuleExpr>, Box<Diagnostic>> {
     let mut depth = 0i64;
     for m in &w {
         match m.symbol {
@@ -343,7 +347,7 @@ fn balanced(w: Vec<ModuleExpr>, span: Span) -> Result<Vec<ModuleExpr>, Diagnosti
 
 /// A word of modules with formal parameters (a predecessor or context);
 /// their names are appended to `names`.
-fn formals(s: &str, at: usize, names: &mut Vec<String>) -> Result<Vec<Formal>, Diagnostic> {
+fn formals(s: &str, at: usize, names: &mut Vec<String>) -> Result<Vec<Formal>, Box<Diagnostic>> {
     let t = s.trim();
     if t == "*" {
         return Ok(Vec::new());
@@ -407,7 +411,7 @@ fn top_level(s: &str, c: u8) -> Option<usize> {
 }
 
 /// One `rule` line, and its head's span.
-fn rule(l: &Line, defines: &[(String, f64)]) -> Result<(ParamRule, Span), Diagnostic> {
+fn rule(l: &Line, defines: &[(String, f64)]) -> Result<(ParamRule, Span), Box<Diagnostic>> {
     let (head, hoff, succ, soff) = split_rule(l.rest);
     let hat = l.at + hoff;
     let head_span = hat + (head.len() - head.trim_start().len())..hat + head.trim_end().len();
@@ -536,7 +540,7 @@ fn arities(p: &Parametric, heads: &[Span], diags: &mut Diagnostics) {
             && !ns.contains(&f.arity)
         {
             let list: Vec<String> = ns.iter().map(usize::to_string).collect();
-            diags.push(error(
+            diags.push(*error(
                 format!(
                     "`{}` is made with {} parameter(s), but this rule's predecessor has {}: it never applies",
                     f.symbol,
@@ -576,7 +580,7 @@ fn probabilities(p: &Parametric, heads: &[Span], diags: &mut Diagnostics) {
                     format!("the probabilities of `{c}`'s rules sum to {s}, not 1")
                 }
             };
-            diags.push(error(
+            diags.push(*error(
                 msg,
                 alts[0].1.clone(),
                 "alternatives without context or condition are chosen with these weights: make them sum to 1",
