@@ -371,10 +371,19 @@ fn formals(s: &str, at: usize, names: &mut Vec<String>) -> Result<Vec<Formal>, B
                     && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
                 let span = at + off..at + off + text.len().max(1);
                 if !valid {
+                    let help = if name.parse::<f64>().is_ok() {
+                        format!(
+                            "a probability follows the predecessor after a space: `rule {c} ({name}) -> ...`; \
+                             `{c}(x)` names {c}'s parameters"
+                        )
+                    } else {
+                        "a rule's head names its parameters, `A(l,w)`; compute in the successor or the condition"
+                            .to_string()
+                    };
                     return Err(error(
                         format!("`{name}` is not a formal parameter"),
                         span,
-                        "a rule's head names its parameters, `A(l,w)`; compute in the successor or the condition",
+                        help,
                     ));
                 }
                 if names.iter().any(|n| n == name) {
