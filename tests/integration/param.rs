@@ -419,3 +419,98 @@ fn classic_files_take_the_classic_path() {
     assert_eq!(p.tropism, Some([0.0, 1.0, 0.0]));
     assert_eq!(p.elasticity, 0.22);
 }
+
+// ------------------------------------------------------------- turtle --
+
+fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
+    let sys = parse(src, &Limits::default()).unwrap();
+    let mut rec = stlc::turtle::Recorder::default();
+    stlc::interpret::lsys::draw_into(
+        &sys,
+        depth,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut rec,
+        &mut NoProgress,
+    )
+    .unwrap();
+    rec.segments
+}
+
+fn ends_3d(src: &str) -> Vec<stlc::turtle::space::Segment3> {
+    let sys = parse(src, &Limits::default()).unwrap();
+    let mut segs = Vec::new();
+    stlc::interpret::lsys::space::draw3(
+        &sys,
+        0,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut |s| segs.push(s),
+        &mut NoProgress,
+    )
+    .unwrap();
+    segs
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-12
+}
+
+#[test]
+fn parametric_steps_and_turns_take_their_parameters() {
+    // Up 2 x length 3, then a right turn of 90 degrees and half a step.
+    let s = ends_2d("angle 10\nlength 3\naxiom F(2)-(90)F(0.5)f(1)F\n", 0);
+    assert_eq!(s.len(), 3);
+    assert!(
+        close(s[0].to.x, 0.0) && close(s[0].to.y, -6.0),
+        "{:?}",
+        s[0]
+    );
+    assert!(
+        close(s[1].to.x, 1.5) && close(s[1].to.y, -6.0),
+        "{:?}",
+        s[1]
+    );
+    // `f(1)` moved 3 without drawing; the plain `F` turned by nothing.
+    assert!(
+        close(s[2].from.x, 4.5) && close(s[2].to.x, 7.5),
+        "{:?}",
+        s[2]
+    );
+}
+
+#[test]
+fn tropism_turns_the_heading_toward_t_by_e_times_the_sine() {
+    // Up the canvas, T to the right: after the first step the frame turns
+    // by e |H x T| = e radians toward +x.
+    let e: f64 = 0.5;
+    let s = ends_2d("angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n", 0);
+    assert!(close(s[0].to.x, 0.0) && close(s[0].to.y, -1.0));
+    assert!(close(s[1].to.x, e.sin()), "{:?}", s[1]);
+    assert!(close(s[1].to.y, -1.0 - e.cos()), "{:?}", s[1]);
+    // Without elasticity nothing bends.
+    let s = ends_2d("angle 10\ntropism 1 0 0\naxiom FF\n", 0);
+    assert!(close(s[1].to.x, 0.0) && close(s[1].to.y, -2.0));
+}
+
+#[test]
+fn dollar_rolls_left_back_to_the_horizontal() {
+    // Pitched down a quarter turn (H along +z), rolled by 30 degrees: L
+    // leaves the horizontal; `$` brings it back (L = V x H / |V x H|).
+    let rolled = ends_3d("dimensions 3\nangle 10\naxiom &(90)\\(30)+(90)F\n");
+    assert!(close(rolled[0].to.y, 0.5), "{:?}", rolled[0]);
+    let level = ends_3d("dimensions 3\nangle 10\naxiom &(90)\\(30)$+(90)F\n");
+    let t = level[0].to;
+    assert!(close(t.y, 0.0), "{t:?}");
+    assert!(close(t.x * t.x + t.z * t.z, 1.0), "{t:?}");
+}
+
+#[test]
+fn honda_trunk_is_the_geometric_series_of_its_contraction() {
+    // ABOP 2.6a: the trunk is F(1) F(0.9) ... F(0.9^9): 10 x (1 - 0.9^10) units.
+    let sys = parse(&example("abop-2.6a.lsys"), &Limits::default()).unwrap();
+    let st = stlc::interpret::stats::stats(&sys, 10, &Limits::default()).unwrap();
+    assert_eq!(st.segments, 1023u32.into());
+    let top = st.bbox.unwrap()[1];
+    assert!(close(top, -(1.0 - 0.9f64.powi(10)) / 0.1), "{top}");
+}
