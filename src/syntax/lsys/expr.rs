@@ -302,7 +302,7 @@ impl P<'_> {
                 .scope
                 .names()
                 .map(|n| (strsim::damerau_levenshtein(n, name), n))
-                .filter(|(d, n)| *d <= 2.max(n.len() / 3) && *d < name.len().max(2))
+                .filter(|(d, n)| *d <= 2.max(n.len() / 3) && *d < name.len())
                 .min()
                 .map(|(_, n)| n.to_string());
             let help = match near {
