@@ -487,8 +487,8 @@ fn tropism_turns_the_heading_toward_t_by_e_times_the_sine() {
     let e: f64 = 0.5;
     let s = ends_2d("angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n", 0);
     assert!(close(s[0].to.x, 0.0) && close(s[0].to.y, -1.0));
-    assert!(close(s[1].to.x, e.sin()), "{:?}", s[1]);
-    assert!(close(s[1].to.y, -1.0 - e.cos()), "{:?}", s[1]);
+    assert!(close(s[1].to.x, libm::sin(e)), "{:?}", s[1]);
+    assert!(close(s[1].to.y, -1.0 - libm::cos(e)), "{:?}", s[1]);
     // Without elasticity nothing bends.
     let s = ends_2d("angle 10\ntropism 1 0 0\naxiom FF\n", 0);
     assert!(close(s[1].to.x, 0.0) && close(s[1].to.y, -2.0));
@@ -514,4 +514,20 @@ fn honda_trunk_is_the_geometric_series_of_its_contraction() {
     assert_eq!(st.segments, 1023u32.into());
     let top = st.bbox.unwrap()[1];
     assert!(close(top, -(1.0 - 0.9f64.powi(10)) / 0.1), "{top}");
+}
+
+#[test]
+fn counting_steps_stops_as_soon_as_they_pass_the_bound() {
+    // 2^40 steps at depth 40: counted only until 101.
+    let sys = parse(
+        "angle 9\naxiom A(1)\nrule A(x) -> A(x)F(x)A(x)\n",
+        &Limits::default(),
+    )
+    .unwrap();
+    let p = sys.parametric.as_deref().unwrap();
+    let n =
+        stlc::interpret::lsys::param::count_steps(&sys, p, 40, &Limits::default(), 100).unwrap();
+    assert_eq!(n, 101);
+    let n = stlc::interpret::lsys::param::count_steps(&sys, p, 3, &Limits::default(), 100).unwrap();
+    assert_eq!(n, 7);
 }
