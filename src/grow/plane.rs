@@ -1,6 +1,6 @@
 //! What the grower draws with: a turtle, a region and the stems as
 //! capsules, in the plane ([`Plane`]) or in space
-//! ([`super::space::Volume`]). The grower ([`super::grower`]) is written
+//! ([`super::grow3::Volume`]). The grower ([`super::grower`]) is written
 //! once over [`Space`]; the two implementations differ only in the turtle
 //! (2D headings, or the 3D frame with `D=` divergence), the region and the
 //! distance of two stems.

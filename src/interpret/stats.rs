@@ -79,6 +79,9 @@ pub fn stats_with_budget(
     budget: u64,
 ) -> Result<Stats, Diagnostics> {
     limits.check_depth(depth)?;
+    if let Some(p) = crate::interpret::lsys::param::of(sys) {
+        return param_stats(sys, p, depth, limits, budget);
+    }
     let alpha = Alphabet::new(sys);
     let n = alpha.chars.len();
     // Sparse substitution matrix: for each symbol, (child, multiplicity).
@@ -158,6 +161,52 @@ pub fn stats_with_budget(
         bbox,
         end,
         seed: None,
+    })
+}
+
+/// [`stats_with_budget`] of a parametric system: its modules counted as
+/// it is derived (length, `F` and `G` steps, each symbol), and with a
+/// budget, the unit-step turtle's box and end from the same derivation.
+fn param_stats(
+    sys: &LSystem,
+    p: &crate::model::param::Parametric,
+    depth: u32,
+    limits: &Limits,
+    budget: u64,
+) -> Result<Stats, Diagnostics> {
+    use crate::interpret::lsys::param::Deriver;
+    let mut counts: BTreeMap<char, u64> = BTreeMap::new();
+    let count = |c: char, counts: &mut BTreeMap<char, u64>| *counts.entry(c).or_default() += 1;
+    let (mut bbox, mut end) = (None, None);
+    if budget > 0 {
+        let mut unit = sys.clone();
+        unit.length = 1.0;
+        let mut bounds = Bounds::default();
+        let at = crate::interpret::lsys::param::draw2(
+            &unit,
+            p,
+            depth,
+            Derivation::Dfs,
+            limits,
+            &mut bounds,
+        )?;
+        bbox = Some(match bounds.bbox() {
+            Some(b) => [b.min_x, b.min_y, b.max_x, b.max_y],
+            None => [0.0; 4],
+        });
+        end = Some([at.x, at.y]);
+    }
+    Deriver::new(sys, p).each(depth, Derivation::Dfs, limits, |c, _| count(c, &mut counts))?;
+    let length: u64 = counts.values().sum();
+    let segments = counts.get(&'F').copied().unwrap_or(0) + counts.get(&'G').copied().unwrap_or(0);
+    Ok(Stats {
+        depth,
+        length: length.into(),
+        segments: segments.into(),
+        symbols: counts.into_iter().map(|(c, n)| (c, n.into())).collect(),
+        bbox,
+        end,
+        seed: p.is_stochastic().then_some(sys.seed),
     })
 }
 

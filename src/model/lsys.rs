@@ -44,6 +44,10 @@ pub struct LSystem {
     /// pitch and roll the turtle (docs/3d.md); in a 2D one they are
     /// ordinary symbols.
     pub dimensions: u8,
+    /// The parametric part (docs/lsys.md, *Parametric systems*): `None`
+    /// for a file that uses no parameter, context, condition, `define`,
+    /// `ignore`, tropism or `$` (the classic path).
+    pub parametric: Option<Box<super::param::Parametric>>,
 }
 
 /// One production `X -> successor`, or one alternative of a stochastic rule

@@ -22,6 +22,7 @@
 
 pub mod layout;
 pub mod lsys;
+pub mod param;
 pub mod seed_walk;
 pub mod term;
 pub mod walk;

@@ -59,7 +59,15 @@ pub fn style(scene: &Scene, look: &Look) -> Style {
                 Background::None => None,
                 Background::Color(c) => Some(c),
             }),
-            width: Width::Pixels(sys.width),
+            // A parametric system's `!(w)`: each segment's width in
+            // canvas units, carried by its order (docs/lsys.md).
+            width: match &sys.parametric {
+                Some(p) if p.sets_width() => Width::Canvas(crate::num::Linear::new(
+                    0.0,
+                    -crate::model::param::WIDTH_QUANTUM,
+                )),
+                _ => Width::Pixels(sys.width),
+            },
         },
         What::Tree { bed, .. } => {
             let p = &bed.description().params;

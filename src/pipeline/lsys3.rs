@@ -37,6 +37,14 @@ pub(super) fn check_stems(
     most: u64,
     over: impl Fn(String) -> Diagnostics,
 ) -> Result<(), Diagnostics> {
+    if let Some(p) = &sys.parametric {
+        // Counted by deriving, stopped as soon as it passes `most`.
+        let n = crate::interpret::lsys::param::count_steps(sys, p, depth, limits, most)?;
+        if n > most {
+            return Err(over(format!("more than {most}")));
+        }
+        return Ok(());
+    }
     if sys.is_stochastic() {
         let fewest = crate::interpret::lsys::Stochastic::new(sys)
             .segment_bounds(depth)

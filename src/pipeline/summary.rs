@@ -33,6 +33,14 @@ pub fn stats(
     if sys.is_3d() {
         return super::stats3::stats3(sys, depth, json, limits);
     }
+    if sys.parametric.is_some() {
+        let stats = crate::interpret::stats::stats(sys, depth, limits)?;
+        return Ok(if json {
+            stats.to_json()
+        } else {
+            stats.to_text()
+        });
+    }
     if sys.is_stochastic() {
         let stats = crate::interpret::expected::stochastic_stats(sys, depth, limits)?;
         return Ok(if json {
@@ -140,8 +148,12 @@ fn probability(q: f64) -> String {
 
 fn lsys_summary(sys: &LSystem) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "classic L-system: ok");
-    let _ = writeln!(s, "  axiom       {}", sys.axiom.iter().collect::<String>());
+    if let Some(p) = &sys.parametric {
+        param_summary(&mut s, p);
+    } else {
+        let _ = writeln!(s, "classic L-system: ok");
+        let _ = writeln!(s, "  axiom       {}", sys.axiom.iter().collect::<String>());
+    }
     for (k, p) in sys
         .rules
         .iter()
@@ -170,6 +182,40 @@ fn lsys_summary(sys: &LSystem) -> String {
         }
     }
     s
+}
+
+/// The head of a parametric system's summary: its axiom (evaluated), its
+/// constants, and what its rules use.
+fn param_summary(s: &mut String, p: &crate::model::param::Parametric) {
+    let _ = writeln!(s, "parametric L-system: ok");
+    let mut axiom = String::new();
+    for m in &p.axiom {
+        let vals: Vec<f64> = m.args.iter().map(crate::model::param::eval_const).collect();
+        crate::interpret::lsys::param::write_module(&mut axiom, m.symbol, &vals);
+    }
+    let _ = writeln!(s, "  axiom       {axiom}");
+    for (name, v, _) in &p.defines {
+        let _ = writeln!(s, "  define      {name} = {v}");
+    }
+    let uses: Vec<&str> = [
+        (p.has_context(), "context"),
+        (p.rules.iter().any(|r| r.condition.is_some()), "conditions"),
+        (p.is_stochastic(), "probabilities"),
+        (p.bends(), "tropism"),
+    ]
+    .into_iter()
+    .filter_map(|(on, what)| on.then_some(what))
+    .collect();
+    let _ = writeln!(
+        s,
+        "  rules       {}{}",
+        p.rules.len(),
+        if uses.is_empty() {
+            String::new()
+        } else {
+            format!(" (with {})", uses.join(", "))
+        }
+    );
 }
 
 fn stl_summary(

@@ -34,6 +34,78 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
         include_str!("../../examples/abop-1.27.lsys"),
     ),
     (
+        "abop-1.31a.lsys",
+        include_str!("../../examples/abop-1.31a.lsys"),
+    ),
+    (
+        "abop-1.31b.lsys",
+        include_str!("../../examples/abop-1.31b.lsys"),
+    ),
+    (
+        "abop-1.31c.lsys",
+        include_str!("../../examples/abop-1.31c.lsys"),
+    ),
+    (
+        "abop-1.31d.lsys",
+        include_str!("../../examples/abop-1.31d.lsys"),
+    ),
+    (
+        "abop-1.31e.lsys",
+        include_str!("../../examples/abop-1.31e.lsys"),
+    ),
+    (
+        "abop-1.35.lsys",
+        include_str!("../../examples/abop-1.35.lsys"),
+    ),
+    (
+        "abop-2.6a.lsys",
+        include_str!("../../examples/abop-2.6a.lsys"),
+    ),
+    (
+        "abop-2.6b.lsys",
+        include_str!("../../examples/abop-2.6b.lsys"),
+    ),
+    (
+        "abop-2.6c.lsys",
+        include_str!("../../examples/abop-2.6c.lsys"),
+    ),
+    (
+        "abop-2.6d.lsys",
+        include_str!("../../examples/abop-2.6d.lsys"),
+    ),
+    (
+        "abop-2.7a.lsys",
+        include_str!("../../examples/abop-2.7a.lsys"),
+    ),
+    (
+        "abop-2.7b.lsys",
+        include_str!("../../examples/abop-2.7b.lsys"),
+    ),
+    (
+        "abop-2.7c.lsys",
+        include_str!("../../examples/abop-2.7c.lsys"),
+    ),
+    (
+        "abop-2.7d.lsys",
+        include_str!("../../examples/abop-2.7d.lsys"),
+    ),
+    (
+        "abop-2.8a.lsys",
+        include_str!("../../examples/abop-2.8a.lsys"),
+    ),
+    (
+        "abop-2.8b.lsys",
+        include_str!("../../examples/abop-2.8b.lsys"),
+    ),
+    (
+        "abop-2.8c.lsys",
+        include_str!("../../examples/abop-2.8c.lsys"),
+    ),
+    (
+        "abop-2.8d.lsys",
+        include_str!("../../examples/abop-2.8d.lsys"),
+    ),
+    (
         "alternatives.od",
         include_str!("../../examples/alternatives.od"),
     ),
@@ -56,6 +128,10 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
     (
         "paper-worked.bed",
         include_str!("../../examples/paper-worked.bed"),
+    ),
+    (
+        "param-willow.lsys",
+        include_str!("../../examples/param-willow.lsys"),
     ),
     ("pentagon.od", include_str!("../../examples/pentagon.od")),
     ("plant3d.lsys", include_str!("../../examples/plant3d.lsys")),

@@ -25,6 +25,7 @@ mod lsys;
 mod lsys3d;
 mod newuser;
 mod od_variation;
+mod param;
 mod render;
 mod repeats;
 mod robustness;

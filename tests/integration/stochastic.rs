@@ -417,13 +417,14 @@ fn probabilities_are_checked() {
         );
         assert_eq!(&src[span], text);
     }
+    // `F(0.5)` in a rule head names F's parameters (issue 32, docs/lsys.md):
+    // a number there is no name, and the help says where a probability goes.
     let src = "axiom F\nangle 30\nrule F(0.5) -> F+F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
     let d = e.iter().next().unwrap();
-    assert!(matches!(
-        d.kind,
-        ErrorKind::Lsys(LsysError::LongPredecessor { symbols: 6, .. })
-    ));
+    assert!(matches!(d.kind, ErrorKind::Lsys(LsysError::Param { .. })));
+    assert_eq!(d.kind.to_string(), "`0.5` is not a formal parameter");
+    assert_eq!(&src[d.span.clone().unwrap()], "0.5");
     assert!(
         d.help_text().unwrap().contains("rule F (0.5)"),
         "{:?}",

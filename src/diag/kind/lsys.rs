@@ -81,6 +81,13 @@ pub enum LsysError {
         /// The value as written.
         text: String,
     },
+    /// A parametric `.lsys` (docs/lsys.md): an expression, a module or a
+    /// rule that cannot be read or evaluated; the message says which.
+    #[error("{message}")]
+    Param {
+        /// What is wrong, with the text at fault.
+        message: String,
+    },
     /// An L-system has no `generations` and no `--depth` was given.
     #[error("no derivation depth")]
     NoDepth,

@@ -70,6 +70,8 @@ pub enum Refusal {
     /// their brackets, at some depth): the heading after a subtree would
     /// depend on its choices.
     Choices,
+    /// The system is parametric (docs/lsys.md): it is drawn exactly.
+    Parametric,
 }
 
 /// The drawing of one `(symbol, remaining depth, heading)` relative to its

@@ -37,6 +37,9 @@ pub fn draw3(
     sink: &mut dyn FnMut(Segment3),
     progress: &mut dyn Progress,
 ) -> Result<Point3, Diagnostics> {
+    if let Some(p) = super::param::of(sys) {
+        return super::param::draw3(sys, p, depth, strategy, limits, sink);
+    }
     let mut turtle = Turtle3::new(sys.heading, sys.angle, sys.length, sink);
     if sys.is_stochastic() {
         let st = Stochastic::new(sys);

@@ -60,6 +60,7 @@ mod chance;
 mod exec;
 mod geometry;
 pub mod lsys3;
+pub mod param;
 mod program;
 mod program3;
 mod reach;
@@ -106,6 +107,11 @@ pub fn check(
     strategy: Derivation,
     limits: &Limits,
 ) -> Result<(), Diagnostics> {
+    if sys.parametric.is_some() {
+        // Its length is known only by deriving (`param`), which stops at
+        // the limits.
+        return limits.check_depth(depth);
+    }
     if sys.is_stochastic() {
         // Its length is known only by deriving (stochastic.rs); its
         // shortest word must fit the stochastic budget.
@@ -143,6 +149,9 @@ pub struct Measured {
 /// [`GEOMETRY_ENTRIES`] pieces are held. `depth` must be within the
 /// limits (callers check it).
 pub fn measure(sys: &LSystem, depth: u32, len: f64) -> Result<Measured, Refusal> {
+    if sys.parametric.is_some() {
+        return Err(Refusal::Parametric);
+    }
     if sys.is_stochastic() {
         return Err(Refusal::Stochastic);
     }
@@ -198,6 +207,9 @@ impl Memo {
     /// does not apply. `depth` must be within the limits (callers check
     /// it).
     pub fn new(sys: &LSystem, depth: u32) -> Result<Memo, Refusal> {
+        if sys.parametric.is_some() {
+            return Err(Refusal::Parametric);
+        }
         if sys.is_stochastic() {
             return Err(Refusal::Stochastic);
         }
@@ -345,6 +357,9 @@ pub fn draw_into<T: Turtle>(
     turtle: T,
     progress: &mut dyn Progress,
 ) -> Result<Point, Diagnostics> {
+    if let Some(p) = param::of(sys) {
+        return param::draw2(sys, p, depth, strategy, limits, turtle);
+    }
     if sys.is_stochastic() {
         return draw_stochastic(sys, depth, strategy, limits, turtle, progress);
     }
@@ -475,6 +490,9 @@ pub fn expand(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
+    if let Some(p) = param::of(sys) {
+        return param::expand(sys, p, depth, strategy, limits, out);
+    }
     let alpha = Alphabet::new(sys);
     let stochastic = sys.is_stochastic();
     let asked = limits;

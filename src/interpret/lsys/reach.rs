@@ -222,6 +222,9 @@ impl ReachMemo {
     /// The memo of the deterministic 3D system `sys` to `depth`, step
     /// `len`.
     pub(crate) fn new(sys: &LSystem, depth: u32, len: f64) -> Result<Self, Refusal> {
+        if sys.parametric.is_some() {
+            return Err(Refusal::Parametric);
+        }
         if sys.is_stochastic() {
             return Err(Refusal::Stochastic);
         }

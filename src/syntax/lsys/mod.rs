@@ -23,7 +23,9 @@ use crate::limits::{Bound, Limits};
 use crate::model::Loc;
 use crate::model::lsys::{Background, DEFAULT_HEADING, LSystem, Production};
 
+pub(crate) mod expr;
 mod keys;
+pub mod param;
 
 pub use keys::{KEYS, Key};
 
@@ -36,6 +38,33 @@ pub use keys::{KEYS, Key};
 /// `limits.max_depth`.
 pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
     let text = super::precheck(src.as_bytes(), limits)?;
+    if param::uses_parameters(text) {
+        // The classic keys checked on a copy without the parametric lines
+        // (same offsets), the parametric lines read on their own.
+        let masked = param::mask(text);
+        let classic = parse_classic(&masked, limits);
+        let parametric = param::parse(text);
+        return match (classic, parametric) {
+            (Ok(mut sys), Ok(p)) => {
+                sys.axiom = p.axiom.iter().map(|m| m.symbol).collect();
+                sys.parametric = Some(Box::new(p));
+                Ok(sys)
+            }
+            (Err(mut a), Err(b)) => {
+                for d in b.iter() {
+                    a.push(d.clone());
+                }
+                Err(a)
+            }
+            (Err(a), _) | (_, Err(a)) => Err(a),
+        };
+    }
+    parse_classic(text, limits)
+}
+
+/// [`parse`] of a classic (parameterless) file.
+fn parse_classic(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
+    let text = src;
     let file = GrammarParser::parse(Rule::lsys_file, text).map_err(|e| {
         let mut d = super::pest_error(e);
         // At the start of a line pest lists every key's form; say it short.
@@ -70,6 +99,7 @@ pub fn parse(src: &str, limits: &Limits) -> Result<LSystem, Diagnostics> {
         background: Background::White,
         seed: 0,
         dimensions: 2,
+        parametric: None,
     };
     let mut have_axiom = false;
     let mut have_angle = false;

@@ -1,0 +1,533 @@
+//! Parametric, conditional and context-sensitive L-systems (issue 32):
+//! `expand` against independent derivations written here, dfs == bfs,
+//! the parser reading back what `expand` writes, hostile inputs and the
+//! diagnostics that point at the text.
+
+use proptest::prelude::*;
+use stlc::diag::Diagnostics;
+use stlc::interpret::Derivation;
+use stlc::interpret::lsys::expand;
+use stlc::limits::Limits;
+use stlc::progress::NoProgress;
+use stlc::syntax::lsys::parse;
+
+fn expanded(src: &str, depth: u32, strategy: Derivation) -> Result<String, Diagnostics> {
+    let sys = parse(src, &Limits::default())?;
+    let mut out = Vec::new();
+    expand(
+        &sys,
+        depth,
+        strategy,
+        &Limits::default(),
+        &mut out,
+        &mut NoProgress,
+    )?;
+    Ok(String::from_utf8(out).unwrap())
+}
+
+fn example(name: &str) -> String {
+    std::fs::read_to_string(crate::support::manifest_path(format!("examples/{name}"))).unwrap()
+}
+
+/// The first error's message and help, and the text its span covers.
+fn first_error(src: &str) -> (String, String, String) {
+    let e = parse(src, &Limits::default()).expect_err("should not parse");
+    let d = e.iter().next().unwrap();
+    let span = d.span.clone().expect("the error points at the text");
+    (
+        d.kind.to_string(),
+        d.help_text().unwrap_or_default(),
+        src[span].to_string(),
+    )
+}
+
+// ------------------------------------------------ independent rewriters --
+
+/// ABOP Fig. 1.31a by hand: a bracketed 2L-system over `0 1 F + - [ ]`
+/// whose contexts skip `+ - F` and whole branches (ABOP p. 32).
+fn fig_131a(depth: u32) -> String {
+    let rules: [(&str, &str); 8] = [
+        ("000", "0"),
+        ("001", "1[+F1F1]"),
+        ("010", "1"),
+        ("011", "1"),
+        ("100", "0"),
+        ("101", "1F1"),
+        ("110", "0"),
+        ("111", "0"),
+    ];
+    let skip = |c: u8| matches!(c, b'+' | b'-' | b'F');
+    let mut w: Vec<u8> = b"F1F1F1".to_vec();
+    for _ in 0..depth {
+        let mut next = Vec::new();
+        for i in 0..w.len() {
+            let c = w[i];
+            match c {
+                b'+' => next.push(b'-'),
+                b'-' => next.push(b'+'),
+                b'0' | b'1' => {
+                    // Left: skip ignored symbols and whole branches, cross `[`.
+                    let mut left = None;
+                    let mut j = i;
+                    while j > 0 {
+                        j -= 1;
+                        let s = w[j];
+                        if s == b']' {
+                            let mut depth = 1;
+                            while depth > 0 {
+                                j -= 1;
+                                if w[j] == b']' {
+                                    depth += 1;
+                                } else if w[j] == b'[' {
+                                    depth -= 1;
+                                }
+                            }
+                        } else if s == b'[' || skip(s) {
+                        } else {
+                            left = Some(s);
+                            break;
+                        }
+                    }
+                    // Right: skip ignored symbols and whole branches, stop at `]`.
+                    let mut right = None;
+                    let mut j = i + 1;
+                    while j < w.len() {
+                        let s = w[j];
+                        if s == b'[' {
+                            let mut depth = 1;
+                            while depth > 0 {
+                                j += 1;
+                                if w[j] == b'[' {
+                                    depth += 1;
+                                } else if w[j] == b']' {
+                                    depth -= 1;
+                                }
+                            }
+                            j += 1;
+                        } else if s == b']' {
+                            break;
+                        } else if skip(s) {
+                            j += 1;
+                        } else {
+                            right = Some(s);
+                            break;
+                        }
+                    }
+                    match (left, right) {
+                        (Some(l), Some(r)) => {
+                            let key = [l, c, r];
+                            let succ = rules
+                                .iter()
+                                .find(|(k, _)| k.as_bytes() == key)
+                                .map(|(_, s)| s.as_bytes())
+                                .unwrap();
+                            next.extend_from_slice(succ);
+                        }
+                        _ => next.push(c),
+                    }
+                }
+                _ => next.push(c),
+            }
+        }
+        w = next;
+    }
+    String::from_utf8(w).unwrap() + "\n"
+}
+
+/// ABOP Fig. 2.6a by hand: modules as symbols with f64 parameters,
+/// Honda's three rules as Rust closures.
+fn fig_26a(depth: u32) -> String {
+    type M = (char, Vec<f64>);
+    let (r1, r2, a0, a2, d, wr) = (0.9, 0.6, 45.0, 45.0, 137.5, 0.707);
+    let m = |c: char, p: &[f64]| -> M { (c, p.to_vec()) };
+    let mut w: Vec<M> = vec![m('A', &[1.0, 10.0])];
+    for _ in 0..depth {
+        let mut next = Vec::new();
+        for (c, p) in w {
+            let (l, wd) = if p.len() == 2 {
+                (p[0], p[1])
+            } else {
+                (0.0, 0.0)
+            };
+            match c {
+                'A' => next.extend([
+                    m('!', &[wd]),
+                    m('F', &[l]),
+                    m('[', &[]),
+                    m('&', &[a0]),
+                    m('B', &[l * r2, wd * wr]),
+                    m(']', &[]),
+                    m('/', &[d]),
+                    m('A', &[l * r1, wd * wr]),
+                ]),
+                'B' | 'C' => {
+                    let (turn, other) = if c == 'B' { ('-', 'C') } else { ('+', 'B') };
+                    next.extend([
+                        m('!', &[wd]),
+                        m('F', &[l]),
+                        m('[', &[]),
+                        m(turn, &[a2]),
+                        m('$', &[]),
+                        m(other, &[l * r2, wd * wr]),
+                        m(']', &[]),
+                        m(other, &[l * r1, wd * wr]),
+                    ])
+                }
+                _ => next.push((c, p)),
+            }
+        }
+        w = next;
+    }
+    let mut s = String::new();
+    for (c, p) in w {
+        s.push(c);
+        if !p.is_empty() {
+            let parts: Vec<String> = p.iter().map(|v| format!("{v}")).collect();
+            s.push_str(&format!("({})", parts.join(",")));
+        }
+    }
+    s + "\n"
+}
+
+#[test]
+fn fig_1_31a_at_depth_30_is_the_hand_derivation() {
+    let src = example("abop-1.31a.lsys");
+    let want = fig_131a(30);
+    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+        let got = expanded(&src, 30, strategy).unwrap();
+        assert_eq!(got.len(), want.len());
+        assert!(got == want, "{strategy:?}: the words differ");
+    }
+    // The figure's word: 6910 modules, 2501 F (counted by the hand rewriter).
+    assert_eq!(want.trim_end().chars().count(), 6910);
+    assert_eq!(want.matches('F').count(), 2501);
+}
+
+#[test]
+fn fig_2_6a_at_depth_10_is_the_hand_derivation() {
+    let src = example("abop-2.6a.lsys");
+    let want = fig_26a(10);
+    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+        assert_eq!(expanded(&src, 10, strategy).unwrap(), want, "{strategy:?}");
+    }
+    // A binary tree of 2^10 - 1 internodes.
+    assert_eq!(want.matches('F').count(), 1023);
+    assert!(
+        want.starts_with("!(10)F(1)[&(45)!(7.069999999999999)F(0.6)[-(45)$"),
+        "{}",
+        &want[..60]
+    );
+}
+
+// ------------------------------------------------------------- properties --
+
+/// A random context-free parametric system over `A B F + -` with
+/// conditions and probabilities.
+fn system() -> impl Strategy<Value = String> {
+    let succ = prop::collection::vec(
+        prop_oneof![
+            Just("A(x*0.5+1,y-1)"),
+            Just("B(y,x)"),
+            Just("F(x)"),
+            Just("+(y*10)"),
+            Just("-"),
+            Just("[A(x,y+1)]"),
+            Just("[-B(x+y,2)]"),
+        ],
+        1..5,
+    );
+    (succ.clone(), succ.clone(), succ, 0.05f64..0.95, 0u64..5).prop_map(|(a, b, c, p, seed)| {
+        format!(
+            "angle 30\nseed {seed}\naxiom A(1,2)B(3,4)\nrule A(x,y) : x < 4 -> {}\n\
+             rule B(x,y) ({p}) -> {}\nrule B(x,y) ({}) -> {}\n",
+            a.concat(),
+            b.concat(),
+            1.0 - p,
+            c.concat()
+        )
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn dfs_and_bfs_derive_the_same_word(src in system(), depth in 0u32..6) {
+        let dfs = expanded(&src, depth, Derivation::Dfs);
+        let bfs = expanded(&src, depth, Derivation::Bfs);
+        match (dfs, bfs) {
+            (Ok(a), Ok(b)) => prop_assert_eq!(a, b),
+            (Err(_), Err(_)) => {}
+            (a, b) => prop_assert!(false, "one failed: {:?} / {:?}", a.is_ok(), b.is_ok()),
+        }
+    }
+
+    #[test]
+    fn the_parser_reads_back_what_expand_writes(src in system(), depth in 0u32..5) {
+        let Ok(word) = expanded(&src, depth, Derivation::Dfs) else { return Ok(()) };
+        let again = format!("angle 30\naxiom {}", word);
+        prop_assert_eq!(expanded(&again, 0, Derivation::Dfs).unwrap(), word);
+    }
+}
+
+#[test]
+fn expand_writes_the_shortest_numbers_that_read_back() {
+    let src = "angle 90\naxiom A(0.1+0.2,1,7.07,-0,2^70)\n";
+    let got = expanded(src, 0, Derivation::Dfs).unwrap();
+    assert_eq!(
+        got,
+        "A(0.30000000000000004,1,7.07,-0,1180591620717411300000)\n"
+    );
+    assert_eq!(
+        "1180591620717411300000".parse::<f64>().unwrap(),
+        2f64.powi(70)
+    );
+    let (msg, _, at) = first_error("angle 9\naxiom A(1/0)\n");
+    assert!(msg.contains("not a finite number"), "{msg}");
+    assert_eq!(at, "1/0");
+}
+
+// ------------------------------------------------------------- hostile --
+
+#[test]
+fn a_deeply_nested_expression_is_an_error_not_a_stack_overflow() {
+    let deep = format!(
+        "angle 9\naxiom A({}1{})\n",
+        "(".repeat(5000),
+        ")".repeat(5000)
+    );
+    let (msg, help, _) = first_error(&deep);
+    assert!(msg.contains("nested more than 64 levels"), "{msg}");
+    assert!(help.contains("define"), "{help}");
+    let minus = format!("angle 9\naxiom A({}1)\n", "-".repeat(5000));
+    assert!(first_error(&minus).0.contains("nested"));
+}
+
+#[test]
+fn a_huge_parameter_count_is_an_error() {
+    let many = vec!["1"; 10_000].join(",");
+    let (msg, help, _) = first_error(&format!("angle 9\naxiom A({many})\n"));
+    assert!(
+        msg.contains("10000 parameters") || msg.contains("65 parameters"),
+        "{msg}"
+    );
+    assert!(help.contains("at most 64"), "{help}");
+}
+
+#[test]
+fn a_division_by_zero_names_the_rule_and_the_generation() {
+    let src = "angle 9\naxiom A(3)\nrule A(x) -> A(x-1)B(1/(x-1))\n";
+    let e = expanded(src, 5, Derivation::Dfs).unwrap_err();
+    let d = e.iter().next().unwrap();
+    let msg = d.kind.to_string();
+    assert!(msg.contains("not a finite number (inf)"), "{msg}");
+    assert!(msg.contains("generation 3"), "{msg}");
+    assert_eq!(
+        &src[d.span.clone().unwrap()],
+        "rule A(x) -> A(x-1)B(1/(x-1))"
+    );
+}
+
+#[test]
+fn a_condition_always_true_with_a_growing_word_stops_at_the_limits() {
+    let src = "angle 9\naxiom A(1)\nrule A(x) : x > 0 -> A(x+1)A(x+1)\n";
+    let sys = parse(src, &Limits::default()).unwrap();
+    let limits = Limits {
+        // A parametric derivation may derive a thirtieth of max_symbols.
+        max_symbols: 30_000,
+        max_word: 1000,
+        ..Limits::default()
+    };
+    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+        let mut out = Vec::new();
+        let e = expand(&sys, 20, strategy, &limits, &mut out, &mut NoProgress).unwrap_err();
+        let d = e.iter().next().unwrap();
+        assert!(d.kind.to_string().contains("1000"), "{}", d.kind);
+        assert!(d.help_text().unwrap_or_default().contains("condition"));
+        assert!(out.is_empty(), "nothing written before the refusal");
+    }
+}
+
+// --------------------------------------------------------- diagnostics --
+
+#[test]
+fn an_unknown_name_points_at_it_with_the_nearest_known_one() {
+    let src = "angle 9\ndefine ratio 0.9\naxiom A(1)\nrule A(len) -> F(len)A(len*raito)\n";
+    let (msg, help, at) = first_error(src);
+    assert_eq!(msg, "unknown name `raito`");
+    assert_eq!(help, "did you mean `ratio`?");
+    assert_eq!(at, "raito");
+}
+
+#[test]
+fn a_predecessor_with_the_wrong_number_of_parameters_is_an_error() {
+    let src = "angle 9\naxiom A(1,2)\nrule A(x) -> A(x)\n";
+    let (msg, _, at) = first_error(src);
+    assert!(
+        msg.contains("`A` is made with 2 parameter(s), but this rule's predecessor has 1"),
+        "{msg}"
+    );
+    assert_eq!(at, "A(x)");
+    let (msg, _, at) = first_error("angle 9\naxiom A(min(1))\n");
+    assert_eq!(msg, "`min` takes 2 argument(s), not 1");
+    assert_eq!(at, "min(1)");
+}
+
+#[test]
+fn a_bare_number_as_a_condition_suggests_a_comparison() {
+    let src = "angle 9\naxiom A(1)\nrule A(x) : x -> B\n";
+    let (msg, help, at) = first_error(src);
+    assert_eq!(msg, "a condition is a comparison, not `x`");
+    assert!(help.contains("x != 0"), "{help}");
+    assert_eq!(at, "x");
+}
+
+#[test]
+fn the_cli_report_points_at_the_expression() {
+    let dir = std::env::temp_dir().join("stlc-param-diag");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("typo.lsys");
+    std::fs::write(
+        &file,
+        "angle 9\ndefine ratio 0.9\naxiom A(1)\nrule A(l) -> F(l)A(l*raito)\n",
+    )
+    .unwrap();
+    let out = assert_cmd::Command::cargo_bin("stlc")
+        .unwrap()
+        .args(["check", file.to_str().unwrap(), "--color", "never"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.contains("unknown name `raito`"), "{err}");
+    assert!(err.contains("typo.lsys:4:"), "{err}");
+    assert!(err.contains("did you mean `ratio`?"), "{err}");
+}
+
+#[test]
+fn classic_files_take_the_classic_path() {
+    for name in [
+        "abop-1.24a.lsys",
+        "hilbert.lsys",
+        "plant3d.lsys",
+        "sierpinski-arrowhead.lsys",
+    ] {
+        let sys = parse(&example(name), &Limits::default()).unwrap();
+        assert!(sys.parametric.is_none(), "{name}");
+    }
+    let sys = parse(&example("abop-2.8a.lsys"), &Limits::default()).unwrap();
+    let p = sys.parametric.as_deref().unwrap();
+    assert_eq!(p.tropism, Some([0.0, 1.0, 0.0]));
+    assert_eq!(p.elasticity, 0.22);
+}
+
+// ------------------------------------------------------------- turtle --
+
+fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
+    let sys = parse(src, &Limits::default()).unwrap();
+    let mut rec = stlc::turtle::Recorder::default();
+    stlc::interpret::lsys::draw_into(
+        &sys,
+        depth,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut rec,
+        &mut NoProgress,
+    )
+    .unwrap();
+    rec.segments
+}
+
+fn ends_3d(src: &str) -> Vec<stlc::turtle::turtle3::Segment3> {
+    let sys = parse(src, &Limits::default()).unwrap();
+    let mut segs = Vec::new();
+    stlc::interpret::lsys::lsys3::draw3(
+        &sys,
+        0,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut |s| segs.push(s),
+        &mut NoProgress,
+    )
+    .unwrap();
+    segs
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-12
+}
+
+#[test]
+fn parametric_steps_and_turns_take_their_parameters() {
+    // Up 2 x length 3, then a right turn of 90 degrees and half a step.
+    let s = ends_2d("angle 10\nlength 3\naxiom F(2)-(90)F(0.5)f(1)F\n", 0);
+    assert_eq!(s.len(), 3);
+    assert!(
+        close(s[0].to.x, 0.0) && close(s[0].to.y, -6.0),
+        "{:?}",
+        s[0]
+    );
+    assert!(
+        close(s[1].to.x, 1.5) && close(s[1].to.y, -6.0),
+        "{:?}",
+        s[1]
+    );
+    // `f(1)` moved 3 without drawing; the plain `F` turned by nothing.
+    assert!(
+        close(s[2].from.x, 4.5) && close(s[2].to.x, 7.5),
+        "{:?}",
+        s[2]
+    );
+}
+
+#[test]
+fn tropism_turns_the_heading_toward_t_by_e_times_the_sine() {
+    // Up the canvas, T to the right: after the first step the frame turns
+    // by e |H x T| = e radians toward +x.
+    let e: f64 = 0.5;
+    let s = ends_2d("angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n", 0);
+    assert!(close(s[0].to.x, 0.0) && close(s[0].to.y, -1.0));
+    assert!(close(s[1].to.x, libm::sin(e)), "{:?}", s[1]);
+    assert!(close(s[1].to.y, -1.0 - libm::cos(e)), "{:?}", s[1]);
+    // Without elasticity nothing bends.
+    let s = ends_2d("angle 10\ntropism 1 0 0\naxiom FF\n", 0);
+    assert!(close(s[1].to.x, 0.0) && close(s[1].to.y, -2.0));
+}
+
+#[test]
+fn dollar_rolls_left_back_to_the_horizontal() {
+    // Pitched down a quarter turn (H along +z), rolled by 30 degrees: L
+    // leaves the horizontal; `$` brings it back (L = V x H / |V x H|).
+    let rolled = ends_3d("dimensions 3\nangle 10\naxiom &(90)\\(30)+(90)F\n");
+    assert!(close(rolled[0].to.y, 0.5), "{:?}", rolled[0]);
+    let level = ends_3d("dimensions 3\nangle 10\naxiom &(90)\\(30)$+(90)F\n");
+    let t = level[0].to;
+    assert!(close(t.y, 0.0), "{t:?}");
+    assert!(close(t.x * t.x + t.z * t.z, 1.0), "{t:?}");
+}
+
+#[test]
+fn honda_trunk_is_the_geometric_series_of_its_contraction() {
+    // ABOP 2.6a: the trunk is F(1) F(0.9) ... F(0.9^9): 10 x (1 - 0.9^10) units.
+    let sys = parse(&example("abop-2.6a.lsys"), &Limits::default()).unwrap();
+    let st = stlc::interpret::stats::stats(&sys, 10, &Limits::default()).unwrap();
+    assert_eq!(st.segments, 1023u32.into());
+    let top = st.bbox.unwrap()[1];
+    assert!(close(top, -(1.0 - 0.9f64.powi(10)) / 0.1), "{top}");
+}
+
+#[test]
+fn counting_steps_stops_as_soon_as_they_pass_the_bound() {
+    // 2^40 steps at depth 40: counted only until 101.
+    let sys = parse(
+        "angle 9\naxiom A(1)\nrule A(x) -> A(x)F(x)A(x)\n",
+        &Limits::default(),
+    )
+    .unwrap();
+    let p = sys.parametric.as_deref().unwrap();
+    let n =
+        stlc::interpret::lsys::param::count_steps(&sys, p, 40, &Limits::default(), 100).unwrap();
+    assert_eq!(n, 101);
+    let n = stlc::interpret::lsys::param::count_steps(&sys, p, 3, &Limits::default(), 100).unwrap();
+    assert_eq!(n, 7);
+}
