@@ -14,6 +14,10 @@ for n in abop-1.24a abop-1.24b abop-1.24c abop-1.24d abop-1.24e abop-1.24f \
          koch-snowflake sierpinski-arrowhead stl-003-fig4; do
   $B render examples/$n.lsys --size 240x240 -o $G/$n.png
 done
+# The book's parametric and context-sensitive L-systems (docs/lsys.md).
+for n in abop-1.31a abop-2.6a abop-2.7a abop-2.8a param-willow; do
+  $B render examples/$n.lsys --size 240x240 -o $G/$n.png
+done
 $B render examples/crown.od --show-layout --size 300x300 -o $G/crown.png
 $B render examples/successors.od --show-layout --size 300x300 -o $G/successors.png
 $B render examples/pentagon.od --show-layout --size 300x300 -o $G/pentagon.png
