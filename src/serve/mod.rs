@@ -123,8 +123,12 @@ pub fn run(config: &Config, color: bool) -> ExitCode {
 
 fn serve(a: &Config) -> Result<(), Diagnostics> {
     let limits = a.limits;
+    let memory = Arc::new(memory::Memory::new(
+        a.memory_budget,
+        Some(crate::frontend::heap::live_bytes),
+    ));
     let doc = match &a.file {
-        Some(name) => open(name, limits.max_input_bytes)?,
+        Some(name) => open(name, limits.max_input_bytes, &memory)?,
         None => {
             document::Document::example(EXAMPLE, "2dtree.od", InputKind::Od, limits.max_input_bytes)
         }
@@ -155,10 +159,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
         ),
         guard: http::Guard::new(port),
         heavy: Arc::new(work::Slots::new(HEAVY)),
-        memory: Arc::new(memory::Memory::new(
-            a.memory_budget,
-            Some(crate::frontend::heap::live_bytes),
-        )),
+        memory,
     });
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
@@ -181,7 +182,11 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
 /// The file named on the command line: one that exists must be UTF-8 text
 /// of a known kind; one that does not yet starts from a template of the
 /// kind its extension names, and the first Save creates it.
-fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
+fn open(
+    name: &str,
+    max_bytes: u64,
+    memory: &Arc<memory::Memory>,
+) -> Result<document::Document, Diagnostics> {
     let Input::Path(path) = Input::parse(name) else {
         return Err(Diagnostic::error(ErrorKind::Io {
             doing: "cannot serve standard input".into(),
@@ -197,9 +202,10 @@ fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
         _ => std::path::Path::new("."),
     };
     crate::frontend::io::sweep_stale_temps(folder);
-    let kind = if path.exists() {
-        let bytes = Input::Path(path.clone()).read(max_bytes)?;
-        pipeline::detect_kind(Some(&path), &bytes)?
+    // Read as every request reads it: a named pipe or device is refused,
+    // not waited on.
+    let kind = if let Some(served) = document::read_served(&path, max_bytes, None)? {
+        pipeline::detect_kind(Some(&path), &served.bytes)?
     } else {
         let dir = match path.parent() {
             Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
@@ -228,7 +234,7 @@ fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
         InputKind::Bed => TEMPLATE_BED,
         InputKind::Lsys => TEMPLATE_LSYS,
     };
-    document::Document::file(path, name, kind, template, max_bytes)
+    document::Document::file(path, name, kind, template, max_bytes, Some(memory.clone()))
 }
 
 /// Accepts connections for ever; past `conns::MAX_CONNECTIONS` the

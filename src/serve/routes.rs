@@ -208,19 +208,7 @@ async fn reserve(state: &State, need: u64) -> Result<Reservation, Answer> {
 
 /// The answer to a request the memory budget has no room for.
 fn refused(r: memory::Refused) -> Answer {
-    let message = match r {
-        memory::Refused::TooBig { need, per_request } => format!(
-            "this request would need about {} MiB, more than one request may have ({} MiB, half of --memory-budget): render it with the command line, or start stlc serve with a larger --memory-budget",
-            memory::mib(need),
-            memory::mib(per_request)
-        ),
-        memory::Refused::Busy { need, budget } => format!(
-            "the server is busy: this request needs about {} MiB and other requests hold its memory budget of {} MiB; try again in a moment",
-            memory::mib(need),
-            memory::mib(budget)
-        ),
-    };
-    http::error(StatusCode::SERVICE_UNAVAILABLE, &message)
+    http::error(StatusCode::SERVICE_UNAVAILABLE, &memory::refusal(r))
 }
 
 /// What drawing a request's body ended in: its memory reserved, its body

@@ -1182,3 +1182,63 @@ fn slow_heads_cannot_fill_the_server() {
     assert!(times[1] < Duration::from_secs(1), "{times:?}");
     drop(slow);
 }
+
+/// The served file is read with bounds (issue 36, problems 2 and 3): with
+/// a named pipe in its place, 20 `GET /api/file` are each answered at
+/// once with what is wrong (before, each held a pool thread for good, and
+/// a small render then timed out); a link to `/dev/zero` and a 10 GB
+/// sparse file are refused without reading them, and the server's
+/// resident size stays small.
+#[test]
+fn the_served_file_is_read_with_bounds() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("tree.od");
+    std::fs::write(&file, example("fig9.od")).unwrap();
+    let server = Server::start(&[file.to_str().unwrap()]);
+    let addr = server.addr.clone();
+    std::fs::remove_file(&file).unwrap();
+    assert!(
+        Command::new("mkfifo")
+            .arg(&file)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let t0 = std::time::Instant::now();
+    let asks: Vec<_> = (0..20)
+        .map(|_| {
+            let addr = addr.clone();
+            std::thread::spawn(move || request(&addr, "GET", "/api/file", &[], b""))
+        })
+        .collect();
+    for a in asks {
+        let a = a.join().unwrap();
+        assert_eq!(a.status, 500);
+        let e = a.json()["error"].as_str().unwrap().to_string();
+        assert!(e.contains("a named pipe, not a regular file"), "{e}");
+    }
+    let light = render(&addr, &json!({"source": example("fig9.od")}));
+    assert_eq!(light["ok"], true);
+    assert!(t0.elapsed() < Duration::from_secs(10), "{:?}", t0.elapsed());
+    std::fs::remove_file(&file).unwrap();
+
+    std::os::unix::fs::symlink("/dev/zero", &file).unwrap();
+    let a = request(&addr, "GET", "/api/file", &[], b"");
+    let e = a.json()["error"].as_str().unwrap().to_string();
+    assert!(e.contains("a device, not a regular file"), "{e}");
+    std::fs::remove_file(&file).unwrap();
+    std::fs::File::create(&file)
+        .unwrap()
+        .set_len(10 << 30)
+        .unwrap();
+    let a = request(&addr, "GET", "/api/file", &[], b"");
+    let e = a.json()["error"].as_str().unwrap().to_string();
+    assert!(e.contains("more than --max-input"), "{e}");
+    let rss = std::fs::read_to_string(format!("/proc/{}/status", server.pid()))
+        .unwrap()
+        .lines()
+        .find_map(|l| l.strip_prefix("VmRSS:"))
+        .and_then(|v| v.trim().trim_end_matches(" kB").trim().parse::<u64>().ok())
+        .unwrap();
+    assert!(rss < 200_000, "{rss} kB resident");
+}
