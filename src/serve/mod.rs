@@ -3,10 +3,12 @@
 //! and a small JSON API ([`api`]) that calls the library's pipeline.
 //!
 //! Security model (docs/serve.md): only its owner can reach it: the link
-//! it prints carries a per-run secret, which the first visit trades for an
-//! HttpOnly, SameSite=Strict cookie, and every request needs that cookie
-//! or the secret in a header (another local account that can connect to
-//! the port learns nothing and changes nothing). It listens on the loopback
+//! it prints carries a per-run secret in its fragment (never sent to a
+//! server), which the page keeps in its tab's sessionStorage and sends in
+//! a header on every API call; no cookie carries it (cookies go to every
+//! port of 127.0.0.1). The page itself is public code and names no file;
+//! another local account, or another local port, learns nothing else and
+//! changes nothing. It listens on the loopback
 //! interface only; a request whose `Host` is not `127.0.0.1:PORT` or
 //! `localhost:PORT` is refused (DNS rebinding), as is a POST whose `Origin`
 //! is another site's; no path or file name ever comes from a request (Save
@@ -148,15 +150,12 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             time_budget: a.time_budget,
         },
         doc,
-        key: http::Key::new(
-            http::random_token().map_err(|e| {
-                io_error(
-                    &std::io::Error::other(e),
-                    "cannot read the system's random source",
-                )
-            })?,
-            port,
-        ),
+        key: http::Key::new(http::random_token().map_err(|e| {
+            io_error(
+                &std::io::Error::other(e),
+                "cannot read the system's random source",
+            )
+        })?),
         guard: http::Guard::new(port),
         heavy: Arc::new(work::Slots::new(HEAVY)),
         memory,
@@ -170,7 +169,8 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
         .map_err(|e| io_error(&e, "cannot start the server's threads"))?;
     {
         let mut out = std::io::stdout().lock();
-        writeln!(out, "http://127.0.0.1:{port}/?token={}", state.key.token())
+        // The token in the fragment: the browser never sends it (docs/serve.md).
+        writeln!(out, "http://127.0.0.1:{port}/#token={}", state.key.token())
             .and_then(|()| out.flush())
             .map_err(|e| io_error(&e, "cannot write to standard output"))?;
     }

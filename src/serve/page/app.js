@@ -25,7 +25,7 @@ import { createWords } from './words.js';
 import { createScrub } from './scrub.js';
 
 const app = {
-  engine: createEngine({ token: document.querySelector('meta[name="stlc-token"]').content }),
+  engine: createEngine({}),
   state: {
     tool: 'select',
     // The last answer and the text it answers.
