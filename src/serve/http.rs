@@ -148,6 +148,20 @@ impl Refused {
     }
 }
 
+/// 503 for heavy work past the queue for the heavy slots, with
+/// `Retry-After: seconds`.
+pub fn busy(seconds: u64) -> Answer {
+    let mut a = error(
+        StatusCode::SERVICE_UNAVAILABLE,
+        &format!(
+            "the server is busy with other heavy work (its queue is full): try again in {seconds} s"
+        ),
+    );
+    a.headers_mut()
+        .insert(hyper::header::RETRY_AFTER, HeaderValue::from(seconds));
+    a
+}
+
 /// The per-run secret and how a request proves it knows it: the token in
 /// a header, `X-Stlc-Token: T` (the page, which has it from the printed
 /// link's fragment) or `Authorization: Bearer T` (scripts). No cookie

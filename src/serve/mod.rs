@@ -77,13 +77,20 @@ const TEMPLATE_LSYS: &str = include_str!("templates/new.lsys");
 /// Largest request head (request line and headers), bytes.
 const MAX_HEAD: usize = 16 * 1024;
 
-/// Threads that run the pipeline; more requests wait for one. Light work
-/// runs at once on its own thread; of these, [`HEAVY`] may run heavy work
-/// (past `work::LIGHT`) at a time, so the rest stay free for light work.
-const WORKERS: usize = 16;
+/// Threads that run the pipeline: as many as requests can be in flight
+/// (one a connection, `conns::MAX_CONNECTIONS`), so a light request never
+/// waits for a thread. Of these, [`HEAVY`] may run heavy work (past
+/// `work::LIGHT`) at a time; heavy work waiting for its turn holds none.
+/// A thread's stack is committed only where touched, and an idle thread
+/// ends after 10 s.
+const WORKERS: usize = conns::MAX_CONNECTIONS;
 
 /// Heavy works that run at once (the machine's two cores' worth).
 const HEAVY: usize = 2;
+
+/// Heavy works that may wait for a slot (on no thread); more are refused
+/// with 503 and `Retry-After`.
+const HEAVY_QUEUE: usize = 16;
 
 /// Time a client has to send a request head.
 const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
@@ -157,7 +164,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             )
         })?),
         guard: http::Guard::new(port),
-        heavy: Arc::new(work::Slots::new(HEAVY)),
+        heavy: Arc::new(work::Slots::new(HEAVY, HEAVY_QUEUE)),
         memory,
     });
     let runtime = tokio::runtime::Builder::new_multi_thread()

@@ -225,7 +225,7 @@ async fn draw(
     let memory = Some(state.memory.clone());
     let heavy = body.source.len() > work::BIG_INPUT || pixels.is_some();
     Ok(work::run(budget, slots, memory, heavy, move |w| {
-        let _held = (reserved, pixels);
+        let _held = (&reserved, &pixels);
         api::run(&body, &state.settings, format, tree_up_to, w)
     })
     .await)
@@ -314,7 +314,7 @@ async fn words(state: Arc<State>, req: Request<Incoming>) -> Answer {
     let memory = Some(state.memory.clone());
     let heavy = body.source.len() > work::BIG_INPUT;
     let done = work::run(budget, slots, memory, heavy, move |w| {
-        let _held = reserved;
+        let _held = &reserved;
         api::words(&body, &state.settings, w)
     })
     .await;
@@ -414,6 +414,7 @@ fn stopped(why: Stopped) -> Answer {
             StatusCode::SERVICE_UNAVAILABLE,
             "stopped: the request was abandoned",
         ),
+        Stopped::Busy => http::busy(work::RETRY_AFTER),
     }
 }
 
