@@ -13,7 +13,9 @@
 # and renders fig9.od in turn. After SECONDS the heavy clients stop, and
 # the server idles 30 s. Prints the light answers' p50, p99 and maximum,
 # what the heavy clients were answered, and the resident size fresh, at
-# its peak and idle after the load. Bounded: SECONDS + about 45 s.
+# its peak and idle after the load; then 8 clients grow a 200,000-stem
+# tree 3 times each, and the resident size is printed at its peak and 20 s
+# after. Bounded: SECONDS + about 2 minutes.
 import http.client, json, os, statistics, subprocess, sys, tempfile, threading, time
 
 binary = sys.argv[1] if len(sys.argv) > 1 else 'target/release/stlc'
@@ -84,6 +86,22 @@ idle = []
 for _ in range(30):
     time.sleep(1)
     idle.append(rss_kb())
+# Memory: 8 clients grow benches/bigtree.od (200,000 stems) 3 times each
+# at once, then the server idles 20 s.
+BIG = json.dumps({"source": open('benches/bigtree.od').read()})
+def big():
+    for _ in range(3):
+        ask('POST', '/api/render', BIG)
+before_big = rss_kb()
+bigs = [threading.Thread(target=big) for _ in range(8)]
+for t in bigs:
+    t.start()
+big_peak = before_big
+while any(t.is_alive() for t in bigs):
+    big_peak = max(big_peak, rss_kb())
+    time.sleep(0.2)
+time.sleep(20)
+big_idle = rss_kb()
 light.sort()
 q = lambda p: light[min(len(light) - 1, int(p * len(light)))]
 print(f"light lane, {clients} heavy clients, {seconds:.0f} s: {len(light)} light answers, "
@@ -91,5 +109,7 @@ print(f"light lane, {clients} heavy clients, {seconds:.0f} s: {len(light)} light
 print(f"heavy answers: {dict(sorted((str(k), v) for k, v in counts.items()))}")
 print(f"resident: fresh {fresh/1024:.0f} MB, peak {peak[0]/1024:.0f} MB, idle after "
       f"{idle[-1]/1024:.0f} MB (min over 30 s {min(idle)/1024:.0f} MB)")
+print(f"then 8 x 3 growths of 200,000 stems: peak {big_peak/1024:.0f} MB, idle 20 s after "
+      f"{big_idle/1024:.0f} MB ({(big_idle - fresh)/1024:.0f} MB above fresh)")
 server.terminate()
 server.wait()
