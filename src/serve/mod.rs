@@ -105,7 +105,7 @@ struct State {
     settings: api::Settings,
     /// The file being edited (or the example).
     doc: document::Document,
-    /// The per-run secret every request needs (docs/serve.md).
+    /// The per-run secret every API call needs (docs/serve.md).
     key: http::Key,
     /// Who may ask.
     guard: http::Guard,
