@@ -21,16 +21,38 @@ use stlc::pipeline::Bound;
 use super::error::FrontEndError;
 
 /// Whether `output` names the same file as `input` (the same device and
-/// inode, which covers links and different spellings of one path). An
-/// output that does not exist yet is no input.
+/// inode, which covers links, different spellings of one path, and
+/// standard input redirected from the output file: `- -o g.od < g.od`, or
+/// `-o /dev/stdin`). An output that does not exist yet is no input, and
+/// neither is standard input that is no regular file (a pipe, a terminal).
 pub fn same_file(input: &Input, output: &Output) -> bool {
-    let (Input::Path(i), Output::Path(o)) = (input, output) else {
+    let Output::Path(o) = output else {
         return false;
     };
-    match (fs::metadata(i), fs::metadata(o)) {
+    let input = match input {
+        Input::Path(i) => fs::metadata(i),
+        Input::Stdin => stdin_metadata()
+            .filter(|m| m.is_file())
+            .ok_or_else(|| io::Error::other("standard input is no file")),
+    };
+    match (input, fs::metadata(o)) {
         (Ok(a), Ok(b)) => same_inode(&a, &b),
         _ => false,
     }
+}
+
+/// What standard input is (the file it was redirected from, a pipe...),
+/// if it is open.
+#[cfg(unix)]
+fn stdin_metadata() -> Option<fs::Metadata> {
+    use std::os::fd::AsFd;
+    let fd = io::stdin().as_fd().try_clone_to_owned().ok()?;
+    fs::File::from(fd).metadata().ok()
+}
+
+#[cfg(not(unix))]
+fn stdin_metadata() -> Option<fs::Metadata> {
+    None
 }
 
 #[cfg(unix)]

@@ -10,7 +10,7 @@ pub(crate) struct Asset {
     pub body: &'static str,
 }
 
-/// The page; `{{TOKEN}}` is replaced by the run's token.
+/// The page: public code, the same for every run (no key, no file name).
 pub(crate) const PAGE: &str = include_str!("page/index.html");
 
 const JS: &str = "text/javascript; charset=utf-8";
@@ -23,6 +23,11 @@ pub(crate) static ASSETS: &[Asset] = &[
         path: "/style.css",
         media: CSS,
         body: include_str!("page/style.css"),
+    },
+    Asset {
+        path: "/entry.js",
+        media: JS,
+        body: include_str!("page/entry.js"),
     },
     Asset {
         path: "/app.js",

@@ -148,23 +148,33 @@ impl Refused {
     }
 }
 
-/// The per-run secret and how a request proves it knows it: the cookie
-/// the first visit trades the printed link's `?token=` for (HttpOnly,
-/// SameSite=Strict, named with the port: cookies are not scoped by port,
-/// so two servers must not overwrite each other's), or the token in a
-/// header (`Authorization: Bearer T` or `X-Stlc-Token: T`, for scripts).
+/// 503 for heavy work past the queue for the heavy slots, with
+/// `Retry-After: seconds`.
+pub fn busy(seconds: u64) -> Answer {
+    let mut a = error(
+        StatusCode::SERVICE_UNAVAILABLE,
+        &format!(
+            "the server is busy with other heavy work (its queue is full): try again in {seconds} s"
+        ),
+    );
+    a.headers_mut()
+        .insert(hyper::header::RETRY_AFTER, HeaderValue::from(seconds));
+    a
+}
+
+/// The per-run secret and how a request proves it knows it: the token in
+/// a header, `X-Stlc-Token: T` (the page, which has it from the printed
+/// link's fragment) or `Authorization: Bearer T` (scripts). No cookie
+/// carries it: a browser sends the cookies of 127.0.0.1 to every port, so
+/// any other local listener the browser visits would receive it.
 pub struct Key {
     token: String,
-    cookie: String,
 }
 
 impl Key {
-    /// The key of a server on `port`.
-    pub fn new(token: String, port: u16) -> Self {
-        Key {
-            token,
-            cookie: format!("stlc-{port}"),
-        }
+    /// The key `token`.
+    pub fn new(token: String) -> Self {
+        Key { token }
     }
 
     /// The secret.
@@ -173,7 +183,7 @@ impl Key {
     }
 
     /// Whether `req` carries the token in a header.
-    pub fn in_header(&self, req: &Request<Incoming>) -> bool {
+    pub fn admits(&self, req: &Request<Incoming>) -> bool {
         let h = req.headers();
         let bearer = h
             .get_all(hyper::header::AUTHORIZATION)
@@ -187,58 +197,13 @@ impl Key {
             .chain(named)
             .any(|t| same_secret(t.trim(), &self.token))
     }
-
-    /// Whether `req` carries the key: the cookie or a header.
-    pub fn admits(&self, req: &Request<Incoming>) -> bool {
-        self.in_header(req) || self.in_cookie(req)
-    }
-
-    fn in_cookie(&self, req: &Request<Incoming>) -> bool {
-        req.headers()
-            .get_all(hyper::header::COOKIE)
-            .iter()
-            .filter_map(|v| v.to_str().ok())
-            .flat_map(|v| v.split(';'))
-            .filter_map(|pair| pair.trim().split_once('='))
-            .any(|(k, v)| k == self.cookie && same_secret(v, &self.token))
-    }
-
-    /// Whether the query string is `?token=` this run's token (the link
-    /// printed on the terminal).
-    pub fn in_query(&self, req: &Request<Incoming>) -> bool {
-        query_param(req.uri().query(), "token").is_some_and(|t| same_secret(&t, &self.token))
-    }
-
-    /// The answer to the printed link: the cookie, and a redirect to `/`
-    /// (so the token leaves the address bar and the history).
-    pub fn welcome(&self) -> Answer {
-        let mut a = answer(StatusCode::SEE_OTHER, "text/plain; charset=utf-8", "");
-        let h = a.headers_mut();
-        h.insert(hyper::header::LOCATION, HeaderValue::from_static("/"));
-        if let Ok(v) = HeaderValue::from_str(&format!(
-            "{}={}; HttpOnly; SameSite=Strict; Path=/",
-            self.cookie, self.token
-        )) {
-            h.insert(hyper::header::SET_COOKIE, v);
-        }
-        a
-    }
 }
 
-/// The one page a request without the key gets: where to find the link.
-pub fn locked(api: bool) -> Answer {
-    if api {
-        return error(
-            StatusCode::UNAUTHORIZED,
-            "this stlc serve answers only its owner: open the link printed in its terminal, or send its token (Authorization: Bearer TOKEN)",
-        );
-    }
-    answer(
+/// The answer to an API call without the key.
+pub fn locked() -> Answer {
+    error(
         StatusCode::UNAUTHORIZED,
-        "text/html; charset=utf-8",
-        "<!doctype html><meta charset=\"utf-8\"><title>stlc serve</title>\
-         <p>This is <b>stlc serve</b>. Open the link it printed in its terminal \
-         (<code>http://127.0.0.1:PORT/?token=...</code>): it carries this run's key.</p>",
+        "this stlc serve answers only its owner: open the link printed in its terminal (http://127.0.0.1:PORT/#token=...) in this tab, or send its token (X-Stlc-Token: TOKEN)",
     )
 }
 

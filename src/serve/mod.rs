@@ -3,10 +3,12 @@
 //! and a small JSON API ([`api`]) that calls the library's pipeline.
 //!
 //! Security model (docs/serve.md): only its owner can reach it: the link
-//! it prints carries a per-run secret, which the first visit trades for an
-//! HttpOnly, SameSite=Strict cookie, and every request needs that cookie
-//! or the secret in a header (another local account that can connect to
-//! the port learns nothing and changes nothing). It listens on the loopback
+//! it prints carries a per-run secret in its fragment (never sent to a
+//! server), which the page keeps in its tab's sessionStorage and sends in
+//! a header on every API call; no cookie carries it (cookies go to every
+//! port of 127.0.0.1). The page itself is public code and names no file;
+//! another local account, or another local port, learns nothing else and
+//! changes nothing. It listens on the loopback
 //! interface only; a request whose `Host` is not `127.0.0.1:PORT` or
 //! `localhost:PORT` is refused (DNS rebinding), as is a POST whose `Origin`
 //! is another site's; no path or file name ever comes from a request (Save
@@ -73,13 +75,20 @@ const TEMPLATE_LSYS: &str = include_str!("templates/new.lsys");
 /// Largest request head (request line and headers), bytes.
 const MAX_HEAD: usize = 16 * 1024;
 
-/// Threads that run the pipeline; more requests wait for one. Light work
-/// runs at once on its own thread; of these, [`HEAVY`] may run heavy work
-/// (past `work::LIGHT`) at a time, so the rest stay free for light work.
-const WORKERS: usize = 16;
+/// Threads that run the pipeline: as many as requests can be in flight
+/// (one a connection, `conns::MAX_CONNECTIONS`), so a light request never
+/// waits for a thread. Of these, [`HEAVY`] may run heavy work (past
+/// `work::LIGHT`) at a time; heavy work waiting for its turn holds none.
+/// A thread's stack is committed only where touched, and an idle thread
+/// ends after 10 s.
+const WORKERS: usize = conns::MAX_CONNECTIONS;
 
 /// Heavy works that run at once (the machine's two cores' worth).
 const HEAVY: usize = 2;
+
+/// Heavy works that may wait for a slot (on no thread); more are refused
+/// with 503 and `Retry-After`.
+const HEAVY_QUEUE: usize = 16;
 
 /// Time a client has to send a request head.
 const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
@@ -94,7 +103,7 @@ struct State {
     settings: api::Settings,
     /// The file being edited (or the example).
     doc: document::Document,
-    /// The per-run secret every request needs (docs/serve.md).
+    /// The per-run secret every API call needs (docs/serve.md).
     key: http::Key,
     /// Who may ask.
     guard: http::Guard,
@@ -121,8 +130,12 @@ pub fn run(config: &Config, color: bool) -> ExitCode {
 
 fn serve(a: &Config) -> Result<(), Diagnostics> {
     let limits = a.limits;
+    let memory = Arc::new(memory::Memory::new(
+        a.memory_budget,
+        Some(crate::frontend::heap::live_bytes),
+    ));
     let doc = match &a.file {
-        Some(name) => open(name, limits.max_input_bytes)?,
+        Some(name) => open(name, limits.max_input_bytes, &memory)?,
         None => {
             document::Document::example(EXAMPLE, "2dtree.od", InputKind::Od, limits.max_input_bytes)
         }
@@ -143,21 +156,15 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
             page: api::Page::Served,
         },
         doc,
-        key: http::Key::new(
-            http::random_token().map_err(|e| {
-                io_error(
-                    &std::io::Error::other(e),
-                    "cannot read the system's random source",
-                )
-            })?,
-            port,
-        ),
+        key: http::Key::new(http::random_token().map_err(|e| {
+            io_error(
+                &std::io::Error::other(e),
+                "cannot read the system's random source",
+            )
+        })?),
         guard: http::Guard::new(port),
-        heavy: Arc::new(work::Slots::new(HEAVY)),
-        memory: Arc::new(memory::Memory::new(
-            a.memory_budget,
-            Some(crate::frontend::heap::live_bytes),
-        )),
+        heavy: Arc::new(work::Slots::new(HEAVY, HEAVY_QUEUE)),
+        memory,
     });
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
@@ -168,7 +175,8 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
         .map_err(|e| io_error(&e, "cannot start the server's threads"))?;
     {
         let mut out = std::io::stdout().lock();
-        writeln!(out, "http://127.0.0.1:{port}/?token={}", state.key.token())
+        // The token in the fragment: the browser never sends it (docs/serve.md).
+        writeln!(out, "http://127.0.0.1:{port}/#token={}", state.key.token())
             .and_then(|()| out.flush())
             .map_err(|e| io_error(&e, "cannot write to standard output"))?;
     }
@@ -180,7 +188,11 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
 /// The file named on the command line: one that exists must be UTF-8 text
 /// of a known kind; one that does not yet starts from a template of the
 /// kind its extension names, and the first Save creates it.
-fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
+fn open(
+    name: &str,
+    max_bytes: u64,
+    memory: &Arc<memory::Memory>,
+) -> Result<document::Document, Diagnostics> {
     let Input::Path(path) = Input::parse(name) else {
         return Err(Diagnostic::error(ErrorKind::Io {
             doing: "cannot serve standard input".into(),
@@ -196,9 +208,10 @@ fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
         _ => std::path::Path::new("."),
     };
     crate::frontend::io::sweep_stale_temps(folder);
-    let kind = if path.exists() {
-        let bytes = Input::Path(path.clone()).read(max_bytes)?;
-        pipeline::detect_kind(Some(&path), &bytes)?
+    // Read as every request reads it: a named pipe or device is refused,
+    // not waited on.
+    let kind = if let Some(served) = document::read_served(&path, max_bytes, None)? {
+        pipeline::detect_kind(Some(&path), &served.bytes)?
     } else {
         let dir = match path.parent() {
             Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
@@ -227,7 +240,7 @@ fn open(name: &str, max_bytes: u64) -> Result<document::Document, Diagnostics> {
         InputKind::Bed => TEMPLATE_BED,
         InputKind::Lsys => TEMPLATE_LSYS,
     };
-    document::Document::file(path, name, kind, template, max_bytes)
+    document::Document::file(path, name, kind, template, max_bytes, Some(memory.clone()))
 }
 
 /// Accepts connections for ever; past `conns::MAX_CONNECTIONS` the

@@ -31,13 +31,11 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
     if let Err(refused) = state.guard.check(&req) {
         return refused.answer();
     }
-    // Only the owner: the printed link's token, traded for a cookie; every
-    // other request must carry the cookie or the token in a header.
-    if req.method() == Method::GET && req.uri().path() == "/" && state.key.in_query(&req) {
-        return state.key.welcome();
-    }
-    if !state.key.admits(&req) {
-        return http::locked(req.uri().path().starts_with("/api/"));
+    // Only the owner: every API call, reads included, carries the key in
+    // a header (the page has it from the printed link's fragment); the
+    // page and its scripts are public code and name no file.
+    if req.uri().path().starts_with("/api/") && !state.key.admits(&req) {
+        return http::locked();
     }
     let method = req.method().clone();
     let path = req.uri().path().to_string();
@@ -51,7 +49,7 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
         return http::error(StatusCode::METHOD_NOT_ALLOWED, "wrong method");
     }
     match path.as_str() {
-        "/" => page(&state),
+        "/" => page(),
         "/api/file" => file(state, req).await,
         "/api/examples" => examples(),
         "/api/render" => render(state, req).await,
@@ -62,13 +60,9 @@ pub async fn route(state: Arc<State>, req: Request<Incoming>) -> Answer {
     }
 }
 
-/// `GET /`: the page, with this run's token in its meta tag.
-fn page(state: &State) -> Answer {
-    http::answer(
-        StatusCode::OK,
-        "text/html; charset=utf-8",
-        assets::PAGE.replace("{{TOKEN}}", state.key.token()),
-    )
+/// `GET /`: the page (public code: no key, no file name).
+fn page() -> Answer {
+    http::answer(StatusCode::OK, "text/html; charset=utf-8", assets::PAGE)
 }
 
 /// `GET /<asset>`: an embedded script or style sheet.
@@ -208,19 +202,7 @@ async fn reserve(state: &State, need: u64) -> Result<Reservation, Answer> {
 
 /// The answer to a request the memory budget has no room for.
 fn refused(r: memory::Refused) -> Answer {
-    let message = match r {
-        memory::Refused::TooBig { need, per_request } => format!(
-            "this request would need about {} MiB, more than one request may have ({} MiB, half of --memory-budget): render it with the command line, or start stlc serve with a larger --memory-budget",
-            memory::mib(need),
-            memory::mib(per_request)
-        ),
-        memory::Refused::Busy { need, budget } => format!(
-            "the server is busy: this request needs about {} MiB and other requests hold its memory budget of {} MiB; try again in a moment",
-            memory::mib(need),
-            memory::mib(budget)
-        ),
-    };
-    http::error(StatusCode::SERVICE_UNAVAILABLE, &message)
+    http::error(StatusCode::SERVICE_UNAVAILABLE, &memory::refusal(r))
 }
 
 /// What a call on a request's body ended in: its memory reserved, its
@@ -231,7 +213,8 @@ async fn call<T: Send + 'static>(
     state: Arc<State>,
     req: Request<Incoming>,
     png: bool,
-    call: impl FnOnce(&Body, &api::Settings, &mut dyn stlc::pipeline::Progress) -> T + Send + 'static,
+    // Run again from the start if heavy work waited for a slot (`work`).
+    call: impl Fn(&Body, &api::Settings, &mut dyn stlc::pipeline::Progress) -> T + Send + Sync + 'static,
 ) -> Result<Ended<T>, Answer> {
     let reserved = admit(&state, &req).await?;
     let body = body(&state, req).await?;
@@ -244,7 +227,7 @@ async fn call<T: Send + 'static>(
     let memory = Some(state.memory.clone());
     let heavy = body.source.len() > work::BIG_INPUT || pixels.is_some();
     Ok(work::run(budget, slots, memory, heavy, move |w| {
-        let _held = (reserved, pixels);
+        let _held = (&reserved, &pixels);
         call(&body, &state.settings, w)
     })
     .await)
@@ -320,12 +303,10 @@ async fn words(state: Arc<State>, req: Request<Incoming>) -> Answer {
 }
 
 /// `POST /api/save`: writes the text to the file named on the command
-/// line, atomically, only with this run's token, and only over the version
-/// the edit is based on: otherwise 412 with the version there now.
+/// line, atomically (the key was checked with every API call's), and only
+/// over the version the edit is based on: otherwise 412 with the version
+/// there now.
 async fn save(state: Arc<State>, req: Request<Incoming>) -> Answer {
-    // A write needs the token in a header too: the cookie alone would let
-    // a page that tricks the browser into a request write.
-    let token_ok = state.key.in_header(&req);
     let bytes = match http::read_body(req, state.settings.limits.max_input_bytes).await {
         Ok(b) => b,
         Err(a) => return a,
@@ -334,9 +315,6 @@ async fn save(state: Arc<State>, req: Request<Incoming>) -> Answer {
         Ok(b) => b,
         Err(api::BadRequest(m)) => return http::error(StatusCode::BAD_REQUEST, &m),
     };
-    if !token_ok {
-        return http::error(StatusCode::FORBIDDEN, "saving needs the page's token");
-    }
     #[derive(Serialize)]
     struct Saved {
         ok: bool,
@@ -412,6 +390,7 @@ fn stopped(why: Stopped) -> Answer {
             StatusCode::SERVICE_UNAVAILABLE,
             "stopped: the request was abandoned",
         ),
+        Stopped::Busy => http::busy(work::RETRY_AFTER),
     }
 }
 

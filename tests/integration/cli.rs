@@ -1202,3 +1202,40 @@ fn growth_settings_kept_in_the_file() {
         assert!(err.contains(says), "{keys}: {err}");
     }
 }
+
+/// Standard input is compared with the output as a named input is (issue
+/// 36, problem 8): `stlc compile - -o g.od < g.od`, and `-o /dev/stdin`
+/// with standard input redirected from the file, are refused before any
+/// work (exit 1), and the hand-written OD is left as it was. Standard
+/// input from a pipe is no file: its output is written as before.
+#[test]
+fn standard_input_is_never_the_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let od = dir.path().join("g.od");
+    let text = fs::read(crate::support::manifest_path("examples/2dtree.od")).unwrap();
+    fs::write(&od, &text).unwrap();
+    let od_name = od.to_str().unwrap();
+    for output in [od_name, "/dev/stdin"] {
+        let out = StdCommand::new(assert_cmd::cargo::cargo_bin("stlc"))
+            .args(["compile", "-", "--from", "od", "-o", output])
+            .env("NO_COLOR", "1")
+            .stdin(fs::File::open(&od).unwrap())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "-o {output}: {err}");
+        assert!(
+            err.contains("refusing to write over the input") && err.contains("<stdin>"),
+            "{err}"
+        );
+        assert_eq!(fs::read(&od).unwrap(), text, "-o {output}");
+    }
+    // The same text through a pipe: written.
+    let bed = dir.path().join("g.bed");
+    stlc()
+        .args(["compile", "-", "--from", "od", "-o", bed.to_str().unwrap()])
+        .write_stdin(text)
+        .assert()
+        .success();
+    assert!(fs::read_to_string(&bed).unwrap().contains("SEED"));
+}

@@ -6,6 +6,7 @@ mod browser;
 mod browser_3d;
 mod browser_draw;
 mod browser_edits;
+mod browser_key;
 mod browser_page;
 mod browser_web;
 mod cli;

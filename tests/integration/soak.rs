@@ -24,7 +24,7 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use crate::serve::{HEAVY, Server, cookie, example, request};
+use crate::serve::{HEAVY, Server, example, key, request};
 
 /// Memory budget of the soaked server, MiB.
 const BUDGET_MIB: u64 = 256;
@@ -96,7 +96,7 @@ fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHan
     std::thread::spawn(move || {
         let one = format!(
             "GET /api/examples HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
-            cookie(&addr)
+            key(&addr)
         )
         .repeat(4);
         let mut conns: Vec<Option<TcpStream>> = (0..n).map(|_| None).collect();
@@ -146,7 +146,7 @@ fn heavy(
                 let head = format!(
                     "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
                     body.len(),
-                    cookie(&addr)
+                    key(&addr)
                 );
                 if let Ok(mut s) = TcpStream::connect(&addr) {
                     let _ = s.write_all(head.as_bytes());
@@ -263,14 +263,13 @@ fn no_save_is_lost_or_damaged_when_the_server_is_killed() {
         std::fs::write(&file, &old).unwrap();
         let server = start(&[file.to_str().unwrap()]);
         let addr = server.addr.clone();
-        let token = server.token.clone();
         let body = json!({"source": new}).to_string();
         // Sent as it is; the answer, if any comes before the kill, unread.
         let saver = std::thread::spawn(move || {
             let head = format!(
-                "POST /api/save HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\nX-Stlc-Token: {token}\r\n{}\r\n",
+                "POST /api/save HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
                 body.len(),
-                cookie(&addr)
+                key(&addr)
             );
             if let Ok(mut s) = TcpStream::connect(&addr) {
                 let _ = s.write_all(head.as_bytes());

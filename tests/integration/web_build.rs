@@ -59,7 +59,13 @@ fn two_builds_at_once_then_a_third_all_succeed_and_leave_one_whole_site() {
 
     // One whole site: the page, the module, every example and their list.
     let index = std::fs::read_to_string(site.join("index.html")).unwrap();
-    assert!(index.contains("src=\"site.js\""), "{index}");
+    assert!(index.contains("src=\"entry.js\""), "{index}");
+    // The static site's entry, not the served page's: the HTML names one
+    // entry and the build ships the WebAssembly one in its place.
+    let entry = std::fs::read_to_string(site.join("entry.js")).unwrap();
+    assert!(entry.contains("useEngine(createWasmEngine)"), "{entry}");
+    let page = std::fs::read_to_string(manifest_path("src/serve/page/index.html")).unwrap();
+    assert_eq!(index, page, "the page is copied, not rewritten");
     let wasm = std::fs::read(site.join("stlc.wasm")).unwrap();
     assert_eq!(&wasm[..4], b"\0asm");
     let list = std::fs::read_to_string(site.join("examples/index.json")).unwrap();

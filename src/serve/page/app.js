@@ -28,7 +28,7 @@ import { createScrub } from './scrub.js';
 import { addShare } from './sharing.js';
 
 const app = {
-  engine: createEngine({ token: document.querySelector('meta[name="stlc-token"]').content }),
+  engine: createEngine({}),
   state: {
     tool: 'select',
     // The last answer and the text it answers.
@@ -83,7 +83,7 @@ const app = {
   // The share link of the document shown (sharing.js).
   shareLink: null,
   // When the first picture was drawn, ms from navigation (the static site's
-  // site.js sets it for benches/web.sh).
+  // entry.js sets it for benches/web.sh).
   firstPicture: null,
 };
 Object.seal(app);

@@ -17,7 +17,7 @@ import { fromFragment } from '../share.js';
 
 /**
  * The document this tab shows, kept in `sessionStorage` (this tab's
- * only; it outlives a reload) by site.js each time one is opened:
+ * only; it outlives a reload) by entry.js each time one is opened:
  * `{name, kind, text, hash}`, its text as opened (its unsaved edits are
  * the draft, kept apart) and the address's fragment then.
  */

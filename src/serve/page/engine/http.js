@@ -28,18 +28,52 @@ function unpack(buf) {
   return answer;
 }
 
+// Where this tab keeps the server's per-run key (docs/serve.md, "Security
+// model"). sessionStorage belongs to this origin, port included, and to
+// this tab: a reload keeps it, a new tab needs the printed link.
+const KEY = 'stlc-token';
+
 /**
- * @param {{token: string}} options the page's token, sent as X-Stlc-Token
+ * The per-run key: the printed link carries it in its fragment
+ * (`#token=T`), which the browser never sends to a server; it is kept in
+ * sessionStorage and taken out of the address bar (and so out of the
+ * history, bookmarks and Share links). No cookie carries it: a browser
+ * sends the cookies of 127.0.0.1 to every port.
+ *
+ * @returns {string} the key, or '' (this tab was not opened from the link)
+ */
+export function pageToken() {
+  const fragment = new URLSearchParams(location.hash.slice(1));
+  const given = fragment.get('token');
+  if (given) {
+    sessionStorage.setItem(KEY, given);
+    fragment.delete('token');
+    const rest = fragment.toString();
+    history.replaceState(history.state, '', location.pathname + location.search + (rest ? '#' + rest : ''));
+  }
+  return sessionStorage.getItem(KEY) || '';
+}
+
+/**
+ * @param {{token?: string}} [options] the key to send as X-Stlc-Token on
+ *   every call; by default the page's own (pageToken)
  * @returns {import('./index.js').Engine}
  */
-export function createHttpEngine({ token }) {
+export function createHttpEngine({ token = pageToken() } = {}) {
+  const key = { 'X-Stlc-Token': token };
+
   function post(path, body, signal, accept = 'application/json') {
     return fetch(path, {
       method: 'POST',
-      headers: { 'Content-Type': 'application/json', 'X-Stlc-Token': token, Accept: accept },
+      headers: { ...key, 'Content-Type': 'application/json', Accept: accept },
       body: JSON.stringify(body),
       signal,
     });
+  }
+
+  // Reads carry the key too: the file is the owner's.
+  function get(path) {
+    return fetch(path, { headers: key });
   }
 
   // The JSON of a refused request (400, 403, 413...): `{ok: false, error}`.
@@ -73,14 +107,16 @@ export function createHttpEngine({ token }) {
     },
 
     async examples() {
-      const res = await fetch('/api/examples');
-      if (!res.ok) throw new Error(`/api/examples: ${res.status} ${res.statusText}`);
+      const res = await get('/api/examples');
+      if (!res.ok) throw new Error(`/api/examples: ${(await refused(res)).error}`);
       return res.json();
     },
 
     async open(known) {
-      const res = await fetch('/api/file' + (known ? '?known=' + encodeURIComponent(known) : ''));
-      if (!res.ok) throw new Error(`/api/file: ${res.status} ${res.statusText}`);
+      const res = await get('/api/file' + (known ? '?known=' + encodeURIComponent(known) : ''));
+      // Without the key (a tab not opened from the printed link), the
+      // server's 401 says to open that link.
+      if (!res.ok) throw new Error(`/api/file: ${(await refused(res)).error}`);
       return res.json();
     },
 

@@ -92,10 +92,10 @@ let chosen = createHttpEngine;
 
 /**
  * Chooses another engine for this page, before app.js creates it: the
- * static site's entry module (web/page/site.js) chooses the WebAssembly
+ * static site's entry module (web/page/entry.js) chooses the WebAssembly
  * one (web/page/engine/wasm.js). `stlc serve` chooses none: HTTP.
  *
- * @param {(options: {token: string}) => Engine} create
+ * @param {(options: object) => Engine} create
  */
 export function useEngine(create) {
   chosen = create;
@@ -104,7 +104,7 @@ export function useEngine(create) {
 /**
  * The engine this page uses: the HTTP one unless another was chosen.
  *
- * @param {{token: string}} options the page's Save token
+ * @param {object} options the engine's options (none today)
  * @returns {Engine}
  */
 export function createEngine(options) {

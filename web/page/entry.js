@@ -1,7 +1,8 @@
-// The static Tree Maker's entry module (target/site/index.html, built by
-// web/build.sh): the page of `stlc serve` (its own modules, unchanged)
-// with the WebAssembly engine instead of the HTTP one (Share is the
-// page's own, sharing.js).
+// The static Tree Maker's entry module: web/build.sh copies it over the
+// page's own entry.js (src/serve/page/entry.js), so the same index.html
+// loads the page of `stlc serve` (its own modules, unchanged) with the
+// WebAssembly engine instead of the HTTP one (Share is the page's own,
+// sharing.js).
 
 import { useEngine } from './engine/index.js';
 import { createWasmEngine, remember } from './engine/wasm.js';
