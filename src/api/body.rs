@@ -27,6 +27,21 @@ pub struct Settings {
     pub page: super::Page,
 }
 
+impl Settings {
+    /// The command line's defaults (docs/limits.md) for `page`, with no
+    /// time budget: the static site's settings (its page ends a render by
+    /// ending its worker), and a test's.
+    pub fn defaults(page: super::Page) -> Settings {
+        Settings {
+            limits: Limits::DEFAULT,
+            max_stems: None,
+            max_svg_segments: crate::pipeline::DEFAULT_MAX_SVG_SEGMENTS,
+            time_budget: std::time::Duration::MAX,
+            page,
+        }
+    }
+}
+
 /// A request body: `{"source", "kind"?, "growth"?, "depth"?,
 /// "clearance"?, "max_stems"?, "seed"?, "size"?, "show_layout"?,
 /// "background"?, "view"?}`. Absent and `null` fields take

@@ -250,7 +250,7 @@ pub fn check(body: &Body, s: &Settings) -> Result<Checked, Failed> {
 mod tests {
     use super::*;
     use crate::api::parse;
-    use crate::pipeline::Limits;
+    use crate::pipeline::NoProgress;
 
     #[test]
     fn each_layout_shape_comes_with_its_own_text() {
@@ -260,21 +260,8 @@ mod tests {
                     (clGreen)< RoundRect (0,0,180,192,7,7)> # big\n\
                     (clWhite) Rectangle (55,30), 40, 15 ENDLAYOUT";
         let body = parse(format!(r#"{{"source": {text:?}}}"#).as_bytes()).unwrap();
-        let s = Settings {
-            limits: Limits::default(),
-            max_stems: None,
-            max_svg_segments: 1_000_000,
-            time_budget: std::time::Duration::from_secs(60),
-            page: crate::api::Page::Served,
-        };
-        let (answer, _) = render(
-            &body,
-            &s,
-            ImageFormat::Svg,
-            None,
-            &mut crate::pipeline::NoProgress,
-        )
-        .unwrap();
+        let s = Settings::defaults(crate::api::Page::Served);
+        let (answer, _) = render(&body, &s, ImageFormat::Svg, None, &mut NoProgress).unwrap();
         let units: Vec<u16> = text.encode_utf16().collect();
         let slice = |a: usize, b: usize| String::from_utf16(&units[a..b]).unwrap();
         let layout = answer.layout.flatten().unwrap();
@@ -306,21 +293,8 @@ mod tests {
             .as_bytes(),
         )
         .unwrap();
-        let s = Settings {
-            limits: Limits::default(),
-            max_stems: None,
-            max_svg_segments: 1_000_000,
-            time_budget: std::time::Duration::from_secs(60),
-            page: crate::api::Page::Served,
-        };
-        let (answer, _) = render(
-            &body,
-            &s,
-            ImageFormat::Svg,
-            None,
-            &mut crate::pipeline::NoProgress,
-        )
-        .unwrap();
+        let s = Settings::defaults(crate::api::Page::Served);
+        let (answer, _) = render(&body, &s, ImageFormat::Svg, None, &mut NoProgress).unwrap();
         let w = serde_json::to_value(&answer.warnings[0]).unwrap();
         assert_eq!(
             w["message"],
@@ -333,7 +307,7 @@ mod tests {
         );
         let cli = body
             .request(&s, ImageFormat::Svg)
-            .render(&mut Vec::new(), &mut crate::pipeline::NoProgress)
+            .render(&mut Vec::new(), &mut NoProgress)
             .unwrap();
         assert_eq!(
             cli.warnings[0].help_text().unwrap(),

@@ -8,7 +8,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 
 use stlc::api::{self, Page, Settings};
-use stlc::pipeline::{ImageFormat, Limits, NoProgress};
+use stlc::pipeline::{ImageFormat, NoProgress};
 
 use crate::support::manifest_path;
 
@@ -167,13 +167,7 @@ fn the_api_fields_in_the_serve_docs_are_the_api_s() {
     // a layout; a 3D input's `space` is named as the answer says it is).
     let tree = std::fs::read_to_string(manifest_path("examples/2dtree.od")).unwrap();
     let body = api::parse(serde_json::json!({ "source": tree }).to_string().as_bytes()).unwrap();
-    let s = Settings {
-        limits: Limits::default(),
-        max_stems: None,
-        max_svg_segments: 1_000_000,
-        time_budget: std::time::Duration::from_secs(60),
-        page: Page::Served,
-    };
+    let s = Settings::defaults(Page::Served);
     let (answer, _) = api::render(&body, &s, ImageFormat::Svg, None, &mut NoProgress).unwrap();
     let mut keys: BTreeSet<String> = serde_json::to_value(&answer)
         .unwrap()

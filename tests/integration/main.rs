@@ -31,6 +31,7 @@ mod render;
 mod repeats;
 mod robustness;
 mod serve;
+mod serve_hostile;
 mod soak;
 mod stl;
 mod stochastic;

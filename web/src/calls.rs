@@ -6,7 +6,7 @@
 
 use serde::Serialize;
 use stlc::api::{self, BadRequest, Body, Format};
-use stlc::pipeline::{DEFAULT_MAX_SVG_SEGMENTS, ImageFormat, Limits, NoProgress};
+use stlc::pipeline::{ImageFormat, NoProgress};
 
 /// How a call ended: what the bytes out are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,13 +26,7 @@ pub type Answer = (Status, Vec<u8>);
 /// The limits in the browser: the CLI's defaults (docs/limits.md). There
 /// is no time budget: the page ends a render by ending its worker.
 pub fn settings() -> api::Settings {
-    api::Settings {
-        limits: Limits::DEFAULT,
-        max_stems: None,
-        max_svg_segments: DEFAULT_MAX_SVG_SEGMENTS,
-        time_budget: std::time::Duration::MAX,
-        page: api::Page::Web,
-    }
+    api::Settings::defaults(api::Page::Web)
 }
 
 fn json(status: Status, value: &impl Serialize) -> Answer {
