@@ -52,6 +52,7 @@
 //! The library never prints and never exits: errors are data
 //! ([`diag::Diagnostics`]); the `stlc` binary renders them with ariadne.
 
+#![forbid(unsafe_code)]
 #![deny(
     clippy::print_stdout,
     clippy::print_stderr,

@@ -182,6 +182,7 @@ fn serve(a: &Config) -> Result<(), Diagnostics> {
     }
     interrupt::stop_is_success();
     work::quiet_stops();
+    runtime.spawn(memory::give_back_when_idle(state.memory.clone()));
     runtime.block_on(accept_loop(listener, state))
 }
 
