@@ -333,7 +333,9 @@ fn resident_kb(server: &Server) -> u64 {
 /// there was something to give back.
 #[test]
 fn memory_freed_after_a_burst_goes_back_to_the_system() {
-    let server = Server::start(&[]);
+    // Two growths run at once (the heavy slots), two wait: a time budget
+    // that queued work under a loaded CI machine cannot run past.
+    let server = Server::start(&["--time-budget", "300"]);
     let addr = server.addr.clone();
     let big = std::fs::read_to_string(manifest_path("benches/bigtree.od")).unwrap();
     let fresh = resident_kb(&server);
@@ -341,7 +343,21 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
     let growths: Vec<_> = (0..4)
         .map(|_| {
             let (addr, big) = (addr.clone(), big.clone());
-            std::thread::spawn(move || render(&addr, &json!({ "source": big })))
+            // A growth the server is too busy for now (503, with the rest
+            // of the suite running beside it) is asked again.
+            std::thread::spawn(move || {
+                let mut answer = json!(null);
+                for _ in 0..10 {
+                    let body = json!({ "source": big }).to_string();
+                    let a = request(&addr, "POST", "/api/render", &[], body.as_bytes());
+                    answer = a.json();
+                    if a.status == 200 && answer["ok"] == true {
+                        break;
+                    }
+                    std::thread::sleep(Duration::from_secs(1));
+                }
+                answer
+            })
         })
         .collect();
     while growths.iter().any(|g| !g.is_finished()) {
@@ -349,7 +365,8 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
         std::thread::sleep(Duration::from_millis(50));
     }
     for g in growths {
-        assert_eq!(g.join().unwrap()["ok"], true);
+        let answer = g.join().unwrap();
+        assert_eq!(answer["ok"], true, "{answer}");
     }
     let peak = peak.load(std::sync::atomic::Ordering::Relaxed);
     // The server looks every 2 s whether it is idle.
