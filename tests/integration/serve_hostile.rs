@@ -158,19 +158,7 @@ fn only_the_owner_reaches_the_file() {
 fn a_light_render_is_answered_while_heavy_ones_run() {
     let server = Server::start(&["--time-budget", "20"]);
     let addr = server.addr.clone();
-    let heavy = json!({"source": HEAVY, "kind": "lsys", "depth": 12}).to_string();
-    let mut streams = Vec::new();
-    for _ in 0..8 {
-        let head = format!(
-            "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-            heavy.len(),
-            key(&addr)
-        );
-        let mut s = TcpStream::connect(&addr).unwrap();
-        s.write_all(head.as_bytes()).unwrap();
-        s.write_all(heavy.as_bytes()).unwrap();
-        streams.push(s);
-    }
+    let streams = heavy_renders(&addr, 8);
     // Let them start and pass the light time.
     std::thread::sleep(Duration::from_millis(800));
     let mut times = Vec::new();
@@ -315,6 +303,26 @@ fn the_served_file_is_read_with_bounds() {
     assert!(rss < 200_000, "{rss} kB resident");
 }
 
+/// `n` heavy renders ([`HEAVY`] at depth 12, many seconds each) sent on
+/// their own connections, whose answers are read (or not) by the caller.
+fn heavy_renders(addr: &str, n: usize) -> Vec<TcpStream> {
+    let heavy = json!({"source": HEAVY, "kind": "lsys", "depth": 12}).to_string();
+    (0..n)
+        .map(|_| {
+            let head = format!(
+                "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
+                heavy.len(),
+                key(addr)
+            );
+            let mut s = TcpStream::connect(addr).unwrap();
+            s.write_all(head.as_bytes()).unwrap();
+            s.write_all(heavy.as_bytes()).unwrap();
+            s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
+            s
+        })
+        .collect()
+}
+
 /// The server's resident size, kB.
 fn resident_kb(server: &Server) -> u64 {
     std::fs::read_to_string(format!("/proc/{}/status", server.pid()))
@@ -395,20 +403,7 @@ fn light_work_is_answered_while_forty_heavy_ones_wait() {
     std::fs::write(&file, example("fig9.od")).unwrap();
     let server = Server::start(&[file.to_str().unwrap(), "--time-budget", "30"]);
     let addr = server.addr.clone();
-    let heavy = json!({"source": HEAVY, "kind": "lsys", "depth": 12}).to_string();
-    let mut streams = Vec::new();
-    for _ in 0..40 {
-        let head = format!(
-            "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-            heavy.len(),
-            key(&addr)
-        );
-        let mut s = TcpStream::connect(&addr).unwrap();
-        s.write_all(head.as_bytes()).unwrap();
-        s.write_all(heavy.as_bytes()).unwrap();
-        s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
-        streams.push(s);
-    }
+    let streams = heavy_renders(&addr, 40);
     // Let them start and be sorted: 2 running, 16 waiting, the rest
     // refused (each after using 50 ms of processor: the burst of 40
     // starting at once is not what is measured here).
