@@ -129,7 +129,8 @@ pub fn detect_kind(name: Option<&Path>, bytes: &[u8]) -> Result<InputKind, Diagn
 }
 
 /// Guesses the kind of unnamed input: `.lsys` if its first word is an
-/// `.lsys` key, `.bed` if it has `{` terms, else `.od`. `None` for text
+/// `.lsys` key (a parametric file's `define`, `ignore`, `tropism` and
+/// `elasticity` among them), `.bed` if it has `{` terms, else `.od`. `None` for text
 /// that is not UTF-8 or has no word.
 pub(crate) fn sniff(bytes: &[u8]) -> Option<InputKind> {
     let text = std::str::from_utf8(bytes).ok()?;
@@ -139,7 +140,7 @@ pub(crate) fn sniff(bytes: &[u8]) -> Option<InputKind> {
         .find(|l| !l.is_empty() && !l.starts_with('#'))?
         .split_whitespace()
         .next()?;
-    if syntax::lsys::KEYS.contains(&first) {
+    if syntax::lsys::KEYS.contains(&first) || syntax::lsys::PARAM_KEYS.contains(&first) {
         Some(InputKind::Lsys)
     } else if text.contains('{') {
         Some(InputKind::Bed)

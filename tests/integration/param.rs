@@ -531,3 +531,16 @@ fn counting_steps_stops_as_soon_as_they_pass_the_bound() {
     let n = stlc::interpret::lsys::param::count_steps(&sys, p, 3, &Limits::default(), 100).unwrap();
     assert_eq!(n, 7);
 }
+
+/// Unnamed input whose first line is a parametric key (`define`) is read
+/// as an `.lsys`, as one that starts with `axiom` is: A(2) -> F(2)A(1) ->
+/// F(2)F(1)A(0).
+#[test]
+fn standard_input_starting_with_define_is_an_lsys() {
+    crate::support::stlc()
+        .args(["expand", "-", "--depth", "2"])
+        .write_stdin("define d 2\naxiom A(d)\nrule A(x) : x > 0 -> F(x)A(x-1)\nangle 90\n")
+        .assert()
+        .success()
+        .stdout("F(2)F(1)A(0)\n");
+}

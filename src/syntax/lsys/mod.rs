@@ -26,6 +26,7 @@ use crate::model::lsys::{Background, DEFAULT_HEADING, LSystem, Production};
 pub(crate) mod expr;
 mod keys;
 pub mod param;
+pub use param::PARAM_KEYS;
 
 pub use keys::{KEYS, Key};
 
