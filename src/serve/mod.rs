@@ -27,6 +27,8 @@ mod http;
 mod memory;
 mod routes;
 mod stall;
+mod state;
+mod templates;
 mod work;
 
 use std::convert::Infallible;
@@ -40,6 +42,7 @@ use hyper_util::rt::{TokioIo, TokioTimer};
 
 use crate::frontend::io::Input;
 use crate::frontend::{interrupt, report};
+use state::State;
 use stlc::api;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, io_error};
 use stlc::pipeline::{self, InputKind, Limits};
@@ -67,11 +70,6 @@ pub struct Config {
 /// The example opened when no file is named.
 const EXAMPLE: &str = include_str!("../../examples/2dtree.od");
 
-/// What a new file (`stlc serve new.od`, not there yet) starts from.
-const TEMPLATE_OD: &str = include_str!("templates/new.od");
-const TEMPLATE_BED: &str = include_str!("../../examples/paper-worked.bed");
-const TEMPLATE_LSYS: &str = include_str!("templates/new.lsys");
-
 /// Largest request head (request line and headers), bytes.
 const MAX_HEAD: usize = 16 * 1024;
 
@@ -97,21 +95,6 @@ const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
 /// defence; no pass recurses on input depth). Pages are committed only
 /// when touched.
 const WORKER_STACK: usize = 64 << 20;
-
-/// What every request sees.
-struct State {
-    settings: api::Settings,
-    /// The file being edited (or the example).
-    doc: document::Document,
-    /// The per-run secret every API call needs (docs/serve.md).
-    key: http::Key,
-    /// Who may ask.
-    guard: http::Guard,
-    /// The heavy slots: work running past `work::LIGHT` takes turns.
-    heavy: Arc<work::Slots>,
-    /// The memory budget requests reserve from.
-    memory: Arc<memory::Memory>,
-}
 
 /// Runs `stlc serve` until Ctrl-C; returns the exit code.
 pub fn run(config: &Config, color: bool) -> ExitCode {
@@ -237,9 +220,9 @@ fn open(
         })?
     };
     let template = match kind {
-        InputKind::Od => TEMPLATE_OD,
-        InputKind::Bed => TEMPLATE_BED,
-        InputKind::Lsys => TEMPLATE_LSYS,
+        InputKind::Od => templates::OD,
+        InputKind::Bed => templates::BED,
+        InputKind::Lsys => templates::LSYS,
     };
     document::Document::file(path, name, kind, template, max_bytes, Some(memory.clone()))
 }

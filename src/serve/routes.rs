@@ -15,12 +15,13 @@ use hyper::body::Incoming;
 use hyper::{Method, Request, StatusCode};
 use serde::Serialize;
 
-use super::State;
 use super::assets;
 use super::compact;
 use super::document::Refused;
 use super::http::{self, Answer};
 use super::memory::{self, Reservation};
+use super::state::State;
+use super::templates;
 use super::work::{self, Ended, Stopped};
 use stlc::api::{self, Body, Failed, Format, Kind};
 use stlc::diag::Diagnostic;
@@ -157,10 +158,7 @@ fn examples() -> Answer {
         kind: Kind,
         text: &'static str,
     }
-    let templates = [
-        ("new.od", super::TEMPLATE_OD),
-        ("new.lsys", super::TEMPLATE_LSYS),
-    ];
+    let templates = [("new.od", templates::OD), ("new.lsys", templates::LSYS)];
     let list: Vec<Example> = templates
         .iter()
         .chain(super::examples::EXAMPLES)

@@ -21,8 +21,6 @@ const KNOWN_LOOPS: &[&str] = &[
     "grow/occupancy grow/occupancy/delaunay",
     "interpret/lsys interpret/lsys/geometry interpret/lsys/program interpret/lsys/stochastic",
     "render render/png render/png/bands render/png/fold render/png/full render/png/raster render/png/sample",
-    "serve serve/routes",
-    "syntax/stl syntax/stl/layout syntax/stl/rules syntax/stl/solid",
 ];
 
 /// A file's module path: `grow/grower` for `src/grow/grower.rs`, `grow`

@@ -6,7 +6,7 @@
 //! drawing. A rule name in a body may only end a top-level branch: it names
 //! the rule that grows at that tip.
 
-use super::Builder;
+use super::builder::Builder;
 use super::lex::Lex;
 use crate::diag::{Diagnostic, InputError, Span, StlError};
 use crate::model::{Body, BodyItem, Branch, DrawRun, Fixed, Loc, Piece, Repeat, RuleId, RuleRef};

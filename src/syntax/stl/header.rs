@@ -6,7 +6,8 @@
 
 use pest::iterators::Pair;
 
-use super::{Builder, Rule, span_of};
+use super::super::Rule;
+use super::builder::{Builder, span_of};
 use crate::diag::{Diagnostic, Span, StlError};
 use crate::model::{Loc, StemParams};
 use crate::num::Linear;

@@ -7,68 +7,15 @@
 
 use pest::iterators::Pair;
 
-use super::rules::{KW_ENDLAYOUT, KW_LAYOUT};
-use super::solid::SolidName;
-use super::{Builder, Rule, not_in_grammar, span_of};
+use super::super::Rule;
+use super::builder::{Builder, not_in_grammar, span_of};
+use super::names::{Arg, ShapeName, SolidName};
+use super::rules::{KW_ENDLAYOUT, KW_LAYOUT, find_word};
 use crate::color::Rgb;
 use crate::diag::Help;
 use crate::diag::{Diagnostic, Diagnostics, LayoutError, Span, StlError};
 use crate::limits::Bound;
 use crate::model::{Layout, LayoutShape, LayoutSolid, Loc, Shape, Spelling};
-
-/// A shape a layout line may draw.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ShapeName {
-    /// `Rectangle`.
-    Rectangle,
-    /// `RoundRect`: a rectangle with rounded corners.
-    RoundRect,
-    /// `Ellipse`.
-    Ellipse,
-    /// `Polygon`.
-    Polygon,
-}
-
-impl ShapeName {
-    /// Every shape, in the order the docs list them.
-    pub const ALL: [ShapeName; 4] = [
-        ShapeName::Rectangle,
-        ShapeName::RoundRect,
-        ShapeName::Ellipse,
-        ShapeName::Polygon,
-    ];
-
-    /// The name as written.
-    pub fn name(self) -> &'static str {
-        match self {
-            ShapeName::Rectangle => "Rectangle",
-            ShapeName::RoundRect => "RoundRect",
-            ShapeName::Ellipse => "Ellipse",
-            ShapeName::Polygon => "Polygon",
-        }
-    }
-
-    /// The shape named exactly `name`.
-    pub fn from_name(name: &str) -> Option<ShapeName> {
-        ShapeName::ALL.into_iter().find(|s| s.name() == name)
-    }
-
-    /// Its spellings, for hints.
-    pub(super) fn usage(self) -> &'static str {
-        match self {
-            ShapeName::Rectangle => "`Rectangle (x,y), w, h` or `Rectangle (x1,y1,x2,y2)`",
-            ShapeName::Ellipse => "`Ellipse (x,y), w, h` or `Ellipse (x1,y1,x2,y2)`",
-            ShapeName::RoundRect => "`RoundRect (x,y), w, h, r` or `RoundRect (x1,y1,x2,y2,rx,ry)`",
-            ShapeName::Polygon => "`Polygon (x1,y1), (x2,y2), (x3,y3), ...`",
-        }
-    }
-}
-
-/// A shape argument, with spans: a parenthesised group or a single number.
-pub(super) enum Arg {
-    Group(Vec<(f64, Span)>),
-    Num(f64, Span),
-}
 
 /// Refuses a `Polygon` with more points than a layout may have vertices
 /// (`--max-layout-vertices`) before the parser reads it: a generated
@@ -167,24 +114,6 @@ pub(super) fn prescan_shapes(src: &str, max_shapes: usize) -> Result<(), Diagnos
         .with_label("this section")
         .with_help(Help::from("use fewer shapes, or ") + Bound::LayoutShapes)
         .into())
-}
-
-/// The first occurrence of `word` at or after `from` that stands alone
-/// (no name character on either side).
-pub(super) fn find_word(src: &str, from: usize, word: &str) -> Option<usize> {
-    let b = src.as_bytes();
-    let name = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
-    let mut at = from;
-    while let Some(k) = src.get(at..)?.find(word) {
-        let p = at + k;
-        let before = p == 0 || !name(b[p - 1]);
-        let after = b.get(p + word.len()).is_none_or(|&c| !name(c));
-        if before && after {
-            return Some(p);
-        }
-        at = p + word.len();
-    }
-    None
 }
 
 impl Builder<'_> {

@@ -9,7 +9,9 @@ use std::collections::VecDeque;
 
 use pest::iterators::Pair;
 
-use super::{Builder, DRAWING_LETTERS, Rule, not_in_grammar};
+use super::super::Rule;
+use super::builder::{Builder, not_in_grammar};
+use super::rules::DRAWING_LETTERS;
 use crate::diag::{Diagnostic, RuleError, Span, StlError};
 use crate::limits::Bound;
 use crate::model::{Format, RuleId};

@@ -16,8 +16,9 @@
 //!    slot counts, sizes, colours, section ends, limits), collecting as many
 //!    diagnostics as it can before giving up.
 //!
-//! One file per part: this one holds the entry point and the builder;
-//! `header` the stem parameters, `rules` the rule definitions and reserved
+//! One file per part: this one holds the entry point and reads the file's
+//! parts in order; `builder` the state they all add to and the reports
+//! they share, `names` the words a layout line starts with, `header` the stem parameters, `rules` the rule definitions and reserved
 //! names, `lex` the tokens and word splitting, `body` rule bodies and
 //! `[I n X]`, `seed` the seed's terms, `layout` the shapes, `solid` a 3D layout's
 //! volumes.
@@ -26,9 +27,11 @@
 //! that is [`crate::bed::validate`].
 
 mod body;
+mod builder;
 mod header;
 mod layout;
 mod lex;
+mod names;
 mod rules;
 mod seed;
 mod solid;
@@ -37,14 +40,14 @@ use pest::Parser;
 use pest::iterators::Pair;
 
 use super::{GrammarParser, Rule, pest_error, precheck};
-use crate::diag::{Diagnostic, Diagnostics, ErrorKind, InputError, Span, StlError};
+use crate::diag::{Diagnostics, StlError};
 use crate::limits::Limits;
-use crate::model::{Description, Format, Loc, RuleId};
+use crate::model::{Description, Format, Loc};
+use builder::{Builder, not_in_grammar, span_of};
 
 pub use header::Param;
-pub use layout::ShapeName;
+pub use names::{ShapeName, SolidName};
 pub use rules::{DRAWING_LETTERS, KEYWORDS, REPEAT_MARK, is_reserved};
-pub use solid::SolidName;
 
 /// Parses an Outline Description (`Format::Od`) or a Branch-Expansion
 /// Description (`Format::Bed`).
@@ -83,64 +86,7 @@ pub fn parse(src: &str, format: Format, limits: &Limits) -> Result<Description, 
     b.diags.into_result(desc)
 }
 
-/// Collects the description and its diagnostics.
-struct Builder<'l> {
-    format: Format,
-    limits: &'l Limits,
-    diags: Diagnostics,
-    /// Declared rule names, by [`RuleId`](crate::model::RuleId) (invalid
-    /// ones as `""`).
-    names: Vec<String>,
-    /// The first rule of each valid name (looked up, never iterated).
-    by_name: std::collections::HashMap<String, RuleId>,
-    /// The longest valid name's length in bytes.
-    longest_name: usize,
-    /// Branch counts by [`RuleId`](crate::model::RuleId).
-    branches: Vec<usize>,
-    /// How many alternatives the name of each rule has (0: it has one
-    /// body, without a probability), by [`RuleId`](crate::model::RuleId).
-    alternatives: Vec<usize>,
-    /// Whether the first root has three coordinates (section 11: the
-    /// description is 3D). Known before the header, bodies, seed and
-    /// layout are read: the grammar puts the roots first.
-    three_d: bool,
-    /// In a 2D description, the first root's span and its text with `, 0`
-    /// added (`(150, 298, 0)`), for the hint of what needs a 3D root.
-    flat_root: Option<(Span, String)>,
-    /// Whether a 3D turn in a 2D description has been reported (the first
-    /// one is; the rest would repeat it).
-    turn3_reported: bool,
-}
-
-/// A root as read: `(x, y)`, its `z` if it has one, and where it is.
-type RootRead = ((f64, f64), Option<f64>, Loc);
-
-fn span_of(p: &Pair<'_, Rule>) -> Span {
-    let s = p.as_span();
-    s.start()..s.end()
-}
-
-/// A child the grammar does not allow under `parent`: pest produced a tree
-/// `grammar.pest` rules out.
-fn not_in_grammar(parent: &str, child: Rule) -> ! {
-    unreachable!("grammar: {parent} has no {child:?} child")
-}
-
 impl Builder<'_> {
-    fn err(&mut self, d: Diagnostic) {
-        self.diags.push(d);
-    }
-
-    /// An error at `span` with its label and hint.
-    fn report(&mut self, kind: impl Into<ErrorKind>, span: Span, label: &str, help: &str) {
-        self.err(
-            Diagnostic::error(kind)
-                .with_span(span)
-                .with_label(label)
-                .with_help(help),
-        );
-    }
-
     // ------------------------------------------------------------- file --
 
     fn file(&mut self, file: Pair<'_, Rule>) -> Description {
@@ -239,60 +185,6 @@ impl Builder<'_> {
             seed,
             layout,
             forest,
-        }
-    }
-
-    /// Reports a root whose coordinates are not as many as the first
-    /// root's (`roots`, read so far).
-    fn mixed_root(&mut self, roots: &[RootRead], three: bool, loc: &Loc) {
-        let (first, this) = if three { (2, 3) } else { (3, 2) };
-        let help = if three {
-            "every root of a forest is 2D or every one 3D: give the first root a third \
-             coordinate too, or remove this one's"
-        } else {
-            "every root of a forest is 2D or every one 3D: give this root a third \
-             coordinate, as in `(140, 280, 0)`"
-        };
-        self.err(
-            Diagnostic::error(StlError::MixedRoots { first, this })
-                .with_span(loc.0.clone())
-                .with_label(format!("{this} coordinates"))
-                .with_note_at(roots[0].2.0.clone(), format!("the first root has {first}"))
-                .with_help(help),
-        );
-    }
-
-    /// Reports `what` (a 3D turn, `D=`) at `span` in a 2D description:
-    /// a 3D root is needed, the first root shown with `, 0` added.
-    fn needs_3d(&mut self, what: String, span: Span, label: &str) {
-        let mut d = Diagnostic::error(StlError::Needs3d { what })
-            .with_span(span)
-            .with_label(label);
-        if let Some((root, fixed)) = self.flat_root.clone() {
-            d = d.with_note_at(root, "a 2D root").with_help(format!(
-                "give the root a third coordinate to make the description 3D: `{fixed}` \
-                 (docs/language.md, Three dimensions)"
-            ));
-        }
-        self.err(d);
-    }
-
-    /// A number of the grammar's `number` rule; a value too large for a
-    /// 64-bit float is reported and read as 0.
-    fn number(&mut self, p: &Pair<'_, Rule>) -> f64 {
-        match p.as_str().parse::<f64>() {
-            Ok(v) if v.is_finite() => v,
-            _ => {
-                self.report(
-                    InputError::NotFinite {
-                        text: p.as_str().to_string(),
-                    },
-                    span_of(p),
-                    "too large to represent",
-                    "write a number of ordinary size",
-                );
-                0.0
-            }
         }
     }
 }

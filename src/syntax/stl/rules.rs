@@ -3,8 +3,8 @@
 
 use pest::iterators::Pair;
 
-use super::layout::find_word;
-use super::{Builder, Rule, span_of};
+use super::super::Rule;
+use super::builder::{Builder, span_of};
 use crate::choice::{self, BadProbabilities};
 use crate::diag::Help;
 use crate::diag::{Diagnostic, Diagnostics, RuleError, Span};
@@ -84,6 +84,24 @@ pub fn is_reserved(name: &str) -> bool {
     let letter =
         matches!((chars.next(), chars.next()), (Some(c), None) if DRAWING_LETTERS.contains(&c));
     letter || name == REPEAT_MARK || KEYWORDS.contains(&name)
+}
+
+/// The first occurrence of `word` at or after `from` that stands alone
+/// (no name character on either side).
+pub(super) fn find_word(src: &str, from: usize, word: &str) -> Option<usize> {
+    let b = src.as_bytes();
+    let name = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
+    let mut at = from;
+    while let Some(k) = src.get(at..)?.find(word) {
+        let p = at + k;
+        let before = p == 0 || !name(b[p - 1]);
+        let after = b.get(p + word.len()).is_none_or(|&c| !name(c));
+        if before && after {
+            return Some(p);
+        }
+        at = p + word.len();
+    }
+    None
 }
 
 impl Builder<'_> {

@@ -10,10 +10,11 @@ use std::collections::VecDeque;
 
 use pest::iterators::Pair;
 
+use super::super::Rule;
 use super::body::{RepeatBody, Run};
+use super::builder::{Builder, not_in_grammar, span_of};
 use super::lex::{Lex, TextLex};
 use super::rules::{KW_ENDSEED, KW_SEED};
-use super::{Builder, Rule, not_in_grammar, span_of};
 use crate::diag::{Diagnostic, RuleError, Span, StlError, plural};
 use crate::model::{Format, Loc, Repeat, RuleId, Seed, SeedItem, SlotId, TermId, Terms};
 

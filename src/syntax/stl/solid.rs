@@ -6,74 +6,12 @@
 
 use pest::iterators::Pair;
 
-use super::layout::{Arg, ShapeName};
-use super::{Builder, Rule, not_in_grammar, span_of};
+use super::super::Rule;
+use super::builder::{Builder, not_in_grammar, span_of};
+use super::names::{Arg, ShapeName, SolidName};
 use crate::diag::{LayoutError, Span};
 use crate::model::Solid;
 use crate::num::{Trim, fixed};
-
-/// A volume a 3D layout line may hold (section 11).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SolidName {
-    /// `Box (x, y, z), w, h, d`.
-    Box,
-    /// `Sphere (cx, cy, cz), r`.
-    Sphere,
-    /// `Ellipsoid (cx, cy, cz), rx, ry, rz`.
-    Ellipsoid,
-    /// `Cylinder (x, y, z), r, h`.
-    Cylinder,
-    /// `Extrude <2D shape>, z1, z2`.
-    Extrude,
-    /// `Revolve <2D shape>`.
-    Revolve,
-}
-
-impl SolidName {
-    /// Every volume, in the order the docs list them.
-    pub const ALL: [SolidName; 6] = [
-        SolidName::Box,
-        SolidName::Sphere,
-        SolidName::Ellipsoid,
-        SolidName::Cylinder,
-        SolidName::Extrude,
-        SolidName::Revolve,
-    ];
-
-    /// The name as written.
-    pub fn name(self) -> &'static str {
-        match self {
-            SolidName::Box => "Box",
-            SolidName::Sphere => "Sphere",
-            SolidName::Ellipsoid => "Ellipsoid",
-            SolidName::Cylinder => "Cylinder",
-            SolidName::Extrude => "Extrude",
-            SolidName::Revolve => "Revolve",
-        }
-    }
-
-    /// The volume named exactly `name`.
-    pub fn from_name(name: &str) -> Option<SolidName> {
-        SolidName::ALL.into_iter().find(|s| s.name() == name)
-    }
-
-    /// Its spelling, for hints.
-    pub(super) fn usage(self) -> &'static str {
-        match self {
-            SolidName::Box => "`Box (x, y, z), w, h, d` (the smallest corner, then the sizes)",
-            SolidName::Sphere => "`Sphere (cx, cy, cz), r`",
-            SolidName::Ellipsoid => "`Ellipsoid (cx, cy, cz), rx, ry, rz`",
-            SolidName::Cylinder => {
-                "`Cylinder (x, y, z), r, h` (the bottom centre, then radius and height)"
-            }
-            SolidName::Extrude => {
-                "`Extrude <2D shape>, z1, z2`, as in `Extrude Ellipse (0, 0), 10, 20, -5, 5` \
-                 or `Extrude <Ellipse (0, 0), 10, 20>, -5, 5`"
-            }
-            SolidName::Revolve => "`Revolve <2D shape>`, as in `Revolve Ellipse (0, 0), 10, 20`",
-        }
-    }
-}
 
 impl Builder<'_> {
     /// Whether the shape `p` (`stl_shape`) has the description's
