@@ -2,7 +2,9 @@
 //! or a fixed view (a layout's canvas), with margins for the widest stroke,
 //! and the checks on the output's size.
 
-use super::*;
+use super::style::{DEFAULT_SIDE, HAIRLINE, MARGIN_FRACTION, MAX_SIDE, MIN_MARGIN, Width};
+use crate::diag::{Diagnostic, Diagnostics, RenderError};
+use crate::turtle::{BBox, Fill, Point};
 
 /// How canvas units map to output pixels: `pixel = canvas * scale + (dx, dy)`.
 ///

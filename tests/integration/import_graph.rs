@@ -20,7 +20,7 @@ use crate::support;
 const KNOWN_LOOPS: &[&str] = &[
     "grow/occupancy grow/occupancy/delaunay",
     "interpret/lsys interpret/lsys/geometry interpret/lsys/program interpret/lsys/stochastic",
-    "render render/png render/png/bands render/png/fold render/png/full render/png/raster render/png/sample",
+    "render/png render/png/bands render/png/fold render/png/full render/png/raster render/png/sample",
 ];
 
 /// A file's module path: `grow/grower` for `src/grow/grower.rs`, `grow`

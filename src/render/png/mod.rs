@@ -43,9 +43,9 @@ use tiny_skia::{
 
 pub use bands::BAND_ROWS;
 
-use super::{
-    BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, Fit, SPREAD_MIN_PX, Style, Width,
-    stroke_px,
+use super::fit::{Fit, stroke_px};
+use super::style::{
+    BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, FOLD_PX, SPREAD_MIN_PX, Style, Width,
 };
 use crate::color::Rgb;
 use crate::diag::Diagnostics;

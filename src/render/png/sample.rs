@@ -17,7 +17,8 @@ use std::sync::Arc;
 
 use super::PngTurtle;
 use crate::color::Rgb;
-use crate::render::{Fit, Style, Width, stroke_px};
+use crate::render::fit::{Fit, stroke_px};
+use crate::render::style::{Style, Width};
 use crate::turtle::{Point, Sample};
 
 /// A bush is drawn at `SUB x SUB` offsets: a grid `1 / SUB` px apart.
