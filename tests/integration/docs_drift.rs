@@ -183,3 +183,70 @@ fn the_api_fields_in_the_serve_docs_are_the_api_s() {
         "docs/serve.md's render answer against the API's"
     );
 }
+
+/// The `@property` names of the JSDoc `@typedef` named `name` in the
+/// page's engine (src/serve/page/engine/index.js), `[optional]` ones
+/// without their brackets.
+fn typedef_properties(name: &str) -> BTreeSet<String> {
+    let js = std::fs::read_to_string(manifest_path("src/serve/page/engine/index.js")).unwrap();
+    let block = js
+        .split("/**")
+        .find(|b| b.contains(&format!("@typedef {{object}} {name}\n")))
+        .unwrap_or_else(|| panic!("engine/index.js: no typedef {name}"));
+    let block = &block[..block.find("*/").unwrap()];
+    block
+        .lines()
+        .filter_map(|l| l.split("@property ").nth(1))
+        .map(|p| {
+            // `{type} name description`: the type may hold spaces and
+            // braces, so skip to the brace that closes the first.
+            let mut depth = 0;
+            let end = p
+                .char_indices()
+                .find(|&(_, c)| {
+                    depth += match c {
+                        '{' => 1,
+                        '}' => -1,
+                        _ => 0,
+                    };
+                    depth == 0
+                })
+                .unwrap()
+                .0;
+            let name = p[end + 1..].split_whitespace().next().unwrap();
+            name.trim_matches(|c| c == '[' || c == ']').to_string()
+        })
+        .collect()
+}
+
+#[test]
+fn the_page_s_typedefs_are_the_api_s() {
+    // The request the page sends: every field the API reads (`strategy`,
+    // the old name, only in prose), and no field the API would refuse.
+    let mut fields = body_fields();
+    fields.remove("strategy");
+    assert_eq!(
+        typedef_properties("RenderRequest"),
+        fields,
+        "engine/index.js's RenderRequest against the API's body"
+    );
+    // A diagnostic as the API writes it: the keys of a real one.
+    let body = api::parse(br#"{"source": "T (0,0) L=1(0) RULE R1: [F R9]"}"#).unwrap();
+    let s = Settings::defaults(Page::Served);
+    let failed = match api::render(&body, &s, ImageFormat::Svg, None, &mut NoProgress) {
+        Err(f) => f,
+        Ok(_) => panic!("an unknown rule renders"),
+    };
+    let value = serde_json::to_value(&failed).unwrap();
+    let diagnostic: BTreeSet<String> = value["diagnostics"][0]
+        .as_object()
+        .unwrap_or_else(|| panic!("{value}"))
+        .keys()
+        .cloned()
+        .collect();
+    assert_eq!(
+        typedef_properties("Diagnostic"),
+        diagnostic,
+        "engine/index.js's Diagnostic against the API's"
+    );
+}

@@ -18,6 +18,10 @@
  * @property {number} [clearance] `--clearance`
  * @property {number} [max_stems] `--max-stems`
  * @property {string} [seed] `--seed`, a string of digits (64 bits)
+ * @property {[number, number]} [size] `--size WxH` of the picture, each 1 to 16384 pixels
+ * @property {boolean} [show_layout] `--show-layout`; absent: wherever there is a layout (the editor's view)
+ * @property {string} [background] `--background`: `none`, `#rrggbb` or a Delphi colour name
+ * @property {[number, number]} [view] `--view AZ,EL` of a 3D input's picture, degrees
  */
 
 /**
