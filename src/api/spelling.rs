@@ -38,7 +38,15 @@ impl Spelling for Page {
             Knob::Seed => "the seed field".into(),
             Knob::Growth => "the growth order".into(),
             Knob::Clearance => "the clearance field".into(),
-            Knob::Size => "the export size".into(),
+            Knob::Size => match value {
+                "" => "the export size".into(),
+                v => format!("the export size {v}"),
+            },
+            // Options only the command line has: the command that takes it.
+            Knob::Exact | Knob::Sides | Knob::Triangles => match value {
+                "" => format!("`stlc render {}`", knob.flag()),
+                v => format!("`stlc render {} {v}`", knob.flag()),
+            },
             Knob::Limit(Bound::Stems) => "the max stems field".into(),
             Knob::Derivation => {
                 format!("`stlc render --derivation {value}` (the page derives depth-first)")
@@ -73,6 +81,19 @@ mod tests {
             "the BED is valid but its tree is cut short; raise the limit with \
              `--max-stems N` of the stlc command line (the web page keeps the default limits)"
         );
+        // What only the command line sets is named as the command.
+        let h = Help::from("drop ")
+            + Help::knob(Knob::Exact, "")
+            + ", use fewer "
+            + Help::knob(Knob::Sides, "6");
+        assert_eq!(h.flags(), "drop --exact, use fewer --sides 6");
+        assert_eq!(
+            h.spell(&Page::Web),
+            "drop `stlc render --exact`, use fewer `stlc render --sides 6`"
+        );
+        let h = Help::from("ask for ") + Help::knob(Knob::Size, "800x800");
+        assert_eq!(h.flags(), "ask for --size 800x800");
+        assert_eq!(h.spell(&Page::Served), "ask for the export size 800x800");
         let h = Help::from("lower ") + Help::knob(Knob::Depth, "");
         assert_eq!(h.spell(&Page::Served), "lower the depth field");
         assert_eq!(h.flags(), "lower --depth");

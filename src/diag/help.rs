@@ -22,6 +22,12 @@ pub enum Knob {
     Clearance,
     /// The picture's size (`--size`).
     Size,
+    /// Every segment drawn, no level of detail (`--exact`).
+    Exact,
+    /// The sides of a mesh's tubes (`--sides`).
+    Sides,
+    /// The most triangles a mesh may hold (`--max-triangles`).
+    Triangles,
     /// A limit (`--max-*`).
     Limit(Bound),
 }
@@ -36,6 +42,9 @@ impl Knob {
             Knob::Derivation => "--derivation",
             Knob::Clearance => "--clearance",
             Knob::Size => "--size",
+            Knob::Exact => "--exact",
+            Knob::Sides => "--sides",
+            Knob::Triangles => "--max-triangles",
             Knob::Limit(b) => b.flag(),
         }
     }

@@ -6,7 +6,7 @@
 use std::io::Write;
 
 use super::{Rendered, Scene, What, style};
-use crate::diag::{Diagnostic, Diagnostics, RenderError};
+use crate::diag::{Diagnostic, Diagnostics, Help, Knob, RenderError};
 use crate::interpret::Derivation;
 use crate::interpret::lsys::lsys3::draw3;
 use crate::interpret::lsys::{Mark3, ReachMemo};
@@ -231,10 +231,15 @@ fn render_view_lod(
             Diagnostic::warning(RenderError::CoarseView {
                 px: fixed(detail * scale, 2, Trim::Keep),
             })
-            .with_help(format!(
-                "a 3D view visits at most {VIEW_VISITS} symbols and holds at most {VIEW_MARKS} stems: \
-                 a smaller --depth or --size draws finer"
-            )),
+            .with_help(
+                Help::from(format!(
+                    "a 3D view visits at most {VIEW_VISITS} symbols and holds at most \
+                     {VIEW_MARKS} stems: a lower "
+                )) + Help::knob(Knob::Depth, "")
+                    + " or "
+                    + Help::knob(Knob::Size, "")
+                    + " draws finer",
+            ),
         );
     }
     Ok(Some(Rendered {

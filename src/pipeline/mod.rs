@@ -54,7 +54,7 @@ use std::io::Write;
 use std::path::Path;
 
 use crate::bed::Bed;
-use crate::diag::{Diagnostic, Diagnostics, InputError, LsysError};
+use crate::diag::{Diagnostic, Diagnostics, Help, InputError, Knob, LsysError};
 use crate::grow::{GrowOptions, Grown};
 use crate::model::lsys::LSystem;
 use crate::model::{Description, Format};
@@ -450,8 +450,10 @@ pub(crate) fn lsys_depth(
     limits: &Limits,
 ) -> Result<u32, Diagnostics> {
     let d = depth.or(sys.generations).ok_or_else(|| {
-        Diagnostic::error(LsysError::NoDepth)
-            .with_help("add a line `generations N` to the file, or pass --depth N")
+        Diagnostic::error(LsysError::NoDepth).with_help(
+            Help::from("add a line `generations N` to the file, or set ")
+                + Help::knob(Knob::Depth, "N"),
+        )
     })?;
     limits.check_depth(d)?;
     Ok(d)

@@ -3,7 +3,7 @@
 //! and the checks on the output's size.
 
 use super::style::{DEFAULT_SIDE, HAIRLINE, MARGIN_FRACTION, MAX_SIDE, MIN_MARGIN, Width};
-use crate::diag::{Diagnostic, Diagnostics, RenderError};
+use crate::diag::{Diagnostic, Diagnostics, Help, Knob, RenderError};
 use crate::turtle::{BBox, Fill, Point};
 
 /// How canvas units map to output pixels: `pixel = canvas * scale + (dx, dy)`.
@@ -213,9 +213,11 @@ pub(super) fn checked_size((w, h): (u32, u32)) -> Result<(u32, u32), Diagnostics
             height: h,
             max: MAX_SIDE,
         })
-        .with_help(format!(
-            "ask for a size such as `--size {DEFAULT_SIDE}x{DEFAULT_SIDE}`, or leave out `--size`"
-        ))
+        .with_help(
+            Help::from("ask for a smaller picture: ")
+                + Help::knob(Knob::Size, &format!("{DEFAULT_SIDE}x{DEFAULT_SIDE}"))
+                + " or less",
+        )
         .into())
     }
 }

@@ -16,8 +16,8 @@ pub mod volumes;
 
 use std::io::Write;
 
-use crate::diag::Help;
 use crate::diag::{Diagnostics, io_error};
+use crate::diag::{Help, Knob};
 use crate::limits::Bound;
 use crate::progress::{Phase, Progress};
 use crate::turtle::{BBox, Bounds, Counter, Fill, Turtle};
@@ -121,11 +121,17 @@ pub(crate) fn svg_too_large(count: Option<u64>, limit: u64) -> Diagnostics {
             limit,
         )
         .with_help(
-            Help::from(
-                "an SVG holds a line a segment with --exact (about 22 bytes each), and merges \
-                 runs into as few lines as show the picture without: render a PNG instead, \
-                 drop --exact, draw less (a smaller --depth or --size), or ",
-            ) + Bound::SvgSegments,
+            Help::from("an SVG holds a line a segment with ")
+                + Help::knob(Knob::Exact, "")
+                + " (about 22 bytes each), and merges runs into as few lines as show the \
+                   picture without: render a PNG instead, drop "
+                + Help::knob(Knob::Exact, "")
+                + ", draw less (lower "
+                + Help::knob(Knob::Depth, "")
+                + " or "
+                + Help::knob(Knob::Size, "")
+                + "), or "
+                + Bound::SvgSegments,
         )
         .into()
 }

@@ -153,7 +153,7 @@ impl Answer {
 /// Sends `raw` as it is and reads the answer until the server closes.
 pub fn raw(addr: &str, raw: &[u8]) -> Answer {
     let mut s = TcpStream::connect(addr).unwrap();
-    s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(300))).unwrap();
     let _ = s.write_all(raw);
     let mut buf = Vec::new();
     let _ = s.read_to_end(&mut buf);

@@ -274,7 +274,13 @@ pub fn write_glb(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
                 triangles: mesh.triangles().to_string(),
                 limit: mesh.triangles(),
             })
-            .with_help("a .glb holds at most 4 GiB: write fewer triangles (--sides, --depth)")
+            .with_help(
+                crate::diag::Help::from("a .glb holds at most 4 GiB: write fewer triangles (")
+                    + crate::diag::Help::knob(crate::diag::Knob::Sides, "")
+                    + ", "
+                    + crate::diag::Help::knob(crate::diag::Knob::Depth, "")
+                    + ")",
+            )
             .into(),
         );
     }

@@ -20,7 +20,7 @@ pub use gltf::{write_glb, write_gltf};
 pub use obj::write_obj;
 
 use crate::color::Rgb;
-use crate::diag::{Diagnostic, Diagnostics, RenderError};
+use crate::diag::{Diagnostic, Diagnostics, Help, Knob, RenderError};
 use crate::turtle::turtle3::{Point3, cos_sin};
 
 /// A mesh file format (from the output's extension, or `--mesh`). The
@@ -116,12 +116,18 @@ pub fn mesh_too_large(tubes: u64, more: bool, opts: &MeshOptions) -> Diagnostics
         },
         limit: opts.max_triangles,
     })
-    .with_help(format!(
-        "each stem is {} triangles at --sides {}: draw less (a smaller --depth), use fewer \
-         --sides, or raise the limit with --max-triangles N",
-        opts.triangles_per_tube(),
-        opts.sides
-    ))
+    .with_help(
+        Help::from(format!(
+            "each stem is {} triangles at ",
+            opts.triangles_per_tube()
+        )) + Help::knob(Knob::Sides, &opts.sides.to_string())
+            + ": draw less (lower "
+            + Help::knob(Knob::Depth, "")
+            + "), use fewer "
+            + Help::knob(Knob::Sides, "")
+            + ", or raise the limit with "
+            + Help::knob(Knob::Triangles, "N"),
+    )
     .into()
 }
 

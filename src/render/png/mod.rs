@@ -49,7 +49,7 @@ use super::style::{
 };
 use crate::color::Rgb;
 use crate::diag::Diagnostics;
-use crate::diag::{Diagnostic, RenderError};
+use crate::diag::{Diagnostic, Help, Knob, RenderError};
 use crate::turtle::Fill;
 use crate::turtle::{Point, Sample, Segment, Turtle};
 
@@ -394,7 +394,7 @@ fn raster(fit: Fit, style: &Style) -> Result<Pixmap, Diagnostics> {
             width: fit.width,
             height: fit.height,
         })
-        .with_help("ask for a smaller `--size`")
+        .with_help(Help::from("ask for a smaller picture (") + Help::knob(Knob::Size, "") + ")")
     })?;
     if let Some(bg) = style.background {
         pixmap.fill(color(bg));
