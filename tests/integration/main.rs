@@ -25,6 +25,7 @@ mod import_graph;
 mod lod;
 mod lsys;
 mod lsys3d;
+mod mesh_origin;
 mod newuser;
 mod od_variation;
 mod param;
