@@ -140,8 +140,15 @@ pub struct Word {
     pub depth: u32,
     /// The word, cut at [`WORD_CHARS`] characters.
     pub word: String,
-    /// Its exact length in symbols, as digits.
+    /// Its exact length in symbols (modules, for a parametric system), as
+    /// digits.
     pub length: String,
+    /// `stlc stats --json --depth N`'s text for this generation (without
+    /// the CLI's closing newline): its counts, box and end.
+    pub stats: String,
+    /// Whether `word` was cut at [`WORD_CHARS`] (a parametric word has
+    /// more characters than modules, so `length` does not tell).
+    pub cut: bool,
 }
 
 /// Diagnostics in the answer's terms, their hints spelt for `page`.

@@ -16,15 +16,19 @@ use crate::pipeline::{ImageFormat, Progress, Request};
 struct Capped {
     kept: Vec<u8>,
     cap: usize,
+    /// Whether bytes past the cap were offered (and stopped).
+    cut: bool,
 }
 
 impl std::io::Write for Capped {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
         let room = self.cap - self.kept.len();
         if room == 0 {
+            self.cut = true;
             return Err(std::io::Error::other("enough"));
         }
         let n = buf.len().min(room);
+        self.cut |= n < buf.len();
         self.kept.extend_from_slice(&buf[..n]);
         Ok(n)
     }
@@ -72,6 +76,7 @@ pub fn words(
         let mut out = Capped {
             kept: Vec::new(),
             cap: WORD_CHARS,
+            cut: false,
         };
         // A word longer than the cap stops the writer: what was kept is shown.
         let _ = req.expand(&mut out, progress);
@@ -80,6 +85,8 @@ pub fn words(
             depth,
             word,
             length,
+            stats,
+            cut: out.cut,
         });
     }
     Ok(WordsAnswer { ok: true, words })

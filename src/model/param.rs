@@ -135,6 +135,9 @@ pub struct ModuleExpr {
     pub symbol: char,
     /// Its parameters (none for a plain symbol).
     pub args: Vec<Expr>,
+    /// Where each parameter's expression is written (one per `args`):
+    /// an error its value makes points there.
+    pub spans: Vec<Loc>,
 }
 
 /// A module in a rule's head: a symbol and the number of its formal

@@ -206,7 +206,7 @@ pub(crate) fn mesh(
         scene.draw(&mut lift, &mut phase)?;
     }
     mesh::check_tubes(tubes.len() as u64, over, opts)?;
-    let m = mesh::build(&tubes, opts);
+    let m = mesh::build(&tubes, first_root(scene), opts);
     match format {
         MeshFormat::Glb => mesh::write_glb(&m, out)?,
         MeshFormat::Gltf => mesh::write_gltf(&m, out)?,
@@ -218,6 +218,19 @@ pub(crate) fn mesh(
         triangles: m.triangles(),
         warnings: nothing_drawn(n),
     })
+}
+
+/// Where a mesh's origin is, in canvas units: a tree's first root (its
+/// base stands on the files' origin, section 11), an `.lsys`'s turtle
+/// start (the canvas origin).
+fn first_root(scene: &Scene) -> Point3 {
+    match &scene.what {
+        What::Tree { bed, .. } => {
+            let d = bed.description();
+            Point3::new(d.root.0, d.root.1, d.root_z.unwrap_or(0.0))
+        }
+        What::Lsys { .. } => Point3::default(),
+    }
 }
 
 /// A 2D turtle backend that lifts every segment to z = 0.

@@ -144,7 +144,11 @@ pub(super) fn examples() -> Vec<String> {
 
 /// What the page's engine exports for `request` in `format`: the bytes,
 /// or the failed answer's JSON.
-async fn engine_export(c: &Client, request: &Value, format: &str) -> Result<Vec<u8>, Value> {
+pub(super) async fn engine_export(
+    c: &Client,
+    request: &Value,
+    format: &str,
+) -> Result<Vec<u8>, Value> {
     let v = c
         .execute_async(
             "const [request, format, done] = arguments;
@@ -382,7 +386,7 @@ async fn newer_edit_ends_older_work(c: &Client) {
 }
 
 /// The page's share link for its document as it is now.
-async fn share_link(c: &Client) -> String {
+pub(super) async fn share_link(c: &Client) -> String {
     let v = c
         .execute_async(
             "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));",

@@ -187,7 +187,8 @@ fn mesh(req: &Request, format: MeshFormat) -> Vec<u8> {
     out
 }
 
-/// The Hilbert curve's glTF: 63 stems of 4 * 6 - 4 triangles, read back
+/// The Hilbert curve's glTF: 63 stems of 4 * 6 - 4 triangles and
+/// 4 * 6 + 2 vertices, read back
 /// with serde_json; the same bytes on a second run; the `.glb` carries the
 /// same buffer.
 #[test]
@@ -201,7 +202,7 @@ fn a_3d_system_exports_a_gltf_that_reads_back() {
     let idx = &j["accessors"][prim["indices"].as_u64().unwrap() as usize];
     assert_eq!(idx["count"].as_u64(), Some(63 * 20 * 3));
     let pos = &j["accessors"][prim["attributes"]["POSITION"].as_u64().unwrap() as usize];
-    assert_eq!(pos["count"].as_u64(), Some(63 * 24));
+    assert_eq!(pos["count"].as_u64(), Some(63 * 26));
     // The cube of side 3 units, 0.01 m a unit, plus the tubes' radius
     // (width 3: a tenth of a step per pixel, so 0.15 units) on each side:
     // along x a hexagon across the tubes along y and z reaches
@@ -213,8 +214,8 @@ fn a_3d_system_exports_a_gltf_that_reads_back() {
     assert_eq!(&glb[..4], b"glTF");
 }
 
-/// A 2D BED lifted to z = 0 exports an OBJ with a vertex, a normal and
-/// faces per stem; a triangle limit refuses with the flag to raise it.
+/// A 2D BED lifted to z = 0 exports an OBJ with a vertex, a texture
+/// coordinate, a normal and faces per stem; a triangle limit refuses with the flag to raise it.
 #[test]
 fn a_2d_tree_exports_an_obj_and_the_limit_refuses() {
     let bed = std::fs::read_to_string(manifest_path("examples/paper-worked.bed")).unwrap();
@@ -233,9 +234,10 @@ fn a_2d_tree_exports_an_obj_and_the_limit_refuses() {
     for l in text.lines() {
         *count.entry(l.split(' ').next().unwrap()).or_default() += 1;
     }
-    assert_eq!(count["v"], 16 * stems, "4 x sides vertices a stem");
+    assert_eq!(count["v"], 18 * stems, "4 x sides + 2 vertices a stem");
     let tubes = stems;
     assert_eq!(count["vn"], count["v"]);
+    assert_eq!(count["vt"], count["v"]);
     assert_eq!(count["f"], tubes * 12);
     let too_small = Request {
         mesh: MeshOptions {

@@ -2,7 +2,8 @@
 //! and the binary container (`.glb`).
 //!
 //! One scene, one node, one mesh with a primitive per colour (positions,
-//! normals, `u32` indices), one material per colour (its sRGB colour
+//! normals, texture coordinates `TEXCOORD_0`, `u32` indices), one
+//! material per colour (its sRGB colour
 //! turned linear as glTF's `baseColorFactor` is, not metallic, rough).
 //! Every number in the JSON has fixed decimals except the positions'
 //! `min` and `max`, which glTF requires to equal the `f32` data: those are
@@ -12,7 +13,7 @@
 use std::fmt::Write as _;
 use std::io::Write;
 
-use super::{Mesh, le_f32s};
+use super::{Mesh, le_f32_pairs, le_f32s};
 use crate::color::Rgb;
 use crate::diag::{Diagnostics, io_error};
 use crate::num::{Trim, fixed};
@@ -57,14 +58,15 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
             }
         }
         let first = views.len();
-        for part in 0..3 {
+        for part in 0..4 {
             let start = len;
             len += match part {
                 0 => 12 * p.positions.len(),
                 1 => 12 * p.normals.len(),
+                2 => 8 * p.texcoords.len(),
                 _ => 4 * p.indices.len(),
             };
-            let target = if part == 2 { 34963 } else { 34962 };
+            let target = if part == 3 { 34963 } else { 34962 };
             views.push(format!(
                 "{{\"buffer\": 0, \"byteOffset\": {start}, \"byteLength\": {}, \"target\": {target}}}",
                 len - start
@@ -91,8 +93,12 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
             first + 1
         ));
         accessors.push(format!(
+            "{{\"bufferView\": {}, \"componentType\": 5126, \"count\": {count}, \"type\": \"VEC2\"}}",
+            first + 2
+        ));
+        accessors.push(format!(
             "{{\"bufferView\": {}, \"componentType\": 5125, \"count\": {}, \"type\": \"SCALAR\"}}",
-            first + 2,
+            first + 3,
             p.indices.len()
         ));
         let c = p.color.unwrap_or(Rgb::BLACK);
@@ -105,10 +111,11 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
             f(c.b)
         ));
         prims.push(format!(
-            "{{\"attributes\": {{\"POSITION\": {a}, \"NORMAL\": {}}}, \"indices\": {}, \
-             \"material\": {}, \"mode\": 4}}",
+            "{{\"attributes\": {{\"POSITION\": {a}, \"NORMAL\": {}, \"TEXCOORD_0\": {}}}, \
+             \"indices\": {}, \"material\": {}, \"mode\": 4}}",
             a + 1,
             a + 2,
+            a + 3,
             materials.len() - 1
         ));
     }
@@ -141,8 +148,8 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
 }
 
 /// Writes the buffer [`json_and_buffer`] laid out (positions, normals,
-/// indices of each primitive that has triangles), a few thousand values
-/// at a time.
+/// texture coordinates, indices of each primitive that has triangles), a
+/// few thousand values at a time.
 fn write_buffer(mesh: &Mesh, out: &mut dyn Write) -> std::io::Result<()> {
     let mut chunk: Vec<u8> = Vec::with_capacity(1 << 16);
     for p in mesh.primitives.iter().filter(|p| !p.indices.is_empty()) {
@@ -152,6 +159,11 @@ fn write_buffer(mesh: &Mesh, out: &mut dyn Write) -> std::io::Result<()> {
                 le_f32s(part, &mut chunk);
                 out.write_all(&chunk)?;
             }
+        }
+        for part in p.texcoords.chunks(4096) {
+            chunk.clear();
+            le_f32_pairs(part, &mut chunk);
+            out.write_all(&chunk)?;
         }
         for part in p.indices.chunks(4096) {
             chunk.clear();

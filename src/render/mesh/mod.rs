@@ -2,16 +2,24 @@
 //! or Wavefront OBJ (`.obj`). docs/3d.md describes the files.
 //!
 //! A stem is a tube of `sides` sides around its axis, its diameter the
-//! stem's width, closed by a flat cap at each end: `4 * sides` vertices
-//! (the sides' with normals pointing away from the axis, each cap's with
-//! the axis's direction), `4 * sides - 4` triangles, counter-clockwise
-//! seen from outside, every edge shared by exactly two of its triangles.
-//! Widths fall with a stem's order (STL's `B`), so a branch tapers stem by
-//! stem. Axes: glTF and OBJ are y up, right-handed; a canvas point
-//! (x, y, z) (y down, z away from the viewer) is written at
-//! (x, -y, -z) times `unit` (metres per canvas unit), a rotation, so
-//! windings stay outward. Stems are grouped by colour, one material (glTF)
-//! or group (OBJ) per colour, in the order colours first appear.
+//! stem's width, closed by a flat cap at each end: `4 * sides + 2`
+//! vertices (the sides' `sides + 1` columns, the last at the first's place
+//! with u = 1, with normals pointing away from the axis; each cap's
+//! `sides` with the axis's direction), `4 * sides - 4` triangles,
+//! counter-clockwise seen from outside, every edge between welded
+//! positions shared by exactly two of its triangles. Texture coordinates
+//! (`TEXCOORD_0`): on the sides u runs from 0 to 1 around the tube and v
+//! along it in units of its circumference (0 at its start, length / (2 pi
+//! r) at its end), so a square bark texture keeps its aspect; a cap maps
+//! its disc onto the unit square's inscribed circle. Widths fall with a
+//! stem's order (STL's `B`), so a branch tapers stem by stem. Axes: glTF
+//! and OBJ are y up, right-handed; a canvas point (x, y, z) (y down, z
+//! away from the viewer) is written at (x - x0, y0 - y, z0 - z) times
+//! `unit` (metres per canvas unit), where (x0, y0, z0) is the first root
+//! (an `.lsys`'s turtle start, the origin): a translation and a rotation,
+//! so windings stay outward and the tree stands on the origin. Stems are
+//! grouped by colour, one material (glTF) or group (OBJ) per colour, in
+//! the order colours first appear.
 
 mod gltf;
 mod obj;
@@ -77,9 +85,9 @@ pub const MAX_SIDES: u32 = 64;
 /// Default of [`MeshOptions::unit`]: a canvas unit is a centimetre, so a
 /// 300-unit tree is 3 m tall.
 pub const DEFAULT_UNIT: f64 = 0.01;
-/// Default of [`MeshOptions::max_triangles`]: about 41 bytes a triangle in
-/// a `.glb` (vertices, normals, indices) and 85 at the peak in memory
-/// (docs/3d.md, *Cost*).
+/// Default of [`MeshOptions::max_triangles`]: about 54 bytes a triangle in
+/// a `.glb` at 6 sides (vertices, normals, texture coordinates, indices)
+/// and 61 at the peak in memory (docs/3d.md, *Meshes*).
 pub const DEFAULT_MAX_TRIANGLES: u64 = 10_000_000;
 
 impl Default for MeshOptions {
@@ -153,6 +161,9 @@ pub struct Primitive {
     pub positions: Vec<[f32; 3]>,
     /// Vertex normals (unit).
     pub normals: Vec<[f32; 3]>,
+    /// Vertex texture coordinates (u around, v along; glTF's
+    /// `TEXCOORD_0`, v down the image as glTF's is).
+    pub texcoords: Vec<[f32; 2]>,
     /// Triangles, three vertex indices each, counter-clockwise from
     /// outside.
     pub indices: Vec<u32>,
@@ -204,9 +215,11 @@ pub fn to_file_axes(p: Point3, unit: f64) -> V {
     [p.x * unit, -p.y * unit, -p.z * unit]
 }
 
-/// Builds the mesh of `tubes` (zero-length ones are left out). The caller
-/// keeps the number of tubes within [`MeshOptions::max_tubes`].
-pub fn build(tubes: &[Tube], opts: &MeshOptions) -> Mesh {
+/// Builds the mesh of `tubes` (zero-length ones are left out), `origin`
+/// (canvas units: the first root) at the files' origin. The caller keeps
+/// the number of tubes within [`MeshOptions::max_tubes`].
+pub fn build(tubes: &[Tube], origin: Point3, opts: &MeshOptions) -> Mesh {
+    let moved = |q: Point3| Point3::new(q.x - origin.x, q.y - origin.y, q.z - origin.z);
     let n = opts.sides.clamp(MIN_SIDES, MAX_SIDES) as usize;
     // The ring's directions, exact at multiples of 90 degrees.
     let ring: Vec<(f64, f64)> = (0..n)
@@ -214,8 +227,8 @@ pub fn build(tubes: &[Tube], opts: &MeshOptions) -> Mesh {
         .collect();
     let mut mesh = Mesh::default();
     for t in tubes {
-        let a = to_file_axes(t.from, opts.unit);
-        let b = to_file_axes(t.to, opts.unit);
+        let a = to_file_axes(moved(t.from), opts.unit);
+        let b = to_file_axes(moved(t.to), opts.unit);
         let d = sub(b, a);
         if d == [0.0; 3] || !d.iter().all(|v| v.is_finite()) {
             continue;
@@ -269,26 +282,42 @@ fn tube(p: &mut Primitive, a: V, b: V, d: V, r: f64, ring: &[(f64, f64)]) {
         })
         .collect();
     let at = |base: V, o: V| [base[0] + r * o[0], base[1] + r * o[1], base[2] + r * o[2]];
+    // v along the tube in circumferences: its length over 2 pi r.
+    let len = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    let top = if r > 0.0 {
+        len / (2.0 * std::f64::consts::PI * r)
+    } else {
+        0.0
+    };
     let base = p.positions.len() as u32;
-    // Sides: bottom and top of each direction, normals outward.
-    for o in &off {
-        p.positions.push(f32s(at(a, *o)));
-        p.normals.push(f32s(*o));
-        p.positions.push(f32s(at(b, *o)));
-        p.normals.push(f32s(*o));
+    // Sides: bottom and top of each direction, normals outward; the
+    // column after the last is the first again, with u = 1 (the seam).
+    for j in 0..=n {
+        let o = off[(j % n) as usize];
+        let s = (f64::from(j) / f64::from(n)) as f32;
+        p.positions.push(f32s(at(a, o)));
+        p.normals.push(f32s(o));
+        p.texcoords.push([s, 0.0]);
+        p.positions.push(f32s(at(b, o)));
+        p.normals.push(f32s(o));
+        p.texcoords.push([s, top as f32]);
     }
-    // Caps: the start's facing -d, the end's +d.
+    // Caps: the start's facing -d, the end's +d; the disc on the unit
+    // square's inscribed circle.
     let back = dn.map(|x| -x);
-    for o in &off {
+    let disc = |(c, s): (f64, f64)| [(0.5 + 0.5 * c) as f32, (0.5 + 0.5 * s) as f32];
+    for (o, cs) in off.iter().zip(ring) {
         p.positions.push(f32s(at(a, *o)));
         p.normals.push(f32s(back));
+        p.texcoords.push(disc(*cs));
     }
-    for o in &off {
+    for (o, cs) in off.iter().zip(ring) {
         p.positions.push(f32s(at(b, *o)));
         p.normals.push(f32s(dn));
+        p.texcoords.push(disc(*cs));
     }
     for j in 0..n {
-        let k = (j + 1) % n;
+        let k = j + 1;
         let (aj, bj, ak, bk) = (
             base + 2 * j,
             base + 2 * j + 1,
@@ -297,12 +326,21 @@ fn tube(p: &mut Primitive, a: V, b: V, d: V, r: f64, ring: &[(f64, f64)]) {
         );
         p.indices.extend([aj, ak, bk, aj, bk, bj]);
     }
-    let start = base + 2 * n;
-    let end = base + 3 * n;
+    let start = base + 2 * (n + 1);
+    let end = start + n;
     for j in 1..n - 1 {
         p.indices.extend([start, start + j + 1, start + j]);
         p.indices.extend([end, end + j, end + j + 1]);
     }
+}
+
+/// Appends `f32` pairs to `buf`, little-endian.
+fn le_f32_pairs(v: &[[f32; 2]], buf: &mut Vec<u8>) {
+    buf.reserve(8 * v.len());
+    buf.extend(
+        v.iter()
+            .flat_map(|t| t.iter().flat_map(|x| x.to_le_bytes())),
+    );
 }
 
 /// Appends `f32` triples to `buf`, little-endian.

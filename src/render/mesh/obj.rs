@@ -1,9 +1,10 @@
 //! Wavefront OBJ: positions with vertex colours (`v x y z r g b`, the
-//! extension Blender, MeshLab and others read), normals, and one group per
-//! colour (`g stem_rrggbb`), faces `f v//vn`. Colours travel with the
-//! vertices, so one file is the whole mesh (no `.mtl` beside it) and
+//! extension Blender, MeshLab and others read), texture coordinates
+//! (`vt u v`, OBJ's v up the image: 1 - glTF's), normals, and one group
+//! per colour (`g stem_rrggbb`), faces `f v/vt/vn`. Colours travel with
+//! the vertices, so one file is the whole mesh (no `.mtl` beside it) and
 //! `-o -` writes all of it. Positions have 6 decimals (micrometres at the
-//! default unit), normals and colours 4.
+//! default unit), texture coordinates, normals and colours 4.
 
 use std::fmt::Write as _;
 use std::io::Write;
@@ -57,6 +58,13 @@ pub fn write_obj(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
             }
             put(&mut w, &mut line).map_err(fail)?;
         }
+        for t in &p.texcoords {
+            line.push_str("vt ");
+            push_fixed(&mut line, f64::from(t[0]), 4);
+            line.push(' ');
+            push_fixed(&mut line, 1.0 - f64::from(t[1]), 4);
+            put(&mut w, &mut line).map_err(fail)?;
+        }
         for n in &p.normals {
             line.push_str("vn");
             for x in n {
@@ -69,7 +77,7 @@ pub fn write_obj(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
             line.push('f');
             for &i in t {
                 let k = base + u64::from(i);
-                let _ = write!(line, " {k}//{k}");
+                let _ = write!(line, " {k}/{k}/{k}");
             }
             put(&mut w, &mut line).map_err(fail)?;
         }

@@ -39,7 +39,7 @@ fn tubes() -> Vec<Tube> {
     ]
 }
 
-/// Per tube (4n vertices each, in order): every undirected edge between
+/// Per tube (4n + 2 vertices each, in order): every undirected edge between
 /// welded positions is used by exactly two triangles, once in each
 /// direction (closed and consistently wound), and every triangle's
 /// normal points away from its tube's centre (a convex solid).
@@ -50,18 +50,19 @@ fn every_tube_is_closed_and_faces_outward() {
             sides,
             ..MeshOptions::default()
         };
-        let mesh = build(&tubes(), &opts);
+        let mesh = build(&tubes(), Point3::default(), &opts);
         assert_eq!(mesh.primitives.len(), 2, "one primitive per colour");
         // The zero-length tube is left out: 3 tubes.
         assert_eq!(mesh.triangles(), 3 * (4 * u64::from(sides) - 4));
         let n = sides as usize;
         for prim in &mesh.primitives {
-            assert_eq!(prim.positions.len() % (4 * n), 0);
+            assert_eq!(prim.positions.len() % (4 * n + 2), 0);
+            assert_eq!(prim.texcoords.len(), prim.positions.len());
             let per = 3 * (4 * n - 4);
             for (t, tris) in prim.indices.chunks(per).enumerate() {
                 let key = |i: u32| prim.positions[i as usize].map(f32::to_bits);
                 let mut edges: BTreeMap<([u32; 3], [u32; 3]), i32> = BTreeMap::new();
-                let verts = &prim.positions[t * 4 * n..(t + 1) * 4 * n];
+                let verts = &prim.positions[t * (4 * n + 2)..(t + 1) * (4 * n + 2)];
                 let mut centre = [0.0f64; 3];
                 for v in verts {
                     for k in 0..3 {
@@ -108,7 +109,7 @@ fn axes_and_units_are_the_files() {
         width: 2.0,
         color: Rgb::BLACK,
     }];
-    let mesh = build(&t, &MeshOptions::default());
+    let mesh = build(&t, Point3::default(), &MeshOptions::default());
     let ys: Vec<f32> = mesh.primitives[0].positions.iter().map(|v| v[1]).collect();
     assert_eq!(ys.iter().copied().fold(f32::MAX, f32::min), 0.0);
     assert_eq!(ys.iter().copied().fold(f32::MIN, f32::max), 1.0);
@@ -155,7 +156,7 @@ fn unbase64(s: &str) -> Vec<u8> {
 /// `.glb`'s BIN chunk.
 #[test]
 fn the_gltf_reads_back_and_agrees_with_its_data() {
-    let mesh = build(&tubes(), &MeshOptions::default());
+    let mesh = build(&tubes(), Point3::default(), &MeshOptions::default());
     let mut text = Vec::new();
     write_gltf(&mesh, &mut text).unwrap();
     let j: serde_json::Value = serde_json::from_slice(&text).unwrap();
@@ -225,7 +226,7 @@ fn the_gltf_reads_back_and_agrees_with_its_data() {
 
 #[test]
 fn the_obj_has_a_vertex_and_normal_per_vertex_and_a_face_per_triangle() {
-    let mesh = build(&tubes(), &MeshOptions::default());
+    let mesh = build(&tubes(), Point3::default(), &MeshOptions::default());
     let mut out = Vec::new();
     write_obj(&mesh, &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
@@ -233,6 +234,7 @@ fn the_obj_has_a_vertex_and_normal_per_vertex_and_a_face_per_triangle() {
     let verts: usize = mesh.primitives.iter().map(|p| p.positions.len()).sum();
     assert_eq!(count("v "), verts);
     assert_eq!(count("vn "), verts);
+    assert_eq!(count("vt "), verts);
     assert_eq!(count("f ") as u64, mesh.triangles());
     assert_eq!(count("g "), 2);
     // Every face's indices are within the vertices written before it.
@@ -244,8 +246,9 @@ fn the_obj_has_a_vertex_and_normal_per_vertex_and_a_face_per_triangle() {
         }
         if let Some(f) = l.strip_prefix("f ") {
             for v in f.split(' ') {
-                let i: usize = v.split("//").next().unwrap().parse().unwrap();
-                assert!(i >= 1 && i <= seen);
+                let k: Vec<usize> = v.split('/').map(|x| x.parse().unwrap()).collect();
+                assert_eq!(k.len(), 3, "v/vt/vn: {l}");
+                assert!(k.iter().all(|&i| i >= 1 && i <= seen));
             }
         }
     }
@@ -263,4 +266,53 @@ fn the_limit_is_counted_in_triangles() {
     let err = check_tubes(11, false, &opts).unwrap_err();
     let msg = err.to_string();
     assert!(msg.contains("220") && msg.contains("200"), "{msg}");
+}
+
+/// One vertical stem of a tree rooted at (150, 298, 40), 100 units up at
+/// the default 0.01 m a unit, width 2 (radius 0.01 m), six sides: its
+/// base ring lies at y = 0 around the origin (the root is the files'
+/// origin), its top ring at y = 1; u runs 0, 1/6, ... 1 around (the seam
+/// column twice, at u = 0 and u = 1), v is 0 at the base and 1 / (2 pi
+/// 0.01) = 15.915494 circumferences at the top; a cap's texture
+/// coordinates lie on the unit square's inscribed circle.
+#[test]
+fn the_first_root_is_the_origin_and_v_counts_circumferences() {
+    let root = p(150.0, 298.0, 40.0);
+    let t = [Tube {
+        from: root,
+        to: p(150.0, 198.0, 40.0),
+        width: 2.0,
+        color: Rgb::BLACK,
+    }];
+    let mesh = build(&t, root, &MeshOptions::default());
+    let prim = &mesh.primitives[0];
+    assert_eq!(prim.positions.len(), 4 * 6 + 2);
+    let top = (1.0 / (2.0 * std::f64::consts::PI * 0.01)) as f32;
+    assert!((top - 15.915_494).abs() < 1e-5);
+    for j in 0..=6 {
+        let (base, tip) = (2 * j, 2 * j + 1);
+        for (i, y, v) in [(base, 0.0, 0.0), (tip, 1.0, top)] {
+            let q = prim.positions[i];
+            assert_eq!(q[1], y, "vertex {i}");
+            assert!((libm::hypot(f64::from(q[0]), f64::from(q[2])) - 0.01).abs() < 1e-7);
+            assert_eq!(prim.texcoords[i], [j as f32 / 6.0, v], "vertex {i}");
+        }
+    }
+    // The seam: the last column is the first again.
+    assert_eq!(prim.positions[12], prim.positions[0]);
+    for i in 14..26 {
+        let [u, v] = prim.texcoords[i].map(f64::from);
+        assert!(
+            (libm::hypot(u - 0.5, v - 0.5) - 0.5).abs() < 1e-6,
+            "cap {i}"
+        );
+    }
+    // The ring's centre is the origin: its mean is (0, 0, 0).
+    for k in [0, 2] {
+        let mean: f64 = (0..6)
+            .map(|j| f64::from(prim.positions[2 * j][k]))
+            .sum::<f64>()
+            / 6.0;
+        assert!(mean.abs() < 1e-9, "axis {k}: {mean}");
+    }
 }

@@ -58,6 +58,9 @@ const app = {
     typedAt: -Infinity,
     // The gutter's marks: line -> {cls, title}.
     marks: new Map(),
+    // The diagnostics' spans, underlined in the text: [{start, end, cls}]
+    // (JavaScript indices into the text they were shown for).
+    underlines: [],
     // What was offered for download last.
     lastDownload: null,
     // The document: its name, path, version and saved text (document.js).

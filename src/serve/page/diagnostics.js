@@ -32,6 +32,34 @@ export function spanOf(text, d) {
   return [a, b];
 }
 
+/**
+ * The editor's underline layer for `text`: the text, HTML-escaped, with
+ * each span [start, end) of `spans` wrapped in a `<mark>` of its class
+ * (error, warning), drawn under the textarea with the text itself
+ * transparent, so only the wavy underline shows, at the very characters a
+ * diagnostic is about (an unknown name inside a rule's expression, not
+ * the whole line). Spans are taken in order of their start; a span
+ * overlapping an earlier one keeps only its part after it; empty spans
+ * and spans past the text are left out.
+ *
+ * @param {string} text
+ * @param {Array<{start: number, end: number, cls: string}>} spans
+ * @returns {string}
+ */
+export function underlined(text, spans) {
+  const sorted = [...spans].sort((a, b) => a.start - b.start);
+  let html = '';
+  let at = 0;
+  for (const s of sorted) {
+    const start = Math.max(s.start, at);
+    const end = Math.min(s.end, text.length);
+    if (end <= start) continue;
+    html += escapeHtml(text.slice(at, start)) + `<mark class="${escapeHtml(s.cls)}">${escapeHtml(text.slice(start, end))}</mark>`;
+    at = end;
+  }
+  return html + escapeHtml(text.slice(at));
+}
+
 export function createDiagnostics(app) {
   const { state } = app;
   const ul = byId('diagnostics');
@@ -45,6 +73,13 @@ export function createDiagnostics(app) {
   function show(list) {
     ul.innerHTML = '';
     state.marks = new Map();
+    const text = app.editor.text();
+    state.underlines = list
+      .filter((d) => d.line != null)
+      .map((d) => {
+        const [start, end] = spanOf(text, d);
+        return { start, end, cls: d.severity };
+      });
     for (const d of list) {
       const li = document.createElement('li');
       li.className = d.severity;

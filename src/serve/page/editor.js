@@ -3,6 +3,7 @@
 // of the text schedules a render (app.session.refresh), debounced.
 
 import { byId, escapeHtml } from './dom.js';
+import { underlined } from './diagnostics.js';
 
 const DEBOUNCE_MS = 40;
 const HISTORY = 100;
@@ -11,6 +12,7 @@ export function createEditor(app) {
   const { state } = app;
   const src = byId('source');
   const gutter = byId('gutter');
+  const under = byId('underlines');
   let timer = null;
 
   function updateGutter() {
@@ -22,7 +24,17 @@ export function createEditor(app) {
       parts.push(m ? `<span class="${m.cls}" title="${escapeHtml(m.title)}">${i}</span>` : `<span>${i}</span>`);
     }
     gutter.innerHTML = parts.join('');
+    // Two more lines: room to scroll as far as the textarea, whose
+    // scroll bar takes some of its height.
+    under.innerHTML = underlined(src.value, state.underlines) + '\n\n';
+    scrolled();
+  }
+
+  // The gutter and the underlines follow the text's scrolling.
+  function scrolled() {
     gutter.scrollTop = src.scrollTop;
+    under.scrollTop = src.scrollTop;
+    under.scrollLeft = src.scrollLeft;
   }
 
   function schedule() {
@@ -97,7 +109,7 @@ export function createEditor(app) {
     src.setSelectionRange(a, b);
   }
 
-  src.addEventListener('scroll', () => { gutter.scrollTop = src.scrollTop; });
+  src.addEventListener('scroll', scrolled);
   src.addEventListener('beforeinput', (e) => {
     if (e.inputType === 'historyUndo' || e.inputType === 'historyRedo') {
       e.preventDefault();

@@ -1,10 +1,13 @@
 // Numbers you can scrub: a slider for each number of the header that
-// shapes the picture (an OD's L, B, A and C; an .lsys's angle and length).
-// Dragging one rewrites that number in the text (only it: a decrement
-// `(d)` stays), and the tree regrows as you drag (a newer edit ends the
-// older work). The text stays the one source of truth.
+// shapes the picture (an OD's L, B, A and C; an .lsys's angle and length)
+// and for each `define` of a parametric .lsys whose value is a number
+// (defines.js). Dragging one rewrites that number in the text (only it: a
+// decrement `(d)` stays, a define's line keeps its spacing and comment),
+// and the tree regrows as you drag (a newer edit ends the older work).
+// The text stays the one source of truth.
 
 import { byId } from './dom.js';
+import { defines, withDefine, range as defineRange } from './defines.js';
 
 // Key, label, [min, max, step] for a value v.
 const OD = [
@@ -32,14 +35,23 @@ export function createScrub(app) {
       .map(([key, label, range]) => {
         const k = kind === 'od' ? app.settings.odKey(text, key) : app.settings.lsysKey(text, key);
         const v = k ? Number(k.value) : NaN;
-        return Number.isFinite(v) ? { key, label, v, range: range(v) } : null;
+        const set = (t, value) => app.settings.withKey(t, kind, key, value);
+        return Number.isFinite(v) ? { key, label, v, range: range(v), set } : null;
       })
       .filter(Boolean);
+    if (kind === 'lsys') {
+      for (const d of defines(text)) {
+        const set = (t, value) => withDefine(t, d.key, value);
+        rows.push({ key: `define-${d.key}`, label: `define ${d.name}`, v: Number(d.value), range: defineRange(d.value), set });
+      }
+    }
     const signature = kind + rows.map((r) => r.key).join();
     if (signature === shown) {
       for (const r of rows) {
         const input = list.querySelector(`input[data-key="${r.key}"]`);
         if (input && input !== document.activeElement) {
+          // A value typed past the slider's ends moves them.
+          if (r.v < Number(input.min) || r.v > Number(input.max)) Object.assign(input, { min: r.range[0], max: r.range[1] });
           input.value = r.v;
           input.nextElementSibling.textContent = r.v;
         }
@@ -59,7 +71,7 @@ export function createScrub(app) {
       out.textContent = r.v;
       input.addEventListener('input', () => {
         out.textContent = input.value;
-        const t = app.settings.withKey(app.editor.text(), kind, r.key, input.value);
+        const t = r.set(app.editor.text(), input.value);
         if (t !== app.editor.text()) app.editor.rewrite(t);
       });
       label.append(input, out);

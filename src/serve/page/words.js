@@ -1,7 +1,9 @@
 // Words, generation by generation: an .lsys's derived word at depth 0 (the
 // axiom), 1, 2, ... (at most eight, each cut at 2,000 characters, with its
-// exact length), for teaching how rewriting grows a word. Asked of the
-// engine when the panel is open and after each new picture.
+// exact length), for teaching how rewriting grows a word. A parametric
+// system's modules show their parameters (`A(0.9,7.07)`, as `stlc expand`
+// writes them), and its length counts modules. Asked of the engine when
+// the panel is open and after each new picture.
 
 import { byId } from './dom.js';
 
@@ -17,7 +19,10 @@ export function createWords(app) {
     for (const w of a.words) {
       const li = document.createElement('li');
       li.value = w.depth;
-      const cut = w.word.length < Number(w.length) ? ` … (${w.length} symbols)` : ` (${w.length})`;
+      // A parametric word's length counts modules (a symbol and its
+      // parameters), not characters.
+      const unit = w.word.includes('(') ? 'modules' : 'symbols';
+      const cut = w.cut ? ` … (${w.length} ${unit})` : ` (${w.length})`;
       li.textContent = w.word + cut;
       list.append(li);
     }

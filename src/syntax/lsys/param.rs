@@ -293,25 +293,28 @@ fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Box<Diagno
         let mut m = ModuleExpr {
             symbol: c,
             args: Vec::new(),
+            spans: Vec::new(),
         };
         let next = i + c.len_utf8();
         if s[next..].starts_with('(') {
             let (parts, after) = args(s, next, at)?;
             for (text, off) in parts {
                 let e = expr::parse(text, at + off, scope)?;
+                let lead = text.len() - text.trim_start().len();
+                let span = at + off + lead..at + off + text.trim_end().len().max(lead);
                 // Without formals (the axiom) the value is known now.
                 if scope.formals.is_empty() {
                     let v = crate::model::param::eval_const(&e);
                     if !v.is_finite() {
-                        let lead = text.len() - text.trim_start().len();
                         return Err(error(
                             format!("this parameter is not a finite number ({v})"),
-                            at + off + lead..at + off + text.trim_end().len(),
+                            span,
                             "check for a division by zero or an overflow",
                         ));
                     }
                 }
                 m.args.push(e);
+                m.spans.push(Loc(span));
             }
             while it.peek().is_some_and(|&(j, _)| j < after) {
                 it.next();

@@ -25,6 +25,7 @@ use crate::choice::Key;
 use crate::diag::{Diagnostic, Diagnostics, Help, Knob, LsysError, io_error};
 use crate::interpret::Derivation;
 use crate::limits::{Bound, Limits};
+use crate::model::Loc;
 use crate::model::lsys::LSystem;
 use crate::model::param::{ParamRule, Parametric, eval};
 pub(crate) use turtle::{draw2, draw3};
@@ -272,7 +273,7 @@ impl<'a> Deriver<'a> {
             }
             let total: f64 = cands.iter().map(|c| c.1.max(0.0)).sum();
             if !total.is_finite() || total <= 0.0 {
-                return Err(self.not_finite(r, generation, "a probability", total));
+                return Err(self.not_finite(r, generation, "a probability", total, None));
             }
             let mut t = key.unit() * total;
             chosen = Some(cands.last().map_or(r, |c| c.0));
@@ -296,7 +297,7 @@ impl<'a> Deriver<'a> {
         let mut vals: Vec<f64> = Vec::new();
         for (j, m) in rule.successor.iter().enumerate() {
             vals.clear();
-            for e in &m.args {
+            for (k, e) in m.args.iter().enumerate() {
                 let v = eval(e, bind);
                 if !v.is_finite() {
                     return Err(self.not_finite(
@@ -304,6 +305,7 @@ impl<'a> Deriver<'a> {
                         generation,
                         &format!("a parameter of `{}`", m.symbol),
                         v,
+                        m.spans.get(k),
                     ));
                 }
                 vals.push(v);
@@ -313,13 +315,25 @@ impl<'a> Deriver<'a> {
         Ok(())
     }
 
-    fn not_finite(&self, r: usize, generation: u32, what: &str, v: f64) -> Diagnostics {
-        let loc = &self.p.rules[r].loc;
+    /// The error of rule `r` making a value `v` that is not finite, at the
+    /// expression that made it (`at`) where it is known, else the rule.
+    fn not_finite(
+        &self,
+        r: usize,
+        generation: u32,
+        what: &str,
+        v: f64,
+        at: Option<&Loc>,
+    ) -> Diagnostics {
+        let (span, label) = match at {
+            Some(l) => (l.0.clone(), "this expression"),
+            None => (self.p.rules[r].loc.0.clone(), "the rule"),
+        };
         Diagnostic::error(LsysError::Param {
             message: format!("this rule made {what} that is not a finite number ({v}) at generation {generation}"),
         })
-        .with_span(loc.0.clone())
-        .with_label("the rule")
+        .with_span(span)
+        .with_label(label)
         .with_help("check the rule's expressions for a division by zero or a growth without bound (add a condition)")
         .into()
     }

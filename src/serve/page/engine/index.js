@@ -73,7 +73,7 @@
  * @property {(request: RenderRequest, format: 'png'|'svg'|'bed') => Promise<ExportAnswer>} export
  *   the bytes `stlc render -f png|svg --show-layout` or `stlc compile`
  *   would write
- * @property {(request: RenderRequest) => Promise<{ok: true, words: Array<{depth: number, word: string, length: string}>}|{ok: false, diagnostics?: Diagnostic[], error?: string}>} words
+ * @property {(request: RenderRequest) => Promise<{ok: true, words: Array<{depth: number, word: string, length: string, stats: string, cut: boolean}>}|{ok: false, diagnostics?: Diagnostic[], error?: string}>} words
  *   an `.lsys`'s word at each generation from 0 (at most 8, each cut at
  *   2,000 characters, with its exact length)
  * @property {() => Promise<Array<{name: string, kind: 'od'|'bed'|'lsys', text: string}>>} examples

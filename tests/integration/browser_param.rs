@@ -1,0 +1,287 @@
+//! The book's L-systems in the editor and on the web (issue 32, item 5),
+//! in a real Chromium: each `define` is a slider that rewrites only its
+//! number; a diagnostic underlines the expression it is about; the static
+//! site's engine expands and reports `stats` of every parametric example
+//! with the CLI's bytes and its words view shows modules with their
+//! parameters; `<stl-tree>` draws one and a share link carries it.
+//! Screenshots go to `tests/store/browser/`.
+
+use std::time::Duration;
+
+use fantoccini::Client;
+use serde_json::{Value, json};
+
+use super::browser::{Browser, cli, click, js, same_bytes, settled, shot};
+use super::browser_web::{engine_export, open_example, share_link, start};
+use super::param_frontends::{parametric_examples, same_words};
+use super::serve::{Server, example};
+
+/// Waits (at most 10 s) until `script` returns true.
+async fn until(c: &Client, script: &str, what: &str) {
+    for _ in 0..100 {
+        if js(c, script).await == json!(true) {
+            return;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    shot(c, &format!("param-timeout-{}", what.replace(' ', "-"))).await;
+    panic!("timed out waiting until {what}");
+}
+
+/// Opens the Numbers panel and moves the slider `key` to `value`, as a
+/// drag does (an `input` event); the page's answer to the new text.
+async fn slide(c: &Client, key: &str, value: &str) -> Value {
+    if js(c, "return document.getElementById('scrub').open").await != json!(true) {
+        click(c, "#scrub summary").await;
+    }
+    let input = format!("#scrub-list input[data-key=\"{key}\"]");
+    until(
+        c,
+        &format!("return document.querySelector('{input}') !== null"),
+        "the slider",
+    )
+    .await;
+    js(
+        c,
+        &format!(
+            "const i = document.querySelector('{input}'); i.value = {value}; i.dispatchEvent(new Event('input')); return 0;"
+        ),
+    )
+    .await;
+    let mut v = settled(c).await;
+    for _ in 0..100 {
+        if v["text"].as_str().unwrap().contains(&format!(" {value}\n")) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+        v = settled(c).await;
+    }
+    v
+}
+
+/// The willow's four `define`s are sliders beside `angle`; moving
+/// `spread` from 30 to 45 rewrites that number only, and the picture is
+/// the CLI's for the new text.
+#[test]
+fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let file = tmp.path().join("willow.lsys");
+    std::fs::write(&file, example("param-willow.lsys")).unwrap();
+    let server = Server::start(&[file.to_str().unwrap()]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        let after = slide(&c, "define-spread", "45").await;
+        let keys = js(
+            &c,
+            "return [...document.querySelectorAll('#scrub-list input')].map((i) => i.dataset.key)",
+        )
+        .await;
+        assert_eq!(
+            keys,
+            json!([
+                "angle",
+                "define-shrink",
+                "define-side",
+                "define-spread",
+                "define-twig"
+            ])
+        );
+        let text = example("param-willow.lsys").replace("define spread 30\n", "define spread 45\n");
+        assert_eq!(after["ok"], true, "{after}");
+        assert_eq!(after["text"], json!(text));
+        let edited = tmp.path().join("edited.lsys");
+        std::fs::write(&edited, &text).unwrap();
+        let svg = js(&c, "return window.stlc.state.answer.svg").await;
+        same_bytes(
+            svg.as_str().unwrap().as_bytes(),
+            &cli(&[
+                "render",
+                edited.to_str().unwrap(),
+                "--show-layout",
+                "-f",
+                "svg",
+            ]),
+            "the willow with spread 45",
+        );
+        shot(&c, "param-01-define-sliders").await;
+        let _ = c.close().await;
+    });
+}
+
+/// A parameter that divides by zero at generation 3 is underlined at the
+/// expression that made it, and clicking its diagnostic selects it.
+#[test]
+fn a_diagnostic_underlines_the_expression_it_is_about_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let file = tmp.path().join("zero.lsys");
+    let text = "generations 5\nangle 9\naxiom A(3)\nrule A(x) -> F(1)A(x-1)B(1/(x-1))\n";
+    std::fs::write(&file, text).unwrap();
+    let server = Server::start(&[file.to_str().unwrap()]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        let v = settled(&c).await;
+        assert_eq!(v["ok"], false, "{v}");
+        let marks = "return [...document.querySelectorAll('#underlines mark.error')].map((m) => m.textContent)";
+        until(&c, &format!("{marks}.length === 1"), "the underline").await;
+        assert_eq!(js(&c, marks).await, json!(["1/(x-1)"]));
+        click(&c, "#diagnostics li.error").await;
+        let selected = js(
+            &c,
+            "const s = document.getElementById('source'); return s.value.slice(s.selectionStart, s.selectionEnd)",
+        )
+        .await;
+        assert_eq!(selected, json!("1/(x-1)"));
+        shot(&c, "param-02-underlined-expression").await;
+        let _ = c.close().await;
+    });
+}
+
+/// The static site's engine (WebAssembly) writes the CLI's SVG, words and
+/// `stats --json` for every parametric example (its PNGs are held to the
+/// CLI's in browser_web.rs's every_example), and the page's words view
+/// shows the willow's modules with their parameters.
+#[test]
+fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some((_, server, browser)) = start(tmp.path()) else {
+        return;
+    };
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        for name in parametric_examples() {
+            let path = format!("examples/{name}");
+            let request = json!({"source": example(&name), "kind": "lsys", "show_layout": true});
+            let svg = engine_export(&c, &request, "svg").await.unwrap();
+            same_bytes(
+                &svg,
+                &cli(&["render", &path, "--show-layout", "-f", "svg"]),
+                &name,
+            );
+            let words = c
+                .execute_async(
+                    "const [request, done] = arguments;
+                     window.stlc.engine.words(request).then(done, (e) => done(String(e)));",
+                    vec![request],
+                )
+                .await
+                .unwrap();
+            same_words(&name, &words);
+        }
+        // The words view: the axiom A(10,0), then the first rule applied
+        // (l = 10 >= twig: F(10), two side branches of 10 x 0.62 and
+        // 10 x 0.62 x 0.9, the axis 10 x 0.82; ten modules).
+        open_example(&c, "param-willow.lsys").await;
+        click(&c, "#words summary").await;
+        let items =
+            "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)";
+        until(&c, &format!("{items}.length >= 2"), "the words").await;
+        let shown = js(&c, items).await;
+        assert_eq!(shown[0], json!("A(10,0) (1)"));
+        assert_eq!(
+            shown[1],
+            json!("F(10)[+(30)A(6.2,1)][-(30)A(5.58,1)]A(8.2,0) (10)")
+        );
+        shot(&c, "param-03-web-words").await;
+        let _ = c.close().await;
+    });
+}
+
+/// `<stl-tree>` draws a parametric text written inline (its `<`, `>=`
+/// and `&` stay as written in a `<script type="text/stl">`) and one at
+/// `src=`, as `stlc render -f svg` draws them.
+#[test]
+fn stl_tree_draws_parametric_trees_as_the_cli_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some((site, server, browser)) = start(tmp.path()) else {
+        return;
+    };
+    let willow = example("param-willow.lsys");
+    let page = format!(
+        "<!doctype html><meta charset=utf-8><script type=module src=stl-tree.js></script>\n\
+         <stl-tree id=willow><script type=\"text/stl\">\n{willow}</script></stl-tree>\n\
+         <stl-tree id=honda src=\"examples/abop-2.6a.lsys\" depth=6></stl-tree>\n"
+    );
+    std::fs::write(site.join("param-elements-test.html"), page).unwrap();
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&format!("{}param-elements-test.html", server.url))
+            .await
+            .unwrap();
+        let states =
+            "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state).join()";
+        until(&c, &format!("{states} === 'drawn,drawn'"), "both drawn").await;
+        let want = [
+            ("willow", vec!["render", "examples/param-willow.lsys"]),
+            (
+                "honda",
+                vec!["render", "examples/abop-2.6a.lsys", "--depth", "6"],
+            ),
+        ];
+        for (id, mut args) in want {
+            let svg = js(&c, &format!("return document.getElementById('{id}').svg")).await;
+            args.extend(["-f", "svg"]);
+            same_bytes(svg.as_str().unwrap().as_bytes(), &cli(&args), id);
+        }
+        shot(&c, "param-04-stl-tree").await;
+        let _ = c.close().await;
+    });
+}
+
+/// A share link carries a parametric tree with a `define` moved: opened
+/// in a fresh profile it shows the same text and the CLI's SVG of it.
+#[test]
+fn a_share_link_carries_a_parametric_tree_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some((_, server, browser)) = start(tmp.path()) else {
+        return;
+    };
+    let fresh_tmp = tempfile::tempdir().unwrap();
+    let Some(fresh) = Browser::start(fresh_tmp.path()) else {
+        return;
+    };
+    let text = example("param-willow.lsys").replace("define shrink 0.82\n", "define shrink 0.75\n");
+    let link = browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        open_example(&c, "param-willow.lsys").await;
+        let v = slide(&c, "define-shrink", "0.75").await;
+        assert_eq!(v["text"], json!(text));
+        let link = share_link(&c).await;
+        assert!(
+            link.starts_with(&format!("{}#k=lsys&n=param-willow.lsys&s=", server.url)),
+            "{link}"
+        );
+        let _ = c.close().await;
+        link
+    });
+    let file = tmp.path().join("willow.lsys");
+    std::fs::write(&file, &text).unwrap();
+    let want = cli(&[
+        "render",
+        file.to_str().unwrap(),
+        "--show-layout",
+        "-f",
+        "svg",
+    ]);
+    fresh.rt.block_on(async {
+        let c = fresh.connect().await;
+        c.goto(&link).await.unwrap();
+        let v = settled(&c).await;
+        assert_eq!(v["text"], json!(text));
+        let got = js(&c, "return window.stlc.state.answer.svg").await;
+        same_bytes(got.as_str().unwrap().as_bytes(), &want, "the shared willow");
+        let _ = c.close().await;
+    });
+}
