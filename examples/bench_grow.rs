@@ -5,7 +5,7 @@
 //! /usr/bin/time -v target/release/examples/bench_grow bfs rstar 1000000
 //! ```
 //!
-//! Arguments: strategy (`bfs`|`dfs`), occupancy index (`rstar`, or `spade`
+//! Arguments: strategy (`bfs`|`dfs`|`space`), occupancy index (`rstar`, or `spade`
 //! when built with `--features spade-index`: the Delaunay index, an
 //! experiment kept for this measurement), and
 //! the number of stems to grow (`--max-stems`; growth stops there with a
@@ -34,6 +34,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let growth = match args.get(1).map(String::as_str) {
         Some("dfs") => GrowthOrder::Dfs,
+        Some("space") => GrowthOrder::Space,
         _ => GrowthOrder::Bfs,
     };
     let backend = match args.get(2).map(String::as_str) {

@@ -32,7 +32,7 @@
 //!   three formats, typed trees with byte spans, every error a diagnostic.
 //! - [`model`]: the types every stage shares: descriptions, rules, seeds and
 //!   their terms, layouts, L-systems; the one walk over a rule body.
-//! - [`grow`]: an OD into a BED under space occupancy (`bfs` or `dfs`).
+//! - [`grow`]: an OD into a BED under space occupancy (`bfs`, `dfs` or `space`).
 //! - [`bed`]: the BED's checks, its measure and its canonical writer.
 //! - [`interpret`]: derivations to turtle operations, depth-first
 //!   streaming or breadth-first rewriting; exact statistics.

@@ -58,3 +58,26 @@ $B render examples/grove.od --seed 7 --growth dfs --show-layout --size 300x300 -
 for s in 1 2 3 4 5; do
   $B render examples/abop-1.27.lsys --seed $s --size 160x240 -o $G/abop-1.27-seed$s.png
 done
+# Space-first growth beside bfs and dfs (docs/growth.md): every gallery OD
+# grown whole, and the coverage cases at a third of bfs's stems.
+S=$G/space
+mkdir -p $S
+for n in 2dtree fig9 holes polygon decrement crown successors pentagon \
+         alternatives grove; do
+  for o in bfs dfs space; do
+    $B render examples/$n.od --growth $o --show-layout --size 240x240 -o $S/$n-$o.png
+  done
+done
+for n in oak3d forest3d; do
+  for o in bfs dfs space; do
+    $B render examples/$n.od --growth $o --show-layout --size 240x240 -o $S/$n-$o.png
+  done
+done
+for f in benches/space/box-hole.od examples/holes.od benches/space/l-shape.od; do
+  n=$(basename $f .od)
+  third=$(( $($B check $f | sed -n 's/.*grows *\([0-9]*\) stems.*/\1/p') / 3 ))
+  for o in bfs dfs space; do
+    $B render $f --growth $o --max-stems $third --show-layout --size 240x240 \
+      -o $S/$n-third-$o.png 2>/dev/null
+  done
+done

@@ -242,6 +242,8 @@ mod tests {
         let b = parse(br#"{"source": "x", "growth": "dfs", "depth": null}"#).unwrap();
         assert_eq!(b.source, "x");
         assert_eq!(b.growth, Some(GrowthOrder::Dfs));
+        let b = parse(br#"{"source": "x", "growth": "space"}"#).unwrap();
+        assert_eq!(b.growth, Some(GrowthOrder::Space));
         // `strategy`, the old name, is still read; both at once are refused.
         let b = parse(br#"{"source": "x", "strategy": "bfs"}"#).unwrap();
         assert_eq!(b.growth, Some(GrowthOrder::Bfs));

@@ -323,7 +323,8 @@ impl LimitArgs {
 #[derive(Debug, Args, Clone)]
 pub struct GrowArgs {
     /// Growth order of an .od: bfs (the default) grows level by level,
-    /// balanced; dfs grows a branch's whole subtree before its sibling.
+    /// balanced; dfs grows a branch's whole subtree before its sibling;
+    /// space grows toward the most free space of the LAYOUT first.
     #[arg(long, value_enum, value_name = "ORDER")]
     pub growth: Option<GrowthOrder>,
     /// Stop growth after N stems (drawn segments), with a warning. Needed

@@ -26,6 +26,11 @@ pub struct RuleTally {
     pub misses: [u64; MissReason::COUNT],
     /// Why the first failed try failed.
     pub first_miss: Option<Misfit>,
+    /// Space-first growth: the attraction points that belonged to this
+    /// rule's growth points when they were decided (summed over tries).
+    pub claimed: u64,
+    /// Space-first growth: the attraction points this rule's stems killed.
+    pub killed: u64,
 }
 
 impl RuleTally {

@@ -11,6 +11,7 @@
 
 use std::collections::VecDeque;
 
+use super::colonize::{Colonizer, DEFAULT_REACH_IN_L};
 use super::explain::{LastMiss, RuleTally, kin};
 use super::occupancy::{Backend, Cap, Dim, LocalIndex, Occupancy};
 use super::options::{GrowOptions, SEED_STEMS};
@@ -109,6 +110,11 @@ where
     /// When asked for ([`super::grow_traced`]): every stem placed, in the
     /// order growth placed it, with its decision (0: the seed's drawing).
     pub(super) trace: Option<Vec<(Cap<N>, u64)>>,
+    /// In space-first growth: the attraction points and the waiting
+    /// growth points ([`super::colonize`]).
+    colonizer: Option<Colonizer<N, Gp<S::State>>>,
+    /// The score of the growth point being decided (space-first growth).
+    claim: u32,
 }
 
 /// The turtle operations of a fixed figure.
@@ -138,6 +144,19 @@ where
             S::op(c)
                 .is_some_and(|o| matches!(S::class(o), Class::Draws | Class::Moves | Class::Turns))
         };
+        let colonizer = (opts.growth == GrowthOrder::Space).then(|| {
+            let l = od.params.length.base;
+            let unit = if N == 2 { l * l } else { l * l * l };
+            let points = if l > 0.0 {
+                space.attraction(od.params.design.points, unit, opts.seed)
+            } else {
+                Vec::new()
+            };
+            Colonizer::new(
+                points,
+                od.params.design.reach.unwrap_or(DEFAULT_REACH_IN_L * l),
+            )
+        });
         Grower {
             od,
             growth: opts.growth,
@@ -166,6 +185,8 @@ where
             seed: opts.seed,
             tallies: vec![RuleTally::default(); od.rules.len()],
             trace: None,
+            colonizer,
+            claim: 0,
         }
     }
 
@@ -194,7 +215,11 @@ where
         }
         for tree in pending {
             for p in tree {
-                self.decide_with_subtree(p, progress);
+                if let Some(c) = &mut self.colonizer {
+                    c.push(S::position(&p.state), p);
+                } else {
+                    self.decide_with_subtree(p, progress);
+                }
             }
         }
         self.grow_levels(progress);
@@ -259,6 +284,17 @@ where
     /// forest's trees interleave level by level, root order within a
     /// level). Nothing to do in `dfs`.
     fn grow_levels(&mut self, progress: &mut dyn Progress) {
+        if self.growth == GrowthOrder::Space {
+            while let Some((gp, score)) = self.colonizer.as_mut().and_then(Colonizer::pop) {
+                if self.budget.stopped {
+                    break;
+                }
+                self.claim = score;
+                if self.decide(gp, progress).is_some() {
+                    self.push_children();
+                }
+            }
+        }
         if self.growth == GrowthOrder::Bfs {
             while let Some(gp) = self.schedule.queue.pop_front() {
                 if self.budget.stopped {
@@ -287,6 +323,9 @@ where
             if let Some(t) = &mut self.trace {
                 t.push((seg, 0));
             }
+            if let Some(c) = &mut self.colonizer {
+                c.kill(&seg, stem_length(&seg));
+            }
             self.occ.insert_drawn(seg);
         }
         Ok(())
@@ -305,6 +344,7 @@ where
         }
         let end = self.decide(gp, progress)?;
         match self.growth {
+            GrowthOrder::Space => self.push_children(),
             GrowthOrder::Bfs => self.schedule.queue.extend(self.scratch.children.drain(..)),
             GrowthOrder::Dfs => {
                 self.schedule
@@ -326,6 +366,15 @@ where
         Some(end)
     }
 
+    /// Space-first growth: the last success's growth points wait, scored.
+    fn push_children(&mut self) {
+        if let Some(c) = &mut self.colonizer {
+            for g in self.scratch.children.drain(..) {
+                c.push(S::position(&g.state), g);
+            }
+        }
+    }
+
     /// Decides one growth point. On success records the node, leaves its
     /// children in `scratch.children` and returns the turtle state after the
     /// application.
@@ -338,6 +387,7 @@ where
             gp.rule = c.1[c.0.pick(gp.key)];
         }
         self.tallies[gp.rule.0].tries += 1;
+        self.tallies[gp.rule.0].claimed += u64::from(std::mem::take(&mut self.claim));
         let end = match self.apply(&gp) {
             Ok(end) => end,
             Err(Miss::Failed(reason)) => {
@@ -353,12 +403,17 @@ where
         self.tallies[gp.rule.0].fits += 1;
         // Commit.
         self.budget.stems += self.scratch.segs.len() as u64;
+        let mut killed = 0;
         for s in self.scratch.segs.drain() {
             if let Some(t) = &mut self.trace {
                 t.push((s, self.budget.applications + 1));
             }
+            if let Some(c) = &mut self.colonizer {
+                killed += c.kill(&s, stem_length(&s));
+            }
             self.occ.insert(s);
         }
+        self.tallies[gp.rule.0].killed += killed;
         self.budget.applications += 1;
         let successors = &self.rules[gp.rule.0].successors;
         let first = self.tree.record(gp.rule, successors.len(), gp.parent);
@@ -543,4 +598,12 @@ where
         }
         Ok(())
     }
+}
+
+/// The length of a stem: its kill distance in space-first growth.
+fn stem_length<const N: usize>(s: &Cap<N>) -> f64 {
+    (0..N)
+        .map(|i| (s.b[i] - s.a[i]) * (s.b[i] - s.a[i]))
+        .sum::<f64>()
+        .sqrt()
 }

@@ -52,6 +52,7 @@
 //! where a segment may go (they alone know the spatial index).
 
 mod bounded;
+pub mod colonize;
 pub mod explain;
 pub mod grow3;
 mod grower;

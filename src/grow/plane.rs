@@ -69,6 +69,12 @@ where
     fn bounded(&self) -> bool;
     /// Whether root `t` lies in the region (always, with no layout).
     fn covers_root(&self, t: usize) -> bool;
+    /// Where the turtle is in `state`.
+    fn position(state: &Self::State) -> [f64; N];
+    /// The attraction points of space-first growth: `n` (or one per
+    /// `unit` of the region's area or volume) uniform over the region, from
+    /// `seed`; none without a region ([`super::colonize::sample`]).
+    fn attraction(&self, n: Option<u64>, unit: f64, seed: u64) -> Vec<[f64; N]>;
 }
 
 /// The plane: the 2D turtle and the 2D region.
@@ -185,5 +191,17 @@ impl Space<2> for Plane<'_> {
         self.region
             .as_ref()
             .is_none_or(|r| r.covers_point(self.roots[t]))
+    }
+
+    #[inline]
+    fn position(state: &State) -> [f64; 2] {
+        [state.pos.x, state.pos.y]
+    }
+
+    fn attraction(&self, n: Option<u64>, unit: f64, seed: u64) -> Vec<[f64; 2]> {
+        self.region
+            .as_ref()
+            .map(|r| super::colonize::sample::plane(r, n, unit, seed))
+            .unwrap_or_default()
     }
 }

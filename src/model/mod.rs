@@ -135,15 +135,23 @@ pub struct StemParams {
 /// tree made in the editor grows the same everywhere
 /// (`stl-language.md` section 10). The command line overrides each for one
 /// run; a BED has none (its decisions are written out).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Design {
-    /// `O=bfs` or `O=dfs`: the growth order (`--growth` overrides it).
+    /// `O=bfs`, `O=dfs` or `O=space`: the growth order (`--growth`
+    /// overrides it).
     pub order: Option<GrowthOrder>,
     /// `V=n`: the seed of the choices (`--seed` overrides it).
     pub seed: Option<u64>,
     /// `M=n`: growth stops after n stems, part of the design (`--max-stems`
     /// stays the resource limit: the smaller wins).
     pub max_stems: Option<u64>,
+    /// `N=n`: the number of attraction points space-first growth scatters
+    /// over the region (`stl-language.md` section 14); `None`: the default,
+    /// one per `L` x `L` of the region's area (`L` cubed of a volume).
+    pub points: Option<u64>,
+    /// `Q=d`: the radius of influence of a growth point in space-first
+    /// growth, canvas units; `None`: the default, 4 `L`.
+    pub reach: Option<f64>,
 }
 
 /// The order in which growth points are decided: `O=` in a file,
@@ -164,14 +172,20 @@ pub enum GrowthOrder {
     /// Depth-first growth: a branch's whole subtree before its sibling;
     /// vines and spirals.
     Dfs,
+    /// Space-first growth: the growth point nearest the most free space
+    /// (attraction points scattered over the region) first; crowns that
+    /// reach into every corner of their outline.
+    Space,
 }
 
 impl GrowthOrder {
-    /// The name a file, the command line and the API write: `bfs`, `dfs`.
+    /// The name a file, the command line and the API write: `bfs`, `dfs`,
+    /// `space`.
     pub fn name(self) -> &'static str {
         match self {
             GrowthOrder::Bfs => "bfs",
             GrowthOrder::Dfs => "dfs",
+            GrowthOrder::Space => "space",
         }
     }
 }

@@ -94,7 +94,15 @@ pub fn check(loaded: &Loaded, opts: &GrowOptions) -> Result<Checked, Diagnostics
             let order = opts.growth;
             let _ = writeln!(summary, "  grows       {} stems ({order})", grown.stems);
             for (rule, tally) in desc.rules.iter().zip(&grown.tallies) {
-                let _ = writeln!(summary, "{}", tally_line(&rule.full_name(), tally));
+                let mut line = tally_line(&rule.full_name(), tally);
+                if order == crate::grow::GrowthOrder::Space && tally.tries > 0 {
+                    let _ = write!(
+                        line,
+                        "; points claimed {}, killed {}",
+                        tally.claimed, tally.killed
+                    );
+                }
+                let _ = writeln!(summary, "{line}");
             }
             Checked {
                 summary,

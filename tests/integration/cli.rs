@@ -1187,7 +1187,7 @@ fn growth_settings_kept_in_the_file() {
         assert!(String::from_utf8_lossy(&out.stderr).contains(says));
     }
     for (keys, says) in [
-        ("O=sideways", "`bfs` or `dfs`"),
+        ("O=sideways", "`bfs`, `dfs` or `space`"),
         ("V=-1", "whole number"),
         ("M=2.5", "whole number"),
     ] {

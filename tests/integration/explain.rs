@@ -201,6 +201,8 @@ ENDLAYOUT
                 fits: 8,
                 misses,
                 first_miss: Some(Misfit::Outside { stem: 1 }),
+                claimed: 0,
+                killed: 0,
             }],
             "{growth:?}"
         );

@@ -417,7 +417,7 @@ fn invariants_hold_on_several_grown_trees() {
         od(fixed),
     ];
     for d in trees {
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
             let g = grown(&d, opts(s));
             let segs = check_invariants(&d, &g);
             assert!(segs.len() > 40, "{s:?} grew only {}", segs.len());
@@ -443,7 +443,7 @@ fn invariants_hold_on_every_example_with_strokes_as_drawn() {
         if d.is_3d() {
             continue; // grow3d.rs checks the 3D examples in their volumes
         }
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
             let g = grown(&d, opts(s));
             let segs = check_invariants(&d, &g);
             assert!(segs.len() > 10, "{path:?} {s:?} grew only {}", segs.len());
@@ -461,7 +461,7 @@ fn trees_of_a_forest_keep_clear_of_each_other() {
     let d = od(&std::fs::read_to_string(path).unwrap());
     assert_eq!(d.forest.len(), 3, "four roots");
     for seed in [7, 8] {
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
             let g = grown(&d, GrowOptions { seed, ..opts(s) });
             let segs = check_invariants(&d, &g);
             let forest = &g.bed.description().forest;
@@ -522,7 +522,7 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
 #[test]
 fn growth_is_deterministic() {
     for d in [od(TWO_D_TREE), figure_9_10()] {
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
             let a = grown(&d, opts(s));
             let b = grown(&d, opts(s));
             assert_eq!(
@@ -539,7 +539,7 @@ fn growth_is_deterministic() {
 #[test]
 fn the_spade_index_grows_the_same_trees() {
     for d in [od(TWO_D_TREE), figure_9_10()] {
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
             let a = grown(&d, opts(s));
             let c = grow_with(&d, &opts(s), Backend::Spade, &mut NoProgress).unwrap();
             assert_eq!(
@@ -585,7 +585,7 @@ fn counts_grow_the_full_subtree_when_space_allows() {
         check_invariants(&written, &as_bed);
 
         let d = od(&format!("{head} SEED F[I {n} R1] ENDSEED"));
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
             let g = grown(&d, opts(s));
             // 2^n - 1 applications of 2 stems each, plus the seed's F.
             assert_eq!(g.stems, stems, "n={n} {s:?}");
@@ -710,7 +710,7 @@ fn white_holes_are_respected() {
         (clGreen) Rectangle (0,0), 200, 200
         (clWhite) Rectangle (60,80), 80, 40
         ENDLAYOUT");
-    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
         let hole = Polygon::new(
@@ -753,7 +753,7 @@ fn seed_with_trunk_rule_stays_consistent() {
         R2: F[-F][+F]
         SEED F R2 F R1 [+F R1] ENDSEED
         LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT");
-    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
         assert!(segs.len() > 100);
@@ -766,7 +766,7 @@ fn seed_drawing_is_laid_down_before_growth() {
     // the seed's `-F` must already be there, or the subtree could take its
     // place (the pairwise check would then fail on it).
     let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F[+F R1][-F R1] ENDSEED");
-    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
         assert!(segs.len() > 200);

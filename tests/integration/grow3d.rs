@@ -339,7 +339,7 @@ fn a_tree_grows_inside_each_kind_of_volume_and_keeps_clearance() {
     for (name, solids) in cases {
         for d in [0.0, 137.5] {
             let od = od3(TREE, d, solids.clone());
-            for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+            for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
                 let n = check(&od, growth);
                 assert!(n > 20, "{name} D={d} {growth:?}: only {n} stems");
             }
@@ -385,7 +385,7 @@ fn a_forest_shares_the_volume_and_the_clearance() {
         },
     )];
     let od = od3(text, 90.0, solids);
-    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         assert!(check(&od, growth) > 40);
     }
 }
@@ -394,7 +394,7 @@ fn a_forest_shares_the_volume_and_the_clearance() {
 fn growth_in_space_is_deterministic() {
     let solids = vec![(GREEN, crown())];
     let od = od3(TREE, 137.5, solids);
-    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         let a = grow(&od, &opts(growth), &mut NoProgress).unwrap();
         let b = grow(&od, &opts(growth), &mut NoProgress).unwrap();
         assert_eq!(a, b);
@@ -476,7 +476,7 @@ fn every_3d_example_grows_inside_its_volumes_and_keeps_clearance() {
         if !od.is_3d() {
             continue;
         }
-        for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+        for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
             let n = check(&od, growth);
             assert!(n > 1000, "{path:?} {growth:?}: only {n} stems");
         }
@@ -517,7 +517,7 @@ fn key(a: P, b: P) -> [u64; 6] {
 fn a_3d_od_grows_a_bed_that_draws_the_stems_growth_placed() {
     let od = parsed(BUSH);
     assert!(od.is_3d());
-    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
+    for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         let (grown, placed) = grow_traced(&od, &opts(growth), &mut NoProgress).unwrap();
         assert!(placed.len() > 30, "{growth:?}: {} stems", placed.len());
         // The volumes: sphere, cylinder, extruded ellipse, minus the box.

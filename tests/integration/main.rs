@@ -21,6 +21,7 @@ mod geometry;
 mod golden;
 mod grow;
 mod grow3d;
+mod grow_space;
 mod import_graph;
 mod lod;
 mod lsys;

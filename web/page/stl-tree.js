@@ -9,7 +9,7 @@
 // SVG `stlc render -f svg` writes (its default size, no layout underneath)
 // as an inline <svg> child in the light DOM, so a page can inspect and
 // style it. Attributes override the file's keys as the CLI's flags do:
-// growth (bfs|dfs), seed, depth, clearance, max-stems, kind (od|bed|lsys;
+// growth (bfs|dfs|space), seed, depth, clearance, max-stems, kind (od|bed|lsys;
 // else from src's extension, else guessed), size ("WxH"), show-layout,
 // time-budget (seconds). A text with errors shows its diagnostics as text
 // (a <pre>) instead.

@@ -161,4 +161,17 @@ impl Space<3> for Volume<'_> {
             .as_ref()
             .is_none_or(|r| r.covers_point(self.roots[t].to_array()))
     }
+
+    #[inline]
+    fn position(state: &(State3, u32)) -> [f64; 3] {
+        state.0.pos.to_array()
+    }
+
+    fn attraction(&self, n: Option<u64>, unit: f64, seed: u64) -> Vec<[f64; 3]> {
+        let Some(r) = &self.region else {
+            return Vec::new();
+        };
+        let (lo, hi) = r.bounds();
+        super::colonize::sample::volume(lo, hi, |p| r.covers_point(p), n, unit, seed)
+    }
 }

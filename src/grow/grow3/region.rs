@@ -167,6 +167,29 @@ impl Region3 {
         }
     }
 
+    /// A box that holds the region: the smallest and largest corners (the
+    /// box of its coloured volumes; white ones only carve).
+    pub fn bounds(&self) -> ([f64; 3], [f64; 3]) {
+        match &self.kind {
+            Kind::Prism { area, z1, z2 } => {
+                let b = area.bbox();
+                ([b.min_x, b.min_y, *z1], [b.max_x, b.max_y, *z2])
+            }
+            Kind::Paint(ops) => {
+                let mut lo = [f64::INFINITY; 3];
+                let mut hi = [f64::NEG_INFINITY; 3];
+                for (_, v) in ops.iter().filter(|(adds, _)| *adds) {
+                    let (a, b) = v.bounds();
+                    for i in 0..3 {
+                        lo[i] = lo[i].min(a[i]);
+                        hi[i] = hi[i].max(b[i]);
+                    }
+                }
+                (lo, hi)
+            }
+        }
+    }
+
     /// Whether the capsule `s` lies inside the region (exactly for a
     /// prism, conservatively otherwise: the module documentation).
     /// `a_inside`: its start is known to lie inside (a prism skips a test).
@@ -227,6 +250,38 @@ fn xz(s: &Seg3) -> Seg {
 }
 
 impl Vol {
+    /// The volume's box: its smallest and largest corners.
+    fn bounds(&self) -> ([f64; 3], [f64; 3]) {
+        match self {
+            Vol::Box { lo, hi } => (*lo, *hi),
+            Vol::Ellipsoid { centre, radii } => (
+                std::array::from_fn(|i| centre[i] - radii[i]),
+                std::array::from_fn(|i| centre[i] + radii[i]),
+            ),
+            Vol::Cylinder {
+                axis,
+                r,
+                top,
+                bottom,
+            } => (
+                [axis[0] - r, *top, axis[1] - r],
+                [axis[0] + r, *bottom, axis[1] + r],
+            ),
+            Vol::Extrude { area, z1, z2 } => {
+                let b = area.bbox();
+                ([b.min_x, b.min_y, *z1], [b.max_x, b.max_y, *z2])
+            }
+            Vol::Revolve { profile, axis } => {
+                let b = profile.bbox();
+                let r = (b.min_x - axis[0]).abs().max((b.max_x - axis[0]).abs());
+                (
+                    [axis[0] - r, b.min_y, axis[1] - r],
+                    [axis[0] + r, b.max_y, axis[1] + r],
+                )
+            }
+        }
+    }
+
     /// Whether the volume holds `p`: on its boundary too if `closed`.
     fn holds(&self, p: [f64; 3], closed: bool) -> bool {
         let below = |a: f64, b: f64| if closed { a <= b } else { a < b };

@@ -90,7 +90,7 @@ export function createSettings(app) {
       const k = kind === 'od' ? odKey(text, key) : lsysKey(text, key);
       const v = k ? k.value : '';
       const control = byId(id);
-      if (id === 'growth') control.value = v === 'dfs' ? 'dfs' : 'bfs';
+      if (id === 'growth') control.value = v === 'dfs' || v === 'space' ? v : 'bfs';
       else if (control !== document.activeElement || control.value !== v) control.value = v;
     }
   }

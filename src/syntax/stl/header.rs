@@ -36,11 +36,15 @@ pub enum Param {
     Seed,
     /// `M=n`: the stems an OD's growth stops after.
     MaxStems,
+    /// `N=n`: the attraction points of space-first growth.
+    Points,
+    /// `Q=d`: the radius of influence of space-first growth.
+    Reach,
 }
 
 impl Param {
     /// Every parameter, in the order the docs list them.
-    pub const ALL: [Param; 10] = [
+    pub const ALL: [Param; 12] = [
         Param::Length,
         Param::Broadness,
         Param::Angle,
@@ -51,6 +55,8 @@ impl Param {
         Param::Order,
         Param::Seed,
         Param::MaxStems,
+        Param::Points,
+        Param::Reach,
     ];
 
     /// The key as written: `L`, `B`, `A` or `C`.
@@ -66,6 +72,8 @@ impl Param {
             Param::Order => "O",
             Param::Seed => "V",
             Param::MaxStems => "M",
+            Param::Points => "N",
+            Param::Reach => "Q",
         }
     }
 
@@ -82,6 +90,8 @@ impl Param {
             Param::Order => "growth order",
             Param::Seed => "seed",
             Param::MaxStems => "max stems",
+            Param::Points => "attraction points",
+            Param::Reach => "reach",
         }
     }
 
@@ -95,10 +105,14 @@ impl Param {
         self.is_colour() || self == Param::Order
     }
 
-    /// Whether the parameter is part of an OD's design (`O`, `V`, `M`),
-    /// which a BED, whose decisions are written out, does not have.
+    /// Whether the parameter is part of an OD's design (`O`, `V`, `M`,
+    /// `N`, `Q`), which a BED, whose decisions are written out, does not
+    /// have.
     fn is_design(self) -> bool {
-        matches!(self, Param::Order | Param::Seed | Param::MaxStems)
+        matches!(
+            self,
+            Param::Order | Param::Seed | Param::MaxStems | Param::Points | Param::Reach
+        )
     }
 
     /// The parameter whose key is `key`, exactly as written.
@@ -189,7 +203,7 @@ impl Builder<'_> {
                 && p.is_word() != colour_given
             {
                 let expected = if p == Param::Order {
-                    "`bfs` or `dfs`"
+                    "`bfs`, `dfs` or `space`"
                 } else if p.is_colour() {
                     "a colour (a Delphi name such as `clMaroon`, `#rrggbb`, or `none` for G)"
                 } else {
@@ -223,25 +237,28 @@ impl Builder<'_> {
                 }
                 continue;
             }
-            if let Some(p @ (Param::Order | Param::Seed | Param::MaxStems)) = param {
+            if let Some(p @ (Param::Order | Param::Seed | Param::MaxStems | Param::Points)) = param
+            {
                 self.no_decrement(p, dec.as_ref().map(|(s, _)| s.clone()));
                 let text = val.as_str();
                 match p {
                     Param::Order => match text {
                         "bfs" => out.design.order = Some(crate::model::GrowthOrder::Bfs),
                         "dfs" => out.design.order = Some(crate::model::GrowthOrder::Dfs),
+                        "space" => out.design.order = Some(crate::model::GrowthOrder::Space),
                         _ => self.report(
                             StlError::ParamValue {
                                 key: p.key(),
-                                expected: "`bfs` or `dfs`",
+                                expected: "`bfs`, `dfs` or `space`",
                             },
                             vspan,
                             "not a growth order",
-                            "write `O=bfs` (level by level) or `O=dfs` (a branch's subtree first)",
+                            "write `O=bfs` (level by level), `O=dfs` (a branch's subtree first) or `O=space` (free space first)",
                         ),
                     },
                     _ => match text.parse::<u64>() {
                         Ok(n) if p == Param::Seed => out.design.seed = Some(n),
+                        Ok(n) if p == Param::Points => out.design.points = Some(n),
                         Ok(n) => out.design.max_stems = Some(n),
                         Err(_) => self.report(
                             StlError::ParamValue {
@@ -267,8 +284,29 @@ impl Builder<'_> {
                 }
                 // Colours and the design keys were read above.
                 Some(
-                    Param::Stroke | Param::Ground | Param::Order | Param::Seed | Param::MaxStems,
+                    Param::Stroke
+                    | Param::Ground
+                    | Param::Order
+                    | Param::Seed
+                    | Param::MaxStems
+                    | Param::Points,
                 ) => {}
+                Some(p @ Param::Reach) => {
+                    self.no_decrement(p, dec.map(|(s, _)| s));
+                    if v > 0.0 && v.is_finite() {
+                        out.design.reach = Some(v);
+                    } else {
+                        self.report(
+                            StlError::ParamValue {
+                                key: p.key(),
+                                expected: "a distance greater than 0",
+                            },
+                            vspan,
+                            "not a positive distance",
+                            "write `Q=` followed by a radius in canvas units, such as 40",
+                        );
+                    }
+                }
                 Some(p @ Param::Divergence) => {
                     self.no_decrement(p, dec.map(|(s, _)| s));
                     if self.three_d {

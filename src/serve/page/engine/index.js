@@ -13,7 +13,7 @@
  * @typedef {object} RenderRequest
  * @property {string} source the text
  * @property {'od'|'bed'|'lsys'} [kind] guessed from the text when absent
- * @property {'bfs'|'dfs'} [growth] the growth order of an `.od` (bfs; `strategy`, its old name, is still read)
+ * @property {'bfs'|'dfs'|'space'} [growth] the growth order of an `.od` (bfs; `strategy`, its old name, is still read)
  * @property {number} [depth] `--depth` of an `.lsys`
  * @property {number} [clearance] `--clearance`
  * @property {number} [max_stems] `--max-stems`

@@ -1,0 +1,302 @@
+//! Space-first growth (`O=space`, `stl-language.md` section 14): the order
+//! in which growth points are decided, driven by attraction points
+//! scattered over the region, after Runions, Lane and Prusinkiewicz's
+//! space colonization (2007).
+//!
+//! - **Points** ([`sample`]): `N=` of them, uniform over the region (the
+//!   plane: by area over the triangles of spade's constrained Delaunay
+//!   triangulation of the outline and its holes; space: by volume, drawn
+//!   in the region's box and kept where the region holds them), from the
+//!   seed `V=`. Without a region there are none, and space-first growth
+//!   decides in `bfs` order.
+//! - **Ownership.** A living point belongs to the nearest waiting growth
+//!   point within the reach `Q=` (ties: the one made first); a growth
+//!   point's *score* is the number of points that belong to it.
+//! - **Order.** The waiting growth point with the highest score is decided
+//!   first; ties, and the growth points that score nothing, in `bfs` order
+//!   (the order they were made). So growth reaches into empty parts of the
+//!   outline before it thickens what is full.
+//! - **Killing.** A point dies once a placed stem passes within the kill
+//!   distance of it: the stem's own length (the segment length at its
+//!   order).
+//!
+//! [`Colonizer`] keeps the points and the waiting growth points in two
+//! R*-trees (`rstar`, as the occupancy index: `docs/dependencies.md` says
+//! why rather than spade's triangulation) and the scores in a heap whose
+//! stale entries are skipped. Every answer is a function of the points and
+//! the growth points alone (never of a tree's shape or an iteration
+//! order), so the order is the same on every machine.
+
+pub mod sample;
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+use rstar::primitives::GeomWithData;
+use rstar::{AABB, RTree};
+
+use super::occupancy::{Cap, point_seg_dist2};
+
+/// The default reach `Q=`, in segment lengths `L` of the seed's order.
+pub const DEFAULT_REACH_IN_L: f64 = 4.0;
+
+/// No owner.
+const NONE: u32 = u32::MAX;
+
+/// A point or a waiting growth point in an R*-tree, with its number.
+type Entry<const N: usize> = GeomWithData<[f64; N], u32>;
+
+/// A waiting growth point.
+#[derive(Debug)]
+struct Slot<const N: usize, G> {
+    gp: Option<G>,
+    pos: [f64; N],
+    /// When it was made: `bfs` order.
+    seq: u64,
+    /// The points that belong to it.
+    score: u32,
+    /// Its score changed since its last heap entry.
+    dirty: bool,
+}
+
+/// The attraction points and the growth points waiting for their decision,
+/// in space-first order (the module documentation).
+pub(super) struct Colonizer<const N: usize, G>
+where
+    [f64; N]: rstar::Point<Scalar = f64>,
+{
+    reach2: f64,
+    pts: Vec<[f64; N]>,
+    /// The living points.
+    living: RTree<Entry<N>>,
+    /// By point: the slot it belongs to, and its squared distance there.
+    owner: Vec<(u32, f64)>,
+    slots: Vec<Slot<N, G>>,
+    free: Vec<u32>,
+    /// The waiting growth points, by slot.
+    waiting: RTree<Entry<N>>,
+    /// (score, earliest first, slot); an entry is stale unless the slot
+    /// still holds that growth point with that score.
+    heap: BinaryHeap<(u32, Reverse<u64>, u32)>,
+    dirty: Vec<u32>,
+    next_seq: u64,
+    live: usize,
+    /// Scratch: the points a query found.
+    found: Vec<u32>,
+}
+
+impl<const N: usize, G> Colonizer<N, G>
+where
+    [f64; N]: rstar::Point<Scalar = f64>,
+{
+    /// The colonizer of `points`, with reach `reach`.
+    pub(super) fn new(points: Vec<[f64; N]>, reach: f64) -> Self {
+        let entries = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| Entry::new(*p, i as u32))
+            .collect();
+        Colonizer {
+            reach2: reach * reach,
+            owner: vec![(NONE, f64::INFINITY); points.len()],
+            pts: points,
+            living: RTree::bulk_load(entries),
+            slots: Vec::new(),
+            free: Vec::new(),
+            waiting: RTree::new(),
+            heap: BinaryHeap::new(),
+            dirty: Vec::new(),
+            next_seq: 0,
+            live: 0,
+            found: Vec::new(),
+        }
+    }
+
+    /// Whether no growth point waits.
+    #[cfg(test)]
+    fn is_empty(&self) -> bool {
+        self.live == 0
+    }
+
+    /// A growth point at `pos` waits for its decision.
+    pub(super) fn push(&mut self, pos: [f64; N], gp: G) {
+        let seq = self.next_seq;
+        self.next_seq += 1;
+        let slot = Slot {
+            gp: Some(gp),
+            pos,
+            seq,
+            score: 0,
+            dirty: false,
+        };
+        let s = match self.free.pop() {
+            Some(s) => {
+                self.slots[s as usize] = slot;
+                s
+            }
+            None => {
+                self.slots.push(slot);
+                (self.slots.len() - 1) as u32
+            }
+        };
+        self.live += 1;
+        if self.pts.is_empty() {
+            self.heap.push((0, Reverse(seq), s));
+            return;
+        }
+        self.waiting.insert(Entry::new(pos, s));
+        let mut found = std::mem::take(&mut self.found);
+        found.clear();
+        found.extend(
+            self.living
+                .locate_within_distance(pos, self.reach2)
+                .map(|e| e.data),
+        );
+        for &p in &found {
+            let d2 = dist2(self.pts[p as usize], pos);
+            let (old, od2) = self.owner[p as usize];
+            // The growth point made first keeps a tie.
+            if d2 < od2 {
+                if old != NONE {
+                    self.change(old, -1);
+                }
+                self.owner[p as usize] = (s, d2);
+                self.slots[s as usize].score += 1;
+            }
+        }
+        self.found = found;
+        self.heap
+            .push((self.slots[s as usize].score, Reverse(seq), s));
+        self.flush();
+    }
+
+    /// The growth point to decide next, and its score (the points that
+    /// belonged to it). Its points go to the nearest other waiting growth
+    /// points within reach.
+    pub(super) fn pop(&mut self) -> Option<(G, u32)> {
+        if self.heap.len() > 4 * self.live + 1024 {
+            self.compact();
+        }
+        while let Some((score, Reverse(seq), s)) = self.heap.pop() {
+            let slot = &mut self.slots[s as usize];
+            if slot.gp.is_none() || slot.seq != seq || slot.score != score {
+                continue;
+            }
+            let gp = slot.gp.take().expect("checked");
+            let pos = slot.pos;
+            slot.score = 0;
+            self.live -= 1;
+            self.free.push(s);
+            if !self.pts.is_empty() {
+                self.waiting.remove(&Entry::new(pos, s));
+                self.orphan(s, pos);
+            }
+            return Some((gp, score));
+        }
+        None
+    }
+
+    /// Gives the points of the slot `s` (at `pos`, no longer waiting) to
+    /// the nearest waiting growth points within reach.
+    fn orphan(&mut self, s: u32, pos: [f64; N]) {
+        let mut found = std::mem::take(&mut self.found);
+        found.clear();
+        found.extend(
+            self.living
+                .locate_within_distance(pos, self.reach2)
+                .map(|e| e.data)
+                .filter(|&p| self.owner[p as usize].0 == s),
+        );
+        for &p in &found {
+            let at = self.pts[p as usize];
+            let mut best = (NONE, f64::INFINITY, u64::MAX);
+            for e in self.waiting.locate_within_distance(at, self.reach2) {
+                let d2 = dist2(at, *e.geom());
+                let seq = self.slots[e.data as usize].seq;
+                if (d2, seq) < (best.1, best.2) {
+                    best = (e.data, d2, seq);
+                }
+            }
+            self.owner[p as usize] = (best.0, best.1);
+            if best.0 != NONE {
+                self.change(best.0, 1);
+            }
+        }
+        self.found = found;
+        self.flush();
+    }
+
+    /// Kills the living points within `dist` of the centre line of `stem`;
+    /// returns how many died.
+    pub(super) fn kill(&mut self, stem: &Cap<N>, dist: f64) -> u64 {
+        if self.pts.is_empty() || self.living.size() == 0 {
+            return 0;
+        }
+        let lo = std::array::from_fn(|i| stem.a[i].min(stem.b[i]) - dist);
+        let hi = std::array::from_fn(|i| stem.a[i].max(stem.b[i]) + dist);
+        let env = AABB::from_corners(lo, hi);
+        let d2 = dist * dist;
+        let mut found = std::mem::take(&mut self.found);
+        found.clear();
+        found.extend(
+            self.living
+                .locate_in_envelope(&env)
+                .filter(|e| point_seg_dist2(*e.geom(), stem) <= d2)
+                .map(|e| e.data),
+        );
+        for &p in &found {
+            self.living.remove(&Entry::new(self.pts[p as usize], p));
+            let (o, _) = self.owner[p as usize];
+            if o != NONE {
+                self.change(o, -1);
+            }
+            self.owner[p as usize] = (NONE, f64::INFINITY);
+        }
+        let n = found.len() as u64;
+        self.found = found;
+        self.flush();
+        n
+    }
+
+    /// Changes the score of slot `s` by `by`, if it still waits.
+    fn change(&mut self, s: u32, by: i32) {
+        let slot = &mut self.slots[s as usize];
+        if slot.gp.is_none() {
+            return;
+        }
+        slot.score = slot.score.saturating_add_signed(by);
+        if !slot.dirty {
+            slot.dirty = true;
+            self.dirty.push(s);
+        }
+    }
+
+    /// Gives every slot whose score changed its heap entry.
+    fn flush(&mut self) {
+        for s in self.dirty.drain(..) {
+            let slot = &mut self.slots[s as usize];
+            slot.dirty = false;
+            if slot.gp.is_some() {
+                self.heap.push((slot.score, Reverse(slot.seq), s));
+            }
+        }
+    }
+
+    /// Rebuilds the heap from the waiting growth points (its stale entries
+    /// outgrew it).
+    fn compact(&mut self) {
+        let entries: Vec<_> = self
+            .slots
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.gp.is_some())
+            .map(|(i, s)| (s.score, Reverse(s.seq), i as u32))
+            .collect();
+        self.heap = BinaryHeap::from(entries);
+    }
+}
+
+/// The squared distance of two points.
+fn dist2<const N: usize>(a: [f64; N], b: [f64; N]) -> f64 {
+    (0..N).map(|i| (a[i] - b[i]) * (a[i] - b[i])).sum()
+}
