@@ -30,7 +30,7 @@ pub struct Style {
 /// segment. See docs/rendering.md for what it changes and why this value.
 pub const LOD_PX: f64 = 0.5;
 
-/// Stand-ins ([`crate::turtle::Turtle::blot`]) at least this dense (drawn length over
+/// Stand-ins ([`crate::turtle::Turtle::stand_in`]) at least this dense (drawn length over
 /// their own length) are drawn as blots; sparser ones (a straight run, a
 /// sparse twig) as ordinary segments.
 pub const BLOT_DENSITY: f64 = 2.0;

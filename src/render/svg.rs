@@ -20,7 +20,7 @@ use super::{BATCH_SEGMENTS, BLOT_DENSITY, BLOT_EXTRA_PX, Fit, Style, Width, stro
 use crate::color::Rgb;
 use crate::diag::{Diagnostics, io_error};
 use crate::turtle::Fill;
-use crate::turtle::{Point, Segment, Turtle};
+use crate::turtle::{Point, Segment, StandIn, Turtle};
 
 // ---------------------------------------------------------------------------
 // Canvas
@@ -193,7 +193,8 @@ impl<W: Write> Turtle for SvgTurtle<W> {
         self.detail
     }
 
-    fn blot(&mut self, seg: Segment, density: f64) {
+    fn stand_in(&mut self, stand_in: &StandIn) {
+        let (seg, density) = (stand_in.seg, stand_in.density);
         let mut width = stroke_px(&self.width, self.fit.scale, seg.order);
         if density >= BLOT_DENSITY {
             // The PNG backend's blot, as a wider stroke: in SVG a path's

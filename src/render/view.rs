@@ -15,7 +15,7 @@
 
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::turtle::turtle3::{Point3, Segment3, cos_sin};
-use crate::turtle::{Point, Segment, Turtle};
+use crate::turtle::{Footprint, Point, Segment, StandIn, Turtle};
 
 /// A view direction, degrees.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -129,7 +129,7 @@ impl Gathered {
     /// Projects and keeps one stand-in of the level of detail: a capsule
     /// about `s` reaching `spread` canvas units to either side, standing
     /// for `length` of strokes in `runs` runs, drawn with
-    /// [`Turtle::blot_spread`] by [`draw_sorted`]. (Its stem's order, under
+    /// [`Turtle::stand_in`] by [`draw_sorted`]. (Its stem's order, under
     /// `BLOT_MARK`, indexes the bush: an `.lsys`'s stems are all of
     /// order 0.)
     pub fn push_stand_in(&mut self, s: Segment3, spread: f64, length: f64, runs: f64) {
@@ -178,7 +178,7 @@ const SEEN_SHARE: f64 = std::f64::consts::FRAC_PI_4;
 const BLOT_MARK: u32 = 1 << 31;
 
 /// Draws [`Gathered::sorted_with_bushes`] stems into `t`: a stand-in as
-/// the bush of its strokes' ink ([`Turtle::blot_spread`]; the strokes'
+/// the bush of its strokes' ink ([`Turtle::stand_in`]; the strokes'
 /// length seen on the screen over the projected segment's is its density).
 pub fn draw_sorted(stems: &[Segment], bushes: &[Bush], t: &mut dyn Turtle) {
     for s in stems {
@@ -199,7 +199,15 @@ pub fn draw_sorted(stems: &[Segment], bushes: &[Bush], t: &mut dyn Turtle) {
             };
             let density = b.length * SEEN_SHARE / chord;
             if density.is_finite() {
-                t.blot_spread(seg, density, b.spread, b.runs);
+                t.stand_in(&StandIn {
+                    seg,
+                    density,
+                    footprint: Some(Footprint {
+                        spread: b.spread,
+                        runs: b.runs,
+                    }),
+                    sample: None,
+                });
             }
         } else {
             t.segment(*s);

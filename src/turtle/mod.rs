@@ -75,40 +75,16 @@ pub trait Turtle {
     }
 
     /// A stand-in for a part of the drawing no larger than
-    /// [`Turtle::detail`] (half of it for one connected run): `seg` is its chord (or its box's diagonal), and
-    /// `density` the length of the segments it stands for over the length
-    /// of `seg` when they are several runs (a bush: branches that break
-    /// off), and 1 for one connected run (a straight or winding line). The default draws
-    /// it as one segment; a raster backend draws a dense one with the ink
-    /// that many segments leave in so small an area.
-    fn blot(&mut self, seg: Segment, density: f64) {
-        let _ = density;
-        self.segment(seg);
-    }
-
-    /// A stand-in for a part of the drawing that breaks off in branches
-    /// (a bush), as [`Turtle::blot`], whose subtree reaches `spread`
-    /// canvas units to either side of `seg` (its box's half-width across
-    /// it; `seg` runs along the box's middle), drawn in about `runs`
-    /// separate runs (one per `]` or `f` inside: each run of a stroke has
-    /// its own caps). The default ignores the spread and the runs; a raster
-    /// backend paints the bush's own footprint with the ink so many strokes
-    /// leave there.
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
-        let _ = (spread, runs);
-        self.blot(seg, density);
-    }
-
-    /// A bush's stand-in, as [`Turtle::blot_spread`], that can also be
-    /// drawn from the bush itself: `sample` draws its subtree (starting at
-    /// the origin, so it lands at `at` when moved there), and equal keys
-    /// draw equal subtrees. The default is [`Turtle::blot_spread`]; the
-    /// PNG backend rasterises each distinct bush once, exactly where
-    /// that is cheap, and stamps the ink it measured wherever the bush
-    /// recurs (docs/rendering.md, *Silhouette*).
-    fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
-        let _ = sample;
-        self.blot_spread(seg, density, spread, runs);
+    /// [`Turtle::detail`] that breaks off in branches (a bush), or that
+    /// folds on itself: the one call every level-of-detail walk (2D, 3D,
+    /// deterministic or stochastic) hands such a part to, with what it
+    /// knows of it ([`StandIn`]: its segment and density always, its
+    /// footprint and a way to draw it when the walk has them). The
+    /// default draws `seg` as one segment; the PNG backend paints the
+    /// ink the part's strokes leave ([`StandIn`] says how), the SVG one a
+    /// wider stroke for a dense one.
+    fn stand_in(&mut self, stand_in: &StandIn) {
+        self.segment(stand_in.seg);
     }
 
     /// Whether drawing anything inside the canvas box `lo`-`hi` (corners;
@@ -150,16 +126,8 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
         (**self).detail()
     }
 
-    fn blot(&mut self, seg: Segment, density: f64) {
-        (**self).blot(seg, density)
-    }
-
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
-        (**self).blot_spread(seg, density, spread, runs)
-    }
-
-    fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
-        (**self).bush(seg, density, spread, runs, sample)
+    fn stand_in(&mut self, stand_in: &StandIn) {
+        (**self).stand_in(stand_in)
     }
 
     fn covered(&mut self, lo: Point, hi: Point) -> bool {
@@ -175,7 +143,49 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
     }
 }
 
-/// A bush handed over by [`Turtle::bush`]: where it is, which one it is,
+/// A stand-in handed to [`Turtle::stand_in`]: what a level-of-detail
+/// walk knows of the part it stands for. Each field a walk fills in lets a
+/// backend draw the part more closely: `seg` and `density` alone are a
+/// blot, a `footprint` is the bush's own spread of ink, a `sample` its own
+/// drawing.
+#[derive(Clone, Copy)]
+pub struct StandIn<'a> {
+    /// Its chord (or its box's diagonal, or a segment along its box's
+    /// middle when it has a `footprint`).
+    pub seg: Segment,
+    /// The length of the segments it stands for over the length of
+    /// `seg` (at least 1).
+    pub density: f64,
+    /// How its strokes spread about `seg`, when the walk knows.
+    pub footprint: Option<Footprint>,
+    /// Its own drawing, when the walk can draw it again.
+    pub sample: Option<&'a Sample<'a>>,
+}
+
+impl StandIn<'_> {
+    /// A blot: a part known only by its segment and density.
+    pub fn blot(seg: Segment, density: f64) -> StandIn<'static> {
+        StandIn {
+            seg,
+            density,
+            footprint: None,
+            sample: None,
+        }
+    }
+}
+
+/// How a bush's strokes spread about its stand-in's segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Footprint {
+    /// How far the part reaches to either side of the segment, canvas
+    /// units (its box's half-width across it).
+    pub spread: f64,
+    /// About how many separate runs its strokes come in (one per `]` or
+    /// `f` inside: each run of a stroke has its own caps).
+    pub runs: f64,
+}
+
+/// A bush handed over in a [`StandIn`]: where it is, which one it is,
 /// and how to draw it.
 pub struct Sample<'a> {
     /// Where the subtree starts (canvas units).

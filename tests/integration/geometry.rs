@@ -11,7 +11,7 @@ use stlc::interpret::lsys::{Measured, Memo, Refusal, draw, draw_into, draw_lod, 
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
-use stlc::turtle::{BBox, Bounds, Recorder, Segment, Turtle};
+use stlc::turtle::{BBox, Bounds, Recorder, Segment, StandIn, Turtle};
 
 use crate::support::stlc;
 
@@ -92,10 +92,10 @@ impl Turtle for Detailed {
     fn detail(&self) -> Option<f64> {
         Some(self.detail)
     }
-    fn blot(&mut self, seg: Segment, density: f64) {
-        assert!(density >= 1.0, "{density}");
+    fn stand_in(&mut self, stand_in: &StandIn) {
+        assert!(stand_in.density >= 1.0, "{}", stand_in.density);
         self.blots += 1;
-        self.rec.segments.push(seg);
+        self.rec.segments.push(stand_in.seg);
     }
     fn run(&mut self, seg: Segment, segments: f64) {
         assert!(segments >= 1.0, "{segments}");

@@ -9,7 +9,7 @@ use stlc::interpret::lsys::{Chance, draw, draw_chance};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
-use stlc::turtle::{Recorder, Segment, Turtle};
+use stlc::turtle::{Recorder, Segment, StandIn, Turtle};
 
 use crate::support::stlc;
 
@@ -51,8 +51,8 @@ impl Turtle for Split {
         self.segments.push(seg);
     }
 
-    fn blot(&mut self, seg: Segment, _density: f64) {
-        self.stand_ins.push(seg);
+    fn stand_in(&mut self, stand_in: &StandIn) {
+        self.stand_ins.push(stand_in.seg);
     }
 }
 

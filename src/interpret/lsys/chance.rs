@@ -42,7 +42,6 @@ mod walk;
 
 pub use walk::draw_chance;
 
-use super::PROGRESS_STEP;
 use super::geometry::{GEOMETRY_ENTRIES, Period, Piece, Refusal, balanced};
 use super::stochastic::Stochastic;
 use crate::choice::Key;

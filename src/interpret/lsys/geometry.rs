@@ -39,9 +39,7 @@ use std::collections::HashMap;
 mod lod;
 mod solid;
 
-pub(crate) use lod::across;
-
-use super::{Alphabet, PROGRESS_STEP};
+use super::Alphabet;
 use crate::model::lsys::LSystem;
 use crate::progress::Progress;
 use crate::turtle::{BBox, Headings, Op, Point, Segment, Turtle};

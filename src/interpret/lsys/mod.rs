@@ -52,6 +52,9 @@
 //!   frame, a ball about the start, per `(symbol, depth)`) and the 3D
 //!   views' level of detail on it; `space.rs`, `program3.rs`: 3D
 //!   derivation (the compiled program over 3D units);
+//! - `lod.rs`: the one level-of-detail walk, generic over the three
+//!   memos above (`geometry/lod.rs`, `chance/walk.rs` and `reach_lod.rs`
+//!   say only what each does at a piece);
 //! - `bfs.rs`: Saupe's level-by-level rewriting.
 
 mod alphabet;
@@ -59,6 +62,7 @@ mod bfs;
 mod chance;
 mod exec;
 mod geometry;
+mod lod;
 pub mod lsys3;
 pub mod param;
 mod program;

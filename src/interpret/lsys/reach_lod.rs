@@ -19,7 +19,7 @@
 
 use std::cell::RefCell;
 
-use super::PROGRESS_STEP;
+use super::lod;
 use super::reach::{Reach, ReachMemo, V, apply};
 use crate::progress::Progress;
 use crate::turtle::turtle3::{Op3, Point3, Segment3, Turtle3};
@@ -130,44 +130,60 @@ impl ReachMemo {
         progress: &mut dyn Progress,
     ) -> Point3 {
         let sink = RefCell::new(sink);
-        let mut turtle = Turtle3::new(heading, angle, self.len(), |s| {
+        let turtle = Turtle3::new(heading, angle, self.len(), |s| {
             (sink.borrow_mut())(Mark3::Stem(s));
         });
         progress.start("symbols", visits);
-        let mut frames: Vec<(&[u32], usize, u32)> = vec![(&self.alpha.axiom, 0, self.depth)];
-        let mut visited = 0u64;
-        while let Some(top) = frames.last_mut() {
-            let Some(&s) = top.0.get(top.1) else {
-                frames.pop();
-                continue;
-            };
-            top.1 += 1;
-            let r = top.2;
-            visited += 1;
-            if visited.is_multiple_of(PROGRESS_STEP) {
-                progress.update(visited);
-            }
-            if self.is_piece(s, r) {
-                let p = self.get(s, r);
-                if cut(p, detail) {
-                    if p.draws() {
-                        let mark = stand_in(&mut turtle, p);
-                        (sink.borrow_mut())(mark);
-                    }
-                    turtle.jump(p.end, &p.rot, p.planar);
-                } else {
-                    let succ = self.alpha.succ[s as usize].as_deref().unwrap_or(&[]);
-                    frames.push((succ, 0, r - 1));
-                }
-                continue;
-            }
-            if let Some(op) = self.ops[s as usize] {
-                turtle.apply(op);
-            }
-        }
-        progress.update(visited);
+        let mut w = Walk3 {
+            memo: self,
+            detail,
+            turtle,
+            sink: &sink,
+        };
+        lod::walk(&mut w, &self.alpha.axiom, self.depth, (), progress);
         progress.finish();
-        turtle.state.pos
+        w.turtle.state.pos
+    }
+}
+
+/// A walk of the 3D memo at a detail: its turtle, and where stand-ins go.
+struct Walk3<'m, 's, 'k, S: FnMut(Segment3)> {
+    memo: &'m ReachMemo,
+    detail: f64,
+    turtle: Turtle3<S>,
+    sink: &'s RefCell<&'k mut dyn FnMut(Mark3)>,
+}
+
+impl<'m, S: FnMut(Segment3)> lod::Memo<'m> for Walk3<'m, '_, '_, S> {
+    type Ctx = ();
+
+    #[inline]
+    fn child(_: (), _: usize) {}
+
+    #[inline]
+    fn is_piece(&self, c: u32, r: u32) -> bool {
+        self.memo.is_piece(c, r)
+    }
+
+    fn piece(&mut self, s: u32, r: u32, _: ()) -> Option<&'m [u32]> {
+        let memo = self.memo;
+        let p = memo.get(s, r);
+        if !cut(p, self.detail) {
+            return Some(memo.alpha.succ[s as usize].as_deref().unwrap_or(&[]));
+        }
+        if p.draws() {
+            let mark = stand_in(&mut self.turtle, p);
+            (self.sink.borrow_mut())(mark);
+        }
+        self.turtle.jump(p.end, &p.rot, p.planar);
+        None
+    }
+
+    #[inline]
+    fn terminal(&mut self, s: u32) {
+        if let Some(op) = self.memo.ops[s as usize] {
+            self.turtle.apply(op);
+        }
     }
 }
 

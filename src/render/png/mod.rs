@@ -22,12 +22,12 @@
 //!
 //! At a level of detail ([`Turtle::detail`], asked for with
 //! [`PngTurtle::with_detail`]) the drawing hands over stand-ins for
-//! sub-pixel subtrees ([`Turtle::blot`]): sparse ones are drawn as ordinary
+//! sub-pixel subtrees ([`Turtle::stand_in`]): sparse ones are drawn as ordinary
 //! segments, dense ones as blots: anti-aliased capsules [`BLOT_EXTRA_PX`]
 //! wider than the stems, painted straight into the raster by distance
 //! (tiny-skia's stroker costs about 4 us a blot, the stamp a few dozen
 //! pixel blends; docs/rendering.md, *Level of detail*). A bush's stand-in
-//! ([`Turtle::blot_spread`]) is painted with the ink its strokes leave on
+//! ([`Turtle::stand_in`] with a footprint) is painted with the ink its strokes leave on
 //! average over its footprint (`raster::Bush`); a connected run's
 //! ([`Turtle::run`]) is folded as the run it stands for and broken where
 //! the exact drawing would start a new path (docs/rendering.md,
@@ -51,7 +51,7 @@ use crate::color::Rgb;
 use crate::diag::Diagnostics;
 use crate::diag::{Diagnostic, Help, Knob, RenderError};
 use crate::turtle::Fill;
-use crate::turtle::{Point, Sample, Segment, Turtle};
+use crate::turtle::{Footprint, Point, Sample, Segment, StandIn, Turtle};
 
 mod bands;
 mod fold;
@@ -105,7 +105,7 @@ pub struct PngTurtle {
     /// Segments drawn or stood for so far (at a level of detail, where
     /// the exact drawing would be in its batches).
     stood: f64,
-    /// The bushes sampled so far ([`Turtle::bush`]); `None` in a bush's
+    /// The bushes sampled so far ([`Turtle::stand_in`] with a sample); `None` in a bush's
     /// own sample, whose bushes are modelled.
     fields: Option<sample::Fields>,
     /// The raster's tiles found full ink ([`Turtle::covered`]).
@@ -428,57 +428,25 @@ impl Turtle for PngTurtle {
         self.detail
     }
 
-    fn blot(&mut self, seg: Segment, density: f64) {
+    fn stand_in(&mut self, stand_in: &StandIn) {
         if self.covered {
             return;
         }
-        if density < BLOT_DENSITY {
-            self.segment(seg);
-            return;
-        }
-        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
-        if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
-            return;
-        }
-        let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
-        self.stamp(from, to, Shape::Capsule(radius));
-    }
-
-    fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
-        if self.covered {
-            return;
-        }
-        let spread = spread * self.fit.scale;
-        if density < BLOT_DENSITY && spread < SPREAD_MIN_PX {
-            self.segment(seg);
-            return;
-        }
-        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
-        if ![from.x, from.y, to.x, to.y, spread, density, runs]
-            .iter()
-            .all(|v| v.is_finite())
+        // Drawn from itself where the walk can draw it (sparse or dense:
+        // no threshold), else the ink its footprint spreads, else a blot.
+        if let Some(sample) = stand_in.sample
+            && let Some(field) = self.sampled_bush(sample)
         {
-            return;
-        }
-        let stroke = stroke_px(&self.width, self.fit.scale, seg.order);
-        let chord = libm::hypot(to.x - from.x, to.y - from.y);
-        let bush = Bush::new(stroke, spread, chord, density * chord, runs);
-        self.stamp(from, to, Shape::Bush(bush));
-    }
-
-    fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
-        if self.covered {
-            return;
-        }
-        // Sparse or dense, the bush's own drawing: no threshold.
-        match self.sampled_bush(sample) {
-            Some(field) => {
-                let at = self.fit.map(sample.at);
-                if at.x.is_finite() && at.y.is_finite() {
-                    self.stamp(at, at, Shape::Field(field));
-                }
+            let at = self.fit.map(sample.at);
+            if at.x.is_finite() && at.y.is_finite() {
+                self.stamp(at, at, Shape::Field(field));
             }
-            None => self.blot_spread(seg, density, spread, runs),
+            return;
+        }
+        let (seg, density) = (stand_in.seg, stand_in.density);
+        match stand_in.footprint {
+            Some(foot) => self.spread_blot(seg, density, foot),
+            None => self.blot(seg, density),
         }
     }
 
@@ -538,6 +506,42 @@ impl Turtle for PngTurtle {
 }
 
 impl PngTurtle {
+    /// A stand-in known by its segment and density: a capsule of ink
+    /// when dense, else the segment.
+    fn blot(&mut self, seg: Segment, density: f64) {
+        if density < BLOT_DENSITY {
+            self.segment(seg);
+            return;
+        }
+        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
+        if ![from.x, from.y, to.x, to.y].iter().all(|v| v.is_finite()) {
+            return;
+        }
+        let radius = (stroke_px(&self.width, self.fit.scale, seg.order) + BLOT_EXTRA_PX) / 2.0;
+        self.stamp(from, to, Shape::Capsule(radius));
+    }
+
+    /// A stand-in with its footprint: the ink its strokes spread there,
+    /// or the segment when sparse and narrow.
+    fn spread_blot(&mut self, seg: Segment, density: f64, foot: Footprint) {
+        let (spread, runs) = (foot.spread * self.fit.scale, foot.runs);
+        if density < BLOT_DENSITY && spread < SPREAD_MIN_PX {
+            self.segment(seg);
+            return;
+        }
+        let (from, to) = (self.fit.map(seg.from), self.fit.map(seg.to));
+        if ![from.x, from.y, to.x, to.y, spread, density, runs]
+            .iter()
+            .all(|v| v.is_finite())
+        {
+            return;
+        }
+        let stroke = stroke_px(&self.width, self.fit.scale, seg.order);
+        let chord = libm::hypot(to.x - from.x, to.y - from.y);
+        let bush = Bush::new(stroke, spread, chord, density * chord, runs);
+        self.stamp(from, to, Shape::Bush(bush));
+    }
+
     /// Draws a segment; with a `spacing`, a stand-in's chord, folded as
     /// the run it stands for ([`PngTurtle::pen_along`]).
     fn draw(&mut self, seg: Segment, spacing: Option<f64>) {

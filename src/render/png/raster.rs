@@ -10,7 +10,7 @@ use crate::turtle::Point;
 #[derive(Debug, Clone)]
 pub(super) enum Shape {
     /// A solid capsule of this radius: covered by `radius + 0.5` minus the
-    /// distance, clamped to 0..1 ([`Turtle::blot`](crate::turtle::Turtle::blot)).
+    /// distance, clamped to 0..1 ([`Turtle::stand_in`](crate::turtle::Turtle::stand_in)).
     Capsule(f64),
     /// A bush's hairlines spread evenly across its footprint
     /// ([`Bush::new`]).

@@ -1,4 +1,4 @@
-//! Bushes drawn from themselves ([`Turtle::bush`]): each distinct bush
+//! Bushes drawn from themselves ([`Turtle::stand_in`] with a sample): each distinct bush
 //! is rasterised once, by this backend, at sixteen sub-pixel positions
 //! (a grid a quarter pixel apart), into the ink it leaves around its
 //! start; wherever the bush recurs the ink of the grid point nearest
@@ -234,7 +234,7 @@ pub(super) fn stamp(
 }
 
 impl PngTurtle {
-    /// [`Turtle::bush`]: the bush's sampled field, exactly up to
+    /// [`Turtle::stand_in`] with a sample: the bush's sampled field, exactly up to
     /// [`EXACT_SEGMENTS`], past them at a sixteenth of the detail.
     pub(super) fn sampled_bush(&mut self, sample: &Sample) -> Option<Arc<Field>> {
         let detail = self.detail? * self.fit.scale;
@@ -270,7 +270,7 @@ impl PngTurtle {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::turtle::{Segment, Turtle};
+    use crate::turtle::{Footprint, Segment, StandIn, Turtle};
     use tiny_skia::Pixmap;
 
     /// A twig of 1.24a's shape, `F[+F]F[-F]F` twice over (25 segments of
@@ -339,7 +339,15 @@ mod tests {
             to: at,
             order: 0,
         };
-        stood.bush(seg, 25.0, 0.5, 8.0, &sample);
+        stood.stand_in(&StandIn {
+            seg,
+            density: 25.0,
+            footprint: Some(Footprint {
+                spread: 0.5,
+                runs: 8.0,
+            }),
+            sample: Some(&sample),
+        });
         let red = |p: Pixmap| p.data().chunks(4).map(|c| c[0]).collect();
         (red(exact), red(stood.into_raster().unwrap()))
     }

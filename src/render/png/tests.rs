@@ -110,7 +110,7 @@ fn blots_paint_by_distance_and_accumulate() {
     // Stems 1 px, so blots are 2 px wide: radius 1 around (10.5, 10.5).
     let mut t = turtle();
     let dot = stem(10.5, 10.5, 10.5, 10.5);
-    t.blot(dot, 5.0);
+    t.stand_in(&StandIn::blot(dot, 5.0));
     let p = t.into_raster().unwrap();
     let at = |p: &Pixmap, x, y| p.pixel(x, y).unwrap().red();
     assert_eq!(at(&p, 10, 10), 0, "centre: full ink");
@@ -119,8 +119,8 @@ fn blots_paint_by_distance_and_accumulate() {
     assert_eq!(at(&p, 10, 9), 127);
     assert_eq!(at(&p, 12, 10), 255, "1.5 px out: untouched");
     let mut twice = turtle();
-    twice.blot(dot, 5.0);
-    twice.blot(dot, 5.0);
+    twice.stand_in(&StandIn::blot(dot, 5.0));
+    twice.stand_in(&StandIn::blot(dot, 5.0));
     assert_eq!(
         at(&twice.into_raster().unwrap(), 11, 10),
         63,
@@ -128,7 +128,7 @@ fn blots_paint_by_distance_and_accumulate() {
     );
     // Density under BLOT_DENSITY: a 1 px hairline segment, not a blot.
     let mut sparse = turtle();
-    sparse.blot(stem(20.0, 10.5, 40.0, 10.5), 1.0);
+    sparse.stand_in(&StandIn::blot(stem(20.0, 10.5, 40.0, 10.5), 1.0));
     assert_eq!(sparse.paths, 0);
     sparse.flush();
     assert_eq!(sparse.paths, 1);
@@ -271,7 +271,7 @@ fn busy(t: &mut PngTurtle) {
         t.segment(stem(x, y, x + 3.0 - f % 7.0, y + 9.0 - f % 19.0));
         t.segment(stem(x + 3.0 - f % 7.0, y + 9.0 - f % 19.0, x, y + 0.3));
         if i % 10 == 0 {
-            t.blot(stem(x, y, x + 0.4, y + 0.2), 5.0);
+            t.stand_in(&StandIn::blot(stem(x, y, x + 0.4, y + 0.2), 5.0));
         }
     }
     for i in 0..40 {
@@ -344,7 +344,7 @@ fn banded_blots_and_covers_are_exactly_one_rasters() {
         for i in 0..100 {
             let f = f64::from(i);
             let (x, y) = (7.0 + (f * 13.0) % 130.0, (f * 31.0) % 300.0);
-            t.blot(stem(x, y, x + 2.0, y + 1.5), 3.0);
+            t.stand_in(&StandIn::blot(stem(x, y, x + 2.0, y + 1.5), 3.0));
         }
     };
     let style = busy_style(2.0);

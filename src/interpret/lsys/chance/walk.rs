@@ -3,8 +3,9 @@
 //! the detail, their ends from trunk walks or expectation.
 
 use super::*;
+use crate::interpret::lsys::lod::{self, Part2, Stand2};
 use crate::progress::NoProgress;
-use crate::turtle::Sample;
+use crate::turtle::{Footprint, Sample, StandIn};
 
 impl Chance {
     /// Where the subtree of `c` (remaining depth `r`, key `key`) started
@@ -80,153 +81,162 @@ impl Chance {
     }
 
     /// [`Chance::walk`] of `word` (its symbols, remaining depth and key)
-    /// from `pen`.
+    /// from `pen`: the one walk ([`lod::walk`]) over this memo, whose
+    /// frames carry the choices' keys.
     fn walk_word<T: Turtle>(
         &self,
         word: (&[u32], u32, Key),
         pen: Pen,
         detail: f64,
         exact_ends: bool,
-        mut turtle: T,
+        turtle: T,
         progress: &mut dyn Progress,
     ) -> (Point, u64) {
-        struct Frame<'w> {
-            word: &'w [u32],
-            at: usize,
-            r: u32,
-            key: Key,
+        let mut w = WalkChance {
+            c: self,
+            detail,
+            exact_ends,
+            turtle,
+            hd: self.headings.clone(),
+            pen,
+            stack: Vec::new(),
+            work: 0,
+        };
+        lod::walk(&mut w, word.0, word.1, word.2, progress);
+        (Point::new(w.pen.x, w.pen.y), w.work)
+    }
+}
+
+/// A walk of the stochastic memo at a detail: its turtle and pen, and the
+/// symbols its trunk walks visited.
+struct WalkChance<'m, T> {
+    c: &'m Chance,
+    detail: f64,
+    exact_ends: bool,
+    turtle: T,
+    hd: Headings,
+    pen: Pen,
+    stack: Vec<Pen>,
+    work: u64,
+}
+
+impl<'m, T: Turtle> lod::Memo<'m> for WalkChance<'m, T> {
+    type Ctx = Key;
+
+    #[inline]
+    fn child(key: Key, at: usize) -> Key {
+        key.child(at as u64)
+    }
+
+    #[inline]
+    fn is_piece(&self, c: u32, r: u32) -> bool {
+        self.c.is_piece(c, r)
+    }
+
+    fn piece(&mut self, c: u32, r: u32, kc: Key) -> Option<&'m [u32]> {
+        let ch = self.c;
+        let pen = self.pen;
+        let p = ch.piece(c, r, pen.k);
+        if !ch.cut(c, r, &p, self.detail) {
+            let alt = ch.st.choose(c, kc).unwrap_or(0);
+            return Some(&ch.alts[c as usize][alt].succ);
         }
-        let mut hd = self.headings.clone();
-        let len = self.len;
-        let mut frames = vec![Frame {
-            word: word.0,
-            at: 0,
-            r: word.1,
-            key: word.2,
-        }];
-        let mut pen = pen;
-        let mut stack: Vec<Pen> = Vec::new();
-        let (mut done, mut work) = (0u64, 0u64);
-        let mut next_report = PROGRESS_STEP;
-        while let Some(top) = frames.last_mut() {
-            let Some(&c) = top.word.get(top.at) else {
-                frames.pop();
-                continue;
+        let sg = if pen.flip { -1.0 } else { 1.0 };
+        let end = if self.exact_ends {
+            ch.trunk_end(&mut self.hd, c, r, kc, pen, &mut self.work)
+        } else {
+            Pen {
+                x: pen.x + sg * p.dx,
+                y: pen.y + sg * p.dy,
+                ..pen
+            }
+        };
+        let at = ch.at(c, r);
+        if p.draws() {
+            let (ex, ey) = (end.x - pen.x, end.y - pen.y);
+            let part = Part2 {
+                start: Point::new(pen.x, pen.y),
+                end: Point::new(end.x, end.y),
+                chord: libm::hypot(ex, ey),
+                lo: Point::new(pen.x + sg * p.min_x, pen.y + sg * p.min_y),
+                hi: Point::new(pen.x + sg * p.max_x, pen.y + sg * p.max_y),
+                piece: p,
+                segments: ch.count[at],
+                jumps: ch.jumps[at],
+                len: ch.len,
             };
-            let kc = top.key.child(top.at as u64);
-            top.at += 1;
-            let r = top.r;
-            done += 1;
-            if done >= next_report {
-                progress.update(done);
-                next_report = done.saturating_add(PROGRESS_STEP);
-            }
-            if self.is_piece(c, r) {
-                let p = self.piece(c, r, pen.k);
-                if !self.cut(c, r, &p, detail) {
-                    let alt = self.st.choose(c, kc).unwrap_or(0);
-                    frames.push(Frame {
-                        word: &self.alts[c as usize][alt].succ,
-                        at: 0,
-                        r: r - 1,
-                        key: kc,
+            match lod::stand_in_2d(&part) {
+                Stand2::Run(seg, n) => self.turtle.run(seg, n),
+                Stand2::Bush(seg, density, spread) => {
+                    // Each call draws the subtree with other choices
+                    // (keyed from the first stand-in that asks): the
+                    // sample is of the alternatives, as the stand-in is
+                    // of the seed's choices.
+                    let calls = std::cell::Cell::new(0u64);
+                    let draw = |detail: f64, t: &mut dyn Turtle| {
+                        let i = calls.replace(calls.get() + 1);
+                        let start = Pen {
+                            x: 0.0,
+                            y: 0.0,
+                            ..pen
+                        };
+                        let word = (&[c][..], r, kc.child(u64::MAX - i));
+                        let _ = ch.walk_word(word, start, detail, false, t, &mut NoProgress);
+                    };
+                    // Other choices may reach farther than the expected
+                    // box: it is widened by its size.
+                    let (w, h) = (p.max_x - p.min_x, p.max_y - p.min_y);
+                    let (lo, hi) = Sample::corners(
+                        Point::new(sg * p.min_x, sg * p.min_y),
+                        Point::new(sg * p.max_x, sg * p.max_y),
+                    );
+                    let sample = Sample {
+                        at: Point::new(pen.x, pen.y),
+                        key: Sample::piece_key(c, r, ch.period.key(pen.k), pen.flip),
+                        bounds: (
+                            Point::new(lo.x - w, lo.y - h),
+                            Point::new(hi.x + w, hi.y + h),
+                        ),
+                        segments: ch.count[at] as u64,
+                        draw: &draw,
+                    };
+                    self.turtle.stand_in(&StandIn {
+                        seg,
+                        density,
+                        footprint: Some(Footprint {
+                            spread,
+                            runs: ch.runs[at],
+                        }),
+                        sample: Some(&sample),
                     });
-                    continue;
                 }
-                let sg = if pen.flip { -1.0 } else { 1.0 };
-                let end = if exact_ends {
-                    self.trunk_end(&mut hd, c, r, kc, pen, &mut work)
-                } else {
-                    Pen {
-                        x: pen.x + sg * p.dx,
-                        y: pen.y + sg * p.dy,
-                        ..pen
-                    }
-                };
-                if p.draws() {
-                    let (ex, ey) = (end.x - pen.x, end.y - pen.y);
-                    let chord = libm::hypot(ex, ey);
-                    let (from, to) = if chord * 2.0 >= p.extent() {
-                        (Point::new(pen.x, pen.y), Point::new(end.x, end.y))
-                    } else {
-                        (
-                            Point::new(pen.x + sg * p.min_x, pen.y + sg * p.min_y),
-                            Point::new(pen.x + sg * p.max_x, pen.y + sg * p.max_y),
-                        )
-                    };
-                    let at = self.at(c, r);
-                    let seg_len = libm::hypot(to.x - from.x, to.y - from.y);
-                    let density = if self.jumps[at] {
-                        (self.count[at] * len.abs() / seg_len).max(1.0)
-                    } else {
-                        1.0
-                    };
-                    let density = if density.is_finite() { density } else { 1.0 };
-                    if self.jumps[at] {
-                        let (seg, spread) = crate::interpret::lsys::geometry::across(
-                            from,
-                            to,
-                            Point::new(pen.x + sg * p.min_x, pen.y + sg * p.min_y),
-                            Point::new(pen.x + sg * p.max_x, pen.y + sg * p.max_y),
-                        );
-                        // Each call draws the subtree with other choices
-                        // (keyed from the first stand-in that asks): the
-                        // sample is of the alternatives, as the stand-in
-                        // is of the seed's choices.
-                        let calls = std::cell::Cell::new(0u64);
-                        let draw = |detail: f64, t: &mut dyn Turtle| {
-                            let i = calls.replace(calls.get() + 1);
-                            let start = Pen {
-                                x: 0.0,
-                                y: 0.0,
-                                ..pen
-                            };
-                            let word = (&[c][..], r, kc.child(u64::MAX - i));
-                            let _ = self.walk_word(word, start, detail, false, t, &mut NoProgress);
-                        };
-                        // Other choices may reach farther than the
-                        // expected box: it is widened by its size.
-                        let (w, h) = (p.max_x - p.min_x, p.max_y - p.min_y);
-                        let (lo, hi) = Sample::corners(
-                            Point::new(sg * p.min_x, sg * p.min_y),
-                            Point::new(sg * p.max_x, sg * p.max_y),
-                        );
-                        let sample = Sample {
-                            at: Point::new(pen.x, pen.y),
-                            key: Sample::piece_key(c, r, self.period.key(pen.k), pen.flip),
-                            bounds: (
-                                Point::new(lo.x - w, lo.y - h),
-                                Point::new(hi.x + w, hi.y + h),
-                            ),
-                            segments: self.count[at] as u64,
-                            draw: &draw,
-                        };
-                        turtle.bush(seg, density, spread, self.runs[at], &sample);
-                    } else {
-                        turtle.run(Segment { from, to, order: 0 }, self.count[at]);
-                    }
-                }
-                let at = self.at(c, r);
-                pen = Pen {
-                    x: end.x,
-                    y: end.y,
-                    k: pen.k.wrapping_add(self.turn[at]),
-                    flip: pen.flip ^ self.flip[at],
-                };
-                continue;
-            }
-            match self.ops[c as usize] {
-                Some(Op::Push) => stack.push(pen),
-                Some(Op::Pop) => {
-                    if let Some(saved) = stack.pop() {
-                        pen = saved;
-                    }
-                }
-                op => step(&mut pen, op, &mut hd, len, |s| turtle.segment(s)),
             }
         }
-        progress.update(done);
-        (Point::new(pen.x, pen.y), work)
+        self.pen = Pen {
+            x: end.x,
+            y: end.y,
+            k: pen.k.wrapping_add(ch.turn[at]),
+            flip: pen.flip ^ ch.flip[at],
+        };
+        None
+    }
+
+    #[inline]
+    fn terminal(&mut self, c: u32) {
+        match self.c.ops[c as usize] {
+            Some(Op::Push) => self.stack.push(self.pen),
+            Some(Op::Pop) => {
+                if let Some(saved) = self.stack.pop() {
+                    self.pen = saved;
+                }
+            }
+            op => {
+                let turtle = &mut self.turtle;
+                step(&mut self.pen, op, &mut self.hd, self.c.len, |s| {
+                    turtle.segment(s)
+                });
+            }
+        }
     }
 }
 

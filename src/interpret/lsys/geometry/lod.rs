@@ -4,41 +4,14 @@
 //! stand-in and every other symbol as the exact drawing does.
 
 use super::*;
+use crate::interpret::lsys::lod::{self, Part2, Stand2};
 use crate::progress::NoProgress;
-use crate::turtle::Sample;
+use crate::turtle::{Footprint, Sample, StandIn};
 
 /// A piece of at least this many segments that is not cut is first
 /// offered to [`Turtle::covered`], and skipped if all it could ink is
 /// full ink already. (Smaller ones cost less to draw than to ask about.)
 const PRUNE_SEGMENTS: u64 = 64;
-
-/// A bush's stand-in along `from`-`to`, moved across onto the middle of
-/// the box `a`-`b` (opposite corners), and the box's half-width across
-/// it: what [`Turtle::blot_spread`] takes.
-pub(crate) fn across(from: Point, to: Point, a: Point, b: Point) -> (Segment, f64) {
-    let (dx, dy) = (to.x - from.x, to.y - from.y);
-    let l = libm::hypot(dx, dy);
-    let (nx, ny) = if l > 0.0 {
-        (-dy / l, dx / l)
-    } else {
-        (1.0, 0.0)
-    };
-    let mut lo = f64::INFINITY;
-    let mut hi = f64::NEG_INFINITY;
-    for (x, y) in [(a.x, a.y), (a.x, b.y), (b.x, a.y), (b.x, b.y)] {
-        let t = (x - from.x) * nx + (y - from.y) * ny;
-        lo = lo.min(t);
-        hi = hi.max(t);
-    }
-    let mid = (lo + hi) / 2.0;
-    let (ox, oy) = (nx * mid, ny * mid);
-    let seg = Segment {
-        from: Point::new(from.x + ox, from.y + oy),
-        to: Point::new(to.x + ox, to.y + oy),
-        order: 0,
-    };
-    (seg, (hi - lo) / 2.0)
-}
 
 /// Draws a solid piece's box (at `x`, `y`, turned around if `sg` is -1)
 /// as one zigzag of rows at most `detail` apart: one connected run, so
@@ -174,7 +147,7 @@ impl Geometry {
     }
 
     /// The piece `c` at remaining depth `r`, heading `k` and `flip`,
-    /// starting at `at`, as [`Turtle::bush`] and [`Turtle::solid`] take it.
+    /// starting at `at`, as [`Turtle::stand_in`] with a sample and [`Turtle::solid`] take it.
     fn sample<'a>(
         &self,
         (c, r, k, flip): (u32, u32, i64, bool),
@@ -219,143 +192,155 @@ impl Geometry {
     }
 
     /// [`Geometry::draw_lod`] of `word` at remaining depth `r`, starting
-    /// at the origin with heading and flip `start`.
+    /// at the origin with heading and flip `start`: the one walk
+    /// ([`lod::walk`]) over this memo.
     fn draw_word<T: Turtle>(
         &self,
         word: &[u32],
         r: u32,
         start: (i64, bool),
         detail: f64,
-        mut turtle: T,
+        turtle: T,
         progress: &mut dyn Progress,
     ) -> Point {
-        struct Frame<'w> {
-            word: &'w [u32],
-            at: usize,
-            /// Remaining depth of the word's symbols.
-            r: u32,
+        let mut w = Walk2 {
+            g: self,
+            detail,
+            turtle,
+            headings: self.headings.borrow().clone(),
+            pen: Pen {
+                x: 0.0,
+                y: 0.0,
+                k: start.0,
+                flip: start.1,
+            },
+            stack: Vec::new(),
+        };
+        lod::walk(&mut w, word, r, (), progress);
+        Point::new(w.pen.x, w.pen.y)
+    }
+}
+
+/// A walk of the deterministic 2D memo at a detail: its turtle and pen.
+struct Walk2<'m, T> {
+    g: &'m Geometry,
+    detail: f64,
+    turtle: T,
+    headings: Headings,
+    pen: Pen,
+    stack: Vec<Pen>,
+}
+
+impl<'m, T: Turtle> lod::Memo<'m> for Walk2<'m, T> {
+    type Ctx = ();
+
+    #[inline]
+    fn child(_: (), _: usize) {}
+
+    #[inline]
+    fn is_piece(&self, c: u32, r: u32) -> bool {
+        self.g.is_piece(c, r)
+    }
+
+    fn piece(&mut self, c: u32, r: u32, _: ()) -> Option<&'m [u32]> {
+        let g = self.g;
+        let detail = self.detail;
+        let Pen { x, y, k, flip } = self.pen;
+        let p = g.piece(c, r, k);
+        let sg = if flip { -1.0 } else { 1.0 };
+        let (lo, hi) = (
+            Point::new(x + sg * p.min_x, y + sg * p.min_y),
+            Point::new(x + sg * p.max_x, y + sg * p.max_y),
+        );
+        let at = r as usize * g.alpha.chars.len() + c as usize;
+        let cut = g.cut(c, r, k, &p, detail);
+        // A piece not cut whose reach is all full ink already (and big
+        // enough to be worth asking about) is skipped.
+        let full =
+            !cut && g.count[at] >= PRUNE_SEGMENTS && p.draws() && self.turtle.covered(lo, hi);
+        if !(cut || full) {
+            return Some(g.alpha.succ[c as usize].as_deref().unwrap_or(&[]));
         }
-        #[derive(Clone, Copy)]
-        struct Saved {
-            x: f64,
-            y: f64,
-            k: i64,
-            flip: bool,
-        }
-        let alpha = &self.alpha;
-        let len = self.len;
-        let mut headings = self.headings.borrow().clone();
-        let mut frames = vec![Frame { word, at: 0, r }];
-        let (mut x, mut y, mut k, mut flip) = (0.0f64, 0.0f64, start.0, start.1);
-        let mut stack: Vec<Saved> = Vec::new();
-        let mut done = 0u64;
-        let mut next_report = PROGRESS_STEP;
-        while let Some(top) = frames.last_mut() {
-            let Some(&c) = top.word.get(top.at) else {
-                frames.pop();
-                continue;
+        let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
+        // Draws the piece itself, for a backend that samples it.
+        let draw = |detail: f64, t: &mut dyn Turtle| {
+            g.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
+        };
+        let turtle = &mut self.turtle;
+        if full {
+            // Its move and turn only, as a stand-in's.
+        } else if g.solid(c, r, k, &p, detail) {
+            if !turtle.solid(&g.sample((c, r, k, flip), (x, y), &p, &draw)) {
+                let rows = solid::hatch_rows(&p, detail);
+                hatch(turtle, x, y, sg, &p, rows);
+            }
+        } else if p.draws() {
+            let part = Part2 {
+                start: Point::new(x, y),
+                end: Point::new(ex, ey),
+                chord: libm::hypot(p.dx, p.dy),
+                lo,
+                hi,
+                piece: p,
+                segments: g.count[at] as f64,
+                jumps: g.jumps[at] != 0,
+                len: g.len,
             };
-            top.at += 1;
-            let r = top.r;
-            done += 1;
-            if done >= next_report {
-                progress.update(done);
-                next_report = done.saturating_add(PROGRESS_STEP);
-            }
-            if self.is_piece(c, r) {
-                let p = self.piece(c, r, k);
-                let sg = if flip { -1.0 } else { 1.0 };
-                let (lo, hi) = (
-                    Point::new(x + sg * p.min_x, y + sg * p.min_y),
-                    Point::new(x + sg * p.max_x, y + sg * p.max_y),
-                );
-                let at = r as usize * alpha.chars.len() + c as usize;
-                let cut = self.cut(c, r, k, &p, detail);
-                // A piece not cut whose reach is all full ink already
-                // (and big enough to be worth asking about) is skipped.
-                let full =
-                    !cut && self.count[at] >= PRUNE_SEGMENTS && p.draws() && turtle.covered(lo, hi);
-                if cut || full {
-                    let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
-                    // Draws the piece itself, for a backend that samples it.
-                    let draw = |detail: f64, t: &mut dyn Turtle| {
-                        self.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
-                    };
-                    if full {
-                        // Its move and turn only, as a stand-in's.
-                    } else if self.solid(c, r, k, &p, detail) {
-                        if !turtle.solid(&self.sample((c, r, k, flip), (x, y), &p, &draw)) {
-                            let rows = solid::hatch_rows(&p, detail);
-                            hatch(&mut turtle, x, y, sg, &p, rows);
-                        }
-                    } else if p.draws() {
-                        let chord = libm::hypot(p.dx, p.dy);
-                        let (from, to) = if chord * 2.0 >= p.extent() {
-                            (Point::new(x, y), Point::new(ex, ey))
-                        } else {
-                            (lo, hi)
-                        };
-                        let n = self.count[at];
-                        let seg_len = libm::hypot(to.x - from.x, to.y - from.y);
-                        // A connected run (no jump inside) is drawn as one
-                        // line however it winds, so it stays a line.
-                        let density = if self.jumps[at] == 0 {
-                            1.0
-                        } else {
-                            (n as f64 * len.abs() / seg_len).max(1.0)
-                        };
-                        let density = if density.is_finite() { density } else { 1.0 };
-                        if self.jumps[at] == 0 {
-                            turtle.run(Segment { from, to, order: 0 }, n as f64);
-                        } else {
-                            let (seg, spread) = across(from, to, lo, hi);
-                            let sample = self.sample((c, r, k, flip), (x, y), &p, &draw);
-                            let runs = self.jumps[at] as f64;
-                            turtle.bush(seg, density, spread, runs, &sample);
-                        }
-                    }
-                    (x, y) = (ex, ey);
-                    k = k.wrapping_add(self.turn_of(c, r));
-                    flip ^= self.flip_of(c, r);
-                } else {
-                    let succ = alpha.succ[c as usize].as_deref().unwrap_or(&[]);
-                    frames.push(Frame {
-                        word: succ,
-                        at: 0,
-                        r: r - 1,
+            match lod::stand_in_2d(&part) {
+                Stand2::Run(seg, n) => turtle.run(seg, n),
+                Stand2::Bush(seg, density, spread) => {
+                    let sample = g.sample((c, r, k, flip), (x, y), &p, &draw);
+                    turtle.stand_in(&StandIn {
+                        seg,
+                        density,
+                        footprint: Some(Footprint {
+                            spread,
+                            runs: g.jumps[at] as f64,
+                        }),
+                        sample: Some(&sample),
                     });
                 }
-                continue;
-            }
-            match self.ops[c as usize] {
-                Some(Op::Draw) => {
-                    // Interp::forward: pos + dir * len.
-                    let (dx, dy) = headings.dir(k, flip);
-                    let to = Point::new(x + dx * len, y + dy * len);
-                    turtle.segment(Segment {
-                        from: Point::new(x, y),
-                        to,
-                        order: 0,
-                    });
-                    (x, y) = (to.x, to.y);
-                }
-                Some(Op::Move) => {
-                    let (dx, dy) = headings.dir(k, flip);
-                    (x, y) = (x + dx * len, y + dy * len);
-                }
-                Some(Op::Turn(t)) => k = k.wrapping_add(i64::from(t)),
-                Some(Op::Flip) => flip = !flip,
-                Some(Op::Push) => stack.push(Saved { x, y, k, flip }),
-                Some(Op::Pop) => {
-                    if let Some(s) = stack.pop() {
-                        (x, y, k, flip) = (s.x, s.y, s.k, s.flip);
-                    }
-                }
-                Some(Op::Enter | Op::Leave) | None => {}
             }
         }
-        progress.update(done);
-        Point::new(x, y)
+        self.pen = Pen {
+            x: ex,
+            y: ey,
+            k: k.wrapping_add(g.turn_of(c, r)),
+            flip: flip ^ g.flip_of(c, r),
+        };
+        None
+    }
+
+    #[inline]
+    fn terminal(&mut self, c: u32) {
+        let len = self.g.len;
+        let pen = &mut self.pen;
+        match self.g.ops[c as usize] {
+            Some(Op::Draw) => {
+                // Interp::forward: pos + dir * len.
+                let (dx, dy) = self.headings.dir(pen.k, pen.flip);
+                let to = Point::new(pen.x + dx * len, pen.y + dy * len);
+                self.turtle.segment(Segment {
+                    from: Point::new(pen.x, pen.y),
+                    to,
+                    order: 0,
+                });
+                (pen.x, pen.y) = (to.x, to.y);
+            }
+            Some(Op::Move) => {
+                let (dx, dy) = self.headings.dir(pen.k, pen.flip);
+                (pen.x, pen.y) = (pen.x + dx * len, pen.y + dy * len);
+            }
+            Some(Op::Turn(t)) => pen.k = pen.k.wrapping_add(i64::from(t)),
+            Some(Op::Flip) => pen.flip = !pen.flip,
+            Some(Op::Push) => self.stack.push(*pen),
+            Some(Op::Pop) => {
+                if let Some(s) = self.stack.pop() {
+                    *pen = s;
+                }
+            }
+            Some(Op::Enter | Op::Leave) | None => {}
+        }
     }
 }
 
@@ -382,11 +367,8 @@ mod tests {
         fn detail(&self) -> Option<f64> {
             self.t.detail()
         }
-        fn blot_spread(&mut self, seg: Segment, density: f64, spread: f64, runs: f64) {
-            self.t.blot_spread(seg, density, spread, runs);
-        }
-        fn bush(&mut self, seg: Segment, density: f64, spread: f64, runs: f64, sample: &Sample) {
-            self.t.bush(seg, density, spread, runs, sample);
+        fn stand_in(&mut self, stand_in: &StandIn) {
+            self.t.stand_in(stand_in);
         }
         fn solid(&mut self, sample: &Sample) -> bool {
             self.t.solid(sample)
