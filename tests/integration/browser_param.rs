@@ -68,13 +68,12 @@ fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
     let Some(browser) = Browser::start(tmp.path()) else {
         return;
     };
-    let file = tmp.path().join("willow.lsys");
-    std::fs::write(&file, example("param-willow.lsys")).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
+    let server = Server::start(&[]);
     browser.rt.block_on(async {
         let c = browser.connect().await;
         c.goto(&server.url).await.unwrap();
         settled(&c).await;
+        open_example(&c, "param-willow.lsys").await;
         let after = slide(&c, "define-spread", "45").await;
         let keys = js(
             &c,
