@@ -7,28 +7,8 @@ use fantoccini::Client;
 use serde_json::{Value, json};
 
 use super::browser::{js, settled, shot};
-use super::browser_web::{Static, start};
+use super::browser_web::{Static, on_site};
 use crate::browser::Browser;
-
-/// The site, a browser on it showing its first picture, and `body` run
-/// with the session; skips (returns) where the site or Chromium is
-/// missing, as browser_web.rs's tests do.
-fn on_site<F>(body: F)
-where
-    F: AsyncFnOnce(&Client, &Static, &Browser),
-{
-    let tmp = tempfile::tempdir().unwrap();
-    let Some((_, server, browser)) = start(tmp.path()) else {
-        return;
-    };
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
-        body(&c, &server, &browser).await;
-        let _ = c.close().await;
-    });
-}
 
 /// A share-link fragment whose text is `mib` MiB of zero bytes (valid
 /// UTF-8), deflated in the page (1 MiB chunks streamed through

@@ -12,7 +12,9 @@ use fantoccini::Client;
 use serde_json::{Value, json};
 
 use super::browser::{Browser, cli, click, js, same_bytes, settled, shot};
-use super::browser_web::{engine_export, open_example, share_link, start};
+use super::browser_web::{
+    engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, start,
+};
 use super::param_frontends::{parametric_examples, same_words};
 use super::serve::{Server, example};
 
@@ -150,14 +152,8 @@ fn a_diagnostic_underlines_the_expression_it_is_about_in_chromium() {
 /// shows the willow's modules with their parameters.
 #[test]
 fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some((_, server, browser)) = start(tmp.path()) else {
-        return;
-    };
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
+    on_site(async |c, _, _| {
+        let c = c.clone();
         for name in parametric_examples() {
             let path = format!("examples/{name}");
             let request = json!({"source": example(&name), "kind": "lsys", "show_layout": true});
@@ -245,10 +241,6 @@ fn a_share_link_carries_a_parametric_tree_in_chromium() {
     let Some((_, server, browser)) = start(tmp.path()) else {
         return;
     };
-    let fresh_tmp = tempfile::tempdir().unwrap();
-    let Some(fresh) = Browser::start(fresh_tmp.path()) else {
-        return;
-    };
     let text = example("param-willow.lsys").replace("define shrink 0.82\n", "define shrink 0.75\n");
     let link = browser.rt.block_on(async {
         let c = browser.connect().await;
@@ -274,13 +266,5 @@ fn a_share_link_carries_a_parametric_tree_in_chromium() {
         "-f",
         "svg",
     ]);
-    fresh.rt.block_on(async {
-        let c = fresh.connect().await;
-        c.goto(&link).await.unwrap();
-        let v = settled(&c).await;
-        assert_eq!(v["text"], json!(text));
-        let got = js(&c, "return window.stlc.state.answer.svg").await;
-        same_bytes(got.as_str().unwrap().as_bytes(), &want, "the shared willow");
-        let _ = c.close().await;
-    });
+    opens_in_a_fresh_profile(&link, &text, &want, "param-05-shared");
 }

@@ -420,6 +420,50 @@ pub(super) async fn open_example(c: &Client, name: &str) -> Value {
     panic!("the page never opened {name}: {v}");
 }
 
+/// The site, a browser on it showing its first picture, and `body` run
+/// with the session; skips (returns) where the site or Chromium is
+/// missing, as the other tests here do.
+pub fn on_site<F>(body: F)
+where
+    F: AsyncFnOnce(&Client, &Static, &Browser),
+{
+    let tmp = tempfile::tempdir().unwrap();
+    let Some((_, server, browser)) = start(tmp.path()) else {
+        return;
+    };
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        body(&c, &server, &browser).await;
+        let _ = c.close().await;
+    });
+}
+
+/// Opens `link` in a fresh browser profile: the page shows `text` and
+/// draws `svg` (the bytes the CLI writes for it); `shot` names its
+/// screenshot.
+pub fn opens_in_a_fresh_profile(link: &str, text: &str, svg: &[u8], shot_name: &str) {
+    let fresh_tmp = tempfile::tempdir().unwrap();
+    let Some(fresh) = Browser::start(fresh_tmp.path()) else {
+        return;
+    };
+    fresh.rt.block_on(async {
+        let c = fresh.connect().await;
+        c.goto(link).await.unwrap();
+        let v = settled(&c).await;
+        assert_eq!(v["text"], json!(text));
+        let got = js(&c, "return window.stlc.state.answer.svg").await;
+        same_bytes(
+            got.as_str().unwrap().as_bytes(),
+            svg,
+            "the SVG from the link",
+        );
+        shot(&c, shot_name).await;
+        let _ = c.close().await;
+    });
+}
+
 /// A share link carries the tree, its growth order and its seed: opened in
 /// a fresh browser profile it shows the same text and the same SVG bytes
 /// (the CLI's). docs/web.md's table of link lengths is what the page
@@ -428,10 +472,6 @@ pub(super) async fn open_example(c: &Client, name: &str) -> Value {
 fn a_share_link_restores_the_tree_in_a_fresh_profile_in_chromium() {
     let tmp = tempfile::tempdir().unwrap();
     let Some((_, server, browser)) = start(tmp.path()) else {
-        return;
-    };
-    let fresh_tmp = tempfile::tempdir().unwrap();
-    let Some(fresh) = Browser::start(fresh_tmp.path()) else {
         return;
     };
     let (link, text, svg) = browser.rt.block_on(async {
@@ -478,20 +518,7 @@ fn a_share_link_restores_the_tree_in_a_fresh_profile_in_chromium() {
         ]),
         "the shared grove",
     );
-    fresh.rt.block_on(async {
-        let c = fresh.connect().await;
-        c.goto(&link).await.unwrap();
-        let v = settled(&c).await;
-        assert_eq!(v["text"], json!(text));
-        let got = js(&c, "return window.stlc.state.answer.svg").await;
-        same_bytes(
-            got.as_str().unwrap().as_bytes(),
-            svg.as_bytes(),
-            "the SVG from the link",
-        );
-        shot(&c, "web-03-shared").await;
-        let _ = c.close().await;
-    });
+    opens_in_a_fresh_profile(&link, &text, svg.as_bytes(), "web-03-shared");
 }
 
 /// docs/web.md's table of share links: for every example, the bytes of
