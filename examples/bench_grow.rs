@@ -5,9 +5,9 @@
 //! /usr/bin/time -v target/release/examples/bench_grow bfs rstar 1000000
 //! ```
 //!
-//! Arguments: strategy (`bfs`|`dfs`|`space`), occupancy index (`rstar`, or `spade`
-//! when built with `--features spade-index`: the Delaunay index, an
-//! experiment kept for this measurement), and
+//! Arguments: strategy (`bfs`|`dfs`|`space`), occupancy index (`rstar`,
+//! the one left: the spade experiment was removed, docs/dependencies.md),
+//! and
 //! the number of stems to grow (`--max-stems`; growth stops there with a
 //! warning), optionally the side of the square layout (default 4000) and the stroke width B (default 0.1). The tree: `Seed = FR1`, `R1 = [-F][F][+F]`, `L=1`, `B=0.1` (thin: stems keep their distance as drawn), `A=30`,
 //! default clearance (0.1), in a 4000 x 4000 rectangle with the root at the
@@ -38,12 +38,9 @@ fn main() {
         _ => GrowthOrder::Bfs,
     };
     let backend = match args.get(2).map(String::as_str) {
-        #[cfg(feature = "spade-index")]
-        Some("spade") => Backend::Spade,
-        #[cfg(not(feature = "spade-index"))]
         Some("spade") => {
             eprintln!(
-                "bench_grow: the spade index is an experiment behind a feature; build with `cargo build --release --example bench_grow --features spade-index`"
+                "bench_grow: the spade occupancy index was removed (docs/dependencies.md); measure with rstar"
             );
             std::process::exit(2);
         }

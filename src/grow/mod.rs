@@ -162,10 +162,10 @@ fn placed<const N: usize>(
         .collect()
 }
 
-/// Grows `od` into a BED with a chosen occupancy index. Every [`Backend`]
-/// gives the same result; the choice is for measuring (the Delaunay one
-/// exists only with the feature `spade-index`, and only in the plane: a
-/// 3D description grows with the R*-tree whatever is asked).
+/// Grows `od` into a BED with a chosen occupancy index: [`Backend`] has
+/// one, the R*-tree, since the Delaunay experiment was measured and
+/// removed (`docs/dependencies.md`); the parameter names what a benchmark
+/// measures.
 pub fn grow_with(
     od: &Description,
     opts: &GrowOptions,

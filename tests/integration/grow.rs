@@ -12,10 +12,6 @@ use geo::{
 
 use stlc::bed::Bed;
 use stlc::diag::GrowError;
-#[cfg(feature = "spade-index")]
-use stlc::grow::grow_with;
-#[cfg(feature = "spade-index")]
-use stlc::grow::occupancy::Backend;
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow};
 use stlc::model::*;
 use stlc::progress::NoProgress;
@@ -530,24 +526,6 @@ fn growth_is_deterministic() {
                 seed_text(b.bed.description())
             );
             assert_eq!(draw_bed(a.bed.description()), draw_bed(b.bed.description()));
-        }
-    }
-}
-
-/// The spade index (an experiment kept for measuring) grows the same trees.
-#[cfg(feature = "spade-index")]
-#[test]
-fn the_spade_index_grows_the_same_trees() {
-    for d in [od(TWO_D_TREE), figure_9_10()] {
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-            let a = grown(&d, opts(s));
-            let c = grow_with(&d, &opts(s), Backend::Spade, &mut NoProgress).unwrap();
-            assert_eq!(
-                seed_text(a.bed.description()),
-                seed_text(c.bed.description()),
-                "spade differs"
-            );
-            assert_eq!(a.stems, c.stems);
         }
     }
 }

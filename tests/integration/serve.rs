@@ -246,7 +246,7 @@ fn cli(args: &[&str]) -> Vec<u8> {
 
 /// The BED and SVG of an .od are byte for byte what `stlc compile` and
 /// `stlc render -f svg --show-layout` write with the same options, in both
-/// growth orders, with a clearance and a stem limit.
+/// growth orders and space-first, with a clearance and a stem limit.
 #[test]
 fn render_answers_the_cli_bytes_for_an_od() {
     let server = Server::start(&[]);
@@ -257,6 +257,7 @@ fn render_answers_the_cli_bytes_for_an_od() {
             ("bfs", vec![]),
             ("dfs", vec![]),
             ("dfs", vec!["--clearance", "0.5", "--max-stems", "120"]),
+            ("space", vec![]),
         ] {
             let mut body = json!({"source": example(name), "kind": "od", "growth": strategy});
             if !extra.is_empty() {
@@ -303,7 +304,7 @@ fn render_answers_the_cli_bytes_for_an_od() {
 fn the_growth_order_replays_a_connected_tree() {
     let server = Server::start(&[]);
     let mut orders = Vec::new();
-    for strategy in ["bfs", "dfs"] {
+    for strategy in ["bfs", "dfs", "space"] {
         let a = render(
             &server.addr,
             &json!({"source": example("fig9.od"), "growth": strategy}),
@@ -334,6 +335,7 @@ fn the_growth_order_replays_a_connected_tree() {
         orders.push(g);
     }
     assert_ne!(orders[0], orders[1], "bfs and dfs grow fig9 differently");
+    assert_ne!(orders[0], orders[2], "bfs and space grow fig9 differently");
 }
 
 /// An L-system with a depth and a BED are drawn as `stlc render` draws

@@ -40,18 +40,14 @@
 //! With the region's tree of boundary edges ([`super::region`]), these are
 //! the only places growth names the spatial index.
 //!
-//! # spade: an experiment kept for measuring
+//! # spade: measured, and not used here
 //!
-//! With the cargo feature `spade-index`, `Backend::Spade` keeps the
-//! placed segments' endpoints as vertices of an incremental Delaunay
-//! triangulation (`spade`, with its hierarchy for O(log n) location) and
-//! asks for the vertices in a circle: any segment within `C` of `t` has an
-//! endpoint within `|t|/2 + C + max|s|/2` of `t`'s midpoint. It applies the
-//! same exact rule, so it accepts exactly the same segments. The product
-//! never uses it; it is kept so the growth benchmark
-//! (`examples/bench_grow.rs`) can measure it against the R*-tree.
-//! `docs/growth.md` has the timings that made rstar the choice (3.7 to 12
-//! times faster).
+//! A Delaunay triangulation of the stems' endpoints (`spade`) answered the
+//! same clearance query 3.7 to 12 times slower than the R*-tree
+//! (`docs/growth.md`, *The spatial index*); it was kept behind a feature
+//! for measuring until space-first growth (issue 34) put spade to work
+//! where a triangulation is what is wanted, and then removed
+//! (`docs/dependencies.md`).
 
 mod capsule;
 
@@ -99,47 +95,17 @@ impl<const N: usize> RTreeObject for Placed<N> {
 /// Which spatial index answers the clearance query.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Backend {
-    /// R*-tree over the segments (the default: faster, see `docs/growth.md`).
+    /// R*-tree over the segments (the one index: see `docs/growth.md`).
     #[default]
     Rstar,
-    /// Delaunay triangulation over the segments' endpoints: an experiment
-    /// kept for measuring (feature `spade-index`).
-    #[cfg(feature = "spade-index")]
-    Spade,
 }
 
-/// What the indexes need of a dimension: the distance of two stems and,
-/// with the feature `spade-index`, the Delaunay index (the plane's only).
-pub trait Dim: SegDist + Copy + PartialEq + std::fmt::Debug {
-    /// The Delaunay index for these stems, if there is one.
-    #[cfg(feature = "spade-index")]
-    fn delaunay() -> Option<Box<dyn PointIndex<Self>>>;
-}
+/// What the indexes need of a dimension: the distance of two stems.
+pub trait Dim: SegDist + Copy + PartialEq + std::fmt::Debug {}
 
-impl Dim for Seg {
-    #[cfg(feature = "spade-index")]
-    fn delaunay() -> Option<Box<dyn PointIndex<Self>>> {
-        Some(Box::new(delaunay::SpadeIndex::default()))
-    }
-}
+impl Dim for Seg {}
 
-/// Space has no Delaunay index: `Backend::Spade` grows with the R*-tree.
-impl Dim for Seg3 {
-    #[cfg(feature = "spade-index")]
-    fn delaunay() -> Option<Box<dyn PointIndex<Self>>> {
-        None
-    }
-}
-
-/// An index over the stems' endpoints (the spade experiment).
-#[cfg(feature = "spade-index")]
-pub trait PointIndex<S>: std::fmt::Debug {
-    /// A held stem `t` conflicts with; `widest`: the largest threshold any
-    /// held segment can have with `t`.
-    fn conflict(&self, t: &S, c: f64, widest: f64) -> Option<S>;
-    /// Adds `s`.
-    fn insert(&mut self, s: S);
-}
+impl Dim for Seg3 {}
 
 /// The grown segments and the clearance query, in the plane (`N = 2`, the
 /// default) or in space (`N = 3`).
@@ -163,8 +129,6 @@ where
 #[derive(Debug)]
 enum Inner<const N: usize> {
     Rstar(RTree<Placed<N>, OccupancyParams>),
-    #[cfg(feature = "spade-index")]
-    Spade(Box<dyn PointIndex<Cap<N>>>),
 }
 
 impl<const N: usize> Occupancy<N>
@@ -175,11 +139,6 @@ where
     pub fn new(backend: Backend, clearance: f64) -> Self {
         let inner = match backend {
             Backend::Rstar => Inner::Rstar(RTree::new_with_params()),
-            #[cfg(feature = "spade-index")]
-            Backend::Spade => match Cap::<N>::delaunay() {
-                Some(ix) => Inner::Spade(ix),
-                None => Inner::Rstar(RTree::new_with_params()),
-            },
         };
         Occupancy {
             clearance,
@@ -237,8 +196,6 @@ where
                     });
                 hit
             }
-            #[cfg(feature = "spade-index")]
-            Inner::Spade(ix) => ix.conflict(t, c, widest),
         }
     }
 
@@ -248,7 +205,7 @@ where
     /// seed, and 10^5 of them grow in linear time, not quadratic. (A grown
     /// stem equal to a placed one conflicts with it: never placed.)
     pub fn insert_drawn(&mut self, s: Cap<N>) {
-        if !self.drawn.insert(s.bits()) && matches!(self.inner, Inner::Rstar(_)) {
+        if !self.drawn.insert(s.bits()) {
             self.len += 1;
             self.segs.push(s);
             return;
@@ -268,8 +225,6 @@ where
                 });
                 self.segs.push(s);
             }
-            #[cfg(feature = "spade-index")]
-            Inner::Spade(ix) => ix.insert(s),
         }
     }
 }
@@ -372,11 +327,6 @@ where
     }
 }
 
-/// The spade index (feature `spade-index`): an experiment kept for
-/// measuring, see the module documentation.
-#[cfg(feature = "spade-index")]
-mod delaunay;
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -396,7 +346,7 @@ mod tests {
             occ.insert_drawn(trunk);
         }
         occ.insert_drawn(seg(50.0, 0.0, 50.0, -10.0));
-        // One variant unless the spade index is built in.
+        // The one variant.
         #[allow(irrefutable_let_patterns)]
         let Inner::Rstar(tree) = &occ.inner else {
             unreachable!()
@@ -522,11 +472,7 @@ mod tests {
             let r = next();
             all.push(Seg::capsule([ax, ay], [ax + dx, ay + dy], r));
         }
-        let backends = [
-            Backend::Rstar,
-            #[cfg(feature = "spade-index")]
-            Backend::Spade,
-        ];
+        let backends = [Backend::Rstar];
         for backend in backends {
             let mut occ = Occupancy::new(backend, 1.5);
             let mut placed: Vec<Seg> = Vec::new();
