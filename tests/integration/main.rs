@@ -27,6 +27,7 @@ mod lsys3d;
 mod newuser;
 mod od_variation;
 mod param;
+mod param_lod;
 mod render;
 mod repeats;
 mod robustness;
