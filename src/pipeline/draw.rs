@@ -165,7 +165,9 @@ pub(crate) fn render_tree(
             if !opts.exact && scene.derivation == crate::interpret::Derivation::Dfs =>
         {
             scene.limits.check_depth(*depth)?;
-            if sys.is_stochastic() {
+            if let Some(p) = lsys::param::of(sys) {
+                lsys::param::ParamMemo::new(sys, p, *depth)?.map(Lod::Param)
+            } else if sys.is_stochastic() {
                 lsys::Chance::new(sys, *depth).ok().map(Lod::Chance)
             } else {
                 lsys::Memo::new(sys, *depth).ok().map(Lod::Memo)
@@ -200,6 +202,9 @@ pub(crate) fn render_tree(
             (known, None)
         }
         (None, Some((Lod::Chance(c), _, _))) => chance_frame(scene, c, &style, opts, progress)?,
+        (None, Some((Lod::Param(m), sys, _))) => {
+            param_frame(scene, m, sys, &style, opts, progress)?
+        }
         (None, None) => (Frame::Fit, None),
     };
     let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| match &lod {
@@ -207,6 +212,12 @@ pub(crate) fn render_tree(
         Some((Lod::Chance(c), _, _)) => match fixed.or(t.detail()) {
             Some(detail) => lsys::draw_chance(c, detail, &scene.limits, t, p).map(|_| ()),
             None => scene.draw(t, p),
+        },
+        Some((Lod::Param(m), sys, _)) => match (fixed.or(t.detail()), lsys::param::of(sys)) {
+            (Some(detail), Some(par)) if fixed.is_some() || m.walk_pays(detail) => {
+                m.draw(sys, par, detail, &scene.limits, t, p).map(|_| ())
+            }
+            _ => scene.draw(t, p),
         },
         None if !tree => Ok(()),
         None => scene.draw(t, p),
@@ -258,6 +269,59 @@ enum Lod {
     Memo(lsys::Memo),
     /// A stochastic system's expected geometry.
     Chance(lsys::Chance),
+    /// A parametric system's repeated pieces.
+    Param(lsys::param::ParamMemo),
+}
+
+/// The frame of a parametric system at a level of detail, as
+/// [`chance_frame`]'s: the exact bounding pass for a word within
+/// [`lsys::FIT_SYMBOLS`] drawn steps, else bounding walks at the level of
+/// detail (first at the detail of the ball holding the drawing, then at
+/// that fit's), whose box and detail the drawing uses.
+fn param_frame(
+    scene: &Scene,
+    memo: &lsys::param::ParamMemo,
+    sys: &crate::model::lsys::LSystem,
+    style: &Style,
+    opts: &RenderOptions,
+    progress: &mut dyn Progress,
+) -> Result<(Frame, Option<f64>), Diagnostics> {
+    let segments = memo.stems();
+    let Some(par) = lsys::param::of(sys) else {
+        return Ok((Frame::Fit, None));
+    };
+    if segments as f64 <= lsys::FIT_SYMBOLS {
+        let mut bounds = Bounds::default();
+        scene.draw(&mut bounds, &mut Phase::new(progress, "measuring"))?;
+        let known = Frame::Known {
+            bbox: bounds.bbox(),
+            segments: bounds.count,
+        };
+        return Ok((known, None));
+    }
+    let detail_of = |bbox: Option<BBox>| -> Result<f64, Diagnostics> {
+        Ok(LOD_PX / Fit::content(bbox, 0, &style.width, opts.size)?.scale)
+    };
+    let bounded = |detail: f64, progress: &mut dyn Progress| {
+        let mut bounds = Bounds::default();
+        let mut phase = Phase::new(progress, "measuring");
+        memo.draw(sys, par, detail, &scene.limits, &mut bounds, &mut phase)
+            .map(|_| bounds.bbox())
+    };
+    let r = memo.radius();
+    let ball = BBox {
+        min_x: -r,
+        min_y: -r,
+        max_x: r,
+        max_y: r,
+    };
+    let first = bounded(detail_of(Some(ball))?, progress)?;
+    let detail = detail_of(first)?;
+    let known = Frame::Known {
+        bbox: bounded(detail, progress)?,
+        segments,
+    };
+    Ok((known, Some(detail)))
 }
 
 /// The frame of a stochastic system at a level of detail, and the detail

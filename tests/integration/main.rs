@@ -31,6 +31,7 @@ mod newuser;
 mod od_variation;
 mod param;
 mod param_frontends;
+mod param_lod;
 mod render;
 mod repeats;
 mod robustness;

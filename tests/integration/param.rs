@@ -248,8 +248,46 @@ fn system() -> impl Strategy<Value = String> {
     })
 }
 
+/// A random system with left and right contexts (over `A B C`, `ignore`d
+/// turns, branches the contexts skip) and conditions on the bound
+/// parameters: derived level by level in both orders.
+fn context_system() -> impl Strategy<Value = String> {
+    let succ = prop::collection::vec(
+        prop_oneof![
+            Just("A(x+1)"),
+            Just("B(x*2)"),
+            Just("C(x-y)"),
+            Just("+"),
+            Just("[C(y)]"),
+            Just("F(x)"),
+        ],
+        1..4,
+    );
+    (succ.clone(), succ.clone(), succ, 0u32..4).prop_map(|(a, b, c, k)| {
+        format!(
+            "angle 30\nignore +F\naxiom A(1)B(2)[C(3)]A(4)C(5)\n\
+             rule B(y) < A(x) : x > {k} -> {}\nrule A(x) > C(y) -> {}\n\
+             rule A(y) < C(x) > B(z) -> {}\n",
+            a.concat(),
+            b.concat(),
+            c.concat()
+        )
+    })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn dfs_and_bfs_derive_the_same_word_with_contexts(src in context_system(), depth in 0u32..5) {
+        let dfs = expanded(&src, depth, Derivation::Dfs);
+        let bfs = expanded(&src, depth, Derivation::Bfs);
+        match (dfs, bfs) {
+            (Ok(a), Ok(b)) => prop_assert_eq!(a, b),
+            (Err(_), Err(_)) => {}
+            (a, b) => prop_assert!(false, "one failed: {:?} / {:?}", a.is_ok(), b.is_ok()),
+        }
+    }
 
     #[test]
     fn dfs_and_bfs_derive_the_same_word(src in system(), depth in 0u32..6) {

@@ -16,6 +16,7 @@
 //!
 //! `turtle.rs` draws the modules; `expand` writes them.
 
+mod memo;
 mod turtle;
 
 use std::collections::BTreeMap;
@@ -28,6 +29,7 @@ use crate::limits::{Bound, Limits};
 use crate::model::Loc;
 use crate::model::lsys::LSystem;
 use crate::model::param::{ParamRule, Parametric, eval};
+pub use memo::{PARAM_NODES, ParamMemo};
 pub(crate) use turtle::{draw2, draw3};
 
 /// A word of modules.
@@ -138,6 +140,20 @@ impl<'a> Deriver<'a> {
             seed: sys.seed,
             ignore: p.ignore.clone(),
         }
+    }
+
+    /// Whether a rule rewrites module `sym(params)` (its contexts not
+    /// looked at: for a system without them).
+    fn applies(&self, sym: char, params: &[f64]) -> bool {
+        let Some(rules) = self.by_sym.get(&sym) else {
+            return false;
+        };
+        let mut w = Word::new();
+        w.push(sym, params, Key::root(0));
+        let mut bind = Vec::new();
+        rules
+            .iter()
+            .any(|&r| self.matches(&self.p.rules[r], &w, &[], 0, &mut bind))
     }
 
     /// The axiom as a word.

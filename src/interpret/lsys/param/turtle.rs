@@ -83,6 +83,18 @@ impl Turtle3P {
         Point3::new(p[0], p[1], p[2])
     }
 
+    /// The frame: H, L, U.
+    pub(crate) fn frame(&self) -> [V; 3] {
+        [self.state.h, self.state.l, self.state.u]
+    }
+
+    /// Moves to `to` with frame `frame` (H, L, U) without drawing: past a
+    /// piece of the level of detail.
+    pub(crate) fn jump(&mut self, to: V, frame: [V; 3]) {
+        self.state.pos = to;
+        [self.state.h, self.state.l, self.state.u] = frame;
+    }
+
     fn turn(&mut self, deg: f64) {
         let (c, s) = cos_sin(deg);
         let st = &mut self.state;
