@@ -54,6 +54,10 @@ struct Slot<const N: usize, G> {
     score: u32,
     /// Its score changed since its last heap entry.
     dirty: bool,
+    /// In the grid of waiting growth points: a living point was within
+    /// reach when it was made (else no point can ever belong to it, as
+    /// points only die, and orphaned points need not look for it).
+    listed: bool,
 }
 
 /// The attraction points and the growth points waiting for their decision,
@@ -130,6 +134,7 @@ impl<const N: usize, G> Colonizer<N, G> {
             seq,
             score: 0,
             dirty: false,
+            listed: false,
         };
         let s = match self.free.pop() {
             Some(s) => {
@@ -146,14 +151,15 @@ impl<const N: usize, G> Colonizer<N, G> {
             self.heap.push((0, Reverse(seq), s));
             return;
         }
-        self.waiting[self.grid.cell_of(pos)].push(s);
         let mut found = std::mem::take(&mut self.found);
         self.living_near(pos, self.reach, &mut found);
+        let mut listed = false;
         for &p in &found {
             let d2 = dist2(self.pts[p as usize], pos);
             if d2 > self.reach2 {
                 continue;
             }
+            listed = true;
             let (old, od2) = self.owner[p as usize];
             // The growth point made first keeps a tie.
             if d2 < od2 {
@@ -165,6 +171,10 @@ impl<const N: usize, G> Colonizer<N, G> {
             }
         }
         self.found = found;
+        if listed {
+            self.waiting[self.grid.cell_of(pos)].push(s);
+            self.slots[s as usize].listed = true;
+        }
         self.heap
             .push((self.slots[s as usize].score, Reverse(seq), s));
         self.flush();
@@ -187,7 +197,8 @@ impl<const N: usize, G> Colonizer<N, G> {
             slot.score = 0;
             self.live -= 1;
             self.free.push(s);
-            if !self.pts.is_empty() {
+            if slot.listed {
+                slot.listed = false;
                 let cell = &mut self.waiting[self.grid.cell_of(pos)];
                 let at = cell.iter().position(|&w| w == s).expect("waiting");
                 cell.swap_remove(at);

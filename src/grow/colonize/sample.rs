@@ -21,8 +21,9 @@ use crate::choice::Key;
 use crate::grow::region::Region;
 
 /// At most this many points (a default that would pass it is cut down to
-/// it; `N=` above it is too): 2 million points cost about 150 MB.
-pub const MAX_POINTS: u64 = 2_000_000;
+/// it; `N=` above it is too): a million points cost about 100 MB with
+/// their grid (measured at 2 million: 200 MB, `docs/growth.md`).
+pub const MAX_POINTS: u64 = 1_000_000;
 
 /// The key of the points' stream: apart from the choices' keys of the
 /// same seed (those are `Key::root(seed).child(tree)`).
