@@ -20,8 +20,8 @@
 //!   distance of it: the stem's own length (the segment length at its
 //!   order).
 //!
-//! [`Colonizer`] keeps the points and the waiting growth points in a
-//! uniform grid of cells as wide as the reach ([`grid`]; two R*-trees
+//! `Colonizer` keeps the points and the waiting growth points in a
+//! uniform grid of cells as wide as the reach (`grid.rs`; two R*-trees
 //! did the same 4.5 times slower than bfs at 10^6 stems, and a
 //! triangulation cannot delete cheaply: `docs/dependencies.md`) and the
 //! scores in a heap whose stale entries are skipped. Every answer is a function of the points and
@@ -116,12 +116,6 @@ impl<const N: usize, G> Colonizer<N, G> {
             live: 0,
             found: Vec::new(),
         }
-    }
-
-    /// Whether no growth point waits.
-    #[cfg(test)]
-    fn is_empty(&self) -> bool {
-        self.live == 0
     }
 
     /// A growth point at `pos` waits for its decision.

@@ -143,7 +143,7 @@ const TRIAL: u64 = 4096;
 
 /// `n` points (or one per `unit` of volume) uniform over the region
 /// `holds` describes inside the box `lo`..`hi`, from `seed`. The volume is
-/// estimated from the share of the first [`TRIAL`] draws it holds; the
+/// estimated from the share of the first `TRIAL` (4096) draws it holds; the
 /// points are the held draws, in order (at most 64 draws per point asked).
 pub fn volume(
     lo: [f64; 3],
