@@ -90,8 +90,11 @@ pub(super) struct Colonizer<const N: usize, G> {
 
 impl<const N: usize, G> Colonizer<N, G> {
     /// The colonizer of `points`, with reach `reach`.
-    pub(super) fn new(points: Vec<[f64; N]>, reach: f64) -> Self {
+    pub(super) fn new(mut points: Vec<[f64; N]>, reach: f64) -> Self {
         let grid = Grid::new(&points, reach);
+        // Numbered by cell (stably), a cell's points are neighbours in
+        // memory; which point is which changes no answer.
+        points.sort_by_key(|&p| grid.cell_of(p));
         let cells = Fixed::new(&grid, &points);
         let waiting = if points.is_empty() {
             Vec::new()
