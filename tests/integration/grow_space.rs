@@ -102,7 +102,8 @@ fn coverage(stems: &[PlacedStem], inside: impl Fn(f64, f64) -> bool, l: f64) -> 
                     let (dx, dy) = (s.to.x - s.from.x, s.to.y - s.from.y);
                     let t = (((x - s.from.x) * dx + (y - s.from.y) * dy) / (dx * dx + dy * dy))
                         .clamp(0.0, 1.0);
-                    (x - s.from.x - t * dx).hypot(y - s.from.y - t * dy)
+                    let (ex, ey) = (x - s.from.x - t * dx, y - s.from.y - t * dy);
+                    (ex * ex + ey * ey).sqrt()
                 })
                 .fold(f64::INFINITY, f64::min);
             n += 1;

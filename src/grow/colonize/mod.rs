@@ -20,8 +20,8 @@
 //!   distance of it: the stem's own length (the segment length at its
 //!   order).
 //!
-//! [`Colonizer`] keeps the points and the waiting growth points in a
-//! uniform grid of cells as wide as the reach ([`grid`]; two R*-trees
+//! `Colonizer` keeps the points and the waiting growth points in a
+//! uniform grid of cells as wide as the reach (`grid.rs`; two R*-trees
 //! did the same 4.5 times slower than bfs at 10^6 stems, and a
 //! triangulation cannot delete cheaply: `docs/dependencies.md`) and the
 //! scores in a heap whose stale entries are skipped. Every answer is a function of the points and
@@ -54,6 +54,10 @@ struct Slot<const N: usize, G> {
     score: u32,
     /// Its score changed since its last heap entry.
     dirty: bool,
+    /// In the grid of waiting growth points: a living point was within
+    /// reach when it was made (else no point can ever belong to it, as
+    /// points only die, and orphaned points need not look for it).
+    listed: bool,
 }
 
 /// The attraction points and the growth points waiting for their decision,
@@ -86,8 +90,11 @@ pub(super) struct Colonizer<const N: usize, G> {
 
 impl<const N: usize, G> Colonizer<N, G> {
     /// The colonizer of `points`, with reach `reach`.
-    pub(super) fn new(points: Vec<[f64; N]>, reach: f64) -> Self {
+    pub(super) fn new(mut points: Vec<[f64; N]>, reach: f64) -> Self {
         let grid = Grid::new(&points, reach);
+        // Numbered by cell (stably), a cell's points are neighbours in
+        // memory; which point is which changes no answer.
+        points.sort_by_key(|&p| grid.cell_of(p));
         let cells = Fixed::new(&grid, &points);
         let waiting = if points.is_empty() {
             Vec::new()
@@ -114,12 +121,6 @@ impl<const N: usize, G> Colonizer<N, G> {
         }
     }
 
-    /// Whether no growth point waits.
-    #[cfg(test)]
-    fn is_empty(&self) -> bool {
-        self.live == 0
-    }
-
     /// A growth point at `pos` waits for its decision.
     pub(super) fn push(&mut self, pos: [f64; N], gp: G) {
         let seq = self.next_seq;
@@ -130,6 +131,7 @@ impl<const N: usize, G> Colonizer<N, G> {
             seq,
             score: 0,
             dirty: false,
+            listed: false,
         };
         let s = match self.free.pop() {
             Some(s) => {
@@ -146,14 +148,15 @@ impl<const N: usize, G> Colonizer<N, G> {
             self.heap.push((0, Reverse(seq), s));
             return;
         }
-        self.waiting[self.grid.cell_of(pos)].push(s);
         let mut found = std::mem::take(&mut self.found);
         self.living_near(pos, self.reach, &mut found);
+        let mut listed = false;
         for &p in &found {
             let d2 = dist2(self.pts[p as usize], pos);
             if d2 > self.reach2 {
                 continue;
             }
+            listed = true;
             let (old, od2) = self.owner[p as usize];
             // The growth point made first keeps a tie.
             if d2 < od2 {
@@ -165,6 +168,10 @@ impl<const N: usize, G> Colonizer<N, G> {
             }
         }
         self.found = found;
+        if listed {
+            self.waiting[self.grid.cell_of(pos)].push(s);
+            self.slots[s as usize].listed = true;
+        }
         self.heap
             .push((self.slots[s as usize].score, Reverse(seq), s));
         self.flush();
@@ -187,7 +194,8 @@ impl<const N: usize, G> Colonizer<N, G> {
             slot.score = 0;
             self.live -= 1;
             self.free.push(s);
-            if !self.pts.is_empty() {
+            if slot.listed {
+                slot.listed = false;
                 let cell = &mut self.waiting[self.grid.cell_of(pos)];
                 let at = cell.iter().position(|&w| w == s).expect("waiting");
                 cell.swap_remove(at);

@@ -21,8 +21,9 @@ use crate::choice::Key;
 use crate::grow::region::Region;
 
 /// At most this many points (a default that would pass it is cut down to
-/// it; `N=` above it is too): 2 million points cost about 150 MB.
-pub const MAX_POINTS: u64 = 2_000_000;
+/// it; `N=` above it is too): a million points cost about 100 MB with
+/// their grid (measured at 2 million: 200 MB, `docs/growth.md`).
+pub const MAX_POINTS: u64 = 1_000_000;
 
 /// The key of the points' stream: apart from the choices' keys of the
 /// same seed (those are `Key::root(seed).child(tree)`).
@@ -142,7 +143,7 @@ const TRIAL: u64 = 4096;
 
 /// `n` points (or one per `unit` of volume) uniform over the region
 /// `holds` describes inside the box `lo`..`hi`, from `seed`. The volume is
-/// estimated from the share of the first [`TRIAL`] draws it holds; the
+/// estimated from the share of the first `TRIAL` (4096) draws it holds; the
 /// points are the held draws, in order (at most 64 draws per point asked).
 pub fn volume(
     lo: [f64; 3],

@@ -399,7 +399,8 @@ mod tests {
         assert_eq!(
             param_list(),
             "L (length), B (broadness), A (angle), C (clearance), D (divergence), S (stroke colour), \
-             G (background colour), O (growth order), V (seed) and M (max stems)"
+             G (background colour), O (growth order), V (seed), M (max stems), N (attraction points) \
+             and Q (reach)"
         );
         assert_eq!(Param::from_key("B"), Some(Param::Broadness));
         assert_eq!(Param::from_key("b"), None);
