@@ -2,16 +2,15 @@
 //! and the warning for a rule tried and never fitted, with its first
 //! failure's numbers, in every front end.
 
+use crate::support::{od, opts};
 use assert_cmd::Command;
 use predicates::prelude::*;
 use stlc::diag::{Diagnostic, ErrorKind, GrowError, Kin, Misfit, MissReason};
 use stlc::grow::explain::RuleTally;
 use stlc::grow::{GrowOptions, GrowthOrder, grow};
 use stlc::limits::Limits;
-use stlc::model::{Description, Format};
 use stlc::pipeline::Request;
 use stlc::progress::NoProgress;
-use stlc::syntax::stl::parse;
 
 /// Problem 8 of issue 22: `F[+F][-F][F]` at `A=25` with thick stems. The
 /// straight branch `[F]` (stem 4) and the left one `[+F]` (stem 2) start
@@ -46,17 +45,6 @@ fn problem_8_numbers() -> (f64, f64) {
     let found = l * libm::sin(25f64.to_radians());
     let needed = 1.5 + w / 2.0 + w / 2.0;
     (found, needed)
-}
-
-fn od(text: &str) -> Description {
-    parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{text}"))
-}
-
-fn opts(growth: GrowthOrder) -> GrowOptions {
-    GrowOptions {
-        growth,
-        ..GrowOptions::default()
-    }
 }
 
 fn never_fitted(warnings: &[Diagnostic]) -> Vec<&Diagnostic> {

@@ -10,6 +10,7 @@ use geo::{
     BooleanOps, Contains, Coord, Distance, Euclidean, Line, LineString, MultiPolygon, Polygon,
 };
 
+use crate::support::{od, opts};
 use stlc::bed::Bed;
 use stlc::diag::GrowError;
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow};
@@ -23,22 +24,10 @@ use stlc::{Bound, Diagnostics, ErrorKind, Limits, Severity};
 
 // ------------------------------------------------------------ descriptions
 
-/// `text` read as an OD by the real parser.
-fn od(text: &str) -> Description {
-    parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{text}"))
-}
-
 /// The span of the first `needle` in `text`.
 fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
     let at = text.find(needle).expect("needle in text");
     at..at + needle.len()
-}
-
-fn opts(growth: GrowthOrder) -> GrowOptions {
-    GrowOptions {
-        growth,
-        ..GrowOptions::default()
-    }
 }
 
 fn grown(od: &Description, o: GrowOptions) -> Grown {

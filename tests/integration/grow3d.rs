@@ -8,10 +8,11 @@
 //! the clearance with a distance computed here (a ternary search of the
 //! point-to-segment distance, which is convex along a segment).
 
+use crate::support::opts;
 use stlc::Limits;
 use stlc::color::Rgb;
 use stlc::diag::MissReason;
-use stlc::grow::{GrowOptions, GrowthOrder, PlacedStem, grow, grow_traced};
+use stlc::grow::{GrowthOrder, PlacedStem, grow, grow_traced};
 use stlc::model::*;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
@@ -46,13 +47,6 @@ fn parsed(text: &str) -> Description {
 /// `text` read as a 2D OD, made 3D by [`lift`].
 fn od3(text: &str, d: f64, solids: Vec<(Rgb, Solid)>) -> Description {
     lift(parsed(text), d, solids)
-}
-
-fn opts(growth: GrowthOrder) -> GrowOptions {
-    GrowOptions {
-        growth,
-        ..GrowOptions::default()
-    }
 }
 
 fn traced(od: &Description, growth: GrowthOrder) -> Vec<PlacedStem> {

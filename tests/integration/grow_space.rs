@@ -3,22 +3,12 @@
 //! region with its clearance) run on space-first growth in `grow.rs`
 //! beside bfs and dfs.
 
+use crate::support::{od, opts};
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, PlacedStem, grow, grow_traced};
 use stlc::model::{Description, Format};
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
 use stlc::{ErrorKind, Limits};
-
-fn od(text: &str) -> Description {
-    parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{text}"))
-}
-
-fn opts(growth: GrowthOrder) -> GrowOptions {
-    GrowOptions {
-        growth,
-        ..GrowOptions::default()
-    }
-}
 
 fn grown(d: &Description, o: GrowOptions) -> Grown {
     grow(d, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))

@@ -12,10 +12,7 @@ use stlc::syntax::stl::parse;
 use stlc::{Diagnostics, ErrorKind, Limits};
 
 use crate::support::manifest_path;
-
-fn od(text: &str) -> Description {
-    parse(text, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{text}"))
-}
+use crate::support::od;
 
 fn errors(text: &str, format: Format) -> Diagnostics {
     match parse(text, format, &Limits::default()) {

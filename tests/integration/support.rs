@@ -398,3 +398,18 @@ pub fn grouped(n: u64) -> String {
     }
     out
 }
+
+/// `text` read as an Outline Description with the default limits; its
+/// diagnostics and the text on failure.
+pub fn od(text: &str) -> stlc::model::Description {
+    stlc::syntax::stl::parse(text, stlc::model::Format::Od, &stlc::Limits::default())
+        .unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+/// The default growth options in the order `growth`.
+pub fn opts(growth: stlc::grow::GrowthOrder) -> stlc::grow::GrowOptions {
+    stlc::grow::GrowOptions {
+        growth,
+        ..stlc::grow::GrowOptions::default()
+    }
+}
