@@ -30,9 +30,8 @@ use tiny_skia::{
     Transform,
 };
 
-use super::raster::{self, Shape};
+use super::raster::{self, Blot};
 use crate::color::Rgb;
-use crate::turtle::Point;
 
 /// Rows of one band (the last band of a picture may have fewer). Small
 /// bands spread uneven drawings evenly over the threads (band `i` goes to
@@ -67,7 +66,7 @@ pub(super) enum Op {
         color: Color,
     },
     /// Blots ([`raster::stamp`]): ends in output pixels and shape.
-    Blots(Arc<Vec<(Point, Point, Shape)>>),
+    Blots(Arc<Vec<Blot>>),
     /// A stroke covered the whole picture: every pixel the ink.
     Cover,
 }
@@ -204,9 +203,10 @@ impl Band<'_> {
                 );
             }
             Op::Blots(blots) => {
-                for (a, b, shape) in blots.iter().cloned() {
+                for blot in blots.iter().filter(|b| b.reaches(&self.rows)) {
                     let rows = self.rows.clone();
-                    raster::stamp(self.data, ink.width, rows, ink.rgb, a, b, shape);
+                    let (a, b) = (blot.a, blot.b);
+                    raster::stamp(self.data, ink.width, rows, ink.rgb, a, b, &blot.shape);
                 }
             }
             Op::Cover => pixmap.fill(super::color(ink.rgb)),

@@ -75,7 +75,7 @@ pub struct PngTurtle {
     /// The stroke paint and colour.
     ink: Ink,
     /// Blots not yet handed to the bands (banded canvases only).
-    blots: Vec<(Point, Point, Shape)>,
+    blots: Vec<raster::Blot>,
     /// Banded canvases: the batch being split into the bands' paths (in
     /// place of `batch`).
     router: Option<Router>,
@@ -311,11 +311,11 @@ impl PngTurtle {
                     self.ink.rgb,
                     from,
                     to,
-                    shape,
+                    &shape,
                 );
             }
             _ => {
-                self.blots.push((from, to, shape));
+                self.blots.push(raster::Blot::new(from, to, shape));
                 if self.blots.len() >= BATCH_SEGMENTS {
                     self.send_blots();
                 }

@@ -142,6 +142,42 @@ impl Bush {
     }
 }
 
+/// A blot for the bands: its ends and shape, and the rows it can reach
+/// (found once, so each band passes over the blots that miss it with a
+/// comparison instead of a call).
+#[derive(Debug, Clone)]
+pub(super) struct Blot {
+    pub(super) a: Point,
+    pub(super) b: Point,
+    pub(super) shape: Shape,
+    /// Lowest and highest row it can ink, a pixel to spare each way.
+    rows: (f64, f64),
+}
+
+impl Blot {
+    pub(super) fn new(a: Point, b: Point, shape: Shape) -> Blot {
+        let rows = match &shape {
+            Shape::Field(field) => field.rows(a),
+            Shape::Capsule(radius) => around(a, b, radius + 0.5),
+            Shape::Bush(bush) => around(a, b, bush.reach()),
+        };
+        Blot { a, b, shape, rows }
+    }
+
+    /// Whether it may ink any of `rows` ([`stamp`] inks nothing where
+    /// not).
+    #[inline]
+    pub(super) fn reaches(&self, rows: &std::ops::Range<u32>) -> bool {
+        // NaN ends compare false and are handed on, as before.
+        !(self.rows.1 < f64::from(rows.start) || self.rows.0 > f64::from(rows.end))
+    }
+}
+
+/// The rows within `reach` of `a`-`b`, a pixel to spare.
+fn around(a: Point, b: Point, reach: f64) -> (f64, f64) {
+    (a.y.min(b.y) - reach - 1.0, a.y.max(b.y) + reach + 1.0)
+}
+
 /// Paints a blot: the `shape` around `a`-`b` (each pixel by its centre's
 /// distance to the segment), blended source-over in `ink`. Overlapping
 /// blots accumulate, as the strokes they stand for do. A few dozen pixels
@@ -158,11 +194,11 @@ pub(super) fn stamp(
     ink: Rgb,
     a: Point,
     b: Point,
-    shape: Shape,
+    shape: &Shape,
 ) {
     let w = f64::from(width);
     let (top, bottom) = (f64::from(rows.start), f64::from(rows.end));
-    let reach = match &shape {
+    let reach = match shape {
         Shape::Capsule(radius) => radius + 0.5,
         Shape::Bush(bush) => bush.reach(),
         Shape::Field(field) => {
@@ -174,10 +210,12 @@ pub(super) fn stamp(
     if hi_x < 0.0 || hi_y < top || lo_x >= w || lo_y >= bottom {
         return;
     }
-    let x0 = libm::floor(lo_x.max(0.0)) as usize;
-    let y0 = libm::floor(lo_y.max(top)) as usize;
-    let x1 = libm::ceil(hi_x.min(w - 1.0)) as usize;
-    let y1 = libm::ceil(hi_y.min(bottom - 1.0)) as usize;
+    // Every bound is at least 0 here (`max` ignores a NaN; `hi_x`, `hi_y`
+    // passed the test above), where `floor` is the cast's truncation.
+    let x0 = lo_x.max(0.0) as usize;
+    let y0 = lo_y.max(top) as usize;
+    let x1 = ceil(hi_x.min(w - 1.0));
+    let y1 = ceil(hi_y.min(bottom - 1.0));
     let first_row = rows.start as usize;
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     let len2 = dx * dx + dy * dy;
@@ -185,7 +223,7 @@ pub(super) fn stamp(
     // Beyond `outer` nothing is covered; within `inner` all is.
     let outer = reach * reach;
     let inner = match shape {
-        Shape::Capsule(radius) if radius > 0.5 => (radius - 0.5) * (radius - 0.5),
+        Shape::Capsule(radius) if *radius > 0.5 => (radius - 0.5) * (radius - 0.5),
         _ => -1.0,
     };
     let stride = width as usize;
@@ -200,7 +238,7 @@ pub(super) fn stamp(
             if d2 >= outer {
                 continue;
             }
-            let cov = match &shape {
+            let cov = match shape {
                 _ if d2 <= inner => 1.0,
                 Shape::Capsule(_) => (reach - libm::sqrt(d2)).clamp(0.0, 1.0),
                 Shape::Bush(bush) => bush.ink(libm::sqrt(d2)),
@@ -217,6 +255,31 @@ pub(super) fn stamp(
                 data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
             }
         }
+    }
+}
+
+/// `libm::ceil(v) as usize` for `v` from 0 up to 2^53 without a call:
+/// the cast truncates, which is the ceiling unless a fraction was cut.
+#[inline]
+fn ceil(v: f64) -> usize {
+    let t = v as usize;
+    if (t as f64) < v { t + 1 } else { t }
+}
+
+/// `libm::round(v) as i64` (halves away from zero) without a call: the
+/// cast truncates, and `v` less its truncation is exact (the fraction of
+/// a double is a double), so comparing it with one half rounds as
+/// `round` does; past `i64`'s range both saturate, and NaN gives 0.
+#[inline]
+pub(super) fn round_i64(v: f64) -> i64 {
+    let t = v as i64;
+    let f = v - t as f64;
+    if f >= 0.5 {
+        t.saturating_add(1)
+    } else if f <= -0.5 {
+        t.saturating_sub(1)
+    } else {
+        t
     }
 }
 
@@ -351,7 +414,7 @@ mod tests {
             let mut data = vec![255u8; 20 * 20 * 4];
             let bush = Bush::new(1.0, 0.0, 4.0, length, 0.0);
             let (a, b) = (Point::new(8.0, 10.5), Point::new(12.0, 10.5));
-            stamp(&mut data, 20, 0..20, black, a, b, Shape::Bush(bush));
+            stamp(&mut data, 20, 0..20, black, a, b, &Shape::Bush(bush));
             let at = |x: usize, y: usize| data[(y * 20 + x) * 4];
             let want = 255.0 * (1.0 - bush.ink(0.0));
             assert!(
@@ -364,6 +427,47 @@ mod tests {
             at(10, 10)
         };
         assert!(paint(40.0) < paint(4.0));
+    }
+
+    /// The casts round as `libm` does, halves, signs, huge values, NaN
+    /// and the infinities included, and on a sweep of quarter and tenth
+    /// steps around zero and around 2^52.
+    #[test]
+    fn the_casts_round_as_libm_does() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+            4503599627370495.5,
+            -4503599627370495.5,
+            4503599627370497.0,
+            9.3e18,
+            -9.3e18,
+            1e300,
+            -1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for i in -4000..4000 {
+            values.push(f64::from(i) / 4.0);
+            values.push(f64::from(i) / 10.0);
+            values.push(4503599627370496.0 + f64::from(i) / 4.0);
+            values.push(f64::from(i) * 0.1 + 1e-9);
+        }
+        for v in values {
+            assert_eq!(round_i64(v), libm::round(v) as i64, "round {v}");
+            if (0.0..=9e15).contains(&v) {
+                assert_eq!(ceil(v), libm::ceil(v) as usize, "ceil {v}");
+                assert_eq!(v as usize, libm::floor(v) as usize, "floor {v}");
+            }
+        }
     }
 
     #[test]

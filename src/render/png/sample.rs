@@ -12,7 +12,9 @@
 //! ...` keeps `(1 - c1)(1 - c2)...` of its colour, as under the strokes
 //! themselves, each blended over the others.
 
-use std::collections::HashMap;
+/// The memo's map, hashed by foldhash's fixed state: SipHash cost about
+/// 5 % of a dense picture (issue 37); nothing iterates it into output.
+type HashMap<K, V> = std::collections::HashMap<K, V, foldhash::fast::FixedState>;
 use std::sync::Arc;
 
 use super::PngTurtle;
@@ -55,14 +57,23 @@ pub(super) struct Field {
 }
 
 impl Field {
+    /// The rows the field can ink, its start at `at`, with a pixel to
+    /// spare at each end: pixel row `y`'s grid row is within half a step
+    /// of `(y + 0.5 - at.y - min.y) sub`, so it is on the grid only from
+    /// `at.y + min.y - 1` to `at.y + min.y + ny / sub`.
+    pub(super) fn rows(&self, at: Point) -> (f64, f64) {
+        let top = at.y + self.min.y;
+        (top - 2.0, top + self.ny as f64 / self.sub as f64 + 2.0)
+    }
+
     /// The grid point nearest a pixel whose centre is at `q` from the
     /// start: the bush's own drawing moved at most half a grid step each
     /// way (interpolating between the grid's points would blur it).
     fn nearest(&self, q: Point) -> (i64, i64) {
         let s = self.sub as f64;
-        let u = libm::round((q.x - self.min.x) * s);
-        let v = libm::round((q.y - self.min.y) * s);
-        (u as i64, v as i64)
+        let u = super::raster::round_i64((q.x - self.min.x) * s);
+        let v = super::raster::round_i64((q.y - self.min.y) * s);
+        (u, v)
     }
 }
 
@@ -197,6 +208,11 @@ pub(super) fn stamp(
     at: Point,
     field: &Field,
 ) {
+    // A band the field cannot reach is left at once.
+    let (lo, hi) = field.rows(at);
+    if hi < f64::from(rows.start) || lo > f64::from(rows.end) {
+        return;
+    }
     // Pixel (x, y)'s nearest grid point is (u0 + sub x, v0 + sub y): a
     // pixel further is `sub` grid points further.
     let (u0, v0) = field.nearest(Point::new(0.5 - at.x, 0.5 - at.y));

@@ -109,7 +109,7 @@ impl Geometry {
         if masks.delta != detail / 2.0 {
             *masks = Masks {
                 delta: detail / 2.0,
-                masks: HashMap::new(),
+                masks: HashMap::default(),
             };
         }
         self.mask(&mut masks, c, r, k) | CORNERS == u64::MAX
