@@ -385,6 +385,52 @@ fn a_condition_always_true_with_a_growing_word_stops_at_the_limits() {
     }
 }
 
+/// A word that grows by one module a generation (`A < B -> AB`: AB, AAB,
+/// AAAB, ...) is rescanned whole at each: generation g writes g + 2
+/// modules, so generations 1..=g write g(g+1)/2 + 2g in all. With a budget
+/// of 1,000 modules (30,000 symbols) the last word at depth 100 (102
+/// modules) fits, but the work does not: g(g+5)/2 first passes 1,000 at
+/// g = 43 (1,032). Before, this derived to the end however deep (Anabaena
+/// at depth 2,000 ran for more than ten minutes).
+#[test]
+fn the_work_over_all_generations_counts_against_the_budget() {
+    let sys = parse("angle 90\naxiom AB\nrule A < B -> AB\n", &Limits::default()).unwrap();
+    let limits = Limits {
+        max_symbols: 30_000,
+        ..Limits::default()
+    };
+    let mut out = Vec::new();
+    expand(
+        &sys,
+        40,
+        Derivation::Dfs,
+        &limits,
+        &mut out,
+        &mut NoProgress,
+    )
+    .unwrap();
+    assert_eq!(
+        String::from_utf8(out).unwrap().trim(),
+        format!("{}B", "A".repeat(41))
+    );
+    let mut out = Vec::new();
+    let e = expand(
+        &sys,
+        100,
+        Derivation::Dfs,
+        &limits,
+        &mut out,
+        &mut NoProgress,
+    )
+    .unwrap_err();
+    let kind = e.iter().next().unwrap().kind.to_string();
+    assert!(
+        kind.contains("modules derived over the generations (at generation 43): 1032 exceeds the limit of 1000"),
+        "{kind}"
+    );
+    assert!(out.is_empty(), "nothing written before the refusal");
+}
+
 // --------------------------------------------------------- diagnostics --
 
 #[test]

@@ -372,7 +372,9 @@ impl<'a> Deriver<'a> {
 
     /// [`Deriver::each`] until `each` returns false (the modules derived
     /// so far are counted). At most `limits.max_symbols / PARAM_COST`
-    /// modules ([`PARAM_COST`]).
+    /// modules ([`PARAM_COST`]) in the word, and as many written over
+    /// all the generations (a word rewritten level by level is scanned
+    /// whole at each).
     pub fn each_until(
         &self,
         depth: u32,
@@ -397,6 +399,24 @@ impl<'a> Deriver<'a> {
             Ok(each(w.syms[i], w.params(i)))
         };
         let mut bind = Vec::new();
+        // Every module written at every generation counts against the
+        // same budget as the word's: a word that grows by a little each
+        // generation (Anabaena) is rescanned whole each time, and past
+        // generation 1,000 that work, not the last word, is the cost.
+        let mut work = 0u64;
+        let mut worked = |made: usize, generation: u32| -> Result<(), Diagnostics> {
+            work = work.saturating_add(made as u64);
+            if work > most {
+                return Err(over(
+                    Bound::Symbols,
+                    generation,
+                    work,
+                    most,
+                    "modules derived over the generations",
+                ));
+            }
+            Ok(())
+        };
         if strategy == Derivation::Bfs || self.p.has_context() {
             let mut w = self.axiom();
             let mut next = Word::new();
@@ -420,6 +440,7 @@ impl<'a> Deriver<'a> {
                         ));
                     }
                 }
+                worked(next.len(), generation)?;
                 std::mem::swap(&mut w, &mut next);
             }
             for i in 0..w.len() {
@@ -453,6 +474,7 @@ impl<'a> Deriver<'a> {
             let (lo, hi) = levels.split_at_mut(level + 1);
             hi[0].clear();
             self.rewrite(&lo[level], &[], i, level as u32 + 1, &mut hi[0], &mut bind)?;
+            worked(hi[0].len(), level as u32 + 1)?;
             level += 1;
             next[level] = 0;
         }
