@@ -154,6 +154,12 @@ pub struct Design {
     pub reach: Option<f64>,
 }
 
+/// The most attraction points space-first growth scatters (`N=`, section
+/// 14): a million cost about 100 MB with their grid (docs/growth.md); a
+/// larger `N=` is refused where it is written, a default that would pass
+/// it is cut down to it.
+pub const MAX_ATTRACTION_POINTS: u64 = 1_000_000;
+
 /// The order in which growth points are decided: `O=` in a file,
 /// `--growth` of `compile` and `render`, `growth` in the API: the two
 /// orders grow different trees from one outline (section 7 of the

@@ -162,7 +162,11 @@ fn the_keys_are_read_and_refused_in_a_bed() {
     assert_eq!(d.params.design.order, Some(GrowthOrder::Space));
     assert_eq!(d.params.design.points, Some(50));
     assert_eq!(d.params.design.reach, Some(30.0));
-    for bad in ["Q=0", "Q=-3", "N=1.5", "O=spacey"] {
+    // A million points at most (about 100 MB): one more is refused where
+    // it is written, not cut down silently.
+    let d = od(&box_with_hole("N=1000000"));
+    assert_eq!(d.params.design.points, Some(1_000_000));
+    for bad in ["Q=0", "Q=-3", "N=1.5", "O=spacey", "N=1000001"] {
         let e = parse(&box_with_hole(bad), Format::Od, &Limits::default()).unwrap_err();
         assert!(
             matches!(e.0[0].kind, ErrorKind::Stl(_)),

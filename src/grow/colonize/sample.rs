@@ -21,9 +21,9 @@ use crate::choice::Key;
 use crate::grow::region::Region;
 
 /// At most this many points (a default that would pass it is cut down to
-/// it; `N=` above it is too): a million points cost about 100 MB with
-/// their grid (measured at 2 million: 200 MB, `docs/growth.md`).
-pub const MAX_POINTS: u64 = 1_000_000;
+/// it; the syntax refuses an `N=` above it): a million points cost about
+/// 100 MB with their grid (measured at 2 million: 200 MB, `docs/growth.md`).
+pub const MAX_POINTS: u64 = crate::model::MAX_ATTRACTION_POINTS;
 
 /// The key of the points' stream: apart from the choices' keys of the
 /// same seed (those are `Key::root(seed).child(tree)`).

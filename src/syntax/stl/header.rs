@@ -9,7 +9,7 @@ use pest::iterators::Pair;
 use super::super::Rule;
 use super::builder::{Builder, span_of};
 use crate::diag::{Diagnostic, Span, StlError};
-use crate::model::{Loc, StemParams};
+use crate::model::{Loc, MAX_ATTRACTION_POINTS, StemParams};
 use crate::num::Linear;
 
 /// A stem parameter of the header.
@@ -258,6 +258,16 @@ impl Builder<'_> {
                     },
                     _ => match text.parse::<u64>() {
                         Ok(n) if p == Param::Seed => out.design.seed = Some(n),
+                        Ok(n) if p == Param::Points && n > MAX_ATTRACTION_POINTS => self.report(
+                            StlError::ParamValue {
+                                key: p.key(),
+                                expected: "a whole number from 0 to 1000000",
+                            },
+                            vspan,
+                            "more attraction points than space-first growth scatters",
+                            "write at most `N=1000000` (a million points cost about 100 MB), \
+                             or leave `N=` out for one point per L x L of the region",
+                        ),
                         Ok(n) if p == Param::Points => out.design.points = Some(n),
                         Ok(n) => out.design.max_stems = Some(n),
                         Err(_) => self.report(
