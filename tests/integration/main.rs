@@ -9,6 +9,7 @@ mod browser_edits;
 mod browser_key;
 mod browser_page;
 mod browser_param;
+mod browser_space;
 mod browser_web;
 mod cli;
 mod cli_cases;

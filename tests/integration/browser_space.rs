@@ -1,0 +1,54 @@
+//! Space-first growth in the browser (issue 34): the static site's
+//! engine grows the CLI's BED byte for byte, and the editor's growth
+//! control offers `space`, writes `O=space` into the text and draws what
+//! the CLI draws of that text.
+
+use serde_json::json;
+
+use super::browser::{cli, click, js, same_bytes, settled, shot};
+use super::browser_web::{engine_export, on_site, open_example};
+use super::serve::example;
+
+#[test]
+fn the_web_engine_and_the_growth_control_grow_space_first_as_the_cli_in_chromium() {
+    on_site(async |c, _, _| {
+        // The engine: the same BED as `stlc compile --growth space`, for
+        // an outline with holes and one grown into a forest of trees.
+        for name in ["holes.od", "grove.od"] {
+            let request = json!({"source": example(name), "growth": "space"});
+            let bed = engine_export(c, &request, "bed").await.unwrap();
+            let path = format!("examples/{name}");
+            same_bytes(&bed, &cli(&["compile", &path, "--growth", "space"]), name);
+        }
+        // The control: choosing space writes the key into the text, and
+        // the picture is the CLI's of that text.
+        open_example(c, "holes.od").await;
+        click(c, "#growth option[value=space]").await;
+        let mut v = settled(c).await;
+        for _ in 0..100 {
+            if v["text"].as_str().unwrap().contains("O=space") {
+                break;
+            }
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+            v = settled(c).await;
+        }
+        let text = v["text"].as_str().unwrap().to_string();
+        assert!(text.contains("O=space"), "{text}");
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("holes.od");
+        std::fs::write(&file, &text).unwrap();
+        let svg = js(c, "return window.stlc.state.answer.svg").await;
+        same_bytes(
+            svg.as_str().unwrap().as_bytes(),
+            &cli(&[
+                "render",
+                file.to_str().unwrap(),
+                "--show-layout",
+                "-f",
+                "svg",
+            ]),
+            "the editor's space-first holes.od",
+        );
+        shot(c, "space-01-growth-control").await;
+    });
+}
