@@ -273,11 +273,9 @@ enum Lod {
     Param(lsys::param::ParamMemo),
 }
 
-/// The frame of a parametric system at a level of detail, as
-/// [`chance_frame`]'s: the exact bounding pass for a word within
-/// [`lsys::FIT_SYMBOLS`] drawn steps, else bounding walks at the level of
-/// detail (first at the detail of the ball holding the drawing, then at
-/// that fit's), whose box and detail the drawing uses.
+/// The frame of a parametric system at a level of detail, as a
+/// stochastic one's ([`fitted_frame`]): the first fit is to the ball that
+/// holds the drawing.
 fn param_frame(
     scene: &Scene,
     memo: &lsys::param::ParamMemo,
@@ -290,24 +288,6 @@ fn param_frame(
     let Some(par) = lsys::param::of(sys) else {
         return Ok((Frame::Fit, None));
     };
-    if segments as f64 <= lsys::FIT_SYMBOLS {
-        let mut bounds = Bounds::default();
-        scene.draw(&mut bounds, &mut Phase::new(progress, "measuring"))?;
-        let known = Frame::Known {
-            bbox: bounds.bbox(),
-            segments: bounds.count,
-        };
-        return Ok((known, None));
-    }
-    let detail_of = |bbox: Option<BBox>| -> Result<f64, Diagnostics> {
-        Ok(LOD_PX / Fit::content(bbox, 0, &style.width, opts.size)?.scale)
-    };
-    let bounded = |detail: f64, progress: &mut dyn Progress| {
-        let mut bounds = Bounds::default();
-        let mut phase = Phase::new(progress, "measuring");
-        memo.draw(sys, par, detail, &scene.limits, &mut bounds, &mut phase)
-            .map(|_| bounds.bbox())
-    };
     let r = memo.radius();
     let ball = BBox {
         min_x: -r,
@@ -315,23 +295,25 @@ fn param_frame(
         max_x: r,
         max_y: r,
     };
-    let first = bounded(detail_of(Some(ball))?, progress)?;
-    let detail = detail_of(first)?;
-    let known = Frame::Known {
-        bbox: bounded(detail, progress)?,
+    let near = segments as f64 <= lsys::FIT_SYMBOLS;
+    fitted_frame(
+        scene,
+        style,
+        opts,
+        progress,
+        near,
+        Some(ball),
         segments,
-    };
-    Ok((known, Some(detail)))
+        |detail, bounds, phase| {
+            memo.draw(sys, par, detail, &scene.limits, bounds, phase)
+                .map(|_| ())
+        },
+    )
 }
 
-/// The frame of a stochastic system at a level of detail, and the detail
-/// (canvas units) to draw at when it must be the one the frame was
-/// measured at. A word expected within [`lsys::FIT_SYMBOLS`] gets the
-/// exact bounding pass (the box and count `--exact` uses); a longer one is
-/// fitted to a bounding walk at the level of detail, at the detail of a
-/// first fit from the expected box, then again at the detail of that fit,
-/// whose box and detail the drawing then uses (its count is the expected
-/// one).
+/// The frame of a stochastic system at a level of detail, as
+/// [`fitted_frame`]'s: the first fit is to the expected box, the count the
+/// expected one.
 fn chance_frame(
     scene: &Scene,
     chance: &lsys::Chance,
@@ -339,7 +321,42 @@ fn chance_frame(
     opts: &RenderOptions,
     progress: &mut dyn Progress,
 ) -> Result<(Frame, Option<f64>), Diagnostics> {
-    if chance.expected_symbols() <= lsys::FIT_SYMBOLS {
+    let near = chance.expected_symbols() <= lsys::FIT_SYMBOLS;
+    let segments = libm::round(chance.expected_segments()).min(u64::MAX as f64) as u64;
+    fitted_frame(
+        scene,
+        style,
+        opts,
+        progress,
+        near,
+        chance.expected_box(),
+        segments,
+        |detail, bounds, phase| {
+            lsys::draw_chance(chance, detail, &scene.limits, bounds, phase).map(|_| ())
+        },
+    )
+}
+
+/// The frame of a system drawn at a level of detail whose box is not
+/// known exactly (stochastic, parametric), and the detail (canvas units)
+/// to draw at when it must be the one the frame was measured at. `near`
+/// (a word within [`lsys::FIT_SYMBOLS`]): the exact bounding pass (the
+/// box and count `--exact` uses). Else `walk`, a bounding walk at a
+/// detail, runs at the detail of a first fit to `first_box`, then again at
+/// the detail of that fit, whose box and detail the drawing then uses,
+/// with `segments` as its count.
+#[allow(clippy::too_many_arguments)]
+fn fitted_frame(
+    scene: &Scene,
+    style: &Style,
+    opts: &RenderOptions,
+    progress: &mut dyn Progress,
+    near: bool,
+    first_box: Option<BBox>,
+    segments: u64,
+    walk: impl Fn(f64, &mut Bounds, &mut dyn Progress) -> Result<(), Diagnostics>,
+) -> Result<(Frame, Option<f64>), Diagnostics> {
+    if near {
         let mut bounds = Bounds::default();
         scene.draw(&mut bounds, &mut Phase::new(progress, "measuring"))?;
         let known = Frame::Known {
@@ -354,14 +371,13 @@ fn chance_frame(
     let bounded = |detail: f64, progress: &mut dyn Progress| {
         let mut bounds = Bounds::default();
         let mut phase = Phase::new(progress, "measuring");
-        lsys::draw_chance(chance, detail, &scene.limits, &mut bounds, &mut phase)
-            .map(|_| bounds.bbox())
+        walk(detail, &mut bounds, &mut phase).map(|_| bounds.bbox())
     };
-    let first = bounded(detail_of(chance.expected_box())?, progress)?;
+    let first = bounded(detail_of(first_box)?, progress)?;
     let detail = detail_of(first)?;
     let known = Frame::Known {
         bbox: bounded(detail, progress)?,
-        segments: libm::round(chance.expected_segments()).min(u64::MAX as f64) as u64,
+        segments,
     };
     Ok((known, Some(detail)))
 }
