@@ -774,6 +774,21 @@ pub(super) fn cli(args: &[&str]) -> Vec<u8> {
     crate::support::stlc_stdout(&all)
 }
 
+/// The SVG `stlc render --show-layout -f svg` writes of `text`, saved as
+/// `name` (its extension says its kind) in a folder of its own.
+pub(super) fn cli_svg_of(name: &str, text: &str) -> Vec<u8> {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join(name);
+    std::fs::write(&file, text).unwrap();
+    cli(&[
+        "render",
+        file.to_str().unwrap(),
+        "--show-layout",
+        "-f",
+        "svg",
+    ])
+}
+
 /// The bytes of `dir/name` once Chromium has finished downloading it.
 pub(super) async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
     let path = dir.join(name);

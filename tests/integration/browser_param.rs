@@ -11,7 +11,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Browser, cli, click, js, same_bytes, settled, shot};
+use super::browser::{Browser, cli, cli_svg_of, click, js, same_bytes, settled, shot};
 use super::browser_web::{
     engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, start,
 };
@@ -95,18 +95,10 @@ fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
         let text = example("param-willow.lsys").replace("define spread 30\n", "define spread 45\n");
         assert_eq!(after["ok"], true, "{after}");
         assert_eq!(after["text"], json!(text));
-        let edited = tmp.path().join("edited.lsys");
-        std::fs::write(&edited, &text).unwrap();
         let svg = js(&c, "return window.stlc.state.answer.svg").await;
         same_bytes(
             svg.as_str().unwrap().as_bytes(),
-            &cli(&[
-                "render",
-                edited.to_str().unwrap(),
-                "--show-layout",
-                "-f",
-                "svg",
-            ]),
+            &cli_svg_of("edited.lsys", &text),
             "the willow with spread 45",
         );
         shot(&c, "param-01-define-sliders").await;
@@ -257,14 +249,6 @@ fn a_share_link_carries_a_parametric_tree_in_chromium() {
         let _ = c.close().await;
         link
     });
-    let file = tmp.path().join("willow.lsys");
-    std::fs::write(&file, &text).unwrap();
-    let want = cli(&[
-        "render",
-        file.to_str().unwrap(),
-        "--show-layout",
-        "-f",
-        "svg",
-    ]);
+    let want = cli_svg_of("willow.lsys", &text);
     opens_in_a_fresh_profile(&link, &text, &want, "param-05-shared");
 }

@@ -5,7 +5,7 @@
 
 use serde_json::json;
 
-use super::browser::{cli, click, js, same_bytes, settled, shot};
+use super::browser::{cli, cli_svg_of, click, js, same_bytes, settled, shot};
 use super::browser_web::{engine_export, on_site, open_example};
 use super::serve::example;
 
@@ -34,19 +34,10 @@ fn the_web_engine_and_the_growth_control_grow_space_first_as_the_cli_in_chromium
         }
         let text = v["text"].as_str().unwrap().to_string();
         assert!(text.contains("O=space"), "{text}");
-        let dir = tempfile::tempdir().unwrap();
-        let file = dir.path().join("holes.od");
-        std::fs::write(&file, &text).unwrap();
         let svg = js(c, "return window.stlc.state.answer.svg").await;
         same_bytes(
             svg.as_str().unwrap().as_bytes(),
-            &cli(&[
-                "render",
-                file.to_str().unwrap(),
-                "--show-layout",
-                "-f",
-                "svg",
-            ]),
+            &cli_svg_of("holes.od", &text),
             "the editor's space-first holes.od",
         );
         shot(c, "space-01-growth-control").await;

@@ -15,7 +15,9 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Browser, cli, click, downloaded, drag, js, open, same_bytes, settled, shot};
+use super::browser::{
+    Browser, cli, cli_svg_of, click, downloaded, drag, js, open, same_bytes, settled, shot,
+};
 use crate::support::manifest_path;
 
 /// The first line of the first code block under `## On the web` in the
@@ -505,17 +507,9 @@ fn a_share_link_restores_the_tree_in_a_fresh_profile_in_chromium() {
         (link, text, svg.as_str().unwrap().to_string())
     });
     // The CLI draws the same text alike.
-    let file = tmp.path().join("grove.od");
-    std::fs::write(&file, &text).unwrap();
     same_bytes(
         svg.as_bytes(),
-        &cli(&[
-            "render",
-            file.to_str().unwrap(),
-            "--show-layout",
-            "-f",
-            "svg",
-        ]),
+        &cli_svg_of("grove.od", &text),
         "the shared grove",
     );
     opens_in_a_fresh_profile(&link, &text, svg.as_bytes(), "web-03-shared");
