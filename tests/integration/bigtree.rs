@@ -9,7 +9,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Browser, click, js, shot};
+use super::chromium::{Browser, click, js, shot};
 use super::serve::{Server, render, request};
 
 /// An .od that grows `1 + 3k` stems for `M=1+3k` in a 1200 x 1200 square:

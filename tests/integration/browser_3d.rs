@@ -14,7 +14,7 @@ use fantoccini::actions::{
 };
 use serde_json::{Value, json};
 
-use super::browser::{Browser, cli, click, js, settled, shot};
+use super::chromium::{Browser, cli, click, js, settled, shot};
 use super::serve::{Server, render, request};
 use crate::support::manifest_path;
 

@@ -15,7 +15,7 @@ use fantoccini::actions::{
 };
 use serde_json::{Value, json};
 
-use super::browser::{Browser, click, js, settled, shot};
+use super::chromium::{Browser, click, js, settled, shot};
 use super::serve::Server;
 
 /// No LAYOUT yet: the tree is bounded by its length decrement.

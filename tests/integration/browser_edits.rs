@@ -9,7 +9,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Browser, click, downloaded, js, open, settled, shot};
+use super::chromium::{Browser, click, downloaded, js, open, settled, shot};
 use super::serve::Server;
 use crate::support::manifest_path;
 

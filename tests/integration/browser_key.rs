@@ -10,7 +10,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Browser, js, settled};
+use super::chromium::{Browser, js, settled};
 use super::serve::{Server, example};
 
 #[test]

@@ -6,9 +6,9 @@
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{js, settled, shot};
 use super::browser_web::{Static, on_site};
-use crate::browser::Browser;
+use super::chromium::{js, settled, shot};
+use crate::chromium::Browser;
 
 /// A share-link fragment whose text is `mib` MiB of zero bytes (valid
 /// UTF-8), deflated in the page (1 MiB chunks streamed through
@@ -63,7 +63,7 @@ fn a_share_link_that_inflates_past_the_input_limit_is_refused_in_chromium() {
 /// `want` in it).
 async fn export_command(c: &Client, inputs: &[(&str, &str)], want: &str) -> String {
     if js(c, "return document.getElementById('export-options').open").await != json!(true) {
-        super::browser::click(c, "#export-options summary").await;
+        super::chromium::click(c, "#export-options summary").await;
     }
     for (id, value) in inputs {
         c.execute(
@@ -117,18 +117,18 @@ fn an_export_with_only_a_width_keeps_the_aspect_in_chromium() {
             shown.contains("--size 1600x1306 --show-layout -o successors.svg"),
             "{shown}"
         );
-        super::browser::click(c, "#export-png").await;
+        super::chromium::click(c, "#export-png").await;
         let got =
-            super::browser::downloaded(&browser.tmp.join("downloads"), "successors.png").await;
+            super::chromium::downloaded(&browser.tmp.join("downloads"), "successors.png").await;
         let od = crate::support::manifest_path("examples/successors.od");
-        let cli = super::browser::cli(&[
+        let cli = super::chromium::cli(&[
             "render",
             od.to_str().unwrap(),
             "--size",
             "1600x1306",
             "--show-layout",
         ]);
-        super::browser::same_bytes(&got, &cli, "the width-only export");
+        super::chromium::same_bytes(&got, &cli, "the width-only export");
         // A height alone: the width from the aspect (653 high is 800 wide).
         export_command(
             c,
@@ -354,7 +354,7 @@ fn a_reload_returns_to_the_document_and_its_draft_in_chromium() {
             "{notice}"
         );
         shot(c, "page-reload-draft").await;
-        super::browser::click(c, "[data-testid=restore-draft]").await;
+        super::chromium::click(c, "[data-testid=restore-draft]").await;
         assert_eq!(settled(c).await["text"], json!(edited));
     });
 }
@@ -405,9 +405,9 @@ fn the_template_grows_into_what_one_draws_and_says_why_it_stops_in_chromium() {
         let v = new_from(c, "new.od (template)").await;
         assert_eq!(v["stems"], json!(139), "{v}");
         assert!(!diagnostics(c).await.contains("ran out"));
-        super::browser::click(c, "[data-tool=Rectangle]").await;
-        super::browser::click(c, "#colour option[value=clGreen]").await;
-        super::browser::drag(c, (150.0, 10.0), (205.0, 170.0)).await;
+        super::chromium::click(c, "[data-tool=Rectangle]").await;
+        super::chromium::click(c, "#colour option[value=clGreen]").await;
+        super::chromium::drag(c, (150.0, 10.0), (205.0, 170.0)).await;
         let mut drawn = settled(c).await;
         for _ in 0..100 {
             if drawn["text"].as_str().unwrap().contains("Rectangle") {
@@ -509,7 +509,7 @@ fn stem_counts_have_their_digits_grouped_in_chromium() {
 #[test]
 fn the_open_export_panel_covers_no_control_in_chromium() {
     on_site(async |c, _, _| {
-        super::browser::click(c, "#export-options summary").await;
+        super::chromium::click(c, "#export-options summary").await;
         assert_eq!(
             js(c, "return document.getElementById('export-options').open").await,
             json!(true)
@@ -567,7 +567,7 @@ fn compare_marks_the_lines_that_differ_in_chromium() {
         assert_eq!(settled(c).await["text"], json!(edited));
         tokio::time::sleep(std::time::Duration::from_millis(600)).await;
         reload(c).await;
-        super::browser::click(c, "[data-testid=compare]").await;
+        super::chromium::click(c, "[data-testid=compare]").await;
         let sides = js(
             c,
             "const side = (id) => [document.getElementById(id).textContent,
@@ -607,7 +607,7 @@ fn stlc_serve_shares_like_the_web_page_in_chromium() {
         c.goto(&server.url).await.unwrap();
         let v = settled(&c).await;
         assert_eq!(v["text"], json!(std::fs::read_to_string(&file).unwrap()));
-        super::browser::click(&c, "[data-testid=share]").await;
+        super::chromium::click(&c, "[data-testid=share]").await;
         let mut said = Value::Null;
         for _ in 0..100 {
             said = js(&c, "return document.getElementById('saved').textContent").await;

@@ -11,10 +11,10 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{Browser, cli, cli_svg_of, click, js, same_bytes, settled, shot};
 use super::browser_web::{
     engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, start,
 };
+use super::chromium::{Browser, cli, cli_svg_of, click, js, same_bytes, settled, shot};
 use super::param_frontends::{parametric_examples, same_words};
 use super::serve::{Server, example};
 

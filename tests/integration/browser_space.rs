@@ -5,8 +5,8 @@
 
 use serde_json::json;
 
-use super::browser::{cli, cli_svg_of, click, js, same_bytes, settled, shot};
 use super::browser_web::{engine_export, on_site, open_example};
+use super::chromium::{cli, cli_svg_of, click, js, same_bytes, settled, shot};
 use super::serve::example;
 
 #[test]

@@ -15,7 +15,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser::{
+use super::chromium::{
     Browser, cli, cli_svg_of, click, downloaded, drag, js, open, same_bytes, settled, shot,
 };
 use crate::support::manifest_path;

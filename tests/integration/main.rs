@@ -11,6 +11,7 @@ mod browser_page;
 mod browser_param;
 mod browser_space;
 mod browser_web;
+mod chromium;
 mod cli;
 mod cli_cases;
 mod diagnostics;

@@ -1,0 +1,349 @@
+//! The harness the browser tests share: a chromedriver and a headless
+//! Chromium started for a test's temporary directory, and the steps a
+//! user takes (click, drag, open a file, download) with the checks that
+//! hold the page to the CLI (the CLI's bytes, byte equality). Skips with
+//! a message where `chromium` or `chromedriver` is not installed
+//! (`.ci/run` installs Debian's packages), except under CI (`CI` set),
+//! where that fails. Screenshots go to `tests/store/browser/`.
+
+use std::os::unix::process::CommandExt;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+use fantoccini::actions::{InputSource, MOUSE_BUTTON_LEFT, MouseActions, PointerAction};
+use fantoccini::{Client, ClientBuilder, Locator};
+use serde_json::{Value, json};
+
+use crate::support::manifest_path;
+
+/// A program on the PATH.
+fn which(name: &str) -> Option<PathBuf> {
+    std::env::var_os("PATH").and_then(|paths| {
+        std::env::split_paths(&paths)
+            .map(|d| d.join(name))
+            .find(|p| p.is_file())
+    })
+}
+
+/// chromedriver in its own process group, ended with the group (so a
+/// Chromium it started goes too).
+pub(super) struct Driver {
+    child: Child,
+    port: u16,
+}
+
+impl Driver {
+    pub(super) fn start(driver: &Path, tmp: &Path) -> Driver {
+        // A free port, chosen here: chromedriver's own messages are not
+        // parsed (they go nowhere, so it never blocks on a full pipe).
+        let port = std::net::TcpListener::bind("127.0.0.1:0")
+            .and_then(|l| l.local_addr())
+            .unwrap()
+            .port();
+        let child = Command::new(driver)
+            .arg(format!("--port={port}"))
+            .env("TMPDIR", tmp)
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .process_group(0)
+            .spawn()
+            .expect("start chromedriver");
+        for _ in 0..200 {
+            if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
+                break;
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        Driver { child, port }
+    }
+}
+
+impl Drop for Driver {
+    fn drop(&mut self) {
+        // The whole group: chromedriver and any Chromium it left.
+        let _ = Command::new("kill")
+            .args(["-TERM", "--", &format!("-{}", self.child.id())])
+            .status();
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+pub(super) async fn js(c: &Client, script: &str) -> Value {
+    c.execute(script, vec![]).await.expect(script)
+}
+
+/// Waits until the page shows the answer to the text in its editor.
+pub(super) async fn settled(c: &Client) -> Value {
+    for _ in 0..400 {
+        let v = js(
+            c,
+            "const s = window.stlc && window.stlc.state; const t = document.getElementById('source').value;
+             if (!s || s.inFlight || s.answerText !== t) return null;
+             return {ok: s.answer.ok, stems: Number(s.answer.stems || 0),
+                     growth: s.answer.growth ? s.answer.growth.stems : [],
+                     text: t};",
+        )
+        .await;
+        if !v.is_null() {
+            // The debounce may still hold an edit: settle twice in a row.
+            tokio::time::sleep(Duration::from_millis(300)).await;
+            let again = js(c, "return window.stlc.state.answerText === document.getElementById('source').value && !window.stlc.state.inFlight").await;
+            if again == json!(true) {
+                return v;
+            }
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    panic!("the page never showed the answer to its text");
+}
+
+/// The viewport position of canvas point `(x, y)` in the preview.
+pub(super) async fn screen_of(c: &Client, x: f64, y: f64) -> (f64, f64) {
+    let v = js(
+        c,
+        &format!(
+            "const m = document.getElementById('preview').getScreenCTM();
+             return [m.a * {x} + m.e, m.d * {y} + m.f];"
+        ),
+    )
+    .await;
+    (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
+}
+
+pub(super) async fn shot(c: &Client, name: &str) {
+    let dir = manifest_path("tests/store/browser");
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = c.screenshot().await.unwrap();
+    std::fs::write(dir.join(format!("{name}.png")), png).unwrap();
+}
+
+/// A browser to test in: chromedriver started in `tmp/chrome` (downloads
+/// and profile there), and a runtime to drive it from; `None` (after
+/// saying why) where Chromium is not installed and `CI` is not set.
+pub(super) struct Browser {
+    pub rt: tokio::runtime::Runtime,
+    pub driver: Driver,
+    pub chromium: PathBuf,
+    pub tmp: PathBuf,
+}
+
+impl Browser {
+    pub(super) fn start(tmp: &Path) -> Option<Browser> {
+        let (chromium, driver) = installed()?;
+        let chrome_tmp = tmp.join("chrome");
+        std::fs::create_dir_all(&chrome_tmp).unwrap();
+        let driver = Driver::start(&driver, &chrome_tmp);
+        let rt = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build()
+            .unwrap();
+        Some(Browser {
+            rt,
+            driver,
+            chromium,
+            tmp: chrome_tmp,
+        })
+    }
+
+    /// A WebDriver session.
+    pub(super) async fn connect(&self) -> Client {
+        connect(&self.driver, &self.chromium, &self.tmp).await
+    }
+}
+
+/// chromium and chromedriver, or `None` after saying why the test skips.
+/// Under CI (the variable `CI` set and not empty, as `.ci/run` sets it) a
+/// missing browser is a failure, not a skip: the install failed.
+pub(super) fn installed() -> Option<(PathBuf, PathBuf)> {
+    let (Some(chromium), Some(driver)) = (which("chromium"), which("chromedriver")) else {
+        let why = "chromium and chromedriver are not installed \
+                   (apt-get install chromium chromium-driver; .ci/run does)";
+        if std::env::var_os("CI").is_some_and(|v| !v.is_empty()) {
+            panic!("CI is set, so the browser test must run, but {why}");
+        }
+        eprintln!("SKIPPED the browser test: {why}");
+        return None;
+    };
+    Some((chromium, driver))
+}
+
+/// A WebDriver session in a headless Chromium whose downloads go to
+/// `tmp/downloads`.
+pub(super) async fn connect(driver: &Driver, chromium: &Path, tmp: &Path) -> Client {
+    let mut caps = serde_json::Map::new();
+    caps.insert(
+        "goog:chromeOptions".into(),
+        json!({
+            "binary": chromium,
+            "args": [
+                "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                "--disable-background-networking", "--disable-component-update",
+                "--disable-sync", "--disable-quic", "--no-first-run",
+                "--window-size=1280,860",
+                format!("--user-data-dir={}", tmp.join("profile").display()),
+            ],
+            "prefs": {
+                "download.default_directory": tmp.join("downloads"),
+                "download.prompt_for_download": false,
+            },
+        }),
+    );
+    // Starting Chromium can be slow on a busy machine (a cold start while
+    // other tests compile or run): a failed session start is retried, and
+    // the last error is the one reported.
+    let url = format!("http://127.0.0.1:{}", driver.port);
+    let mut last = None;
+    for attempt in 1..=3 {
+        let connector = hyper_util::client::legacy::connect::HttpConnector::new();
+        match ClientBuilder::new(connector)
+            .capabilities(caps.clone())
+            .connect(&url)
+            .await
+        {
+            Ok(c) => return c,
+            Err(e) => {
+                eprintln!("WebDriver session, attempt {attempt} of 3: {e}");
+                last = Some(e);
+                tokio::time::sleep(Duration::from_secs(2)).await;
+            }
+        }
+    }
+    panic!("no WebDriver session: {:?}", last);
+}
+
+/// Presses at canvas point `a`, moves to `b` and releases.
+pub(super) async fn drag(c: &Client, a: (f64, f64), b: (f64, f64)) {
+    let (x0, y0) = screen_of(c, a.0, a.1).await;
+    let (x1, y1) = screen_of(c, b.0, b.1).await;
+    let mouse = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x: x0,
+            y: y0,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::MoveTo {
+            duration: Some(Duration::from_millis(80)),
+            x: (x0 + x1) / 2.0,
+            y: (y0 + y1) / 2.0,
+        })
+        .then(PointerAction::MoveTo {
+            duration: Some(Duration::from_millis(80)),
+            x: x1,
+            y: y1,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(mouse).await.unwrap();
+}
+
+/// Clicks at canvas point `a`.
+pub(super) async fn click_at(c: &Client, a: (f64, f64)) {
+    let (x, y) = screen_of(c, a.0, a.1).await;
+    let mouse = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveTo {
+            duration: None,
+            x,
+            y,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    c.perform_actions(mouse).await.unwrap();
+}
+
+pub(super) async fn click(c: &Client, css: &str) {
+    c.find(Locator::Css(css))
+        .await
+        .unwrap()
+        .click()
+        .await
+        .unwrap();
+}
+
+/// What `stlc ARGS -o -` writes.
+pub(super) fn cli(args: &[&str]) -> Vec<u8> {
+    let mut all = args.to_vec();
+    all.extend(["-o", "-"]);
+    crate::support::stlc_stdout(&all)
+}
+
+/// The SVG `stlc render --show-layout -f svg` writes of `text`, saved as
+/// `name` (its extension says its kind) in a folder of its own.
+pub(super) fn cli_svg_of(name: &str, text: &str) -> Vec<u8> {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join(name);
+    std::fs::write(&file, text).unwrap();
+    cli(&[
+        "render",
+        file.to_str().unwrap(),
+        "--show-layout",
+        "-f",
+        "svg",
+    ])
+}
+
+/// The bytes of `dir/name` once Chromium has finished downloading it.
+pub(super) async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
+    let path = dir.join(name);
+    let partial = dir.join(format!("{name}.crdownload"));
+    for _ in 0..200 {
+        if path.is_file() && !partial.exists() {
+            return std::fs::read(&path).unwrap();
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    panic!("{} was never downloaded", path.display());
+}
+
+/// Opens `file` through the page's Open… control (its file input), and
+/// waits until the page has read it into the editor.
+pub(super) async fn open(c: &Client, file: &Path) {
+    c.find(Locator::Id("open-file"))
+        .await
+        .unwrap()
+        .send_keys(file.to_str().unwrap())
+        .await
+        .unwrap();
+    let text = std::fs::read_to_string(file).unwrap();
+    for _ in 0..200 {
+        let read = c
+            .execute(
+                "return document.getElementById('source').value === arguments[0]",
+                vec![json!(text)],
+            )
+            .await
+            .unwrap();
+        if read == json!(true) {
+            return;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    panic!("the page never read {}", file.display());
+}
+
+/// Asserts `got` is `want`, saying where they part (not all the bytes).
+pub(super) fn same_bytes(got: &[u8], want: &[u8], what: &str) {
+    if got != want {
+        let at = got.iter().zip(want).take_while(|(a, b)| a == b).count();
+        let show = |b: &[u8]| {
+            String::from_utf8_lossy(&b[at.saturating_sub(40)..(at + 40).min(b.len())]).into_owned()
+        };
+        panic!(
+            "{what}: {} bytes, the CLI's {}; they part at byte {at}: {:?} / {:?}",
+            got.len(),
+            want.len(),
+            show(got),
+            show(want)
+        );
+    }
+}
