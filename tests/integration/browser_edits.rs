@@ -667,15 +667,20 @@ async fn numbers_scrub(c: &Client) {
 /// Item 3: the page stays responsive: the longest main-thread task while
 /// grove.od (1,947 stems) is edited and redrawn five times, measured with
 /// the browser's long-task timing (tasks over 50 ms), is printed; it must
-/// stay under a quarter of a second.
+/// stay under eight times a fixed piece of JavaScript (ten million square
+/// roots) timed on the same main thread before and after, the slower of
+/// the two (about 25 ms on an idle machine, so about 200 ms: growth on
+/// the page's thread, or a redraw per stem, takes several times that).
+/// A ratio measured side by side, so a loaded machine slows both.
 async fn main_thread_stalls(c: &Client) {
+    new_from(c, "grove.od").await;
+    settled(c).await;
+    let unit = js_unit(c).await;
     js(
         c,
         "window.__longest = 0; new PerformanceObserver((l) => { for (const e of l.getEntries()) window.__longest = Math.max(window.__longest, e.duration); }).observe({type: 'longtask', buffered: false}); return 0;",
     )
     .await;
-    new_from(c, "grove.od").await;
-    settled(c).await;
     for k in 0..5 {
         js(
             c,
@@ -685,8 +690,28 @@ async fn main_thread_stalls(c: &Client) {
         settled(c).await;
     }
     let longest = js(c, "return window.__longest").await.as_f64().unwrap();
-    eprintln!("longest main-thread task while editing grove.od: {longest:.0} ms");
-    assert!(longest < 250.0, "a {longest} ms stall");
+    let unit = unit.max(js_unit(c).await);
+    eprintln!(
+        "longest main-thread task while editing grove.od: {longest:.0} ms ({:.1} units of {unit:.0} ms)",
+        longest / unit
+    );
+    assert!(
+        longest < 8.0 * unit,
+        "a {longest} ms stall, {:.1} times the {unit:.0} ms unit",
+        longest / unit
+    );
+}
+
+/// The median of three timings, in ms, of ten million square roots on the
+/// page's main thread: the unit [`main_thread_stalls`] measures in.
+async fn js_unit(c: &Client) -> f64 {
+    js(
+        c,
+        "const t = []; for (let r = 0; r < 3; r++) { const t0 = performance.now(); let s = 0; for (let i = 0; i < 1e7; i++) s += Math.sqrt(i); window.__sink = s; t.push(performance.now() - t0); } t.sort((a, b) => a - b); return t[1];",
+    )
+    .await
+    .as_f64()
+    .unwrap()
 }
 
 /// Problem 8 in the page: a rule that never fits is a warning at its line
