@@ -10,7 +10,7 @@ use geo::{
     BooleanOps, Contains, Coord, Distance, Euclidean, Line, LineString, MultiPolygon, Polygon,
 };
 
-use crate::support::{od, opts};
+use crate::support::{near_pairs, od, opts};
 use stlc::bed::Bed;
 use stlc::diag::GrowError;
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow};
@@ -303,47 +303,52 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
             );
         }
     }
-    // Pairwise clearance with the joint exception, brute force.
-    for i in 0..segs.len() {
-        let (s, ls) = (&segs[i], line(&segs[i]));
-        for t in &segs[i + 1..] {
-            if s.order == 0 && t.order == 0 {
-                continue; // two seed stems: drawn as given
-            }
-            let need = c + radius(s) + radius(t);
-            let lt = line(t);
-            let ends_s = [s.from, s.to];
-            let ends_t = [t.from, t.to];
-            let shared: Vec<Point> = ends_s
-                .iter()
-                .filter(|p| ends_t.contains(p))
-                .copied()
-                .collect();
-            if let Some(&j) = shared.first() {
-                // A joint is where at least one of them starts.
-                assert!(
-                    s.from == j || t.from == j,
-                    "{s:?} and {t:?} meet end to end"
-                );
-                let far_s = if s.from == j { s.to } else { s.from };
-                let far_t = if t.from == j { t.to } else { t.from };
-                for (far, other) in [(far_s, &lt), (far_t, &ls)] {
-                    let at = nearest(far, other);
-                    if at == j {
-                        continue; // nearest at the joint: no fold
-                    }
-                    let d = Euclidean.distance(&geo::Point::new(far.x, far.y), other);
-                    assert!(
-                        d >= need - tol,
-                        "joint too tight: {s:?} {t:?} ({d}) < {need}"
-                    );
-                }
-            } else {
-                let d = Euclidean.distance(&ls, &lt);
-                assert!(d >= need - tol, "too close: {s:?} {t:?} {d} < {need}");
-            }
+    // Pairwise clearance with the joint exception, brute force over the
+    // pairs whose x spans come within the largest clearance needed.
+    let spans: Vec<(f64, f64)> = segs
+        .iter()
+        .map(|s| (s.from.x.min(s.to.x), s.from.x.max(s.to.x)))
+        .collect();
+    let widest = segs.iter().map(radius).fold(0.0, f64::max);
+    near_pairs(&spans, c + 2.0 * widest, |a, b| {
+        let (s, t) = (&segs[a], &segs[b]);
+        let ls = line(s);
+        if s.order == 0 && t.order == 0 {
+            return; // two seed stems: drawn as given
         }
-    }
+        let need = c + radius(s) + radius(t);
+        let lt = line(t);
+        let ends_s = [s.from, s.to];
+        let ends_t = [t.from, t.to];
+        let shared: Vec<Point> = ends_s
+            .iter()
+            .filter(|p| ends_t.contains(p))
+            .copied()
+            .collect();
+        if let Some(&j) = shared.first() {
+            // A joint is where at least one of them starts.
+            assert!(
+                s.from == j || t.from == j,
+                "{s:?} and {t:?} meet end to end"
+            );
+            let far_s = if s.from == j { s.to } else { s.from };
+            let far_t = if t.from == j { t.to } else { t.from };
+            for (far, other) in [(far_s, &lt), (far_t, &ls)] {
+                let at = nearest(far, other);
+                if at == j {
+                    continue; // nearest at the joint: no fold
+                }
+                let d = Euclidean.distance(&geo::Point::new(far.x, far.y), other);
+                assert!(
+                    d >= need - tol,
+                    "joint too tight: {s:?} {t:?} ({d}) < {need}"
+                );
+            }
+        } else {
+            let d = Euclidean.distance(&ls, &lt);
+            assert!(d >= need - tol, "too close: {s:?} {t:?} {d} < {need}");
+        }
+    });
     segs
 }
 

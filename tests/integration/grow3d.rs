@@ -8,7 +8,7 @@
 //! the clearance with a distance computed here (a ternary search of the
 //! point-to-segment distance, which is convex along a segment).
 
-use crate::support::opts;
+use crate::support::{near_pairs, opts};
 use stlc::Limits;
 use stlc::color::Rgb;
 use stlc::diag::MissReason;
@@ -205,50 +205,58 @@ fn check(od: &Description, growth: GrowthOrder) -> usize {
             assert!(in_layout(od, p), "stem {i} {s:?}: {p:?} outside");
         }
     }
-    for (i, t) in stems.iter().enumerate() {
+    // Every pair whose x spans come within the largest clearance needed
+    // (support::near_pairs), the later one growing by a decision.
+    let spans: Vec<(f64, f64)> = stems
+        .iter()
+        .map(|s| {
+            let (a, b) = ends(s);
+            (a[0].min(b[0]), a[0].max(b[0]))
+        })
+        .collect();
+    let widest = stems.iter().map(|s| s.width).fold(0.0, f64::max);
+    near_pairs(&spans, c + widest, |a, b| {
+        let (s, t, i) = (&stems[a], &stems[b], b);
         if t.decision == 0 {
-            continue;
+            return;
         }
         let (ta, tb) = ends(t);
-        for s in &stems[..i] {
-            let (sa, sb) = ends(s);
-            let need = c + (t.width + s.width) / 2.0;
-            // Boxes farther apart than that on some axis cannot conflict.
-            if (0..3).any(|k| {
-                ta[k].max(tb[k]) + need < sa[k].min(sb[k])
-                    || sa[k].max(sb[k]) + need < ta[k].min(tb[k])
-            }) {
-                continue;
+        let (sa, sb) = ends(s);
+        let need = c + (t.width + s.width) / 2.0;
+        // Boxes farther apart than that on some axis cannot conflict.
+        if (0..3).any(|k| {
+            ta[k].max(tb[k]) + need < sa[k].min(sb[k]) || sa[k].max(sb[k]) + need < ta[k].min(tb[k])
+        }) {
+            return;
+        }
+        // A joint: the far ends keep the clearance unless nearest at the joint.
+        let joint = if ta == sa {
+            Some(sb)
+        } else if ta == sb {
+            Some(sa)
+        } else {
+            None
+        };
+        match joint {
+            Some(far) => {
+                let (d1, at1) = to_segment(tb, sa, sb);
+                let at_joint = if ta == sa { 0.0 } else { 1.0 };
+                assert!(
+                    d1 >= need - 1e-9 || at1 == at_joint,
+                    "stem {i}: far end {d1} < {need}"
+                );
+                let (d2, at2) = to_segment(far, ta, tb);
+                assert!(
+                    d2 >= need - 1e-9 || at2 == 0.0,
+                    "stem {i}: other's far end {d2} < {need}"
+                );
             }
-            // A joint: the far ends keep the clearance unless nearest at the joint.
-            let joint = if ta == sa {
-                Some(sb)
-            } else if ta == sb {
-                Some(sa)
-            } else {
-                None
-            };
-            match joint {
-                Some(far) => {
-                    let (d1, at1) = to_segment(tb, sa, sb);
-                    let at_joint = if ta == sa { 0.0 } else { 1.0 };
-                    assert!(
-                        d1 >= need - 1e-9 || at1 == at_joint,
-                        "stem {i}: far end {d1} < {need}"
-                    );
-                    let (d2, at2) = to_segment(far, ta, tb);
-                    assert!(
-                        d2 >= need - 1e-9 || at2 == 0.0,
-                        "stem {i}: other's far end {d2} < {need}"
-                    );
-                }
-                None => {
-                    let d = seg_dist(ta, tb, sa, sb);
-                    assert!(d >= need - 1e-6, "stem {i} {t:?} and {s:?}: {d} < {need}");
-                }
+            None => {
+                let d = seg_dist(ta, tb, sa, sb);
+                assert!(d >= need - 1e-6, "stem {i} {t:?} and {s:?}: {d} < {need}");
             }
         }
-    }
+    });
     stems.len()
 }
 

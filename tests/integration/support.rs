@@ -413,3 +413,58 @@ pub fn opts(growth: stlc::grow::GrowthOrder) -> stlc::grow::GrowOptions {
         ..stlc::grow::GrowOptions::default()
     }
 }
+
+/// Calls `each(i, j)`, `i < j`, for the pairs of spans `(lo, hi)` (one
+/// axis of each item's box) that come within `reach` of each other: sweep
+/// and prune, in no particular order. Items farther apart than `reach` on
+/// one axis are farther apart than `reach`, so a pairwise distance check
+/// needs only these; the brute-force checks of growth stay exact at a
+/// fraction of all pairs.
+pub fn near_pairs(spans: &[(f64, f64)], reach: f64, mut each: impl FnMut(usize, usize)) {
+    let mut by_lo: Vec<usize> = (0..spans.len()).collect();
+    by_lo.sort_by(|&a, &b| spans[a].0.total_cmp(&spans[b].0));
+    for (k, &a) in by_lo.iter().enumerate() {
+        let end = spans[a].1 + reach;
+        for &b in &by_lo[k + 1..] {
+            if spans[b].0 > end {
+                break;
+            }
+            each(a.min(b), a.max(b));
+        }
+    }
+}
+
+/// [`near_pairs`] finds exactly the pairs of all pairs whose spans come
+/// within the reach, on random spans (a fixed linear congruential stream).
+#[test]
+fn near_pairs_are_the_brute_force_pairs_within_reach() {
+    let mut x: u64 = 12345;
+    let mut next = || {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let spans: Vec<(f64, f64)> = (0..300)
+        .map(|_| {
+            let lo = next() * 100.0;
+            (lo, lo + next() * 3.0)
+        })
+        .collect();
+    for reach in [0.0, 0.5, 2.0] {
+        let mut brute = Vec::new();
+        for i in 0..spans.len() {
+            for j in i + 1..spans.len() {
+                let gap = (spans[j].0 - spans[i].1).max(spans[i].0 - spans[j].1);
+                if gap <= reach {
+                    brute.push((i, j));
+                }
+            }
+        }
+        assert!(brute.len() > 100 && brute.len() < 20_000, "{}", brute.len());
+        let mut found = Vec::new();
+        near_pairs(&spans, reach, |i, j| found.push((i, j)));
+        found.sort_unstable();
+        assert_eq!(found, brute, "reach {reach}");
+    }
+}
