@@ -139,10 +139,13 @@ fn printable(body: &Body, genus: i64) {
     assert_eq!(body.euler(), 2 - 2 * genus, "{body:?}");
 }
 
+/// A canvas point, (x, y, z).
+type Xyz = (f64, f64, f64);
+
 /// The STL of hand-made stems: `(from, to)` in canvas units (y down), each
 /// 2 units wide, at the default unit (0.01 m: 10 mm a canvas unit).
-fn stems(ends: &[((f64, f64, f64), (f64, f64, f64))]) -> Vec<u8> {
-    let p = |(x, y, z): (f64, f64, f64)| Point3::new(x, y, z);
+fn stems(ends: &[(Xyz, Xyz)]) -> Vec<u8> {
+    let p = |(x, y, z): Xyz| Point3::new(x, y, z);
     let tubes: Vec<Tube> = ends
         .iter()
         .map(|&(a, b)| Tube {

@@ -29,7 +29,7 @@ mod solid;
 pub use gltf::{write_glb, write_gltf};
 pub use obj::write_obj;
 #[cfg(feature = "solid")]
-pub use solid::{Solid, build_solid, tube_mesh, write_stl};
+pub use solid::{MIN_LEAF_MM, Solid, build_solid, slab, tube_mesh, write_stl};
 
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, Help, Knob, RenderError};

@@ -17,7 +17,7 @@
 use std::collections::BTreeMap;
 
 use manifold_rust::csg_tree::CsgNode;
-use manifold_rust::linalg::Vec3;
+use manifold_rust::linalg::{Mat3x4, Vec2, Vec3};
 use manifold_rust::manifold::Manifold;
 use manifold_rust::types::{Error, MeshGL64, OpType};
 
@@ -236,6 +236,67 @@ fn rounded(corners: &[[f32; 3]], triangles: &[[u32; 3]]) -> Solid {
     }
 }
 
+/// The leaf thickness a solid gives a flat polygon at least (docs/3d.md,
+/// *Solids*): half a millimetre.
+pub const MIN_LEAF_MM: f64 = 0.5;
+
+/// A flat polygon (a leaf, `corners` in the solid's axes, millimetres,
+/// in order around it, convex or not) thickened into a closed slab for
+/// the union: the polygon offset `thickness / 2` each way along its
+/// normal (Newell's, so the corners' turning decides which side is
+/// which), closed at its rim. `None` for fewer than three corners, no
+/// area, a thickness under [`MIN_LEAF_MM`] or a failed triangulation.
+/// Not wired into `build_solid` yet: leaves join the solid later.
+pub fn slab(corners: &[V], thickness: f64) -> Option<Manifold> {
+    if corners.len() < 3 || thickness < MIN_LEAF_MM || !thickness.is_finite() {
+        return None;
+    }
+    let mut nrm = [0.0; 3];
+    for (i, a) in corners.iter().enumerate() {
+        let b = corners[(i + 1) % corners.len()];
+        nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    if nrm == [0.0; 3] || !nrm.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let n = unit(nrm);
+    let o = corners[0];
+    let k = (0..3)
+        .min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+        .unwrap_or(0);
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let x = unit(cross(e, n));
+    let y = cross(n, x);
+    let dot = |a: V, b: V| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    // In the plane's (x, y), counter-clockwise about n.
+    let flat: Vec<Vec2> = corners
+        .iter()
+        .map(|c| {
+            let d = sub(*c, o);
+            Vec2::new(dot(d, x), dot(d, y))
+        })
+        .collect();
+    let slab = Manifold::extrude(&vec![flat], thickness, 0, 0.0, Vec2::new(1.0, 1.0));
+    if slab.status() != Error::NoError || slab.is_empty() {
+        return None;
+    }
+    let v = |a: V| Vec3::new(a[0], a[1], a[2]);
+    let place = Mat3x4 {
+        x: v(x),
+        y: v(y),
+        z: v(n),
+        w: v([
+            o[0] - n[0] * thickness / 2.0,
+            o[1] - n[1] * thickness / 2.0,
+            o[2] - n[2] * thickness / 2.0,
+        ]),
+    };
+    Some(slab.transform(&place))
+}
+
 /// A point where stems meet.
 struct Joint {
     /// Where.
@@ -346,4 +407,77 @@ pub fn write_stl(solid: &Solid, out: &mut dyn std::io::Write) -> std::io::Result
         }
     }
     out.write_all(&buf)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An L-shaped leaf (not convex), 3 x 3 mm with a 2 x 2 notch, tilted
+    /// out of every axis plane: thickened by 0.5 mm it is one closed
+    /// body of genus 0 whose volume is its area (5 mm^2) times 0.5.
+    #[test]
+    fn a_leaf_polygon_thickens_into_a_closed_slab() {
+        // In the plane spanned by p and q, from the point o.
+        let (o, p, q) = (
+            [1.0, 2.0, 3.0],
+            unit([1.0, 1.0, 0.0]),
+            unit([-1.0, 1.0, 1.0]),
+        );
+        let q = unit(sub(
+            q,
+            p.map(|c| c * (p[0] * q[0] + p[1] * q[1] + p[2] * q[2])),
+        ));
+        let at = |s: f64, t: f64| [0, 1, 2].map(|i| o[i] + s * p[i] + t * q[i]);
+        let l = [
+            at(0.0, 0.0),
+            at(3.0, 0.0),
+            at(3.0, 1.0),
+            at(1.0, 1.0),
+            at(1.0, 3.0),
+            at(0.0, 3.0),
+        ];
+        let body = slab(&l, 0.5).unwrap();
+        assert_eq!(body.status(), Error::NoError);
+        assert_eq!(body.genus(), 0);
+        assert_eq!(body.decompose().len(), 1);
+        assert!((body.volume() - 2.5).abs() < 1e-9, "{}", body.volume());
+        // Its two faces lie 0.25 mm each side of the polygon's plane.
+        let n = unit(cross(p, q));
+        let gl = body.get_mesh_gl64(-1);
+        for c in gl.vert_properties.chunks_exact(gl.num_prop as usize) {
+            let d = sub([c[0], c[1], c[2]], o);
+            let h = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+            assert!((h.abs() - 0.25).abs() < 1e-9, "{h}");
+        }
+        // Reversed corners give the same slab (the normal turns with them).
+        let back: Vec<V> = l.iter().rev().copied().collect();
+        assert!((slab(&back, 0.5).unwrap().volume() - 2.5).abs() < 1e-9);
+        // Too thin, or no area: refused.
+        assert!(slab(&l, 0.4).is_none());
+        assert!(slab(&[at(0.0, 0.0), at(1.0, 0.0), at(2.0, 0.0)], 1.0).is_none());
+    }
+
+    /// The welding after rounding: a degenerate triangle and a fin (two
+    /// triangles on the same corners facing opposite ways) are dropped, the
+    /// rest kept with welded indices.
+    #[test]
+    fn rounding_drops_degenerate_triangles_and_fins() {
+        let corners = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            // Rounds onto corner 1's bits.
+            [1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let tris = [[0, 1, 2], [1, 3, 4], [0, 2, 4], [4, 2, 0], [2, 3, 0]];
+        let s = rounded(&corners, &tris);
+        assert_eq!(s.positions.len(), 4);
+        // [1, 3, 4] is degenerate; [0, 2, 4] and [4, 2, 0] are a fin;
+        // [2, 3, 0] is [2, 1, 0] welded, the reverse of [0, 1, 2]: a fin too.
+        assert_eq!(s.triangles, Vec::<[u32; 3]>::new());
+        let s = rounded(&corners, &tris[..1]);
+        assert_eq!(s.triangles, vec![[0, 1, 2]]);
+    }
 }
