@@ -421,6 +421,12 @@ pub struct RenderArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_TRIANGLES)]
     pub max_triangles: u64,
 
+    /// Write one closed body for 3D printing (binary STL, millimetres, z
+    /// up): the stems' tubes and a sphere at each joint united (docs/3d.md).
+    /// A 3D input only; the output is .stl (the default name's extension).
+    #[arg(long)]
+    pub solid: bool,
+
     /// Stroke colour (#rrggbb or a Delphi name such as clMaroon).
     #[arg(long, value_name = "COLOR")]
     pub stroke: Option<String>,

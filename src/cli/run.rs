@@ -149,6 +149,16 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
         .as_deref()
         .and_then(|o| std::path::Path::new(o).extension())
         .and_then(|e| MeshFormat::from_extension(&e.to_string_lossy()));
+    if a.solid && a.mesh.is_none() && named.is_none() {
+        if a.output.is_none() && a.format.is_none() {
+            return render_mesh(a, MeshFormat::Stl, limits, quiet, source);
+        }
+        return Err(Diagnostic::error(RenderError::SolidUsage {
+            message: "--solid writes one closed body as .stl, not a picture".into(),
+        })
+        .with_help("name the output tree.stl (or give --mesh stl with -o -)")
+        .into());
+    }
     match (a.mesh, named) {
         (Some(m), Some(n)) if m != n => {
             return Err(Diagnostic::error(RenderError::FormatMismatch {
@@ -242,7 +252,7 @@ fn render_mesh(
             )
         })?,
     };
-    if format == MeshFormat::Glb && output.is_terminal() {
+    if matches!(format, MeshFormat::Glb | MeshFormat::Stl) && output.is_terminal() {
         return Err(Diagnostic::error(FrontEndError::GlbToTerminal)
             .with_help("a .glb is binary: redirect standard output to a file, or use -o tree.glb")
             .into());
@@ -264,6 +274,7 @@ fn render_mesh(
             sides: a.sides,
             unit: a.unit,
             max_triangles: a.max_triangles,
+            solid: a.solid,
         },
         ..with_growth(request(&a.input, limits, source)?, a.grow.growth, &a.grow)
     };

@@ -188,6 +188,7 @@ pub(crate) fn mesh(
             color,
         });
     };
+    solid_usage(scene, format, opts)?;
     let mut phase = Phase::new(progress, "deriving");
     if let Some((sys, depth)) = lsys3(scene) {
         check_stems(sys, depth, &scene.limits, most, |_| {
@@ -206,18 +207,71 @@ pub(crate) fn mesh(
         scene.draw(&mut lift, &mut phase)?;
     }
     mesh::check_tubes(tubes.len() as u64, over, opts)?;
-    let m = mesh::build(&tubes, first_root(scene), opts);
-    match format {
-        MeshFormat::Glb => mesh::write_glb(&m, out)?,
-        MeshFormat::Gltf => mesh::write_gltf(&m, out)?,
-        MeshFormat::Obj => mesh::write_obj(&m, out)?,
-    }
     let n = tubes.len() as u64;
+    let triangles = if format == MeshFormat::Stl {
+        solid(&tubes, first_root(scene), opts, out, progress)?
+    } else {
+        let m = mesh::build(&tubes, first_root(scene), opts);
+        match format {
+            MeshFormat::Glb => mesh::write_glb(&m, out)?,
+            MeshFormat::Gltf => mesh::write_gltf(&m, out)?,
+            MeshFormat::Obj | MeshFormat::Stl => mesh::write_obj(&m, out)?,
+        }
+        m.triangles()
+    };
     Ok(Meshed {
         stems: n,
-        triangles: m.triangles(),
+        triangles,
         warnings: nothing_drawn(n),
     })
+}
+
+/// Refuses `--solid` of a 2D input or into a format other than `.stl`,
+/// and an `.stl` without `--solid` (usage errors, before any work).
+fn solid_usage(scene: &Scene, format: MeshFormat, opts: &MeshOptions) -> Result<(), Diagnostics> {
+    let message = match (opts.solid, format == MeshFormat::Stl) {
+        (true, false) => format!(
+            "--solid writes one closed body as .stl, not .{}",
+            format.extension()
+        ),
+        (false, true) => "an .stl is written as one closed body: add --solid".into(),
+        (true, true) if !is_3d(scene) => {
+            "--solid needs a 3D input (a 3D .lsys, or an .od or .bed with a 3D layout); this one is 2D".into()
+        }
+        _ => return Ok(()),
+    };
+    Err(Diagnostic::error(RenderError::SolidUsage { message })
+        .with_help("a solid for 3D printing: stlc render tree3d.od --solid -o tree.stl")
+        .into())
+}
+
+/// Unites the tubes into one body and writes it as STL; its triangles.
+#[cfg(feature = "solid")]
+fn solid(
+    tubes: &[Tube],
+    origin: Point3,
+    opts: &MeshOptions,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<u64, Diagnostics> {
+    let body = mesh::build_solid(tubes, origin, opts, progress)?;
+    mesh::write_stl(&body, out)
+        .map_err(|e| Diagnostics::from(crate::diag::io_error(&e, "writing the STL")))?;
+    Ok(body.triangles.len() as u64)
+}
+
+#[cfg(not(feature = "solid"))]
+fn solid(
+    _: &[Tube],
+    _: Point3,
+    _: &MeshOptions,
+    _: &mut dyn Write,
+    _: &mut dyn Progress,
+) -> Result<u64, Diagnostics> {
+    Err(Diagnostic::error(RenderError::SolidUsage {
+        message: "this build of stlc has no --solid (the `solid` feature)".into(),
+    })
+    .into())
 }
 
 /// Where a mesh's origin is, in canvas units: a tree's first root (its

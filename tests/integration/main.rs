@@ -40,6 +40,7 @@ mod robustness;
 mod serve;
 mod serve_hostile;
 mod soak;
+mod solid;
 mod stl;
 mod stochastic;
 mod support;

@@ -132,7 +132,9 @@ impl ErrorKind {
         matches!(
             self,
             ErrorKind::Render(
-                RenderError::FormatMismatch { .. } | RenderError::UnknownOutputExtension { .. }
+                RenderError::FormatMismatch { .. }
+                    | RenderError::UnknownOutputExtension { .. }
+                    | RenderError::SolidUsage { .. }
             ) | ErrorKind::FrontEnd { usage: true, .. }
         )
     }

@@ -81,6 +81,19 @@ pub enum RenderError {
         /// The output path.
         path: String,
     },
+    /// `--solid` asked of an input or format that cannot hold a solid, or
+    /// an `.stl` asked without `--solid` (a usage error).
+    #[error("{message}")]
+    SolidUsage {
+        /// What is wrong.
+        message: String,
+    },
+    /// The boolean union of a solid failed (the library's status).
+    #[error("the solid's union failed: {status}")]
+    SolidUnion {
+        /// The boolean library's status.
+        status: String,
+    },
     /// The output's extension names no image format stlc writes (a usage
     /// error).
     #[error("cannot write `{path}`: `.{extension}` is not an image format stlc writes")]

@@ -23,9 +23,13 @@
 
 mod gltf;
 mod obj;
+#[cfg(feature = "solid")]
+mod solid;
 
 pub use gltf::{write_glb, write_gltf};
 pub use obj::write_obj;
+#[cfg(feature = "solid")]
+pub use solid::{MIN_LEAF_MM, Solid, build_solid, slab, tube_mesh, write_stl};
 
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, Help, Knob, RenderError};
@@ -42,6 +46,8 @@ pub enum MeshFormat {
     Gltf,
     /// Wavefront OBJ with vertex colours.
     Obj,
+    /// Binary STL, one closed body for 3D printing (needs --solid).
+    Stl,
 }
 
 impl MeshFormat {
@@ -51,6 +57,7 @@ impl MeshFormat {
             "glb" => Some(MeshFormat::Glb),
             "gltf" => Some(MeshFormat::Gltf),
             "obj" => Some(MeshFormat::Obj),
+            "stl" => Some(MeshFormat::Stl),
             _ => None,
         }
     }
@@ -61,6 +68,7 @@ impl MeshFormat {
             MeshFormat::Glb => "glb",
             MeshFormat::Gltf => "gltf",
             MeshFormat::Obj => "obj",
+            MeshFormat::Stl => "stl",
         }
     }
 }
@@ -74,6 +82,9 @@ pub struct MeshOptions {
     pub unit: f64,
     /// Most triangles a mesh may have (`--max-triangles`).
     pub max_triangles: u64,
+    /// One closed body (`--solid`, an `.stl`): the tubes and joint
+    /// spheres united (`solid.rs`).
+    pub solid: bool,
 }
 
 /// Default of [`MeshOptions::sides`].
@@ -96,6 +107,7 @@ impl Default for MeshOptions {
             sides: DEFAULT_SIDES,
             unit: DEFAULT_UNIT,
             max_triangles: DEFAULT_MAX_TRIANGLES,
+            solid: false,
         }
     }
 }
