@@ -1,5 +1,8 @@
-//! The `stlc` binary as a user runs it: every command, stdin/stdout, exit
-//! codes, messages, and the files on disk before and after.
+//! The `stlc` binary as a user runs it: stdin/stdout, exit codes, messages,
+//! and the files on disk before and after. A command whose whole story is
+//! what it prints and its exit status is a literate case in `tests/cmd/`
+//! (`cli_cases.rs`); what stays here needs standard input, generated input,
+//! pixels, goldens or the file system checked around the command.
 
 use std::fs;
 use std::io::{Read, Write};
@@ -29,24 +32,6 @@ fn files_in(dir: &Path) -> Vec<String> {
 }
 
 #[test]
-fn help_teaches_every_command_with_an_example() {
-    for cmd in ["render", "compile", "expand", "stats", "check"] {
-        stlc()
-            .args([cmd, "--help"])
-            .assert()
-            .success()
-            .stdout(predicate::str::contains("Examples:"))
-            .stdout(predicate::str::contains("stlc "));
-    }
-    stlc()
-        .arg("--help")
-        .assert()
-        .success()
-        .stdout(predicate::str::contains(".od"))
-        .stdout(predicate::str::contains("Exit status"));
-}
-
-#[test]
 fn stdin_and_stdout_with_dash() {
     stlc()
         .args(["expand", "-", "--from", "lsys"])
@@ -72,29 +57,6 @@ fn stdin_and_stdout_with_dash() {
     let svg = String::from_utf8(out).unwrap();
     assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"), "{svg}");
     assert!(svg.trim_end().ends_with("</svg>"));
-}
-
-#[test]
-fn stats_json_has_exact_counts_and_the_turtle_extent() {
-    let out = stlc()
-        .args(["stats", "-", "--from", "lsys", "--json"])
-        .write_stdin(SQUARE)
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
-    assert_eq!(v["length"], "7");
-    assert_eq!(v["segments"], "4");
-    assert_eq!(v["symbols"]["F"], "4");
-    assert_eq!(v["symbols"]["+"], "3");
-    // Up, left, down, right from the origin: box [-1,-1,0,0], back home.
-    let num = |x: &serde_json::Value| x.as_f64().unwrap();
-    let bbox: Vec<f64> = v["bbox"].as_array().unwrap().iter().map(num).collect();
-    assert_eq!(bbox, vec![-1.0, -1.0, 0.0, 0.0]);
-    let end: Vec<f64> = v["end"].as_array().unwrap().iter().map(num).collect();
-    assert!(end[0].abs() < 1e-9 && end[1].abs() < 1e-9, "{end:?}");
 }
 
 #[test]
@@ -188,29 +150,6 @@ fn a_bad_input_points_at_the_line_and_writes_nothing() {
 }
 
 #[test]
-fn missing_file_and_unwritable_directory_are_errors_not_panics() {
-    stlc()
-        .args(["check", "/nonexistent/tree.od"])
-        .assert()
-        .code(1)
-        .stderr(predicate::str::contains("cannot read"));
-    stlc()
-        .args([
-            "render",
-            "-",
-            "--from",
-            "lsys",
-            "-o",
-            "/nonexistent/dir/x.png",
-        ])
-        .write_stdin(SQUARE)
-        .assert()
-        .code(1)
-        .stderr(predicate::str::contains("/nonexistent/dir"))
-        .stderr(predicate::str::contains("panicked").not());
-}
-
-#[test]
 fn a_failed_render_keeps_the_previous_output_and_leaves_no_temp_file() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("tree.png");
@@ -284,13 +223,6 @@ fn run_stdin(args: &[&str], stdin: impl Into<Vec<u8>>) -> (i32, String) {
 
 #[test]
 fn each_limit_names_the_flag_that_raises_it() {
-    // Input size: refused without reading it all.
-    let (code, err) = run_stdin(
-        &["check", "-", "--from", "lsys", "--max-input", "10"],
-        SQUARE,
-    );
-    assert_eq!(code, 1, "{err}");
-    assert!(err.contains("--max-input"), "{err}");
     // Nesting, in each format.
     let deep = format!(
         "angle 90\naxiom {}F{}\n",
@@ -320,42 +252,9 @@ fn each_limit_names_the_flag_that_raises_it() {
         wide,
     );
     assert_eq!(code, 0, "{err}");
-    // Depths and counts in the millions.
-    let (code, err) = run_stdin(
-        &["stats", "-", "--from", "lsys"],
-        "generations 5000000\nangle 90\naxiom F\nrule F FF\n",
-    );
-    assert_eq!(code, 1);
-    assert!(err.contains("--max-depth"), "{err}");
-    let (code, err) = run_stdin(
-        &["check", "-", "--from", "bed"],
-        "T (0,0) RULE R1: [+F][-F] SEED [I 3000000 R1] ENDSEED",
-    );
-    assert_eq!(code, 1);
-    assert!(err.contains("3000000"), "{err}");
-    // bfs refuses to hold a word beyond --max-word; dfs streams it.
+    // The traversal budget (tests/cmd/limits.md has --max-input, --max-depth
+    // and --max-word).
     let tree = "angle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
-    let (code, err) = run_stdin(
-        &[
-            "render",
-            "-",
-            "--from",
-            "lsys",
-            "--depth",
-            "6",
-            "--strategy",
-            "bfs",
-            "--max-word",
-            "1000",
-            "-f",
-            "svg",
-            "-o",
-            "-",
-        ],
-        tree,
-    );
-    assert_eq!(code, 1);
-    assert!(err.contains("--max-word"), "{err}");
     let (code, err) = run_stdin(
         &[
             "render",
@@ -375,61 +274,6 @@ fn each_limit_names_the_flag_that_raises_it() {
     );
     assert_eq!(code, 1);
     assert!(err.contains("--max-symbols"), "{err}");
-}
-
-#[test]
-fn growth_limits_warn_or_refuse() {
-    // No layout, no count, no decrement: refused with the ways out.
-    let unbounded = "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F][-F]\n";
-    let (code, err) = run_stdin(&["compile", "-", "--from", "od"], unbounded);
-    assert_eq!(code, 1);
-    assert!(
-        err.contains("--max-stems") && err.contains("LAYOUT"),
-        "{err}"
-    );
-    // An explicit --max-stems bounds it: success with a warning.
-    let out = stlc()
-        .args(["compile", "-", "--from", "od", "--max-stems", "50"])
-        .write_stdin(unbounded)
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(0));
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("--max-stems"), "{err}");
-    let bed = String::from_utf8(out.stdout).unwrap();
-    assert!(
-        bed.starts_with("U\n(0, 0)\n") && bed.contains("SEED"),
-        "{bed}"
-    );
-    // --quiet silences the warning, not the result.
-    let out = stlc()
-        .args(["compile", "-", "--from", "od", "--max-stems", "50", "-q"])
-        .write_stdin(unbounded)
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(0));
-    assert!(out.stderr.is_empty());
-    assert_eq!(String::from_utf8(out.stdout).unwrap(), bed);
-}
-
-#[test]
-fn garbage_empty_and_non_utf8_inputs_are_clean_errors() {
-    for kind in ["od", "bed", "lsys"] {
-        let (code, err) = run_stdin(&["check", "-", "--from", kind], "");
-        assert_eq!(code, 1, "empty {kind}: {err}");
-        assert!(err.contains("Error") || err.contains("error"), "{err}");
-        let (code, err) = run_stdin(
-            &["check", "-", "--from", kind],
-            b"ab\xff\xfe\x00cd".to_vec(),
-        );
-        assert_eq!(code, 1);
-        assert!(err.contains("UTF-8") && err.contains("byte 2"), "{err}");
-        let (code, err) = run_stdin(&["check", "-", "--from", kind], "\u{1}\u{2}}}{{)(\t**&^%$");
-        assert_eq!(code, 1, "{kind}: {err}");
-        assert!(!err.contains("panicked"), "{err}");
-        let (code, err) = run_stdin(&["check", "-", "--from", kind], "# only a comment\n");
-        assert_eq!(code, 1, "{kind}: {err}");
-    }
 }
 
 #[test]
@@ -940,61 +784,6 @@ fn output_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
     assert!(fs::read(&kept).unwrap().starts_with(b"\x89PNG"));
 }
 
-/// A generated outline: a 2,000-point polygon on one 30 KB line. It grows
-/// under the default layout limit (16,000 vertices); under
-/// `--max-layout-vertices 100` it is refused, and the report names the flag
-/// and shows the line cut down around the shape instead of printing it all.
-#[test]
-fn a_long_generated_layout_line_is_limited_and_reported_short() {
-    let pts: Vec<String> = (0..2000)
-        .map(|i| {
-            let t = std::f64::consts::TAU * f64::from(i) / 2000.0;
-            format!(
-                "({:.4}, {:.4})",
-                500.0 + 400.0 * libm::cos(t),
-                500.0 + 400.0 * libm::sin(t)
-            )
-        })
-        .collect();
-    let od = format!(
-        "Round\n(500, 800)\nL=40(0) B=1(0)\nRULE\nR1: [-F][+F]\nSEED\nFR1\nENDSEED\nLAYOUT\n(clGreen) Polygon {}\nENDLAYOUT\n",
-        pts.join(", ")
-    );
-    assert!(od.len() > 30_000);
-    let (code, err) = run_stdin(&["compile", "-", "--from", "od", "-o", "-"], od.as_bytes());
-    assert_eq!(code, 0, "{err}");
-    let (code, err) = run_stdin(
-        &[
-            "compile",
-            "-",
-            "--from",
-            "od",
-            "-o",
-            "-",
-            "--max-layout-vertices",
-            "100",
-        ],
-        od.as_bytes(),
-    );
-    assert_eq!(code, 1);
-    assert!(err.contains("2000 exceeds the limit of 100"), "{err}");
-    assert!(err.contains("--max-layout-vertices"), "{err}");
-    assert!(err.contains(" … "), "{err}");
-    assert!(err.contains("line 10, column 1"), "{err}");
-    assert!(
-        err.len() < 2_000,
-        "the report is short: {} bytes",
-        err.len()
-    );
-    // `check` refuses it the same way (its summary paints the layout).
-    let (code, err) = run_stdin(
-        &["check", "-", "--from", "od", "--max-layout-vertices", "100"],
-        od.as_bytes(),
-    );
-    assert_eq!(code, 1);
-    assert!(err.contains("2000 exceeds the limit of 100"), "{err}");
-}
-
 /// One meaning per flag: `--derivation` (old name `--strategy`, `-s`) is
 /// the derivation order on render; on an .od without `--growth` it warns
 /// that it cannot change the tree (the picture is the default growth's);
@@ -1086,7 +875,8 @@ fn it_runs_under_a_one_gigabyte_address_space_limit() {
 
 /// Every setting in the file (stl-language.md section 10): `O=`, `V=` and
 /// `M=` in an OD's header grow what `--growth`, `--seed` and `--max-stems`
-/// grow, the flags override the file for one run, and a BED refuses them.
+/// grow, and the flags override the file for one run (a BED refusing them,
+/// and wrong values, are cases in tests/cmd/growth.md).
 #[test]
 fn growth_settings_kept_in_the_file() {
     let dir = tempfile::tempdir().unwrap();
@@ -1165,42 +955,7 @@ fn growth_settings_kept_in_the_file() {
             &["--seed", "8", "--max-stems", "500"]
         )
     );
-    // A BED has none of them; a wrong value says what is right.
-    for (text, says) in [
-        (
-            "T (0,0) L=1(0) B=1(0) O=dfs RULE R1: [+F] SEED F R1{,} ENDSEED\n",
-            "in a BED",
-        ),
-        (
-            "T (0,0) L=1(0) B=1(0) V=7 RULE R1: [+F] SEED F R1{,} ENDSEED\n",
-            "in a BED",
-        ),
-    ] {
-        let p = dir.path().join("t.bed");
-        std::fs::write(&p, text).unwrap();
-        let out = Command::cargo_bin("stlc")
-            .unwrap()
-            .args(["check", p.to_str().unwrap()])
-            .output()
-            .unwrap();
-        assert_eq!(out.status.code(), Some(1));
-        assert!(String::from_utf8_lossy(&out.stderr).contains(says));
-    }
-    for (keys, says) in [
-        ("O=sideways", "`bfs`, `dfs` or `space`"),
-        ("V=-1", "whole number"),
-        ("M=2.5", "whole number"),
-    ] {
-        let p = with(keys, "bad.od");
-        let out = Command::cargo_bin("stlc")
-            .unwrap()
-            .args(["check", p.to_str().unwrap()])
-            .output()
-            .unwrap();
-        assert_eq!(out.status.code(), Some(1), "{keys}");
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert!(err.contains(says), "{keys}: {err}");
-    }
+    // A BED refusing them, and wrong values: tests/cmd/growth.md.
 }
 
 /// Standard input is compared with the output as a named input is (issue
