@@ -162,8 +162,13 @@ impl Output {
         match self {
             Output::Stdout => {
                 let stdout = io::stdout();
-                let mut w = BufWriter::with_capacity(1 << 16, stdout.lock());
-                write(&mut w)?;
+                let mut w = BufWriter::with_capacity(STDOUT_HELD, stdout.lock());
+                if let Err(e) = write(&mut w) {
+                    // Dropping the writer would flush what it holds: a
+                    // failure in the first STDOUT_HELD bytes writes none.
+                    let _ = w.into_parts();
+                    return Err(e);
+                }
                 w.flush()
                     .map_err(|e| io_error(&e, "cannot write to standard output"))?;
                 Ok(())
@@ -172,6 +177,12 @@ impl Output {
         }
     }
 }
+
+/// Bytes held back from standard output before the first write: a
+/// command that fails before it has made this much (a limit met midway
+/// through an SVG) writes nothing there, as a file output is never
+/// created. Past it, output streams, and the exit status tells a failure.
+const STDOUT_HELD: usize = 1 << 20;
 
 /// Symbolic links followed before writing, at most (as many as Linux follows).
 const MAX_SYMLINK_HOPS: usize = 40;

@@ -252,28 +252,6 @@ fn each_limit_names_the_flag_that_raises_it() {
         wide,
     );
     assert_eq!(code, 0, "{err}");
-    // The traversal budget (tests/cmd/limits.md has --max-input, --max-depth
-    // and --max-word).
-    let tree = "angle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
-    let (code, err) = run_stdin(
-        &[
-            "render",
-            "-",
-            "--from",
-            "lsys",
-            "--depth",
-            "6",
-            "--max-symbols",
-            "1000",
-            "-f",
-            "svg",
-            "-o",
-            "-",
-        ],
-        tree,
-    );
-    assert_eq!(code, 1);
-    assert!(err.contains("--max-symbols"), "{err}");
 }
 
 #[test]
