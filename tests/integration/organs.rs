@@ -42,12 +42,18 @@ fn first_error(src: &str) -> (String, String) {
 /// The picture `stlc render` writes for `src` as `name` (its extension
 /// the format), at 100 x 100 pixels.
 fn rendered(src: &str, name: &str) -> Vec<u8> {
+    rendered_with(src, name, &[])
+}
+
+/// [`rendered`] with more arguments.
+fn rendered_with(src: &str, name: &str, more: &[&str]) -> Vec<u8> {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("in.lsys");
     std::fs::write(&input, src).unwrap();
     let out = dir.path().join(name);
     crate::support::stlc()
         .args(["render", "--size", "100x100"])
+        .args(more)
         .arg(&input)
         .arg("-o")
         .arg(&out)
@@ -235,4 +241,69 @@ fn a_palette_of_unknown_colours_is_an_error_at_the_colour() {
         0,
     );
     assert_eq!(rec.paints, vec![(0, RED), (1, BLUE)]);
+}
+
+#[test]
+fn a_3d_view_from_the_front_draws_colours_and_polygons_as_the_2d_picture() {
+    let word = "angle 90\npalette #ff0000 #0000ff\naxiom F[-F]'{.f+f+f+f}F\n";
+    let flat = rendered(&format!("generations 0\n{word}"), "out.svg");
+    let front = rendered_with(
+        &format!("generations 0\ndimensions 3\n{word}"),
+        "out.svg",
+        &["--view", "0,0"],
+    );
+    let flat = String::from_utf8(flat).unwrap();
+    assert!(flat.contains("fill=\"#0000ff\""), "{flat}");
+    assert_eq!(flat, String::from_utf8(front).unwrap());
+}
+
+#[test]
+fn abop_1_26_has_leaves_petals_and_stamens_in_their_colours() {
+    let src =
+        std::fs::read_to_string(crate::support::manifest_path("examples/abop-1.26.lsys")).unwrap();
+    let sys = parse(&src, &Limits::default()).unwrap();
+    let p = sys.parametric.as_deref().unwrap();
+    let mut polygons = 0;
+    let mut colours = std::collections::BTreeSet::new();
+    stlc::interpret::lsys::param::draw3_marks(
+        &sys,
+        p,
+        3,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut |m| match m {
+            stlc::interpret::lsys::param::Mark::Polygon(v) => {
+                // A leaf records its 8 `f`s (the last comes back to where
+                // it started, not recorded), a petal its 4.
+                assert!(v.len() == 8 || v.len() == 4, "{}", v.len());
+                polygons += 1;
+            }
+            stlc::interpret::lsys::param::Mark::Paint(i) => {
+                colours.insert(i);
+            }
+            _ => {}
+        },
+    )
+    .unwrap();
+    let word = {
+        let mut out = Vec::new();
+        stlc::interpret::lsys::expand(
+            &sys,
+            2,
+            Derivation::Dfs,
+            &Limits::default(),
+            &mut out,
+            &mut NoProgress,
+        )
+        .unwrap();
+        String::from_utf8(out).unwrap()
+    };
+    // Only L (p4) and W (p7) rewrite to polygons, one each, their
+    // successors hold no L or W, and a polygon written stays: the
+    // polygons at depth 3 are the `{`, L and W of the word at depth 2
+    // (2, 10 and 15).
+    let count = |c: char| word.chars().filter(|&x| x == c).count();
+    assert_eq!((count('{'), count('L'), count('W')), (2, 10, 15));
+    assert_eq!(polygons, count('{') + count('L') + count('W'));
+    assert_eq!(colours, [1, 2, 3, 0].into_iter().collect());
 }

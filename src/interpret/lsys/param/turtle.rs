@@ -431,7 +431,7 @@ pub(crate) fn draw2<T: Turtle>(
 }
 
 /// Draws `sys` derived to `depth` in 3D into `sink`. Returns where the
-/// turtle ends. (Colours and polygons are not drawn in 3D yet.)
+/// turtle ends.
 pub(crate) fn draw3(
     sys: &LSystem,
     p: &Parametric,
@@ -440,16 +440,35 @@ pub(crate) fn draw3(
     limits: &crate::limits::Limits,
     sink: &mut dyn FnMut(Segment3),
 ) -> Result<Point3, crate::diag::Diagnostics> {
+    draw3_marks(sys, p, depth, strategy, limits, &mut |m| {
+        if let Mark::Step(s, _) = m {
+            sink(s)
+        }
+    })
+}
+
+/// Draws `sys` derived to `depth` in 3D into `sink`: its steps (each
+/// with its width's order when the system sets widths), changes of
+/// colour index and polygons. Returns where the turtle ends.
+pub fn draw3_marks(
+    sys: &LSystem,
+    p: &Parametric,
+    depth: u32,
+    strategy: crate::interpret::Derivation,
+    limits: &crate::limits::Limits,
+    sink: &mut dyn FnMut(Mark<'_>),
+) -> Result<Point3, crate::diag::Diagnostics> {
     let d = super::Deriver::new(sys, p);
     let mut t = Turtle3P::new(sys, p);
     let widths = p.sets_width();
-    let mut each = |m: Mark<'_>| {
-        if let Mark::Step(mut s, w) = m {
+    let mut each = |m: Mark<'_>| match m {
+        Mark::Step(mut s, w) => {
             if widths {
                 s.order = order_of(w);
             }
-            sink(s)
+            sink(Mark::Step(s, w))
         }
+        m => sink(m),
     };
     d.each(depth, strategy, limits, |sym, ps| {
         t.module(sym, ps, &mut each)
