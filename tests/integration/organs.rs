@@ -307,3 +307,81 @@ fn abop_1_26_has_leaves_petals_and_stamens_in_their_colours() {
     assert_eq!(polygons, count('{') + count('L') + count('W'));
     assert_eq!(colours, [1, 2, 3, 0].into_iter().collect());
 }
+
+#[test]
+fn a_leaf_in_a_mesh_is_two_faces_each_wound_to_its_own_normal() {
+    use stlc::render::mesh::{Leaf, MeshOptions, build_with_leaves};
+    use stlc::turtle::turtle3::Point3;
+    // A unit square in the canvas plane; the files' axes are (x, -y, -z),
+    // so it is counter-clockwise seen from +z: its normal is (0, 0, 1).
+    let square = [(0.0, 0.0), (1.0, 0.0), (1.0, -1.0), (0.0, -1.0)];
+    let leaf = Leaf {
+        points: square
+            .iter()
+            .map(|&(x, y)| Point3::new(x, y, 0.0))
+            .collect(),
+        color: GREEN,
+    };
+    let opts = MeshOptions {
+        unit: 1.0,
+        ..MeshOptions::default()
+    };
+    let mesh = build_with_leaves(&[], &[leaf], Point3::new(0.0, 0.0, 0.0), &opts);
+    assert_eq!(mesh.primitives.len(), 1);
+    let p = &mesh.primitives[0];
+    assert!(p.leaf);
+    assert_eq!(p.color, Some(GREEN));
+    assert_eq!(p.positions.len(), 8);
+    assert_eq!(&p.normals[..4], &[[0.0, 0.0, 1.0]; 4]);
+    assert_eq!(&p.normals[4..], &[[0.0, 0.0, -1.0]; 4]);
+    assert_eq!(p.indices, vec![0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6]);
+    // Every triangle's winding (right hand) points along its vertices'
+    // normal: each side is seen counter-clockwise from its own side.
+    for t in p.indices.chunks(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| p.positions[t[k] as usize].map(f64::from));
+        let (u, v) = (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+        );
+        let w = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let n = p.normals[t[0] as usize].map(f64::from);
+        assert!(w[0] * n[0] + w[1] * n[1] + w[2] * n[2] > 0.0, "{t:?}");
+    }
+    // Texture coordinates: the square itself.
+    assert_eq!(
+        &p.texcoords[..4],
+        &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+    );
+}
+
+#[test]
+fn abop_1_26_as_a_mesh_has_one_material_per_colour_and_leaf_materials() {
+    let path = crate::support::manifest_path("examples/abop-1.26.lsys");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("plant.gltf");
+    crate::support::stlc()
+        .args(["render", "--depth", "3"])
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&out).unwrap();
+    // Stems in the stem and stamen colours; leaves and petals as leaves.
+    for name in [
+        "\"name\": \"#2f5d1e\"",
+        "\"name\": \"#f2c230\"",
+        "\"name\": \"leaf #4f9a34\"",
+        "\"name\": \"leaf #e9679b\"",
+    ] {
+        assert!(
+            text.contains(name),
+            "{name} in {}",
+            &text[..text.len().min(3000)]
+        );
+    }
+}

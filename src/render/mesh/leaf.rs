@@ -1,0 +1,111 @@
+//! Leaves in meshes: each polygon of a `.lsys` (`{ }`, surfaces) a
+//! double-sided face (docs/3d.md, *Meshes*): its vertices twice, once
+//! with the polygon's normal (Newell's, from the vertices' order) and
+//! once with its opposite, each side a fan of triangles from the first
+//! vertex, counter-clockwise seen from the side its normal points to; in
+//! primitives of their own, one per colour, apart from the stems'.
+
+use super::{Mesh, Primitive, V, cross, f32s, sub, to_file_axes, unit};
+use crate::color::Rgb;
+use crate::turtle::turtle3::Point3;
+
+/// One polygon to mesh: its vertices (canvas units), its colour.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Leaf {
+    /// Its vertices, in order.
+    pub points: Vec<Point3>,
+    /// Its colour.
+    pub color: Rgb,
+}
+
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Appends `leaf` to `mesh`, `origin` at the files' origin, `metres`
+/// per canvas unit. A polygon with no area (or a coordinate not finite)
+/// is left out.
+pub(super) fn add(mesh: &mut Mesh, leaf: &Leaf, origin: Point3, metres: f64) {
+    let pts: Vec<V> = leaf
+        .points
+        .iter()
+        .map(|q| {
+            let moved = Point3::new(q.x - origin.x, q.y - origin.y, q.z - origin.z);
+            to_file_axes(moved, metres)
+        })
+        .collect();
+    if pts.len() < 3 || !pts.iter().flatten().all(|v| v.is_finite()) {
+        return;
+    }
+    // Newell's normal: the polygon's area vector.
+    let mut n = [0.0; 3];
+    for (i, a) in pts.iter().enumerate() {
+        let b = pts[(i + 1) % pts.len()];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    if dot(n, n) == 0.0 {
+        return;
+    }
+    let n = unit(n);
+    // Texture coordinates: the polygon in its plane, its first edge along
+    // u, scaled into the unit square.
+    let e1 = unit(sub(pts[1], pts[0]));
+    let e2 = cross(n, e1);
+    let flat: Vec<(f64, f64)> = pts
+        .iter()
+        .map(|&q| (dot(sub(q, pts[0]), e1), dot(sub(q, pts[0]), e2)))
+        .collect();
+    let lo = flat.iter().fold((f64::INFINITY, f64::INFINITY), |m, p| {
+        (m.0.min(p.0), m.1.min(p.1))
+    });
+    let hi = flat
+        .iter()
+        .fold((f64::NEG_INFINITY, f64::NEG_INFINITY), |m, p| {
+            (m.0.max(p.0), m.1.max(p.1))
+        });
+    let side = (hi.0 - lo.0).max(hi.1 - lo.1);
+    let uv: Vec<[f32; 2]> = flat
+        .iter()
+        .map(|p| {
+            if side > 0.0 && side.is_finite() {
+                [((p.0 - lo.0) / side) as f32, ((p.1 - lo.1) / side) as f32]
+            } else {
+                [0.0, 0.0]
+            }
+        })
+        .collect();
+    let idx = match mesh
+        .primitives
+        .iter()
+        .position(|p| p.leaf && p.color == Some(leaf.color))
+    {
+        Some(i) => i,
+        None => {
+            mesh.primitives.push(Primitive {
+                color: Some(leaf.color),
+                leaf: true,
+                ..Primitive::default()
+            });
+            mesh.primitives.len() - 1
+        }
+    };
+    let p = &mut mesh.primitives[idx];
+    let k = pts.len() as u32;
+    for (normal, front) in [(n, true), (n.map(|x| -x), false)] {
+        let base = p.positions.len() as u32;
+        for (q, t) in pts.iter().zip(&uv) {
+            p.positions.push(f32s(*q));
+            p.normals.push(f32s(normal));
+            p.texcoords.push(*t);
+        }
+        for j in 1..k - 1 {
+            if front {
+                p.indices.extend([base, base + j, base + j + 1]);
+            } else {
+                p.indices.extend([base, base + j + 1, base + j]);
+            }
+        }
+    }
+}
