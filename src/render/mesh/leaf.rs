@@ -5,9 +5,42 @@
 //! vertex, counter-clockwise seen from the side its normal points to; in
 //! primitives of their own, one per colour, apart from the stems'.
 
-use super::{Mesh, Primitive, V, cross, f32s, sub, to_file_axes, unit};
 use crate::color::Rgb;
 use crate::turtle::turtle3::Point3;
+
+type V = [f64; 3];
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: V, b: V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn unit(a: V) -> V {
+    let n = libm::sqrt(dot(a, a));
+    [a[0] / n, a[1] / n, a[2] / n]
+}
+
+/// Never -0: the same bytes whichever way a zero was reached.
+fn f32s(a: V) -> [f32; 3] {
+    a.map(|v| if v == 0.0 { 0.0 } else { v as f32 })
+}
+
+/// A leaf's two faces: positions, normals, texture coordinates, and
+/// triangles (indices from 0).
+#[derive(Debug, Default)]
+pub(super) struct Faces {
+    pub(super) positions: Vec<[f32; 3]>,
+    pub(super) normals: Vec<[f32; 3]>,
+    pub(super) texcoords: Vec<[f32; 2]>,
+    pub(super) indices: Vec<u32>,
+}
 
 /// One polygon to mesh: its vertices (canvas units), its colour.
 #[derive(Debug, Clone, PartialEq)]
@@ -22,20 +55,11 @@ fn dot(a: V, b: V) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Appends `leaf` to `mesh`, `origin` at the files' origin, `metres`
-/// per canvas unit. A polygon with no area (or a coordinate not finite)
-/// is left out.
-pub(super) fn add(mesh: &mut Mesh, leaf: &Leaf, origin: Point3, metres: f64) {
-    let pts: Vec<V> = leaf
-        .points
-        .iter()
-        .map(|q| {
-            let moved = Point3::new(q.x - origin.x, q.y - origin.y, q.z - origin.z);
-            to_file_axes(moved, metres)
-        })
-        .collect();
+/// The two faces of a polygon whose vertices `pts` are in the files'
+/// axes; `None` for one with no area (or a coordinate not finite).
+pub(super) fn faces(pts: &[V]) -> Option<Faces> {
     if pts.len() < 3 || !pts.iter().flatten().all(|v| v.is_finite()) {
-        return;
+        return None;
     }
     // Newell's normal: the polygon's area vector.
     let mut n = [0.0; 3];
@@ -46,7 +70,7 @@ pub(super) fn add(mesh: &mut Mesh, leaf: &Leaf, origin: Point3, metres: f64) {
         n[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
     if dot(n, n) == 0.0 {
-        return;
+        return None;
     }
     let n = unit(n);
     // Texture coordinates: the polygon in its plane, its first edge along
@@ -76,22 +100,7 @@ pub(super) fn add(mesh: &mut Mesh, leaf: &Leaf, origin: Point3, metres: f64) {
             }
         })
         .collect();
-    let idx = match mesh
-        .primitives
-        .iter()
-        .position(|p| p.leaf && p.color == Some(leaf.color))
-    {
-        Some(i) => i,
-        None => {
-            mesh.primitives.push(Primitive {
-                color: Some(leaf.color),
-                leaf: true,
-                ..Primitive::default()
-            });
-            mesh.primitives.len() - 1
-        }
-    };
-    let p = &mut mesh.primitives[idx];
+    let mut p = Faces::default();
     let k = pts.len() as u32;
     for (normal, front) in [(n, true), (n.map(|x| -x), false)] {
         let base = p.positions.len() as u32;
@@ -108,4 +117,5 @@ pub(super) fn add(mesh: &mut Mesh, leaf: &Leaf, origin: Point3, metres: f64) {
             }
         }
     }
+    Some(p)
 }

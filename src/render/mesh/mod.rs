@@ -273,7 +273,35 @@ pub fn build_with_leaves(
         );
     }
     for l in leaves {
-        leaf::add(&mut mesh, l, origin, opts.unit);
+        let pts: Vec<V> = l
+            .points
+            .iter()
+            .map(|&q| to_file_axes(moved(q), opts.unit))
+            .collect();
+        let Some(f) = leaf::faces(&pts) else {
+            continue;
+        };
+        let idx = match mesh
+            .primitives
+            .iter()
+            .position(|p| p.leaf && p.color == Some(l.color))
+        {
+            Some(i) => i,
+            None => {
+                mesh.primitives.push(Primitive {
+                    color: Some(l.color),
+                    leaf: true,
+                    ..Primitive::default()
+                });
+                mesh.primitives.len() - 1
+            }
+        };
+        let p = &mut mesh.primitives[idx];
+        let base = p.positions.len() as u32;
+        p.positions.extend(f.positions);
+        p.normals.extend(f.normals);
+        p.texcoords.extend(f.texcoords);
+        p.indices.extend(f.indices.iter().map(|i| base + i));
     }
     mesh
 }

@@ -4,11 +4,24 @@
 //! word, checked where they are written.
 
 use super::expr::{Scope, error};
-use super::param::{Line, word};
 use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, Span};
 use crate::model::Loc;
-use crate::model::param::{MAX_POLYGON_VERTICES, Organs, Surface};
+use crate::model::param::{MAX_POLYGON_VERTICES, ModuleExpr, Organs, Surface};
+
+/// One line of a file: its key, the text after it, and where that text
+/// starts (comments cut off), and where the line starts and ends.
+pub(super) struct Line<'a> {
+    pub(super) key: &'a str,
+    pub(super) rest: &'a str,
+    pub(super) at: usize,
+    pub(super) start: usize,
+    pub(super) end: usize,
+}
+
+/// Reads a word of modules written at a byte of the file (the
+/// parametric parser's).
+type Word = fn(&str, usize, &Scope) -> Result<Vec<ModuleExpr>, Box<Diagnostic>>;
 
 /// The keys of this part.
 pub const ORGAN_KEYS: [&str; 3] = ["palette", "width_decay", "surface"];
@@ -32,6 +45,7 @@ pub(super) fn line(
     text: &str,
     l: &Line,
     scope: &Scope,
+    word: Word,
     o: &mut Organs,
 ) -> Result<(), Box<Diagnostic>> {
     match l.key {
@@ -51,7 +65,7 @@ pub(super) fn line(
             o.width_decay = Some(v);
             Ok(())
         }
-        "surface" => surface(l, scope).map(|s| o.surfaces.push(s)),
+        "surface" => surface(l, scope, word).map(|s| o.surfaces.push(s)),
         _ => Ok(()),
     }
 }
@@ -95,7 +109,7 @@ fn palette(text: &str, l: &Line, o: &mut Organs) -> Result<(), Box<Diagnostic>> 
 }
 
 /// `surface X { word }`.
-fn surface(l: &Line, scope: &Scope) -> Result<Surface, Box<Diagnostic>> {
+fn surface(l: &Line, scope: &Scope, word: Word) -> Result<Surface, Box<Diagnostic>> {
     let t = l.rest.trim();
     let at = l.at + l.rest.len() - l.rest.trim_start().len();
     let bad = || {

@@ -10,6 +10,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::expr::{self, Scope, error, is_boolean};
+use super::organs::Line;
 use crate::diag::{Diagnostic, Diagnostics, Span};
 use crate::model::Loc;
 use crate::model::param::{Expr, Formal, MAX_PARAMS, ModuleExpr, ParamRule, Parametric};
@@ -27,14 +28,6 @@ pub const PARAM_KEYS: [&str; 7] = [
 
 /// One line of the file: its key, the text after it, and where that text
 /// starts (comments cut off).
-pub(super) struct Line<'a> {
-    pub(super) key: &'a str,
-    pub(super) rest: &'a str,
-    pub(super) at: usize,
-    pub(super) start: usize,
-    pub(super) end: usize,
-}
-
 fn lines(text: &str) -> Vec<Line<'_>> {
     let mut out = Vec::new();
     let mut start = 0;
@@ -175,7 +168,7 @@ pub fn parse(text: &str) -> Result<Parametric, Diagnostics> {
                     })
             }
             "palette" | "width_decay" | "surface" => {
-                super::organs::line(text, l, &scope, &mut p.organs)
+                super::organs::line(text, l, &scope, word, &mut p.organs)
             }
             _ => Ok(()),
         };
