@@ -202,6 +202,55 @@ pub struct Parametric {
     pub tropism: Option<[f64; 3]>,
     /// `elasticity e` (default 0: nothing bends).
     pub elasticity: f64,
+    /// Colours, organs and `!` (docs/lsys.md, *Colours, widths and
+    /// organs*).
+    pub organs: Organs,
+}
+
+/// A file's colours, width decay and surfaces (stl-language.md section 13).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Organs {
+    /// `palette C0 C1 ...`: the colours `'`, `;` and `,` step through
+    /// (empty: the file's `color` is the only one).
+    pub palette: Vec<crate::color::Rgb>,
+    /// `width_decay r`: what a bare `!` multiplies the width by (`None`:
+    /// [`DEFAULT_WIDTH_DECAY`]).
+    pub width_decay: Option<f64>,
+    /// `surface X { word }`: organs placed by `~X`, in file order.
+    pub surfaces: Vec<Surface>,
+    /// Where the first `{` of the axiom or a successor is written: a
+    /// polygon derived past [`MAX_POLYGON_VERTICES`] is reported there.
+    pub first_polygon: Option<Loc>,
+}
+
+/// What a bare `!` multiplies the width by without `width_decay`.
+pub const DEFAULT_WIDTH_DECAY: f64 = 0.7;
+
+/// The most vertices one polygon `{ ... }` may record (`f` and `.`):
+/// more is an error, in a word as written or as derived.
+pub const MAX_POLYGON_VERTICES: usize = 4096;
+
+/// The symbols that gained a meaning for colours and organs (section 13):
+/// a file using one of them, or `!`, `G`, `g`, reads through the
+/// parametric path.
+pub const ORGAN_SYMBOLS: [char; 10] = ['{', '}', '.', '~', '\'', ';', ',', '!', 'G', 'g'];
+
+/// One `surface X { word }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Surface {
+    /// Its name, `X`.
+    pub name: char,
+    /// Its word (constants only).
+    pub word: Vec<ModuleExpr>,
+    /// Where the line is.
+    pub loc: Loc,
+}
+
+impl Organs {
+    /// What a bare `!` multiplies the width by.
+    pub fn decay(&self) -> f64 {
+        self.width_decay.unwrap_or(DEFAULT_WIDTH_DECAY)
+    }
 }
 
 impl Parametric {
@@ -216,14 +265,27 @@ impl Parametric {
         self.rules.iter().any(|r| r.probability.is_some())
     }
 
-    /// Whether some module sets the width (`!(w)`): its pictures then
+    /// Whether some module sets the width (`!(w)` or `!`): its pictures then
     /// stroke each segment with the width in force, in canvas units
     /// ([`WIDTH_QUANTUM`]).
     pub fn sets_width(&self) -> bool {
         std::iter::once(&self.axiom)
             .chain(self.rules.iter().map(|r| &r.successor))
+            .chain(self.organs.surfaces.iter().map(|s| &s.word))
             .flatten()
-            .any(|m| m.symbol == '!' && !m.args.is_empty())
+            .any(|m| m.symbol == '!')
+    }
+
+    /// Whether the system changes colour, draws polygons or places
+    /// surfaces: its pictures are then drawn exactly (no level of detail:
+    /// a stand-in could not say which colours it covers).
+    pub fn paints(&self) -> bool {
+        !self.organs.palette.is_empty()
+            || !self.organs.surfaces.is_empty()
+            || std::iter::once(&self.axiom)
+                .chain(self.rules.iter().map(|r| &r.successor))
+                .flatten()
+                .any(|m| matches!(m.symbol, '{' | '}' | '.' | '~' | '\'' | ';' | ','))
     }
 
     /// Whether the turtle bends toward the tropism vector.

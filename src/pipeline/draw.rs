@@ -251,7 +251,12 @@ pub(crate) fn render_tree(
         _ => None,
     };
     let mut warnings = Vec::new();
-    if segments == 0 {
+    // Polygons and surfaces draw without a segment (not counted).
+    let organs = match &scene.what {
+        What::Lsys { sys, .. } => sys.parametric.as_ref().is_some_and(|p| p.paints()),
+        What::Tree { .. } => false,
+    };
+    if segments == 0 && !organs {
         warnings.push(Diagnostic::warning(RenderError::NothingDrawn).with_help(
             "check the axiom or seed and the depth: only `F` draws (and in an .od, a rule that grows)",
         ));

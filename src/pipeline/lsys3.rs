@@ -83,6 +83,9 @@ pub(crate) fn render_view(
         return Ok(r);
     }
     check_stems(sys, depth, &scene.limits, MAX_VIEW_SEGMENTS, view_too_large)?;
+    if let Some(p) = sys.parametric.as_deref().filter(|p| p.paints()) {
+        return render_view_organs(scene, sys, p, view, look, opts, out, progress);
+    }
     let mut gathered = Gathered::new(view);
     draw3(
         sys,
@@ -102,6 +105,61 @@ pub(crate) fn render_view(
         segments: n,
         count: Some(n.to_string()),
         warnings: nothing_drawn(n),
+    })
+}
+
+/// [`render_view`] of a system with colours or organs: every stem and
+/// polygon in its colour, sorted far to near.
+#[allow(clippy::too_many_arguments)]
+fn render_view_organs(
+    scene: &Scene,
+    sys: &LSystem,
+    p: &crate::model::param::Parametric,
+    view: View,
+    look: &super::Look,
+    opts: &RenderOptions,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<Rendered, Diagnostics> {
+    use crate::interpret::lsys::param::{Mark, draw3_marks};
+    let mut gathered = Gathered::with_organs(view, p.organs.palette.clone());
+    let depth = match &scene.what {
+        What::Lsys { depth, .. } => *depth,
+        What::Tree { .. } => 0,
+    };
+    progress.start("modules", 0);
+    draw3_marks(
+        sys,
+        p,
+        depth,
+        scene.derivation,
+        &scene.limits,
+        &mut |m| match m {
+            Mark::Step(s, _) => gathered.push(s),
+            Mark::Paint(i) => gathered.paint(i),
+            Mark::Polygon(points) => gathered.push_polygon(points),
+        },
+    )?;
+    progress.finish();
+    if gathered.over {
+        return Err(view_too_large(format!("more than {MAX_VIEW_SEGMENTS}")));
+    }
+    let sorted = gathered.sorted_organs();
+    let n = sorted.stems();
+    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
+        sorted.draw(t);
+        Ok(())
+    };
+    let exact = RenderOptions {
+        exact: true,
+        ..*opts
+    };
+    let style = style(scene, look);
+    render_framed(&mut drawing, Frame::Fit, &[], &style, &exact, out, progress)?;
+    Ok(Rendered {
+        segments: n,
+        count: Some(n.to_string()),
+        warnings: Vec::new(),
     })
 }
 

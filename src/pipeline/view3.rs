@@ -10,6 +10,7 @@ use super::tree3::{bed3, draw_tree3};
 use super::{Rendered, Scene, What, style};
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::interpret::lsys::lsys3::draw3;
+use crate::interpret::lsys::param::Mark;
 use crate::progress::{Phase, Progress};
 use crate::render::mesh::{self, MeshFormat, MeshOptions, Tube};
 use crate::render::view::View;
@@ -190,7 +191,50 @@ pub(crate) fn mesh(
     };
     solid_usage(scene, format, opts)?;
     let mut phase = Phase::new(progress, "deriving");
-    if let Some((sys, depth)) = lsys3(scene) {
+    let mut leaves: Vec<mesh::Leaf> = Vec::new();
+    if let Some((sys, depth)) = lsys3(scene)
+        && let Some(p) = sys.parametric.as_deref().filter(|p| p.paints())
+    {
+        // Colours and polygons (docs/lsys.md, *Colours, widths and
+        // organs*): each stem in its palette colour, each polygon a leaf.
+        check_stems(sys, depth, &scene.limits, most, |_| {
+            mesh::mesh_too_large(most, true, opts)
+        })?;
+        let palette = &p.organs.palette;
+        let mut paint = palette.first().copied().unwrap_or(color);
+        crate::interpret::lsys::param::draw3_marks(
+            sys,
+            p,
+            depth,
+            scene.derivation,
+            &scene.limits,
+            &mut |m| match m {
+                Mark::Step(s, _) => {
+                    if tubes.len() as u64 >= most {
+                        over = true;
+                        return;
+                    }
+                    tubes.push(Tube {
+                        from: s.from,
+                        to: s.to,
+                        width: width(s.order),
+                        color: paint,
+                    });
+                }
+                Mark::Paint(i) => paint = palette.get(i).copied().unwrap_or(color),
+                Mark::Polygon(points) => {
+                    if (tubes.len() + leaves.len()) as u64 >= most {
+                        over = true;
+                        return;
+                    }
+                    leaves.push(mesh::Leaf {
+                        points: points.to_vec(),
+                        color: paint,
+                    });
+                }
+            },
+        )?;
+    } else if let Some((sys, depth)) = lsys3(scene) {
         check_stems(sys, depth, &scene.limits, most, |_| {
             mesh::mesh_too_large(most, true, opts)
         })?;
@@ -211,7 +255,7 @@ pub(crate) fn mesh(
     let triangles = if format == MeshFormat::Stl {
         solid(&tubes, first_root(scene), opts, out, progress)?
     } else {
-        let m = mesh::build(&tubes, first_root(scene), opts);
+        let m = mesh::build_with_leaves(&tubes, &leaves, first_root(scene), opts);
         match format {
             MeshFormat::Glb => mesh::write_glb(&m, out)?,
             MeshFormat::Gltf => mesh::write_gltf(&m, out)?,

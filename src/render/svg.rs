@@ -208,6 +208,39 @@ impl<W: Write> Turtle for SvgTurtle<W> {
         let width = stroke_px(&self.width, self.fit.scale, seg.order);
         self.stroke(seg, width);
     }
+
+    fn paint(&mut self, rgb: Rgb) {
+        if rgb == self.stroke {
+            return;
+        }
+        self.flush();
+        self.stroke = rgb;
+        // Merging leaves out lines over inked cells, which a new colour
+        // would change: a drawing with colours is written exactly (its
+        // first colour comes before any line).
+        self.cells = None;
+    }
+
+    fn polygon(&mut self, points: &[Point]) {
+        let mut d = String::new();
+        for (i, &p) in points.iter().enumerate() {
+            let p = self.fit.map(p);
+            if !(p.x.is_finite() && p.y.is_finite()) {
+                return;
+            }
+            push_point(&mut d, if i == 0 { 'M' } else { 'L' }, p);
+        }
+        if points.len() < 3 {
+            return;
+        }
+        self.flush();
+        let text = format!(
+            "<path fill=\"{}\" d=\"{} Z\"/>\n",
+            self.stroke,
+            d.trim_start()
+        );
+        self.write(&text);
+    }
 }
 
 impl<W: Write> SvgTurtle<W> {

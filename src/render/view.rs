@@ -13,6 +13,7 @@
 //! picture: its depths are all 0 and its projected points are its x and y
 //! exactly (cos and sin of multiples of 90 degrees are exact).
 
+use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::turtle::turtle3::{Point3, Segment3, cos_sin};
 use crate::turtle::{Footprint, Point, Segment, StandIn, Turtle};
@@ -90,7 +91,11 @@ pub fn view_too_large(segments: String) -> Diagnostics {
 /// near by [`Gathered::sorted`].
 pub struct Gathered {
     projection: Projection,
-    items: Vec<(f64, Segment)>,
+    /// Depth, projected stem, and its look's index in `looks` (`NO_LOOK`
+    /// for a plain stem).
+    items: Vec<(f64, Segment, u32)>,
+    /// Colours and polygons (a `.lsys` with organs): each tagged item's.
+    looks: Option<Looks>,
     /// The stand-ins' bushes, indexed from their stems' orders.
     bushes: Vec<Bush>,
     /// More stems came than [`MAX_VIEW_SEGMENTS`] (the rest were dropped).
@@ -105,7 +110,56 @@ impl Gathered {
             items: Vec::new(),
             bushes: Vec::new(),
             over: false,
+            looks: None,
         }
+    }
+
+    /// Nothing gathered yet, for `view`, of a drawing with colours from
+    /// `palette` (empty: none) and polygons: each stem and polygon keeps
+    /// its colour index through the sort.
+    pub fn with_organs(view: View, palette: Vec<Rgb>) -> Self {
+        let mut g = Gathered::new(view);
+        g.looks = Some(Looks {
+            palette,
+            paint: 0,
+            each: Vec::new(),
+        });
+        g
+    }
+
+    /// Later stems and polygons have colour index `i`.
+    pub fn paint(&mut self, i: usize) {
+        if let Some(l) = &mut self.looks {
+            l.paint = i;
+        }
+    }
+
+    /// Projects and keeps one polygon, at the mean depth of its vertices.
+    pub fn push_polygon(&mut self, points: &[Point3]) {
+        if self.items.len() as u64 >= MAX_VIEW_SEGMENTS {
+            self.over = true;
+            return;
+        }
+        let Some(l) = &mut self.looks else { return };
+        let mut depth = 0.0;
+        let flat: Vec<Point> = points
+            .iter()
+            .map(|&p| {
+                let (q, d) = self.projection.project(p);
+                depth += d;
+                q
+            })
+            .collect();
+        let tag = l.each.len() as u32;
+        l.each.push((l.paint, Some(flat)));
+        let at = Point::new(0.0, 0.0);
+        let seg = Segment {
+            from: at,
+            to: at,
+            order: 0,
+        };
+        self.items
+            .push((depth / points.len().max(1) as f64, seg, tag));
     }
 
     /// Projects and keeps one stem.
@@ -116,6 +170,13 @@ impl Gathered {
         }
         let (from, a) = self.projection.project(s.from);
         let (to, b) = self.projection.project(s.to);
+        let tag = match &mut self.looks {
+            Some(l) => {
+                l.each.push((l.paint, None));
+                (l.each.len() - 1) as u32
+            }
+            None => NO_LOOK,
+        };
         self.items.push((
             (a + b) / 2.0,
             Segment {
@@ -123,6 +184,7 @@ impl Gathered {
                 to,
                 order: s.order,
             },
+            tag,
         ));
     }
 
@@ -153,8 +215,76 @@ impl Gathered {
     /// [`Gathered::sorted`], with the stand-ins' bushes for [`draw_sorted`].
     pub fn sorted_with_bushes(mut self) -> (Vec<Segment>, Vec<Bush>) {
         self.items.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let stems = self.items.into_iter().map(|(_, s)| s).collect();
+        let stems = self.items.into_iter().map(|(_, s, _)| s).collect();
         (stems, self.bushes)
+    }
+
+    /// The stems and polygons of [`Gathered::with_organs`], far to near,
+    /// ties in the order they came, each with its look.
+    pub fn sorted_organs(mut self) -> Sorted {
+        self.items.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let looks = self.looks.unwrap_or_default();
+        Sorted {
+            items: self.items.into_iter().map(|(_, s, t)| (s, t)).collect(),
+            looks,
+        }
+    }
+}
+
+/// A look's index of an item that has none.
+const NO_LOOK: u32 = u32::MAX;
+
+/// The colours and polygons of gathered items.
+#[derive(Debug, Clone, Default)]
+struct Looks {
+    palette: Vec<Rgb>,
+    /// The colour index in force.
+    paint: usize,
+    /// Each tagged item's colour index, and its vertices if a polygon.
+    each: Vec<(usize, Option<Vec<Point>>)>,
+}
+
+/// Gathered stems and polygons, sorted far to near
+/// ([`Gathered::sorted_organs`]).
+pub struct Sorted {
+    items: Vec<(Segment, u32)>,
+    looks: Looks,
+}
+
+impl Sorted {
+    /// How many stems (polygons not counted).
+    pub fn stems(&self) -> u64 {
+        self.items
+            .iter()
+            .filter(|(_, t)| {
+                self.looks
+                    .each
+                    .get(*t as usize)
+                    .is_none_or(|l| l.1.is_none())
+            })
+            .count() as u64
+    }
+
+    /// Draws every stem and polygon into `t`, far to near, each in its
+    /// colour ([`Turtle::paint`], [`Turtle::polygon`]).
+    pub fn draw(&self, t: &mut dyn Turtle) {
+        let mut current = None;
+        for (s, tag) in &self.items {
+            let Some((i, poly)) = self.looks.each.get(*tag as usize) else {
+                t.segment(*s);
+                continue;
+            };
+            if current != Some(*i)
+                && let Some(&c) = self.looks.palette.get(*i)
+            {
+                t.paint(c);
+                current = Some(*i);
+            }
+            match poly {
+                Some(points) => t.polygon(points),
+                None => t.segment(*s),
+            }
+        }
     }
 }
 

@@ -30,6 +30,10 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
         include_str!("../../examples/abop-1.24f.lsys"),
     ),
     (
+        "abop-1.26.lsys",
+        include_str!("../../examples/abop-1.26.lsys"),
+    ),
+    (
         "abop-1.27.lsys",
         include_str!("../../examples/abop-1.27.lsys"),
     ),

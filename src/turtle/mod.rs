@@ -114,6 +114,19 @@ pub trait Turtle {
         let _ = segments;
         self.segment(seg);
     }
+
+    /// The paint changes: later segments and polygons are this colour
+    /// (a `.lsys` palette, stl-language.md section 13). Only systems
+    /// with a palette call it; the default ignores it.
+    fn paint(&mut self, rgb: Rgb) {
+        let _ = rgb;
+    }
+
+    /// A closed polygon (`{ ... }`, canvas units), filled with the paint
+    /// in force. The default ignores it.
+    fn polygon(&mut self, points: &[Point]) {
+        let _ = points;
+    }
 }
 
 impl<T: Turtle + ?Sized> Turtle for &mut T {
@@ -140,6 +153,14 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
 
     fn run(&mut self, seg: Segment, segments: f64) {
         (**self).run(seg, segments)
+    }
+
+    fn paint(&mut self, rgb: Rgb) {
+        (**self).paint(rgb)
+    }
+
+    fn polygon(&mut self, points: &[Point]) {
+        (**self).polygon(points)
     }
 }
 
@@ -228,12 +249,25 @@ impl Sample<'_> {
 pub struct Recorder {
     /// The segments in drawing order.
     pub segments: Vec<Segment>,
+    /// Each change of paint: how many segments came before it, and the
+    /// colour.
+    pub paints: Vec<(usize, Rgb)>,
+    /// Each polygon: how many segments came before it, and its vertices.
+    pub polygons: Vec<(usize, Vec<Point>)>,
 }
 
 impl Turtle for Recorder {
     #[inline]
     fn segment(&mut self, seg: Segment) {
         self.segments.push(seg);
+    }
+
+    fn paint(&mut self, rgb: Rgb) {
+        self.paints.push((self.segments.len(), rgb));
+    }
+
+    fn polygon(&mut self, points: &[Point]) {
+        self.polygons.push((self.segments.len(), points.to_vec()));
     }
 }
 
@@ -333,6 +367,12 @@ impl Turtle for Bounds {
         self.acc.add(seg.to);
         self.count += 1;
         self.max_order = self.max_order.max(seg.order);
+    }
+
+    fn polygon(&mut self, points: &[Point]) {
+        for &p in points {
+            self.acc.add(p);
+        }
     }
 }
 

@@ -31,6 +31,7 @@ mod lsys3d;
 mod mesh_origin;
 mod newuser;
 mod od_variation;
+mod organs;
 mod param;
 mod param_frontends;
 mod param_lod;

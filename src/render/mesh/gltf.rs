@@ -103,8 +103,13 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
         ));
         let c = p.color.unwrap_or(Rgb::BLACK);
         let f = |x: u8| fixed(linear(x), 6, Trim::Keep);
+        let name = if p.leaf {
+            format!("leaf {c}")
+        } else {
+            c.to_string()
+        };
         materials.push(format!(
-            "{{\"name\": \"{c}\", \"pbrMetallicRoughness\": {{\"baseColorFactor\": [{}, {}, {}, 1.0], \
+            "{{\"name\": \"{name}\", \"pbrMetallicRoughness\": {{\"baseColorFactor\": [{}, {}, {}, 1.0], \
              \"metallicFactor\": 0.0, \"roughnessFactor\": 0.9}}}}",
             f(c.r),
             f(c.g),

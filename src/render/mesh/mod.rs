@@ -22,9 +22,12 @@
 //! the order colours first appear.
 
 mod gltf;
+mod leaf;
 mod obj;
 #[cfg(feature = "solid")]
 mod solid;
+
+pub use leaf::Leaf;
 
 pub use gltf::{write_glb, write_gltf};
 pub use obj::write_obj;
@@ -179,6 +182,8 @@ pub struct Primitive {
     /// Triangles, three vertex indices each, counter-clockwise from
     /// outside.
     pub indices: Vec<u32>,
+    /// Leaves (polygons, both sides), apart from stems of its colour.
+    pub leaf: bool,
 }
 
 /// A mesh: one [`Primitive`] per colour.
@@ -231,6 +236,17 @@ pub fn to_file_axes(p: Point3, unit: f64) -> V {
 /// (canvas units: the first root) at the files' origin. The caller keeps
 /// the number of tubes within [`MeshOptions::max_tubes`].
 pub fn build(tubes: &[Tube], origin: Point3, opts: &MeshOptions) -> Mesh {
+    build_with_leaves(tubes, &[], origin, opts)
+}
+
+/// [`build`] with leaves: each polygon a double-sided face, in a
+/// primitive per colour of its own (after the stems').
+pub fn build_with_leaves(
+    tubes: &[Tube],
+    leaves: &[Leaf],
+    origin: Point3,
+    opts: &MeshOptions,
+) -> Mesh {
     let moved = |q: Point3| Point3::new(q.x - origin.x, q.y - origin.y, q.z - origin.z);
     let n = opts.sides.clamp(MIN_SIDES, MAX_SIDES) as usize;
     // The ring's directions, exact at multiples of 90 degrees.
@@ -248,7 +264,7 @@ pub fn build(tubes: &[Tube], origin: Point3, opts: &MeshOptions) -> Mesh {
         let idx = match mesh
             .primitives
             .iter()
-            .position(|p| p.color == Some(t.color))
+            .position(|p| !p.leaf && p.color == Some(t.color))
         {
             Some(i) => i,
             None => {
@@ -267,6 +283,37 @@ pub fn build(tubes: &[Tube], origin: Point3, opts: &MeshOptions) -> Mesh {
             t.width * opts.unit / 2.0,
             &ring,
         );
+    }
+    for l in leaves {
+        let pts: Vec<V> = l
+            .points
+            .iter()
+            .map(|&q| to_file_axes(moved(q), opts.unit))
+            .collect();
+        let Some(f) = leaf::faces(&pts) else {
+            continue;
+        };
+        let idx = match mesh
+            .primitives
+            .iter()
+            .position(|p| p.leaf && p.color == Some(l.color))
+        {
+            Some(i) => i,
+            None => {
+                mesh.primitives.push(Primitive {
+                    color: Some(l.color),
+                    leaf: true,
+                    ..Primitive::default()
+                });
+                mesh.primitives.len() - 1
+            }
+        };
+        let p = &mut mesh.primitives[idx];
+        let base = p.positions.len() as u32;
+        p.positions.extend(f.positions);
+        p.normals.extend(f.normals);
+        p.texcoords.extend(f.texcoords);
+        p.indices.extend(f.indices.iter().map(|i| base + i));
     }
     mesh
 }

@@ -43,7 +43,8 @@ pub fn write_obj(mesh: &Mesh, out: &mut dyn Write) -> Result<(), Diagnostics> {
     let mut base = 1u64;
     for p in &mesh.primitives {
         let c = p.color.unwrap_or(Rgb::BLACK);
-        let _ = write!(line, "g stem_{:02x}{:02x}{:02x}", c.r, c.g, c.b);
+        let group = if p.leaf { "leaf" } else { "stem" };
+        let _ = write!(line, "g {group}_{:02x}{:02x}{:02x}", c.r, c.g, c.b);
         put(&mut w, &mut line).map_err(fail)?;
         let rgb = [c.r, c.g, c.b].map(|x| f64::from(x) / 255.0);
         for v in &p.positions {

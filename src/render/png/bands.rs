@@ -58,13 +58,18 @@ pub(super) enum Op {
         /// Stroke width in pixels.
         width: f32,
     },
-    /// Fill `path` with the even-odd rule (an underlay shape).
+    /// Fill `path` (an underlay shape, even-odd; a polygon, non-zero).
     Fill {
         /// The shape's rings, in output pixels of the whole picture.
         path: Arc<Path>,
         /// Its colour.
         color: Color,
+        /// Its rule.
+        rule: FillRule,
     },
+    /// The stroke colour changes (a `.lsys` palette): later strokes,
+    /// blots and covers are this colour.
+    Paint(Rgb),
     /// Blots ([`raster::stamp`]): ends in output pixels and shape.
     Blots(Arc<Vec<Blot>>),
     /// A stroke covered the whole picture: every pixel the ink.
@@ -73,6 +78,7 @@ pub(super) enum Op {
 
 /// What every band paints with: the stroke paint and colour, the width of
 /// the raster.
+#[derive(Clone)]
 pub(super) struct Ink {
     /// Anti-aliased, the stroke colour.
     pub paint: Paint<'static>,
@@ -80,6 +86,14 @@ pub(super) struct Ink {
     pub rgb: Rgb,
     /// The raster's width in pixels.
     pub width: u32,
+}
+
+impl Ink {
+    /// Strokes, blots and covers in `rgb` from now on.
+    pub(super) fn set(&mut self, rgb: Rgb) {
+        self.rgb = rgb;
+        self.paint.set_color(super::color(rgb));
+    }
 }
 
 /// Splits a batch into the bands' paths as the producer writes it: each
@@ -190,14 +204,14 @@ impl Band<'_> {
                     pixmap.stroke_path(path, &ink.paint, &stroke, Transform::identity(), None);
                 }
             }
-            Op::Fill { path, color } => {
+            Op::Fill { path, color, rule } => {
                 let mut paint = Paint::default();
                 paint.set_color(*color);
                 paint.anti_alias = true;
                 pixmap.fill_path(
                     path,
                     &paint,
-                    FillRule::EvenOdd,
+                    *rule,
                     Transform::from_translate(0.0, -(top as f32)),
                     None,
                 );
@@ -210,6 +224,8 @@ impl Band<'_> {
                 }
             }
             Op::Cover => pixmap.fill(super::color(ink.rgb)),
+            // The producer's ink or the thread's own has changed already.
+            Op::Paint(_) => {}
         }
     }
 }
@@ -294,12 +310,14 @@ impl Canvas {
                             .map(|paths| Op::Stroke { paths, width })
                             .collect()
                     }
-                    Op::Fill { path, color } => (0..n)
+                    Op::Fill { path, color, rule } => (0..n)
                         .map(|_| Op::Fill {
                             path: Arc::clone(&path),
                             color,
+                            rule,
                         })
                         .collect(),
+                    Op::Paint(rgb) => (0..n).map(|_| Op::Paint(rgb)).collect(),
                     Op::Blots(b) => (0..n).map(|_| Op::Blots(Arc::clone(&b))).collect(),
                     Op::Cover => (0..n).map(|_| Op::Cover).collect(),
                 };
@@ -331,9 +349,13 @@ pub(super) fn in_threads<R>(
         for (first, mut bands) in own.into_iter().enumerate() {
             let (tx, rx): (SyncSender<Op>, Receiver<Op>) = sync_channel(QUEUE);
             queues.push(tx);
+            let mut ink = ink.clone();
             scope.spawn(move || {
                 for op in rx {
-                    paint(&mut bands, first, threads, &op, ink);
+                    match op {
+                        Op::Paint(rgb) => ink.set(rgb),
+                        op => paint(&mut bands, first, threads, &op, &ink),
+                    }
                 }
             });
         }

@@ -56,6 +56,7 @@ use crate::turtle::{Footprint, Point, Sample, Segment, StandIn, Turtle};
 mod bands;
 mod fold;
 mod full;
+mod organs;
 mod raster;
 mod sample;
 
@@ -190,42 +191,7 @@ impl PngTurtle {
     /// Paints a filled area (a layout shape) with the even-odd rule. Call
     /// before drawing segments: it paints over whatever is there.
     pub fn fill(&mut self, fill: &Fill) {
-        self.flush();
-        let mut pb = PathBuilder::new();
-        for ring in &fill.rings {
-            let mut points = ring.iter().map(|&p| self.fit.map(p));
-            if let Some(first) = points.next() {
-                pb.move_to(first.x as f32, first.y as f32);
-                for p in points {
-                    pb.line_to(p.x as f32, p.y as f32);
-                }
-                pb.close();
-            }
-        }
-        let Some(path) = pb.finish() else {
-            return;
-        };
-        match &mut self.canvas {
-            Canvas::Whole(pixmap) => {
-                let mut paint = Paint::default();
-                paint.set_color(color(fill.color));
-                paint.anti_alias = true;
-                pixmap.fill_path(
-                    &path,
-                    &paint,
-                    FillRule::EvenOdd,
-                    Transform::identity(),
-                    None,
-                );
-            }
-            canvas => canvas.send(
-                Op::Fill {
-                    path: std::sync::Arc::new(path),
-                    color: color(fill.color),
-                },
-                &self.ink,
-            ),
-        }
+        self.fill_rings(&fill.rings, fill.color, FillRule::EvenOdd);
     }
 
     // -----------------------------------------------------------------------
@@ -502,6 +468,14 @@ impl Turtle for PngTurtle {
 
     fn segment(&mut self, seg: Segment) {
         self.draw(seg, None);
+    }
+
+    fn paint(&mut self, rgb: Rgb) {
+        self.repaint(rgb);
+    }
+
+    fn polygon(&mut self, points: &[Point]) {
+        self.fill_polygon(points);
     }
 }
 

@@ -25,6 +25,8 @@ use crate::model::lsys::{Background, DEFAULT_HEADING, LSystem, Production};
 
 pub(crate) mod expr;
 mod keys;
+mod organs;
+pub use organs::{ORGAN_KEYS, too_many};
 pub mod param;
 pub use param::PARAM_KEYS;
 

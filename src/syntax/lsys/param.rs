@@ -10,23 +10,24 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::expr::{self, Scope, error, is_boolean};
+use super::organs::Line;
 use crate::diag::{Diagnostic, Diagnostics, Span};
 use crate::model::Loc;
 use crate::model::param::{Expr, Formal, MAX_PARAMS, ModuleExpr, ParamRule, Parametric};
 
 /// The keys only parametric files have.
-pub const PARAM_KEYS: [&str; 4] = ["define", "ignore", "tropism", "elasticity"];
+pub const PARAM_KEYS: [&str; 7] = [
+    "define",
+    "ignore",
+    "tropism",
+    "elasticity",
+    "palette",
+    "width_decay",
+    "surface",
+];
 
 /// One line of the file: its key, the text after it, and where that text
 /// starts (comments cut off).
-struct Line<'a> {
-    key: &'a str,
-    rest: &'a str,
-    at: usize,
-    start: usize,
-    end: usize,
-}
-
 fn lines(text: &str) -> Vec<Line<'_>> {
     let mut out = Vec::new();
     let mut start = 0;
@@ -55,7 +56,7 @@ fn lines(text: &str) -> Vec<Line<'_>> {
 
 /// Whether a word has a module with parameters or `$`.
 fn word_is_parametric(w: &str) -> bool {
-    w.contains('(') || w.contains('$')
+    w.contains('(') || w.contains('$') || super::organs::word_uses_organs(w)
 }
 
 /// Splits a rule's text after `rule` into head and successor: at `->`, or
@@ -83,7 +84,8 @@ fn split_rule(rest: &str) -> (&str, usize, &str, usize) {
 }
 
 /// Whether the file uses parameters, contexts, conditions, `define`,
-/// `ignore`, tropism or `$`: then it is parametric.
+/// `ignore`, tropism, `$`, or colours and organs (section 13's keys and
+/// symbols): then it is parametric.
 pub fn uses_parameters(text: &str) -> bool {
     lines(text).iter().any(|l| match l.key {
         k if PARAM_KEYS.contains(&k) => true,
@@ -146,24 +148,49 @@ pub fn parse(text: &str) -> Result<Parametric, Diagnostics> {
             }
             "tropism" => numbers(l, &scope, 3).map(|v| p.tropism = Some([v[0], v[1], v[2]])),
             "elasticity" => numbers(l, &scope, 1).map(|v| p.elasticity = v[0]),
-            "axiom" => word(l.rest, l.at, &scope)
+            "axiom" => super::organs::braces(l.rest, l.at)
+                .and_then(|b| {
+                    first_brace(&mut p, b);
+                    word(l.rest, l.at, &scope)
+                })
                 .and_then(|w| balanced(w, l.at..l.end))
                 .map(|w| p.axiom = w),
-            "rule" => rule(l, &defines).map(|(r, head)| {
-                p.rules.push(r);
-                heads.push(head);
-            }),
+            "rule" => {
+                let (_, _, succ, soff) = split_rule(l.rest);
+                super::organs::braces(succ, l.at + soff)
+                    .and_then(|b| {
+                        first_brace(&mut p, b);
+                        rule(l, &defines)
+                    })
+                    .map(|(r, head)| {
+                        p.rules.push(r);
+                        heads.push(head);
+                    })
+            }
+            "palette" | "width_decay" | "surface" => {
+                super::organs::line(text, l, &scope, word, &mut p.organs)
+            }
             _ => Ok(()),
         };
         if let Err(d) = r {
             diags.push(*d);
         }
     }
+    super::organs::cycles(&p.organs, &mut diags);
     if diags.is_empty() {
         arities(&p, &heads, &mut diags);
         probabilities(&p, &heads, &mut diags);
     }
     diags.into_result(p)
+}
+
+/// Keeps where the file's first `{` is.
+fn first_brace(p: &mut Parametric, at: Option<usize>) {
+    if let Some(k) = at
+        && p.organs.first_polygon.is_none()
+    {
+        p.organs.first_polygon = Some(Loc(k..k + 1));
+    }
 }
 
 fn define(l: &Line, defines: &[(String, f64)]) -> Result<(String, f64), Box<Diagnostic>> {
@@ -276,14 +303,14 @@ fn args(s: &str, open: usize, at: usize) -> Result<Args<'_>, Box<Diagnostic>> {
 }
 
 /// A word of modules with parameter expressions (an axiom or successor).
-fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Box<Diagnostic>> {
+pub(super) fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Box<Diagnostic>> {
     let mut out = Vec::new();
     let mut it = s.char_indices().peekable();
     while let Some((i, c)) = it.next() {
         if c.is_whitespace() {
             continue;
         }
-        if matches!(c, '(' | ')' | ',') {
+        if matches!(c, '(' | ')') {
             return Err(error(
                 format!("`{c}` outside a module"),
                 at + i..at + i + 1,

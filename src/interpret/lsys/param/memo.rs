@@ -173,6 +173,7 @@ impl ParamMemo {
             || p.has_context()
             || p.bends()
             || p.sets_width()
+            || p.paints()
             || p.rules.iter().any(|r| r.probability.is_some())
         {
             return Ok(None);
@@ -527,12 +528,14 @@ impl<'m> Memo<'m> for WalkParam<'m, '_> {
     fn terminal(&mut self, c: u32) {
         let m = self.m;
         let turtle = &mut *self.turtle;
-        self.t.module(m.sym[c as usize], m.params(c), &mut |s, _| {
-            Self::segment(
-                turtle,
-                [s.from.x, s.from.y, s.from.z],
-                [s.to.x, s.to.y, s.to.z],
-            )
+        self.t.module(m.sym[c as usize], m.params(c), &mut |mark| {
+            if let super::turtle::Mark::Step(s, _) = mark {
+                Self::segment(
+                    turtle,
+                    [s.from.x, s.from.y, s.from.z],
+                    [s.to.x, s.to.y, s.to.z],
+                )
+            }
         });
     }
 }

@@ -7,10 +7,27 @@
 //! without a parameter each acts as in a classic system. In 2D the frame
 //! never leaves the canvas plane (U stays (0, 0, -1)).
 
+use std::rc::Rc;
+
 use crate::model::lsys::LSystem;
-use crate::model::param::{Parametric, WIDTH_QUANTUM};
+use crate::model::param::{MAX_POLYGON_VERTICES, Parametric, WIDTH_QUANTUM, eval_const};
 use crate::turtle::turtle3::{Point3, Segment3, cos_sin};
 use crate::turtle::{Point, Segment, Turtle};
+
+/// What the turtle hands on besides moving: a drawn step with its width,
+/// a change of colour index, a closed polygon's vertices.
+pub enum Mark<'a> {
+    /// A drawn step, with the width in force (canvas units).
+    Step(Segment3, f64),
+    /// The colour index is now this (section 13: `' ; ,`, brackets).
+    Paint(usize),
+    /// A polygon `{ ... }` closed: its vertices, filled with the colour
+    /// in force.
+    Polygon(&'a [Point3]),
+}
+
+/// A surface's word, its parameters evaluated.
+type SurfaceWord = Rc<[(char, Vec<f64>)]>;
 
 type V = [f64; 3];
 
@@ -41,6 +58,8 @@ struct State {
     l: V,
     u: V,
     width: f64,
+    /// The colour index (brackets save and restore it).
+    color: usize,
 }
 
 /// The parametric turtle.
@@ -51,6 +70,22 @@ pub struct Turtle3P {
     angle: f64,
     three: bool,
     tropism: Option<(V, f64)>,
+    /// Colours of the palette (at least 1: without one, `color` alone).
+    colors: usize,
+    /// What a bare `!` multiplies the width by.
+    decay: f64,
+    /// The surfaces, by name.
+    surfaces: Vec<(char, SurfaceWord)>,
+    /// A `~` was the last module: the next names a surface.
+    placing: bool,
+    /// Lengths are multiplied by this (a surface placed by `~X(s)`).
+    scale: f64,
+    /// The polygons open, innermost last, with their vertices.
+    polygons: Vec<Vec<Point3>>,
+    /// The colour index the sink was told last.
+    shown: usize,
+    /// A polygon passed [`MAX_POLYGON_VERTICES`].
+    pub(crate) overfull: bool,
 }
 
 impl Turtle3P {
@@ -65,6 +100,7 @@ impl Turtle3P {
                 l: [h[1], -h[0], 0.0],
                 u: [0.0, 0.0, -1.0],
                 width: sys.width,
+                color: 0,
             },
             stack: Vec::new(),
             len: sys.length,
@@ -74,6 +110,26 @@ impl Turtle3P {
                 let t = if sys.is_3d() { t } else { [t[0], t[1], 0.0] };
                 (t, p.elasticity)
             }),
+            colors: p.organs.palette.len().max(1),
+            decay: p.organs.decay(),
+            surfaces: p
+                .organs
+                .surfaces
+                .iter()
+                .map(|s| {
+                    let w: Vec<(char, Vec<f64>)> = s
+                        .word
+                        .iter()
+                        .map(|m| (m.symbol, m.args.iter().map(eval_const).collect()))
+                        .collect();
+                    (s.name, Rc::from(w))
+                })
+                .collect(),
+            placing: false,
+            scale: 1.0,
+            polygons: Vec::new(),
+            shown: 0,
+            overfull: false,
         }
     }
 
@@ -154,33 +210,126 @@ impl Turtle3P {
     }
 
     fn step(&mut self, params: &[f64]) -> V {
-        let d = params.first().map_or(self.len, |x| x * self.len);
+        let d = params.first().map_or(self.len, |x| x * self.len) * self.scale;
         let p = self.state.pos;
         let h = self.state.h;
         [p[0] + h[0] * d, p[1] + h[1] * d, p[2] + h[2] * d]
     }
 
-    /// Applies one module; a drawn step goes to `sink` (with the width
-    /// `!` set last, in canvas units, or `None` for the file's `width`).
-    pub fn module(&mut self, sym: char, params: &[f64], sink: &mut impl FnMut(Segment3, f64)) {
+    /// Records the turtle's position in the innermost open polygon.
+    fn vertex(&mut self) {
+        let at = self.pos();
+        if let Some(poly) = self.polygons.last_mut() {
+            if poly.last() == Some(&at) {
+                return;
+            }
+            if poly.len() >= MAX_POLYGON_VERTICES {
+                self.overfull = true;
+                return;
+            }
+            poly.push(at);
+        }
+    }
+
+    /// Sets the colour index to `i`, within the palette, and says so.
+    fn paint(&mut self, i: usize, sink: &mut impl FnMut(Mark<'_>)) {
+        self.state.color = i.min(self.colors - 1);
+        self.show(sink);
+    }
+
+    /// Tells the sink the colour index in force if it changed.
+    fn show(&mut self, sink: &mut impl FnMut(Mark<'_>)) {
+        if self.state.color != self.shown {
+            self.shown = self.state.color;
+            sink(Mark::Paint(self.shown));
+        }
+    }
+
+    /// Draws surface `name`'s word in the turtle's frame, lengths times
+    /// `s`; the turtle's state is as it was after.
+    fn place(&mut self, name: char, s: f64, sink: &mut impl FnMut(Mark<'_>)) {
+        let Some(word) = self
+            .surfaces
+            .iter()
+            .find(|(c, _)| *c == name)
+            .map(|(_, w)| Rc::clone(w))
+        else {
+            return;
+        };
+        let (scale, depth) = (self.scale, self.stack.len());
+        self.stack.push(self.state);
+        self.scale *= s;
+        for (sym, params) in word.iter() {
+            self.module(*sym, params, sink);
+        }
+        // A surface's word balances its brackets (it is read like a
+        // successor); restore whatever it left.
+        self.stack.truncate(depth + 1);
+        if let Some(st) = self.stack.pop() {
+            self.state = st;
+        }
+        self.scale = scale;
+        self.placing = false;
+        self.show(sink);
+    }
+
+    /// Applies one module; a drawn step, a change of colour and a closed
+    /// polygon go to `sink` (a step with the width `!` set last, in
+    /// canvas units, or the file's `width`).
+    pub fn module(&mut self, sym: char, params: &[f64], sink: &mut impl FnMut(Mark<'_>)) {
         let a = || params.first().copied();
         let angle = self.angle;
+        if std::mem::take(&mut self.placing) && sym != '~' {
+            self.place(sym, a().unwrap_or(1.0), sink);
+            return;
+        }
         match sym {
             'F' | 'G' => {
                 let to = self.step(params);
                 let p = self.state.pos;
-                sink(
+                sink(Mark::Step(
                     Segment3 {
                         from: Point3::new(p[0], p[1], p[2]),
                         to: Point3::new(to[0], to[1], to[2]),
                         order: 0,
                     },
                     self.state.width,
-                );
+                ));
                 self.state.pos = to;
                 self.bend();
             }
-            'f' | 'g' => self.state.pos = self.step(params),
+            'f' => {
+                self.state.pos = self.step(params);
+                self.vertex();
+            }
+            'g' => self.state.pos = self.step(params),
+            '.' => self.vertex(),
+            '{' => self.polygons.push(Vec::new()),
+            '}' => {
+                if let Some(mut poly) = self.polygons.pop() {
+                    if poly.len() > 1 && poly.first() == poly.last() {
+                        poly.pop();
+                    }
+                    if poly.len() >= 3 {
+                        sink(Mark::Polygon(&poly));
+                    }
+                }
+            }
+            '~' => self.placing = true,
+            '\'' | ';' => {
+                let i = match a() {
+                    Some(i) => clamp_index(i),
+                    None => self.state.color.saturating_add(1),
+                };
+                self.paint(i, sink);
+            }
+            ',' => {
+                let i = match a() {
+                    Some(i) => clamp_index(i),
+                    None => self.state.color.saturating_sub(1),
+                };
+                self.paint(i, sink);
+            }
             '+' => self.turn(a().unwrap_or(angle)),
             '-' => self.turn(-a().unwrap_or(angle)),
             '|' => self.turn(180.0),
@@ -189,19 +338,30 @@ impl Turtle3P {
             '\\' if self.three => self.roll(a().unwrap_or(angle)),
             '/' if self.three => self.roll(-a().unwrap_or(angle)),
             '$' if self.three => self.level(),
-            '!' => {
-                if let Some(w) = a() {
-                    self.state.width = w;
-                }
-            }
+            '!' => match a() {
+                Some(w) => self.state.width = w,
+                None => self.state.width *= self.decay,
+            },
             '[' => self.stack.push(self.state),
             ']' => {
                 if let Some(s) = self.stack.pop() {
                     self.state = s;
+                    self.show(sink);
                 }
             }
             _ => {}
         }
+    }
+}
+
+/// A colour index from a parameter: rounded, at least 0 (the palette's
+/// end is applied by the turtle).
+fn clamp_index(i: f64) -> usize {
+    let r = libm::round(i);
+    if r.is_nan() || r <= 0.0 {
+        0
+    } else {
+        r.min(u32::MAX as f64) as usize
     }
 }
 
@@ -215,8 +375,18 @@ fn order_of(w: f64) -> u32 {
     }
 }
 
+/// The error of a polygon derived past [`MAX_POLYGON_VERTICES`]:
+/// pointed at the file's first `{`.
+fn overfull(p: &Parametric) -> crate::diag::Diagnostics {
+    let span = p.organs.first_polygon.clone().map_or(0..0, |l| l.0);
+    let mut d = crate::syntax::lsys::too_many(span);
+    d.label = Some("a polygon derived from here records too many vertices".into());
+    (*d).into()
+}
+
 /// Draws `sys` derived to `depth` into a 2D turtle backend. Returns where
-/// the turtle ends.
+/// the turtle ends. A palette's colours and the polygons reach the
+/// backend through [`Turtle::paint`] and [`Turtle::polygon`].
 pub(crate) fn draw2<T: Turtle>(
     sys: &LSystem,
     p: &Parametric,
@@ -228,16 +398,34 @@ pub(crate) fn draw2<T: Turtle>(
     let d = super::Deriver::new(sys, p);
     let mut t = Turtle3P::new(sys, p);
     let widths = p.sets_width();
-    let mut sink = |s: Segment3, w: f64| {
-        turtle.segment(Segment {
+    let palette = &p.organs.palette;
+    if let Some(&c) = palette.first() {
+        turtle.paint(c);
+    }
+    let mut flat = Vec::new();
+    let mut sink = |m: Mark<'_>| match m {
+        Mark::Step(s, w) => turtle.segment(Segment {
             from: Point::new(s.from.x, s.from.y),
             to: Point::new(s.to.x, s.to.y),
             order: if widths { order_of(w) } else { 0 },
-        });
+        }),
+        Mark::Paint(i) => {
+            if let Some(&c) = palette.get(i) {
+                turtle.paint(c);
+            }
+        }
+        Mark::Polygon(pts) => {
+            flat.clear();
+            flat.extend(pts.iter().map(|q| Point::new(q.x, q.y)));
+            turtle.polygon(&flat);
+        }
     };
     d.each(depth, strategy, limits, |sym, ps| {
         t.module(sym, ps, &mut sink)
     })?;
+    if t.overfull {
+        return Err(overfull(p));
+    }
     let end = t.pos();
     Ok(Point::new(end.x, end.y))
 }
@@ -252,17 +440,41 @@ pub(crate) fn draw3(
     limits: &crate::limits::Limits,
     sink: &mut dyn FnMut(Segment3),
 ) -> Result<Point3, crate::diag::Diagnostics> {
+    draw3_marks(sys, p, depth, strategy, limits, &mut |m| {
+        if let Mark::Step(s, _) = m {
+            sink(s)
+        }
+    })
+}
+
+/// Draws `sys` derived to `depth` in 3D into `sink`: its steps (each
+/// with its width's order when the system sets widths), changes of
+/// colour index and polygons. Returns where the turtle ends.
+pub fn draw3_marks(
+    sys: &LSystem,
+    p: &Parametric,
+    depth: u32,
+    strategy: crate::interpret::Derivation,
+    limits: &crate::limits::Limits,
+    sink: &mut dyn FnMut(Mark<'_>),
+) -> Result<Point3, crate::diag::Diagnostics> {
     let d = super::Deriver::new(sys, p);
     let mut t = Turtle3P::new(sys, p);
     let widths = p.sets_width();
-    let mut each = |mut s: Segment3, w: f64| {
-        if widths {
-            s.order = order_of(w);
+    let mut each = |m: Mark<'_>| match m {
+        Mark::Step(mut s, w) => {
+            if widths {
+                s.order = order_of(w);
+            }
+            sink(Mark::Step(s, w))
         }
-        sink(s)
+        m => sink(m),
     };
     d.each(depth, strategy, limits, |sym, ps| {
         t.module(sym, ps, &mut each)
     })?;
+    if t.overfull {
+        return Err(overfull(p));
+    }
     Ok(t.pos())
 }
