@@ -90,12 +90,11 @@ pub(super) struct Colonizer<const N: usize, G> {
 
 impl<const N: usize, G> Colonizer<N, G> {
     /// The colonizer of `points`, with reach `reach`.
-    pub(super) fn new(mut points: Vec<[f64; N]>, reach: f64) -> Self {
+    pub(super) fn new(points: Vec<[f64; N]>, reach: f64) -> Self {
         let grid = Grid::new(&points, reach);
         // Numbered by cell (stably), a cell's points are neighbours in
         // memory; which point is which changes no answer.
-        points.sort_by_key(|&p| grid.cell_of(p));
-        let cells = Fixed::new(&grid, &points);
+        let (cells, points) = Fixed::sort(&grid, &points);
         let waiting = if points.is_empty() {
             Vec::new()
         } else {
@@ -248,9 +247,9 @@ impl<const N: usize, G> Colonizer<N, G> {
         let (cells, alive, pts) = (&self.cells, &self.alive, &self.pts);
         self.grid.each_cell(lo, hi, |c| {
             found.extend(
-                cells.in_cell(c).iter().filter(|&&p| {
-                    alive[p as usize] && point_seg_dist2(pts[p as usize], stem) <= d2
-                }),
+                cells
+                    .in_cell(c)
+                    .filter(|&p| alive[p as usize] && point_seg_dist2(pts[p as usize], stem) <= d2),
             );
         });
         for &p in &found {
@@ -273,12 +272,7 @@ impl<const N: usize, G> Colonizer<N, G> {
     fn living_near(&self, pos: [f64; N], r: f64, found: &mut Vec<u32>) {
         found.clear();
         self.grid.near(pos, r, |c| {
-            found.extend(
-                self.cells
-                    .in_cell(c)
-                    .iter()
-                    .filter(|&&p| self.alive[p as usize]),
-            );
+            found.extend(self.cells.in_cell(c).filter(|&p| self.alive[p as usize]));
         });
     }
 
