@@ -32,7 +32,7 @@ mod grid;
 pub mod sample;
 
 use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, VecDeque};
 
 use super::occupancy::{Cap, point_seg_dist2};
 use grid::{Fixed, Grid};
@@ -54,10 +54,9 @@ struct Slot<const N: usize, G> {
     score: u32,
     /// Its score changed since its last heap entry.
     dirty: bool,
-    /// In the grid of waiting growth points: a living point was within
-    /// reach when it was made (else no point can ever belong to it, as
-    /// points only die, and orphaned points need not look for it).
-    listed: bool,
+    /// The previous and next slot listed in its cell ([`NONE`]: none).
+    prev: u32,
+    next: u32,
 }
 
 /// The attraction points and the growth points waiting for their decision,
@@ -76,11 +75,20 @@ pub(super) struct Colonizer<const N: usize, G> {
     owner: Vec<(u32, f64)>,
     slots: Vec<Slot<N, G>>,
     free: Vec<u32>,
-    /// The waiting growth points (slots), by cell.
-    waiting: Vec<Vec<u32>>,
-    /// (score, earliest first, slot); an entry is stale unless the slot
-    /// still holds that growth point with that score.
+    /// The waiting growth points (slots) listed by cell: the first of a
+    /// doubly linked list through the slots (no allocation a cell).
+    waiting: Vec<u32>,
+    /// (score, earliest first, slot) of the growth points in slots. A
+    /// slot's highest entry is at least its score: a score that rises
+    /// gets a new entry, one that falls keeps its entry, corrected when it
+    /// comes to the top. An entry is stale unless the slot still holds
+    /// that growth point (`seq`).
     heap: BinaryHeap<(u32, Reverse<u64>, u32)>,
+    /// The growth points made with no living point within reach, which
+    /// score nothing for good (points only die), with their `seq`: in the
+    /// order made, so the earliest is first. They need no slot, and
+    /// orphaned points need not look for them.
+    idle: VecDeque<(u64, G)>,
     dirty: Vec<u32>,
     next_seq: u64,
     live: usize,
@@ -98,7 +106,7 @@ impl<const N: usize, G> Colonizer<N, G> {
         let waiting = if points.is_empty() {
             Vec::new()
         } else {
-            vec![Vec::new(); grid.cells()]
+            vec![NONE; grid.cells()]
         };
         Colonizer {
             reach,
@@ -113,6 +121,7 @@ impl<const N: usize, G> Colonizer<N, G> {
             free: Vec::new(),
             waiting,
             heap: BinaryHeap::new(),
+            idle: VecDeque::new(),
             dirty: Vec::new(),
             next_seq: 0,
             live: 0,
@@ -124,13 +133,29 @@ impl<const N: usize, G> Colonizer<N, G> {
     pub(super) fn push(&mut self, pos: [f64; N], gp: G) {
         let seq = self.next_seq;
         self.next_seq += 1;
+        let mut found = std::mem::take(&mut self.found);
+        found.clear();
+        if !self.pts.is_empty() {
+            self.living_near(pos, self.reach, &mut found);
+            found.retain(|&p| dist2(self.pts[p as usize], pos) <= self.reach2);
+        }
+        if found.is_empty() {
+            // No point within reach: none can ever belong to it (points
+            // only die), so it waits in the order made, with no slot.
+            self.found = found;
+            self.idle.push_back((seq, gp));
+            return;
+        }
+        let cell = self.grid.cell_of(pos);
+        let head = self.waiting[cell];
         let slot = Slot {
             gp: Some(gp),
             pos,
             seq,
             score: 0,
             dirty: false,
-            listed: false,
+            prev: NONE,
+            next: head,
         };
         let s = match self.free.pop() {
             Some(s) => {
@@ -142,20 +167,13 @@ impl<const N: usize, G> Colonizer<N, G> {
                 (self.slots.len() - 1) as u32
             }
         };
-        self.live += 1;
-        if self.pts.is_empty() {
-            self.heap.push((0, Reverse(seq), s));
-            return;
+        if head != NONE {
+            self.slots[head as usize].prev = s;
         }
-        let mut found = std::mem::take(&mut self.found);
-        self.living_near(pos, self.reach, &mut found);
-        let mut listed = false;
+        self.waiting[cell] = s;
+        self.live += 1;
         for &p in &found {
             let d2 = dist2(self.pts[p as usize], pos);
-            if d2 > self.reach2 {
-                continue;
-            }
-            listed = true;
             let (old, od2) = self.owner[p as usize];
             // The growth point made first keeps a tie.
             if d2 < od2 {
@@ -167,10 +185,6 @@ impl<const N: usize, G> Colonizer<N, G> {
             }
         }
         self.found = found;
-        if listed {
-            self.waiting[self.grid.cell_of(pos)].push(s);
-            self.slots[s as usize].listed = true;
-        }
         self.heap
             .push((self.slots[s as usize].score, Reverse(seq), s));
         self.flush();
@@ -183,26 +197,58 @@ impl<const N: usize, G> Colonizer<N, G> {
         if self.heap.len() > 4 * self.live + 1024 {
             self.compact();
         }
-        while let Some((score, Reverse(seq), s)) = self.heap.pop() {
-            let slot = &mut self.slots[s as usize];
-            if slot.gp.is_none() || slot.seq != seq || slot.score != score {
-                continue;
+        // The heap's best true entry, if any.
+        let best = loop {
+            let Some(&(score, Reverse(seq), s)) = self.heap.peek() else {
+                break None;
+            };
+            let slot = &self.slots[s as usize];
+            if slot.gp.is_none() || slot.seq != seq || slot.score > score {
+                self.heap.pop();
+            } else if slot.score < score {
+                // It fell since: its true entry goes in.
+                let fell = (slot.score, Reverse(seq), s);
+                self.heap.pop();
+                self.heap.push(fell);
+            } else {
+                break Some((score, Reverse(seq), s));
             }
-            let gp = slot.gp.take().expect("checked");
-            let pos = slot.pos;
-            slot.score = 0;
-            self.live -= 1;
-            self.free.push(s);
-            if slot.listed {
-                slot.listed = false;
-                let cell = &mut self.waiting[self.grid.cell_of(pos)];
-                let at = cell.iter().position(|&w| w == s).expect("waiting");
-                cell.swap_remove(at);
-                self.orphan(s, pos);
-            }
-            return Some((gp, score));
+        };
+        let idle_first = match (best, self.idle.front()) {
+            (_, None) => false,
+            (None, Some(_)) => true,
+            (Some((score, Reverse(b), _)), Some(&(i, _))) => score == 0 && i < b,
+        };
+        if idle_first {
+            return self.idle.pop_front().map(|(_, gp)| (gp, 0));
         }
-        None
+        let (score, _, s) = best?;
+        self.heap.pop();
+        let slot = &mut self.slots[s as usize];
+        let gp = slot.gp.take().expect("waiting");
+        let pos = slot.pos;
+        slot.score = 0;
+        self.live -= 1;
+        self.free.push(s);
+        self.unlist(s, pos);
+        self.orphan(s, pos);
+        Some((gp, score))
+    }
+
+    /// Takes the slot `s` at `pos` out of its cell's list.
+    fn unlist(&mut self, s: u32, pos: [f64; N]) {
+        let (prev, next) = {
+            let slot = &self.slots[s as usize];
+            (slot.prev, slot.next)
+        };
+        if prev == NONE {
+            self.waiting[self.grid.cell_of(pos)] = next;
+        } else {
+            self.slots[prev as usize].next = next;
+        }
+        if next != NONE {
+            self.slots[next as usize].prev = prev;
+        }
     }
 
     /// Gives the points of the slot `s` (at `pos`, no longer waiting) to
@@ -216,12 +262,14 @@ impl<const N: usize, G> Colonizer<N, G> {
             let mut best = (NONE, f64::INFINITY, u64::MAX);
             let (waiting, slots, reach2) = (&self.waiting, &self.slots, self.reach2);
             self.grid.near(at, self.reach, |c| {
-                for &w in &waiting[c] {
+                let mut w = waiting[c];
+                while w != NONE {
                     let slot = &slots[w as usize];
                     let d2 = dist2(at, slot.pos);
                     if d2 <= reach2 && (d2, slot.seq) < (best.1, best.2) {
                         best = (w, d2, slot.seq);
                     }
+                    w = slot.next;
                 }
             });
             self.owner[p as usize] = (best.0, best.1);
@@ -276,14 +324,15 @@ impl<const N: usize, G> Colonizer<N, G> {
         });
     }
 
-    /// Changes the score of slot `s` by `by`, if it still waits.
+    /// Changes the score of slot `s` by `by`, if it still waits. Only a
+    /// rise needs a new heap entry (the heap's invariant).
     fn change(&mut self, s: u32, by: i32) {
         let slot = &mut self.slots[s as usize];
         if slot.gp.is_none() {
             return;
         }
         slot.score = slot.score.saturating_add_signed(by);
-        if !slot.dirty {
+        if by > 0 && !slot.dirty {
             slot.dirty = true;
             self.dirty.push(s);
         }
