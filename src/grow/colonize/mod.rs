@@ -10,8 +10,11 @@
 //!   seed `V=`. Without a region there are none, and space-first growth
 //!   decides in `bfs` order.
 //! - **Ownership.** A living point belongs to the nearest waiting growth
-//!   point within the reach `Q=` (ties: the one made first); a growth
-//!   point's *score* is the number of points that belong to it.
+//!   point within that growth point's reach (ties: the one made first): `Q=`
+//!   if written, else four stem lengths at the order its stems would be
+//!   drawn, so deep tips of a length decrement reach less, as their stems
+//!   kill less; a growth point's *score* is the number of points that
+//!   belong to it.
 //! - **Order.** The waiting growth point with the highest score is decided
 //!   first; ties, and the growth points that score nothing, in `bfs` order
 //!   (the order they were made). So growth reaches into empty parts of the
@@ -52,6 +55,8 @@ struct Slot<const N: usize, G> {
     seq: u64,
     /// The points that belong to it.
     score: u32,
+    /// Its squared reach.
+    reach2: f64,
     /// Its score changed since its last heap entry.
     dirty: bool,
     /// The previous and next slot listed in its cell ([`NONE`]: none).
@@ -129,15 +134,17 @@ impl<const N: usize, G> Colonizer<N, G> {
         }
     }
 
-    /// A growth point at `pos` waits for its decision.
-    pub(super) fn push(&mut self, pos: [f64; N], gp: G) {
+    /// A growth point at `pos` waits for its decision; it scores the
+    /// points within `reach` (at most the colonizer's).
+    pub(super) fn push(&mut self, pos: [f64; N], reach: f64, gp: G) {
+        let reach2 = (reach * reach).min(self.reach2);
         let seq = self.next_seq;
         self.next_seq += 1;
         let mut found = std::mem::take(&mut self.found);
         found.clear();
         if !self.pts.is_empty() {
             self.living_near(pos, self.reach, &mut found);
-            found.retain(|&p| dist2(self.pts[p as usize], pos) <= self.reach2);
+            found.retain(|&p| dist2(self.pts[p as usize], pos) <= reach2);
         }
         if found.is_empty() {
             // No point within reach: none can ever belong to it (points
@@ -153,6 +160,7 @@ impl<const N: usize, G> Colonizer<N, G> {
             pos,
             seq,
             score: 0,
+            reach2,
             dirty: false,
             prev: NONE,
             next: head,
@@ -260,13 +268,13 @@ impl<const N: usize, G> Colonizer<N, G> {
         for &p in &found {
             let at = self.pts[p as usize];
             let mut best = (NONE, f64::INFINITY, u64::MAX);
-            let (waiting, slots, reach2) = (&self.waiting, &self.slots, self.reach2);
+            let (waiting, slots) = (&self.waiting, &self.slots);
             self.grid.near(at, self.reach, |c| {
                 let mut w = waiting[c];
                 while w != NONE {
                     let slot = &slots[w as usize];
                     let d2 = dist2(at, slot.pos);
-                    if d2 <= reach2 && (d2, slot.seq) < (best.1, best.2) {
+                    if d2 <= slot.reach2 && (d2, slot.seq) < (best.1, best.2) {
                         best = (w, d2, slot.seq);
                     }
                     w = slot.next;
