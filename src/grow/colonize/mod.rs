@@ -40,7 +40,8 @@ use std::collections::{BinaryHeap, VecDeque};
 use super::occupancy::{Cap, point_seg_dist2};
 use grid::{Fixed, Grid};
 
-/// The default reach `Q=`, in segment lengths `L` of the seed's order.
+/// The default reach `Q=`, in stem lengths at the order a growth point's
+/// stems would be drawn (`L` itself without a length decrement).
 pub const DEFAULT_REACH_IN_L: f64 = 4.0;
 
 /// No owner.
