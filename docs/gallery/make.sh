@@ -73,7 +73,8 @@ for n in oak3d forest3d; do
     $B render examples/$n.od --growth $o --show-layout --size 240x240 -o $S/$n-$o.png
   done
 done
-for f in benches/space/box-hole.od examples/holes.od benches/space/l-shape.od; do
+for f in benches/space/box-hole.od examples/holes.od benches/space/l-shape.od \
+         examples/crown.od; do
   n=$(basename $f .od)
   third=$(( $($B check $f | sed -n 's/.*grows *\([0-9]*\) stems.*/\1/p') / 3 ))
   for o in bfs dfs space; do

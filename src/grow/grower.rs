@@ -216,7 +216,11 @@ where
         for tree in pending {
             for p in tree {
                 if let Some(c) = &mut self.colonizer {
-                    c.push(S::position(&p.state), p);
+                    c.push(
+                        S::position(&p.state),
+                        reach_at(self.od, S::order(&p.state)),
+                        p,
+                    );
                 } else {
                     self.decide_with_subtree(p, progress);
                 }
@@ -370,7 +374,11 @@ where
     fn push_children(&mut self) {
         if let Some(c) = &mut self.colonizer {
             for g in self.scratch.children.drain(..) {
-                c.push(S::position(&g.state), g);
+                c.push(
+                    S::position(&g.state),
+                    reach_at(self.od, S::order(&g.state)),
+                    g,
+                );
             }
         }
     }
@@ -598,6 +606,15 @@ where
         }
         Ok(())
     }
+}
+
+/// The default reach of a growth point whose stems are drawn at the
+/// order after `order`: `Q=` if given, else [`DEFAULT_REACH_IN_L`] stem
+/// lengths there.
+fn reach_at(od: &Description, order: u32) -> f64 {
+    od.params.design.reach.unwrap_or_else(|| {
+        DEFAULT_REACH_IN_L * od.params.length.at(order.saturating_add(1)).max(0.0)
+    })
 }
 
 /// The length of a stem: its kill distance in space-first growth.

@@ -150,7 +150,9 @@ pub struct Design {
     /// one per `L` x `L` of the region's area (`L` cubed of a volume).
     pub points: Option<u64>,
     /// `Q=d`: the radius of influence of a growth point in space-first
-    /// growth, canvas units; `None`: the default, 4 `L`.
+    /// growth, canvas units; `None`: the default, 4 stem lengths at the
+    /// order the growth point's stems would be drawn (4 `L` without a
+    /// length decrement).
     pub reach: Option<f64>,
 }
 

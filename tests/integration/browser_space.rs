@@ -1,7 +1,7 @@
 //! Space-first growth in the browser (issue 34): the static site's
 //! engine grows the CLI's BED byte for byte, and the editor's growth
 //! control offers `space`, writes `O=space` into the text and draws what
-//! the CLI draws of that text.
+//! the CLI draws of that text; with a seed `V=` in the file too.
 
 use serde_json::json;
 
@@ -20,6 +20,25 @@ fn the_web_engine_and_the_growth_control_grow_space_first_as_the_cli_in_chromium
             let path = format!("examples/{name}");
             same_bytes(&bed, &cli(&["compile", &path, "--growth", "space"]), name);
         }
+        // A seed in the file (`V=`, which moves the attraction points):
+        // the engine's BED is still the CLI's.
+        let text = example("holes.od").replace("C=1.5\n", "C=1.5 V=5\n");
+        assert!(text.contains("V=5"));
+        let path = std::env::temp_dir().join(format!("stlc-space-v5-{}.od", std::process::id()));
+        std::fs::write(&path, &text).unwrap();
+        let request = json!({"source": text, "growth": "space"});
+        let bed = engine_export(c, &request, "bed").await.unwrap();
+        let p = path.to_str().unwrap();
+        same_bytes(
+            &bed,
+            &cli(&["compile", p, "--growth", "space"]),
+            "holes.od V=5",
+        );
+        assert_ne!(
+            bed,
+            cli(&["compile", "examples/holes.od", "--growth", "space"])
+        );
+        std::fs::remove_file(&path).ok();
         // The control: choosing space writes the key into the text, and
         // the picture is the CLI's of that text.
         open_example(c, "holes.od").await;

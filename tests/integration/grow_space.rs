@@ -104,25 +104,30 @@ fn coverage(stems: &[PlacedStem], inside: impl Fn(f64, f64) -> bool, l: f64) -> 
     (f64::from(near) / f64::from(n), sum / f64::from(n))
 }
 
+/// Coverage (share within `2 L`, mean distance) of `d` grown space-first,
+/// bfs and dfs with a third of the stems bfs grows unbounded.
+fn at_a_third(
+    d: &Description,
+    inside: impl Fn(f64, f64) -> bool + Copy,
+    l: f64,
+) -> [(f64, f64); 3] {
+    let all = grown(d, opts(GrowthOrder::Bfs)).stems;
+    [GrowthOrder::Space, GrowthOrder::Bfs, GrowthOrder::Dfs].map(|o| {
+        let mut g = opts(o);
+        g.limits.max_stems = all / 3;
+        let (_, trace) = grow_traced(d, &g, &mut NoProgress).unwrap();
+        coverage(&trace, inside, l)
+    })
+}
+
 /// The acceptance figure: on the box with a hole, with a third of
 /// the stems bfs grows unbounded, space-first covers more of the region
 /// than bfs and dfs, and leaves its points nearer a stem.
 #[test]
 fn space_first_covers_more_on_the_same_budget() {
     let d = od(&box_with_hole(""));
-    let all = grown(&d, opts(GrowthOrder::Bfs)).stems;
     let inside = |x: f64, y: f64| !((50.0..=150.0).contains(&x) && (50.0..=150.0).contains(&y));
-    let measure = |o: GrowthOrder| {
-        let mut g = opts(o);
-        g.limits.max_stems = all / 3;
-        let (_, trace) = grow_traced(&d, &g, &mut NoProgress).unwrap();
-        coverage(&trace, inside, 10.0)
-    };
-    let (space, bfs, dfs) = (
-        measure(GrowthOrder::Space),
-        measure(GrowthOrder::Bfs),
-        measure(GrowthOrder::Dfs),
-    );
+    let [space, bfs, dfs] = at_a_third(&d, inside, 10.0);
     assert!(
         space.0 > bfs.0 && space.0 > dfs.0,
         "{space:?} {bfs:?} {dfs:?}"
@@ -131,6 +136,31 @@ fn space_first_covers_more_on_the_same_budget() {
         space.1 < bfs.1 && space.1 < dfs.1,
         "{space:?} {bfs:?} {dfs:?}"
     );
+}
+
+/// With a length decrement (`crown.od`, `L=10(0.35)`), too: a growth
+/// point's default reach shrinks with its stems, so deep tips do not
+/// hoard the points round them and spend the budget on a clump of tiny
+/// stems. The crown's ellipse, measured on the grid's 200 x 200; with the
+/// reach of the seed's stems at every order (`Q=40`, the default before)
+/// space-first loses to bfs here.
+#[test]
+fn space_first_covers_more_of_a_crown_with_a_length_decrement() {
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/crown.od")).unwrap();
+    let in_crown = |x: f64, y: f64| {
+        let (u, v) = ((x - 100.0) / 80.0, (y - 115.0) / 95.0);
+        u * u + v * v <= 1.0
+    };
+    let [space, bfs, dfs] = at_a_third(&od(&text), in_crown, 10.0);
+    assert!(
+        space.0 > bfs.0 && space.0 > dfs.0 && space.1 < bfs.1 && space.1 < dfs.1,
+        "{space:?} {bfs:?} {dfs:?}"
+    );
+    let fixed = text.replace("C=1\n", "C=1 Q=40\n");
+    assert_ne!(fixed, text);
+    let [space, bfs, _] = at_a_third(&od(&fixed), in_crown, 10.0);
+    assert!(space.0 < bfs.0, "{space:?} {bfs:?}");
 }
 
 /// The BED names every decision: read back and written again it is the

@@ -294,6 +294,35 @@ fn render_answers_the_cli_bytes_for_an_od() {
     }
 }
 
+/// Space-first growth with a seed in the file (`V=`, which moves the
+/// attraction points): the server's BED is the CLI's, byte for byte, for
+/// two seeds, and the two seeds grow different trees.
+#[test]
+fn space_first_with_a_seed_answers_the_cli_bytes() {
+    let server = Server::start(&[]);
+    let dir = std::env::temp_dir().join(format!("stlc-serve-space-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut beds = Vec::new();
+    for seed in [3, 8] {
+        let text = example("holes.od").replace("C=1.5\n", &format!("C=1.5 O=space V={seed}\n"));
+        assert!(text.contains("V="), "the header line is where it was");
+        let path = dir.join(format!("holes-v{seed}.od"));
+        std::fs::write(&path, &text).unwrap();
+        let a = render(
+            &server.addr,
+            &json!({"source": text, "kind": "od", "growth": "space"}),
+        );
+        assert_eq!(a["ok"], true, "{a}");
+        let path = path.to_str().unwrap();
+        let bed =
+            String::from_utf8(cli(&["compile", path, "-o", "-", "--growth", "space"])).unwrap();
+        crate::support::assert_same_text("holes.od", &bed, a["bed"].as_str().unwrap());
+        beds.push(bed);
+    }
+    assert_ne!(beds[0], beds[1], "the seed moves the points and the tree");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// The growth order: the seed's stems come first (decision 0, the first
 /// one from the root); decisions never go back; and every stem of a
 /// decision starts where an earlier stem (or its own decision's earlier

@@ -51,11 +51,13 @@ impl<const N: usize> Grid<N> {
 
     /// The cell index along axis `i` of coordinate `x`, clamped.
     fn axis(&self, i: usize, x: f64) -> usize {
-        let k = ((x - self.lo[i]) / self.cell).floor();
-        if k <= 0.0 {
-            0
-        } else {
+        let k = (x - self.lo[i]) / self.cell;
+        // Truncation is the floor for k > 0 (no call to `floor` in the
+        // hot loop); below and NaN: the first cell.
+        if k > 0.0 {
             (k as usize).min(self.dims[i] - 1)
+        } else {
+            0
         }
     }
 
@@ -98,17 +100,17 @@ impl<const N: usize> Grid<N> {
     }
 }
 
-/// Points fixed in their cells: `ids[start[c]..start[c + 1]]` lie in
-/// cell `c`.
+/// Points fixed in their cells, numbered by cell: points
+/// `start[c]..start[c + 1]` lie in cell `c`.
 #[derive(Debug)]
 pub(super) struct Fixed {
     start: Vec<u32>,
-    ids: Vec<u32>,
 }
 
 impl Fixed {
-    /// `pts` in the cells of `grid`.
-    pub(super) fn new<const N: usize>(grid: &Grid<N>, pts: &[[f64; N]]) -> Self {
+    /// `pts` sorted by their cells of `grid` (stably: a counting sort, one
+    /// `cell_of` per point), and the cells.
+    pub(super) fn sort<const N: usize>(grid: &Grid<N>, pts: &[[f64; N]]) -> (Self, Vec<[f64; N]>) {
         let cells: Vec<u32> = pts.iter().map(|&p| grid.cell_of(p) as u32).collect();
         let mut start = vec![0u32; grid.cells() + 1];
         for &c in &cells {
@@ -118,17 +120,17 @@ impl Fixed {
             start[c + 1] += start[c];
         }
         let mut next = start.clone();
-        let mut ids = vec![0u32; pts.len()];
-        for (p, &c) in cells.iter().enumerate() {
-            ids[next[c as usize] as usize] = p as u32;
+        let mut sorted = vec![[0.0; N]; pts.len()];
+        for (p, &c) in pts.iter().zip(&cells) {
+            sorted[next[c as usize] as usize] = *p;
             next[c as usize] += 1;
         }
-        Fixed { start, ids }
+        (Fixed { start }, sorted)
     }
 
     /// The points in cell `c`.
-    pub(super) fn in_cell(&self, c: usize) -> &[u32] {
-        &self.ids[self.start[c] as usize..self.start[c + 1] as usize]
+    pub(super) fn in_cell(&self, c: usize) -> std::ops::Range<u32> {
+        self.start[c]..self.start[c + 1]
     }
 }
 
@@ -143,13 +145,17 @@ mod tests {
             .map(|i| [f64::from(i % 10), f64::from(i / 10)])
             .collect();
         let grid = Grid::new(&pts, 2.5);
-        let fixed = Fixed::new(&grid, &pts);
+        let (fixed, sorted) = Fixed::sort(&grid, &pts);
+        // Sorted by cell, stably: the order `sort_by_key` gives.
+        let mut by_key = pts.clone();
+        by_key.sort_by_key(|&p| grid.cell_of(p));
+        assert_eq!(sorted, by_key);
         for q in [[0.0, 0.0], [4.5, 7.2], [12.0, -3.0], [9.0, 9.0]] {
             let mut found = Vec::new();
-            grid.near(q, 2.5, |c| found.extend_from_slice(fixed.in_cell(c)));
+            grid.near(q, 2.5, |c| found.extend(fixed.in_cell(c)));
             let by_hand: Vec<u32> = (0..100u32)
                 .filter(|&i| {
-                    let p = pts[i as usize];
+                    let p = sorted[i as usize];
                     (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) <= 6.25
                 })
                 .collect();

@@ -10,8 +10,11 @@
 //!   seed `V=`. Without a region there are none, and space-first growth
 //!   decides in `bfs` order.
 //! - **Ownership.** A living point belongs to the nearest waiting growth
-//!   point within the reach `Q=` (ties: the one made first); a growth
-//!   point's *score* is the number of points that belong to it.
+//!   point within that growth point's reach (ties: the one made first): `Q=`
+//!   if written, else four stem lengths at the order its stems would be
+//!   drawn, so deep tips of a length decrement reach less, as their stems
+//!   kill less; a growth point's *score* is the number of points that
+//!   belong to it.
 //! - **Order.** The waiting growth point with the highest score is decided
 //!   first; ties, and the growth points that score nothing, in `bfs` order
 //!   (the order they were made). So growth reaches into empty parts of the
@@ -32,12 +35,13 @@ mod grid;
 pub mod sample;
 
 use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, VecDeque};
 
 use super::occupancy::{Cap, point_seg_dist2};
 use grid::{Fixed, Grid};
 
-/// The default reach `Q=`, in segment lengths `L` of the seed's order.
+/// The default reach `Q=`, in stem lengths at the order a growth point's
+/// stems would be drawn (`L` itself without a length decrement).
 pub const DEFAULT_REACH_IN_L: f64 = 4.0;
 
 /// No owner.
@@ -52,12 +56,13 @@ struct Slot<const N: usize, G> {
     seq: u64,
     /// The points that belong to it.
     score: u32,
+    /// Its squared reach.
+    reach2: f64,
     /// Its score changed since its last heap entry.
     dirty: bool,
-    /// In the grid of waiting growth points: a living point was within
-    /// reach when it was made (else no point can ever belong to it, as
-    /// points only die, and orphaned points need not look for it).
-    listed: bool,
+    /// The previous and next slot listed in its cell ([`NONE`]: none).
+    prev: u32,
+    next: u32,
 }
 
 /// The attraction points and the growth points waiting for their decision,
@@ -76,11 +81,20 @@ pub(super) struct Colonizer<const N: usize, G> {
     owner: Vec<(u32, f64)>,
     slots: Vec<Slot<N, G>>,
     free: Vec<u32>,
-    /// The waiting growth points (slots), by cell.
-    waiting: Vec<Vec<u32>>,
-    /// (score, earliest first, slot); an entry is stale unless the slot
-    /// still holds that growth point with that score.
+    /// The waiting growth points (slots) listed by cell: the first of a
+    /// doubly linked list through the slots (no allocation a cell).
+    waiting: Vec<u32>,
+    /// (score, earliest first, slot) of the growth points in slots. A
+    /// slot's highest entry is at least its score: a score that rises
+    /// gets a new entry, one that falls keeps its entry, corrected when it
+    /// comes to the top. An entry is stale unless the slot still holds
+    /// that growth point (`seq`).
     heap: BinaryHeap<(u32, Reverse<u64>, u32)>,
+    /// The growth points made with no living point within reach, which
+    /// score nothing for good (points only die), with their `seq`: in the
+    /// order made, so the earliest is first. They need no slot, and
+    /// orphaned points need not look for them.
+    idle: VecDeque<(u64, G)>,
     dirty: Vec<u32>,
     next_seq: u64,
     live: usize,
@@ -90,16 +104,15 @@ pub(super) struct Colonizer<const N: usize, G> {
 
 impl<const N: usize, G> Colonizer<N, G> {
     /// The colonizer of `points`, with reach `reach`.
-    pub(super) fn new(mut points: Vec<[f64; N]>, reach: f64) -> Self {
+    pub(super) fn new(points: Vec<[f64; N]>, reach: f64) -> Self {
         let grid = Grid::new(&points, reach);
         // Numbered by cell (stably), a cell's points are neighbours in
         // memory; which point is which changes no answer.
-        points.sort_by_key(|&p| grid.cell_of(p));
-        let cells = Fixed::new(&grid, &points);
+        let (cells, points) = Fixed::sort(&grid, &points);
         let waiting = if points.is_empty() {
             Vec::new()
         } else {
-            vec![Vec::new(); grid.cells()]
+            vec![NONE; grid.cells()]
         };
         Colonizer {
             reach,
@@ -114,6 +127,7 @@ impl<const N: usize, G> Colonizer<N, G> {
             free: Vec::new(),
             waiting,
             heap: BinaryHeap::new(),
+            idle: VecDeque::new(),
             dirty: Vec::new(),
             next_seq: 0,
             live: 0,
@@ -121,17 +135,36 @@ impl<const N: usize, G> Colonizer<N, G> {
         }
     }
 
-    /// A growth point at `pos` waits for its decision.
-    pub(super) fn push(&mut self, pos: [f64; N], gp: G) {
+    /// A growth point at `pos` waits for its decision; it scores the
+    /// points within `reach` (at most the colonizer's).
+    pub(super) fn push(&mut self, pos: [f64; N], reach: f64, gp: G) {
+        let reach2 = (reach * reach).min(self.reach2);
         let seq = self.next_seq;
         self.next_seq += 1;
+        let mut found = std::mem::take(&mut self.found);
+        found.clear();
+        if !self.pts.is_empty() {
+            self.living_near(pos, self.reach, &mut found);
+            found.retain(|&p| dist2(self.pts[p as usize], pos) <= reach2);
+        }
+        if found.is_empty() {
+            // No point within reach: none can ever belong to it (points
+            // only die), so it waits in the order made, with no slot.
+            self.found = found;
+            self.idle.push_back((seq, gp));
+            return;
+        }
+        let cell = self.grid.cell_of(pos);
+        let head = self.waiting[cell];
         let slot = Slot {
             gp: Some(gp),
             pos,
             seq,
             score: 0,
+            reach2,
             dirty: false,
-            listed: false,
+            prev: NONE,
+            next: head,
         };
         let s = match self.free.pop() {
             Some(s) => {
@@ -143,20 +176,13 @@ impl<const N: usize, G> Colonizer<N, G> {
                 (self.slots.len() - 1) as u32
             }
         };
-        self.live += 1;
-        if self.pts.is_empty() {
-            self.heap.push((0, Reverse(seq), s));
-            return;
+        if head != NONE {
+            self.slots[head as usize].prev = s;
         }
-        let mut found = std::mem::take(&mut self.found);
-        self.living_near(pos, self.reach, &mut found);
-        let mut listed = false;
+        self.waiting[cell] = s;
+        self.live += 1;
         for &p in &found {
             let d2 = dist2(self.pts[p as usize], pos);
-            if d2 > self.reach2 {
-                continue;
-            }
-            listed = true;
             let (old, od2) = self.owner[p as usize];
             // The growth point made first keeps a tie.
             if d2 < od2 {
@@ -168,10 +194,6 @@ impl<const N: usize, G> Colonizer<N, G> {
             }
         }
         self.found = found;
-        if listed {
-            self.waiting[self.grid.cell_of(pos)].push(s);
-            self.slots[s as usize].listed = true;
-        }
         self.heap
             .push((self.slots[s as usize].score, Reverse(seq), s));
         self.flush();
@@ -184,26 +206,58 @@ impl<const N: usize, G> Colonizer<N, G> {
         if self.heap.len() > 4 * self.live + 1024 {
             self.compact();
         }
-        while let Some((score, Reverse(seq), s)) = self.heap.pop() {
-            let slot = &mut self.slots[s as usize];
-            if slot.gp.is_none() || slot.seq != seq || slot.score != score {
-                continue;
+        // The heap's best true entry, if any.
+        let best = loop {
+            let Some(&(score, Reverse(seq), s)) = self.heap.peek() else {
+                break None;
+            };
+            let slot = &self.slots[s as usize];
+            if slot.gp.is_none() || slot.seq != seq || slot.score > score {
+                self.heap.pop();
+            } else if slot.score < score {
+                // It fell since: its true entry goes in.
+                let fell = (slot.score, Reverse(seq), s);
+                self.heap.pop();
+                self.heap.push(fell);
+            } else {
+                break Some((score, Reverse(seq), s));
             }
-            let gp = slot.gp.take().expect("checked");
-            let pos = slot.pos;
-            slot.score = 0;
-            self.live -= 1;
-            self.free.push(s);
-            if slot.listed {
-                slot.listed = false;
-                let cell = &mut self.waiting[self.grid.cell_of(pos)];
-                let at = cell.iter().position(|&w| w == s).expect("waiting");
-                cell.swap_remove(at);
-                self.orphan(s, pos);
-            }
-            return Some((gp, score));
+        };
+        let idle_first = match (best, self.idle.front()) {
+            (_, None) => false,
+            (None, Some(_)) => true,
+            (Some((score, Reverse(b), _)), Some(&(i, _))) => score == 0 && i < b,
+        };
+        if idle_first {
+            return self.idle.pop_front().map(|(_, gp)| (gp, 0));
         }
-        None
+        let (score, _, s) = best?;
+        self.heap.pop();
+        let slot = &mut self.slots[s as usize];
+        let gp = slot.gp.take().expect("waiting");
+        let pos = slot.pos;
+        slot.score = 0;
+        self.live -= 1;
+        self.free.push(s);
+        self.unlist(s, pos);
+        self.orphan(s, pos);
+        Some((gp, score))
+    }
+
+    /// Takes the slot `s` at `pos` out of its cell's list.
+    fn unlist(&mut self, s: u32, pos: [f64; N]) {
+        let (prev, next) = {
+            let slot = &self.slots[s as usize];
+            (slot.prev, slot.next)
+        };
+        if prev == NONE {
+            self.waiting[self.grid.cell_of(pos)] = next;
+        } else {
+            self.slots[prev as usize].next = next;
+        }
+        if next != NONE {
+            self.slots[next as usize].prev = prev;
+        }
     }
 
     /// Gives the points of the slot `s` (at `pos`, no longer waiting) to
@@ -215,14 +269,16 @@ impl<const N: usize, G> Colonizer<N, G> {
         for &p in &found {
             let at = self.pts[p as usize];
             let mut best = (NONE, f64::INFINITY, u64::MAX);
-            let (waiting, slots, reach2) = (&self.waiting, &self.slots, self.reach2);
+            let (waiting, slots) = (&self.waiting, &self.slots);
             self.grid.near(at, self.reach, |c| {
-                for &w in &waiting[c] {
+                let mut w = waiting[c];
+                while w != NONE {
                     let slot = &slots[w as usize];
                     let d2 = dist2(at, slot.pos);
-                    if d2 <= reach2 && (d2, slot.seq) < (best.1, best.2) {
+                    if d2 <= slot.reach2 && (d2, slot.seq) < (best.1, best.2) {
                         best = (w, d2, slot.seq);
                     }
+                    w = slot.next;
                 }
             });
             self.owner[p as usize] = (best.0, best.1);
@@ -248,9 +304,9 @@ impl<const N: usize, G> Colonizer<N, G> {
         let (cells, alive, pts) = (&self.cells, &self.alive, &self.pts);
         self.grid.each_cell(lo, hi, |c| {
             found.extend(
-                cells.in_cell(c).iter().filter(|&&p| {
-                    alive[p as usize] && point_seg_dist2(pts[p as usize], stem) <= d2
-                }),
+                cells
+                    .in_cell(c)
+                    .filter(|&p| alive[p as usize] && point_seg_dist2(pts[p as usize], stem) <= d2),
             );
         });
         for &p in &found {
@@ -273,23 +329,19 @@ impl<const N: usize, G> Colonizer<N, G> {
     fn living_near(&self, pos: [f64; N], r: f64, found: &mut Vec<u32>) {
         found.clear();
         self.grid.near(pos, r, |c| {
-            found.extend(
-                self.cells
-                    .in_cell(c)
-                    .iter()
-                    .filter(|&&p| self.alive[p as usize]),
-            );
+            found.extend(self.cells.in_cell(c).filter(|&p| self.alive[p as usize]));
         });
     }
 
-    /// Changes the score of slot `s` by `by`, if it still waits.
+    /// Changes the score of slot `s` by `by`, if it still waits. Only a
+    /// rise needs a new heap entry (the heap's invariant).
     fn change(&mut self, s: u32, by: i32) {
         let slot = &mut self.slots[s as usize];
         if slot.gp.is_none() {
             return;
         }
         slot.score = slot.score.saturating_add_signed(by);
-        if !slot.dirty {
+        if by > 0 && !slot.dirty {
             slot.dirty = true;
             self.dirty.push(s);
         }
