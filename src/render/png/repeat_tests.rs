@@ -8,6 +8,9 @@ use crate::render::png::PngTurtle;
 use crate::render::{Fit, RenderOptions, Style, Width};
 use crate::turtle::{Point, Segment, Turtle};
 
+/// A picture's size in pixels, `None` for the default.
+type Size = Option<(u32, u32)>;
+
 /// The PNG of `text` with `exact`, `size` and `depth`, with the skips
 /// (`all` false) or drawing everything.
 fn png(
@@ -57,7 +60,7 @@ fn the_gallery_is_the_same_with_and_without_the_skips() {
         ("abop-2.8b.lsys", 4),
     ];
     let big = Some((2048, 2048));
-    let mut runs: Vec<(&str, u32, bool, Option<(u32, u32)>)> = Vec::new();
+    let mut runs: Vec<(&str, u32, bool, Size)> = Vec::new();
     for &(name, depth) in cases {
         for exact in [true, false] {
             runs.push((name, depth, exact, None));
