@@ -25,12 +25,10 @@ use std::ops::Range;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 
-use tiny_skia::{
-    Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, PixmapMut, Stroke,
-    Transform,
-};
+use tiny_skia::{Color, FillRule, Paint, Path, PathBuilder, Pixmap, PixmapMut, Transform};
 
 use super::raster::{self, Blot};
+use super::repeat::Repeats;
 use crate::color::Rgb;
 
 /// Rows of one band (the last band of a picture may have fewer). Small
@@ -185,8 +183,9 @@ struct Band<'a> {
 }
 
 impl Band<'_> {
-    /// Paints `op` into the band; `path`: its part of a stroke.
-    fn apply(&mut self, op: &Op, path: Option<&Path>, ink: &Ink) {
+    /// Paints `op` into the band; `path`: its part of a stroke;
+    /// `repeats`: what the band was stroked with lately.
+    fn apply(&mut self, op: &Op, path: Option<&Path>, ink: &Ink, repeats: &mut Repeats) {
         let top = self.rows.start;
         let height = self.rows.end - top;
         let Some(mut pixmap) = PixmapMut::from_bytes(self.data, ink.width, height) else {
@@ -195,16 +194,11 @@ impl Band<'_> {
         match op {
             Op::Stroke { width, .. } => {
                 if let Some(path) = path {
-                    let stroke = Stroke {
-                        width: *width,
-                        line_cap: LineCap::Round,
-                        line_join: LineJoin::Round,
-                        ..Stroke::default()
-                    };
-                    pixmap.stroke_path(path, &ink.paint, &stroke, Transform::identity(), None);
+                    repeats.stroke(&mut pixmap, path, *width, &ink.paint);
                 }
             }
             Op::Fill { path, color, rule } => {
+                repeats.changed();
                 let mut paint = Paint::default();
                 paint.set_color(*color);
                 paint.anti_alias = true;
@@ -218,39 +212,61 @@ impl Band<'_> {
             }
             Op::Blots(blots) => {
                 for blot in blots.iter().filter(|b| b.reaches(&self.rows)) {
+                    repeats.changed();
                     let rows = self.rows.clone();
                     let (a, b) = (blot.a, blot.b);
                     raster::stamp(self.data, ink.width, rows, ink.rgb, a, b, &blot.shape);
                 }
             }
-            Op::Cover => pixmap.fill(super::color(ink.rgb)),
-            // The producer's ink or the thread's own has changed already.
-            Op::Paint(_) => {}
+            Op::Cover => {
+                repeats.changed();
+                pixmap.fill(super::color(ink.rgb));
+            }
+            // The producer's ink or the thread's own has changed already;
+            // what changed nothing in the old paint may change it now.
+            Op::Paint(_) => repeats.changed(),
         }
     }
 }
 
 /// Paints `op` into `bands`, which are the picture's bands `first`,
-/// `first + step`, ...
-fn paint(bands: &mut [Band<'_>], first: usize, step: usize, op: &Op, ink: &Ink) {
+/// `first + step`, ..., each with its [`Repeats`] (the same index in
+/// `repeats`).
+fn paint(
+    bands: &mut [Band<'_>],
+    repeats: &mut [Repeats],
+    (first, step): (usize, usize),
+    op: &Op,
+    ink: &Ink,
+) {
     match op {
         Op::Stroke { paths, .. } => {
             for (band, path) in paths {
-                if let Some(b) = band
-                    .checked_sub(first)
-                    .filter(|d| d % step == 0)
-                    .and_then(|d| bands.get_mut(d / step))
+                if let Some(d) = band.checked_sub(first).filter(|d| d % step == 0)
+                    && let (Some(b), Some(r)) = (bands.get_mut(d / step), repeats.get_mut(d / step))
                 {
-                    b.apply(op, Some(path), ink);
+                    b.apply(op, Some(path), ink, r);
                 }
             }
         }
         _ => {
-            for b in bands {
-                b.apply(op, None, ink);
+            for (b, r) in bands.iter_mut().zip(repeats) {
+                b.apply(op, None, ink, r);
             }
         }
     }
+}
+
+/// The [`Repeats`] of a canvas's bands: one for a whole raster, one a
+/// band for bands painted on the producer's thread, none for band
+/// threads (each holds its own).
+pub(super) fn repeats_for(canvas: &Canvas) -> Vec<Repeats> {
+    let n = match canvas {
+        Canvas::Whole(_) => 1,
+        Canvas::Bands(p) => p.height().div_ceil(BAND_ROWS).max(1) as usize,
+        Canvas::Sent(_) => 0,
+    };
+    (0..n).map(|_| Repeats::default()).collect()
 }
 
 /// The bands of `pixmap`, top to bottom.
@@ -285,7 +301,8 @@ pub(super) enum Canvas {
 impl Canvas {
     /// Hands `op` to the bands (for [`Canvas::Whole`], which paints
     /// strokes itself, only fills, blots and cover, as one band).
-    pub(super) fn send(&mut self, op: Op, ink: &Ink) {
+    /// `repeats`: [`repeats_for`] this canvas.
+    pub(super) fn send(&mut self, op: Op, ink: &Ink, repeats: &mut [Repeats]) {
         match self {
             Canvas::Whole(pixmap) => {
                 let rows = 0..pixmap.height();
@@ -293,9 +310,9 @@ impl Canvas {
                     data: pixmap.data_mut(),
                     rows,
                 }];
-                paint(&mut whole, 0, 1, &op, ink);
+                paint(&mut whole, repeats, (0, 1), &op, ink);
             }
-            Canvas::Bands(pixmap) => paint(&mut bands(pixmap), 0, 1, &op, ink),
+            Canvas::Bands(pixmap) => paint(&mut bands(pixmap), repeats, (0, 1), &op, ink),
             Canvas::Sent(queues) => {
                 let n = queues.len();
                 let mut each: Vec<Op> = match op {
@@ -351,10 +368,14 @@ pub(super) fn in_threads<R>(
             queues.push(tx);
             let mut ink = ink.clone();
             scope.spawn(move || {
+                let mut repeats: Vec<Repeats> = bands.iter().map(|_| Repeats::default()).collect();
                 for op in rx {
                     match op {
-                        Op::Paint(rgb) => ink.set(rgb),
-                        op => paint(&mut bands, first, threads, &op, &ink),
+                        Op::Paint(rgb) => {
+                            ink.set(rgb);
+                            repeats.iter_mut().for_each(Repeats::changed);
+                        }
+                        op => paint(&mut bands, &mut repeats, (first, threads), &op, &ink),
                     }
                 }
             });

@@ -37,9 +37,7 @@
 //! It does not decide sizes or widths: [`Fit`] and [`stroke_px`] in the
 //! parent module do. Its sections mirror `svg.rs`, so the two read side by side.
 
-use tiny_skia::{
-    Color, FillRule, LineCap, LineJoin, Paint, Path, PathBuilder, Pixmap, Stroke, Transform,
-};
+use tiny_skia::{Color, FillRule, Paint, Path, PathBuilder, Pixmap};
 
 pub use bands::BAND_ROWS;
 
@@ -58,6 +56,7 @@ mod fold;
 mod full;
 mod organs;
 mod raster;
+mod repeat;
 mod sample;
 
 use bands::{Canvas, Ink, Op, Router};
@@ -111,6 +110,8 @@ pub struct PngTurtle {
     fields: Option<sample::Fields>,
     /// The raster's tiles found full ink ([`Turtle::covered`]).
     full: full::Full,
+    /// What the raster (or each band painted here) was stroked with lately.
+    repeats: Vec<repeat::Repeats>,
 }
 
 impl PngTurtle {
@@ -145,7 +146,6 @@ impl PngTurtle {
         paint.set_color(color(style.stroke));
         paint.anti_alias = true;
         PngTurtle {
-            canvas,
             fit,
             width: style.width,
             ink: Ink {
@@ -170,6 +170,8 @@ impl PngTurtle {
             stood: 0.0,
             fields: Some(sample::Fields::default()),
             full: full::Full::new(),
+            repeats: bands::repeats_for(&canvas),
+            canvas,
         }
     }
 
@@ -210,7 +212,8 @@ impl PngTurtle {
             if !paths.is_empty() {
                 self.paths += 1;
                 let width = self.batch_width as f32;
-                self.canvas.send(Op::Stroke { paths, width }, &self.ink);
+                self.canvas
+                    .send(Op::Stroke { paths, width }, &self.ink, &mut self.repeats);
             }
             return;
         }
@@ -218,14 +221,10 @@ impl PngTurtle {
             return;
         };
         self.paths += 1;
-        if let Canvas::Whole(pixmap) = &mut self.canvas {
-            let stroke = Stroke {
-                width: self.batch_width as f32,
-                line_cap: LineCap::Round,
-                line_join: LineJoin::Round,
-                ..Stroke::default()
-            };
-            pixmap.stroke_path(&path, &self.ink.paint, &stroke, Transform::identity(), None);
+        if let (Canvas::Whole(pixmap), Some(repeats)) = (&mut self.canvas, self.repeats.first_mut())
+        {
+            let width = self.batch_width as f32;
+            repeats.stroke(&mut pixmap.as_mut(), &path, width, &self.ink.paint);
         }
         // Keep the allocation for the next batch.
         self.batch = Path::clear(path);
@@ -236,8 +235,11 @@ impl PngTurtle {
     fn send_blots(&mut self) {
         if !self.blots.is_empty() {
             let blots = std::mem::take(&mut self.blots);
-            self.canvas
-                .send(Op::Blots(std::sync::Arc::new(blots)), &self.ink);
+            self.canvas.send(
+                Op::Blots(std::sync::Arc::new(blots)),
+                &self.ink,
+                &mut self.repeats,
+            );
         }
     }
 
@@ -257,8 +259,11 @@ impl PngTurtle {
             router.clear();
         }
         match &mut self.canvas {
-            Canvas::Whole(pixmap) => pixmap.fill(color(self.ink.rgb)),
-            canvas => canvas.send(Op::Cover, &self.ink),
+            Canvas::Whole(pixmap) => {
+                self.repeats.iter_mut().for_each(repeat::Repeats::changed);
+                pixmap.fill(color(self.ink.rgb));
+            }
+            canvas => canvas.send(Op::Cover, &self.ink, &mut self.repeats),
         }
         self.covered = true;
     }
@@ -269,6 +274,7 @@ impl PngTurtle {
     fn stamp(&mut self, from: crate::turtle::Point, to: crate::turtle::Point, shape: Shape) {
         match &mut self.canvas {
             Canvas::Whole(pixmap) => {
+                self.repeats.iter_mut().for_each(repeat::Repeats::changed);
                 let (width, rows) = (pixmap.width(), 0..pixmap.height());
                 raster::stamp(
                     pixmap.data_mut(),

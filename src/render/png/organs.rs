@@ -6,6 +6,7 @@ use tiny_skia::{FillRule, Paint, PathBuilder, Transform};
 
 use super::bands::{Canvas, Op};
 use super::raster::Recent;
+use super::repeat::Repeats;
 use super::{PngTurtle, color, full};
 use crate::color::Rgb;
 use crate::turtle::Point;
@@ -31,6 +32,7 @@ impl PngTurtle {
         };
         match &mut self.canvas {
             Canvas::Whole(pixmap) => {
+                self.repeats.iter_mut().for_each(Repeats::changed);
                 let mut paint = Paint::default();
                 paint.set_color(color(rgb));
                 paint.anti_alias = true;
@@ -43,6 +45,7 @@ impl PngTurtle {
                     rule,
                 },
                 &self.ink,
+                &mut self.repeats,
             ),
         }
     }
@@ -59,7 +62,11 @@ impl PngTurtle {
         self.full = full::Full::new();
         self.recent = Recent::new();
         if let Canvas::Sent(_) = self.canvas {
-            self.canvas.send(Op::Paint(rgb), &self.ink);
+            self.canvas
+                .send(Op::Paint(rgb), &self.ink, &mut self.repeats);
+        } else {
+            // What changed nothing in the old paint may change it now.
+            self.repeats.iter_mut().for_each(Repeats::changed);
         }
     }
 
