@@ -5,32 +5,9 @@
 //! vertex, counter-clockwise seen from the side its normal points to; in
 //! primitives of their own, one per colour, apart from the stems'.
 
+use super::{V, cross, dot, f32s, sub, unit};
 use crate::color::Rgb;
 use crate::turtle::turtle3::Point3;
-
-type V = [f64; 3];
-
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: V, b: V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn unit(a: V) -> V {
-    let n = libm::sqrt(dot(a, a));
-    [a[0] / n, a[1] / n, a[2] / n]
-}
-
-/// Never -0: the same bytes whichever way a zero was reached.
-fn f32s(a: V) -> [f32; 3] {
-    a.map(|v| if v == 0.0 { 0.0 } else { v as f32 })
-}
 
 /// A leaf's two faces: positions, normals, texture coordinates, and
 /// triangles (indices from 0).
@@ -49,10 +26,6 @@ pub struct Leaf {
     pub points: Vec<Point3>,
     /// Its colour.
     pub color: Rgb,
-}
-
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The two faces of a polygon whose vertices `pts` are in the files'

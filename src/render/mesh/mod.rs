@@ -222,9 +222,29 @@ fn unit(a: V) -> V {
     [a[0] / n, a[1] / n, a[2] / n]
 }
 
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
 fn f32s(a: V) -> [f32; 3] {
     // Never -0: the same bytes whichever way a zero was reached.
     a.map(|v| if v == 0.0 { 0.0 } else { v as f32 })
+}
+
+/// A tube's frame about its axis `d`: the unit axis `dn`, and `u`, `v`
+/// across it, `(u, v, dn)` right-handed (the helper axis is the one least
+/// aligned with `d`), so a ring `u cos + v sin` turns counter-clockwise
+/// about `dn`.
+fn frame(d: V) -> (V, V, V) {
+    let dn = unit(d);
+    let k = (0..3)
+        .min_by(|&i, &j| dn[i].abs().total_cmp(&dn[j].abs()))
+        .unwrap_or(0);
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let u = unit(cross(dn, e));
+    let v = cross(dn, u);
+    (dn, u, v)
 }
 
 /// A canvas point in the files' axes: (x, -y, -z) times `unit`.
@@ -321,15 +341,7 @@ pub fn build_with_leaves(
 /// Appends one closed tube from `a` to `b` (axis `d = b - a`), radius `r`.
 fn tube(p: &mut Primitive, a: V, b: V, d: V, r: f64, ring: &[(f64, f64)]) {
     let n = ring.len() as u32;
-    let dn = unit(d);
-    // A helper axis least aligned with d, then (u, v, dn) right-handed.
-    let k = (0..3)
-        .min_by(|&i, &j| dn[i].abs().total_cmp(&dn[j].abs()))
-        .unwrap_or(0);
-    let mut e = [0.0; 3];
-    e[k] = 1.0;
-    let u = unit(cross(dn, e));
-    let v = cross(dn, u);
+    let (dn, u, v) = frame(d);
     let off: Vec<V> = ring
         .iter()
         .map(|&(c, s)| {

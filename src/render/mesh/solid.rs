@@ -21,7 +21,7 @@ use manifold_rust::linalg::{Mat3x4, Vec2, Vec3};
 use manifold_rust::manifold::Manifold;
 use manifold_rust::types::{Error, MeshGL64, OpType};
 
-use super::{MAX_SIDES, MIN_SIDES, MeshOptions, Tube, V, cross, sub, to_file_axes, unit};
+use super::{MAX_SIDES, MIN_SIDES, MeshOptions, Tube, V, cross, frame, sub, to_file_axes, unit};
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::progress::Progress;
 use crate::turtle::turtle3::{Point3, cos_sin};
@@ -65,14 +65,7 @@ pub fn tube_mesh(a: V, b: V, r: f64, ring: &[(f64, f64)]) -> Option<MeshGL64> {
     if d == [0.0; 3] || r <= 0.0 || !d.iter().chain(&a).all(|v| v.is_finite()) {
         return None;
     }
-    let dn = unit(d);
-    let k = (0..3)
-        .min_by(|&i, &j| dn[i].abs().total_cmp(&dn[j].abs()))
-        .unwrap_or(0);
-    let mut e = [0.0; 3];
-    e[k] = 1.0;
-    let u = unit(cross(dn, e));
-    let v = cross(dn, u);
+    let (_, u, v) = frame(d);
     let mut pos = Vec::with_capacity(6 * ring.len());
     for c in [a, b] {
         for &(co, si) in ring {
