@@ -5,7 +5,7 @@
 //! vertex, counter-clockwise seen from the side its normal points to; in
 //! primitives of their own, one per colour, apart from the stems'.
 
-use super::{V, cross, dot, f32s, sub, unit};
+use super::vector::{V, cross, dot, f32s, sub, unit};
 use crate::color::Rgb;
 use crate::turtle::turtle3::Point3;
 

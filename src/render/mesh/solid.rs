@@ -21,7 +21,8 @@ use manifold_rust::linalg::{Mat3x4, Vec2, Vec3};
 use manifold_rust::manifold::Manifold;
 use manifold_rust::types::{Error, MeshGL64, OpType};
 
-use super::{MAX_SIDES, MIN_SIDES, MeshOptions, Tube, V, cross, frame, sub, to_file_axes, unit};
+use super::vector::{V, cross, frame, sub, unit};
+use super::{MAX_SIDES, MIN_SIDES, MeshOptions, Tube, to_file_axes};
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::progress::Progress;
 use crate::turtle::turtle3::{Point3, cos_sin};

@@ -2,6 +2,7 @@
 
 use std::collections::BTreeMap;
 
+use super::vector::cross;
 use super::*;
 
 fn p(x: f64, y: f64, z: f64) -> Point3 {
