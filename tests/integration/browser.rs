@@ -202,31 +202,7 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
         .click()
         .await
         .unwrap();
-    let (x0, y0) = screen_of(c, 20.0, 20.0).await;
-    let (x1, y1) = screen_of(c, 180.0, 160.0).await;
-    let drag = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x: x0,
-            y: y0,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(100)),
-            x: (x0 + x1) / 2.0,
-            y: (y0 + y1) / 2.0,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(100)),
-            x: x1,
-            y: y1,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(drag).await.unwrap();
+    drag(c, (20.0, 20.0), (180.0, 160.0)).await;
     let drawn = settled(c).await;
     let text = drawn["text"].as_str().unwrap();
     let layout: Vec<&str> = text
