@@ -18,7 +18,6 @@ use crate::support;
 /// it calls theirs: moving the shared items into a leaf file of their own
 /// (as `grow/options.rs` did for `grow`) breaks it.
 const KNOWN_LOOPS: &[&str] = &[
-    "interpret/lsys interpret/lsys/geometry interpret/lsys/program interpret/lsys/stochastic",
     "render/png render/png/bands render/png/fold render/png/full render/png/raster render/png/sample",
 ];
 

@@ -17,6 +17,9 @@ use crate::model::lsys::LSystem;
 /// error message; beyond it the message gives a bound.
 pub(super) const EXACT_WORK: u64 = 1 << 28;
 
+/// Progress is reported about every this many symbols.
+pub(super) const PROGRESS_STEP: u64 = 1 << 20;
+
 /// The system's symbols as dense ids.
 pub(crate) struct Alphabet {
     /// Id to symbol, sorted.

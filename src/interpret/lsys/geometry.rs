@@ -41,7 +41,7 @@ type HashMap<K, V> = std::collections::HashMap<K, V, foldhash::fast::FixedState>
 mod lod;
 mod solid;
 
-use super::Alphabet;
+use super::alphabet::Alphabet;
 use crate::model::lsys::LSystem;
 use crate::progress::Progress;
 use crate::turtle::{BBox, Headings, Op, Point, Segment, Turtle};

@@ -21,7 +21,7 @@
 //! memos, and every stand-in that breaks off in branches reaches the
 //! backend through the one call [`Turtle::stand_in`](crate::turtle::Turtle::stand_in).
 
-use super::PROGRESS_STEP;
+use super::alphabet::PROGRESS_STEP;
 use super::geometry::Piece;
 use crate::progress::Progress;
 use crate::turtle::{Point, Segment};

@@ -14,10 +14,10 @@
 //! before any work: the derived word over `--max-symbols` (a stochastic
 //! system's budget a tenth of it), bfs's word over `--max-word`.
 
+use super::alphabet::{Alphabet, PROGRESS_STEP};
 use super::program::Program;
 use super::program3::Fast3;
 use super::stochastic::Stochastic;
-use super::{Alphabet, PROGRESS_STEP};
 use crate::diag::Diagnostics;
 use crate::interpret::Derivation;
 use crate::limits::Limits;

@@ -86,6 +86,7 @@ use crate::turtle::{BBox, Headings, Point, Turtle};
 use crate::turtle::{Interp, Op};
 
 pub(crate) use alphabet::Alphabet;
+use alphabet::PROGRESS_STEP;
 pub use chance::{Chance, ChancePlan, FIT_SYMBOLS, LOD_WORK, draw_chance};
 use exec::Exec;
 use geometry::Geometry;
@@ -98,9 +99,6 @@ pub use reach_lod::{Mark3, Plan3};
 pub use stochastic::BFS_BYTES_PER_SYMBOL;
 pub(crate) use stochastic::Stochastic;
 pub use units::FastOp;
-
-/// Progress is reported about every this many symbols.
-const PROGRESS_STEP: u64 = 1 << 20;
 
 /// Checks that `sys` can be derived to `depth` with `strategy` within
 /// `limits` (depth, the traversal's length, bfs's word), as [`draw`] and

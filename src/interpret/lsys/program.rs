@@ -8,8 +8,8 @@
 //! of `(plan, index)` frames, one per level above the macros, handing each
 //! run of units to the executor.
 
+use super::alphabet::{Alphabet, PROGRESS_STEP};
 use super::units::Unit;
-use super::{Alphabet, PROGRESS_STEP};
 use crate::progress::Progress;
 
 /// Largest precomputed expansion of one `(symbol, remaining depth)`, in

@@ -34,8 +34,7 @@ use crate::diag::{Help, Knob};
 use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
 
-use super::Alphabet;
-use super::alphabet::EXACT_WORK;
+use super::alphabet::{Alphabet, EXACT_WORK};
 
 /// Bytes `bfs` holds per symbol of a stochastic word (the symbol and its
 /// key), against one for a deterministic word: its word budget is
