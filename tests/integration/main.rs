@@ -7,6 +7,7 @@ mod browser_3d;
 mod browser_draw;
 mod browser_edits;
 mod browser_key;
+mod browser_mesh;
 mod browser_page;
 mod browser_param;
 mod browser_space;

@@ -97,7 +97,7 @@ app.editor = createEditor(app);
 app.settings = createSettings(app);
 app.diagnostics = createDiagnostics(app);
 app.session = createSession(app);
-app.view3d = createView3d();
+app.view3d = createView3d({ onView: (angles) => { if (app.files) app.files.showView(angles); } });
 app.view = createView(app);
 app.replay = createReplay(app);
 app.tools = createTools(app);
