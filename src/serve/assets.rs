@@ -85,6 +85,11 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/scrub.js"),
     },
     Asset {
+        path: "/colours.js",
+        media: JS,
+        body: include_str!("page/colours.js"),
+    },
+    Asset {
         path: "/defines.js",
         media: JS,
         body: include_str!("page/defines.js"),

@@ -4,6 +4,7 @@ mod architecture;
 mod bigtree;
 mod browser;
 mod browser_3d;
+mod browser_colours;
 mod browser_draw;
 mod browser_edits;
 mod browser_key;

@@ -145,7 +145,7 @@ export function createSession(app) {
   });
   // A control edits its key in the text (which renders), else just renders.
   const control = (id) => () => { if (!app.settings.changed(id)) edited(); };
-  ['clearance', 'max-stems', 'depth', 'seed'].forEach((id) => byId(id).addEventListener('input', control(id)));
+  ['clearance', 'max-stems', 'depth', 'seed', 'stem-colour'].forEach((id) => byId(id).addEventListener('input', control(id)));
   byId('growth').addEventListener('change', control('growth'));
 
   return { request, refresh, cancel, setKind, inSync };
