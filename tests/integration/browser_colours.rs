@@ -63,6 +63,8 @@ fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
         open_example(&c, "2dtree.od").await;
         let paper = example("2dtree.od");
         let stroke = js(&c, "return window.stlc.state.answer.stroke").await;
+        // The paper's brown, as the CLI draws it (not the field's default black).
+        assert_eq!(stroke, json!("#4a2c12"));
         assert_eq!(
             js(&c, "return document.getElementById('stem-colour').value").await,
             stroke

@@ -170,16 +170,20 @@ export function createFiles(app) {
   menu.addEventListener('change', () => {
     const e = examples[Number(menu.value)];
     menu.value = '';
+    openExample(e);
+  });
+  // An example or template as a new document (the New menu, a thumbnail).
+  function openExample(e) {
     if (!e) return;
     state.selected = -1;
     app.tools.cancelPolygon();
     app.document.opened({ name: e.name, kind: e.kind, text: e.text, can_save: false, path: null, version: null }, ' (new; Save downloads)');
-  });
+  }
   byId('save').addEventListener('click', () => app.document.save());
   byId('export-png').addEventListener('click', () => exportAs('png'));
   byId('export-svg').addEventListener('click', () => exportAs('svg'));
   byId('export-bed').addEventListener('click', () => exportAs('bed'));
   byId('export-glb').addEventListener('click', () => exportAs('glb'));
 
-  return { download, showCommand, showView };
+  return { download, showCommand, showView, openExample };
 }

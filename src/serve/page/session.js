@@ -92,6 +92,8 @@ export function createSession(app) {
   function apply(answer, text) {
     state.answer = answer;
     state.answerText = text;
+    // The stem colour field shows the colour drawn where the text names none.
+    if (answer.ok) app.settings.sync();
     if (!answer.ok) {
       app.diagnostics.show(answer.diagnostics);
       // The last good picture stays, faded, while you fix this file; a
