@@ -44,7 +44,7 @@ impl Settings {
 
 /// A request body: `{"source", "kind"?, "growth"?, "depth"?,
 /// "clearance"?, "max_stems"?, "seed"?, "size"?, "show_layout"?,
-/// "background"?, "view"?}`. Absent and `null` fields take
+/// "background"?, "view"?, "unit"?}`. Absent and `null` fields take
 /// their defaults; any other field is refused.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -86,6 +86,10 @@ pub struct Body {
     /// `--view AZ,EL` of a 3D input's picture, `[az, el]` degrees.
     #[serde(default)]
     pub view: Option<[f64; 2]>,
+    /// `--unit` of a mesh export: metres per canvas unit, a positive
+    /// number; `None`: the CLI's default (0.01).
+    #[serde(default)]
+    pub unit: Option<f64>,
 }
 
 /// `"od"`, `"bed"` or `"lsys"`.
@@ -193,6 +197,13 @@ pub fn parse(body: &[u8]) -> Result<Body, BadRequest> {
             "`background`: unknown colour `{c}` (none, #rrggbb or a Delphi name such as clWhite)"
         )));
     }
+    if let Some(u) = b.unit
+        && !(u.is_finite() && u > 0.0)
+    {
+        return Err(BadRequest(format!(
+            "`unit`: {u} is not a positive number of metres, e.g. 0.01"
+        )));
+    }
     Ok(b)
 }
 
@@ -228,6 +239,10 @@ impl Body {
             },
             trace: true,
             view: self.view.map(|[az, el]| crate::pipeline::View { az, el }),
+            mesh: crate::pipeline::MeshOptions {
+                unit: self.unit.unwrap_or(crate::pipeline::DEFAULT_UNIT),
+                ..Default::default()
+            },
             ..Request::new(self.source.clone().into_bytes())
         }
     }

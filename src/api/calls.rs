@@ -10,7 +10,7 @@ use super::answer::{
 };
 use super::body::{Body, Settings};
 use super::{shapes, stems3};
-use crate::pipeline::{ImageFormat, Progress, Request};
+use crate::pipeline::{ImageFormat, MeshFormat, Progress, Request};
 
 /// A writer that keeps the first `cap` bytes and stops the rest.
 struct Capped {
@@ -176,15 +176,19 @@ pub enum Format {
     Svg,
     /// An OD's BED as `stlc compile` writes it.
     Bed,
+    /// A 3D input's mesh as `stlc render --mesh glb` writes it (binary
+    /// glTF, the body's `unit`; a mesh has no view).
+    Glb,
 }
 
 impl Format {
-    /// The format named `png`, `svg` or `bed`.
+    /// The format named `png`, `svg`, `bed` or `glb`.
     pub fn from_name(name: &str) -> Option<Format> {
         match name {
             "png" => Some(Format::Png),
             "svg" => Some(Format::Svg),
             "bed" => Some(Format::Bed),
+            "glb" => Some(Format::Glb),
             _ => None,
         }
     }
@@ -195,29 +199,38 @@ impl Format {
             Format::Png => "image/png",
             Format::Svg => "image/svg+xml",
             Format::Bed => "text/plain; charset=utf-8",
+            Format::Glb => "model/gltf-binary",
         }
     }
 }
 
-/// An export: the file's bytes, what `stlc render -f png|svg` or `stlc
-/// compile` writes for the same options; or the diagnostics.
+/// An export: the file's bytes, what `stlc render -f png|svg`, `stlc
+/// render --mesh glb` or `stlc compile` writes for the same options; or
+/// the diagnostics.
 pub fn export(
     body: &Body,
     s: &Settings,
     format: Format,
     progress: &mut dyn Progress,
 ) -> Result<Vec<u8>, Failed> {
-    let image = match format {
-        Format::Png => ImageFormat::Png,
-        Format::Svg | Format::Bed => ImageFormat::Svg,
-    };
-    let (answer, png) = render(body, s, image, None, progress)?;
+    let mut picture = |image| render(body, s, image, None, progress);
     match format {
-        Format::Bed => answer.bed.map(String::into_bytes).ok_or_else(|| {
-            Failed::message("only an .od grows into a BED", "export a picture instead")
-        }),
-        Format::Png => Ok(png),
-        Format::Svg => Ok(answer.svg.into_bytes()),
+        Format::Bed => picture(ImageFormat::Svg)?
+            .0
+            .bed
+            .map(String::into_bytes)
+            .ok_or_else(|| {
+                Failed::message("only an .od grows into a BED", "export a picture instead")
+            }),
+        Format::Png => Ok(picture(ImageFormat::Png)?.1),
+        Format::Svg => Ok(picture(ImageFormat::Svg)?.0.svg.into_bytes()),
+        Format::Glb => {
+            let mut glb = Vec::new();
+            body.request(s, ImageFormat::Svg)
+                .mesh(MeshFormat::Glb, &mut glb, progress)
+                .map_err(|d| Failed::new(&body.source, &d, s.page))?;
+            Ok(glb)
+        }
     }
 }
 

@@ -85,6 +85,16 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/scrub.js"),
     },
     Asset {
+        path: "/thumbs.js",
+        media: JS,
+        body: include_str!("page/thumbs.js"),
+    },
+    Asset {
+        path: "/colours.js",
+        media: JS,
+        body: include_str!("page/colours.js"),
+    },
+    Asset {
         path: "/defines.js",
         media: JS,
         body: include_str!("page/defines.js"),

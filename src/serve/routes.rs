@@ -6,7 +6,7 @@
 //! | `GET /<asset>` | [`asset`]: the page's scripts and style |
 //! | `GET /api/file` | [`file`]: the text opened |
 //! | `POST /api/render` | [`render`]: the picture, BED and growth order as JSON |
-//! | `POST /api/export?format=png\|svg\|bed` | [`export`]: the file's bytes |
+//! | `POST /api/export?format=png\|svg\|bed\|glb` | [`export`]: the file's bytes |
 //! | `POST /api/save` | [`save`]: the text written back (token required) |
 
 use std::sync::Arc;
@@ -261,14 +261,14 @@ async fn render(state: Arc<State>, req: Request<Incoming>) -> Answer {
     }
 }
 
-/// `POST /api/export?format=png|svg|bed`: the file's bytes and media type,
+/// `POST /api/export?format=png|svg|bed|glb`: the file's bytes and media type,
 /// or the diagnostics as JSON.
 async fn export(state: Arc<State>, req: Request<Incoming>) -> Answer {
     let format = http::query_param(req.uri().query(), "format");
     let Some(format) = format.as_deref().and_then(Format::from_name) else {
         return http::error(
             StatusCode::BAD_REQUEST,
-            "say ?format=png, ?format=svg or ?format=bed",
+            "say ?format=png, ?format=svg, ?format=bed or ?format=glb",
         );
     };
     let png = format == Format::Png;

@@ -26,11 +26,11 @@ export async function instantiate(module) {
   return instance.exports;
 }
 
-const FORMATS = { png: 0, svg: 1, bed: 2 };
+const FORMATS = { png: 0, svg: 1, bed: 2, glb: 3 };
 
 /**
  * One call: `op` is render, export, words, compile or check; `json` the
- * request (the body of POST /api/render); `format` (png, svg, bed) for an
+ * request (the body of POST /api/render); `format` (png, svg, bed, glb) for an
  * export. Status 0: the answer (JSON, or an export's bytes); 1: a failure
  * as JSON (`{ok: false, diagnostics}` or `{ok: false, error}`).
  *
@@ -42,7 +42,7 @@ export function call(exports, op, json, format) {
   new Uint8Array(exports.memory.buffer, at, input.length).set(input);
   let status;
   if (op === 'export') {
-    if (!(format in FORMATS)) return { status: 1, bytes: encoder.encode('{"ok":false,"error":"say format png, svg or bed"}') };
+    if (!(format in FORMATS)) return { status: 1, bytes: encoder.encode('{"ok":false,"error":"say format png, svg, bed or glb"}') };
     status = exports.stlc_export(FORMATS[format]);
   } else {
     status = exports['stlc_' + op]();

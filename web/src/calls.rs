@@ -96,7 +96,7 @@ pub fn render(input: &[u8]) -> Answer {
 /// diagnostics.
 pub fn export(input: &[u8], format: Option<Format>) -> Answer {
     let Some(format) = format else {
-        return refused("say format png, svg or bed");
+        return refused("say format png, svg, bed or glb");
     };
     match body(input) {
         Ok(b) => answer(api::export(&b, &settings(), format, &mut NoProgress), |x| x),
@@ -207,6 +207,29 @@ mod tests {
         assert_eq!(compile(&input), (Status::Done, bed.text.into_bytes()));
         let png = export(&input, Some(Format::Png));
         assert_eq!(&png.1[..8], b"\x89PNG\r\n\x1a\n");
+    }
+
+    #[test]
+    fn a_mesh_export_is_the_cli_mesh_at_the_unit_asked() {
+        // `stlc render --mesh glb --unit 0.02`: Request::mesh with that unit.
+        let cube = include_str!("../../examples/hilbert3d.lsys");
+        let input = request(cube, ", \"unit\": 0.02");
+        let mut want = Vec::new();
+        stlc::pipeline::Request {
+            mesh: stlc::pipeline::MeshOptions {
+                unit: 0.02,
+                ..Default::default()
+            },
+            ..api::parse(&request(cube, ""))
+                .unwrap()
+                .request(&settings(), ImageFormat::Svg)
+        }
+        .mesh(stlc::pipeline::MeshFormat::Glb, &mut want, &mut NoProgress)
+        .unwrap();
+        assert_eq!(&want[..4], b"glTF");
+        assert_eq!(export(&input, Some(Format::Glb)), (Status::Done, want));
+        let bad = export(&request(cube, ", \"unit\": -1"), Some(Format::Glb));
+        assert_eq!(bad.0, Status::Failed);
     }
 
     #[test]

@@ -102,7 +102,7 @@ pub extern "C" fn stlc_render() -> u32 {
     run(calls::render)
 }
 
-/// `POST /api/export?format=...`, `format` 0 PNG, 1 SVG, 2 BED (see
+/// `POST /api/export?format=...`, `format` 0 PNG, 1 SVG, 2 BED, 3 GLB (see
 /// [`calls::export`]).
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
@@ -111,6 +111,7 @@ pub extern "C" fn stlc_export(format: u32) -> u32 {
         0 => Some(Format::Png),
         1 => Some(Format::Svg),
         2 => Some(Format::Bed),
+        3 => Some(Format::Glb),
         _ => None,
     };
     run(|i| calls::export(i, format))

@@ -26,6 +26,7 @@ import { createSettings } from './settings.js';
 import { createWords } from './words.js';
 import { createScrub } from './scrub.js';
 import { addShare } from './sharing.js';
+import { createThumbs } from './thumbs.js';
 
 const app = {
   engine: createEngine({}),
@@ -69,6 +70,9 @@ const app = {
     drawn: null,
     // Whether another file was opened since the last good picture.
     otherFile: false,
+    // The New menu's thumbnails drawn so far: example name -> object URL
+    // of its PNG ('' when it has none) (thumbs.js).
+    thumbnails: new Map(),
   },
   // Each module's functions, set below, in this order.
   editor: null,
@@ -83,6 +87,7 @@ const app = {
   document: null,
   words: null,
   scrub: null,
+  thumbs: null,
   // The share link of the document shown (sharing.js).
   shareLink: null,
   // When the first picture was drawn, ms from navigation (the static site's
@@ -97,7 +102,7 @@ app.editor = createEditor(app);
 app.settings = createSettings(app);
 app.diagnostics = createDiagnostics(app);
 app.session = createSession(app);
-app.view3d = createView3d();
+app.view3d = createView3d({ onView: (angles) => { if (app.files) app.files.showView(angles); } });
 app.view = createView(app);
 app.replay = createReplay(app);
 app.tools = createTools(app);
@@ -105,6 +110,7 @@ app.files = createFiles(app);
 app.document = createDocument(app);
 app.words = createWords(app);
 app.scrub = createScrub(app);
+app.thumbs = createThumbs(app);
 
 // Keys outside the editor's own: Ctrl-S everywhere, undo and redo out of
 // the number fields (which keep their own), and the tools' letters.

@@ -1,5 +1,6 @@
 // Files: Open… (a file from disk into the editor), the Save button (the
-// saving itself is document.js's), and the PNG, SVG and BED exports.
+// saving itself is document.js's), and the PNG, SVG, BED and (a 3D
+// input's mesh) GLB exports.
 
 import { byId } from './dom.js';
 
@@ -71,17 +72,22 @@ export function createFiles(app) {
     return o;
   }
 
+  // The mesh's `--unit` as typed (the engine refuses one that is not a
+  // positive number, with its reason).
+  const meshUnit = () => Number(byId('mesh-unit').value.trim() || '0.01');
+
   // The command line that writes the same bytes as an export.
   function command(format, o) {
     const r = app.session.request();
     const name = state.doc.name;
     const args = format === 'bed' ? ['stlc', 'compile', name] : ['stlc', 'render', name];
+    if (format === 'glb') args.push('--mesh', 'glb', '--unit', String(meshUnit()));
     if (r.growth && r.growth !== 'bfs') args.push('--growth', r.growth);
     if (r.seed !== undefined) args.push('--seed', r.seed);
     if (r.depth !== undefined) args.push('--depth', String(r.depth));
     if (r.clearance !== undefined) args.push('--clearance', String(r.clearance));
     if (r.max_stems !== undefined) args.push('--max-stems', String(r.max_stems));
-    if (format !== 'bed') {
+    if (format !== 'bed' && format !== 'glb') {
       if (o.size) args.push('--size', `${o.size[0]}x${o.size[1]}`);
       if (o.view) args.push('--view', o.view.join(','));
       if (o.show_layout && r.kind !== 'lsys') args.push('--show-layout');
@@ -103,16 +109,32 @@ export function createFiles(app) {
       const e = byId(id);
       e.placeholder = e.value.trim() === '' && o.size ? `auto: ${o.size[i]}` : 'auto';
     }
-    byId('export-cli').textContent = ['png', 'svg'].map((f) => command(f, o)).join('\n') +
-      (byId('kind').value === 'od' ? '\n' + command('bed', o) : '');
+    const formats = ['png', 'svg'];
+    if (byId('kind').value === 'od') formats.push('bed');
+    if (document.body.classList.contains('space')) formats.push('glb');
+    byId('export-cli').textContent = formats.map((f) => command(f, o)).join('\n');
   }
   byId('export-options').addEventListener('toggle', showCommand);
-  for (const id of ['export-w', 'export-h', 'export-layout', 'export-transparent', 'export-coloured', 'export-colour']) {
+  for (const id of ['export-w', 'export-h', 'export-layout', 'export-transparent', 'export-coloured', 'export-colour', 'mesh-unit']) {
     byId(id).addEventListener('input', showCommand);
   }
 
+  // The 3D view's angles beside the mesh export (3D view: view3d.js).
+  function showView([az, el]) {
+    byId('mesh-view').textContent = `view ${az}°, ${el}° (PNG, SVG); the mesh: y up, root at the origin`;
+  }
+
+  // What an export asks: a BED the text's growth alone, a mesh its unit
+  // too (a mesh has no view, size or background), a picture the panel's
+  // options.
+  async function exportRequest(format) {
+    if (format === 'bed') return app.session.request();
+    if (format === 'glb') return { ...app.session.request(), unit: meshUnit() };
+    return { ...app.session.request(), ...(await exportOptions()) };
+  }
+
   async function exportAs(format) {
-    const request = format === 'bed' ? app.session.request() : { ...app.session.request(), ...(await exportOptions()) };
+    const request = await exportRequest(format);
     const a = await app.engine.export(request, format);
     if (a.ok) download(a.blob, `${baseName()}.${format}`);
     else if (a.diagnostics) app.diagnostics.show(a.diagnostics);
@@ -148,15 +170,20 @@ export function createFiles(app) {
   menu.addEventListener('change', () => {
     const e = examples[Number(menu.value)];
     menu.value = '';
+    openExample(e);
+  });
+  // An example or template as a new document (the New menu, a thumbnail).
+  function openExample(e) {
     if (!e) return;
     state.selected = -1;
     app.tools.cancelPolygon();
     app.document.opened({ name: e.name, kind: e.kind, text: e.text, can_save: false, path: null, version: null }, ' (new; Save downloads)');
-  });
+  }
   byId('save').addEventListener('click', () => app.document.save());
   byId('export-png').addEventListener('click', () => exportAs('png'));
   byId('export-svg').addEventListener('click', () => exportAs('svg'));
   byId('export-bed').addEventListener('click', () => exportAs('bed'));
+  byId('export-glb').addEventListener('click', () => exportAs('glb'));
 
-  return { download, showCommand };
+  return { download, showCommand, showView, openExample };
 }

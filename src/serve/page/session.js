@@ -92,6 +92,8 @@ export function createSession(app) {
   function apply(answer, text) {
     state.answer = answer;
     state.answerText = text;
+    // The stem colour field shows the colour drawn where the text names none.
+    if (answer.ok) app.settings.sync();
     if (!answer.ok) {
       app.diagnostics.show(answer.diagnostics);
       // The last good picture stays, faded, while you fix this file; a
@@ -145,7 +147,7 @@ export function createSession(app) {
   });
   // A control edits its key in the text (which renders), else just renders.
   const control = (id) => () => { if (!app.settings.changed(id)) edited(); };
-  ['clearance', 'max-stems', 'depth', 'seed'].forEach((id) => byId(id).addEventListener('input', control(id)));
+  ['clearance', 'max-stems', 'depth', 'seed', 'stem-colour'].forEach((id) => byId(id).addEventListener('input', control(id)));
   byId('growth').addEventListener('change', control('growth'));
 
   return { request, refresh, cancel, setKind, inSync };

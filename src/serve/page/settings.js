@@ -1,16 +1,27 @@
 // Every setting in the file (stl-language.md section 10): the header
 // controls are views of keys in the text. An OD's growth order, seed, max
 // stems and clearance are its `O=`, `V=`, `M=` and `C=`; an .lsys's depth
-// and seed are its `generations` and `seed` lines. Changing a control
-// rewrites that key in the text (only that key); typing a key moves the
-// control. So a tree made here grows the same from the command line, after
-// a reload, and on another machine.
+// and seed are its `generations` and `seed` lines. The stem colour is an
+// OD's `S=` (a ramp's near end) and an .lsys's `color`; an .lsys's
+// palette is its `palette` line, a colour field per colour (colours.js).
+// Changing a control rewrites that key in the text (only that key, or
+// that colour of the palette); typing a key moves the control. So a tree
+// made here grows the same from the command line, after a reload, and on
+// another machine.
 
 import { byId } from './dom.js';
+import { hexOf, palette, stemShown, stemValue, withPaletteColour } from './colours.js';
 
 // Control id -> key, per kind.
-const OD = { growth: 'O', seed: 'V', 'max-stems': 'M', clearance: 'C' };
-const LSYS = { depth: 'generations', seed: 'seed' };
+const OD = { growth: 'O', seed: 'V', 'max-stems': 'M', clearance: 'C', 'stem-colour': 'S' };
+const LSYS = { depth: 'generations', seed: 'seed', 'stem-colour': 'color' };
+
+// Whether `at` is inside a comment: after a `#` on its line that is not a
+// colour's (`S=#8b4513`, `G=#ffffff`).
+function inComment(text, at) {
+  const lineStart = text.lastIndexOf('\n', at - 1) + 1;
+  return /(^|[^=])#/.test(text.slice(lineStart, at));
+}
 
 // Where an OD's header ends: its `RULE` keyword (outside comments).
 function headerEnd(text) {
@@ -18,8 +29,7 @@ function headerEnd(text) {
   let m;
   while ((m = re.exec(text))) {
     const at = m.index + m[1].length;
-    const lineStart = text.lastIndexOf('\n', at) + 1;
-    if (!text.slice(lineStart, at).includes('#')) return at;
+    if (!inComment(text, at)) return at;
   }
   return -1;
 }
@@ -32,8 +42,7 @@ function odKey(text, key) {
   let m;
   while ((m = re.exec(text)) && m.index < end) {
     const at = m.index + m[1].length;
-    const lineStart = text.lastIndexOf('\n', at) + 1;
-    if (text.slice(lineStart, at).includes('#')) continue;
+    if (inComment(text, at)) continue;
     const start = at + key.length + 1;
     return { at, start, end: start + m[2].length, value: m[2] };
   }
@@ -82,7 +91,11 @@ function withKey(text, kind, key, value) {
 export function createSettings(app) {
   const keys = (kind) => (kind === 'od' ? OD : kind === 'lsys' ? LSYS : {});
 
-  // The controls show the text's keys (none written: empty, bfs).
+  // The colour drawn where the text names none: the last answer's stroke.
+  const drawn = () => (app.state.answer && app.state.answer.stroke && hexOf(app.state.answer.stroke)) || '#000000';
+
+  // The controls show the text's keys (none written: empty, bfs, the
+  // colour drawn).
   function sync() {
     const kind = byId('kind').value;
     const text = app.editor.text();
@@ -91,9 +104,45 @@ export function createSettings(app) {
       const v = k ? k.value : '';
       const control = byId(id);
       if (id === 'growth') control.value = v === 'dfs' || v === 'space' ? v : 'bfs';
+      else if (id === 'stem-colour') control.value = hexOf(stemShown(v)) || drawn();
       else if (control !== document.activeElement || control.value !== v) control.value = v;
     }
+    if (kind === 'lsys') syncPalette(text);
   }
+
+  // The palette's fields, one per colour of the `palette` line, and `+`
+  // to add one (a copy of the last). Fields are made again only when the
+  // number of colours changes, so one being picked stays open.
+  const fields = byId('palette-colours');
+  function syncPalette(text) {
+    const p = palette(text);
+    const colours = p ? p.colours : [];
+    if (fields.children.length !== colours.length) {
+      fields.replaceChildren(...colours.map((_, i) => {
+        const f = document.createElement('input');
+        f.type = 'color';
+        f.dataset.testid = `palette-${i}`;
+        f.title = `palette colour ${i} (',' and ';' step through them; Alt-click removes it)`;
+        f.addEventListener('input', () => setPalette(i, f.value));
+        f.addEventListener('click', (e) => {
+          if (!e.altKey) return;
+          e.preventDefault();
+          setPalette(i, null);
+        });
+        return f;
+      }));
+    }
+    colours.forEach((c, i) => { fields.children[i].value = c.hex; });
+  }
+  function setPalette(i, hex) {
+    const text = withPaletteColour(app.editor.text(), i, hex);
+    if (text !== app.editor.text()) app.editor.rewrite(text);
+  }
+  byId('palette-add').addEventListener('click', () => {
+    const p = palette(app.editor.text());
+    const n = p ? p.colours.length : 0;
+    setPalette(n, n ? p.colours[n - 1].hex : drawn());
+  });
 
   // A control changed: its key in the text changes, and only that.
   function changed(id) {
@@ -102,10 +151,14 @@ export function createSettings(app) {
     if (!key) return false;
     let value = byId(id).value.trim();
     if (id === 'growth' && value === 'bfs' && !odKey(app.editor.text(), 'O')) value = '';
+    if (id === 'stem-colour') {
+      const k = kind === 'od' ? odKey(app.editor.text(), key) : lsysKey(app.editor.text(), key);
+      value = stemValue(k ? k.value : '', value);
+    }
     const text = withKey(app.editor.text(), kind, key, value);
     if (text !== app.editor.text()) app.editor.rewrite(text);
     return true;
   }
 
-  return { sync, changed, withKey, odKey, lsysKey };
+  return { sync, changed, withKey, odKey, lsysKey, setPalette };
 }

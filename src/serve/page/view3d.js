@@ -111,7 +111,12 @@ function compile(gl, vs, fs) {
   return { prog, u, attr: (name) => gl.getAttribLocation(prog, name) };
 }
 
-export function createView3d() {
+/**
+ * @param {{onView?: function(number[]): void}} [options] `onView` is told
+ *   the angles `[az, el]` each time the view is drawn (the header's mesh
+ *   export shows them)
+ */
+export function createView3d({ onView } = {}) {
   const host = byId('view');
   const canvas = document.createElement('canvas');
   canvas.id = 'view3d';
@@ -255,10 +260,16 @@ export function createView3d() {
     gl.drawArraysInstanced(gl.TRIANGLE_STRIP, 0, 4, count);
     gl.bindVertexArray(null);
     label.textContent = `view ${Math.round(cam.az)},${Math.round(cam.el)} · drag or arrow keys to turn, wheel or +/− to zoom, Fit or 0 to reset`;
+    if (onView) onView(angles());
   }
 
   function redraw() {
     if (!frame) frame = requestAnimationFrame(render);
+  }
+
+  // The view's angles as the exports use them: tenths of a degree.
+  function angles() {
+    return [Math.round(cam.az * 10) / 10, Math.round(cam.el * 10) / 10];
   }
 
   function volumeVao(pos, nrm) {
@@ -364,7 +375,7 @@ export function createView3d() {
     // Replay: the stems of decisions up to `k` (Infinity: all).
     upTo(k) { upTo = k; redraw(); },
     stale() { canvas.classList.add('stale'); },
-    angles: () => [Math.round(cam.az * 10) / 10, Math.round(cam.el * 10) / 10],
+    angles,
     turn(az, el) { cam.az = az; cam.el = el; redraw(); },
     available: () => !!gl,
     pixels,

@@ -40,7 +40,7 @@ function shown() {
   }
 }
 
-const MEDIA = { png: 'image/png', svg: 'image/svg+xml', bed: 'text/plain;charset=utf-8' };
+const MEDIA = { png: 'image/png', svg: 'image/svg+xml', bed: 'text/plain;charset=utf-8', glb: 'model/gltf-binary' };
 
 /**
  * @returns {import('./index.js').Engine}

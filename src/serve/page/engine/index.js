@@ -22,6 +22,7 @@
  * @property {boolean} [show_layout] `--show-layout`; absent: wherever there is a layout (the editor's view)
  * @property {string} [background] `--background`: `none`, `#rrggbb` or a Delphi colour name
  * @property {[number, number]} [view] `--view AZ,EL` of a 3D input's picture, degrees
+ * @property {number} [unit] `--unit` of a mesh export: metres per canvas unit (0.01)
  */
 
 /**
@@ -70,7 +71,7 @@
  *   the picture, growth order, root and layout of `request.source`; an
  *   aborted `signal` ends the work (the promise rejects with an
  *   `AbortError`), as a newer edit or the busy indicator's Cancel does
- * @property {(request: RenderRequest, format: 'png'|'svg'|'bed') => Promise<ExportAnswer>} export
+ * @property {(request: RenderRequest, format: 'png'|'svg'|'bed'|'glb') => Promise<ExportAnswer>} export
  *   the bytes `stlc render -f png|svg --show-layout` or `stlc compile`
  *   would write
  * @property {(request: RenderRequest) => Promise<{ok: true, words: Array<{depth: number, word: string, length: string, stats: string, cut: boolean}>}|{ok: false, diagnostics?: Diagnostic[], error?: string}>} words

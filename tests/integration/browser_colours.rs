@@ -1,0 +1,125 @@
+//! The colour controls in a real Chromium (issue 33, item 6): the stem
+//! colour field rewrites only an OD's `S=` key (an .lsys's `color`), each
+//! palette field only its colour's word of the `palette` line, and `+`
+//! adds one; the picture is the CLI's for the new text. Screenshots go to
+//! `tests/store/browser/colours-*.png`.
+
+use serde_json::{Value, json};
+
+use super::browser_web::open_example;
+use super::chromium::{Browser, cli_svg_of, click, js, same_bytes, settled, shot};
+use super::serve::{Server, example};
+
+/// Sets the colour field `css` to `hex` as a pick does (an `input`
+/// event); the page's answer once its text is `want`.
+async fn pick(c: &fantoccini::Client, css: &str, hex: &str, want: &str) -> Value {
+    js(
+        c,
+        &format!(
+            "const f = document.querySelector('{css}'); f.value = '{hex}';
+             f.dispatchEvent(new Event('input')); return 0;"
+        ),
+    )
+    .await;
+    for _ in 0..200 {
+        let v = settled(c).await;
+        if v["text"] == json!(want) && v["ok"] == json!(true) {
+            return v;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    let v = settled(c).await;
+    panic!(
+        "the page never showed the text with {hex} from {css}: {}",
+        v["text"]
+    );
+}
+
+/// The lines of `a` and `b` that differ (same number of lines).
+fn changed_lines(a: &str, b: &str) -> Vec<(String, String)> {
+    let (x, y): (Vec<&str>, Vec<&str>) = (a.lines().collect(), b.lines().collect());
+    assert_eq!(x.len(), y.len());
+    x.iter()
+        .zip(&y)
+        .filter(|(p, q)| p != q)
+        .map(|(p, q)| (p.to_string(), q.to_string()))
+        .collect()
+}
+
+#[test]
+fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let server = Server::start(&[]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+
+        // The paper's 2DTree has no S=: the field shows the colour drawn,
+        // and a pick adds ` S=#8b4513` at the header's end, nothing else.
+        open_example(&c, "2dtree.od").await;
+        let paper = example("2dtree.od");
+        let stroke = js(&c, "return window.stlc.state.answer.stroke").await;
+        // The paper's brown, as the CLI draws it (not the field's default black).
+        assert_eq!(stroke, json!("#4a2c12"));
+        assert_eq!(
+            js(&c, "return document.getElementById('stem-colour').value").await,
+            stroke
+        );
+        let brown = paper.replace("B=1(0)RULE", "B=1(0) S=#8b4513 RULE");
+        assert_ne!(brown, paper);
+        pick(&c, "#stem-colour", "#8b4513", &brown).await;
+        assert_eq!(changed_lines(&paper, &brown).len(), 1);
+        let svg = js(&c, "return window.stlc.state.answer.svg").await;
+        let want = cli_svg_of("2dtree.od", &brown);
+        same_bytes(svg.as_str().unwrap().as_bytes(), &want, "brown 2dtree");
+        assert!(String::from_utf8_lossy(&want).contains("#8b4513"));
+        // Picked again: the key's value changes, not the key added twice.
+        let darker = paper.replace("B=1(0)RULE", "B=1(0) S=#5b3a1e RULE");
+        pick(&c, "#stem-colour", "#5b3a1e", &darker).await;
+
+        // Fig. 1.26's palette: a field per colour, each the line's.
+        open_example(&c, "abop-1.26.lsys").await;
+        let plant = example("abop-1.26.lsys");
+        let fields = js(
+            &c,
+            "return [...document.querySelectorAll('#palette-colours input')].map((f) => f.value)",
+        )
+        .await;
+        assert_eq!(fields, json!(["#2f5d1e", "#4f9a34", "#e9679b", "#f2c230"]));
+        let petals = plant.replace(
+            "palette #2f5d1e #4f9a34 #e9679b #f2c230",
+            "palette #2f5d1e #4f9a34 #7b2cbf #f2c230",
+        );
+        pick(&c, "[data-testid=palette-2]", "#7b2cbf", &petals).await;
+        assert_eq!(
+            changed_lines(&plant, &petals),
+            [(
+                "palette #2f5d1e #4f9a34 #e9679b #f2c230".to_string(),
+                "palette #2f5d1e #4f9a34 #7b2cbf #f2c230".to_string()
+            )]
+        );
+        // `+` adds a copy of the last colour to the line, a fifth field.
+        click(&c, "[data-testid=palette-add]").await;
+        let five = petals.replace("#7b2cbf #f2c230", "#7b2cbf #f2c230 #f2c230");
+        for _ in 0..100 {
+            if settled(&c).await["text"] == json!(five) {
+                break;
+            }
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+        }
+        assert_eq!(settled(&c).await["text"], json!(five));
+        assert_eq!(
+            js(
+                &c,
+                "return document.querySelectorAll('#palette-colours input').length"
+            )
+            .await,
+            json!(5)
+        );
+        shot(&c, "colours-01-palette").await;
+    });
+}

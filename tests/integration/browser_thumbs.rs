@@ -1,0 +1,113 @@
+//! The New menu's thumbnails in a real Chromium (issue 33, item 6): the
+//! Examples panel shows each template and example as a 96 x 96 picture
+//! drawn by the page's engine, the CLI's PNG at `--size 96x96`; a click
+//! opens that example. Screenshots go to `tests/store/browser/thumbs-*.png`.
+
+use std::time::Duration;
+
+use fantoccini::Client;
+use serde_json::json;
+
+use super::browser_web::{engine_export, examples, on_site};
+use super::chromium::{Browser, cli, click, js, same_bytes, settled, shot};
+use super::serve::{Server, example};
+use crate::support::manifest_path;
+
+/// The PNG `stlc render examples/NAME --size 96x96 --show-layout` writes.
+fn cli_thumb(name: &str) -> Vec<u8> {
+    let path = manifest_path(format!("examples/{name}"));
+    cli(&[
+        "render",
+        path.to_str().unwrap(),
+        "--size",
+        "96x96",
+        "--show-layout",
+        "-f",
+        "png",
+    ])
+}
+
+/// Waits (at most 60 s) until the thumbnail of `name` shows a 96 x 96
+/// picture; then the engine's PNG for the request the thumbnail makes
+/// (the page's CSP lets it show a blob URL, not read one back).
+async fn thumb(c: &Client, name: &str) -> Vec<u8> {
+    let shown = format!(
+        "const url = window.stlc.state.thumbnails.get({name:?});
+         const img = document.querySelector('[data-testid=\"thumb-{name}\"] img');
+         return !!url && img.src === url && img.complete && img.naturalWidth === 96 && img.naturalHeight === 96;"
+    );
+    for _ in 0..600 {
+        if js(c, &shown).await == json!(true) {
+            let text = example(name);
+            let kind = if name.ends_with(".lsys") {
+                "lsys"
+            } else {
+                "od"
+            };
+            let request = json!({"source": text, "kind": kind, "size": [96, 96]});
+            return engine_export(c, &request, "png").await.unwrap();
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    shot(c, "thumbs-timeout").await;
+    panic!("the thumbnail of {name} was never drawn");
+}
+
+/// Opens the panel: a tile per template and example, in the New menu's
+/// order; the first ones drawn are the CLI's PNGs; a click opens one.
+async fn thumbnails_open_examples(c: &Client, what: &str) {
+    click(c, "#new-gallery summary").await;
+    // The list comes from the engine: tiles once it is read.
+    let mut names = json!([]);
+    for _ in 0..200 {
+        names = js(
+            c,
+            "return [...document.querySelectorAll('#new-grid .thumb')].map((b) => b.dataset.testid)",
+        )
+        .await;
+        if names != json!([]) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    let mut want = vec!["thumb-new.od".to_string(), "thumb-new.lsys".to_string()];
+    want.extend(examples().iter().map(|n| format!("thumb-{n}")));
+    assert_eq!(names, json!(want));
+    for name in ["2dtree.od", "abop-1.24a.lsys"] {
+        same_bytes(&thumb(c, name).await, &cli_thumb(name), name);
+    }
+    shot(c, &format!("thumbs-01-{what}")).await;
+    click(c, "[data-testid='thumb-koch-snowflake.lsys']").await;
+    let want = example("koch-snowflake.lsys");
+    for _ in 0..100 {
+        if settled(c).await["text"] == json!(want) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    assert_eq!(settled(c).await["text"], json!(want));
+    assert_eq!(
+        js(c, "return document.getElementById('new-gallery').open").await,
+        json!(false)
+    );
+}
+
+#[test]
+fn the_examples_panel_shows_the_cli_thumbnails_and_opens_one_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let server = Server::start(&[]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        thumbnails_open_examples(&c, "serve").await;
+    });
+}
+
+#[test]
+fn the_static_site_shows_the_same_thumbnails_in_chromium() {
+    on_site(async |c, _, _| thumbnails_open_examples(c, "web").await);
+}
