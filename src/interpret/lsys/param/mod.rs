@@ -397,7 +397,7 @@ impl<'a> Deriver<'a> {
         for generation in 1..=depth {
             let (mut next, mut next_mult) = (Word::new(), Vec::new());
             let mut index: HashMap<(char, Vec<u64>), usize> = HashMap::new();
-            for i in 0..level.len() {
+            for (i, &times) in mult.iter().enumerate() {
                 left = left.checked_sub(1)?;
                 one.clear();
                 self.rewrite(&level, &[], i, generation, &mut one, &mut bind)
@@ -409,9 +409,9 @@ impl<'a> Deriver<'a> {
                         next_mult.push(0u64);
                         next_mult.len() - 1
                     });
-                    next_mult[k] = next_mult[k].saturating_add(mult[i]);
+                    next_mult[k] = next_mult[k].saturating_add(times);
                 }
-                work = work.saturating_add(mult[i].saturating_mul(one.len() as u64));
+                work = work.saturating_add(times.saturating_mul(one.len() as u64));
             }
             if work > most {
                 return Some((generation, work));
