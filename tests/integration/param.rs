@@ -440,6 +440,43 @@ fn the_work_over_all_generations_counts_against_the_budget() {
     assert!(out.is_empty(), "nothing written before the refusal");
 }
 
+/// Where a rule erases a module the word may shrink, and the bound on
+/// the generations to come is off: `B(y) < A(x) ->` erases the `A` next
+/// to `B` each generation, so 10 modules become 9, 8, 7 and depth 3
+/// writes 9 + 8 + 7 = 24. With a budget of 25 modules (750 symbols) it
+/// derives, though generation 1 (9 modules written, 2 more generations
+/// of 9 at least were there no erasing) would have guessed 27; with 23
+/// (690) it is refused at generation 3 with 24.
+#[test]
+fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
+    let src = format!(
+        "angle 90\naxiom B(0){}\nrule B(y) < A(x) ->\nrule A(x) -> A(x+1)\n",
+        "A(0)".repeat(9)
+    );
+    let sys = parse(&src, &Limits::default()).unwrap();
+    let run = |max_symbols: u64| {
+        let limits = Limits {
+            max_symbols,
+            ..Limits::default()
+        };
+        let mut out = Vec::new();
+        expand(&sys, 3, Derivation::Dfs, &limits, &mut out, &mut NoProgress)
+            .map(|()| String::from_utf8(out).unwrap())
+    };
+    assert_eq!(
+        run(750).unwrap().trim(),
+        format!("B(0){}", "A(3)".repeat(6))
+    );
+    let e = run(690).unwrap_err();
+    let kind = e.iter().next().unwrap().kind.to_string();
+    assert!(
+        kind.contains(
+            "modules derived over the generations (at generation 3): 24 exceeds the limit of 23"
+        ),
+        "{kind}"
+    );
+}
+
 /// A word that doubles, `A(x) : x > 0 -> A(x+1)A(x+1)`, at depth 40 with
 /// the default limits: generations 1..=g derive 2 + 4 + ... + 2^g =
 /// 2^(g+1) - 2 modules, which first passes the budget of 2 x 10^10 / 30 =
