@@ -7,7 +7,8 @@
 //! ```text
 //! symbios-bench ENGINE SYSTEM DEPTH      # ENGINE: symbios | stlc
 //! symbios-bench counts SYSTEM DEPTH      # modules per generation, both engines
-//! symbios-bench words SYSTEM DEPTH       # the words at DEPTH, both engines, compared
+//! symbios-bench words SYSTEM DEPTH       # every generation's words, both engines, compared
+//! symbios-bench show SYSTEM DEPTH        # both words at DEPTH, printed
 //! ```
 //!
 //! `ENGINE SYSTEM DEPTH` reads the system, derives it to DEPTH and prints
@@ -74,7 +75,6 @@ fn honda() -> Result<System, String> {
 /// exact (`x - y` is zero only when `x == y` and has its sign) and no
 /// difference of these parameters brings within symbios's absolute
 /// 2.2e-14 of 0, so symbios compares as stlc does.
-
 fn anabaena() -> Result<System, String> {
     let mut s = System::new();
     for d in [
@@ -169,7 +169,7 @@ fn stlc_derive(sys: &LSystem, depth: u32, mut word: Option<&mut String>) -> Resu
 
 fn run(args: &[String]) -> Result<(), String> {
     let [mode, name, depth] = args else {
-        return Err("usage: symbios-bench symbios|stlc|counts|words SYSTEM DEPTH".into());
+        return Err("usage: symbios-bench symbios|stlc|counts|words|show SYSTEM DEPTH".into());
     };
     let depth: u32 = depth.parse().map_err(|_| "DEPTH: a whole number")?;
     match mode.as_str() {
