@@ -390,9 +390,14 @@ fn a_condition_always_true_with_a_growing_word_stops_at_the_limits() {
 /// AAAB, ...) is rescanned whole at each: generation g writes g + 2
 /// modules, so generations 1..=g write g(g+1)/2 + 2g in all. With a budget
 /// of 1,000 modules (30,000 symbols) the last word at depth 100 (102
-/// modules) fits, but the work does not: g(g+5)/2 first passes 1,000 at
-/// g = 43 (1,032). Before, this derived to the end however deep (Anabaena
-/// at depth 2,000 ran for more than ten minutes).
+/// modules) fits, but the work does not: g(g+5)/2 passes 1,000 at g = 43
+/// (1,032). No rule erases a module, so no word is shorter than the one
+/// before and the generations g+1..=100 write at least (100 - g)(g + 2)
+/// more: g(g+5)/2 + (100 - g)(g + 2) first passes 1,000 at g = 9 (63 +
+/// 91 x 11 = 1,064), where the refusal comes. At depth 40 that bound
+/// never passes the whole work, 40 x 45 / 2 = 900. Before, this derived
+/// to the end however deep (Anabaena at depth 2,000 ran for more than ten
+/// minutes; then to generation 1,158, now 878).
 #[test]
 fn the_work_over_all_generations_counts_against_the_budget() {
     let sys = parse("angle 90\naxiom AB\nrule A < B -> AB\n", &Limits::default()).unwrap();
@@ -426,10 +431,77 @@ fn the_work_over_all_generations_counts_against_the_budget() {
     .unwrap_err();
     let kind = e.iter().next().unwrap().kind.to_string();
     assert!(
-        kind.contains("modules derived over the generations (at generation 43): 1032 exceeds the limit of 1000"),
+        kind.contains(
+            "modules derived over the generations to depth 100, at least (at generation 9): \
+             1064 exceeds the limit of 1000"
+        ),
         "{kind}"
     );
     assert!(out.is_empty(), "nothing written before the refusal");
+}
+
+/// Where a rule erases a module the word may shrink, and the bound on
+/// the generations to come is off: `B(y) < A(x) ->` erases the `A` next
+/// to `B` each generation, so 10 modules become 9, 8, 7 and depth 3
+/// writes 9 + 8 + 7 = 24. With a budget of 25 modules (750 symbols) it
+/// derives, though generation 1 (9 modules written, 2 more generations
+/// of 9 at least were there no erasing) would have guessed 27; with 23
+/// (690) it is refused at generation 3 with 24.
+#[test]
+fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
+    let src = format!(
+        "angle 90\naxiom B(0){}\nrule B(y) < A(x) ->\nrule A(x) -> A(x+1)\n",
+        "A(0)".repeat(9)
+    );
+    let sys = parse(&src, &Limits::default()).unwrap();
+    let run = |max_symbols: u64| {
+        let limits = Limits {
+            max_symbols,
+            ..Limits::default()
+        };
+        let mut out = Vec::new();
+        expand(&sys, 3, Derivation::Dfs, &limits, &mut out, &mut NoProgress)
+            .map(|()| String::from_utf8(out).unwrap())
+    };
+    assert_eq!(
+        run(750).unwrap().trim(),
+        format!("B(0){}", "A(3)".repeat(6))
+    );
+    let e = run(690).unwrap_err();
+    let kind = e.iter().next().unwrap().kind.to_string();
+    assert!(
+        kind.contains(
+            "modules derived over the generations (at generation 3): 24 exceeds the limit of 23"
+        ),
+        "{kind}"
+    );
+}
+
+/// A word that doubles, `A(x) : x > 0 -> A(x+1)A(x+1)`, at depth 40 with
+/// the default limits: generations 1..=g derive 2 + 4 + ... + 2^g =
+/// 2^(g+1) - 2 modules, which first passes the budget of 2 x 10^10 / 30 =
+/// 666,666,666 at g = 29 (1,073,741,822; g = 28 gives 536,870,910). Its
+/// modules repeat (every module of generation g is `A(g+1)`), so they are
+/// counted on one module a generation and the refusal comes at once, in
+/// both orders, with the count of generation 29; before, dfs derived
+/// 3 x 10^8 modules (33 s of CPU) to find it.
+#[test]
+fn a_doubling_word_is_refused_before_it_is_derived() {
+    let src = "angle 9\naxiom A(1)\nrule A(x) : x > 0 -> A(x+1)A(x+1)\n";
+    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+        let e = expanded(src, 40, strategy).unwrap_err();
+        let kind = e.iter().next().unwrap().kind.to_string();
+        assert!(
+            kind.contains(
+                "modules derived over the generations (at generation 29): \
+                 1073741822 exceeds the limit of 666666666"
+            ),
+            "{kind}"
+        );
+    }
+    // Within the budget the count changes nothing: 2^12 modules.
+    let word = expanded(src, 12, Derivation::Dfs).unwrap();
+    assert_eq!(word.trim(), "A(13)".repeat(1 << 12));
 }
 
 // --------------------------------------------------------- diagnostics --

@@ -19,7 +19,7 @@
 mod memo;
 mod turtle;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::io::Write;
 
 use crate::choice::Key;
@@ -105,6 +105,8 @@ pub struct Deriver<'a> {
     by_sym: BTreeMap<char, Vec<usize>>,
     seed: u64,
     ignore: Vec<char>,
+    /// Whether some rule's successor is empty (a word may shrink).
+    erases: bool,
 }
 
 /// What bracket each bracket of a word closes or opens (itself when it
@@ -140,6 +142,7 @@ impl<'a> Deriver<'a> {
             by_sym,
             seed: sys.seed,
             ignore: p.ignore.clone(),
+            erases: p.rules.iter().any(|r| r.successor.is_empty()),
         }
     }
 
@@ -365,10 +368,57 @@ impl<'a> Deriver<'a> {
         limits: &Limits,
         mut each: impl FnMut(char, &[f64]),
     ) -> Result<u64, Diagnostics> {
+        let most = (limits.max_symbols / PARAM_COST).max(1);
+        if let Some((generation, work)) = self.precount(depth, most) {
+            let what = "modules derived over the generations";
+            return Err(over(Bound::Symbols, generation, work, most, what));
+        }
         self.each_until(depth, strategy, limits, |c, p| {
             each(c, p);
             true
         })
+    }
+
+    /// The modules a context-free system without choices derives over the
+    /// generations to `depth`, counted on its distinct modules (equal
+    /// modules rewrite alike): the first generation where they pass
+    /// `most`, and their number there. So a word that doubles is refused
+    /// in a few thousand rewrites, not after deriving `most` modules (30
+    /// s). None when the system has contexts or choices, when modules
+    /// stop repeating (past [`PRECOUNT`] distinct ones) or when a rewrite
+    /// fails (the derivation says where).
+    fn precount(&self, depth: u32, most: u64) -> Option<(u32, u64)> {
+        if self.p.has_context() || self.p.is_stochastic() {
+            return None;
+        }
+        let mut level = self.axiom();
+        let mut mult = vec![1u64; level.len()];
+        let (mut one, mut bind, mut work, mut left) = (Word::new(), Vec::new(), 0u64, PRECOUNT);
+        for generation in 1..=depth {
+            let (mut next, mut next_mult) = (Word::new(), Vec::new());
+            let mut index: HashMap<(char, Vec<u64>), usize> = HashMap::new();
+            for (i, &times) in mult.iter().enumerate() {
+                left = left.checked_sub(1)?;
+                one.clear();
+                self.rewrite(&level, &[], i, generation, &mut one, &mut bind)
+                    .ok()?;
+                for j in 0..one.len() {
+                    let bits = one.params(j).iter().map(|v| v.to_bits()).collect();
+                    let k = *index.entry((one.syms[j], bits)).or_insert_with(|| {
+                        next.push(one.syms[j], one.params(j), Key::root(0));
+                        next_mult.push(0u64);
+                        next_mult.len() - 1
+                    });
+                    next_mult[k] = next_mult[k].saturating_add(times);
+                }
+                work = work.saturating_add(times.saturating_mul(one.len() as u64));
+            }
+            if work > most {
+                return Some((generation, work));
+            }
+            (level, mult) = (next, next_mult);
+        }
+        None
     }
 
     /// [`Deriver::each`] until `each` returns false (the modules derived
@@ -405,16 +455,20 @@ impl<'a> Deriver<'a> {
         // generation (Anabaena) is rescanned whole each time, and past
         // generation 1,000 that work, not the last word, is the cost.
         let mut work = 0u64;
-        let mut worked = |made: usize, generation: u32| -> Result<(), Diagnostics> {
+        // `ahead`: the modules the generations still to come derive at
+        // least (a word rewritten level by level, no rule erasing a
+        // module: no word is shorter than the one before), so that
+        // Anabaena at depth 2,000 is refused at generation 850, not 1,158.
+        let mut worked = |made: usize, generation: u32, ahead: u64| -> Result<(), Diagnostics> {
             work = work.saturating_add(made as u64);
-            if work > most {
-                return Err(over(
-                    Bound::Symbols,
-                    generation,
-                    work,
-                    most,
-                    "modules derived over the generations",
-                ));
+            let least = work.saturating_add(ahead);
+            if least > most {
+                let what = if ahead == 0 {
+                    "modules derived over the generations".to_string()
+                } else {
+                    format!("modules derived over the generations to depth {depth}, at least")
+                };
+                return Err(over(Bound::Symbols, generation, least, most, &what));
             }
             Ok(())
         };
@@ -441,7 +495,12 @@ impl<'a> Deriver<'a> {
                         ));
                     }
                 }
-                worked(next.len(), generation)?;
+                let ahead = if self.erases {
+                    0
+                } else {
+                    u64::from(depth - generation).saturating_mul(next.len() as u64)
+                };
+                worked(next.len(), generation, ahead)?;
                 std::mem::swap(&mut w, &mut next);
             }
             for i in 0..w.len() {
@@ -475,7 +534,7 @@ impl<'a> Deriver<'a> {
             let (lo, hi) = levels.split_at_mut(level + 1);
             hi[0].clear();
             self.rewrite(&lo[level], &[], i, level as u32 + 1, &mut hi[0], &mut bind)?;
-            worked(hi[0].len(), level as u32 + 1)?;
+            worked(hi[0].len(), level as u32 + 1, 0)?;
             level += 1;
             next[level] = 0;
         }
@@ -489,6 +548,9 @@ impl<'a> Deriver<'a> {
 /// dfs's 500 M symbols/s, so a parametric derivation may derive a
 /// thirtieth of the limit (docs/lsys.md), in about the same time.
 pub const PARAM_COST: u64 = 30;
+
+/// The most rewrites [`Deriver::precount`] makes before it gives up.
+const PRECOUNT: u32 = 1 << 16;
 
 /// The number of drawn steps (`F`, `G`) of `sys` at `depth`, counted until
 /// it passes `most` (then `most + 1`).
