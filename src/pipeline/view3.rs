@@ -246,6 +246,42 @@ pub(crate) fn mesh(
             &mut keep,
             &mut phase,
         )?;
+    } else if let Some(bed) = scene
+        .bed()
+        .filter(|b| crate::interpret::dress::dresses(b.description()))
+    {
+        // Colours by order and leaves (section 13): each stem in its
+        // colour, each leaf's polygon a double-sided face.
+        let segs =
+            crate::interpret::dress::gather(bed, scene.derivation, &scene.limits, &mut phase)?;
+        let dress = crate::interpret::dress::Dress::new(bed.description(), &segs, color);
+        let palette = dress.palette();
+        let mut paint = color;
+        dress.emit(&mut |m| match m {
+            Mark::Step(s, _) => {
+                if tubes.len() as u64 >= most {
+                    over = true;
+                    return;
+                }
+                tubes.push(Tube {
+                    from: s.from,
+                    to: s.to,
+                    width: width(s.order),
+                    color: paint,
+                });
+            }
+            Mark::Paint(i) => paint = palette[i],
+            Mark::Polygon(points) => {
+                if (tubes.len() + leaves.len()) as u64 >= most {
+                    over = true;
+                    return;
+                }
+                leaves.push(mesh::Leaf {
+                    points: points.to_vec(),
+                    color: paint,
+                });
+            }
+        })?;
     } else if !draw_tree3(scene, &mut keep, &mut phase)? {
         let mut lift = Lift(&mut keep);
         scene.draw(&mut lift, &mut phase)?;
