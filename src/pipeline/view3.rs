@@ -289,7 +289,7 @@ pub(crate) fn mesh(
     mesh::check_tubes(tubes.len() as u64, over, opts)?;
     let n = tubes.len() as u64;
     let triangles = if format == MeshFormat::Stl {
-        solid(&tubes, first_root(scene), opts, out, progress)?
+        solid(&tubes, &leaves, first_root(scene), opts, out, progress)?
     } else {
         let m = mesh::build_with_leaves(&tubes, &leaves, first_root(scene), opts);
         match format {
@@ -329,12 +329,13 @@ fn solid_usage(scene: &Scene, format: MeshFormat, opts: &MeshOptions) -> Result<
 #[cfg(feature = "solid")]
 fn solid(
     tubes: &[Tube],
+    leaves: &[mesh::Leaf],
     origin: Point3,
     opts: &MeshOptions,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<u64, Diagnostics> {
-    let body = mesh::build_solid(tubes, origin, opts, progress)?;
+    let body = mesh::build_solid(tubes, leaves, origin, opts, progress)?;
     mesh::write_stl(&body, out)
         .map_err(|e| Diagnostics::from(crate::diag::io_error(&e, "writing the STL")))?;
     Ok(body.triangles.len() as u64)
@@ -343,6 +344,7 @@ fn solid(
 #[cfg(not(feature = "solid"))]
 fn solid(
     _: &[Tube],
+    _: &[mesh::Leaf],
     _: Point3,
     _: &MeshOptions,
     _: &mut dyn Write,
