@@ -350,6 +350,8 @@ mod tests {
             clearance: None,
             divergence: None,
             stroke: None,
+            stroke_end: None,
+            leaf: None,
             background: None,
             design: Default::default(),
             loc: Loc::default(),

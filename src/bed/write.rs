@@ -94,6 +94,9 @@ pub fn write(desc: &Description) -> String {
     if let Some(g) = &p.background {
         let _ = write!(out, " G={}", g.text);
     }
+    if let Some((name, _)) = &p.leaf {
+        let _ = write!(out, " P={name}");
+    }
     out.push_str("\nRULE\n");
     for r in &desc.rules {
         // An OD gives a name several bodies (`R1 (0.6): ...`); a BED names
@@ -114,6 +117,14 @@ pub fn write(desc: &Description) -> String {
         out.push_str("SEED\n");
         w.seed(seed, &mut out);
         out.push_str("ENDSEED\n");
+    }
+    if let Some(block) = &desc.surfaces {
+        out.push_str("SURFACES\n");
+        for line in &block.lines {
+            out.push_str(line);
+            out.push('\n');
+        }
+        out.push_str("ENDSURFACES\n");
     }
     if let Some(layout) = &desc.layout {
         out.push_str("LAYOUT\n");

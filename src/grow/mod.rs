@@ -358,6 +358,7 @@ where
         seed: first,
         layout: od.layout.clone(),
         forest,
+        surfaces: od.surfaces.clone(),
     };
     let grown = Grown {
         bed: Bed::new(desc, &opts.limits)?,

@@ -516,6 +516,8 @@ mod tests {
                 clearance: None,
                 divergence: None,
                 stroke: None,
+                stroke_end: None,
+                leaf: None,
                 background: None,
                 design: Default::default(),
                 loc: Loc::default(),
@@ -542,6 +544,7 @@ mod tests {
             }),
             layout: None,
             forest: Vec::new(),
+            surfaces: None,
         }
     }
 

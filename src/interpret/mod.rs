@@ -27,6 +27,7 @@
 
 pub mod bed;
 pub mod bed3;
+pub mod dress;
 pub mod expected;
 pub mod lsys;
 pub mod stats;

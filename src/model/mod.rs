@@ -23,6 +23,7 @@
 pub mod layout;
 pub mod lsys;
 pub mod param;
+pub use param::SurfaceBlock;
 pub mod seed_walk;
 pub mod term;
 pub mod walk;
@@ -87,6 +88,9 @@ pub struct Description {
     /// for one tree. All trees share the layout; in an OD they all grow
     /// [`Description::seed`], in a BED each has its own.
     pub forest: Vec<Tree>,
+    /// `SURFACES ... ENDSURFACES`: the organs `P=` places at the tips
+    /// (`stl-language.md` section 13), kept in a BED as written.
+    pub surfaces: Option<SurfaceBlock>,
 }
 
 /// A tree's root and the seed in force there ([`Description::trees`]).
@@ -120,8 +124,15 @@ pub struct StemParams {
     /// application first rolls its frame by it), `None` if not written.
     pub divergence: Option<f64>,
     /// `S`: the stroke colour the tree is drawn with (ours), `None` if not
-    /// written (the renderer's default, or `--stroke`).
+    /// written (the renderer's default, or `--stroke`). A ramp
+    /// (`S=#5b3a1e..#3b5e2b`) keeps its start here, its text whole.
     pub stroke: Option<Colour>,
+    /// The end of an `S=` ramp (section 13): the colour of the deepest
+    /// order grown in a tree; `None` for one colour.
+    pub stroke_end: Option<crate::color::Rgb>,
+    /// `P=X`: the surface drawn at every tip that grew no further, and
+    /// where its name is written.
+    pub leaf: Option<(char, Loc)>,
     /// `G`: the background (ground) colour, or `none` for transparent
     /// (ours), `None` if not written (white, or `--background`).
     pub background: Option<Colour>,

@@ -235,6 +235,18 @@ pub const MAX_POLYGON_VERTICES: usize = 4096;
 /// parametric path.
 pub const ORGAN_SYMBOLS: [char; 10] = ['{', '}', '.', '~', '\'', ';', ',', '!', 'G', 'g'];
 
+/// An OD's or BED's `SURFACES` block: each `surface X { word }` line read
+/// as the `.lsys` key, and its text as written (the BED writer copies it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceBlock {
+    /// The surfaces, in file order.
+    pub surfaces: Vec<Surface>,
+    /// Each surface's line as written, trimmed, comments cut off.
+    pub lines: Vec<String>,
+    /// Where the block is.
+    pub loc: Loc,
+}
+
 /// One `surface X { word }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Surface {

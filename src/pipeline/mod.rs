@@ -394,6 +394,10 @@ impl Scene {
                 turtle,
                 progress,
             ),
+            // A dressed tree (section 13: an `S=` ramp, `P=` leaves).
+            What::Tree { bed, .. } if crate::interpret::dress::dresses(bed.description()) => {
+                crate::interpret::dress::draw2(bed, self.derivation, &self.limits, turtle, progress)
+            }
             // A 3D tree drawn flat is its front view: its stems' x and y.
             What::Tree { bed, .. } if bed.description().is_3d() => {
                 let mut flat = |s: crate::turtle::turtle3::Segment3| {

@@ -13,6 +13,8 @@ use super::{Rendered, Scene, style};
 use crate::bed::Bed;
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::interpret::bed3::{bounds3, draw3};
+use crate::interpret::dress::{Dress, gather};
+use crate::interpret::lsys::param::Mark;
 use crate::interpret::stats::STATS_TRAVERSAL_SYMBOLS;
 use crate::limits::Limits;
 use crate::progress::{NoProgress, Phase, Progress};
@@ -40,23 +42,49 @@ pub(crate) fn render_view(
     if stems > MAX_VIEW_SEGMENTS {
         return Err(view_too_large(stems.to_string()));
     }
-    let mut gathered = Gathered::new(view);
-    draw3(
-        bed,
-        scene.derivation,
-        &scene.limits,
-        &mut |s| gathered.push(s),
-        &mut Phase::new(progress, "drawing"),
-    )?;
-    let stems = gathered.sorted();
-    let n = stems.len() as u64;
+    let style = style(scene, look);
+    let (sorted, stems) = if crate::interpret::dress::dresses(bed.description()) {
+        // Colours by order and leaves (section 13), each kept through the sort.
+        let segs = gather(
+            bed,
+            scene.derivation,
+            &scene.limits,
+            &mut Phase::new(progress, "drawing"),
+        )?;
+        let dress = Dress::new(bed.description(), &segs, style.stroke);
+        let mut gathered = Gathered::with_organs(view, dress.palette().to_vec());
+        dress.emit(&mut |m| match m {
+            Mark::Step(s, _) => gathered.push(s),
+            Mark::Paint(i) => gathered.paint(i),
+            Mark::Polygon(points) => gathered.push_polygon(points),
+        })?;
+        if gathered.over {
+            return Err(view_too_large(format!("more than {MAX_VIEW_SEGMENTS}")));
+        }
+        (Some(gathered.sorted_organs()), Vec::new())
+    } else {
+        let mut gathered = Gathered::new(view);
+        draw3(
+            bed,
+            scene.derivation,
+            &scene.limits,
+            &mut |s| gathered.push(s),
+            &mut Phase::new(progress, "drawing"),
+        )?;
+        (None, gathered.sorted())
+    };
+    let n = sorted.as_ref().map_or(stems.len() as u64, |s| s.stems());
     let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
-        for s in &stems {
-            t.segment(*s);
+        match &sorted {
+            Some(s) => s.draw(t),
+            None => {
+                for s in &stems {
+                    t.segment(*s);
+                }
+            }
         }
         Ok(())
     };
-    let style = style(scene, look);
     // Framed by its volumes' outlines, as a 2D picture by its layout.
     let desc = bed.description();
     let outlines = match &desc.layout {

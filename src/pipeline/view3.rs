@@ -246,6 +246,42 @@ pub(crate) fn mesh(
             &mut keep,
             &mut phase,
         )?;
+    } else if let Some(bed) = scene
+        .bed()
+        .filter(|b| crate::interpret::dress::dresses(b.description()))
+    {
+        // Colours by order and leaves (section 13): each stem in its
+        // colour, each leaf's polygon a double-sided face.
+        let segs =
+            crate::interpret::dress::gather(bed, scene.derivation, &scene.limits, &mut phase)?;
+        let dress = crate::interpret::dress::Dress::new(bed.description(), &segs, color);
+        let palette = dress.palette();
+        let mut paint = color;
+        dress.emit(&mut |m| match m {
+            Mark::Step(s, _) => {
+                if tubes.len() as u64 >= most {
+                    over = true;
+                    return;
+                }
+                tubes.push(Tube {
+                    from: s.from,
+                    to: s.to,
+                    width: width(s.order),
+                    color: paint,
+                });
+            }
+            Mark::Paint(i) => paint = palette[i],
+            Mark::Polygon(points) => {
+                if (tubes.len() + leaves.len()) as u64 >= most {
+                    over = true;
+                    return;
+                }
+                leaves.push(mesh::Leaf {
+                    points: points.to_vec(),
+                    color: paint,
+                });
+            }
+        })?;
     } else if !draw_tree3(scene, &mut keep, &mut phase)? {
         let mut lift = Lift(&mut keep);
         scene.draw(&mut lift, &mut phase)?;
@@ -253,7 +289,7 @@ pub(crate) fn mesh(
     mesh::check_tubes(tubes.len() as u64, over, opts)?;
     let n = tubes.len() as u64;
     let triangles = if format == MeshFormat::Stl {
-        solid(&tubes, first_root(scene), opts, out, progress)?
+        solid(&tubes, &leaves, first_root(scene), opts, out, progress)?
     } else {
         let m = mesh::build_with_leaves(&tubes, &leaves, first_root(scene), opts);
         match format {
@@ -293,12 +329,13 @@ fn solid_usage(scene: &Scene, format: MeshFormat, opts: &MeshOptions) -> Result<
 #[cfg(feature = "solid")]
 fn solid(
     tubes: &[Tube],
+    leaves: &[mesh::Leaf],
     origin: Point3,
     opts: &MeshOptions,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<u64, Diagnostics> {
-    let body = mesh::build_solid(tubes, origin, opts, progress)?;
+    let body = mesh::build_solid(tubes, leaves, origin, opts, progress)?;
     mesh::write_stl(&body, out)
         .map_err(|e| Diagnostics::from(crate::diag::io_error(&e, "writing the STL")))?;
     Ok(body.triangles.len() as u64)
@@ -307,6 +344,7 @@ fn solid(
 #[cfg(not(feature = "solid"))]
 fn solid(
     _: &[Tube],
+    _: &[mesh::Leaf],
     _: Point3,
     _: &MeshOptions,
     _: &mut dyn Write,

@@ -128,6 +128,10 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
         "koch-snowflake.lsys",
         include_str!("../../examples/koch-snowflake.lsys"),
     ),
+    (
+        "oak3d-bare.od",
+        include_str!("../../examples/oak3d-bare.od"),
+    ),
     ("oak3d.od", include_str!("../../examples/oak3d.od")),
     (
         "paper-worked.bed",

@@ -105,12 +105,19 @@ pub(crate) fn describe(rule: Rule) -> String {
         Rule::stl_param => "a stem parameter like `L=10(0)`",
         Rule::stl_param_key => "a parameter name",
         Rule::stl_param_dec => "a decrement `(d)`",
-        Rule::stl_param_colour => "a colour (`clMaroon`, `#rrggbb` or `none`)",
+        Rule::stl_param_colour => {
+            "a colour (`clMaroon`, `#rrggbb` or `none`), a ramp `#5b3a1e..#3b5e2b` or a surface's name"
+        }
+        Rule::stl_colour_word => "a colour (`clMaroon` or `#rrggbb`)",
         Rule::stl_kw_rule => "`RULE`",
         Rule::stl_kw_seed => "`SEED`",
         Rule::stl_kw_endseed => "`ENDSEED`",
         Rule::stl_kw_layout => "`LAYOUT`",
         Rule::stl_kw_endlayout => "`ENDLAYOUT`",
+        Rule::stl_kw_surfaces => "`SURFACES`",
+        Rule::stl_kw_endsurfaces => "`ENDSURFACES`",
+        Rule::stl_surfaces => "a `SURFACES` section",
+        Rule::stl_surfaces_text => "lines `surface X { word }`",
         Rule::stl_rule_def => "a rule definition like `R1: [+F][-F]`",
         Rule::stl_rule_name => "a rule name",
         Rule::stl_defines => "`:` or `=`",

@@ -28,6 +28,7 @@ mod grow;
 mod grow3d;
 mod grow_space;
 mod import_graph;
+mod leaves;
 mod lod;
 mod lsys;
 mod lsys3d;

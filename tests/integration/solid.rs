@@ -159,7 +159,7 @@ fn stems(ends: &[(Xyz, Xyz)]) -> Vec<u8> {
         solid: true,
         ..MeshOptions::default()
     };
-    let body = build_solid(&tubes, p(ends[0].0), &opts, &mut NoProgress).unwrap();
+    let body = build_solid(&tubes, &[], p(ends[0].0), &opts, &mut NoProgress).unwrap();
     let mut out = Vec::new();
     write_stl(&body, &mut out).unwrap();
     out
@@ -265,4 +265,40 @@ fn solid_usage_errors() {
         cmd.assert().code(2).stderr(predicates::str::contains(says));
         assert!(!path.exists(), "{out} written");
     }
+}
+
+/// Leaves join the solid (issue 33): a trunk and two branches with a
+/// square leaf of side L at each tip is still one closed body, of genus 0
+/// (each leaf's slab overlaps its tip's joint ball), and holds more than
+/// the bare stems.
+#[test]
+fn leaves_are_slabs_united_with_their_stems() {
+    let bed = |leaf: &str| {
+        format!(
+            "T\n(0, 0, 0)\nL=10(0) B=1(0) A=90{leaf}\nRULE\nR1: [+F][-F]\nSEED\nF R1{{,}}\nENDSEED\n\
+             SURFACES\nsurface L {{ {{.f.+f.+f.}} }}\nENDSURFACES\n"
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let mut volumes = Vec::new();
+    for (name, leaf) in [("bare", ""), ("leafy", " P=L")] {
+        let input = dir.path().join(format!("{name}.bed"));
+        std::fs::write(&input, bed(leaf)).unwrap();
+        let out = dir.path().join(format!("{name}.stl"));
+        stlc()
+            .args(["render", "-q", "--solid", "-o"])
+            .arg(&out)
+            .arg(&input)
+            .assert()
+            .success();
+        let body = read(&std::fs::read(&out).unwrap());
+        printable(&body, 0);
+        volumes.push(body.volume);
+    }
+    // Two slabs of 100 mm x 100 mm (L = 10 units of 10 mm) and at least
+    // 0.5 mm thick, less what they share with the stems and balls.
+    assert!(
+        volumes[1] > volumes[0] + 2.0 * 100.0 * 100.0 * 0.4,
+        "{volumes:?}"
+    );
 }

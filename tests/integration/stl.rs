@@ -1052,17 +1052,13 @@ fn gen_description(seed: u64) -> Description {
             }
         }
     }
-    let layout = g.chance(60).then(|| match three {
-        false => Layout {
-            shapes: (0..g.below(4)).map(|_| gen_shape(&mut g)).collect(),
-            solids: Vec::new(),
+    let layout = g.chance(60).then(|| {
+        let (n, t) = (g.below(4), three);
+        Layout {
+            shapes: (0..n).filter(|_| !t).map(|_| gen_shape(&mut g)).collect(),
+            solids: (0..n).filter(|_| t).map(|_| gen_solid(&mut g)).collect(),
             loc: Loc::default(),
-        },
-        true => Layout {
-            shapes: Vec::new(),
-            solids: (0..g.below(4)).map(|_| gen_solid(&mut g)).collect(),
-            loc: Loc::default(),
-        },
+        }
     });
     let root_z = three.then(|| g.milli(-100, 100));
     let divergence = (three && g.chance(60)).then(|| g.milli(-360, 360));
@@ -1112,6 +1108,8 @@ fn gen_description(seed: u64) -> Description {
                     text: "#ffffff".into(),
                 },
             }),
+            stroke_end: None,
+            leaf: None,
             design: Default::default(),
             loc: Loc::default(),
         },
@@ -1119,6 +1117,7 @@ fn gen_description(seed: u64) -> Description {
         seed,
         layout,
         forest,
+        surfaces: None,
     }
 }
 

@@ -124,4 +124,11 @@ pub enum StlError {
     /// A `,` outside any term.
     #[error("`,` outside a term")]
     CommaOutsideTerm,
+    /// `P=X` names a surface the file's `SURFACES` block does not define
+    /// (section 13).
+    #[error("no surface `{name}` is defined")]
+    UnknownSurface {
+        /// The name written after `P=`.
+        name: String,
+    },
 }

@@ -21,6 +21,7 @@ use manifold_rust::linalg::{Mat3x4, Vec2, Vec3};
 use manifold_rust::manifold::Manifold;
 use manifold_rust::types::{Error, MeshGL64, OpType};
 
+use super::leaf::Leaf;
 use super::vector::{V, cross, frame, sub, unit};
 use super::{MAX_SIDES, MIN_SIDES, MeshOptions, Tube, to_file_axes};
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
@@ -95,10 +96,13 @@ pub fn tube_mesh(a: V, b: V, r: f64, ring: &[(f64, f64)]) -> Option<MeshGL64> {
     })
 }
 
-/// The solid of `tubes` (canvas units), `origin` the first root. Fails
-/// when the union's library reports an error.
+/// The solid of `tubes` and `leaves` (canvas units), `origin` the first
+/// root: each leaf a slab [`MIN_LEAF_MM`] thick ([`slab`]), its first
+/// corner its tip, where the stem's joint ball overlaps it. Fails when the
+/// union's library reports an error.
 pub fn build_solid(
     tubes: &[Tube],
+    leaves: &[Leaf],
     origin: Point3,
     opts: &MeshOptions,
     progress: &mut dyn Progress,
@@ -156,6 +160,16 @@ pub fn build_solid(
             ball.scale(Vec3::new(r, r, r))
                 .translate(Vec3::new(j.at[0], j.at[1], j.at[2])),
         );
+    }
+    for l in leaves {
+        let corners: Vec<V> = l
+            .points
+            .iter()
+            .map(|p| placed(*p, origin, opts.unit))
+            .collect();
+        if let Some(m) = slab(&corners, MIN_LEAF_MM) {
+            parts.push(m);
+        }
     }
     let body = union(parts, progress)?;
     let body = checked(body.simplify(TOLERANCE))?;
@@ -240,7 +254,6 @@ pub const MIN_LEAF_MM: f64 = 0.5;
 /// normal (Newell's, so the corners' turning decides which side is
 /// which), closed at its rim. `None` for fewer than three corners, no
 /// area, a thickness under [`MIN_LEAF_MM`] or a failed triangulation.
-/// Not wired into `build_solid` yet: leaves join the solid later.
 pub fn slab(corners: &[V], thickness: f64) -> Option<Manifold> {
     if corners.len() < 3 || thickness < MIN_LEAF_MM || !thickness.is_finite() {
         return None;

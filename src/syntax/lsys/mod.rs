@@ -27,6 +27,7 @@ pub(crate) mod expr;
 mod keys;
 mod organs;
 pub use organs::{ORGAN_KEYS, too_many};
+pub(crate) use param::surface_block;
 pub mod param;
 pub use param::PARAM_KEYS;
 

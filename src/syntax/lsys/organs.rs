@@ -108,6 +108,62 @@ fn palette(text: &str, l: &Line, o: &mut Organs) -> Result<(), Box<Diagnostic>> 
     Ok(())
 }
 
+/// The lines of an OD's or BED's `SURFACES` block (section 13), `text`
+/// found at byte `at` of the file: each non-empty line `surface X { word }`
+/// as the `.lsys` key reads it (comments cut off), checked for surfaces
+/// that place themselves. Returns the surfaces and each one's text.
+pub(super) fn surface_block(
+    text: &str,
+    at: usize,
+    word: Word,
+    diags: &mut Diagnostics,
+) -> (Vec<Surface>, Vec<String>) {
+    let mut o = Organs::default();
+    let mut lines = Vec::new();
+    let no_formals: Vec<String> = Vec::new();
+    let scope = Scope {
+        formals: &no_formals,
+        defines: &[],
+    };
+    let mut start = 0;
+    for raw in text.split_inclusive('\n') {
+        let line_at = at + start;
+        start += raw.len();
+        let body = raw.split('#').next().unwrap_or("");
+        let t = body.trim();
+        if t.is_empty() {
+            continue;
+        }
+        let lead = body.len() - body.trim_start().len();
+        let (s, e) = (line_at + lead, line_at + lead + t.len());
+        let key_len = t.find(char::is_whitespace).unwrap_or(t.len());
+        if &t[..key_len] != "surface" {
+            diags.push(*error(
+                "a SURFACES block holds lines `surface X { word }`",
+                s..e,
+                "write `surface L { [{.+f.-f.-f.+f.}] }` and name it with `P=L` in the header",
+            ));
+            continue;
+        }
+        let l = Line {
+            key: "surface",
+            rest: &t[key_len..],
+            at: s + key_len,
+            start: s,
+            end: e,
+        };
+        match surface(&l, &scope, word) {
+            Ok(sf) => {
+                o.surfaces.push(sf);
+                lines.push(t.to_string());
+            }
+            Err(d) => diags.push(*d),
+        }
+    }
+    cycles(&o, diags);
+    (o.surfaces, lines)
+}
+
 /// `surface X { word }`.
 fn surface(l: &Line, scope: &Scope, word: Word) -> Result<Surface, Box<Diagnostic>> {
     let t = l.rest.trim();

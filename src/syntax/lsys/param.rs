@@ -302,6 +302,16 @@ fn args(s: &str, open: usize, at: usize) -> Result<Args<'_>, Box<Diagnostic>> {
     ))
 }
 
+/// An OD's or BED's `SURFACES` block read with this file's word reader
+/// (src/syntax/lsys/organs.rs, `surface_block`).
+pub(crate) fn surface_block(
+    text: &str,
+    at: usize,
+    diags: &mut crate::diag::Diagnostics,
+) -> (Vec<crate::model::param::Surface>, Vec<String>) {
+    super::organs::surface_block(text, at, word, diags)
+}
+
 /// A word of modules with parameter expressions (an axiom or successor).
 pub(super) fn word(s: &str, at: usize, scope: &Scope) -> Result<Vec<ModuleExpr>, Box<Diagnostic>> {
     let mut out = Vec::new();

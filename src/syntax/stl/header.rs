@@ -40,11 +40,14 @@ pub enum Param {
     Points,
     /// `Q=d`: the radius of influence of space-first growth.
     Reach,
+    /// `P=X`: the surface drawn at every tip that grew no further
+    /// (section 13).
+    Leaf,
 }
 
 impl Param {
     /// Every parameter, in the order the docs list them.
-    pub const ALL: [Param; 12] = [
+    pub const ALL: [Param; 13] = [
         Param::Length,
         Param::Broadness,
         Param::Angle,
@@ -57,6 +60,7 @@ impl Param {
         Param::MaxStems,
         Param::Points,
         Param::Reach,
+        Param::Leaf,
     ];
 
     /// The key as written: `L`, `B`, `A` or `C`.
@@ -74,6 +78,7 @@ impl Param {
             Param::MaxStems => "M",
             Param::Points => "N",
             Param::Reach => "Q",
+            Param::Leaf => "P",
         }
     }
 
@@ -92,6 +97,7 @@ impl Param {
             Param::MaxStems => "max stems",
             Param::Points => "attraction points",
             Param::Reach => "reach",
+            Param::Leaf => "leaf surface",
         }
     }
 
@@ -102,7 +108,7 @@ impl Param {
 
     /// Whether the parameter's value is a word (a colour, `bfs`/`dfs`).
     fn is_word(self) -> bool {
-        self.is_colour() || self == Param::Order
+        self.is_colour() || self == Param::Order || self == Param::Leaf
     }
 
     /// Whether the parameter is part of an OD's design (`O`, `V`, `M`,
@@ -142,6 +148,8 @@ impl Builder<'_> {
             clearance: None,
             divergence: None,
             stroke: None,
+            stroke_end: None,
+            leaf: None,
             background: None,
             design: Default::default(),
             loc: Loc(root_loc.0.end..root_loc.0.end),
@@ -204,6 +212,8 @@ impl Builder<'_> {
             {
                 let expected = if p == Param::Order {
                     "`bfs`, `dfs` or `space`"
+                } else if p == Param::Leaf {
+                    "a surface's one-character name, defined in SURFACES"
                 } else if p.is_colour() {
                     "a colour (a Delphi name such as `clMaroon`, `#rrggbb`, or `none` for G)"
                 } else {
@@ -218,6 +228,53 @@ impl Builder<'_> {
                     "not this kind of value",
                     &format!("write `{}=` followed by {expected}", p.key()),
                 );
+                continue;
+            }
+            if param == Some(Param::Leaf) {
+                self.no_decrement(Param::Leaf, dec.as_ref().map(|(s, _)| s.clone()));
+                let text = val.as_str();
+                let mut chars = text.chars();
+                match (chars.next(), chars.next()) {
+                    (Some(c), None) => out.leaf = Some((c, Loc(vspan))),
+                    _ => self.report(
+                        StlError::ParamValue {
+                            key: "P",
+                            expected: "a surface's one-character name, defined in SURFACES",
+                        },
+                        vspan,
+                        "not one character",
+                        "a surface is named with one character, as in `.lsys`: `P=L`",
+                    ),
+                }
+                continue;
+            }
+            if let Some(p) = param.filter(|p| p.is_colour())
+                && let Some((a, b)) = val.as_str().split_once("..")
+            {
+                // A ramp by order (section 13): only `S=` takes one.
+                if p != Param::Stroke {
+                    self.report(
+                        StlError::ParamValue {
+                            key: p.key(),
+                            expected: "one colour (only `S=` takes a ramp)",
+                        },
+                        vspan,
+                        "a ramp",
+                        &format!("write `{}=` followed by one colour", p.key()),
+                    );
+                    continue;
+                }
+                let start = span_of(&val).start;
+                let first = self.colour(a, start..start + a.len());
+                let bstart = start + a.len() + 2;
+                let last = self.colour(b, bstart..bstart + b.len());
+                if let (Some(first), Some(last)) = (first, last) {
+                    out.stroke = Some(crate::model::Colour {
+                        rgb: Some(first),
+                        text: val.as_str().to_string(),
+                    });
+                    out.stroke_end = Some(last);
+                }
                 continue;
             }
             if let Some(p) = param.filter(|p| p.is_colour()) {
@@ -299,7 +356,8 @@ impl Builder<'_> {
                     | Param::Order
                     | Param::Seed
                     | Param::MaxStems
-                    | Param::Points,
+                    | Param::Points
+                    | Param::Leaf,
                 ) => {}
                 Some(p @ Param::Reach) => {
                     self.no_decrement(p, dec.map(|(s, _)| s));
@@ -409,8 +467,8 @@ mod tests {
         assert_eq!(
             param_list(),
             "L (length), B (broadness), A (angle), C (clearance), D (divergence), S (stroke colour), \
-             G (background colour), O (growth order), V (seed), M (max stems), N (attraction points) \
-             and Q (reach)"
+             G (background colour), O (growth order), V (seed), M (max stems), N (attraction points), \
+             Q (reach) and P (leaf surface)"
         );
         assert_eq!(Param::from_key("B"), Some(Param::Broadness));
         assert_eq!(Param::from_key("b"), None);

@@ -35,6 +35,7 @@ mod names;
 mod rules;
 mod seed;
 mod solid;
+mod surfaces;
 
 use pest::Parser;
 use pest::iterators::Pair;
@@ -96,6 +97,7 @@ impl Builder<'_> {
         let mut defs = Vec::new();
         let mut seed_pairs = Vec::new();
         let mut layout = None;
+        let mut surfaces = None;
         for p in file.into_inner() {
             match p.as_rule() {
                 Rule::stl_tree_name => name = Some((p.as_str().to_string(), Loc(span_of(&p)))),
@@ -119,6 +121,7 @@ impl Builder<'_> {
                 Rule::stl_rule_def => defs.push(p),
                 Rule::stl_seed => seed_pairs.push(p),
                 Rule::stl_layout => layout = Some(self.layout(p)),
+                Rule::stl_surfaces => surfaces = Some(self.surfaces(p)),
                 Rule::stl_kw_rule | Rule::EOI => {}
                 other => not_in_grammar("stl_file", other),
             }
@@ -127,6 +130,7 @@ impl Builder<'_> {
         let mut roots = roots.into_iter();
         let (root, root_z, root_loc) = roots.next().expect("grammar: stl_file has stl_root");
         let params = self.params(params, &root_loc);
+        self.check_leaf(&params, surfaces.as_ref());
         let rules = self.rules(defs);
         let mut seeds: Vec<_> = seed_pairs.into_iter().map(|p| self.seed(p)).collect();
         let more: Vec<_> = roots.collect();
@@ -185,6 +189,7 @@ impl Builder<'_> {
             seed,
             layout,
             forest,
+            surfaces,
         }
     }
 }

@@ -30,7 +30,7 @@ use crate::model::Loc;
 use crate::model::lsys::LSystem;
 use crate::model::param::{ParamRule, Parametric, eval};
 pub use memo::{PARAM_NODES, ParamMemo};
-pub use turtle::{Mark, draw3_marks};
+pub use turtle::{Mark, Turtle3P, draw3_marks};
 pub(crate) use turtle::{draw2, draw3};
 
 /// A word of modules.

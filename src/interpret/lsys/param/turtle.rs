@@ -133,6 +133,65 @@ impl Turtle3P {
         }
     }
 
+    /// A turtle that only places `surfaces` (an OD's leaves, section 13):
+    /// turns by `angle` degrees, in 3D if `three`, one colour.
+    pub fn for_surfaces(
+        surfaces: &[crate::model::param::Surface],
+        angle: f64,
+        three: bool,
+    ) -> Turtle3P {
+        let h = [0.0, -1.0, 0.0];
+        Turtle3P {
+            state: State {
+                pos: [0.0; 3],
+                h,
+                l: [h[1], -h[0], 0.0],
+                u: [0.0, 0.0, -1.0],
+                width: 1.0,
+                color: 0,
+            },
+            stack: Vec::new(),
+            len: 1.0,
+            angle,
+            three,
+            tropism: None,
+            colors: 1,
+            decay: crate::model::param::DEFAULT_WIDTH_DECAY,
+            surfaces: surfaces
+                .iter()
+                .map(|s| {
+                    let w: Vec<(char, Vec<f64>)> = s
+                        .word
+                        .iter()
+                        .map(|m| (m.symbol, m.args.iter().map(eval_const).collect()))
+                        .collect();
+                    (s.name, Rc::from(w))
+                })
+                .collect(),
+            placing: false,
+            scale: 1.0,
+            polygons: Vec::new(),
+            shown: 0,
+            overfull: false,
+        }
+    }
+
+    /// Draws surface `name` at `pos` in the frame `frame` (H, L, U), its
+    /// steps `len` long; the turtle's state is as it was after.
+    pub fn place_at(
+        &mut self,
+        name: char,
+        pos: Point3,
+        frame: [V; 3],
+        len: f64,
+        sink: &mut impl FnMut(Mark<'_>),
+    ) {
+        self.state.pos = [pos.x, pos.y, pos.z];
+        [self.state.h, self.state.l, self.state.u] = frame;
+        self.len = len;
+        self.place(name, 1.0, sink);
+    }
+
     /// Where the turtle is.
     pub fn pos(&self) -> Point3 {
         let p = self.state.pos;
