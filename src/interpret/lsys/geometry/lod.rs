@@ -13,6 +13,12 @@ use crate::turtle::{Footprint, Sample, StandIn};
 /// full ink already. (Smaller ones cost less to draw than to ask about.)
 const PRUNE_SEGMENTS: u64 = 64;
 
+/// A bush not cut, of at least [`PRUNE_SEGMENTS`] and under this many
+/// details across, is offered whole to [`Turtle::dense`]: drawn once per
+/// distinct piece as the coverage it leaves where its own strokes ink its
+/// footprint fully, not walked again at every occurrence.
+const DENSE_MAX: f64 = 16.0;
+
 /// Draws a solid piece's box (at `x`, `y`, turned around if `sg` is -1)
 /// as one zigzag of rows at most `detail` apart: one connected run, so
 /// the backend strokes it as one outline, which covers the box widened
@@ -256,18 +262,26 @@ impl<'m, T: Turtle> lod::Memo<'m> for Walk2<'m, T> {
         let cut = g.cut(c, r, k, &p, detail);
         // A piece not cut whose reach is all full ink already (and big
         // enough to be worth asking about) is skipped.
-        let full =
-            !cut && g.count[at] >= PRUNE_SEGMENTS && p.draws() && self.turtle.covered(lo, hi);
-        if !(cut || full) {
-            return Some(g.alpha.succ[c as usize].as_deref().unwrap_or(&[]));
-        }
+        let big = !cut && g.count[at] >= PRUNE_SEGMENTS && p.draws();
+        let full = big && self.turtle.covered(lo, hi);
         let (ex, ey) = (x + sg * p.dx, y + sg * p.dy);
         // Draws the piece itself, for a backend that samples it.
         let draw = |detail: f64, t: &mut dyn Turtle| {
             g.draw_word(&[c], r, (k, flip), detail, t, &mut NoProgress);
         };
+        // A bush whose own strokes ink its footprint fully: drawn whole.
+        let dense = big
+            && !full
+            && g.jumps[at] != 0
+            && p.extent() < DENSE_MAX * detail
+            && self
+                .turtle
+                .dense(&g.sample((c, r, k, flip), (x, y), &p, &draw));
+        if !(cut || full || dense) {
+            return Some(g.alpha.succ[c as usize].as_deref().unwrap_or(&[]));
+        }
         let turtle = &mut self.turtle;
-        if full {
+        if full || dense {
             // Its move and turn only, as a stand-in's.
         } else if g.solid(c, r, k, &p, detail) {
             if !turtle.solid(&g.sample((c, r, k, flip), (x, y), &p, &draw)) {
@@ -375,6 +389,9 @@ mod tests {
         }
         fn run(&mut self, seg: Segment, segments: f64) {
             self.t.run(seg, segments);
+        }
+        fn dense(&mut self, sample: &Sample) -> bool {
+            self.t.dense(sample)
         }
         fn covered(&mut self, lo: Point, hi: Point) -> bool {
             let full = !self.blind && self.t.covered(lo, hi);
