@@ -105,6 +105,16 @@ pub trait Turtle {
         false
     }
 
+    /// A piece larger than [`Turtle::detail`] that breaks off in branches
+    /// (a bush not cut): `true` if the backend drew it whole from
+    /// `sample`, as the coverage its drawing at the detail leaves, because
+    /// that drawing inks its footprint fully (its strokes overlap many
+    /// times over); `false` (the default) to have the walk draw it.
+    fn dense(&mut self, sample: &Sample) -> bool {
+        let _ = sample;
+        false
+    }
+
     /// A stand-in for one connected run of `segments` segments (a
     /// straight or winding line, no jump inside) no larger than half of
     /// [`Turtle::detail`]: `seg` is its chord (or its box's diagonal).
@@ -149,6 +159,10 @@ impl<T: Turtle + ?Sized> Turtle for &mut T {
 
     fn solid(&mut self, sample: &Sample) -> bool {
         (**self).solid(sample)
+    }
+
+    fn dense(&mut self, sample: &Sample) -> bool {
+        (**self).dense(sample)
     }
 
     fn run(&mut self, seg: Segment, segments: f64) {

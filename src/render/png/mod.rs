@@ -108,6 +108,9 @@ pub struct PngTurtle {
     /// The bushes sampled so far ([`Turtle::stand_in`] with a sample); `None` in a bush's
     /// own sample, whose bushes are modelled.
     fields: Option<sample::Fields>,
+    /// Whether [`Turtle::dense`] may draw a piece whole (not in a
+    /// sample's own drawing).
+    dense: bool,
     /// The raster's tiles found full ink ([`Turtle::covered`]).
     full: full::Full,
     /// What the raster (or each band painted here) was stroked with lately.
@@ -169,6 +172,7 @@ impl PngTurtle {
             covered: false,
             stood: 0.0,
             fields: Some(sample::Fields::default()),
+            dense: true,
             full: full::Full::new(),
             repeats: bands::repeats_for(&canvas),
             canvas,
@@ -424,6 +428,20 @@ impl Turtle for PngTurtle {
 
     fn covered(&mut self, lo: Point, hi: Point) -> bool {
         self.full_ink(lo, hi)
+    }
+
+    fn dense(&mut self, sample: &Sample) -> bool {
+        if self.covered {
+            return true;
+        }
+        let Some(field) = self.dense_field(sample) else {
+            return false;
+        };
+        let at = self.fit.map(sample.at);
+        if at.x.is_finite() && at.y.is_finite() {
+            self.stamp(at, at, Shape::Field(field));
+        }
+        true
     }
 
     fn solid(&mut self, sample: &Sample) -> bool {

@@ -38,6 +38,10 @@ pub(super) const EXACT_SEGMENTS: u64 = 4096;
 /// ink converges to (black).
 pub(super) const SOLID_SEGMENTS: u64 = 1 << 16;
 
+/// Marks a dense piece's key ([`PngTurtle::dense_field`]): the top bit
+/// of [`Sample::piece_key`]'s depth.
+const DENSE_KEY: u128 = 1 << 95;
+
 /// At most this many bushes are sampled in one drawing (a few hundred
 /// bytes each with hairlines); past it, the rest are modelled.
 const MAX_FIELDS: usize = 16_384;
@@ -53,6 +57,9 @@ pub(super) struct Field {
     min: Point,
     nx: usize,
     ny: usize,
+    /// At least half of the points it inks are full ink: its strokes ink
+    /// its footprint fully ([`Turtle::dense`](crate::turtle::Turtle::dense)).
+    full: bool,
     cov: Vec<u8>,
 }
 
@@ -89,12 +96,15 @@ impl Fields {
     /// The field of `sample`, drawn with strokes of `width` at `fit`'s
     /// scale at `sub x sub` offsets, exactly or at a level of detail of
     /// `detail_px`; `None` when there are too many or it cannot be drawn.
+    ///
+    /// `nested`: its own bushes are sampled too (from these fields, at
+    /// the same scale), as a dense piece's are; else they are modelled.
     pub(super) fn get(
         &mut self,
         sample: &Sample,
         scale: f64,
         width: Width,
-        (sub, detail_px): (usize, Option<f64>),
+        (sub, detail_px, nested): (usize, Option<f64>, bool),
     ) -> Option<Arc<Field>> {
         if let Some(f) = self.by_key.get(&sample.key) {
             return f.clone();
@@ -102,13 +112,14 @@ impl Fields {
         if self.by_key.len() >= MAX_FIELDS || self.points >= MAX_POINTS {
             return None;
         }
+        let room = MAX_POINTS - self.points;
         let field = build(
             sample,
             scale,
             width,
-            sub,
-            detail_px,
-            MAX_POINTS - self.points,
+            (sub, detail_px),
+            room,
+            nested.then_some(&mut *self),
         );
         let field = field.map(Arc::new);
         self.points += field.as_ref().map_or(0, |f| f.cov.len());
@@ -132,9 +143,9 @@ fn build(
     sample: &Sample,
     scale: f64,
     width: Width,
-    sub: usize,
-    detail: Option<f64>,
+    (sub, detail): (usize, Option<f64>),
     room: usize,
+    mut nested: Option<&mut Fields>,
 ) -> Option<Field> {
     let step = 1.0 / sub as f64;
     let (lo, hi) = sample.bounds;
@@ -168,9 +179,14 @@ fn build(
                 dy: 0.5 - min.y - j as f64 * step,
             };
             let mut turtle = PngTurtle::new(fit, &style).ok()?.with_detail(detail);
-            // Its own bushes are modelled, not sampled again.
-            turtle.fields = None;
+            // Its own bushes are modelled, not sampled again, unless
+            // `nested`; its own dense pieces are walked.
+            turtle.fields = nested.as_deref_mut().map(std::mem::take);
+            turtle.dense = false;
             (sample.draw)(detail.map_or(0.0, |d| d / scale), &mut turtle);
+            if let (Some(outer), Some(inner)) = (nested.as_deref_mut(), turtle.fields.take()) {
+                *outer = inner;
+            }
             let raster = turtle.into_raster()?;
             let data = raster.data();
             for py in 0..th {
@@ -188,11 +204,14 @@ fn build(
             }
         }
     }
+    let inked = cov.iter().filter(|&&c| c > 0).count();
+    let full = cov.iter().filter(|&&c| c == 255).count();
     Some(Field {
         sub,
         min,
         nx,
         ny,
+        full: full * 2 >= inked && inked > 0,
         cov,
     })
 }
@@ -259,7 +278,7 @@ impl PngTurtle {
         }
         let detail = (sample.segments > EXACT_SEGMENTS).then_some(detail / 16.0);
         let fields = self.fields.as_mut()?;
-        fields.get(sample, self.fit.scale, self.width, (SUB, detail))
+        fields.get(sample, self.fit.scale, self.width, (SUB, detail, false))
     }
 
     /// [`Turtle::solid`]: the solid piece's field, drawn exactly, if it
@@ -270,7 +289,29 @@ impl PngTurtle {
             return None;
         }
         let fields = self.fields.as_mut()?;
-        fields.get(sample, self.fit.scale, self.width, (4, None))
+        fields.get(sample, self.fit.scale, self.width, (4, None, false))
+    }
+
+    /// [`Turtle::dense`]: the piece's field, drawn at the detail with its
+    /// own bushes sampled, if its strokes ink its footprint fully. Keyed
+    /// apart from the same piece cut as a bush.
+    pub(super) fn dense_field(&mut self, sample: &Sample) -> Option<Arc<Field>> {
+        let detail = self.detail? * self.fit.scale;
+        if !self.dense || !self.hairline() {
+            return None;
+        }
+        let keyed = Sample {
+            key: sample.key | DENSE_KEY,
+            ..*sample
+        };
+        let fields = self.fields.as_mut()?;
+        let field = fields.get(
+            &keyed,
+            self.fit.scale,
+            self.width,
+            (SUB, Some(detail), true),
+        )?;
+        field.full.then_some(field)
     }
 
     /// Whether the strokes are hairlines (at most a pixel wide), whose
