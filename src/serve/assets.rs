@@ -95,6 +95,16 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/colours.js"),
     },
     Asset {
+        path: "/keys.js",
+        media: JS,
+        body: include_str!("page/keys.js"),
+    },
+    Asset {
+        path: "/leaves.js",
+        media: JS,
+        body: include_str!("page/leaves.js"),
+    },
+    Asset {
         path: "/defines.js",
         media: JS,
         body: include_str!("page/defines.js"),

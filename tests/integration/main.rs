@@ -8,6 +8,7 @@ mod browser_colours;
 mod browser_draw;
 mod browser_edits;
 mod browser_key;
+mod browser_leaves;
 mod browser_mesh;
 mod browser_page;
 mod browser_param;

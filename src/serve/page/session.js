@@ -149,6 +149,7 @@ export function createSession(app) {
   const control = (id) => () => { if (!app.settings.changed(id)) edited(); };
   ['clearance', 'max-stems', 'depth', 'seed', 'stem-colour'].forEach((id) => byId(id).addEventListener('input', control(id)));
   byId('growth').addEventListener('change', control('growth'));
+  byId('leaf').addEventListener('change', control('leaf'));
 
   return { request, refresh, cancel, setKind, inSync };
 }

@@ -3,7 +3,8 @@
 // stems and clearance are its `O=`, `V=`, `M=` and `C=`; an .lsys's depth
 // and seed are its `generations` and `seed` lines. The stem colour is an
 // OD's `S=` (a ramp's near end) and an .lsys's `color`; an .lsys's
-// palette is its `palette` line, a colour field per colour (colours.js).
+// palette is its `palette` line, a colour field per colour (colours.js);
+// an OD's leaf is its `P=`, one of its SURFACES or none (leaves.js).
 // Changing a control rewrites that key in the text (only that key, or
 // that colour of the palette); typing a key moves the control. So a tree
 // made here grows the same from the command line, after a reload, and on
@@ -11,82 +12,12 @@
 
 import { byId } from './dom.js';
 import { hexOf, palette, stemShown, stemValue, withPaletteColour } from './colours.js';
+import { odKey, lsysKey, withKey } from './keys.js';
+import { surfaces, leafShown, withLeaf } from './leaves.js';
 
 // Control id -> key, per kind.
 const OD = { growth: 'O', seed: 'V', 'max-stems': 'M', clearance: 'C', 'stem-colour': 'S' };
 const LSYS = { depth: 'generations', seed: 'seed', 'stem-colour': 'color' };
-
-// Whether `at` is inside a comment: after a `#` on its line that is not a
-// colour's (`S=#8b4513`, `G=#ffffff`).
-function inComment(text, at) {
-  const lineStart = text.lastIndexOf('\n', at - 1) + 1;
-  return /(^|[^=])#/.test(text.slice(lineStart, at));
-}
-
-// Where an OD's header ends: its `RULE` keyword (outside comments).
-function headerEnd(text) {
-  const re = /(^|[^\w#])RULE\b/g;
-  let m;
-  while ((m = re.exec(text))) {
-    const at = m.index + m[1].length;
-    if (!inComment(text, at)) return at;
-  }
-  return -1;
-}
-
-// The `K=value` of an OD header: [start, end] of the value, and the value.
-function odKey(text, key) {
-  const end = headerEnd(text);
-  if (end < 0) return null;
-  const re = new RegExp(`(^|[\\s)>])${key}=([^\\s(]+)`, 'g');
-  let m;
-  while ((m = re.exec(text)) && m.index < end) {
-    const at = m.index + m[1].length;
-    if (inComment(text, at)) continue;
-    const start = at + key.length + 1;
-    return { at, start, end: start + m[2].length, value: m[2] };
-  }
-  return null;
-}
-
-// An .lsys `key value` line: the value's span and the value.
-function lsysKey(text, key) {
-  const m = new RegExp(`^([ \\t]*${key}[ \\t]+)(\\S+)`, 'm').exec(text);
-  if (!m) return null;
-  const start = m.index + m[1].length;
-  return { at: m.index, start, end: start + m[2].length, value: m[2] };
-}
-
-// `text` with `key` set to `value` ('' removes it).
-function withKey(text, kind, key, value) {
-  if (kind === 'od') {
-    const k = odKey(text, key);
-    if (k) {
-      if (value === '') {
-        const from = text[k.at - 1] === ' ' ? k.at - 1 : k.at;
-        return text.slice(0, from) + text.slice(k.end);
-      }
-      return text.slice(0, k.start) + value + text.slice(k.end);
-    }
-    if (value === '') return text;
-    const end = headerEnd(text);
-    if (end < 0) return text;
-    let j = end;
-    while (j > 0 && /\s/.test(text[j - 1])) j--;
-    // A space after it too where the header runs straight into `RULE`
-    // (the paper's one-line spelling: `B=1(0)RULE`).
-    const after = /\s/.test(text[j] || ' ') ? '' : ' ';
-    return `${text.slice(0, j)} ${key}=${value}${after}${text.slice(j)}`;
-  }
-  const k = lsysKey(text, key);
-  if (k) {
-    if (value !== '') return text.slice(0, k.start) + value + text.slice(k.end);
-    const lineEnd = text.indexOf('\n', k.at);
-    return text.slice(0, k.at) + (lineEnd < 0 ? '' : text.slice(lineEnd + 1));
-  }
-  if (value === '') return text;
-  return `${text}${text.endsWith('\n') || text === '' ? '' : '\n'}${key} ${value}\n`;
-}
 
 export function createSettings(app) {
   const keys = (kind) => (kind === 'od' ? OD : kind === 'lsys' ? LSYS : {});
@@ -108,6 +39,26 @@ export function createSettings(app) {
       else if (control !== document.activeElement || control.value !== v) control.value = v;
     }
     if (kind === 'lsys') syncPalette(text);
+    if (kind === 'od') syncLeaf(text);
+  }
+
+  // The leaf control: `none` and the surfaces of the SURFACES block (a
+  // `P=` naming none of them is listed too, as written, so the control
+  // shows the text). Options are made again only when the names change.
+  const leaf = byId('leaf');
+  function syncLeaf(text) {
+    const shown = leafShown(text);
+    const names = ['none', ...surfaces(text).map((s) => s.name)];
+    if (!names.includes(shown)) names.push(shown);
+    if ([...leaf.options].map((o) => o.value).join('\n') !== names.join('\n')) {
+      leaf.replaceChildren(...names.map((n) => {
+        const o = document.createElement('option');
+        o.value = n;
+        o.textContent = n;
+        return o;
+      }));
+    }
+    leaf.value = shown;
   }
 
   // The palette's fields, one per colour of the `palette` line, and `+`
@@ -147,6 +98,12 @@ export function createSettings(app) {
   // A control changed: its key in the text changes, and only that.
   function changed(id) {
     const kind = byId('kind').value;
+    if (id === 'leaf') {
+      if (kind !== 'od') return false;
+      const text = withLeaf(app.editor.text(), leaf.value);
+      if (text !== app.editor.text()) app.editor.rewrite(text);
+      return true;
+    }
     const key = keys(kind)[id];
     if (!key) return false;
     let value = byId(id).value.trim();

@@ -1,0 +1,134 @@
+//! The leaf control in a real Chromium (issue 33, item 6): on the leafy
+//! `examples/oak3d.od` it lists `none` and the surfaces of the file's
+//! `SURFACES` block; choosing `none` removes only the header's `P=L`,
+//! choosing `L` writes it back, and each picture (the page's SVG export at
+//! the 3D view's angles, the layout shown) is the CLI's for the new
+//! text at those angles. Screenshots go to `tests/store/browser/leaves-*.png`.
+
+use serde_json::{Value, json};
+
+use super::browser_web::open_example;
+use super::chromium::{Browser, cli, js, same_bytes, settled, shot};
+use super::serve::{Server, example};
+
+/// Chooses `name` in the leaf list as a user does (a `change` event); the
+/// page's answer once its text is `want`.
+async fn choose(c: &fantoccini::Client, name: &str, want: &str) -> Value {
+    js(
+        c,
+        &format!(
+            "const s = document.getElementById('leaf'); s.value = {name:?};
+             s.dispatchEvent(new Event('change')); return 0;"
+        ),
+    )
+    .await;
+    for _ in 0..200 {
+        let v = settled(c).await;
+        if v["text"] == json!(want) && v["ok"] == json!(true) {
+            return v;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    let v = settled(c).await;
+    panic!(
+        "the page never showed the text with leaf {name}: {}",
+        v["text"]
+    );
+}
+
+/// The page's SVG export of its text at the 3D view's angles, and the
+/// CLI's SVG of `text` at those angles.
+async fn page_and_cli_svg(c: &fantoccini::Client, text: &str) -> (Vec<u8>, Vec<u8>) {
+    let got = js(
+        c,
+        "const a = window.stlc;
+         const view = a.view3d.angles();
+         const e = await a.engine.export({source: a.editor.text(), kind: 'od', view}, 'svg');
+         return [view, e.ok ? await e.blob.text() : ''];",
+    )
+    .await;
+    let view = format!("{},{}", got[0][0], got[0][1]);
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("oak3d.od");
+    std::fs::write(&file, text).unwrap();
+    let want = cli(&[
+        "render",
+        file.to_str().unwrap(),
+        "--view",
+        &view,
+        "--show-layout",
+        "-f",
+        "svg",
+    ]);
+    (got[1].as_str().unwrap().as_bytes().to_vec(), want)
+}
+
+/// The leaf list's options and its value.
+async fn leaf_list(c: &fantoccini::Client) -> Value {
+    js(
+        c,
+        "const s = document.getElementById('leaf');
+         return [[...s.options].map((o) => o.value), s.value]",
+    )
+    .await
+}
+
+#[test]
+fn the_leaf_control_rewrites_only_p_in_chromium() {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let server = Server::start(&[]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+
+        open_example(&c, "oak3d.od").await;
+        let leafy = example("oak3d.od");
+        assert_eq!(leaf_list(&c).await, json!([["none", "L"], "L"]));
+        assert!(
+            js(
+                &c,
+                "return document.getElementById('leaf').offsetParent !== null"
+            )
+            .await
+                == json!(true),
+            "the leaf control is shown for an OD"
+        );
+
+        // none: the header line loses ` P=L`, nothing else changes.
+        let header = "L=12(0.5) B=3(0.2) A=28 C=2 D=137.5 S=#5b3a1e..#3b5e2b P=L";
+        assert!(leafy.contains(header));
+        let bare = leafy.replace(
+            header,
+            "L=12(0.5) B=3(0.2) A=28 C=2 D=137.5 S=#5b3a1e..#3b5e2b",
+        );
+        choose(&c, "none", &bare).await;
+        assert_eq!(leaf_list(&c).await, json!([["none", "L"], "none"]));
+        let (page, bare_svg) = page_and_cli_svg(&c, &bare).await;
+        same_bytes(&page, &bare_svg, "bare oak3d");
+        shot(&c, "leaves-01-none").await;
+
+        // L again: the key comes back where it was, the text is the file's.
+        choose(&c, "L", &leafy).await;
+        let (page, leafy_svg) = page_and_cli_svg(&c, &leafy).await;
+        same_bytes(&page, &leafy_svg, "leafy oak3d");
+        // The leaves are in the picture: it has more to draw than the bare
+        // oak's (same angles, the default ones: nothing turned the view).
+        assert!(leafy_svg.len() > bare_svg.len() + 1000);
+        shot(&c, "leaves-02-leafy").await;
+
+        // An .lsys has no leaf control.
+        open_example(&c, "abop-1.26.lsys").await;
+        assert_eq!(
+            js(
+                &c,
+                "return document.getElementById('leaf').offsetParent === null"
+            )
+            .await,
+            json!(true)
+        );
+    });
+}
