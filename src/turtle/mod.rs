@@ -418,6 +418,46 @@ pub struct Headings {
     angle: f64,
     /// `cache[i]` holds the direction for `k = i - HEADING_CACHE`, filled lazily.
     cache: Vec<Option<(f64, f64)>>,
+    /// Where the heading's degrees are computed exactly (see [`Period`]):
+    /// headings one period apart then have the very same direction, so a
+    /// heading past the cache is reduced into it.
+    period: Option<Period>,
+}
+
+/// The turns of the angle that make a whole turn, when `start + k·angle`
+/// is exact for every `|k| <= exact_up_to`: both are multiples of
+/// 1/[`PERIOD_SCALE`] degree, and `k·angle` stays below 2^52 of those.
+/// Then [`direction_from`] reduces the same exact number of degrees
+/// modulo 360 for `k` and for `k` modulo the period (the remainder of a
+/// float division is exact), and returns the same bits.
+#[derive(Clone, Copy, Debug)]
+struct Period {
+    turns: i64,
+    exact_up_to: u64,
+}
+
+/// Angles and starts that are multiples of 1/1024 degree (90, 60, 22.5,
+/// ...) have a period.
+const PERIOD_SCALE: f64 = 1024.0;
+
+impl Period {
+    fn of(start_deg: f64, angle_deg: f64) -> Option<Period> {
+        let (a, s) = (angle_deg * PERIOD_SCALE, start_deg * PERIOD_SCALE);
+        let small = |v: f64| v.is_finite() && v.fract() == 0.0 && v.abs() < (1u64 << 30) as f64;
+        if !small(a) || !small(s) || a == 0.0 {
+            return None;
+        }
+        let full = (360.0 * PERIOD_SCALE) as i64;
+        let (a, s) = (a.abs() as i64, s.abs() as i64);
+        let mut g = (a % full, full);
+        while g.0 != 0 {
+            g = (g.1 % g.0, g.0);
+        }
+        Some(Period {
+            turns: full / g.1,
+            exact_up_to: ((1u64 << 52) - s as u64) / a as u64,
+        })
+    }
 }
 
 impl Headings {
@@ -433,6 +473,7 @@ impl Headings {
             start: start_deg,
             angle: angle_deg,
             cache: Vec::new(),
+            period: Period::of(start_deg, angle_deg),
         }
     }
 
@@ -450,8 +491,16 @@ impl Headings {
     }
 
     #[inline]
-    fn unflipped(&mut self, k: i64) -> (f64, f64) {
-        let idx = k + HEADING_CACHE;
+    fn unflipped(&mut self, mut k: i64) -> (f64, f64) {
+        let mut idx = k + HEADING_CACHE;
+        if !(0..2 * HEADING_CACHE).contains(&idx) {
+            if let Some(p) = self.period {
+                if k.unsigned_abs() <= p.exact_up_to {
+                    k = k.rem_euclid(p.turns);
+                    idx = k + HEADING_CACHE;
+                }
+            }
+        }
         if (0..2 * HEADING_CACHE).contains(&idx) {
             let idx = idx as usize;
             if let Some(Some(d)) = self.cache.get(idx) {
@@ -517,5 +566,43 @@ mod tests {
         }
         let far = HEADING_CACHE * 3;
         assert_eq!(h.dir(far, false), direction(25.7, far));
+    }
+
+    #[test]
+    fn headings_past_the_cache_reduced_by_their_period_keep_their_bits() {
+        // 90 degrees: a period of 4 turns; 22.5: 16; 60 from a start of
+        // 12.25: 6; 25.7 has none (not a multiple of 1/1024 degree).
+        assert_eq!(Period::of(UP, 90.0).map(|p| p.turns), Some(4));
+        assert_eq!(Period::of(UP, 22.5).map(|p| p.turns), Some(16));
+        assert_eq!(Period::of(12.25, -60.0).map(|p| p.turns), Some(6));
+        assert!(Period::of(UP, 25.7).is_none());
+        // 2 million `+` at 90 degrees: up again, exactly.
+        assert_eq!(Headings::new(90.0).dir(2_000_000, false), (0.0, -1.0));
+        for (start, angle) in [
+            (UP, 90.0),
+            (UP, 22.5),
+            (12.25, -60.0),
+            (0.0, 45.0),
+            (UP, 25.7),
+        ] {
+            let mut h = Headings::starting(start, angle);
+            for k in [
+                HEADING_CACHE,
+                -HEADING_CACHE - 1,
+                2_000_001,
+                -7_654_321,
+                1 << 40,
+                -(1 << 45) - 3,
+                1 << 62,
+                -(1 << 62),
+            ] {
+                let (a, b) = (h.dir(k, false), direction_from(start, angle, k));
+                assert_eq!(
+                    (a.0.to_bits(), a.1.to_bits()),
+                    (b.0.to_bits(), b.1.to_bits()),
+                    "{start} {angle} {k}"
+                );
+            }
+        }
     }
 }
