@@ -493,13 +493,12 @@ impl Headings {
     #[inline]
     fn unflipped(&mut self, mut k: i64) -> (f64, f64) {
         let mut idx = k + HEADING_CACHE;
-        if !(0..2 * HEADING_CACHE).contains(&idx) {
-            if let Some(p) = self.period {
-                if k.unsigned_abs() <= p.exact_up_to {
-                    k = k.rem_euclid(p.turns);
-                    idx = k + HEADING_CACHE;
-                }
-            }
+        if !(0..2 * HEADING_CACHE).contains(&idx)
+            && let Some(p) = self.period
+            && k.unsigned_abs() <= p.exact_up_to
+        {
+            k = k.rem_euclid(p.turns);
+            idx = k + HEADING_CACHE;
         }
         if (0..2 * HEADING_CACHE).contains(&idx) {
             let idx = idx as usize;
