@@ -22,7 +22,7 @@ OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 echo "| system | depth | view | mean | max | pixels differing | > 16 | > 64 | inked exact | inked LOD | exact s | LOD s |"
 echo "| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-IFS=";" read -r -a CASES <<<"${CASES:-plant3d 10 11 12 13 14;hilbert3d 5 6 7}"
+IFS=";" read -r -a CASES <<<"${CASES:-plant3d-bare 10 11 12 13 14;hilbert3d 5 6 7}"
 for case in "${CASES[@]}"; do
     read -r name ds <<<"$case"
     for d in $ds; do

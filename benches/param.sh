@@ -24,7 +24,7 @@ rows=(
   "context: ABOP 1.35 Anabaena depth 400 (see docs), expand|expand examples/abop-1.35.lsys --depth 400 -o $T/j.txt"
   "level of detail, classic: ABOP 1.24a depth 14, 2048 px|render examples/abop-1.24a.lsys --depth 14 --size 2048x2048 -o $T/k.png"
   "level of detail, stochastic: ABOP 1.27 depth 14, 2048 px|render examples/abop-1.27.lsys --depth 14 --size 2048x2048 -o $T/l.png"
-  "level of detail, 3D: plant3d depth 12, 2048 px view|render examples/plant3d.lsys --depth 12 --size 2048x2048 -o $T/m.png"
+  "level of detail, 3D: plant3d depth 12, 2048 px view|render examples/plant3d-bare.lsys --depth 12 --size 2048x2048 -o $T/m.png"
   "level of detail, parametric: benches/param-fan.lsys depth 20, 2048 px|render benches/param-fan.lsys --depth 20 --size 2048x2048 -o $T/n.png"
   "level of detail, parametric: benches/param-fan.lsys depth 40, 2048 px, --max-symbols 3e8|render benches/param-fan.lsys --depth 40 --size 2048x2048 --max-symbols 300000000 -o $T/o.png"
 )

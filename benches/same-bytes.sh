@@ -65,5 +65,5 @@ for d in 10 12 20 40; do
   one "1.24a.$d.svg" render "$PWD"/examples/abop-1.24a.lsys --depth $d -o "1.24a.$d.svg"
   one "1.27.$d.png" render "$PWD"/examples/abop-1.27.lsys --depth $d -o "1.27.$d.png"
   one "hilbert.$d.png" render "$PWD"/examples/hilbert.lsys --depth $d -o "hilbert.$d.png"
-  one "plant3d.$d.png" render "$PWD"/examples/plant3d.lsys --depth $d -o "plant3d.$d.png"
+  one "plant3d.$d.png" render "$PWD"/examples/plant3d-bare.lsys --depth $d -o "plant3d.$d.png"
 done

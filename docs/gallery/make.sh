@@ -15,7 +15,7 @@ for n in abop-1.24a abop-1.24b abop-1.24c abop-1.24d abop-1.24e abop-1.24f \
   $B render examples/$n.lsys --size 240x240 -o $G/$n.png
 done
 # The book's parametric and context-sensitive L-systems (docs/lsys.md).
-for n in abop-1.31a abop-2.6a abop-2.7a abop-2.8a param-willow; do
+for n in abop-1.31a abop-2.6a abop-2.7a abop-2.8a param-willow abop-5.5a; do
   $B render examples/$n.lsys --size 240x240 -o $G/$n.png
 done
 $B render examples/crown.od --show-layout --size 300x300 -o $G/crown.png

@@ -110,6 +110,10 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
         include_str!("../../examples/abop-2.8d.lsys"),
     ),
     (
+        "abop-5.5a.lsys",
+        include_str!("../../examples/abop-5.5a.lsys"),
+    ),
+    (
         "alternatives.od",
         include_str!("../../examples/alternatives.od"),
     ),
@@ -142,6 +146,10 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
         include_str!("../../examples/param-willow.lsys"),
     ),
     ("pentagon.od", include_str!("../../examples/pentagon.od")),
+    (
+        "plant3d-bare.lsys",
+        include_str!("../../examples/plant3d-bare.lsys"),
+    ),
     ("plant3d.lsys", include_str!("../../examples/plant3d.lsys")),
     ("polygon.od", include_str!("../../examples/polygon.od")),
     (

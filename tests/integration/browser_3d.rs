@@ -382,7 +382,7 @@ async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
 /// px at this picture's 29 px a unit, the SVG's two decimals 0.005 px (a
 /// view a degree off moves the ends by pixels).
 async fn the_camera_is_the_clis(c: &Client) {
-    let opened = super::browser_web::open_example(c, "plant3d.lsys").await;
+    let opened = super::browser_web::open_example(c, "plant3d-bare.lsys").await;
     assert_eq!(opened["ok"], true);
     let page = c
         .execute_async(
@@ -408,7 +408,7 @@ async fn the_camera_is_the_clis(c: &Client) {
         .iter()
         .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
         .collect();
-    let path = manifest_path("examples/plant3d.lsys");
+    let path = manifest_path("examples/plant3d-bare.lsys");
     let svg = String::from_utf8(cli(&["render", path.to_str().unwrap(), "-f", "svg"])).unwrap();
     let d = svg
         .split(" d=\"")
@@ -552,12 +552,14 @@ fn the_static_site_shows_a_3d_file_in_chromium() {
         let c = browser.connect().await;
         c.goto(&server.url).await.unwrap();
         settled(&c).await;
-        let opened = super::browser_web::open_example(&c, "plant3d.lsys").await;
+        let opened = super::browser_web::open_example(&c, "plant3d-bare.lsys").await;
         assert_eq!(opened["ok"], true, "{opened}");
         let stats: Value = serde_json::from_slice(&crate::support::stlc_stdout(&[
             "stats",
             "--json",
-            manifest_path("examples/plant3d.lsys").to_str().unwrap(),
+            manifest_path("examples/plant3d-bare.lsys")
+                .to_str()
+                .unwrap(),
         ]))
         .unwrap();
         let segments: usize = stats["segments"].as_str().unwrap().parse().unwrap();

@@ -108,7 +108,7 @@ fn stats_past_the_budget_give_a_bound() {
         max_symbols: 100,
         ..stlc::Limits::DEFAULT
     };
-    let plant = std::fs::read_to_string(manifest_path("examples/plant3d.lsys")).unwrap();
+    let plant = std::fs::read_to_string(manifest_path("examples/plant3d-bare.lsys")).unwrap();
     let req = Request {
         limits: small,
         depth: Some(2),

@@ -385,3 +385,37 @@ fn abop_1_26_as_a_mesh_has_one_material_per_colour_and_leaf_materials() {
         );
     }
 }
+
+#[test]
+fn abop_5_5a_leaf_is_one_polygon_of_2n_vertices_worked_by_hand() {
+    // n = 20: the base `.`, then on the way up the midrib the ends of the
+    // veins turned `-` (right) R0..R19, on the way down those turned `+`
+    // (left) L19..L0. B(t) grows min(t, 19 - t)
+    // segments (it is made at step t + 1 and loses PD = 1 a step), so R0,
+    // L0, R19 and L19 lie on the midrib; L19 equals R19 just before it and
+    // is kept once: 1 + 20 + 19 = 40 vertices.
+    let src =
+        std::fs::read_to_string(crate::support::manifest_path("examples/abop-5.5a.lsys")).unwrap();
+    let rec = recorded(&src, 20);
+    assert_eq!(rec.polygons.len(), 1);
+    let v = &rec.polygons[0].1;
+    assert_eq!(v.len(), 40);
+    // The midrib's k-th G is made at step k + 1 as G(5, 1.1) and grows by
+    // 1.1 for the 19 - k steps left: R0 is 5 * 1.1^19 up, the tip the sum.
+    let close = |p: Point, x: f64, y: f64| (p.x - x).abs() < 1e-9 && (p.y - y).abs() < 1e-9;
+    let first = 5.0 * 1.1f64.powi(19);
+    let tip = 50.0 * (1.1f64.powi(20) - 1.0);
+    assert!(close(v[0], 0.0, 0.0), "{:?}", v[0]);
+    assert!(close(v[1], 0.0, -first), "{:?}", v[1]);
+    assert!(close(v[39], 0.0, -first), "{:?}", v[39]);
+    assert!(close(v[20], 0.0, -tip), "{:?}", v[20]);
+    // Right ends right of the midrib, left ends mirrored across it.
+    for i in 2..20 {
+        assert!(v[i].x > 0.0, "{i}: {:?}", v[i]);
+        let r = v[40 - i];
+        assert!((r.x + v[i].x).abs() < 1e-9 && (r.y - v[i].y).abs() < 1e-9);
+    }
+    // Every G draws a stem: 20 on the midrib, 2 * (1 + ... + 9) = 90 on
+    // each side.
+    assert_eq!(rec.segments.len(), 20 + 2 * 90);
+}

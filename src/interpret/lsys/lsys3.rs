@@ -208,7 +208,7 @@ mod tests {
         // dfs runs the compiled program (macros and, at these depths,
         // plans); bfs feeds every symbol of the rewritten word to the
         // turtle: the same stems, bit for bit.
-        let plant = std::fs::read_to_string("examples/plant3d.lsys").unwrap();
+        let plant = std::fs::read_to_string("examples/plant3d-bare.lsys").unwrap();
         let odd = "dimensions 3\nangle 37\naxiom XA\nrule A F[&A]X/F[^\\A]|-A\nrule X fF+X\n";
         for (src, depth) in [(HILBERT, 5), (plant.as_str(), 8), (odd, 9)] {
             let sys = parse(src);

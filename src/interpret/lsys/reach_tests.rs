@@ -198,7 +198,7 @@ fn at_detail_zero_the_walk_is_the_exact_drawing() {
             (system(&mut rng, a), rng.below(5) as u32)
         })
         .collect();
-    for (f, d) in [("plant3d", 5), ("hilbert3d", 3)] {
+    for (f, d) in [("plant3d-bare", 5), ("hilbert3d", 3)] {
         let text = std::fs::read_to_string(format!("examples/{f}.lsys")).unwrap();
         srcs.push((text, d));
     }
@@ -229,7 +229,7 @@ fn a_cut_part_fits_its_detail_and_the_walk_goes_on_from_its_end() {
     // stand-ins; the trunk and first branches (longer than that) are
     // drawn exactly, and as the exact drawing draws them: every stem
     // handed out that is longer than the detail is one of its stems.
-    let text = std::fs::read_to_string("examples/plant3d.lsys").unwrap();
+    let text = std::fs::read_to_string("examples/plant3d-bare.lsys").unwrap();
     let sys = parse(&text);
     let mut exact = Vec::new();
     draw3(
