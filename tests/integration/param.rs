@@ -565,7 +565,7 @@ fn classic_files_take_the_classic_path() {
     for name in [
         "abop-1.24a.lsys",
         "hilbert.lsys",
-        "plant3d.lsys",
+        "plant3d-bare.lsys",
         "sierpinski-arrowhead.lsys",
     ] {
         let sys = parse(&example(name), &Limits::default()).unwrap();
