@@ -407,14 +407,12 @@ mod tests {
         }
     }
 
-    /// ABOP 1.24b, whose subtrees overlap many times over, at depth 10
-    /// in 300 x 300: the walk skips parts of it whose reach is already
-    /// full ink, and every pixel is what drawing them paints.
-    #[test]
-    fn skipping_what_is_full_ink_changes_no_pixel() {
+    /// ABOP 1.24b's memo at `depth` and two banded 300 x 300 pictures of
+    /// it at the level of detail, to draw two ways and compare.
+    fn bush_1_24b(depth: u32) -> (Memo, PngTurtle, PngTurtle) {
         let src = "axiom F\nrule F -> F[+F]F[-F][F]\nangle 20\n";
         let sys = crate::syntax::lsys::parse(src, &Limits::DEFAULT).unwrap();
-        let memo = Memo::new(&sys, 10).unwrap();
+        let memo = Memo::new(&sys, depth).unwrap();
         let width = Width::Pixels(1.0);
         let fit = Fit::content(memo.measured().bbox, 0, &width, Some((300, 300))).unwrap();
         let style = Style {
@@ -427,7 +425,15 @@ mod tests {
                 .unwrap()
                 .with_detail(Some(LOD_PX))
         };
-        let (mut a, mut b) = (turtle(), turtle());
+        (memo, turtle(), turtle())
+    }
+
+    /// ABOP 1.24b, whose subtrees overlap many times over, at depth 10
+    /// in 300 x 300: the walk skips parts of it whose reach is already
+    /// full ink, and every pixel is what drawing them paints.
+    #[test]
+    fn skipping_what_is_full_ink_changes_no_pixel() {
+        let (memo, mut a, mut b) = bush_1_24b(10);
         let detail = a.detail().unwrap();
         let mut skipping = Watch {
             t: &mut a,
@@ -456,22 +462,7 @@ mod tests {
     /// difference under 2/255, inked pixels within 3 %).
     #[test]
     fn dense_bushes_drawn_whole_ink_what_walking_them_inks() {
-        let src = "axiom F\nrule F -> F[+F]F[-F][F]\nangle 20\n";
-        let sys = crate::syntax::lsys::parse(src, &Limits::DEFAULT).unwrap();
-        let memo = Memo::new(&sys, 12).unwrap();
-        let width = Width::Pixels(1.0);
-        let fit = Fit::content(memo.measured().bbox, 0, &width, Some((300, 300))).unwrap();
-        let style = Style {
-            stroke: Rgb::BLACK,
-            background: Some(Rgb::WHITE),
-            width,
-        };
-        let turtle = || {
-            PngTurtle::banded(fit, &style)
-                .unwrap()
-                .with_detail(Some(LOD_PX))
-        };
-        let (mut a, mut b) = (turtle(), turtle());
+        let (memo, mut a, mut b) = bush_1_24b(12);
         let detail = a.detail().unwrap();
         let mut whole = Watch {
             t: &mut a,
