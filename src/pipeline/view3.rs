@@ -174,24 +174,17 @@ pub(crate) fn mesh(
             What::Tree { .. } => w,
         },
     };
-    let most = opts.max_tubes();
-    let mut tubes: Vec<Tube> = Vec::new();
-    let mut over = false;
-    let mut keep = |s: Segment3| {
-        if tubes.len() as u64 >= most {
-            over = true;
-            return;
-        }
-        tubes.push(Tube {
-            from: s.from,
-            to: s.to,
-            width: width(s.order),
-            color,
-        });
+    let mut got = Gathered {
+        tubes: Vec::new(),
+        leaves: Vec::new(),
+        over: false,
+        most: opts.max_tubes(),
+        width,
+        paint: color,
     };
+    let most = got.most;
     solid_usage(scene, format, opts)?;
     let mut phase = Phase::new(progress, "deriving");
-    let mut leaves: Vec<mesh::Leaf> = Vec::new();
     if let Some((sys, depth)) = lsys3(scene)
         && let Some(p) = sys.parametric.as_deref().filter(|p| p.paints())
     {
@@ -201,38 +194,14 @@ pub(crate) fn mesh(
             mesh::mesh_too_large(most, true, opts)
         })?;
         let palette = &p.organs.palette;
-        let mut paint = palette.first().copied().unwrap_or(color);
+        got.paint = palette.first().copied().unwrap_or(color);
         crate::interpret::lsys::param::draw3_marks(
             sys,
             p,
             depth,
             scene.derivation,
             &scene.limits,
-            &mut |m| match m {
-                Mark::Step(s, _) => {
-                    if tubes.len() as u64 >= most {
-                        over = true;
-                        return;
-                    }
-                    tubes.push(Tube {
-                        from: s.from,
-                        to: s.to,
-                        width: width(s.order),
-                        color: paint,
-                    });
-                }
-                Mark::Paint(i) => paint = palette.get(i).copied().unwrap_or(color),
-                Mark::Polygon(points) => {
-                    if (tubes.len() + leaves.len()) as u64 >= most {
-                        over = true;
-                        return;
-                    }
-                    leaves.push(mesh::Leaf {
-                        points: points.to_vec(),
-                        color: paint,
-                    });
-                }
-            },
+            &mut |m| got.mark(m, |i| palette.get(i).copied().unwrap_or(color)),
         )?;
     } else if let Some((sys, depth)) = lsys3(scene) {
         check_stems(sys, depth, &scene.limits, most, |_| {
@@ -243,7 +212,7 @@ pub(crate) fn mesh(
             depth,
             scene.derivation,
             &scene.limits,
-            &mut keep,
+            &mut |s| got.step(s, color),
             &mut phase,
         )?;
     } else if let Some(bed) = scene
@@ -256,36 +225,20 @@ pub(crate) fn mesh(
             crate::interpret::dress::gather(bed, scene.derivation, &scene.limits, &mut phase)?;
         let dress = crate::interpret::dress::Dress::new(bed.description(), &segs, color);
         let palette = dress.palette();
-        let mut paint = color;
-        dress.emit(&mut |m| match m {
-            Mark::Step(s, _) => {
-                if tubes.len() as u64 >= most {
-                    over = true;
-                    return;
-                }
-                tubes.push(Tube {
-                    from: s.from,
-                    to: s.to,
-                    width: width(s.order),
-                    color: paint,
-                });
-            }
-            Mark::Paint(i) => paint = palette[i],
-            Mark::Polygon(points) => {
-                if (tubes.len() + leaves.len()) as u64 >= most {
-                    over = true;
-                    return;
-                }
-                leaves.push(mesh::Leaf {
-                    points: points.to_vec(),
-                    color: paint,
-                });
-            }
-        })?;
-    } else if !draw_tree3(scene, &mut keep, &mut phase)? {
-        let mut lift = Lift(&mut keep);
-        scene.draw(&mut lift, &mut phase)?;
+        dress.emit(&mut |m| got.mark(m, |i| palette[i]))?;
+    } else {
+        let mut keep = |s: Segment3| got.step(s, color);
+        if !draw_tree3(scene, &mut keep, &mut phase)? {
+            let mut lift = Lift(&mut keep);
+            scene.draw(&mut lift, &mut phase)?;
+        }
     }
+    let Gathered {
+        tubes,
+        leaves,
+        over,
+        ..
+    } = got;
     mesh::check_tubes(tubes.len() as u64, over, opts)?;
     let n = tubes.len() as u64;
     let triangles = if format == MeshFormat::Stl {
@@ -304,6 +257,53 @@ pub(crate) fn mesh(
         triangles,
         warnings: nothing_drawn(n),
     })
+}
+
+/// The tubes and leaves of a mesh, gathered up to `most` pieces (`over`
+/// once one more came), each stem `width(order)` wide.
+struct Gathered<W: Fn(u32) -> f64> {
+    tubes: Vec<Tube>,
+    leaves: Vec<mesh::Leaf>,
+    over: bool,
+    most: u64,
+    width: W,
+    /// The colour in force for marks (a palette's or a ramp's).
+    paint: crate::color::Rgb,
+}
+
+impl<W: Fn(u32) -> f64> Gathered<W> {
+    /// A stem, a tube in `color`.
+    fn step(&mut self, s: Segment3, color: crate::color::Rgb) {
+        if self.tubes.len() as u64 >= self.most {
+            self.over = true;
+            return;
+        }
+        self.tubes.push(Tube {
+            from: s.from,
+            to: s.to,
+            width: (self.width)(s.order),
+            color,
+        });
+    }
+
+    /// A mark of a painting turtle: a stem in the colour in force, a
+    /// change of colour (`palette` of its index), a polygon a leaf.
+    fn mark(&mut self, m: Mark, palette: impl Fn(usize) -> crate::color::Rgb) {
+        match m {
+            Mark::Step(s, _) => self.step(s, self.paint),
+            Mark::Paint(i) => self.paint = palette(i),
+            Mark::Polygon(points) => {
+                if (self.tubes.len() + self.leaves.len()) as u64 >= self.most {
+                    self.over = true;
+                    return;
+                }
+                self.leaves.push(mesh::Leaf {
+                    points: points.to_vec(),
+                    color: self.paint,
+                });
+            }
+        }
+    }
 }
 
 /// Refuses `--solid` of a 2D input or into a format other than `.stl`,

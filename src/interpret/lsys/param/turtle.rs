@@ -62,6 +62,21 @@ struct State {
     color: usize,
 }
 
+/// Each surface's name and word, its arguments evaluated once.
+fn surface_words(surfaces: &[crate::model::param::Surface]) -> Vec<(char, SurfaceWord)> {
+    surfaces
+        .iter()
+        .map(|s| {
+            let w: Vec<(char, Vec<f64>)> = s
+                .word
+                .iter()
+                .map(|m| (m.symbol, m.args.iter().map(eval_const).collect()))
+                .collect();
+            (s.name, Rc::from(w))
+        })
+        .collect()
+}
+
 /// The parametric turtle.
 pub struct Turtle3P {
     state: State,
@@ -112,19 +127,7 @@ impl Turtle3P {
             }),
             colors: p.organs.palette.len().max(1),
             decay: p.organs.decay(),
-            surfaces: p
-                .organs
-                .surfaces
-                .iter()
-                .map(|s| {
-                    let w: Vec<(char, Vec<f64>)> = s
-                        .word
-                        .iter()
-                        .map(|m| (m.symbol, m.args.iter().map(eval_const).collect()))
-                        .collect();
-                    (s.name, Rc::from(w))
-                })
-                .collect(),
+            surfaces: surface_words(&p.organs.surfaces),
             placing: false,
             scale: 1.0,
             polygons: Vec::new(),
@@ -157,17 +160,7 @@ impl Turtle3P {
             tropism: None,
             colors: 1,
             decay: crate::model::param::DEFAULT_WIDTH_DECAY,
-            surfaces: surfaces
-                .iter()
-                .map(|s| {
-                    let w: Vec<(char, Vec<f64>)> = s
-                        .word
-                        .iter()
-                        .map(|m| (m.symbol, m.args.iter().map(eval_const).collect()))
-                        .collect();
-                    (s.name, Rc::from(w))
-                })
-                .collect(),
+            surfaces: surface_words(surfaces),
             placing: false,
             scale: 1.0,
             polygons: Vec::new(),
