@@ -7,8 +7,8 @@
 use serde_json::{Value, json};
 
 use super::browser_web::open_example;
-use super::chromium::{Browser, cli_svg_of, click, js, same_bytes, settled, shot};
-use super::serve::{Server, example};
+use super::chromium::{cli_svg_of, click, js, on_served_page, same_bytes, settled, shot};
+use super::serve::example;
 
 /// Sets the colour field `css` to `hex` as a pick does (an `input`
 /// event); the page's answer once its text is `want`.
@@ -48,16 +48,7 @@ fn changed_lines(a: &str, b: &str) -> Vec<(String, String)> {
 
 #[test]
 fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let server = Server::start(&[]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
-
+    on_served_page(async |c, _| {
         // The paper's 2DTree has no S=: the field shows the colour drawn,
         // and a pick adds ` S=#8b4513` at the header's end, nothing else.
         open_example(&c, "2dtree.od").await;

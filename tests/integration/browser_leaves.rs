@@ -8,8 +8,8 @@
 use serde_json::{Value, json};
 
 use super::browser_web::open_example;
-use super::chromium::{Browser, cli, js, same_bytes, settled, shot};
-use super::serve::{Server, example};
+use super::chromium::{cli, js, on_served_page, same_bytes, settled, shot};
+use super::serve::example;
 
 /// Chooses `name` in the leaf list as a user does (a `change` event); the
 /// page's answer once its text is `want`.
@@ -75,16 +75,7 @@ async fn leaf_list(c: &fantoccini::Client) -> Value {
 
 #[test]
 fn the_leaf_control_rewrites_only_p_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let server = Server::start(&[]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
-
+    on_served_page(async |c, _| {
         open_example(&c, "oak3d.od").await;
         let leafy = example("oak3d.od");
         assert_eq!(leaf_list(&c).await, json!([["none", "L"], "L"]));

@@ -14,7 +14,9 @@ use serde_json::{Value, json};
 use super::browser_web::{
     engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, start,
 };
-use super::chromium::{Browser, cli, cli_svg_of, click, js, same_bytes, settled, shot};
+use super::chromium::{
+    Browser, cli, cli_svg_of, click, js, on_served_page, same_bytes, settled, shot,
+};
 use super::param_frontends::{parametric_examples, same_words};
 use super::serve::{Server, example};
 
@@ -66,15 +68,7 @@ async fn slide(c: &Client, key: &str, value: &str) -> Value {
 /// the CLI's for the new text.
 #[test]
 fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let server = Server::start(&[]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
+    on_served_page(async |c, _| {
         open_example(&c, "param-willow.lsys").await;
         let after = slide(&c, "define-spread", "45").await;
         let keys = js(
@@ -102,7 +96,6 @@ fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
             "the willow with spread 45",
         );
         shot(&c, "param-01-define-sliders").await;
-        let _ = c.close().await;
     });
 }
 

@@ -9,8 +9,8 @@ use fantoccini::Client;
 use serde_json::json;
 
 use super::browser_web::{engine_export, examples, on_site};
-use super::chromium::{Browser, cli, click, js, same_bytes, settled, shot};
-use super::serve::{Server, example};
+use super::chromium::{cli, click, js, on_served_page, same_bytes, settled, shot};
+use super::serve::example;
 use crate::support::manifest_path;
 
 /// The PNG `stlc render examples/NAME --size 96x96 --show-layout` writes.
@@ -94,15 +94,7 @@ async fn thumbnails_open_examples(c: &Client, what: &str) {
 
 #[test]
 fn the_examples_panel_shows_the_cli_thumbnails_and_opens_one_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let server = Server::start(&[]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
+    on_served_page(async |c, _| {
         thumbnails_open_examples(&c, "serve").await;
     });
 }

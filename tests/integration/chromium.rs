@@ -347,3 +347,21 @@ pub(super) fn same_bytes(got: &[u8], want: &[u8], what: &str) {
         );
     }
 }
+
+/// Opens `stlc serve`'s page (no file) in a fresh Chromium, waits for its
+/// first answer and runs `f` on it; returns at once where Chromium is
+/// missing (after [`Browser::start`] says so).
+pub(super) fn on_served_page(f: impl AsyncFnOnce(&Client, &super::serve::Server)) {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let server = super::serve::Server::start(&[]);
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        f(&c, &server).await;
+        let _ = c.close().await;
+    });
+}
