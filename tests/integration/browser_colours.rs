@@ -51,32 +51,32 @@ fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
     on_served_page(async |c, _| {
         // The paper's 2DTree has no S=: the field shows the colour drawn,
         // and a pick adds ` S=#8b4513` at the header's end, nothing else.
-        open_example(&c, "2dtree.od").await;
+        open_example(c, "2dtree.od").await;
         let paper = example("2dtree.od");
-        let stroke = js(&c, "return window.stlc.state.answer.stroke").await;
+        let stroke = js(c, "return window.stlc.state.answer.stroke").await;
         // The paper's brown, as the CLI draws it (not the field's default black).
         assert_eq!(stroke, json!("#4a2c12"));
         assert_eq!(
-            js(&c, "return document.getElementById('stem-colour').value").await,
+            js(c, "return document.getElementById('stem-colour').value").await,
             stroke
         );
         let brown = paper.replace("B=1(0)RULE", "B=1(0) S=#8b4513 RULE");
         assert_ne!(brown, paper);
-        pick(&c, "#stem-colour", "#8b4513", &brown).await;
+        pick(c, "#stem-colour", "#8b4513", &brown).await;
         assert_eq!(changed_lines(&paper, &brown).len(), 1);
-        let svg = js(&c, "return window.stlc.state.answer.svg").await;
+        let svg = js(c, "return window.stlc.state.answer.svg").await;
         let want = cli_svg_of("2dtree.od", &brown);
         same_bytes(svg.as_str().unwrap().as_bytes(), &want, "brown 2dtree");
         assert!(String::from_utf8_lossy(&want).contains("#8b4513"));
         // Picked again: the key's value changes, not the key added twice.
         let darker = paper.replace("B=1(0)RULE", "B=1(0) S=#5b3a1e RULE");
-        pick(&c, "#stem-colour", "#5b3a1e", &darker).await;
+        pick(c, "#stem-colour", "#5b3a1e", &darker).await;
 
         // Fig. 1.26's palette: a field per colour, each the line's.
-        open_example(&c, "abop-1.26.lsys").await;
+        open_example(c, "abop-1.26.lsys").await;
         let plant = example("abop-1.26.lsys");
         let fields = js(
-            &c,
+            c,
             "return [...document.querySelectorAll('#palette-colours input')].map((f) => f.value)",
         )
         .await;
@@ -85,7 +85,7 @@ fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
             "palette #2f5d1e #4f9a34 #e9679b #f2c230",
             "palette #2f5d1e #4f9a34 #7b2cbf #f2c230",
         );
-        pick(&c, "[data-testid=palette-2]", "#7b2cbf", &petals).await;
+        pick(c, "[data-testid=palette-2]", "#7b2cbf", &petals).await;
         assert_eq!(
             changed_lines(&plant, &petals),
             [(
@@ -94,23 +94,23 @@ fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
             )]
         );
         // `+` adds a copy of the last colour to the line, a fifth field.
-        click(&c, "[data-testid=palette-add]").await;
+        click(c, "[data-testid=palette-add]").await;
         let five = petals.replace("#7b2cbf #f2c230", "#7b2cbf #f2c230 #f2c230");
         for _ in 0..100 {
-            if settled(&c).await["text"] == json!(five) {
+            if settled(c).await["text"] == json!(five) {
                 break;
             }
             tokio::time::sleep(std::time::Duration::from_millis(50)).await;
         }
-        assert_eq!(settled(&c).await["text"], json!(five));
+        assert_eq!(settled(c).await["text"], json!(five));
         assert_eq!(
             js(
-                &c,
+                c,
                 "return document.querySelectorAll('#palette-colours input').length"
             )
             .await,
             json!(5)
         );
-        shot(&c, "colours-01-palette").await;
+        shot(c, "colours-01-palette").await;
     });
 }

@@ -76,12 +76,12 @@ async fn leaf_list(c: &fantoccini::Client) -> Value {
 #[test]
 fn the_leaf_control_rewrites_only_p_in_chromium() {
     on_served_page(async |c, _| {
-        open_example(&c, "oak3d.od").await;
+        open_example(c, "oak3d.od").await;
         let leafy = example("oak3d.od");
-        assert_eq!(leaf_list(&c).await, json!([["none", "L"], "L"]));
+        assert_eq!(leaf_list(c).await, json!([["none", "L"], "L"]));
         assert!(
             js(
-                &c,
+                c,
                 "return document.getElementById('leaf').offsetParent !== null"
             )
             .await
@@ -96,26 +96,26 @@ fn the_leaf_control_rewrites_only_p_in_chromium() {
             header,
             "L=12(0.5) B=3(0.2) A=28 C=2 D=137.5 S=#5b3a1e..#3b5e2b",
         );
-        choose(&c, "none", &bare).await;
-        assert_eq!(leaf_list(&c).await, json!([["none", "L"], "none"]));
-        let (page, bare_svg) = page_and_cli_svg(&c, &bare).await;
+        choose(c, "none", &bare).await;
+        assert_eq!(leaf_list(c).await, json!([["none", "L"], "none"]));
+        let (page, bare_svg) = page_and_cli_svg(c, &bare).await;
         same_bytes(&page, &bare_svg, "bare oak3d");
-        shot(&c, "leaves-01-none").await;
+        shot(c, "leaves-01-none").await;
 
         // L again: the key comes back where it was, the text is the file's.
-        choose(&c, "L", &leafy).await;
-        let (page, leafy_svg) = page_and_cli_svg(&c, &leafy).await;
+        choose(c, "L", &leafy).await;
+        let (page, leafy_svg) = page_and_cli_svg(c, &leafy).await;
         same_bytes(&page, &leafy_svg, "leafy oak3d");
         // The leaves are in the picture: it has more to draw than the bare
         // oak's (same angles, the default ones: nothing turned the view).
         assert!(leafy_svg.len() > bare_svg.len() + 1000);
-        shot(&c, "leaves-02-leafy").await;
+        shot(c, "leaves-02-leafy").await;
 
         // An .lsys has no leaf control.
-        open_example(&c, "abop-1.26.lsys").await;
+        open_example(c, "abop-1.26.lsys").await;
         assert_eq!(
             js(
-                &c,
+                c,
                 "return document.getElementById('leaf').offsetParent === null"
             )
             .await,

@@ -69,10 +69,10 @@ async fn slide(c: &Client, key: &str, value: &str) -> Value {
 #[test]
 fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
     on_served_page(async |c, _| {
-        open_example(&c, "param-willow.lsys").await;
-        let after = slide(&c, "define-spread", "45").await;
+        open_example(c, "param-willow.lsys").await;
+        let after = slide(c, "define-spread", "45").await;
         let keys = js(
-            &c,
+            c,
             "return [...document.querySelectorAll('#scrub-list input')].map((i) => i.dataset.key)",
         )
         .await;
@@ -89,13 +89,13 @@ fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
         let text = example("param-willow.lsys").replace("define spread 30\n", "define spread 45\n");
         assert_eq!(after["ok"], true, "{after}");
         assert_eq!(after["text"], json!(text));
-        let svg = js(&c, "return window.stlc.state.answer.svg").await;
+        let svg = js(c, "return window.stlc.state.answer.svg").await;
         same_bytes(
             svg.as_str().unwrap().as_bytes(),
             &cli_svg_of("edited.lsys", &text),
             "the willow with spread 45",
         );
-        shot(&c, "param-01-define-sliders").await;
+        shot(c, "param-01-define-sliders").await;
     });
 }
 

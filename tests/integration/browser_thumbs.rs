@@ -95,7 +95,7 @@ async fn thumbnails_open_examples(c: &Client, what: &str) {
 #[test]
 fn the_examples_panel_shows_the_cli_thumbnails_and_opens_one_in_chromium() {
     on_served_page(async |c, _| {
-        thumbnails_open_examples(&c, "serve").await;
+        thumbnails_open_examples(c, "serve").await;
     });
 }
 
