@@ -90,7 +90,7 @@ impl Ink {
     /// Strokes, blots and covers in `rgb` from now on.
     pub(super) fn set(&mut self, rgb: Rgb) {
         self.rgb = rgb;
-        self.paint.set_color(super::color(rgb));
+        self.paint.set_color(color(rgb));
     }
 }
 
@@ -220,7 +220,7 @@ impl Band<'_> {
             }
             Op::Cover => {
                 repeats.changed();
-                pixmap.fill(super::color(ink.rgb));
+                pixmap.fill(color(ink.rgb));
             }
             // The producer's ink or the thread's own has changed already;
             // what changed nothing in the old paint may change it now.
@@ -384,4 +384,9 @@ pub(super) fn in_threads<R>(
         // which ends the threads' loops; the scope waits for them.
         produce(Canvas::Sent(queues))
     })
+}
+
+/// The opaque tiny-skia colour of `c`.
+pub(super) fn color(c: Rgb) -> Color {
+    Color::from_rgba8(c.r, c.g, c.b, 255)
 }

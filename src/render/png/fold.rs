@@ -3,19 +3,9 @@
 //! to the last one written are held back, and a stand-in's chord is folded
 //! as the run of segments it stands for.
 
-use super::{FOLD_PX, PngTurtle};
+use super::PngTurtle;
+use crate::render::style::FOLD_PX;
 use crate::turtle::Point;
-
-/// The pen of the open subpath, in output pixels, for [`FOLD_PX`] folding.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Pen {
-    /// The last vertex written into the path.
-    pub(super) kept: Point,
-    /// Where the pen is: the end of the last segment.
-    pub(super) at: Point,
-    /// `at` is not written yet (it is closer than [`FOLD_PX`] to `kept`).
-    pub(super) pending: bool,
-}
 
 impl PngTurtle {
     /// Ends the open subpath: writes the pen's pending end point, so the

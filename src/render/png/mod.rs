@@ -37,7 +37,7 @@
 //! It does not decide sizes or widths: [`Fit`] and [`stroke_px`] in the
 //! parent module do. Its sections mirror `svg.rs`, so the two read side by side.
 
-use tiny_skia::{Color, FillRule, Paint, Path, PathBuilder, Pixmap};
+use tiny_skia::{FillRule, Paint, Path, PathBuilder, Pixmap};
 
 pub use bands::BAND_ROWS;
 
@@ -52,15 +52,18 @@ use crate::turtle::Fill;
 use crate::turtle::{Footprint, Point, Sample, Segment, StandIn, Turtle};
 
 mod bands;
+mod field;
 mod fold;
 mod full;
 mod organs;
+mod pen;
 mod raster;
 mod repeat;
 mod sample;
+mod tiles;
 
-use bands::{Canvas, Ink, Op, Router};
-use fold::Pen;
+use bands::{Canvas, Ink, Op, Router, color};
+use pen::Pen;
 use raster::{Bush, Recent, Shape};
 
 // ---------------------------------------------------------------------------
@@ -107,12 +110,12 @@ pub struct PngTurtle {
     stood: f64,
     /// The bushes sampled so far ([`Turtle::stand_in`] with a sample); `None` in a bush's
     /// own sample, whose bushes are modelled.
-    fields: Option<sample::Fields>,
+    fields: Option<field::Fields>,
     /// Whether [`Turtle::dense`] may draw a piece whole (not in a
     /// sample's own drawing).
     dense: bool,
     /// The raster's tiles found full ink ([`Turtle::covered`]).
-    full: full::Full,
+    full: tiles::Full,
     /// What the raster (or each band painted here) was stroked with lately.
     repeats: Vec<repeat::Repeats>,
 }
@@ -171,9 +174,9 @@ impl PngTurtle {
             short_side: 0.99 * f64::from(fit.width.min(fit.height)),
             covered: false,
             stood: 0.0,
-            fields: Some(sample::Fields::default()),
+            fields: Some(field::Fields::default()),
             dense: true,
-            full: full::Full::new(),
+            full: tiles::Full::new(),
             repeats: bands::repeats_for(&canvas),
             canvas,
         }
@@ -628,9 +631,5 @@ const MAX_STROKE_PX: f64 = 1.0e6;
 const INK_PER_BATCH: f64 = 2.0;
 
 /// An opaque tiny-skia colour.
-fn color(c: Rgb) -> Color {
-    Color::from_rgba8(c.r, c.g, c.b, 255)
-}
-
 #[cfg(test)]
 mod tests;

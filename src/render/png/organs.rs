@@ -4,10 +4,11 @@
 
 use tiny_skia::{FillRule, Paint, PathBuilder, Transform};
 
-use super::bands::{Canvas, Op};
+use super::PngTurtle;
+use super::bands::{Canvas, Op, color};
 use super::raster::Recent;
 use super::repeat::Repeats;
-use super::{PngTurtle, color, full};
+use super::tiles::Full;
 use crate::color::Rgb;
 use crate::turtle::Point;
 
@@ -59,7 +60,7 @@ impl PngTurtle {
         self.ink.set(rgb);
         // What was full of the old colour is not of the new one.
         self.covered = false;
-        self.full = full::Full::new();
+        self.full = Full::new();
         self.recent = Recent::new();
         if let Canvas::Sent(_) = self.canvas {
             self.canvas

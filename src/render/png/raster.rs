@@ -15,9 +15,9 @@ pub(super) enum Shape {
     /// A bush's hairlines spread evenly across its footprint
     /// ([`Bush::new`]).
     Bush(Bush),
-    /// A bush's own ink, sampled ([`sample`](super::sample)): `a` is
+    /// A bush's own ink, sampled ([`field`](super::field)): `a` is
     /// its start.
-    Field(std::sync::Arc<super::sample::Field>),
+    Field(std::sync::Arc<super::field::Field>),
 }
 
 /// The expected ink of a bush's stand-in: the strokes it stands for,
@@ -202,7 +202,7 @@ pub(super) fn stamp(
         Shape::Capsule(radius) => radius + 0.5,
         Shape::Bush(bush) => bush.reach(),
         Shape::Field(field) => {
-            return super::sample::stamp(data, width, rows, ink, a, field);
+            return super::field::stamp(data, width, rows, ink, a, field);
         }
     };
     let (lo_x, hi_x) = (a.x.min(b.x) - reach, a.x.max(b.x) + reach);
@@ -264,23 +264,6 @@ pub(super) fn stamp(
 fn ceil(v: f64) -> usize {
     let t = v as usize;
     if (t as f64) < v { t + 1 } else { t }
-}
-
-/// `libm::round(v) as i64` (halves away from zero) without a call: the
-/// cast truncates, and `v` less its truncation is exact (the fraction of
-/// a double is a double), so comparing it with one half rounds as
-/// `round` does; past `i64`'s range both saturate, and NaN gives 0.
-#[inline]
-pub(super) fn round_i64(v: f64) -> i64 {
-    let t = v as i64;
-    let f = v - t as f64;
-    if f >= 0.5 {
-        t.saturating_add(1)
-    } else if f <= -0.5 {
-        t.saturating_sub(1)
-    } else {
-        t
-    }
 }
 
 /// How far the raster's farthest pixel corner is from the segment `a`-`b`:
@@ -356,6 +339,7 @@ fn bucket_of(key: &[u64; 5]) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::png::field::round_i64;
 
     /// Corner distances worked by hand on a 100 x 50 raster.
     #[test]

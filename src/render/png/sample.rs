@@ -1,271 +1,35 @@
-//! Bushes drawn from themselves ([`Turtle::stand_in`] with a sample): each distinct bush
-//! is rasterised once, by this backend, at sixteen sub-pixel positions
-//! (a grid a quarter pixel apart), into the ink it leaves around its
-//! start; wherever the bush recurs the ink of the grid point nearest
-//! each pixel is stamped (its own drawing moved at most an eighth of a
-//! pixel each way). So a stand-in inks what its own strokes
-//! ink, caps, folds and hairline coverage included, instead of a model
-//! of them (docs/rendering.md, *Silhouette*).
-//!
-//! The ink is kept as the sample's coverage (0-255) at each grid point,
-//! and stamped source-over: a pixel under bushes of coverages `c1, c2,
-//! ...` keeps `(1 - c1)(1 - c2)...` of its colour, as under the strokes
-//! themselves, each blended over the others.
+//! The backend's side of sampled bushes ([`field`](super::field)): which
+//! stand-ins, solid pieces and dense pieces are drawn from a field, and
+//! the drawing of a field's sample, by this backend itself.
 
-/// The memo's map, hashed by foldhash's fixed state: SipHash cost about
-/// 5 % of a dense picture (issue 37); nothing iterates it into output.
-type HashMap<K, V> = std::collections::HashMap<K, V, foldhash::fast::FixedState>;
 use std::sync::Arc;
 
+use tiny_skia::Pixmap;
+
 use super::PngTurtle;
-use crate::color::Rgb;
+use super::field::{DENSE_KEY, EXACT_SEGMENTS, Field, Fields, SOLID_SEGMENTS, SUB};
 use crate::render::fit::{Fit, stroke_px};
-use crate::render::style::{Style, Width};
-use crate::turtle::{Point, Sample};
+use crate::render::style::Style;
+use crate::turtle::Sample;
 
-/// A bush is drawn at `SUB x SUB` offsets: a grid `1 / SUB` px apart.
-const SUB: usize = 4;
-
-/// A bush of at most this many segments is sampled exactly; a larger one
-/// at a sixteenth of the detail (its own bushes then stand-ins as
-/// [`Bush`](super::raster::Bush) models them).
-pub(super) const EXACT_SEGMENTS: u64 = 4096;
-
-/// A solid piece (docs/rendering.md, *Dense curves*) of at most this
-/// many segments is drawn exactly, as a bush is, so it has the exact
-/// drawing's tone (a dark grey where hairlines blended in 8 bits stall);
-/// a larger one is left to its hatch, which is what the exact drawing's
-/// ink converges to (black).
-pub(super) const SOLID_SEGMENTS: u64 = 1 << 16;
-
-/// Marks a dense piece's key ([`PngTurtle::dense_field`]): the top bit
-/// of [`Sample::piece_key`]'s depth.
-const DENSE_KEY: u128 = 1 << 95;
-
-/// At most this many bushes are sampled in one drawing (a few hundred
-/// bytes each with hairlines); past it, the rest are modelled.
-const MAX_FIELDS: usize = 16_384;
-
-/// And at most this many grid points (bytes) in all: 8 MB.
-const MAX_POINTS: usize = 1 << 23;
-
-/// A bush's ink around its start: its coverage at grid points `1 / sub`
-/// px apart, the first at `min` (output pixels, relative to the start).
-#[derive(Debug)]
-pub(super) struct Field {
-    sub: usize,
-    min: Point,
-    nx: usize,
-    ny: usize,
-    /// At least half of the points it inks are full ink: its strokes ink
-    /// its footprint fully ([`Turtle::dense`](crate::turtle::Turtle::dense)).
-    full: bool,
-    cov: Vec<u8>,
-}
-
-impl Field {
-    /// The rows the field can ink, its start at `at`, with a pixel to
-    /// spare at each end: pixel row `y`'s grid row is within half a step
-    /// of `(y + 0.5 - at.y - min.y) sub`, so it is on the grid only from
-    /// `at.y + min.y - 1` to `at.y + min.y + ny / sub`.
-    pub(super) fn rows(&self, at: Point) -> (f64, f64) {
-        let top = at.y + self.min.y;
-        (top - 2.0, top + self.ny as f64 / self.sub as f64 + 2.0)
-    }
-
-    /// The grid point nearest a pixel whose centre is at `q` from the
-    /// start: the bush's own drawing moved at most half a grid step each
-    /// way (interpolating between the grid's points would blur it).
-    fn nearest(&self, q: Point) -> (i64, i64) {
-        let s = self.sub as f64;
-        let u = super::raster::round_i64((q.x - self.min.x) * s);
-        let v = super::raster::round_i64((q.y - self.min.y) * s);
-        (u, v)
-    }
-}
-
-/// The bushes sampled so far in one drawing.
-#[derive(Default)]
-pub(super) struct Fields {
-    by_key: HashMap<u128, Option<Arc<Field>>>,
-    /// Grid points held.
-    points: usize,
-}
-
-impl Fields {
-    /// The field of `sample`, drawn with strokes of `width` at `fit`'s
-    /// scale at `sub x sub` offsets, exactly or at a level of detail of
-    /// `detail_px`; `None` when there are too many or it cannot be drawn.
-    ///
-    /// `nested`: its own bushes are sampled too (from these fields, at
-    /// the same scale), as a dense piece's are; else they are modelled.
-    pub(super) fn get(
-        &mut self,
-        sample: &Sample,
-        scale: f64,
-        width: Width,
-        (sub, detail_px, nested): (usize, Option<f64>, bool),
-    ) -> Option<Arc<Field>> {
-        if let Some(f) = self.by_key.get(&sample.key) {
-            return f.clone();
-        }
-        if self.by_key.len() >= MAX_FIELDS || self.points >= MAX_POINTS {
-            return None;
-        }
-        let room = MAX_POINTS - self.points;
-        let field = build(
-            sample,
-            scale,
-            width,
-            (sub, detail_px),
-            room,
-            nested.then_some(&mut *self),
-        );
-        let field = field.map(Arc::new);
-        self.points += field.as_ref().map_or(0, |f| f.cov.len());
-        self.by_key.insert(sample.key, field.clone());
-        field
-    }
-}
-
-/// How far beyond its lines a drawing of strokes `width` wide at `scale`
-/// can ink, output pixels: a hairline a pixel beyond its line and its
-/// caps `pi / 8` past its ends; a wider stroke half its width and the
-/// pixel's half. (A little more, to be sure.)
-pub(super) fn reach_px(width: Width, scale: f64) -> f64 {
-    stroke_px(&width, scale, 0).max(1.0) / 2.0 + 1.5
-}
-
-/// Rasterises `sample` at `sub x sub` offsets, each on its own small
-/// transparent raster in black, and keeps its coverage (alpha);
-/// `None` if the grid would have more than `room` points.
-fn build(
+/// [`Draw`](super::field::Draw) by a [`PngTurtle`]: its own dense pieces
+/// are walked, never drawn whole.
+fn draw(
     sample: &Sample,
-    scale: f64,
-    width: Width,
-    (sub, detail): (usize, Option<f64>),
-    room: usize,
-    mut nested: Option<&mut Fields>,
-) -> Option<Field> {
-    let step = 1.0 / sub as f64;
-    let (lo, hi) = sample.bounds;
-    let margin = reach_px(width, scale);
-    let min = Point::new(lo.x * scale - margin, lo.y * scale - margin);
-    let span = |a: f64, b: f64| ((b - a) * scale + 2.0 * margin) / step;
-    let (sx, sy) = (span(lo.x, hi.x), span(lo.y, hi.y));
-    if !(sx.is_finite() && sy.is_finite() && sx < 1024.0 && sy < 1024.0) {
-        return None;
-    }
-    let (nx, ny) = (sx.ceil() as usize + 1, sy.ceil() as usize + 1);
-    if nx * ny > room {
-        return None;
-    }
-    let (tw, th) = (nx.div_ceil(sub), ny.div_ceil(sub));
-    let style = Style {
-        stroke: Rgb { r: 0, g: 0, b: 0 },
-        background: None,
-        width,
+    fit: Fit,
+    style: &Style,
+    detail: Option<f64>,
+    fields: Option<Fields>,
+) -> (Option<Pixmap>, Option<Fields>) {
+    let Ok(turtle) = PngTurtle::new(fit, style) else {
+        return (None, fields);
     };
-    let mut cov = vec![0u8; nx * ny];
-    for j in 0..sub {
-        for i in 0..sub {
-            // Tile pixel (px, py) has its centre at
-            // `min + ((sub px + i) step, (sub py + j) step)` from the start.
-            let fit = Fit {
-                width: tw as u32,
-                height: th as u32,
-                scale,
-                dx: 0.5 - min.x - i as f64 * step,
-                dy: 0.5 - min.y - j as f64 * step,
-            };
-            let mut turtle = PngTurtle::new(fit, &style).ok()?.with_detail(detail);
-            // Its own bushes are modelled, not sampled again, unless
-            // `nested`; its own dense pieces are walked.
-            turtle.fields = nested.as_deref_mut().map(std::mem::take);
-            turtle.dense = false;
-            (sample.draw)(detail.map_or(0.0, |d| d / scale), &mut turtle);
-            if let (Some(outer), Some(inner)) = (nested.as_deref_mut(), turtle.fields.take()) {
-                *outer = inner;
-            }
-            let raster = turtle.into_raster()?;
-            let data = raster.data();
-            for py in 0..th {
-                let gy = sub * py + j;
-                if gy >= ny {
-                    break;
-                }
-                for px in 0..tw {
-                    let gx = sub * px + i;
-                    if gx >= nx {
-                        break;
-                    }
-                    cov[gy * nx + gx] = data[(py * tw + px) * 4 + 3];
-                }
-            }
-        }
-    }
-    let inked = cov.iter().filter(|&&c| c > 0).count();
-    let full = cov.iter().filter(|&&c| c == 255).count();
-    Some(Field {
-        sub,
-        min,
-        nx,
-        ny,
-        full: full * 2 >= inked && inked > 0,
-        cov,
-    })
-}
-
-/// Paints `field`, its start at `at` (whole-picture pixels), blended
-/// source-over in `ink` into the band `rows` of `data` (`width` pixels
-/// wide), as [`raster::stamp`](super::raster::stamp) paints a blot.
-pub(super) fn stamp(
-    data: &mut [u8],
-    width: u32,
-    rows: std::ops::Range<u32>,
-    ink: Rgb,
-    at: Point,
-    field: &Field,
-) {
-    // A band the field cannot reach is left at once.
-    let (lo, hi) = field.rows(at);
-    if hi < f64::from(rows.start) || lo > f64::from(rows.end) {
-        return;
-    }
-    // Pixel (x, y)'s nearest grid point is (u0 + sub x, v0 + sub y): a
-    // pixel further is `sub` grid points further.
-    let (u0, v0) = field.nearest(Point::new(0.5 - at.x, 0.5 - at.y));
-    let sub = field.sub as i64;
-    let (nx, ny) = (field.nx as i64, field.ny as i64);
-    // The pixels whose grid points are inside the grid.
-    let first = |o: i64| (-o).max(0).div_euclid(sub) + i64::from((-o).max(0) % sub != 0);
-    let last = |o: i64, n: i64| (n - 1 - o).div_euclid(sub);
-    let (x0, x1) = (first(u0).max(0), last(u0, nx).min(i64::from(width) - 1));
-    let (y0, y1) = (
-        first(v0).max(i64::from(rows.start)),
-        last(v0, ny).min(i64::from(rows.end) - 1),
-    );
-    if x0 > x1 || y0 > y1 {
-        return;
-    }
-    let first_row = i64::from(rows.start);
-    let stride = width as usize;
-    let src = [u32::from(ink.r), u32::from(ink.g), u32::from(ink.b), 255];
-    for y in y0..=y1 {
-        let grid = ((v0 + sub * y) * nx) as usize;
-        let line = (y - first_row) as usize * stride;
-        for x in x0..=x1 {
-            let c = u32::from(field.cov[grid + (u0 + sub * x) as usize]);
-            if c == 0 {
-                continue;
-            }
-            let i = (line + x as usize) * 4;
-            for (ch, &s) in src.iter().enumerate() {
-                let d = u32::from(data[i + ch]);
-                data[i + ch] = ((s * c + d * (255 - c) + 127) / 255) as u8;
-            }
-        }
-    }
+    let mut turtle = turtle.with_detail(detail);
+    turtle.fields = fields;
+    turtle.dense = false;
+    (sample.draw)(detail.map_or(0.0, |d| d / fit.scale), &mut turtle);
+    let fields = turtle.fields.take();
+    (turtle.into_raster(), fields)
 }
 
 impl PngTurtle {
@@ -278,7 +42,13 @@ impl PngTurtle {
         }
         let detail = (sample.segments > EXACT_SEGMENTS).then_some(detail / 16.0);
         let fields = self.fields.as_mut()?;
-        fields.get(sample, self.fit.scale, self.width, (SUB, detail, false))
+        fields.get(
+            sample,
+            self.fit.scale,
+            self.width,
+            (SUB, detail, false),
+            draw,
+        )
     }
 
     /// [`Turtle::solid`]: the solid piece's field, drawn exactly, if it
@@ -289,7 +59,7 @@ impl PngTurtle {
             return None;
         }
         let fields = self.fields.as_mut()?;
-        fields.get(sample, self.fit.scale, self.width, (4, None, false))
+        fields.get(sample, self.fit.scale, self.width, (4, None, false), draw)
     }
 
     /// [`Turtle::dense`]: the piece's field, drawn at the detail with its
@@ -310,6 +80,7 @@ impl PngTurtle {
             self.fit.scale,
             self.width,
             (SUB, Some(detail), true),
+            draw,
         )?;
         field.full.then_some(field)
     }
@@ -327,7 +98,9 @@ impl PngTurtle {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::turtle::{Footprint, Segment, StandIn, Turtle};
+    use crate::color::Rgb;
+    use crate::render::style::Width;
+    use crate::turtle::{Footprint, Point, Segment, StandIn, Turtle};
     use tiny_skia::Pixmap;
 
     /// A twig of 1.24a's shape, `F[+F]F[-F]F` twice over (25 segments of
