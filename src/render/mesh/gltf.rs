@@ -177,7 +177,9 @@ fn write_buffer(mesh: &Mesh, out: &mut dyn Write) -> std::io::Result<()> {
         }
         for part in p.indices.chunks(4096) {
             chunk.clear();
-            chunk.extend(part.iter().flat_map(|i| i.to_le_bytes()));
+            for i in part {
+                chunk.extend_from_slice(&i.to_le_bytes());
+            }
             out.write_all(&chunk)?;
         }
     }
