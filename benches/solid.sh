@@ -2,9 +2,11 @@
 # `--solid` of the oak (issue 33: under 30 s and 2 GB), beside the plain
 # .glb of the same oak in the same run, interleaved run by run so machine
 # noise hits both alike. Medians of RUNS runs (default 3): wall and user
-# seconds and peak RSS from GNU time (`/usr/bin/time -v`). Each solid is
-# then read by benches/stl_check.py, an independent reader (watertight,
-# oriented, one body, volume, Euler characteristic).
+# seconds and peak RSS from GNU time (`/usr/bin/time -v`). Then the same
+# solid once as .3mf and once as .glb (`--solid -o oak.3mf`, `-o
+# oak-solid.glb`), timed, and all three read by benches/stl_check.py, an
+# independent reader (watertight, oriented, one body, volume, Euler
+# characteristic; trimesh too where it imports).
 #
 #   cargo build --release && benches/solid.sh [STLC]
 #
@@ -33,4 +35,9 @@ for kind in glb stl; do
     r=$(tr ' ' '\n' <<<"${rss[$kind]}" | grep . | median)
     echo "$IN -> .$kind: median of $RUNS: wall ${w} s, user ${u} s, peak RSS $((r / 1024)) MiB (walls: ${wall[$kind]})"
 done
-python3 "$(dirname "$0")/stl_check.py" "$out/oak.stl"
+for file in oak.3mf oak-solid.glb; do
+    /usr/bin/time -v -o "$out/time" "$STLC" render -q --solid -o "$out/$file" "$IN"
+    w=$(field 'Elapsed (wall clock) time (h:mm:ss or m:ss)' "$out/time" | awk -F: '{print $(NF-1)*60+$NF}')
+    echo "$IN -> $file (--solid): one run: wall ${w} s, user $(field 'User time (seconds)' "$out/time") s, peak RSS $(($(field 'Maximum resident set size (kbytes)' "$out/time") / 1024)) MiB, $(stat -c %s "$out/$file") bytes"
+done
+python3 "$(dirname "$0")/stl_check.py" "$out/oak.stl" "$out/oak.3mf" "$out/oak-solid.glb"

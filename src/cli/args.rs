@@ -344,7 +344,8 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub input: InputArgs,
 
-    /// Output file (.png or .svg; a mesh: .glb, .gltf or .obj), or `-` for
+    /// Output file (.png or .svg; a mesh: .glb, .gltf or .obj; a solid:
+    /// .stl, .3mf or .glb), or `-` for
     /// standard output. Default: the input's name with the format's
     /// extension.
     #[arg(short, long, value_name = "OUT")]
@@ -404,7 +405,8 @@ pub struct RenderArgs {
     pub view: Option<View>,
 
     /// Write a mesh instead of a picture (default: from the output's
-    /// extension, .glb, .gltf or .obj); needed for `-o -`.
+    /// extension, .glb, .gltf or .obj; with --solid .stl, .3mf or .glb);
+    /// needed for `-o -`.
     #[arg(long, value_enum, value_name = "FORMAT", conflicts_with = "format")]
     pub mesh: Option<MeshFormat>,
 
@@ -421,9 +423,10 @@ pub struct RenderArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_TRIANGLES)]
     pub max_triangles: u64,
 
-    /// Write one closed body for 3D printing (binary STL, millimetres, z
-    /// up): the stems' tubes and a sphere at each joint united (docs/3d.md).
-    /// A 3D input only; the output is .stl (the default name's extension).
+    /// Write one closed body for 3D printing: the stems' tubes and a sphere
+    /// at each joint united (docs/3d.md). As binary STL or 3MF (millimetres,
+    /// z up) or a .glb (metres, y up), by the output's extension; a 3D input
+    /// only. Without -o: .stl beside the input.
     #[arg(long)]
     pub solid: bool,
 

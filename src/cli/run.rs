@@ -154,9 +154,9 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
             return render_mesh(a, MeshFormat::Stl, limits, quiet, source);
         }
         return Err(Diagnostic::error(RenderError::SolidUsage {
-            message: "--solid writes one closed body as .stl, not a picture".into(),
+            message: "--solid writes one closed body as .stl, .3mf or .glb, not a picture".into(),
         })
-        .with_help("name the output tree.stl (or give --mesh stl with -o -)")
+        .with_help("name the output tree.stl, tree.3mf or tree.glb (or give --mesh stl with -o -)")
         .into());
     }
     match (a.mesh, named) {
@@ -235,7 +235,8 @@ fn render(a: &RenderArgs, quiet: bool, source: &mut Source) -> Outcome {
     Ok(drawn.map(|d| d.warnings).unwrap_or_default())
 }
 
-/// `render -o x.glb|x.gltf|x.obj`: the input as a mesh (docs/3d.md).
+/// `render -o x.glb|x.gltf|x.obj` (or `--solid -o x.stl|x.3mf|x.glb`):
+/// the input as a mesh (docs/3d.md).
 fn render_mesh(
     a: &RenderArgs,
     format: MeshFormat,
@@ -252,10 +253,23 @@ fn render_mesh(
             )
         })?,
     };
-    if matches!(format, MeshFormat::Glb | MeshFormat::Stl) && output.is_terminal() {
-        return Err(Diagnostic::error(FrontEndError::GlbToTerminal)
-            .with_help("a .glb is binary: redirect standard output to a file, or use -o tree.glb")
-            .into());
+    let binary = match format {
+        MeshFormat::Glb => Some("glTF"),
+        MeshFormat::Stl => Some("STL"),
+        MeshFormat::ThreeMf => Some("3MF"),
+        MeshFormat::Gltf | MeshFormat::Obj => None,
+    };
+    if let Some(name) = binary
+        && output.is_terminal()
+    {
+        let ext = format.extension();
+        return Err(
+            Diagnostic::error(FrontEndError::BinaryToTerminal { format: name })
+                .with_help(format!(
+                    "a .{ext} is binary: redirect standard output to a file, or use -o tree.{ext}"
+                ))
+                .into(),
+        );
     }
     not_the_input(&input, &output)?;
     let req = Request {

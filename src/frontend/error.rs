@@ -23,9 +23,13 @@ pub enum FrontEndError {
     /// A PNG would be written to a terminal.
     #[error("refusing to write a PNG to a terminal")]
     PngToTerminal,
-    /// A binary glTF (`.glb`) would be written to a terminal.
-    #[error("refusing to write a binary glTF to a terminal")]
-    GlbToTerminal,
+    /// A binary mesh (`.glb`, `.stl`, `.3mf`) would be written to a
+    /// terminal.
+    #[error("refusing to write a binary {format} to a terminal")]
+    BinaryToTerminal {
+        /// The format's name.
+        format: &'static str,
+    },
     /// A colour flag names no colour.
     #[error("{flag}: unknown colour `{text}`")]
     UnknownColourFlag {

@@ -1,7 +1,8 @@
 //! Three dimensions in the pipeline (docs/3d.md): which scenes are drawn
 //! in 3D and the view that draws them (a 3D `.lsys` by `lsys3.rs`, a 3D
 //! tree by `tree3.rs`), the stems an editor draws in its own 3D view
-//! ([`Stems3`]), and any input's mesh (`.glb`, `.gltf`, `.obj`).
+//! ([`Stems3`]), and any input's mesh (`.glb`, `.gltf`, `.obj`) or solid
+//! (`.stl`, `.3mf`, `.glb`).
 
 use std::io::Write;
 
@@ -241,14 +242,24 @@ pub(crate) fn mesh(
     } = got;
     mesh::check_tubes(tubes.len() as u64, over, opts)?;
     let n = tubes.len() as u64;
-    let triangles = if format == MeshFormat::Stl {
-        solid(&tubes, &leaves, first_root(scene), opts, out, progress)?
+    let triangles = if opts.solid {
+        let paint = tubes.first().map_or(color, |t| t.color);
+        solid(
+            &tubes,
+            &leaves,
+            first_root(scene),
+            opts,
+            format,
+            paint,
+            out,
+            progress,
+        )?
     } else {
         let m = mesh::build_with_leaves(&tubes, &leaves, first_root(scene), opts);
         match format {
             MeshFormat::Glb => mesh::write_glb(&m, out)?,
             MeshFormat::Gltf => mesh::write_gltf(&m, out)?,
-            MeshFormat::Obj | MeshFormat::Stl => mesh::write_obj(&m, out)?,
+            MeshFormat::Obj | MeshFormat::Stl | MeshFormat::ThreeMf => mesh::write_obj(&m, out)?,
         }
         m.triangles()
     };
@@ -306,47 +317,66 @@ impl<W: Fn(u32) -> f64> Gathered<W> {
     }
 }
 
-/// Refuses `--solid` of a 2D input or into a format other than `.stl`,
-/// and an `.stl` without `--solid` (usage errors, before any work).
+/// Refuses `--solid` of a 2D input or into a format that cannot hold it
+/// (a `.gltf`, an `.obj`), and an `.stl` or `.3mf` without `--solid`
+/// (usage errors, before any work).
 fn solid_usage(scene: &Scene, format: MeshFormat, opts: &MeshOptions) -> Result<(), Diagnostics> {
-    let message = match (opts.solid, format == MeshFormat::Stl) {
-        (true, false) => format!(
-            "--solid writes one closed body as .stl, not .{}",
-            format.extension()
-        ),
-        (false, true) => "an .stl is written as one closed body: add --solid".into(),
-        (true, true) if !is_3d(scene) => {
+    let ext = format.extension();
+    let message = match (opts.solid, format.takes_solid(), format.solid_only()) {
+        (true, false, _) => format!("--solid writes one closed body as .stl, .3mf or .glb, not .{ext}"),
+        (false, _, true) => {
+            let a = if format == MeshFormat::Stl { "an" } else { "a" };
+            format!("{a} .{ext} is written as one closed body: add --solid")
+        }
+        (true, true, _) if !is_3d(scene) => {
             "--solid needs a 3D input (a 3D .lsys, or an .od or .bed with a 3D layout); this one is 2D".into()
         }
         _ => return Ok(()),
     };
     Err(Diagnostic::error(RenderError::SolidUsage { message })
-        .with_help("a solid for 3D printing: stlc render tree3d.od --solid -o tree.stl")
+        .with_help("a solid for 3D printing: stlc render tree3d.od --solid -o tree.stl (or tree.3mf, tree.glb)")
         .into())
 }
 
-/// Unites the tubes into one body and writes it as STL; its triangles.
+/// Unites the tubes into one body and writes it as `format` (STL, 3MF,
+/// or a `.glb` of one primitive in `paint`); its triangles.
 #[cfg(feature = "solid")]
+#[allow(clippy::too_many_arguments)]
 fn solid(
     tubes: &[Tube],
     leaves: &[mesh::Leaf],
     origin: Point3,
     opts: &MeshOptions,
+    format: MeshFormat,
+    paint: crate::color::Rgb,
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<u64, Diagnostics> {
     let body = mesh::build_solid(tubes, leaves, origin, opts, progress)?;
-    mesh::write_stl(&body, out)
-        .map_err(|e| Diagnostics::from(crate::diag::io_error(&e, "writing the STL")))?;
-    Ok(body.triangles.len() as u64)
+    match format {
+        MeshFormat::ThreeMf => mesh::write_3mf(&body, out),
+        MeshFormat::Glb => {
+            let m = body.gltf_mesh(paint);
+            mesh::write_glb(&m, out)?;
+            Ok(m.triangles())
+        }
+        _ => {
+            mesh::write_stl(&body, out)
+                .map_err(|e| Diagnostics::from(crate::diag::io_error(&e, "writing the STL")))?;
+            Ok(body.triangles.len() as u64)
+        }
+    }
 }
 
 #[cfg(not(feature = "solid"))]
+#[allow(clippy::too_many_arguments)]
 fn solid(
     _: &[Tube],
     _: &[mesh::Leaf],
     _: Point3,
     _: &MeshOptions,
+    _: MeshFormat,
+    _: crate::color::Rgb,
     _: &mut dyn Write,
     _: &mut dyn Progress,
 ) -> Result<u64, Diagnostics> {

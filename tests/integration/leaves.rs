@@ -1,8 +1,12 @@
 //! Trees grown from an OD dressed (issue 33; stl-language.md section 13):
 //! an `S=` ramp by order, `P=` leaves at the tips that grew no further
 //! from a `SURFACES` block, kept by the BED; hand-worked paints and
-//! leaves, the BED round trip, the mesh's leaf material, and the hostile
-//! inputs that end in an error with nothing written.
+//! leaves, the BED round trip and the mesh's leaf material. The hostile
+//! inputs (an undefined surface, no `ENDSURFACES`, an unclosed `{`, a
+//! surface that places itself, a polygon over 4,096 vertices, a ramp on
+//! `G=`, a long `P=` name) are the command line's page
+//! `tests/cmd/leaves.md`: each error as shown, its exit status, and that
+//! nothing is written.
 
 use stlc::bed::Bed;
 use stlc::color::Rgb;
@@ -187,63 +191,4 @@ fn a_leafy_mesh_has_bark_materials_by_order_and_a_leaf_material() {
             .collect::<Vec<_>>(),
         vec![&"leaf #3b5e2b"]
     );
-}
-
-/// The first error's message and the text it points at.
-fn first_error(src: &str) -> String {
-    parse(src, Format::Od).expect_err("should not parse")
-}
-
-#[test]
-fn hostile_surfaces_are_errors_at_the_text() {
-    // P= names a surface that is not defined.
-    let e = first_error(&OD.replace("P=L", "P=K"));
-    assert_eq!(e, "no surface `K` is defined @ K");
-    // A block that is never closed.
-    let e = first_error(&OD.replace("ENDSURFACES\n", ""));
-    assert_eq!(e, "`SURFACES` without `ENDSURFACES` @ SURFACES");
-    // An unclosed `{` in a surface.
-    let e = first_error(&OD.replace("f(0.5)}] }", "f(0.5)] }"));
-    assert!(e.starts_with("this `{` is not closed @ {"), "{e}");
-    // A surface that places itself, through another.
-    let e = first_error(&OD.replace("surface L { [", "surface M { ~L }\nsurface L { ~M ["));
-    assert!(
-        e.starts_with("surface `M` places itself (~M -> ~L -> ~M)"),
-        "{e}"
-    );
-    // A polygon over the vertex limit.
-    let many = ".f".repeat(stlc::model::param::MAX_POLYGON_VERTICES + 1);
-    let e = first_error(&OD.replace(
-        "surface L { [",
-        &format!("surface K {{ {{{many}}} }}\nsurface L {{ ["),
-    ));
-    assert!(
-        e.starts_with("a polygon of more than 4096 vertices @ {"),
-        "{e}"
-    );
-    // A ramp is the stroke's only, and P= one character.
-    let e = first_error(&OD.replace("P=L", "P=L G=#ffffff..#000000"));
-    assert!(e.starts_with("`G` takes one colour"), "{e}");
-    let e = first_error(&OD.replace("P=L", "P=Leaf"));
-    assert!(
-        e.starts_with("`P` takes a surface's one-character name"),
-        "{e}"
-    );
-}
-
-#[test]
-fn a_hostile_surface_writes_nothing() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = dir.path();
-    std::fs::write(p.join("t.od"), OD.replace("ENDSURFACES\n", "")).unwrap();
-    for out in ["t.png", "t.glb", "t.bed"] {
-        let cmd = if out == "t.bed" { "compile" } else { "render" };
-        crate::support::stlc()
-            .current_dir(p)
-            .args([cmd, "t.od", "-o", out])
-            .assert()
-            .failure()
-            .stderr(predicates::str::contains("without `ENDSURFACES`"));
-        assert!(!p.join(out).exists(), "{out} written");
-    }
 }

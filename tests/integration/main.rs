@@ -47,6 +47,7 @@ mod serve;
 mod serve_hostile;
 mod soak;
 mod solid;
+mod solid_formats;
 mod stl;
 mod stochastic;
 mod support;

@@ -19,17 +19,17 @@ use crate::support::{manifest_path, stlc};
 
 /// What the reader found.
 #[derive(Debug)]
-struct Body {
-    triangles: usize,
+pub(crate) struct Body {
+    pub(crate) triangles: usize,
     vertices: usize,
     edges: usize,
     /// Every edge in exactly two triangles, once each way.
-    closed: bool,
-    components: usize,
-    volume: f64,
-    /// The lowest and highest corner, millimetres.
-    min: [f32; 3],
-    max: [f32; 3],
+    pub(crate) closed: bool,
+    pub(crate) components: usize,
+    pub(crate) volume: f64,
+    /// The lowest and highest corner, in the file's unit.
+    pub(crate) min: [f64; 3],
+    pub(crate) max: [f64; 3],
 }
 
 impl Body {
@@ -38,14 +38,15 @@ impl Body {
     }
 }
 
-/// Reads a binary STL and checks it as the module says.
+/// Reads a binary STL: corners welded by their bits, each triangle's
+/// written normal against its winding, then [`analyse`].
 fn read(bytes: &[u8]) -> Body {
     assert!(bytes.len() >= 84, "shorter than an STL's header");
     let n = u32::from_le_bytes(bytes[80..84].try_into().unwrap()) as usize;
     assert_eq!(bytes.len(), 84 + 50 * n, "size against the triangle count");
     let f = |at: usize| f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
     let mut ids: BTreeMap<[u32; 3], usize> = BTreeMap::new();
-    let mut points: Vec<[f32; 3]> = Vec::new();
+    let mut points: Vec<[f64; 3]> = Vec::new();
     let mut tris = Vec::with_capacity(n);
     for t in 0..n {
         let at = 84 + 50 * t;
@@ -54,12 +55,12 @@ fn read(bytes: &[u8]) -> Body {
         for (k, slot) in c.iter_mut().enumerate() {
             let p = [0, 4, 8].map(|o| f(at + 12 + 12 * k + o));
             *slot = *ids.entry(p.map(f32::to_bits)).or_insert_with(|| {
-                points.push(p);
+                points.push(p.map(f64::from));
                 points.len() - 1
             });
         }
         // The written normal agrees with the winding.
-        let [a, b, cc] = c.map(|i| points[i].map(f64::from));
+        let [a, b, cc] = c.map(|i| points[i]);
         let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let v = [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]];
         let w = [
@@ -71,8 +72,14 @@ fn read(bytes: &[u8]) -> Body {
         assert!(dot >= 0.0, "triangle {t}'s normal against its winding");
         tris.push(c);
     }
+    analyse(&points, &tris)
+}
+
+/// Checks triangles over shared vertices as the module says: edges,
+/// components, signed volume, bounds.
+pub(crate) fn analyse(points: &[[f64; 3]], tris: &[[usize; 3]]) -> Body {
     let mut directed: BTreeMap<(usize, usize), u32> = BTreeMap::new();
-    for &[a, b, c] in &tris {
+    for &[a, b, c] in tris {
         for e in [(a, b), (b, c), (c, a)] {
             *directed.entry(e).or_default() += 1;
         }
@@ -89,7 +96,7 @@ fn read(bytes: &[u8]) -> Body {
         }
         x
     }
-    for &[a, b, c] in &tris {
+    for &[a, b, c] in tris {
         let ra = root(&mut parent, a);
         let rb = root(&mut parent, b);
         parent[rb] = ra;
@@ -102,22 +109,22 @@ fn read(bytes: &[u8]) -> Body {
     let volume = tris
         .iter()
         .map(|t| {
-            let [a, b, c] = t.map(|i| points[i].map(f64::from));
+            let [a, b, c] = t.map(|i| points[i]);
             (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
                 + a[2] * (b[0] * c[1] - b[1] * c[0]))
                 / 6.0
         })
         .sum();
-    let mut min = [f32::INFINITY; 3];
-    let mut max = [f32::NEG_INFINITY; 3];
-    for p in &points {
+    let mut min = [f64::INFINITY; 3];
+    let mut max = [f64::NEG_INFINITY; 3];
+    for p in points {
         for i in 0..3 {
             min[i] = min[i].min(p[i]);
             max[i] = max[i].max(p[i]);
         }
     }
     Body {
-        triangles: n,
+        triangles: tris.len(),
         vertices: points.len(),
         edges: directed.len() / 2,
         closed,
@@ -129,7 +136,7 @@ fn read(bytes: &[u8]) -> Body {
 }
 
 /// A body that can be printed: closed, one piece, outward, of genus `g`.
-fn printable(body: &Body, genus: i64) {
+pub(crate) fn printable(body: &Body, genus: i64) {
     assert!(
         body.closed,
         "not watertight or not consistently oriented: {body:?}"
@@ -182,11 +189,11 @@ fn a_y_joint_is_one_closed_body() {
     assert_eq!(body.min[2], 0.0);
     // The tips are at 150 mm up and 50 mm aside; each tip's ball (a little
     // over the 10 mm radius) reaches past them, not by more than 13 mm.
-    let top = f64::from(body.max[2]);
+    let top = body.max[2];
     assert!(top > 150.0 + 9.0 && top < 150.0 + 13.0, "top {top}");
-    let side = f64::from(body.max[0]);
+    let side = body.max[0];
     assert!(side > 50.0 + 9.0 && side < 50.0 + 13.0, "side {side}");
-    assert!(f64::from(body.min[0]) < -59.0, "symmetric");
+    assert!(body.min[0] < -59.0, "symmetric");
     // The same stems give the same bytes.
     assert_eq!(bytes, stems(&y));
 }
@@ -243,8 +250,9 @@ fn the_oak_is_one_watertight_body() {
     assert_eq!(body.min[2], 0.0, "the oak stands on z = 0");
 }
 
-/// `--solid` of a 2D input, `--solid` into a picture or an OBJ, and an
-/// `.stl` without `--solid` are usage errors (status 2), nothing written.
+/// `--solid` of a 2D input, `--solid` into a picture, an OBJ or a `.gltf`,
+/// and an `.stl` or `.3mf` without `--solid` are usage errors (status 2),
+/// nothing written.
 #[test]
 fn solid_usage_errors() {
     let dir = tempfile::tempdir().unwrap();
@@ -254,7 +262,19 @@ fn solid_usage_errors() {
         (&flat, "a.stl", true, "needs a 3D input"),
         (&oak, "a.png", true, "not a picture"),
         (&oak, "a.obj", true, "not .obj"),
-        (&oak, "a.stl", false, "add --solid"),
+        (&oak, "a.gltf", true, "not .gltf"),
+        (
+            &oak,
+            "a.stl",
+            false,
+            "an .stl is written as one closed body: add --solid",
+        ),
+        (
+            &oak,
+            "a.3mf",
+            false,
+            "a .3mf is written as one closed body: add --solid",
+        ),
     ] {
         let path = dir.path().join(out);
         let mut cmd = stlc();
@@ -267,23 +287,26 @@ fn solid_usage_errors() {
     }
 }
 
+/// A trunk and two branches at right angles, `leaf` (` P=L`, or nothing)
+/// at each tip, `L` a square of side 10 units (100 mm).
+pub(crate) fn leafy_y(leaf: &str) -> String {
+    format!(
+        "T\n(0, 0, 0)\nL=10(0) B=1(0) A=90{leaf}\nRULE\nR1: [+F][-F]\nSEED\nF R1{{,}}\nENDSEED\n\
+         SURFACES\nsurface L {{ {{.f.+f.+f.}} }}\nENDSURFACES\n"
+    )
+}
+
 /// Leaves join the solid (issue 33): a trunk and two branches with a
 /// square leaf of side L at each tip is still one closed body, of genus 0
 /// (each leaf's slab overlaps its tip's joint ball), and holds more than
 /// the bare stems.
 #[test]
 fn leaves_are_slabs_united_with_their_stems() {
-    let bed = |leaf: &str| {
-        format!(
-            "T\n(0, 0, 0)\nL=10(0) B=1(0) A=90{leaf}\nRULE\nR1: [+F][-F]\nSEED\nF R1{{,}}\nENDSEED\n\
-             SURFACES\nsurface L {{ {{.f.+f.+f.}} }}\nENDSURFACES\n"
-        )
-    };
     let dir = tempfile::tempdir().unwrap();
     let mut volumes = Vec::new();
     for (name, leaf) in [("bare", ""), ("leafy", " P=L")] {
         let input = dir.path().join(format!("{name}.bed"));
-        std::fs::write(&input, bed(leaf)).unwrap();
+        std::fs::write(&input, leafy_y(leaf)).unwrap();
         let out = dir.path().join(format!("{name}.stl"));
         stlc()
             .args(["render", "-q", "--solid", "-o"])

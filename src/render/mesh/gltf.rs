@@ -2,7 +2,8 @@
 //! and the binary container (`.glb`).
 //!
 //! One scene, one node, one mesh with a primitive per colour (positions,
-//! normals, texture coordinates `TEXCOORD_0`, `u32` indices), one
+//! normals, texture coordinates `TEXCOORD_0` (none in a solid's), `u32`
+//! indices), one
 //! material per colour (its sRGB colour
 //! turned linear as glTF's `baseColorFactor` is, not metallic, rough).
 //! Every number in the JSON has fixed decimals except the positions'
@@ -57,8 +58,11 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
                 hi[k] = hi[k].max(v[k]);
             }
         }
+        // A primitive without texture coordinates (a solid's) has no
+        // view or accessor for them.
+        let uv = !p.texcoords.is_empty();
         let first = views.len();
-        for part in 0..4 {
+        for part in (0..4).filter(|&k| uv || k != 2) {
             let start = len;
             len += match part {
                 0 => 12 * p.positions.len(),
@@ -92,13 +96,18 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
             "{{\"bufferView\": {}, \"componentType\": 5126, \"count\": {count}, \"type\": \"VEC3\"}}",
             first + 1
         ));
-        accessors.push(format!(
-            "{{\"bufferView\": {}, \"componentType\": 5126, \"count\": {count}, \"type\": \"VEC2\"}}",
-            first + 2
-        ));
+        let mut attributes = format!("\"POSITION\": {a}, \"NORMAL\": {}", a + 1);
+        if uv {
+            accessors.push(format!(
+                "{{\"bufferView\": {}, \"componentType\": 5126, \"count\": {count}, \"type\": \"VEC2\"}}",
+                first + 2
+            ));
+            let _ = write!(attributes, ", \"TEXCOORD_0\": {}", a + 2);
+        }
+        let indices = accessors.len();
         accessors.push(format!(
             "{{\"bufferView\": {}, \"componentType\": 5125, \"count\": {}, \"type\": \"SCALAR\"}}",
-            first + 3,
+            views.len() - 1,
             p.indices.len()
         ));
         let c = p.color.unwrap_or(Rgb::BLACK);
@@ -116,11 +125,7 @@ fn json_and_buffer(mesh: &Mesh, embed: bool) -> (String, String, usize) {
             f(c.b)
         ));
         prims.push(format!(
-            "{{\"attributes\": {{\"POSITION\": {a}, \"NORMAL\": {}, \"TEXCOORD_0\": {}}}, \
-             \"indices\": {}, \"material\": {}, \"mode\": 4}}",
-            a + 1,
-            a + 2,
-            a + 3,
+            "{{\"attributes\": {{{attributes}}}, \"indices\": {indices}, \"material\": {}, \"mode\": 4}}",
             materials.len() - 1
         ));
     }
@@ -172,7 +177,9 @@ fn write_buffer(mesh: &Mesh, out: &mut dyn Write) -> std::io::Result<()> {
         }
         for part in p.indices.chunks(4096) {
             chunk.clear();
-            chunk.extend(part.iter().flat_map(|i| i.to_le_bytes()));
+            for i in part {
+                chunk.extend_from_slice(&i.to_le_bytes());
+            }
             out.write_all(&chunk)?;
         }
     }

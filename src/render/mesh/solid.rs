@@ -22,8 +22,9 @@ use manifold_rust::manifold::Manifold;
 use manifold_rust::types::{Error, MeshGL64, OpType};
 
 use super::leaf::Leaf;
-use super::vector::{V, cross, frame, sub, unit};
-use super::{MAX_SIDES, MIN_SIDES, MeshOptions, Tube, to_file_axes};
+use super::vector::{V, cross, f32s, frame, sub, unit};
+use super::{MAX_SIDES, MIN_SIDES, Mesh, MeshOptions, Primitive, Tube, to_file_axes};
+use crate::color::Rgb;
 use crate::diag::{Diagnostic, Diagnostics, RenderError};
 use crate::progress::Progress;
 use crate::turtle::turtle3::{Point3, cos_sin};
@@ -189,20 +190,35 @@ pub fn build_solid(
 }
 
 /// The body with its corners rounded to `f32` (an STL's numbers) and
-/// welded by their bits: where two corners round to one point (a sliver
-/// the union left, thinner than an `f32`'s step), the triangles that
-/// become degenerate are dropped, and so is each pair of triangles on the
-/// same three corners facing opposite ways (a fin of no volume), so every
-/// edge stays shared by two triangles.
+/// welded by their bits ([`weld`]).
 fn rounded(corners: &[[f32; 3]], triangles: &[[u32; 3]]) -> Solid {
-    let mut index: BTreeMap<[u32; 3], u32> = BTreeMap::new();
-    let mut positions: Vec<[f32; 3]> = Vec::with_capacity(corners.len());
-    let welded: Vec<u32> = corners
+    let keys: Vec<[u32; 3]> = corners.iter().map(|c| c.map(f32::to_bits)).collect();
+    let (first, triangles) = weld(&keys, triangles);
+    Solid {
+        positions: first.iter().map(|&i| corners[i]).collect(),
+        triangles,
+    }
+}
+
+/// Welds corners with equal `keys` (one a corner) into one vertex: where
+/// two corners become one (a sliver thinner than the written numbers'
+/// step), the triangles that become degenerate are dropped, and so is
+/// each pair of triangles on the same three corners facing opposite ways
+/// (a fin of no volume), so every edge stays shared by two triangles.
+/// Gives each vertex's first corner and the kept triangles, in order.
+pub(super) fn weld<K: Ord + Copy>(
+    keys: &[K],
+    triangles: &[[u32; 3]],
+) -> (Vec<usize>, Vec<[u32; 3]>) {
+    let mut index: BTreeMap<K, u32> = BTreeMap::new();
+    let mut first: Vec<usize> = Vec::with_capacity(keys.len());
+    let welded: Vec<u32> = keys
         .iter()
-        .map(|c| {
-            *index.entry(c.map(f32::to_bits)).or_insert_with(|| {
-                positions.push(*c);
-                positions.len() as u32 - 1
+        .enumerate()
+        .map(|(i, k)| {
+            *index.entry(*k).or_insert_with(|| {
+                first.push(i);
+                first.len() as u32 - 1
             })
         })
         .collect();
@@ -238,9 +254,59 @@ fn rounded(corners: &[[f32; 3]], triangles: &[[u32; 3]]) -> Solid {
             kept[j] = None;
         }
     }
-    Solid {
-        positions,
-        triangles: kept.into_iter().flatten().collect(),
+    (first, kept.into_iter().flatten().collect())
+}
+
+impl Solid {
+    /// The body as a glTF mesh (`--solid -o x.glb`): glTF's axes and
+    /// metres (y up; the solid's (x, y, z) millimetres, z up, turned back
+    /// to (x, z, -y) / 1000, a rotation, so windings stay outward),
+    /// welded again by the `f32` bits there ([`weld`]), one primitive of
+    /// `color`, a normal per vertex (the sum of its triangles' area
+    /// normals, made unit), no texture coordinates.
+    pub fn gltf_mesh(&self, color: Rgb) -> Mesh {
+        let corners: Vec<[f32; 3]> = self
+            .positions
+            .iter()
+            .map(|p| {
+                let [x, y, z] = p.map(f64::from);
+                f32s([x / MM, z / MM, -y / MM])
+            })
+            .collect();
+        let keys: Vec<[u32; 3]> = corners.iter().map(|c| c.map(f32::to_bits)).collect();
+        let (first, triangles) = weld(&keys, &self.triangles);
+        let positions: Vec<[f32; 3]> = first.iter().map(|&i| corners[i]).collect();
+        let mut sums = vec![[0.0f64; 3]; positions.len()];
+        for t in &triangles {
+            let [a, b, c] = t.map(|i| positions[i as usize].map(f64::from));
+            let n = cross(sub(b, a), sub(c, a));
+            for &i in t {
+                let s = &mut sums[i as usize];
+                for k in 0..3 {
+                    s[k] += n[k];
+                }
+            }
+        }
+        let normals = sums
+            .into_iter()
+            .map(|s| {
+                if s.iter().all(|x| x.is_finite()) && s != [0.0; 3] {
+                    f32s(unit(s))
+                } else {
+                    [0.0, 1.0, 0.0]
+                }
+            })
+            .collect();
+        Mesh {
+            primitives: vec![Primitive {
+                color: Some(color),
+                positions,
+                normals,
+                texcoords: Vec::new(),
+                indices: triangles.into_iter().flatten().collect(),
+                leaf: false,
+            }],
+        }
     }
 }
 

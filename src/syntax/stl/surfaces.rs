@@ -54,7 +54,17 @@ impl Builder<'_> {
             return;
         };
         let defined = block.is_some_and(|b| b.surfaces.iter().any(|s| s.name == *name));
-        if !defined {
+        // A surface the block failed to read is reported there; its name
+        // is not also called undefined.
+        let failed = block.is_some_and(|b| {
+            let within =
+                |s: &std::ops::Range<usize>| s.start >= b.loc.0.start && s.end <= b.loc.0.end;
+            self.diags
+                .0
+                .iter()
+                .any(|d| d.span.as_ref().is_some_and(within))
+        });
+        if !defined && !failed {
             let known: Vec<String> = block
                 .iter()
                 .flat_map(|b| b.surfaces.iter().map(|s| format!("`{}`", s.name)))
