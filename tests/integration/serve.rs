@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use serde_json::{Value, json};
 
-use crate::support::manifest_path;
+use crate::support::{manifest_path, numbers};
 
 /// A running `stlc serve`, stopped with Ctrl-C (SIGINT) when dropped.
 pub struct Server {
@@ -338,12 +338,7 @@ fn the_growth_order_replays_a_connected_tree() {
             &server.addr,
             &json!({"source": example("fig9.od"), "growth": strategy}),
         );
-        let g: Vec<f64> = a["growth"]["stems"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect();
+        let g: Vec<f64> = numbers(&a["growth"]["stems"]);
         assert!(g.len() >= 6 * 50, "{}", g.len());
         assert_eq!(
             (g[0], g[1]),

@@ -421,6 +421,12 @@ pub fn outcome(cmd: &mut assert_cmd::Command) -> (i32, Vec<u8>, String) {
     (out.status.code().unwrap_or(-1), out.stdout, err)
 }
 
+/// The numbers of a JSON array (`bbox`, `end`, a view box).
+pub fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    let all = v.as_array().unwrap_or_else(|| panic!("not an array: {v}"));
+    all.iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
 /// The PNG file at `path`, decoded.
 pub fn png_at(path: impl AsRef<Path>) -> Pixmap {
     Pixmap::decode_png(&fs::read(path).unwrap()).unwrap()

@@ -4,7 +4,7 @@
 
 use stlc::pipeline::{ImageFormat, MeshFormat, RenderOptions, Request, View};
 
-use crate::support::{manifest_path, outcome, stlc_line, stlc_piped};
+use crate::support::{manifest_path, numbers, outcome, stlc_line, stlc_piped};
 
 fn bed_request(text: &str) -> Request {
     Request {
@@ -16,14 +16,6 @@ fn bed_request(text: &str) -> Request {
 /// `stlc stats --json` of a BED given as text (through standard input).
 fn stats_json(text: &str) -> serde_json::Value {
     serde_json::from_slice(&stlc_piped("stats --from bed --json -", text)).unwrap()
-}
-
-fn numbers(v: &serde_json::Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 /// Section 11's worked ends with A=90 and unit steps, from a 3D BED's seed.
