@@ -26,17 +26,16 @@ pub fn segments_of(
     depth: u32,
     strategy: Derivation,
 ) -> Vec<Segment> {
+    recorded_of(s, depth, strategy).segments
+}
+
+/// What the turtle hands a backend for `s` at `depth` (segments,
+/// polygons), with the default limits.
+pub fn recorded_of(s: &stlc::model::lsys::LSystem, depth: u32, strategy: Derivation) -> Recorder {
     let mut rec = Recorder::default();
-    draw_into(
-        s,
-        depth,
-        strategy,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
-    rec.segments
+    let limits = Limits::default();
+    draw_into(s, depth, strategy, &limits, &mut rec, &mut NoProgress).unwrap();
+    rec
 }
 
 fn expanded(src: &str, depth: u32, strategy: Derivation) -> String {

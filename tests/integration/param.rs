@@ -577,17 +577,7 @@ fn classic_files_take_the_classic_path() {
 
 fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
     let sys = parse(src, &Limits::default()).unwrap();
-    let mut rec = stlc::turtle::Recorder::default();
-    stlc::interpret::lsys::draw_into(
-        &sys,
-        depth,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
-    rec.segments
+    crate::lsys::segments_of(&sys, depth, Derivation::Dfs)
 }
 
 fn ends_3d(src: &str) -> Vec<stlc::turtle::turtle3::Segment3> {
