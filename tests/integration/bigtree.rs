@@ -11,6 +11,7 @@ use serde_json::{Value, json};
 
 use super::chromium::{Browser, click, js, shot};
 use super::serve::{Server, render, request};
+use crate::support::numbers;
 
 /// An .od that grows `1 + 3k` stems for `M=1+3k` in a 1200 x 1200 square:
 /// one stem from the root, then `[-F][F][+F]` at every tip, bfs, until the
@@ -257,12 +258,7 @@ fn distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
 type Stem = ((f64, f64), (f64, f64), u64);
 
 fn stem_list(a: &Value) -> Vec<Stem> {
-    let g: Vec<f64> = a["growth"]["stems"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect();
+    let g: Vec<f64> = numbers(&a["growth"]["stems"]);
     g.chunks(6)
         .map(|s| ((s[0], s[1]), (s[2], s[3]), s[5] as u64))
         .collect()

@@ -16,38 +16,29 @@ use fantoccini::{Client, Locator};
 use serde_json::{Value, json};
 
 use super::chromium::{
-    Driver, cli, click, click_at, connect, downloaded, drag, installed, js, open, same_bytes,
-    screen_of, settled, shot,
+    Browser, cli, click, click_at, downloaded, drag, file_until, js, js_until, open, same_bytes,
+    screen_of, settled, settled_until, shot,
 };
 use super::serve::Server;
-use crate::support::manifest_path;
+use crate::support::{manifest_path, numbers};
 
 const TYPED: &str = "Typed (100, 190)\nL=9(0) B=1.5(0) A=30 C=2\nRULE\nR1: [-F][+F]\nSEED\nFR1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (70, 120), 60, 75\nENDLAYOUT\n";
 
 #[test]
 fn the_page_grows_draws_replays_and_saves_in_chromium() {
-    let Some((chromium, driver)) = installed() else {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
         return;
     };
-    let tmp = tempfile::tempdir().unwrap();
     let file = tmp.path().join("tree.od");
     std::fs::copy(manifest_path("examples/fig9.od"), &file).unwrap();
     let server = Server::start(&[file.to_str().unwrap()]);
-    let chrome_tmp = tmp.path().join("chrome");
-    std::fs::create_dir_all(&chrome_tmp).unwrap();
-    let driver = Driver::start(&driver, &chrome_tmp);
-    let rt = tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .build()
-        .unwrap();
-    rt.block_on(drive(&server, &driver, &chromium, &chrome_tmp, &file));
-}
-
-async fn drive(server: &Server, driver: &Driver, chromium: &Path, tmp: &Path, file: &Path) {
-    let c = connect(driver, chromium, tmp).await;
-    steps(&c, server, file).await;
-    acceptance(&c).await;
-    let _ = c.close().await;
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        steps(&c, &server, &file).await;
+        acceptance(&c).await;
+        let _ = c.close().await;
+    });
 }
 
 /// The issue's acceptance, on the paper's 2DTree: open it, draw a white
@@ -84,26 +75,14 @@ async fn acceptance(c: &Client) {
         "the hole takes stems away: {before} -> {after}"
     );
     // No stem ends inside the hole (an ellipse centred at (130, 85)).
-    let g: Vec<f64> = holed["growth"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
+    let g: Vec<f64> = numbers(&holed["growth"]);
     let inside = |x: f64, y: f64| ((x - 130.0) / 30.0).powi(2) + ((y - 85.0) / 25.0).powi(2) < 0.95;
     assert!(
         !g.chunks(6).any(|s| inside(s[2], s[3])),
         "a stem grew in the hole"
     );
     click(c, "#growth option[value=dfs]").await;
-    let mut dfs = settled(c).await;
-    for _ in 0..20 {
-        if dfs["growth"] != holed["growth"] {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
-        dfs = settled(c).await;
-    }
+    let dfs = settled_until(c, 20, 100, |v| v["growth"] != holed["growth"]).await;
     assert_ne!(dfs["growth"], holed["growth"]);
     // The growth order is kept in the file: `O=dfs` joins the header, and
     // nothing else in the text changes.
@@ -117,22 +96,11 @@ async fn acceptance(c: &Client) {
         "{text}"
     );
     click(c, "#play").await;
-    for _ in 0..600 {
-        if js(c, "return window.stlc.state.replayTimer === null").await == json!(true) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
+    let replayed = "return window.stlc.state.replayTimer === null";
+    js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
     shot(c, "11-acceptance").await;
     click(c, "#save").await;
-    let mut on_disk = String::new();
-    for _ in 0..100 {
-        on_disk = std::fs::read_to_string(&file).unwrap();
-        if on_disk == text {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
+    let on_disk = file_until(&file, 100, |t| t == text).await;
     assert_eq!(on_disk, text);
 
     // Export: the page offers the CLI's PNG and BED for the same options.
@@ -147,14 +115,10 @@ async fn acceptance(c: &Client) {
     ] {
         js(c, "window.stlc.state.lastDownload = null; return 0;").await;
         click(c, button).await;
-        let mut offered = Value::Null;
-        for _ in 0..200 {
-            offered = js(c, "return window.stlc.state.lastDownload").await;
-            if !offered.is_null() {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
+        let offered = js_until(c, "return window.stlc.state.lastDownload", 200, 50, |v| {
+            !v.is_null()
+        })
+        .await;
         let out = std::process::Command::new(assert_cmd::cargo::cargo_bin("stlc"))
             .args(&args[..1])
             .arg(&od)
@@ -196,12 +160,7 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
 
     // Draw a rectangle with the mouse: the LAYOUT text gains it, and the
     // tree regrows into it (stems beyond the first rectangle).
-    c.find(Locator::Css("[data-tool=Rectangle]"))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
+    click(c, "[data-tool=Rectangle]").await;
     drag(c, (20.0, 20.0), (180.0, 160.0)).await;
     let drawn = settled(c).await;
     let text = drawn["text"].as_str().unwrap();
@@ -228,31 +187,14 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     assert_eq!(drawn["ok"], true, "{drawn}");
     let grown = drawn["stems"].as_u64().unwrap();
     assert!(grown > small, "{small} -> {grown}");
-    let g: Vec<f64> = drawn["growth"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
+    let g: Vec<f64> = numbers(&drawn["growth"]);
     let outside_first = g.chunks(6).any(|s| s[3] < 119.0);
     assert!(outside_first, "no stem grew into the drawn rectangle");
     shot(c, "3-drawn").await;
 
     // dfs grows another tree from the same outline.
-    c.find(Locator::Css("#growth option[value=dfs]"))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
-    let mut dfs = settled(c).await;
-    for _ in 0..20 {
-        if dfs["growth"] != drawn["growth"] {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
-        dfs = settled(c).await;
-    }
+    click(c, "#growth option[value=dfs]").await;
+    let dfs = settled_until(c, 20, 100, |v| v["growth"] != drawn["growth"]).await;
     assert_eq!(dfs["ok"], true);
     assert_ne!(
         dfs["growth"], drawn["growth"],
@@ -266,12 +208,7 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
         .as_u64()
         .unwrap();
     assert!(max > 10, "{max}");
-    c.find(Locator::Id("play"))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
+    click(c, "#play").await;
     // The replay takes about four seconds: look once it is under way.
     let mut mid = Value::Null;
     for _ in 0..200 {
@@ -291,13 +228,8 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     assert!(v > 0 && v < max, "{mid}");
     assert_eq!(mid["replaying"], true, "{mid}");
     shot(c, "5-replay").await;
-    for _ in 0..600 {
-        let done = js(c, "return window.stlc.state.replayTimer === null").await;
-        if done == json!(true) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
+    let replayed = "return window.stlc.state.replayTimer === null";
+    js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
     let end = js(c, "return Number(document.getElementById('step').value)").await;
     assert_eq!(end.as_u64().unwrap(), max);
 
@@ -327,30 +259,15 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     assert_eq!(fixed["text"], good.as_str());
 
     // Save writes the editor's text to the file.
-    c.find(Locator::Id("save"))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
-    let mut on_disk = String::new();
-    for _ in 0..100 {
-        on_disk = std::fs::read_to_string(file).unwrap();
-        if on_disk == good {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
+    click(c, "#save").await;
+    let on_disk = file_until(file, 100, |t| t == good).await;
     assert_eq!(on_disk, good);
     // The page says so once the answer is back (the file is written first).
-    let mut status = Value::Null;
-    for _ in 0..100 {
-        status = js(c, "return document.getElementById('saved').textContent").await;
-        if status.as_str().unwrap().starts_with("Saved") {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
+    let saved = "return document.getElementById('saved').textContent";
+    let status = js_until(c, saved, 100, 50, |v| {
+        v.as_str().unwrap().starts_with("Saved")
+    })
+    .await;
     assert!(status.as_str().unwrap().starts_with("Saved"), "{status}");
     shot(c, "7-saved").await;
 
@@ -519,11 +436,7 @@ async fn view_box(c: &Client) -> Vec<f64> {
          return [b.x, b.y, b.width, b.height];",
     )
     .await;
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
+    numbers(&v)
 }
 
 /// The box Fit shows, as a view box.
@@ -533,11 +446,7 @@ async fn fit_box(c: &Client) -> Vec<f64> {
         "const f = window.stlc.state.fitView; return [f[0], f[1], f[2] - f[0], f[3] - f[1]];",
     )
     .await;
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
+    numbers(&v)
 }
 
 fn same_box(a: &[f64], b: &[f64]) -> bool {
@@ -585,24 +494,18 @@ async fn answer_svg(c: &Client) -> String {
 
 #[test]
 fn the_page_opens_exports_zooms_edits_and_undoes_in_chromium() {
-    let Some((chromium, driver)) = installed() else {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
         return;
     };
-    let tmp = tempfile::tempdir().unwrap();
     let start = tmp.path().join("start.od");
     std::fs::write(&start, TYPED).unwrap();
     let server = Server::start(&[start.to_str().unwrap()]);
-    let chrome_tmp = tmp.path().join("chrome");
-    std::fs::create_dir_all(&chrome_tmp).unwrap();
-    let driver = Driver::start(&driver, &chrome_tmp);
-    let rt = tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .build()
-        .unwrap();
-    rt.block_on(async {
-        let c = connect(&driver, &chromium, &chrome_tmp).await;
-        renderer(&c, &server, tmp.path(), &chrome_tmp.join("downloads")).await;
-        editing(&c, tmp.path(), &chrome_tmp.join("downloads")).await;
+    let downloads = browser.tmp.join("downloads");
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        renderer(&c, &server, tmp.path(), &downloads).await;
+        editing(&c, tmp.path(), &downloads).await;
         columns(&c, tmp.path()).await;
         let _ = c.close().await;
     });
@@ -706,14 +609,7 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
         .send_keys("3")
         .await
         .unwrap();
-    let mut drawn = settled(c).await;
-    for _ in 0..40 {
-        if drawn["stems"] == 192 {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-        drawn = settled(c).await;
-    }
+    let drawn = settled_until(c, 40, 50, |v| v["stems"] == 192).await;
     // 3 * 4^3 segments.
     assert_eq!(drawn["stems"], 192, "{drawn}");
     let svg = cli(&[
@@ -1013,14 +909,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
 
     // Tree Maker's SVG export, grown depth-first: `stlc render`'s bytes.
     click(c, "#growth option[value=dfs]").await;
-    let mut dfs = settled(c).await;
-    for _ in 0..20 {
-        if dfs["growth"] != pasted["growth"] {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
-        dfs = settled(c).await;
-    }
+    let dfs = settled_until(c, 20, 100, |v| v["growth"] != pasted["growth"]).await;
     assert_ne!(dfs["growth"], pasted["growth"]);
     let od = dir.join("fig9.od");
     std::fs::write(&od, &fig9).unwrap();

@@ -7,7 +7,9 @@
 use serde_json::{Value, json};
 
 use super::browser_web::open_example;
-use super::chromium::{cli_svg_of, click, js, on_served_page, same_bytes, settled, shot};
+use super::chromium::{
+    answered, cli_svg_of, click, js, on_served_page, same_bytes, settled_until, shot,
+};
 use super::serve::example;
 
 /// Sets the colour field `css` to `hex` as a pick does (an `input`
@@ -21,18 +23,7 @@ async fn pick(c: &fantoccini::Client, css: &str, hex: &str, want: &str) -> Value
         ),
     )
     .await;
-    for _ in 0..200 {
-        let v = settled(c).await;
-        if v["text"] == json!(want) && v["ok"] == json!(true) {
-            return v;
-        }
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    }
-    let v = settled(c).await;
-    panic!(
-        "the page never showed the text with {hex} from {css}: {}",
-        v["text"]
-    );
+    answered(c, want, &format!("with {hex} from {css}")).await
 }
 
 /// The lines of `a` and `b` that differ (same number of lines).
@@ -96,13 +87,8 @@ fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
         // `+` adds a copy of the last colour to the line, a fifth field.
         click(c, "[data-testid=palette-add]").await;
         let five = petals.replace("#7b2cbf #f2c230", "#7b2cbf #f2c230 #f2c230");
-        for _ in 0..100 {
-            if settled(c).await["text"] == json!(five) {
-                break;
-            }
-            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-        }
-        assert_eq!(settled(c).await["text"], json!(five));
+        let added = settled_until(c, 100, 50, |v| v["text"] == json!(five)).await;
+        assert_eq!(added["text"], json!(five));
         assert_eq!(
             js(
                 c,

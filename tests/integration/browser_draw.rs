@@ -17,6 +17,7 @@ use serde_json::{Value, json};
 
 use super::chromium::{Browser, click, js, settled, shot};
 use super::serve::Server;
+use crate::support::numbers;
 
 /// No LAYOUT yet: the tree is bounded by its length decrement.
 const EMPTY: &str =
@@ -145,12 +146,7 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     let (rx, ry, r) = (100.0, 150.0, 30.0);
     for _ in 0..12 {
         let v = js(c, "return window.stlc.state.view").await;
-        let v: Vec<f64> = v
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
+        let v: Vec<f64> = numbers(&v);
         if v[0] < rx - 1.2 * r && v[2] > rx + 1.2 * r && v[1] < ry - 1.5 * r && v[3] > ry + r {
             break;
         }

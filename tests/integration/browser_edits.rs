@@ -7,9 +7,9 @@ use std::path::Path;
 use std::time::Duration;
 
 use fantoccini::Client;
-use serde_json::{Value, json};
+use serde_json::Value;
 
-use super::chromium::{Browser, click, downloaded, js, open, settled, shot};
+use super::chromium::{Browser, click, downloaded, js, open, settled, shot, until};
 use super::serve::Server;
 use crate::support::manifest_path;
 
@@ -73,29 +73,13 @@ async fn title(c: &Client) -> String {
     c.title().await.unwrap()
 }
 
-/// Waits (at most 10 s) until `script` returns true.
-async fn until(c: &Client, script: &str, what: &str) {
-    for _ in 0..100 {
-        if js(c, script).await == json!(true) {
-            return;
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
-    }
-    shot(c, &format!("edits-timeout-{}", what.replace(' ', "-"))).await;
-    panic!("timed out waiting until {what}");
-}
-
 /// Reloads, accepting the "leave the page?" prompt if one is shown.
 async fn reload(c: &Client) {
     let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
     tokio::time::sleep(Duration::from_millis(300)).await;
     let _ = c.accept_alert().await;
-    until(
-        c,
-        "return !!(window.stlc && window.stlc.state.doc && window.stlc.state.answer)",
-        "the page loaded",
-    )
-    .await;
+    let script = "return !!(window.stlc && window.stlc.state.doc && window.stlc.state.answer)";
+    until(c, script, "the page loaded").await;
     settled(c).await;
 }
 
@@ -108,12 +92,8 @@ async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
     );
     assert_eq!(status(c).await, "Unsaved changes");
     click(c, "[data-testid=save]").await;
-    until(
-        c,
-        "return document.getElementById('saved').textContent.startsWith('Saved')",
-        "saved",
-    )
-    .await;
+    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
+    until(c, script, "saved").await;
     assert!(!title(c).await.starts_with("• "));
     assert!(
         std::fs::read_to_string(file)
@@ -135,24 +115,16 @@ async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
         t.ends_with("# saved line"),
         "a draft is never applied silently"
     );
-    until(
-        c,
-        "return !document.getElementById('notice').hidden",
-        "the draft is offered",
-    )
-    .await;
+    let script = "return !document.getElementById('notice').hidden";
+    until(c, script, "the draft is offered").await;
     shot(c, "30-draft-offered").await;
     click(c, "[data-testid=restore-draft]").await;
     assert!(text(c).await.ends_with("# not saved yet"));
     assert!(title(c).await.starts_with("• "));
     // Saved, so there is nothing left to offer.
     click(c, "[data-testid=save]").await;
-    until(
-        c,
-        "return document.getElementById('saved').textContent.startsWith('Saved')",
-        "saved again",
-    )
-    .await;
+    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
+    until(c, script, "saved again").await;
     assert!(
         std::fs::read_to_string(file)
             .unwrap()
@@ -165,12 +137,9 @@ async fn disk_changes_are_loaded(c: &Client, file: &Path) {
     let mut theirs = std::fs::read_to_string(file).unwrap();
     theirs.push_str("\n# from another program");
     std::fs::write(file, &theirs).unwrap();
-    until(
-        c,
-        "return document.getElementById('source').value.endsWith('# from another program')",
-        "the disk change is loaded",
-    )
-    .await;
+    let script =
+        "return document.getElementById('source').value.endsWith('# from another program')";
+    until(c, script, "the disk change is loaded").await;
     assert!(
         status(c).await.starts_with("Reloaded"),
         "{}",
@@ -181,22 +150,14 @@ async fn disk_changes_are_loaded(c: &Client, file: &Path) {
     type_line(c, "\n# mine").await;
     theirs.push_str("\n# theirs again");
     std::fs::write(file, &theirs).unwrap();
-    until(
-        c,
-        "return !document.getElementById('notice').hidden",
-        "the change is asked about",
-    )
-    .await;
+    let script = "return !document.getElementById('notice').hidden";
+    until(c, script, "the change is asked about").await;
     assert!(text(c).await.ends_with("# mine"), "unsaved edits stay");
     shot(c, "31-disk-changed").await;
     click(c, "[data-testid=keep-mine]").await;
     click(c, "[data-testid=save]").await;
-    until(
-        c,
-        "return document.getElementById('saved').textContent.startsWith('Saved')",
-        "mine saved",
-    )
-    .await;
+    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
+    until(c, script, "mine saved").await;
     let on_disk = std::fs::read_to_string(file).unwrap();
     assert!(on_disk.ends_with("# mine") && !on_disk.contains("# theirs again"));
 }
@@ -211,24 +172,16 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     settled(c).await;
     type_line(c, "\n# tab two").await;
     click(c, "[data-testid=save]").await;
-    until(
-        c,
-        "return document.getElementById('saved').textContent.startsWith('Saved')",
-        "tab two saved",
-    )
-    .await;
+    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
+    until(c, script, "tab two saved").await;
 
     // Tab one's edit is of the older version: its Save is refused.
     c.switch_to_window(first).await.unwrap();
     click(c, "[data-testid=save]").await;
     // (The watch may have asked about the change already; the refused
     // Save's notice replaces it.)
-    until(
-        c,
-        "const n = document.getElementById('notice'); return !n.hidden && n.textContent.includes('changed since')",
-        "the conflict is shown",
-    )
-    .await;
+    let script = "const n = document.getElementById('notice'); return !n.hidden && n.textContent.includes('changed since')";
+    until(c, script, "the conflict is shown").await;
     let notice: Value = js(c, "return document.getElementById('notice').textContent").await;
     assert!(
         notice.as_str().unwrap().contains("changed since"),
@@ -251,12 +204,8 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     shot(c, "32-two-tabs-compare").await;
     click(c, "[data-testid=keep-mine]").await;
     click(c, "[data-testid=save]").await;
-    until(
-        c,
-        "return document.getElementById('saved').textContent.startsWith('Saved')",
-        "tab one saved",
-    )
-    .await;
+    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
+    until(c, script, "tab one saved").await;
     assert!(
         std::fs::read_to_string(file)
             .unwrap()
@@ -271,12 +220,8 @@ async fn exact_counts(c: &Client) {
     open(c, &manifest_path("examples/abop-1.24a.lsys")).await;
     settled(c).await;
     set_depth(c, "30").await;
-    until(
-        c,
-        "return document.getElementById('status').textContent.includes('931,322,574,615,478,515,625 stems')",
-        "the exact count is shown",
-    )
-    .await;
+    let script = "return document.getElementById('status').textContent.includes('931,322,574,615,478,515,625 stems')";
+    until(c, script, "the exact count is shown").await;
 }
 
 /// Problem 5: tests/cases/render/slow-stochastic.lsys at depth 14 takes
@@ -295,21 +240,13 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     // 1 + (4^5 - 1) / 3 segments, whatever the choices.
     assert_eq!(stems, "342", "drawn at its own generations (5)");
     set_depth(c, "14").await;
-    until(
-        c,
-        "return !document.getElementById('busy').hidden",
-        "the busy indicator shows",
-    )
-    .await;
+    let script = "return !document.getElementById('busy').hidden";
+    until(c, script, "the busy indicator shows").await;
     shot(c, "33-busy").await;
     let t0 = std::time::Instant::now();
     set_depth(c, "5").await;
-    until(
-        c,
-        "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok && s.answer.stems === '342'",
-        "the depth-5 picture",
-    )
-    .await;
+    let script = "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok && s.answer.stems === '342'";
+    until(c, script, "the depth-5 picture").await;
     let took = t0.elapsed();
     assert!(
         // The depth-14 work alone takes about 15 s: the picture of depth 5
@@ -329,19 +266,11 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     );
     // Cancel: the work stops and the last picture stays.
     set_depth(c, "14").await;
-    until(
-        c,
-        "return !document.getElementById('busy').hidden",
-        "busy again",
-    )
-    .await;
+    let script = "return !document.getElementById('busy').hidden";
+    until(c, script, "busy again").await;
     click(c, "[data-testid=cancel]").await;
-    until(
-        c,
-        "return document.getElementById('busy').hidden && document.getElementById('status').textContent.startsWith('Cancelled')",
-        "cancelled",
-    )
-    .await;
+    let script = "return document.getElementById('busy').hidden && document.getElementById('status').textContent.startsWith('Cancelled')";
+    until(c, script, "cancelled").await;
 }
 
 /// Types `value` into the emptied depth field.
@@ -366,12 +295,9 @@ async fn a_failing_file_shows_no_other_picture(c: &Client, dir: &Path) {
     )
     .unwrap();
     open(c, &broken).await;
-    until(
-        c,
-        "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok === false",
-        "the broken file's answer",
-    )
-    .await;
+    let script =
+        "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok === false";
+    until(c, script, "the broken file's answer").await;
     let pictures = js(
         c,
         "return document.querySelectorAll('#preview .lib').length",
@@ -604,12 +530,8 @@ async fn words_generation_by_generation(c: &Client) {
     new_from(c, "koch-snowflake.lsys").await;
     settled(c).await;
     click(c, "#words summary").await;
-    until(
-        c,
-        "return document.querySelectorAll('#word-list li').length === 5",
-        "five generations",
-    )
-    .await;
+    let script = "return document.querySelectorAll('#word-list li').length === 5";
+    until(c, script, "five generations").await;
     let items = js(
         c,
         "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)",
@@ -644,12 +566,8 @@ async fn numbers_scrub(c: &Client) {
     new_from(c, "fig9.od").await;
     let before = settled(c).await;
     click(c, "#scrub summary").await;
-    until(
-        c,
-        "return document.querySelector('#scrub-list input[data-key=A]') !== null",
-        "the A slider",
-    )
-    .await;
+    let script = "return document.querySelector('#scrub-list input[data-key=A]') !== null";
+    until(c, script, "the A slider").await;
     js(
         c,
         "const a = document.querySelector('#scrub-list input[data-key=A]'); a.value = 45; a.dispatchEvent(new Event('input')); return 0;",

@@ -8,7 +8,7 @@
 use serde_json::{Value, json};
 
 use super::browser_web::open_example;
-use super::chromium::{cli, js, on_served_page, same_bytes, settled, shot};
+use super::chromium::{answered, cli, js, on_served_page, same_bytes, shot};
 use super::serve::example;
 
 /// Chooses `name` in the leaf list as a user does (a `change` event); the
@@ -22,18 +22,7 @@ async fn choose(c: &fantoccini::Client, name: &str, want: &str) -> Value {
         ),
     )
     .await;
-    for _ in 0..200 {
-        let v = settled(c).await;
-        if v["text"] == json!(want) && v["ok"] == json!(true) {
-            return v;
-        }
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    }
-    let v = settled(c).await;
-    panic!(
-        "the page never showed the text with leaf {name}: {}",
-        v["text"]
-    );
+    answered(c, want, &format!("with leaf {name}")).await
 }
 
 /// The page's SVG export of its text at the 3D view's angles, and the

@@ -10,7 +10,7 @@ use serde_json::json;
 use super::browser_web::{engine_export, on_site, open_example};
 use super::chromium::{Browser, cli, click, downloaded, js, same_bytes, settled, shot};
 use super::serve::{Server, example, request};
-use crate::support::manifest_path;
+use crate::support::{manifest_path, numbers};
 
 /// `stlc render examples/NAME --mesh glb --unit UNIT -o -`.
 fn cli_glb(name: &str, unit: &str) -> Vec<u8> {
@@ -34,12 +34,7 @@ fn position_max(glb: &[u8]) -> Vec<f64> {
     let at = gltf["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
         .as_u64()
         .unwrap() as usize;
-    gltf["accessors"][at]["max"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
+    numbers(&gltf["accessors"][at]["max"])
 }
 
 #[test]

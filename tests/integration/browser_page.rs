@@ -7,7 +7,7 @@ use fantoccini::Client;
 use serde_json::{Value, json};
 
 use super::browser_web::{Static, on_site};
-use super::chromium::{js, settled, shot};
+use super::chromium::{js, js_until, settled, settled_until, shot};
 use crate::chromium::Browser;
 
 /// A share-link fragment whose text is `mib` MiB of zero bytes (valid
@@ -303,12 +303,8 @@ async fn reload(c: &Client) -> Value {
     let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
     tokio::time::sleep(std::time::Duration::from_millis(300)).await;
     let _ = c.accept_alert().await;
-    for _ in 0..200 {
-        if js(c, "return !!(window.stlc && window.stlc.state.answer)").await == json!(true) {
-            break;
-        }
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    }
+    let up = "return !!(window.stlc && window.stlc.state.answer)";
+    js_until(c, up, 200, 50, |v| v == &json!(true)).await;
     settled(c).await
 }
 
@@ -408,14 +404,10 @@ fn the_template_grows_into_what_one_draws_and_says_why_it_stops_in_chromium() {
         super::chromium::click(c, "[data-tool=Rectangle]").await;
         super::chromium::click(c, "#colour option[value=clGreen]").await;
         super::chromium::drag(c, (150.0, 10.0), (205.0, 170.0)).await;
-        let mut drawn = settled(c).await;
-        for _ in 0..100 {
-            if drawn["text"].as_str().unwrap().contains("Rectangle") {
-                break;
-            }
-            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-            drawn = settled(c).await;
-        }
+        let drawn = settled_until(c, 100, 50, |v| {
+            v["text"].as_str().unwrap().contains("Rectangle")
+        })
+        .await;
         let text = drawn["text"].as_str().unwrap();
         assert!(
             text.contains("(clGreen) Rectangle (150, 10), 55, 160"),
@@ -608,14 +600,11 @@ fn stlc_serve_shares_like_the_web_page_in_chromium() {
         let v = settled(&c).await;
         assert_eq!(v["text"], json!(std::fs::read_to_string(&file).unwrap()));
         super::chromium::click(&c, "[data-testid=share]").await;
-        let mut said = Value::Null;
-        for _ in 0..100 {
-            said = js(&c, "return document.getElementById('saved').textContent").await;
-            if said.as_str().unwrap().starts_with("Share link: ") {
-                break;
-            }
-            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-        }
+        let saved = "return document.getElementById('saved').textContent";
+        let said = js_until(&c, saved, 100, 50, |v| {
+            v.as_str().unwrap().starts_with("Share link: ")
+        })
+        .await;
         assert!(said.as_str().unwrap().starts_with("Share link: "), "{said}");
         let link = js(&c, "return location.href")
             .await
@@ -639,14 +628,7 @@ fn stlc_serve_shares_like_the_web_page_in_chromium() {
         )
         .await
         .unwrap();
-        let mut v = settled(&c).await;
-        for _ in 0..100 {
-            if v["text"] == json!(other) {
-                break;
-            }
-            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-            v = settled(&c).await;
-        }
+        let v = settled_until(&c, 100, 50, |v| v["text"] == json!(other)).await;
         assert_eq!(v["text"], json!(other));
         assert_eq!(v["stems"], json!(3), "{v}");
         let name = js(

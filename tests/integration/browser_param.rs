@@ -6,8 +6,6 @@
 //! parameters; `<stl-tree>` draws one and a share link carries it.
 //! Screenshots go to `tests/store/browser/`.
 
-use std::time::Duration;
-
 use fantoccini::Client;
 use serde_json::{Value, json};
 
@@ -15,22 +13,11 @@ use super::browser_web::{
     engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, start,
 };
 use super::chromium::{
-    Browser, cli, cli_svg_of, click, js, on_served_page, same_bytes, settled, shot,
+    Browser, cli, cli_svg_of, click, js, on_served_page, same_bytes, settled, settled_until, shot,
+    until,
 };
 use super::param_frontends::{parametric_examples, same_words};
 use super::serve::{Server, example};
-
-/// Waits (at most 10 s) until `script` returns true.
-async fn until(c: &Client, script: &str, what: &str) {
-    for _ in 0..100 {
-        if js(c, script).await == json!(true) {
-            return;
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
-    }
-    shot(c, &format!("param-timeout-{}", what.replace(' ', "-"))).await;
-    panic!("timed out waiting until {what}");
-}
 
 /// Opens the Numbers panel and moves the slider `key` to `value`, as a
 /// drag does (an `input` event); the page's answer to the new text.
@@ -39,12 +26,8 @@ async fn slide(c: &Client, key: &str, value: &str) -> Value {
         click(c, "#scrub summary").await;
     }
     let input = format!("#scrub-list input[data-key=\"{key}\"]");
-    until(
-        c,
-        &format!("return document.querySelector('{input}') !== null"),
-        "the slider",
-    )
-    .await;
+    let script = &format!("return document.querySelector('{input}') !== null");
+    until(c, script, "the slider").await;
     js(
         c,
         &format!(
@@ -52,14 +35,10 @@ async fn slide(c: &Client, key: &str, value: &str) -> Value {
         ),
     )
     .await;
-    let mut v = settled(c).await;
-    for _ in 0..100 {
-        if v["text"].as_str().unwrap().contains(&format!(" {value}\n")) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-        v = settled(c).await;
-    }
+    let v = settled_until(c, 100, 50, |v| {
+        v["text"].as_str().unwrap().contains(&format!(" {value}\n"))
+    })
+    .await;
     v
 }
 

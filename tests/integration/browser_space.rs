@@ -6,7 +6,7 @@
 use serde_json::json;
 
 use super::browser_web::{engine_export, on_site, open_example};
-use super::chromium::{cli, cli_svg_of, click, js, same_bytes, settled, shot};
+use super::chromium::{cli, cli_svg_of, click, js, same_bytes, settled_until, shot};
 use super::serve::example;
 
 #[test]
@@ -43,14 +43,10 @@ fn the_web_engine_and_the_growth_control_grow_space_first_as_the_cli_in_chromium
         // the picture is the CLI's of that text.
         open_example(c, "holes.od").await;
         click(c, "#growth option[value=space]").await;
-        let mut v = settled(c).await;
-        for _ in 0..100 {
-            if v["text"].as_str().unwrap().contains("O=space") {
-                break;
-            }
-            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-            v = settled(c).await;
-        }
+        let v = settled_until(c, 100, 50, |v| {
+            v["text"].as_str().unwrap().contains("O=space")
+        })
+        .await;
         let text = v["text"].as_str().unwrap().to_string();
         assert!(text.contains("O=space"), "{text}");
         let svg = js(c, "return window.stlc.state.answer.svg").await;

@@ -9,7 +9,7 @@ use fantoccini::Client;
 use serde_json::json;
 
 use super::browser_web::{engine_export, examples, on_site};
-use super::chromium::{cli, click, js, on_served_page, same_bytes, settled, shot};
+use super::chromium::{cli, click, js, js_until, on_served_page, same_bytes, settled_until, shot};
 use super::serve::example;
 use crate::support::manifest_path;
 
@@ -58,18 +58,9 @@ async fn thumb(c: &Client, name: &str) -> Vec<u8> {
 async fn thumbnails_open_examples(c: &Client, what: &str) {
     click(c, "#new-gallery summary").await;
     // The list comes from the engine: tiles once it is read.
-    let mut names = json!([]);
-    for _ in 0..200 {
-        names = js(
-            c,
-            "return [...document.querySelectorAll('#new-grid .thumb')].map((b) => b.dataset.testid)",
-        )
-        .await;
-        if names != json!([]) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
+    let tiles =
+        "return [...document.querySelectorAll('#new-grid .thumb')].map((b) => b.dataset.testid)";
+    let names = js_until(c, tiles, 200, 50, |v| v != &json!([])).await;
     let mut want = vec!["thumb-new.od".to_string(), "thumb-new.lsys".to_string()];
     want.extend(examples().iter().map(|n| format!("thumb-{n}")));
     assert_eq!(names, json!(want));
@@ -79,13 +70,8 @@ async fn thumbnails_open_examples(c: &Client, what: &str) {
     shot(c, &format!("thumbs-01-{what}")).await;
     click(c, "[data-testid='thumb-koch-snowflake.lsys']").await;
     let want = example("koch-snowflake.lsys");
-    for _ in 0..100 {
-        if settled(c).await["text"] == json!(want) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
-    assert_eq!(settled(c).await["text"], json!(want));
+    let opened = settled_until(c, 100, 50, |v| v["text"] == json!(want)).await;
+    assert_eq!(opened["text"], json!(want));
     assert_eq!(
         js(c, "return document.getElementById('new-gallery').open").await,
         json!(false)

@@ -16,7 +16,8 @@ use fantoccini::Client;
 use serde_json::{Value, json};
 
 use super::chromium::{
-    Browser, cli, cli_svg_of, click, downloaded, drag, js, open, same_bytes, settled, shot,
+    Browser, cli, cli_svg_of, click, downloaded, drag, js, js_until, open, same_bytes, settled,
+    settled_until, shot,
 };
 use crate::support::manifest_path;
 
@@ -262,14 +263,8 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
         let _ = js(&c, "setTimeout(() => location.reload(), 0); return true").await;
         tokio::time::sleep(Duration::from_millis(300)).await;
         let _ = c.accept_alert().await;
-        let mut offered = Value::Null;
-        for _ in 0..200 {
-            offered = js(&c, "return !!(window.stlc && window.stlc.state.answer) && !document.getElementById('notice').hidden").await;
-            if offered == json!(true) {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
+        let shown = "return !!(window.stlc && window.stlc.state.answer) && !document.getElementById('notice').hidden";
+        let offered = js_until(&c, shown, 200, 50, |v| v == &json!(true)).await;
         assert_eq!(offered, json!(true), "the unsaved edits are offered back");
         assert_eq!(settled(&c).await["text"], json!(paper));
         click(&c, "[data-testid=restore-draft]").await;
@@ -296,14 +291,8 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
         // snowflake's axiom `F--F--F` (7 symbols) and first word: each F
         // becomes `F+F--F+F`, 3 x 8 + 4 = 28 symbols.
         js(&c, "document.getElementById('words').open = true").await;
-        let mut words = Value::Null;
-        for _ in 0..100 {
-            words = js(&c, "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)").await;
-            if words.as_array().is_some_and(|w| w.len() >= 2) {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
+        let listed = "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)";
+        let words = js_until(&c, listed, 100, 50, |v| v.as_array().is_some_and(|w| w.len() >= 2)).await;
         assert_eq!(words[0], json!("F--F--F (7)"), "{words}");
         assert_eq!(words[1], json!("F+F--F+F--F+F--F+F--F+F--F+F (28)"), "{words}");
         shot(&c, "web-03-words").await;
@@ -411,15 +400,9 @@ pub(super) async fn open_example(c: &Client, name: &str) -> Value {
         ),
     )
     .await;
-    let mut v = settled(c).await;
-    for _ in 0..100 {
-        if v["text"] == json!(text) {
-            return v;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-        v = settled(c).await;
-    }
-    panic!("the page never opened {name}: {v}");
+    let v = settled_until(c, 100, 50, |v| v["text"] == json!(text)).await;
+    assert_eq!(v["text"], json!(text), "the page never opened {name}: {v}");
+    v
 }
 
 /// The site, a browser on it showing its first picture, and `body` run
@@ -485,15 +468,11 @@ fn a_share_link_restores_the_tree_in_a_fresh_profile_in_chromium() {
         click(&c, "#growth option[value=dfs]").await;
         let seed = c.find(fantoccini::Locator::Id("seed")).await.unwrap();
         seed.send_keys("7").await.unwrap();
-        let mut v = settled(&c).await;
-        for _ in 0..100 {
+        let v = settled_until(&c, 100, 50, |v| {
             let t = v["text"].as_str().unwrap();
-            if t.contains("O=dfs") && t.contains("V=7") {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-            v = settled(&c).await;
-        }
+            t.contains("O=dfs") && t.contains("V=7")
+        })
+        .await;
         let text = v["text"].as_str().unwrap().to_string();
         assert!(text.contains("O=dfs") && text.contains("V=7"), "{text}");
         let svg = js(&c, "return window.stlc.state.answer.svg").await;

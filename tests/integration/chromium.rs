@@ -100,6 +100,83 @@ pub(super) async fn settled(c: &Client) -> Value {
     panic!("the page never showed the answer to its text");
 }
 
+/// The page's settled state once `done` holds of it, looked at up to
+/// `tries` more times `ms` apart; the last one seen if it never does (the
+/// caller's assertion says what was wanted).
+pub(super) async fn settled_until(
+    c: &Client,
+    tries: u32,
+    ms: u64,
+    done: impl Fn(&Value) -> bool,
+) -> Value {
+    let mut v = settled(c).await;
+    for _ in 0..tries {
+        if done(&v) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(ms)).await;
+        v = settled(c).await;
+    }
+    v
+}
+
+/// The page's answer once its text is `want` and drawn without error;
+/// the panic names `what` (the edit that should have made it) otherwise.
+pub(super) async fn answered(c: &Client, want: &str, what: &str) -> Value {
+    let good = |v: &Value| v["text"] == json!(want) && v["ok"] == json!(true);
+    let v = settled_until(c, 200, 50, good).await;
+    assert!(
+        good(&v),
+        "the page never showed the text {what}: {}",
+        v["text"]
+    );
+    v
+}
+
+/// Waits (at most 10 s) until `script` returns true; on a timeout, a
+/// screenshot `timeout-<what>` and a panic naming `what`.
+pub(super) async fn until(c: &Client, script: &str, what: &str) {
+    if js_until(c, script, 100, 100, |v| v == &json!(true)).await != json!(true) {
+        shot(c, &format!("timeout-{}", what.replace(' ', "-"))).await;
+        panic!("timed out waiting until {what}");
+    }
+}
+
+/// What `script` returns once `done` holds of it, run up to `tries` times
+/// `ms` apart; the last value if it never does.
+pub(super) async fn js_until(
+    c: &Client,
+    script: &str,
+    tries: u32,
+    ms: u64,
+    done: impl Fn(&Value) -> bool,
+) -> Value {
+    let mut v = js(c, script).await;
+    for _ in 1..tries {
+        if done(&v) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(ms)).await;
+        v = js(c, script).await;
+    }
+    v
+}
+
+/// The text of the file at `path` once `done` holds of it, read up to
+/// `tries` times 50 ms apart (the page's save may still be under way); the
+/// last text read if it never does.
+pub(super) async fn file_until(path: &Path, tries: u32, done: impl Fn(&str) -> bool) -> String {
+    let mut text = std::fs::read_to_string(path).unwrap();
+    for _ in 1..tries {
+        if done(&text) {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+        text = std::fs::read_to_string(path).unwrap();
+    }
+    text
+}
+
 /// The viewport position of canvas point `(x, y)` in the preview.
 pub(super) async fn screen_of(c: &Client, x: f64, y: f64) -> (f64, f64) {
     let v = js(

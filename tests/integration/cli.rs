@@ -9,11 +9,9 @@ use std::io::{Read, Write};
 use std::path::Path;
 use std::process::{Command as StdCommand, Stdio};
 
-use assert_cmd::Command;
 use predicates::prelude::*;
 
-use crate::support::assert_golden;
-use crate::support::stlc;
+use crate::support::{assert_golden, manifest_path, outcome, png_at, stlc_line, stlc_piped};
 
 /// `F -> F+F` at 90 degrees: depth 2 is `F+F+F+F`, a unit square traced
 /// anticlockwise on screen from the origin: up, left, down, right.
@@ -21,6 +19,9 @@ const SQUARE: &str = "# a square\ngenerations 2\nangle 90\naxiom F\nrule F F+F\n
 
 /// A BED by hand: the paper's worked example (003, section IV.1.4).
 const WORKED_BED: &str = "Worked\n(50, 100)\nL=10(0) B=1(0)\nRULE\nR1: [F][+F][-F]\nR2: [++F][-F]\nSEED\nR1{R1{,,},R2{,},R1{,,}}\nENDSEED\n";
+
+/// The crate's root, for paths written into a command line.
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
 
 fn files_in(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = fs::read_dir(dir)
@@ -33,27 +34,10 @@ fn files_in(dir: &Path) -> Vec<String> {
 
 #[test]
 fn stdin_and_stdout_with_dash() {
-    stlc()
-        .args(["expand", "-", "--from", "lsys"])
-        .write_stdin(SQUARE)
-        .assert()
-        .success()
-        .stdout("F+F+F+F\n");
+    assert_eq!(stlc_piped("expand - --from lsys", SQUARE), b"F+F+F+F\n");
     // Unnamed input is recognised by its first key.
-    stlc()
-        .args(["expand", "-"])
-        .write_stdin(SQUARE)
-        .assert()
-        .success()
-        .stdout("F+F+F+F\n");
-    let out = stlc()
-        .args(["render", "-", "--from", "lsys", "-f", "svg", "-o", "-"])
-        .write_stdin(SQUARE)
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
+    assert_eq!(stlc_piped("expand -", SQUARE), b"F+F+F+F\n");
+    let out = stlc_piped("render - --from lsys -f svg -o -", SQUARE);
     let svg = String::from_utf8(out).unwrap();
     assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"), "{svg}");
     assert!(svg.trim_end().ends_with("</svg>"));
@@ -64,14 +48,7 @@ fn stats_at_depth_57_is_exact() {
     // F -> F[+F]F[-F]F: each F becomes 11 symbols (5 F, 6 others), so
     // L(n) = 5 L(n-1) + 6, L(0) = 1: L(n) = (5^(n+1) - 3) / 2.
     let lsys = "angle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
-    let out = stlc()
-        .args(["stats", "-", "--from", "lsys", "--depth", "57", "--json"])
-        .write_stdin(lsys)
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
+    let out = stlc_piped("stats - --from lsys --depth 57 --json", lsys);
     let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
     let five57 = num_bigint::BigUint::from(5u32).pow(57);
     let length = (five57.clone() * 5u32 - 3u32) / 2u32;
@@ -93,8 +70,7 @@ fn render_png_and_svg_files() {
     let f = dir.path().join("sq.lsys");
     fs::write(&f, SQUARE).unwrap();
     // Default output: beside the input, .png.
-    stlc()
-        .args(["render", f.to_str().unwrap()])
+    stlc_line(&format!("render {}", f.display()))
         .assert()
         .success();
     let png = fs::read(dir.path().join("sq.png")).unwrap();
@@ -104,17 +80,8 @@ fn render_png_and_svg_files() {
     assert_eq!((pix.width(), pix.height()), (800, 800));
 
     let svg = dir.path().join("out.svg");
-    stlc()
-        .args([
-            "render",
-            f.to_str().unwrap(),
-            "-o",
-            svg.to_str().unwrap(),
-            "--size",
-            "200x100",
-        ])
-        .assert()
-        .success();
+    let line = format!("render {} -o {} --size 200x100", f.display(), svg.display());
+    stlc_line(&line).assert().success();
     let text = fs::read_to_string(&svg).unwrap();
     assert!(
         text.contains("width=\"200\"") && text.contains("height=\"100\""),
@@ -130,20 +97,16 @@ fn a_bad_input_points_at_the_line_and_writes_nothing() {
     fs::write(&f, "angle 90\naxiom F\nrule F F[+F\n").unwrap();
     let out = dir.path().join("bad.png");
     fs::write(&out, b"previous picture").unwrap();
-    stlc()
-        .args([
-            "render",
-            f.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--depth",
-            "2",
-        ])
-        .assert()
-        .code(1)
-        .stderr(predicate::str::contains("bad.lsys"))
-        .stderr(predicate::str::contains(":3:"))
-        .stderr(predicate::str::contains("["));
+    stlc_line(&format!(
+        "render {} -o {} --depth 2",
+        f.display(),
+        out.display()
+    ))
+    .assert()
+    .code(1)
+    .stderr(predicate::str::contains("bad.lsys"))
+    .stderr(predicate::str::contains(":3:"))
+    .stderr(predicate::str::contains("["));
     // The old output is untouched and no temporary file is left.
     assert_eq!(fs::read(&out).unwrap(), b"previous picture");
     assert_eq!(files_in(dir.path()), ["bad.lsys", "bad.png"]);
@@ -155,8 +118,7 @@ fn a_failed_render_keeps_the_previous_output_and_leaves_no_temp_file() {
     let out = dir.path().join("tree.png");
     fs::write(&out, b"old").unwrap();
     // Depth far beyond the limit: refused before anything is drawn.
-    stlc()
-        .args(["render", "-", "--from", "lsys", "--depth", "1000000", "-o"])
+    stlc_line("render - --from lsys --depth 1000000 -o")
         .arg(&out)
         .write_stdin(SQUARE)
         .assert()
@@ -165,7 +127,6 @@ fn a_failed_render_keeps_the_previous_output_and_leaves_no_temp_file() {
     assert_eq!(fs::read(&out).unwrap(), b"old");
     assert_eq!(files_in(dir.path()), ["tree.png"]);
 }
-
 #[test]
 fn a_broken_pipe_exits_quietly() {
     let bin = assert_cmd::cargo::cargo_bin("stlc");
@@ -176,21 +137,14 @@ fn a_broken_pipe_exits_quietly() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(SQUARE.as_bytes())
-        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    stdin.write_all(SQUARE.as_bytes()).unwrap();
+    drop(stdin);
+    let mut stdout = child.stdout.take().unwrap();
     let mut first = [0u8; 16];
-    child
-        .stdout
-        .as_mut()
-        .unwrap()
-        .read_exact(&mut first)
-        .unwrap();
+    stdout.read_exact(&mut first).unwrap();
     assert_eq!(&first, b"F+F+F+F+F+F+F+F+");
-    drop(child.stdout.take());
+    drop(stdout);
     let out = child.wait_with_output().unwrap();
     assert!(out.status.success(), "{:?}", out.status);
     assert_eq!(String::from_utf8_lossy(&out.stderr), "");
@@ -200,9 +154,7 @@ fn a_broken_pipe_exits_quietly() {
 fn png_to_a_file_named_dash_svg_is_svg() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("w.svg");
-    stlc()
-        .args(["render", "-", "--from", "bed", "-o"])
-        .arg(&out)
+    stlc_line(&format!("render - --from bed -o {}", out.display()))
         .write_stdin(WORKED_BED)
         .assert()
         .success();
@@ -212,13 +164,10 @@ fn png_to_a_file_named_dash_svg_is_svg() {
 
 // ------------------------------------------------- limits and hostile input --
 
-/// Runs `stlc ARGS` with `stdin`; returns (exit code, stderr).
-fn run_stdin(args: &[&str], stdin: impl Into<Vec<u8>>) -> (i32, String) {
-    let out = stlc().args(args).write_stdin(stdin).output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+/// Runs `stlc LINE` with `stdin`; returns (exit code, stderr).
+fn run_stdin(line: &str, stdin: impl Into<Vec<u8>>) -> (i32, String) {
+    let (code, _, err) = outcome(stlc_line(line).write_stdin(stdin));
+    (code, err)
 }
 
 #[test]
@@ -229,7 +178,7 @@ fn each_limit_names_the_flag_that_raises_it() {
         "[".repeat(100_000),
         "]".repeat(100_000)
     );
-    let (code, err) = run_stdin(&["check", "-", "--from", "lsys"], deep);
+    let (code, err) = run_stdin("check - --from lsys", deep);
     assert_eq!(code, 1);
     assert!(err.contains("--max-nesting"), "{err}");
     let deep_bed = format!(
@@ -237,38 +186,31 @@ fn each_limit_names_the_flag_that_raises_it() {
         "R1{".repeat(100_000),
         "}".repeat(100_000)
     );
-    let (code, err) = run_stdin(&["check", "-", "--from", "bed"], deep_bed);
+    let (code, err) = run_stdin("check - --from bed", deep_bed);
     assert_eq!(code, 1);
     assert!(err.contains("--max-nesting"), "{err}");
     // A RULE section of 200,001 parts (one rule of 200,000 branches) is
     // refused before parsing; under a raised limit it reads.
     let wide = format!("T (0,0) RULE R1: {} SEED F ENDSEED", "[+F]".repeat(200_000));
-    let (code, err) = run_stdin(&["check", "-", "--from", "bed"], wide.clone());
+    let (code, err) = run_stdin("check - --from bed", wide.clone());
     assert_eq!(code, 1);
     assert!(err.contains("200001 exceeds the limit of 100000"), "{err}");
     assert!(err.contains("--max-rule-parts"), "{err}");
-    let (code, err) = run_stdin(
-        &["check", "-", "--from", "bed", "--max-rule-parts", "200001"],
-        wide,
-    );
+    let (code, err) = run_stdin("check - --from bed --max-rule-parts 200001", wide);
     assert_eq!(code, 0, "{err}");
 }
 
 #[test]
 fn the_readme_commands_run() {
-    let readme = fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let readme = fs::read_to_string(manifest_path("README.md")).unwrap();
     // The first screen names an example that exists and the test command.
     assert!(readme.contains("cargo test"));
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("2dtree.png");
-    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/2dtree.od");
     assert!(readme.contains("render examples/2dtree.od --show-layout"));
-    stlc()
-        .args(["render", example, "--show-layout", "-o"])
-        .arg(&out)
-        .assert()
-        .success();
-    let pix = tiny_skia::Pixmap::decode_png(&fs::read(&out).unwrap()).unwrap();
+    let line = format!("render {ROOT}/examples/2dtree.od --show-layout -o");
+    stlc_line(&line).arg(&out).assert().success();
+    let pix = png_at(&out);
     // The layout is 180 x 192 canvas units; with a margin of 4% of 192
     // plus half a stem (B=1) on every side, 8.18 units, it is 196.36 x
     // 208.36: round(800 x 196.36 / 208.36) = 754 x 800 pixels.
@@ -285,25 +227,19 @@ fn the_readme_commands_run() {
 /// 60 -/+ 15 s = 6.11 .. 113.89: the margin outside it is background.
 #[test]
 fn a_bed_with_a_layout_renders_its_golden_svg() {
-    let root = env!("CARGO_MANIFEST_DIR");
-    let out = stlc()
-        .args(["render", &format!("{root}/tests/cases/grow/tiny.bfs.bed")])
-        .args(["--show-layout", "--size", "120x120", "-f", "svg", "-o", "-"])
-        .output()
-        .unwrap();
-    assert!(out.status.success());
+    let line = |f: &str| {
+        format!(
+            "render {ROOT}/tests/cases/grow/tiny.bfs.bed --show-layout --size 120x120 -f {f} -o -"
+        )
+    };
+    let svg = stlc_piped(&line("svg"), "");
     assert_golden(
         "tests/cases/render/tiny-layout.svg",
-        &String::from_utf8(out.stdout).unwrap(),
+        &String::from_utf8(svg).unwrap(),
     );
     // The PNG agrees: stem pixels are bark brown, the layout green, the
     // margin around the layout white.
-    let out = stlc()
-        .args(["render", &format!("{root}/tests/cases/grow/tiny.bfs.bed")])
-        .args(["--show-layout", "--size", "120x120", "-f", "png", "-o", "-"])
-        .output()
-        .unwrap();
-    let pix = tiny_skia::Pixmap::decode_png(&out.stdout).unwrap();
+    let pix = tiny_skia::Pixmap::decode_png(&stlc_piped(&line("png"), "")).unwrap();
     let at = |x: u32, y: u32| {
         let p = pix.pixel(x, y).unwrap();
         (p.red(), p.green(), p.blue())
@@ -354,43 +290,27 @@ fn a_full_disk_on_stdout_is_an_error_not_a_panic() {
 /// tests in grow.rs).
 #[test]
 fn compile_writes_the_golden_bed_to_a_file_a_default_name_and_stdout() {
-    let root = env!("CARGO_MANIFEST_DIR");
     let golden = |s: &str| format!("tests/cases/grow/fig9.{s}.bed");
     let dir = tempfile::tempdir().unwrap();
     let od = dir.path().join("fig9.od");
-    fs::copy(format!("{root}/examples/fig9.od"), &od).unwrap();
+    fs::copy(manifest_path("examples/fig9.od"), &od).unwrap();
     // Named output, default strategy bfs.
     let out = dir.path().join("grown.bed");
-    stlc()
-        .args(["compile", od.to_str().unwrap(), "-o"])
-        .arg(&out)
-        .assert()
-        .success()
-        .stdout("");
+    let line = format!("compile {} -o {}", od.display(), out.display());
+    stlc_line(&line).assert().success().stdout("");
     assert_golden(golden("bfs"), &fs::read_to_string(&out).unwrap());
     // No -o: the input's name with .bed, beside it.
-    stlc()
-        .args(["compile", od.to_str().unwrap(), "--strategy", "dfs"])
-        .assert()
-        .success();
-    assert_golden(
-        golden("dfs"),
-        &fs::read_to_string(dir.path().join("fig9.bed")).unwrap(),
-    );
+    let line = format!("compile {} --strategy dfs", od.display());
+    stlc_line(&line).assert().success();
+    let beside = fs::read_to_string(dir.path().join("fig9.bed")).unwrap();
+    assert_golden(golden("dfs"), &beside);
     assert_eq!(files_in(dir.path()), ["fig9.bed", "fig9.od", "grown.bed"]);
     // Standard input to standard output.
-    let piped = stlc()
-        .args(["compile", "-", "--strategy", "dfs"])
-        .write_stdin(fs::read(&od).unwrap())
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
+    let piped = stlc_piped("compile - --strategy dfs", fs::read(&od).unwrap());
     assert_golden(golden("dfs"), &String::from_utf8(piped).unwrap());
     // bfs and dfs grow different trees here (Figures 9 and 10), so the
     // comparisons above tell whether --strategy reached the grower.
-    let read = |s: &str| fs::read(format!("{root}/{}", golden(s))).unwrap();
+    let read = |s: &str| fs::read(manifest_path(golden(s))).unwrap();
     assert_ne!(read("bfs"), read("dfs"));
 }
 
@@ -398,32 +318,21 @@ fn compile_writes_the_golden_bed_to_a_file_a_default_name_and_stdout() {
 /// rendering the BED draws (same pixels), for each strategy.
 #[test]
 fn render_of_an_od_equals_render_of_its_compiled_bed() {
-    let root = env!("CARGO_MANIFEST_DIR");
     let dir = tempfile::tempdir().unwrap();
     for strategy in ["bfs", "dfs"] {
         let from_od = dir.path().join(format!("od-{strategy}.png"));
-        stlc()
-            .args([
-                "render",
-                &format!("{root}/examples/fig9.od"),
-                "--show-layout",
-            ])
-            .args(["--growth", strategy, "--size", "200x200", "-o"])
+        let grown = format!("render {ROOT}/examples/fig9.od --growth {strategy}");
+        stlc_line(&format!("{grown} --show-layout --size 200x200 -o"))
             .arg(&from_od)
             .assert()
             .success();
         let from_bed = dir.path().join(format!("bed-{strategy}.png"));
-        stlc()
-            .args([
-                "render",
-                &format!("{root}/tests/cases/grow/fig9.{strategy}.bed"),
-            ])
-            .args(["--show-layout", "--size", "200x200", "-o"])
+        let bed = format!("render {ROOT}/tests/cases/grow/fig9.{strategy}.bed");
+        stlc_line(&format!("{bed} --show-layout --size 200x200 -o"))
             .arg(&from_bed)
             .assert()
             .success();
-        let a = tiny_skia::Pixmap::decode_png(&fs::read(&from_od).unwrap()).unwrap();
-        let b = tiny_skia::Pixmap::decode_png(&fs::read(&from_bed).unwrap()).unwrap();
+        let (a, b) = (png_at(&from_od), png_at(&from_bed));
         assert_eq!((a.width(), a.height()), (b.width(), b.height()));
         assert!(a.data() == b.data(), "{strategy}: pixels differ");
     }
@@ -450,70 +359,53 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
         "O\n(500, 500)\nRULE\nR1: [+F][-F]\nSEED\nFR1\nENDSEED\nLAYOUT\nRectangle (0,0), 100, 100 clGreen\nENDLAYOUT\n",
     );
     let bad_bed = write("bad.bed", "T (0,0) RULE R1: [F] SEED R7{} ENDSEED");
-    let cases: Vec<(Vec<&str>, i32, &str)> = vec![
-        (vec!["render", &bad_lsys], 1, "unbalanced"),
+    let cases = [
+        (format!("render {bad_lsys}"), 1, "unbalanced"),
+        (format!("render {square} --depth 1000000"), 1, "--max-depth"),
+        (format!("render {square} --size 0x0"), 2, "size"),
+        (format!("render {bad_bed}"), 1, "R7"),
+        (format!("render {outside}"), 1, "root"),
+        (format!("compile {bad_od}"), 1, "bad.od"),
+        (format!("compile {unbounded}"), 1, "--max-stems"),
+        (format!("compile {outside}"), 1, "root"),
         (
-            vec!["render", &square, "--depth", "1000000"],
-            1,
-            "--max-depth",
-        ),
-        (vec!["render", &square, "--size", "0x0"], 2, "size"),
-        (vec!["render", &bad_bed], 1, "R7"),
-        (vec!["render", &outside], 1, "root"),
-        (vec!["compile", &bad_od], 1, "bad.od"),
-        (vec!["compile", &unbounded], 1, "--max-stems"),
-        (vec!["compile", &outside], 1, "root"),
-        (
-            vec!["compile", &unbounded, "--clearance", "-1"],
+            format!("compile {unbounded} --clearance -1"),
             2,
             "clearance",
         ),
         (
-            vec!["compile", &unbounded, "--clearance", "nan"],
+            format!("compile {unbounded} --clearance nan"),
             2,
             "clearance",
         ),
         (
-            vec![
-                "compile",
-                &unbounded,
-                "--max-stems",
-                "5",
-                "--clearance=0",
-                "--max-input",
-                "10",
-            ],
+            format!("compile {unbounded} --max-stems 5 --clearance=0 --max-input 10"),
             1,
             "--max-input",
         ),
-        (vec!["compile", &square], 1, "lsys"),
-        (vec!["expand", &bad_lsys], 1, "unbalanced"),
-        (
-            vec!["expand", &square, "--depth", "1000000"],
-            1,
-            "--max-depth",
-        ),
-        (vec!["expand", &bad_bed], 1, "R7"),
+        (format!("compile {square}"), 1, "lsys"),
+        (format!("expand {bad_lsys}"), 1, "unbalanced"),
+        (format!("expand {square} --depth 1000000"), 1, "--max-depth"),
+        (format!("expand {bad_bed}"), 1, "R7"),
     ];
-    for (args, code, needle) in cases {
+    for (line, code, needle) in cases {
         // `render` refuses an output extension that is not an image format.
-        let out = dir.path().join(if args[0] == "render" {
+        let out = dir.path().join(if line.starts_with("render") {
             "previous.png"
         } else {
             "previous.out"
         });
         fs::write(&out, b"previous bytes").unwrap();
         let before = files_in(dir.path());
-        let res = stlc().args(&args).arg("-o").arg(&out).output().unwrap();
-        let err = String::from_utf8_lossy(&res.stderr);
-        assert_eq!(res.status.code(), Some(code), "{args:?}: {err}");
+        let (got, _, err) = outcome(stlc_line(&line).arg("-o").arg(&out));
+        assert_eq!(got, code, "{line}: {err}");
         assert!(
             err.to_lowercase().contains(&needle.to_lowercase()),
-            "{args:?}: {err}"
+            "{line}: {err}"
         );
-        assert!(!err.contains("panicked"), "{args:?}: {err}");
-        assert_eq!(fs::read(&out).unwrap(), b"previous bytes", "{args:?}");
-        assert_eq!(files_in(dir.path()), before, "{args:?} left a file");
+        assert!(!err.contains("panicked"), "{line}: {err}");
+        assert_eq!(fs::read(&out).unwrap(), b"previous bytes", "{line}");
+        assert_eq!(files_in(dir.path()), before, "{line} left a file");
     }
 }
 
@@ -574,14 +466,10 @@ fn the_progress_bar_shows_on_a_terminal_only() {
     assert!(!lod.contains("measuring"), "{lod}");
     assert!(lod.contains("195,311/195,311"), "{lod}");
     // Not a terminal: stderr stays empty even with no delay.
-    let out = stlc()
-        .args(["render", &format!("{root}/examples/abop-1.24a.lsys")])
-        .args(["--depth", "7", "-f", "svg", "-o", "-"])
-        .env("STLC_PROGRESS_DELAY_MS", "0")
-        .output()
-        .unwrap();
-    assert!(out.status.success());
-    assert!(out.stderr.is_empty());
+    let line = format!("render {root}/examples/abop-1.24a.lsys --depth 7 -f svg -o -");
+    let (code, _, err) = outcome(stlc_line(&line).env("STLC_PROGRESS_DELAY_MS", "0"));
+    assert_eq!(code, 0);
+    assert!(err.is_empty(), "{err}");
 }
 
 /// An SVG holds every segment, so it has a segment limit; it is checked
@@ -590,53 +478,35 @@ fn the_progress_bar_shows_on_a_terminal_only() {
 /// draws 5^4 = 625 segments; the grown tiny tree draws 7 stems (1 + 2 + 4).
 #[test]
 fn an_svg_over_its_segment_limit_is_refused_before_a_byte_is_written() {
-    let root = env!("CARGO_MANIFEST_DIR");
-    let tree = format!("{root}/examples/abop-1.24a.lsys");
-    let tiny = format!("{root}/tests/cases/grow/tiny.bfs.bed");
+    let tree = format!("{ROOT}/examples/abop-1.24a.lsys");
+    let tiny = format!("{ROOT}/tests/cases/grow/tiny.bfs.bed");
     for (input, depth, count) in [(&tree, "4", 625u64), (&tiny, "1", 7)] {
-        let over = stlc()
-            .args(["render", input, "--depth", depth, "-f", "svg", "-o", "-"])
-            .args([
-                "--show-layout",
-                "--max-svg-segments",
-                &(count - 1).to_string(),
-            ])
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&over.stderr);
-        assert_eq!(over.status.code(), Some(1), "{err}");
-        assert!(over.stdout.is_empty(), "{input}: wrote before refusing");
+        let svg = format!("render {input} --depth {depth} -f svg -o - --show-layout");
+        let over = format!("{svg} --max-svg-segments {}", count - 1);
+        let (code, out, err) = outcome(&mut stlc_line(&over));
+        assert_eq!(code, 1, "{err}");
+        assert!(out.is_empty(), "{input}: wrote before refusing");
         assert!(
             err.contains(&format!("{count} exceeds the limit of {}", count - 1))
                 && err.contains("--max-svg-segments"),
             "{err}"
         );
-        let at = stlc()
-            .args(["render", input, "--depth", depth, "-f", "svg", "-o", "-"])
-            .args(["--show-layout", "--max-svg-segments", &count.to_string()])
-            .output()
-            .unwrap();
-        assert!(at.status.success());
-        let svg = String::from_utf8(at.stdout).unwrap();
+        let at = stlc_piped(&format!("{svg} --max-svg-segments {count}"), "");
+        let svg = String::from_utf8(at).unwrap();
         // Every segment is written: one ` L` each (plus the three of the
         // layout rectangle under the tiny tree).
         assert_eq!(
             svg.matches(" L").count() as u64,
             count + u64::from(input == &tiny) * 3
         );
-        let png = stlc()
-            .args(["render", input, "--depth", depth, "-f", "png", "-o", "-"])
-            .args(["--max-svg-segments", "1"])
-            .output()
-            .unwrap();
-        assert!(png.status.success());
+        let png = format!("render {input} --depth {depth} -f png -o - --max-svg-segments 1");
+        stlc_line(&png).assert().success();
     }
 }
 
 /// `stlc render INPUT -o OUT`.
 fn render_to(input: &Path, out: impl AsRef<std::ffi::OsStr>) -> assert_cmd::assert::Assert {
-    stlc()
-        .args(["render", input.to_str().unwrap(), "-o"])
+    stlc_line(&format!("render {} -o", input.display()))
         .arg(out)
         .assert()
 }
@@ -655,14 +525,7 @@ fn outputs_that_are_pipes_devices_or_links_stay_what_they_are() {
     let p = |name: &str| dir.path().join(name);
     let square = p("square.lsys");
     fs::write(&square, SQUARE).unwrap();
-    let svg = {
-        let out = stlc()
-            .args(["render", square.to_str().unwrap(), "-o", "-", "-f", "svg"])
-            .output()
-            .unwrap();
-        assert!(out.status.success());
-        out.stdout
-    };
+    let svg = stlc_piped(&format!("render {} -o - -f svg", square.display()), "");
     assert!(svg.starts_with(b"<svg") || svg.starts_with(b"<?xml"));
 
     // A named pipe, read by another thread while stlc writes.
@@ -704,12 +567,8 @@ fn outputs_that_are_pipes_devices_or_links_stay_what_they_are() {
     fs::write(&real, "old").unwrap();
     std::os::unix::fs::symlink("real.svg", p("link.svg")).unwrap();
     render_to(&square, p("link.svg")).success();
-    assert!(
-        fs::symlink_metadata(p("link.svg"))
-            .unwrap()
-            .file_type()
-            .is_symlink()
-    );
+    let link = fs::symlink_metadata(p("link.svg")).unwrap();
+    assert!(link.file_type().is_symlink());
     assert_eq!(fs::read(&real).unwrap(), svg);
 
     // A dangling link: the file it names is created.
@@ -740,18 +599,13 @@ fn output_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
     fs::write(&square, SQUARE).unwrap();
     let mode = |path: &Path| fs::metadata(path).unwrap().permissions().mode() & 0o777;
     fs::File::create(p("plain")).unwrap();
-    for args in [
-        vec!["render", "-o", "new.png"],
-        vec!["render", "-o", "new.svg"],
-        vec!["expand", "-o", "new.txt"],
+    for (command, out) in [
+        ("render", "new.png"),
+        ("render", "new.svg"),
+        ("expand", "new.txt"),
     ] {
-        let out = args[2];
-        stlc()
-            .current_dir(dir.path())
-            .args([args[0], "square.lsys"])
-            .args(&args[1..])
-            .assert()
-            .success();
+        let line = format!("{command} square.lsys -o {out}");
+        stlc_line(&line).current_dir(dir.path()).assert().success();
         assert_eq!(mode(&p(out)), mode(&p("plain")), "{out}");
     }
     let kept = p("kept.png");
@@ -770,31 +624,18 @@ fn output_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
 #[test]
 fn strategy_means_one_thing_and_says_so() {
     let dir = tempfile::tempdir().unwrap();
-    let od = format!("{}/examples/fig9.od", env!("CARGO_MANIFEST_DIR"));
-    let png = |args: &[&str], name: &str| {
+    let od = format!("{ROOT}/examples/fig9.od");
+    let png = |flags: &str, name: &str| {
         let out = dir.path().join(name);
-        let a = Command::cargo_bin("stlc")
-            .unwrap()
-            .args([
-                "render",
-                &od,
-                "--size",
-                "120x120",
-                "-o",
-                out.to_str().unwrap(),
-            ])
-            .args(args)
-            .assert()
-            .success();
-        (
-            std::fs::read(&out).unwrap(),
-            String::from_utf8_lossy(&a.get_output().stderr).into_owned(),
-        )
+        let line = format!("render {od} --size 120x120 -o {} {flags}", out.display());
+        let (code, _, err) = outcome(&mut stlc_line(&line));
+        assert_eq!(code, 0, "{err}");
+        (std::fs::read(&out).unwrap(), err)
     };
-    let (plain, quiet) = png(&[], "plain.png");
+    let (plain, quiet) = png("", "plain.png");
     assert!(quiet.is_empty(), "{quiet}");
-    let (old, warned) = png(&["--strategy", "dfs"], "old.png");
-    let (new, warned_too) = png(&["--derivation", "dfs"], "new.png");
+    let (old, warned) = png("--strategy dfs", "old.png");
+    let (new, warned_too) = png("--derivation dfs", "new.png");
     assert_eq!(old, plain, "the derivation order does not change the tree");
     assert_eq!(new, plain);
     for w in [&warned, &warned_too] {
@@ -803,25 +644,16 @@ fn strategy_means_one_thing_and_says_so() {
             "{w}"
         );
     }
-    let (grown, with_growth) = png(&["--strategy", "dfs", "--growth", "dfs"], "grown.png");
+    let (grown, with_growth) = png("--strategy dfs --growth dfs", "grown.png");
     assert_ne!(grown, plain, "--growth dfs grows another tree");
     assert!(with_growth.is_empty(), "{with_growth}");
-    let compiled = Command::cargo_bin("stlc")
-        .unwrap()
-        .args(["compile", &od, "--strategy", "dfs", "-o", "-"])
-        .assert()
-        .success();
-    let out = compiled.get_output();
-    let golden = std::fs::read(format!(
-        "{}/tests/cases/grow/fig9.dfs.bed",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap();
+    let (code, out, err) = outcome(&mut stlc_line(&format!("compile {od} --strategy dfs -o -")));
+    assert_eq!(code, 0, "{err}");
+    let golden = std::fs::read(manifest_path("tests/cases/grow/fig9.dfs.bed")).unwrap();
     assert_eq!(
-        out.stdout, golden,
+        out, golden,
         "compile --strategy dfs still grows depth-first"
     );
-    let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("its name is --growth"), "{err}");
 }
 
@@ -830,7 +662,7 @@ fn strategy_means_one_thing_and_says_so() {
 #[test]
 fn it_runs_under_a_one_gigabyte_address_space_limit() {
     let bin = assert_cmd::cargo::cargo_bin("stlc");
-    let od = format!("{}/examples/2dtree.od", env!("CARGO_MANIFEST_DIR"));
+    let od = format!("{ROOT}/examples/2dtree.od");
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("t.png");
     let script = format!(
@@ -839,15 +671,12 @@ fn it_runs_under_a_one_gigabyte_address_space_limit() {
         bin.display(),
         png.display()
     );
-    let out = std::process::Command::new("sh")
+    let out = StdCommand::new("sh")
         .args(["-c", &script])
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
 }
 
@@ -858,8 +687,7 @@ fn it_runs_under_a_one_gigabyte_address_space_limit() {
 #[test]
 fn growth_settings_kept_in_the_file() {
     let dir = tempfile::tempdir().unwrap();
-    let root = env!("CARGO_MANIFEST_DIR");
-    let fig9 = std::fs::read_to_string(format!("{root}/examples/fig9.od")).unwrap();
+    let fig9 = std::fs::read_to_string(manifest_path("examples/fig9.od")).unwrap();
     let with = |keys: &str, name: &str| {
         let text = fig9.replace(
             "L=9(0) B=1.5(0) A=30 C=2",
@@ -868,58 +696,39 @@ fn growth_settings_kept_in_the_file() {
         assert_ne!(text, fig9, "the header line moved");
         let p = dir.path().join(name);
         std::fs::write(&p, text).unwrap();
-        p
+        p.display().to_string()
     };
-    let compile = |p: &std::path::Path, args: &[&str]| {
-        let out = Command::cargo_bin("stlc")
-            .unwrap()
-            .args(["compile", p.to_str().unwrap(), "-o", "-"])
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        out.stdout
+    // (standard output, which must be a success; standard error).
+    let compile = |file: &str, flags: &str| {
+        let (code, out, err) = outcome(&mut stlc_line(&format!("compile {file} -o - {flags}")));
+        assert_eq!(code, 0, "{err}");
+        (out, err)
     };
+    let bed = |file: &str, flags: &str| compile(file, flags).0;
     let golden =
-        |order: &str| std::fs::read(format!("{root}/tests/cases/grow/fig9.{order}.bed")).unwrap();
+        |order: &str| std::fs::read(format!("{ROOT}/tests/cases/grow/fig9.{order}.bed")).unwrap();
     let dfs = with("O=dfs", "dfs.od");
-    assert_eq!(compile(&dfs, &[]), golden("dfs"), "O=dfs grows depth-first");
+    assert_eq!(bed(&dfs, ""), golden("dfs"), "O=dfs grows depth-first");
     assert_eq!(
-        compile(&dfs, &["--growth", "bfs"]),
+        bed(&dfs, "--growth bfs"),
         golden("bfs"),
         "--growth overrides O="
     );
     // V= and M= grow what --seed and --max-stems grow.
-    let grove = std::fs::read_to_string(format!("{root}/examples/grove.od")).unwrap();
+    let grove = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
     let keyed = dir.path().join("grove.od");
     std::fs::write(&keyed, grove.replace("A=25 C=1", "A=25 C=1 V=7 M=500")).unwrap();
-    let plain = format!("{root}/examples/grove.od");
-    assert_eq!(
-        compile(&keyed, &[]),
-        compile(
-            std::path::Path::new(&plain),
-            &["--seed", "7", "--max-stems", "500"]
-        )
+    let (keyed, plain) = (
+        keyed.display().to_string(),
+        format!("{ROOT}/examples/grove.od"),
     );
+    assert_eq!(bed(&keyed, ""), bed(&plain, "--seed 7 --max-stems 500"));
     // The warning names the limit in force: M= (the file's design), or
     // --max-stems where it is the lower.
-    let warning = |p: &std::path::Path, args: &[&str]| {
-        let out = Command::cargo_bin("stlc")
-            .unwrap()
-            .args(["compile", p.to_str().unwrap(), "-o", "-"])
-            .args(args)
-            .output()
-            .unwrap();
-        String::from_utf8_lossy(&out.stderr).into_owned()
-    };
-    let by_m = warning(&keyed, &[]);
+    let by_m = compile(&keyed, "").1;
     assert!(by_m.contains("would pass the file's M=500"), "{by_m}");
     assert!(!by_m.contains("--max-stems"), "{by_m}");
-    let by_flag = warning(&keyed, &["--max-stems", "300"]);
+    let by_flag = compile(&keyed, "--max-stems 300").1;
     assert!(by_flag.contains("the stem limit of 300"), "{by_flag}");
     assert!(
         by_flag.contains("raise the limit with --max-stems N"),
@@ -927,11 +736,8 @@ fn growth_settings_kept_in_the_file() {
     );
     // The flag overrides V= for one run.
     assert_eq!(
-        compile(&keyed, &["--seed", "8"]),
-        compile(
-            std::path::Path::new(&plain),
-            &["--seed", "8", "--max-stems", "500"]
-        )
+        bed(&keyed, "--seed 8"),
+        bed(&plain, "--seed 8 --max-stems 500")
     );
     // A BED refusing them, and wrong values: tests/cmd/growth.md.
 }
@@ -945,10 +751,9 @@ fn growth_settings_kept_in_the_file() {
 fn standard_input_is_never_the_output() {
     let dir = tempfile::tempdir().unwrap();
     let od = dir.path().join("g.od");
-    let text = fs::read(crate::support::manifest_path("examples/2dtree.od")).unwrap();
+    let text = fs::read(manifest_path("examples/2dtree.od")).unwrap();
     fs::write(&od, &text).unwrap();
-    let od_name = od.to_str().unwrap();
-    for output in [od_name, "/dev/stdin"] {
+    for output in [od.to_str().unwrap(), "/dev/stdin"] {
         let out = StdCommand::new(assert_cmd::cargo::cargo_bin("stlc"))
             .args(["compile", "-", "--from", "od", "-o", output])
             .env("NO_COLOR", "1")
@@ -965,10 +770,6 @@ fn standard_input_is_never_the_output() {
     }
     // The same text through a pipe: written.
     let bed = dir.path().join("g.bed");
-    stlc()
-        .args(["compile", "-", "--from", "od", "-o", bed.to_str().unwrap()])
-        .write_stdin(text)
-        .assert()
-        .success();
+    stlc_piped(&format!("compile - --from od -o {}", bed.display()), text);
     assert!(fs::read_to_string(&bed).unwrap().contains("SEED"));
 }

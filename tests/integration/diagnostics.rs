@@ -51,13 +51,7 @@ fn every_error_case_renders_a_pointed_report() {
 #[test]
 fn every_bound_names_a_real_flag_with_its_default() {
     let help = |command: &str| {
-        let out = Command::cargo_bin("stlc")
-            .unwrap()
-            .args([command, "--help"])
-            .output()
-            .unwrap();
-        assert!(out.status.success(), "{command} --help");
-        String::from_utf8(out.stdout).unwrap()
+        String::from_utf8(crate::support::stlc_piped(&format!("{command} --help"), "")).unwrap()
     };
     let helps = [help("render"), help("serve")];
     let docs = fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/limits.md"))

@@ -13,7 +13,7 @@ use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{BBox, Bounds, Recorder, Segment, StandIn, Turtle};
 
-use crate::support::stlc;
+use crate::support::stlc_line;
 
 fn sys(src: &str) -> LSystem {
     stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
@@ -424,46 +424,30 @@ fn a_straight_run_is_drawn_as_its_chords() {
 fn depth_57_renders_at_a_level_of_detail_and_exact_refuses() {
     let dir = tempfile::tempdir().unwrap();
     let lsys = support_path("examples/abop-1.24a.lsys");
-    let png = dir.path().join("t.png");
-    stlc()
-        .args(["render", &lsys, "--depth", "57", "--size", "200x200", "-o"])
-        .arg(&png)
+    let render = |flags: &str, out: &str| {
+        let out = dir.path().join(out);
+        stlc_line(&format!(
+            "render {lsys} --depth 57 {flags} -o {}",
+            out.display()
+        ))
         .assert()
-        .success();
-    let pixmap = tiny_skia::Pixmap::load_png(&png).unwrap();
+    };
+    render("--size 200x200", "t.png").success();
+    let pixmap = tiny_skia::Pixmap::load_png(dir.path().join("t.png")).unwrap();
     assert_eq!((pixmap.width(), pixmap.height()), (200, 200));
     // Something is drawn in the middle column (the trunk), not everywhere.
     let dark = pixmap.pixels().iter().filter(|p| p.red() < 128).count();
     assert!(dark > 200 && dark < 200 * 200 / 2, "{dark}");
-    let svg = dir.path().join("t.svg");
-    stlc()
-        .args(["render", &lsys, "--depth", "57", "--size", "200x200", "-o"])
-        .arg(&svg)
-        .assert()
-        .success();
-    let text = std::fs::read_to_string(&svg).unwrap();
+    render("--size 200x200", "t.svg").success();
+    let text = std::fs::read_to_string(dir.path().join("t.svg")).unwrap();
     // A few thousand stand-ins at 200 px: well under a megabyte.
     assert!(text.len() < 1_000_000, "{}", text.len());
     assert!(text.contains("<path"));
-    stlc()
-        .args(["render", &lsys, "--depth", "57", "--exact", "-o"])
-        .arg(dir.path().join("x.png"))
-        .assert()
+    render("--exact", "x.png")
         .failure()
         .stderr(predicates::str::contains("--max-symbols"));
     // And the limit still holds at a level of detail: visits are counted.
-    stlc()
-        .args([
-            "render",
-            &lsys,
-            "--depth",
-            "57",
-            "--max-symbols",
-            "1000",
-            "-o",
-        ])
-        .arg(dir.path().join("y.png"))
-        .assert()
+    render("--max-symbols 1000", "y.png")
         .failure()
         .stderr(predicates::str::contains("level of detail"));
 }

@@ -548,16 +548,10 @@ fn a_3d_od_grows_a_bed_that_draws_the_stems_growth_placed() {
 
 /// `stlc compile` of an OD text: the BED written, and the messages.
 fn compile(text: &str) -> (String, String) {
-    let out = assert_cmd::Command::cargo_bin("stlc")
-        .unwrap()
-        .env("NO_COLOR", "1")
-        .args(["compile", "--from", "od", "-o", "-", "-"])
-        .write_stdin(text)
-        .output()
-        .unwrap();
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert!(out.status.success(), "{err}");
-    (String::from_utf8(out.stdout).unwrap(), err)
+    let mut cmd = crate::support::stlc_line("compile --from od -o - -");
+    let (code, out, err) = crate::support::outcome(cmd.write_stdin(text));
+    assert_eq!(code, 0, "{err}");
+    (String::from_utf8(out).unwrap(), err)
 }
 
 /// Alternatives chosen by `V=`, `M=` and the explanation work in space as

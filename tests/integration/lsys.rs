@@ -26,17 +26,16 @@ pub fn segments_of(
     depth: u32,
     strategy: Derivation,
 ) -> Vec<Segment> {
+    recorded_of(s, depth, strategy).segments
+}
+
+/// What the turtle hands a backend for `s` at `depth` (segments,
+/// polygons), with the default limits.
+pub fn recorded_of(s: &stlc::model::lsys::LSystem, depth: u32, strategy: Derivation) -> Recorder {
     let mut rec = Recorder::default();
-    draw_into(
-        s,
-        depth,
-        strategy,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
-    rec.segments
+    let limits = Limits::default();
+    draw_into(s, depth, strategy, &limits, &mut rec, &mut NoProgress).unwrap();
+    rec
 }
 
 fn expanded(src: &str, depth: u32, strategy: Derivation) -> String {
@@ -340,6 +339,15 @@ fn expand_by_hand() {
     assert_eq!(expanded(src, 2, Derivation::Bfs), "FFFF+FF-F-X\n");
 }
 
+/// A segment of order 0 from `a` to `b`.
+fn seg(a: (f64, f64), b: (f64, f64)) -> Segment {
+    Segment {
+        from: Point::new(a.0, a.1),
+        to: Point::new(b.0, b.1),
+        order: 0,
+    }
+}
+
 #[test]
 fn segments_by_hand() {
     // `F+F` at 90 degrees: up one, turn left, then one step left (canvas: y down).
@@ -347,35 +355,13 @@ fn segments_by_hand() {
     let p = Point::new;
     assert_eq!(
         segs,
-        vec![
-            Segment {
-                from: p(0.0, 0.0),
-                to: p(0.0, -2.0),
-                order: 0
-            },
-            Segment {
-                from: p(0.0, -2.0),
-                to: p(-2.0, -2.0),
-                order: 0
-            },
-        ]
+        [seg((0.0, 0.0), (0.0, -2.0)), seg((0.0, -2.0), (-2.0, -2.0))]
     );
     // `heading 0`: the same word starts to the right, then turns up.
     let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Derivation::Bfs);
     assert_eq!(
         segs,
-        vec![
-            Segment {
-                from: p(0.0, 0.0),
-                to: p(1.0, 0.0),
-                order: 0
-            },
-            Segment {
-                from: p(1.0, 0.0),
-                to: p(1.0, -1.0),
-                order: 0
-            },
-        ]
+        [seg((0.0, 0.0), (1.0, 0.0)), seg((1.0, 0.0), (1.0, -1.0))]
     );
     // `heading 180` with `|`: left, then turned around, back right.
     assert_eq!(
@@ -390,21 +376,9 @@ fn segments_by_hand() {
     assert_eq!(
         segs,
         vec![
-            Segment {
-                from: p(0.0, 0.0),
-                to: p(0.0, -1.0),
-                order: 0
-            },
-            Segment {
-                from: p(0.0, -1.0),
-                to: p(1.0, -1.0),
-                order: 0
-            },
-            Segment {
-                from: p(0.0, -1.0),
-                to: p(0.0, 0.0),
-                order: 0
-            },
+            seg((0.0, 0.0), (0.0, -1.0)),
+            seg((0.0, -1.0), (1.0, -1.0)),
+            seg((0.0, -1.0), (0.0, 0.0)),
         ]
     );
 }

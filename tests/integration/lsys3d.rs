@@ -5,8 +5,7 @@ use std::collections::BTreeMap;
 
 use stlc::pipeline::{ImageFormat, MeshFormat, MeshOptions, RenderOptions, Request, View};
 
-use crate::support::manifest_path;
-use crate::support::stlc;
+use crate::support::{manifest_path, numbers, outcome, stlc_line, stlc_piped};
 
 fn lsys_request(text: &str) -> Request {
     Request {
@@ -91,12 +90,7 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
     .unwrap();
     let j: serde_json::Value = serde_json::from_str(&s).unwrap();
     assert_eq!(j["segments"], "511");
-    let b: Vec<f64> = j["bbox"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
+    let b: Vec<f64> = numbers(&j["bbox"]);
     assert_eq!((b[3] - b[0], b[4] - b[1], b[5] - b[2]), (7.0, 7.0, 7.0));
 }
 
@@ -146,8 +140,7 @@ fn stats_past_the_budget_give_a_bound() {
 
 #[test]
 fn dimensions_other_than_2_or_3_are_refused_with_help() {
-    stlc()
-        .args(["check", "-"])
+    stlc_line("check -")
         .write_stdin("dimensions 4\nangle 90\naxiom F\n")
         .assert()
         .failure()
@@ -159,12 +152,7 @@ fn dimensions_other_than_2_or_3_are_refused_with_help() {
 #[test]
 fn a_2d_file_keeps_its_meaning_and_warns_of_a_view() {
     let j = stats_json("angle 90\ngenerations 0\naxiom F&F\n");
-    let end: Vec<f64> = j["end"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
+    let end: Vec<f64> = numbers(&j["end"]);
     assert_eq!(end, [0.0, -2.0]);
     let drawn = Request {
         view: Some(View::DEFAULT),
@@ -265,27 +253,17 @@ fn the_command_line_writes_meshes_and_views() {
     let glb = dir.path().join("h.glb");
     let png = dir.path().join("h.png");
     let input = manifest_path("examples/hilbert3d.lsys");
-    stlc()
-        .args([
-            "render",
-            input.to_str().unwrap(),
-            "-o",
-            glb.to_str().unwrap(),
-        ])
-        .assert()
-        .success();
+    stlc_piped(
+        &format!("render {} -o {}", input.display(), glb.display()),
+        "",
+    );
     assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
-    stlc()
-        .args([
-            "render",
-            input.to_str().unwrap(),
-            "--view",
-            "-45,10",
-            "-o",
-            png.to_str().unwrap(),
-        ])
-        .assert()
-        .success();
+    let line = format!(
+        "render {} --view -45,10 -o {}",
+        input.display(),
+        png.display()
+    );
+    stlc_piped(&line, "");
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
 }
 
@@ -348,34 +326,13 @@ fn the_khronos_validator_finds_no_issue() {
 #[test]
 fn a_mesh_goes_to_standard_output_when_asked() {
     let input = manifest_path("examples/hilbert3d.lsys");
-    let out = stlc()
-        .args([
-            "render",
-            input.to_str().unwrap(),
-            "--mesh",
-            "obj",
-            "-o",
-            "-",
-        ])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
+    let out = stlc_piped(&format!("render {} --mesh obj -o -", input.display()), "");
     let text = String::from_utf8(out).unwrap();
     assert_eq!(
         text.lines().filter(|l| l.starts_with("f ")).count(),
         63 * 20
     );
-    stlc()
-        .args([
-            "render",
-            input.to_str().unwrap(),
-            "--mesh",
-            "obj",
-            "-o",
-            "x.glb",
-        ])
+    stlc_line(&format!("render {} --mesh obj -o x.glb", input.display()))
         .assert()
         .code(2);
 }
@@ -413,36 +370,27 @@ fn a_view_past_the_top_is_a_usage_error() {
     let png = dir.path().join("h.png");
     let input = manifest_path("examples/hilbert3d.lsys");
     let run = |view: &str| {
-        stlc()
-            .args([
-                "render",
-                input.to_str().unwrap(),
-                "-o",
-                png.to_str().unwrap(),
-            ])
-            .args(["--view", view])
-            .output()
-            .unwrap()
+        let line = format!(
+            "render {} -o {} --view {view}",
+            input.display(),
+            png.display()
+        );
+        outcome(&mut stlc_line(&line))
     };
     for view in ["30,100", "30,-90.5", "0,270"] {
-        let out = run(view);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{view}: {err}");
+        let (code, _, err) = run(view);
+        assert_eq!(code, 2, "{view}: {err}");
         assert!(
             err.contains("from -90") && err.contains("to 90"),
             "{view}: {err}"
         );
         assert!(!png.exists(), "{view} wrote a picture");
     }
-    let err = String::from_utf8_lossy(&run("30,100").stderr).into_owned();
+    let (_, _, err) = run("30,100");
     assert!(err.contains("210,80"), "{err}");
     for view in ["30,90", "-45,-90", "400,0"] {
-        let out = run(view);
-        assert!(
-            out.status.success(),
-            "{view}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let (code, _, err) = run(view);
+        assert_eq!(code, 0, "{view}: {err}");
         assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
         std::fs::remove_file(&png).unwrap();
     }

@@ -2,7 +2,6 @@
 //! rules with alternatives chosen by seed and place, the BED that records
 //! the choices, and forests of several roots in one outline.
 
-use assert_cmd::Command;
 use stlc::choice::{Alternatives, Key};
 use stlc::diag::{GrowError, RuleError, StlError};
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow, grow_traced};
@@ -11,8 +10,8 @@ use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
 use stlc::{Diagnostics, ErrorKind, Limits};
 
-use crate::support::manifest_path;
 use crate::support::od;
+use crate::support::{manifest_path, outcome, stlc_line};
 
 fn errors(text: &str, format: Format) -> Diagnostics {
     match parse(text, format, &Limits::default()) {
@@ -554,25 +553,20 @@ fn compile_grove_with_seeds() {
     let grove = manifest_path("examples/grove.od");
     let compile = |seed: &str, out: &str| {
         let out = dir.path().join(out);
-        Command::cargo_bin("stlc")
-            .unwrap()
-            .args(["compile", grove.to_str().unwrap(), "--seed", seed, "-o"])
-            .arg(&out)
-            .assert()
-            .success();
+        let line = format!(
+            "compile {} --seed {seed} -o {}",
+            grove.display(),
+            out.display()
+        );
+        stlc_line(&line).assert().success();
         std::fs::read(out).unwrap()
     };
     let a = compile("7", "a.bed");
     assert_eq!(a, compile("7", "b.bed"));
     assert_ne!(a, compile("8", "c.bed"));
     let render = |input: &std::path::Path, seed: &str| {
-        Command::cargo_bin("stlc")
-            .unwrap()
-            .args(["render", "--format", "svg", "--seed", seed, "-o", "-"])
-            .arg(input)
-            .output()
-            .unwrap()
-            .stdout
+        let line = format!("render --format svg --seed {seed} -o - {}", input.display());
+        outcome(&mut stlc_line(&line)).1
     };
     let bed = dir.path().join("a.bed");
     let from_bed = render(&bed, "1");

@@ -5,7 +5,6 @@
 
 use stlc::color::Rgb;
 use stlc::interpret::Derivation;
-use stlc::interpret::lsys::draw_into;
 use stlc::limits::Limits;
 use stlc::progress::NoProgress;
 use stlc::syntax::lsys::parse;
@@ -18,17 +17,7 @@ const BLUE: Rgb = Rgb::new(0, 0, 0xff);
 /// What the parametric turtle hands a backend for `src` at `depth`.
 fn recorded(src: &str, depth: u32) -> Recorder {
     let sys = parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e:?}"));
-    let mut rec = Recorder::default();
-    draw_into(
-        &sys,
-        depth,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
-    rec
+    crate::lsys::recorded_of(&sys, depth, Derivation::Dfs)
 }
 
 /// The first error's message and the text its span covers.
@@ -42,23 +31,18 @@ fn first_error(src: &str) -> (String, String) {
 /// The picture `stlc render` writes for `src` as `name` (its extension
 /// the format), at 100 x 100 pixels.
 fn rendered(src: &str, name: &str) -> Vec<u8> {
-    rendered_with(src, name, &[])
+    rendered_with(src, name, "")
 }
 
 /// [`rendered`] with more arguments.
-fn rendered_with(src: &str, name: &str, more: &[&str]) -> Vec<u8> {
+fn rendered_with(src: &str, name: &str, more: &str) -> Vec<u8> {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("in.lsys");
     std::fs::write(&input, src).unwrap();
     let out = dir.path().join(name);
-    crate::support::stlc()
-        .args(["render", "--size", "100x100"])
-        .args(more)
-        .arg(&input)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .success();
+    let (input, out_path) = (input.display(), out.display());
+    let line = format!("render --size 100x100 {more} {input} -o {out_path}");
+    crate::support::stlc_line(&line).assert().success();
     std::fs::read(&out).unwrap()
 }
 
@@ -205,14 +189,9 @@ fn a_polygon_over_the_vertex_limit_is_an_error_as_written_and_as_derived() {
     let input = dir.path().join("grow.lsys");
     std::fs::write(&input, src).unwrap();
     let out = dir.path().join("grow.png");
-    let assert = crate::support::stlc()
-        .arg("render")
-        .arg(&input)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .failure();
-    let err = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+    let line = format!("render {} -o {}", input.display(), out.display());
+    let (code, _, err) = crate::support::outcome(&mut crate::support::stlc_line(&line));
+    assert_ne!(code, 0, "{err}");
     assert!(err.contains(&format!("more than {n} vertices")), "{err}");
     assert!(!out.exists());
 }
@@ -250,7 +229,7 @@ fn a_3d_view_from_the_front_draws_colours_and_polygons_as_the_2d_picture() {
     let front = rendered_with(
         &format!("generations 0\ndimensions 3\n{word}"),
         "out.svg",
-        &["--view", "0,0"],
+        "--view 0,0",
     );
     let flat = String::from_utf8(flat).unwrap();
     assert!(flat.contains("fill=\"#0000ff\""), "{flat}");
@@ -363,13 +342,8 @@ fn abop_1_26_as_a_mesh_has_one_material_per_colour_and_leaf_materials() {
     let path = crate::support::manifest_path("examples/abop-1.26.lsys");
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("plant.gltf");
-    crate::support::stlc()
-        .args(["render", "--depth", "3"])
-        .arg(&path)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .success();
+    let line = format!("render --depth 3 {} -o {}", path.display(), out.display());
+    crate::support::stlc_line(&line).assert().success();
     let text = std::fs::read_to_string(&out).unwrap();
     // Stems in the stem and stamen colours; leaves and petals as leaves.
     for name in [

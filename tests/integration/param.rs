@@ -548,13 +548,9 @@ fn the_cli_report_points_at_the_expression() {
         "angle 9\ndefine ratio 0.9\naxiom A(1)\nrule A(l) -> F(l)A(l*raito)\n",
     )
     .unwrap();
-    let out = assert_cmd::Command::cargo_bin("stlc")
-        .unwrap()
-        .args(["check", file.to_str().unwrap(), "--color", "never"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let err = String::from_utf8(out.stderr).unwrap();
+    let line = format!("check {} --color never", file.display());
+    let (code, _, err) = crate::support::outcome(&mut crate::support::stlc_line(&line));
+    assert_eq!(code, 1);
     assert!(err.contains("unknown name `raito`"), "{err}");
     assert!(err.contains("typo.lsys:4:"), "{err}");
     assert!(err.contains("did you mean `ratio`?"), "{err}");
@@ -581,17 +577,7 @@ fn classic_files_take_the_classic_path() {
 
 fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
     let sys = parse(src, &Limits::default()).unwrap();
-    let mut rec = stlc::turtle::Recorder::default();
-    stlc::interpret::lsys::draw_into(
-        &sys,
-        depth,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
-    rec.segments
+    crate::lsys::segments_of(&sys, depth, Derivation::Dfs)
 }
 
 fn ends_3d(src: &str) -> Vec<stlc::turtle::turtle3::Segment3> {

@@ -89,53 +89,61 @@ fn bed(src: &str) -> Description {
 const N: usize = 100_000;
 const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
 
+/// `open` `n` times, then `inner`, then `close` `n` times.
+fn nest(n: usize, open: &str, inner: &str, close: &str) -> String {
+    format!("{}{inner}{}", open.repeat(n), close.repeat(n))
+}
+
+/// The error of nesting past `limit` levels.
+fn too_deep(limit: usize) -> ErrorKind {
+    ErrorKind::Input(InputError::NestingTooDeep { limit })
+}
+
+/// The default limits with nesting allowed to a million levels.
+fn deep_limits() -> Limits {
+    Limits {
+        max_nesting: 1_000_000,
+        ..Limits::default()
+    }
+}
+
+/// `d` read as a BED and drawn in `order` into `turtle`.
+fn draw_bed(
+    d: &Description,
+    order: Derivation,
+    limits: &Limits,
+    turtle: &mut impl Turtle,
+    progress: &mut impl Progress,
+) -> Result<(), Diagnostics> {
+    stlc::bed::Bed::new(d.clone(), limits)
+        .and_then(|bed| stlc::interpret::bed::draw(&bed, order, limits, turtle, progress))
+}
+
 // --------------------------------------------------------------- nesting --
 
 #[test]
 fn lsys_axiom_nested_a_hundred_thousand_deep_is_refused_at_the_limit() {
-    let src = format!("axiom {}F{}\nangle 90\n", "[".repeat(N), "]".repeat(N));
+    let src = format!("axiom {}\nangle 90\n", nest(N, "[", "F", "]"));
     let e = lsys_err(src, Limits::default());
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::NestingTooDeep {
-            limit: 10_000
-        }))
-    );
+    assert_eq!(e.first_kind(), Some(&too_deep(10_000)));
     // The 10 001st `[`, after `axiom `.
     assert_eq!(e.0[0].span, Some(6 + 10_000..6 + 10_001));
 }
 
 #[test]
 fn lsys_successor_nested_a_hundred_thousand_deep_is_refused() {
-    let src = format!(
-        "axiom F\nangle 90\nrule F {}F{}\n",
-        "[".repeat(N),
-        "]".repeat(N)
-    );
+    let src = format!("axiom F\nangle 90\nrule F {}\n", nest(N, "[", "F", "]"));
     let e = lsys_err(src, Limits::default());
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::NestingTooDeep {
-            limit: 10_000
-        }))
-    );
+    assert_eq!(e.first_kind(), Some(&too_deep(10_000)));
 }
 
 #[test]
 fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     // With the limit raised, nothing recursive is left to overflow: the
     // grammar reads a word flat and both strategies use explicit stacks.
-    let limits = Limits {
-        max_nesting: 1_000_000,
-        ..Limits::default()
-    };
-    let src = format!(
-        "axiom {}F{}\nangle 90\nrule F F{}+F{}\n",
-        "[".repeat(N),
-        "]".repeat(N),
-        "[".repeat(N),
-        "]".repeat(N)
-    );
+    let limits = deep_limits();
+    let (axiom, successor) = (nest(N, "[", "F", "]"), nest(N, "[", "+F", "]"));
+    let src = format!("axiom {axiom}\nangle 90\nrule F F{successor}\n");
     let counts = small_stack(move || {
         let sys = lsys::parse(&src, &limits).expect("parses");
         [Derivation::Dfs, Derivation::Bfs].map(|s| {
@@ -171,39 +179,19 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
 #[test]
 fn stl_brackets_braces_and_repeats_a_hundred_thousand_deep_are_refused() {
     let cases = [
-        format!("{HEAD} R1: {}F{}", "[".repeat(N), "]".repeat(N)),
+        format!("{HEAD} R1: {}", nest(N, "[", "F", "]")),
+        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "R1{", "", "}")),
+        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "{", "", "}")),
         format!(
-            "{HEAD} R1: [F] SEED {}{} ENDSEED",
-            "R1{".repeat(N),
-            "}".repeat(N)
+            "{HEAD} R1: [F] SEED {} ENDSEED",
+            nest(N, "[I 2 ", "R1", "]")
         ),
-        format!(
-            "{HEAD} R1: [F] SEED {}{} ENDSEED",
-            "{".repeat(N),
-            "}".repeat(N)
-        ),
-        format!(
-            "{HEAD} R1: [F] SEED {}R1{} ENDSEED",
-            "[I 2 ".repeat(N),
-            "]".repeat(N)
-        ),
-        format!(
-            "{HEAD} R1: [F] SEED {}F{} ENDSEED",
-            "[".repeat(N),
-            "]".repeat(N)
-        ),
+        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "[", "F", "]")),
     ];
     for src in cases {
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(src.clone(), format, Limits::default());
-            assert_eq!(
-                e.first_kind(),
-                Some(&ErrorKind::Input(InputError::NestingTooDeep {
-                    limit: 10_000
-                })),
-                "{}",
-                &src[..60]
-            );
+            assert_eq!(e.first_kind(), Some(&too_deep(10_000)), "{}", &src[..60]);
         }
     }
 }
@@ -213,39 +201,23 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     // Raised limit: what the parser itself does with 10^5 levels, on a
     // small stack. Brackets in a body are drawing; a seed of bare braces
     // or of `[I 2` around a rule is malformed and must say so.
-    let limits = Limits {
-        max_nesting: 1_000_000,
-        ..Limits::default()
-    };
-    let body = format!(
-        "{HEAD} R1: [{}F{}] SEED R1 ENDSEED",
-        "[".repeat(N),
-        "]".repeat(N)
-    );
+    let limits = deep_limits();
+    let body = format!("{HEAD} R1: [{}] SEED R1 ENDSEED", nest(N, "[", "F", "]"));
     let count = small_stack(move || {
         let d = stl::parse(&body, Format::Bed, &limits).expect("a deep branch parses");
         let mut c = Counter::default();
-        stlc::bed::Bed::new(d.clone(), &limits)
-            .and_then(|bed| {
-                stlc::interpret::bed::draw(&bed, Derivation::Dfs, &limits, &mut c, &mut NoProgress)
-            })
-            .expect("draws");
+        draw_bed(&d, Derivation::Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
         c.0
     });
     assert_eq!(count, 1);
-    let braces = format!(
-        "{HEAD} R1: [F] SEED {}{} ENDSEED",
-        "{".repeat(N),
-        "}".repeat(N)
-    );
+    let braces = format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "{", "", "}"));
     // Pointed at the first brace, which follows no rule name.
     let at = braces.find('{').unwrap();
     let e = stl_err(braces, Format::Bed, limits);
     assert_eq!(e.0[0].span, Some(at..at + 1), "{e}");
     let repeats = format!(
-        "{HEAD} R1: [F] SEED {}R1{} ENDSEED",
-        "[I 2 ".repeat(N),
-        "]".repeat(N)
+        "{HEAD} R1: [F] SEED {} ENDSEED",
+        nest(N, "[I 2 ", "R1", "]")
     );
     let at = repeats.find("[I").unwrap();
     let e = stl_err(repeats, Format::Bed, limits);
@@ -267,28 +239,16 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
 #[test]
 fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
     let n = 9_900;
-    let src = format!(
-        "{HEAD} R1: [F] SEED {}{} ENDSEED",
-        "R1{".repeat(n),
-        "}".repeat(n)
-    );
+    let src = format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(n, "R1{", "", "}"));
     let (count, text_len) = small_stack(move || {
         let limits = Limits::default();
         let d = stl::parse(&src, Format::Bed, &limits).expect("parses");
         validate(&d, &limits).expect("valid");
         let text = write(&d);
         let mut c = Counter::default();
-        stlc::bed::Bed::new(d.clone(), &limits)
-            .and_then(|bed| {
-                stlc::interpret::bed::draw(&bed, Derivation::Dfs, &limits, &mut c, &mut NoProgress)
-            })
-            .expect("draws");
+        draw_bed(&d, Derivation::Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
         let mut b = Counter::default();
-        stlc::bed::Bed::new(d.clone(), &limits)
-            .and_then(|bed| {
-                stlc::interpret::bed::draw(&bed, Derivation::Bfs, &limits, &mut b, &mut NoProgress)
-            })
-            .expect("draws");
+        draw_bed(&d, Derivation::Bfs, &limits, &mut b, &mut NoProgress).expect("draws");
         assert_eq!(b.0, c.0);
         let back = stl::parse(&text, Format::Bed, &limits).expect("reparses");
         assert!(back == d, "round trip");
@@ -299,9 +259,8 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         // a repeat instead of empty, differs.)
         let deeper = stl::parse(
             &format!(
-                "{HEAD} R1: [F] SEED {}[I 2 R1]{} ENDSEED",
-                "R1{".repeat(n - 1),
-                "}".repeat(n - 1)
+                "{HEAD} R1: [F] SEED {} ENDSEED",
+                nest(n - 1, "R1{", "[I 2 R1]", "}")
             ),
             Format::Bed,
             &limits,
@@ -363,17 +322,7 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
     let (e, drawn, tally) = small_stack(move || {
         let mut c = Counter::default();
         let mut tally = Tally::default();
-        let e = stlc::bed::Bed::new(d.clone(), &Limits::default())
-            .and_then(|bed| {
-                stlc::interpret::bed::draw(
-                    &bed,
-                    Derivation::Dfs,
-                    &Limits::default(),
-                    &mut c,
-                    &mut tally,
-                )
-            })
-            .unwrap_err();
+        let e = draw_bed(&d, Derivation::Dfs, &Limits::default(), &mut c, &mut tally).unwrap_err();
         (e, c.0, tally)
     });
     assert!(is_limit(&e, "symbols in the expansion"), "{e}");
@@ -619,17 +568,14 @@ fn a_layout_whose_shapes_cancel_is_read_and_drawn() {
     let d = bed(&src);
     assert_eq!(d.layout.as_ref().unwrap().shapes.len(), 2);
     let mut b = Bounds::default();
-    stlc::bed::Bed::new(d.clone(), &Limits::default())
-        .and_then(|bed| {
-            stlc::interpret::bed::draw(
-                &bed,
-                Derivation::Dfs,
-                &Limits::default(),
-                &mut b,
-                &mut NoProgress,
-            )
-        })
-        .unwrap();
+    draw_bed(
+        &d,
+        Derivation::Dfs,
+        &Limits::default(),
+        &mut b,
+        &mut NoProgress,
+    )
+    .unwrap();
     assert_eq!(b.count, 1);
 }
 

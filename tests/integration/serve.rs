@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use serde_json::{Value, json};
 
-use crate::support::manifest_path;
+use crate::support::{manifest_path, numbers};
 
 /// A running `stlc serve`, stopped with Ctrl-C (SIGINT) when dropped.
 pub struct Server {
@@ -239,9 +239,14 @@ pub fn example(name: &str) -> String {
 /// that before issue 24; it now draws at a level of detail at once.
 pub const HEAVY: &str = "axiom FX\nrule X (0.5) -> XXXXX+\nrule X (0.5) -> XXXXX-\nangle 30\n";
 
-/// What the CLI writes for `args` (standard output).
-fn cli(args: &[&str]) -> Vec<u8> {
-    crate::support::stlc_stdout(args)
+/// What `stlc LINE` writes to standard output.
+fn cli(line: &str) -> Vec<u8> {
+    crate::support::stlc_piped(line, "")
+}
+
+/// What `stlc LINE` writes to standard output, as text.
+fn cli_text(line: &str) -> String {
+    String::from_utf8(cli(line)).unwrap()
 }
 
 /// The BED and SVG of an .od are byte for byte what `stlc compile` and
@@ -254,10 +259,10 @@ fn render_answers_the_cli_bytes_for_an_od() {
         let path = manifest_path("examples").join(name);
         let path = path.to_str().unwrap();
         for (strategy, extra) in [
-            ("bfs", vec![]),
-            ("dfs", vec![]),
-            ("dfs", vec!["--clearance", "0.5", "--max-stems", "120"]),
-            ("space", vec![]),
+            ("bfs", ""),
+            ("dfs", ""),
+            ("dfs", "--clearance 0.5 --max-stems 120"),
+            ("space", ""),
         ] {
             let mut body = json!({"source": example(name), "kind": "od", "growth": strategy});
             if !extra.is_empty() {
@@ -266,23 +271,11 @@ fn render_answers_the_cli_bytes_for_an_od() {
             }
             let a = render(&server.addr, &body);
             assert_eq!(a["ok"], true, "{a}");
-            let mut args = vec!["compile", path, "-o", "-", "--growth", strategy];
-            args.extend(&extra);
-            let bed = String::from_utf8(cli(&args)).unwrap();
+            let bed = cli_text(&format!("compile {path} -o - --growth {strategy} {extra}"));
             crate::support::assert_same_text(name, &bed, a["bed"].as_str().unwrap());
-            let mut args = vec![
-                "render",
-                path,
-                "-f",
-                "svg",
-                "-o",
-                "-",
-                "--show-layout",
-                "--growth",
-                strategy,
-            ];
-            args.extend(&extra);
-            let svg = String::from_utf8(cli(&args)).unwrap();
+            let svg = cli_text(&format!(
+                "render {path} -f svg -o - --show-layout --growth {strategy} {extra}"
+            ));
             crate::support::assert_same_text(name, &svg, a["svg"].as_str().unwrap());
             // The stems counted are the stems in the growth order.
             let order = a["growth"]["stems"].as_array().unwrap();
@@ -314,8 +307,7 @@ fn space_first_with_a_seed_answers_the_cli_bytes() {
         );
         assert_eq!(a["ok"], true, "{a}");
         let path = path.to_str().unwrap();
-        let bed =
-            String::from_utf8(cli(&["compile", path, "-o", "-", "--growth", "space"])).unwrap();
+        let bed = cli_text(&format!("compile {path} -o - --growth space"));
         crate::support::assert_same_text("holes.od", &bed, a["bed"].as_str().unwrap());
         beds.push(bed);
     }
@@ -338,12 +330,7 @@ fn the_growth_order_replays_a_connected_tree() {
             &server.addr,
             &json!({"source": example("fig9.od"), "growth": strategy}),
         );
-        let g: Vec<f64> = a["growth"]["stems"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect();
+        let g: Vec<f64> = numbers(&a["growth"]["stems"]);
         assert!(g.len() >= 6 * 50, "{}", g.len());
         assert_eq!(
             (g[0], g[1]),
@@ -378,16 +365,7 @@ fn lsys_bed_and_png_export_are_the_cli_bytes() {
         &json!({"source": example("koch-snowflake.lsys"), "kind": "lsys", "depth": 2}),
     );
     assert_eq!(a["ok"], true, "{a}");
-    let svg = cli(&[
-        "render",
-        koch.to_str().unwrap(),
-        "-f",
-        "svg",
-        "-o",
-        "-",
-        "--depth",
-        "2",
-    ]);
+    let svg = cli(&format!("render {} -f svg -o - --depth 2", koch.display()));
     assert_eq!(a["svg"].as_str().unwrap().as_bytes(), &svg[..]);
     assert!(a["bed"].is_null());
 
@@ -396,15 +374,10 @@ fn lsys_bed_and_png_export_are_the_cli_bytes() {
         &server.addr,
         &json!({"source": example("paper-worked.bed"), "kind": "bed"}),
     );
-    let svg = cli(&[
-        "render",
-        bed.to_str().unwrap(),
-        "-f",
-        "svg",
-        "-o",
-        "-",
-        "--show-layout",
-    ]);
+    let svg = cli(&format!(
+        "render {} -f svg -o - --show-layout",
+        bed.display()
+    ));
     assert_eq!(a["svg"].as_str().unwrap().as_bytes(), &svg[..]);
 
     let od = manifest_path("examples/holes.od");
@@ -417,17 +390,10 @@ fn lsys_bed_and_png_export_are_the_cli_bytes() {
         body.to_string().as_bytes(),
     );
     assert!(png.head.contains("content-type: image/png"), "{}", png.head);
-    let cli_png = cli(&[
-        "render",
-        od.to_str().unwrap(),
-        "-f",
-        "png",
-        "-o",
-        "-",
-        "--show-layout",
-        "--growth",
-        "dfs",
-    ]);
+    let od = od.display();
+    let cli_png = cli(&format!(
+        "render {od} -f png -o - --show-layout --growth dfs"
+    ));
     assert!(png.body == cli_png, "the exported PNG is not the CLI's");
     let bed = request(
         &server.addr,
@@ -436,14 +402,7 @@ fn lsys_bed_and_png_export_are_the_cli_bytes() {
         &[],
         body.to_string().as_bytes(),
     );
-    let cli_bed = cli(&[
-        "compile",
-        od.to_str().unwrap(),
-        "-o",
-        "-",
-        "--growth",
-        "dfs",
-    ]);
+    let cli_bed = cli(&format!("compile {od} -o - --growth dfs"));
     assert!(bed.body == cli_bed);
 }
 
@@ -771,7 +730,7 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
     };
     let a = ask(7);
     assert_eq!(a["ok"], true, "{a}");
-    let bed = String::from_utf8(cli(&["compile", path, "-o", "-", "--seed", "7"])).unwrap();
+    let bed = cli_text(&format!("compile {path} -o - --seed 7"));
     crate::support::assert_same_text("grove --seed 7", &bed, a["bed"].as_str().unwrap());
     assert_ne!(a["bed"], ask(8)["bed"]);
     let others = a["root"]["others"].as_array().unwrap();
@@ -787,17 +746,9 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
         &server.addr,
         &json!({"source": example("grove.od"), "seed": top}),
     );
-    let bed = String::from_utf8(cli(&["compile", path, "-o", "-", "--seed", &top])).unwrap();
+    let bed = cli_text(&format!("compile {path} -o - --seed {top}"));
     crate::support::assert_same_text("grove --seed 2^64-1", &bed, b["bed"].as_str().unwrap());
-    let below = String::from_utf8(cli(&[
-        "compile",
-        path,
-        "-o",
-        "-",
-        "--seed",
-        &(u64::MAX - 1).to_string(),
-    ]))
-    .unwrap();
+    let below = cli_text(&format!("compile {path} -o - --seed {}", u64::MAX - 1));
     assert_ne!(below, bed, "neighbouring seeds grow different groves");
     for bad in ["x", "-1", "18446744073709551616", "1.5"] {
         let body = json!({"source": example("grove.od"), "seed": bad}).to_string();
@@ -829,15 +780,10 @@ fn the_edge_parses_queries_refuses_unknown_fields_and_doubled_headers() {
         svg.head
     );
     let fig9 = manifest_path("examples/fig9.od");
-    let cli_svg = cli(&[
-        "render",
-        fig9.to_str().unwrap(),
-        "-f",
-        "svg",
-        "-o",
-        "-",
-        "--show-layout",
-    ]);
+    let cli_svg = cli(&format!(
+        "render {} -f svg -o - --show-layout",
+        fig9.display()
+    ));
     assert!(svg.body == cli_svg, "the exported SVG is not the CLI's");
 
     let typo = json!({"source": example("fig9.od"), "clearence": 2}).to_string();

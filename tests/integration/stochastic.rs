@@ -2,7 +2,6 @@
 //! seed and place, dfs equal to bfs, the `seed` key and `--seed`, `stats`
 //! counted or expected, diagnostics.
 
-use assert_cmd::Command;
 use proptest::prelude::*;
 use stlc::choice::{Alternatives, Key};
 use stlc::diag::{ErrorKind, LsysError, RuleError};
@@ -13,8 +12,8 @@ use stlc::model::lsys::LSystem;
 use stlc::syntax::lsys::parse;
 
 use crate::lsys::{expanded_of, segments_of as segments};
-use crate::support::manifest_path;
 use crate::support::stlc_stdout as render;
+use crate::support::{manifest_path, outcome, stlc_line};
 
 fn sys(src: &str) -> LSystem {
     parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
@@ -470,24 +469,17 @@ fn stochastic_rule_forms() {
 #[test]
 fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
     let dir = tempfile::tempdir().unwrap();
-    let run = |text: &str, args: &[&str]| {
+    let run = |text: &str, flags: &str| {
         let f = dir.path().join("s.lsys");
         std::fs::write(&f, text).unwrap();
-        let out = Command::cargo_bin("stlc")
-            .unwrap()
-            .args(["render", f.to_str().unwrap(), "-o"])
-            .arg(dir.path().join("s.png"))
-            .args(args)
-            .output()
-            .unwrap();
-        (
-            out.status.code(),
-            String::from_utf8_lossy(&out.stderr).into_owned(),
-        )
+        let png = dir.path().join("s.png");
+        let line = format!("render {} -o {} {flags}", f.display(), png.display());
+        let (code, _, err) = outcome(&mut stlc_line(&line));
+        (Some(code), err)
     };
     // Every choice doubles: 2^20 symbols, over a tenth of 10^6 at once.
     let doubling = "generations 20\naxiom X\nangle 30\nrule X (0.5) -> XX\nrule X (0.5) -> XX\n";
-    let (code, err) = run(doubling, &["--max-symbols", "1000000"]);
+    let (code, err) = run(doubling, "--max-symbols 1000000");
     assert_eq!(code, Some(1), "{err}");
     assert!(
         err.contains("at least 1048576 exceeds the limit of 100000"),
@@ -498,13 +490,13 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
         "{err}"
     );
     // Twenty times the limit lets it through: 2^20 < 2 x 10^6.
-    let (code, err) = run(doubling, &["--max-symbols", "20000000"]);
+    let (code, err) = run(doubling, "--max-symbols 20000000");
     assert_eq!(code, Some(0), "{err}");
     // The shortest word is one symbol, the longest 2^30: counted while
     // deriving, it stops at the tenth.
     let growing =
         "generations 30\naxiom X\nangle 30\nrule X (0.5) -> X\nrule X (0.5) -> XX\nseed 3\n";
-    let (code, err) = run(growing, &["--max-symbols", "1000000"]);
+    let (code, err) = run(growing, "--max-symbols 1000000");
     assert_eq!(code, Some(1), "{err}");
     assert!(err.contains("more than 100000"), "{err}");
     assert!(err.contains("a tenth of --max-symbols"), "{err}");
@@ -521,12 +513,8 @@ fn a_tiny_probability_is_not_printed_as_zero() {
         "generations 2\naxiom F\nangle 30\nrule F (1e-300) -> F[+F]\nrule F (1) -> F[-F]\n",
     )
     .unwrap();
-    let out = Command::cargo_bin("stlc")
-        .unwrap()
-        .args(["check", f.to_str().unwrap()])
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
+    let (_, out, _) = outcome(&mut stlc_line(&format!("check {}", f.display())));
+    let text = String::from_utf8_lossy(&out);
     assert!(text.contains("(probability 1e-300)"), "{text}");
     assert!(text.contains("(probability 1)"), "{text}");
     assert!(!text.contains("probability 0"), "{text}");
@@ -542,63 +530,26 @@ fn a_tiny_probability_is_not_printed_as_zero() {
 fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
     let dir = tempfile::tempdir().unwrap();
     let fig = manifest_path("examples/abop-1.27.lsys");
-    let out = Command::cargo_bin("stlc")
-        .unwrap()
-        .args([
-            "render",
-            fig.to_str().unwrap(),
-            "--exact",
-            "--depth",
-            "16",
-            "-o",
-        ])
-        .arg(dir.path().join("a.svg"))
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let render = |flags: &str, out: &str| {
+        let out = dir.path().join(out);
+        let line = format!(
+            "render {} --exact {flags} -o {}",
+            fig.display(),
+            out.display()
+        );
+        outcome(&mut stlc_line(&line))
+    };
+    let (code, _, err) = render("--depth 16", "a.svg");
+    assert_eq!(code, 1);
     assert!(
         err.contains("segments in the SVG: more than 10000000"),
         "{err}"
     );
     assert!(!dir.path().join("a.svg").exists());
     // A smaller limit refuses a smaller depth the same way: 3^6 = 729.
-    let out = Command::cargo_bin("stlc")
-        .unwrap()
-        .args([
-            "render",
-            fig.to_str().unwrap(),
-            "--exact",
-            "--depth",
-            "6",
-            "--max-svg-segments",
-            "700",
-            "-o",
-        ])
-        .arg(dir.path().join("b.svg"))
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let out = Command::cargo_bin("stlc")
-        .unwrap()
-        .args([
-            "render",
-            fig.to_str().unwrap(),
-            "--exact",
-            "--depth",
-            "5",
-            "--max-svg-segments",
-            "700",
-            "-o",
-        ])
-        .arg(dir.path().join("c.svg"))
-        .output()
-        .unwrap();
+    let (code, _, _) = render("--depth 6 --max-svg-segments 700", "b.svg");
+    assert_eq!(code, 1);
     // 3^5 = 243 at the fewest: derived, then counted (this seed draws 491).
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (code, _, err) = render("--depth 5 --max-svg-segments 700", "c.svg");
+    assert_eq!(code, 0, "{err}");
 }

@@ -385,6 +385,53 @@ pub fn stlc_stdout(args: &[&str]) -> Vec<u8> {
     out.stdout
 }
 
+/// `stlc` with the words of `line` as its arguments. The paths written
+/// into a line are the crate's and temporary directories', and the words
+/// are flags and values: none holds white space (asserted, so a checkout
+/// under a path with a space fails here, not somewhere stranger).
+pub fn stlc_line(line: &str) -> assert_cmd::Command {
+    let mut c = stlc();
+    for word in line.split_whitespace() {
+        c.arg(word);
+    }
+    assert!(
+        !manifest_path("").display().to_string().contains(' '),
+        "stlc_line splits at spaces and the crate's path holds one"
+    );
+    c
+}
+
+/// What `stlc line` writes to standard output given `stdin`; it must
+/// succeed (its standard error in the panic otherwise).
+pub fn stlc_piped(line: &str, stdin: impl Into<Vec<u8>>) -> Vec<u8> {
+    let out = stlc_line(line).write_stdin(stdin).output().unwrap();
+    assert!(
+        out.status.success(),
+        "stlc {line}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+/// `cmd` run: its exit code (-1 for a signal), standard output and
+/// standard error as text.
+pub fn outcome(cmd: &mut assert_cmd::Command) -> (i32, Vec<u8>, String) {
+    let out = cmd.output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    (out.status.code().unwrap_or(-1), out.stdout, err)
+}
+
+/// The numbers of a JSON array (`bbox`, `end`, a view box).
+pub fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    let all = v.as_array().unwrap_or_else(|| panic!("not an array: {v}"));
+    all.iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
+/// The PNG file at `path`, decoded.
+pub fn png_at(path: impl AsRef<Path>) -> Pixmap {
+    Pixmap::decode_png(&fs::read(path).unwrap()).unwrap()
+}
+
 /// `n` with its digits grouped by threes, as the editor shows counts
 /// (`30,001`).
 pub fn grouped(n: u64) -> String {

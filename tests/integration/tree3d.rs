@@ -4,8 +4,7 @@
 
 use stlc::pipeline::{ImageFormat, MeshFormat, RenderOptions, Request, View};
 
-use crate::support::manifest_path;
-use crate::support::stlc;
+use crate::support::{manifest_path, numbers, outcome, stlc_line, stlc_piped};
 
 fn bed_request(text: &str) -> Request {
     Request {
@@ -16,25 +15,7 @@ fn bed_request(text: &str) -> Request {
 
 /// `stlc stats --json` of a BED given as text (through standard input).
 fn stats_json(text: &str) -> serde_json::Value {
-    let out = stlc()
-        .args(["stats", "--from", "bed", "--json", "-"])
-        .write_stdin(text)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-fn numbers(v: &serde_json::Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
+    serde_json::from_slice(&stlc_piped("stats --from bed --json -", text)).unwrap()
 }
 
 /// Section 11's worked ends with A=90 and unit steps, from a 3D BED's seed.
@@ -85,13 +66,9 @@ fn divergence_rolls_each_rule_application_in_stats() {
 /// the 3D front view is the 2D picture byte for byte, PNG and SVG.
 #[test]
 fn the_front_view_of_a_planar_3d_bed_is_the_2d_picture() {
-    let out = stlc()
-        .args(["compile", "-o", "-"])
-        .arg(manifest_path("examples/successors.od"))
-        .output()
-        .unwrap();
-    assert!(out.status.success());
-    let text = String::from_utf8(out.stdout).unwrap();
+    let od = manifest_path("examples/successors.od");
+    let out = stlc_piped(&format!("compile -o - {}", od.display()), "");
+    let text = String::from_utf8(out).unwrap();
     // Without its LAYOUT (a 2D layout frames the 2D picture; a 3D BED's
     // volumes are not drawn yet).
     let flat = &text[..text.find("LAYOUT").unwrap()];
@@ -174,13 +151,9 @@ fn a_3d_bed_meshes_in_space() {
 /// `stlc expand` of a 3D BED writes its 3D turns.
 #[test]
 fn a_3d_bed_expands_with_its_turns() {
-    let out = stlc()
-        .args(["expand", "--from", "bed", "-"])
-        .write_stdin("T (0, 0, 0) RULE R1: [&F][/F] SEED F R1{,} ENDSEED")
-        .output()
-        .unwrap();
-    assert!(out.status.success());
-    assert_eq!(String::from_utf8(out.stdout).unwrap(), "F[&F][/F]\n");
+    let bed = "T (0, 0, 0) RULE R1: [&F][/F] SEED F R1{,} ENDSEED";
+    let out = stlc_piped("expand --from bed -", bed);
+    assert_eq!(String::from_utf8(out).unwrap(), "F[&F][/F]\n");
 }
 
 /// A 3D OD grows into a 3D BED: the trunk (L=10) and, at order 1 (L=5),
@@ -191,24 +164,13 @@ fn a_3d_bed_expands_with_its_turns() {
 fn a_3d_od_grows_into_a_3d_bed() {
     let dir = tempfile::tempdir().unwrap();
     let bed = dir.path().join("t.bed");
-    let out = stlc()
-        .args(["compile", "--from", "od", "-o"])
-        .arg(&bed)
-        .arg("-")
-        .write_stdin("T (0, 0, 0) L=10(5) B=1(0) A=90 RULE R1: [&F][/F] SEED F R1 ENDSEED")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let od = "T (0, 0, 0) L=10(5) B=1(0) A=90 RULE R1: [&F][/F] SEED F R1 ENDSEED";
+    stlc_piped(&format!("compile --from od -o {} -", bed.display()), od);
     let text = std::fs::read_to_string(&bed).unwrap();
     assert!(text.starts_with("T\n(0, 0, 0)\n"), "{text}");
-    let out = stlc().args(["stats", "--json"]).arg(&bed).output().unwrap();
-    assert!(out.status.success());
+    let out = stlc_piped(&format!("stats --json {}", bed.display()), "");
     assert_eq!(
-        String::from_utf8(out.stdout).unwrap().trim(),
+        String::from_utf8(out).unwrap().trim(),
         "{\"dimensions\": 3, \"symbols\": \"11\", \"stems\": \"3\", \
          \"bbox\": [0.000000, -15.000000, 0.000000, 0.000000, 0.000000, 5.000000], \
          \"end\": [0.000000, -10.000000, 0.000000]}"
@@ -254,20 +216,11 @@ fn show_layout_paints_the_volumes_of_a_3d_tree() {
     let od = "T (0, 0, 0) L=10(5) B=1(0) A=90 RULE R1: [&F][/F] SEED F R1 ENDSEED \
               LAYOUT (clGreen) Box (-20, -30, -20), 40, 40, 40 ENDLAYOUT";
     let svg = |flag: Option<&str>| {
-        let mut cmd = stlc();
-        cmd.args([
-            "render", "--from", "od", "--view", "0,0", "-f", "svg", "-o", "-", "-",
-        ]);
-        if let Some(f) = flag {
-            cmd.arg(f);
-        }
-        let out = cmd.write_stdin(od).output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
+        let line = format!(
+            "render --from od --view 0,0 -f svg -o - - {}",
+            flag.unwrap_or("")
         );
-        String::from_utf8(out.stdout).unwrap()
+        String::from_utf8(stlc_piped(&line, od)).unwrap()
     };
     assert!(!svg(None).contains("#aad5aa"));
     let shown = svg(Some("--show-layout"));
@@ -305,23 +258,15 @@ fn show_layout_paints_the_volumes_of_a_3d_tree() {
 #[test]
 fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
     let od = manifest_path("examples/oak3d.od");
-    let run = |args: &[&str]| {
-        let out = stlc().args(args).arg(&od).output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        out.stdout
-    };
-    for args in [
-        &["compile", "-o", "-"][..],
-        &["render", "--view", "30,20", "-f", "png", "-o", "-"],
-        &["render", "--mesh", "glb", "-o", "-"],
+    let run = |line: &str| stlc_piped(&format!("{line} {}", od.display()), "");
+    for line in [
+        "compile -o -",
+        "render --view 30,20 -f png -o -",
+        "render --mesh glb -o -",
     ] {
-        let first = run(args);
-        assert!(first.len() > 1000, "{args:?}");
-        assert_eq!(first, run(args), "{args:?}");
+        let first = run(line);
+        assert!(first.len() > 1000, "{line}");
+        assert_eq!(first, run(line), "{line}");
     }
 }
 
@@ -380,16 +325,9 @@ fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
 /// and the help speaks of volumes.
 #[test]
 fn a_3d_root_outside_its_volumes_is_named_in_full() {
-    let out = stlc()
-        .env("NO_COLOR", "1")
-        .args(["check", "--from", "od", "-"])
-        .write_stdin(
-            "T (0, 0, 50) RULE R1: [+F][-F] LAYOUT (clGreen) Sphere (0, 0, 0), 10 ENDLAYOUT",
-        )
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let err = String::from_utf8(out.stderr).unwrap();
+    let od = "T (0, 0, 50) RULE R1: [+F][-F] LAYOUT (clGreen) Sphere (0, 0, 0), 10 ENDLAYOUT";
+    let (code, _, err) = outcome(stlc_line("check --from od -").write_stdin(od));
+    assert_eq!(code, 1);
     assert!(err.contains("the root (0, 0, 50) lies outside"), "{err}");
     assert!(err.contains("non-white) volume"), "{err}");
 }
@@ -397,18 +335,8 @@ fn a_3d_root_outside_its_volumes_is_named_in_full() {
 /// `stlc render FILE [--view 0,0] -o -` (default size) of an OD given as
 /// text: the PNG's bytes.
 fn render_od(od: &str, view: Option<&str>) -> Vec<u8> {
-    let mut cmd = stlc();
-    cmd.args(["render", "--from", "od", "-f", "png", "-o", "-", "-"]);
-    if let Some(v) = view {
-        cmd.args(["--view", v]);
-    }
-    let out = cmd.write_stdin(od).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
+    let view = view.map(|v| format!("--view {v}")).unwrap_or_default();
+    stlc_piped(&format!("render --from od -f png -o - - {view}"), od)
 }
 
 /// Width and height of a PNG, from its header.
