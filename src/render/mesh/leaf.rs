@@ -10,13 +10,16 @@ use crate::color::Rgb;
 use crate::turtle::turtle3::Point3;
 
 /// A leaf's two faces: positions, normals, texture coordinates, and
-/// triangles (indices from 0).
+/// triangles (indices from 0); kept from leaf to leaf (cleared by
+/// [`faces`]), so a mesh of many leaves allocates them once.
 #[derive(Debug, Default)]
 pub(super) struct Faces {
     pub(super) positions: Vec<[f32; 3]>,
     pub(super) normals: Vec<[f32; 3]>,
     pub(super) texcoords: Vec<[f32; 2]>,
     pub(super) indices: Vec<u32>,
+    /// The polygon in its own plane.
+    flat: Vec<(f64, f64)>,
 }
 
 /// One polygon to mesh: its vertices (canvas units), its colour.
@@ -29,10 +32,16 @@ pub struct Leaf {
 }
 
 /// The two faces of a polygon whose vertices `pts` are in the files'
-/// axes; `None` for one with no area (or a coordinate not finite).
-pub(super) fn faces(pts: &[V]) -> Option<Faces> {
+/// axes, into `p` (cleared first); false for one with no area (or a
+/// coordinate not finite).
+pub(super) fn faces(pts: &[V], p: &mut Faces) -> bool {
+    p.positions.clear();
+    p.normals.clear();
+    p.texcoords.clear();
+    p.indices.clear();
+    p.flat.clear();
     if pts.len() < 3 || !pts.iter().flatten().all(|v| v.is_finite()) {
-        return None;
+        return false;
     }
     // Newell's normal: the polygon's area vector.
     let mut n = [0.0; 3];
@@ -43,44 +52,41 @@ pub(super) fn faces(pts: &[V]) -> Option<Faces> {
         n[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
     if dot(n, n) == 0.0 {
-        return None;
+        return false;
     }
     let n = unit(n);
     // Texture coordinates: the polygon in its plane, its first edge along
     // u, scaled into the unit square.
     let e1 = unit(sub(pts[1], pts[0]));
     let e2 = cross(n, e1);
-    let flat: Vec<(f64, f64)> = pts
-        .iter()
-        .map(|&q| (dot(sub(q, pts[0]), e1), dot(sub(q, pts[0]), e2)))
-        .collect();
-    let lo = flat.iter().fold((f64::INFINITY, f64::INFINITY), |m, p| {
+    p.flat.extend(
+        pts.iter()
+            .map(|&q| (dot(sub(q, pts[0]), e1), dot(sub(q, pts[0]), e2))),
+    );
+    let lo = p.flat.iter().fold((f64::INFINITY, f64::INFINITY), |m, p| {
         (m.0.min(p.0), m.1.min(p.1))
     });
-    let hi = flat
+    let hi = p
+        .flat
         .iter()
         .fold((f64::NEG_INFINITY, f64::NEG_INFINITY), |m, p| {
             (m.0.max(p.0), m.1.max(p.1))
         });
     let side = (hi.0 - lo.0).max(hi.1 - lo.1);
-    let uv: Vec<[f32; 2]> = flat
-        .iter()
-        .map(|p| {
-            if side > 0.0 && side.is_finite() {
-                [((p.0 - lo.0) / side) as f32, ((p.1 - lo.1) / side) as f32]
-            } else {
-                [0.0, 0.0]
-            }
-        })
-        .collect();
-    let mut p = Faces::default();
+    let uv = |f: (f64, f64)| {
+        if side > 0.0 && side.is_finite() {
+            [((f.0 - lo.0) / side) as f32, ((f.1 - lo.1) / side) as f32]
+        } else {
+            [0.0, 0.0]
+        }
+    };
     let k = pts.len() as u32;
     for (normal, front) in [(n, true), (n.map(|x| -x), false)] {
         let base = p.positions.len() as u32;
-        for (q, t) in pts.iter().zip(&uv) {
+        for (q, f) in pts.iter().zip(&p.flat) {
             p.positions.push(f32s(*q));
             p.normals.push(f32s(normal));
-            p.texcoords.push(*t);
+            p.texcoords.push(uv(*f));
         }
         for j in 1..k - 1 {
             if front {
@@ -90,5 +96,5 @@ pub(super) fn faces(pts: &[V]) -> Option<Faces> {
             }
         }
     }
-    Some(p)
+    true
 }

@@ -282,15 +282,14 @@ pub fn build_with_leaves(
             &ring,
         );
     }
+    // Scratch kept from leaf to leaf.
+    let (mut pts, mut f): (Vec<V>, leaf::Faces) = Default::default();
     for l in leaves {
-        let pts: Vec<V> = l
-            .points
-            .iter()
-            .map(|&q| to_file_axes(moved(q), opts.unit))
-            .collect();
-        let Some(f) = leaf::faces(&pts) else {
+        pts.clear();
+        pts.extend(l.points.iter().map(|&q| to_file_axes(moved(q), opts.unit)));
+        if !leaf::faces(&pts, &mut f) {
             continue;
-        };
+        }
         let idx = match mesh
             .primitives
             .iter()
@@ -308,9 +307,9 @@ pub fn build_with_leaves(
         };
         let p = &mut mesh.primitives[idx];
         let base = p.positions.len() as u32;
-        p.positions.extend(f.positions);
-        p.normals.extend(f.normals);
-        p.texcoords.extend(f.texcoords);
+        p.positions.extend_from_slice(&f.positions);
+        p.normals.extend_from_slice(&f.normals);
+        p.texcoords.extend_from_slice(&f.texcoords);
         p.indices.extend(f.indices.iter().map(|i| base + i));
     }
     mesh

@@ -261,7 +261,7 @@ impl Solid {
     /// The body as a glTF mesh (`--solid -o x.glb`): glTF's axes and
     /// metres (y up; the solid's (x, y, z) millimetres, z up, turned back
     /// to (x, z, -y) / 1000, a rotation, so windings stay outward),
-    /// welded again by the `f32` bits there ([`weld`]), one primitive of
+    /// welded again by the `f32` bits there (as the STL is), one primitive of
     /// `color`, a normal per vertex (the sum of its triangles' area
     /// normals, made unit), no texture coordinates.
     pub fn gltf_mesh(&self, color: Rgb) -> Mesh {
