@@ -154,19 +154,13 @@ async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Valu
         .unwrap();
     let states =
         "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state || null)";
-    for _ in 0..600 {
-        let s = js(c, states).await;
-        if !s
-            .as_array()
+    let busy = |s: &Value| {
+        s.as_array()
             .unwrap()
             .iter()
             .any(|x| x.is_null() || x == "drawing")
-        {
-            break;
-        }
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    }
-    js(c, states).await
+    };
+    js_until(c, states, 600, 50, |s| !busy(s)).await
 }
 
 /// The text an element shows for an error.
