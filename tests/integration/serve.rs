@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use serde_json::{Value, json};
 
-use crate::support::{manifest_path, numbers};
+use crate::support::{manifest_path, numbers, outcome, stlc_line};
 
 /// A running `stlc serve`, stopped with Ctrl-C (SIGINT) when dropped.
 pub struct Server {
@@ -624,13 +624,9 @@ fn ctrl_c_stops_cleanly_and_a_file_that_cannot_be_made_is_an_error() {
     assert_eq!(request(&server.addr, "GET", "/", &[], b"").status, 200);
     let status = server.interrupt();
     assert!(status.success(), "{status:?}");
-    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-        .args(["serve", "no/such/file.od", "--port", "0"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    assert!(out.stdout.is_empty());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let (code, out, err) = outcome(&mut stlc_line("serve no/such/file.od --port 0"));
+    assert_eq!(code, 1);
+    assert!(out.is_empty());
     assert!(
         err.contains("no/such/file.od") && err.contains("does not exist"),
         "{err}"
@@ -638,12 +634,10 @@ fn ctrl_c_stops_cleanly_and_a_file_that_cannot_be_made_is_an_error() {
     // A new file whose name says no kind: nothing to start from.
     let dir = tempfile::tempdir().unwrap();
     let odd = dir.path().join("new.xyz");
-    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-        .args(["serve", odd.to_str().unwrap(), "--port", "0"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stderr).contains(".od, .bed or .lsys"));
+    let line = format!("serve {} --port 0", odd.display());
+    let (code, _, err) = outcome(&mut stlc_line(&line));
+    assert_eq!(code, 1);
+    assert!(err.contains(".od, .bed or .lsys"), "{err}");
 }
 
 /// `stlc serve new.od` for a file not there yet starts from a template
