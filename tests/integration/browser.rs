@@ -119,15 +119,8 @@ async fn acceptance(c: &Client) {
             !v.is_null()
         })
         .await;
-        let out = std::process::Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-            .args(&args[..1])
-            .arg(&od)
-            .args(&args[1..])
-            .args(["-o", "-"])
-            .output()
-            .unwrap();
-        assert!(out.status.success());
-        assert_eq!(offered["size"], out.stdout.len(), "{button}: {offered}");
+        let out = cli(&[&args[..1], &[od.to_str().unwrap()], &args[1..]].concat());
+        assert_eq!(offered["size"], out.len(), "{button}: {offered}");
         let ext = if button.ends_with("png") {
             ".png"
         } else {
