@@ -10,7 +10,7 @@ use fantoccini::Client;
 use serde_json::{Value, json};
 
 use super::chromium::{Browser, click, js, shot};
-use super::serve::{Server, render, request};
+use super::serve::{Server, post, render};
 use crate::support::numbers;
 
 /// An .od that grows `1 + 3k` stems for `M=1+3k` in a 1200 x 1200 square:
@@ -66,13 +66,7 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
             .unwrap()
             .contains(r##"fill="none" stroke="#4a2c12""##)
     );
-    let asked = request(
-        &server.addr,
-        "POST",
-        "/api/render",
-        &[COMPACT],
-        small.to_string().as_bytes(),
-    );
+    let asked = post(&server.addr, "/api/render", &[COMPACT], &small);
     assert!(
         asked.head.contains("content-type: application/json"),
         "{}",
@@ -92,25 +86,13 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     assert_eq!(a["growth"]["stems"].as_array().unwrap().len(), 6 * 10_003);
     // Its BED is left out too (megabytes); the export writes it.
     assert_eq!(a["bed"], Value::Null);
-    let bed = request(
-        &server.addr,
-        "POST",
-        "/api/export?format=bed",
-        &[],
-        body.to_string().as_bytes(),
-    );
+    let bed = post(&server.addr, "/api/export?format=bed", &[], &body);
     let bed = String::from_utf8(bed.body).unwrap();
     assert!(bed.starts_with("Big"), "{}", &bed[..bed.len().min(200)]);
     // The seed's F, then three stems an application of R1.
     assert_eq!(bed.matches("R1{").count(), 3_334);
     // The export is the CLI's picture: every stem in it.
-    let export = request(
-        &server.addr,
-        "POST",
-        "/api/export?format=svg",
-        &[],
-        body.to_string().as_bytes(),
-    );
+    let export = post(&server.addr, "/api/export?format=svg", &[], &body);
     let exported = String::from_utf8(export.body).unwrap();
     assert!(exported.contains(r##"fill="none" stroke="#4a2c12""##));
     assert!(
@@ -121,13 +103,7 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     );
 
     // The compact body is the JSON answer, number for number.
-    let compact = request(
-        &server.addr,
-        "POST",
-        "/api/render",
-        &[COMPACT],
-        body.to_string().as_bytes(),
-    );
+    let compact = post(&server.addr, "/api/render", &[COMPACT], &body);
     assert_eq!(compact.status, 200);
     assert!(
         compact

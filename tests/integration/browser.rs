@@ -16,8 +16,8 @@ use fantoccini::{Client, Locator};
 use serde_json::{Value, json};
 
 use super::chromium::{
-    Browser, cli, click, click_at, downloaded, drag, file_until, js, js_until, open, same_bytes,
-    screen_of, settled, settled_until, shot,
+    Browser, cli, cli_line, click, click_at, downloaded, drag, file_until, js, js_until, open,
+    same_bytes, screen_of, settled, settled_until, shot,
 };
 use super::serve::Server;
 use crate::support::{manifest_path, numbers};
@@ -119,15 +119,8 @@ async fn acceptance(c: &Client) {
             !v.is_null()
         })
         .await;
-        let out = std::process::Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-            .args(&args[..1])
-            .arg(&od)
-            .args(&args[1..])
-            .args(["-o", "-"])
-            .output()
-            .unwrap();
-        assert!(out.status.success());
-        assert_eq!(offered["size"], out.stdout.len(), "{button}: {offered}");
+        let out = cli(&[&args[..1], &[od.to_str().unwrap()], &args[1..]].concat());
+        assert_eq!(offered["size"], out.len(), "{button}: {offered}");
         let ext = if button.ends_with("png") {
             ".png"
         } else {
@@ -537,13 +530,7 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
     );
     // (The BED keeps the OD's LAYOUT, so the page shows it, as
     // `--show-layout` does.)
-    let svg = cli(&[
-        "render",
-        bed.to_str().unwrap(),
-        "--show-layout",
-        "-f",
-        "svg",
-    ]);
+    let svg = cli_line(&format!("render {} --show-layout -f svg", bed.display()));
     same_bytes(answer_svg(c).await.as_bytes(), &svg, "the page's SVG");
     let fitted = view_box(c).await;
     assert!(same_box(&fitted, &fit_box(c).await), "{fitted:?}");
@@ -612,14 +599,7 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
     let drawn = settled_until(c, 40, 50, |v| v["stems"] == 192).await;
     // 3 * 4^3 segments.
     assert_eq!(drawn["stems"], 192, "{drawn}");
-    let svg = cli(&[
-        "render",
-        koch.to_str().unwrap(),
-        "--depth",
-        "3",
-        "-f",
-        "svg",
-    ]);
+    let svg = cli_line(&format!("render {} --depth 3 -f svg", koch.display()));
     same_bytes(answer_svg(c).await.as_bytes(), &svg, "the page's SVG");
     assert!(same_box(&view_box(c).await, &fit_box(c).await));
     shot(c, "14-lsys").await;
@@ -913,15 +893,10 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     assert_ne!(dfs["growth"], pasted["growth"]);
     let od = dir.join("fig9.od");
     std::fs::write(&od, &fig9).unwrap();
-    let svg = cli(&[
-        "render",
-        od.to_str().unwrap(),
-        "--show-layout",
-        "--growth",
-        "dfs",
-        "-f",
-        "svg",
-    ]);
+    let svg = cli_line(&format!(
+        "render {} --show-layout --growth dfs -f svg",
+        od.display()
+    ));
     click(c, "#export-svg").await;
     same_bytes(&downloaded(downloads, "tree.svg").await, &svg, "tree.svg");
 }

@@ -11,7 +11,7 @@ use serde_json::Value;
 
 use super::chromium::{Browser, click, downloaded, js, open, settled, shot, until};
 use super::serve::Server;
-use crate::support::manifest_path;
+use crate::support::{manifest_path, stlc_piped};
 
 #[test]
 fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
@@ -374,16 +374,11 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
     click(c, "#export-png").await;
     let got = downloaded(downloads, "2dtree.png").await;
     let od = manifest_path("examples/2dtree.od");
-    let want = crate::support::stlc_stdout(&[
-        "render",
-        od.to_str().unwrap(),
-        "--size",
-        "300x200",
-        "--background",
-        "none",
-        "-o",
-        "-",
-    ]);
+    let line = format!(
+        "render {} --size 300x200 --background none -o -",
+        od.display()
+    );
+    let want = stlc_piped(&line, "");
     assert!(got == want, "the export is not the CLI's bytes");
     let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
     assert_eq!((png.width(), png.height()), (300, 200));
@@ -415,16 +410,11 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
     );
     click(c, "#export-png").await;
     let got = downloaded(downloads, "2dtree (1).png").await;
-    let want = crate::support::stlc_stdout(&[
-        "render",
-        od.to_str().unwrap(),
-        "--size",
-        "300x200",
-        "--background",
-        "#336699",
-        "-o",
-        "-",
-    ]);
+    let line = format!(
+        "render {} --size 300x200 --background #336699 -o -",
+        od.display()
+    );
+    let want = stlc_piped(&line, "");
     assert!(got == want, "the coloured export is not the CLI's bytes");
     let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
     let p = png.pixel(0, 0).unwrap();
@@ -545,14 +535,10 @@ async fn words_generation_by_generation(c: &Client) {
         .collect();
     let koch = manifest_path("examples/koch-snowflake.lsys");
     for (depth, item) in items.iter().enumerate() {
-        let word = crate::support::stlc_stdout(&[
-            "expand",
-            koch.to_str().unwrap(),
-            "--depth",
-            &depth.to_string(),
-            "-o",
-            "-",
-        ]);
+        let word = stlc_piped(
+            &format!("expand {} --depth {depth} -o -", koch.display()),
+            "",
+        );
         let word = String::from_utf8(word).unwrap();
         let word = word.trim_end();
         assert_eq!(*item, format!("{word} ({})", word.len()), "depth {depth}");

@@ -8,7 +8,7 @@
 use serde_json::{Value, json};
 
 use super::browser_web::open_example;
-use super::chromium::{answered, cli, js, on_served_page, same_bytes, shot};
+use super::chromium::{answered, cli_line, js, on_served_page, same_bytes, shot};
 use super::serve::example;
 
 /// Chooses `name` in the leaf list as a user does (a `change` event); the
@@ -40,15 +40,10 @@ async fn page_and_cli_svg(c: &fantoccini::Client, text: &str) -> (Vec<u8>, Vec<u
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("oak3d.od");
     std::fs::write(&file, text).unwrap();
-    let want = cli(&[
-        "render",
-        file.to_str().unwrap(),
-        "--view",
-        &view,
-        "--show-layout",
-        "-f",
-        "svg",
-    ]);
+    let want = cli_line(&format!(
+        "render {} --view {view} --show-layout -f svg",
+        file.display()
+    ));
     (got[1].as_str().unwrap().as_bytes().to_vec(), want)
 }
 

@@ -8,21 +8,17 @@
 use serde_json::json;
 
 use super::browser_web::{engine_export, on_site, open_example};
-use super::chromium::{Browser, cli, click, downloaded, js, same_bytes, settled, shot};
+use super::chromium::{Browser, cli_line, click, downloaded, js, same_bytes, settled, shot};
 use super::serve::{Server, example, request};
 use crate::support::{manifest_path, numbers};
 
 /// `stlc render examples/NAME --mesh glb --unit UNIT -o -`.
 fn cli_glb(name: &str, unit: &str) -> Vec<u8> {
     let path = manifest_path(format!("examples/{name}"));
-    cli(&[
-        "render",
-        path.to_str().unwrap(),
-        "--mesh",
-        "glb",
-        "--unit",
-        unit,
-    ])
+    cli_line(&format!(
+        "render {} --mesh glb --unit {unit}",
+        path.display()
+    ))
 }
 
 /// The `max` of a glb's first POSITION accessor: the mesh's extent, in

@@ -121,13 +121,8 @@ fn an_export_with_only_a_width_keeps_the_aspect_in_chromium() {
         let got =
             super::chromium::downloaded(&browser.tmp.join("downloads"), "successors.png").await;
         let od = crate::support::manifest_path("examples/successors.od");
-        let cli = super::chromium::cli(&[
-            "render",
-            od.to_str().unwrap(),
-            "--size",
-            "1600x1306",
-            "--show-layout",
-        ]);
+        let line = format!("render {} --size 1600x1306 --show-layout", od.display());
+        let cli = super::chromium::cli_line(&line);
         super::chromium::same_bytes(&got, &cli, "the width-only export");
         // A height alone: the width from the aspect (653 high is 800 wide).
         export_command(
@@ -154,19 +149,13 @@ async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Valu
         .unwrap();
     let states =
         "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state || null)";
-    for _ in 0..600 {
-        let s = js(c, states).await;
-        if !s
-            .as_array()
+    let busy = |s: &Value| {
+        s.as_array()
             .unwrap()
             .iter()
             .any(|x| x.is_null() || x == "drawing")
-        {
-            break;
-        }
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    }
-    js(c, states).await
+    };
+    js_until(c, states, 600, 50, |s| !busy(s)).await
 }
 
 /// The text an element shows for an error.

@@ -35,11 +35,10 @@ async fn slide(c: &Client, key: &str, value: &str) -> Value {
         ),
     )
     .await;
-    let v = settled_until(c, 100, 50, |v| {
+    settled_until(c, 100, 50, |v| {
         v["text"].as_str().unwrap().contains(&format!(" {value}\n"))
     })
-    .await;
-    v
+    .await
 }
 
 /// The willow's four `define`s are sliders beside `angle`; moving

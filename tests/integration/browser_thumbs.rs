@@ -9,22 +9,19 @@ use fantoccini::Client;
 use serde_json::json;
 
 use super::browser_web::{engine_export, examples, on_site};
-use super::chromium::{cli, click, js, js_until, on_served_page, same_bytes, settled_until, shot};
+use super::chromium::{
+    cli_line, click, js, js_until, on_served_page, same_bytes, settled_until, shot,
+};
 use super::serve::example;
 use crate::support::manifest_path;
 
 /// The PNG `stlc render examples/NAME --size 96x96 --show-layout` writes.
 fn cli_thumb(name: &str) -> Vec<u8> {
     let path = manifest_path(format!("examples/{name}"));
-    cli(&[
-        "render",
-        path.to_str().unwrap(),
-        "--size",
-        "96x96",
-        "--show-layout",
-        "-f",
-        "png",
-    ])
+    cli_line(&format!(
+        "render {} --size 96x96 --show-layout -f png",
+        path.display()
+    ))
 }
 
 /// Waits (at most 60 s) until the thumbnail of `name` shows a 96 x 96

@@ -551,13 +551,8 @@ fn stl_tree_elements_draw_the_cli_svgs_in_chromium() {
             .await
             .unwrap();
         let states = "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state)";
-        for _ in 0..200 {
-            let s = js(&c, states).await;
-            if !s.as_array().unwrap().iter().any(|x| x.is_null() || x == "drawing") {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
+        let busy = |s: &Value| s.as_array().unwrap().iter().any(|x| x.is_null() || x == "drawing");
+        js_until(&c, states, 200, 50, |s| !busy(s)).await;
         assert_eq!(js(&c, states).await, json!(["drawn", "drawn", "drawn", "error"]));
         let svg = |id: &str| {
             let c = c.clone();
@@ -588,14 +583,11 @@ fn stl_tree_elements_draw_the_cli_svgs_in_chromium() {
         // The gallery: every example, drawn live.
         c.goto(&format!("{}gallery.html", server.url)).await.unwrap();
         let names = examples();
-        for _ in 0..600 {
-            let s = js(&c, states).await;
+        js_until(&c, states, 600, 50, |s| {
             let s = s.as_array().unwrap();
-            if s.len() == names.len() && s.iter().all(|x| x == "drawn") {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
+            s.len() == names.len() && s.iter().all(|x| x == "drawn")
+        })
+        .await;
         let drawn = js(&c, "return [...document.querySelectorAll('stl-tree')].map((e) => [e.getAttribute('src'), e.svg])").await;
         let drawn = drawn.as_array().unwrap();
         assert_eq!(drawn.len(), names.len());

@@ -354,6 +354,12 @@ pub(super) fn cli(args: &[&str]) -> Vec<u8> {
     crate::support::stlc_stdout(&all)
 }
 
+/// What `stlc LINE -o -` writes (the words of `line` as in
+/// [`crate::support::stlc_line`]).
+pub(super) fn cli_line(line: &str) -> Vec<u8> {
+    crate::support::stlc_piped(&format!("{line} -o -"), "")
+}
+
 /// The SVG `stlc render --show-layout -f svg` writes of `text`, saved as
 /// `name` (its extension says its kind) in a folder of its own.
 pub(super) fn cli_svg_of(name: &str, text: &str) -> Vec<u8> {

@@ -3,7 +3,6 @@
 //! failure's numbers, in every front end.
 
 use crate::support::{od, opts};
-use assert_cmd::Command;
 use predicates::prelude::*;
 use stlc::diag::{Diagnostic, ErrorKind, GrowError, Kin, Misfit, MissReason};
 use stlc::grow::explain::RuleTally;
@@ -122,10 +121,7 @@ fn problem_8_warns_of_the_sibling_distance_in_every_front_end() {
     );
 
     // `stlc check` prints the line and the warning, pointing at the rule.
-    Command::cargo_bin("stlc")
-        .unwrap()
-        .env("NO_COLOR", "1")
-        .args(["check", "-", "--from", "od"])
+    crate::support::stlc_line("check - --from od")
         .write_stdin(text)
         .assert()
         .success()

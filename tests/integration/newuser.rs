@@ -5,7 +5,7 @@
 use std::fs;
 use std::path::Path;
 
-use crate::support::stlc;
+use crate::support::{outcome, stlc, stlc_line};
 
 fn root() -> &'static str {
     env!("CARGO_MANIFEST_DIR")
@@ -23,6 +23,11 @@ fn run(args: &[&str]) -> (i32, Vec<u8>, String) {
         out.stdout,
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
+}
+
+/// Runs `stlc LINE`, returning (exit code, stdout, stderr).
+fn run_line(line: &str) -> (i32, Vec<u8>, String) {
+    outcome(&mut stlc_line(line))
 }
 
 fn path(p: &Path) -> &str {
@@ -47,21 +52,14 @@ fn rendering_or_expanding_an_od_equals_doing_it_to_its_compiled_bed() {
         for growth in [None, Some("bfs"), Some("dfs")] {
             let bed = dir.path().join("t.bed");
             let od_path = example(od);
-            let mut compile = vec!["compile", od_path.as_str()];
-            let mut flags: Vec<&str> = Vec::new();
-            if let Some(g) = growth {
-                flags.extend(["--growth", g]);
-            }
-            compile.extend(&flags);
-            compile.extend(["-o", path(&bed)]);
-            assert_eq!(run(&compile).0, 0, "{od} {growth:?}");
+            let flags = growth.map(|g| format!("--growth {g}")).unwrap_or_default();
+            let compile = format!("compile {od_path} {flags} -o {}", bed.display());
+            assert_eq!(run_line(&compile).0, 0, "{od} {growth:?}");
             for (what, ext) in [("render", "png"), ("render", "svg"), ("expand", "txt")] {
                 let a = dir.path().join(format!("a.{ext}"));
                 let b = dir.path().join(format!("b.{ext}"));
-                let mut from_od = vec![what, od_path.as_str()];
-                from_od.extend(&flags);
-                from_od.extend(["-o", path(&a)]);
-                assert_eq!(run(&from_od).0, 0, "{what} {od} {growth:?}");
+                let from_od = format!("{what} {od_path} {flags} -o {}", a.display());
+                assert_eq!(run_line(&from_od).0, 0, "{what} {od} {growth:?}");
                 assert_eq!(run(&[what, path(&bed), "-o", path(&b)]).0, 0);
                 assert!(
                     fs::read(&a).unwrap() == fs::read(&b).unwrap(),
@@ -241,12 +239,8 @@ fn an_interrupt_removes_the_temporary_file_and_keeps_the_target() {
 /// user's path, never the temporary one.
 #[test]
 fn errors_name_the_users_path_not_the_temporary_one() {
-    let (code, _, err) = run(&[
-        "render",
-        &example("koch-snowflake.lsys"),
-        "-o",
-        "/nonexistent/dir/x.png",
-    ]);
+    let koch = example("koch-snowflake.lsys");
+    let (code, _, err) = run_line(&format!("render {koch} -o /nonexistent/dir/x.png"));
     assert_eq!(code, 1);
     assert!(err.contains("`/nonexistent/dir/x.png`"), "{err}");
     assert!(!err.contains(".stlc-") && !err.contains(".tmp"), "{err}");
@@ -263,22 +257,22 @@ fn no_flag_is_ignored_without_a_word() {
     let od = example("2dtree.od");
     let koch = example("koch-snowflake.lsys");
     let decrement = example("decrement.od");
-    for (args, needle) in [
+    for (line, needle) in [
         (
-            vec!["render", od.as_str(), "-f", "svg", "-o", &o("x.png")],
+            format!("render {od} -f svg -o {}", o("x.png")),
             "contradicts",
         ),
         (
-            vec!["render", od.as_str(), "-f", "png", "-o", &o("x.svg")],
+            format!("render {od} -f png -o {}", o("x.svg")),
             "contradicts",
         ),
         (
-            vec!["render", od.as_str(), "-o", &o("x.jpg")],
+            format!("render {od} -o {}", o("x.jpg")),
             "`.jpg` is not an image format",
         ),
     ] {
-        let (code, _, err) = run(&args);
-        assert_eq!(code, 2, "{args:?}: {err}");
+        let (code, _, err) = run_line(&line);
+        assert_eq!(code, 2, "{line}: {err}");
         assert!(err.contains(needle), "{err}");
         assert!(!dir.path().join("x.png").exists());
     }
@@ -289,55 +283,35 @@ fn no_flag_is_ignored_without_a_word() {
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
-    for (args, needle) in [
+    for (line, needle) in [
         (
-            vec!["render", od.as_str(), "--depth", "3", "-o", &o("a.png")],
+            format!("render {od} --depth 3 -o {}", o("a.png")),
             "--depth was ignored",
         ),
         (
-            vec!["render", koch.as_str(), "--show-layout", "-o", &o("b.png")],
+            format!("render {koch} --show-layout -o {}", o("b.png")),
             "--show-layout was ignored",
         ),
         (
-            vec![
-                "render",
-                decrement.as_str(),
-                "--show-layout",
-                "-o",
-                &o("c.png"),
-            ],
+            format!("render {decrement} --show-layout -o {}", o("c.png")),
             "--show-layout was ignored",
         ),
         (
-            vec![
-                "render",
-                koch.as_str(),
-                "--growth",
-                "dfs",
-                "-o",
-                &o("d.png"),
-            ],
+            format!("render {koch} --growth dfs -o {}", o("d.png")),
             "--growth was ignored",
         ),
         (
-            vec![
-                "expand",
-                koch.as_str(),
-                "--clearance",
-                "1",
-                "-o",
-                &o("e.txt"),
-            ],
+            format!("expand {koch} --clearance 1 -o {}", o("e.txt")),
             "--clearance was ignored",
         ),
         (
-            vec!["check", koch.as_str(), "--max-stems", "5"],
+            format!("check {koch} --max-stems 5"),
             "--max-stems was ignored",
         ),
     ] {
-        let (code, _, err) = run(&args);
-        assert_eq!(code, 0, "{args:?}: {err}");
-        assert!(err.contains(needle), "{args:?}: {err}");
+        let (code, _, err) = run_line(&line);
+        assert_eq!(code, 0, "{line}: {err}");
+        assert!(err.contains(needle), "{line}: {err}");
     }
     // --quiet silences the warnings.
     let (code, _, err) = run(&["render", &od, "--depth", "3", "-q", "-o", &o("f.png")]);
@@ -415,15 +389,14 @@ fn a_description_can_store_its_stroke_and_background() {
         bed.contains("L=10(0) B=2(0) C=1 S=clMaroon G=#ffffe0\n"),
         "{bed}"
     );
-    let svg = |extra: &[&str]| {
-        let mut args = vec!["render", path(&od), "-f", "svg", "-o", "-"];
-        args.extend(extra);
-        String::from_utf8(run(&args).1).unwrap()
+    let svg = |extra: &str| {
+        let line = format!("render {} -f svg -o - {extra}", od.display());
+        String::from_utf8(run_line(&line).1).unwrap()
     };
-    let own = svg(&[]);
+    let own = svg("");
     assert!(own.contains("fill=\"#ffffe0\""), "{own}");
     assert!(own.contains("stroke=\"#800000\""), "clMaroon: {own}");
-    let over = svg(&["--stroke", "#123456", "--background", "none"]);
+    let over = svg("--stroke #123456 --background none");
     assert!(
         over.contains("stroke=\"#123456\"") && !over.contains("<rect"),
         "{over}"
@@ -450,46 +423,39 @@ fn a_seed_that_changes_nothing_says_so() {
     let bed = format!("{}/tests/cases/grow/alternatives.dfs.bed", root());
     let koch = example("koch-snowflake.lsys");
     let tree = example("2dtree.od");
-    for (args, reason) in [
+    for (line, reason) in [
         (
-            vec!["render", bed.as_str(), "--seed", "3", "-o", &out("a.png")],
+            format!("render {bed} --seed 3 -o {}", out("a.png")),
             "a .bed has its choices written out",
         ),
         (
-            vec!["stats", koch.as_str(), "--seed", "3"],
+            format!("stats {koch} --seed 3"),
             "this L-system has no stochastic rules",
         ),
         (
-            vec!["compile", tree.as_str(), "--seed", "3", "-o", &out("b.bed")],
+            format!("compile {tree} --seed 3 -o {}", out("b.bed")),
             "this description has no alternatives",
         ),
         (
-            vec!["check", tree.as_str(), "--seed", "3"],
+            format!("check {tree} --seed 3"),
             "this description has no alternatives",
         ),
     ] {
-        let (code, _, err) = run(&args);
-        assert_eq!(code, 0, "{args:?}: {err}");
+        let (code, _, err) = run_line(&line);
+        assert_eq!(code, 0, "{line}: {err}");
         assert!(
             err.contains("--seed was ignored") && err.contains(reason),
-            "{args:?}: {err}"
+            "{line}: {err}"
         );
     }
     let plant = example("abop-1.27.lsys");
     let grove = example("grove.od");
-    for args in [
-        vec!["render", plant.as_str(), "--seed", "3", "-o", &out("c.png")],
-        vec!["stats", plant.as_str(), "--seed", "3"],
-        vec![
-            "compile",
-            grove.as_str(),
-            "--seed",
-            "3",
-            "-o",
-            &out("d.bed"),
-        ],
+    for line in [
+        format!("render {plant} --seed 3 -o {}", out("c.png")),
+        format!("stats {plant} --seed 3"),
+        format!("compile {grove} --seed 3 -o {}", out("d.bed")),
     ] {
-        let (code, _, err) = run(&args);
-        assert_eq!((code, err.as_str()), (0, ""), "{args:?}");
+        let (code, _, err) = run_line(&line);
+        assert_eq!((code, err.as_str()), (0, ""), "{line}");
     }
 }

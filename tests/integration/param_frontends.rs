@@ -8,7 +8,7 @@
 use serde_json::{Value, json};
 use stlc::api::WORD_CHARS;
 
-use super::serve::{Server, example, request};
+use super::serve::{Server, example, post, request};
 use crate::support::{manifest_path, stlc_stdout};
 
 /// The examples of issue 32 (ABOP Fig. 1.31, 1.35, 2.6-2.8 and our own
@@ -107,14 +107,7 @@ fn every_parametric_example_renders_expands_and_reports_stats_as_the_cli_in_serv
 fn the_words_view_shows_modules_with_their_parameters() {
     let server = Server::start(&[]);
     let body = json!({"source": example("abop-2.6a.lsys"), "kind": "lsys", "depth": 1});
-    let a = request(
-        &server.addr,
-        "POST",
-        "/api/words",
-        &[],
-        body.to_string().as_bytes(),
-    )
-    .json();
+    let a = post(&server.addr, "/api/words", &[], &body).json();
     assert_eq!(a["words"][0]["word"], "A(1,10)");
     assert_eq!(a["words"][0]["length"], "1");
     assert_eq!(

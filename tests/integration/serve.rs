@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use serde_json::{Value, json};
 
-use crate::support::{manifest_path, numbers};
+use crate::support::{manifest_path, numbers, outcome, stlc_line};
 
 /// A running `stlc serve`, stopped with Ctrl-C (SIGINT) when dropped.
 pub struct Server {
@@ -209,15 +209,14 @@ pub fn request(
     raw(addr, &all)
 }
 
+/// `POST path` with the JSON `body` and the `extra` headers.
+pub fn post(addr: &str, path: &str, extra: &[(&str, &str)], body: &Value) -> Answer {
+    request(addr, "POST", path, extra, body.to_string().as_bytes())
+}
+
 /// `POST /api/render` with `body`; the answer's JSON.
 pub fn render(addr: &str, body: &Value) -> Value {
-    let a = request(
-        addr,
-        "POST",
-        "/api/render",
-        &[],
-        body.to_string().as_bytes(),
-    );
+    let a = post(addr, "/api/render", &[], body);
     assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
     a.json()
 }
@@ -382,26 +381,14 @@ fn lsys_bed_and_png_export_are_the_cli_bytes() {
 
     let od = manifest_path("examples/holes.od");
     let body = json!({"source": example("holes.od"), "growth": "dfs"});
-    let png = request(
-        &server.addr,
-        "POST",
-        "/api/export?format=png",
-        &[],
-        body.to_string().as_bytes(),
-    );
+    let png = post(&server.addr, "/api/export?format=png", &[], &body);
     assert!(png.head.contains("content-type: image/png"), "{}", png.head);
     let od = od.display();
     let cli_png = cli(&format!(
         "render {od} -f png -o - --show-layout --growth dfs"
     ));
     assert!(png.body == cli_png, "the exported PNG is not the CLI's");
-    let bed = request(
-        &server.addr,
-        "POST",
-        "/api/export?format=bed",
-        &[],
-        body.to_string().as_bytes(),
-    );
+    let bed = post(&server.addr, "/api/export?format=bed", &[], &body);
     let cli_bed = cli(&format!("compile {od} -o - --growth dfs"));
     assert!(bed.body == cli_bed);
 }
@@ -637,13 +624,9 @@ fn ctrl_c_stops_cleanly_and_a_file_that_cannot_be_made_is_an_error() {
     assert_eq!(request(&server.addr, "GET", "/", &[], b"").status, 200);
     let status = server.interrupt();
     assert!(status.success(), "{status:?}");
-    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-        .args(["serve", "no/such/file.od", "--port", "0"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    assert!(out.stdout.is_empty());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let (code, out, err) = outcome(&mut stlc_line("serve no/such/file.od --port 0"));
+    assert_eq!(code, 1);
+    assert!(out.is_empty());
     assert!(
         err.contains("no/such/file.od") && err.contains("does not exist"),
         "{err}"
@@ -651,12 +634,10 @@ fn ctrl_c_stops_cleanly_and_a_file_that_cannot_be_made_is_an_error() {
     // A new file whose name says no kind: nothing to start from.
     let dir = tempfile::tempdir().unwrap();
     let odd = dir.path().join("new.xyz");
-    let out = Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-        .args(["serve", odd.to_str().unwrap(), "--port", "0"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stderr).contains(".od, .bed or .lsys"));
+    let line = format!("serve {} --port 0", odd.display());
+    let (code, _, err) = outcome(&mut stlc_line(&line));
+    assert_eq!(code, 1);
+    assert!(err.contains(".od, .bed or .lsys"), "{err}");
 }
 
 /// `stlc serve new.od` for a file not there yet starts from a template
@@ -678,15 +659,7 @@ fn a_new_file_is_created_and_a_save_over_another_version_is_refused() {
     assert_eq!(a["ok"], true, "{a}");
     assert!(stems(&a) > 50, "{a}");
     let token = server.token.clone();
-    let save = |body: Value| {
-        request(
-            addr,
-            "POST",
-            "/api/save",
-            &[("X-Stlc-Token", &token)],
-            body.to_string().as_bytes(),
-        )
-    };
+    let save = |body: Value| post(addr, "/api/save", &[("X-Stlc-Token", &token)], &body);
     let first = save(json!({"source": "one\n", "version": null}));
     assert_eq!(
         first.status,

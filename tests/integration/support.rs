@@ -373,16 +373,9 @@ pub fn stlc() -> assert_cmd::Command {
 /// What the `stlc` binary writes to standard output for `args`; its
 /// standard error in the panic if it fails.
 pub fn stlc_stdout(args: &[&str]) -> Vec<u8> {
-    let out = std::process::Command::new(assert_cmd::cargo::cargo_bin("stlc"))
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "stlc {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
+    let (code, out, err) = outcome(stlc().args(args));
+    assert_eq!(code, 0, "stlc {args:?}: {err}");
+    out
 }
 
 /// `stlc` with the words of `line` as its arguments. The paths written
