@@ -62,6 +62,62 @@ pub struct Stems3 {
     pub volumes: Vec<crate::model::LayoutSolid>,
     /// A tree's first root's x and z: the axis a `Revolve` turns about.
     pub axis: Option<[f64; 2]>,
+    /// The colours of an input that paints (a palette `.lsys`, an `S=`
+    /// ramp, leaves), as the meshes and pictures paint it; `[]` when every
+    /// stem is in the stroke colour.
+    pub colors: Vec<crate::color::Rgb>,
+    /// Each stem's index into `colors` (`[]` without colours).
+    pub stem_colors: Vec<u32>,
+    /// The leaves (polygons, `{ }`, `~X`, `P=`): each its index into
+    /// `colors` and its vertices.
+    pub leaves: Vec<(u32, Vec<Point3>)>,
+}
+
+/// The stems, colours and leaves an editor's 3D view is handed, up to
+/// [`MAX_EDITOR_STEMS`] pieces (`over` once one more came).
+#[derive(Default)]
+struct Pieces {
+    stems: Vec<f64>,
+    colors: Vec<crate::color::Rgb>,
+    stem_colors: Vec<u32>,
+    leaves: Vec<(u32, Vec<Point3>)>,
+    over: bool,
+}
+
+impl Pieces {
+    fn full(&mut self) -> bool {
+        self.over |= (self.stems.len() / 8 + self.leaves.len()) as u64 >= MAX_EDITOR_STEMS;
+        self.over
+    }
+
+    fn stem(&mut self, s: Segment3, width: f64, color: Option<u32>) {
+        if self.full() {
+            return;
+        }
+        let (a, b) = (s.from, s.to);
+        self.stems
+            .extend([a.x, a.y, a.z, b.x, b.y, b.z, width, 0.0]);
+        self.stem_colors.extend(color);
+    }
+
+    /// A painting turtle's marks, `paint` the colour index in force.
+    fn mark(
+        &mut self,
+        m: Mark,
+        paint: &mut u32,
+        width: impl Fn(u32) -> f64,
+        index: impl Fn(usize) -> u32,
+    ) {
+        match m {
+            Mark::Step(s, _) => self.stem(s, width(s.order), Some(*paint)),
+            Mark::Paint(i) => *paint = index(i),
+            Mark::Polygon(points) => {
+                if !self.full() {
+                    self.leaves.push((*paint, points.to_vec()));
+                }
+            }
+        }
+    }
 }
 
 /// The scene's stems in 3D for an editor ([`Stems3`]), with what a picture
@@ -82,27 +138,33 @@ pub(crate) fn editor_stems3(
         .into()
     };
     let style = style(scene, look);
-    let mut stems = Vec::new();
-    let mut over = false;
-    let mut keep = |s: Segment3| {
-        if stems.len() as u64 >= 8 * MAX_EDITOR_STEMS {
-            over = true;
-            return;
-        }
-        let w = match style.width {
-            Width::Pixels(w) => w,
-            Width::Canvas(lin) => lin.at(s.order).max(0.0),
-        };
-        let (a, b) = (s.from, s.to);
-        stems.extend([a.x, a.y, a.z, b.x, b.y, b.z, w, 0.0]);
+    let width = |order: u32| match style.width {
+        Width::Pixels(w) => w,
+        Width::Canvas(lin) => lin.at(order).max(0.0),
     };
+    let mut got = Pieces::default();
     let mut phase = Phase::new(progress, "deriving");
     let (mut volumes, mut axis) = (Vec::new(), None);
     match &scene.what {
         What::Lsys { sys, depth } if sys.is_3d() => {
             check_stems(sys, *depth, &scene.limits, MAX_EDITOR_STEMS, too_many)?;
             let d = scene.derivation;
-            draw3(sys, *depth, d, &scene.limits, &mut keep, &mut phase)?;
+            if let Some(p) = sys.parametric.as_deref().filter(|p| p.paints()) {
+                // As the mesh paints (docs/lsys.md): the palette, and the
+                // stroke past its end (the last colour here).
+                got.colors = p.organs.palette.clone();
+                got.colors.push(style.stroke);
+                let last = got.colors.len() - 1;
+                let index = |i: usize| i.min(last) as u32;
+                let mut paint = index(if p.organs.palette.is_empty() { last } else { 0 });
+                let limits = &scene.limits;
+                crate::interpret::lsys::param::draw3_marks(sys, p, *depth, d, limits, &mut |m| {
+                    got.mark(m, &mut paint, width, index)
+                })?;
+            } else {
+                let mut keep = |s: Segment3| got.stem(s, width(s.order), None);
+                draw3(sys, *depth, d, &scene.limits, &mut keep, &mut phase)?;
+            }
         }
         What::Tree { bed, .. } if bed.description().is_3d() => {
             let n = bed.size().stems;
@@ -113,15 +175,25 @@ pub(crate) fn editor_stems3(
             volumes = desc.layout.iter().flat_map(|l| l.solids.clone()).collect();
             axis = Some([desc.root.0, desc.root_z.unwrap_or(0.0)]);
             let d = scene.derivation;
-            if placed.is_empty() {
+            if crate::interpret::dress::dresses(desc) {
+                dress_placed(&mut got, bed, scene, placed, &style, &mut phase)?;
+            } else if placed.is_empty() {
+                let mut keep = |s: Segment3| got.stem(s, width(s.order), None);
                 crate::interpret::bed3::draw3(bed, d, &scene.limits, &mut keep, &mut phase)?;
             }
         }
         _ => return Ok(None),
     }
-    if over {
+    if got.over {
         return Err(too_many(format!("more than {MAX_EDITOR_STEMS}")));
     }
+    let Pieces {
+        mut stems,
+        colors,
+        stem_colors,
+        leaves,
+        ..
+    } = got;
     for p in placed {
         let (a, b) = (p.from, p.to);
         let (w, k) = (p.width, p.decision as f64);
@@ -134,6 +206,9 @@ pub(crate) fn editor_stems3(
         background: style.background,
         volumes,
         axis,
+        colors,
+        stem_colors,
+        leaves,
     };
     let rendered = Rendered {
         segments: n,
@@ -141,6 +216,53 @@ pub(crate) fn editor_stems3(
         warnings: nothing_drawn(n),
     };
     Ok(Some((stems3, rendered)))
+}
+
+/// A dressed tree's colours and leaves for the editor (section 13): its
+/// stems as drawn from the BED when growth placed none, else each placed
+/// stem in the colour of the drawn stem at the same place (to the answer's
+/// three decimals; the ramp's first colour where none is).
+fn dress_placed(
+    got: &mut Pieces,
+    bed: &crate::bed::Bed,
+    scene: &Scene,
+    placed: &[crate::grow::PlacedStem],
+    style: &crate::render::Style,
+    progress: &mut dyn Progress,
+) -> Result<(), Diagnostics> {
+    use crate::interpret::dress;
+    let segs = dress::gather(bed, scene.derivation, &scene.limits, progress)?;
+    let dressed = dress::Dress::new(bed.description(), &segs, style.stroke);
+    got.colors = dressed.palette().to_vec();
+    let width = |order: u32| match style.width {
+        Width::Pixels(w) => w,
+        Width::Canvas(lin) => lin.at(order).max(0.0),
+    };
+    let mut paint = 0;
+    let mut drawn = Pieces::default();
+    dressed.emit(&mut |m| drawn.mark(m, &mut paint, width, |i| i as u32))?;
+    got.over |= drawn.over;
+    got.leaves = drawn.leaves;
+    if placed.is_empty() {
+        got.stems = drawn.stems;
+        got.stem_colors = drawn.stem_colors;
+        return Ok(());
+    }
+    let at = |v: &[f64]| -> [i64; 6] { std::array::from_fn(|i| libm::round(v[i] * 1000.0) as i64) };
+    let by_place: std::collections::BTreeMap<[i64; 6], u32> = drawn
+        .stems
+        .chunks_exact(8)
+        .zip(&drawn.stem_colors)
+        .map(|(s, &c)| (at(s), c))
+        .collect();
+    got.stem_colors = placed
+        .iter()
+        .map(|p| {
+            let v = [p.from.x, p.from.y, p.z[0], p.to.x, p.to.y, p.z[1]];
+            by_place.get(&at(&v)).copied().unwrap_or(0)
+        })
+        .collect();
+    Ok(())
 }
 
 /// What [`super::Request::mesh`] wrote.

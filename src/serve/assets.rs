@@ -155,6 +155,16 @@ pub(crate) static ASSETS: &[Asset] = &[
         body: include_str!("page/meshes.js"),
     },
     Asset {
+        path: "/gl3d.js",
+        media: JS,
+        body: include_str!("page/gl3d.js"),
+    },
+    Asset {
+        path: "/paint3d.js",
+        media: JS,
+        body: include_str!("page/paint3d.js"),
+    },
+    Asset {
         path: "/orbit.js",
         media: JS,
         body: include_str!("page/orbit.js"),

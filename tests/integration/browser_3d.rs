@@ -655,8 +655,34 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
             )
         );
         shot(&c, "3d-09-oak-half-grown").await;
+        // The last decision's stems without the leaves, then the whole tree
+        // with them: the canvas's dark green (leaves in the ramp's end
+        // colour, #3b5e2b, lit) and bark brown (the ramp's near end,
+        // #5b3a1e) pixels counted.
+        let census = "const v = document.getElementById('view3d');
+             window.stlc.view3d.pixels();
+             const t = document.createElement('canvas'); [t.width, t.height] = [v.width, v.height];
+             const x = t.getContext('2d'); x.drawImage(v, 0, 0);
+             const d = x.getImageData(0, 0, v.width, v.height).data;
+             let [leaf, bark] = [0, 0];
+             for (let i = 0; i < d.length; i += 4) {
+               const [r, g, b] = [d[i], d[i + 1], d[i + 2]];
+               if (g > r + 15 && g > b + 15 && g < 140) leaf++;
+               if (r > g + 12 && g > b + 8 && r < 160) bark++;
+             }
+             return [leaf, bark];";
+        js(&c, &step(fits - 1)).await;
+        let bare = js(&c, census).await;
         let all = js(&c, &step(fits)).await;
         assert_eq!(all[1], whole, "the whole tree again");
+        let leafy = js(&c, census).await;
+        // Measured 23,672 and 1,818 bare, 42,963 and 1,578 leafy at 1280 x
+        // 720: with every stem in one colour (before the ramp) there was no
+        // dark green at all, and without leaves no more than the stems'.
+        let n = |v: &Value, i: usize| v[i].as_u64().unwrap();
+        assert!(n(&bare, 0) > 5_000, "the ramp's deep orders are dark green: {bare}");
+        assert!(n(&leafy, 0) > n(&bare, 0) * 3 / 2, "the leaves add green: {bare} {leafy}");
+        assert!(n(&bare, 1) > 500 && n(&leafy, 1) > 500, "the trunk's bark is brown: {leafy}");
         let _ = c.close().await;
     });
 }

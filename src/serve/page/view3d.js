@@ -6,81 +6,17 @@
 // zoom, Fit or 0 resets both (orbit.js). The volumes are drawn translucent
 // (meshes.js), the tree over them: each stem a band of its width (screen
 // pixels for an .lsys, canvas units for a tree), one instance of a
-// four-corner strip, so the page holds 32 bytes a stem. Replay shows the
-// stems up to a decision (a uniform: nothing is uploaded again).
+// four-corner strip, so the page holds 32 bytes a stem, and 12 more for
+// its colour (paint3d.js: a palette's, an S= ramp's, else the stroke).
+// Leaves are triangles in their colour, lit on both sides, shown with the
+// whole tree. Replay shows the stems up to a decision (a uniform: nothing
+// is uploaded again).
 
 import { byId } from './dom.js';
+import { LEAF_FS, LEAF_VS, STEM_FS, STEM_VS, VOLUME_FS, VOLUME_VS, compile } from './gl3d.js';
 import { volumeMesh } from './meshes.js';
 import { orbit } from './orbit.js';
-
-const STEM_VS = `#version 300 es
-in vec2 corner;
-in vec3 a;
-in vec3 b;
-in vec2 wd;
-uniform mat3 rot;
-uniform vec3 centre;
-uniform float scale;
-uniform vec2 viewport;
-uniform float pixelWidths;
-uniform float upTo;
-uniform float range;
-out float fade;
-void main() {
-  if (wd.y > upTo) { gl_Position = vec4(2.0, 2.0, 2.0, 1.0); return; }
-  vec3 pa = rot * (a - centre);
-  vec3 pb = rot * (b - centre);
-  vec2 sa = pa.xy * scale;
-  vec2 sb = pb.xy * scale;
-  vec2 d = sb - sa;
-  float len = length(d);
-  vec2 dir = len > 1e-6 ? d / len : vec2(1.0, 0.0);
-  vec2 nrm = vec2(-dir.y, dir.x);
-  float w = max(pixelWidths > 0.0 ? wd.x * pixelWidths : wd.x * scale, 1.0) * 0.5;
-  vec2 p = mix(sa, sb, corner.x) + nrm * corner.y * w + dir * (corner.x * 2.0 - 1.0) * w;
-  float z = mix(pa.z, pb.z, corner.x) / range;
-  fade = clamp(z * 0.5 + 0.5, 0.0, 1.0);
-  gl_Position = vec4(p.x * 2.0 / viewport.x, -p.y * 2.0 / viewport.y, z, 1.0);
-}`;
-
-const STEM_FS = `#version 300 es
-precision mediump float;
-in float fade;
-uniform vec3 colour;
-uniform vec3 background;
-out vec4 outColour;
-void main() {
-  outColour = vec4(mix(colour, background, 0.35 * fade), 1.0);
-}`;
-
-const VOLUME_VS = `#version 300 es
-in vec3 position;
-in vec3 normal;
-uniform mat3 rot;
-uniform vec3 centre;
-uniform float scale;
-uniform vec2 viewport;
-out float light;
-void main() {
-  vec3 p = rot * (position - centre);
-  vec3 n = rot * normal;
-  light = 0.45 + 0.55 * abs(normalize(n).z);
-  gl_Position = vec4(p.x * scale * 2.0 / viewport.x, -p.y * scale * 2.0 / viewport.y, 0.0, 1.0);
-}`;
-
-const VOLUME_FS = `#version 300 es
-precision mediump float;
-in float light;
-uniform vec4 colour;
-out vec4 outColour;
-void main() {
-  outColour = vec4(colour.rgb * light, colour.a);
-}`;
-
-function rgb(hex, fallback) {
-  const m = /^#([0-9a-f]{2})([0-9a-f]{2})([0-9a-f]{2})$/i.exec(hex || '');
-  return m ? [1, 2, 3].map((i) => parseInt(m[i], 16) / 255) : fallback;
-}
+import { leafTriangles, rgb, stemColours } from './paint3d.js';
 
 // The rows of the camera's rotation for `az`, `el` (degrees): right, down
 // and forward, as render/view.rs projects (a point p is drawn at p.right,
@@ -89,26 +25,6 @@ export function camera(az, el) {
   const [a, e] = [az * Math.PI / 180, el * Math.PI / 180];
   const [ca, sa, ce, se] = [Math.cos(a), Math.sin(a), Math.cos(e), Math.sin(e)];
   return [[ca, 0, sa], [sa * se, ce, -ca * se], [-sa * ce, se, ca * ce]];
-}
-
-function compile(gl, vs, fs) {
-  const prog = gl.createProgram();
-  for (const [type, text] of [[gl.VERTEX_SHADER, vs], [gl.FRAGMENT_SHADER, fs]]) {
-    const s = gl.createShader(type);
-    gl.shaderSource(s, text);
-    gl.compileShader(s);
-    if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
-    gl.attachShader(prog, s);
-  }
-  gl.linkProgram(prog);
-  if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(prog));
-  const u = {};
-  const n = gl.getProgramParameter(prog, gl.ACTIVE_UNIFORMS);
-  for (let i = 0; i < n; i++) {
-    const name = gl.getActiveUniform(prog, i).name;
-    u[name] = gl.getUniformLocation(prog, name);
-  }
-  return { prog, u, attr: (name) => gl.getAttribLocation(prog, name) };
 }
 
 /**
@@ -140,7 +56,8 @@ export function createView3d({ onView } = {}) {
   let count = 0;
   let upTo = Infinity;
   let pixelWidths = true;
-  let colour = [0, 0, 0];
+  let leafCount = 0;
+  let lastDecision = 0;
   let background = [1, 1, 1];
   let volumes = [];
   let frame = 0;
@@ -149,6 +66,10 @@ export function createView3d({ onView } = {}) {
   let volumeProg = null;
   let stemVao = null;
   let stemBuf = null;
+  let colourBuf = null;
+  let leafProg = null;
+  let leafVao = null;
+  let leafBufs = [];
 
   if (gl) {
     stemProg = compile(gl, STEM_VS, STEM_FS);
@@ -168,6 +89,22 @@ export function createView3d({ onView } = {}) {
       gl.vertexAttribPointer(at, size, gl.FLOAT, false, 32, offset);
       gl.vertexAttribDivisor(at, 1);
     }
+    colourBuf = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, colourBuf);
+    gl.enableVertexAttribArray(stemProg.attr('col'));
+    gl.vertexAttribPointer(stemProg.attr('col'), 3, gl.FLOAT, false, 0, 0);
+    gl.vertexAttribDivisor(stemProg.attr('col'), 1);
+    gl.bindVertexArray(null);
+    leafProg = compile(gl, LEAF_VS, LEAF_FS);
+    leafVao = gl.createVertexArray();
+    gl.bindVertexArray(leafVao);
+    leafBufs = ['position', 'normal', 'col'].map((name) => {
+      const buf = gl.createBuffer();
+      gl.bindBuffer(gl.ARRAY_BUFFER, buf);
+      gl.enableVertexAttribArray(leafProg.attr(name));
+      gl.vertexAttribPointer(leafProg.attr(name), 3, gl.FLOAT, false, 0, 0);
+      return buf;
+    });
     gl.bindVertexArray(null);
   } else {
     label.textContent = 'This browser has no WebGL 2: the 3D view cannot be shown (export a PNG instead).';
@@ -254,10 +191,16 @@ export function createView3d({ onView } = {}) {
     gl.uniform1f(stemProg.u.pixelWidths, pixelWidths ? dpr : 0);
     gl.uniform1f(stemProg.u.upTo, upTo === Infinity ? 3.4e38 : upTo);
     gl.uniform1f(stemProg.u.range, range);
-    gl.uniform3fv(stemProg.u.colour, colour);
     gl.uniform3fv(stemProg.u.background, background);
     gl.bindVertexArray(stemVao);
     gl.drawArraysInstanced(gl.TRIANGLE_STRIP, 0, 4, count);
+    // The leaves, with the whole tree (a replay's last step).
+    if (leafCount && upTo >= lastDecision) {
+      setCommon(leafProg);
+      gl.uniform1f(leafProg.u.range, range);
+      gl.bindVertexArray(leafVao);
+      gl.drawArrays(gl.TRIANGLES, 0, leafCount);
+    }
     gl.bindVertexArray(null);
     label.textContent = `view ${Math.round(cam.az)},${Math.round(cam.el)} · drag or arrow keys to turn, wheel or +/− to zoom, Fit or 0 to reset`;
     if (onView) onView(angles());
@@ -299,7 +242,16 @@ export function createView3d({ onView } = {}) {
     gl.bindBuffer(gl.ARRAY_BUFFER, stemBuf);
     gl.bufferData(gl.ARRAY_BUFFER, points, gl.STATIC_DRAW);
     pixelWidths = s.width_in_pixels;
-    colour = rgb(answer.stroke, [0, 0, 0]);
+    const stroke = rgb(answer.stroke, [0, 0, 0]);
+    gl.bindBuffer(gl.ARRAY_BUFFER, colourBuf);
+    gl.bufferData(gl.ARRAY_BUFFER, stemColours(s, stroke), gl.STATIC_DRAW);
+    const leaves = leafTriangles(s, stroke);
+    for (const [buf, data] of [[leafBufs[0], leaves.pos], [leafBufs[1], leaves.nrm], [leafBufs[2], leaves.col]]) {
+      gl.bindBuffer(gl.ARRAY_BUFFER, buf);
+      gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
+    }
+    leafCount = leaves.count;
+    lastDecision = s.decisions || 0;
     background = rgb(s.background, [1, 1, 1]);
     volumes.forEach((v) => gl.deleteVertexArray(v.vao));
     volumes = (s.volumes || []).map((v) => {
