@@ -203,4 +203,29 @@ mod tests {
             "`RULE`, a number or end of input"
         );
     }
+
+    #[test]
+    fn a_word_symbol_is_any_character_but_whitespace_and_hash() {
+        // `lsys_sym` as ranges agrees with its definition, character by
+        // character: every character but tab, line feed, carriage return,
+        // space, `#` and U+FEFF is a one-symbol word.
+        use pest::Parser;
+        let not_symbols = ['\t', '\n', '\r', ' ', '#', '\u{FEFF}'];
+        let chars = (0..0x3000u32)
+            .chain(0xFE00..0xFF10)
+            .chain([0xD7FF, 0xE000, 0xFFFF, 0x1_0000, 0x1F333, 0x10_FFFF])
+            .filter_map(char::from_u32);
+        let mut symbols = 0;
+        for c in chars {
+            let text = format!("{c}F");
+            let read = GrammarParser::parse(Rule::lsys_word, &text)
+                .map(|mut pairs| pairs.next().map_or(0, |p| p.as_str().len()))
+                .unwrap_or(0);
+            let is_symbol = !not_symbols.contains(&c);
+            let whole = text.len();
+            assert_eq!(read == whole, is_symbol, "{:?}", c);
+            symbols += usize::from(is_symbol);
+        }
+        assert_eq!(symbols, 0x3000 + 0x110 + 6 - 6);
+    }
 }

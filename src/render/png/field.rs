@@ -35,8 +35,10 @@ pub(super) const EXACT_SEGMENTS: u64 = 4096;
 /// A solid piece (docs/rendering.md, *Dense curves*) of at most this
 /// many segments is drawn exactly, as a bush is, so it has the exact
 /// drawing's tone (a dark grey where hairlines blended in 8 bits stall);
-/// a larger one is left to its hatch, which is what the exact drawing's
-/// ink converges to (black).
+/// a larger one is drawn at the detail, which makes it its hatched box
+/// (what the exact drawing's ink converges to), sampled once per
+/// distinct piece and stamped like the others: tiny-skia's hairlines
+/// hatching every occurrence were most of Hilbert at depth 30 (issue 37).
 pub(super) const SOLID_SEGMENTS: u64 = 1 << 16;
 
 /// Marks a dense piece's key (a dense piece's field): the top bit

@@ -51,15 +51,17 @@ impl PngTurtle {
         )
     }
 
-    /// [`Turtle::solid`]: the solid piece's field, drawn exactly, if it
-    /// has at most [`SOLID_SEGMENTS`].
+    /// [`Turtle::solid`]: the solid piece's field, drawn exactly if it
+    /// has at most [`SOLID_SEGMENTS`], else at the detail (its own
+    /// drawing, by a turtle without fields, is then its hatched box).
     pub(super) fn sampled_solid(&mut self, sample: &Sample) -> Option<Arc<Field>> {
-        self.detail?;
-        if sample.segments > SOLID_SEGMENTS || !self.hairline() {
+        let detail = self.detail? * self.fit.scale;
+        if !self.hairline() {
             return None;
         }
+        let detail = (sample.segments > SOLID_SEGMENTS).then_some(detail);
         let fields = self.fields.as_mut()?;
-        fields.get(sample, self.fit.scale, self.width, (4, None, false), draw)
+        fields.get(sample, self.fit.scale, self.width, (4, detail, false), draw)
     }
 
     /// [`Turtle::dense`]: the piece's field, drawn at the detail with its
