@@ -62,6 +62,37 @@ fn render_ops(
     render_full(text, angle, 0.0, None, &[], style, format, size).unwrap()
 }
 
+/// The SVG text of `text` (see [`ops`]).
+fn svg_of(text: &str, angle: f64, style: &Style, size: Option<(u32, u32)>) -> String {
+    String::from_utf8(render_ops(text, angle, style, ImageFormat::Svg, size)).unwrap()
+}
+
+/// The PNG of `text` (see [`ops`]), decoded.
+fn png_of(text: &str, angle: f64, style: &Style, size: Option<(u32, u32)>) -> Pixmap {
+    decode(&render_ops(text, angle, style, ImageFormat::Png, size))
+}
+
+/// The PNG of `text` at 90 degrees, with `decrement` and `view`, decoded.
+fn png_full(
+    text: &str,
+    decrement: f64,
+    view: Option<BBox>,
+    style: &Style,
+    size: Option<(u32, u32)>,
+) -> Pixmap {
+    let png = render_full(
+        text,
+        90.0,
+        decrement,
+        view,
+        &[],
+        style,
+        ImageFormat::Png,
+        size,
+    );
+    decode(&png.unwrap())
+}
+
 #[allow(clippy::too_many_arguments)]
 fn render_full(
     text: &str,
@@ -189,14 +220,8 @@ fn unit_square_svg_matches_its_golden() {
     // At 90 degrees, FF+... draws (0,0) -> (0,-1) -> (-1,-1) -> (-1,0) ->
     // (0,0). Into 100x100 with 2 px strokes: margin 4 + 1 = 5, scale 90,
     // the centre (-0.5,-0.5) at (50,50): corners at 5 and 95.
-    let svg = render_ops(
-        "F+F+F+F",
-        90.0,
-        &style(Width::Pixels(2.0), Some(Rgb::WHITE)),
-        ImageFormat::Svg,
-        Some((100, 100)),
-    );
-    let svg = String::from_utf8(svg).unwrap();
+    let st = style(Width::Pixels(2.0), Some(Rgb::WHITE));
+    let svg = svg_of("F+F+F+F", 90.0, &st, Some((100, 100)));
     assert!(svg.contains(" d=\"M95.00 95.00 L95.00 5.00 L5.00 5.00 L5.00 95.00 L95.00 95.00\""));
     assert_golden("tests/cases/render/square.svg", &svg);
 }
@@ -223,23 +248,12 @@ fn svg_is_well_formed_and_byte_deterministic() {
 
 #[test]
 fn svg_background_is_absent_when_transparent() {
-    let svg = render_ops(
-        "F",
-        90.0,
-        &style(Width::Pixels(1.0), None),
-        ImageFormat::Svg,
-        None,
-    );
-    let svg = String::from_utf8(svg).unwrap();
+    let st = style(Width::Pixels(1.0), None);
+    let svg = svg_of("F", 90.0, &st, None);
     assert!(!svg.contains("<rect"), "{svg}");
-    let svg = render_ops(
-        "F",
-        90.0,
-        &style(Width::Pixels(1.0), Some(Rgb::new(1, 2, 3))),
-        ImageFormat::Svg,
-        None,
-    );
-    assert!(String::from_utf8(svg).unwrap().contains("fill=\"#010203\""));
+    let st = style(Width::Pixels(1.0), Some(Rgb::new(1, 2, 3)));
+    let svg = svg_of("F", 90.0, &st, None);
+    assert!(svg.contains("fill=\"#010203\""));
 }
 
 // ---------------------------------------------------------------------------
@@ -250,14 +264,8 @@ fn thick_horizontal_line_is_dark_in_the_middle_and_white_far_away() {
     // Heading right, one stem: (0,0) -> (1,0). Into 100x50 with 10 px
     // strokes: margin 4 + 5 = 9 px, scale 82: the line runs from x = 9 to
     // x = 91 at y = 25, 10 px thick, round caps reaching x = 4 and 96.
-    let png = render_ops(
-        "-F",
-        90.0,
-        &style(Width::Pixels(10.0), Some(Rgb::WHITE)),
-        ImageFormat::Png,
-        Some((100, 50)),
-    );
-    let p = decode(&png);
+    let st = style(Width::Pixels(10.0), Some(Rgb::WHITE));
+    let p = png_of("-F", 90.0, &st, Some((100, 50)));
     assert_eq!((p.width(), p.height()), (100, 50));
     for x in [10, 50, 90] {
         assert_eq!(rgba(&p, x, 25), [0, 0, 0, 255], "x = {x}");
@@ -270,14 +278,8 @@ fn thick_horizontal_line_is_dark_in_the_middle_and_white_far_away() {
 
 #[test]
 fn no_background_means_transparent() {
-    let png = render_ops(
-        "-F",
-        90.0,
-        &style(Width::Pixels(10.0), None),
-        ImageFormat::Png,
-        Some((100, 50)),
-    );
-    let p = decode(&png);
+    let st = style(Width::Pixels(10.0), None);
+    let p = png_of("-F", 90.0, &st, Some((100, 50)));
     assert_eq!(rgba(&p, 50, 2)[3], 0);
     assert_eq!(rgba(&p, 50, 25), [0, 0, 0, 255]);
 }
@@ -285,14 +287,7 @@ fn no_background_means_transparent() {
 #[test]
 fn default_size_is_800_on_the_long_side() {
     // The tree is taller than wide: height 800.
-    let png = render_ops(
-        TREE,
-        30.0,
-        &style(Width::Pixels(2.0), None),
-        ImageFormat::Png,
-        None,
-    );
-    let p = decode(&png);
+    let p = png_of(TREE, 30.0, &style(Width::Pixels(2.0), None), None);
     assert_eq!(p.height(), DEFAULT_SIDE);
     assert!(p.width() < DEFAULT_SIDE && p.width() > 100, "{}", p.width());
 }
@@ -309,18 +304,7 @@ fn canvas_widths_thin_with_order() {
         max_y: 2.0,
     };
     let st = style(Width::Canvas(Linear::new(3.0, 1.0)), Some(Rgb::WHITE));
-    let png = render_full(
-        "FF-fff+{{F}}",
-        90.0,
-        0.0,
-        Some(view),
-        &[],
-        &st,
-        ImageFormat::Png,
-        Some((100, 100)),
-    )
-    .unwrap();
-    let p = decode(&png);
+    let p = png_full("FF-fff+{{F}}", 0.0, Some(view), &st, Some((100, 100)));
     let dark_run = |y: u32, x0: u32, x1: u32| (x0..x1).filter(|&x| is_dark(&p, x, y)).count();
     // Trunk at x = 20 px (canvas 0), row y = 70 (canvas -1).
     let trunk = dark_run(70, 0, 40);
@@ -334,20 +318,9 @@ fn canvas_widths_thin_with_order() {
 #[test]
 fn widths_below_zero_still_draw_hairlines() {
     let st = style(Width::Canvas(Linear::new(1.0, 2.0)), Some(Rgb::WHITE));
-    let png = render_full(
-        "{{-F}}",
-        90.0,
-        0.0,
-        None,
-        &[],
-        &st,
-        ImageFormat::Png,
-        Some((50, 50)),
-    )
-    .unwrap();
+    let p = png_full("{{-F}}", 0.0, None, &st, Some((50, 50)));
     // Widest stroke 1 unit (order 0 never drawn): the 1-unit line is fitted
     // at (50 - 2 * 4.25) / 2 = 20.75 px per unit, centred on row 25.
-    let p = decode(&png);
     let touched = (0..50)
         .filter(|&x| rgba(&p, x, 24)[0] < 255 || rgba(&p, x, 25)[0] < 255)
         .count();
@@ -366,9 +339,8 @@ fn tree_png_matches_its_reference() {
         &st,
         ImageFormat::Png,
         Some((120, 160)),
-    )
-    .unwrap();
-    assert_golden_png("tests/cases/render/tree.png", &decode(&png));
+    );
+    assert_golden_png("tests/cases/render/tree.png", &decode(&png.unwrap()));
 }
 
 #[test]
@@ -453,7 +425,7 @@ fn underlay_is_even_odd_and_under_the_strokes() {
 fn png_and_svg_agree() {
     let st = style(Width::Pixels(3.0), Some(Rgb::WHITE));
     let size = Some((150, 200));
-    let png = decode(&render_ops(TREE, 30.0, &st, ImageFormat::Png, size));
+    let png = png_of(TREE, 30.0, &st, size);
     // `--exact`: a line a segment.
     let svg = exact_svg(TREE, 30.0, &st, size);
     assert!(svg.contains(" width=\"150\" height=\"200\" viewBox=\"0 0 150 200\""));
@@ -464,7 +436,7 @@ fn png_and_svg_agree() {
     assert_eq!(segs.len(), TREE.matches('F').count());
     // Merged (the default): collinear runs are one line, fewer lines,
     // and every segment's points lie on one of them.
-    let merged = String::from_utf8(render_ops(TREE, 30.0, &st, ImageFormat::Svg, size)).unwrap();
+    let merged = svg_of(TREE, 30.0, &st, size);
     let lines: Vec<(Point, Point)> = svg_strokes(&merged)
         .iter()
         .flat_map(|(_, s)| s.clone())

@@ -38,16 +38,14 @@ fn errors(src: &str) -> Diagnostics {
     }
 }
 
-/// The one error of `src`: its kind and span.
-fn one_error(src: &str) -> (ErrorKind, std::ops::Range<usize>, String) {
+/// The one error of `src`, asserted to be of `kind`: its span and help.
+fn refused(src: &str, kind: ErrorKind) -> (std::ops::Range<usize>, String) {
     let e = errors(src);
     assert_eq!(e.0.len(), 1, "{e}");
     let d = &e.0[0];
-    (
-        d.kind.clone(),
-        d.span.clone().expect("a span"),
-        d.help_text().unwrap_or_default(),
-    )
+    assert_eq!(d.kind, kind, "{src}");
+    let help = d.help_text().unwrap_or_default();
+    (d.span.clone().expect("a span"), help)
 }
 
 /// Byte range of the `n`th (0-based) occurrence of `needle` in `src`.
@@ -303,10 +301,9 @@ fn both_definition_forms_and_comments() {
 #[test]
 fn unknown_rule_suggests_the_nearest() {
     let src = format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED");
-    let (kind, span, help) = one_error(&src);
-    assert_eq!(
-        kind,
-        ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() })
+    let (span, help) = refused(
+        &src,
+        ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() }),
     );
     assert_eq!(span, at(&src, "R3", 0));
     assert!(help.contains("`R1`"), "{help}");
@@ -315,14 +312,13 @@ fn unknown_rule_suggests_the_nearest() {
 #[test]
 fn slot_count_names_the_rule_and_its_count() {
     let src = format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED");
-    let (kind, span, help) = one_error(&src);
-    assert_eq!(
-        kind,
+    let (span, help) = refused(
+        &src,
         ErrorKind::Rule(RuleError::SlotCount {
             rule: "R1".into(),
             expected: 2,
-            found: 3
-        })
+            found: 3,
+        }),
     );
     assert_eq!(span, at(&src, "R1{,,}", 0));
     assert!(help.contains("R1{,}"), "{help}");
@@ -330,30 +326,19 @@ fn slot_count_names_the_rule_and_its_count() {
 
 #[test]
 fn unbalanced_brackets_point_at_the_unmatched_one() {
-    let src = format!("{HEAD} R1: [F][+F SEED ENDSEED");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced('[')));
-    assert_eq!(span, at(&src, "[", 1));
-
-    let src = format!("{HEAD} R1: [F]] SEED ENDSEED");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced(']')));
-    assert_eq!(span, at(&src, "]", 1));
-
-    let src = format!("{HEAD} R1: [F] SEED R1{{R1{{}} ENDSEED");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced('{')));
-    assert_eq!(span, at(&src, "{", 0));
-
-    let src = format!("{HEAD} R1: [F] SEED R1{{}}}} ENDSEED");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced('}')));
-    assert_eq!(span, at(&src, "}", 1));
-
-    let src = format!("{HEAD} R1: [F] SEED [+F R1 ENDSEED");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Input(InputError::Unbalanced('[')));
-    assert_eq!(span, at(&src, "[", 1));
+    // The body after `R1: `, the unmatched character and which of its
+    // occurrences in the whole text (0-based) is the unmatched one.
+    for (body, c, n) in [
+        ("[F][+F SEED ENDSEED", '[', 1),
+        ("[F]] SEED ENDSEED", ']', 1),
+        ("[F] SEED R1{R1{} ENDSEED", '{', 0),
+        ("[F] SEED R1{}} ENDSEED", '}', 1),
+        ("[F] SEED [+F R1 ENDSEED", '[', 1),
+    ] {
+        let src = format!("{HEAD} R1: {body}");
+        let (span, _) = refused(&src, ErrorKind::Input(InputError::Unbalanced(c)));
+        assert_eq!(span, at(&src, &c.to_string(), n), "{src}");
+    }
 }
 
 #[test]
@@ -373,10 +358,9 @@ fn duplicate_rule_labels_both() {
 fn reserved_names_are_refused() {
     for name in ["F", "f", "L", "R", "I", "SEED"] {
         let src = format!("{HEAD} {name}: [F] R1: [F]");
-        let (kind, span, _) = one_error(&src);
-        assert_eq!(
-            kind,
-            ErrorKind::Rule(RuleError::ReservedName { name: name.into() })
+        let (span, _) = refused(
+            &src,
+            ErrorKind::Rule(RuleError::ReservedName { name: name.into() }),
         );
         assert_eq!(
             span,
@@ -387,67 +371,55 @@ fn reserved_names_are_refused() {
 
 #[test]
 fn rule_names_in_bodies_only_end_branches() {
-    let src = format!("{HEAD} R1: [R1 +F][-F]");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Stl(StlError::NameNotAtBranchEnd));
-    assert_eq!(span, at(&src, "R1", 1));
-    // in the trunk
-    let src = format!("{HEAD} R1: F R1 [-F]");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Stl(StlError::NameNotAtBranchEnd));
-    assert_eq!(span, at(&src, "R1", 1));
-    // in a nested bracket
-    let src = format!("{HEAD} R1: [F[+F R1]]");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Stl(StlError::NameNotAtBranchEnd));
-    assert_eq!(span, at(&src, "R1", 1));
+    // in a branch, in the trunk, in a nested bracket
+    for body in ["[R1 +F][-F]", "F R1 [-F]", "[F[+F R1]]"] {
+        let src = format!("{HEAD} R1: {body}");
+        let (span, _) = refused(&src, ErrorKind::Stl(StlError::NameNotAtBranchEnd));
+        assert_eq!(span, at(&src, "R1", 1), "{src}");
+    }
 }
 
 #[test]
 fn sizes_must_be_positive() {
     let src = "T (0, 0) L=-1(0) B=1(0) RULE R1: [F]";
-    let (kind, span, _) = one_error(src);
-    assert_eq!(
-        kind,
+    let (span, _) = refused(
+        src,
         ErrorKind::Stl(StlError::StemSizeNotPositive {
             key: "L",
-            what: "length"
-        })
+            what: "length",
+        }),
     );
     assert_eq!(span, at(src, "-1", 0));
 
     let src = "T (0, 0) L=1(0) B=0(0) RULE R1: [F]";
-    let (kind, span, _) = one_error(src);
-    assert_eq!(
-        kind,
+    let (span, _) = refused(
+        src,
         ErrorKind::Stl(StlError::StemSizeNotPositive {
             key: "B",
-            what: "broadness"
-        })
+            what: "broadness",
+        }),
     );
     let b = at(src, "B=0", 0).start + 2;
     assert_eq!(span, b..b + 1);
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 0, 10 ENDLAYOUT");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(
-        kind,
+    let (span, _) = refused(
+        &src,
         ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
             shape: "Rectangle",
-            what: "width"
-        })
+            what: "width",
+        }),
     );
     let w = at(&src, "(0,0), 0", 0).end - 1;
     assert_eq!(span, w..w + 1);
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) RoundRect (0,0), 5, 10, -2 ENDLAYOUT");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(
-        kind,
+    let (span, _) = refused(
+        &src,
         ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
             shape: "RoundRect",
-            what: "corner radius"
-        })
+            what: "corner radius",
+        }),
     );
     assert_eq!(span, at(&src, "-2", 0));
 }
@@ -455,10 +427,9 @@ fn sizes_must_be_positive() {
 #[test]
 fn polygons_need_three_points() {
     let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(
-        kind,
-        ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 })
+    let (span, _) = refused(
+        &src,
+        ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 }),
     );
     assert_eq!(span, at(&src, "Polygon (0,0), (5,5)", 0));
 }
@@ -466,12 +437,11 @@ fn polygons_need_three_points() {
 #[test]
 fn unknown_colour_suggests_one() {
     let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let (kind, span, help) = one_error(&src);
-    assert_eq!(
-        kind,
+    let (span, help) = refused(
+        &src,
         ErrorKind::Input(InputError::UnknownColour {
-            text: "clGren".into()
-        })
+            text: "clGren".into(),
+        }),
     );
     assert_eq!(span, at(&src, "clGren", 0));
     assert!(help.contains("clGreen"));
@@ -480,24 +450,22 @@ fn unknown_colour_suggests_one() {
 #[test]
 fn missing_section_ends() {
     let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(
-        kind,
+    let (span, _) = refused(
+        &src,
         ErrorKind::Stl(StlError::UnclosedSection {
             open: "SEED",
-            close: "ENDSEED"
-        })
+            close: "ENDSEED",
+        }),
     );
     assert_eq!(span, at(&src, "SEED", 0));
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 5, 5");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(
-        kind,
+    let (span, _) = refused(
+        &src,
         ErrorKind::Stl(StlError::UnclosedSection {
             open: "LAYOUT",
-            close: "ENDLAYOUT"
-        })
+            close: "ENDLAYOUT",
+        }),
     );
     assert_eq!(span, at(&src, "LAYOUT", 0));
 }
@@ -505,12 +473,11 @@ fn missing_section_ends() {
 #[test]
 fn numbers_must_be_finite() {
     let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
-    let (kind, span, _) = one_error(src);
-    assert_eq!(
-        kind,
+    let (span, _) = refused(
+        src,
         ErrorKind::Input(InputError::NotFinite {
-            text: "1e999".into()
-        })
+            text: "1e999".into(),
+        }),
     );
     assert_eq!(span, at(src, "1e999", 0));
 }
@@ -518,15 +485,14 @@ fn numbers_must_be_finite() {
 #[test]
 fn counts_over_the_limit_are_refused() {
     let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
-    let (kind, span, help) = one_error(&src);
-    assert_eq!(
-        kind,
+    let (span, help) = refused(
+        &src,
         ErrorKind::Limit {
             bound: Bound::Repeat,
             what: None,
             value: "10001".into(),
-            limit: 10000
-        }
+            limit: 10000,
+        },
     );
     assert_eq!(span, at(&src, "10001", 0));
     assert!(help.contains("--max-depth"));
@@ -535,8 +501,7 @@ fn counts_over_the_limit_are_refused() {
 #[test]
 fn braces_must_follow_a_rule_name() {
     let src = format!("{HEAD} R1: [F] SEED F{{}} ENDSEED");
-    let (kind, span, _) = one_error(&src);
-    assert_eq!(kind, ErrorKind::Stl(StlError::BraceWithoutRule));
+    let (span, _) = refused(&src, ErrorKind::Stl(StlError::BraceWithoutRule));
     assert_eq!(span, at(&src, "{", 0));
 }
 
@@ -570,8 +535,7 @@ fn several_errors_are_reported_together() {
 #[test]
 fn syntax_errors_name_what_the_user_types() {
     let src = "T (0,0) RULE R1: SEED R1 ENDSEED";
-    let (kind, span, _) = one_error(src);
-    assert_eq!(kind, ErrorKind::Rule(RuleError::MissingBody));
+    let (span, _) = refused(src, ErrorKind::Rule(RuleError::MissingBody));
     let colon = at(src, ":", 0).end;
     assert_eq!(span, colon..colon);
     // pest's own errors are worded in what the user types, too.
