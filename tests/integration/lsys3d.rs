@@ -5,7 +5,9 @@ use std::collections::BTreeMap;
 
 use stlc::pipeline::{ImageFormat, MeshFormat, MeshOptions, RenderOptions, Request, View};
 
-use crate::support::{manifest_path, numbers, outcome, stlc_line, stlc_piped};
+use crate::support::{
+    gltf_validate, gltf_validator_present, manifest_path, numbers, outcome, stlc_line, stlc_piped,
+};
 
 fn lsys_request(text: &str) -> Request {
     Request {
@@ -273,13 +275,7 @@ fn the_command_line_writes_meshes_and_views() {
 /// CI and is skipped, saying so, elsewhere.
 #[test]
 fn the_khronos_validator_finds_no_issue() {
-    let root = manifest_path("");
-    if !root.join("node_modules/gltf-validator").is_dir() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "node_modules/gltf-validator is missing: run `npm ci`"
-        );
-        eprintln!("skipped: node_modules/gltf-validator is missing (run `npm ci`)");
+    if !gltf_validator_present() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
@@ -302,18 +298,7 @@ fn the_khronos_validator_finds_no_issue() {
         std::fs::write(&out, mesh(&req, format)).unwrap();
         files.push(out);
     }
-    let run = std::process::Command::new("node")
-        .arg(root.join("tests/js/gltf-validate.mjs"))
-        .args(&files)
-        .current_dir(&root)
-        .output()
-        .expect("node runs");
-    let said = String::from_utf8_lossy(&run.stdout);
-    assert!(
-        run.status.success(),
-        "{said}{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let said = gltf_validate(&files);
     assert_eq!(
         said.lines().filter(|l| l.ends_with(" 0 0")).count(),
         7,

@@ -9,13 +9,14 @@
 //! ring). Expected values are worked by hand from the inputs.
 
 use std::collections::BTreeMap;
+use std::path::Path;
 
 use stlc::color::Rgb;
 use stlc::pipeline::NoProgress;
 use stlc::render::mesh::{MeshOptions, Tube, build_solid, write_stl};
 use stlc::turtle::turtle3::Point3;
 
-use crate::support::{manifest_path, stlc};
+use crate::support::{manifest_path, stlc, stlc_line};
 
 /// What the reader found.
 #[derive(Debug)]
@@ -235,14 +236,8 @@ fn a_ring_has_genus_one() {
 #[test]
 fn the_oak_is_one_watertight_body() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("oak.stl");
-    stlc()
-        .args(["render", "-q", "--solid", "-o"])
-        .arg(&out)
-        .arg(manifest_path("examples/oak3d.od"))
-        .assert()
-        .success();
-    let body = read(&std::fs::read(&out).unwrap());
+    let oak = manifest_path("examples/oak3d.od");
+    let body = read(&solid_written(&oak, &dir.path().join("oak.stl")));
     assert!(body.closed, "{body:?}");
     assert_eq!(body.components, 1, "{body:?}");
     assert!(body.volume > 0.0);
@@ -287,6 +282,14 @@ fn solid_usage_errors() {
     }
 }
 
+/// `stlc render -q --solid -o out input`, which must succeed: the bytes
+/// written.
+pub(crate) fn solid_written(input: &Path, out: &Path) -> Vec<u8> {
+    let line = format!("render -q --solid -o {} {}", out.display(), input.display());
+    stlc_line(&line).assert().success();
+    std::fs::read(out).unwrap()
+}
+
 /// A trunk and two branches at right angles, `leaf` (` P=L`, or nothing)
 /// at each tip, `L` a square of side 10 units (100 mm).
 pub(crate) fn leafy_y(leaf: &str) -> String {
@@ -307,14 +310,10 @@ fn leaves_are_slabs_united_with_their_stems() {
     for (name, leaf) in [("bare", ""), ("leafy", " P=L")] {
         let input = dir.path().join(format!("{name}.bed"));
         std::fs::write(&input, leafy_y(leaf)).unwrap();
-        let out = dir.path().join(format!("{name}.stl"));
-        stlc()
-            .args(["render", "-q", "--solid", "-o"])
-            .arg(&out)
-            .arg(&input)
-            .assert()
-            .success();
-        let body = read(&std::fs::read(&out).unwrap());
+        let body = read(&solid_written(
+            &input,
+            &dir.path().join(format!("{name}.stl")),
+        ));
         printable(&body, 0);
         volumes.push(body.volume);
     }

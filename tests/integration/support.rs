@@ -508,3 +508,33 @@ fn near_pairs_are_the_brute_force_pairs_within_reach() {
         assert_eq!(found, brute, "reach {reach}");
     }
 }
+
+/// Whether npm's Khronos glTF validator is installed (`npm ci`). Without it
+/// a test fails under CI and is skipped, saying so, elsewhere: `false` then.
+pub fn gltf_validator_present() -> bool {
+    if manifest_path("node_modules/gltf-validator").is_dir() {
+        return true;
+    }
+    assert!(
+        std::env::var_os("CI").is_none(),
+        "node_modules/gltf-validator is missing: run `npm ci`"
+    );
+    eprintln!("skipped: node_modules/gltf-validator is missing (run `npm ci`)");
+    false
+}
+
+/// What `tests/js/gltf-validate.mjs` says of `files`, a line a file; it
+/// must succeed (its output in the panic otherwise).
+pub fn gltf_validate(files: &[PathBuf]) -> String {
+    let root = manifest_path("");
+    let run = std::process::Command::new("node")
+        .arg(root.join("tests/js/gltf-validate.mjs"))
+        .args(files)
+        .current_dir(&root)
+        .output()
+        .expect("node runs");
+    let said = String::from_utf8_lossy(&run.stdout).into_owned();
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{said}{err}");
+    said
+}
