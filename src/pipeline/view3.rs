@@ -176,7 +176,14 @@ pub(crate) fn editor_stems3(
             axis = Some([desc.root.0, desc.root_z.unwrap_or(0.0)]);
             let d = scene.derivation;
             if crate::interpret::dress::dresses(desc) {
-                dress_placed(&mut got, bed, scene, placed, &style, &mut phase)?;
+                dress_placed(
+                    &mut got,
+                    bed,
+                    scene,
+                    placed,
+                    (style.stroke, width),
+                    &mut phase,
+                )?;
             } else if placed.is_empty() {
                 let mut keep = |s: Segment3| got.stem(s, width(s.order), None);
                 crate::interpret::bed3::draw3(bed, d, &scene.limits, &mut keep, &mut phase)?;
@@ -227,20 +234,16 @@ fn dress_placed(
     bed: &crate::bed::Bed,
     scene: &Scene,
     placed: &[crate::grow::PlacedStem],
-    style: &crate::render::Style,
+    (stroke, width): (crate::color::Rgb, impl Fn(u32) -> f64),
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
     use crate::interpret::dress;
     let segs = dress::gather(bed, scene.derivation, &scene.limits, progress)?;
-    let dressed = dress::Dress::new(bed.description(), &segs, style.stroke);
+    let dressed = dress::Dress::new(bed.description(), &segs, stroke);
     got.colors = dressed.palette().to_vec();
-    let width = |order: u32| match style.width {
-        Width::Pixels(w) => w,
-        Width::Canvas(lin) => lin.at(order).max(0.0),
-    };
     let mut paint = 0;
     let mut drawn = Pieces::default();
-    dressed.emit(&mut |m| drawn.mark(m, &mut paint, width, |i| i as u32))?;
+    dressed.emit(&mut |m| drawn.mark(m, &mut paint, &width, |i| i as u32))?;
     got.over |= drawn.over;
     got.leaves = drawn.leaves;
     if placed.is_empty() {

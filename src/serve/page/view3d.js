@@ -57,6 +57,7 @@ export function createView3d({ onView } = {}) {
   let upTo = Infinity;
   let pixelWidths = true;
   let leafCount = 0;
+  let leafPos = new Float32Array(0);
   let lastDecision = 0;
   let background = [1, 1, 1];
   let volumes = [];
@@ -110,7 +111,7 @@ export function createView3d({ onView } = {}) {
     label.textContent = 'This browser has no WebGL 2: the 3D view cannot be shown (export a PNG instead).';
   }
 
-  // Every point of the stems and the volumes' corners: their box's centre
+  // Every point of the stems, the leaves and the volumes' corners: their box's centre
   // is what the camera turns about.
   function bounds() {
     const b = [Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity];
@@ -122,7 +123,9 @@ export function createView3d({ onView } = {}) {
       add(points[i], points[i + 1], points[i + 2]);
       add(points[i + 3], points[i + 4], points[i + 5]);
     }
-    for (const v of volumes) for (let i = 0; i < v.pos.length; i += 3) add(v.pos[i], v.pos[i + 1], v.pos[i + 2]);
+    for (const pos of [leafPos, ...volumes.map((v) => v.pos)]) {
+      for (let i = 0; i < pos.length; i += 3) add(pos[i], pos[i + 1], pos[i + 2]);
+    }
     return b[0] > b[3] ? [0, 0, 0, 1, 1, 1] : b;
   }
 
@@ -139,7 +142,9 @@ export function createView3d({ onView } = {}) {
       see(points[i], points[i + 1], points[i + 2]);
       see(points[i + 3], points[i + 4], points[i + 5]);
     }
-    for (const v of volumes) for (let i = 0; i < v.pos.length; i += 3) see(v.pos[i], v.pos[i + 1], v.pos[i + 2]);
+    for (const pos of [leafPos, ...volumes.map((v) => v.pos)]) {
+      for (let i = 0; i < pos.length; i += 3) see(pos[i], pos[i + 1], pos[i + 2]);
+    }
     const { width, height } = canvas;
     return 0.92 * Math.min(width / (2 * mx), height / (2 * my));
   }
@@ -251,6 +256,7 @@ export function createView3d({ onView } = {}) {
       gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
     }
     leafCount = leaves.count;
+    leafPos = leaves.pos;
     lastDecision = s.decisions || 0;
     background = rgb(s.background, [1, 1, 1]);
     volumes.forEach((v) => gl.deleteVertexArray(v.vao));
