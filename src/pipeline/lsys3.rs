@@ -9,13 +9,16 @@ use super::{Rendered, Scene, What, style};
 use crate::diag::{Diagnostic, Diagnostics, Help, Knob, RenderError};
 use crate::interpret::Derivation;
 use crate::interpret::lsys::lsys3::draw3;
-use crate::interpret::lsys::{Mark3, ReachMemo};
+use crate::interpret::lsys::param::ViewMemo;
+use crate::interpret::lsys::{Mark3, ReachMemo, ViewLod};
 use crate::interpret::stats::stats_with_budget;
 use crate::limits::Limits;
 use crate::model::lsys::LSystem;
 use crate::num::{Trim, fixed};
 use crate::progress::{Phase, Progress};
-use crate::render::view::{Bush, Gathered, MAX_VIEW_SEGMENTS, View, draw_sorted, view_too_large};
+use crate::render::view::{
+    Bush, Gathered, MAX_VIEW_SEGMENTS, Sorted, View, draw_sorted, view_too_large,
+};
 use crate::render::{Frame, LOD_PX, RenderOptions, render_framed};
 use crate::turtle::turtle3::Point3;
 use crate::turtle::{BBox, Segment, Turtle};
@@ -75,12 +78,26 @@ pub(crate) fn render_view(
     progress: &mut dyn Progress,
 ) -> Result<Rendered, Diagnostics> {
     let (sys, depth) = lsys3(scene).expect("render_view is called for a 3D .lsys");
-    if !opts.exact
-        && scene.derivation == Derivation::Dfs
-        && let Ok(memo) = ReachMemo::new(sys, depth, sys.length)
-        && let Some(r) = render_view_lod(scene, &memo, view, look, opts, out, progress)?
-    {
-        return Ok(r);
+    if !opts.exact && scene.derivation == Derivation::Dfs {
+        let memo: Option<Box<dyn ViewLod>> = match sys.parametric.as_deref() {
+            None => ReachMemo::new(sys, depth, sys.length)
+                .ok()
+                .map(|m| Box::new(m) as Box<dyn ViewLod>),
+            Some(p) => ViewMemo::new(sys, p, depth)?
+                .filter(|m| !p.paints() || m.size().0 > PAINTED_EXACT_SYMBOLS)
+                .map(|m| Box::new(m) as Box<dyn ViewLod>),
+        };
+        let palette = sys
+            .parametric
+            .as_deref()
+            .filter(|p| p.paints())
+            .map(|p| p.organs.palette.clone());
+        if let Some(memo) = memo
+            && let Some(r) =
+                render_view_lod(scene, &*memo, palette, view, look, opts, out, progress)?
+        {
+            return Ok(r);
+        }
     }
     check_stems(sys, depth, &scene.limits, MAX_VIEW_SEGMENTS, view_too_large)?;
     if let Some(p) = sys.parametric.as_deref().filter(|p| p.paints()) {
@@ -146,22 +163,19 @@ fn render_view_organs(
     }
     let sorted = gathered.sorted_organs();
     let n = sorted.stems();
-    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
-        sorted.draw(t);
-        Ok(())
-    };
-    let exact = RenderOptions {
-        exact: true,
-        ..*opts
-    };
-    let style = style(scene, look);
-    render_framed(&mut drawing, Frame::Fit, &[], &style, &exact, out, progress)?;
+    draw_organs(scene, look, opts, &sorted, out, progress)?;
     Ok(Rendered {
         segments: n,
         count: Some(n.to_string()),
         warnings: Vec::new(),
     })
 }
+
+/// A system that paints is drawn exactly while its word has at most this
+/// many modules (about 7 s), with stand-ins past that: a stand-in's
+/// colour is its ink's mean, where the exact drawing shows the nearest of
+/// the strokes piled up in a pixel (docs/3d.md, *Level of detail*).
+pub const PAINTED_EXACT_SYMBOLS: u64 = 4 * VIEW_VISITS;
 
 /// Most symbols and stand-ins a 3D view's walk visits (about half a second).
 pub const VIEW_VISITS: u64 = 10_000_000;
@@ -185,9 +199,11 @@ const MEASURE_VISITS: u64 = 200_000;
 /// gathered and drawn far to near. `None`: at half a pixel the walk fits
 /// its budgets but would visit more than 35 % of a word the exact path may
 /// draw, which then draws it.
+#[allow(clippy::too_many_arguments)]
 fn render_view_lod(
     scene: &Scene,
-    memo: &ReachMemo,
+    memo: &dyn ViewLod,
+    palette: Option<Vec<crate::color::Rgb>>,
     view: View,
     look: &super::Look,
     opts: &RenderOptions,
@@ -196,7 +212,7 @@ fn render_view_lod(
 ) -> Result<Option<Rendered>, Diagnostics> {
     let (sys, _) = lsys3(scene).expect("a 3D .lsys");
     let style = style(scene, look);
-    let reach = memo.whole().radius;
+    let reach = memo.radius();
     // The coarse walk: the smallest detail, halving from the whole, whose
     // walk visits at most MEASURE_VISITS.
     let mut coarse = 4.0 * reach;
@@ -217,16 +233,19 @@ fn render_view_lod(
         }
     };
     let plan = memo.plan(coarse);
-    memo.draw_lod(
-        sys.heading,
-        sys.angle,
+    memo.walk(
+        sys,
         coarse,
         plan.visits,
+        0.0,
+        projection.forward(),
         &mut |m| match m {
             Mark3::Stem(s) | Mark3::StandIn { seg: s, .. } => {
                 add(s.from);
                 add(s.to);
             }
+            Mark3::Polygon(points) => points.iter().for_each(|&p| add(p)),
+            Mark3::Paint(_) => {}
         },
         &mut Phase::new(progress, "measuring"),
     );
@@ -243,12 +262,12 @@ fn render_view_lod(
     // Little cut at half a pixel, and within the walk's budgets: the
     // compiled exact path costs about what the walk would (as in 2D,
     // docs/rendering.md), and draws the exact picture.
-    let whole = memo.whole();
+    let (syms, stems) = memo.size();
     if plan.visits <= VIEW_VISITS
         && plan.marks <= VIEW_MARKS
-        && u128::from(plan.visits) * 100 > u128::from(whole.syms) * LOD_MAX_VISITS_PERCENT
-        && whole.syms <= scene.limits.max_symbols
-        && whole.stems <= MAX_VIEW_SEGMENTS
+        && u128::from(plan.visits) * 100 > u128::from(syms) * LOD_MAX_VISITS_PERCENT
+        && syms <= scene.limits.max_symbols
+        && stems <= MAX_VIEW_SEGMENTS
     {
         return Ok(None);
     }
@@ -262,12 +281,18 @@ fn render_view_lod(
     if plan.visits > VIEW_VISITS || plan.marks > VIEW_MARKS {
         return Err(view_too_large(plan.marks.to_string()));
     }
-    let mut gathered = Gathered::new(view);
-    memo.draw_lod(
-        sys.heading,
-        sys.angle,
+    let painted = palette.is_some();
+    let mut gathered = match palette {
+        Some(p) => Gathered::with_organs(view, p),
+        None => Gathered::new(view),
+    };
+    let stroke = crate::render::stroke_px(&style.width, scale, 0) / scale;
+    memo.walk(
+        sys,
         detail,
         plan.visits,
+        stroke,
+        projection.forward(),
         &mut |m| match m {
             Mark3::Stem(s) => gathered.push(s),
             Mark3::StandIn {
@@ -275,14 +300,35 @@ fn render_view_lod(
                 spread,
                 length,
                 runs,
+                color,
+                order,
                 ..
-            } => gathered.push_stand_in(seg, spread, length, runs),
+            } => gathered.push_stand_in(
+                seg,
+                Bush {
+                    spread,
+                    length,
+                    runs,
+                    color,
+                    order,
+                },
+            ),
+            Mark3::Paint(i) => gathered.paint(i),
+            Mark3::Polygon(points) => gathered.push_polygon(points),
         },
         &mut Phase::new(progress, "deriving"),
     );
-    let (stems, bushes) = gathered.sorted_with_bushes();
-    let n = stems.len() as u64;
-    draw_view(scene, look, opts, &stems, &bushes, out, progress)?;
+    let n = if painted {
+        let sorted = gathered.sorted_organs();
+        let n = sorted.stems();
+        draw_organs(scene, look, opts, &sorted, out, progress)?;
+        n
+    } else {
+        let (stems, bushes) = gathered.sorted_with_bushes();
+        let n = stems.len() as u64;
+        draw_view(scene, look, opts, &stems, &bushes, out, progress)?;
+        n
+    };
     let mut warnings = nothing_drawn(n);
     if detail > ideal {
         warnings.push(
@@ -305,6 +351,29 @@ fn render_view_lod(
         count: Some(n.to_string()),
         warnings,
     }))
+}
+
+/// Draws gathered stems and polygons (far to near), each in its colour,
+/// with the scene's style, fitted.
+fn draw_organs(
+    scene: &Scene,
+    look: &super::Look,
+    opts: &RenderOptions,
+    sorted: &Sorted,
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<(), Diagnostics> {
+    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
+        sorted.draw(t);
+        Ok(())
+    };
+    let exact = RenderOptions {
+        exact: true,
+        ..*opts
+    };
+    let style = style(scene, look);
+    render_framed(&mut drawing, Frame::Fit, &[], &style, &exact, out, progress)?;
+    Ok(())
 }
 
 /// Draws gathered stems (far to near) with the scene's style, fitted.

@@ -65,6 +65,11 @@ pub struct Projection {
 }
 
 impl Projection {
+    /// The direction away from the camera.
+    pub fn forward(&self) -> [f64; 3] {
+        self.forward
+    }
+
     /// The point on the screen, and its depth.
     #[inline]
     pub fn project(&self, p: Point3) -> (Point, f64) {
@@ -191,19 +196,15 @@ impl Gathered {
     /// Projects and keeps one stand-in of the level of detail: a capsule
     /// about `s` reaching `spread` canvas units to either side, standing
     /// for `length` of strokes in `runs` runs, drawn with
-    /// [`Turtle::stand_in`] by [`draw_sorted`]. (Its stem's order, under
-    /// `BLOT_MARK`, indexes the bush: an `.lsys`'s stems are all of
-    /// order 0.)
-    pub fn push_stand_in(&mut self, s: Segment3, spread: f64, length: f64, runs: f64) {
+    /// [`Turtle::stand_in`] by [`draw_sorted`] (or [`Sorted::draw`]) in
+    /// `color` (`None`: the colour in force) with strokes of stem order
+    /// `order`. (Its stem's order, under `BLOT_MARK`, indexes the bush.)
+    pub fn push_stand_in(&mut self, s: Segment3, bush: Bush) {
         let before = self.items.len();
         self.push(s);
         if let Some(item) = self.items.get_mut(before) {
             item.1.order = BLOT_MARK | self.bushes.len() as u32;
-            self.bushes.push(Bush {
-                spread,
-                length,
-                runs,
-            });
+            self.bushes.push(bush);
         }
     }
 
@@ -227,6 +228,7 @@ impl Gathered {
         Sorted {
             items: self.items.into_iter().map(|(_, s, t)| (s, t)).collect(),
             looks,
+            bushes: self.bushes,
         }
     }
 }
@@ -249,10 +251,11 @@ struct Looks {
 pub struct Sorted {
     items: Vec<(Segment, u32)>,
     looks: Looks,
+    bushes: Vec<Bush>,
 }
 
 impl Sorted {
-    /// How many stems (polygons not counted).
+    /// How many stems and stand-ins (polygons not counted).
     pub fn stems(&self) -> u64 {
         self.items
             .iter()
@@ -266,10 +269,20 @@ impl Sorted {
     }
 
     /// Draws every stem and polygon into `t`, far to near, each in its
-    /// colour ([`Turtle::paint`], [`Turtle::polygon`]).
+    /// colour ([`Turtle::paint`], [`Turtle::polygon`]), a stand-in in its
+    /// own where it has one.
     pub fn draw(&self, t: &mut dyn Turtle) {
         let mut current = None;
         for (s, tag) in &self.items {
+            if s.order & BLOT_MARK != 0
+                && let Some(b) = self.bushes.get((s.order & !BLOT_MARK) as usize)
+                && let Some(c) = b.color
+            {
+                t.paint(c);
+                current = None;
+                draw_bush(s, b, t);
+                continue;
+            }
             let Some((i, poly)) = self.looks.each.get(*tag as usize) else {
                 t.segment(*s);
                 continue;
@@ -282,6 +295,11 @@ impl Sorted {
             }
             match poly {
                 Some(points) => t.polygon(points),
+                None if s.order & BLOT_MARK != 0 => {
+                    if let Some(b) = self.bushes.get((s.order & !BLOT_MARK) as usize) {
+                        draw_bush(s, b, t);
+                    }
+                }
                 None => t.segment(*s),
             }
         }
@@ -292,17 +310,21 @@ impl Sorted {
 #[derive(Debug, Clone, Copy)]
 pub struct Bush {
     /// How far it reaches to either side of its segment, canvas units.
-    spread: f64,
+    pub spread: f64,
     /// The length of its strokes in space, canvas units.
-    length: f64,
+    pub length: f64,
     /// The runs they come in (one, and one more for each `]` and `f`).
-    runs: f64,
+    pub runs: f64,
+    /// The colour its ink mixes to (`None`: the colour in force).
+    pub color: Option<Rgb>,
+    /// The stem order of its strokes (their width; 0: the picture's).
+    pub order: u32,
 }
 
 /// The mean length on the screen of a unit stroke turned every way
 /// alike (the mean of `sin` over the sphere): a bush's strokes turn every
 /// way, so it inks this share of their length.
-const SEEN_SHARE: f64 = std::f64::consts::FRAC_PI_4;
+pub const SEEN_SHARE: f64 = std::f64::consts::FRAC_PI_4;
 
 /// The bit of a gathered stem's order that marks a stand-in.
 const BLOT_MARK: u32 = 1 << 31;
@@ -313,35 +335,42 @@ const BLOT_MARK: u32 = 1 << 31;
 pub fn draw_sorted(stems: &[Segment], bushes: &[Bush], t: &mut dyn Turtle) {
     for s in stems {
         if s.order & BLOT_MARK != 0 {
-            let Some(b) = bushes.get((s.order & !BLOT_MARK) as usize) else {
-                continue;
-            };
-            let mut seg = Segment { order: 0, ..*s };
-            let chord = libm::hypot(seg.to.x - seg.from.x, seg.to.y - seg.from.y);
-            // Seen end-on, the segment is a point: a short one across the
-            // screen carries the ink.
-            let chord = if chord > 1e-9 * (1.0 + b.spread) {
-                chord
-            } else {
-                let e = 1e-6 * (1.0 + b.spread);
-                seg.to = crate::turtle::Point::new(seg.from.x + e, seg.from.y);
-                e
-            };
-            let density = b.length * SEEN_SHARE / chord;
-            if density.is_finite() {
-                t.stand_in(&StandIn {
-                    seg,
-                    density,
-                    footprint: Some(Footprint {
-                        spread: b.spread,
-                        runs: b.runs,
-                    }),
-                    sample: None,
-                });
+            if let Some(b) = bushes.get((s.order & !BLOT_MARK) as usize) {
+                draw_bush(s, b, t);
             }
         } else {
             t.segment(*s);
         }
+    }
+}
+
+/// Draws the bush `b` of the stand-in stem `s` ([`Turtle::stand_in`]).
+fn draw_bush(s: &Segment, b: &Bush, t: &mut dyn Turtle) {
+    let mut seg = Segment {
+        order: b.order,
+        ..*s
+    };
+    let chord = libm::hypot(seg.to.x - seg.from.x, seg.to.y - seg.from.y);
+    // Seen end-on, the segment is a point: a short one across the
+    // screen carries the ink.
+    let chord = if chord > 1e-9 * (1.0 + b.spread) {
+        chord
+    } else {
+        let e = 1e-6 * (1.0 + b.spread);
+        seg.to = crate::turtle::Point::new(seg.from.x + e, seg.from.y);
+        e
+    };
+    let density = b.length * SEEN_SHARE / chord;
+    if density.is_finite() {
+        t.stand_in(&StandIn {
+            seg,
+            density,
+            footprint: Some(Footprint {
+                spread: b.spread,
+                runs: b.runs,
+            }),
+            sample: None,
+        });
     }
 }
 

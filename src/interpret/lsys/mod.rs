@@ -95,6 +95,7 @@ use program::Program;
 pub use program::{MACRO_CAP, PROGRAM_CAP};
 pub use reach::REACH_ENTRIES;
 pub(crate) use reach::ReachMemo;
+pub(crate) use reach_lod::ViewLod;
 pub use reach_lod::{Mark3, Plan3};
 pub use stochastic::BFS_BYTES_PER_SYMBOL;
 pub(crate) use stochastic::Stochastic;

@@ -21,12 +21,13 @@ use std::cell::RefCell;
 
 use super::lod;
 use super::reach::{Reach, ReachMemo, V, apply};
+use crate::color::Rgb;
 use crate::progress::Progress;
 use crate::turtle::turtle3::{Op3, Point3, Segment3, Turtle3};
 
 /// What a walk at a level of detail hands out, in drawing order.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Mark3 {
+pub enum Mark3<'a> {
     /// A stem of the exact drawing, or the chord of a cut connected run
     /// (which joins the stems before and after it).
     Stem(Segment3),
@@ -46,7 +47,75 @@ pub enum Mark3 {
         length: f64,
         /// The runs they come in (one more than its `]` and `f`).
         runs: f64,
+        /// The colour its ink mixes to, where the drawing paints (else the
+        /// colour in force).
+        color: Option<Rgb>,
+        /// The stem order of its strokes' width (0: the picture's).
+        order: u32,
     },
+    /// Later stems and polygons take colour index `i` (a system that
+    /// paints, section 13).
+    Paint(usize),
+    /// A polygon `{ ... }` closed, filled with the colour in force.
+    Polygon(&'a [Point3]),
+}
+
+/// A memo a 3D view's level of detail walks: the reach memo of a classic
+/// system (reach.rs), the view memo of a parametric one or one that
+/// paints (`param/memo3.rs`).
+pub(crate) trait ViewLod {
+    /// Every drawn point of the whole drawing is within this distance of
+    /// its start.
+    fn radius(&self) -> f64;
+    /// What a walk at `detail` visits and hands out.
+    fn plan(&self, detail: f64) -> Plan3;
+    /// The whole word's symbols and drawn stems (saturating).
+    fn size(&self) -> (u64, u64);
+    /// Walks the word at `detail` (canvas units) from the origin, handing
+    /// every mark to `sink` in drawing order; `visits` (the plan's) is
+    /// reported to `progress`. `stroke`: the width of a stroke of order 0,
+    /// canvas units (the ink a stand-in's polygons stand for is given as
+    /// strokes' length); `toward`: the view's direction (how much of its
+    /// strokes and polygons a stand-in shows).
+    #[allow(clippy::too_many_arguments)]
+    fn walk(
+        &self,
+        sys: &crate::model::lsys::LSystem,
+        detail: f64,
+        visits: u64,
+        stroke: f64,
+        toward: V,
+        sink: &mut dyn FnMut(Mark3<'_>),
+        progress: &mut dyn Progress,
+    );
+}
+
+impl ViewLod for ReachMemo {
+    fn radius(&self) -> f64 {
+        self.whole().radius
+    }
+
+    fn plan(&self, detail: f64) -> Plan3 {
+        ReachMemo::plan(self, detail)
+    }
+
+    fn size(&self) -> (u64, u64) {
+        let w = self.whole();
+        (w.syms, w.stems)
+    }
+
+    fn walk(
+        &self,
+        sys: &crate::model::lsys::LSystem,
+        detail: f64,
+        visits: u64,
+        _: f64,
+        _: V,
+        sink: &mut dyn FnMut(Mark3<'_>),
+        progress: &mut dyn Progress,
+    ) {
+        self.draw_lod(sys.heading, sys.angle, detail, visits, sink, progress);
+    }
 }
 
 /// What a walk at one detail costs, counted before walking.
@@ -126,7 +195,7 @@ impl ReachMemo {
         angle: f64,
         detail: f64,
         visits: u64,
-        sink: &mut dyn FnMut(Mark3),
+        sink: &mut dyn FnMut(Mark3<'_>),
         progress: &mut dyn Progress,
     ) -> Point3 {
         let sink = RefCell::new(sink);
@@ -151,7 +220,7 @@ struct Walk3<'m, 's, 'k, S: FnMut(Segment3)> {
     memo: &'m ReachMemo,
     detail: f64,
     turtle: Turtle3<S>,
-    sink: &'s RefCell<&'k mut dyn FnMut(Mark3)>,
+    sink: &'s RefCell<&'k mut dyn FnMut(Mark3<'_>)>,
 }
 
 impl<'m, S: FnMut(Segment3)> lod::Memo<'m> for Walk3<'m, '_, '_, S> {
@@ -188,11 +257,41 @@ impl<'m, S: FnMut(Segment3)> lod::Memo<'m> for Walk3<'m, '_, '_, S> {
 }
 
 /// The stand-in of part `p` drawn from the turtle's state.
-fn stand_in<S: FnMut(Segment3)>(t: &mut Turtle3<S>, p: &Reach) -> Mark3 {
+fn stand_in<S: FnMut(Segment3)>(t: &mut Turtle3<S>, p: &Reach) -> Mark3<'static> {
     let (h, l, u) = t.hlu();
-    let from = t.state.pos;
+    let part = Part3 {
+        end: p.end,
+        radius: p.radius,
+        length: p.length,
+        jumps: p.jumps,
+        breaks: p.breaks,
+        centroid: p.centroid(),
+    };
+    stand_in_at(t.state.pos, &[h, l, u], &part)
+}
+
+/// What a stand-in is drawn from: a part's reach relative to its start.
+pub(crate) struct Part3 {
+    /// Where it ends.
+    pub end: V,
+    /// Every drawn point is within this distance of the start.
+    pub radius: f64,
+    /// The length of its strokes.
+    pub length: f64,
+    /// Whether it moves without drawing or returns somewhere.
+    pub jumps: bool,
+    /// How many times (each `f` and `]`).
+    pub breaks: f64,
+    /// Its strokes' centroid and radius of gyration about it.
+    pub centroid: (V, f64),
+}
+
+/// The stand-in of `part` started at `from` in frame `frame` (H, L, U):
+/// a connected run that does not fold is its chord, anything else a
+/// capsule from the start through twice its centroid.
+pub(crate) fn stand_in_at(from: Point3, frame: &[V; 3], p: &Part3) -> Mark3<'static> {
     let at = |v: V| {
-        let d = apply(&[h, l, u], v);
+        let d = apply(frame, v);
         Point3::new(from.x + d[0], from.y + d[1], from.z + d[2])
     };
     let chord = norm(p.end);
@@ -203,7 +302,7 @@ fn stand_in<S: FnMut(Segment3)>(t: &mut Turtle3<S>, p: &Reach) -> Mark3 {
             order: 0,
         });
     }
-    let (c, g) = p.centroid();
+    let (c, g) = p.centroid;
     let mut q = c.map(|v| 2.0 * v);
     let nq = norm(q);
     if nq > p.radius && nq > 0.0 {
@@ -226,5 +325,7 @@ fn stand_in<S: FnMut(Segment3)>(t: &mut Turtle3<S>, p: &Reach) -> Mark3 {
         spread,
         length: p.length,
         runs: p.breaks + 1.0,
+        color: None,
+        order: 0,
     }
 }

@@ -167,6 +167,7 @@ fn marks(sys: &LSystem, depth: u32, detail: f64) -> (Vec<Segment3>, u64, Counted
         &mut |m| match m {
             Mark3::Stem(s) => stems.push(s),
             Mark3::StandIn { .. } => stand_ins += 1,
+            Mark3::Paint(_) | Mark3::Polygon(_) => unreachable!("a classic system paints nothing"),
         },
         &mut counted,
     );

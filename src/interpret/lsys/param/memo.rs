@@ -23,24 +23,18 @@
 //! ([`lod::walk`]): a module that is not cut is applied by the exact
 //! turtle ([`Turtle3P::module`]), so at detail 0 it is the exact drawing.
 
-use std::collections::HashMap;
-
+use super::PARAM_COST;
+pub use super::pieces::PARAM_NODES;
+use super::pieces::Pieces;
 use super::turtle::Turtle3P;
-use super::{Deriver, PARAM_COST, Word};
 use crate::diag::{Diagnostics, Help, Knob};
 use crate::interpret::lsys::lod::{self, Memo};
 use crate::limits::{Bound, Limits};
 use crate::model::lsys::LSystem;
-use crate::model::param::{Parametric, eval};
+use crate::model::param::Parametric;
 use crate::progress::Progress;
 use crate::turtle::turtle3::cos_sin;
 use crate::turtle::{Footprint, Point, Segment, StandIn, Turtle};
-
-/// Most pieces one memo may hold (about 200 bytes each).
-pub const PARAM_NODES: usize = 1 << 17;
-
-/// Most successor entries all pieces together may hold.
-const PARAM_SUCC: usize = 1 << 22;
 
 type V = [f64; 3];
 type M = [V; 3];
@@ -141,24 +135,11 @@ impl Reach {
     }
 }
 
-/// The memo of one system at one depth.
+/// The memo of one system at one depth: its pieces, and each one's reach.
 pub struct ParamMemo {
-    sym: Vec<char>,
-    /// `off[i]..off[i + 1]`: node `i`'s parameters in `vals`.
-    off: Vec<u32>,
-    vals: Vec<f64>,
-    /// A node's successor, as nodes one level down (`None`: a module no
-    /// rule rewrites, or at depth 0).
-    succ: Vec<Option<Vec<u32>>>,
+    pieces: Pieces,
     reach: Vec<Reach>,
-    axiom: Vec<u32>,
-    /// Per remaining depth, its nodes (a module no rule rewrites at 0).
-    levels: Vec<Vec<u32>>,
-    depth: u32,
 }
-
-/// A node's interning key: symbol, parameters' bits, remaining depth.
-type NodeKey = (char, Vec<u64>, u32);
 
 impl ParamMemo {
     /// The memo of `sys` to `depth`, `None` when it does not apply (see
@@ -178,124 +159,36 @@ impl ParamMemo {
         {
             return Ok(None);
         }
-        let d = Deriver::new(sys, p);
-        let mut m = ParamMemo {
-            sym: Vec::new(),
-            off: vec![0],
-            vals: Vec::new(),
-            succ: Vec::new(),
-            reach: Vec::new(),
-            axiom: Vec::new(),
-            levels: Vec::new(),
-            depth,
+        let Some(pieces) = Pieces::new(sys, p, depth)? else {
+            return Ok(None);
         };
-        let mut index: HashMap<NodeKey, u32> = HashMap::new();
-        // Per level, the nodes first met there, in the order met.
-        let mut levels: Vec<Vec<u32>> = vec![Vec::new(); depth as usize + 1];
-        let mut axiom = Vec::with_capacity(p.axiom.len());
-        for md in &p.axiom {
-            let vals: Vec<f64> = md.args.iter().map(|e| eval(e, &[])).collect();
-            match m.intern(&d, &mut index, &mut levels, md.symbol, &vals, depth) {
-                Some(id) => axiom.push(id),
-                None => return Ok(None),
-            }
-        }
-        m.axiom = axiom;
-        let mut entries = 0usize;
-        let (mut one, mut out, mut bind) = (Word::new(), Word::new(), Vec::new());
-        for r in (1..=depth).rev() {
-            let level = std::mem::take(&mut levels[r as usize]);
-            for &id in &level {
-                one.clear();
-                one.push(
-                    m.sym[id as usize],
-                    m.params(id),
-                    crate::choice::Key::root(0),
-                );
-                out.clear();
-                d.rewrite(&one, &[], 0, depth - r + 1, &mut out, &mut bind)?;
-                entries += out.len();
-                if entries > PARAM_SUCC {
-                    return Ok(None);
-                }
-                let mut kids = Vec::with_capacity(out.len());
-                for j in 0..out.len() {
-                    match m.intern(
-                        &d,
-                        &mut index,
-                        &mut levels,
-                        out.syms[j],
-                        out.params(j),
-                        r - 1,
-                    ) {
-                        Some(k) => kids.push(k),
-                        None => return Ok(None),
-                    }
-                }
-                m.succ[id as usize] = Some(kids);
-            }
-            levels[r as usize] = level;
-        }
-        m.levels = levels;
+        let mut m = ParamMemo {
+            reach: vec![Reach::NOTHING; pieces.sym.len()],
+            pieces,
+        };
         m.compose_all(sys);
         Ok(Some(m))
-    }
-
-    fn params(&self, id: u32) -> &[f64] {
-        &self.vals[self.off[id as usize] as usize..self.off[id as usize + 1] as usize]
-    }
-
-    /// The node of module `sym(vals)` at remaining depth `r` (depth 0 for
-    /// a module no rule rewrites: it is the same at every depth), new ones
-    /// queued on their level; `None` past [`PARAM_NODES`].
-    fn intern(
-        &mut self,
-        d: &Deriver,
-        index: &mut HashMap<NodeKey, u32>,
-        levels: &mut [Vec<u32>],
-        sym: char,
-        vals: &[f64],
-        r: u32,
-    ) -> Option<u32> {
-        let mut key: NodeKey = (sym, vals.iter().map(|v| v.to_bits()).collect(), r);
-        if let Some(&id) = index.get(&key) {
-            return Some(id);
-        }
-        if r > 0 && !d.applies(sym, vals) {
-            key.2 = 0;
-            if let Some(&id) = index.get(&key) {
-                return Some(id);
-            }
-        }
-        let r = key.2;
-        if self.sym.len() >= PARAM_NODES {
-            return None;
-        }
-        let id = self.sym.len() as u32;
-        self.sym.push(sym);
-        self.vals.extend_from_slice(vals);
-        self.off.push(self.vals.len() as u32);
-        self.succ.push(None);
-        self.reach.push(Reach::NOTHING);
-        index.insert(key, id);
-        levels[r as usize].push(id);
-        Some(id)
     }
 
     /// Every node's reach, level by level from depth 0 up.
     fn compose_all(&mut self, sys: &LSystem) {
         let (len, angle) = (sys.length, sys.angle);
-        let levels = std::mem::take(&mut self.levels);
+        let levels = std::mem::take(&mut self.pieces.levels);
         for level in &levels {
             for &id in level {
-                let reach = match &self.succ[id as usize] {
-                    None => Reach::module(self.sym[id as usize], self.params(id), len, angle),
+                let reach = match &self.pieces.succ[id as usize] {
+                    None => Reach::module(
+                        self.pieces.sym[id as usize],
+                        self.pieces.params(id),
+                        len,
+                        angle,
+                    ),
                     Some(kids) => self.compose(kids),
                 };
                 self.reach[id as usize] = reach;
             }
         }
-        self.levels = levels;
+        self.pieces.levels = levels;
     }
 
     /// The reach of a word of nodes (their reaches known) from the origin.
@@ -307,7 +200,7 @@ impl ParamMemo {
             ..Reach::NOTHING
         };
         for &k in kids {
-            match self.sym[k as usize] {
+            match self.pieces.sym[k as usize] {
                 '[' => stack.push((pos, rot)),
                 ']' => {
                     if let Some((p, r)) = stack.pop() {
@@ -353,11 +246,11 @@ impl ParamMemo {
 
     /// Modules and stand-ins a walk at `detail` visits (saturating).
     pub fn visits(&self, detail: f64) -> u64 {
-        let mut cost = vec![1u64; self.sym.len()];
+        let mut cost = vec![1u64; self.pieces.sym.len()];
         // Level by level from depth 0 up: children before parents.
-        for &id in self.levels.iter().flatten() {
+        for &id in self.pieces.levels.iter().flatten() {
             let id = id as usize;
-            if let Some(kids) = &self.succ[id]
+            if let Some(kids) = &self.pieces.succ[id]
                 && !Self::cut(&self.reach[id], detail)
             {
                 cost[id] = kids
@@ -365,19 +258,20 @@ impl ParamMemo {
                     .fold(1u64, |a, &k| a.saturating_add(cost[k as usize]));
             }
         }
-        self.axiom
+        self.pieces
+            .axiom
             .iter()
             .fold(0u64, |a, &k| a.saturating_add(cost[k as usize]))
     }
 
     /// Distinct pieces (module and depth) the word reaches.
     pub fn nodes(&self) -> usize {
-        self.sym.len()
+        self.pieces.sym.len()
     }
 
     /// Modules of the whole word (saturating).
     pub fn modules(&self) -> u64 {
-        self.axiom.iter().fold(0u64, |a, &k| {
+        self.pieces.axiom.iter().fold(0u64, |a, &k| {
             a.saturating_add(self.reach[k as usize].modules)
         })
     }
@@ -390,14 +284,15 @@ impl ParamMemo {
 
     /// Drawn steps of the whole word (saturating).
     pub fn stems(&self) -> u64 {
-        self.axiom
+        self.pieces
+            .axiom
             .iter()
             .fold(0u64, |a, &k| a.saturating_add(self.reach[k as usize].stems))
     }
 
     /// A ball about the start holding the whole drawing: its radius.
     pub fn radius(&self) -> f64 {
-        self.compose(&self.axiom).radius
+        self.compose(&self.pieces.axiom).radius
     }
 
     /// Draws the word at `detail` canvas units into `turtle`, refused past
@@ -418,7 +313,7 @@ impl ParamMemo {
                 .exceeded_by(
                     format!(
                         "modules to visit at depth {} at this level of detail",
-                        self.depth
+                        self.pieces.depth
                     ),
                     visits,
                     most,
@@ -442,7 +337,7 @@ impl ParamMemo {
             t: Turtle3P::new(sys, p),
             turtle,
         };
-        lod::walk(&mut w, &self.axiom, self.depth, (), progress);
+        lod::walk(&mut w, &self.pieces.axiom, self.pieces.depth, (), progress);
         progress.finish();
         let end = w.t.pos();
         Ok(Point::new(end.x, end.y))
@@ -475,14 +370,14 @@ impl<'m> Memo<'m> for WalkParam<'m, '_> {
 
     #[inline]
     fn is_piece(&self, c: u32, _: u32) -> bool {
-        self.m.succ[c as usize].is_some()
+        self.m.pieces.succ[c as usize].is_some()
     }
 
     fn piece(&mut self, c: u32, _: u32, _: ()) -> Option<&'m [u32]> {
         let m = self.m;
         let p = &m.reach[c as usize];
         if !ParamMemo::cut(p, self.detail) {
-            return m.succ[c as usize].as_deref();
+            return m.pieces.succ[c as usize].as_deref();
         }
         let from = self.t.pos();
         let frame = self.t.frame();
@@ -528,14 +423,15 @@ impl<'m> Memo<'m> for WalkParam<'m, '_> {
     fn terminal(&mut self, c: u32) {
         let m = self.m;
         let turtle = &mut *self.turtle;
-        self.t.module(m.sym[c as usize], m.params(c), &mut |mark| {
-            if let super::turtle::Mark::Step(s, _) = mark {
-                Self::segment(
-                    turtle,
-                    [s.from.x, s.from.y, s.from.z],
-                    [s.to.x, s.to.y, s.to.z],
-                )
-            }
-        });
+        self.t
+            .module(m.pieces.sym[c as usize], m.pieces.params(c), &mut |mark| {
+                if let super::turtle::Mark::Step(s, _) = mark {
+                    Self::segment(
+                        turtle,
+                        [s.from.x, s.from.y, s.from.z],
+                        [s.to.x, s.to.y, s.to.z],
+                    )
+                }
+            });
     }
 }

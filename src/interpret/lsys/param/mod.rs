@@ -16,7 +16,10 @@
 //!
 //! `turtle.rs` draws the modules; `expand` writes them.
 
+mod lie;
 mod memo;
+mod memo3;
+mod pieces;
 mod turtle;
 
 use std::collections::{BTreeMap, HashMap};
@@ -30,6 +33,7 @@ use crate::model::Loc;
 use crate::model::lsys::LSystem;
 use crate::model::param::{ParamRule, Parametric, eval};
 pub use memo::{PARAM_NODES, ParamMemo};
+pub use memo3::{VIEW_COLORS, ViewMemo};
 pub use turtle::{Mark, Turtle3P, draw3_marks};
 pub(crate) use turtle::{draw2, draw3};
 

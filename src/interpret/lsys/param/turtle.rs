@@ -78,6 +78,7 @@ fn surface_words(surfaces: &[crate::model::param::Surface]) -> Vec<(char, Surfac
 }
 
 /// The parametric turtle.
+#[derive(Clone)]
 pub struct Turtle3P {
     state: State,
     stack: Vec<State>,
@@ -201,6 +202,43 @@ impl Turtle3P {
     pub(crate) fn jump(&mut self, to: V, frame: [V; 3]) {
         self.state.pos = to;
         [self.state.h, self.state.l, self.state.u] = frame;
+    }
+
+    /// Starts again at the origin in the identity frame (H, L, U along
+    /// x, y, z) with `width` and colour index `color`, nothing open: a
+    /// piece's own drawing, as a memo composes it.
+    pub(crate) fn restart(&mut self, width: f64, color: usize) {
+        self.state = State {
+            pos: [0.0; 3],
+            h: [1.0, 0.0, 0.0],
+            l: [0.0, 1.0, 0.0],
+            u: [0.0, 0.0, 1.0],
+            width,
+            color: color.min(self.colors - 1),
+        };
+        self.stack.clear();
+        self.polygons.clear();
+        self.placing = false;
+        self.scale = 1.0;
+        self.shown = self.state.color;
+    }
+
+    /// The width in force and the colour index.
+    pub(crate) fn pen(&self) -> (f64, usize) {
+        (self.state.width, self.state.color)
+    }
+
+    /// Sets the width, and the colour index (told to `sink` if changed):
+    /// past a piece of the level of detail.
+    pub(crate) fn set_pen(&mut self, width: f64, color: usize, sink: &mut impl FnMut(Mark<'_>)) {
+        self.state.width = width;
+        self.paint(color, sink);
+    }
+
+    /// Whether a polygon is open or a surface's name is awaited: a piece
+    /// met now takes part in them and cannot be jumped.
+    pub(crate) fn open(&self) -> bool {
+        self.placing || !self.polygons.is_empty()
     }
 
     fn turn(&mut self, deg: f64) {
@@ -418,7 +456,7 @@ fn clamp_index(i: f64) -> usize {
 }
 
 /// The stem order that carries width `w` ([`WIDTH_QUANTUM`]).
-fn order_of(w: f64) -> u32 {
+pub(crate) fn order_of(w: f64) -> u32 {
     let q = libm::round(w.max(0.0) / WIDTH_QUANTUM);
     if q.is_finite() {
         q.min(f64::from(u32::MAX)) as u32
