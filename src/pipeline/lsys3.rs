@@ -237,7 +237,7 @@ fn render_view_lod(
         sys,
         coarse,
         plan.visits,
-        0.0,
+        (0.0, 1.0),
         projection.forward(),
         &mut |m| match m {
             Mark3::Stem(s) | Mark3::StandIn { seg: s, .. } => {
@@ -291,7 +291,7 @@ fn render_view_lod(
         sys,
         detail,
         plan.visits,
-        stroke,
+        (stroke, scale),
         projection.forward(),
         &mut |m| match m {
             Mark3::Stem(s) => gathered.push(s),

@@ -37,6 +37,7 @@ mod mesh_origin;
 mod newuser;
 mod od_variation;
 mod organs;
+mod paint_lod;
 mod param;
 mod param_frontends;
 mod param_lod;

@@ -73,17 +73,18 @@ pub(crate) trait ViewLod {
     fn size(&self) -> (u64, u64);
     /// Walks the word at `detail` (canvas units) from the origin, handing
     /// every mark to `sink` in drawing order; `visits` (the plan's) is
-    /// reported to `progress`. `stroke`: the width of a stroke of order 0,
-    /// canvas units (the ink a stand-in's polygons stand for is given as
-    /// strokes' length); `toward`: the view's direction (how much of its
-    /// strokes and polygons a stand-in shows).
+    /// reported to `progress`. `pen`: the width of a stroke of order 0,
+    /// canvas units, and the output pixels per canvas unit (the ink a
+    /// stand-in's polygons and caps stand for is given as strokes'
+    /// length); `toward`: the view's direction (how much of its strokes
+    /// and polygons a stand-in shows).
     #[allow(clippy::too_many_arguments)]
     fn walk(
         &self,
         sys: &crate::model::lsys::LSystem,
         detail: f64,
         visits: u64,
-        stroke: f64,
+        pen: (f64, f64),
         toward: V,
         sink: &mut dyn FnMut(Mark3<'_>),
         progress: &mut dyn Progress,
@@ -109,7 +110,7 @@ impl ViewLod for ReachMemo {
         sys: &crate::model::lsys::LSystem,
         detail: f64,
         visits: u64,
-        _: f64,
+        _: (f64, f64),
         _: V,
         sink: &mut dyn FnMut(Mark3<'_>),
         progress: &mut dyn Progress,

@@ -35,7 +35,9 @@ use crate::interpret::lsys::reach_lod::{Mark3, Part3, Plan3, ViewLod, stand_in_a
 use crate::model::lsys::LSystem;
 use crate::model::param::Parametric;
 use crate::progress::Progress;
+use crate::render::SPREAD_MIN_PX;
 use crate::render::view::SEEN_SHARE;
+use crate::turtle::turtle3::Point3;
 
 /// Most palette colours a view memo composes each piece for.
 pub const VIEW_COLORS: usize = 16;
@@ -134,6 +136,8 @@ struct Paint3 {
     stroke: ([f64; 3], [f64; 3]),
     /// Its polygons' colours weighted by their area.
     poly: [f64; 3],
+    /// Its stems' colours summed (each stem's caps).
+    stems: [f64; 3],
 }
 
 /// The memo; see the module documentation.
@@ -250,6 +254,7 @@ impl ViewMemo {
                 end: p1.end,
                 stroke: (sub(p1.stroke.1, p0.stroke.1), p0.stroke.1),
                 poly: p1.poly,
+                stems: p1.stems,
             };
         }
         true
@@ -288,6 +293,7 @@ impl ViewMemo {
                 for j in 0..3 {
                     paint.stroke.1[j] += pc.stroke.0[j] * w_ink + pc.stroke.1[j];
                     paint.poly[j] += pc.poly[j];
+                    paint.stems[j] += pc.stems[j];
                 }
                 acc.plain &= c.plain;
                 t.jump(axpy(pos, apply(&f, c.end), 1.0), compose(&f, &c.rot));
@@ -323,6 +329,7 @@ impl ViewMemo {
                     let ink = len * if widths { w } else { 1.0 };
                     acc.ink.1 += ink;
                     paint.stroke.1 = axpy(paint.stroke.1, self.rgb(color), ink);
+                    paint.stems = axpy(paint.stems, self.rgb(color), 1.0);
                 }
                 Mark::Paint(i) => color = i,
                 Mark::Polygon(points) => {
@@ -435,7 +442,7 @@ impl ViewLod for ViewMemo {
         sys: &LSystem,
         detail: f64,
         visits: u64,
-        stroke: f64,
+        pen: (f64, f64),
         toward: V,
         sink: &mut dyn FnMut(Mark3<'_>),
         progress: &mut dyn Progress,
@@ -446,7 +453,8 @@ impl ViewLod for ViewMemo {
         let mut w = WalkView {
             m: self,
             detail,
-            stroke,
+            stroke: pen.0,
+            scale: pen.1,
             toward,
             t,
             sink,
@@ -462,6 +470,8 @@ struct WalkView<'m, 's> {
     detail: f64,
     /// A stroke of order 0's width, canvas units.
     stroke: f64,
+    /// Output pixels per canvas unit.
+    scale: f64,
     /// The view's direction (away from the camera).
     toward: V,
     t: Turtle3P,
@@ -480,6 +490,96 @@ fn forward(widths: bool, sink: &mut dyn FnMut(Mark3<'_>), m: Mark<'_>) {
         }
         Mark::Paint(i) => sink(Mark3::Paint(i)),
         Mark::Polygon(points) => sink(Mark3::Polygon(points)),
+    }
+}
+
+impl WalkView<'_, '_> {
+    /// The stand-in of piece `p` (paint `pc` from the colour in force)
+    /// started at `from` in `frame` with width `w`: its ink seen along
+    /// the view, in the colour that ink mixes to. The exact view draws
+    /// every stem on its own, its caps and anti-aliased edges piling up
+    /// where stems overlap: the bush has a run per stem, a straight run
+    /// included (a bush along its chord, not one line).
+    fn stand_in(&self, p: &Reach3, pc: &Paint3, from: Point3, frame: &M, w: f64) -> Mark3<'static> {
+        let m = self.m;
+        let part = Part3 {
+            end: p.end,
+            radius: p.radius,
+            length: p.length,
+            jumps: p.breaks > 0.0 || p.area > 0.0,
+            breaks: p.breaks,
+            centroid: p.centroid(),
+        };
+        let (seg, spread) = match stand_in_at(from, frame, &part) {
+            Mark3::StandIn { seg, spread, .. } => (seg, spread),
+            Mark3::Stem(seg) => (seg, 0.0),
+            _ => unreachable!("a stand-in is a stem or a bush"),
+        };
+        let w_ink = if m.widths { w } else { 1.0 };
+        // The share of its strokes' length and polygons' area seen along
+        // the view: each stroke shows `|h x v|` of its length, each
+        // polygon `|n . v|` of its area; their root mean squares over the
+        // piece (exact for one stroke or polygon, sqrt(2/3) and sqrt(1/3)
+        // for ones turned every way alike).
+        let v = frame.map(|axis| dot(axis, self.toward));
+        let along = if p.length > 0.0 {
+            libm::sqrt((1.0 - quad(&p.strokes_lie, v) / p.length).max(0.0))
+        } else {
+            0.0
+        };
+        let facing = if p.area > 0.0 {
+            libm::sqrt((quad(&p.polygons_lie, v) / p.area).max(0.0))
+        } else {
+            0.0
+        };
+        let unit = if m.widths { 1.0 } else { self.stroke };
+        let strokes = (p.ink.0 * w_ink + p.ink.1) * unit;
+        // Strokes of the mean width carry all the ink.
+        let mean = if p.length > 0.0 && strokes > 0.0 {
+            strokes / p.length
+        } else if m.widths {
+            w
+        } else {
+            self.stroke
+        };
+        let seen = strokes * along + p.area * facing;
+        // Each stem's two caps: a wide stroke's round ends (a disc of its
+        // width), a hairline's pi / 8 past each end (stroke_px's floor).
+        let px = (mean * self.scale).max(crate::render::HAIRLINE);
+        let cap = if px > 1.0 {
+            std::f64::consts::FRAC_PI_4 * px * px
+        } else {
+            std::f64::consts::FRAC_PI_4 * px
+        } / (self.scale * self.scale);
+        let stems = p.stems as f64;
+        let color = (!m.palette.is_empty() && seen + stems * cap > 0.0).then(|| {
+            let mut rgb = [0.0; 3];
+            for (j, v) in rgb.iter_mut().enumerate() {
+                let s = (pc.stroke.0[j] * w_ink + pc.stroke.1[j]) * unit;
+                *v = (s * along + pc.poly[j] * facing + pc.stems[j] * cap) / (seen + stems * cap);
+            }
+            let byte = |v: f64| libm::round(v.clamp(0.0, 255.0)) as u8;
+            Rgb {
+                r: byte(rgb[0]),
+                g: byte(rgb[1]),
+                b: byte(rgb[2]),
+            }
+        });
+        Mark3::StandIn {
+            seg,
+            density: 0.0,
+            // Just over the PNG backend's narrowest bush: it paints the
+            // piled-up ink, not one line.
+            spread: spread.max(1.1 * SPREAD_MIN_PX / self.scale),
+            length: if mean > 0.0 {
+                seen / (SEEN_SHARE * mean)
+            } else {
+                0.0
+            },
+            runs: stems.max(1.0),
+            color,
+            order: if m.widths { order_of(mean) } else { 0 },
+        }
     }
 }
 
@@ -505,75 +605,7 @@ impl<'m> Memo<'m> for WalkView<'m, '_> {
         let from = self.t.pos();
         let frame = self.t.frame();
         if p.draws() {
-            let part = Part3 {
-                end: p.end,
-                radius: p.radius,
-                length: p.length,
-                jumps: p.breaks > 0.0 || p.area > 0.0,
-                breaks: p.breaks,
-                centroid: p.centroid(),
-            };
-            let mut mark = stand_in_at(from, &frame, &part);
-            let w_ink = if m.widths { w } else { 1.0 };
-            // The share of its strokes' length and polygons' area seen
-            // along the view: each stroke shows `|h x v|` of its length,
-            // each polygon `|n . v|` of its area; their root mean squares
-            // over the piece (exact for one stroke or polygon, sqrt(2/3)
-            // and sqrt(1/3) for ones turned every way alike).
-            let v = frame.map(|axis| {
-                axis[0] * self.toward[0] + axis[1] * self.toward[1] + axis[2] * self.toward[2]
-            });
-            let along = if p.length > 0.0 {
-                libm::sqrt((1.0 - quad(&p.strokes_lie, v) / p.length).max(0.0))
-            } else {
-                0.0
-            };
-            let facing = if p.area > 0.0 {
-                libm::sqrt((quad(&p.polygons_lie, v) / p.area).max(0.0))
-            } else {
-                0.0
-            };
-            let unit = if m.widths { 1.0 } else { self.stroke };
-            let strokes = (p.ink.0 * w_ink + p.ink.1) * unit;
-            let seen = strokes * along + p.area * facing;
-            match &mut mark {
-                Mark3::Stem(s) if m.widths => s.order = order_of(w),
-                Mark3::StandIn {
-                    length,
-                    color,
-                    order,
-                    ..
-                } => {
-                    // Strokes of the mean width carry all the ink.
-                    let mean = if p.length > 0.0 && strokes > 0.0 {
-                        strokes / p.length
-                    } else if m.widths {
-                        w
-                    } else {
-                        self.stroke
-                    };
-                    if mean > 0.0 {
-                        *length = seen / (SEEN_SHARE * mean);
-                    }
-                    if m.widths {
-                        *order = order_of(mean);
-                    }
-                    if !m.palette.is_empty() && seen > 0.0 {
-                        let mut rgb = [0.0; 3];
-                        for (j, v) in rgb.iter_mut().enumerate() {
-                            let s = (pc.stroke.0[j] * w_ink + pc.stroke.1[j]) * unit;
-                            *v = (s * along + pc.poly[j] * facing) / seen;
-                        }
-                        let byte = |v: f64| libm::round(v.clamp(0.0, 255.0)) as u8;
-                        *color = Some(Rgb {
-                            r: byte(rgb[0]),
-                            g: byte(rgb[1]),
-                            b: byte(rgb[2]),
-                        });
-                    }
-                }
-                _ => {}
-            }
+            let mark = self.stand_in(p, pc, from, &frame, w);
             (self.sink)(mark);
         }
         let pos = [from.x, from.y, from.z];

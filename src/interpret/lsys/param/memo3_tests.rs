@@ -54,7 +54,7 @@ fn walked(sys: &LSystem, depth: u32, detail: f64) -> (Vec<Seen>, usize) {
         sys,
         detail,
         plan.visits,
-        1.0,
+        (1.0, 1.0),
         [0.0, 0.0, 1.0],
         &mut |m| match m {
             Mark3::Stem(s) => out.push(Seen::Stem(
