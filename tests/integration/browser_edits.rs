@@ -7,8 +7,11 @@ use std::path::Path;
 use std::time::Duration;
 
 use fantoccini::Client;
-use serde_json::Value;
 
+use super::browser_steps::{
+    assign_value, count, editor_text, reload, set_checked, set_value, settled_ok, text_of,
+    texts_of, type_into, value_of,
+};
 use super::chromium::{Browser, click, downloaded, js, open, settled, shot, until};
 use super::serve::Server;
 use crate::support::{manifest_path, stlc_piped};
@@ -45,14 +48,6 @@ fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
     });
 }
 
-async fn text(c: &Client) -> String {
-    js(c, "return document.getElementById('source').value")
-        .await
-        .as_str()
-        .unwrap()
-        .to_string()
-}
-
 /// Types `line` at the end of the text, as keys.
 async fn type_line(c: &Client, line: &str) {
     let src = c.find(fantoccini::Locator::Css("#source")).await.unwrap();
@@ -62,25 +57,11 @@ async fn type_line(c: &Client, line: &str) {
 }
 
 async fn status(c: &Client) -> String {
-    js(c, "return document.getElementById('saved').textContent")
-        .await
-        .as_str()
-        .unwrap_or("")
-        .to_string()
+    text_of(c, "#saved").await
 }
 
 async fn title(c: &Client) -> String {
     c.title().await.unwrap()
-}
-
-/// Reloads, accepting the "leave the page?" prompt if one is shown.
-async fn reload(c: &Client) {
-    let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
-    tokio::time::sleep(Duration::from_millis(300)).await;
-    let _ = c.accept_alert().await;
-    let script = "return !!(window.stlc && window.stlc.state.doc && window.stlc.state.answer)";
-    until(c, script, "the page loaded").await;
-    settled(c).await;
 }
 
 async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
@@ -95,14 +76,10 @@ async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
     let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
     until(c, script, "saved").await;
     assert!(!title(c).await.starts_with("• "));
-    assert!(
-        std::fs::read_to_string(file)
-            .unwrap()
-            .ends_with("# saved line")
-    );
+    assert!(on_disk(file).ends_with("# saved line"));
     reload(c).await;
     assert!(
-        text(c).await.ends_with("# saved line"),
+        editor_text(c).await.ends_with("# saved line"),
         "the reload shows the save"
     );
 
@@ -110,7 +87,7 @@ async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
     type_line(c, "\n# not saved yet").await;
     tokio::time::sleep(Duration::from_millis(600)).await;
     reload(c).await;
-    let t = text(c).await;
+    let t = editor_text(c).await;
     assert!(
         t.ends_with("# saved line"),
         "a draft is never applied silently"
@@ -119,17 +96,13 @@ async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
     until(c, script, "the draft is offered").await;
     shot(c, "30-draft-offered").await;
     click(c, "[data-testid=restore-draft]").await;
-    assert!(text(c).await.ends_with("# not saved yet"));
+    assert!(editor_text(c).await.ends_with("# not saved yet"));
     assert!(title(c).await.starts_with("• "));
     // Saved, so there is nothing left to offer.
     click(c, "[data-testid=save]").await;
     let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
     until(c, script, "saved again").await;
-    assert!(
-        std::fs::read_to_string(file)
-            .unwrap()
-            .ends_with("# not saved yet")
-    );
+    assert!(on_disk(file).ends_with("# not saved yet"));
 }
 
 async fn disk_changes_are_loaded(c: &Client, file: &Path) {
@@ -152,7 +125,10 @@ async fn disk_changes_are_loaded(c: &Client, file: &Path) {
     std::fs::write(file, &theirs).unwrap();
     let script = "return !document.getElementById('notice').hidden";
     until(c, script, "the change is asked about").await;
-    assert!(text(c).await.ends_with("# mine"), "unsaved edits stay");
+    assert!(
+        editor_text(c).await.ends_with("# mine"),
+        "unsaved edits stay"
+    );
     shot(c, "31-disk-changed").await;
     click(c, "[data-testid=keep-mine]").await;
     click(c, "[data-testid=save]").await;
@@ -182,35 +158,26 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     // Save's notice replaces it.)
     let script = "const n = document.getElementById('notice'); return !n.hidden && n.textContent.includes('changed since')";
     until(c, script, "the conflict is shown").await;
-    let notice: Value = js(c, "return document.getElementById('notice').textContent").await;
+    let notice = text_of(c, "#notice").await;
+    assert!(notice.contains("changed since"), "{notice}");
     assert!(
-        notice.as_str().unwrap().contains("changed since"),
-        "{notice}"
-    );
-    let on_disk = std::fs::read_to_string(file).unwrap();
-    assert!(
-        on_disk.ends_with("# tab two"),
+        on_disk(file).ends_with("# tab two"),
         "the second save did not overwrite the first"
     );
     assert!(
-        text(c).await.ends_with("# tab one"),
+        editor_text(c).await.ends_with("# tab one"),
         "nothing is lost in the editor"
     );
     // Both side by side.
     click(c, "[data-testid=compare]").await;
-    let sides = js(c, "return [document.getElementById('compare-theirs').textContent, document.getElementById('compare-mine').textContent]").await;
-    assert!(sides[0].as_str().unwrap().ends_with("# tab two"));
-    assert!(sides[1].as_str().unwrap().ends_with("# tab one"));
+    assert!(text_of(c, "#compare-theirs").await.ends_with("# tab two"));
+    assert!(text_of(c, "#compare-mine").await.ends_with("# tab one"));
     shot(c, "32-two-tabs-compare").await;
     click(c, "[data-testid=keep-mine]").await;
     click(c, "[data-testid=save]").await;
     let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
     until(c, script, "tab one saved").await;
-    assert!(
-        std::fs::read_to_string(file)
-            .unwrap()
-            .ends_with("# tab one")
-    );
+    assert!(on_disk(file).ends_with("# tab one"));
 }
 
 /// Problem 6: abop-1.24a at depth 30 has 5^30 segments, more than a u64
@@ -234,7 +201,7 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     settled(c).await;
     // Problem 4: the last file's depth (30) does not follow to this one:
     // the control shows this file's own `generations`.
-    let depth = js(c, "return document.getElementById('depth').value").await;
+    let depth = value_of(c, "#depth").await;
     assert_eq!(depth, "5", "the depth of the file before leaked");
     let stems = js(c, "return window.stlc.state.answer.stems").await;
     // 1 + (4^5 - 1) / 3 segments, whatever the choices.
@@ -277,11 +244,7 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
 async fn set_depth(c: &Client, value: &str) {
     let depth = c.find(fantoccini::Locator::Id("depth")).await.unwrap();
     depth.click().await.unwrap();
-    js(
-        c,
-        "document.getElementById('depth').value = ''; return true",
-    )
-    .await;
+    assign_value(c, "#depth", "").await;
     depth.send_keys(value).await.unwrap();
 }
 
@@ -298,46 +261,24 @@ async fn a_failing_file_shows_no_other_picture(c: &Client, dir: &Path) {
     let script =
         "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok === false";
     until(c, script, "the broken file's answer").await;
-    let pictures = js(
-        c,
-        "return document.querySelectorAll('#preview .lib').length",
-    )
-    .await;
+    let pictures = count(c, "#preview .lib").await;
     assert_eq!(pictures, 0, "the last file's picture is still shown");
-    let status = js(c, "return document.getElementById('status').textContent").await;
-    assert!(
-        status
-            .as_str()
-            .unwrap()
-            .contains("no picture of this file yet"),
-        "{status}"
-    );
+    let status = text_of(c, "#status").await;
+    assert!(status.contains("no picture of this file yet"), "{status}");
     shot(c, "34-broken-file-no-picture").await;
 }
 
 /// New: a template or any example opens as a new document (problem 10):
 /// the `.od` template grows a tree, an example is its file's text.
 async fn new_from_a_template_or_an_example(c: &Client) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
-    let names: Vec<&str> = names
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_str().unwrap())
-        .collect();
-    assert!(names.contains(&"new.od (template)"), "{names:?}");
-    assert!(names.contains(&"hilbert.lsys"), "{names:?}");
+    let names = texts_of(c, "#new option").await;
+    assert!(names.iter().any(|n| n == "new.od (template)"), "{names:?}");
+    assert!(names.iter().any(|n| n == "hilbert.lsys"), "{names:?}");
     click(c, "#new option[value='0']").await;
-    let grown = settled(c).await;
-    assert_eq!(grown["ok"], true, "{grown}");
+    let grown = settled_ok(c).await;
     assert!(grown["stems"].as_u64().unwrap() > 50, "{grown}");
     new_from(c, "hilbert.lsys").await;
-    let drawn = settled(c).await;
-    assert_eq!(drawn["ok"], true, "{drawn}");
+    let drawn = settled_ok(c).await;
     assert_eq!(
         drawn["text"].as_str().unwrap(),
         std::fs::read_to_string(manifest_path("examples/hilbert.lsys")).unwrap()
@@ -351,21 +292,11 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
     new_from(c, "2dtree.od").await;
     settled(c).await;
     click(c, "#export-options summary").await;
-    js(
-        c,
-        "const set = (id, v) => { const e = document.getElementById(id); e.value = v; e.dispatchEvent(new Event('input')); };
-         set('export-w', '300'); set('export-h', '200');
-         const l = document.getElementById('export-layout'); l.checked = false; l.dispatchEvent(new Event('input'));
-         const t = document.getElementById('export-transparent'); t.checked = true; t.dispatchEvent(new Event('input'));
-         return true",
-    )
-    .await;
-    let shown = js(
-        c,
-        "return document.getElementById('export-cli').textContent",
-    )
-    .await;
-    let shown = shown.as_str().unwrap().to_string();
+    set_value(c, "#export-w", "300").await;
+    set_value(c, "#export-h", "200").await;
+    set_checked(c, "#export-layout", false).await;
+    set_checked(c, "#export-transparent", true).await;
+    let shown = text_of(c, "#export-cli").await;
     assert!(
         shown.contains("stlc render 2dtree.od --size 300x200 --background none -o 2dtree.png"),
         "{shown}"
@@ -374,11 +305,13 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
     click(c, "#export-png").await;
     let got = downloaded(downloads, "2dtree.png").await;
     let od = manifest_path("examples/2dtree.od");
-    let line = format!(
-        "render {} --size 300x200 --background none -o -",
-        od.display()
+    let want = stlc_piped(
+        &format!(
+            "render {} --size 300x200 --background none -o -",
+            od.display()
+        ),
+        "",
     );
-    let want = stlc_piped(&line, "");
     assert!(got == want, "the export is not the CLI's bytes");
     let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
     assert_eq!((png.width(), png.height()), (300, 200));
@@ -388,33 +321,21 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
         "the background is transparent"
     );
     // A coloured background instead.
-    js(
-        c,
-        "const t = document.getElementById('export-transparent'); t.checked = false; t.dispatchEvent(new Event('input'));
-         const k = document.getElementById('export-coloured'); k.checked = true; k.dispatchEvent(new Event('input'));
-         const v = document.getElementById('export-colour'); v.value = '#336699'; v.dispatchEvent(new Event('input'));
-         return true",
-    )
-    .await;
-    let shown = js(
-        c,
-        "return document.getElementById('export-cli').textContent",
-    )
-    .await;
-    assert!(
-        shown
-            .as_str()
-            .unwrap()
-            .contains("--size 300x200 --background '#336699' -o 2dtree.png"),
-        "{shown}"
-    );
+    set_checked(c, "#export-transparent", false).await;
+    set_checked(c, "#export-coloured", true).await;
+    set_value(c, "#export-colour", "#336699").await;
+    let shown = text_of(c, "#export-cli").await;
+    let want = "--size 300x200 --background '#336699' -o 2dtree.png";
+    assert!(shown.contains(want), "{shown}");
     click(c, "#export-png").await;
     let got = downloaded(downloads, "2dtree (1).png").await;
-    let line = format!(
-        "render {} --size 300x200 --background #336699 -o -",
-        od.display()
+    let want = stlc_piped(
+        &format!(
+            "render {} --size 300x200 --background #336699 -o -",
+            od.display()
+        ),
+        "",
     );
-    let want = stlc_piped(&line, "");
     assert!(got == want, "the coloured export is not the CLI's bytes");
     let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
     let p = png.pixel(0, 0).unwrap();
@@ -427,46 +348,20 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
 /// Teaching (item 9): the replay steps one decision back and on, and plays
 /// one decision a frame when asked (144 decisions of 2DTree: about 5 s).
 async fn replay_steps_and_speeds(c: &Client) {
-    let label = || async {
-        js(
-            c,
-            "return document.getElementById('step-label').textContent",
-        )
-        .await
-        .as_str()
-        .unwrap()
-        .to_string()
-    };
-    assert!(
-        label().await.starts_with("decision 144 of 144"),
-        "{}",
-        label().await
-    );
+    let label = text_of(c, "#step-label").await;
+    assert!(label.starts_with("decision 144 of 144"), "{label}");
     click(c, "[data-testid=step-back]").await;
     click(c, "[data-testid=step-back]").await;
-    assert!(
-        label().await.starts_with("decision 142 of 144"),
-        "{}",
-        label().await
-    );
+    let label = text_of(c, "#step-label").await;
+    assert!(label.starts_with("decision 142 of 144"), "{label}");
     click(c, "[data-testid=step-next]").await;
-    assert!(
-        label().await.starts_with("decision 143 of 144"),
-        "{}",
-        label().await
-    );
-    js(
-        c,
-        "const s = document.getElementById('replay-speed'); s.value = '1'; return true",
-    )
-    .await;
-    js(c, "document.getElementById('step').value = 0; return true").await;
+    let label = text_of(c, "#step-label").await;
+    assert!(label.starts_with("decision 143 of 144"), "{label}");
+    assign_value(c, "#replay-speed", "1").await;
+    assign_value(c, "#step", "0").await;
     click(c, "[data-testid=play]").await;
     tokio::time::sleep(Duration::from_millis(1000)).await;
-    let at: u64 = js(c, "return Number(document.getElementById('step').value)")
-        .await
-        .as_u64()
-        .unwrap();
+    let at: u64 = value_of(c, "#step").await.parse().unwrap();
     assert!(
         at > 0 && at < 144,
         "one decision a frame: at {at} after a second"
@@ -489,24 +384,19 @@ async fn settings_are_keys_in_the_text(c: &Client) {
     );
     assert_ne!(dfs["growth"], before["growth"], "O=dfs grows another tree");
     // Typing the key back moves the control.
-    js(
-        c,
-        "const s = document.getElementById('source'); s.value = s.value.replace('O=dfs', 'O=bfs'); s.dispatchEvent(new Event('input')); return 0;",
-    )
-    .await;
+    let bfs = editor_text(c).await.replace("O=dfs", "O=bfs");
+    set_value(c, "#source", &bfs).await;
     let typed = settled(c).await;
     assert_eq!(typed["growth"], before["growth"]);
-    let shown = js(c, "return document.getElementById('growth').value").await;
-    assert_eq!(shown, "bfs");
+    assert_eq!(value_of(c, "#growth").await, "bfs");
     // The seed control writes V=, and emptying it removes the key.
-    let seed = c.find(fantoccini::Locator::Id("seed")).await.unwrap();
-    seed.send_keys("7").await.unwrap();
+    type_into(c, "seed", "7").await;
     let with_seed = settled(c).await;
     assert!(
         with_seed["text"].as_str().unwrap().contains("O=bfs V=7\n"),
         "{with_seed}"
     );
-    js(c, "const e = document.getElementById('seed'); e.value = ''; e.dispatchEvent(new Event('input')); return 0;").await;
+    set_value(c, "#seed", "").await;
     let without = settled(c).await;
     assert!(
         !without["text"].as_str().unwrap().contains("V="),
@@ -522,17 +412,7 @@ async fn words_generation_by_generation(c: &Client) {
     click(c, "#words summary").await;
     let script = "return document.querySelectorAll('#word-list li').length === 5";
     until(c, script, "five generations").await;
-    let items = js(
-        c,
-        "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)",
-    )
-    .await;
-    let items: Vec<&str> = items
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_str().unwrap())
-        .collect();
+    let items = texts_of(c, "#word-list li").await;
     let koch = manifest_path("examples/koch-snowflake.lsys");
     for (depth, item) in items.iter().enumerate() {
         let word = stlc_piped(
@@ -554,11 +434,7 @@ async fn numbers_scrub(c: &Client) {
     click(c, "#scrub summary").await;
     let script = "return document.querySelector('#scrub-list input[data-key=A]') !== null";
     until(c, script, "the A slider").await;
-    js(
-        c,
-        "const a = document.querySelector('#scrub-list input[data-key=A]'); a.value = 45; a.dispatchEvent(new Event('input')); return 0;",
-    )
-    .await;
+    set_value(c, "#scrub-list input[data-key=A]", "45").await;
     let after = settled(c).await;
     assert_eq!(
         after["text"].as_str().unwrap(),
@@ -586,11 +462,8 @@ async fn main_thread_stalls(c: &Client) {
     )
     .await;
     for k in 0..5 {
-        js(
-            c,
-            &format!("const s = document.getElementById('source'); s.value = s.value + '\\n# {k}'; s.dispatchEvent(new Event('input')); return 0;"),
-        )
-        .await;
+        let text = editor_text(c).await;
+        set_value(c, "#source", &format!("{text}\n# {k}")).await;
         settled(c).await;
     }
     let longest = js(c, "return window.__longest").await.as_f64().unwrap();
@@ -622,43 +495,34 @@ async fn js_unit(c: &Client) -> f64 {
 /// with the distances and a hint.
 async fn a_rule_that_never_fits_says_why(c: &Client) {
     let od = "Problem8\n(150, 290)\nL=9(0.3) B=3(0.3) A=25 C=1.5\nRULE\nR1: F[+F][-F][F]\nSEED\nFFFFFFFFF R1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (0, 0), 300, 300\nENDLAYOUT\n";
-    js(
-        c,
-        &format!("const s = document.getElementById('source'); s.value = {}; s.dispatchEvent(new Event('input')); return 0;", serde_json::to_string(od).unwrap()),
-    )
-    .await;
-    let grown = settled(c).await;
-    assert_eq!(grown["ok"], true, "{grown}");
-    let warning = js(c, "const li = document.querySelector('[data-testid=diagnostics] li'); return li && li.textContent").await;
-    let warning = warning.as_str().unwrap_or_default().to_string();
+    set_value(c, "#source", od).await;
+    settled_ok(c).await;
+    let warning = text_of(c, "[data-testid=diagnostics] li").await;
     assert!(
         warning.contains("never grew") && warning.contains("3.677") && warning.contains("4.2"),
         "{warning}"
     );
     assert!(warning.contains("raise `A`"), "{warning}");
     // The Numbers panel follows the text typed.
-    let shown = js(
-        c,
-        "return document.querySelector('#scrub-list input[data-key=A] + output').textContent",
-    )
-    .await;
-    assert_eq!(shown, "25");
+    assert_eq!(
+        text_of(c, "#scrub-list input[data-key=A] + output").await,
+        "25"
+    );
     shot(c, "40-never-fitted").await;
 }
 
 /// Opens the template or example `name` from the New… menu.
 async fn new_from(c: &Client, name: &str) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
+    let names = texts_of(c, "#new option").await;
     let i = names
-        .as_array()
-        .unwrap()
         .iter()
         .position(|n| n == name)
-        .unwrap_or_else(|| panic!("{name} is not in New…: {names}"))
+        .unwrap_or_else(|| panic!("{name} is not in New…: {names:?}"))
         - 1;
     click(c, &format!("#new option[value='{i}']")).await;
+}
+
+/// The text of `file` on disk.
+fn on_disk(file: &Path) -> String {
+    std::fs::read_to_string(file).unwrap()
 }
