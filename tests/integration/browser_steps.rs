@@ -11,6 +11,11 @@ use serde_json::{Value, json};
 
 use super::chromium::{js, settled, settled_until, until};
 
+/// The text of `examples/name`.
+pub(super) fn example(name: &str) -> String {
+    std::fs::read_to_string(crate::support::manifest_path("examples").join(name)).unwrap()
+}
+
 /// What `script` returns, run with `args` as its `arguments`.
 pub(super) async fn js_with(c: &Client, script: &str, args: &[Value]) -> Value {
     c.execute(script, args.to_vec()).await.expect(script)

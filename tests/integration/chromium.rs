@@ -11,7 +11,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
-use fantoccini::actions::{InputSource, MOUSE_BUTTON_LEFT, MouseActions, PointerAction};
+use fantoccini::actions::{
+    InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
+    WheelAction, WheelActions,
+};
 use fantoccini::{Client, ClientBuilder, Locator};
 use serde_json::{Value, json};
 
@@ -291,39 +294,11 @@ pub(super) async fn connect(driver: &Driver, chromium: &Path, tmp: &Path) -> Cli
     panic!("no WebDriver session: {:?}", last);
 }
 
-/// Presses at canvas point `a`, moves to `b` and releases.
-pub(super) async fn drag(c: &Client, a: (f64, f64), b: (f64, f64)) {
-    let (x0, y0) = screen_of(c, a.0, a.1).await;
-    let (x1, y1) = screen_of(c, b.0, b.1).await;
-    let mouse = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x: x0,
-            y: y0,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(80)),
-            x: (x0 + x1) / 2.0,
-            y: (y0 + y1) / 2.0,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(80)),
-            x: x1,
-            y: y1,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(mouse).await.unwrap();
-}
-
-/// Clicks at canvas point `a`.
-pub(super) async fn click_at(c: &Client, a: (f64, f64)) {
-    let (x, y) = screen_of(c, a.0, a.1).await;
-    let mouse = MouseActions::new("mouse".into())
+/// Presses at viewport point `path[0]`, moves through the rest of `path`
+/// (each move taking `ms`) and releases.
+pub(super) async fn press_along(c: &Client, path: &[(f64, f64)], ms: u64) {
+    let (x, y) = path[0];
+    let mut mouse = MouseActions::new("mouse".into())
         .then(PointerAction::MoveTo {
             duration: None,
             x,
@@ -331,11 +306,62 @@ pub(super) async fn click_at(c: &Client, a: (f64, f64)) {
         })
         .then(PointerAction::Down {
             button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
         });
-    c.perform_actions(mouse).await.unwrap();
+    for &(x, y) in &path[1..] {
+        let duration = Some(Duration::from_millis(ms));
+        mouse = mouse.then(PointerAction::MoveTo { duration, x, y });
+    }
+    let up = PointerAction::Up {
+        button: MOUSE_BUTTON_LEFT,
+    };
+    c.perform_actions(mouse.then(up)).await.unwrap();
+}
+
+/// Presses at canvas point `a`, moves to `b` (by way of their midpoint)
+/// and releases.
+pub(super) async fn drag(c: &Client, a: (f64, f64), b: (f64, f64)) {
+    let (x0, y0) = screen_of(c, a.0, a.1).await;
+    let (x1, y1) = screen_of(c, b.0, b.1).await;
+    let mid = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    press_along(c, &[(x0, y0), mid, (x1, y1)], 80).await;
+}
+
+/// Clicks at canvas point `a`.
+pub(super) async fn click_at(c: &Client, a: (f64, f64)) {
+    press_along(c, &[screen_of(c, a.0, a.1).await], 0).await;
+}
+
+/// The mouse wheel turned by `dy` (120 a notch; > 0: towards the user,
+/// zoom out) at viewport point `(x, y)`.
+pub(super) async fn wheel(c: &Client, (x, y): (f64, f64), dy: i64) {
+    let w = WheelActions::new("wheel".into()).then(WheelAction::Scroll {
+        duration: None,
+        x: x.round() as i64,
+        y: y.round() as i64,
+        delta_x: 0,
+        delta_y: dy,
+    });
+    c.perform_actions(w).await.unwrap();
+}
+
+/// WebDriver's codes of keys without a character.
+pub(super) const SHIFT: char = '\u{E008}';
+pub(super) const CONTROL: char = '\u{E009}';
+
+/// Presses `key` with the keys `held` held down (in that order, let go in
+/// the other).
+pub(super) async fn chord(c: &Client, held: &[char], key: char) {
+    let mut keys = KeyActions::new("keyboard".into());
+    for &value in held {
+        keys = keys.then(KeyAction::Down { value });
+    }
+    keys = keys
+        .then(KeyAction::Down { value: key })
+        .then(KeyAction::Up { value: key });
+    for &value in held.iter().rev() {
+        keys = keys.then(KeyAction::Up { value });
+    }
+    c.perform_actions(keys).await.unwrap();
 }
 
 pub(super) async fn click(c: &Client, css: &str) {
@@ -445,6 +471,43 @@ pub(super) fn on_served_page(f: impl AsyncFnOnce(&Client, &super::serve::Server)
         c.goto(&server.url).await.unwrap();
         settled(&c).await;
         f(&c, &server).await;
+        let _ = c.close().await;
+    });
+}
+
+/// What a test of `stlc serve`'s page on a file has to hand.
+pub(super) struct Served<'a> {
+    pub server: &'a super::serve::Server,
+    /// The file served, in the temporary directory `dir`.
+    pub file: &'a Path,
+    pub dir: &'a Path,
+    /// Where Chromium's downloads go.
+    pub downloads: PathBuf,
+}
+
+/// Writes `text` to `name` in a temporary directory, serves it with `stlc serve`, opens the page in a
+/// fresh Chromium, waits for its first answer and runs `f`; returns at
+/// once where Chromium is missing (after [`Browser::start`] says so).
+pub(super) fn on_served_file(name: &str, text: &str, f: impl AsyncFnOnce(&Client, &Served)) {
+    let tmp = tempfile::tempdir().unwrap();
+    let Some(browser) = Browser::start(tmp.path()) else {
+        return;
+    };
+    let file = tmp.path().join(name);
+    std::fs::write(&file, text).unwrap();
+    let server = super::serve::Server::start(&[file.to_str().unwrap()]);
+    let downloads = browser.tmp.join("downloads");
+    browser.rt.block_on(async {
+        let c = browser.connect().await;
+        c.goto(&server.url).await.unwrap();
+        settled(&c).await;
+        let served = Served {
+            server: &server,
+            file: &file,
+            dir: tmp.path(),
+            downloads,
+        };
+        f(&c, &served).await;
         let _ = c.close().await;
     });
 }
