@@ -12,7 +12,7 @@ use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
 use fantoccini::actions::{
-    InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
+    Actions, InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
     WheelAction, WheelActions,
 };
 use fantoccini::{Client, ClientBuilder, Locator};
@@ -294,9 +294,9 @@ pub(super) async fn connect(driver: &Driver, chromium: &Path, tmp: &Path) -> Cli
     panic!("no WebDriver session: {:?}", last);
 }
 
-/// Presses at viewport point `path[0]`, moves through the rest of `path`
-/// (each move taking `ms`) and releases.
-pub(super) async fn press_along(c: &Client, path: &[(f64, f64)], ms: u64) {
+/// The mouse pressed at viewport point `path[0]`, moved through the rest
+/// of `path` (each move taking `ms`) and released.
+fn mouse_along(path: &[(f64, f64)], ms: u64) -> MouseActions {
     let (x, y) = path[0];
     let mut mouse = MouseActions::new("mouse".into())
         .then(PointerAction::MoveTo {
@@ -311,10 +311,30 @@ pub(super) async fn press_along(c: &Client, path: &[(f64, f64)], ms: u64) {
         let duration = Some(Duration::from_millis(ms));
         mouse = mouse.then(PointerAction::MoveTo { duration, x, y });
     }
-    let up = PointerAction::Up {
+    mouse.then(PointerAction::Up {
         button: MOUSE_BUTTON_LEFT,
-    };
-    c.perform_actions(mouse.then(up)).await.unwrap();
+    })
+}
+
+/// Presses at viewport point `path[0]`, moves through the rest of `path`
+/// (each move taking `ms`) and releases.
+pub(super) async fn press_along(c: &Client, path: &[(f64, f64)], ms: u64) {
+    c.perform_actions(mouse_along(path, ms)).await.unwrap();
+}
+
+/// [`press_along`] with Shift held from the first move until after the
+/// release.
+pub(super) async fn press_along_shifted(c: &Client, path: &[(f64, f64)], ms: u64) {
+    let mut keys = KeyActions::new("keyboard".into()).then(KeyAction::Down { value: SHIFT });
+    // One pause a mouse action after the first: the release comes first.
+    for _ in 0..path.len() + 1 {
+        keys = keys.then(KeyAction::Pause {
+            duration: Duration::ZERO,
+        });
+    }
+    let keys = keys.then(KeyAction::Up { value: SHIFT });
+    let both = Actions::from(keys).and(mouse_along(path, ms));
+    c.perform_actions(both).await.unwrap();
 }
 
 /// Presses at canvas point `a`, moves to `b` (by way of their midpoint)
