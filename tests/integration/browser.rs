@@ -12,7 +12,7 @@ use fantoccini::Client;
 use serde_json::{Value, json};
 
 use super::browser_steps::{
-    caret_to_end, example, js_with, listed_error, retype, set_value, settled_failed, settled_ok,
+    answer_svg, caret_to_end, js_with, listed_error, retype, set_value, settled_failed, settled_ok,
     text_of, type_into, value_of,
 };
 use super::chromium::{
@@ -20,7 +20,7 @@ use super::chromium::{
     js, js_until, on_served_file, open, press_along, same_bytes, screen_of, settled, settled_until,
     shot, wheel,
 };
-use super::serve::Server;
+use super::serve::{Server, example};
 use crate::support::{manifest_path, numbers};
 
 const KOCH: &str = "axiom F++F++F\nangle 60\nrule F F-F++F-F\n";
@@ -402,15 +402,6 @@ fn numbers_in(line: &str) -> Vec<f64> {
         .filter(|t| !t.is_empty())
         .map(|t| t.parse().unwrap())
         .collect()
-}
-
-/// The SVG source of the answer the page shows.
-async fn answer_svg(c: &Client) -> String {
-    js(c, "return window.stlc.state.answer.svg")
-        .await
-        .as_str()
-        .unwrap()
-        .to_string()
 }
 
 #[test]

@@ -11,11 +11,11 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser_steps::{example, reload, settled_ok, text_of};
+use super::browser_steps::{reload, settled_ok, text_of};
 use super::chromium::{
     cli, click, file_until, js, on_served_file, press_along, settled_until, shot, wheel,
 };
-use super::serve::{Server, render, request};
+use super::serve::{Server, example, render, request};
 use crate::support::{manifest_path, numbers, stlc_stdout};
 
 /// A compact body decoded as the page decodes it (engine/http.js): the

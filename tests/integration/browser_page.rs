@@ -6,12 +6,13 @@
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser_steps::{example, reload, rewrite, rewritten, set_value, text_of};
+use super::browser_steps::{reload, rewrite, rewritten, set_value, text_of};
 use super::browser_web::{Static, on_site, open_example, site};
 use super::chromium::{
     cli_line, click, downloaded, drag, js, js_until, on_served_file, same_bytes, settled,
     settled_until, shot,
 };
+use super::serve::example;
 
 /// A share-link fragment whose text is `mib` MiB of zero bytes (valid
 /// UTF-8), deflated in the page (1 MiB chunks streamed through

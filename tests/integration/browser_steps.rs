@@ -11,11 +11,6 @@ use serde_json::{Value, json};
 
 use super::chromium::{js, settled, settled_until, until};
 
-/// The text of `examples/name`.
-pub(super) fn example(name: &str) -> String {
-    std::fs::read_to_string(crate::support::manifest_path("examples").join(name)).unwrap()
-}
-
 /// What `script` returns, run with `args` as its `arguments`.
 pub(super) async fn js_with(c: &Client, script: &str, args: &[Value]) -> Value {
     c.execute(script, args.to_vec()).await.expect(script)
@@ -51,6 +46,12 @@ pub(super) async fn count(c: &Client, css: &str) -> u64 {
 pub(super) async fn value_of(c: &Client, css: &str) -> String {
     let script = "return document.querySelector(arguments[0]).value";
     let v = js_with(c, script, &[json!(css)]).await;
+    v.as_str().unwrap().to_string()
+}
+
+/// The SVG of the answer the page shows.
+pub(super) async fn answer_svg(c: &Client) -> String {
+    let v = js(c, "return window.stlc.state.answer.svg").await;
     v.as_str().unwrap().to_string()
 }
 
