@@ -13,14 +13,11 @@ use super::chromium::{
     cli_line, click, js, js_until, on_served_page, same_bytes, settled_until, shot,
 };
 use super::serve::example;
-use crate::support::manifest_path;
 
 /// The PNG `stlc render examples/NAME --size 96x96 --show-layout` writes.
 fn cli_thumb(name: &str) -> Vec<u8> {
-    let path = manifest_path(format!("examples/{name}"));
     cli_line(&format!(
-        "render {} --size 96x96 --show-layout -f png",
-        path.display()
+        "render examples/{name} --size 96x96 --show-layout -f png"
     ))
 }
 
@@ -69,10 +66,8 @@ async fn thumbnails_open_examples(c: &Client, what: &str) {
     let want = example("koch-snowflake.lsys");
     let opened = settled_until(c, 100, 50, |v| v["text"] == json!(want)).await;
     assert_eq!(opened["text"], json!(want));
-    assert_eq!(
-        js(c, "return document.getElementById('new-gallery').open").await,
-        json!(false)
-    );
+    let open = js(c, "return document.getElementById('new-gallery').open").await;
+    assert_eq!(open, json!(false));
 }
 
 #[test]
