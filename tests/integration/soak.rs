@@ -20,6 +20,7 @@ use std::io::Write;
 use std::net::TcpStream;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use serde_json::json;
@@ -64,7 +65,7 @@ fn status_kb(pid: u32, key: &str) -> u64 {
 
 /// Keeps `n` connections sending a request head a byte a second, opening
 /// a new one whenever the server drops one, until `stop`.
-fn slowloris(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
+fn slowloris(addr: String, n: usize, stop: Arc<AtomicBool>) -> JoinHandle<()> {
     std::thread::spawn(move || {
         let head = format!(
             "GET / HTTP/1.1\r\nHost: {addr}\r\nX-Slow: {}\r\n",
@@ -92,13 +93,10 @@ fn slowloris(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::Join
 /// example's text, cheap to make: the test runs the debug build, whose
 /// renders would only measure its slowness) and never read them,
 /// reconnecting when the server drops one, until `stop`.
-fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
+fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> JoinHandle<()> {
     std::thread::spawn(move || {
-        let one = format!(
-            "GET /api/examples HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
-            key(&addr)
-        )
-        .repeat(4);
+        let key = key(&addr);
+        let one = format!("GET /api/examples HTTP/1.1\r\nHost: {addr}\r\n{key}\r\n").repeat(4);
         let mut conns: Vec<Option<TcpStream>> = (0..n).map(|_| None).collect();
         while !stop.load(Ordering::Relaxed) {
             for conn in conns.iter_mut() {
@@ -108,10 +106,10 @@ fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHan
                         let _ = c.set_write_timeout(Some(Duration::from_millis(200)));
                     }
                 }
-                if conn
+                let failed = conn
                     .as_mut()
-                    .is_some_and(|c| c.write_all(one.as_bytes()).is_err())
-                {
+                    .is_some_and(|c| c.write_all(one.as_bytes()).is_err());
+                if failed {
                     *conn = None;
                 }
             }
@@ -125,12 +123,7 @@ fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHan
 /// memory (an OD growing 300,000 stems in a wide square: its occupancy
 /// index, its trace and an answer of megabytes); `abandon`: it closes each
 /// after 0.3 s instead of reading the answer.
-fn heavy(
-    addr: String,
-    abandon: bool,
-    big: bool,
-    stop: Arc<AtomicBool>,
-) -> std::thread::JoinHandle<()> {
+fn heavy(addr: String, abandon: bool, big: bool, stop: Arc<AtomicBool>) -> JoinHandle<()> {
     std::thread::spawn(move || {
         let body = if big {
             json!({
@@ -202,28 +195,25 @@ fn the_server_holds_under_hostile_clients() {
             let t = Instant::now();
             let a = std::panic::catch_unwind(|| request(&addr, method, path, &[], body.as_bytes()));
             took.push(t.elapsed());
+            let at = t0.elapsed();
             match a {
                 Ok(a) if a.status == 200 => {}
-                Ok(a) => failed.push(format!(
-                    "{method} {path} at {:?}: {} {}",
-                    t0.elapsed(),
-                    a.status,
-                    String::from_utf8_lossy(&a.body)
-                )),
+                Ok(a) => {
+                    let said = String::from_utf8_lossy(&a.body);
+                    failed.push(format!("{method} {path} at {at:?}: {} {said}", a.status));
+                }
                 Err(_) => failed.push(format!(
-                    "{method} {path} at {:?} after {:?}: no answer",
-                    t0.elapsed(),
+                    "{method} {path} at {at:?} after {:?}: no answer",
                     t.elapsed()
                 )),
             }
         }
         std::thread::sleep(Duration::from_millis(100));
     }
+    let (n, all) = (failed.len(), took.len());
     assert!(
         failed.is_empty(),
-        "{} of {} light requests failed: {failed:#?}",
-        failed.len(),
-        took.len()
+        "{n} of {all} light requests failed: {failed:#?}"
     );
     assert!(server.alive(), "the server exited under the soak");
     let peak_mib = status_kb(server.pid(), "VmHWM:") / 1024;
@@ -232,20 +222,15 @@ fn the_server_holds_under_hostile_clients() {
         a.join().unwrap();
     }
     took.sort();
-    let (p50, p99, max) = (
-        quantile(&took, 0.5),
-        quantile(&took, 0.99),
-        took[took.len() - 1],
-    );
+    let (p50, p99) = (quantile(&took, 0.5), quantile(&took, 0.99));
+    let max = took[took.len() - 1];
     eprintln!(
         "soak {seconds} s: {} light answers, p50 {p50:?}, p99 {p99:?}, max {max:?}; server peak resident {peak_mib} MiB (budget {BUDGET_MIB} MiB)",
         took.len()
     );
     assert!(max < LIGHT_SLOWEST, "a light answer took {max:?}");
-    assert!(
-        peak_mib < BUDGET_MIB,
-        "peak resident {peak_mib} MiB over the {BUDGET_MIB} MiB budget"
-    );
+    let over = format!("peak resident {peak_mib} MiB over the {BUDGET_MIB} MiB budget");
+    assert!(peak_mib < BUDGET_MIB, "{over}");
     assert!(server.alive());
 }
 
@@ -294,14 +279,12 @@ fn no_save_is_lost_or_damaged_when_the_server_is_killed() {
         } else if now == new {
             kept_new += 1;
         } else {
-            panic!(
-                "run {run}: the file is neither the old text nor the new one ({} bytes)",
-                now.len()
-            );
+            let n = now.len();
+            panic!("run {run}: the file is neither the old text nor the new one ({n} bytes)");
         }
         let names = || -> Vec<String> {
-            let mut n: Vec<_> = std::fs::read_dir(dir.path())
-                .unwrap()
+            let entries = std::fs::read_dir(dir.path()).unwrap();
+            let mut n: Vec<_> = entries
                 .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
                 .collect();
             n.sort();
@@ -310,9 +293,9 @@ fn no_save_is_lost_or_damaged_when_the_server_is_killed() {
         let left = names();
         if left.len() > 1 {
             temps_left += 1;
+            let temp = |n: &String| n.starts_with(".stlc-") && n.ends_with(".tmp");
             assert!(
-                left.iter()
-                    .all(|n| n == "tree.od" || n.starts_with(".stlc-") && n.ends_with(".tmp")),
+                left.iter().all(|n| n == "tree.od" || temp(n)),
                 "run {run}: {left:?}"
             );
         }
