@@ -7,22 +7,15 @@ use std::path::Path;
 
 use crate::support::{outcome, stlc, stlc_line};
 
-fn root() -> &'static str {
-    env!("CARGO_MANIFEST_DIR")
-}
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
 
 fn example(name: &str) -> String {
-    format!("{}/examples/{name}", root())
+    format!("{ROOT}/examples/{name}")
 }
 
 /// Runs stlc with `args`, returning (exit code, stdout, stderr).
 fn run(args: &[&str]) -> (i32, Vec<u8>, String) {
-    let out = stlc().args(args).output().expect("runs");
-    (
-        out.status.code().unwrap_or(-1),
-        out.stdout,
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    outcome(stlc().args(args))
 }
 
 /// Runs `stlc LINE`, returning (exit code, stdout, stderr).
@@ -61,10 +54,8 @@ fn rendering_or_expanding_an_od_equals_doing_it_to_its_compiled_bed() {
                 let from_od = format!("{what} {od_path} {flags} -o {}", a.display());
                 assert_eq!(run_line(&from_od).0, 0, "{what} {od} {growth:?}");
                 assert_eq!(run(&[what, path(&bed), "-o", path(&b)]).0, 0);
-                assert!(
-                    fs::read(&a).unwrap() == fs::read(&b).unwrap(),
-                    "{what} {od} {growth:?}: the OD and its BED differ"
-                );
+                let same = fs::read(&a).unwrap() == fs::read(&b).unwrap();
+                assert!(same, "{what} {od} {growth:?}: the OD and its BED differ");
             }
         }
     }
@@ -76,7 +67,7 @@ fn rendering_or_expanding_an_od_equals_doing_it_to_its_compiled_bed() {
 #[test]
 fn the_default_growth_order_is_bfs_and_compile_keeps_strategy_as_its_alias() {
     let golden =
-        |g: &str| fs::read_to_string(format!("{}/tests/cases/grow/fig9.{g}.bed", root())).unwrap();
+        |g: &str| fs::read_to_string(format!("{ROOT}/tests/cases/grow/fig9.{g}.bed")).unwrap();
     let fig9 = example("fig9.od");
     let (code, out, _) = run(&["compile", &fig9, "-o", "-"]);
     assert_eq!(code, 0);
@@ -98,22 +89,13 @@ fn the_default_growth_order_is_bfs_and_compile_keeps_strategy_as_its_alias() {
 #[test]
 fn check_refuses_what_compile_refuses() {
     let dir = tempfile::tempdir().unwrap();
+    let unbounded = "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F R2][-F R1]\nR2: [F R1]\n";
+    let outside = "O\n(500, 500)\nRULE\nR1: [+F][-F]\nLAYOUT\n(clGreen) Rectangle (0,0), 100, 100\nENDLAYOUT\n";
+    let collinear = "C\n(5, 5)\nRULE\nR1: [+F][-F]\nLAYOUT\n(clGreen) Polygon (0,0), (5,5), (10,10)\nENDLAYOUT\n";
     let cases = [
-        (
-            "unbounded.od",
-            "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F R2][-F R1]\nR2: [F R1]\n",
-            "no bound",
-        ),
-        (
-            "outside.od",
-            "O\n(500, 500)\nRULE\nR1: [+F][-F]\nLAYOUT\n(clGreen) Rectangle (0,0), 100, 100\nENDLAYOUT\n",
-            "outside",
-        ),
-        (
-            "collinear.od",
-            "C\n(5, 5)\nRULE\nR1: [+F][-F]\nLAYOUT\n(clGreen) Polygon (0,0), (5,5), (10,10)\nENDLAYOUT\n",
-            "",
-        ),
+        ("unbounded.od", unbounded, "no bound"),
+        ("outside.od", outside, "outside"),
+        ("collinear.od", collinear, ""),
     ];
     for (name, text, needle) in cases {
         let p = dir.path().join(name);
@@ -221,9 +203,8 @@ fn an_interrupt_removes_the_temporary_file_and_keeps_the_target() {
         }
         let killed = Std::new("kill")
             .args([signal, &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(killed.success());
+            .status();
+        assert!(killed.unwrap().success());
         let status = child.wait().unwrap();
         assert_eq!(status.code(), Some(code), "{signal}");
         assert_eq!(fs::read(&out).unwrap(), b"old");
@@ -257,17 +238,12 @@ fn no_flag_is_ignored_without_a_word() {
     let od = example("2dtree.od");
     let koch = example("koch-snowflake.lsys");
     let decrement = example("decrement.od");
+    let (png, svg, jpg) = (o("x.png"), o("x.svg"), o("x.jpg"));
     for (line, needle) in [
+        (format!("render {od} -f svg -o {png}"), "contradicts"),
+        (format!("render {od} -f png -o {svg}"), "contradicts"),
         (
-            format!("render {od} -f svg -o {}", o("x.png")),
-            "contradicts",
-        ),
-        (
-            format!("render {od} -f png -o {}", o("x.svg")),
-            "contradicts",
-        ),
-        (
-            format!("render {od} -o {}", o("x.jpg")),
+            format!("render {od} -o {jpg}"),
             "`.jpg` is not an image format",
         ),
     ] {
@@ -277,31 +253,32 @@ fn no_flag_is_ignored_without_a_word() {
         assert!(!dir.path().join("x.png").exists());
     }
     // `render -` without -o: a usage error too.
-    let out = stlc()
-        .args(["render", "-"])
-        .write_stdin(fs::read(&koch).unwrap())
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
+    let (code, _, _) = outcome(
+        stlc()
+            .args(["render", "-"])
+            .write_stdin(fs::read(&koch).unwrap()),
+    );
+    assert_eq!(code, 2);
+    let (a, b, c, d, e) = (o("a.png"), o("b.png"), o("c.png"), o("d.png"), o("e.txt"));
     for (line, needle) in [
         (
-            format!("render {od} --depth 3 -o {}", o("a.png")),
+            format!("render {od} --depth 3 -o {a}"),
             "--depth was ignored",
         ),
         (
-            format!("render {koch} --show-layout -o {}", o("b.png")),
+            format!("render {koch} --show-layout -o {b}"),
             "--show-layout was ignored",
         ),
         (
-            format!("render {decrement} --show-layout -o {}", o("c.png")),
+            format!("render {decrement} --show-layout -o {c}"),
             "--show-layout was ignored",
         ),
         (
-            format!("render {koch} --growth dfs -o {}", o("d.png")),
+            format!("render {koch} --growth dfs -o {d}"),
             "--growth was ignored",
         ),
         (
-            format!("expand {koch} --clearance 1 -o {}", o("e.txt")),
+            format!("expand {koch} --clearance 1 -o {e}"),
             "--clearance was ignored",
         ),
         (
@@ -355,10 +332,8 @@ fn inert_turns_and_empty_pictures_are_warned_about() {
 fn many_copies_of_a_thick_stem_draw_what_one_draws() {
     let dir = tempfile::tempdir().unwrap();
     let bed = |n: usize| {
-        format!(
-            "T\n(100, 100)\nL=10(0) B=3(0)\nRULE\nR1: [+F][-F]\nSEED\n{}ENDSEED\n",
-            "R1{,}\n".repeat(n)
-        )
+        let seed = "R1{,}\n".repeat(n);
+        format!("T\n(100, 100)\nL=10(0) B=3(0)\nRULE\nR1: [+F][-F]\nSEED\n{seed}ENDSEED\n")
     };
     let (one, many) = (dir.path().join("one.bed"), dir.path().join("many.bed"));
     fs::write(&one, bed(1)).unwrap();
@@ -377,11 +352,8 @@ fn many_copies_of_a_thick_stem_draw_what_one_draws() {
 fn a_description_can_store_its_stroke_and_background() {
     let dir = tempfile::tempdir().unwrap();
     let od = dir.path().join("c.od");
-    fs::write(
-        &od,
-        "C\n(0, 0)\nL=10(0) B=2(0) S=clMaroon G=#ffffe0\nRULE\nR1: [+F][-F]\nSEED\nF [I 3 R1]\nENDSEED\n",
-    )
-    .unwrap();
+    let text = "C\n(0, 0)\nL=10(0) B=2(0) S=clMaroon G=#ffffe0\nRULE\nR1: [+F][-F]\nSEED\nF [I 3 R1]\nENDSEED\n";
+    fs::write(&od, text).unwrap();
     let (code, bed, _) = run(&["compile", path(&od), "-o", "-"]);
     assert_eq!(code, 0);
     let bed = String::from_utf8(bed).unwrap();
@@ -420,26 +392,22 @@ fn a_description_can_store_its_stroke_and_background() {
 fn a_seed_that_changes_nothing_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let out = |name: &str| path(&dir.path().join(name)).to_string();
-    let bed = format!("{}/tests/cases/grow/alternatives.dfs.bed", root());
+    let bed = format!("{ROOT}/tests/cases/grow/alternatives.dfs.bed");
     let koch = example("koch-snowflake.lsys");
     let tree = example("2dtree.od");
+    let (a, b) = (out("a.png"), out("b.bed"));
+    let no_alternatives = "this description has no alternatives";
     for (line, reason) in [
         (
-            format!("render {bed} --seed 3 -o {}", out("a.png")),
+            format!("render {bed} --seed 3 -o {a}"),
             "a .bed has its choices written out",
         ),
         (
             format!("stats {koch} --seed 3"),
             "this L-system has no stochastic rules",
         ),
-        (
-            format!("compile {tree} --seed 3 -o {}", out("b.bed")),
-            "this description has no alternatives",
-        ),
-        (
-            format!("check {tree} --seed 3"),
-            "this description has no alternatives",
-        ),
+        (format!("compile {tree} --seed 3 -o {b}"), no_alternatives),
+        (format!("check {tree} --seed 3"), no_alternatives),
     ] {
         let (code, _, err) = run_line(&line);
         assert_eq!(code, 0, "{line}: {err}");
