@@ -10,42 +10,37 @@ use fantoccini::Client;
 
 use super::browser_steps::{
     assign_value, count, editor_text, reload, set_checked, set_value, settled_ok, text_of,
-    texts_of, type_into, value_of,
+    texts_of, type_into, until_shown, value_of,
 };
-use super::chromium::{Browser, click, downloaded, js, open, settled, shot, until};
-use super::serve::Server;
+use super::chromium::{
+    Served, cli_line, click, downloaded, js, on_served_file, open, settled, shot, until,
+};
+use super::serve::example;
 use crate::support::{manifest_path, stlc_piped};
 
 #[test]
 fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let file = tmp.path().join("r2.od");
-    std::fs::copy(manifest_path("examples/fig9.od"), &file).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        let url = server.url.clone();
-        c.goto(&url).await.unwrap();
-        settled(&c).await;
-        reload_keeps_saves_and_drafts(&c, &file).await;
-        disk_changes_are_loaded(&c, &file).await;
-        two_tabs(&c, &url, &file).await;
-        exact_counts(&c).await;
-        long_work_is_cancelled(&c, &server).await;
-        a_failing_file_shows_no_other_picture(&c, tmp.path()).await;
-        new_from_a_template_or_an_example(&c).await;
-        export_as_artists_need(&c, &browser.tmp.join("downloads")).await;
-        replay_steps_and_speeds(&c).await;
-        settings_are_keys_in_the_text(&c).await;
-        words_generation_by_generation(&c).await;
-        numbers_scrub(&c).await;
-        main_thread_stalls(&c).await;
-        a_rule_that_never_fits_says_why(&c).await;
-        let _ = c.close().await;
-    });
+    on_served_file(
+        "r2.od",
+        &example("fig9.od"),
+        async |c, served: &Served<'_>| {
+            let file = served.file;
+            reload_keeps_saves_and_drafts(c, file).await;
+            disk_changes_are_loaded(c, file).await;
+            two_tabs(c, &served.server.url, file).await;
+            exact_counts(c).await;
+            long_work_is_cancelled(c, served.server).await;
+            a_failing_file_shows_no_other_picture(c, served.dir).await;
+            new_from_a_template_or_an_example(c).await;
+            export_as_artists_need(c, &served.downloads).await;
+            replay_steps_and_speeds(c).await;
+            settings_are_keys_in_the_text(c).await;
+            words_generation_by_generation(c).await;
+            numbers_scrub(c).await;
+            main_thread_stalls(c).await;
+            a_rule_that_never_fits_says_why(c).await;
+        },
+    );
 }
 
 /// Types `line` at the end of the text, as keys.
@@ -54,6 +49,13 @@ async fn type_line(c: &Client, line: &str) {
     src.click().await.unwrap();
     js(c, "const s = document.getElementById('source'); s.selectionStart = s.selectionEnd = s.value.length;").await;
     src.send_keys(line).await.unwrap();
+}
+
+/// Clicks Save and waits until the page says the file is saved.
+async fn save(c: &Client, what: &str) {
+    click(c, "[data-testid=save]").await;
+    let saved = "return document.getElementById('saved').textContent.startsWith('Saved')";
+    until(c, saved, what).await;
 }
 
 async fn status(c: &Client) -> String {
@@ -72,16 +74,12 @@ async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
         "unsaved edits are in the title"
     );
     assert_eq!(status(c).await, "Unsaved changes");
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "saved").await;
+    save(c, "saved").await;
     assert!(!title(c).await.starts_with("• "));
     assert!(on_disk(file).ends_with("# saved line"));
     reload(c).await;
-    assert!(
-        editor_text(c).await.ends_with("# saved line"),
-        "the reload shows the save"
-    );
+    let shown = editor_text(c).await;
+    assert!(shown.ends_with("# saved line"), "the reload shows the save");
 
     // Unsaved edits survive a reload: offered back, not applied.
     type_line(c, "\n# not saved yet").await;
@@ -92,16 +90,13 @@ async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
         t.ends_with("# saved line"),
         "a draft is never applied silently"
     );
-    let script = "return !document.getElementById('notice').hidden";
-    until(c, script, "the draft is offered").await;
+    until_shown(c, "notice", "the draft is offered").await;
     shot(c, "30-draft-offered").await;
     click(c, "[data-testid=restore-draft]").await;
     assert!(editor_text(c).await.ends_with("# not saved yet"));
     assert!(title(c).await.starts_with("• "));
     // Saved, so there is nothing left to offer.
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "saved again").await;
+    save(c, "saved again").await;
     assert!(on_disk(file).ends_with("# not saved yet"));
 }
 
@@ -113,27 +108,21 @@ async fn disk_changes_are_loaded(c: &Client, file: &Path) {
     let script =
         "return document.getElementById('source').value.endsWith('# from another program')";
     until(c, script, "the disk change is loaded").await;
-    assert!(
-        status(c).await.starts_with("Reloaded"),
-        "{}",
-        status(c).await
-    );
+    let said = status(c).await;
+    assert!(said.starts_with("Reloaded"), "{said}");
 
     // With unsaved edits: asked, and keeping mine then saving writes mine.
     type_line(c, "\n# mine").await;
     theirs.push_str("\n# theirs again");
     std::fs::write(file, &theirs).unwrap();
-    let script = "return !document.getElementById('notice').hidden";
-    until(c, script, "the change is asked about").await;
+    until_shown(c, "notice", "the change is asked about").await;
     assert!(
         editor_text(c).await.ends_with("# mine"),
         "unsaved edits stay"
     );
     shot(c, "31-disk-changed").await;
     click(c, "[data-testid=keep-mine]").await;
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "mine saved").await;
+    save(c, "mine saved").await;
     let on_disk = std::fs::read_to_string(file).unwrap();
     assert!(on_disk.ends_with("# mine") && !on_disk.contains("# theirs again"));
 }
@@ -147,9 +136,7 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     c.goto(url).await.unwrap();
     settled(c).await;
     type_line(c, "\n# tab two").await;
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "tab two saved").await;
+    save(c, "tab two saved").await;
 
     // Tab one's edit is of the older version: its Save is refused.
     c.switch_to_window(first).await.unwrap();
@@ -160,23 +147,17 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     until(c, script, "the conflict is shown").await;
     let notice = text_of(c, "#notice").await;
     assert!(notice.contains("changed since"), "{notice}");
-    assert!(
-        on_disk(file).ends_with("# tab two"),
-        "the second save did not overwrite the first"
-    );
-    assert!(
-        editor_text(c).await.ends_with("# tab one"),
-        "nothing is lost in the editor"
-    );
+    let overwritten = "the second save did not overwrite the first";
+    assert!(on_disk(file).ends_with("# tab two"), "{overwritten}");
+    let lost = "nothing is lost in the editor";
+    assert!(editor_text(c).await.ends_with("# tab one"), "{lost}");
     // Both side by side.
     click(c, "[data-testid=compare]").await;
     assert!(text_of(c, "#compare-theirs").await.ends_with("# tab two"));
     assert!(text_of(c, "#compare-mine").await.ends_with("# tab one"));
     shot(c, "32-two-tabs-compare").await;
     click(c, "[data-testid=keep-mine]").await;
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "tab one saved").await;
+    save(c, "tab one saved").await;
     assert!(on_disk(file).ends_with("# tab one"));
 }
 
@@ -196,7 +177,7 @@ async fn exact_counts(c: &Client) {
 /// a level of detail); the busy indicator shows with Cancel, and an edit
 /// back to depth 5 cancels the long work (the server stops it) and shows
 /// its picture within a second or two.
-async fn long_work_is_cancelled(c: &Client, server: &Server) {
+async fn long_work_is_cancelled(c: &Client, server: &super::serve::Server) {
     open(c, &manifest_path("tests/cases/render/slow-stochastic.lsys")).await;
     settled(c).await;
     // Problem 4: the last file's depth (30) does not follow to this one:
@@ -207,8 +188,7 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     // 1 + (4^5 - 1) / 3 segments, whatever the choices.
     assert_eq!(stems, "342", "drawn at its own generations (5)");
     set_depth(c, "14").await;
-    let script = "return !document.getElementById('busy').hidden";
-    until(c, script, "the busy indicator shows").await;
+    until_shown(c, "busy", "the busy indicator shows").await;
     shot(c, "33-busy").await;
     let t0 = std::time::Instant::now();
     set_depth(c, "5").await;
@@ -233,8 +213,7 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     );
     // Cancel: the work stops and the last picture stays.
     set_depth(c, "14").await;
-    let script = "return !document.getElementById('busy').hidden";
-    until(c, script, "busy again").await;
+    until_shown(c, "busy", "busy again").await;
     click(c, "[data-testid=cancel]").await;
     let script = "return document.getElementById('busy').hidden && document.getElementById('status').textContent.startsWith('Cancelled')";
     until(c, script, "cancelled").await;
@@ -252,11 +231,8 @@ async fn set_depth(c: &Client, value: &str) {
 /// before it (its errors, and an empty preview).
 async fn a_failing_file_shows_no_other_picture(c: &Client, dir: &Path) {
     let broken = dir.join("broken.lsys");
-    std::fs::write(
-        &broken,
-        "generations 3\naxiom F\nangle 30\nrule F -> F[+F\n",
-    )
-    .unwrap();
+    let text = "generations 3\naxiom F\nangle 30\nrule F -> F[+F\n";
+    std::fs::write(&broken, text).unwrap();
     open(c, &broken).await;
     let script =
         "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok === false";
@@ -279,10 +255,7 @@ async fn new_from_a_template_or_an_example(c: &Client) {
     assert!(grown["stems"].as_u64().unwrap() > 50, "{grown}");
     new_from(c, "hilbert.lsys").await;
     let drawn = settled_ok(c).await;
-    assert_eq!(
-        drawn["text"].as_str().unwrap(),
-        std::fs::read_to_string(manifest_path("examples/hilbert.lsys")).unwrap()
-    );
+    assert_eq!(drawn["text"].as_str().unwrap(), example("hilbert.lsys"));
     shot(c, "35-new-from-example").await;
 }
 
@@ -297,29 +270,17 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
     set_checked(c, "#export-layout", false).await;
     set_checked(c, "#export-transparent", true).await;
     let shown = text_of(c, "#export-cli").await;
-    assert!(
-        shown.contains("stlc render 2dtree.od --size 300x200 --background none -o 2dtree.png"),
-        "{shown}"
-    );
+    let want = "stlc render 2dtree.od --size 300x200 --background none -o 2dtree.png";
+    assert!(shown.contains(want), "{shown}");
     shot(c, "36-export-options").await;
     click(c, "#export-png").await;
     let got = downloaded(downloads, "2dtree.png").await;
-    let od = manifest_path("examples/2dtree.od");
-    let want = stlc_piped(
-        &format!(
-            "render {} --size 300x200 --background none -o -",
-            od.display()
-        ),
-        "",
-    );
+    let want = cli_line("render examples/2dtree.od --size 300x200 --background none");
     assert!(got == want, "the export is not the CLI's bytes");
     let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
     assert_eq!((png.width(), png.height()), (300, 200));
-    assert_eq!(
-        png.pixel(0, 0).unwrap().alpha(),
-        0,
-        "the background is transparent"
-    );
+    let alpha = png.pixel(0, 0).unwrap().alpha();
+    assert_eq!(alpha, 0, "the background is transparent");
     // A coloured background instead.
     set_checked(c, "#export-transparent", false).await;
     set_checked(c, "#export-coloured", true).await;
@@ -329,20 +290,12 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
     assert!(shown.contains(want), "{shown}");
     click(c, "#export-png").await;
     let got = downloaded(downloads, "2dtree (1).png").await;
-    let want = stlc_piped(
-        &format!(
-            "render {} --size 300x200 --background #336699 -o -",
-            od.display()
-        ),
-        "",
-    );
+    let want = cli_line("render examples/2dtree.od --size 300x200 --background #336699");
     assert!(got == want, "the coloured export is not the CLI's bytes");
     let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
     let p = png.pixel(0, 0).unwrap();
-    assert_eq!(
-        (p.red(), p.green(), p.blue(), p.alpha()),
-        (0x33, 0x66, 0x99, 255)
-    );
+    let rgba = (p.red(), p.green(), p.blue(), p.alpha());
+    assert_eq!(rgba, (0x33, 0x66, 0x99, 255));
 }
 
 /// Teaching (item 9): the replay steps one decision back and on, and plays
@@ -436,10 +389,8 @@ async fn numbers_scrub(c: &Client) {
     until(c, script, "the A slider").await;
     set_value(c, "#scrub-list input[data-key=A]", "45").await;
     let after = settled(c).await;
-    assert_eq!(
-        after["text"].as_str().unwrap(),
-        before["text"].as_str().unwrap().replace("A=30", "A=45")
-    );
+    let want = before["text"].as_str().unwrap().replace("A=30", "A=45");
+    assert_eq!(after["text"].as_str().unwrap(), want);
     assert_ne!(after["growth"], before["growth"], "the tree regrew");
     shot(c, "39-numbers").await;
 }

@@ -154,6 +154,17 @@ pub(super) async fn listed_error(c: &Client) -> Value {
     .await
 }
 
+/// Waits (at most 10 s) until the element with the id `id` is shown (not
+/// hidden); the panic names `what`.
+pub(super) async fn until_shown(c: &Client, id: &str, what: &str) {
+    until(
+        c,
+        &format!("return !document.getElementById('{id}').hidden"),
+        what,
+    )
+    .await;
+}
+
 /// Reloads, accepting the "leave with unsaved edits?" question if one is
 /// shown, and returns the answer once the page shows one again.
 pub(super) async fn reload(c: &Client) -> Value {
