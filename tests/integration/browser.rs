@@ -52,12 +52,10 @@ async fn acceptance(c: &Client) {
     let text = holed["text"].as_str().unwrap();
     // The paper's inline layout stays as it is; the new shape is a line
     // before ENDLAYOUT, spelt as the paper spells its shapes.
+    let hole = "\n(clWhite)< Ellipse (100,60,160,110)>\nENDLAYOUT";
     assert_eq!(
         text,
-        example("2dtree.od").replace(
-            "\nENDLAYOUT",
-            "\n(clWhite)< Ellipse (100,60,160,110)>\nENDLAYOUT"
-        ),
+        example("2dtree.od").replace("\nENDLAYOUT", hole),
         "{text}"
     );
     let after = holed["stems"].as_u64().unwrap();
@@ -68,24 +66,19 @@ async fn acceptance(c: &Client) {
     // No stem ends inside the hole (an ellipse centred at (130, 85)).
     let g = numbers(&holed["growth"]);
     let inside = |x: f64, y: f64| ((x - 130.0) / 30.0).powi(2) + ((y - 85.0) / 25.0).powi(2) < 0.95;
-    assert!(
-        !g.chunks(6).any(|s| inside(s[2], s[3])),
-        "a stem grew in the hole"
-    );
+    let in_hole = g.chunks(6).any(|s| inside(s[2], s[3]));
+    assert!(!in_hole, "a stem grew in the hole");
     click(c, "#growth option[value=dfs]").await;
     let dfs = settled_until(c, 20, 100, |v| v["growth"] != holed["growth"]).await;
     assert_ne!(dfs["growth"], holed["growth"]);
     // The growth order is kept in the file: `O=dfs` joins the header, and
     // nothing else in the text changes.
     let text = dfs["text"].as_str().unwrap();
-    assert_eq!(
-        text,
-        holed["text"]
-            .as_str()
-            .unwrap()
-            .replace("B=1(0)RULE", "B=1(0) O=dfs RULE"),
-        "{text}"
-    );
+    let want = holed["text"]
+        .as_str()
+        .unwrap()
+        .replace("B=1(0)RULE", "B=1(0) O=dfs RULE");
+    assert_eq!(text, want, "{text}");
     click(c, "#play").await;
     let replayed = "return window.stlc.state.replayTimer === null";
     js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
@@ -145,9 +138,9 @@ async fn steps(c: &Client, file: &Path) {
     let new = &layout[1];
     assert!(new.starts_with("(clGreen) Rectangle ("), "{new}");
     let nums = numbers_in(new.trim_start_matches("(clGreen) Rectangle "));
-    let near = |a: f64, b: f64| (a - b).abs() <= 1.0;
+    let at = |i: usize, want: f64| (nums[i] - want).abs() <= 1.0;
     assert!(
-        near(nums[0], 20.0) && near(nums[1], 20.0) && near(nums[2], 160.0) && near(nums[3], 140.0),
+        at(0, 20.0) && at(1, 20.0) && at(2, 160.0) && at(3, 140.0),
         "{new}"
     );
     assert_eq!(drawn["ok"], true, "{drawn}");
@@ -162,10 +155,8 @@ async fn steps(c: &Client, file: &Path) {
     click(c, "#growth option[value=dfs]").await;
     let dfs = settled_until(c, 20, 100, |v| v["growth"] != drawn["growth"]).await;
     assert_eq!(dfs["ok"], true);
-    assert_ne!(
-        dfs["growth"], drawn["growth"],
-        "bfs and dfs gave the same tree"
-    );
+    let same = "bfs and dfs gave the same tree";
+    assert_ne!(dfs["growth"], drawn["growth"], "{same}");
     shot(c, "4-dfs").await;
 
     // Replay: midway only part of the tree is drawn.
@@ -306,10 +297,8 @@ async fn tools(c: &Client, start: &str) {
     let poly = settled(c).await;
     let lines = layout_lines(poly["text"].as_str().unwrap());
     assert_eq!(lines.len(), 3, "{lines:?}");
-    assert_eq!(
-        lines[2],
-        "(clGreen) Polygon (150, 170), (190, 170), (190, 195)"
-    );
+    let polygon = "(clGreen) Polygon (150, 170), (190, 170), (190, 195)";
+    assert_eq!(lines[2], polygon);
     shot(c, "9-polygon").await;
 
     // Drag the root: its `(x, y)` in the text follows.
@@ -427,10 +416,8 @@ async fn renderer(c: &Client, served: &Served<'_>) {
     std::fs::write(&bed, cli(&["compile", fig9.to_str().unwrap()])).unwrap();
     open(c, &bed).await;
     let opened = settled_ok(c).await;
-    assert_eq!(
-        opened["text"].as_str().unwrap(),
-        std::fs::read_to_string(&bed).unwrap()
-    );
+    let whole = std::fs::read_to_string(&bed).unwrap();
+    assert_eq!(opened["text"].as_str().unwrap(), whole);
     assert_eq!(value_of(c, "#kind").await, "bed");
     // (The BED keeps the OD's LAYOUT, so the page shows it, as
     // `--show-layout` does.)
@@ -456,11 +443,9 @@ async fn renderer(c: &Client, served: &Served<'_>) {
     let listed = listed_error(c).await;
     assert_eq!(listed["line"], "3", "{listed}");
     assert_eq!(listed["mark"], "3", "{listed}");
+    let expected = "expected `RULE`, a root `(x, y)` or a stem parameter";
     assert!(
-        listed["text"]
-            .as_str()
-            .unwrap()
-            .contains("expected `RULE`, a root `(x, y)` or a stem parameter"),
+        listed["text"].as_str().unwrap().contains(expected),
         "{listed}"
     );
     // A file just opened that fails shows no picture of the file before
@@ -560,10 +545,8 @@ async fn editing(c: &Client, served: &Served<'_>) {
     let (sx, sy) = screen_of(c, 30.0, 60.0).await;
     press_along(c, &[(sx, sy), (sx + 60.0, sy + 40.0)], 100).await;
     let (tx, ty) = screen_of(c, 30.0, 60.0).await;
-    assert!(
-        (tx - sx - 60.0).abs() < 1.0 && (ty - sy - 40.0).abs() < 1.0,
-        "{sx},{sy} -> {tx},{ty}"
-    );
+    let moved = (tx - sx - 60.0).abs() < 1.0 && (ty - sy - 40.0).abs() < 1.0;
+    assert!(moved, "{sx},{sy} -> {tx},{ty}");
     let panned = view_box(c).await;
     assert!((panned[2] - zoomed[2]).abs() < 1e-3);
     assert_eq!(js(c, lib).await, picture);
@@ -614,10 +597,8 @@ async fn editing(c: &Client, served: &Served<'_>) {
     let lime_text = settled_ok(c).await["text"].as_str().unwrap().to_string();
     let want = [rr.as_str(), "(clLime) Rectangle (70, 120), 60, 75"];
     assert_eq!(layout_lines(&lime_text), want);
-    assert!(
-        answer_svg(c).await.to_lowercase().contains("#00ff00"),
-        "the lime rectangle is not drawn lime"
-    );
+    let lime = answer_svg(c).await.to_lowercase().contains("#00ff00");
+    assert!(lime, "the lime rectangle is not drawn lime");
     assert!(same_box(&view_box(c).await, &panned));
     shot(c, "16-roundrect-raised-lime").await;
 

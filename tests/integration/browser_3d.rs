@@ -69,12 +69,10 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
         &[("Accept", "application/x-stlc-render, application/json")],
         body.to_string().as_bytes(),
     );
+    let head = &compact.head;
     assert!(
-        compact
-            .head
-            .contains("content-type: application/x-stlc-render"),
-        "{}",
-        compact.head
+        head.contains("content-type: application/x-stlc-render"),
+        "{head}"
     );
     assert_eq!(unpack(&compact.body), a);
     // The export draws the view asked for: the CLI's bytes.
@@ -276,10 +274,8 @@ async fn an_edit_regrows(c: &Client, first: &Value) {
     let now = settled_until(c, 50, 100, |v| v["stems"] == json!(7)).await;
     // Depth 1: 8 points, 7 steps.
     assert_eq!(now["stems"], 7, "{now}");
-    assert_eq!(
-        js(c, "return window.stlc.state.answer.space.stems.length").await,
-        7 * 8
-    );
+    let numbers = js(c, "return window.stlc.state.answer.space.stems.length").await;
+    assert_eq!(numbers, 7 * 8);
     let p = pixels(c).await;
     assert_ne!(p["sum"], first["sum"]);
     assert!(p["count"].as_f64().unwrap() > 500.0, "{p}");
@@ -446,10 +442,8 @@ async fn volumes_and_replay(c: &Client) {
     )
     .await;
     let r = |i: usize, j: usize| radii[i][j].as_f64().unwrap();
-    assert!(
-        (r(0, 0) - 40.0).abs() < 1e-6 && (r(0, 1) - 80.0).abs() < 1e-6,
-        "{radii}"
-    );
+    let torus = (r(0, 0) - 40.0).abs() < 1e-6 && (r(0, 1) - 80.0).abs() < 1e-6;
+    assert!(torus, "{radii}");
     assert!(r(1, 0) < 1e-9 && (r(1, 1) - 40.0).abs() < 0.1, "{radii}");
 }
 
@@ -552,18 +546,17 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
         // 720: with every stem in one colour (before the ramp) there was no
         // dark green at all, and without leaves no more than the stems'.
         let n = |v: &Value, i: usize| v[i].as_u64().unwrap();
+        let (green, green_leafy) = (n(&bare, 0), n(&leafy, 0));
         assert!(
-            n(&bare, 0) > 5_000,
+            green > 5_000,
             "the ramp's deep orders are dark green: {bare}"
         );
         assert!(
-            n(&leafy, 0) > n(&bare, 0) * 3 / 2,
+            green_leafy > green * 3 / 2,
             "the leaves add green: {bare} {leafy}"
         );
-        assert!(
-            n(&bare, 1) > 500 && n(&leafy, 1) > 500,
-            "the trunk's bark is brown: {leafy}"
-        );
+        let brown = n(&bare, 1) > 500 && n(&leafy, 1) > 500;
+        assert!(brown, "the trunk's bark is brown: {leafy}");
     });
 }
 

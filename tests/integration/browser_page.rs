@@ -52,11 +52,9 @@ fn a_share_link_that_inflates_past_the_input_limit_is_refused_in_chromium() {
         c.goto(&format!("{}{fragment}", server.url)).await.unwrap();
         let v = settled(c).await;
         let text = v["text"].as_str().unwrap();
-        assert!(
-            text.starts_with("# This share link's text is too large")
-                && text.contains("the input limit of 67108864 bytes (64 MiB)"),
-            "{text}"
-        );
+        let too_large = text.starts_with("# This share link's text is too large");
+        let limit = text.contains("the input limit of 67108864 bytes (64 MiB)");
+        assert!(too_large && limit, "{text}");
         assert_eq!(js(c, "return document.title.length > 0").await, json!(true));
         shot(c, "page-share-too-large").await;
     });
@@ -75,10 +73,8 @@ async fn export_command(c: &Client, inputs: &[(&str, &str)], want: &str) -> Stri
     let cli = "return document.getElementById('export-cli').textContent";
     let shown = js_until(c, cli, 200, 50, |v| v.as_str().unwrap().contains(want)).await;
     let shown = shown.as_str().unwrap().to_string();
-    assert!(
-        shown.contains(want),
-        "the Export panel never showed `{want}`: {shown}"
-    );
+    let never = format!("the Export panel never showed `{want}`");
+    assert!(shown.contains(want), "{never}: {shown}");
     shown
 }
 
@@ -155,10 +151,8 @@ fn stl_tree_is_one_script_and_names_what_is_missing_in_chromium() {
             "<!doctype html><meta charset=utf-8><script type=module src=\"../stl-tree.js\"></script>\n{ONE_TREE}"
         );
         let there = format!("embed-{tag}/page.html");
-        assert_eq!(
-            elements(c, server, &[(&there, page)]).await,
-            json!(["drawn"])
-        );
+        let states = elements(c, server, &[(&there, page)]).await;
+        assert_eq!(states, json!(["drawn"]));
         // The script alone, copied into a folder of its own.
         let script = std::fs::read_to_string(site().unwrap().join("stl-tree.js")).unwrap();
         let page = format!(
@@ -173,10 +167,8 @@ fn stl_tree_is_one_script_and_names_what_is_missing_in_chromium() {
         assert_eq!(states, json!(["error"]));
         let error = element_error(c, "t").await;
         let url = format!("{}alone-{tag}/stlc.wasm", server.url);
-        assert!(
-            error.contains("needs stlc.wasm beside stl-tree.js") && error.contains(&url),
-            "{error}"
-        );
+        let needs = error.contains("needs stlc.wasm beside stl-tree.js");
+        assert!(needs && error.contains(&url), "{error}");
         assert!(error.contains("404"), "{error}");
         shot(c, "page-stl-tree-alone").await;
         for dir in [format!("embed-{tag}"), format!("alone-{tag}")] {
@@ -215,10 +207,8 @@ fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
         let states = elements(c, server, &[(&name, page)]).await;
         assert_eq!(states, json!(["error", "drawn", "drawn"]));
         let error = element_error(c, "slow").await;
-        assert!(
-            error.starts_with("stopped after 0.3 s, the time budget of this element"),
-            "{error}"
-        );
+        let stopped = "stopped after 0.3 s, the time budget of this element";
+        assert!(error.starts_with(stopped), "{error}");
         let v = js(
             c,
             "return [window.gap, window.ticks, window.last - window.first, document.getElementById('long').svg.length]",
@@ -236,10 +226,8 @@ fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
         // tree drew (it would see `drawing` once at most). In a worker it
         // keeps running: a ratio, not a time, so a loaded machine that
         // slows both alike does not fail it.
-        assert!(
-            drawing > 300.0,
-            "the slow tree drew faster than its 0.3 s twin's budget: {v}"
-        );
+        let faster = "the slow tree drew faster than its 0.3 s twin's budget";
+        assert!(drawing > 300.0, "{faster}: {v}");
         assert!(
             ticks >= 5.0,
             "the page's timer stalled while the tree drew: {v}"
@@ -277,10 +265,8 @@ fn a_reload_returns_to_the_document_and_its_draft_in_chromium() {
             "const n = document.getElementById('notice'); return n.hidden ? null : n.textContent",
         )
         .await;
-        assert!(
-            notice.as_str().is_some_and(|n| n.contains("Unsaved edits")),
-            "{notice}"
-        );
+        let offered = notice.as_str().is_some_and(|n| n.contains("Unsaved edits"));
+        assert!(offered, "{notice}");
         shot(c, "page-reload-draft").await;
         click(c, "[data-testid=restore-draft]").await;
         assert_eq!(settled(c).await["text"], json!(edited));
@@ -334,20 +320,16 @@ fn the_template_grows_into_what_one_draws_and_says_why_it_stops_in_chromium() {
         })
         .await;
         let text = drawn["text"].as_str().unwrap();
-        assert!(
-            text.contains("(clGreen) Rectangle (150, 10), 55, 160"),
-            "{text}"
-        );
+        let rectangle = "(clGreen) Rectangle (150, 10), 55, 160";
+        assert!(text.contains(rectangle), "{text}");
         assert_eq!(drawn["stems"], json!(169), "{drawn}");
         shot(c, "page-template-drawn").await;
         // The old template's decrement: growth runs out, and the page says so.
         let v = rewritten(c, &text.replace("B=2(0.05)", "B=2(0.3)")).await;
         assert_eq!(v["stems"], json!(115), "{v}");
         let said = diagnostics(c).await;
-        assert!(
-            said.contains("growth stopped at 115 stems: rule `R1` ran out (most misses: stem too thin: B decremented to 0, 26 of 39)"),
-            "{said}"
-        );
+        let ran_out = "growth stopped at 115 stems: rule `R1` ran out (most misses: stem too thin: B decremented to 0, 26 of 39)";
+        assert!(said.contains(ran_out), "{said}");
         shot(c, "page-template-ran-out").await;
     });
 }
@@ -374,10 +356,8 @@ fn stem_counts_have_their_digits_grouped_in_chromium() {
         open_example(c, "fig9.od").await;
         rewritten(c, od).await;
         let status = text_of(c, "#status").await;
-        assert!(
-            status.starts_with("6,237 stems · 3,118 growth decisions · "),
-            "{status}"
-        );
+        let counts = "6,237 stems · 3,118 growth decisions · ";
+        assert!(status.starts_with(counts), "{status}");
         let label = text_of(c, "#step-label").await;
         assert_eq!(label, "decision 3,118 of 3,118 · 6,237 stems");
         shot(c, "page-grouped-digits").await;
@@ -411,11 +391,8 @@ fn the_open_export_panel_covers_no_control_in_chromium() {
         assert!(covered[0].as_u64().unwrap() > 20, "{covered}");
         assert_eq!(covered[1], json!([]), "controls covered by the open panel");
         // The panel itself shows its command.
-        let cli = js(
-            c,
-            "return document.getElementById('export-cli').getBoundingClientRect().height",
-        )
-        .await;
+        let height = "return document.getElementById('export-cli').getBoundingClientRect().height";
+        let cli = js(c, height).await;
         assert!(cli.as_f64().unwrap() > 10.0, "{cli}");
         shot(c, "page-export-panel-open").await;
     });
@@ -449,10 +426,8 @@ fn compare_marks_the_lines_that_differ_in_chromium() {
         assert_eq!(sides[0][0], json!(original));
         assert_eq!(sides[1][0], json!(edited));
         assert_eq!(sides[0][1], json!(["L=22(1.6) B=3.2(0.25) A=30 C=1\n"]));
-        assert_eq!(
-            sides[1][1],
-            json!(["L=22(1.6) B=3.2(0.25) A=35 C=1\n", "# my seed\n"])
-        );
+        let mine = json!(["L=22(1.6) B=3.2(0.25) A=35 C=1\n", "# my seed\n"]);
+        assert_eq!(sides[1][1], mine);
         assert_eq!(sides[0][2], json!(": 1 line differs"));
         assert_eq!(sides[1][2], json!(": 2 lines differ"));
         shot(c, "page-compare-marks").await;
@@ -481,10 +456,8 @@ fn stlc_serve_shares_like_the_web_page_in_chromium() {
             .to_string();
         let base = format!("http://{}/#k=od&n=tree.od&s=", server.addr);
         assert!(link.starts_with(&base), "{link}");
-        assert!(
-            !link.contains(&server.token),
-            "the link carries the token: {link}"
-        );
+        let token = link.contains(&server.token);
+        assert!(!token, "the link carries the token: {link}");
         shot(c, "page-serve-share").await;
         // Another document's link, put into this tab's address.
         let other = "T (0, 0) L=10(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 1 R1] ENDSEED\n";
