@@ -83,10 +83,8 @@ fn render_png_and_svg_files() {
     let line = format!("render {} -o {} --size 200x100", f.display(), svg.display());
     stlc_line(&line).assert().success();
     let text = fs::read_to_string(&svg).unwrap();
-    assert!(
-        text.contains("width=\"200\"") && text.contains("height=\"100\""),
-        "{text}"
-    );
+    let sized = text.contains("width=\"200\"") && text.contains("height=\"100\"");
+    assert!(sized, "{text}");
     assert_eq!(files_in(dir.path()), ["out.svg", "sq.lsys", "sq.png"]);
 }
 
@@ -389,10 +387,8 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
         let before = files_in(dir.path());
         let (got, _, err) = outcome(stlc_line(&line).arg("-o").arg(&out));
         assert_eq!(got, code, "{line}: {err}");
-        assert!(
-            err.to_lowercase().contains(&needle.to_lowercase()),
-            "{line}: {err}"
-        );
+        let says = err.to_lowercase().contains(&needle.to_lowercase());
+        assert!(says, "{line}: {err}");
         assert!(!err.contains("panicked"), "{line}: {err}");
         assert_eq!(fs::read(&out).unwrap(), b"previous bytes", "{line}");
         assert_eq!(files_in(dir.path()), before, "{line} left a file");
@@ -477,10 +473,8 @@ fn an_svg_over_its_segment_limit_is_refused_before_a_byte_is_written() {
         assert_eq!(code, 1, "{err}");
         assert!(out.is_empty(), "{input}: wrote before refusing");
         let exceeds = format!("{count} exceeds the limit of {}", count - 1);
-        assert!(
-            err.contains(&exceeds) && err.contains("--max-svg-segments"),
-            "{err}"
-        );
+        let flag = err.contains("--max-svg-segments");
+        assert!(err.contains(&exceeds) && flag, "{err}");
         let at = stlc_piped(&format!("{svg} --max-svg-segments {count}"), "");
         let svg = String::from_utf8(at).unwrap();
         // Every segment is written: one ` L` each (plus the three of the
@@ -627,10 +621,8 @@ fn strategy_means_one_thing_and_says_so() {
     assert_eq!(old, plain, "the derivation order does not change the tree");
     assert_eq!(new, plain);
     for w in [&warned, &warned_too] {
-        assert!(
-            w.contains("--derivation") && w.contains("--growth dfs"),
-            "{w}"
-        );
+        let both = w.contains("--derivation") && w.contains("--growth dfs");
+        assert!(both, "{w}");
     }
     let (grown, with_growth) = png("--strategy dfs --growth dfs", "grown.png");
     assert_ne!(grown, plain, "--growth dfs grows another tree");
@@ -638,10 +630,8 @@ fn strategy_means_one_thing_and_says_so() {
     let (code, out, err) = outcome(&mut stlc_line(&format!("compile {od} --strategy dfs -o -")));
     assert_eq!(code, 0, "{err}");
     let golden = std::fs::read(manifest_path("tests/cases/grow/fig9.dfs.bed")).unwrap();
-    assert_eq!(
-        out, golden,
-        "compile --strategy dfs still grows depth-first"
-    );
+    let depth_first = "compile --strategy dfs still grows depth-first";
+    assert_eq!(out, golden, "{depth_first}");
     assert!(err.contains("its name is --growth"), "{err}");
 }
 
@@ -693,11 +683,8 @@ fn growth_settings_kept_in_the_file() {
         |order: &str| std::fs::read(format!("{ROOT}/tests/cases/grow/fig9.{order}.bed")).unwrap();
     let dfs = with("O=dfs", "dfs.od");
     assert_eq!(bed(&dfs, ""), golden("dfs"), "O=dfs grows depth-first");
-    assert_eq!(
-        bed(&dfs, "--growth bfs"),
-        golden("bfs"),
-        "--growth overrides O="
-    );
+    let overridden = bed(&dfs, "--growth bfs");
+    assert_eq!(overridden, golden("bfs"), "--growth overrides O=");
     // V= and M= grow what --seed and --max-stems grow.
     let grove = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
     let keyed = dir.path().join("grove.od");
@@ -712,15 +699,11 @@ fn growth_settings_kept_in_the_file() {
     assert!(!by_m.contains("--max-stems"), "{by_m}");
     let by_flag = compile(&keyed, "--max-stems 300").1;
     assert!(by_flag.contains("the stem limit of 300"), "{by_flag}");
-    assert!(
-        by_flag.contains("raise the limit with --max-stems N"),
-        "{by_flag}"
-    );
+    let raise = "raise the limit with --max-stems N";
+    assert!(by_flag.contains(raise), "{by_flag}");
     // The flag overrides V= for one run.
-    assert_eq!(
-        bed(&keyed, "--seed 8"),
-        bed(&plain, "--seed 8 --max-stems 500")
-    );
+    let by_flag = bed(&plain, "--seed 8 --max-stems 500");
+    assert_eq!(bed(&keyed, "--seed 8"), by_flag);
     // A BED refusing them, and wrong values: tests/cmd/growth.md.
 }
 

@@ -103,12 +103,8 @@ fn check_refuses_what_compile_refuses() {
         let (compile_code, _, compile_err) = run(&["compile", path(&p), "-o", "-"]);
         let (check_code, out, check_err) = run(&["check", path(&p)]);
         assert_eq!(compile_code, 1, "{name}: {compile_err}");
-        assert_eq!(
-            check_code,
-            1,
-            "{name}: check said {}",
-            String::from_utf8_lossy(&out)
-        );
+        let said = String::from_utf8_lossy(&out);
+        assert_eq!(check_code, 1, "{name}: check said {said}");
         assert!(check_err.contains(needle), "{name}: {check_err}");
         assert_eq!(check_err, compile_err, "{name}: the same diagnostic");
     }
@@ -128,10 +124,8 @@ fn check_reports_the_stems_compile_grows_and_a_bed_draws() {
     let (code, out, _) = run(&["check", &od]);
     assert_eq!(code, 0);
     let out = String::from_utf8(out).unwrap();
-    assert!(
-        out.contains(&format!("grows       {drawn} stems (bfs)")),
-        "{out}"
-    );
+    let grows = format!("grows       {drawn} stems (bfs)");
+    assert!(out.contains(&grows), "{out}");
     let (_, out, _) = run(&["check", path(&bed)]);
     let out = String::from_utf8(out).unwrap();
     assert!(out.contains(&format!("stems       {drawn}\n")), "{out}");
@@ -357,10 +351,8 @@ fn a_description_can_store_its_stroke_and_background() {
     let (code, bed, _) = run(&["compile", path(&od), "-o", "-"]);
     assert_eq!(code, 0);
     let bed = String::from_utf8(bed).unwrap();
-    assert!(
-        bed.contains("L=10(0) B=2(0) C=1 S=clMaroon G=#ffffe0\n"),
-        "{bed}"
-    );
+    let header = "L=10(0) B=2(0) C=1 S=clMaroon G=#ffffe0\n";
+    assert!(bed.contains(header), "{bed}");
     let svg = |extra: &str| {
         let line = format!("render {} -f svg -o - {extra}", od.display());
         String::from_utf8(run_line(&line).1).unwrap()
@@ -369,20 +361,16 @@ fn a_description_can_store_its_stroke_and_background() {
     assert!(own.contains("fill=\"#ffffe0\""), "{own}");
     assert!(own.contains("stroke=\"#800000\""), "clMaroon: {own}");
     let over = svg("--stroke #123456 --background none");
-    assert!(
-        over.contains("stroke=\"#123456\"") && !over.contains("<rect"),
-        "{over}"
-    );
+    let stroke = over.contains("stroke=\"#123456\"");
+    assert!(stroke && !over.contains("<rect"), "{over}");
     // A number where a colour goes, and the other way round, are errors
     // at the value.
     let bad = dir.path().join("bad.od");
     fs::write(&bad, "C\n(0, 0)\nL=clRed S=12\nRULE\nR1: [+F][-F]\n").unwrap();
     let (code, _, err) = run(&["check", "--color", "never", path(&bad)]);
     assert_eq!(code, 1);
-    assert!(
-        err.contains("`L` takes a number") && err.contains("`S` takes a colour"),
-        "{err}"
-    );
+    let number = err.contains("`L` takes a number");
+    assert!(number && err.contains("`S` takes a colour"), "{err}");
 }
 
 /// `--seed` where nothing chooses (a BED, a deterministic L-system, an OD
@@ -411,10 +399,8 @@ fn a_seed_that_changes_nothing_says_so() {
     ] {
         let (code, _, err) = run_line(&line);
         assert_eq!(code, 0, "{line}: {err}");
-        assert!(
-            err.contains("--seed was ignored") && err.contains(reason),
-            "{line}: {err}"
-        );
+        let ignored = err.contains("--seed was ignored");
+        assert!(ignored && err.contains(reason), "{line}: {err}");
     }
     let plant = example("abop-1.27.lsys");
     let grove = example("grove.od");

@@ -363,11 +363,8 @@ fn the_growth_order_replays_a_connected_tree() {
         );
         let g = numbers(&a["growth"]["stems"]);
         assert!(g.len() >= 6 * 50, "{}", g.len());
-        assert_eq!(
-            (g[0], g[1]),
-            (100.0, 196.0),
-            "the first stem starts at the root"
-        );
+        let root = "the first stem starts at the root";
+        assert_eq!((g[0], g[1]), (100.0, 196.0), "{root}");
         assert_eq!(g[5], 0.0, "the seed's F is decision 0");
         let mut ends: Vec<(f64, f64)> = vec![(100.0, 196.0)];
         let mut last = 0.0;
@@ -446,10 +443,8 @@ fn input_errors_answer_diagnostics_with_lines_and_columns() {
         &json!({"source": example("fig9.od"), "max_stems": 40}),
     );
     assert!(stems(&a) <= 40);
-    assert!(
-        a["warnings"][0]["message"].as_str().unwrap().contains("40"),
-        "{a}"
-    );
+    let warned = a["warnings"][0]["message"].as_str().unwrap();
+    assert!(warned.contains("40"), "{a}");
 }
 
 /// DNS rebinding and cross-site requests: a foreign or missing Host is
@@ -505,10 +500,10 @@ fn foreign_hosts_and_origins_are_refused() {
     ] {
         let a = get(addr, path);
         let passwd = String::from_utf8_lossy(&a.body).contains("root:");
+        let status = a.status;
         assert!(
-            a.status == 404 || (a.status == 200 && !passwd),
-            "{path}: {}",
-            a.status
+            status == 404 || (status == 200 && !passwd),
+            "{path}: {status}"
         );
     }
 }
@@ -521,10 +516,8 @@ fn oversize_malformed_and_idle_requests_never_stop_the_server() {
     let server = Server::start(&["--max-input", "2000"]);
     let addr = &server.addr;
     let big = json!({"source": "x".repeat(3000)}).to_string();
-    assert_eq!(
-        request(addr, "POST", "/api/render", &[], big.as_bytes()).status,
-        413
-    );
+    let a = request(addr, "POST", "/api/render", &[], big.as_bytes());
+    assert_eq!(a.status, 413);
     // Chunked, with no length declared.
     let mut chunked = format!(
         "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nTransfer-Encoding: chunked\r\n{}\r\n",
@@ -600,10 +593,8 @@ fn save_needs_the_token_and_writes_only_the_named_file() {
         body.as_bytes(),
     );
     assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
-    assert_eq!(
-        std::fs::read_to_string(&file).unwrap(),
-        "Changed (1, 2)\nRULE\nR1: F\n"
-    );
+    let saved = std::fs::read_to_string(&file).unwrap();
+    assert_eq!(saved, "Changed (1, 2)\nRULE\nR1: F\n");
     // Nothing but the file: no temporary left beside it.
     let names: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()
@@ -637,10 +628,8 @@ fn ctrl_c_stops_cleanly_and_a_file_that_cannot_be_made_is_an_error() {
     let (code, out, err) = outcome(&mut stlc_line("serve no/such/file.od --port 0"));
     assert_eq!(code, 1);
     assert!(out.is_empty());
-    assert!(
-        err.contains("no/such/file.od") && err.contains("does not exist"),
-        "{err}"
-    );
+    let named = err.contains("no/such/file.od");
+    assert!(named && err.contains("does not exist"), "{err}");
     // A new file whose name says no kind: nothing to start from.
     let dir = tempfile::tempdir().unwrap();
     let odd = dir.path().join("new.xyz");
@@ -670,12 +659,8 @@ fn a_new_file_is_created_and_a_save_over_another_version_is_refused() {
     let token = server.token.clone();
     let save = |body: Value| post(addr, "/api/save", &[("X-Stlc-Token", &token)], &body);
     let first = save(json!({"source": "one\n", "version": null}));
-    assert_eq!(
-        first.status,
-        200,
-        "{}",
-        String::from_utf8_lossy(&first.body)
-    );
+    let said = String::from_utf8_lossy(&first.body).into_owned();
+    assert_eq!(first.status, 200, "{said}");
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "one\n");
     let v1 = first.json()["version"].as_str().unwrap().to_string();
     assert_eq!(get(addr, "/api/file").json()["version"], v1.as_str());
@@ -752,11 +737,8 @@ fn the_edge_parses_queries_refuses_unknown_fields_and_doubled_headers() {
         body.as_bytes(),
     );
     assert_eq!(svg.status, 200);
-    assert!(
-        svg.head.contains("content-type: image/svg+xml"),
-        "{}",
-        svg.head
-    );
+    let head = &svg.head;
+    assert!(head.contains("content-type: image/svg+xml"), "{head}");
     let cli_svg = cli("render examples/fig9.od -f svg -o - --show-layout");
     assert!(svg.body == cli_svg, "the exported SVG is not the CLI's");
 
@@ -793,10 +775,8 @@ fn the_page_and_every_module_it_imports_are_served() {
     let page = get(&server.addr, "/");
     assert_eq!(page.status, 200);
     let html = String::from_utf8(page.body).unwrap();
-    assert!(
-        html.contains(r#"<script type="module" src="entry.js"></script>"#),
-        "{html}"
-    );
+    let entry = r#"<script type="module" src="entry.js"></script>"#;
+    assert!(html.contains(entry), "{html}");
     let css = get(&server.addr, "/style.css");
     assert_eq!(css.status, 200);
     assert!(css.head.contains("content-type: text/css"), "{}", css.head);
@@ -808,10 +788,10 @@ fn the_page_and_every_module_it_imports_are_served() {
         }
         let got = get(&server.addr, &path);
         assert_eq!(got.status, 200, "{path}");
+        let head = &got.head;
         assert!(
-            got.head.contains("content-type: text/javascript"),
-            "{path}: {}",
-            got.head
+            head.contains("content-type: text/javascript"),
+            "{path}: {head}"
         );
         let dir = &path[..path.rfind('/').unwrap()];
         for line in String::from_utf8(got.body).unwrap().lines() {
