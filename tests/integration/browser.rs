@@ -53,16 +53,11 @@ async fn acceptance(c: &Client) {
     // The paper's inline layout stays as it is; the new shape is a line
     // before ENDLAYOUT, spelt as the paper spells its shapes.
     let hole = "\n(clWhite)< Ellipse (100,60,160,110)>\nENDLAYOUT";
-    assert_eq!(
-        text,
-        example("2dtree.od").replace("\nENDLAYOUT", hole),
-        "{text}"
-    );
+    let want = example("2dtree.od").replace("\nENDLAYOUT", hole);
+    assert_eq!(text, want, "{text}");
     let after = holed["stems"].as_u64().unwrap();
-    assert!(
-        after < before,
-        "the hole takes stems away: {before} -> {after}"
-    );
+    let fewer = format!("the hole takes stems away: {before} -> {after}");
+    assert!(after < before, "{fewer}");
     // No stem ends inside the hole (an ellipse centred at (130, 85)).
     let g = numbers(&holed["growth"]);
     let inside = |x: f64, y: f64| ((x - 130.0) / 30.0).powi(2) + ((y - 85.0) / 25.0).powi(2) < 0.95;
@@ -139,10 +134,8 @@ async fn steps(c: &Client, file: &Path) {
     assert!(new.starts_with("(clGreen) Rectangle ("), "{new}");
     let nums = numbers_in(new.trim_start_matches("(clGreen) Rectangle "));
     let at = |i: usize, want: f64| (nums[i] - want).abs() <= 1.0;
-    assert!(
-        at(0, 20.0) && at(1, 20.0) && at(2, 160.0) && at(3, 140.0),
-        "{new}"
-    );
+    let corners = at(0, 20.0) && at(1, 20.0) && at(2, 160.0) && at(3, 140.0);
+    assert!(corners, "{new}");
     assert_eq!(drawn["ok"], true, "{drawn}");
     let grown = drawn["stems"].as_u64().unwrap();
     assert!(grown > small, "{small} -> {grown}");
@@ -250,10 +243,8 @@ async fn tools(c: &Client, start: &str) {
     assert_eq!(lines.len(), 3, "{lines:?}");
     assert_eq!(lines[2], "(clWhite) Ellipse (60, 40), 80, 60");
     let stems1 = holed["stems"].as_u64().unwrap();
-    assert!(
-        stems1 < stems0,
-        "a hole grows fewer stems: {stems0} -> {stems1}"
-    );
+    let fewer = format!("a hole grows fewer stems: {stems0} -> {stems1}");
+    assert!(stems1 < stems0, "{fewer}");
     shot(c, "8-hole").await;
 
     // Select it by its outline and move it 10 units right and down.
@@ -318,10 +309,8 @@ async fn tools(c: &Client, start: &str) {
     click(c, "#zoom-in").await;
     let zoomed = js(c, width).await.as_f64().unwrap();
     // (SVG keeps the box in single precision.)
-    assert!(
-        (zoomed - fitted / 1.25).abs() < 1e-3,
-        "{fitted} -> {zoomed}"
-    );
+    let by_a_step = (zoomed - fitted / 1.25).abs() < 1e-3;
+    assert!(by_a_step, "{fitted} -> {zoomed}");
     click(c, "#fit").await;
     assert!((js(c, width).await.as_f64().unwrap() - fitted).abs() < 1e-3);
 
@@ -372,11 +361,8 @@ async fn view_box(c: &Client) -> Vec<f64> {
 
 /// The box Fit shows, as a view box.
 async fn fit_box(c: &Client) -> Vec<f64> {
-    let v = js(
-        c,
-        "const f = window.stlc.state.fitView; return [f[0], f[1], f[2] - f[0], f[3] - f[1]];",
-    )
-    .await;
+    let fit = "const f = window.stlc.state.fitView; return [f[0], f[1], f[2] - f[0], f[3] - f[1]];";
+    let v = js(c, fit).await;
     numbers(&v)
 }
 
@@ -444,10 +430,8 @@ async fn renderer(c: &Client, served: &Served<'_>) {
     assert_eq!(listed["line"], "3", "{listed}");
     assert_eq!(listed["mark"], "3", "{listed}");
     let expected = "expected `RULE`, a root `(x, y)` or a stem parameter";
-    assert!(
-        listed["text"].as_str().unwrap().contains(expected),
-        "{listed}"
-    );
+    let said = listed["text"].as_str().unwrap();
+    assert!(said.contains(expected), "{listed}");
     // A file just opened that fails shows no picture of the file before
     // it (issue 22, problem 4).
     assert_eq!(listed["picture"], false, "{listed}");
@@ -677,11 +661,9 @@ fn js_index(text: &str, byte: usize) -> u64 {
 /// editor's selection, `[selectionStart, selectionEnd]`.
 async fn click_error(c: &Client) -> Value {
     click(c, "[data-testid=diagnostics] li.error").await;
-    js(
-        c,
-        "const s = document.getElementById('source'); return [s.selectionStart, s.selectionEnd];",
-    )
-    .await
+    let selection =
+        "const s = document.getElementById('source'); return [s.selectionStart, s.selectionEnd];";
+    js(c, selection).await
 }
 
 /// Diagnostics count columns in characters (code points), JavaScript in

@@ -15,7 +15,7 @@ use super::browser_steps::{reload, settled_ok, text_of};
 use super::chromium::{
     cli, click, file_until, js, on_served_file, press_along, settled_until, shot, wheel,
 };
-use super::serve::{Server, example, render, request};
+use super::serve::{Server, example, post, render, request};
 use crate::support::{manifest_path, numbers, stlc_stdout};
 
 /// A compact body decoded as the page decodes it (engine/http.js): the
@@ -70,20 +70,12 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
         body.to_string().as_bytes(),
     );
     let head = &compact.head;
-    assert!(
-        head.contains("content-type: application/x-stlc-render"),
-        "{head}"
-    );
+    let compact_type = "content-type: application/x-stlc-render";
+    assert!(head.contains(compact_type), "{head}");
     assert_eq!(unpack(&compact.body), a);
     // The export draws the view asked for: the CLI's bytes.
     let view = json!({"source": text, "kind": "lsys", "view": [-60, 35]});
-    let svg = request(
-        &server.addr,
-        "POST",
-        "/api/export?format=svg",
-        &[],
-        view.to_string().as_bytes(),
-    );
+    let svg = post(&server.addr, "/api/export?format=svg", &[], &view);
     let want = cli(&[
         "render",
         "examples/hilbert3d.lsys",
@@ -119,10 +111,8 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
     );
     assert_eq!(space["axis"], json!([10.0, 5.0]));
     // A 2D answer has no `space`.
-    let flat = render(
-        &server.addr,
-        &json!({"source": "axiom F+F\nangle 90\ngenerations 0\n", "kind": "lsys"}),
-    );
+    let flat = json!({"source": "axiom F+F\nangle 90\ngenerations 0\n", "kind": "lsys"});
+    let flat = render(&server.addr, &flat);
     assert_eq!(flat["ok"], true, "{flat}");
     assert!(flat.get("space").is_none(), "{flat}");
     assert_eq!(flat["tree_in_svg"], true);
@@ -195,12 +185,8 @@ async fn opens_in_the_3d_view(c: &Client) -> Value {
         if i > 0 {
             assert_eq!(&t[0..3], &s[(i - 1) * 8 + 3..(i - 1) * 8 + 6]);
         }
-        points.insert(
-            t[3..6]
-                .iter()
-                .map(|x| (x / unit).round() as i64)
-                .collect::<Vec<_>>(),
-        );
+        let point = t[3..6].iter().map(|x| (x / unit).round() as i64);
+        points.insert(point.collect::<Vec<_>>());
     }
     points.insert(s[0..3].iter().map(|x| (x / unit).round() as i64).collect());
     assert_eq!(points.len(), 64, "64 distinct lattice points");
@@ -215,12 +201,8 @@ async fn opens_in_the_3d_view(c: &Client) -> Value {
 
 async fn orbit_zoom_and_fit(c: &Client, first: &Value) {
     let (x, y) = centre(c).await;
-    press_along(
-        c,
-        &[(x, y), (x + 60.0, y + 25.0), (x + 120.0, y + 50.0)],
-        100,
-    )
-    .await;
+    let path = [(x, y), (x + 60.0, y + 25.0), (x + 120.0, y + 50.0)];
+    press_along(c, &path, 100).await;
     // 0.4 degrees a pixel: 120 px across turns AZ by -48, 50 px down
     // raises EL by 20.
     assert_eq!(angles(c).await, [-18.0, 40.0]);
@@ -287,10 +269,8 @@ async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
     let saved = file_until(file, 100, |t| t.contains("generations 1")).await;
     assert!(saved.contains("generations 1"));
     let after = reload(c).await;
-    assert!(
-        after["text"].as_str().unwrap().contains("generations 1"),
-        "{after}"
-    );
+    let text = after["text"].as_str().unwrap();
+    assert!(text.contains("generations 1"), "{after}");
     assert_eq!(after["stems"], 7);
     assert!(pixels(c).await["count"].as_f64().unwrap() > 500.0);
 }
@@ -547,14 +527,10 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
         // dark green at all, and without leaves no more than the stems'.
         let n = |v: &Value, i: usize| v[i].as_u64().unwrap();
         let (green, green_leafy) = (n(&bare, 0), n(&leafy, 0));
-        assert!(
-            green > 5_000,
-            "the ramp's deep orders are dark green: {bare}"
-        );
-        assert!(
-            green_leafy > green * 3 / 2,
-            "the leaves add green: {bare} {leafy}"
-        );
+        let deep = "the ramp's deep orders are dark green";
+        assert!(green > 5_000, "{deep}: {bare}");
+        let more = green_leafy > green * 3 / 2;
+        assert!(more, "the leaves add green: {bare} {leafy}");
         let brown = n(&bare, 1) > 500 && n(&leafy, 1) > 500;
         assert!(brown, "the trunk's bark is brown: {leafy}");
     });

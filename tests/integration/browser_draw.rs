@@ -91,10 +91,8 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
         format!("({colour}) Polygon {}", pts.join(", "))
     };
     let pentagon_line = line(&pentagon, "clGreen");
-    assert_eq!(
-        green,
-        format!("{EMPTY}LAYOUT\n{pentagon_line}\nENDLAYOUT\n")
-    );
+    let want = format!("{EMPTY}LAYOUT\n{pentagon_line}\nENDLAYOUT\n");
+    assert_eq!(green, want);
     let grown = settled_ok(c).await;
     assert!(grown["stems"].as_u64().unwrap() > 1, "{grown}");
     // The pentagon drawn is selected; picking white changes no shape.
@@ -117,11 +115,8 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     let want = format!("{EMPTY}LAYOUT\n{pentagon_line}\n{diamond_line}\nENDLAYOUT\n");
     assert_eq!(both_text, want);
     assert!(both["stems"].as_u64().unwrap() > 1, "{both}");
-    let colours = js(
-        c,
-        "return window.stlc.state.answer.layout.shapes.map((s) => s.name)",
-    )
-    .await;
+    let names = "return window.stlc.state.answer.layout.shapes.map((s) => s.name)";
+    let colours = js(c, names).await;
     assert_eq!(colours, json!(["clGreen", "clWhite"]));
     shot(c, "draw-2-green-pentagon-white-diamond").await;
 
@@ -134,10 +129,8 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     assert_eq!(text(c).await, both_text);
     click(c, "#recolour").await;
     let red = text(c).await;
-    assert_eq!(
-        red,
-        both_text.replace("(clWhite) Polygon", "(clRed) Polygon")
-    );
+    let want = both_text.replace("(clWhite) Polygon", "(clRed) Polygon");
+    assert_eq!(red, want);
 
     // Shift while clicking a polygon's points: edges at 0 and 45 degrees.
     click(c, "[data-tool=Polygon]").await;
@@ -177,29 +170,20 @@ async fn edits_keep_the_rest_of_the_text(c: &Client) {
     // change (Delphi's corners keep their order); every other byte stays.
     chord(c, &[], RIGHT).await;
     let once = text(c).await;
-    assert_eq!(
-        once,
-        ONE_LINE.replace("(55,30,40,15,4,4)", "(56,30,41,15,4,4)")
-    );
+    let hole = "(55,30,40,15,4,4)";
+    assert_eq!(once, ONE_LINE.replace(hole, "(56,30,41,15,4,4)"));
     chord(c, &[SHIFT], DOWN).await;
     let nudged = text(c).await;
-    assert_eq!(
-        nudged,
-        ONE_LINE.replace("(55,30,40,15,4,4)", "(56,40,41,25,4,4)")
-    );
+    assert_eq!(nudged, ONE_LINE.replace(hole, "(56,40,41,25,4,4)"));
 
     // The pond dragged 10 right and 5 down with the mouse: its line keeps
     // its spelling and its comment.
     drag_at(c, (135.0, 160.0), (145.0, 165.0)).await;
     let moved = text(c).await;
-    let pond = "(clgreen) Ellipse (130, 155), 30, 20  # a pond, Table 1's spelling, its colour in lower case\n";
-    assert_eq!(
-        moved,
-        nudged.replace(
-            "(clgreen) Ellipse (120, 150), 30, 20  # a pond, Table 1's spelling, its colour in lower case\n",
-            pond
-        )
-    );
+    let comment = "  # a pond, Table 1's spelling, its colour in lower case\n";
+    let pond = format!("(clgreen) Ellipse (130, 155), 30, 20{comment}");
+    let was = format!("(clgreen) Ellipse (120, 150), 30, 20{comment}");
+    assert_eq!(moved, nudged.replace(&was, &pond));
     assert_eq!(selected(c).await, 3);
     shot(c, "draw-4-one-line-moved").await;
 
@@ -207,7 +191,7 @@ async fn edits_keep_the_rest_of_the_text(c: &Client) {
     chord(c, &[CONTROL], 'd').await;
     let duplicated = text(c).await;
     let copy = format!("{pond}(clgreen) Ellipse (140, 165), 30, 20\n");
-    assert_eq!(duplicated, moved.replace(pond, &copy));
+    assert_eq!(duplicated, moved.replace(&pond, &copy));
     assert_eq!(selected(c).await, 4);
     let shapes = js(c, "return window.stlc.state.answer.layout.shapes.length").await;
     assert_eq!(shapes, 5);

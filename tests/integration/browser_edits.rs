@@ -69,10 +69,8 @@ async fn title(c: &Client) -> String {
 async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
     // Problem 1: add a line, Save, reload: the page shows the file as saved.
     type_line(c, "\n# saved line").await;
-    assert!(
-        title(c).await.starts_with("• "),
-        "unsaved edits are in the title"
-    );
+    let unsaved = title(c).await.starts_with("• ");
+    assert!(unsaved, "unsaved edits are in the title");
     assert_eq!(status(c).await, "Unsaved changes");
     save(c, "saved").await;
     assert!(!title(c).await.starts_with("• "));
@@ -86,10 +84,8 @@ async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
     tokio::time::sleep(Duration::from_millis(600)).await;
     reload(c).await;
     let t = editor_text(c).await;
-    assert!(
-        t.ends_with("# saved line"),
-        "a draft is never applied silently"
-    );
+    let silently = "a draft is never applied silently";
+    assert!(t.ends_with("# saved line"), "{silently}");
     until_shown(c, "notice", "the draft is offered").await;
     shot(c, "30-draft-offered").await;
     click(c, "[data-testid=restore-draft]").await;
@@ -116,10 +112,8 @@ async fn disk_changes_are_loaded(c: &Client, file: &Path) {
     theirs.push_str("\n# theirs again");
     std::fs::write(file, &theirs).unwrap();
     until_shown(c, "notice", "the change is asked about").await;
-    assert!(
-        editor_text(c).await.ends_with("# mine"),
-        "unsaved edits stay"
-    );
+    let mine = editor_text(c).await;
+    assert!(mine.ends_with("# mine"), "unsaved edits stay");
     shot(c, "31-disk-changed").await;
     click(c, "[data-testid=keep-mine]").await;
     save(c, "mine saved").await;
@@ -207,10 +201,8 @@ async fn long_work_is_cancelled(c: &Client, server: &super::serve::Server) {
     let t1 = server.cpu_ticks();
     tokio::time::sleep(Duration::from_millis(1000)).await;
     let t2 = server.cpu_ticks();
-    assert!(
-        t2 - t1 <= 10,
-        "the cancelled work went on: {t1} -> {t2} ticks"
-    );
+    let went_on = format!("the cancelled work went on: {t1} -> {t2} ticks");
+    assert!(t2 - t1 <= 10, "{went_on}");
     // Cancel: the work stops and the last picture stays.
     set_depth(c, "14").await;
     until_shown(c, "busy", "busy again").await;
@@ -331,10 +323,8 @@ async fn settings_are_keys_in_the_text(c: &Client) {
     let fig9 = before["text"].as_str().unwrap().to_string();
     click(c, "#growth option[value=dfs]").await;
     let dfs = settled(c).await;
-    assert_eq!(
-        dfs["text"].as_str().unwrap(),
-        fig9.replace("A=30 C=2\n", "A=30 C=2 O=dfs\n")
-    );
+    let want = fig9.replace("A=30 C=2\n", "A=30 C=2 O=dfs\n");
+    assert_eq!(dfs["text"].as_str().unwrap(), want);
     assert_ne!(dfs["growth"], before["growth"], "O=dfs grows another tree");
     // Typing the key back moves the control.
     let bfs = editor_text(c).await.replace("O=dfs", "O=bfs");
@@ -344,17 +334,11 @@ async fn settings_are_keys_in_the_text(c: &Client) {
     assert_eq!(value_of(c, "#growth").await, "bfs");
     // The seed control writes V=, and emptying it removes the key.
     type_into(c, "seed", "7").await;
-    let with_seed = settled(c).await;
-    assert!(
-        with_seed["text"].as_str().unwrap().contains("O=bfs V=7\n"),
-        "{with_seed}"
-    );
+    let with_seed = settled(c).await["text"].as_str().unwrap().to_string();
+    assert!(with_seed.contains("O=bfs V=7\n"), "{with_seed}");
     set_value(c, "#seed", "").await;
-    let without = settled(c).await;
-    assert!(
-        !without["text"].as_str().unwrap().contains("V="),
-        "{without}"
-    );
+    let without = settled(c).await["text"].as_str().unwrap().to_string();
+    assert!(!without.contains("V="), "{without}");
 }
 
 /// Teaching (problem 11): an .lsys's word, generation by generation, as
@@ -407,11 +391,8 @@ async fn main_thread_stalls(c: &Client) {
     new_from(c, "grove.od").await;
     settled(c).await;
     let unit = js_unit(c).await;
-    js(
-        c,
-        "window.__longest = 0; new PerformanceObserver((l) => { for (const e of l.getEntries()) window.__longest = Math.max(window.__longest, e.duration); }).observe({type: 'longtask', buffered: false}); return 0;",
-    )
-    .await;
+    let observe = "window.__longest = 0; new PerformanceObserver((l) => { for (const e of l.getEntries()) window.__longest = Math.max(window.__longest, e.duration); }).observe({type: 'longtask', buffered: false}); return 0;";
+    js(c, observe).await;
     for k in 0..5 {
         let text = editor_text(c).await;
         set_value(c, "#source", &format!("{text}\n# {k}")).await;
@@ -419,27 +400,19 @@ async fn main_thread_stalls(c: &Client) {
     }
     let longest = js(c, "return window.__longest").await.as_f64().unwrap();
     let unit = unit.max(js_unit(c).await);
+    let units = longest / unit;
     eprintln!(
-        "longest main-thread task while editing grove.od: {longest:.0} ms ({:.1} units of {unit:.0} ms)",
-        longest / unit
+        "longest main-thread task while editing grove.od: {longest:.0} ms ({units:.1} units of {unit:.0} ms)"
     );
-    assert!(
-        longest < 8.0 * unit,
-        "a {longest} ms stall, {:.1} times the {unit:.0} ms unit",
-        longest / unit
-    );
+    let stall = format!("a {longest} ms stall, {units:.1} times the {unit:.0} ms unit");
+    assert!(longest < 8.0 * unit, "{stall}");
 }
 
 /// The median of three timings, in ms, of ten million square roots on the
 /// page's main thread: the unit [`main_thread_stalls`] measures in.
 async fn js_unit(c: &Client) -> f64 {
-    js(
-        c,
-        "const t = []; for (let r = 0; r < 3; r++) { const t0 = performance.now(); let s = 0; for (let i = 0; i < 1e7; i++) s += Math.sqrt(i); window.__sink = s; t.push(performance.now() - t0); } t.sort((a, b) => a - b); return t[1];",
-    )
-    .await
-    .as_f64()
-    .unwrap()
+    let roots = "const t = []; for (let r = 0; r < 3; r++) { const t0 = performance.now(); let s = 0; for (let i = 0; i < 1e7; i++) s += Math.sqrt(i); window.__sink = s; t.push(performance.now() - t0); } t.sort((a, b) => a - b); return t[1];";
+    js(c, roots).await.as_f64().unwrap()
 }
 
 /// Problem 8 in the page: a rule that never fits is a warning at its line
@@ -449,16 +422,12 @@ async fn a_rule_that_never_fits_says_why(c: &Client) {
     set_value(c, "#source", od).await;
     settled_ok(c).await;
     let warning = text_of(c, "[data-testid=diagnostics] li").await;
-    assert!(
-        warning.contains("never grew") && warning.contains("3.677") && warning.contains("4.2"),
-        "{warning}"
-    );
+    let distances = warning.contains("3.677") && warning.contains("4.2");
+    assert!(warning.contains("never grew") && distances, "{warning}");
     assert!(warning.contains("raise `A`"), "{warning}");
     // The Numbers panel follows the text typed.
-    assert_eq!(
-        text_of(c, "#scrub-list input[data-key=A] + output").await,
-        "25"
-    );
+    let shown = text_of(c, "#scrub-list input[data-key=A] + output").await;
+    assert_eq!(shown, "25");
     shot(c, "40-never-fitted").await;
 }
 

@@ -209,11 +209,8 @@ fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
         let error = element_error(c, "slow").await;
         let stopped = "stopped after 0.3 s, the time budget of this element";
         assert!(error.starts_with(stopped), "{error}");
-        let v = js(
-            c,
-            "return [window.gap, window.ticks, window.last - window.first, document.getElementById('long').svg.length]",
-        )
-        .await;
+        let timer = "return [window.gap, window.ticks, window.last - window.first, document.getElementById('long').svg.length]";
+        let v = js(c, timer).await;
         let (gap, ticks, drawing) = (
             v[0].as_f64().unwrap(),
             v[1].as_f64().unwrap(),
@@ -228,14 +225,10 @@ fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
         // slows both alike does not fail it.
         let faster = "the slow tree drew faster than its 0.3 s twin's budget";
         assert!(drawing > 300.0, "{faster}: {v}");
-        assert!(
-            ticks >= 5.0,
-            "the page's timer stalled while the tree drew: {v}"
-        );
-        assert!(
-            gap < drawing / 2.0,
-            "the page froze for most of the draw: {v}"
-        );
+        let stalled = "the page's timer stalled while the tree drew";
+        assert!(ticks >= 5.0, "{stalled}: {v}");
+        let froze = "the page froze for most of the draw";
+        assert!(gap < drawing / 2.0, "{froze}: {v}");
         shot(c, "page-stl-tree-budget").await;
         std::fs::remove_file(site().unwrap().join(name)).unwrap();
     });
@@ -260,11 +253,9 @@ fn a_reload_returns_to_the_document_and_its_draft_in_chromium() {
         assert_eq!(v["text"], json!(original), "{not_2dtree}");
         let name = text_of(c, "#file-name").await;
         assert!(name.starts_with("successors.od"), "{name}");
-        let notice = js(
-            c,
-            "const n = document.getElementById('notice'); return n.hidden ? null : n.textContent",
-        )
-        .await;
+        let shown =
+            "const n = document.getElementById('notice'); return n.hidden ? null : n.textContent";
+        let notice = js(c, shown).await;
         let offered = notice.as_str().is_some_and(|n| n.contains("Unsaved edits"));
         assert!(offered, "{notice}");
         shot(c, "page-reload-draft").await;
@@ -341,11 +332,8 @@ fn the_template_grows_into_what_one_draws_and_says_why_it_stops_in_chromium() {
 fn stem_counts_have_their_digits_grouped_in_chromium() {
     on_site(async |c, _, _| {
         open_example(c, "abop-1.24a.lsys").await;
-        let v = rewritten(
-            c,
-            "generations 12\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\n",
-        )
-        .await;
+        let deep = "generations 12\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
+        let v = rewritten(c, deep).await;
         assert_eq!(v["ok"], json!(true), "{v}");
         let status = text_of(c, "#status").await;
         assert!(status.starts_with("244,140,625 stems · "), "{status}");

@@ -9,7 +9,7 @@
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser_steps::{answer_svg, set_value, settled_failed, texts_of};
+use super::browser_steps::{set_value, settled_failed, shows_svg, texts_of};
 use super::browser_web::{
     engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, site,
 };
@@ -59,11 +59,7 @@ fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
         assert_eq!(after["ok"], true, "{after}");
         assert_eq!(after["text"], json!(text));
         let cli = cli_svg_of("edited.lsys", &text);
-        same_bytes(
-            answer_svg(c).await.as_bytes(),
-            &cli,
-            "the willow with spread 45",
-        );
+        shows_svg(c, &cli, "the willow with spread 45").await;
         shot(c, "param-01-define-sliders").await;
     });
 }
@@ -101,11 +97,8 @@ fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in
             let path = format!("examples/{name}");
             let request = json!({"source": example(&name), "kind": "lsys", "show_layout": true});
             let svg = engine_export(&c, &request, "svg").await.unwrap();
-            same_bytes(
-                &svg,
-                &cli(&["render", &path, "--show-layout", "-f", "svg"]),
-                &name,
-            );
+            let want = cli(&["render", &path, "--show-layout", "-f", "svg"]);
+            same_bytes(&svg, &want, &name);
             let words = c
                 .execute_async(
                     "const [request, done] = arguments;
@@ -125,10 +118,8 @@ fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in
         until(&c, &format!("return {items}"), "the words").await;
         let shown = texts_of(&c, "#word-list li").await;
         assert_eq!(shown[0], "A(10,0) (1)");
-        assert_eq!(
-            shown[1],
-            "F(10)[+(30)A(6.2,1)][-(30)A(5.58,1)]A(8.2,0) (10)"
-        );
+        let first = "F(10)[+(30)A(6.2,1)][-(30)A(5.58,1)]A(8.2,0) (10)";
+        assert_eq!(shown[1], first);
         shot(&c, "param-03-web-words").await;
     });
 }

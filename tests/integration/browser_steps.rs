@@ -55,6 +55,12 @@ pub(super) async fn answer_svg(c: &Client) -> String {
     v.as_str().unwrap().to_string()
 }
 
+/// Asserts the page shows `want`'s SVG (the CLI's bytes), saying where
+/// they part otherwise; `what` names the picture.
+pub(super) async fn shows_svg(c: &Client, want: &[u8], what: &str) {
+    super::chromium::same_bytes(answer_svg(c).await.as_bytes(), want, what);
+}
+
 /// The editor's text.
 pub(super) async fn editor_text(c: &Client) -> String {
     value_of(c, "#source").await
@@ -123,12 +129,8 @@ pub(super) async fn settled_failed(c: &Client) -> Value {
 /// The editor's text replaced by `text` through the editor's own
 /// `rewrite` (one step of its history).
 pub(super) async fn rewrite(c: &Client, text: &str) {
-    js_with(
-        c,
-        "window.stlc.editor.rewrite(arguments[0])",
-        &[json!(text)],
-    )
-    .await;
+    let script = "window.stlc.editor.rewrite(arguments[0])";
+    js_with(c, script, &[json!(text)]).await;
 }
 
 /// [`rewrite`], then the page's answer once its text is `text` (looked at
@@ -157,12 +159,8 @@ pub(super) async fn listed_error(c: &Client) -> Value {
 /// Waits (at most 10 s) until the element with the id `id` is shown (not
 /// hidden); the panic names `what`.
 pub(super) async fn until_shown(c: &Client, id: &str, what: &str) {
-    until(
-        c,
-        &format!("return !document.getElementById('{id}').hidden"),
-        what,
-    )
-    .await;
+    let shown = format!("return !document.getElementById('{id}').hidden");
+    until(c, &shown, what).await;
 }
 
 /// Reloads, accepting the "leave with unsaved edits?" question if one is

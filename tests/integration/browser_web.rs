@@ -15,10 +15,10 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser_steps::{answer_svg, rewritten, settled_ok, type_into};
+use super::browser_steps::{answer_svg, rewritten, settled_ok, shows_svg, type_into};
 use super::chromium::{
-    Browser, cli, cli_svg_of, click, downloaded, drag, js, js_until, open, same_bytes, settled,
-    settled_until, shot,
+    Browser, cli, cli_svg_of, click, downloaded, drag, free_port, js, js_until, open, same_bytes,
+    settled, settled_until, shot, wait_for_port,
 };
 use super::serve::example;
 use crate::support::manifest_path;
@@ -81,10 +81,7 @@ pub(super) struct Static {
 impl Static {
     /// `None` (after saying why) where python3 is missing.
     pub(super) fn start(dir: &Path) -> Option<Static> {
-        let port = std::net::TcpListener::bind("127.0.0.1:0")
-            .and_then(|l| l.local_addr())
-            .unwrap()
-            .port();
+        let port = free_port();
         let Ok(child) = Command::new("python3")
             .args(["-m", "http.server", "--bind", "127.0.0.1", "--directory"])
             .arg(dir)
@@ -98,12 +95,7 @@ impl Static {
             eprintln!("SKIPPED the web test: python3 is not installed (it serves the site)");
             return None;
         };
-        for _ in 0..200 {
-            if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
-                break;
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
+        wait_for_port(port);
         Some(Static {
             child,
             url: format!("http://127.0.0.1:{port}/"),
@@ -189,11 +181,7 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
         let paper = example("2dtree.od");
         assert_eq!(first["text"], paper);
         let cli_svg = cli(&["render", "examples/2dtree.od", "--show-layout", "-f", "svg"]);
-        same_bytes(
-            answer_svg(c).await.as_bytes(),
-            &cli_svg,
-            "the first picture",
-        );
+        shows_svg(c, &cli_svg, "the first picture").await;
         shot(c, "web-01-2dtree").await;
 
         // A white rectangle drawn with the mouse: the text gets its line,
@@ -208,37 +196,26 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
         let hole = "\n(clWhite)< Rectangle (100,60,160,110)>\nENDLAYOUT";
         assert_eq!(text, paper.replace("\nENDLAYOUT", hole));
         let after = holed["stems"].as_u64().unwrap();
-        assert!(
-            after < before,
-            "the hole takes stems away: {before} -> {after}"
-        );
+        let fewer = format!("the hole takes stems away: {before} -> {after}");
+        assert!(after < before, "{fewer}");
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("2dtree.od");
         std::fs::write(&file, &text).unwrap();
         let path = file.to_str().unwrap();
         let bed = js(c, "return window.stlc.state.answer.bed").await;
         let cli_bed = cli(&["compile", path]);
-        same_bytes(
-            bed.as_str().unwrap().as_bytes(),
-            &cli_bed,
-            "the regrown BED",
-        );
+        let bed = bed.as_str().unwrap().as_bytes();
+        same_bytes(bed, &cli_bed, "the regrown BED");
         shot(c, "web-02-rectangle").await;
 
         // The SVG and BED buttons download the CLI's bytes.
         click(c, "#export-svg").await;
         let cli_svg = cli(&["render", path, "--show-layout", "-f", "svg"]);
-        same_bytes(
-            &downloaded(&downloads, "2dtree.svg").await,
-            &cli_svg,
-            "the SVG download",
-        );
+        let svg = downloaded(&downloads, "2dtree.svg").await;
+        same_bytes(&svg, &cli_svg, "the SVG download");
         click(c, "#export-bed").await;
-        same_bytes(
-            &downloaded(&downloads, "2dtree.bed").await,
-            &cli_bed,
-            "the BED download",
-        );
+        let bed = downloaded(&downloads, "2dtree.bed").await;
+        same_bytes(&bed, &cli_bed, "the BED download");
 
         // Unsaved work survives a reload: kept in the browser's storage,
         // offered back (never applied by itself), restored on request.
@@ -266,11 +243,7 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
             "-f",
             "svg",
         ]);
-        same_bytes(
-            answer_svg(c).await.as_bytes(),
-            &cli_svg,
-            "the opened file's picture",
-        );
+        shows_svg(c, &cli_svg, "the opened file's picture").await;
         // Words, generation by generation, from the module: the Koch
         // snowflake's axiom `F--F--F` (7 symbols) and first word: each F
         // becomes `F+F--F+F`, 3 x 8 + 4 = 28 symbols.
@@ -282,11 +255,8 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
         })
         .await;
         assert_eq!(words[0], json!("F--F--F (7)"), "{words}");
-        assert_eq!(
-            words[1],
-            json!("F+F--F+F--F+F--F+F--F+F--F+F (28)"),
-            "{words}"
-        );
+        let first = json!("F+F--F+F--F+F--F+F--F+F--F+F (28)");
+        assert_eq!(words[1], first, "{words}");
         shot(c, "web-03-words").await;
 
         every_example(c).await;
@@ -428,11 +398,7 @@ pub fn opens_in_a_fresh_profile(link: &str, text: &str, svg: &[u8], shot_name: &
         let c = fresh.connect().await;
         c.goto(link).await.unwrap();
         assert_eq!(settled(&c).await["text"], json!(text));
-        same_bytes(
-            answer_svg(&c).await.as_bytes(),
-            svg,
-            "the SVG from the link",
-        );
+        shows_svg(&c, svg, "the SVG from the link").await;
         shot(&c, shot_name).await;
         let _ = c.close().await;
     });
@@ -463,11 +429,8 @@ fn a_share_link_restores_the_tree_in_a_fresh_profile_in_chromium() {
         return;
     };
     // The CLI draws the same text alike.
-    same_bytes(
-        svg.as_bytes(),
-        &cli_svg_of("grove.od", &text),
-        "the shared grove",
-    );
+    let cli = cli_svg_of("grove.od", &text);
+    same_bytes(svg.as_bytes(), &cli, "the shared grove");
     opens_in_a_fresh_profile(&link, &text, svg.as_bytes(), "web-03-shared");
 }
 
@@ -488,18 +451,13 @@ async fn link_lengths(c: &Client) {
             )
             .await
             .unwrap();
-        rows.push(format!(
-            "| `{name}` | {} | {} |",
-            text.len(),
-            v.as_u64().unwrap()
-        ));
+        let (bytes, link) = (text.len(), v.as_u64().unwrap());
+        rows.push(format!("| `{name}` | {bytes} | {link} |"));
     }
     let missing: Vec<&String> = rows.iter().filter(|r| !doc.contains(r.as_str())).collect();
-    assert!(
-        missing.is_empty(),
-        "docs/web.md lacks the rows {missing:#?}; the whole table:\n{}",
-        rows.join("\n")
-    );
+    let table = rows.join("\n");
+    let lacks = format!("docs/web.md lacks the rows {missing:#?}; the whole table:\n{table}");
+    assert!(missing.is_empty(), "{lacks}");
 }
 
 /// `<stl-tree>` draws the CLI's SVG for an OD (its text inline, with
@@ -582,11 +540,8 @@ async fn edit_times(c: &Client, runs: usize) -> Vec<f64> {
     let mut times = Vec::new();
     for i in 0..runs {
         rewritten(c, &format!("{base}# edit {i}\n")).await;
-        let t = js(
-            c,
-            "const t = window.stlc.state.timings; return t[t.length - 1]",
-        )
-        .await;
+        let last = "const t = window.stlc.state.timings; return t[t.length - 1]";
+        let t = js(c, last).await;
         times.push(t.as_f64().unwrap());
     }
     times

@@ -36,14 +36,27 @@ pub(super) struct Driver {
     port: u16,
 }
 
+/// A port free on loopback now.
+pub(super) fn free_port() -> u16 {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    listener.local_addr().unwrap().port()
+}
+
+/// Waits (at most 10 s) until something listens on loopback `port`.
+pub(super) fn wait_for_port(port: u16) {
+    for _ in 0..200 {
+        if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
 impl Driver {
     pub(super) fn start(driver: &Path, tmp: &Path) -> Driver {
         // A free port, chosen here: chromedriver's own messages are not
         // parsed (they go nowhere, so it never blocks on a full pipe).
-        let port = std::net::TcpListener::bind("127.0.0.1:0")
-            .and_then(|l| l.local_addr())
-            .unwrap()
-            .port();
+        let port = free_port();
         let child = Command::new(driver)
             .arg(format!("--port={port}"))
             .env("TMPDIR", tmp)
@@ -53,12 +66,7 @@ impl Driver {
             .process_group(0)
             .spawn()
             .expect("start chromedriver");
-        for _ in 0..200 {
-            if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
-                break;
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
+        wait_for_port(port);
         Driver { child, port }
     }
 }
@@ -128,11 +136,8 @@ pub(super) async fn settled_until(
 pub(super) async fn answered(c: &Client, want: &str, what: &str) -> Value {
     let good = |v: &Value| v["text"] == json!(want) && v["ok"] == json!(true);
     let v = settled_until(c, 200, 50, good).await;
-    assert!(
-        good(&v),
-        "the page never showed the text {what}: {}",
-        v["text"]
-    );
+    let text = &v["text"];
+    assert!(good(&v), "the page never showed the text {what}: {text}");
     v
 }
 
@@ -445,13 +450,8 @@ pub(super) async fn open(c: &Client, file: &Path) {
         .unwrap();
     let text = std::fs::read_to_string(file).unwrap();
     for _ in 0..200 {
-        let read = c
-            .execute(
-                "return document.getElementById('source').value === arguments[0]",
-                vec![json!(text)],
-            )
-            .await
-            .unwrap();
+        let script = "return document.getElementById('source').value === arguments[0]";
+        let read = c.execute(script, vec![json!(text)]).await.unwrap();
         if read == json!(true) {
             return;
         }
@@ -477,53 +477,51 @@ pub(super) fn same_bytes(got: &[u8], want: &[u8], what: &str) {
     }
 }
 
-/// Opens `stlc serve`'s page (no file) in a fresh Chromium, waits for its
-/// first answer and runs `f` on it; returns at once where Chromium is
-/// missing (after [`Browser::start`] says so).
-pub(super) fn on_served_page(f: impl AsyncFnOnce(&Client, &super::serve::Server)) {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let server = super::serve::Server::start(&[]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
-        f(&c, &server).await;
-        let _ = c.close().await;
-    });
-}
-
-/// What a test of `stlc serve`'s page on a file has to hand.
+/// What a test of `stlc serve`'s page has to hand.
 pub(super) struct Served<'a> {
     pub server: &'a super::serve::Server,
-    /// The file served, in the temporary directory `dir`.
+    /// The file served, in the temporary directory `dir` (`dir` itself
+    /// where no file is served).
     pub file: &'a Path,
     pub dir: &'a Path,
     /// Where Chromium's downloads go.
     pub downloads: PathBuf,
 }
 
-/// Writes `text` to `name` in a temporary directory, serves it with `stlc serve`, opens the page in a
-/// fresh Chromium, waits for its first answer and runs `f`; returns at
-/// once where Chromium is missing (after [`Browser::start`] says so).
+/// Opens `stlc serve`'s page (no file) in a fresh Chromium, waits for its
+/// first answer and runs `f` on it; returns at once where Chromium is
+/// missing (after [`Browser::start`] says so).
+pub(super) fn on_served_page(f: impl AsyncFnOnce(&Client, &Served)) {
+    on_served(None, f);
+}
+
+/// [`on_served_page`] for a file `name` holding `text`, written in the
+/// temporary directory and served.
 pub(super) fn on_served_file(name: &str, text: &str, f: impl AsyncFnOnce(&Client, &Served)) {
+    on_served(Some((name, text)), f);
+}
+
+fn on_served(file: Option<(&str, &str)>, f: impl AsyncFnOnce(&Client, &Served)) {
     let tmp = tempfile::tempdir().unwrap();
     let Some(browser) = Browser::start(tmp.path()) else {
         return;
     };
-    let file = tmp.path().join(name);
-    std::fs::write(&file, text).unwrap();
-    let server = super::serve::Server::start(&[file.to_str().unwrap()]);
+    let file = file.map(|(name, text)| {
+        let path = tmp.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    });
+    let args: Vec<&str> = file.iter().map(|p| p.to_str().unwrap()).collect();
+    let server = super::serve::Server::start(&args);
     let downloads = browser.tmp.join("downloads");
     browser.rt.block_on(async {
         let c = browser.connect().await;
         c.goto(&server.url).await.unwrap();
         settled(&c).await;
+        let file = file.as_deref().unwrap_or(tmp.path());
         let served = Served {
             server: &server,
-            file: &file,
+            file,
             dir: tmp.path(),
             downloads,
         };

@@ -95,16 +95,13 @@ fn a_bad_input_points_at_the_line_and_writes_nothing() {
     fs::write(&f, "angle 90\naxiom F\nrule F F[+F\n").unwrap();
     let out = dir.path().join("bad.png");
     fs::write(&out, b"previous picture").unwrap();
-    stlc_line(&format!(
-        "render {} -o {} --depth 2",
-        f.display(),
-        out.display()
-    ))
-    .assert()
-    .code(1)
-    .stderr(predicate::str::contains("bad.lsys"))
-    .stderr(predicate::str::contains(":3:"))
-    .stderr(predicate::str::contains("["));
+    let (input, output) = (f.display(), out.display());
+    stlc_line(&format!("render {input} -o {output} --depth 2"))
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("bad.lsys"))
+        .stderr(predicate::str::contains(":3:"))
+        .stderr(predicate::str::contains("["));
     // The old output is untouched and no temporary file is left.
     assert_eq!(fs::read(&out).unwrap(), b"previous picture");
     assert_eq!(files_in(dir.path()), ["bad.lsys", "bad.png"]);
@@ -422,10 +419,9 @@ fn the_progress_bar_shows_on_a_terminal_only() {
     let root = env!("CARGO_MANIFEST_DIR");
     let run = |depth: u32, extra: &str| {
         let log = dir.path().join(format!("tty{depth}.log"));
+        let (bin, dir) = (bin.display(), dir.path().display());
         let cmd = format!(
-            "{} render {root}/examples/abop-1.24a.lsys --depth {depth} -o {}/x.png {extra}",
-            bin.display(),
-            dir.path().display()
+            "{bin} render {root}/examples/abop-1.24a.lsys --depth {depth} -o {dir}/x.png {extra}"
         );
         let st = StdCommand::new("script")
             .args(["-qfec", &cmd])

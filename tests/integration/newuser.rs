@@ -247,11 +247,8 @@ fn no_flag_is_ignored_without_a_word() {
         assert!(!dir.path().join("x.png").exists());
     }
     // `render -` without -o: a usage error too.
-    let (code, _, _) = outcome(
-        stlc()
-            .args(["render", "-"])
-            .write_stdin(fs::read(&koch).unwrap()),
-    );
+    let text = fs::read(&koch).unwrap();
+    let (code, _, _) = outcome(stlc().args(["render", "-"]).write_stdin(text));
     assert_eq!(code, 2);
     let (a, b, c, d, e) = (o("a.png"), o("b.png"), o("c.png"), o("d.png"), o("e.txt"));
     for (line, needle) in [
@@ -297,11 +294,8 @@ fn no_flag_is_ignored_without_a_word() {
 fn inert_turns_and_empty_pictures_are_warned_about() {
     let dir = tempfile::tempdir().unwrap();
     let lr = dir.path().join("lr.lsys");
-    fs::write(
-        &lr,
-        "axiom F\nrule F F[RF]F[LF]F\nangle 30\ngenerations 2\n",
-    )
-    .unwrap();
+    let text = "axiom F\nrule F F[RF]F[LF]F\nangle 30\ngenerations 2\n";
+    fs::write(&lr, text).unwrap();
     let png = dir.path().join("lr.png");
     let (code, _, err) = run(&["render", path(&lr), "-o", path(&png)]);
     assert_eq!(code, 0);

@@ -357,10 +357,8 @@ fn the_growth_order_replays_a_connected_tree() {
     let server = Server::start(&[]);
     let mut orders = Vec::new();
     for strategy in ["bfs", "dfs", "space"] {
-        let a = render(
-            &server.addr,
-            &json!({"source": example("fig9.od"), "growth": strategy}),
-        );
+        let body = json!({"source": example("fig9.od"), "growth": strategy});
+        let a = render(&server.addr, &body);
         let g = numbers(&a["growth"]["stems"]);
         assert!(g.len() >= 6 * 50, "{}", g.len());
         let root = "the first stem starts at the root";
@@ -393,10 +391,8 @@ fn lsys_bed_and_png_export_are_the_cli_bytes() {
     assert_eq!(a["svg"].as_str().unwrap().as_bytes(), &svg[..]);
     assert!(a["bed"].is_null());
 
-    let a = render(
-        &server.addr,
-        &json!({"source": example("paper-worked.bed"), "kind": "bed"}),
-    );
+    let bed = json!({"source": example("paper-worked.bed"), "kind": "bed"});
+    let a = render(&server.addr, &bed);
     let svg = cli("render examples/paper-worked.bed -f svg -o - --show-layout");
     assert_eq!(a["svg"].as_str().unwrap().as_bytes(), &svg[..]);
 
@@ -433,15 +429,11 @@ fn input_errors_answer_diagnostics_with_lines_and_columns() {
     assert_eq!(a["ok"], false, "{a}");
     // A stem limit above the server's own is refused.
     let server = Server::start(&["--max-stems", "100"]);
-    let a = render(
-        &server.addr,
-        &json!({"source": example("fig9.od"), "max_stems": 101}),
-    );
+    let over = json!({"source": example("fig9.od"), "max_stems": 101});
+    let a = render(&server.addr, &over);
     assert_eq!(a["ok"], false, "{a}");
-    let a = render_ok(
-        &server.addr,
-        &json!({"source": example("fig9.od"), "max_stems": 40}),
-    );
+    let under = json!({"source": example("fig9.od"), "max_stems": 40});
+    let a = render_ok(&server.addr, &under);
     assert!(stems(&a) <= 40);
     let warned = a["warnings"][0]["message"].as_str().unwrap();
     assert!(warned.contains("40"), "{a}");
@@ -457,10 +449,8 @@ fn foreign_hosts_and_origins_are_refused() {
     let port = server.port();
     let at_host = |host: &str| {
         let key = key(addr);
-        raw(
-            addr,
-            format!("GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n{key}\r\n").as_bytes(),
-        )
+        let head = format!("GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n{key}\r\n");
+        raw(addr, head.as_bytes())
     };
     assert_eq!(at_host(addr).status, 200);
     assert_eq!(at_host(&format!("localhost:{port}")).status, 200);
@@ -482,13 +472,8 @@ fn foreign_hosts_and_origins_are_refused() {
         (format!("http://127.0.0.1:{port}"), 200),
         (format!("http://localhost:{port}"), 200),
     ] {
-        let a = request(
-            addr,
-            "POST",
-            "/api/render",
-            &[("Origin", &origin)],
-            body.as_bytes(),
-        );
+        let from = [("Origin", origin.as_str())];
+        let a = request(addr, "POST", "/api/render", &from, body.as_bytes());
         assert_eq!(a.status, status, "{origin}");
     }
     // No file path is read from a request: paths other than the page's
@@ -501,10 +486,8 @@ fn foreign_hosts_and_origins_are_refused() {
         let a = get(addr, path);
         let passwd = String::from_utf8_lossy(&a.body).contains("root:");
         let status = a.status;
-        assert!(
-            status == 404 || (status == 200 && !passwd),
-            "{path}: {status}"
-        );
+        let hidden = status == 404 || (status == 200 && !passwd);
+        assert!(hidden, "{path}: {status}");
     }
 }
 
@@ -585,33 +568,21 @@ fn save_needs_the_token_and_writes_only_the_named_file() {
         assert_eq!(a.status, 401);
     }
     assert_eq!(std::fs::read_to_string(&file).unwrap(), example("fig9.od"));
-    let a = request(
-        addr,
-        "POST",
-        "/api/save",
-        &[("X-Stlc-Token", &token)],
-        body.as_bytes(),
-    );
+    let key = [("X-Stlc-Token", token.as_str())];
+    let a = request(addr, "POST", "/api/save", &key, body.as_bytes());
     assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
     let saved = std::fs::read_to_string(&file).unwrap();
     assert_eq!(saved, "Changed (1, 2)\nRULE\nR1: F\n");
     // Nothing but the file: no temporary left beside it.
-    let names: Vec<_> = std::fs::read_dir(dir.path())
-        .unwrap()
-        .map(|e| e.unwrap().file_name())
-        .collect();
+    let entries = std::fs::read_dir(dir.path()).unwrap();
+    let names: Vec<_> = entries.map(|e| e.unwrap().file_name()).collect();
     assert_eq!(names, vec![std::ffi::OsString::from("tree.od")]);
 
     let example_server = Server::start(&[]);
     let token = &example_server.token;
     let headers = [("X-Stlc-Token", token.as_str())];
-    let a = request(
-        &example_server.addr,
-        "POST",
-        "/api/save",
-        &headers,
-        body.as_bytes(),
-    );
+    let to = &example_server.addr;
+    let a = request(to, "POST", "/api/save", &headers, body.as_bytes());
     assert_eq!(a.status, 409);
     assert_ne!(token, &server.token, "each run has its own token");
 }
@@ -686,10 +657,8 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
     let server = Server::start(&[]);
     let path = "examples/grove.od";
     let ask = |seed: u64| {
-        render(
-            &server.addr,
-            &json!({"source": example("grove.od"), "growth": "bfs", "seed": seed}),
-        )
+        let body = json!({"source": example("grove.od"), "growth": "bfs", "seed": seed});
+        render(&server.addr, &body)
     };
     let a = ask(7);
     assert_eq!(a["ok"], true, "{a}");
@@ -697,18 +666,16 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
     crate::support::assert_same_text("grove --seed 7", &bed, a["bed"].as_str().unwrap());
     assert_ne!(a["bed"], ask(8)["bed"]);
     let others = a["root"]["others"].as_array().unwrap();
-    let xy: Vec<(f64, f64)> = others
+    let xy = others
         .iter()
-        .map(|r| (r["x"].as_f64().unwrap(), r["y"].as_f64().unwrap()))
-        .collect();
+        .map(|r| (r["x"].as_f64().unwrap(), r["y"].as_f64().unwrap()));
+    let xy: Vec<(f64, f64)> = xy.collect();
     assert_eq!(xy, [(110.0, 290.0), (170.0, 290.0), (235.0, 290.0)]);
     // A seed as a string of digits (how the page sends it): exact past a
     // JavaScript number's 2^53, the CLI's --seed of the same digits.
     let top = u64::MAX.to_string();
-    let b = render(
-        &server.addr,
-        &json!({"source": example("grove.od"), "seed": top}),
-    );
+    let body = json!({"source": example("grove.od"), "seed": &top});
+    let b = render(&server.addr, &body);
     let bed = cli_text(&format!("compile {path} -o - --seed {top}"));
     crate::support::assert_same_text("grove --seed 2^64-1", &bed, b["bed"].as_str().unwrap());
     let below = cli_text(&format!("compile {path} -o - --seed {}", u64::MAX - 1));
@@ -729,13 +696,8 @@ fn the_edge_parses_queries_refuses_unknown_fields_and_doubled_headers() {
     let server = Server::start(&[]);
     let addr = &server.addr;
     let body = json!({"source": example("fig9.od")}).to_string();
-    let svg = request(
-        addr,
-        "POST",
-        "/api/export?x=1&format=svg",
-        &[],
-        body.as_bytes(),
-    );
+    let query = "/api/export?x=1&format=svg";
+    let svg = request(addr, "POST", query, &[], body.as_bytes());
     assert_eq!(svg.status, 200);
     let head = &svg.head;
     assert!(head.contains("content-type: image/svg+xml"), "{head}");
@@ -789,10 +751,8 @@ fn the_page_and_every_module_it_imports_are_served() {
         let got = get(&server.addr, &path);
         assert_eq!(got.status, 200, "{path}");
         let head = &got.head;
-        assert!(
-            head.contains("content-type: text/javascript"),
-            "{path}: {head}"
-        );
+        let javascript = head.contains("content-type: text/javascript");
+        assert!(javascript, "{path}: {head}");
         let dir = &path[..path.rfind('/').unwrap()];
         for line in String::from_utf8(got.body).unwrap().lines() {
             // `import x from './y.js';` or a bare `import './y.js';`.

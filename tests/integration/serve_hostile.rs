@@ -188,11 +188,8 @@ fn a_client_that_never_reads_is_dropped() {
     s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
     let mut got = Vec::new();
     let _ = s.read_to_end(&mut got);
-    let kept = format!(
-        "{} of {} bytes came: the connection was kept",
-        got.len(),
-        n * size
-    );
+    let (came, all) = (got.len(), n * size);
+    let kept = format!("{came} of {all} bytes came: the connection was kept");
     assert!(got.len() < n * size / 2, "{kept}");
     // The server still answers others.
     render_ok(addr, &json!({"source": example("fig9.od")}));

@@ -202,19 +202,19 @@ fn the_server_holds_under_hostile_clients() {
                     let said = String::from_utf8_lossy(&a.body);
                     failed.push(format!("{method} {path} at {at:?}: {} {said}", a.status));
                 }
-                Err(_) => failed.push(format!(
-                    "{method} {path} at {at:?} after {:?}: no answer",
-                    t.elapsed()
-                )),
+                Err(_) => {
+                    let waited = t.elapsed();
+                    failed.push(format!(
+                        "{method} {path} at {at:?} after {waited:?}: no answer"
+                    ));
+                }
             }
         }
         std::thread::sleep(Duration::from_millis(100));
     }
     let (n, all) = (failed.len(), took.len());
-    assert!(
-        failed.is_empty(),
-        "{n} of {all} light requests failed: {failed:#?}"
-    );
+    let failures = format!("{n} of {all} light requests failed: {failed:#?}");
+    assert!(failed.is_empty(), "{failures}");
     assert!(server.alive(), "the server exited under the soak");
     let peak_mib = status_kb(server.pid(), "VmHWM:") / 1024;
     stop.store(true, Ordering::Relaxed);
@@ -224,9 +224,9 @@ fn the_server_holds_under_hostile_clients() {
     took.sort();
     let (p50, p99) = (quantile(&took, 0.5), quantile(&took, 0.99));
     let max = took[took.len() - 1];
+    let answers = took.len();
     eprintln!(
-        "soak {seconds} s: {} light answers, p50 {p50:?}, p99 {p99:?}, max {max:?}; server peak resident {peak_mib} MiB (budget {BUDGET_MIB} MiB)",
-        took.len()
+        "soak {seconds} s: {answers} light answers, p50 {p50:?}, p99 {p99:?}, max {max:?}; server peak resident {peak_mib} MiB (budget {BUDGET_MIB} MiB)"
     );
     assert!(max < LIGHT_SLOWEST, "a light answer took {max:?}");
     let over = format!("peak resident {peak_mib} MiB over the {BUDGET_MIB} MiB budget");
@@ -294,10 +294,8 @@ fn no_save_is_lost_or_damaged_when_the_server_is_killed() {
         if left.len() > 1 {
             temps_left += 1;
             let temp = |n: &String| n.starts_with(".stlc-") && n.ends_with(".tmp");
-            assert!(
-                left.iter().all(|n| n == "tree.od" || temp(n)),
-                "run {run}: {left:?}"
-            );
+            let only_temps = left.iter().all(|n| n == "tree.od" || temp(n));
+            assert!(only_temps, "run {run}: {left:?}");
         }
         // The next start sweeps what the killed one left.
         let again = start(&[file.to_str().unwrap()]);
