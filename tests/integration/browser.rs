@@ -6,7 +6,6 @@
 //! fails. Screenshots go to `tests/store/browser/`.
 
 use std::path::Path;
-use std::time::Duration;
 
 use fantoccini::Client;
 use serde_json::{Value, json};
@@ -17,8 +16,8 @@ use super::browser_steps::{
 };
 use super::chromium::{
     CONTROL, SHIFT, Served, chord, cli, cli_line, click, click_at, downloaded, drag, file_until,
-    js, js_until, on_served_file, open, press_along, same_bytes, screen_of, settled, settled_until,
-    shot, wheel,
+    js, js_until, on_served_file, open, poll, press_along, same_bytes, screen_of, settled,
+    settled_until, shot, wheel,
 };
 use super::serve::{Server, example};
 use crate::support::{manifest_path, numbers};
@@ -160,20 +159,10 @@ async fn steps(c: &Client, file: &Path) {
     assert!(max > 10, "{max}");
     click(c, "#play").await;
     // The replay takes about four seconds: look once it is under way.
-    let mut mid = Value::Null;
-    for _ in 0..200 {
-        tokio::time::sleep(Duration::from_millis(50)).await;
-        mid = js(
-            c,
-            "return {v: Number(document.getElementById('step').value),
-                     replaying: document.getElementById('preview').classList.contains('replaying'),
-                     label: document.getElementById('step-label').textContent};",
-        )
-        .await;
-        if mid["v"].as_u64().unwrap() > max / 4 {
-            break;
-        }
-    }
+    let now = "return {v: Number(document.getElementById('step').value),
+                       replaying: document.getElementById('preview').classList.contains('replaying'),
+                       label: document.getElementById('step-label').textContent};";
+    let mid = js_until(c, now, 200, 50, |m| m["v"].as_u64().unwrap() > max / 4).await;
     let v = mid["v"].as_u64().unwrap();
     assert!(v > 0 && v < max, "{mid}");
     assert_eq!(mid["replaying"], true, "{mid}");
@@ -332,20 +321,12 @@ async fn tools(c: &Client, start: &str) {
 /// The BED of the page's answer once it is `want` (the page may still be
 /// answering an earlier edit), or the last one seen.
 async fn answer_bed(c: &Client, want: &str) -> String {
-    let mut bed = String::new();
-    for _ in 0..40 {
+    let bed = async || {
         settled(c).await;
-        bed = js(c, "return window.stlc.state.answer.bed")
-            .await
-            .as_str()
-            .unwrap_or_default()
-            .to_string();
-        if bed == want {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
-    bed
+        let bed = js(c, "return window.stlc.state.answer.bed").await;
+        bed.as_str().unwrap_or_default().to_string()
+    };
+    poll(40, 50, bed, |b| b == want).await
 }
 
 /// The preview's view box: `[x, y, width, height]` in canvas units.

@@ -13,7 +13,7 @@ use serde_json::{Value, json};
 
 use super::browser_steps::{reload, settled_ok, text_of};
 use super::chromium::{
-    cli, click, file_until, js, on_served_file, press_along, settled_until, shot, wheel,
+    cli, click, file_until, js, js_async, on_served_file, press_along, settled_until, shot, wheel,
 };
 use super::serve::{Server, example, post, render, request};
 use crate::support::{manifest_path, numbers, stlc_stdout};
@@ -284,9 +284,9 @@ async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
 async fn the_camera_is_the_clis(c: &Client) {
     let opened = super::browser_web::open_example(c, "plant3d-bare.lsys").await;
     assert_eq!(opened["ok"], true);
-    let page = c
-        .execute_async(
-            "const done = arguments[arguments.length - 1];
+    let page = js_async(
+        c,
+        "const done = arguments[arguments.length - 1];
              import('/view3d.js').then((m) => {
                const [r, d] = m.camera(30, 20);
                const s = window.stlc.state.answer.space.stems;
@@ -298,10 +298,9 @@ async fn the_camera_is_the_clis(c: &Client) {
                }
                done(out);
              });",
-            vec![],
-        )
-        .await
-        .unwrap();
+        vec![],
+    )
+    .await;
     let page: Vec<(f64, f64)> = page
         .as_array()
         .unwrap()

@@ -5,12 +5,10 @@
 //! working; a new tab opened without the link gets the server's "open the
 //! link" message, not the file.
 
-use std::time::Duration;
-
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::chromium::{js, on_served_file, settled};
+use super::chromium::{js, on_served_file, poll, settled};
 use super::serve::example;
 
 /// The page's engine asked for the file, as the page asks: its text, or
@@ -40,14 +38,8 @@ fn the_key_travels_in_the_fragment_and_a_header_never_a_cookie() {
         let second = c.new_window(true).await.unwrap();
         c.switch_to_window(second.handle).await.unwrap();
         c.goto(&format!("http://{}/", server.addr)).await.unwrap();
-        let mut refused = Value::Null;
-        for _ in 0..100 {
-            refused = c.execute_async(OPEN, vec![]).await.unwrap();
-            if refused.is_string() {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
+        let ask = async || c.execute_async(OPEN, vec![]).await.unwrap();
+        let refused = poll(100, 50, ask, Value::is_string).await;
         let refused = refused.as_str().unwrap_or_default().to_string();
         let open_the_link = refused.contains("open the link printed in its terminal");
         assert!(refused.starts_with("error: ") && open_the_link, "{refused}");

@@ -9,8 +9,8 @@ use serde_json::{Value, json};
 use super::browser_steps::{reload, rewrite, rewritten, set_value, text_of};
 use super::browser_web::{Static, on_site, open_example, site};
 use super::chromium::{
-    cli_line, click, downloaded, drag, js, js_until, on_served_file, same_bytes, settled,
-    settled_until, shot,
+    cli_line, click, downloaded, drag, js, js_async, js_until, on_served_file, poll, same_bytes,
+    settled, settled_until, shot,
 };
 use super::serve::example;
 
@@ -18,9 +18,9 @@ use super::serve::example;
 /// UTF-8), deflated in the page (1 MiB chunks streamed through
 /// CompressionStream, so the page never holds the whole text).
 async fn bomb_fragment(c: &Client, mib: u32) -> String {
-    let v = c
-        .execute_async(
-            "const [mib, done] = arguments;
+    let v = js_async(
+        c,
+        "const [mib, done] = arguments;
              const zeros = new Uint8Array(1 << 20);
              let n = 0;
              const src = new ReadableStream({ pull(ctl) { if (n++ < mib) ctl.enqueue(zeros); else ctl.close(); } });
@@ -30,10 +30,9 @@ async fn bomb_fragment(c: &Client, mib: u32) -> String {
                for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
                done('#k=od&n=bomb.od&s=' + btoa(s).replace(/\\+/g, '-').replace(/\\//g, '_').replace(/=+$/, ''));
              }, (e) => done(String(e)));",
-            vec![json!(mib)],
-        )
-        .await
-        .unwrap();
+        vec![json!(mib)],
+    )
+    .await;
     v.as_str().unwrap().to_string()
 }
 
@@ -267,23 +266,11 @@ fn a_reload_returns_to_the_document_and_its_draft_in_chromium() {
 /// Opens New's `name` (a template: "new.od (template)") and waits for its
 /// picture.
 async fn new_from(c: &Client, label: &str) -> Value {
-    js(
-        c,
-        &format!(
-            "const m = document.getElementById('new');
-             const o = [...m.options].find((o) => o.textContent === {label:?});
-             m.value = o.value; m.dispatchEvent(new Event('change'));"
-        ),
-    )
-    .await;
-    for _ in 0..200 {
-        let v = settled(c).await;
-        if v["text"].as_str().is_some_and(|t| t.contains("NewTree")) {
-            return v;
-        }
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    }
-    panic!("{label} never opened");
+    super::browser_steps::choose_new(c, label).await;
+    let new_tree = |v: &Value| v["text"].as_str().is_some_and(|t| t.contains("NewTree"));
+    let v = poll(200, 50, async || settled(c).await, new_tree).await;
+    assert!(new_tree(&v), "{label} never opened");
+    v
 }
 
 /// The diagnostics panel's text.
@@ -449,14 +436,14 @@ fn stlc_serve_shares_like_the_web_page_in_chromium() {
         shot(c, "page-serve-share").await;
         // Another document's link, put into this tab's address.
         let other = "T (0, 0) L=10(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 1 R1] ENDSEED\n";
-        c.execute_async(
+        js_async(
+            c,
             "const [text, done] = arguments;
              import('./share.js').then((m) => m.toFragment({name: 'other.od', kind: 'od', text}))
                .then((f) => { location.hash = f; done(true); });",
             vec![json!(other)],
         )
-        .await
-        .unwrap();
+        .await;
         let v = settled_until(c, 100, 50, |v| v["text"] == json!(other)).await;
         assert_eq!(v["text"], json!(other));
         assert_eq!(v["stems"], json!(3), "{v}");

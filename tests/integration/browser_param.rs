@@ -14,8 +14,8 @@ use super::browser_web::{
     engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, site,
 };
 use super::chromium::{
-    cli, cli_svg_of, click, js, on_served_file, on_served_page, same_bytes, settled_until, shot,
-    until,
+    cli, cli_svg_of, click, js, js_async, on_served_file, on_served_page, same_bytes,
+    settled_until, shot, until,
 };
 use super::param_frontends::{parametric_examples, same_words};
 use super::serve::example;
@@ -99,14 +99,13 @@ fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in
             let svg = engine_export(&c, &request, "svg").await.unwrap();
             let want = cli(&["render", &path, "--show-layout", "-f", "svg"]);
             same_bytes(&svg, &want, &name);
-            let words = c
-                .execute_async(
-                    "const [request, done] = arguments;
+            let words = js_async(
+                &c,
+                "const [request, done] = arguments;
                      window.stlc.engine.words(request).then(done, (e) => done(String(e)));",
-                    vec![request],
-                )
-                .await
-                .unwrap();
+                vec![request],
+            )
+            .await;
             same_words(&name, &words);
         }
         // The words view: the axiom A(10,0), then the first rule applied

@@ -61,6 +61,14 @@ pub(super) async fn shows_svg(c: &Client, want: &[u8], what: &str) {
     super::chromium::same_bytes(answer_svg(c).await.as_bytes(), want, what);
 }
 
+/// Chooses `label` in the New menu as a user does (a `change` event).
+pub(super) async fn choose_new(c: &Client, label: &str) {
+    let script = "const m = document.getElementById('new');
+                  const o = [...m.options].find((o) => o.textContent === arguments[0]);
+                  m.value = o.value; m.dispatchEvent(new Event('change')); return 0;";
+    js_with(c, script, &[json!(label)]).await;
+}
+
 /// The editor's text.
 pub(super) async fn editor_text(c: &Client) -> String {
     value_of(c, "#source").await

@@ -17,8 +17,8 @@ use serde_json::{Value, json};
 
 use super::browser_steps::{answer_svg, rewritten, settled_ok, shows_svg, type_into};
 use super::chromium::{
-    Browser, cli, cli_svg_of, click, downloaded, drag, free_port, js, js_until, open, same_bytes,
-    settled, settled_until, shot, wait_for_port,
+    Browser, cli, cli_svg_of, click, downloaded, drag, free_port, js, js_async, js_until, open,
+    same_bytes, settled, settled_until, shot, wait_for_port,
 };
 use super::serve::example;
 use crate::support::manifest_path;
@@ -136,9 +136,9 @@ pub(super) async fn engine_export(
     request: &Value,
     format: &str,
 ) -> Result<Vec<u8>, Value> {
-    let v = c
-        .execute_async(
-            "const [request, format, done] = arguments;
+    let v = js_async(
+        c,
+        "const [request, format, done] = arguments;
              window.stlc.engine.export(request, format).then(async (a) => {
                if (!a.ok) { done({failed: a}); return; }
                const b = new Uint8Array(await a.blob.arrayBuffer());
@@ -146,10 +146,9 @@ pub(super) async fn engine_export(
                for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
                done({bytes: s});
              }, (e) => done({failed: String(e)}));",
-            vec![request.clone(), json!(format)],
-        )
-        .await
-        .unwrap();
+        vec![request.clone(), json!(format)],
+    )
+    .await;
     match v["bytes"].as_str() {
         // One character a byte (0 to 255).
         Some(s) => Ok(s.chars().map(|ch| ch as u32 as u8).collect()),
@@ -316,9 +315,9 @@ async fn every_example(c: &Client) {
 async fn newer_edit_ends_older_work(c: &Client) {
     let source = manifest_path("tests/cases/render/slow-stochastic.lsys");
     let source = std::fs::read_to_string(source).unwrap();
-    let v = c
-        .execute_async(
-            "const [source, done] = arguments;
+    let v = js_async(
+        c,
+        "const [source, done] = arguments;
              const engine = window.stlc.engine;
              const old = new AbortController();
              const slow = engine.render({source, kind: 'lsys', depth: 14}, {signal: old.signal})
@@ -328,10 +327,9 @@ async fn newer_edit_ends_older_work(c: &Client) {
                const fast = await engine.render({source, kind: 'lsys', depth: 2});
                done({slow: await slow, fast: fast.ok, stems: fast.stems});
              }, 200);",
-            vec![json!(source)],
-        )
-        .await
-        .unwrap();
+        vec![json!(source)],
+    )
+    .await;
     assert_eq!(v["slow"], "AbortError", "{v}");
     assert_eq!(v["fast"], true, "{v}");
     assert_eq!(v["stems"], "6", "{v}");
@@ -339,28 +337,19 @@ async fn newer_edit_ends_older_work(c: &Client) {
 
 /// The page's share link for its document as it is now.
 pub(super) async fn share_link(c: &Client) -> String {
-    let v = c
-        .execute_async(
-            "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));",
-            vec![],
-        )
-        .await
-        .unwrap();
+    let v = js_async(
+        c,
+        "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));",
+        vec![],
+    )
+    .await;
     v.as_str().unwrap().to_string()
 }
 
 /// Opens the example `name` from the New menu and waits for its picture.
 pub(super) async fn open_example(c: &Client, name: &str) -> Value {
     let text = example(name);
-    js(
-        c,
-        &format!(
-            "const m = document.getElementById('new');
-             const o = [...m.options].find((o) => o.textContent === {name:?});
-             m.value = o.value; m.dispatchEvent(new Event('change'));"
-        ),
-    )
-    .await;
+    super::browser_steps::choose_new(c, name).await;
     let v = settled_until(c, 100, 50, |v| v["text"] == json!(text)).await;
     assert_eq!(v["text"], json!(text), "the page never opened {name}: {v}");
     v
@@ -443,14 +432,13 @@ async fn link_lengths(c: &Client) {
     for name in examples() {
         let text = example(&name);
         let kind = name.rsplit('.').next().unwrap();
-        let v = c
-            .execute_async(
-                "const [name, kind, text, done] = arguments;
+        let v = js_async(
+            c,
+            "const [name, kind, text, done] = arguments;
                  import('./share.js').then((m) => m.toFragment({name, kind, text})).then((f) => done(f.length));",
-                vec![json!(name), json!(kind), json!(text)],
-            )
-            .await
-            .unwrap();
+            vec![json!(name), json!(kind), json!(text)],
+        )
+        .await;
         let (bytes, link) = (text.len(), v.as_u64().unwrap());
         rows.push(format!("| `{name}` | {bytes} | {link} |"));
     }

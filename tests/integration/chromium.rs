@@ -86,6 +86,12 @@ pub(super) async fn js(c: &Client, script: &str) -> Value {
     c.execute(script, vec![]).await.expect(script)
 }
 
+/// What the asynchronous `script` hands its last argument (`done`), run
+/// with `args` before it.
+pub(super) async fn js_async(c: &Client, script: &str, args: Vec<Value>) -> Value {
+    c.execute_async(script, args).await.expect(script)
+}
+
 /// Waits until the page shows the answer to the text in its editor.
 pub(super) async fn settled(c: &Client) -> Value {
     for _ in 0..400 {
@@ -120,13 +126,24 @@ pub(super) async fn settled_until(
     ms: u64,
     done: impl Fn(&Value) -> bool,
 ) -> Value {
-    let mut v = settled(c).await;
-    for _ in 0..tries {
+    poll(tries + 1, ms, async || settled(c).await, done).await
+}
+
+/// What `get` gives once `done` holds of it, asked up to `tries` times
+/// `ms` apart; the last value if it never does.
+pub(super) async fn poll<T>(
+    tries: u32,
+    ms: u64,
+    mut get: impl AsyncFnMut() -> T,
+    done: impl Fn(&T) -> bool,
+) -> T {
+    let mut v = get().await;
+    for _ in 1..tries {
         if done(&v) {
             break;
         }
         tokio::time::sleep(Duration::from_millis(ms)).await;
-        v = settled(c).await;
+        v = get().await;
     }
     v
 }
@@ -159,30 +176,15 @@ pub(super) async fn js_until(
     ms: u64,
     done: impl Fn(&Value) -> bool,
 ) -> Value {
-    let mut v = js(c, script).await;
-    for _ in 1..tries {
-        if done(&v) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(ms)).await;
-        v = js(c, script).await;
-    }
-    v
+    poll(tries, ms, async || js(c, script).await, done).await
 }
 
 /// The text of the file at `path` once `done` holds of it, read up to
 /// `tries` times 50 ms apart (the page's save may still be under way); the
 /// last text read if it never does.
 pub(super) async fn file_until(path: &Path, tries: u32, done: impl Fn(&str) -> bool) -> String {
-    let mut text = std::fs::read_to_string(path).unwrap();
-    for _ in 1..tries {
-        if done(&text) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-        text = std::fs::read_to_string(path).unwrap();
-    }
-    text
+    let read = async || std::fs::read_to_string(path).unwrap();
+    poll(tries, 50, read, |t: &String| done(t)).await
 }
 
 /// The viewport position of canvas point `(x, y)` in the preview.
@@ -430,13 +432,10 @@ pub(super) fn cli_svg_of(name: &str, text: &str) -> Vec<u8> {
 pub(super) async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
     let path = dir.join(name);
     let partial = dir.join(format!("{name}.crdownload"));
-    for _ in 0..200 {
-        if path.is_file() && !partial.exists() {
-            return std::fs::read(&path).unwrap();
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
-    panic!("{} was never downloaded", path.display());
+    let whole = async || path.is_file() && !partial.exists();
+    let done = poll(200, 50, whole, |&whole| whole).await;
+    assert!(done, "{} was never downloaded", path.display());
+    std::fs::read(&path).unwrap()
 }
 
 /// Opens `file` through the page's Open… control (its file input), and
@@ -449,15 +448,10 @@ pub(super) async fn open(c: &Client, file: &Path) {
         .await
         .unwrap();
     let text = std::fs::read_to_string(file).unwrap();
-    for _ in 0..200 {
-        let script = "return document.getElementById('source').value === arguments[0]";
-        let read = c.execute(script, vec![json!(text)]).await.unwrap();
-        if read == json!(true) {
-            return;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
-    panic!("the page never read {}", file.display());
+    let script = "return document.getElementById('source').value === arguments[0]";
+    let read = async || c.execute(script, vec![json!(text)]).await.unwrap();
+    let read = poll(200, 50, read, |v| v == &json!(true)).await;
+    assert_eq!(read, json!(true), "the page never read {}", file.display());
 }
 
 /// Asserts `got` is `want`, saying where they part (not all the bytes).

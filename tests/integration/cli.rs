@@ -11,7 +11,9 @@ use std::process::{Command as StdCommand, Stdio};
 
 use predicates::prelude::*;
 
-use crate::support::{assert_golden, manifest_path, outcome, png_at, stlc_line, stlc_piped};
+use crate::support::{
+    assert_golden, files_in, manifest_path, outcome, png_at, stlc_line, stlc_piped,
+};
 
 /// `F -> F+F` at 90 degrees: depth 2 is `F+F+F+F`, a unit square traced
 /// anticlockwise on screen from the origin: up, left, down, right.
@@ -22,15 +24,6 @@ const WORKED_BED: &str = "Worked\n(50, 100)\nL=10(0) B=1(0)\nRULE\nR1: [F][+F][-
 
 /// The crate's root, for paths written into a command line.
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
-
-fn files_in(dir: &Path) -> Vec<String> {
-    let entries = fs::read_dir(dir).unwrap();
-    let mut v: Vec<String> = entries
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
 
 #[test]
 fn stdin_and_stdout_with_dash() {

@@ -5,7 +5,7 @@
 use std::fs;
 use std::path::Path;
 
-use crate::support::{outcome, stlc, stlc_line};
+use crate::support::{files_in, outcome, stlc, stlc_line};
 
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
 
@@ -202,11 +202,8 @@ fn an_interrupt_removes_the_temporary_file_and_keeps_the_target() {
         let status = child.wait().unwrap();
         assert_eq!(status.code(), Some(code), "{signal}");
         assert_eq!(fs::read(&out).unwrap(), b"old");
-        let names: Vec<_> = fs::read_dir(dir.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        assert_eq!(names, ["t.png"], "{signal}: a file was left behind");
+        let left = "a file was left behind";
+        assert_eq!(files_in(dir.path()), ["t.png"], "{signal}: {left}");
     }
 }
 

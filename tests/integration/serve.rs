@@ -87,6 +87,14 @@ impl Server {
         f[11].parse::<u64>().unwrap() + f[12].parse::<u64>().unwrap()
     }
 
+    /// A figure of the server's `/proc` status, kB: `VmRSS:` its resident
+    /// size now, `VmHWM:` its peak.
+    pub fn status_kb(&self, key: &str) -> u64 {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.pid())).unwrap();
+        let figure = status.lines().find_map(|l| l.strip_prefix(key)).unwrap();
+        figure.trim().trim_end_matches("kB").trim().parse().unwrap()
+    }
+
     /// The server's process id.
     pub fn pid(&self) -> u32 {
         self.child.id()
@@ -224,14 +232,17 @@ pub fn serve_file(name: &str, text: &str, args: &[&str]) -> (tempfile::TempDir, 
     (dir, file, server)
 }
 
+/// The head of a `POST path` of `len` bytes with the page's key, and no
+/// `Connection: close` (the connection stays open).
+pub fn post_head(addr: &str, path: &str, len: usize) -> String {
+    let key = key(addr);
+    format!("POST {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {len}\r\n{key}\r\n")
+}
+
 /// A connection on which `body` is posted to `/api/render` with the page's
 /// key (kept open: the caller reads the answer, or does not).
 pub fn send_render(addr: &str, body: &str) -> TcpStream {
-    let key = key(addr);
-    let head = format!(
-        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{key}\r\n",
-        body.len()
-    );
+    let head = post_head(addr, "/api/render", body.len());
     let mut s = TcpStream::connect(addr).unwrap();
     s.write_all(head.as_bytes()).unwrap();
     s.write_all(body.as_bytes()).unwrap();
@@ -574,9 +585,7 @@ fn save_needs_the_token_and_writes_only_the_named_file() {
     let saved = std::fs::read_to_string(&file).unwrap();
     assert_eq!(saved, "Changed (1, 2)\nRULE\nR1: F\n");
     // Nothing but the file: no temporary left beside it.
-    let entries = std::fs::read_dir(dir.path()).unwrap();
-    let names: Vec<_> = entries.map(|e| e.unwrap().file_name()).collect();
-    assert_eq!(names, vec![std::ffi::OsString::from("tree.od")]);
+    assert_eq!(crate::support::files_in(dir.path()), ["tree.od"]);
 
     let example_server = Server::start(&[]);
     let token = &example_server.token;

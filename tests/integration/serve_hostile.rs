@@ -175,11 +175,7 @@ fn a_client_that_never_reads_is_dropped() {
     assert!(size > 1_000_000, "{size}");
     let n = 40;
     let mut s = TcpStream::connect(addr).unwrap();
-    let head = format!(
-        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-        body.len(),
-        key(addr)
-    );
+    let head = post_head(addr, "/api/render", body.len());
     for _ in 0..n {
         s.write_all(head.as_bytes()).unwrap();
         s.write_all(body.as_bytes()).unwrap();
@@ -274,7 +270,7 @@ fn the_served_file_is_read_with_bounds() {
         .unwrap();
     let e = error();
     assert!(e.contains("more than --max-input"), "{e}");
-    let rss = resident_kb(&server);
+    let rss = server.status_kb("VmRSS:");
     assert!(rss < 200_000, "{rss} kB resident");
 }
 
@@ -295,16 +291,6 @@ fn heavy_renders(addr: &str, n: usize) -> Vec<TcpStream> {
 /// however loaded the machine; fig9, at 30 ms, came near it).
 const SQUARE: &str = "axiom F\nrule F -> F+F\nangle 90\ngenerations 2\n";
 
-/// The server's resident size, kB.
-fn resident_kb(server: &Server) -> u64 {
-    std::fs::read_to_string(format!("/proc/{}/status", server.pid()))
-        .unwrap()
-        .lines()
-        .find_map(|l| l.strip_prefix("VmRSS:"))
-        .and_then(|v| v.trim().trim_end_matches(" kB").trim().parse::<u64>().ok())
-        .unwrap()
-}
-
 /// Memory is given back (issue 36, problem 5): after two 200,000-stem
 /// growths at once (measured: 98 MB above the fresh size at their peak, 14
 /// MB above it idle) the idle server's resident size returns to within
@@ -319,7 +305,7 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
     let server = Server::start(&["--time-budget", "300"]);
     let addr = server.addr.clone();
     let big = std::fs::read_to_string(manifest_path("benches/bigtree.od")).unwrap();
-    let fresh = resident_kb(&server);
+    let fresh = server.status_kb("VmRSS:");
     let peak = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(fresh));
     let growths: Vec<_> = (0..2)
         .map(|_| {
@@ -342,7 +328,10 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
         })
         .collect();
     while growths.iter().any(|g| !g.is_finished()) {
-        peak.fetch_max(resident_kb(&server), std::sync::atomic::Ordering::Relaxed);
+        peak.fetch_max(
+            server.status_kb("VmRSS:"),
+            std::sync::atomic::Ordering::Relaxed,
+        );
         std::thread::sleep(Duration::from_millis(50));
     }
     for g in growths {
@@ -352,7 +341,7 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
     let peak = peak.load(std::sync::atomic::Ordering::Relaxed);
     // The server looks every 2 s whether it is idle.
     std::thread::sleep(Duration::from_secs(5));
-    let idle = resident_kb(&server);
+    let idle = server.status_kb("VmRSS:");
     let seen = format!("fresh {fresh} kB, peak {peak} kB");
     assert!(peak > fresh + 40_000, "{seen}: too little to give back");
     let kept = format!("{seen}, idle {idle} kB: not given back");

@@ -25,7 +25,7 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use crate::serve::{HEAVY, Server, example, key, request};
+use crate::serve::{HEAVY, Server, example, key, post_head, request};
 
 /// Memory budget of the soaked server, MiB.
 const BUDGET_MIB: u64 = 256;
@@ -51,16 +51,6 @@ fn start(args: &[&str]) -> Server {
         Ok(b) => Server::start_binary(std::path::Path::new(&b), args),
         Err(_) => Server::start(args),
     }
-}
-
-/// A resident-size figure of the process, kB, from /proc (`VmHWM`: peak).
-fn status_kb(pid: u32, key: &str) -> u64 {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap();
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix(key))
-        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
-        .unwrap()
 }
 
 /// Keeps `n` connections sending a request head a byte a second, opening
@@ -136,11 +126,7 @@ fn heavy(addr: String, abandon: bool, big: bool, stop: Arc<AtomicBool>) -> JoinH
         .to_string();
         while !stop.load(Ordering::Relaxed) {
             if abandon {
-                let head = format!(
-                    "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-                    body.len(),
-                    key(&addr)
-                );
+                let head = post_head(&addr, "/api/render", body.len());
                 if let Ok(mut s) = TcpStream::connect(&addr) {
                     let _ = s.write_all(head.as_bytes());
                     let _ = s.write_all(body.as_bytes());
@@ -216,7 +202,7 @@ fn the_server_holds_under_hostile_clients() {
     let failures = format!("{n} of {all} light requests failed: {failed:#?}");
     assert!(failed.is_empty(), "{failures}");
     assert!(server.alive(), "the server exited under the soak");
-    let peak_mib = status_kb(server.pid(), "VmHWM:") / 1024;
+    let peak_mib = server.status_kb("VmHWM:") / 1024;
     stop.store(true, Ordering::Relaxed);
     for a in attackers {
         a.join().unwrap();
@@ -258,11 +244,7 @@ fn no_save_is_lost_or_damaged_when_the_server_is_killed() {
         let body = json!({"source": new}).to_string();
         // Sent as it is; the answer, if any comes before the kill, unread.
         let saver = std::thread::spawn(move || {
-            let head = format!(
-                "POST /api/save HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-                body.len(),
-                key(&addr)
-            );
+            let head = post_head(&addr, "/api/save", body.len());
             if let Ok(mut s) = TcpStream::connect(&addr) {
                 let _ = s.write_all(head.as_bytes());
                 let _ = s.write_all(body.as_bytes());
@@ -282,14 +264,7 @@ fn no_save_is_lost_or_damaged_when_the_server_is_killed() {
             let n = now.len();
             panic!("run {run}: the file is neither the old text nor the new one ({n} bytes)");
         }
-        let names = || -> Vec<String> {
-            let entries = std::fs::read_dir(dir.path()).unwrap();
-            let mut n: Vec<_> = entries
-                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-                .collect();
-            n.sort();
-            n
-        };
+        let names = || crate::support::files_in(dir.path());
         let left = names();
         if left.len() > 1 {
             temps_left += 1;
