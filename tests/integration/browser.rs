@@ -6,38 +6,31 @@
 //! fails. Screenshots go to `tests/store/browser/`.
 
 use std::path::Path;
-use std::time::Duration;
 
-use fantoccini::actions::{
-    InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
-    WheelAction, WheelActions,
-};
-use fantoccini::{Client, Locator};
+use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::chromium::{
-    Browser, cli, cli_line, click, click_at, downloaded, drag, file_until, js, js_until, open,
-    same_bytes, screen_of, settled, settled_until, shot,
+use super::browser_steps::{
+    answer_svg, caret_to_end, js_with, listed_error, retype, set_value, settled_failed, settled_ok,
+    text_of, type_into, value_of,
 };
-use super::serve::Server;
+use super::chromium::{
+    CONTROL, SHIFT, Served, chord, cli, cli_line, click, click_at, downloaded, drag, file_until,
+    js, js_until, on_served_file, open, poll, press_along, same_bytes, screen_of, settled,
+    settled_until, shot, wheel,
+};
+use super::serve::{Server, example};
 use crate::support::{manifest_path, numbers};
+
+const KOCH: &str = "axiom F++F++F\nangle 60\nrule F F-F++F-F\n";
 
 const TYPED: &str = "Typed (100, 190)\nL=9(0) B=1.5(0) A=30 C=2\nRULE\nR1: [-F][+F]\nSEED\nFR1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (70, 120), 60, 75\nENDLAYOUT\n";
 
 #[test]
 fn the_page_grows_draws_replays_and_saves_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let file = tmp.path().join("tree.od");
-    std::fs::copy(manifest_path("examples/fig9.od"), &file).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        steps(&c, &server, &file).await;
-        acceptance(&c).await;
-        let _ = c.close().await;
+    on_served_file("tree.od", &example("fig9.od"), async |c, served| {
+        steps(c, served.file).await;
+        acceptance(c).await;
     });
 }
 
@@ -49,52 +42,37 @@ async fn acceptance(c: &Client) {
     std::fs::copy(manifest_path("examples/2dtree.od"), &file).unwrap();
     let server = Server::start(&[file.to_str().unwrap()]);
     c.goto(&server.url).await.unwrap();
-    let opened = settled(c).await;
-    assert_eq!(opened["ok"], true, "{opened}");
+    let opened = settled_ok(c).await;
     let before = opened["stems"].as_u64().unwrap();
     click(c, "[data-tool=Ellipse]").await;
     click(c, "#colour option[value=clWhite]").await;
     drag(c, (100.0, 60.0), (160.0, 110.0)).await;
-    let holed = settled(c).await;
-    assert_eq!(holed["ok"], true, "{holed}");
+    let holed = settled_ok(c).await;
     let text = holed["text"].as_str().unwrap();
     // The paper's inline layout stays as it is; the new shape is a line
     // before ENDLAYOUT, spelt as the paper spells its shapes.
-    let paper = std::fs::read_to_string(manifest_path("examples/2dtree.od")).unwrap();
-    assert_eq!(
-        text,
-        paper.replace(
-            "\nENDLAYOUT",
-            "\n(clWhite)< Ellipse (100,60,160,110)>\nENDLAYOUT"
-        ),
-        "{text}"
-    );
+    let hole = "\n(clWhite)< Ellipse (100,60,160,110)>\nENDLAYOUT";
+    let want = example("2dtree.od").replace("\nENDLAYOUT", hole);
+    assert_eq!(text, want, "{text}");
     let after = holed["stems"].as_u64().unwrap();
-    assert!(
-        after < before,
-        "the hole takes stems away: {before} -> {after}"
-    );
+    let fewer = format!("the hole takes stems away: {before} -> {after}");
+    assert!(after < before, "{fewer}");
     // No stem ends inside the hole (an ellipse centred at (130, 85)).
-    let g: Vec<f64> = numbers(&holed["growth"]);
+    let g = numbers(&holed["growth"]);
     let inside = |x: f64, y: f64| ((x - 130.0) / 30.0).powi(2) + ((y - 85.0) / 25.0).powi(2) < 0.95;
-    assert!(
-        !g.chunks(6).any(|s| inside(s[2], s[3])),
-        "a stem grew in the hole"
-    );
+    let in_hole = g.chunks(6).any(|s| inside(s[2], s[3]));
+    assert!(!in_hole, "a stem grew in the hole");
     click(c, "#growth option[value=dfs]").await;
     let dfs = settled_until(c, 20, 100, |v| v["growth"] != holed["growth"]).await;
     assert_ne!(dfs["growth"], holed["growth"]);
     // The growth order is kept in the file: `O=dfs` joins the header, and
     // nothing else in the text changes.
     let text = dfs["text"].as_str().unwrap();
-    assert_eq!(
-        text,
-        holed["text"]
-            .as_str()
-            .unwrap()
-            .replace("B=1(0)RULE", "B=1(0) O=dfs RULE"),
-        "{text}"
-    );
+    let want = holed["text"]
+        .as_str()
+        .unwrap()
+        .replace("B=1(0)RULE", "B=1(0) O=dfs RULE");
+    assert_eq!(text, want, "{text}");
     click(c, "#play").await;
     let replayed = "return window.stlc.state.replayTimer === null";
     js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
@@ -115,10 +93,8 @@ async fn acceptance(c: &Client) {
     ] {
         js(c, "window.stlc.state.lastDownload = null; return 0;").await;
         click(c, button).await;
-        let offered = js_until(c, "return window.stlc.state.lastDownload", 200, 50, |v| {
-            !v.is_null()
-        })
-        .await;
+        let last = "return window.stlc.state.lastDownload";
+        let offered = js_until(c, last, 200, 50, |v| !v.is_null()).await;
         let out = cli(&[&args[..1], &[od.to_str().unwrap()], &args[1..]].concat());
         assert_eq!(offered["size"], out.len(), "{button}: {offered}");
         let ext = if button.ends_with("png") {
@@ -126,27 +102,20 @@ async fn acceptance(c: &Client) {
         } else {
             ".bed"
         };
-        assert!(
-            offered["name"].as_str().unwrap().ends_with(ext),
-            "{offered}"
-        );
+        let name = offered["name"].as_str().unwrap();
+        assert!(name.ends_with(ext), "{offered}");
     }
 }
 
-async fn steps(c: &Client, server: &Server, file: &Path) {
-    c.goto(&server.url).await.unwrap();
-    let first = settled(c).await;
-    assert_eq!(first["ok"], true, "{first}");
+async fn steps(c: &Client, file: &Path) {
+    let first = settled_ok(c).await;
     assert!(first["text"].as_str().unwrap().contains("Fig9"));
     shot(c, "1-opened").await;
 
     // Type an OD.
-    let source = c.find(Locator::Id("source")).await.unwrap();
-    source.clear().await.unwrap();
-    source.send_keys(TYPED).await.unwrap();
-    let typed = settled(c).await;
+    retype(c, TYPED).await;
+    let typed = settled_ok(c).await;
     assert_eq!(typed["text"], TYPED);
-    assert_eq!(typed["ok"], true, "{typed}");
     let small = typed["stems"].as_u64().unwrap();
     assert!(small > 3, "{typed}");
     shot(c, "2-typed").await;
@@ -157,30 +126,19 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     drag(c, (20.0, 20.0), (180.0, 160.0)).await;
     let drawn = settled(c).await;
     let text = drawn["text"].as_str().unwrap();
-    let layout: Vec<&str> = text
-        .lines()
-        .skip_while(|l| *l != "LAYOUT")
-        .take_while(|l| *l != "ENDLAYOUT")
-        .collect();
-    assert_eq!(layout.len(), 3, "{text}");
-    assert_eq!(layout[1], "(clGreen) Rectangle (70, 120), 60, 75");
-    let new = layout[2];
+    let layout = layout_lines(text);
+    assert_eq!(layout.len(), 2, "{text}");
+    assert_eq!(layout[0], "(clGreen) Rectangle (70, 120), 60, 75");
+    let new = &layout[1];
     assert!(new.starts_with("(clGreen) Rectangle ("), "{new}");
-    let nums: Vec<f64> = new
-        .trim_start_matches("(clGreen) Rectangle ")
-        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
-        .filter(|s| !s.is_empty())
-        .map(|s| s.parse().unwrap())
-        .collect();
-    let near = |a: f64, b: f64| (a - b).abs() <= 1.0;
-    assert!(
-        near(nums[0], 20.0) && near(nums[1], 20.0) && near(nums[2], 160.0) && near(nums[3], 140.0),
-        "{new}"
-    );
+    let nums = numbers_in(new.trim_start_matches("(clGreen) Rectangle "));
+    let at = |i: usize, want: f64| (nums[i] - want).abs() <= 1.0;
+    let corners = at(0, 20.0) && at(1, 20.0) && at(2, 160.0) && at(3, 140.0);
+    assert!(corners, "{new}");
     assert_eq!(drawn["ok"], true, "{drawn}");
     let grown = drawn["stems"].as_u64().unwrap();
     assert!(grown > small, "{small} -> {grown}");
-    let g: Vec<f64> = numbers(&drawn["growth"]);
+    let g = numbers(&drawn["growth"]);
     let outside_first = g.chunks(6).any(|s| s[3] < 119.0);
     assert!(outside_first, "no stem grew into the drawn rectangle");
     shot(c, "3-drawn").await;
@@ -189,10 +147,8 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     click(c, "#growth option[value=dfs]").await;
     let dfs = settled_until(c, 20, 100, |v| v["growth"] != drawn["growth"]).await;
     assert_eq!(dfs["ok"], true);
-    assert_ne!(
-        dfs["growth"], drawn["growth"],
-        "bfs and dfs gave the same tree"
-    );
+    let same = "bfs and dfs gave the same tree";
+    assert_ne!(dfs["growth"], drawn["growth"], "{same}");
     shot(c, "4-dfs").await;
 
     // Replay: midway only part of the tree is drawn.
@@ -203,52 +159,32 @@ async fn steps(c: &Client, server: &Server, file: &Path) {
     assert!(max > 10, "{max}");
     click(c, "#play").await;
     // The replay takes about four seconds: look once it is under way.
-    let mut mid = Value::Null;
-    for _ in 0..200 {
-        tokio::time::sleep(Duration::from_millis(50)).await;
-        mid = js(
-            c,
-            "return {v: Number(document.getElementById('step').value),
-                     replaying: document.getElementById('preview').classList.contains('replaying'),
-                     label: document.getElementById('step-label').textContent};",
-        )
-        .await;
-        if mid["v"].as_u64().unwrap() > max / 4 {
-            break;
-        }
-    }
+    let now = "return {v: Number(document.getElementById('step').value),
+                       replaying: document.getElementById('preview').classList.contains('replaying'),
+                       label: document.getElementById('step-label').textContent};";
+    let mid = js_until(c, now, 200, 50, |m| m["v"].as_u64().unwrap() > max / 4).await;
     let v = mid["v"].as_u64().unwrap();
     assert!(v > 0 && v < max, "{mid}");
     assert_eq!(mid["replaying"], true, "{mid}");
     shot(c, "5-replay").await;
     let replayed = "return window.stlc.state.replayTimer === null";
     js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
-    let end = js(c, "return Number(document.getElementById('step').value)").await;
-    assert_eq!(end.as_u64().unwrap(), max);
+    assert_eq!(value_of(c, "#step").await, max.to_string());
 
     // An error: its diagnostic is listed and marked at its line.
     let good = dfs["text"].as_str().unwrap().to_string();
     let error_line = good.lines().count() + 1;
-    js(c, "const s = document.getElementById('source'); s.focus(); s.setSelectionRange(s.value.length, s.value.length); return 0;").await;
-    source.send_keys("JUNK(").await.unwrap();
-    let bad = settled(c).await;
-    assert_eq!(bad["ok"], false, "{bad}");
-    let listed = js(
-        c,
-        "const li = document.querySelector('[data-testid=diagnostics] li.error');
-         const mark = document.querySelector('#gutter span.error');
-         return {line: li && li.dataset.line, text: li && li.textContent,
-                 mark: mark && mark.textContent};",
-    )
-    .await;
+    caret_to_end(c).await;
+    type_into(c, "source", "JUNK(").await;
+    settled_failed(c).await;
+    let listed = listed_error(c).await;
     assert_eq!(listed["line"], error_line.to_string(), "{listed}");
     assert_eq!(listed["mark"], error_line.to_string(), "{listed}");
     shot(c, "6-error").await;
     for _ in 0..5 {
-        source.send_keys("\u{E003}").await.unwrap(); // Backspace
+        type_into(c, "source", "\u{E003}").await; // Backspace
     }
-    let fixed = settled(c).await;
-    assert_eq!(fixed["ok"], true, "{fixed}");
+    let fixed = settled_ok(c).await;
     assert_eq!(fixed["text"], good.as_str());
 
     // Save writes the editor's text to the file.
@@ -296,10 +232,8 @@ async fn tools(c: &Client, start: &str) {
     assert_eq!(lines.len(), 3, "{lines:?}");
     assert_eq!(lines[2], "(clWhite) Ellipse (60, 40), 80, 60");
     let stems1 = holed["stems"].as_u64().unwrap();
-    assert!(
-        stems1 < stems0,
-        "a hole grows fewer stems: {stems0} -> {stems1}"
-    );
+    let fewer = format!("a hole grows fewer stems: {stems0} -> {stems1}");
+    assert!(stems1 < stems0, "{fewer}");
     shot(c, "8-hole").await;
 
     // Select it by its outline and move it 10 units right and down.
@@ -343,10 +277,8 @@ async fn tools(c: &Client, start: &str) {
     let poly = settled(c).await;
     let lines = layout_lines(poly["text"].as_str().unwrap());
     assert_eq!(lines.len(), 3, "{lines:?}");
-    assert_eq!(
-        lines[2],
-        "(clGreen) Polygon (150, 170), (190, 170), (190, 195)"
-    );
+    let polygon = "(clGreen) Polygon (150, 170), (190, 170), (190, 195)";
+    assert_eq!(lines[2], polygon);
     shot(c, "9-polygon").await;
 
     // Drag the root: its `(x, y)` in the text follows.
@@ -366,59 +298,35 @@ async fn tools(c: &Client, start: &str) {
     click(c, "#zoom-in").await;
     let zoomed = js(c, width).await.as_f64().unwrap();
     // (SVG keeps the box in single precision.)
-    assert!(
-        (zoomed - fitted / 1.25).abs() < 1e-3,
-        "{fitted} -> {zoomed}"
-    );
+    let by_a_step = (zoomed - fitted / 1.25).abs() < 1e-3;
+    assert!(by_a_step, "{fitted} -> {zoomed}");
     click(c, "#fit").await;
     assert!((js(c, width).await.as_f64().unwrap() - fitted).abs() < 1e-3);
 
     // Tree Renderer: an L-system at a depth.
     click(c, "#kind option[value=lsys]").await;
-    let source = c.find(Locator::Id("source")).await.unwrap();
-    source.clear().await.unwrap();
-    source
-        .send_keys("axiom F++F++F\nangle 60\nrule F F-F++F-F\n")
-        .await
-        .unwrap();
+    retype(c, KOCH).await;
     // The depth control writes the file's `generations` line.
-    let depth = c.find(Locator::Id("depth")).await.unwrap();
-    depth.send_keys("2").await.unwrap();
-    let text = js(c, "return document.getElementById('source').value").await;
-    assert!(
-        text.as_str().unwrap().ends_with("generations 2\n"),
-        "{text}"
-    );
-    let koch = settled(c).await;
-    assert_eq!(koch["ok"], true, "{koch}");
+    type_into(c, "depth", "2").await;
+    let text = value_of(c, "#source").await;
+    assert!(text.ends_with("generations 2\n"), "{text}");
+    let koch = settled_ok(c).await;
     // Depth 2 of the Koch snowflake: 3 * 4^2 segments.
     assert_eq!(koch["stems"], 48, "{koch}");
-    let drawn = js(
-        c,
-        "return document.querySelectorAll('#preview .lib path').length",
-    )
-    .await;
-    assert!(drawn.as_u64().unwrap() >= 1, "{drawn}");
+    let drawn = super::browser_steps::count(c, "#preview .lib path").await;
+    assert!(drawn >= 1, "{drawn}");
     shot(c, "10-renderer").await;
 }
 
 /// The BED of the page's answer once it is `want` (the page may still be
 /// answering an earlier edit), or the last one seen.
 async fn answer_bed(c: &Client, want: &str) -> String {
-    let mut bed = String::new();
-    for _ in 0..40 {
+    let bed = async || {
         settled(c).await;
-        bed = js(c, "return window.stlc.state.answer.bed")
-            .await
-            .as_str()
-            .unwrap_or_default()
-            .to_string();
-        if bed == want {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
-    bed
+        let bed = js(c, "return window.stlc.state.answer.bed").await;
+        bed.as_str().unwrap_or_default().to_string()
+    };
+    poll(40, 50, bed, |b| b == want).await
 }
 
 /// The preview's view box: `[x, y, width, height]` in canvas units.
@@ -434,11 +342,8 @@ async fn view_box(c: &Client) -> Vec<f64> {
 
 /// The box Fit shows, as a view box.
 async fn fit_box(c: &Client) -> Vec<f64> {
-    let v = js(
-        c,
-        "const f = window.stlc.state.fitView; return [f[0], f[1], f[2] - f[0], f[3] - f[1]];",
-    )
-    .await;
+    let fit = "const f = window.stlc.state.fitView; return [f[0], f[1], f[2] - f[0], f[3] - f[1]];";
+    let v = js(c, fit).await;
     numbers(&v)
 }
 
@@ -447,70 +352,29 @@ fn same_box(a: &[f64], b: &[f64]) -> bool {
     a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-3)
 }
 
-/// Presses Ctrl (and Shift) with `key`.
-async fn chord(c: &Client, shift: bool, key: char) {
-    let mut keys = KeyActions::new("keyboard".into()).then(KeyAction::Down { value: '\u{E009}' });
-    if shift {
-        keys = keys.then(KeyAction::Down { value: '\u{E008}' });
-    }
-    keys = keys
-        .then(KeyAction::Down { value: key })
-        .then(KeyAction::Up { value: key });
-    if shift {
-        keys = keys.then(KeyAction::Up { value: '\u{E008}' });
-    }
-    keys = keys.then(KeyAction::Up { value: '\u{E009}' });
-    c.perform_actions(keys).await.unwrap();
-}
-
-/// The mouse wheel turned one notch (`dy` > 0: towards the user, zoom
-/// out) at viewport point `(x, y)`.
-async fn wheel(c: &Client, x: f64, y: f64, dy: i64) {
-    let w = WheelActions::new("wheel".into()).then(WheelAction::Scroll {
-        duration: None,
-        x: x.round() as i64,
-        y: y.round() as i64,
-        delta_x: 0,
-        delta_y: dy,
-    });
-    c.perform_actions(w).await.unwrap();
-}
-
-/// The text of the source of the answer the page shows.
-async fn answer_svg(c: &Client) -> String {
-    js(c, "return window.stlc.state.answer.svg")
-        .await
-        .as_str()
-        .unwrap()
-        .to_string()
+/// The numbers in `line` (a shape's, after its name), in order.
+fn numbers_in(line: &str) -> Vec<f64> {
+    line.split(|ch: char| !(ch.is_ascii_digit() || ch == '.'))
+        .filter(|t| !t.is_empty())
+        .map(|t| t.parse().unwrap())
+        .collect()
 }
 
 #[test]
 fn the_page_opens_exports_zooms_edits_and_undoes_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let start = tmp.path().join("start.od");
-    std::fs::write(&start, TYPED).unwrap();
-    let server = Server::start(&[start.to_str().unwrap()]);
-    let downloads = browser.tmp.join("downloads");
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        renderer(&c, &server, tmp.path(), &downloads).await;
-        editing(&c, tmp.path(), &downloads).await;
-        columns(&c, tmp.path()).await;
-        let _ = c.close().await;
+    on_served_file("start.od", TYPED, async |c, served| {
+        renderer(c, served).await;
+        editing(c, served).await;
+        columns(c, served.dir).await;
     });
 }
 
 /// Tree Renderer through Open…: a BED (and its SVG export, the CLI's
 /// bytes), a broken BED's diagnostic, an L-system at a depth; each new
 /// file is shown whole.
-async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
-    c.goto(&server.url).await.unwrap();
-    let first = settled(c).await;
-    assert_eq!(first["ok"], true, "{first}");
+async fn renderer(c: &Client, served: &Served<'_>) {
+    let (dir, downloads) = (served.dir, &served.downloads);
+    settled_ok(c).await;
     let typed_view = view_box(c).await;
 
     // A BED opened from disk: drawn as `stlc render` draws it, and fitted.
@@ -518,16 +382,10 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
     let bed = dir.join("fig9.bed");
     std::fs::write(&bed, cli(&["compile", fig9.to_str().unwrap()])).unwrap();
     open(c, &bed).await;
-    let opened = settled(c).await;
-    assert_eq!(opened["ok"], true, "{opened}");
-    assert_eq!(
-        opened["text"].as_str().unwrap(),
-        std::fs::read_to_string(&bed).unwrap()
-    );
-    assert_eq!(
-        js(c, "return document.getElementById('kind').value").await,
-        "bed"
-    );
+    let opened = settled_ok(c).await;
+    let whole = std::fs::read_to_string(&bed).unwrap();
+    assert_eq!(opened["text"].as_str().unwrap(), whole);
+    assert_eq!(value_of(c, "#kind").await, "bed");
     // (The BED keeps the OD's LAYOUT, so the page shows it, as
     // `--show-layout` does.)
     let svg = cli_line(&format!("render {} --show-layout -f svg", bed.display()));
@@ -543,40 +401,18 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
 
     // A broken BED: its diagnostic at its line, the last picture kept.
     let text = std::fs::read_to_string(&bed).unwrap();
-    let broken: Vec<String> = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| {
-            if i == 2 {
-                format!("JUNK {l}")
-            } else {
-                l.to_string()
-            }
-        })
-        .collect();
+    let mut broken: Vec<String> = text.lines().map(str::to_string).collect();
+    broken[2] = format!("JUNK {}", broken[2]);
     let bad = dir.join("bad.bed");
     std::fs::write(&bad, broken.join("\n") + "\n").unwrap();
     open(c, &bad).await;
-    let failed = settled(c).await;
-    assert_eq!(failed["ok"], false, "{failed}");
-    let listed = js(
-        c,
-        "const li = document.querySelector('[data-testid=diagnostics] li.error');
-         const mark = document.querySelector('#gutter span.error');
-         return {line: li && li.dataset.line, text: li && li.textContent,
-                 mark: mark && mark.textContent,
-                 picture: document.querySelector('#preview .lib') !== null};",
-    )
-    .await;
+    settled_failed(c).await;
+    let listed = listed_error(c).await;
     assert_eq!(listed["line"], "3", "{listed}");
     assert_eq!(listed["mark"], "3", "{listed}");
-    assert!(
-        listed["text"]
-            .as_str()
-            .unwrap()
-            .contains("expected `RULE`, a root `(x, y)` or a stem parameter"),
-        "{listed}"
-    );
+    let expected = "expected `RULE`, a root `(x, y)` or a stem parameter";
+    let said = listed["text"].as_str().unwrap();
+    assert!(said.contains(expected), "{listed}");
     // A file just opened that fails shows no picture of the file before
     // it (issue 22, problem 4).
     assert_eq!(listed["picture"], false, "{listed}");
@@ -584,18 +420,10 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
 
     // An L-system with a depth: the Koch snowflake at depth 3.
     let koch = dir.join("koch.lsys");
-    std::fs::write(&koch, "axiom F++F++F\nangle 60\nrule F F-F++F-F\n").unwrap();
+    std::fs::write(&koch, KOCH).unwrap();
     open(c, &koch).await;
-    assert_eq!(
-        js(c, "return document.getElementById('kind').value").await,
-        "lsys"
-    );
-    c.find(Locator::Id("depth"))
-        .await
-        .unwrap()
-        .send_keys("3")
-        .await
-        .unwrap();
+    assert_eq!(value_of(c, "#kind").await, "lsys");
+    type_into(c, "depth", "3").await;
     let drawn = settled_until(c, 40, 50, |v| v["stems"] == 192).await;
     // 3 * 4^3 segments.
     assert_eq!(drawn["stems"], 192, "{drawn}");
@@ -615,78 +443,39 @@ async fn renderer(c: &Client, server: &Server, dir: &Path, downloads: &Path) {
     let bed_of = |seed: &str| {
         String::from_utf8(cli(&["compile", grove.to_str().unwrap(), "--seed", seed])).unwrap()
     };
-    c.find(Locator::Id("seed"))
-        .await
-        .unwrap()
-        .send_keys("7")
-        .await
-        .unwrap();
-    let page_bed = answer_bed(c, &bed_of("7")).await;
-    same_bytes(
-        page_bed.as_bytes(),
-        bed_of("7").as_bytes(),
-        "the grove, seed 7",
-    );
-    let roots = js(
-        c,
-        "return document.querySelectorAll('#preview .other-root').length",
-    )
-    .await;
+    let grove_is = async |seed: &str, what: &str| {
+        let want = bed_of(seed);
+        same_bytes(answer_bed(c, &want).await.as_bytes(), want.as_bytes(), what);
+    };
+    type_into(c, "seed", "7").await;
+    grove_is("7", "the grove, seed 7").await;
+    let roots = super::browser_steps::count(c, "#preview .other-root").await;
     assert_eq!(roots, 3, "the grove's three further roots");
     shot(c, "15-grove-seed-7").await;
     click(c, "#reseed").await;
-    assert_eq!(
-        js(c, "return document.getElementById('seed').value").await,
-        "8"
-    );
-    let page_bed = answer_bed(c, &bed_of("8")).await;
-    same_bytes(
-        page_bed.as_bytes(),
-        bed_of("8").as_bytes(),
-        "the grove, next seed",
-    );
+    assert_eq!(value_of(c, "#seed").await, "8");
+    grove_is("8", "the grove, next seed").await;
     shot(c, "16-grove-seed-8").await;
     // Seeds past 2^53 (where JavaScript numbers stop being exact) reach
     // the server digit for digit; "next seed" counts on exactly.
-    js(
-        c,
-        "const s = document.getElementById('seed'); s.value = '18446744073709551614';
-         s.dispatchEvent(new Event('input')); return null;",
-    )
-    .await;
+    set_value(c, "#seed", "18446744073709551614").await;
     click(c, "#reseed").await;
     let top = u64::MAX.to_string();
-    assert_eq!(
-        js(c, "return document.getElementById('seed').value").await,
-        top.as_str()
-    );
-    let page_bed = answer_bed(c, &bed_of(&top)).await;
-    same_bytes(
-        page_bed.as_bytes(),
-        bed_of(&top).as_bytes(),
-        "the grove, seed 2^64 - 1",
-    );
-    js(
-        c,
-        "const s = document.getElementById('seed'); s.value = '';
-         s.dispatchEvent(new Event('input')); return null;",
-    )
-    .await;
+    assert_eq!(value_of(c, "#seed").await, top);
+    grove_is(&top, "the grove, seed 2^64 - 1").await;
+    set_value(c, "#seed", "").await;
 }
 
 /// Back in Tree Maker: wheel zoom and drag-to-pan move only the view; a
 /// RoundRect drawn, Raise, a selected shape recoloured; Ctrl-Z and Ctrl-Y
 /// walk those edits back and forth.
-async fn editing(c: &Client, dir: &Path, downloads: &Path) {
+async fn editing(c: &Client, served: &Served<'_>) {
+    let (dir, downloads) = (served.dir, &served.downloads);
     let od = dir.join("tree.od");
     std::fs::write(&od, TYPED).unwrap();
     open(c, &od).await;
-    let opened = settled(c).await;
-    assert_eq!(opened["ok"], true, "{opened}");
-    assert_eq!(
-        js(c, "return document.getElementById('kind').value").await,
-        "od"
-    );
+    settled_ok(c).await;
+    assert_eq!(value_of(c, "#kind").await, "od");
     let fitted = view_box(c).await;
     assert!(same_box(&fitted, &fit_box(c).await), "{fitted:?}");
     let svg = answer_svg(c).await;
@@ -700,7 +489,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     let (px, py) = screen_of(c, 100.0, 150.0).await;
     let mut notches = 0;
     while view_box(c).await[2] < 240.0 {
-        wheel(c, px, py, 120).await;
+        wheel(c, (px, py), 120).await;
         notches += 1;
         assert!(notches < 30, "the wheel does not zoom");
     }
@@ -710,40 +499,19 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     assert!((steps - steps.round()).abs() < 1e-3, "{ratio}");
     assert!((zoomed[3] / fitted[3] - ratio).abs() < 1e-3);
     let (qx, qy) = screen_of(c, 100.0, 150.0).await;
-    assert!(
-        (qx - px).abs() < 1.0 && (qy - py).abs() < 1.0,
-        "{px},{py} -> {qx},{qy}"
-    );
+    let moved = (qx - px).abs() < 1.0 && (qy - py).abs() < 1.0;
+    assert!(moved, "{px},{py} -> {qx},{qy}");
     // The wheel back towards the screen zooms in.
-    wheel(c, px, py, -120).await;
+    wheel(c, (px, py), -120).await;
     assert!((view_box(c).await[2] * 1.15 - zoomed[2]).abs() < 1e-2);
-    wheel(c, px, py, 120).await;
+    wheel(c, (px, py), 120).await;
 
     // Dragging empty space pans: the picture moves with the mouse.
     let (sx, sy) = screen_of(c, 30.0, 60.0).await;
-    let grip = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x: sx,
-            y: sy,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(100)),
-            x: sx + 60.0,
-            y: sy + 40.0,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(grip).await.unwrap();
+    press_along(c, &[(sx, sy), (sx + 60.0, sy + 40.0)], 100).await;
     let (tx, ty) = screen_of(c, 30.0, 60.0).await;
-    assert!(
-        (tx - sx - 60.0).abs() < 1.0 && (ty - sy - 40.0).abs() < 1.0,
-        "{sx},{sy} -> {tx},{ty}"
-    );
+    let moved = (tx - sx - 60.0).abs() < 1.0 && (ty - sy - 40.0).abs() < 1.0;
+    assert!(moved, "{sx},{sy} -> {tx},{ty}");
     let panned = view_box(c).await;
     assert!((panned[2] - zoomed[2]).abs() < 1e-3);
     assert_eq!(js(c, lib).await, picture);
@@ -756,8 +524,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     click(c, "[data-tool=RoundRect]").await;
     click(c, "#colour option[value=clGreen]").await;
     drag(c, (140.0, 40.0), (190.0, 100.0)).await;
-    let drawn = settled(c).await;
-    assert_eq!(drawn["ok"], true, "{drawn}");
+    let drawn = settled_ok(c).await;
     let drawn_text = drawn["text"].as_str().unwrap().to_string();
     let lines = layout_lines(&drawn_text);
     assert_eq!(lines.len(), 2, "{lines:?}");
@@ -766,12 +533,7 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     // number is the intended one within one canvas unit; the corner radius
     // is an eighth of the shorter side, to 0.1.
     let rr = lines[1].clone();
-    let nums: Vec<f64> = rr
-        .trim_start_matches("(clGreen) RoundRect ")
-        .split(|ch: char| !(ch.is_ascii_digit() || ch == '.'))
-        .filter(|t| !t.is_empty())
-        .map(|t| t.parse().unwrap())
-        .collect();
+    let nums = numbers_in(rr.trim_start_matches("(clGreen) RoundRect "));
     assert_eq!(nums.len(), 5, "{rr}");
     for (got, want) in nums.iter().zip([140.0, 40.0, 50.0, 60.0]) {
         assert!((got - want).abs() <= 1.0, "{rr}");
@@ -790,98 +552,68 @@ async fn editing(c: &Client, dir: &Path, downloads: &Path) {
     click_at(c, (100.0, 140.0)).await;
     assert_eq!(js(c, "return window.stlc.state.selected").await, 0);
     click(c, "#raise").await;
-    let raised = settled(c).await;
-    let raised_text = raised["text"].as_str().unwrap().to_string();
-    assert_eq!(
-        layout_lines(&raised_text),
-        [rr.as_str(), "(clGreen) Rectangle (70, 120), 60, 75",]
-    );
+    let raised_text = settled(c).await["text"].as_str().unwrap().to_string();
+    let want = [rr.as_str(), "(clGreen) Rectangle (70, 120), 60, 75"];
+    assert_eq!(layout_lines(&raised_text), want);
 
     // Recolour paints the selection with the paint colour.
     click(c, "#colour option[value=clLime]").await;
     click(c, "#recolour").await;
-    let lime = settled(c).await;
-    assert_eq!(lime["ok"], true, "{lime}");
-    let lime_text = lime["text"].as_str().unwrap().to_string();
-    assert_eq!(
-        layout_lines(&lime_text),
-        [rr.as_str(), "(clLime) Rectangle (70, 120), 60, 75",]
-    );
-    assert!(
-        answer_svg(c).await.to_lowercase().contains("#00ff00"),
-        "the lime rectangle is not drawn lime"
-    );
+    let lime_text = settled_ok(c).await["text"].as_str().unwrap().to_string();
+    let want = [rr.as_str(), "(clLime) Rectangle (70, 120), 60, 75"];
+    assert_eq!(layout_lines(&lime_text), want);
+    let lime = answer_svg(c).await.to_lowercase().contains("#00ff00");
+    assert!(lime, "the lime rectangle is not drawn lime");
     assert!(same_box(&view_box(c).await, &panned));
     shot(c, "16-roundrect-raised-lime").await;
 
     // Undo walks back through the three edits (and no further: opening a
     // file starts a new history); redo walks forward.
-    for want in [
-        &raised_text,
-        &drawn_text,
-        &TYPED.to_string(),
-        &TYPED.to_string(),
-    ] {
-        chord(c, false, 'z').await;
-        let back = settled(c).await;
-        assert_eq!(back["text"].as_str().unwrap(), want.as_str());
-        assert_eq!(back["ok"], true, "{back}");
+    for want in [&raised_text, &drawn_text, TYPED, TYPED] {
+        chord(c, &[CONTROL], 'z').await;
+        assert_eq!(settled_ok(c).await["text"].as_str().unwrap(), want);
     }
     let shapes = js(c, "return window.stlc.state.shapes.length").await;
     assert_eq!(shapes, 1);
-    chord(c, false, 'y').await;
+    chord(c, &[CONTROL], 'y').await;
     assert_eq!(settled(c).await["text"].as_str().unwrap(), drawn_text);
-    chord(c, true, 'z').await;
+    chord(c, &[CONTROL, SHIFT], 'z').await;
     assert_eq!(settled(c).await["text"].as_str().unwrap(), raised_text);
     assert!(same_box(&view_box(c).await, &panned));
     shot(c, "17-undone").await;
 
     // Typing is one more step of the same history, undone in the editor.
-    js(
-        c,
-        "const s = document.getElementById('source'); s.focus();
-         s.setSelectionRange(s.value.length, s.value.length); return 0;",
-    )
-    .await;
-    c.find(Locator::Id("source"))
-        .await
-        .unwrap()
-        .send_keys("JUNK(")
-        .await
-        .unwrap();
-    let typed = settled(c).await;
-    assert_eq!(typed["ok"], false, "{typed}");
+    caret_to_end(c).await;
+    type_into(c, "source", "JUNK(").await;
+    let typed = settled_failed(c).await;
     assert_eq!(
         typed["text"].as_str().unwrap(),
         format!("{raised_text}JUNK(")
     );
-    chord(c, false, 'z').await;
-    let back = settled(c).await;
-    assert_eq!(back["text"].as_str().unwrap(), raised_text);
-    assert_eq!(back["ok"], true, "{back}");
+    chord(c, &[CONTROL], 'z').await;
+    assert_eq!(settled_ok(c).await["text"].as_str().unwrap(), raised_text);
 
     // Another description pasted over the whole text is shown whole. (Its
     // text reaches the clipboard by a real Ctrl-C in a scratch textarea.)
-    let fig9 = std::fs::read_to_string(manifest_path("examples/fig9.od")).unwrap();
-    c.execute(
+    let fig9 = example("fig9.od");
+    js_with(
+        c,
         "const t = document.createElement('textarea'); t.id = 'scratch';
          t.value = arguments[0]; document.body.appendChild(t);
          t.focus(); t.select(); return 0;",
-        vec![json!(fig9)],
+        &[json!(fig9)],
     )
-    .await
-    .unwrap();
-    chord(c, false, 'c').await;
+    .await;
+    chord(c, &[CONTROL], 'c').await;
     js(
         c,
         "document.getElementById('scratch').remove();
          const s = document.getElementById('source'); s.focus(); s.select(); return 0;",
     )
     .await;
-    chord(c, false, 'v').await;
-    let pasted = settled(c).await;
+    chord(c, &[CONTROL], 'v').await;
+    let pasted = settled_ok(c).await;
     assert_eq!(pasted["text"].as_str().unwrap(), fig9);
-    assert_eq!(pasted["ok"], true, "{pasted}");
     let shown = view_box(c).await;
     assert!(same_box(&shown, &fit_box(c).await), "{shown:?}");
     assert!(!same_box(&shown, &panned), "{shown:?}");
@@ -910,11 +642,9 @@ fn js_index(text: &str, byte: usize) -> u64 {
 /// editor's selection, `[selectionStart, selectionEnd]`.
 async fn click_error(c: &Client) -> Value {
     click(c, "[data-testid=diagnostics] li.error").await;
-    js(
-        c,
-        "const s = document.getElementById('source'); return [s.selectionStart, s.selectionEnd];",
-    )
-    .await
+    let selection =
+        "const s = document.getElementById('source'); return [s.selectionStart, s.selectionEnd];";
+    js(c, selection).await
 }
 
 /// Diagnostics count columns in characters (code points), JavaScript in
@@ -931,8 +661,7 @@ async fn columns(c: &Client, dir: &Path) {
     );
     std::fs::write(&od, &text).unwrap();
     open(c, &od).await;
-    let failed = settled(c).await;
-    assert_eq!(failed["ok"], false, "{failed}");
+    settled_failed(c).await;
     let at = text.find("clWhiet").unwrap();
     let want = json!([js_index(&text, at), js_index(&text, at + "clWhiet".len())]);
     assert_eq!(click_error(c).await, want, "{text}");
@@ -943,18 +672,9 @@ async fn columns(c: &Client, dir: &Path) {
     let text = "# 🌳 tree\nangle 20\naxiom 🌳]F\n";
     std::fs::write(&lsys, text).unwrap();
     open(c, &lsys).await;
-    let failed = settled(c).await;
-    assert_eq!(failed["ok"], false, "{failed}");
-    let listed = js(
-        c,
-        "const li = document.querySelector('[data-testid=diagnostics] li.error');
-         return li && li.textContent;",
-    )
-    .await;
-    assert!(
-        listed.as_str().unwrap().contains("line 3, column 8"),
-        "{listed}"
-    );
+    settled_failed(c).await;
+    let listed = text_of(c, "[data-testid=diagnostics] li.error").await;
+    assert!(listed.contains("line 3, column 8"), "{listed}");
     let at = text.find(']').unwrap();
     let want = json!([js_index(text, at), js_index(text, at + 1)]);
     assert_eq!(click_error(c).await, want, "{text}");

@@ -9,14 +9,14 @@
 use std::time::Duration;
 
 use fantoccini::Client;
-use fantoccini::actions::{
-    InputSource, MOUSE_BUTTON_LEFT, MouseActions, PointerAction, WheelAction, WheelActions,
-};
 use serde_json::{Value, json};
 
-use super::chromium::{Browser, cli, click, js, settled, shot};
-use super::serve::{Server, render, request};
-use crate::support::manifest_path;
+use super::browser_steps::{reload, settled_ok, text_of};
+use super::chromium::{
+    cli, click, file_until, js, js_async, on_served_file, press_along, settled_until, shot, wheel,
+};
+use super::serve::{Server, example, post, render, request};
+use crate::support::{manifest_path, numbers, stlc_stdout};
 
 /// A compact body decoded as the page decodes it (engine/http.js): the
 /// head's answer with `growth.stems` and `space.stems` put back.
@@ -69,27 +69,16 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
         &[("Accept", "application/x-stlc-render, application/json")],
         body.to_string().as_bytes(),
     );
-    assert!(
-        compact
-            .head
-            .contains("content-type: application/x-stlc-render"),
-        "{}",
-        compact.head
-    );
+    let head = &compact.head;
+    let compact_type = "content-type: application/x-stlc-render";
+    assert!(head.contains(compact_type), "{head}");
     assert_eq!(unpack(&compact.body), a);
     // The export draws the view asked for: the CLI's bytes.
     let view = json!({"source": text, "kind": "lsys", "view": [-60, 35]});
-    let svg = request(
-        &server.addr,
-        "POST",
-        "/api/export?format=svg",
-        &[],
-        view.to_string().as_bytes(),
-    );
-    let path = manifest_path("examples/hilbert3d.lsys");
+    let svg = post(&server.addr, "/api/export?format=svg", &[], &view);
     let want = cli(&[
         "render",
-        path.to_str().unwrap(),
+        "examples/hilbert3d.lsys",
         "--view",
         "-60,35",
         "-f",
@@ -122,10 +111,8 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
     );
     assert_eq!(space["axis"], json!([10.0, 5.0]));
     // A 2D answer has no `space`.
-    let flat = render(
-        &server.addr,
-        &json!({"source": "axiom F+F\nangle 90\ngenerations 0\n", "kind": "lsys"}),
-    );
+    let flat = json!({"source": "axiom F+F\nangle 90\ngenerations 0\n", "kind": "lsys"});
+    let flat = render(&server.addr, &flat);
     assert_eq!(flat["ok"], true, "{flat}");
     assert!(flat.get("space").is_none(), "{flat}");
     assert_eq!(flat["tree_in_svg"], true);
@@ -133,25 +120,18 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
 
 #[test]
 fn a_3d_file_orbits_regrows_and_reloads_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let file = tmp.path().join("hilbert.lsys");
-    std::fs::copy(manifest_path("examples/hilbert3d.lsys"), &file).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
-        let first = opens_in_the_3d_view(&c).await;
-        orbit_zoom_and_fit(&c, &first).await;
-        an_edit_regrows(&c, &first).await;
-        a_reload_keeps_the_text(&c, &file).await;
-        the_camera_is_the_clis(&c).await;
-        volumes_and_replay(&c).await;
-        let _ = c.close().await;
-    });
+    on_served_file(
+        "hilbert.lsys",
+        &example("hilbert3d.lsys"),
+        async |c, served| {
+            let first = opens_in_the_3d_view(c).await;
+            orbit_zoom_and_fit(c, &first).await;
+            an_edit_regrows(c, &first).await;
+            a_reload_keeps_the_text(c, served.file).await;
+            the_camera_is_the_clis(c).await;
+            volumes_and_replay(c).await;
+        },
+    );
 }
 
 /// The 3D canvas's pixels: `{count, sum, width, height}` (count: pixels
@@ -161,13 +141,7 @@ async fn pixels(c: &Client) -> Value {
 }
 
 async fn angles(c: &Client) -> Vec<f64> {
-    js(c, "return window.stlc.view3d.angles()")
-        .await
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect()
+    numbers(&js(c, "return window.stlc.view3d.angles()").await)
 }
 
 /// The centre of the 3D canvas in viewport pixels.
@@ -197,12 +171,7 @@ async fn opens_in_the_3d_view(c: &Client) -> Value {
     // The 3D Hilbert curve at depth 2 visits 8^2 lattice points: 63 unit
     // steps, each one lattice unit (the file's `length`) long, and every
     // next stem starts where the last ended.
-    let s: Vec<f64> = shown["stems"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
+    let s = numbers(&shown["stems"]);
     assert_eq!(s.len(), 63 * 8);
     let len =
         |t: &[f64]| ((t[3] - t[0]).powi(2) + (t[4] - t[1]).powi(2) + (t[5] - t[2]).powi(2)).sqrt();
@@ -216,12 +185,8 @@ async fn opens_in_the_3d_view(c: &Client) -> Value {
         if i > 0 {
             assert_eq!(&t[0..3], &s[(i - 1) * 8 + 3..(i - 1) * 8 + 6]);
         }
-        points.insert(
-            t[3..6]
-                .iter()
-                .map(|x| (x / unit).round() as i64)
-                .collect::<Vec<_>>(),
-        );
+        let point = t[3..6].iter().map(|x| (x / unit).round() as i64);
+        points.insert(point.collect::<Vec<_>>());
     }
     points.insert(s[0..3].iter().map(|x| (x / unit).round() as i64).collect());
     assert_eq!(points.len(), 64, "64 distinct lattice points");
@@ -236,29 +201,8 @@ async fn opens_in_the_3d_view(c: &Client) -> Value {
 
 async fn orbit_zoom_and_fit(c: &Client, first: &Value) {
     let (x, y) = centre(c).await;
-    let mouse = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x,
-            y,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(100)),
-            x: x + 60.0,
-            y: y + 25.0,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(100)),
-            x: x + 120.0,
-            y: y + 50.0,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(mouse).await.unwrap();
+    let path = [(x, y), (x + 60.0, y + 25.0), (x + 120.0, y + 50.0)];
+    press_along(c, &path, 100).await;
     // 0.4 degrees a pixel: 120 px across turns AZ by -48, 50 px down
     // raises EL by 20.
     assert_eq!(angles(c).await, [-18.0, 40.0]);
@@ -266,14 +210,7 @@ async fn orbit_zoom_and_fit(c: &Client, first: &Value) {
     assert_ne!(turned["sum"], first["sum"], "the picture turned");
     assert!(turned["count"].as_f64().unwrap() > 3000.0, "{turned}");
     shot(c, "3d-02-orbited").await;
-    let w = WheelActions::new("wheel".into()).then(WheelAction::Scroll {
-        duration: None,
-        x: x.round() as i64,
-        y: y.round() as i64,
-        delta_x: 0,
-        delta_y: -240,
-    });
-    c.perform_actions(w).await.unwrap();
+    wheel(c, (x, y), -240).await;
     tokio::time::sleep(Duration::from_millis(200)).await;
     let zoomed = pixels(c).await;
     assert_ne!(zoomed["sum"], turned["sum"], "the wheel zooms");
@@ -291,12 +228,8 @@ async fn orbit_zoom_and_fit(c: &Client, first: &Value) {
     assert_ne!(keyed["sum"], first["sum"], "the keys turned the picture");
     view.send_keys("+").await.unwrap();
     assert_ne!(pixels(c).await["sum"], keyed["sum"], "+ zooms");
-    let label = js(
-        c,
-        "return document.querySelector('#view3d-label').textContent",
-    )
-    .await;
-    assert!(label.to_string().contains("arrow keys"), "{label}");
+    let label = text_of(c, "#view3d-label").await;
+    assert!(label.contains("arrow keys"), "{label}");
     view.send_keys("0").await.unwrap();
     assert_eq!(angles(c).await, [30.0, 20.0]);
     assert_eq!(pixels(c).await, *first);
@@ -320,20 +253,11 @@ async fn replace(c: &Client, from: &str, to: &str) {
 
 async fn an_edit_regrows(c: &Client, first: &Value) {
     replace(c, "generations 2", "generations 1").await;
-    let mut now = settled(c).await;
-    for _ in 0..50 {
-        if now["stems"] == json!(7) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
-        now = settled(c).await;
-    }
+    let now = settled_until(c, 50, 100, |v| v["stems"] == json!(7)).await;
     // Depth 1: 8 points, 7 steps.
     assert_eq!(now["stems"], 7, "{now}");
-    assert_eq!(
-        js(c, "return window.stlc.state.answer.space.stems.length").await,
-        7 * 8
-    );
+    let numbers = js(c, "return window.stlc.state.answer.space.stems.length").await;
+    assert_eq!(numbers, 7 * 8);
     let p = pixels(c).await;
     assert_ne!(p["sum"], first["sum"]);
     assert!(p["count"].as_f64().unwrap() > 500.0, "{p}");
@@ -342,35 +266,11 @@ async fn an_edit_regrows(c: &Client, first: &Value) {
 
 async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
     click(c, "[data-testid=save]").await;
-    for _ in 0..100 {
-        if std::fs::read_to_string(file)
-            .unwrap()
-            .contains("generations 1")
-        {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
-    assert!(
-        std::fs::read_to_string(file)
-            .unwrap()
-            .contains("generations 1")
-    );
-    let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
-    tokio::time::sleep(Duration::from_millis(300)).await;
-    let _ = c.accept_alert().await;
-    for _ in 0..100 {
-        let up = js(c, "return !!(window.stlc && window.stlc.state.answer)").await;
-        if up == json!(true) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
-    }
-    let after = settled(c).await;
-    assert!(
-        after["text"].as_str().unwrap().contains("generations 1"),
-        "{after}"
-    );
+    let saved = file_until(file, 100, |t| t.contains("generations 1")).await;
+    assert!(saved.contains("generations 1"));
+    let after = reload(c).await;
+    let text = after["text"].as_str().unwrap();
+    assert!(text.contains("generations 1"), "{after}");
     assert_eq!(after["stems"], 7);
     assert!(pixels(c).await["count"].as_f64().unwrap() > 500.0);
 }
@@ -384,9 +284,9 @@ async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
 async fn the_camera_is_the_clis(c: &Client) {
     let opened = super::browser_web::open_example(c, "plant3d-bare.lsys").await;
     assert_eq!(opened["ok"], true);
-    let page = c
-        .execute_async(
-            "const done = arguments[arguments.length - 1];
+    let page = js_async(
+        c,
+        "const done = arguments[arguments.length - 1];
              import('/view3d.js').then((m) => {
                const [r, d] = m.camera(30, 20);
                const s = window.stlc.state.answer.space.stems;
@@ -398,18 +298,17 @@ async fn the_camera_is_the_clis(c: &Client) {
                }
                done(out);
              });",
-            vec![],
-        )
-        .await
-        .unwrap();
+        vec![],
+    )
+    .await;
     let page: Vec<(f64, f64)> = page
         .as_array()
         .unwrap()
         .iter()
         .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
         .collect();
-    let path = manifest_path("examples/plant3d-bare.lsys");
-    let svg = String::from_utf8(cli(&["render", path.to_str().unwrap(), "-f", "svg"])).unwrap();
+    let svg =
+        String::from_utf8(cli(&["render", "examples/plant3d-bare.lsys", "-f", "svg"])).unwrap();
     let d = svg
         .split(" d=\"")
         .nth(1)
@@ -427,10 +326,10 @@ async fn the_camera_is_the_clis(c: &Client) {
     // CLI's points are the ends without repeats.)
     assert!(cli_points.len() > 2000, "{}", cli_points.len());
     let bbox = |v: &[(f64, f64)]| {
-        v.iter()
-            .fold((f64::MAX, f64::MAX, f64::MIN, f64::MIN), |b, p| {
-                (b.0.min(p.0), b.1.min(p.1), b.2.max(p.0), b.3.max(p.1))
-            })
+        let far = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+        v.iter().fold(far, |b, p| {
+            (b.0.min(p.0), b.1.min(p.1), b.2.max(p.0), b.3.max(p.1))
+        })
     };
     let (a, b) = (bbox(&page), bbox(&cli_points));
     let scale = (b.2 - b.0) / (a.2 - a.0);
@@ -443,16 +342,12 @@ async fn the_camera_is_the_clis(c: &Client) {
     let near =
         |p: &(f64, f64), q: &(f64, f64)| (p.0 - q.0).abs() < 0.05 && (p.1 - q.1).abs() < 0.05;
     for q in &mapped {
-        assert!(
-            cli_points.iter().any(|c| near(c, q)),
-            "{q:?} is not an end in the CLI's picture"
-        );
+        let found = cli_points.iter().any(|c| near(c, q));
+        assert!(found, "{q:?} is not an end in the CLI's picture");
     }
     for c in &cli_points {
-        assert!(
-            mapped.iter().any(|q| near(c, q)),
-            "{c:?} is not an end the page draws"
-        );
+        let found = mapped.iter().any(|q| near(c, q));
+        assert!(found, "{c:?} is not an end the page draws");
     }
     shot(c, "3d-07-bush").await;
 }
@@ -491,25 +386,18 @@ async fn volumes_and_replay(c: &Client) {
     .await;
     assert!(shown["count"].as_f64().unwrap() > 20000.0, "{shown}");
     shot(c, "3d-04-volumes").await;
-    let step = |k: u32| {
-        format!(
-            "const s = document.getElementById('step'); s.value = {k};
-             s.dispatchEvent(new Event('input'));
-             return [document.getElementById('step-label').textContent, window.stlc.view3d.pixels()];"
-        )
-    };
-    let one = js(c, &step(1)).await;
+    let one = replay_to(c, 1).await;
     assert_eq!(one[0], "decision 1 of 2 · 1 stems");
-    let none = js(c, &step(0)).await;
+    let none = replay_to(c, 0).await;
     assert_eq!(none[0], "decision 0 of 2 · 0 stems");
-    let two = js(c, &step(2)).await;
+    let two = replay_to(c, 2).await;
     assert_eq!(two[0], "decision 2 of 2 · 2 stems");
     assert_eq!(two[1], shown, "the whole tree again");
     // Each decision adds its stem over the volumes: another picture.
     let sum = |v: &Value| v[1]["sum"].clone();
     assert_ne!(sum(&none), sum(&one));
     assert_ne!(sum(&one), sum(&two));
-    js(c, &step(1)).await;
+    replay_to(c, 1).await;
     shot(c, "3d-05-replay-1-of-2").await;
     // A Revolve of a shape off the axis is a torus (its hole shown): its
     // vertices lie between the shape's nearest and farthest x, 40 and 80;
@@ -533,10 +421,8 @@ async fn volumes_and_replay(c: &Client) {
     )
     .await;
     let r = |i: usize, j: usize| radii[i][j].as_f64().unwrap();
-    assert!(
-        (r(0, 0) - 40.0).abs() < 1e-6 && (r(0, 1) - 80.0).abs() < 1e-6,
-        "{radii}"
-    );
+    let torus = (r(0, 0) - 40.0).abs() < 1e-6 && (r(0, 1) - 80.0).abs() < 1e-6;
+    assert!(torus, "{radii}");
     assert!(r(1, 0) < 1e-9 && (r(1, 1) - 40.0).abs() < 0.1, "{radii}");
 }
 
@@ -544,37 +430,23 @@ async fn volumes_and_replay(c: &Client) {
 /// the same 3D view: its stems as many as `stlc stats` counts.
 #[test]
 fn the_static_site_shows_a_3d_file_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some((_, server, browser)) = super::browser_web::start(tmp.path()) else {
-        return;
-    };
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
-        let opened = super::browser_web::open_example(&c, "plant3d-bare.lsys").await;
+    super::browser_web::on_site(async |c, _, _| {
+        let opened = super::browser_web::open_example(c, "plant3d-bare.lsys").await;
         assert_eq!(opened["ok"], true, "{opened}");
-        let stats: Value = serde_json::from_slice(&crate::support::stlc_stdout(&[
-            "stats",
-            "--json",
-            manifest_path("examples/plant3d-bare.lsys")
-                .to_str()
-                .unwrap(),
-        ]))
-        .unwrap();
+        let stats = stlc_stdout(&["stats", "--json", "examples/plant3d-bare.lsys"]);
+        let stats: Value = serde_json::from_slice(&stats).unwrap();
         let segments: usize = stats["segments"].as_str().unwrap().parse().unwrap();
         let shown = js(
-            &c,
+            c,
             "const v = document.getElementById('view3d');
              return {canvas: !v.hidden, stems: window.stlc.state.answer.space.stems.length};",
         )
         .await;
         assert_eq!(shown["canvas"], true, "{shown}");
         assert_eq!(shown["stems"], json!(8 * segments));
-        let p = pixels(&c).await;
+        let p = pixels(c).await;
         assert!(p["count"].as_f64().unwrap() > 3000.0, "{p}");
-        shot(&c, "3d-06-static-site").await;
-        let _ = c.close().await;
+        shot(c, "3d-06-static-site").await;
     });
 }
 
@@ -584,17 +456,7 @@ fn the_static_site_shows_a_3d_file_in_chromium() {
 /// to the seed's ten, the last decision the whole tree again.
 #[test]
 fn the_3d_oak_grows_and_replays_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let file = tmp.path().join("oak3d.od");
-    std::fs::copy(manifest_path("examples/oak3d.od"), &file).unwrap();
-    let check = String::from_utf8(crate::support::stlc_stdout(&[
-        "check",
-        file.to_str().unwrap(),
-    ]))
-    .unwrap();
+    let check = String::from_utf8(stlc_stdout(&["check", "examples/oak3d.od"])).unwrap();
     // "grows       5656 stems (bfs)" and "1882 fits".
     let grows: usize = check
         .split("grows")
@@ -611,14 +473,10 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
         .parse()
         .unwrap();
     assert_eq!(grows, 10 + 3 * fits, "{check}");
-    let server = Server::start(&[file.to_str().unwrap()]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        let opened = settled(&c).await;
-        assert_eq!(opened["ok"], true, "{opened}");
+    on_served_file("oak3d.od", &example("oak3d.od"), async |c, _| {
+        settled_ok(c).await;
         let space = js(
-            &c,
+            c,
             "const s = window.stlc.state.answer.space;
              return {stems: s.stems.length / 8, decisions: s.decisions, volumes: s.volumes.map((v) => v.type),
                      shown: !document.getElementById('view3d').hidden};",
@@ -628,33 +486,20 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
         assert_eq!(space["decisions"], json!(fits));
         assert_eq!(space["volumes"], json!(["Cylinder", "Revolve"]));
         assert_eq!(space["shown"], true);
-        let whole = pixels(&c).await;
-        shot(&c, "3d-08-oak").await;
-        let step = |k: usize| {
-            format!(
-                "const s = document.getElementById('step'); s.value = {k};
-                 s.dispatchEvent(new Event('input'));
-                 return [document.getElementById('step-label').textContent, window.stlc.view3d.pixels()];"
-            )
-        };
+        let whole = pixels(c).await;
+        shot(c, "3d-08-oak").await;
         // Counts are shown with their digits grouped by threes.
         let grouped = |n: usize| crate::support::grouped(n as u64);
         let all_of = grouped(fits);
-        let seed = js(&c, &step(0)).await;
+        let seed = replay_to(c, 0).await;
         assert_eq!(seed[0], format!("decision 0 of {all_of} · 10 stems"));
-        let one = js(&c, &step(1)).await;
+        let one = replay_to(c, 1).await;
         assert_eq!(one[0], format!("decision 1 of {all_of} · 13 stems"));
         assert_ne!(one[1]["sum"], seed[1]["sum"]);
-        let half = js(&c, &step(fits / 2)).await;
-        assert_eq!(
-            half[0],
-            format!(
-                "decision {} of {all_of} · {} stems",
-                grouped(fits / 2),
-                grouped(10 + 3 * (fits / 2))
-            )
-        );
-        shot(&c, "3d-09-oak-half-grown").await;
+        let half = replay_to(c, fits / 2).await;
+        let (k, n) = (grouped(fits / 2), grouped(10 + 3 * (fits / 2)));
+        assert_eq!(half[0], format!("decision {k} of {all_of} · {n} stems"));
+        shot(c, "3d-09-oak-half-grown").await;
         // The last decision's stems without the leaves, then the whole tree
         // with them: the canvas's dark green (leaves in the ramp's end
         // colour, #3b5e2b, lit) and bark brown (the ramp's near end,
@@ -671,18 +516,30 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
                if (r > g + 12 && g > b + 8 && r < 160) bark++;
              }
              return [leaf, bark];";
-        js(&c, &step(fits - 1)).await;
-        let bare = js(&c, census).await;
-        let all = js(&c, &step(fits)).await;
+        replay_to(c, fits - 1).await;
+        let bare = js(c, census).await;
+        let all = replay_to(c, fits).await;
         assert_eq!(all[1], whole, "the whole tree again");
-        let leafy = js(&c, census).await;
+        let leafy = js(c, census).await;
         // Measured 23,672 and 1,818 bare, 42,963 and 1,578 leafy at 1280 x
         // 720: with every stem in one colour (before the ramp) there was no
         // dark green at all, and without leaves no more than the stems'.
         let n = |v: &Value, i: usize| v[i].as_u64().unwrap();
-        assert!(n(&bare, 0) > 5_000, "the ramp's deep orders are dark green: {bare}");
-        assert!(n(&leafy, 0) > n(&bare, 0) * 3 / 2, "the leaves add green: {bare} {leafy}");
-        assert!(n(&bare, 1) > 500 && n(&leafy, 1) > 500, "the trunk's bark is brown: {leafy}");
-        let _ = c.close().await;
+        let (green, green_leafy) = (n(&bare, 0), n(&leafy, 0));
+        let deep = "the ramp's deep orders are dark green";
+        assert!(green > 5_000, "{deep}: {bare}");
+        let more = green_leafy > green * 3 / 2;
+        assert!(more, "the leaves add green: {bare} {leafy}");
+        let brown = n(&bare, 1) > 500 && n(&leafy, 1) > 500;
+        assert!(brown, "the trunk's bark is brown: {leafy}");
     });
+}
+
+/// The replay's slider moved to decision `k` as a user moves it: the
+/// label then, and the 3D canvas's pixels.
+async fn replay_to(c: &Client, k: usize) -> Value {
+    let script = "const s = document.getElementById('step'); s.value = arguments[0];
+                  s.dispatchEvent(new Event('input'));
+                  return [document.getElementById('step-label').textContent, window.stlc.view3d.pixels()];";
+    super::browser_steps::js_with(c, script, &[json!(k)]).await
 }

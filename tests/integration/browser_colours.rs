@@ -6,6 +6,7 @@
 
 use serde_json::{Value, json};
 
+use super::browser_steps::{answer_svg, count, set_value, value_of};
 use super::browser_web::open_example;
 use super::chromium::{
     answered, cli_svg_of, click, js, on_served_page, same_bytes, settled_until, shot,
@@ -15,14 +16,7 @@ use super::serve::example;
 /// Sets the colour field `css` to `hex` as a pick does (an `input`
 /// event); the page's answer once its text is `want`.
 async fn pick(c: &fantoccini::Client, css: &str, hex: &str, want: &str) -> Value {
-    js(
-        c,
-        &format!(
-            "const f = document.querySelector('{css}'); f.value = '{hex}';
-             f.dispatchEvent(new Event('input')); return 0;"
-        ),
-    )
-    .await;
+    set_value(c, css, hex).await;
     answered(c, want, &format!("with {hex} from {css}")).await
 }
 
@@ -30,11 +24,8 @@ async fn pick(c: &fantoccini::Client, css: &str, hex: &str, want: &str) -> Value
 fn changed_lines(a: &str, b: &str) -> Vec<(String, String)> {
     let (x, y): (Vec<&str>, Vec<&str>) = (a.lines().collect(), b.lines().collect());
     assert_eq!(x.len(), y.len());
-    x.iter()
-        .zip(&y)
-        .filter(|(p, q)| p != q)
-        .map(|(p, q)| (p.to_string(), q.to_string()))
-        .collect()
+    let pairs = x.iter().zip(&y).filter(|(p, q)| p != q);
+    pairs.map(|(p, q)| (p.to_string(), q.to_string())).collect()
 }
 
 #[test]
@@ -47,17 +38,13 @@ fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
         let stroke = js(c, "return window.stlc.state.answer.stroke").await;
         // The paper's brown, as the CLI draws it (not the field's default black).
         assert_eq!(stroke, json!("#4a2c12"));
-        assert_eq!(
-            js(c, "return document.getElementById('stem-colour').value").await,
-            stroke
-        );
+        assert_eq!(value_of(c, "#stem-colour").await, stroke);
         let brown = paper.replace("B=1(0)RULE", "B=1(0) S=#8b4513 RULE");
         assert_ne!(brown, paper);
         pick(c, "#stem-colour", "#8b4513", &brown).await;
         assert_eq!(changed_lines(&paper, &brown).len(), 1);
-        let svg = js(c, "return window.stlc.state.answer.svg").await;
         let want = cli_svg_of("2dtree.od", &brown);
-        same_bytes(svg.as_str().unwrap().as_bytes(), &want, "brown 2dtree");
+        same_bytes(answer_svg(c).await.as_bytes(), &want, "brown 2dtree");
         assert!(String::from_utf8_lossy(&want).contains("#8b4513"));
         // Picked again: the key's value changes, not the key added twice.
         let darker = paper.replace("B=1(0)RULE", "B=1(0) S=#5b3a1e RULE");
@@ -72,31 +59,19 @@ fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
         )
         .await;
         assert_eq!(fields, json!(["#2f5d1e", "#4f9a34", "#e9679b", "#f2c230"]));
-        let petals = plant.replace(
-            "palette #2f5d1e #4f9a34 #e9679b #f2c230",
-            "palette #2f5d1e #4f9a34 #7b2cbf #f2c230",
+        let (before, after) = (
+            "palette #2f5d1e #4f9a34 #e9679b #f2c230".to_string(),
+            "palette #2f5d1e #4f9a34 #7b2cbf #f2c230".to_string(),
         );
+        let petals = plant.replace(&before, &after);
         pick(c, "[data-testid=palette-2]", "#7b2cbf", &petals).await;
-        assert_eq!(
-            changed_lines(&plant, &petals),
-            [(
-                "palette #2f5d1e #4f9a34 #e9679b #f2c230".to_string(),
-                "palette #2f5d1e #4f9a34 #7b2cbf #f2c230".to_string()
-            )]
-        );
+        assert_eq!(changed_lines(&plant, &petals), [(before, after)]);
         // `+` adds a copy of the last colour to the line, a fifth field.
         click(c, "[data-testid=palette-add]").await;
         let five = petals.replace("#7b2cbf #f2c230", "#7b2cbf #f2c230 #f2c230");
         let added = settled_until(c, 100, 50, |v| v["text"] == json!(five)).await;
         assert_eq!(added["text"], json!(five));
-        assert_eq!(
-            js(
-                c,
-                "return document.querySelectorAll('#palette-colours input').length"
-            )
-            .await,
-            json!(5)
-        );
+        assert_eq!(count(c, "#palette-colours input").await, 5);
         shot(c, "colours-01-palette").await;
     });
 }

@@ -10,12 +10,13 @@
 use std::time::Duration;
 
 use fantoccini::Client;
-use fantoccini::actions::{
-    Actions, InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
-};
 use serde_json::{Value, json};
 
-use super::chromium::{Browser, click, js, settled, shot};
+use super::browser_steps::{count, settled_ok, texts_of};
+use super::chromium::{
+    CONTROL, SHIFT, chord, click, click_at, js, on_served_file, press_along, press_along_shifted,
+    screen_of, settled, shot,
+};
 use super::serve::Server;
 use crate::support::numbers;
 
@@ -29,85 +30,16 @@ const ONE_LINE: &str = "# the paper's 2DTree, as printed\n2DTree (76, 150)L=10(0
 
 #[test]
 fn drawing_edits_touch_only_their_shape_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let empty = tmp.path().join("draw.od");
-    std::fs::write(&empty, EMPTY).unwrap();
-    let one_line = tmp.path().join("one-line.od");
-    std::fs::write(&one_line, ONE_LINE).unwrap();
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        let server = Server::start(&[empty.to_str().unwrap()]);
-        c.goto(&server.url).await.unwrap();
-        paint_colour_is_for_the_next_shape(&c).await;
+    on_served_file("draw.od", EMPTY, async |c, served| {
+        paint_colour_is_for_the_next_shape(c).await;
+        let one_line = served.dir.join("one-line.od");
+        std::fs::write(&one_line, ONE_LINE).unwrap();
         let server = Server::start(&[one_line.to_str().unwrap()]);
         c.goto(&server.url).await.unwrap();
-        edits_keep_the_rest_of_the_text(&c).await;
-        let _ = c.close().await;
+        edits_keep_the_rest_of_the_text(c).await;
     });
 }
 
-/// The viewport position of canvas point `(x, y)` in the preview.
-async fn screen_of(c: &Client, (x, y): (f64, f64)) -> (f64, f64) {
-    let v = js(
-        c,
-        &format!(
-            "const m = document.getElementById('preview').getScreenCTM();
-             return [m.a * {x} + m.e, m.d * {y} + m.f];"
-        ),
-    )
-    .await;
-    (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
-}
-
-/// Presses at viewport point `a`, moves to `b` (if given) and releases.
-async fn press(c: &Client, a: (f64, f64), b: Option<(f64, f64)>) {
-    let mut mouse = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x: a.0,
-            y: a.1,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    if let Some(b) = b {
-        mouse = mouse.then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(120)),
-            x: b.0,
-            y: b.1,
-        });
-    }
-    mouse = mouse.then(PointerAction::Up {
-        button: MOUSE_BUTTON_LEFT,
-    });
-    c.perform_actions(mouse).await.unwrap();
-}
-
-async fn click_at(c: &Client, p: (f64, f64)) {
-    let s = screen_of(c, p).await;
-    press(c, s, None).await;
-}
-
-/// Presses `key` with `modifier` (WebDriver's key code) held, if any.
-async fn key(c: &Client, modifier: Option<char>, key: char) {
-    let mut k = KeyActions::new("keyboard".into());
-    if let Some(m) = modifier {
-        k = k.then(KeyAction::Down { value: m });
-    }
-    k = k
-        .then(KeyAction::Down { value: key })
-        .then(KeyAction::Up { value: key });
-    if let Some(m) = modifier {
-        k = k.then(KeyAction::Up { value: m });
-    }
-    c.perform_actions(k).await.unwrap();
-}
-
-const SHIFT: char = '\u{E008}';
-const CONTROL: char = '\u{E009}';
 const RIGHT: char = '\u{E014}';
 const DOWN: char = '\u{E015}';
 const DELETE: char = '\u{E017}';
@@ -122,31 +54,18 @@ async fn selected(c: &Client) -> Value {
 }
 
 async fn paint_colour_is_for_the_next_shape(c: &Client) {
-    let first = settled(c).await;
-    assert_eq!(first["ok"], true, "{first}");
+    settled_ok(c).await;
     // The empty canvas: a grid with its coordinates.
-    let grid = js(
-        c,
-        "return {lines: document.querySelectorAll('#preview .grid line').length,
-                 labels: [...document.querySelectorAll('#preview .grid text')].map((t) => t.textContent)}",
-    )
-    .await;
-    assert!(grid["lines"].as_u64().unwrap() >= 6, "{grid}");
-    assert!(
-        grid["labels"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .any(|l| l == "100"),
-        "{grid}"
-    );
+    let lines = count(c, "#preview .grid line").await;
+    assert!(lines >= 6, "{lines} grid lines");
+    let labels = texts_of(c, "#preview .grid text").await;
+    assert!(labels.iter().any(|l| l == "100"), "{labels:?}");
     shot(c, "draw-1-empty-grid").await;
 
     // Room around the root to draw in: zoom out until it is in view.
     let (rx, ry, r) = (100.0, 150.0, 30.0);
     for _ in 0..12 {
-        let v = js(c, "return window.stlc.state.view").await;
-        let v: Vec<f64> = numbers(&v);
+        let v = numbers(&js(c, "return window.stlc.state.view").await);
         if v[0] < rx - 1.2 * r && v[2] > rx + 1.2 * r && v[1] < ry - 1.5 * r && v[3] > ry + r {
             break;
         }
@@ -172,12 +91,9 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
         format!("({colour}) Polygon {}", pts.join(", "))
     };
     let pentagon_line = line(&pentagon, "clGreen");
-    assert_eq!(
-        green,
-        format!("{EMPTY}LAYOUT\n{pentagon_line}\nENDLAYOUT\n")
-    );
-    let grown = settled(c).await;
-    assert_eq!(grown["ok"], true, "{grown}");
+    let want = format!("{EMPTY}LAYOUT\n{pentagon_line}\nENDLAYOUT\n");
+    assert_eq!(green, want);
+    let grown = settled_ok(c).await;
     assert!(grown["stems"].as_u64().unwrap() > 1, "{grown}");
     // The pentagon drawn is selected; picking white changes no shape.
     assert_eq!(selected(c).await, 0);
@@ -192,23 +108,15 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     for p in diamond.iter().chain(std::iter::once(&diamond[0])) {
         click_at(c, (p.0.round(), p.1.round())).await;
     }
-    let both = settled(c).await;
+    let both = settled_ok(c).await;
     let both_text = both["text"].as_str().unwrap().to_string();
     let diamond: Vec<(f64, f64)> = diamond.iter().map(|p| (p.0.round(), p.1.round())).collect();
-    assert_eq!(
-        both_text,
-        format!(
-            "{EMPTY}LAYOUT\n{pentagon_line}\n{}\nENDLAYOUT\n",
-            line(&diamond, "clWhite")
-        )
-    );
-    assert_eq!(both["ok"], true, "{both}");
+    let diamond_line = line(&diamond, "clWhite");
+    let want = format!("{EMPTY}LAYOUT\n{pentagon_line}\n{diamond_line}\nENDLAYOUT\n");
+    assert_eq!(both_text, want);
     assert!(both["stems"].as_u64().unwrap() > 1, "{both}");
-    let colours = js(
-        c,
-        "return window.stlc.state.answer.layout.shapes.map((s) => s.name)",
-    )
-    .await;
+    let names = "return window.stlc.state.answer.layout.shapes.map((s) => s.name)";
+    let colours = js(c, names).await;
     assert_eq!(colours, json!(["clGreen", "clWhite"]));
     shot(c, "draw-2-green-pentagon-white-diamond").await;
 
@@ -221,10 +129,8 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     assert_eq!(text(c).await, both_text);
     click(c, "#recolour").await;
     let red = text(c).await;
-    assert_eq!(
-        red,
-        both_text.replace("(clWhite) Polygon", "(clRed) Polygon")
-    );
+    let want = both_text.replace("(clWhite) Polygon", "(clRed) Polygon");
+    assert_eq!(red, want);
 
     // Shift while clicking a polygon's points: edges at 0 and 45 degrees.
     click(c, "[data-tool=Polygon]").await;
@@ -232,54 +138,20 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     shift_click(c, (105.0, 143.0)).await;
     shift_click(c, (110.0, 152.0)).await;
     click_at(c, (90.0, 145.0)).await;
-    assert_eq!(
-        text(c).await,
-        red.replace(
-            "\nENDLAYOUT",
-            "\n(clRed) Polygon (90, 145), (105, 145), (111, 151)\nENDLAYOUT"
-        )
-    );
+    let polygon = "\n(clRed) Polygon (90, 145), (105, 145), (111, 151)\nENDLAYOUT";
+    assert_eq!(text(c).await, red.replace("\nENDLAYOUT", polygon));
 }
 
 /// Clicks at canvas point `p` with Shift held.
 async fn shift_click(c: &Client, p: (f64, f64)) {
-    let (x, y) = screen_of(c, p).await;
-    let pause = || KeyAction::Pause {
-        duration: Duration::ZERO,
-    };
-    let keys = KeyActions::new("keyboard".into())
-        .then(KeyAction::Down { value: SHIFT })
-        .then(pause())
-        .then(pause())
-        .then(KeyAction::Up { value: SHIFT });
-    let mouse = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x,
-            y,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(Actions::from(keys).and(mouse))
-        .await
-        .unwrap();
+    press_along_shifted(c, &[screen_of(c, p.0, p.1).await], 0).await;
 }
 
 async fn edits_keep_the_rest_of_the_text(c: &Client) {
-    let first = settled(c).await;
-    assert_eq!(first["ok"], true, "{first}");
+    let first = settled_ok(c).await;
     assert_eq!(first["text"], ONE_LINE);
     // No grid once there are shapes.
-    let grid = js(
-        c,
-        "return document.querySelectorAll('#preview .grid line').length",
-    )
-    .await;
-    assert_eq!(grid, 0);
+    assert_eq!(count(c, "#preview .grid line").await, 0);
 
     // Inside the small hole (40..55, 15..30), painted over the big green
     // RoundRect: the hole is picked, not the shape behind it; so it is
@@ -289,60 +161,44 @@ async fn edits_keep_the_rest_of_the_text(c: &Client) {
     assert_eq!(selected(c).await, 1);
     click_at(c, (100.0, 100.0)).await;
     assert_eq!(selected(c).await, 0);
-    let (ex, ey) = screen_of(c, (55.0, 22.0)).await;
-    press(c, (ex + 2.0, ey), None).await;
+    let (ex, ey) = screen_of(c, 55.0, 22.0).await;
+    press_along(c, &[(ex + 2.0, ey)], 0).await;
     assert_eq!(selected(c).await, 1);
     shot(c, "draw-3-small-hole-selected").await;
 
     // Arrow right: one unit; Shift+Down: ten. Only that shape's numbers
     // change (Delphi's corners keep their order); every other byte stays.
-    key(c, None, RIGHT).await;
+    chord(c, &[], RIGHT).await;
     let once = text(c).await;
-    assert_eq!(
-        once,
-        ONE_LINE.replace("(55,30,40,15,4,4)", "(56,30,41,15,4,4)")
-    );
-    key(c, Some(SHIFT), DOWN).await;
+    let hole = "(55,30,40,15,4,4)";
+    assert_eq!(once, ONE_LINE.replace(hole, "(56,30,41,15,4,4)"));
+    chord(c, &[SHIFT], DOWN).await;
     let nudged = text(c).await;
-    assert_eq!(
-        nudged,
-        ONE_LINE.replace("(55,30,40,15,4,4)", "(56,40,41,25,4,4)")
-    );
+    assert_eq!(nudged, ONE_LINE.replace(hole, "(56,40,41,25,4,4)"));
 
     // The pond dragged 10 right and 5 down with the mouse: its line keeps
     // its spelling and its comment.
-    let a = screen_of(c, (135.0, 160.0)).await;
-    let b = screen_of(c, (145.0, 165.0)).await;
-    press(c, a, Some(b)).await;
+    drag_at(c, (135.0, 160.0), (145.0, 165.0)).await;
     let moved = text(c).await;
-    let pond = "(clgreen) Ellipse (130, 155), 30, 20  # a pond, Table 1's spelling, its colour in lower case\n";
-    assert_eq!(
-        moved,
-        nudged.replace(
-            "(clgreen) Ellipse (120, 150), 30, 20  # a pond, Table 1's spelling, its colour in lower case\n",
-            pond
-        )
-    );
+    let comment = "  # a pond, Table 1's spelling, its colour in lower case\n";
+    let pond = format!("(clgreen) Ellipse (130, 155), 30, 20{comment}");
+    let was = format!("(clgreen) Ellipse (120, 150), 30, 20{comment}");
+    assert_eq!(moved, nudged.replace(&was, &pond));
     assert_eq!(selected(c).await, 3);
     shot(c, "draw-4-one-line-moved").await;
 
     // Ctrl-D: a copy 10 units off, on the line after the pond's, selected.
-    key(c, Some(CONTROL), 'd').await;
+    chord(c, &[CONTROL], 'd').await;
     let duplicated = text(c).await;
-    assert_eq!(
-        duplicated,
-        moved.replace(
-            pond,
-            &format!("{pond}(clgreen) Ellipse (140, 165), 30, 20\n")
-        )
-    );
+    let copy = format!("{pond}(clgreen) Ellipse (140, 165), 30, 20\n");
+    assert_eq!(duplicated, moved.replace(&pond, &copy));
     assert_eq!(selected(c).await, 4);
     let shapes = js(c, "return window.stlc.state.answer.layout.shapes.length").await;
     assert_eq!(shapes, 5);
     shot(c, "draw-5-duplicated").await;
 
     // Delete removes just the copy's line.
-    key(c, None, DELETE).await;
+    chord(c, &[], DELETE).await;
     assert_eq!(text(c).await, moved);
 
     // A new shape: a line before ENDLAYOUT, spelt as the shape before it
@@ -350,60 +206,23 @@ async fn edits_keep_the_rest_of_the_text(c: &Client) {
     // browser.rs's acceptance checks).
     click(c, "[data-tool=Ellipse]").await;
     click(c, "#colour option[value=clWhite]").await;
-    let a = screen_of(c, (100.0, 60.0)).await;
-    let b = screen_of(c, (160.0, 110.0)).await;
-    press(c, a, Some(b)).await;
+    drag_at(c, (100.0, 60.0), (160.0, 110.0)).await;
     let added = text(c).await;
-    assert_eq!(
-        added,
-        moved.replace(
-            "\n\nENDLAYOUT",
-            "\n\n(clWhite) Ellipse (100, 60), 60, 50\nENDLAYOUT"
-        )
-    );
+    let ellipse = "\n\n(clWhite) Ellipse (100, 60), 60, 50\nENDLAYOUT";
+    assert_eq!(added, moved.replace("\n\nENDLAYOUT", ellipse));
     assert_eq!(settled(c).await["ok"], true);
     shot(c, "draw-6-added-in-file-style").await;
 
     // Shift held while dragging a box: a circle.
-    let a = screen_of(c, (140.0, 20.0)).await;
-    let b = screen_of(c, (170.0, 35.0)).await;
-    let keys = KeyActions::new("keyboard".into())
-        .then(KeyAction::Down { value: SHIFT })
-        .then(KeyAction::Pause {
-            duration: Duration::ZERO,
-        })
-        .then(KeyAction::Pause {
-            duration: Duration::ZERO,
-        })
-        .then(KeyAction::Pause {
-            duration: Duration::ZERO,
-        })
-        .then(KeyAction::Up { value: SHIFT });
-    let mouse = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x: a.0,
-            y: a.1,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(120)),
-            x: b.0,
-            y: b.1,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(Actions::from(keys).and(mouse))
-        .await
-        .unwrap();
-    assert_eq!(
-        text(c).await,
-        added.replace(
-            "\nENDLAYOUT",
-            "\n(clWhite) Ellipse (140, 20), 30, 30\nENDLAYOUT"
-        )
-    );
+    let a = screen_of(c, 140.0, 20.0).await;
+    let b = screen_of(c, 170.0, 35.0).await;
+    press_along_shifted(c, &[a, b], 120).await;
+    let circle = "\n(clWhite) Ellipse (140, 20), 30, 30\nENDLAYOUT";
+    assert_eq!(text(c).await, added.replace("\nENDLAYOUT", circle));
+}
+
+/// Presses at canvas point `a`, moves to `b` in one move and releases.
+async fn drag_at(c: &Client, a: (f64, f64), b: (f64, f64)) {
+    let (a, b) = (screen_of(c, a.0, a.1).await, screen_of(c, b.0, b.1).await);
+    press_along(c, &[a, b], 120).await;
 }

@@ -7,50 +7,40 @@ use std::path::Path;
 use std::time::Duration;
 
 use fantoccini::Client;
-use serde_json::Value;
 
-use super::chromium::{Browser, click, downloaded, js, open, settled, shot, until};
-use super::serve::Server;
+use super::browser_steps::{
+    assign_value, count, editor_text, reload, set_checked, set_value, settled_ok, text_of,
+    texts_of, type_into, until_shown, value_of,
+};
+use super::chromium::{
+    Served, cli_line, click, downloaded, js, on_served_file, open, settled, shot, until,
+};
+use super::serve::example;
 use crate::support::{manifest_path, stlc_piped};
 
 #[test]
 fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let file = tmp.path().join("r2.od");
-    std::fs::copy(manifest_path("examples/fig9.od"), &file).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        let url = server.url.clone();
-        c.goto(&url).await.unwrap();
-        settled(&c).await;
-        reload_keeps_saves_and_drafts(&c, &file).await;
-        disk_changes_are_loaded(&c, &file).await;
-        two_tabs(&c, &url, &file).await;
-        exact_counts(&c).await;
-        long_work_is_cancelled(&c, &server).await;
-        a_failing_file_shows_no_other_picture(&c, tmp.path()).await;
-        new_from_a_template_or_an_example(&c).await;
-        export_as_artists_need(&c, &browser.tmp.join("downloads")).await;
-        replay_steps_and_speeds(&c).await;
-        settings_are_keys_in_the_text(&c).await;
-        words_generation_by_generation(&c).await;
-        numbers_scrub(&c).await;
-        main_thread_stalls(&c).await;
-        a_rule_that_never_fits_says_why(&c).await;
-        let _ = c.close().await;
-    });
-}
-
-async fn text(c: &Client) -> String {
-    js(c, "return document.getElementById('source').value")
-        .await
-        .as_str()
-        .unwrap()
-        .to_string()
+    on_served_file(
+        "r2.od",
+        &example("fig9.od"),
+        async |c, served: &Served<'_>| {
+            let file = served.file;
+            reload_keeps_saves_and_drafts(c, file).await;
+            disk_changes_are_loaded(c, file).await;
+            two_tabs(c, &served.server.url, file).await;
+            exact_counts(c).await;
+            long_work_is_cancelled(c, served.server).await;
+            a_failing_file_shows_no_other_picture(c, served.dir).await;
+            new_from_a_template_or_an_example(c).await;
+            export_as_artists_need(c, &served.downloads).await;
+            replay_steps_and_speeds(c).await;
+            settings_are_keys_in_the_text(c).await;
+            words_generation_by_generation(c).await;
+            numbers_scrub(c).await;
+            main_thread_stalls(c).await;
+            a_rule_that_never_fits_says_why(c).await;
+        },
+    );
 }
 
 /// Types `line` at the end of the text, as keys.
@@ -61,75 +51,49 @@ async fn type_line(c: &Client, line: &str) {
     src.send_keys(line).await.unwrap();
 }
 
+/// Clicks Save and waits until the page says the file is saved.
+async fn save(c: &Client, what: &str) {
+    click(c, "[data-testid=save]").await;
+    let saved = "return document.getElementById('saved').textContent.startsWith('Saved')";
+    until(c, saved, what).await;
+}
+
 async fn status(c: &Client) -> String {
-    js(c, "return document.getElementById('saved').textContent")
-        .await
-        .as_str()
-        .unwrap_or("")
-        .to_string()
+    text_of(c, "#saved").await
 }
 
 async fn title(c: &Client) -> String {
     c.title().await.unwrap()
 }
 
-/// Reloads, accepting the "leave the page?" prompt if one is shown.
-async fn reload(c: &Client) {
-    let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
-    tokio::time::sleep(Duration::from_millis(300)).await;
-    let _ = c.accept_alert().await;
-    let script = "return !!(window.stlc && window.stlc.state.doc && window.stlc.state.answer)";
-    until(c, script, "the page loaded").await;
-    settled(c).await;
-}
-
 async fn reload_keeps_saves_and_drafts(c: &Client, file: &Path) {
     // Problem 1: add a line, Save, reload: the page shows the file as saved.
     type_line(c, "\n# saved line").await;
-    assert!(
-        title(c).await.starts_with("• "),
-        "unsaved edits are in the title"
-    );
+    let unsaved = title(c).await.starts_with("• ");
+    assert!(unsaved, "unsaved edits are in the title");
     assert_eq!(status(c).await, "Unsaved changes");
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "saved").await;
+    save(c, "saved").await;
     assert!(!title(c).await.starts_with("• "));
-    assert!(
-        std::fs::read_to_string(file)
-            .unwrap()
-            .ends_with("# saved line")
-    );
+    assert!(on_disk(file).ends_with("# saved line"));
     reload(c).await;
-    assert!(
-        text(c).await.ends_with("# saved line"),
-        "the reload shows the save"
-    );
+    let shown = editor_text(c).await;
+    assert!(shown.ends_with("# saved line"), "the reload shows the save");
 
     // Unsaved edits survive a reload: offered back, not applied.
     type_line(c, "\n# not saved yet").await;
     tokio::time::sleep(Duration::from_millis(600)).await;
     reload(c).await;
-    let t = text(c).await;
-    assert!(
-        t.ends_with("# saved line"),
-        "a draft is never applied silently"
-    );
-    let script = "return !document.getElementById('notice').hidden";
-    until(c, script, "the draft is offered").await;
+    let t = editor_text(c).await;
+    let silently = "a draft is never applied silently";
+    assert!(t.ends_with("# saved line"), "{silently}");
+    until_shown(c, "notice", "the draft is offered").await;
     shot(c, "30-draft-offered").await;
     click(c, "[data-testid=restore-draft]").await;
-    assert!(text(c).await.ends_with("# not saved yet"));
+    assert!(editor_text(c).await.ends_with("# not saved yet"));
     assert!(title(c).await.starts_with("• "));
     // Saved, so there is nothing left to offer.
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "saved again").await;
-    assert!(
-        std::fs::read_to_string(file)
-            .unwrap()
-            .ends_with("# not saved yet")
-    );
+    save(c, "saved again").await;
+    assert!(on_disk(file).ends_with("# not saved yet"));
 }
 
 async fn disk_changes_are_loaded(c: &Client, file: &Path) {
@@ -140,24 +104,19 @@ async fn disk_changes_are_loaded(c: &Client, file: &Path) {
     let script =
         "return document.getElementById('source').value.endsWith('# from another program')";
     until(c, script, "the disk change is loaded").await;
-    assert!(
-        status(c).await.starts_with("Reloaded"),
-        "{}",
-        status(c).await
-    );
+    let said = status(c).await;
+    assert!(said.starts_with("Reloaded"), "{said}");
 
     // With unsaved edits: asked, and keeping mine then saving writes mine.
     type_line(c, "\n# mine").await;
     theirs.push_str("\n# theirs again");
     std::fs::write(file, &theirs).unwrap();
-    let script = "return !document.getElementById('notice').hidden";
-    until(c, script, "the change is asked about").await;
-    assert!(text(c).await.ends_with("# mine"), "unsaved edits stay");
+    until_shown(c, "notice", "the change is asked about").await;
+    let mine = editor_text(c).await;
+    assert!(mine.ends_with("# mine"), "unsaved edits stay");
     shot(c, "31-disk-changed").await;
     click(c, "[data-testid=keep-mine]").await;
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "mine saved").await;
+    save(c, "mine saved").await;
     let on_disk = std::fs::read_to_string(file).unwrap();
     assert!(on_disk.ends_with("# mine") && !on_disk.contains("# theirs again"));
 }
@@ -171,9 +130,7 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     c.goto(url).await.unwrap();
     settled(c).await;
     type_line(c, "\n# tab two").await;
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "tab two saved").await;
+    save(c, "tab two saved").await;
 
     // Tab one's edit is of the older version: its Save is refused.
     c.switch_to_window(first).await.unwrap();
@@ -182,35 +139,20 @@ async fn two_tabs(c: &Client, url: &str, file: &Path) {
     // Save's notice replaces it.)
     let script = "const n = document.getElementById('notice'); return !n.hidden && n.textContent.includes('changed since')";
     until(c, script, "the conflict is shown").await;
-    let notice: Value = js(c, "return document.getElementById('notice').textContent").await;
-    assert!(
-        notice.as_str().unwrap().contains("changed since"),
-        "{notice}"
-    );
-    let on_disk = std::fs::read_to_string(file).unwrap();
-    assert!(
-        on_disk.ends_with("# tab two"),
-        "the second save did not overwrite the first"
-    );
-    assert!(
-        text(c).await.ends_with("# tab one"),
-        "nothing is lost in the editor"
-    );
+    let notice = text_of(c, "#notice").await;
+    assert!(notice.contains("changed since"), "{notice}");
+    let overwritten = "the second save did not overwrite the first";
+    assert!(on_disk(file).ends_with("# tab two"), "{overwritten}");
+    let lost = "nothing is lost in the editor";
+    assert!(editor_text(c).await.ends_with("# tab one"), "{lost}");
     // Both side by side.
     click(c, "[data-testid=compare]").await;
-    let sides = js(c, "return [document.getElementById('compare-theirs').textContent, document.getElementById('compare-mine').textContent]").await;
-    assert!(sides[0].as_str().unwrap().ends_with("# tab two"));
-    assert!(sides[1].as_str().unwrap().ends_with("# tab one"));
+    assert!(text_of(c, "#compare-theirs").await.ends_with("# tab two"));
+    assert!(text_of(c, "#compare-mine").await.ends_with("# tab one"));
     shot(c, "32-two-tabs-compare").await;
     click(c, "[data-testid=keep-mine]").await;
-    click(c, "[data-testid=save]").await;
-    let script = "return document.getElementById('saved').textContent.startsWith('Saved')";
-    until(c, script, "tab one saved").await;
-    assert!(
-        std::fs::read_to_string(file)
-            .unwrap()
-            .ends_with("# tab one")
-    );
+    save(c, "tab one saved").await;
+    assert!(on_disk(file).ends_with("# tab one"));
 }
 
 /// Problem 6: abop-1.24a at depth 30 has 5^30 segments, more than a u64
@@ -229,19 +171,18 @@ async fn exact_counts(c: &Client) {
 /// a level of detail); the busy indicator shows with Cancel, and an edit
 /// back to depth 5 cancels the long work (the server stops it) and shows
 /// its picture within a second or two.
-async fn long_work_is_cancelled(c: &Client, server: &Server) {
+async fn long_work_is_cancelled(c: &Client, server: &super::serve::Server) {
     open(c, &manifest_path("tests/cases/render/slow-stochastic.lsys")).await;
     settled(c).await;
     // Problem 4: the last file's depth (30) does not follow to this one:
     // the control shows this file's own `generations`.
-    let depth = js(c, "return document.getElementById('depth').value").await;
+    let depth = value_of(c, "#depth").await;
     assert_eq!(depth, "5", "the depth of the file before leaked");
     let stems = js(c, "return window.stlc.state.answer.stems").await;
     // 1 + (4^5 - 1) / 3 segments, whatever the choices.
     assert_eq!(stems, "342", "drawn at its own generations (5)");
     set_depth(c, "14").await;
-    let script = "return !document.getElementById('busy').hidden";
-    until(c, script, "the busy indicator shows").await;
+    until_shown(c, "busy", "the busy indicator shows").await;
     shot(c, "33-busy").await;
     let t0 = std::time::Instant::now();
     set_depth(c, "5").await;
@@ -260,14 +201,11 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
     let t1 = server.cpu_ticks();
     tokio::time::sleep(Duration::from_millis(1000)).await;
     let t2 = server.cpu_ticks();
-    assert!(
-        t2 - t1 <= 10,
-        "the cancelled work went on: {t1} -> {t2} ticks"
-    );
+    let went_on = format!("the cancelled work went on: {t1} -> {t2} ticks");
+    assert!(t2 - t1 <= 10, "{went_on}");
     // Cancel: the work stops and the last picture stays.
     set_depth(c, "14").await;
-    let script = "return !document.getElementById('busy').hidden";
-    until(c, script, "busy again").await;
+    until_shown(c, "busy", "busy again").await;
     click(c, "[data-testid=cancel]").await;
     let script = "return document.getElementById('busy').hidden && document.getElementById('status').textContent.startsWith('Cancelled')";
     until(c, script, "cancelled").await;
@@ -277,11 +215,7 @@ async fn long_work_is_cancelled(c: &Client, server: &Server) {
 async fn set_depth(c: &Client, value: &str) {
     let depth = c.find(fantoccini::Locator::Id("depth")).await.unwrap();
     depth.click().await.unwrap();
-    js(
-        c,
-        "document.getElementById('depth').value = ''; return true",
-    )
-    .await;
+    assign_value(c, "#depth", "").await;
     depth.send_keys(value).await.unwrap();
 }
 
@@ -289,59 +223,31 @@ async fn set_depth(c: &Client, value: &str) {
 /// before it (its errors, and an empty preview).
 async fn a_failing_file_shows_no_other_picture(c: &Client, dir: &Path) {
     let broken = dir.join("broken.lsys");
-    std::fs::write(
-        &broken,
-        "generations 3\naxiom F\nangle 30\nrule F -> F[+F\n",
-    )
-    .unwrap();
+    let text = "generations 3\naxiom F\nangle 30\nrule F -> F[+F\n";
+    std::fs::write(&broken, text).unwrap();
     open(c, &broken).await;
     let script =
         "const s = window.stlc.state; return !s.inFlight && s.answer && s.answer.ok === false";
     until(c, script, "the broken file's answer").await;
-    let pictures = js(
-        c,
-        "return document.querySelectorAll('#preview .lib').length",
-    )
-    .await;
+    let pictures = count(c, "#preview .lib").await;
     assert_eq!(pictures, 0, "the last file's picture is still shown");
-    let status = js(c, "return document.getElementById('status').textContent").await;
-    assert!(
-        status
-            .as_str()
-            .unwrap()
-            .contains("no picture of this file yet"),
-        "{status}"
-    );
+    let status = text_of(c, "#status").await;
+    assert!(status.contains("no picture of this file yet"), "{status}");
     shot(c, "34-broken-file-no-picture").await;
 }
 
 /// New: a template or any example opens as a new document (problem 10):
 /// the `.od` template grows a tree, an example is its file's text.
 async fn new_from_a_template_or_an_example(c: &Client) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
-    let names: Vec<&str> = names
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_str().unwrap())
-        .collect();
-    assert!(names.contains(&"new.od (template)"), "{names:?}");
-    assert!(names.contains(&"hilbert.lsys"), "{names:?}");
+    let names = texts_of(c, "#new option").await;
+    assert!(names.iter().any(|n| n == "new.od (template)"), "{names:?}");
+    assert!(names.iter().any(|n| n == "hilbert.lsys"), "{names:?}");
     click(c, "#new option[value='0']").await;
-    let grown = settled(c).await;
-    assert_eq!(grown["ok"], true, "{grown}");
+    let grown = settled_ok(c).await;
     assert!(grown["stems"].as_u64().unwrap() > 50, "{grown}");
     new_from(c, "hilbert.lsys").await;
-    let drawn = settled(c).await;
-    assert_eq!(drawn["ok"], true, "{drawn}");
-    assert_eq!(
-        drawn["text"].as_str().unwrap(),
-        std::fs::read_to_string(manifest_path("examples/hilbert.lsys")).unwrap()
-    );
+    let drawn = settled_ok(c).await;
+    assert_eq!(drawn["text"].as_str().unwrap(), example("hilbert.lsys"));
     shot(c, "35-new-from-example").await;
 }
 
@@ -351,122 +257,56 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
     new_from(c, "2dtree.od").await;
     settled(c).await;
     click(c, "#export-options summary").await;
-    js(
-        c,
-        "const set = (id, v) => { const e = document.getElementById(id); e.value = v; e.dispatchEvent(new Event('input')); };
-         set('export-w', '300'); set('export-h', '200');
-         const l = document.getElementById('export-layout'); l.checked = false; l.dispatchEvent(new Event('input'));
-         const t = document.getElementById('export-transparent'); t.checked = true; t.dispatchEvent(new Event('input'));
-         return true",
-    )
-    .await;
-    let shown = js(
-        c,
-        "return document.getElementById('export-cli').textContent",
-    )
-    .await;
-    let shown = shown.as_str().unwrap().to_string();
-    assert!(
-        shown.contains("stlc render 2dtree.od --size 300x200 --background none -o 2dtree.png"),
-        "{shown}"
-    );
+    set_value(c, "#export-w", "300").await;
+    set_value(c, "#export-h", "200").await;
+    set_checked(c, "#export-layout", false).await;
+    set_checked(c, "#export-transparent", true).await;
+    let shown = text_of(c, "#export-cli").await;
+    let want = "stlc render 2dtree.od --size 300x200 --background none -o 2dtree.png";
+    assert!(shown.contains(want), "{shown}");
     shot(c, "36-export-options").await;
     click(c, "#export-png").await;
     let got = downloaded(downloads, "2dtree.png").await;
-    let od = manifest_path("examples/2dtree.od");
-    let line = format!(
-        "render {} --size 300x200 --background none -o -",
-        od.display()
-    );
-    let want = stlc_piped(&line, "");
+    let want = cli_line("render examples/2dtree.od --size 300x200 --background none");
     assert!(got == want, "the export is not the CLI's bytes");
     let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
     assert_eq!((png.width(), png.height()), (300, 200));
-    assert_eq!(
-        png.pixel(0, 0).unwrap().alpha(),
-        0,
-        "the background is transparent"
-    );
+    let alpha = png.pixel(0, 0).unwrap().alpha();
+    assert_eq!(alpha, 0, "the background is transparent");
     // A coloured background instead.
-    js(
-        c,
-        "const t = document.getElementById('export-transparent'); t.checked = false; t.dispatchEvent(new Event('input'));
-         const k = document.getElementById('export-coloured'); k.checked = true; k.dispatchEvent(new Event('input'));
-         const v = document.getElementById('export-colour'); v.value = '#336699'; v.dispatchEvent(new Event('input'));
-         return true",
-    )
-    .await;
-    let shown = js(
-        c,
-        "return document.getElementById('export-cli').textContent",
-    )
-    .await;
-    assert!(
-        shown
-            .as_str()
-            .unwrap()
-            .contains("--size 300x200 --background '#336699' -o 2dtree.png"),
-        "{shown}"
-    );
+    set_checked(c, "#export-transparent", false).await;
+    set_checked(c, "#export-coloured", true).await;
+    set_value(c, "#export-colour", "#336699").await;
+    let shown = text_of(c, "#export-cli").await;
+    let want = "--size 300x200 --background '#336699' -o 2dtree.png";
+    assert!(shown.contains(want), "{shown}");
     click(c, "#export-png").await;
     let got = downloaded(downloads, "2dtree (1).png").await;
-    let line = format!(
-        "render {} --size 300x200 --background #336699 -o -",
-        od.display()
-    );
-    let want = stlc_piped(&line, "");
+    let want = cli_line("render examples/2dtree.od --size 300x200 --background #336699");
     assert!(got == want, "the coloured export is not the CLI's bytes");
     let png = tiny_skia::Pixmap::decode_png(&got).unwrap();
     let p = png.pixel(0, 0).unwrap();
-    assert_eq!(
-        (p.red(), p.green(), p.blue(), p.alpha()),
-        (0x33, 0x66, 0x99, 255)
-    );
+    let rgba = (p.red(), p.green(), p.blue(), p.alpha());
+    assert_eq!(rgba, (0x33, 0x66, 0x99, 255));
 }
 
 /// Teaching (item 9): the replay steps one decision back and on, and plays
 /// one decision a frame when asked (144 decisions of 2DTree: about 5 s).
 async fn replay_steps_and_speeds(c: &Client) {
-    let label = || async {
-        js(
-            c,
-            "return document.getElementById('step-label').textContent",
-        )
-        .await
-        .as_str()
-        .unwrap()
-        .to_string()
-    };
-    assert!(
-        label().await.starts_with("decision 144 of 144"),
-        "{}",
-        label().await
-    );
+    let label = text_of(c, "#step-label").await;
+    assert!(label.starts_with("decision 144 of 144"), "{label}");
     click(c, "[data-testid=step-back]").await;
     click(c, "[data-testid=step-back]").await;
-    assert!(
-        label().await.starts_with("decision 142 of 144"),
-        "{}",
-        label().await
-    );
+    let label = text_of(c, "#step-label").await;
+    assert!(label.starts_with("decision 142 of 144"), "{label}");
     click(c, "[data-testid=step-next]").await;
-    assert!(
-        label().await.starts_with("decision 143 of 144"),
-        "{}",
-        label().await
-    );
-    js(
-        c,
-        "const s = document.getElementById('replay-speed'); s.value = '1'; return true",
-    )
-    .await;
-    js(c, "document.getElementById('step').value = 0; return true").await;
+    let label = text_of(c, "#step-label").await;
+    assert!(label.starts_with("decision 143 of 144"), "{label}");
+    assign_value(c, "#replay-speed", "1").await;
+    assign_value(c, "#step", "0").await;
     click(c, "[data-testid=play]").await;
     tokio::time::sleep(Duration::from_millis(1000)).await;
-    let at: u64 = js(c, "return Number(document.getElementById('step').value)")
-        .await
-        .as_u64()
-        .unwrap();
+    let at: u64 = value_of(c, "#step").await.parse().unwrap();
     assert!(
         at > 0 && at < 144,
         "one decision a frame: at {at} after a second"
@@ -483,35 +323,22 @@ async fn settings_are_keys_in_the_text(c: &Client) {
     let fig9 = before["text"].as_str().unwrap().to_string();
     click(c, "#growth option[value=dfs]").await;
     let dfs = settled(c).await;
-    assert_eq!(
-        dfs["text"].as_str().unwrap(),
-        fig9.replace("A=30 C=2\n", "A=30 C=2 O=dfs\n")
-    );
+    let want = fig9.replace("A=30 C=2\n", "A=30 C=2 O=dfs\n");
+    assert_eq!(dfs["text"].as_str().unwrap(), want);
     assert_ne!(dfs["growth"], before["growth"], "O=dfs grows another tree");
     // Typing the key back moves the control.
-    js(
-        c,
-        "const s = document.getElementById('source'); s.value = s.value.replace('O=dfs', 'O=bfs'); s.dispatchEvent(new Event('input')); return 0;",
-    )
-    .await;
+    let bfs = editor_text(c).await.replace("O=dfs", "O=bfs");
+    set_value(c, "#source", &bfs).await;
     let typed = settled(c).await;
     assert_eq!(typed["growth"], before["growth"]);
-    let shown = js(c, "return document.getElementById('growth').value").await;
-    assert_eq!(shown, "bfs");
+    assert_eq!(value_of(c, "#growth").await, "bfs");
     // The seed control writes V=, and emptying it removes the key.
-    let seed = c.find(fantoccini::Locator::Id("seed")).await.unwrap();
-    seed.send_keys("7").await.unwrap();
-    let with_seed = settled(c).await;
-    assert!(
-        with_seed["text"].as_str().unwrap().contains("O=bfs V=7\n"),
-        "{with_seed}"
-    );
-    js(c, "const e = document.getElementById('seed'); e.value = ''; e.dispatchEvent(new Event('input')); return 0;").await;
-    let without = settled(c).await;
-    assert!(
-        !without["text"].as_str().unwrap().contains("V="),
-        "{without}"
-    );
+    type_into(c, "seed", "7").await;
+    let with_seed = settled(c).await["text"].as_str().unwrap().to_string();
+    assert!(with_seed.contains("O=bfs V=7\n"), "{with_seed}");
+    set_value(c, "#seed", "").await;
+    let without = settled(c).await["text"].as_str().unwrap().to_string();
+    assert!(!without.contains("V="), "{without}");
 }
 
 /// Teaching (problem 11): an .lsys's word, generation by generation, as
@@ -522,17 +349,7 @@ async fn words_generation_by_generation(c: &Client) {
     click(c, "#words summary").await;
     let script = "return document.querySelectorAll('#word-list li').length === 5";
     until(c, script, "five generations").await;
-    let items = js(
-        c,
-        "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)",
-    )
-    .await;
-    let items: Vec<&str> = items
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_str().unwrap())
-        .collect();
+    let items = texts_of(c, "#word-list li").await;
     let koch = manifest_path("examples/koch-snowflake.lsys");
     for (depth, item) in items.iter().enumerate() {
         let word = stlc_piped(
@@ -554,16 +371,10 @@ async fn numbers_scrub(c: &Client) {
     click(c, "#scrub summary").await;
     let script = "return document.querySelector('#scrub-list input[data-key=A]') !== null";
     until(c, script, "the A slider").await;
-    js(
-        c,
-        "const a = document.querySelector('#scrub-list input[data-key=A]'); a.value = 45; a.dispatchEvent(new Event('input')); return 0;",
-    )
-    .await;
+    set_value(c, "#scrub-list input[data-key=A]", "45").await;
     let after = settled(c).await;
-    assert_eq!(
-        after["text"].as_str().unwrap(),
-        before["text"].as_str().unwrap().replace("A=30", "A=45")
-    );
+    let want = before["text"].as_str().unwrap().replace("A=30", "A=45");
+    assert_eq!(after["text"].as_str().unwrap(), want);
     assert_ne!(after["growth"], before["growth"], "the tree regrew");
     shot(c, "39-numbers").await;
 }
@@ -580,85 +391,58 @@ async fn main_thread_stalls(c: &Client) {
     new_from(c, "grove.od").await;
     settled(c).await;
     let unit = js_unit(c).await;
-    js(
-        c,
-        "window.__longest = 0; new PerformanceObserver((l) => { for (const e of l.getEntries()) window.__longest = Math.max(window.__longest, e.duration); }).observe({type: 'longtask', buffered: false}); return 0;",
-    )
-    .await;
+    let observe = "window.__longest = 0; new PerformanceObserver((l) => { for (const e of l.getEntries()) window.__longest = Math.max(window.__longest, e.duration); }).observe({type: 'longtask', buffered: false}); return 0;";
+    js(c, observe).await;
     for k in 0..5 {
-        js(
-            c,
-            &format!("const s = document.getElementById('source'); s.value = s.value + '\\n# {k}'; s.dispatchEvent(new Event('input')); return 0;"),
-        )
-        .await;
+        let text = editor_text(c).await;
+        set_value(c, "#source", &format!("{text}\n# {k}")).await;
         settled(c).await;
     }
     let longest = js(c, "return window.__longest").await.as_f64().unwrap();
     let unit = unit.max(js_unit(c).await);
+    let units = longest / unit;
     eprintln!(
-        "longest main-thread task while editing grove.od: {longest:.0} ms ({:.1} units of {unit:.0} ms)",
-        longest / unit
+        "longest main-thread task while editing grove.od: {longest:.0} ms ({units:.1} units of {unit:.0} ms)"
     );
-    assert!(
-        longest < 8.0 * unit,
-        "a {longest} ms stall, {:.1} times the {unit:.0} ms unit",
-        longest / unit
-    );
+    let stall = format!("a {longest} ms stall, {units:.1} times the {unit:.0} ms unit");
+    assert!(longest < 8.0 * unit, "{stall}");
 }
 
 /// The median of three timings, in ms, of ten million square roots on the
 /// page's main thread: the unit [`main_thread_stalls`] measures in.
 async fn js_unit(c: &Client) -> f64 {
-    js(
-        c,
-        "const t = []; for (let r = 0; r < 3; r++) { const t0 = performance.now(); let s = 0; for (let i = 0; i < 1e7; i++) s += Math.sqrt(i); window.__sink = s; t.push(performance.now() - t0); } t.sort((a, b) => a - b); return t[1];",
-    )
-    .await
-    .as_f64()
-    .unwrap()
+    let roots = "const t = []; for (let r = 0; r < 3; r++) { const t0 = performance.now(); let s = 0; for (let i = 0; i < 1e7; i++) s += Math.sqrt(i); window.__sink = s; t.push(performance.now() - t0); } t.sort((a, b) => a - b); return t[1];";
+    js(c, roots).await.as_f64().unwrap()
 }
 
 /// Problem 8 in the page: a rule that never fits is a warning at its line
 /// with the distances and a hint.
 async fn a_rule_that_never_fits_says_why(c: &Client) {
     let od = "Problem8\n(150, 290)\nL=9(0.3) B=3(0.3) A=25 C=1.5\nRULE\nR1: F[+F][-F][F]\nSEED\nFFFFFFFFF R1\nENDSEED\nLAYOUT\n(clGreen) Rectangle (0, 0), 300, 300\nENDLAYOUT\n";
-    js(
-        c,
-        &format!("const s = document.getElementById('source'); s.value = {}; s.dispatchEvent(new Event('input')); return 0;", serde_json::to_string(od).unwrap()),
-    )
-    .await;
-    let grown = settled(c).await;
-    assert_eq!(grown["ok"], true, "{grown}");
-    let warning = js(c, "const li = document.querySelector('[data-testid=diagnostics] li'); return li && li.textContent").await;
-    let warning = warning.as_str().unwrap_or_default().to_string();
-    assert!(
-        warning.contains("never grew") && warning.contains("3.677") && warning.contains("4.2"),
-        "{warning}"
-    );
+    set_value(c, "#source", od).await;
+    settled_ok(c).await;
+    let warning = text_of(c, "[data-testid=diagnostics] li").await;
+    let distances = warning.contains("3.677") && warning.contains("4.2");
+    assert!(warning.contains("never grew") && distances, "{warning}");
     assert!(warning.contains("raise `A`"), "{warning}");
     // The Numbers panel follows the text typed.
-    let shown = js(
-        c,
-        "return document.querySelector('#scrub-list input[data-key=A] + output').textContent",
-    )
-    .await;
+    let shown = text_of(c, "#scrub-list input[data-key=A] + output").await;
     assert_eq!(shown, "25");
     shot(c, "40-never-fitted").await;
 }
 
 /// Opens the template or example `name` from the New… menu.
 async fn new_from(c: &Client, name: &str) {
-    let names = js(
-        c,
-        "return [...document.querySelectorAll('#new option')].map((o) => o.textContent)",
-    )
-    .await;
+    let names = texts_of(c, "#new option").await;
     let i = names
-        .as_array()
-        .unwrap()
         .iter()
         .position(|n| n == name)
-        .unwrap_or_else(|| panic!("{name} is not in New…: {names}"))
+        .unwrap_or_else(|| panic!("{name} is not in New…: {names:?}"))
         - 1;
     click(c, &format!("#new option[value='{i}']")).await;
+}
+
+/// The text of `file` on disk.
+fn on_disk(file: &Path) -> String {
+    std::fs::read_to_string(file).unwrap()
 }

@@ -63,23 +63,16 @@ fn the_leaf_control_rewrites_only_p_in_chromium() {
         open_example(c, "oak3d.od").await;
         let leafy = example("oak3d.od");
         assert_eq!(leaf_list(c).await, json!([["none", "L"], "L"]));
+        let shown = "return document.getElementById('leaf').offsetParent !== null";
         assert!(
-            js(
-                c,
-                "return document.getElementById('leaf').offsetParent !== null"
-            )
-            .await
-                == json!(true),
+            js(c, shown).await == json!(true),
             "the leaf control is shown for an OD"
         );
 
         // none: the header line loses ` P=L`, nothing else changes.
         let header = "L=12(0.5) B=3(0.2) A=28 C=2 D=137.5 S=#5b3a1e..#3b5e2b P=L";
         assert!(leafy.contains(header));
-        let bare = leafy.replace(
-            header,
-            "L=12(0.5) B=3(0.2) A=28 C=2 D=137.5 S=#5b3a1e..#3b5e2b",
-        );
+        let bare = leafy.replace(header, header.strip_suffix(" P=L").unwrap());
         choose(c, "none", &bare).await;
         assert_eq!(leaf_list(c).await, json!([["none", "L"], "none"]));
         let (page, bare_svg) = page_and_cli_svg(c, &bare).await;
@@ -97,13 +90,7 @@ fn the_leaf_control_rewrites_only_p_in_chromium() {
 
         // An .lsys has no leaf control.
         open_example(c, "abop-1.26.lsys").await;
-        assert_eq!(
-            js(
-                c,
-                "return document.getElementById('leaf').offsetParent === null"
-            )
-            .await,
-            json!(true)
-        );
+        let hidden = "return document.getElementById('leaf').offsetParent === null";
+        assert_eq!(js(c, hidden).await, json!(true));
     });
 }

@@ -7,18 +7,15 @@
 
 use serde_json::json;
 
+use super::browser_steps::{set_value, text_of};
 use super::browser_web::{engine_export, on_site, open_example};
-use super::chromium::{Browser, cli_line, click, downloaded, js, same_bytes, settled, shot};
+use super::chromium::{cli_line, click, downloaded, js, on_served_page, same_bytes, shot};
 use super::serve::{Server, example, request};
-use crate::support::{manifest_path, numbers};
+use crate::support::numbers;
 
 /// `stlc render examples/NAME --mesh glb --unit UNIT -o -`.
 fn cli_glb(name: &str, unit: &str) -> Vec<u8> {
-    let path = manifest_path(format!("examples/{name}"));
-    cli_line(&format!(
-        "render {} --mesh glb --unit {unit}",
-        path.display()
-    ))
+    cli_line(&format!("render examples/{name} --mesh glb --unit {unit}"))
 }
 
 /// The `max` of a glb's first POSITION accessor: the mesh's extent, in
@@ -29,7 +26,8 @@ fn position_max(glb: &[u8]) -> Vec<f64> {
     let gltf: serde_json::Value = serde_json::from_slice(&glb[20..20 + n]).unwrap();
     let at = gltf["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
         .as_u64()
-        .unwrap() as usize;
+        .unwrap();
+    let at = at as usize;
     numbers(&gltf["accessors"][at]["max"])
 }
 
@@ -38,34 +36,25 @@ fn a_glb_export_over_http_is_the_cli_mesh_at_the_unit_asked() {
     let server = Server::start(&[]);
     let text = example("hilbert3d.lsys");
     let glb = |unit: serde_json::Value| {
-        let body = json!({"source": text, "kind": "lsys", "unit": unit});
+        let body = json!({"source": text, "kind": "lsys", "unit": unit}).to_string();
         request(
             &server.addr,
             "POST",
             "/api/export?format=glb",
             &[],
-            body.to_string().as_bytes(),
+            body.as_bytes(),
         )
     };
     let at2 = glb(json!(0.02));
-    assert!(
-        at2.head.contains("content-type: model/gltf-binary"),
-        "{}",
-        at2.head
-    );
-    same_bytes(
-        &at2.body,
-        &cli_glb("hilbert3d.lsys", "0.02"),
-        "hilbert3d.glb",
-    );
+    let head = &at2.head;
+    assert!(head.contains("content-type: model/gltf-binary"), "{head}");
+    let cli = cli_glb("hilbert3d.lsys", "0.02");
+    same_bytes(&at2.body, &cli, "hilbert3d.glb");
     // No unit: the CLI's default, 0.01 m a unit; twice the unit, twice the
     // mesh (Hilbert's cube is the same shape at any unit).
     let at1 = glb(serde_json::Value::Null);
-    same_bytes(
-        &at1.body,
-        &cli_glb("hilbert3d.lsys", "0.01"),
-        "default unit",
-    );
+    let cli = cli_glb("hilbert3d.lsys", "0.01");
+    same_bytes(&at1.body, &cli, "default unit");
     let (a, b) = (position_max(&at1.body), position_max(&at2.body));
     for (x, y) in a.iter().zip(&b) {
         assert!((2.0 * x - y).abs() < 1e-5, "{a:?} then {b:?}");
@@ -83,52 +72,22 @@ fn a_glb_export_over_http_is_the_cli_mesh_at_the_unit_asked() {
 /// and the view's angles; the file it downloads is the CLI's.
 #[test]
 fn the_editor_exports_a_3d_input_as_the_cli_glb_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let server = Server::start(&[]);
-    let downloads = browser.tmp.join("downloads");
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
+    on_served_page(async |c, served| {
         let shown = "return document.getElementById('export-glb').getClientRects().length > 0";
         // The paper's 2D tree has no mesh to export.
-        assert_eq!(js(&c, shown).await, json!(false));
-        open_example(&c, "hilbert3d.lsys").await;
-        assert_eq!(js(&c, shown).await, json!(true));
-        assert_eq!(
-            js(
-                &c,
-                "return document.getElementById('mesh-view').textContent"
-            )
-            .await,
-            json!("view 30°, 20° (PNG, SVG); the mesh: y up, root at the origin")
-        );
-        js(
-            &c,
-            "const u = document.getElementById('mesh-unit'); u.value = '0.02';
-             u.dispatchEvent(new Event('input')); return 0;",
-        )
-        .await;
-        click(&c, "#export-options summary").await;
-        let command = js(
-            &c,
-            "return document.getElementById('export-cli').textContent",
-        )
-        .await;
-        assert!(
-            command
-                .as_str()
-                .unwrap()
-                .lines()
-                .any(|l| l == "stlc render hilbert3d.lsys --mesh glb --unit 0.02 -o hilbert3d.glb"),
-            "{command}"
-        );
-        shot(&c, "mesh-01-export").await;
-        click(&c, "#export-glb").await;
-        let got = downloaded(&downloads, "hilbert3d.glb").await;
+        assert_eq!(js(c, shown).await, json!(false));
+        open_example(c, "hilbert3d.lsys").await;
+        assert_eq!(js(c, shown).await, json!(true));
+        let view = "view 30°, 20° (PNG, SVG); the mesh: y up, root at the origin";
+        assert_eq!(text_of(c, "#mesh-view").await, view);
+        set_value(c, "#mesh-unit", "0.02").await;
+        click(c, "#export-options summary").await;
+        let command = text_of(c, "#export-cli").await;
+        let line = "stlc render hilbert3d.lsys --mesh glb --unit 0.02 -o hilbert3d.glb";
+        assert!(command.lines().any(|l| l == line), "{command}");
+        shot(c, "mesh-01-export").await;
+        click(c, "#export-glb").await;
+        let got = downloaded(&served.downloads, "hilbert3d.glb").await;
         same_bytes(&got, &cli_glb("hilbert3d.lsys", "0.02"), "hilbert3d.glb");
     });
 }

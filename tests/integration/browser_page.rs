@@ -6,17 +6,21 @@
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::browser_web::{Static, on_site};
-use super::chromium::{js, js_until, settled, settled_until, shot};
-use crate::chromium::Browser;
+use super::browser_steps::{reload, rewrite, rewritten, set_value, text_of};
+use super::browser_web::{Static, on_site, open_example, site};
+use super::chromium::{
+    cli_line, click, downloaded, drag, js, js_async, js_until, on_served_file, poll, same_bytes,
+    settled, settled_until, shot,
+};
+use super::serve::example;
 
 /// A share-link fragment whose text is `mib` MiB of zero bytes (valid
 /// UTF-8), deflated in the page (1 MiB chunks streamed through
 /// CompressionStream, so the page never holds the whole text).
 async fn bomb_fragment(c: &Client, mib: u32) -> String {
-    let v = c
-        .execute_async(
-            "const [mib, done] = arguments;
+    let v = js_async(
+        c,
+        "const [mib, done] = arguments;
              const zeros = new Uint8Array(1 << 20);
              let n = 0;
              const src = new ReadableStream({ pull(ctl) { if (n++ < mib) ctl.enqueue(zeros); else ctl.close(); } });
@@ -26,10 +30,9 @@ async fn bomb_fragment(c: &Client, mib: u32) -> String {
                for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
                done('#k=od&n=bomb.od&s=' + btoa(s).replace(/\\+/g, '-').replace(/\\//g, '_').replace(/=+$/, ''));
              }, (e) => done(String(e)));",
-            vec![json!(mib)],
-        )
-        .await
-        .unwrap();
+        vec![json!(mib)],
+    )
+    .await;
     v.as_str().unwrap().to_string()
 }
 
@@ -46,13 +49,11 @@ fn a_share_link_that_inflates_past_the_input_limit_is_refused_in_chromium() {
         // Opened afresh, as a link is.
         c.goto("about:blank").await.unwrap();
         c.goto(&format!("{}{fragment}", server.url)).await.unwrap();
-        let v: Value = settled(c).await;
+        let v = settled(c).await;
         let text = v["text"].as_str().unwrap();
-        assert!(
-            text.starts_with("# This share link's text is too large")
-                && text.contains("the input limit of 67108864 bytes (64 MiB)"),
-            "{text}"
-        );
+        let too_large = text.starts_with("# This share link's text is too large");
+        let limit = text.contains("the input limit of 67108864 bytes (64 MiB)");
+        assert!(too_large && limit, "{text}");
         assert_eq!(js(c, "return document.title.length > 0").await, json!(true));
         shot(c, "page-share-too-large").await;
     });
@@ -63,33 +64,17 @@ fn a_share_link_that_inflates_past_the_input_limit_is_refused_in_chromium() {
 /// `want` in it).
 async fn export_command(c: &Client, inputs: &[(&str, &str)], want: &str) -> String {
     if js(c, "return document.getElementById('export-options').open").await != json!(true) {
-        super::chromium::click(c, "#export-options summary").await;
+        click(c, "#export-options summary").await;
     }
     for (id, value) in inputs {
-        c.execute(
-            "const [id, v] = arguments; const e = document.getElementById(id);
-             e.value = v; e.dispatchEvent(new Event('input'));",
-            vec![json!(id), json!(value)],
-        )
-        .await
-        .unwrap();
+        set_value(c, &format!("#{id}"), value).await;
     }
-    let mut shown = String::new();
-    for _ in 0..200 {
-        shown = js(
-            c,
-            "return document.getElementById('export-cli').textContent",
-        )
-        .await
-        .as_str()
-        .unwrap()
-        .to_string();
-        if shown.contains(want) {
-            return shown;
-        }
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    }
-    panic!("the Export panel never showed `{want}`: {shown}");
+    let cli = "return document.getElementById('export-cli').textContent";
+    let shown = js_until(c, cli, 200, 50, |v| v.as_str().unwrap().contains(want)).await;
+    let shown = shown.as_str().unwrap().to_string();
+    let never = format!("the Export panel never showed `{want}`");
+    assert!(shown.contains(want), "{never}: {shown}");
+    shown
 }
 
 /// Issue 36, 11: "4000 x auto", as the placeholders invite, exported the
@@ -101,36 +86,23 @@ async fn export_command(c: &Client, inputs: &[(&str, &str)], want: &str) -> Stri
 #[test]
 fn an_export_with_only_a_width_keeps_the_aspect_in_chromium() {
     on_site(async |c, _, browser| {
-        let v = super::browser_web::open_example(c, "successors.od").await;
+        let v = open_example(c, "successors.od").await;
         assert_eq!(v["ok"], json!(true));
         let svg = js(c, "return window.stlc.state.answer.svg.slice(0, 120)").await;
-        assert!(
-            svg.as_str()
-                .unwrap()
-                .contains("width=\"800\" height=\"653\""),
-            "{svg}"
-        );
+        let svg = svg.as_str().unwrap();
+        assert!(svg.contains("width=\"800\" height=\"653\""), "{svg}");
         let want = "stlc render successors.od --size 1600x1306 --show-layout -o successors.png";
         let shown = export_command(c, &[("export-w", "1600"), ("export-h", "")], want).await;
         shot(c, "page-export-width-only").await;
-        assert!(
-            shown.contains("--size 1600x1306 --show-layout -o successors.svg"),
-            "{shown}"
-        );
-        super::chromium::click(c, "#export-png").await;
-        let got =
-            super::chromium::downloaded(&browser.tmp.join("downloads"), "successors.png").await;
-        let od = crate::support::manifest_path("examples/successors.od");
-        let line = format!("render {} --size 1600x1306 --show-layout", od.display());
-        let cli = super::chromium::cli_line(&line);
-        super::chromium::same_bytes(&got, &cli, "the width-only export");
+        let svg_too = "--size 1600x1306 --show-layout -o successors.svg";
+        assert!(shown.contains(svg_too), "{shown}");
+        click(c, "#export-png").await;
+        let got = downloaded(&browser.tmp.join("downloads"), "successors.png").await;
+        let cli = cli_line("render examples/successors.od --size 1600x1306 --show-layout");
+        same_bytes(&got, &cli, "the width-only export");
         // A height alone: the width from the aspect (653 high is 800 wide).
-        export_command(
-            c,
-            &[("export-w", ""), ("export-h", "653")],
-            "--size 800x653 --show-layout",
-        )
-        .await;
+        let inputs = [("export-w", ""), ("export-h", "653")];
+        export_command(c, &inputs, "--size 800x653 --show-layout").await;
     });
 }
 
@@ -138,7 +110,7 @@ fn an_export_with_only_a_width_keeps_the_aspect_in_chromium() {
 /// on the site's server; waits until no `<stl-tree>` is drawing (or none
 /// appeared after 10 s) and returns their states.
 async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Value {
-    let site = super::browser_web::site().unwrap();
+    let site = site().unwrap();
     for (path, text) in files {
         let path = site.join(path);
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
@@ -160,10 +132,7 @@ async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Valu
 
 /// The text an element shows for an error.
 async fn element_error(c: &Client, id: &str) -> String {
-    let v = js(c, &format!("const p = document.querySelector('#{id} pre.stl-tree-error'); return p && p.textContent")).await;
-    v.as_str()
-        .unwrap_or_else(|| panic!("#{id} shows no error"))
-        .to_string()
+    text_of(c, &format!("#{id} pre.stl-tree-error")).await
 }
 
 const ONE_TREE: &str = "<stl-tree id=t><script type=\"text/stl\">\nT (100, 190) L=9(0) B=1.5(0) A=30 RULE R1: [-F R1][+F R1] SEED F [I 4 R1] ENDSEED\n</script></stl-tree>\n";
@@ -181,39 +150,28 @@ fn stl_tree_is_one_script_and_names_what_is_missing_in_chromium() {
             "<!doctype html><meta charset=utf-8><script type=module src=\"../stl-tree.js\"></script>\n{ONE_TREE}"
         );
         let there = format!("embed-{tag}/page.html");
-        assert_eq!(
-            elements(c, server, &[(&there, page)]).await,
-            json!(["drawn"])
-        );
+        let states = elements(c, server, &[(&there, page)]).await;
+        assert_eq!(states, json!(["drawn"]));
         // The script alone, copied into a folder of its own.
-        let script =
-            std::fs::read_to_string(super::browser_web::site().unwrap().join("stl-tree.js"))
-                .unwrap();
+        let script = std::fs::read_to_string(site().unwrap().join("stl-tree.js")).unwrap();
         let page = format!(
             "<!doctype html><meta charset=utf-8><script type=module src=\"stl-tree.js\"></script>\n{ONE_TREE}"
         );
         let alone = format!("alone-{tag}/page.html");
-        let states = elements(
-            c,
-            server,
-            &[
-                (&alone, page),
-                (&format!("alone-{tag}/stl-tree.js"), script),
-            ],
-        )
-        .await;
+        let files = [
+            (alone.as_str(), page),
+            (&format!("alone-{tag}/stl-tree.js"), script),
+        ];
+        let states = elements(c, server, &files).await;
         assert_eq!(states, json!(["error"]));
         let error = element_error(c, "t").await;
         let url = format!("{}alone-{tag}/stlc.wasm", server.url);
-        assert!(
-            error.contains("needs stlc.wasm beside stl-tree.js") && error.contains(&url),
-            "{error}"
-        );
+        let needs = error.contains("needs stlc.wasm beside stl-tree.js");
+        assert!(needs && error.contains(&url), "{error}");
         assert!(error.contains("404"), "{error}");
         shot(c, "page-stl-tree-alone").await;
-        let site = super::browser_web::site().unwrap();
         for dir in [format!("embed-{tag}"), format!("alone-{tag}")] {
-            std::fs::remove_dir_all(site.join(dir)).unwrap();
+            std::fs::remove_dir_all(site().unwrap().join(dir)).unwrap();
         }
     });
 }
@@ -248,15 +206,10 @@ fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
         let states = elements(c, server, &[(&name, page)]).await;
         assert_eq!(states, json!(["error", "drawn", "drawn"]));
         let error = element_error(c, "slow").await;
-        assert!(
-            error.starts_with("stopped after 0.3 s, the time budget of this element"),
-            "{error}"
-        );
-        let v = js(
-            c,
-            "return [window.gap, window.ticks, window.last - window.first, document.getElementById('long').svg.length]",
-        )
-        .await;
+        let stopped = "stopped after 0.3 s, the time budget of this element";
+        assert!(error.starts_with(stopped), "{error}");
+        let timer = "return [window.gap, window.ticks, window.last - window.first, document.getElementById('long').svg.length]";
+        let v = js(c, timer).await;
         let (gap, ticks, drawing) = (
             v[0].as_f64().unwrap(),
             v[1].as_f64().unwrap(),
@@ -269,32 +222,15 @@ fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
         // tree drew (it would see `drawing` once at most). In a worker it
         // keeps running: a ratio, not a time, so a loaded machine that
         // slows both alike does not fail it.
-        assert!(
-            drawing > 300.0,
-            "the slow tree drew faster than its 0.3 s twin's budget: {v}"
-        );
-        assert!(
-            ticks >= 5.0,
-            "the page's timer stalled while the tree drew: {v}"
-        );
-        assert!(
-            gap < drawing / 2.0,
-            "the page froze for most of the draw: {v}"
-        );
+        let faster = "the slow tree drew faster than its 0.3 s twin's budget";
+        assert!(drawing > 300.0, "{faster}: {v}");
+        let stalled = "the page's timer stalled while the tree drew";
+        assert!(ticks >= 5.0, "{stalled}: {v}");
+        let froze = "the page froze for most of the draw";
+        assert!(gap < drawing / 2.0, "{froze}: {v}");
         shot(c, "page-stl-tree-budget").await;
-        std::fs::remove_file(super::browser_web::site().unwrap().join(name)).unwrap();
+        std::fs::remove_file(site().unwrap().join(name)).unwrap();
     });
-}
-
-/// Reloads the page (accepting the "leave with unsaved edits?" question)
-/// and waits until it shows a picture again.
-async fn reload(c: &Client) -> Value {
-    let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
-    tokio::time::sleep(std::time::Duration::from_millis(300)).await;
-    let _ = c.accept_alert().await;
-    let up = "return !!(window.stlc && window.stlc.state.answer)";
-    js_until(c, up, 200, 50, |v| v == &json!(true)).await;
-    settled(c).await
 }
 
 /// Issue 36, 10: reloading the web Tree Maker mid-edit landed on
@@ -304,42 +240,25 @@ async fn reload(c: &Client) -> Value {
 #[test]
 fn a_reload_returns_to_the_document_and_its_draft_in_chromium() {
     on_site(async |c, _, _| {
-        let original = super::browser_web::open_example(c, "successors.od").await["text"]
-            .as_str()
-            .unwrap()
-            .to_string();
+        let original = example("successors.od");
+        open_example(c, "successors.od").await;
         let edited = format!("{original}# my edit\n");
-        c.execute(
-            "window.stlc.editor.rewrite(arguments[0])",
-            vec![json!(edited)],
-        )
-        .await
-        .unwrap();
+        rewrite(c, &edited).await;
         assert_eq!(settled(c).await["text"], json!(edited));
         // The draft is written a quarter second after the last edit.
         tokio::time::sleep(std::time::Duration::from_millis(600)).await;
         let v = reload(c).await;
-        assert_eq!(
-            v["text"],
-            json!(original),
-            "the reload shows the document, not 2dtree.od"
-        );
-        let name = js(c, "return document.getElementById('file-name').textContent").await;
-        assert!(
-            name.as_str().unwrap().starts_with("successors.od"),
-            "{name}"
-        );
-        let notice = js(
-            c,
-            "const n = document.getElementById('notice'); return n.hidden ? null : n.textContent",
-        )
-        .await;
-        assert!(
-            notice.as_str().is_some_and(|n| n.contains("Unsaved edits")),
-            "{notice}"
-        );
+        let not_2dtree = "the reload shows the document, not 2dtree.od";
+        assert_eq!(v["text"], json!(original), "{not_2dtree}");
+        let name = text_of(c, "#file-name").await;
+        assert!(name.starts_with("successors.od"), "{name}");
+        let shown =
+            "const n = document.getElementById('notice'); return n.hidden ? null : n.textContent";
+        let notice = js(c, shown).await;
+        let offered = notice.as_str().is_some_and(|n| n.contains("Unsaved edits"));
+        assert!(offered, "{notice}");
         shot(c, "page-reload-draft").await;
-        super::chromium::click(c, "[data-testid=restore-draft]").await;
+        click(c, "[data-testid=restore-draft]").await;
         assert_eq!(settled(c).await["text"], json!(edited));
     });
 }
@@ -347,35 +266,16 @@ fn a_reload_returns_to_the_document_and_its_draft_in_chromium() {
 /// Opens New's `name` (a template: "new.od (template)") and waits for its
 /// picture.
 async fn new_from(c: &Client, label: &str) -> Value {
-    js(
-        c,
-        &format!(
-            "const m = document.getElementById('new');
-             const o = [...m.options].find((o) => o.textContent === {label:?});
-             m.value = o.value; m.dispatchEvent(new Event('change'));"
-        ),
-    )
-    .await;
-    for _ in 0..200 {
-        let v = settled(c).await;
-        if v["text"].as_str().is_some_and(|t| t.contains("NewTree")) {
-            return v;
-        }
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    }
-    panic!("{label} never opened");
+    super::browser_steps::choose_new(c, label).await;
+    let new_tree = |v: &Value| v["text"].as_str().is_some_and(|t| t.contains("NewTree"));
+    let v = poll(200, 50, async || settled(c).await, new_tree).await;
+    assert!(new_tree(&v), "{label} never opened");
+    v
 }
 
 /// The diagnostics panel's text.
 async fn diagnostics(c: &Client) -> String {
-    js(
-        c,
-        "return document.getElementById('diagnostics').textContent",
-    )
-    .await
-    .as_str()
-    .unwrap()
-    .to_string()
+    text_of(c, "#diagnostics").await
 }
 
 /// Issue 36, 13: the new.od template stopped at 106 stems (its `B=2(0.3)`
@@ -390,39 +290,24 @@ fn the_template_grows_into_what_one_draws_and_says_why_it_stops_in_chromium() {
         let v = new_from(c, "new.od (template)").await;
         assert_eq!(v["stems"], json!(139), "{v}");
         assert!(!diagnostics(c).await.contains("ran out"));
-        super::chromium::click(c, "[data-tool=Rectangle]").await;
-        super::chromium::click(c, "#colour option[value=clGreen]").await;
-        super::chromium::drag(c, (150.0, 10.0), (205.0, 170.0)).await;
+        click(c, "[data-tool=Rectangle]").await;
+        click(c, "#colour option[value=clGreen]").await;
+        drag(c, (150.0, 10.0), (205.0, 170.0)).await;
         let drawn = settled_until(c, 100, 50, |v| {
             v["text"].as_str().unwrap().contains("Rectangle")
         })
         .await;
         let text = drawn["text"].as_str().unwrap();
-        assert!(
-            text.contains("(clGreen) Rectangle (150, 10), 55, 160"),
-            "{text}"
-        );
+        let rectangle = "(clGreen) Rectangle (150, 10), 55, 160";
+        assert!(text.contains(rectangle), "{text}");
         assert_eq!(drawn["stems"], json!(169), "{drawn}");
         shot(c, "page-template-drawn").await;
         // The old template's decrement: growth runs out, and the page says so.
-        let thin = text.replace("B=2(0.05)", "B=2(0.3)");
-        c.execute(
-            "window.stlc.editor.rewrite(arguments[0])",
-            vec![json!(thin)],
-        )
-        .await
-        .unwrap();
-        let mut v = settled(c).await;
-        while v["text"] != json!(thin) {
-            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-            v = settled(c).await;
-        }
+        let v = rewritten(c, &text.replace("B=2(0.05)", "B=2(0.3)")).await;
         assert_eq!(v["stems"], json!(115), "{v}");
         let said = diagnostics(c).await;
-        assert!(
-            said.contains("growth stopped at 115 stems: rule `R1` ran out (most misses: stem too thin: B decremented to 0, 26 of 39)"),
-            "{said}"
-        );
+        let ran_out = "growth stopped at 115 stems: rule `R1` ran out (most misses: stem too thin: B decremented to 0, 26 of 39)";
+        assert!(said.contains(ran_out), "{said}");
         shot(c, "page-template-ran-out").await;
     });
 }
@@ -433,52 +318,23 @@ fn the_template_grows_into_what_one_draws_and_says_why_it_stops_in_chromium() {
 #[test]
 fn stem_counts_have_their_digits_grouped_in_chromium() {
     on_site(async |c, _, _| {
-        super::browser_web::open_example(c, "abop-1.24a.lsys").await;
-        let text = "generations 12\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
-        c.execute(
-            "window.stlc.editor.rewrite(arguments[0])",
-            vec![json!(text)],
-        )
-        .await
-        .unwrap();
-        let mut v = settled(c).await;
-        while v["text"] != json!(text) {
-            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-            v = settled(c).await;
-        }
+        open_example(c, "abop-1.24a.lsys").await;
+        let deep = "generations 12\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\n";
+        let v = rewritten(c, deep).await;
         assert_eq!(v["ok"], json!(true), "{v}");
-        let status = js(c, "return document.getElementById('status').textContent").await;
-        assert!(
-            status.as_str().unwrap().starts_with("244,140,625 stems · "),
-            "{status}"
-        );
+        let status = text_of(c, "#status").await;
+        assert!(status.starts_with("244,140,625 stems · "), "{status}");
         // A grown tree: 6,237 stems and 3,118 decisions (as `stlc check`
         // counts: 3,118 fits), in the status and the replay's label.
         let od = "T (150, 300) L=4(0) B=0.5(0) A=30 RULE R1: [+F R1][-F R1] SEED F R1 ENDSEED \
                   LAYOUT (clGreen) Rectangle (0, 0), 300, 300 ENDLAYOUT\n";
-        super::browser_web::open_example(c, "fig9.od").await;
-        c.execute("window.stlc.editor.rewrite(arguments[0])", vec![json!(od)])
-            .await
-            .unwrap();
-        let mut v = settled(c).await;
-        while v["text"] != json!(od) {
-            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-            v = settled(c).await;
-        }
-        let status = js(c, "return document.getElementById('status').textContent").await;
-        assert!(
-            status
-                .as_str()
-                .unwrap()
-                .starts_with("6,237 stems · 3,118 growth decisions · "),
-            "{status}"
-        );
-        let label = js(
-            c,
-            "return document.getElementById('step-label').textContent",
-        )
-        .await;
-        assert_eq!(label, json!("decision 3,118 of 3,118 · 6,237 stems"));
+        open_example(c, "fig9.od").await;
+        rewritten(c, od).await;
+        let status = text_of(c, "#status").await;
+        let counts = "6,237 stems · 3,118 growth decisions · ";
+        assert!(status.starts_with(counts), "{status}");
+        let label = text_of(c, "#step-label").await;
+        assert_eq!(label, "decision 3,118 of 3,118 · 6,237 stems");
         shot(c, "page-grouped-digits").await;
     });
 }
@@ -490,11 +346,9 @@ fn stem_counts_have_their_digits_grouped_in_chromium() {
 #[test]
 fn the_open_export_panel_covers_no_control_in_chromium() {
     on_site(async |c, _, _| {
-        super::chromium::click(c, "#export-options summary").await;
-        assert_eq!(
-            js(c, "return document.getElementById('export-options').open").await,
-            json!(true)
-        );
+        click(c, "#export-options summary").await;
+        let open = js(c, "return document.getElementById('export-options').open").await;
+        assert_eq!(open, json!(true));
         let covered = js(
             c,
             "const panel = document.querySelector('#export-options .export-panel');
@@ -512,11 +366,8 @@ fn the_open_export_panel_covers_no_control_in_chromium() {
         assert!(covered[0].as_u64().unwrap() > 20, "{covered}");
         assert_eq!(covered[1], json!([]), "controls covered by the open panel");
         // The panel itself shows its command.
-        let cli = js(
-            c,
-            "return document.getElementById('export-cli').getBoundingClientRect().height",
-        )
-        .await;
+        let height = "return document.getElementById('export-cli').getBoundingClientRect().height";
+        let cli = js(c, height).await;
         assert!(cli.as_f64().unwrap() > 10.0, "{cli}");
         shot(c, "page-export-panel-open").await;
     });
@@ -529,26 +380,16 @@ fn the_open_export_panel_covers_no_control_in_chromium() {
 #[test]
 fn compare_marks_the_lines_that_differ_in_chromium() {
     on_site(async |c, _, _| {
-        let original = super::browser_web::open_example(c, "successors.od").await["text"]
-            .as_str()
-            .unwrap()
-            .to_string();
+        let original = example("successors.od");
+        open_example(c, "successors.od").await;
         assert!(original.contains("\nL=22(1.6) B=3.2(0.25) A=30 C=1\n"));
-        let edited = original.replace("A=30 C=1\n", "A=35 C=1\n").replacen(
-            "\nSEED\n",
-            "\nSEED\n# my seed\n",
-            1,
-        );
-        c.execute(
-            "window.stlc.editor.rewrite(arguments[0])",
-            vec![json!(edited)],
-        )
-        .await
-        .unwrap();
+        let edited = original.replace("A=30 C=1\n", "A=35 C=1\n");
+        let edited = edited.replacen("\nSEED\n", "\nSEED\n# my seed\n", 1);
+        rewrite(c, &edited).await;
         assert_eq!(settled(c).await["text"], json!(edited));
         tokio::time::sleep(std::time::Duration::from_millis(600)).await;
         reload(c).await;
-        super::chromium::click(c, "[data-testid=compare]").await;
+        click(c, "[data-testid=compare]").await;
         let sides = js(
             c,
             "const side = (id) => [document.getElementById(id).textContent,
@@ -560,10 +401,8 @@ fn compare_marks_the_lines_that_differ_in_chromium() {
         assert_eq!(sides[0][0], json!(original));
         assert_eq!(sides[1][0], json!(edited));
         assert_eq!(sides[0][1], json!(["L=22(1.6) B=3.2(0.25) A=30 C=1\n"]));
-        assert_eq!(
-            sides[1][1],
-            json!(["L=22(1.6) B=3.2(0.25) A=35 C=1\n", "# my seed\n"])
-        );
+        let mine = json!(["L=22(1.6) B=3.2(0.25) A=35 C=1\n", "# my seed\n"]);
+        assert_eq!(sides[1][1], mine);
         assert_eq!(sides[0][2], json!(": 1 line differs"));
         assert_eq!(sides[1][2], json!(": 2 lines differ"));
         shot(c, "page-compare-marks").await;
@@ -576,57 +415,40 @@ fn compare_marks_the_lines_that_differ_in_chromium() {
 /// document (Save downloads it).
 #[test]
 fn stlc_serve_shares_like_the_web_page_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let file = tmp.path().join("tree.od");
-    std::fs::copy(crate::support::manifest_path("examples/fig9.od"), &file).unwrap();
-    let server = super::serve::Server::start(&[file.to_str().unwrap()]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        let v = settled(&c).await;
-        assert_eq!(v["text"], json!(std::fs::read_to_string(&file).unwrap()));
-        super::chromium::click(&c, "[data-testid=share]").await;
+    on_served_file("tree.od", &example("fig9.od"), async |c, served| {
+        let server = served.server;
+        let v = settled(c).await;
+        assert_eq!(v["text"], json!(example("fig9.od")));
+        click(c, "[data-testid=share]").await;
         let saved = "return document.getElementById('saved').textContent";
-        let said = js_until(&c, saved, 100, 50, |v| {
-            v.as_str().unwrap().starts_with("Share link: ")
-        })
-        .await;
-        assert!(said.as_str().unwrap().starts_with("Share link: "), "{said}");
-        let link = js(&c, "return location.href")
+        let share = |v: &Value| v.as_str().unwrap().starts_with("Share link: ");
+        let said = js_until(c, saved, 100, 50, share).await;
+        assert!(share(&said), "{said}");
+        let link = js(c, "return location.href")
             .await
             .as_str()
             .unwrap()
             .to_string();
         let base = format!("http://{}/#k=od&n=tree.od&s=", server.addr);
         assert!(link.starts_with(&base), "{link}");
-        assert!(
-            !link.contains(&server.token),
-            "the link carries the token: {link}"
-        );
-        shot(&c, "page-serve-share").await;
+        let token = link.contains(&server.token);
+        assert!(!token, "the link carries the token: {link}");
+        shot(c, "page-serve-share").await;
         // Another document's link, put into this tab's address.
         let other = "T (0, 0) L=10(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 1 R1] ENDSEED\n";
-        c.execute_async(
+        js_async(
+            c,
             "const [text, done] = arguments;
              import('./share.js').then((m) => m.toFragment({name: 'other.od', kind: 'od', text}))
                .then((f) => { location.hash = f; done(true); });",
             vec![json!(other)],
         )
-        .await
-        .unwrap();
-        let v = settled_until(&c, 100, 50, |v| v["text"] == json!(other)).await;
+        .await;
+        let v = settled_until(c, 100, 50, |v| v["text"] == json!(other)).await;
         assert_eq!(v["text"], json!(other));
         assert_eq!(v["stems"], json!(3), "{v}");
-        let name = js(
-            &c,
-            "return document.getElementById('file-name').textContent",
-        )
-        .await;
-        assert_eq!(name, json!("other.od (shared; Save downloads)"));
-        let _ = c.close().await;
+        let name = text_of(c, "#file-name").await;
+        assert_eq!(name, "other.od (shared; Save downloads)");
     });
 }
 

@@ -9,15 +9,16 @@
 use fantoccini::Client;
 use serde_json::{Value, json};
 
+use super::browser_steps::{set_value, settled_failed, shows_svg, texts_of};
 use super::browser_web::{
-    engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, start,
+    engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, site,
 };
 use super::chromium::{
-    Browser, cli, cli_svg_of, click, js, on_served_page, same_bytes, settled, settled_until, shot,
-    until,
+    cli, cli_svg_of, click, js, js_async, on_served_file, on_served_page, same_bytes,
+    settled_until, shot, until,
 };
 use super::param_frontends::{parametric_examples, same_words};
-use super::serve::{Server, example};
+use super::serve::example;
 
 /// Opens the Numbers panel and moves the slider `key` to `value`, as a
 /// drag does (an `input` event); the page's answer to the new text.
@@ -28,15 +29,10 @@ async fn slide(c: &Client, key: &str, value: &str) -> Value {
     let input = format!("#scrub-list input[data-key=\"{key}\"]");
     let script = &format!("return document.querySelector('{input}') !== null");
     until(c, script, "the slider").await;
-    js(
-        c,
-        &format!(
-            "const i = document.querySelector('{input}'); i.value = {value}; i.dispatchEvent(new Event('input')); return 0;"
-        ),
-    )
-    .await;
+    set_value(c, &input, value).await;
+    let line_end = format!(" {value}\n");
     settled_until(c, 100, 50, |v| {
-        v["text"].as_str().unwrap().contains(&format!(" {value}\n"))
+        v["text"].as_str().unwrap().contains(&line_end)
     })
     .await
 }
@@ -49,30 +45,21 @@ fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
     on_served_page(async |c, _| {
         open_example(c, "param-willow.lsys").await;
         let after = slide(c, "define-spread", "45").await;
-        let keys = js(
-            c,
-            "return [...document.querySelectorAll('#scrub-list input')].map((i) => i.dataset.key)",
-        )
-        .await;
-        assert_eq!(
-            keys,
-            json!([
-                "angle",
-                "define-shrink",
-                "define-side",
-                "define-spread",
-                "define-twig"
-            ])
-        );
+        let keys =
+            "return [...document.querySelectorAll('#scrub-list input')].map((i) => i.dataset.key)";
+        let want = [
+            "angle",
+            "define-shrink",
+            "define-side",
+            "define-spread",
+            "define-twig",
+        ];
+        assert_eq!(js(c, keys).await, json!(want));
         let text = example("param-willow.lsys").replace("define spread 30\n", "define spread 45\n");
         assert_eq!(after["ok"], true, "{after}");
         assert_eq!(after["text"], json!(text));
-        let svg = js(c, "return window.stlc.state.answer.svg").await;
-        same_bytes(
-            svg.as_str().unwrap().as_bytes(),
-            &cli_svg_of("edited.lsys", &text),
-            "the willow with spread 45",
-        );
+        let cli = cli_svg_of("edited.lsys", &text);
+        shows_svg(c, &cli, "the willow with spread 45").await;
         shot(c, "param-01-define-sliders").await;
     });
 }
@@ -81,31 +68,20 @@ fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
 /// expression that made it, and clicking its diagnostic selects it.
 #[test]
 fn a_diagnostic_underlines_the_expression_it_is_about_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some(browser) = Browser::start(tmp.path()) else {
-        return;
-    };
-    let file = tmp.path().join("zero.lsys");
     let text = "generations 5\nangle 9\naxiom A(3)\nrule A(x) -> F(1)A(x-1)B(1/(x-1))\n";
-    std::fs::write(&file, text).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        let v = settled(&c).await;
-        assert_eq!(v["ok"], false, "{v}");
+    on_served_file("zero.lsys", text, async |c, _| {
+        settled_failed(c).await;
         let marks = "return [...document.querySelectorAll('#underlines mark.error')].map((m) => m.textContent)";
-        until(&c, &format!("{marks}.length === 1"), "the underline").await;
-        assert_eq!(js(&c, marks).await, json!(["1/(x-1)"]));
-        click(&c, "#diagnostics li.error").await;
+        until(c, &format!("{marks}.length === 1"), "the underline").await;
+        assert_eq!(js(c, marks).await, json!(["1/(x-1)"]));
+        click(c, "#diagnostics li.error").await;
         let selected = js(
-            &c,
+            c,
             "const s = document.getElementById('source'); return s.value.slice(s.selectionStart, s.selectionEnd)",
         )
         .await;
         assert_eq!(selected, json!("1/(x-1)"));
-        shot(&c, "param-02-underlined-expression").await;
-        let _ = c.close().await;
+        shot(c, "param-02-underlined-expression").await;
     });
 }
 
@@ -121,19 +97,15 @@ fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in
             let path = format!("examples/{name}");
             let request = json!({"source": example(&name), "kind": "lsys", "show_layout": true});
             let svg = engine_export(&c, &request, "svg").await.unwrap();
-            same_bytes(
-                &svg,
-                &cli(&["render", &path, "--show-layout", "-f", "svg"]),
-                &name,
-            );
-            let words = c
-                .execute_async(
-                    "const [request, done] = arguments;
+            let want = cli(&["render", &path, "--show-layout", "-f", "svg"]);
+            same_bytes(&svg, &want, &name);
+            let words = js_async(
+                &c,
+                "const [request, done] = arguments;
                      window.stlc.engine.words(request).then(done, (e) => done(String(e)));",
-                    vec![request],
-                )
-                .await
-                .unwrap();
+                vec![request],
+            )
+            .await;
             same_words(&name, &words);
         }
         // The words view: the axiom A(10,0), then the first rule applied
@@ -141,17 +113,13 @@ fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in
         // 10 x 0.62 x 0.9, the axis 10 x 0.82; ten modules).
         open_example(&c, "param-willow.lsys").await;
         click(&c, "#words summary").await;
-        let items =
-            "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)";
-        until(&c, &format!("{items}.length >= 2"), "the words").await;
-        let shown = js(&c, items).await;
-        assert_eq!(shown[0], json!("A(10,0) (1)"));
-        assert_eq!(
-            shown[1],
-            json!("F(10)[+(30)A(6.2,1)][-(30)A(5.58,1)]A(8.2,0) (10)")
-        );
+        let items = "document.querySelectorAll('#word-list li').length >= 2";
+        until(&c, &format!("return {items}"), "the words").await;
+        let shown = texts_of(&c, "#word-list li").await;
+        assert_eq!(shown[0], "A(10,0) (1)");
+        let first = "F(10)[+(30)A(6.2,1)][-(30)A(5.58,1)]A(8.2,0) (10)";
+        assert_eq!(shown[1], first);
         shot(&c, "param-03-web-words").await;
-        let _ = c.close().await;
     });
 }
 
@@ -160,25 +128,20 @@ fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in
 /// `src=`, as `stlc render -f svg` draws them.
 #[test]
 fn stl_tree_draws_parametric_trees_as_the_cli_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some((site, server, browser)) = start(tmp.path()) else {
-        return;
-    };
-    let willow = example("param-willow.lsys");
-    let page = format!(
-        "<!doctype html><meta charset=utf-8><script type=module src=stl-tree.js></script>\n\
-         <stl-tree id=willow><script type=\"text/stl\">\n{willow}</script></stl-tree>\n\
-         <stl-tree id=honda src=\"examples/abop-2.6a.lsys\" depth=6></stl-tree>\n"
-    );
-    std::fs::write(site.join("param-elements-test.html"), page).unwrap();
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
+    on_site(async |c, server, _| {
+        let willow = example("param-willow.lsys");
+        let page = format!(
+            "<!doctype html><meta charset=utf-8><script type=module src=stl-tree.js></script>\n\
+             <stl-tree id=willow><script type=\"text/stl\">\n{willow}</script></stl-tree>\n\
+             <stl-tree id=honda src=\"examples/abop-2.6a.lsys\" depth=6></stl-tree>\n"
+        );
+        std::fs::write(site().unwrap().join("param-elements-test.html"), page).unwrap();
         c.goto(&format!("{}param-elements-test.html", server.url))
             .await
             .unwrap();
         let states =
             "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state).join()";
-        until(&c, &format!("{states} === 'drawn,drawn'"), "both drawn").await;
+        until(c, &format!("{states} === 'drawn,drawn'"), "both drawn").await;
         let want = [
             ("willow", vec!["render", "examples/param-willow.lsys"]),
             (
@@ -187,12 +150,11 @@ fn stl_tree_draws_parametric_trees_as_the_cli_in_chromium() {
             ),
         ];
         for (id, mut args) in want {
-            let svg = js(&c, &format!("return document.getElementById('{id}').svg")).await;
+            let svg = js(c, &format!("return document.getElementById('{id}').svg")).await;
             args.extend(["-f", "svg"]);
             same_bytes(svg.as_str().unwrap().as_bytes(), &cli(&args), id);
         }
-        shot(&c, "param-04-stl-tree").await;
-        let _ = c.close().await;
+        shot(c, "param-04-stl-tree").await;
     });
 }
 
@@ -200,26 +162,18 @@ fn stl_tree_draws_parametric_trees_as_the_cli_in_chromium() {
 /// in a fresh profile it shows the same text and the CLI's SVG of it.
 #[test]
 fn a_share_link_carries_a_parametric_tree_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some((_, server, browser)) = start(tmp.path()) else {
+    let text = example("param-willow.lsys").replace("define shrink 0.82\n", "define shrink 0.75\n");
+    let mut link = String::new();
+    let Some(_site) = on_site(async |c, server, _| {
+        open_example(c, "param-willow.lsys").await;
+        let v = slide(c, "define-shrink", "0.75").await;
+        assert_eq!(v["text"], json!(text));
+        link = share_link(c).await;
+        let base = format!("{}#k=lsys&n=param-willow.lsys&s=", server.url);
+        assert!(link.starts_with(&base), "{link}");
+    }) else {
         return;
     };
-    let text = example("param-willow.lsys").replace("define shrink 0.82\n", "define shrink 0.75\n");
-    let link = browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
-        open_example(&c, "param-willow.lsys").await;
-        let v = slide(&c, "define-shrink", "0.75").await;
-        assert_eq!(v["text"], json!(text));
-        let link = share_link(&c).await;
-        assert!(
-            link.starts_with(&format!("{}#k=lsys&n=param-willow.lsys&s=", server.url)),
-            "{link}"
-        );
-        let _ = c.close().await;
-        link
-    });
     let want = cli_svg_of("willow.lsys", &text);
     opens_in_a_fresh_profile(&link, &text, &want, "param-05-shared");
 }

@@ -3,8 +3,6 @@
 //! drawn by the page's engine, the CLI's PNG at `--size 96x96`; a click
 //! opens that example. Screenshots go to `tests/store/browser/thumbs-*.png`.
 
-use std::time::Duration;
-
 use fantoccini::Client;
 use serde_json::json;
 
@@ -13,14 +11,11 @@ use super::chromium::{
     cli_line, click, js, js_until, on_served_page, same_bytes, settled_until, shot,
 };
 use super::serve::example;
-use crate::support::manifest_path;
 
 /// The PNG `stlc render examples/NAME --size 96x96 --show-layout` writes.
 fn cli_thumb(name: &str) -> Vec<u8> {
-    let path = manifest_path(format!("examples/{name}"));
     cli_line(&format!(
-        "render {} --size 96x96 --show-layout -f png",
-        path.display()
+        "render examples/{name} --size 96x96 --show-layout -f png"
     ))
 }
 
@@ -33,21 +28,18 @@ async fn thumb(c: &Client, name: &str) -> Vec<u8> {
          const img = document.querySelector('[data-testid=\"thumb-{name}\"] img');
          return !!url && img.src === url && img.complete && img.naturalWidth === 96 && img.naturalHeight === 96;"
     );
-    for _ in 0..600 {
-        if js(c, &shown).await == json!(true) {
-            let text = example(name);
-            let kind = if name.ends_with(".lsys") {
-                "lsys"
-            } else {
-                "od"
-            };
-            let request = json!({"source": text, "kind": kind, "size": [96, 96]});
-            return engine_export(c, &request, "png").await.unwrap();
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
+    let drawn = js_until(c, &shown, 600, 100, |v| v == &json!(true)).await;
+    if drawn != json!(true) {
+        shot(c, "thumbs-timeout").await;
+        panic!("the thumbnail of {name} was never drawn");
     }
-    shot(c, "thumbs-timeout").await;
-    panic!("the thumbnail of {name} was never drawn");
+    let kind = if name.ends_with(".lsys") {
+        "lsys"
+    } else {
+        "od"
+    };
+    let request = json!({"source": example(name), "kind": kind, "size": [96, 96]});
+    engine_export(c, &request, "png").await.unwrap()
 }
 
 /// Opens the panel: a tile per template and example, in the New menu's
@@ -69,10 +61,8 @@ async fn thumbnails_open_examples(c: &Client, what: &str) {
     let want = example("koch-snowflake.lsys");
     let opened = settled_until(c, 100, 50, |v| v["text"] == json!(want)).await;
     assert_eq!(opened["text"], json!(want));
-    assert_eq!(
-        js(c, "return document.getElementById('new-gallery').open").await,
-        json!(false)
-    );
+    let open = js(c, "return document.getElementById('new-gallery').open").await;
+    assert_eq!(open, json!(false));
 }
 
 #[test]

@@ -15,24 +15,22 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
+use super::browser_steps::{answer_svg, rewritten, settled_ok, shows_svg, type_into};
 use super::chromium::{
-    Browser, cli, cli_svg_of, click, downloaded, drag, js, js_until, open, same_bytes, settled,
-    settled_until, shot,
+    Browser, cli, cli_svg_of, click, downloaded, drag, free_port, js, js_async, js_until, open,
+    same_bytes, settled, settled_until, shot, wait_for_port,
 };
+use super::serve::example;
 use crate::support::manifest_path;
 
 /// The first line of the first code block under `## On the web` in the
 /// README: the documented build command.
 pub(super) fn build_command() -> String {
     let readme = std::fs::read_to_string(manifest_path("README.md")).unwrap();
-    let section = readme
-        .split("\n## On the web\n")
-        .nth(1)
-        .expect("the README has a `## On the web` section");
-    let block = section
-        .split("```sh\n")
-        .nth(1)
-        .expect("a ```sh block under `## On the web`");
+    let section = readme.split("\n## On the web\n").nth(1);
+    let section = section.expect("the README has a `## On the web` section");
+    let block = section.split("```sh\n").nth(1);
+    let block = block.expect("a ```sh block under `## On the web`");
     block.lines().next().unwrap().to_string()
 }
 
@@ -51,11 +49,8 @@ pub(super) fn site() -> Option<&'static Path> {
             .stdin(Stdio::null())
             .output()
             .unwrap();
-        assert!(
-            out.status.success(),
-            "`{line}` failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "`{line}` failed: {err}");
         Some(manifest_path("target/site"))
     })
     .as_deref()
@@ -64,11 +59,8 @@ pub(super) fn site() -> Option<&'static Path> {
 /// Whether the wasm32-unknown-unknown target is installed (after saying
 /// loudly that the web tests skip, where it is not).
 pub(super) fn wasm_target() -> bool {
-    let sysroot = Command::new("rustc")
-        .args(["--print", "sysroot"])
-        .output()
-        .expect("rustc --print sysroot");
-    let sysroot = String::from_utf8(sysroot.stdout).unwrap();
+    let sysroot = Command::new("rustc").args(["--print", "sysroot"]).output();
+    let sysroot = String::from_utf8(sysroot.expect("rustc --print sysroot").stdout).unwrap();
     let target = Path::new(sysroot.trim()).join("lib/rustlib/wasm32-unknown-unknown");
     if !target.is_dir() {
         eprintln!(
@@ -89,10 +81,7 @@ pub(super) struct Static {
 impl Static {
     /// `None` (after saying why) where python3 is missing.
     pub(super) fn start(dir: &Path) -> Option<Static> {
-        let port = std::net::TcpListener::bind("127.0.0.1:0")
-            .and_then(|l| l.local_addr())
-            .unwrap()
-            .port();
+        let port = free_port();
         let Ok(child) = Command::new("python3")
             .args(["-m", "http.server", "--bind", "127.0.0.1", "--directory"])
             .arg(dir)
@@ -106,12 +95,7 @@ impl Static {
             eprintln!("SKIPPED the web test: python3 is not installed (it serves the site)");
             return None;
         };
-        for _ in 0..200 {
-            if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
-                break;
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
+        wait_for_port(port);
         Some(Static {
             child,
             url: format!("http://127.0.0.1:{port}/"),
@@ -152,9 +136,9 @@ pub(super) async fn engine_export(
     request: &Value,
     format: &str,
 ) -> Result<Vec<u8>, Value> {
-    let v = c
-        .execute_async(
-            "const [request, format, done] = arguments;
+    let v = js_async(
+        c,
+        "const [request, format, done] = arguments;
              window.stlc.engine.export(request, format).then(async (a) => {
                if (!a.ok) { done({failed: a}); return; }
                const b = new Uint8Array(await a.blob.arrayBuffer());
@@ -162,10 +146,9 @@ pub(super) async fn engine_export(
                for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
                done({bytes: s});
              }, (e) => done({failed: String(e)}));",
-            vec![request.clone(), json!(format)],
-        )
-        .await
-        .unwrap();
+        vec![request.clone(), json!(format)],
+    )
+    .await;
     match v["bytes"].as_str() {
         // One character a byte (0 to 255).
         Some(s) => Ok(s.chars().map(|ch| ch as u32 as u8).collect()),
@@ -189,117 +172,94 @@ fn png_difference(a: &[u8], b: &[u8], what: &str) -> u8 {
 
 #[test]
 fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some((_, server, browser)) = start(tmp.path()) else {
-        return;
-    };
-    let downloads = browser.tmp.join("downloads");
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        let first = settled(&c).await;
-        assert_eq!(first["ok"], true, "{first}");
+    on_site(async |c, _, browser| {
+        let downloads = browser.tmp.join("downloads");
+        let first = settled_ok(c).await;
         // The page opens on the paper's 2DTree, drawn as `stlc render
         // --show-layout -f svg` draws it.
-        let paper = std::fs::read_to_string(manifest_path("examples/2dtree.od")).unwrap();
+        let paper = example("2dtree.od");
         assert_eq!(first["text"], paper);
-        let svg = js(&c, "return window.stlc.state.answer.svg").await;
-        same_bytes(
-            svg.as_str().unwrap().as_bytes(),
-            &cli(&["render", "examples/2dtree.od", "--show-layout", "-f", "svg"]),
-            "the first picture",
-        );
-        shot(&c, "web-01-2dtree").await;
+        let cli_svg = cli(&["render", "examples/2dtree.od", "--show-layout", "-f", "svg"]);
+        shows_svg(c, &cli_svg, "the first picture").await;
+        shot(c, "web-01-2dtree").await;
 
         // A white rectangle drawn with the mouse: the text gets its line,
         // the tree regrows around it, and the BED is `stlc compile`'s for
         // the new text.
         let before = first["stems"].as_u64().unwrap();
-        click(&c, "[data-tool=Rectangle]").await;
-        click(&c, "#colour option[value=clWhite]").await;
-        drag(&c, (100.0, 60.0), (160.0, 110.0)).await;
-        let holed = settled(&c).await;
-        assert_eq!(holed["ok"], true, "{holed}");
+        click(c, "[data-tool=Rectangle]").await;
+        click(c, "#colour option[value=clWhite]").await;
+        drag(c, (100.0, 60.0), (160.0, 110.0)).await;
+        let holed = settled_ok(c).await;
         let text = holed["text"].as_str().unwrap().to_string();
-        assert_eq!(
-            text,
-            paper.replace(
-                "\nENDLAYOUT",
-                "\n(clWhite)< Rectangle (100,60,160,110)>\nENDLAYOUT"
-            )
-        );
+        let hole = "\n(clWhite)< Rectangle (100,60,160,110)>\nENDLAYOUT";
+        assert_eq!(text, paper.replace("\nENDLAYOUT", hole));
         let after = holed["stems"].as_u64().unwrap();
-        assert!(
-            after < before,
-            "the hole takes stems away: {before} -> {after}"
-        );
-        let file = tmp.path().join("2dtree.od");
+        let fewer = format!("the hole takes stems away: {before} -> {after}");
+        assert!(after < before, "{fewer}");
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("2dtree.od");
         std::fs::write(&file, &text).unwrap();
         let path = file.to_str().unwrap();
-        let bed = js(&c, "return window.stlc.state.answer.bed").await;
-        same_bytes(
-            bed.as_str().unwrap().as_bytes(),
-            &cli(&["compile", path]),
-            "the regrown BED",
-        );
-        shot(&c, "web-02-rectangle").await;
+        let bed = js(c, "return window.stlc.state.answer.bed").await;
+        let cli_bed = cli(&["compile", path]);
+        let bed = bed.as_str().unwrap().as_bytes();
+        same_bytes(bed, &cli_bed, "the regrown BED");
+        shot(c, "web-02-rectangle").await;
 
         // The SVG and BED buttons download the CLI's bytes.
-        click(&c, "#export-svg").await;
-        same_bytes(
-            &downloaded(&downloads, "2dtree.svg").await,
-            &cli(&["render", path, "--show-layout", "-f", "svg"]),
-            "the SVG download",
-        );
-        click(&c, "#export-bed").await;
-        same_bytes(
-            &downloaded(&downloads, "2dtree.bed").await,
-            &cli(&["compile", path]),
-            "the BED download",
-        );
+        click(c, "#export-svg").await;
+        let cli_svg = cli(&["render", path, "--show-layout", "-f", "svg"]);
+        let svg = downloaded(&downloads, "2dtree.svg").await;
+        same_bytes(&svg, &cli_svg, "the SVG download");
+        click(c, "#export-bed").await;
+        let bed = downloaded(&downloads, "2dtree.bed").await;
+        same_bytes(&bed, &cli_bed, "the BED download");
 
         // Unsaved work survives a reload: kept in the browser's storage,
         // offered back (never applied by itself), restored on request.
-        let _ = js(&c, "setTimeout(() => location.reload(), 0); return true").await;
+        let _ = js(c, "setTimeout(() => location.reload(), 0); return true").await;
         tokio::time::sleep(Duration::from_millis(300)).await;
         let _ = c.accept_alert().await;
         let shown = "return !!(window.stlc && window.stlc.state.answer) && !document.getElementById('notice').hidden";
-        let offered = js_until(&c, shown, 200, 50, |v| v == &json!(true)).await;
+        let offered = js_until(c, shown, 200, 50, |v| v == &json!(true)).await;
         assert_eq!(offered, json!(true), "the unsaved edits are offered back");
-        assert_eq!(settled(&c).await["text"], json!(paper));
-        click(&c, "[data-testid=restore-draft]").await;
-        assert_eq!(settled(&c).await["text"], json!(text));
+        assert_eq!(settled(c).await["text"], json!(paper));
+        click(c, "[data-testid=restore-draft]").await;
+        assert_eq!(settled(c).await["text"], json!(text));
 
         // Save downloads the text; Open… reads a file from disk.
-        click(&c, "[data-testid=save]").await;
-        same_bytes(
-            &downloaded(&downloads, "2dtree.od").await,
-            text.as_bytes(),
-            "the saved text",
-        );
+        click(c, "[data-testid=save]").await;
+        let saved = downloaded(&downloads, "2dtree.od").await;
+        same_bytes(&saved, text.as_bytes(), "the saved text");
         let koch = manifest_path("examples/koch-snowflake.lsys");
-        open(&c, &koch).await;
-        let opened = settled(&c).await;
-        assert_eq!(opened["ok"], true, "{opened}");
-        let svg = js(&c, "return window.stlc.state.answer.svg").await;
-        same_bytes(
-            svg.as_str().unwrap().as_bytes(),
-            &cli(&["render", koch.to_str().unwrap(), "--show-layout", "-f", "svg"]),
-            "the opened file's picture",
-        );
+        open(c, &koch).await;
+        settled_ok(c).await;
+        let cli_svg = cli(&[
+            "render",
+            koch.to_str().unwrap(),
+            "--show-layout",
+            "-f",
+            "svg",
+        ]);
+        shows_svg(c, &cli_svg, "the opened file's picture").await;
         // Words, generation by generation, from the module: the Koch
         // snowflake's axiom `F--F--F` (7 symbols) and first word: each F
         // becomes `F+F--F+F`, 3 x 8 + 4 = 28 symbols.
-        js(&c, "document.getElementById('words').open = true").await;
-        let listed = "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)";
-        let words = js_until(&c, listed, 100, 50, |v| v.as_array().is_some_and(|w| w.len() >= 2)).await;
+        js(c, "document.getElementById('words').open = true").await;
+        let listed =
+            "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)";
+        let words = js_until(c, listed, 100, 50, |v| {
+            v.as_array().is_some_and(|w| w.len() >= 2)
+        })
+        .await;
         assert_eq!(words[0], json!("F--F--F (7)"), "{words}");
-        assert_eq!(words[1], json!("F+F--F+F--F+F--F+F--F+F--F+F (28)"), "{words}");
-        shot(&c, "web-03-words").await;
+        let first = json!("F+F--F+F--F+F--F+F--F+F--F+F (28)");
+        assert_eq!(words[1], first, "{words}");
+        shot(c, "web-03-words").await;
 
-        every_example(&c).await;
-        newer_edit_ends_older_work(&c).await;
-        let _ = c.close().await;
+        every_example(c).await;
+        newer_edit_ends_older_work(c).await;
     });
 }
 
@@ -310,7 +270,7 @@ async fn every_example(c: &Client) {
     let mut worst = 0;
     for name in examples() {
         let path = format!("examples/{name}");
-        let source = std::fs::read_to_string(manifest_path(&path)).unwrap();
+        let source = example(&name);
         let kind = name.rsplit('.').next().unwrap();
         let orders: &[Option<&str>] = if kind == "od" {
             &[Some("bfs"), Some("dfs")]
@@ -353,11 +313,11 @@ async fn every_example(c: &Client) {
 /// system with no level of detail at depth 14, many seconds; at depth 2
 /// it draws 1 + (4^2 - 1) / 3 = 6 segments).
 async fn newer_edit_ends_older_work(c: &Client) {
-    let source =
-        std::fs::read_to_string(manifest_path("tests/cases/render/slow-stochastic.lsys")).unwrap();
-    let v = c
-        .execute_async(
-            "const [source, done] = arguments;
+    let source = manifest_path("tests/cases/render/slow-stochastic.lsys");
+    let source = std::fs::read_to_string(source).unwrap();
+    let v = js_async(
+        c,
+        "const [source, done] = arguments;
              const engine = window.stlc.engine;
              const old = new AbortController();
              const slow = engine.render({source, kind: 'lsys', depth: 14}, {signal: old.signal})
@@ -367,10 +327,9 @@ async fn newer_edit_ends_older_work(c: &Client) {
                const fast = await engine.render({source, kind: 'lsys', depth: 2});
                done({slow: await slow, fast: fast.ok, stems: fast.stems});
              }, 200);",
-            vec![json!(source)],
-        )
-        .await
-        .unwrap();
+        vec![json!(source)],
+    )
+    .await;
     assert_eq!(v["slow"], "AbortError", "{v}");
     assert_eq!(v["fast"], true, "{v}");
     assert_eq!(v["stems"], "6", "{v}");
@@ -378,44 +337,34 @@ async fn newer_edit_ends_older_work(c: &Client) {
 
 /// The page's share link for its document as it is now.
 pub(super) async fn share_link(c: &Client) -> String {
-    let v = c
-        .execute_async(
-            "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));",
-            vec![],
-        )
-        .await
-        .unwrap();
+    let v = js_async(
+        c,
+        "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));",
+        vec![],
+    )
+    .await;
     v.as_str().unwrap().to_string()
 }
 
 /// Opens the example `name` from the New menu and waits for its picture.
 pub(super) async fn open_example(c: &Client, name: &str) -> Value {
-    let text = std::fs::read_to_string(manifest_path(format!("examples/{name}"))).unwrap();
-    js(
-        c,
-        &format!(
-            "const m = document.getElementById('new');
-             const o = [...m.options].find((o) => o.textContent === {name:?});
-             m.value = o.value; m.dispatchEvent(new Event('change'));"
-        ),
-    )
-    .await;
+    let text = example(name);
+    super::browser_steps::choose_new(c, name).await;
     let v = settled_until(c, 100, 50, |v| v["text"] == json!(text)).await;
     assert_eq!(v["text"], json!(text), "the page never opened {name}: {v}");
     v
 }
 
 /// The site, a browser on it showing its first picture, and `body` run
-/// with the session; skips (returns) where the site or Chromium is
-/// missing, as the other tests here do.
-pub fn on_site<F>(body: F)
+/// with the session; then the site's server, still serving (for a fresh
+/// browser to open a link to it). `None` (skip) where the site or Chromium
+/// is missing, as the other tests here do.
+pub fn on_site<F>(body: F) -> Option<Static>
 where
     F: AsyncFnOnce(&Client, &Static, &Browser),
 {
     let tmp = tempfile::tempdir().unwrap();
-    let Some((_, server, browser)) = start(tmp.path()) else {
-        return;
-    };
+    let (_, server, browser) = start(tmp.path())?;
     browser.rt.block_on(async {
         let c = browser.connect().await;
         c.goto(&server.url).await.unwrap();
@@ -423,6 +372,7 @@ where
         body(&c, &server, &browser).await;
         let _ = c.close().await;
     });
+    Some(server)
 }
 
 /// Opens `link` in a fresh browser profile: the page shows `text` and
@@ -436,14 +386,8 @@ pub fn opens_in_a_fresh_profile(link: &str, text: &str, svg: &[u8], shot_name: &
     fresh.rt.block_on(async {
         let c = fresh.connect().await;
         c.goto(link).await.unwrap();
-        let v = settled(&c).await;
-        assert_eq!(v["text"], json!(text));
-        let got = js(&c, "return window.stlc.state.answer.svg").await;
-        same_bytes(
-            got.as_str().unwrap().as_bytes(),
-            svg,
-            "the SVG from the link",
-        );
+        assert_eq!(settled(&c).await["text"], json!(text));
+        shows_svg(&c, svg, "the SVG from the link").await;
         shot(&c, shot_name).await;
         let _ = c.close().await;
     });
@@ -455,42 +399,27 @@ pub fn opens_in_a_fresh_profile(link: &str, text: &str, svg: &[u8], shot_name: &
 /// makes for every example.
 #[test]
 fn a_share_link_restores_the_tree_in_a_fresh_profile_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some((_, server, browser)) = start(tmp.path()) else {
+    let (mut link, mut text, mut svg) = (String::new(), String::new(), String::new());
+    let Some(_site) = on_site(async |c, server, _| {
+        open_example(c, "grove.od").await;
+        // Depth-first, seed 7: keys the controls write into the text.
+        click(c, "#growth option[value=dfs]").await;
+        type_into(c, "seed", "7").await;
+        let both = |t: &str| t.contains("O=dfs") && t.contains("V=7");
+        let v = settled_until(c, 100, 50, |v| both(v["text"].as_str().unwrap())).await;
+        text = v["text"].as_str().unwrap().to_string();
+        assert!(both(&text), "{text}");
+        svg = answer_svg(c).await;
+        link = share_link(c).await;
+        let base = format!("{}#k=od&n=grove.od&s=", server.url);
+        assert!(link.starts_with(&base), "{link}");
+        link_lengths(c).await;
+    }) else {
         return;
     };
-    let (link, text, svg) = browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&server.url).await.unwrap();
-        settled(&c).await;
-        open_example(&c, "grove.od").await;
-        // Depth-first, seed 7: keys the controls write into the text.
-        click(&c, "#growth option[value=dfs]").await;
-        let seed = c.find(fantoccini::Locator::Id("seed")).await.unwrap();
-        seed.send_keys("7").await.unwrap();
-        let v = settled_until(&c, 100, 50, |v| {
-            let t = v["text"].as_str().unwrap();
-            t.contains("O=dfs") && t.contains("V=7")
-        })
-        .await;
-        let text = v["text"].as_str().unwrap().to_string();
-        assert!(text.contains("O=dfs") && text.contains("V=7"), "{text}");
-        let svg = js(&c, "return window.stlc.state.answer.svg").await;
-        let link = share_link(&c).await;
-        assert!(
-            link.starts_with(&format!("{}#k=od&n=grove.od&s=", server.url)),
-            "{link}"
-        );
-        link_lengths(&c).await;
-        let _ = c.close().await;
-        (link, text, svg.as_str().unwrap().to_string())
-    });
     // The CLI draws the same text alike.
-    same_bytes(
-        svg.as_bytes(),
-        &cli_svg_of("grove.od", &text),
-        "the shared grove",
-    );
+    let cli = cli_svg_of("grove.od", &text);
+    same_bytes(svg.as_bytes(), &cli, "the shared grove");
     opens_in_a_fresh_profile(&link, &text, svg.as_bytes(), "web-03-shared");
 }
 
@@ -501,28 +430,22 @@ async fn link_lengths(c: &Client) {
     let doc = std::fs::read_to_string(manifest_path("docs/web.md")).unwrap();
     let mut rows = Vec::new();
     for name in examples() {
-        let text = std::fs::read_to_string(manifest_path(format!("examples/{name}"))).unwrap();
+        let text = example(&name);
         let kind = name.rsplit('.').next().unwrap();
-        let v = c
-            .execute_async(
-                "const [name, kind, text, done] = arguments;
+        let v = js_async(
+            c,
+            "const [name, kind, text, done] = arguments;
                  import('./share.js').then((m) => m.toFragment({name, kind, text})).then((f) => done(f.length));",
-                vec![json!(name), json!(kind), json!(text)],
-            )
-            .await
-            .unwrap();
-        rows.push(format!(
-            "| `{name}` | {} | {} |",
-            text.len(),
-            v.as_u64().unwrap()
-        ));
+            vec![json!(name), json!(kind), json!(text)],
+        )
+        .await;
+        let (bytes, link) = (text.len(), v.as_u64().unwrap());
+        rows.push(format!("| `{name}` | {bytes} | {link} |"));
     }
     let missing: Vec<&String> = rows.iter().filter(|r| !doc.contains(r.as_str())).collect();
-    assert!(
-        missing.is_empty(),
-        "docs/web.md lacks the rows {missing:#?}; the whole table:\n{}",
-        rows.join("\n")
-    );
+    let table = rows.join("\n");
+    let lacks = format!("docs/web.md lacks the rows {missing:#?}; the whole table:\n{table}");
+    assert!(missing.is_empty(), "{lacks}");
 }
 
 /// `<stl-tree>` draws the CLI's SVG for an OD (its text inline, with
@@ -535,8 +458,7 @@ fn stl_tree_elements_draw_the_cli_svgs_in_chromium() {
     let Some((site, server, browser)) = start(tmp.path()) else {
         return;
     };
-    let grove = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
-    let koch = std::fs::read_to_string(manifest_path("examples/koch-snowflake.lsys")).unwrap();
+    let (grove, koch) = (example("grove.od"), example("koch-snowflake.lsys"));
     let page = format!(
         "<!doctype html><meta charset=utf-8><script type=module src=stl-tree.js></script>\n\
          <stl-tree id=od growth=dfs seed=7><script type=\"text/stl\">\n{grove}</script></stl-tree>\n\
@@ -547,9 +469,7 @@ fn stl_tree_elements_draw_the_cli_svgs_in_chromium() {
     std::fs::write(site.join("elements-test.html"), page).unwrap();
     browser.rt.block_on(async {
         let c = browser.connect().await;
-        c.goto(&format!("{}elements-test.html", server.url))
-            .await
-            .unwrap();
+        c.goto(&format!("{}elements-test.html", server.url)).await.unwrap();
         let states = "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state)";
         let busy = |s: &Value| s.as_array().unwrap().iter().any(|x| x.is_null() || x == "drawing");
         js_until(&c, states, 200, 50, |s| !busy(s)).await;
@@ -573,11 +493,9 @@ fn stl_tree_elements_draw_the_cli_svgs_in_chromium() {
             args.extend(["-f", "svg"]);
             same_bytes(v[0].as_str().unwrap().as_bytes(), &cli(&args), id);
         }
-        let error = js(&c, "return document.querySelector('#bad pre.stl-tree-error').textContent").await;
-        assert_eq!(
-            error.as_str().unwrap().lines().next().unwrap(),
-            "line 5, column 1: error: unknown rule `R2` (no rule has this name)"
-        );
+        let error = super::browser_steps::text_of(&c, "#bad pre.stl-tree-error").await;
+        let unknown = "line 5, column 1: error: unknown rule `R2` (no rule has this name)";
+        assert_eq!(error.lines().next().unwrap(), unknown);
         shot(&c, "web-04-elements").await;
 
         // The gallery: every example, drawn live.
@@ -609,18 +527,9 @@ async fn edit_times(c: &Client, runs: usize) -> Vec<f64> {
     let base = settled(c).await["text"].as_str().unwrap().to_string();
     let mut times = Vec::new();
     for i in 0..runs {
-        let text = format!("{base}# edit {i}\n");
-        js(c, &format!("window.stlc.editor.rewrite({text:?})")).await;
-        let mut v = settled(c).await;
-        while v["text"] != json!(text) {
-            tokio::time::sleep(Duration::from_millis(20)).await;
-            v = settled(c).await;
-        }
-        let t = js(
-            c,
-            "const t = window.stlc.state.timings; return t[t.length - 1]",
-        )
-        .await;
+        rewritten(c, &format!("{base}# edit {i}\n")).await;
+        let last = "const t = window.stlc.state.timings; return t[t.length - 1]";
+        let t = js(c, last).await;
         times.push(t.as_f64().unwrap());
     }
     times
@@ -682,10 +591,7 @@ fn measure_the_static_site_against_stlc_serve() {
             open_example(&c, name).await;
             edit_times(&c, 2).await;
             let web = median(edit_times(&c, runs).await);
-            println!(
-                "| `{name}` | {served:.1} | {web:.1} | {:.2} |",
-                web / served
-            );
+            println!("| `{name}` | {served:.1} | {web:.1} | {:.2} |", web / served);
         }
         let _ = c.close().await;
     });

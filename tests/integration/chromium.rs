@@ -11,7 +11,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
-use fantoccini::actions::{InputSource, MOUSE_BUTTON_LEFT, MouseActions, PointerAction};
+use fantoccini::actions::{
+    Actions, InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
+    WheelAction, WheelActions,
+};
 use fantoccini::{Client, ClientBuilder, Locator};
 use serde_json::{Value, json};
 
@@ -33,14 +36,27 @@ pub(super) struct Driver {
     port: u16,
 }
 
+/// A port free on loopback now.
+pub(super) fn free_port() -> u16 {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    listener.local_addr().unwrap().port()
+}
+
+/// Waits (at most 10 s) until something listens on loopback `port`.
+pub(super) fn wait_for_port(port: u16) {
+    for _ in 0..200 {
+        if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
 impl Driver {
     pub(super) fn start(driver: &Path, tmp: &Path) -> Driver {
         // A free port, chosen here: chromedriver's own messages are not
         // parsed (they go nowhere, so it never blocks on a full pipe).
-        let port = std::net::TcpListener::bind("127.0.0.1:0")
-            .and_then(|l| l.local_addr())
-            .unwrap()
-            .port();
+        let port = free_port();
         let child = Command::new(driver)
             .arg(format!("--port={port}"))
             .env("TMPDIR", tmp)
@@ -50,12 +66,7 @@ impl Driver {
             .process_group(0)
             .spawn()
             .expect("start chromedriver");
-        for _ in 0..200 {
-            if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
-                break;
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
+        wait_for_port(port);
         Driver { child, port }
     }
 }
@@ -73,6 +84,12 @@ impl Drop for Driver {
 
 pub(super) async fn js(c: &Client, script: &str) -> Value {
     c.execute(script, vec![]).await.expect(script)
+}
+
+/// What the asynchronous `script` hands its last argument (`done`), run
+/// with `args` before it.
+pub(super) async fn js_async(c: &Client, script: &str, args: Vec<Value>) -> Value {
+    c.execute_async(script, args).await.expect(script)
 }
 
 /// Waits until the page shows the answer to the text in its editor.
@@ -109,13 +126,24 @@ pub(super) async fn settled_until(
     ms: u64,
     done: impl Fn(&Value) -> bool,
 ) -> Value {
-    let mut v = settled(c).await;
-    for _ in 0..tries {
+    poll(tries + 1, ms, async || settled(c).await, done).await
+}
+
+/// What `get` gives once `done` holds of it, asked up to `tries` times
+/// `ms` apart; the last value if it never does.
+pub(super) async fn poll<T>(
+    tries: u32,
+    ms: u64,
+    mut get: impl AsyncFnMut() -> T,
+    done: impl Fn(&T) -> bool,
+) -> T {
+    let mut v = get().await;
+    for _ in 1..tries {
         if done(&v) {
             break;
         }
         tokio::time::sleep(Duration::from_millis(ms)).await;
-        v = settled(c).await;
+        v = get().await;
     }
     v
 }
@@ -125,11 +153,8 @@ pub(super) async fn settled_until(
 pub(super) async fn answered(c: &Client, want: &str, what: &str) -> Value {
     let good = |v: &Value| v["text"] == json!(want) && v["ok"] == json!(true);
     let v = settled_until(c, 200, 50, good).await;
-    assert!(
-        good(&v),
-        "the page never showed the text {what}: {}",
-        v["text"]
-    );
+    let text = &v["text"];
+    assert!(good(&v), "the page never showed the text {what}: {text}");
     v
 }
 
@@ -151,30 +176,15 @@ pub(super) async fn js_until(
     ms: u64,
     done: impl Fn(&Value) -> bool,
 ) -> Value {
-    let mut v = js(c, script).await;
-    for _ in 1..tries {
-        if done(&v) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(ms)).await;
-        v = js(c, script).await;
-    }
-    v
+    poll(tries, ms, async || js(c, script).await, done).await
 }
 
 /// The text of the file at `path` once `done` holds of it, read up to
 /// `tries` times 50 ms apart (the page's save may still be under way); the
 /// last text read if it never does.
 pub(super) async fn file_until(path: &Path, tries: u32, done: impl Fn(&str) -> bool) -> String {
-    let mut text = std::fs::read_to_string(path).unwrap();
-    for _ in 1..tries {
-        if done(&text) {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-        text = std::fs::read_to_string(path).unwrap();
-    }
-    text
+    let read = async || std::fs::read_to_string(path).unwrap();
+    poll(tries, 50, read, |t: &String| done(t)).await
 }
 
 /// The viewport position of canvas point `(x, y)` in the preview.
@@ -291,39 +301,11 @@ pub(super) async fn connect(driver: &Driver, chromium: &Path, tmp: &Path) -> Cli
     panic!("no WebDriver session: {:?}", last);
 }
 
-/// Presses at canvas point `a`, moves to `b` and releases.
-pub(super) async fn drag(c: &Client, a: (f64, f64), b: (f64, f64)) {
-    let (x0, y0) = screen_of(c, a.0, a.1).await;
-    let (x1, y1) = screen_of(c, b.0, b.1).await;
-    let mouse = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveTo {
-            duration: None,
-            x: x0,
-            y: y0,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(80)),
-            x: (x0 + x1) / 2.0,
-            y: (y0 + y1) / 2.0,
-        })
-        .then(PointerAction::MoveTo {
-            duration: Some(Duration::from_millis(80)),
-            x: x1,
-            y: y1,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    c.perform_actions(mouse).await.unwrap();
-}
-
-/// Clicks at canvas point `a`.
-pub(super) async fn click_at(c: &Client, a: (f64, f64)) {
-    let (x, y) = screen_of(c, a.0, a.1).await;
-    let mouse = MouseActions::new("mouse".into())
+/// The mouse pressed at viewport point `path[0]`, moved through the rest
+/// of `path` (each move taking `ms`) and released.
+fn mouse_along(path: &[(f64, f64)], ms: u64) -> MouseActions {
+    let (x, y) = path[0];
+    let mut mouse = MouseActions::new("mouse".into())
         .then(PointerAction::MoveTo {
             duration: None,
             x,
@@ -331,11 +313,82 @@ pub(super) async fn click_at(c: &Client, a: (f64, f64)) {
         })
         .then(PointerAction::Down {
             button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
         });
-    c.perform_actions(mouse).await.unwrap();
+    for &(x, y) in &path[1..] {
+        let duration = Some(Duration::from_millis(ms));
+        mouse = mouse.then(PointerAction::MoveTo { duration, x, y });
+    }
+    mouse.then(PointerAction::Up {
+        button: MOUSE_BUTTON_LEFT,
+    })
+}
+
+/// Presses at viewport point `path[0]`, moves through the rest of `path`
+/// (each move taking `ms`) and releases.
+pub(super) async fn press_along(c: &Client, path: &[(f64, f64)], ms: u64) {
+    c.perform_actions(mouse_along(path, ms)).await.unwrap();
+}
+
+/// [`press_along`] with Shift held from the first move until after the
+/// release.
+pub(super) async fn press_along_shifted(c: &Client, path: &[(f64, f64)], ms: u64) {
+    let mut keys = KeyActions::new("keyboard".into()).then(KeyAction::Down { value: SHIFT });
+    // One pause a mouse action after the first: the release comes first.
+    for _ in 0..path.len() + 1 {
+        keys = keys.then(KeyAction::Pause {
+            duration: Duration::ZERO,
+        });
+    }
+    let keys = keys.then(KeyAction::Up { value: SHIFT });
+    let both = Actions::from(keys).and(mouse_along(path, ms));
+    c.perform_actions(both).await.unwrap();
+}
+
+/// Presses at canvas point `a`, moves to `b` (by way of their midpoint)
+/// and releases.
+pub(super) async fn drag(c: &Client, a: (f64, f64), b: (f64, f64)) {
+    let (x0, y0) = screen_of(c, a.0, a.1).await;
+    let (x1, y1) = screen_of(c, b.0, b.1).await;
+    let mid = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    press_along(c, &[(x0, y0), mid, (x1, y1)], 80).await;
+}
+
+/// Clicks at canvas point `a`.
+pub(super) async fn click_at(c: &Client, a: (f64, f64)) {
+    press_along(c, &[screen_of(c, a.0, a.1).await], 0).await;
+}
+
+/// The mouse wheel turned by `dy` (120 a notch; > 0: towards the user,
+/// zoom out) at viewport point `(x, y)`.
+pub(super) async fn wheel(c: &Client, (x, y): (f64, f64), dy: i64) {
+    let w = WheelActions::new("wheel".into()).then(WheelAction::Scroll {
+        duration: None,
+        x: x.round() as i64,
+        y: y.round() as i64,
+        delta_x: 0,
+        delta_y: dy,
+    });
+    c.perform_actions(w).await.unwrap();
+}
+
+/// WebDriver's codes of keys without a character.
+pub(super) const SHIFT: char = '\u{E008}';
+pub(super) const CONTROL: char = '\u{E009}';
+
+/// Presses `key` with the keys `held` held down (in that order, let go in
+/// the other).
+pub(super) async fn chord(c: &Client, held: &[char], key: char) {
+    let mut keys = KeyActions::new("keyboard".into());
+    for &value in held {
+        keys = keys.then(KeyAction::Down { value });
+    }
+    keys = keys
+        .then(KeyAction::Down { value: key })
+        .then(KeyAction::Up { value: key });
+    for &value in held.iter().rev() {
+        keys = keys.then(KeyAction::Up { value });
+    }
+    c.perform_actions(keys).await.unwrap();
 }
 
 pub(super) async fn click(c: &Client, css: &str) {
@@ -379,13 +432,10 @@ pub(super) fn cli_svg_of(name: &str, text: &str) -> Vec<u8> {
 pub(super) async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
     let path = dir.join(name);
     let partial = dir.join(format!("{name}.crdownload"));
-    for _ in 0..200 {
-        if path.is_file() && !partial.exists() {
-            return std::fs::read(&path).unwrap();
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
-    panic!("{} was never downloaded", path.display());
+    let whole = async || path.is_file() && !partial.exists();
+    let done = poll(200, 50, whole, |&whole| whole).await;
+    assert!(done, "{} was never downloaded", path.display());
+    std::fs::read(&path).unwrap()
 }
 
 /// Opens `file` through the page's Open… control (its file input), and
@@ -398,20 +448,10 @@ pub(super) async fn open(c: &Client, file: &Path) {
         .await
         .unwrap();
     let text = std::fs::read_to_string(file).unwrap();
-    for _ in 0..200 {
-        let read = c
-            .execute(
-                "return document.getElementById('source').value === arguments[0]",
-                vec![json!(text)],
-            )
-            .await
-            .unwrap();
-        if read == json!(true) {
-            return;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
-    panic!("the page never read {}", file.display());
+    let script = "return document.getElementById('source').value === arguments[0]";
+    let read = async || c.execute(script, vec![json!(text)]).await.unwrap();
+    let read = poll(200, 50, read, |v| v == &json!(true)).await;
+    assert_eq!(read, json!(true), "the page never read {}", file.display());
 }
 
 /// Asserts `got` is `want`, saying where they part (not all the bytes).
@@ -431,20 +471,55 @@ pub(super) fn same_bytes(got: &[u8], want: &[u8], what: &str) {
     }
 }
 
+/// What a test of `stlc serve`'s page has to hand.
+pub(super) struct Served<'a> {
+    pub server: &'a super::serve::Server,
+    /// The file served, in the temporary directory `dir` (`dir` itself
+    /// where no file is served).
+    pub file: &'a Path,
+    pub dir: &'a Path,
+    /// Where Chromium's downloads go.
+    pub downloads: PathBuf,
+}
+
 /// Opens `stlc serve`'s page (no file) in a fresh Chromium, waits for its
 /// first answer and runs `f` on it; returns at once where Chromium is
 /// missing (after [`Browser::start`] says so).
-pub(super) fn on_served_page(f: impl AsyncFnOnce(&Client, &super::serve::Server)) {
+pub(super) fn on_served_page(f: impl AsyncFnOnce(&Client, &Served)) {
+    on_served(None, f);
+}
+
+/// [`on_served_page`] for a file `name` holding `text`, written in the
+/// temporary directory and served.
+pub(super) fn on_served_file(name: &str, text: &str, f: impl AsyncFnOnce(&Client, &Served)) {
+    on_served(Some((name, text)), f);
+}
+
+fn on_served(file: Option<(&str, &str)>, f: impl AsyncFnOnce(&Client, &Served)) {
     let tmp = tempfile::tempdir().unwrap();
     let Some(browser) = Browser::start(tmp.path()) else {
         return;
     };
-    let server = super::serve::Server::start(&[]);
+    let file = file.map(|(name, text)| {
+        let path = tmp.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    });
+    let args: Vec<&str> = file.iter().map(|p| p.to_str().unwrap()).collect();
+    let server = super::serve::Server::start(&args);
+    let downloads = browser.tmp.join("downloads");
     browser.rt.block_on(async {
         let c = browser.connect().await;
         c.goto(&server.url).await.unwrap();
         settled(&c).await;
-        f(&c, &server).await;
+        let file = file.as_deref().unwrap_or(tmp.path());
+        let served = Served {
+            server: &server,
+            file,
+            dir: tmp.path(),
+            downloads,
+        };
+        f(&c, &served).await;
         let _ = c.close().await;
     });
 }

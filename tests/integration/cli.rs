@@ -11,7 +11,9 @@ use std::process::{Command as StdCommand, Stdio};
 
 use predicates::prelude::*;
 
-use crate::support::{assert_golden, manifest_path, outcome, png_at, stlc_line, stlc_piped};
+use crate::support::{
+    assert_golden, files_in, manifest_path, outcome, png_at, stlc_line, stlc_piped,
+};
 
 /// `F -> F+F` at 90 degrees: depth 2 is `F+F+F+F`, a unit square traced
 /// anticlockwise on screen from the origin: up, left, down, right.
@@ -22,15 +24,6 @@ const WORKED_BED: &str = "Worked\n(50, 100)\nL=10(0) B=1(0)\nRULE\nR1: [F][+F][-
 
 /// The crate's root, for paths written into a command line.
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
-
-fn files_in(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
 
 #[test]
 fn stdin_and_stdout_with_dash() {
@@ -83,10 +76,8 @@ fn render_png_and_svg_files() {
     let line = format!("render {} -o {} --size 200x100", f.display(), svg.display());
     stlc_line(&line).assert().success();
     let text = fs::read_to_string(&svg).unwrap();
-    assert!(
-        text.contains("width=\"200\"") && text.contains("height=\"100\""),
-        "{text}"
-    );
+    let sized = text.contains("width=\"200\"") && text.contains("height=\"100\"");
+    assert!(sized, "{text}");
     assert_eq!(files_in(dir.path()), ["out.svg", "sq.lsys", "sq.png"]);
 }
 
@@ -97,16 +88,13 @@ fn a_bad_input_points_at_the_line_and_writes_nothing() {
     fs::write(&f, "angle 90\naxiom F\nrule F F[+F\n").unwrap();
     let out = dir.path().join("bad.png");
     fs::write(&out, b"previous picture").unwrap();
-    stlc_line(&format!(
-        "render {} -o {} --depth 2",
-        f.display(),
-        out.display()
-    ))
-    .assert()
-    .code(1)
-    .stderr(predicate::str::contains("bad.lsys"))
-    .stderr(predicate::str::contains(":3:"))
-    .stderr(predicate::str::contains("["));
+    let (input, output) = (f.display(), out.display());
+    stlc_line(&format!("render {input} -o {output} --depth 2"))
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("bad.lsys"))
+        .stderr(predicate::str::contains(":3:"))
+        .stderr(predicate::str::contains("["));
     // The old output is untouched and no temporary file is left.
     assert_eq!(fs::read(&out).unwrap(), b"previous picture");
     assert_eq!(files_in(dir.path()), ["bad.lsys", "bad.png"]);
@@ -170,32 +158,32 @@ fn run_stdin(line: &str, stdin: impl Into<Vec<u8>>) -> (i32, String) {
     (code, err)
 }
 
+/// `stlc LINE` with `stdin` fails (exit 1) saying each of `said`.
+fn refused(line: &str, stdin: impl Into<Vec<u8>>, said: &[&str]) {
+    let (code, err) = run_stdin(line, stdin);
+    assert_eq!(code, 1, "{line}: {err}");
+    for s in said {
+        assert!(err.contains(s), "{err}");
+    }
+}
+
 #[test]
 fn each_limit_names_the_flag_that_raises_it() {
     // Nesting, in each format.
-    let deep = format!(
-        "angle 90\naxiom {}F{}\n",
-        "[".repeat(100_000),
-        "]".repeat(100_000)
-    );
-    let (code, err) = run_stdin("check - --from lsys", deep);
-    assert_eq!(code, 1);
-    assert!(err.contains("--max-nesting"), "{err}");
+    let n = 100_000;
+    let deep = format!("angle 90\naxiom {}F{}\n", "[".repeat(n), "]".repeat(n));
+    refused("check - --from lsys", deep, &["--max-nesting"]);
     let deep_bed = format!(
         "T (0,0) RULE R1: [F] SEED {}{} ENDSEED",
-        "R1{".repeat(100_000),
-        "}".repeat(100_000)
+        "R1{".repeat(n),
+        "}".repeat(n)
     );
-    let (code, err) = run_stdin("check - --from bed", deep_bed);
-    assert_eq!(code, 1);
-    assert!(err.contains("--max-nesting"), "{err}");
+    refused("check - --from bed", deep_bed, &["--max-nesting"]);
     // A RULE section of 200,001 parts (one rule of 200,000 branches) is
     // refused before parsing; under a raised limit it reads.
     let wide = format!("T (0,0) RULE R1: {} SEED F ENDSEED", "[+F]".repeat(200_000));
-    let (code, err) = run_stdin("check - --from bed", wide.clone());
-    assert_eq!(code, 1);
-    assert!(err.contains("200001 exceeds the limit of 100000"), "{err}");
-    assert!(err.contains("--max-rule-parts"), "{err}");
+    let said = ["200001 exceeds the limit of 100000", "--max-rule-parts"];
+    refused("check - --from bed", wide.clone(), &said);
     let (code, err) = run_stdin("check - --from bed --max-rule-parts 200001", wide);
     assert_eq!(code, 0, "{err}");
 }
@@ -232,11 +220,8 @@ fn a_bed_with_a_layout_renders_its_golden_svg() {
             "render {ROOT}/tests/cases/grow/tiny.bfs.bed --show-layout --size 120x120 -f {f} -o -"
         )
     };
-    let svg = stlc_piped(&line("svg"), "");
-    assert_golden(
-        "tests/cases/render/tiny-layout.svg",
-        &String::from_utf8(svg).unwrap(),
-    );
+    let svg = String::from_utf8(stlc_piped(&line("svg"), "")).unwrap();
+    assert_golden("tests/cases/render/tiny-layout.svg", &svg);
     // The PNG agrees: stem pixels are bark brown, the layout green, the
     // margin around the layout white.
     let pix = tiny_skia::Pixmap::decode_png(&stlc_piped(&line("png"), "")).unwrap();
@@ -322,13 +307,14 @@ fn render_of_an_od_equals_render_of_its_compiled_bed() {
     for strategy in ["bfs", "dfs"] {
         let from_od = dir.path().join(format!("od-{strategy}.png"));
         let grown = format!("render {ROOT}/examples/fig9.od --growth {strategy}");
-        stlc_line(&format!("{grown} --show-layout --size 200x200 -o"))
+        let sized = " --show-layout --size 200x200 -o";
+        stlc_line(&format!("{grown}{sized}"))
             .arg(&from_od)
             .assert()
             .success();
         let from_bed = dir.path().join(format!("bed-{strategy}.png"));
         let bed = format!("render {ROOT}/tests/cases/grow/fig9.{strategy}.bed");
-        stlc_line(&format!("{bed} --show-layout --size 200x200 -o"))
+        stlc_line(&format!("{bed}{sized}"))
             .arg(&from_bed)
             .assert()
             .success();
@@ -354,10 +340,9 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
     let square = write("sq.lsys", SQUARE);
     let bad_od = write("bad.od", "T\n(0, 0)\nRULE\nR1: [+F][-F\n");
     let unbounded = write("u.od", "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F][-F]\n");
-    let outside = write(
-        "out.od",
-        "O\n(500, 500)\nRULE\nR1: [+F][-F]\nSEED\nFR1\nENDSEED\nLAYOUT\nRectangle (0,0), 100, 100 clGreen\nENDLAYOUT\n",
-    );
+    let u = &unbounded;
+    let outside = "O\n(500, 500)\nRULE\nR1: [+F][-F]\nSEED\nFR1\nENDSEED\nLAYOUT\nRectangle (0,0), 100, 100 clGreen\nENDLAYOUT\n";
+    let outside = write("out.od", outside);
     let bad_bed = write("bad.bed", "T (0,0) RULE R1: [F] SEED R7{} ENDSEED");
     let cases = [
         (format!("render {bad_lsys}"), 1, "unbalanced"),
@@ -368,18 +353,10 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
         (format!("compile {bad_od}"), 1, "bad.od"),
         (format!("compile {unbounded}"), 1, "--max-stems"),
         (format!("compile {outside}"), 1, "root"),
+        (format!("compile {u} --clearance -1"), 2, "clearance"),
+        (format!("compile {u} --clearance nan"), 2, "clearance"),
         (
-            format!("compile {unbounded} --clearance -1"),
-            2,
-            "clearance",
-        ),
-        (
-            format!("compile {unbounded} --clearance nan"),
-            2,
-            "clearance",
-        ),
-        (
-            format!("compile {unbounded} --max-stems 5 --clearance=0 --max-input 10"),
+            format!("compile {u} --max-stems 5 --clearance=0 --max-input 10"),
             1,
             "--max-input",
         ),
@@ -390,19 +367,18 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
     ];
     for (line, code, needle) in cases {
         // `render` refuses an output extension that is not an image format.
-        let out = dir.path().join(if line.starts_with("render") {
+        let name = if line.starts_with("render") {
             "previous.png"
         } else {
             "previous.out"
-        });
+        };
+        let out = dir.path().join(name);
         fs::write(&out, b"previous bytes").unwrap();
         let before = files_in(dir.path());
         let (got, _, err) = outcome(stlc_line(&line).arg("-o").arg(&out));
         assert_eq!(got, code, "{line}: {err}");
-        assert!(
-            err.to_lowercase().contains(&needle.to_lowercase()),
-            "{line}: {err}"
-        );
+        let says = err.to_lowercase().contains(&needle.to_lowercase());
+        assert!(says, "{line}: {err}");
         assert!(!err.contains("panicked"), "{line}: {err}");
         assert_eq!(fs::read(&out).unwrap(), b"previous bytes", "{line}");
         assert_eq!(files_in(dir.path()), before, "{line} left a file");
@@ -436,10 +412,9 @@ fn the_progress_bar_shows_on_a_terminal_only() {
     let root = env!("CARGO_MANIFEST_DIR");
     let run = |depth: u32, extra: &str| {
         let log = dir.path().join(format!("tty{depth}.log"));
+        let (bin, dir) = (bin.display(), dir.path().display());
         let cmd = format!(
-            "{} render {root}/examples/abop-1.24a.lsys --depth {depth} -o {}/x.png {extra}",
-            bin.display(),
-            dir.path().display()
+            "{bin} render {root}/examples/abop-1.24a.lsys --depth {depth} -o {dir}/x.png {extra}"
         );
         let st = StdCommand::new("script")
             .args(["-qfec", &cmd])
@@ -486,19 +461,15 @@ fn an_svg_over_its_segment_limit_is_refused_before_a_byte_is_written() {
         let (code, out, err) = outcome(&mut stlc_line(&over));
         assert_eq!(code, 1, "{err}");
         assert!(out.is_empty(), "{input}: wrote before refusing");
-        assert!(
-            err.contains(&format!("{count} exceeds the limit of {}", count - 1))
-                && err.contains("--max-svg-segments"),
-            "{err}"
-        );
+        let exceeds = format!("{count} exceeds the limit of {}", count - 1);
+        let flag = err.contains("--max-svg-segments");
+        assert!(err.contains(&exceeds) && flag, "{err}");
         let at = stlc_piped(&format!("{svg} --max-svg-segments {count}"), "");
         let svg = String::from_utf8(at).unwrap();
         // Every segment is written: one ` L` each (plus the three of the
         // layout rectangle under the tiny tree).
-        assert_eq!(
-            svg.matches(" L").count() as u64,
-            count + u64::from(input == &tiny) * 3
-        );
+        let under_tiny = u64::from(input == &tiny) * 3;
+        assert_eq!(svg.matches(" L").count() as u64, count + under_tiny);
         let png = format!("render {input} --depth {depth} -f png -o - --max-svg-segments 1");
         stlc_line(&png).assert().success();
     }
@@ -639,10 +610,8 @@ fn strategy_means_one_thing_and_says_so() {
     assert_eq!(old, plain, "the derivation order does not change the tree");
     assert_eq!(new, plain);
     for w in [&warned, &warned_too] {
-        assert!(
-            w.contains("--derivation") && w.contains("--growth dfs"),
-            "{w}"
-        );
+        let both = w.contains("--derivation") && w.contains("--growth dfs");
+        assert!(both, "{w}");
     }
     let (grown, with_growth) = png("--strategy dfs --growth dfs", "grown.png");
     assert_ne!(grown, plain, "--growth dfs grows another tree");
@@ -650,10 +619,8 @@ fn strategy_means_one_thing_and_says_so() {
     let (code, out, err) = outcome(&mut stlc_line(&format!("compile {od} --strategy dfs -o -")));
     assert_eq!(code, 0, "{err}");
     let golden = std::fs::read(manifest_path("tests/cases/grow/fig9.dfs.bed")).unwrap();
-    assert_eq!(
-        out, golden,
-        "compile --strategy dfs still grows depth-first"
-    );
+    let depth_first = "compile --strategy dfs still grows depth-first";
+    assert_eq!(out, golden, "{depth_first}");
     assert!(err.contains("its name is --growth"), "{err}");
 }
 
@@ -665,11 +632,9 @@ fn it_runs_under_a_one_gigabyte_address_space_limit() {
     let od = format!("{ROOT}/examples/2dtree.od");
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("t.png");
+    let (bin, png_at) = (bin.display(), png.display());
     let script = format!(
-        "ulimit -v 1000000 && '{}' check '{od}' >/dev/null && '{}' render '{od}' -o '{}'",
-        bin.display(),
-        bin.display(),
-        png.display()
+        "ulimit -v 1000000 && '{bin}' check '{od}' >/dev/null && '{bin}' render '{od}' -o '{png_at}'"
     );
     let out = StdCommand::new("sh")
         .args(["-c", &script])
@@ -689,10 +654,8 @@ fn growth_settings_kept_in_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let fig9 = std::fs::read_to_string(manifest_path("examples/fig9.od")).unwrap();
     let with = |keys: &str, name: &str| {
-        let text = fig9.replace(
-            "L=9(0) B=1.5(0) A=30 C=2",
-            &format!("L=9(0) B=1.5(0) A=30 C=2 {keys}"),
-        );
+        let header = "L=9(0) B=1.5(0) A=30 C=2";
+        let text = fig9.replace(header, &format!("{header} {keys}"));
         assert_ne!(text, fig9, "the header line moved");
         let p = dir.path().join(name);
         std::fs::write(&p, text).unwrap();
@@ -709,19 +672,14 @@ fn growth_settings_kept_in_the_file() {
         |order: &str| std::fs::read(format!("{ROOT}/tests/cases/grow/fig9.{order}.bed")).unwrap();
     let dfs = with("O=dfs", "dfs.od");
     assert_eq!(bed(&dfs, ""), golden("dfs"), "O=dfs grows depth-first");
-    assert_eq!(
-        bed(&dfs, "--growth bfs"),
-        golden("bfs"),
-        "--growth overrides O="
-    );
+    let overridden = bed(&dfs, "--growth bfs");
+    assert_eq!(overridden, golden("bfs"), "--growth overrides O=");
     // V= and M= grow what --seed and --max-stems grow.
     let grove = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
     let keyed = dir.path().join("grove.od");
     std::fs::write(&keyed, grove.replace("A=25 C=1", "A=25 C=1 V=7 M=500")).unwrap();
-    let (keyed, plain) = (
-        keyed.display().to_string(),
-        format!("{ROOT}/examples/grove.od"),
-    );
+    let keyed = keyed.display().to_string();
+    let plain = format!("{ROOT}/examples/grove.od");
     assert_eq!(bed(&keyed, ""), bed(&plain, "--seed 7 --max-stems 500"));
     // The warning names the limit in force: M= (the file's design), or
     // --max-stems where it is the lower.
@@ -730,15 +688,11 @@ fn growth_settings_kept_in_the_file() {
     assert!(!by_m.contains("--max-stems"), "{by_m}");
     let by_flag = compile(&keyed, "--max-stems 300").1;
     assert!(by_flag.contains("the stem limit of 300"), "{by_flag}");
-    assert!(
-        by_flag.contains("raise the limit with --max-stems N"),
-        "{by_flag}"
-    );
+    let raise = "raise the limit with --max-stems N";
+    assert!(by_flag.contains(raise), "{by_flag}");
     // The flag overrides V= for one run.
-    assert_eq!(
-        bed(&keyed, "--seed 8"),
-        bed(&plain, "--seed 8 --max-stems 500")
-    );
+    let by_flag = bed(&plain, "--seed 8 --max-stems 500");
+    assert_eq!(bed(&keyed, "--seed 8"), by_flag);
     // A BED refusing them, and wrong values: tests/cmd/growth.md.
 }
 
@@ -762,10 +716,8 @@ fn standard_input_is_never_the_output() {
             .unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "-o {output}: {err}");
-        assert!(
-            err.contains("refusing to write over the input") && err.contains("<stdin>"),
-            "{err}"
-        );
+        let refusing = err.contains("refusing to write over the input") && err.contains("<stdin>");
+        assert!(refusing, "{err}");
         assert_eq!(fs::read(&od).unwrap(), text, "-o {output}");
     }
     // The same text through a pipe: written.

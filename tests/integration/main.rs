@@ -13,6 +13,7 @@ mod browser_mesh;
 mod browser_page;
 mod browser_param;
 mod browser_space;
+mod browser_steps;
 mod browser_thumbs;
 mod browser_web;
 mod chromium;

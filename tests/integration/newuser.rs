@@ -5,24 +5,17 @@
 use std::fs;
 use std::path::Path;
 
-use crate::support::{outcome, stlc, stlc_line};
+use crate::support::{files_in, outcome, stlc, stlc_line};
 
-fn root() -> &'static str {
-    env!("CARGO_MANIFEST_DIR")
-}
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
 
 fn example(name: &str) -> String {
-    format!("{}/examples/{name}", root())
+    format!("{ROOT}/examples/{name}")
 }
 
 /// Runs stlc with `args`, returning (exit code, stdout, stderr).
 fn run(args: &[&str]) -> (i32, Vec<u8>, String) {
-    let out = stlc().args(args).output().expect("runs");
-    (
-        out.status.code().unwrap_or(-1),
-        out.stdout,
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    outcome(stlc().args(args))
 }
 
 /// Runs `stlc LINE`, returning (exit code, stdout, stderr).
@@ -61,10 +54,8 @@ fn rendering_or_expanding_an_od_equals_doing_it_to_its_compiled_bed() {
                 let from_od = format!("{what} {od_path} {flags} -o {}", a.display());
                 assert_eq!(run_line(&from_od).0, 0, "{what} {od} {growth:?}");
                 assert_eq!(run(&[what, path(&bed), "-o", path(&b)]).0, 0);
-                assert!(
-                    fs::read(&a).unwrap() == fs::read(&b).unwrap(),
-                    "{what} {od} {growth:?}: the OD and its BED differ"
-                );
+                let same = fs::read(&a).unwrap() == fs::read(&b).unwrap();
+                assert!(same, "{what} {od} {growth:?}: the OD and its BED differ");
             }
         }
     }
@@ -76,7 +67,7 @@ fn rendering_or_expanding_an_od_equals_doing_it_to_its_compiled_bed() {
 #[test]
 fn the_default_growth_order_is_bfs_and_compile_keeps_strategy_as_its_alias() {
     let golden =
-        |g: &str| fs::read_to_string(format!("{}/tests/cases/grow/fig9.{g}.bed", root())).unwrap();
+        |g: &str| fs::read_to_string(format!("{ROOT}/tests/cases/grow/fig9.{g}.bed")).unwrap();
     let fig9 = example("fig9.od");
     let (code, out, _) = run(&["compile", &fig9, "-o", "-"]);
     assert_eq!(code, 0);
@@ -98,22 +89,13 @@ fn the_default_growth_order_is_bfs_and_compile_keeps_strategy_as_its_alias() {
 #[test]
 fn check_refuses_what_compile_refuses() {
     let dir = tempfile::tempdir().unwrap();
+    let unbounded = "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F R2][-F R1]\nR2: [F R1]\n";
+    let outside = "O\n(500, 500)\nRULE\nR1: [+F][-F]\nLAYOUT\n(clGreen) Rectangle (0,0), 100, 100\nENDLAYOUT\n";
+    let collinear = "C\n(5, 5)\nRULE\nR1: [+F][-F]\nLAYOUT\n(clGreen) Polygon (0,0), (5,5), (10,10)\nENDLAYOUT\n";
     let cases = [
-        (
-            "unbounded.od",
-            "U\n(0, 0)\nL=10(0) B=1(0)\nRULE\nR1: [+F R2][-F R1]\nR2: [F R1]\n",
-            "no bound",
-        ),
-        (
-            "outside.od",
-            "O\n(500, 500)\nRULE\nR1: [+F][-F]\nLAYOUT\n(clGreen) Rectangle (0,0), 100, 100\nENDLAYOUT\n",
-            "outside",
-        ),
-        (
-            "collinear.od",
-            "C\n(5, 5)\nRULE\nR1: [+F][-F]\nLAYOUT\n(clGreen) Polygon (0,0), (5,5), (10,10)\nENDLAYOUT\n",
-            "",
-        ),
+        ("unbounded.od", unbounded, "no bound"),
+        ("outside.od", outside, "outside"),
+        ("collinear.od", collinear, ""),
     ];
     for (name, text, needle) in cases {
         let p = dir.path().join(name);
@@ -121,12 +103,8 @@ fn check_refuses_what_compile_refuses() {
         let (compile_code, _, compile_err) = run(&["compile", path(&p), "-o", "-"]);
         let (check_code, out, check_err) = run(&["check", path(&p)]);
         assert_eq!(compile_code, 1, "{name}: {compile_err}");
-        assert_eq!(
-            check_code,
-            1,
-            "{name}: check said {}",
-            String::from_utf8_lossy(&out)
-        );
+        let said = String::from_utf8_lossy(&out);
+        assert_eq!(check_code, 1, "{name}: check said {said}");
         assert!(check_err.contains(needle), "{name}: {check_err}");
         assert_eq!(check_err, compile_err, "{name}: the same diagnostic");
     }
@@ -146,10 +124,8 @@ fn check_reports_the_stems_compile_grows_and_a_bed_draws() {
     let (code, out, _) = run(&["check", &od]);
     assert_eq!(code, 0);
     let out = String::from_utf8(out).unwrap();
-    assert!(
-        out.contains(&format!("grows       {drawn} stems (bfs)")),
-        "{out}"
-    );
+    let grows = format!("grows       {drawn} stems (bfs)");
+    assert!(out.contains(&grows), "{out}");
     let (_, out, _) = run(&["check", path(&bed)]);
     let out = String::from_utf8(out).unwrap();
     assert!(out.contains(&format!("stems       {drawn}\n")), "{out}");
@@ -221,17 +197,13 @@ fn an_interrupt_removes_the_temporary_file_and_keeps_the_target() {
         }
         let killed = Std::new("kill")
             .args([signal, &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(killed.success());
+            .status();
+        assert!(killed.unwrap().success());
         let status = child.wait().unwrap();
         assert_eq!(status.code(), Some(code), "{signal}");
         assert_eq!(fs::read(&out).unwrap(), b"old");
-        let names: Vec<_> = fs::read_dir(dir.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        assert_eq!(names, ["t.png"], "{signal}: a file was left behind");
+        let left = "a file was left behind";
+        assert_eq!(files_in(dir.path()), ["t.png"], "{signal}: {left}");
     }
 }
 
@@ -257,17 +229,12 @@ fn no_flag_is_ignored_without_a_word() {
     let od = example("2dtree.od");
     let koch = example("koch-snowflake.lsys");
     let decrement = example("decrement.od");
+    let (png, svg, jpg) = (o("x.png"), o("x.svg"), o("x.jpg"));
     for (line, needle) in [
+        (format!("render {od} -f svg -o {png}"), "contradicts"),
+        (format!("render {od} -f png -o {svg}"), "contradicts"),
         (
-            format!("render {od} -f svg -o {}", o("x.png")),
-            "contradicts",
-        ),
-        (
-            format!("render {od} -f png -o {}", o("x.svg")),
-            "contradicts",
-        ),
-        (
-            format!("render {od} -o {}", o("x.jpg")),
+            format!("render {od} -o {jpg}"),
             "`.jpg` is not an image format",
         ),
     ] {
@@ -277,31 +244,29 @@ fn no_flag_is_ignored_without_a_word() {
         assert!(!dir.path().join("x.png").exists());
     }
     // `render -` without -o: a usage error too.
-    let out = stlc()
-        .args(["render", "-"])
-        .write_stdin(fs::read(&koch).unwrap())
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
+    let text = fs::read(&koch).unwrap();
+    let (code, _, _) = outcome(stlc().args(["render", "-"]).write_stdin(text));
+    assert_eq!(code, 2);
+    let (a, b, c, d, e) = (o("a.png"), o("b.png"), o("c.png"), o("d.png"), o("e.txt"));
     for (line, needle) in [
         (
-            format!("render {od} --depth 3 -o {}", o("a.png")),
+            format!("render {od} --depth 3 -o {a}"),
             "--depth was ignored",
         ),
         (
-            format!("render {koch} --show-layout -o {}", o("b.png")),
+            format!("render {koch} --show-layout -o {b}"),
             "--show-layout was ignored",
         ),
         (
-            format!("render {decrement} --show-layout -o {}", o("c.png")),
+            format!("render {decrement} --show-layout -o {c}"),
             "--show-layout was ignored",
         ),
         (
-            format!("render {koch} --growth dfs -o {}", o("d.png")),
+            format!("render {koch} --growth dfs -o {d}"),
             "--growth was ignored",
         ),
         (
-            format!("expand {koch} --clearance 1 -o {}", o("e.txt")),
+            format!("expand {koch} --clearance 1 -o {e}"),
             "--clearance was ignored",
         ),
         (
@@ -326,11 +291,8 @@ fn no_flag_is_ignored_without_a_word() {
 fn inert_turns_and_empty_pictures_are_warned_about() {
     let dir = tempfile::tempdir().unwrap();
     let lr = dir.path().join("lr.lsys");
-    fs::write(
-        &lr,
-        "axiom F\nrule F F[RF]F[LF]F\nangle 30\ngenerations 2\n",
-    )
-    .unwrap();
+    let text = "axiom F\nrule F F[RF]F[LF]F\nangle 30\ngenerations 2\n";
+    fs::write(&lr, text).unwrap();
     let png = dir.path().join("lr.png");
     let (code, _, err) = run(&["render", path(&lr), "-o", path(&png)]);
     assert_eq!(code, 0);
@@ -355,10 +317,8 @@ fn inert_turns_and_empty_pictures_are_warned_about() {
 fn many_copies_of_a_thick_stem_draw_what_one_draws() {
     let dir = tempfile::tempdir().unwrap();
     let bed = |n: usize| {
-        format!(
-            "T\n(100, 100)\nL=10(0) B=3(0)\nRULE\nR1: [+F][-F]\nSEED\n{}ENDSEED\n",
-            "R1{,}\n".repeat(n)
-        )
+        let seed = "R1{,}\n".repeat(n);
+        format!("T\n(100, 100)\nL=10(0) B=3(0)\nRULE\nR1: [+F][-F]\nSEED\n{seed}ENDSEED\n")
     };
     let (one, many) = (dir.path().join("one.bed"), dir.path().join("many.bed"));
     fs::write(&one, bed(1)).unwrap();
@@ -377,18 +337,13 @@ fn many_copies_of_a_thick_stem_draw_what_one_draws() {
 fn a_description_can_store_its_stroke_and_background() {
     let dir = tempfile::tempdir().unwrap();
     let od = dir.path().join("c.od");
-    fs::write(
-        &od,
-        "C\n(0, 0)\nL=10(0) B=2(0) S=clMaroon G=#ffffe0\nRULE\nR1: [+F][-F]\nSEED\nF [I 3 R1]\nENDSEED\n",
-    )
-    .unwrap();
+    let text = "C\n(0, 0)\nL=10(0) B=2(0) S=clMaroon G=#ffffe0\nRULE\nR1: [+F][-F]\nSEED\nF [I 3 R1]\nENDSEED\n";
+    fs::write(&od, text).unwrap();
     let (code, bed, _) = run(&["compile", path(&od), "-o", "-"]);
     assert_eq!(code, 0);
     let bed = String::from_utf8(bed).unwrap();
-    assert!(
-        bed.contains("L=10(0) B=2(0) C=1 S=clMaroon G=#ffffe0\n"),
-        "{bed}"
-    );
+    let header = "L=10(0) B=2(0) C=1 S=clMaroon G=#ffffe0\n";
+    assert!(bed.contains(header), "{bed}");
     let svg = |extra: &str| {
         let line = format!("render {} -f svg -o - {extra}", od.display());
         String::from_utf8(run_line(&line).1).unwrap()
@@ -397,20 +352,16 @@ fn a_description_can_store_its_stroke_and_background() {
     assert!(own.contains("fill=\"#ffffe0\""), "{own}");
     assert!(own.contains("stroke=\"#800000\""), "clMaroon: {own}");
     let over = svg("--stroke #123456 --background none");
-    assert!(
-        over.contains("stroke=\"#123456\"") && !over.contains("<rect"),
-        "{over}"
-    );
+    let stroke = over.contains("stroke=\"#123456\"");
+    assert!(stroke && !over.contains("<rect"), "{over}");
     // A number where a colour goes, and the other way round, are errors
     // at the value.
     let bad = dir.path().join("bad.od");
     fs::write(&bad, "C\n(0, 0)\nL=clRed S=12\nRULE\nR1: [+F][-F]\n").unwrap();
     let (code, _, err) = run(&["check", "--color", "never", path(&bad)]);
     assert_eq!(code, 1);
-    assert!(
-        err.contains("`L` takes a number") && err.contains("`S` takes a colour"),
-        "{err}"
-    );
+    let number = err.contains("`L` takes a number");
+    assert!(number && err.contains("`S` takes a colour"), "{err}");
 }
 
 /// `--seed` where nothing chooses (a BED, a deterministic L-system, an OD
@@ -420,33 +371,27 @@ fn a_description_can_store_its_stroke_and_background() {
 fn a_seed_that_changes_nothing_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let out = |name: &str| path(&dir.path().join(name)).to_string();
-    let bed = format!("{}/tests/cases/grow/alternatives.dfs.bed", root());
+    let bed = format!("{ROOT}/tests/cases/grow/alternatives.dfs.bed");
     let koch = example("koch-snowflake.lsys");
     let tree = example("2dtree.od");
+    let (a, b) = (out("a.png"), out("b.bed"));
+    let no_alternatives = "this description has no alternatives";
     for (line, reason) in [
         (
-            format!("render {bed} --seed 3 -o {}", out("a.png")),
+            format!("render {bed} --seed 3 -o {a}"),
             "a .bed has its choices written out",
         ),
         (
             format!("stats {koch} --seed 3"),
             "this L-system has no stochastic rules",
         ),
-        (
-            format!("compile {tree} --seed 3 -o {}", out("b.bed")),
-            "this description has no alternatives",
-        ),
-        (
-            format!("check {tree} --seed 3"),
-            "this description has no alternatives",
-        ),
+        (format!("compile {tree} --seed 3 -o {b}"), no_alternatives),
+        (format!("check {tree} --seed 3"), no_alternatives),
     ] {
         let (code, _, err) = run_line(&line);
         assert_eq!(code, 0, "{line}: {err}");
-        assert!(
-            err.contains("--seed was ignored") && err.contains(reason),
-            "{line}: {err}"
-        );
+        let ignored = err.contains("--seed was ignored");
+        assert!(ignored && err.contains(reason), "{line}: {err}");
     }
     let plant = example("abop-1.27.lsys");
     let grove = example("grove.od");

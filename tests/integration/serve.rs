@@ -5,6 +5,7 @@
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
+use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
@@ -76,7 +77,6 @@ impl Server {
         }
     }
 
-    /// The port.
     /// CPU time the server has used so far (user + system), in clock
     /// ticks, from /proc.
     pub fn cpu_ticks(&self) -> u64 {
@@ -85,6 +85,14 @@ impl Server {
         let rest = &stat[stat.rfind(')').unwrap() + 2..];
         let f: Vec<&str> = rest.split(' ').collect();
         f[11].parse::<u64>().unwrap() + f[12].parse::<u64>().unwrap()
+    }
+
+    /// A figure of the server's `/proc` status, kB: `VmRSS:` its resident
+    /// size now, `VmHWM:` its peak.
+    pub fn status_kb(&self, key: &str) -> u64 {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.pid())).unwrap();
+        let figure = status.lines().find_map(|l| l.strip_prefix(key)).unwrap();
+        figure.trim().trim_end_matches("kB").trim().parse().unwrap()
     }
 
     /// The server's process id.
@@ -214,11 +222,50 @@ pub fn post(addr: &str, path: &str, extra: &[(&str, &str)], body: &Value) -> Ans
     request(addr, "POST", path, extra, body.to_string().as_bytes())
 }
 
+/// `stlc serve FILE ARGS` of a file `name` holding `text` in a temporary
+/// directory: the directory (removed when dropped), the file, the server.
+pub fn serve_file(name: &str, text: &str, args: &[&str]) -> (tempfile::TempDir, PathBuf, Server) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join(name);
+    std::fs::write(&file, text).unwrap();
+    let server = Server::start(&[&[file.to_str().unwrap()], args].concat());
+    (dir, file, server)
+}
+
+/// The head of a `POST path` of `len` bytes with the page's key, and no
+/// `Connection: close` (the connection stays open).
+pub fn post_head(addr: &str, path: &str, len: usize) -> String {
+    let key = key(addr);
+    format!("POST {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {len}\r\n{key}\r\n")
+}
+
+/// A connection on which `body` is posted to `/api/render` with the page's
+/// key (kept open: the caller reads the answer, or does not).
+pub fn send_render(addr: &str, body: &str) -> TcpStream {
+    let head = post_head(addr, "/api/render", body.len());
+    let mut s = TcpStream::connect(addr).unwrap();
+    s.write_all(head.as_bytes()).unwrap();
+    s.write_all(body.as_bytes()).unwrap();
+    s
+}
+
+/// `GET path`.
+pub fn get(addr: &str, path: &str) -> Answer {
+    request(addr, "GET", path, &[], b"")
+}
+
 /// `POST /api/render` with `body`; the answer's JSON.
 pub fn render(addr: &str, body: &Value) -> Value {
     let a = post(addr, "/api/render", &[], body);
     assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
     a.json()
+}
+
+/// [`render`], for an answer that must be drawn (`ok`).
+pub fn render_ok(addr: &str, body: &Value) -> Value {
+    let a = render(addr, body);
+    assert_eq!(a["ok"], true, "{a}");
+    a
 }
 
 /// The answer's stem count: decimal digits, exact.
@@ -268,8 +315,7 @@ fn render_answers_the_cli_bytes_for_an_od() {
                 body["clearance"] = json!(0.5);
                 body["max_stems"] = json!(120);
             }
-            let a = render(&server.addr, &body);
-            assert_eq!(a["ok"], true, "{a}");
+            let a = render_ok(&server.addr, &body);
             let bed = cli_text(&format!("compile {path} -o - --growth {strategy} {extra}"));
             crate::support::assert_same_text(name, &bed, a["bed"].as_str().unwrap());
             let svg = cli_text(&format!(
@@ -300,11 +346,8 @@ fn space_first_with_a_seed_answers_the_cli_bytes() {
         assert!(text.contains("V="), "the header line is where it was");
         let path = dir.join(format!("holes-v{seed}.od"));
         std::fs::write(&path, &text).unwrap();
-        let a = render(
-            &server.addr,
-            &json!({"source": text, "kind": "od", "growth": "space"}),
-        );
-        assert_eq!(a["ok"], true, "{a}");
+        let body = json!({"source": text, "kind": "od", "growth": "space"});
+        let a = render_ok(&server.addr, &body);
         let path = path.to_str().unwrap();
         let bed = cli_text(&format!("compile {path} -o - --growth space"));
         crate::support::assert_same_text("holes.od", &bed, a["bed"].as_str().unwrap());
@@ -325,17 +368,12 @@ fn the_growth_order_replays_a_connected_tree() {
     let server = Server::start(&[]);
     let mut orders = Vec::new();
     for strategy in ["bfs", "dfs", "space"] {
-        let a = render(
-            &server.addr,
-            &json!({"source": example("fig9.od"), "growth": strategy}),
-        );
-        let g: Vec<f64> = numbers(&a["growth"]["stems"]);
+        let body = json!({"source": example("fig9.od"), "growth": strategy});
+        let a = render(&server.addr, &body);
+        let g = numbers(&a["growth"]["stems"]);
         assert!(g.len() >= 6 * 50, "{}", g.len());
-        assert_eq!(
-            (g[0], g[1]),
-            (100.0, 196.0),
-            "the first stem starts at the root"
-        );
+        let root = "the first stem starts at the root";
+        assert_eq!((g[0], g[1]), (100.0, 196.0), "{root}");
         assert_eq!(g[5], 0.0, "the seed's F is decision 0");
         let mut ends: Vec<(f64, f64)> = vec![(100.0, 196.0)];
         let mut last = 0.0;
@@ -358,39 +396,24 @@ fn the_growth_order_replays_a_connected_tree() {
 #[test]
 fn lsys_bed_and_png_export_are_the_cli_bytes() {
     let server = Server::start(&[]);
-    let koch = manifest_path("examples/koch-snowflake.lsys");
-    let a = render(
-        &server.addr,
-        &json!({"source": example("koch-snowflake.lsys"), "kind": "lsys", "depth": 2}),
-    );
-    assert_eq!(a["ok"], true, "{a}");
-    let svg = cli(&format!("render {} -f svg -o - --depth 2", koch.display()));
+    let koch = json!({"source": example("koch-snowflake.lsys"), "kind": "lsys", "depth": 2});
+    let a = render_ok(&server.addr, &koch);
+    let svg = cli("render examples/koch-snowflake.lsys -f svg -o - --depth 2");
     assert_eq!(a["svg"].as_str().unwrap().as_bytes(), &svg[..]);
     assert!(a["bed"].is_null());
 
-    let bed = manifest_path("examples/paper-worked.bed");
-    let a = render(
-        &server.addr,
-        &json!({"source": example("paper-worked.bed"), "kind": "bed"}),
-    );
-    let svg = cli(&format!(
-        "render {} -f svg -o - --show-layout",
-        bed.display()
-    ));
+    let bed = json!({"source": example("paper-worked.bed"), "kind": "bed"});
+    let a = render(&server.addr, &bed);
+    let svg = cli("render examples/paper-worked.bed -f svg -o - --show-layout");
     assert_eq!(a["svg"].as_str().unwrap().as_bytes(), &svg[..]);
 
-    let od = manifest_path("examples/holes.od");
     let body = json!({"source": example("holes.od"), "growth": "dfs"});
     let png = post(&server.addr, "/api/export?format=png", &[], &body);
     assert!(png.head.contains("content-type: image/png"), "{}", png.head);
-    let od = od.display();
-    let cli_png = cli(&format!(
-        "render {od} -f png -o - --show-layout --growth dfs"
-    ));
+    let cli_png = cli("render examples/holes.od -f png -o - --show-layout --growth dfs");
     assert!(png.body == cli_png, "the exported PNG is not the CLI's");
     let bed = post(&server.addr, "/api/export?format=bed", &[], &body);
-    let cli_bed = cli(&format!("compile {od} -o - --growth dfs"));
-    assert!(bed.body == cli_bed);
+    assert!(bed.body == cli("compile examples/holes.od -o - --growth dfs"));
 }
 
 /// An input error answers 200 with diagnostics at 1-based lines and
@@ -412,28 +435,19 @@ fn input_errors_answer_diagnostics_with_lines_and_columns() {
     assert!(d["help"].as_str().unwrap().contains("clWhite"), "{d}");
 
     // Growth that nothing bounds is refused, not run for ever.
-    let a = render(
-        &server.addr,
-        &json!({"source": "T (0, 0) L=10(0) RULE R1: F[+R1][-R1]", "kind": "od"}),
-    );
+    let unbounded = json!({"source": "T (0, 0) L=10(0) RULE R1: F[+R1][-R1]", "kind": "od"});
+    let a = render(&server.addr, &unbounded);
     assert_eq!(a["ok"], false, "{a}");
     // A stem limit above the server's own is refused.
     let server = Server::start(&["--max-stems", "100"]);
-    let a = render(
-        &server.addr,
-        &json!({"source": example("fig9.od"), "max_stems": 101}),
-    );
+    let over = json!({"source": example("fig9.od"), "max_stems": 101});
+    let a = render(&server.addr, &over);
     assert_eq!(a["ok"], false, "{a}");
-    let a = render(
-        &server.addr,
-        &json!({"source": example("fig9.od"), "max_stems": 40}),
-    );
-    assert_eq!(a["ok"], true, "{a}");
+    let under = json!({"source": example("fig9.od"), "max_stems": 40});
+    let a = render_ok(&server.addr, &under);
     assert!(stems(&a) <= 40);
-    assert!(
-        a["warnings"][0]["message"].as_str().unwrap().contains("40"),
-        "{a}"
-    );
+    let warned = a["warnings"][0]["message"].as_str().unwrap();
+    assert!(warned.contains("40"), "{a}");
 }
 
 /// DNS rebinding and cross-site requests: a foreign or missing Host is
@@ -444,25 +458,20 @@ fn foreign_hosts_and_origins_are_refused() {
     let server = Server::start(&[]);
     let addr = &server.addr;
     let port = server.port();
-    let get = |host: &str| {
-        raw(
-            addr,
-            format!(
-                "GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n{}\r\n",
-                key(addr)
-            )
-            .as_bytes(),
-        )
+    let at_host = |host: &str| {
+        let key = key(addr);
+        let head = format!("GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n{key}\r\n");
+        raw(addr, head.as_bytes())
     };
-    assert_eq!(get(addr).status, 200);
-    assert_eq!(get(&format!("localhost:{port}")).status, 200);
+    assert_eq!(at_host(addr).status, 200);
+    assert_eq!(at_host(&format!("localhost:{port}")).status, 200);
     for host in [
         "evil.example".to_string(),
         format!("evil.example:{port}"),
         "127.0.0.1".to_string(),
         format!("127.0.0.1:{port}.evil.example"),
     ] {
-        assert_eq!(get(&host).status, 403, "{host}");
+        assert_eq!(at_host(&host).status, 403, "{host}");
     }
     let no_host = raw(addr, b"GET /api/file HTTP/1.0\r\n\r\n");
     assert_eq!(no_host.status, 403);
@@ -474,13 +483,8 @@ fn foreign_hosts_and_origins_are_refused() {
         (format!("http://127.0.0.1:{port}"), 200),
         (format!("http://localhost:{port}"), 200),
     ] {
-        let a = request(
-            addr,
-            "POST",
-            "/api/render",
-            &[("Origin", &origin)],
-            body.as_bytes(),
-        );
+        let from = [("Origin", origin.as_str())];
+        let a = request(addr, "POST", "/api/render", &from, body.as_bytes());
         assert_eq!(a.status, status, "{origin}");
     }
     // No file path is read from a request: paths other than the page's
@@ -490,13 +494,11 @@ fn foreign_hosts_and_origins_are_refused() {
         "/examples/fig9.od",
         "/api/file?path=/etc/passwd",
     ] {
-        let a = request(addr, "GET", path, &[], b"");
-        assert!(
-            a.status == 404
-                || (a.status == 200 && !String::from_utf8_lossy(&a.body).contains("root:")),
-            "{path}: {}",
-            a.status
-        );
+        let a = get(addr, path);
+        let passwd = String::from_utf8_lossy(&a.body).contains("root:");
+        let status = a.status;
+        let hidden = status == 404 || (status == 200 && !passwd);
+        assert!(hidden, "{path}: {status}");
     }
 }
 
@@ -508,10 +510,8 @@ fn oversize_malformed_and_idle_requests_never_stop_the_server() {
     let server = Server::start(&["--max-input", "2000"]);
     let addr = &server.addr;
     let big = json!({"source": "x".repeat(3000)}).to_string();
-    assert_eq!(
-        request(addr, "POST", "/api/render", &[], big.as_bytes()).status,
-        413
-    );
+    let a = request(addr, "POST", "/api/render", &[], big.as_bytes());
+    assert_eq!(a.status, 413);
     // Chunked, with no length declared.
     let mut chunked = format!(
         "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nTransfer-Encoding: chunked\r\n{}\r\n",
@@ -557,8 +557,7 @@ fn oversize_malformed_and_idle_requests_never_stop_the_server() {
         let _ = s.read_to_end(&mut Vec::new());
     }
     let idle: Vec<TcpStream> = (0..20).map(|_| TcpStream::connect(addr).unwrap()).collect();
-    let a = render(addr, &json!({"source": example("fig9.od")}));
-    assert_eq!(a["ok"], true);
+    render_ok(addr, &json!({"source": example("fig9.od")}));
     drop(idle);
 }
 
@@ -567,13 +566,10 @@ fn oversize_malformed_and_idle_requests_never_stop_the_server() {
 /// file named, there is nothing to write (the page downloads).
 #[test]
 fn save_needs_the_token_and_writes_only_the_named_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("tree.od");
-    std::fs::write(&file, example("fig9.od")).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
+    let (dir, file, server) = serve_file("tree.od", &example("fig9.od"), &[]);
     let addr = &server.addr;
     let token = server.token.clone();
-    let opened = request(addr, "GET", "/api/file", &[], b"").json();
+    let opened = get(addr, "/api/file").json();
     assert_eq!(opened["text"], example("fig9.od"));
     assert_eq!(opened["can_save"], true);
     let body = json!({"source": "Changed (1, 2)\nRULE\nR1: F\n"}).to_string();
@@ -583,34 +579,19 @@ fn save_needs_the_token_and_writes_only_the_named_file() {
         assert_eq!(a.status, 401);
     }
     assert_eq!(std::fs::read_to_string(&file).unwrap(), example("fig9.od"));
-    let a = request(
-        addr,
-        "POST",
-        "/api/save",
-        &[("X-Stlc-Token", &token)],
-        body.as_bytes(),
-    );
+    let key = [("X-Stlc-Token", token.as_str())];
+    let a = request(addr, "POST", "/api/save", &key, body.as_bytes());
     assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
-    assert_eq!(
-        std::fs::read_to_string(&file).unwrap(),
-        "Changed (1, 2)\nRULE\nR1: F\n"
-    );
+    let saved = std::fs::read_to_string(&file).unwrap();
+    assert_eq!(saved, "Changed (1, 2)\nRULE\nR1: F\n");
     // Nothing but the file: no temporary left beside it.
-    let names: Vec<_> = std::fs::read_dir(dir.path())
-        .unwrap()
-        .map(|e| e.unwrap().file_name())
-        .collect();
-    assert_eq!(names, vec![std::ffi::OsString::from("tree.od")]);
+    assert_eq!(crate::support::files_in(dir.path()), ["tree.od"]);
 
     let example_server = Server::start(&[]);
     let token = &example_server.token;
-    let a = request(
-        &example_server.addr,
-        "POST",
-        "/api/save",
-        &[("X-Stlc-Token", token)],
-        body.as_bytes(),
-    );
+    let headers = [("X-Stlc-Token", token.as_str())];
+    let to = &example_server.addr;
+    let a = request(to, "POST", "/api/save", &headers, body.as_bytes());
     assert_eq!(a.status, 409);
     assert_ne!(token, &server.token, "each run has its own token");
 }
@@ -621,16 +602,14 @@ fn save_needs_the_token_and_writes_only_the_named_file() {
 #[test]
 fn ctrl_c_stops_cleanly_and_a_file_that_cannot_be_made_is_an_error() {
     let server = Server::start(&[]);
-    assert_eq!(request(&server.addr, "GET", "/", &[], b"").status, 200);
+    assert_eq!(get(&server.addr, "/").status, 200);
     let status = server.interrupt();
     assert!(status.success(), "{status:?}");
     let (code, out, err) = outcome(&mut stlc_line("serve no/such/file.od --port 0"));
     assert_eq!(code, 1);
     assert!(out.is_empty());
-    assert!(
-        err.contains("no/such/file.od") && err.contains("does not exist"),
-        "{err}"
-    );
+    let named = err.contains("no/such/file.od");
+    assert!(named && err.contains("does not exist"), "{err}");
     // A new file whose name says no kind: nothing to start from.
     let dir = tempfile::tempdir().unwrap();
     let odd = dir.path().join("new.xyz");
@@ -650,32 +629,24 @@ fn a_new_file_is_created_and_a_save_over_another_version_is_refused() {
     let file = dir.path().join("oak.od");
     let server = Server::start(&[file.to_str().unwrap()]);
     let addr = &server.addr;
-    let opened = request(addr, "GET", "/api/file", &[], b"").json();
+    let opened = get(addr, "/api/file").json();
     assert_eq!(opened["version"], Value::Null);
     assert!(opened["text"].as_str().unwrap().contains("RULE"));
     assert!(!file.exists(), "nothing is written before Save");
     // The template grows a tree.
-    let a = render(addr, &json!({"source": opened["text"]}));
-    assert_eq!(a["ok"], true, "{a}");
+    let a = render_ok(addr, &json!({"source": opened["text"]}));
     assert!(stems(&a) > 50, "{a}");
     let token = server.token.clone();
     let save = |body: Value| post(addr, "/api/save", &[("X-Stlc-Token", &token)], &body);
     let first = save(json!({"source": "one\n", "version": null}));
-    assert_eq!(
-        first.status,
-        200,
-        "{}",
-        String::from_utf8_lossy(&first.body)
-    );
+    let said = String::from_utf8_lossy(&first.body).into_owned();
+    assert_eq!(first.status, 200, "{said}");
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "one\n");
     let v1 = first.json()["version"].as_str().unwrap().to_string();
-    assert_eq!(
-        request(addr, "GET", "/api/file", &[], b"").json()["version"],
-        v1.as_str()
-    );
+    assert_eq!(get(addr, "/api/file").json()["version"], v1.as_str());
     // Another program writes; a save based on v1 is refused.
     std::fs::write(&file, "theirs\n").unwrap();
-    let now = request(addr, "GET", "/api/file", &[], b"").json();
+    let now = get(addr, "/api/file").json();
     assert_eq!(now["text"], "theirs\n", "the file is read as it is now");
     let refused = save(json!({"source": "mine\n", "version": v1}));
     assert_eq!(refused.status, 412);
@@ -693,13 +664,10 @@ fn a_new_file_is_created_and_a_save_over_another_version_is_refused() {
 #[test]
 fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
     let server = Server::start(&[]);
-    let path = crate::support::manifest_path("examples/grove.od");
-    let path = path.to_str().unwrap();
+    let path = "examples/grove.od";
     let ask = |seed: u64| {
-        render(
-            &server.addr,
-            &json!({"source": example("grove.od"), "growth": "bfs", "seed": seed}),
-        )
+        let body = json!({"source": example("grove.od"), "growth": "bfs", "seed": seed});
+        render(&server.addr, &body)
     };
     let a = ask(7);
     assert_eq!(a["ok"], true, "{a}");
@@ -707,18 +675,16 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
     crate::support::assert_same_text("grove --seed 7", &bed, a["bed"].as_str().unwrap());
     assert_ne!(a["bed"], ask(8)["bed"]);
     let others = a["root"]["others"].as_array().unwrap();
-    let xy: Vec<(f64, f64)> = others
+    let xy = others
         .iter()
-        .map(|r| (r["x"].as_f64().unwrap(), r["y"].as_f64().unwrap()))
-        .collect();
+        .map(|r| (r["x"].as_f64().unwrap(), r["y"].as_f64().unwrap()));
+    let xy: Vec<(f64, f64)> = xy.collect();
     assert_eq!(xy, [(110.0, 290.0), (170.0, 290.0), (235.0, 290.0)]);
     // A seed as a string of digits (how the page sends it): exact past a
     // JavaScript number's 2^53, the CLI's --seed of the same digits.
     let top = u64::MAX.to_string();
-    let b = render(
-        &server.addr,
-        &json!({"source": example("grove.od"), "seed": top}),
-    );
+    let body = json!({"source": example("grove.od"), "seed": &top});
+    let b = render(&server.addr, &body);
     let bed = cli_text(&format!("compile {path} -o - --seed {top}"));
     crate::support::assert_same_text("grove --seed 2^64-1", &bed, b["bed"].as_str().unwrap());
     let below = cli_text(&format!("compile {path} -o - --seed {}", u64::MAX - 1));
@@ -739,52 +705,27 @@ fn the_edge_parses_queries_refuses_unknown_fields_and_doubled_headers() {
     let server = Server::start(&[]);
     let addr = &server.addr;
     let body = json!({"source": example("fig9.od")}).to_string();
-    let svg = request(
-        addr,
-        "POST",
-        "/api/export?x=1&format=svg",
-        &[],
-        body.as_bytes(),
-    );
+    let query = "/api/export?x=1&format=svg";
+    let svg = request(addr, "POST", query, &[], body.as_bytes());
     assert_eq!(svg.status, 200);
-    assert!(
-        svg.head.contains("content-type: image/svg+xml"),
-        "{}",
-        svg.head
-    );
-    let fig9 = manifest_path("examples/fig9.od");
-    let cli_svg = cli(&format!(
-        "render {} -f svg -o - --show-layout",
-        fig9.display()
-    ));
+    let head = &svg.head;
+    assert!(head.contains("content-type: image/svg+xml"), "{head}");
+    let cli_svg = cli("render examples/fig9.od -f svg -o - --show-layout");
     assert!(svg.body == cli_svg, "the exported SVG is not the CLI's");
 
     let typo = json!({"source": example("fig9.od"), "clearence": 2}).to_string();
     let a = request(addr, "POST", "/api/render", &[], typo.as_bytes());
     assert_eq!(a.status, 400);
-    assert!(
-        a.json()["error"]
-            .as_str()
-            .unwrap()
-            .contains("unknown field `clearence`"),
-        "{}",
-        String::from_utf8_lossy(&a.body)
-    );
+    let error = a.json()["error"].as_str().unwrap().to_string();
+    assert!(error.contains("unknown field `clearence`"), "{error}");
 
     let twice = format!(
         "GET / HTTP/1.1\r\nHost: {addr}\r\nHost: evil.example\r\nConnection: close\r\n\r\n"
     );
     assert_eq!(raw(addr, twice.as_bytes()).status, 400);
-    let origins = request(
-        addr,
-        "POST",
-        "/api/render",
-        &[
-            ("Origin", &format!("http://{addr}")),
-            ("Origin", "http://evil.example"),
-        ],
-        body.as_bytes(),
-    );
+    let ours = format!("http://{addr}");
+    let two = [("Origin", ours.as_str()), ("Origin", "http://evil.example")];
+    let origins = request(addr, "POST", "/api/render", &two, body.as_bytes());
     assert_eq!(origins.status, 400);
     let absolute =
         format!("GET http://evil.example/ HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n");
@@ -802,14 +743,12 @@ fn the_edge_parses_queries_refuses_unknown_fields_and_doubled_headers() {
 #[test]
 fn the_page_and_every_module_it_imports_are_served() {
     let server = Server::start(&[]);
-    let page = request(&server.addr, "GET", "/", &[], b"");
+    let page = get(&server.addr, "/");
     assert_eq!(page.status, 200);
     let html = String::from_utf8(page.body).unwrap();
-    assert!(
-        html.contains(r#"<script type="module" src="entry.js"></script>"#),
-        "{html}"
-    );
-    let css = request(&server.addr, "GET", "/style.css", &[], b"");
+    let entry = r#"<script type="module" src="entry.js"></script>"#;
+    assert!(html.contains(entry), "{html}");
+    let css = get(&server.addr, "/style.css");
     assert_eq!(css.status, 200);
     assert!(css.head.contains("content-type: text/css"), "{}", css.head);
     let mut todo = vec!["/entry.js".to_string()];
@@ -818,13 +757,11 @@ fn the_page_and_every_module_it_imports_are_served() {
         if seen.contains(&path) {
             continue;
         }
-        let got = request(&server.addr, "GET", &path, &[], b"");
+        let got = get(&server.addr, &path);
         assert_eq!(got.status, 200, "{path}");
-        assert!(
-            got.head.contains("content-type: text/javascript"),
-            "{path}: {}",
-            got.head
-        );
+        let head = &got.head;
+        let javascript = head.contains("content-type: text/javascript");
+        assert!(javascript, "{path}: {head}");
         let dir = &path[..path.rfind('/').unwrap()];
         for line in String::from_utf8(got.body).unwrap().lines() {
             // `import x from './y.js';` or a bare `import './y.js';`.
@@ -849,7 +786,7 @@ fn the_page_and_every_module_it_imports_are_served() {
     assert!(seen.contains(&"/app.js".to_string()), "{seen:?}");
     let post = request(&server.addr, "POST", "/engine/http.js", &[], b"");
     assert_eq!(post.status, 405);
-    let missing = request(&server.addr, "GET", "/engine/none.js", &[], b"");
+    let missing = get(&server.addr, "/engine/none.js");
     assert_eq!(missing.status, 404);
 }
 
@@ -858,16 +795,11 @@ fn the_page_and_every_module_it_imports_are_served() {
 #[test]
 fn counts_past_a_machine_integer_are_exact_digits() {
     let server = Server::start(&[]);
-    let a = render(
-        &server.addr,
-        &json!({"source": example("abop-1.24a.lsys"), "kind": "lsys", "depth": 30}),
-    );
-    assert_eq!(a["ok"], true, "{a}");
+    let at =
+        |depth: u32| json!({"source": example("abop-1.24a.lsys"), "kind": "lsys", "depth": depth});
+    let a = render_ok(&server.addr, &at(30));
     assert_eq!(a["stems"], "931322574615478515625");
     assert_eq!(a["stems_exact"], true);
-    let small = render(
-        &server.addr,
-        &json!({"source": example("abop-1.24a.lsys"), "kind": "lsys", "depth": 3}),
-    );
+    let small = render(&server.addr, &at(3));
     assert_eq!(small["stems"], "125");
 }

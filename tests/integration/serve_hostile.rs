@@ -31,15 +31,7 @@ fn abandoned_and_overlong_work_stops() {
     assert!(message.contains("time budget of 2 s"), "{message}");
     assert!(took < Duration::from_secs(10), "{took:?}");
 
-    let body = heavy.to_string();
-    let head = format!(
-        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-        body.len(),
-        key(addr)
-    );
-    let mut s = TcpStream::connect(addr).unwrap();
-    s.write_all(head.as_bytes()).unwrap();
-    s.write_all(body.as_bytes()).unwrap();
+    let s = send_render(addr, &heavy.to_string());
     std::thread::sleep(Duration::from_millis(300));
     drop(s);
     // Within a second of the disconnect the work has stopped: the CPU
@@ -49,13 +41,10 @@ fn abandoned_and_overlong_work_stops() {
     let t1 = server.cpu_ticks();
     std::thread::sleep(Duration::from_millis(1000));
     let t2 = server.cpu_ticks();
-    assert!(
-        t2 - t1 <= 5,
-        "the abandoned work went on: {t1} -> {t2} ticks"
-    );
+    let went_on = format!("the abandoned work went on: {t1} -> {t2} ticks");
+    assert!(t2 - t1 <= 5, "{went_on}");
     // And the server still answers.
-    let light = render(addr, &json!({"source": example("fig9.od")}));
-    assert_eq!(light["ok"], true);
+    render_ok(addr, &json!({"source": example("fig9.od")}));
 }
 
 /// Only the owner (issue 23, problem 1; issue 36, problem 1): the printed
@@ -67,33 +56,24 @@ fn abandoned_and_overlong_work_stops() {
 /// in this port's old cookie opens nothing.
 #[test]
 fn only_the_owner_reaches_the_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("mine.od");
-    std::fs::write(&file, example("fig9.od")).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
+    let (_dir, file, server) = serve_file("mine.od", &example("fig9.od"), &[]);
     let addr = &server.addr;
     let port = server.port().to_string();
-    assert_eq!(
-        server.url,
-        format!("http://{addr}/#token={}", server.token),
-        "the token in the fragment"
-    );
+    let fragment = format!("http://{addr}/#token={}", server.token);
+    assert_eq!(server.url, fragment, "the token in the fragment");
     let stranger = |method: &str, path: &str, extra: &str, body: &str| {
-        raw(
-            addr,
-            format!(
-                "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n{extra}\r\n{body}",
-                body.len()
-            )
-            .as_bytes(),
-        )
+        let n = body.len();
+        let head = format!(
+            "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {n}\r\n{extra}\r\n"
+        );
+        raw(addr, (head + body).as_bytes())
     };
     let secret = |a: &Answer| {
         let text = String::from_utf8_lossy(&a.body);
-        text.contains(&server.token)
-            || text.contains("Fig9")
-            || text.contains("mine.od")
-            || a.head.contains("set-cookie")
+        let named = ["Fig9", "mine.od", &server.token]
+            .iter()
+            .any(|s| text.contains(s));
+        named || a.head.contains("set-cookie")
     };
     // The page and its code: public, the same for anyone, naming nothing.
     for path in [
@@ -128,10 +108,9 @@ fn only_the_owner_reaches_the_file() {
             let a = stranger(method, path, extra, body);
             assert_eq!(a.status, 401, "{method} {path} {extra}");
             assert!(!secret(&a), "{path}");
-            assert!(
-                String::from_utf8_lossy(&a.body).contains("open the link printed in its terminal"),
-                "{path}"
-            );
+            let said = String::from_utf8_lossy(&a.body);
+            let open_the_link = said.contains("open the link printed in its terminal");
+            assert!(open_the_link, "{path}");
         }
     }
     assert_eq!(std::fs::read_to_string(&file).unwrap(), example("fig9.od"));
@@ -164,9 +143,8 @@ fn a_light_render_is_answered_while_heavy_ones_run() {
     let mut times = Vec::new();
     for _ in 0..3 {
         let t0 = std::time::Instant::now();
-        let a = render(&addr, &json!({"source": SQUARE, "kind": "lsys"}));
+        render_ok(&addr, &json!({"source": SQUARE, "kind": "lsys"}));
         times.push(t0.elapsed());
-        assert_eq!(a["ok"], true);
     }
     // Answered while every heavy render still runs (each to its 20 s
     // budget): a comparison, not a time, so a loaded machine that slows
@@ -176,12 +154,9 @@ fn a_light_render_is_answered_while_heavy_ones_run() {
             .unwrap();
         let mut buf = [0u8; 64];
         let n = s.read(&mut buf).unwrap_or(0);
-        assert_eq!(
-            n,
-            0,
-            "a heavy render ended before the light ones were answered ({times:?}): {}",
-            String::from_utf8_lossy(&buf[..n])
-        );
+        let said = String::from_utf8_lossy(&buf[..n]);
+        let ended = "a heavy render ended before the light ones were answered";
+        assert_eq!(n, 0, "{ended} ({times:?}): {said}");
     }
 }
 
@@ -200,11 +175,7 @@ fn a_client_that_never_reads_is_dropped() {
     assert!(size > 1_000_000, "{size}");
     let n = 40;
     let mut s = TcpStream::connect(addr).unwrap();
-    let head = format!(
-        "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-        body.len(),
-        key(addr)
-    );
+    let head = post_head(addr, "/api/render", body.len());
     for _ in 0..n {
         s.write_all(head.as_bytes()).unwrap();
         s.write_all(body.as_bytes()).unwrap();
@@ -213,15 +184,11 @@ fn a_client_that_never_reads_is_dropped() {
     s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
     let mut got = Vec::new();
     let _ = s.read_to_end(&mut got);
-    assert!(
-        got.len() < n * size / 2,
-        "{} of {} bytes came: the connection was kept",
-        got.len(),
-        n * size
-    );
+    let (came, all) = (got.len(), n * size);
+    let kept = format!("{came} of {all} bytes came: the connection was kept");
+    assert!(got.len() < n * size / 2, "{kept}");
     // The server still answers others.
-    let light = render(addr, &json!({"source": example("fig9.od")}));
-    assert_eq!(light["ok"], true);
+    render_ok(addr, &json!({"source": example("fig9.od")}));
 }
 
 /// Slowloris (issue 23, problem 7): 300 connections that send their head a
@@ -244,11 +211,10 @@ fn slow_heads_cannot_fill_the_server() {
             let _ = s.write_all(b"s");
         }
         let t0 = std::time::Instant::now();
-        let page = request(&addr, "GET", "/", &[], b"");
-        let light = render(&addr, &json!({"source": example("fig9.od")}));
+        let page = get(&addr, "/");
+        render_ok(&addr, &json!({"source": example("fig9.od")}));
         times.push(t0.elapsed());
         assert_eq!(page.status, 200);
-        assert_eq!(light["ok"], true);
     }
     // Before, the 64 connection slots were full and the page waited for
     // the slow heads' 10 s timeout.
@@ -266,24 +232,16 @@ fn slow_heads_cannot_fill_the_server() {
 /// resident size stays small.
 #[test]
 fn the_served_file_is_read_with_bounds() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("tree.od");
-    std::fs::write(&file, example("fig9.od")).unwrap();
-    let server = Server::start(&[file.to_str().unwrap()]);
+    let (_dir, file, server) = serve_file("tree.od", &example("fig9.od"), &[]);
     let addr = server.addr.clone();
     std::fs::remove_file(&file).unwrap();
-    assert!(
-        Command::new("mkfifo")
-            .arg(&file)
-            .status()
-            .unwrap()
-            .success()
-    );
+    let made = Command::new("mkfifo").arg(&file).status().unwrap();
+    assert!(made.success());
     let t0 = std::time::Instant::now();
     let asks: Vec<_> = (0..20)
         .map(|_| {
             let addr = addr.clone();
-            std::thread::spawn(move || request(&addr, "GET", "/api/file", &[], b""))
+            std::thread::spawn(move || get(&addr, "/api/file"))
         })
         .collect();
     for a in asks {
@@ -292,24 +250,27 @@ fn the_served_file_is_read_with_bounds() {
         let e = a.json()["error"].as_str().unwrap().to_string();
         assert!(e.contains("a named pipe, not a regular file"), "{e}");
     }
-    let light = render(&addr, &json!({"source": example("fig9.od")}));
-    assert_eq!(light["ok"], true);
+    render_ok(&addr, &json!({"source": example("fig9.od")}));
     assert!(t0.elapsed() < Duration::from_secs(10), "{:?}", t0.elapsed());
     std::fs::remove_file(&file).unwrap();
 
     std::os::unix::fs::symlink("/dev/zero", &file).unwrap();
-    let a = request(&addr, "GET", "/api/file", &[], b"");
-    let e = a.json()["error"].as_str().unwrap().to_string();
+    let error = || {
+        get(&addr, "/api/file").json()["error"]
+            .as_str()
+            .unwrap()
+            .to_string()
+    };
+    let e = error();
     assert!(e.contains("a device, not a regular file"), "{e}");
     std::fs::remove_file(&file).unwrap();
     std::fs::File::create(&file)
         .unwrap()
         .set_len(10 << 30)
         .unwrap();
-    let a = request(&addr, "GET", "/api/file", &[], b"");
-    let e = a.json()["error"].as_str().unwrap().to_string();
+    let e = error();
     assert!(e.contains("more than --max-input"), "{e}");
-    let rss = resident_kb(&server);
+    let rss = server.status_kb("VmRSS:");
     assert!(rss < 200_000, "{rss} kB resident");
 }
 
@@ -317,36 +278,18 @@ fn the_served_file_is_read_with_bounds() {
 /// their own connections, whose answers are read (or not) by the caller.
 fn heavy_renders(addr: &str, n: usize) -> Vec<TcpStream> {
     let heavy = json!({"source": HEAVY, "kind": "lsys", "depth": 12}).to_string();
-    (0..n)
-        .map(|_| {
-            let head = format!(
-                "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-                heavy.len(),
-                key(addr)
-            );
-            let mut s = TcpStream::connect(addr).unwrap();
-            s.write_all(head.as_bytes()).unwrap();
-            s.write_all(heavy.as_bytes()).unwrap();
-            s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
-            s
-        })
-        .collect()
+    let streams = (0..n).map(|_| send_render(addr, &heavy));
+    let read_within = |s: TcpStream| {
+        s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
+        s
+    };
+    streams.map(read_within).collect()
 }
 
 /// A light render: four unit strokes (a debug build draws it in a few
 /// milliseconds of processor, far under the server's fresh allowance
 /// however loaded the machine; fig9, at 30 ms, came near it).
 const SQUARE: &str = "axiom F\nrule F -> F+F\nangle 90\ngenerations 2\n";
-
-/// The server's resident size, kB.
-fn resident_kb(server: &Server) -> u64 {
-    std::fs::read_to_string(format!("/proc/{}/status", server.pid()))
-        .unwrap()
-        .lines()
-        .find_map(|l| l.strip_prefix("VmRSS:"))
-        .and_then(|v| v.trim().trim_end_matches(" kB").trim().parse::<u64>().ok())
-        .unwrap()
-}
 
 /// Memory is given back (issue 36, problem 5): after two 200,000-stem
 /// growths at once (measured: 98 MB above the fresh size at their peak, 14
@@ -362,7 +305,7 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
     let server = Server::start(&["--time-budget", "300"]);
     let addr = server.addr.clone();
     let big = std::fs::read_to_string(manifest_path("benches/bigtree.od")).unwrap();
-    let fresh = resident_kb(&server);
+    let fresh = server.status_kb("VmRSS:");
     let peak = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(fresh));
     let growths: Vec<_> = (0..2)
         .map(|_| {
@@ -385,7 +328,10 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
         })
         .collect();
     while growths.iter().any(|g| !g.is_finished()) {
-        peak.fetch_max(resident_kb(&server), std::sync::atomic::Ordering::Relaxed);
+        peak.fetch_max(
+            server.status_kb("VmRSS:"),
+            std::sync::atomic::Ordering::Relaxed,
+        );
         std::thread::sleep(Duration::from_millis(50));
     }
     for g in growths {
@@ -395,15 +341,11 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
     let peak = peak.load(std::sync::atomic::Ordering::Relaxed);
     // The server looks every 2 s whether it is idle.
     std::thread::sleep(Duration::from_secs(5));
-    let idle = resident_kb(&server);
-    assert!(
-        peak > fresh + 40_000,
-        "fresh {fresh} kB, peak {peak} kB: too little to give back"
-    );
-    assert!(
-        idle < fresh + 25_000,
-        "fresh {fresh} kB, peak {peak} kB, idle {idle} kB: not given back"
-    );
+    let idle = server.status_kb("VmRSS:");
+    let seen = format!("fresh {fresh} kB, peak {peak} kB");
+    assert!(peak > fresh + 40_000, "{seen}: too little to give back");
+    let kept = format!("{seen}, idle {idle} kB: not given back");
+    assert!(idle < fresh + 25_000, "{kept}");
 }
 
 /// A light lane heavy work cannot starve (issue 36, problem 4): with 40
@@ -414,10 +356,7 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
 /// queue is refused with 503 and `Retry-After`.
 #[test]
 fn light_work_is_answered_while_forty_heavy_ones_wait() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("tree.od");
-    std::fs::write(&file, example("fig9.od")).unwrap();
-    let server = Server::start(&[file.to_str().unwrap(), "--time-budget", "30"]);
+    let (_dir, _, server) = serve_file("tree.od", &example("fig9.od"), &["--time-budget", "30"]);
     let addr = server.addr.clone();
     let streams = heavy_renders(&addr, 40);
     // Let them start and be sorted: 2 running, 16 waiting, the rest
@@ -427,11 +366,10 @@ fn light_work_is_answered_while_forty_heavy_ones_wait() {
     let mut times = Vec::new();
     for _ in 0..5 {
         let t0 = std::time::Instant::now();
-        let opened = request(&addr, "GET", "/api/file", &[], b"");
-        let a = render(&addr, &json!({"source": SQUARE, "kind": "lsys"}));
+        let opened = get(&addr, "/api/file");
+        render_ok(&addr, &json!({"source": SQUARE, "kind": "lsys"}));
         times.push(t0.elapsed());
         assert_eq!(opened.status, 200);
-        assert_eq!(a["ok"], true);
     }
     // Before, a light request waited for a heavy one to end (58 s once);
     // now all five are answered while the two running heavy renders are
@@ -467,9 +405,7 @@ fn light_work_is_answered_while_forty_heavy_ones_wait() {
         }
         open = still;
     }
-    assert_eq!(
-        finished, 0,
-        "a heavy render ended before the light requests were answered ({times:?})"
-    );
+    let ended = "a heavy render ended before the light requests were answered";
+    assert_eq!(finished, 0, "{ended} ({times:?})");
     assert_eq!(busy, 40 - 2 - 16, "{busy} of 40 were told to come back");
 }

@@ -20,11 +20,12 @@ use std::io::Write;
 use std::net::TcpStream;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-use crate::serve::{HEAVY, Server, example, key, request};
+use crate::serve::{HEAVY, Server, example, key, post_head, request};
 
 /// Memory budget of the soaked server, MiB.
 const BUDGET_MIB: u64 = 256;
@@ -52,19 +53,9 @@ fn start(args: &[&str]) -> Server {
     }
 }
 
-/// A resident-size figure of the process, kB, from /proc (`VmHWM`: peak).
-fn status_kb(pid: u32, key: &str) -> u64 {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap();
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix(key))
-        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
-        .unwrap()
-}
-
 /// Keeps `n` connections sending a request head a byte a second, opening
 /// a new one whenever the server drops one, until `stop`.
-fn slowloris(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
+fn slowloris(addr: String, n: usize, stop: Arc<AtomicBool>) -> JoinHandle<()> {
     std::thread::spawn(move || {
         let head = format!(
             "GET / HTTP/1.1\r\nHost: {addr}\r\nX-Slow: {}\r\n",
@@ -92,13 +83,10 @@ fn slowloris(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::Join
 /// example's text, cheap to make: the test runs the debug build, whose
 /// renders would only measure its slowness) and never read them,
 /// reconnecting when the server drops one, until `stop`.
-fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> {
+fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> JoinHandle<()> {
     std::thread::spawn(move || {
-        let one = format!(
-            "GET /api/examples HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
-            key(&addr)
-        )
-        .repeat(4);
+        let key = key(&addr);
+        let one = format!("GET /api/examples HTTP/1.1\r\nHost: {addr}\r\n{key}\r\n").repeat(4);
         let mut conns: Vec<Option<TcpStream>> = (0..n).map(|_| None).collect();
         while !stop.load(Ordering::Relaxed) {
             for conn in conns.iter_mut() {
@@ -108,10 +96,10 @@ fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHan
                         let _ = c.set_write_timeout(Some(Duration::from_millis(200)));
                     }
                 }
-                if conn
+                let failed = conn
                     .as_mut()
-                    .is_some_and(|c| c.write_all(one.as_bytes()).is_err())
-                {
+                    .is_some_and(|c| c.write_all(one.as_bytes()).is_err());
+                if failed {
                     *conn = None;
                 }
             }
@@ -125,12 +113,7 @@ fn unread(addr: String, n: usize, stop: Arc<AtomicBool>) -> std::thread::JoinHan
 /// memory (an OD growing 300,000 stems in a wide square: its occupancy
 /// index, its trace and an answer of megabytes); `abandon`: it closes each
 /// after 0.3 s instead of reading the answer.
-fn heavy(
-    addr: String,
-    abandon: bool,
-    big: bool,
-    stop: Arc<AtomicBool>,
-) -> std::thread::JoinHandle<()> {
+fn heavy(addr: String, abandon: bool, big: bool, stop: Arc<AtomicBool>) -> JoinHandle<()> {
     std::thread::spawn(move || {
         let body = if big {
             json!({
@@ -143,11 +126,7 @@ fn heavy(
         .to_string();
         while !stop.load(Ordering::Relaxed) {
             if abandon {
-                let head = format!(
-                    "POST /api/render HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-                    body.len(),
-                    key(&addr)
-                );
+                let head = post_head(&addr, "/api/render", body.len());
                 if let Ok(mut s) = TcpStream::connect(&addr) {
                     let _ = s.write_all(head.as_bytes());
                     let _ = s.write_all(body.as_bytes());
@@ -202,50 +181,42 @@ fn the_server_holds_under_hostile_clients() {
             let t = Instant::now();
             let a = std::panic::catch_unwind(|| request(&addr, method, path, &[], body.as_bytes()));
             took.push(t.elapsed());
+            let at = t0.elapsed();
             match a {
                 Ok(a) if a.status == 200 => {}
-                Ok(a) => failed.push(format!(
-                    "{method} {path} at {:?}: {} {}",
-                    t0.elapsed(),
-                    a.status,
-                    String::from_utf8_lossy(&a.body)
-                )),
-                Err(_) => failed.push(format!(
-                    "{method} {path} at {:?} after {:?}: no answer",
-                    t0.elapsed(),
-                    t.elapsed()
-                )),
+                Ok(a) => {
+                    let said = String::from_utf8_lossy(&a.body);
+                    failed.push(format!("{method} {path} at {at:?}: {} {said}", a.status));
+                }
+                Err(_) => {
+                    let waited = t.elapsed();
+                    failed.push(format!(
+                        "{method} {path} at {at:?} after {waited:?}: no answer"
+                    ));
+                }
             }
         }
         std::thread::sleep(Duration::from_millis(100));
     }
-    assert!(
-        failed.is_empty(),
-        "{} of {} light requests failed: {failed:#?}",
-        failed.len(),
-        took.len()
-    );
+    let (n, all) = (failed.len(), took.len());
+    let failures = format!("{n} of {all} light requests failed: {failed:#?}");
+    assert!(failed.is_empty(), "{failures}");
     assert!(server.alive(), "the server exited under the soak");
-    let peak_mib = status_kb(server.pid(), "VmHWM:") / 1024;
+    let peak_mib = server.status_kb("VmHWM:") / 1024;
     stop.store(true, Ordering::Relaxed);
     for a in attackers {
         a.join().unwrap();
     }
     took.sort();
-    let (p50, p99, max) = (
-        quantile(&took, 0.5),
-        quantile(&took, 0.99),
-        took[took.len() - 1],
-    );
+    let (p50, p99) = (quantile(&took, 0.5), quantile(&took, 0.99));
+    let max = took[took.len() - 1];
+    let answers = took.len();
     eprintln!(
-        "soak {seconds} s: {} light answers, p50 {p50:?}, p99 {p99:?}, max {max:?}; server peak resident {peak_mib} MiB (budget {BUDGET_MIB} MiB)",
-        took.len()
+        "soak {seconds} s: {answers} light answers, p50 {p50:?}, p99 {p99:?}, max {max:?}; server peak resident {peak_mib} MiB (budget {BUDGET_MIB} MiB)"
     );
     assert!(max < LIGHT_SLOWEST, "a light answer took {max:?}");
-    assert!(
-        peak_mib < BUDGET_MIB,
-        "peak resident {peak_mib} MiB over the {BUDGET_MIB} MiB budget"
-    );
+    let over = format!("peak resident {peak_mib} MiB over the {BUDGET_MIB} MiB budget");
+    assert!(peak_mib < BUDGET_MIB, "{over}");
     assert!(server.alive());
 }
 
@@ -273,11 +244,7 @@ fn no_save_is_lost_or_damaged_when_the_server_is_killed() {
         let body = json!({"source": new}).to_string();
         // Sent as it is; the answer, if any comes before the kill, unread.
         let saver = std::thread::spawn(move || {
-            let head = format!(
-                "POST /api/save HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n{}\r\n",
-                body.len(),
-                key(&addr)
-            );
+            let head = post_head(&addr, "/api/save", body.len());
             if let Ok(mut s) = TcpStream::connect(&addr) {
                 let _ = s.write_all(head.as_bytes());
                 let _ = s.write_all(body.as_bytes());
@@ -294,27 +261,16 @@ fn no_save_is_lost_or_damaged_when_the_server_is_killed() {
         } else if now == new {
             kept_new += 1;
         } else {
-            panic!(
-                "run {run}: the file is neither the old text nor the new one ({} bytes)",
-                now.len()
-            );
+            let n = now.len();
+            panic!("run {run}: the file is neither the old text nor the new one ({n} bytes)");
         }
-        let names = || -> Vec<String> {
-            let mut n: Vec<_> = std::fs::read_dir(dir.path())
-                .unwrap()
-                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-                .collect();
-            n.sort();
-            n
-        };
+        let names = || crate::support::files_in(dir.path());
         let left = names();
         if left.len() > 1 {
             temps_left += 1;
-            assert!(
-                left.iter()
-                    .all(|n| n == "tree.od" || n.starts_with(".stlc-") && n.ends_with(".tmp")),
-                "run {run}: {left:?}"
-            );
+            let temp = |n: &String| n.starts_with(".stlc-") && n.ends_with(".tmp");
+            let only_temps = left.iter().all(|n| n == "tree.od" || temp(n));
+            assert!(only_temps, "run {run}: {left:?}");
         }
         // The next start sweeps what the killed one left.
         let again = start(&[file.to_str().unwrap()]);

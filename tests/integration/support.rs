@@ -538,3 +538,13 @@ pub fn gltf_validate(files: &[PathBuf]) -> String {
     assert!(run.status.success(), "{said}{err}");
     said
 }
+
+/// The names of the entries of `dir`, sorted.
+pub fn files_in(dir: impl AsRef<Path>) -> Vec<String> {
+    let entries = fs::read_dir(dir).unwrap();
+    let mut names: Vec<String> = entries
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
