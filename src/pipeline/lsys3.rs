@@ -363,17 +363,7 @@ fn draw_organs(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
-    let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
-        sorted.draw(t);
-        Ok(())
-    };
-    let exact = RenderOptions {
-        exact: true,
-        ..*opts
-    };
-    let style = style(scene, look);
-    render_framed(&mut drawing, Frame::Fit, &[], &style, &exact, out, progress)?;
-    Ok(())
+    draw_fitted(scene, look, opts, &mut |t| sorted.draw(t), out, progress)
 }
 
 /// Draws gathered stems (far to near) with the scene's style, fitted.
@@ -386,8 +376,28 @@ fn draw_view(
     out: &mut dyn Write,
     progress: &mut dyn Progress,
 ) -> Result<(), Diagnostics> {
+    draw_fitted(
+        scene,
+        look,
+        opts,
+        &mut |t| draw_sorted(stems, bushes, t),
+        out,
+        progress,
+    )
+}
+
+/// What `draw` draws, as it comes (the view sorted it), with the scene's
+/// style, fitted.
+fn draw_fitted(
+    scene: &Scene,
+    look: &super::Look,
+    opts: &RenderOptions,
+    draw: &mut dyn FnMut(&mut dyn Turtle),
+    out: &mut dyn Write,
+    progress: &mut dyn Progress,
+) -> Result<(), Diagnostics> {
     let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
-        draw_sorted(stems, bushes, t);
+        draw(t);
         Ok(())
     };
     let exact = RenderOptions {
