@@ -538,3 +538,21 @@ pub fn gltf_validate(files: &[PathBuf]) -> String {
     assert!(run.status.success(), "{said}{err}");
     said
 }
+
+/// The kind of a limit error, written out field by field: `bound` with
+/// `value` (as the message writes it) over `limit`, `what` measured where
+/// the bound's own words are not precise enough.
+pub fn limit_kind(
+    bound: stlc::Bound,
+    what: Option<&str>,
+    value: &str,
+    limit: u64,
+) -> stlc::ErrorKind {
+    let (what, value) = (what.map(str::to_string), value.to_string());
+    stlc::ErrorKind::Limit {
+        bound,
+        what,
+        value,
+        limit,
+    }
+}
