@@ -3,6 +3,7 @@
 //! Expected values are worked by hand (the paper's expansions, coordinates
 //! of a turtle turning by right angles), never copied from the output.
 
+use crate::support::{limit_kind, od};
 use proptest::prelude::*;
 use stlc::bed::Bed;
 use stlc::bed::validate;
@@ -25,17 +26,11 @@ use stlc::turtle::{Point, Recorder, Segment};
 const TREE_2D: &str = "2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT (clGreen)< RoundRect (0,0,180,192,7,7)> (clWhite)< RoundRect (55,30,40,15,4,4)> (clWhite)< RoundRect (35,125,76,30,5,5)> ENDLAYOUT";
 
 fn bed(src: &str) -> Description {
-    match parse(src, Format::Bed, &Limits::default()) {
-        Ok(d) => d,
-        Err(e) => panic!("{e}"),
-    }
+    parse(src, Format::Bed, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn errors(src: &str) -> Diagnostics {
-    match parse(src, Format::Bed, &Limits::default()) {
-        Ok(d) => panic!("parsed, expected an error: {d:?}"),
-        Err(e) => e,
-    }
+    parse(src, Format::Bed, &Limits::default()).expect_err("parsed, expected an error")
 }
 
 /// The one error of `src`, asserted to be of `kind`: its span and help.
@@ -55,29 +50,28 @@ fn at(src: &str, needle: &str, n: usize) -> std::ops::Range<usize> {
 }
 
 fn expanded(d: &Description, strategy: Derivation) -> String {
-    let mut out = Vec::new();
-    let bed = Bed::new(d.clone(), &Limits::default()).unwrap();
-    expand(
-        &bed,
-        strategy,
-        &Limits::default(),
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let (mut out, l) = (Vec::new(), Limits::default());
+    let bed = Bed::new(d.clone(), &l).unwrap();
+    expand(&bed, strategy, &l, &mut out, &mut NoProgress).unwrap();
     String::from_utf8(out).unwrap()
 }
 
-fn segments(d: &Description, strategy: Derivation) -> Result<Vec<Segment>, Diagnostics> {
-    let bed = Bed::new(d.clone(), &Limits::default())?;
-    draw_into(
-        &bed,
-        strategy,
-        &Limits::default(),
-        Recorder::default(),
-        &mut NoProgress,
-    )
-    .map(|r| r.segments)
+/// The expansion of `d`, asserted the same depth-first and breadth-first.
+fn expanded_both(d: &Description) -> String {
+    let dfs = expanded(d, Derivation::Dfs);
+    assert_eq!(expanded(d, Derivation::Bfs), dfs, "bfs against dfs");
+    dfs
+}
+
+type Segments = Result<Vec<Segment>, Diagnostics>;
+
+fn segments(d: &Description, strategy: Derivation) -> Segments {
+    segments_within(d, strategy, &Limits::default())
+}
+
+fn segments_within(d: &Description, s: Derivation, l: &Limits) -> Segments {
+    let bed = Bed::new(d.clone(), l)?;
+    draw_into(&bed, s, l, Recorder::default(), &mut NoProgress).map(|r| r.segments)
 }
 
 /// A 3D description's stems, drawn by the 3D interpreter.
@@ -85,16 +79,24 @@ fn segments3(
     d: &Description,
     strategy: Derivation,
 ) -> Result<Vec<stlc::turtle::turtle3::Segment3>, Diagnostics> {
-    let bed = Bed::new(d.clone(), &Limits::default())?;
-    let mut out = Vec::new();
-    stlc::interpret::bed3::draw3(
-        &bed,
-        strategy,
-        &Limits::default(),
-        &mut |s| out.push(s),
-        &mut NoProgress,
-    )?;
+    let (mut out, l) = (Vec::new(), Limits::default());
+    let bed = Bed::new(d.clone(), &l)?;
+    stlc::interpret::bed3::draw3(&bed, strategy, &l, &mut |s| out.push(s), &mut NoProgress)?;
     Ok(out)
+}
+
+/// A rule's term with `found` slots where the rule has `expected` branches.
+fn slot_count(rule: &str, expected: usize, found: usize) -> ErrorKind {
+    ErrorKind::Rule(RuleError::SlotCount {
+        rule: rule.into(),
+        expected,
+        found,
+    })
+}
+
+/// A rounded rectangle's shape.
+fn round_rect(x: f64, y: f64, w: f64, h: f64, rx: f64, ry: f64) -> Shape {
+    Shape::RoundRect { x, y, w, h, rx, ry }
 }
 
 const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
@@ -103,20 +105,15 @@ const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
 
 #[test]
 fn the_papers_2dtree_parses_as_written() {
-    let d = parse(TREE_2D, Format::Od, &Limits::default()).unwrap();
+    let d = od(TREE_2D);
     assert_eq!(d.name, "2DTree");
     assert_eq!(d.root, (76.0, 150.0));
-    let p = &d.params;
+    let (l, w) = (&d.params.length, &d.params.width);
     assert_eq!(
-        (
-            p.length.base,
-            p.length.decrement,
-            p.width.base,
-            p.width.decrement
-        ),
+        (l.base, l.decrement, w.base, w.decrement),
         (10.0, 0.0, 1.0, 0.0)
     );
-    assert_eq!((p.angle, p.clearance), (None, None));
+    assert_eq!((d.params.angle, d.params.clearance), (None, None));
     assert_eq!(d.rules.len(), 1);
     assert_eq!(d.rules[0].name, "R1");
     assert_eq!(d.rules[0].branch_count(), 2);
@@ -135,17 +132,7 @@ fn the_papers_2dtree_parses_as_written() {
         assert_eq!(s.color, c);
         assert_eq!(s.spelling, Spelling::Corners);
         assert!(s.angled);
-        assert_eq!(
-            s.shape,
-            Shape::RoundRect {
-                x,
-                y,
-                w,
-                h,
-                rx: r,
-                ry: r
-            }
-        );
+        assert_eq!(s.shape, round_rect(x, y, w, h, r, r));
     }
     assert_eq!(shapes[0].color_text, "clGreen");
     // No seed: `F` then the first rule (Figure 9's `FR1`).
@@ -161,12 +148,8 @@ fn the_papers_worked_expansion() {
     let d = bed("Rn (0, 0) L=10(0) B=1(0)
         RULE R1 = [F][+F][-F]  R2 = [++F][-F]
         SEED R1{R1{,,},R2{,},R1{,,}} ENDSEED");
-    for s in [Derivation::Dfs, Derivation::Bfs] {
-        assert_eq!(
-            expanded(&d, s),
-            "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n"
-        );
-    }
+    let want = "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n";
+    assert_eq!(expanded_both(&d), want);
 }
 
 #[test]
@@ -181,9 +164,7 @@ fn seed_r1r2r2_is_split_by_longest_match() {
         assert!(matches!(item, SeedItem::Term(t)
             if !seed.term(*t).bare() && seed.term(*t).slot_count() == 1 && seed.term(*t).all_empty()));
     }
-    for s in [Derivation::Dfs, Derivation::Bfs] {
-        assert_eq!(expanded(&d, s), "[FFF][F[+F][-F]F][F[+F][-F]F]\n");
-    }
+    assert_eq!(expanded_both(&d), "[FFF][F[+F][-F]F][F[+F][-F]F]\n");
 }
 
 #[test]
@@ -200,15 +181,13 @@ fn longest_match_prefers_the_longer_name() {
 fn self_resemblance_counts_in_both_forms() {
     // [I 2 R1] = R1{R1{,},R1{,}}
     let d = bed(&format!("{HEAD} R1=[F][+F] SEED [I 2 R1] ENDSEED"));
-    assert_eq!(expanded(&d, Derivation::Dfs), "[F[F][+F]][+F[F][+F]]\n");
-    assert_eq!(expanded(&d, Derivation::Bfs), "[F[F][+F]][+F[F][+F]]\n");
+    assert_eq!(expanded_both(&d), "[F[F][+F]][+F[F][+F]]\n");
     // [I 1 w] is w; [I 2 w] rewrites each F of w by w once.
     let d = bed(&format!(
         "{HEAD} R1=[F] SEED [I 1 F+F] f [I 2 F[+F]F] ENDSEED"
     ));
     let want = "F+Ff F[+F]F[+F[+F]F]F[+F]F\n".replace(' ', "");
-    assert_eq!(expanded(&d, Derivation::Dfs), want);
-    assert_eq!(expanded(&d, Derivation::Bfs), want);
+    assert_eq!(expanded_both(&d), want);
 }
 
 #[test]
@@ -261,12 +240,7 @@ fn the_root_and_default_angle_are_used() {
 
 #[test]
 fn od_bare_references_are_growth_points() {
-    let d = parse(
-        &format!("{HEAD} R1: [+F][-F] SEED FR1 ENDSEED"),
-        Format::Od,
-        &Limits::default(),
-    )
-    .unwrap();
+    let d = od(&format!("{HEAD} R1: [+F][-F] SEED FR1 ENDSEED"));
     let seed = d.seed.as_ref().unwrap();
     assert!(
         matches!(&seed.items[1], SeedItem::Term(t) if seed.term(*t).bare() && seed.term(*t).slot_count() == 2)
@@ -285,15 +259,8 @@ fn both_definition_forms_and_comments() {
     let s = &d.layout.as_ref().unwrap().shapes[0];
     assert_eq!(s.color, Rgb::new(0, 255, 0));
     assert_eq!(s.spelling, Spelling::StartSize);
-    assert_eq!(
-        s.shape,
-        Shape::Rect {
-            x: 0.0,
-            y: 0.0,
-            w: 200.0,
-            h: 100.0
-        }
-    );
+    let (x, y, w, h) = (0.0, 0.0, 200.0, 100.0);
+    assert_eq!(s.shape, Shape::Rect { x, y, w, h });
 }
 
 // ---------------------------------------------------------- diagnostics --
@@ -312,14 +279,7 @@ fn unknown_rule_suggests_the_nearest() {
 #[test]
 fn slot_count_names_the_rule_and_its_count() {
     let src = format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED");
-    let (span, help) = refused(
-        &src,
-        ErrorKind::Rule(RuleError::SlotCount {
-            rule: "R1".into(),
-            expected: 2,
-            found: 3,
-        }),
-    );
+    let (span, help) = refused(&src, slot_count("R1", 2, 3));
     assert_eq!(span, at(&src, "R1{,,}", 0));
     assert!(help.contains("R1{,}"), "{help}");
 }
@@ -381,46 +341,24 @@ fn rule_names_in_bodies_only_end_branches() {
 
 #[test]
 fn sizes_must_be_positive() {
+    let stem = |key, what| ErrorKind::Stl(StlError::StemSizeNotPositive { key, what });
+    let shape = |shape, what| ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { shape, what });
     let src = "T (0, 0) L=-1(0) B=1(0) RULE R1: [F]";
-    let (span, _) = refused(
-        src,
-        ErrorKind::Stl(StlError::StemSizeNotPositive {
-            key: "L",
-            what: "length",
-        }),
-    );
+    let (span, _) = refused(src, stem("L", "length"));
     assert_eq!(span, at(src, "-1", 0));
 
     let src = "T (0, 0) L=1(0) B=0(0) RULE R1: [F]";
-    let (span, _) = refused(
-        src,
-        ErrorKind::Stl(StlError::StemSizeNotPositive {
-            key: "B",
-            what: "broadness",
-        }),
-    );
+    let (span, _) = refused(src, stem("B", "broadness"));
     let b = at(src, "B=0", 0).start + 2;
     assert_eq!(span, b..b + 1);
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 0, 10 ENDLAYOUT");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
-            shape: "Rectangle",
-            what: "width",
-        }),
-    );
+    let (span, _) = refused(&src, shape("Rectangle", "width"));
     let w = at(&src, "(0,0), 0", 0).end - 1;
     assert_eq!(span, w..w + 1);
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) RoundRect (0,0), 5, 10, -2 ENDLAYOUT");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
-            shape: "RoundRect",
-            what: "corner radius",
-        }),
-    );
+    let (span, _) = refused(&src, shape("RoundRect", "corner radius"));
     assert_eq!(span, at(&src, "-2", 0));
 }
 
@@ -437,12 +375,8 @@ fn polygons_need_three_points() {
 #[test]
 fn unknown_colour_suggests_one() {
     let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let (span, help) = refused(
-        &src,
-        ErrorKind::Input(InputError::UnknownColour {
-            text: "clGren".into(),
-        }),
-    );
+    let text = "clGren".into();
+    let (span, help) = refused(&src, ErrorKind::Input(InputError::UnknownColour { text }));
     assert_eq!(span, at(&src, "clGren", 0));
     assert!(help.contains("clGreen"));
 }
@@ -450,50 +384,27 @@ fn unknown_colour_suggests_one() {
 #[test]
 fn missing_section_ends() {
     let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Stl(StlError::UnclosedSection {
-            open: "SEED",
-            close: "ENDSEED",
-        }),
-    );
+    let unclosed = |open, close| ErrorKind::Stl(StlError::UnclosedSection { open, close });
+    let (span, _) = refused(&src, unclosed("SEED", "ENDSEED"));
     assert_eq!(span, at(&src, "SEED", 0));
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 5, 5");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Stl(StlError::UnclosedSection {
-            open: "LAYOUT",
-            close: "ENDLAYOUT",
-        }),
-    );
+    let (span, _) = refused(&src, unclosed("LAYOUT", "ENDLAYOUT"));
     assert_eq!(span, at(&src, "LAYOUT", 0));
 }
 
 #[test]
 fn numbers_must_be_finite() {
     let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
-    let (span, _) = refused(
-        src,
-        ErrorKind::Input(InputError::NotFinite {
-            text: "1e999".into(),
-        }),
-    );
+    let text = "1e999".into();
+    let (span, _) = refused(src, ErrorKind::Input(InputError::NotFinite { text }));
     assert_eq!(span, at(src, "1e999", 0));
 }
 
 #[test]
 fn counts_over_the_limit_are_refused() {
     let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
-    let (span, help) = refused(
-        &src,
-        ErrorKind::Limit {
-            bound: Bound::Repeat,
-            what: None,
-            value: "10001".into(),
-            limit: 10000,
-        },
-    );
+    let (span, help) = refused(&src, limit_kind(Bound::Repeat, None, "10001", 10000));
     assert_eq!(span, at(&src, "10001", 0));
     assert!(help.contains("--max-depth"));
 }
@@ -514,19 +425,14 @@ fn several_errors_are_reported_together() {
     let kinds: Vec<ErrorKind> = e.iter().map(|d| d.kind.clone()).collect();
     // The layout is read as it is met, names before bodies, the seed last,
     // in the order its text is read (the seed is tokenised as it is built).
+    let blu = "clBlu".into();
     assert_eq!(
         kinds,
         vec![
-            ErrorKind::Input(InputError::UnknownColour {
-                text: "clBlu".into()
-            }),
+            ErrorKind::Input(InputError::UnknownColour { text: blu }),
             ErrorKind::Layout(LayoutError::TooFewPoints { points: 1 }),
             ErrorKind::Rule(RuleError::ReservedName { name: "F".into() }),
-            ErrorKind::Rule(RuleError::SlotCount {
-                rule: "R1".into(),
-                expected: 2,
-                found: 3
-            }),
+            slot_count("R1", 2, 3),
             ErrorKind::Rule(RuleError::UnknownRule { name: "R9".into() }),
         ]
     );
@@ -569,10 +475,8 @@ fn validate_refuses_orders_without_length() {
 #[test]
 fn validate_bounds_the_derived_size() {
     let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 40 R1] ENDSEED"));
-    let limits = Limits {
-        max_symbols: 1000,
-        ..Limits::default()
-    };
+    let mut limits = Limits::default();
+    limits.max_symbols = 1000;
     let e = validate(&d, &limits).unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
 }
@@ -581,41 +485,15 @@ fn validate_bounds_the_derived_size() {
 fn bfs_refuses_words_over_the_limit() {
     // [I 8 R1], R1 = [F][F]: 2^8 - 1 = 255 applications, far over 100 symbols.
     let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 8 R1] ENDSEED"));
-    let limits = Limits {
-        max_word: 100,
-        ..Limits::default()
-    };
-    let e = stlc::bed::Bed::new(d.clone(), &limits)
-        .and_then(|bed| {
-            draw_into(
-                &bed,
-                Derivation::Bfs,
-                &limits,
-                Recorder::default(),
-                &mut NoProgress,
-            )
-        })
-        .unwrap_err();
+    let mut limits = Limits::default();
+    limits.max_word = 100;
+    let e = segments_within(&d, Derivation::Bfs, &limits).unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
-    assert!(
-        e.0[0]
-            .help_text()
-            .unwrap_or_default()
-            .contains("--max-word")
-    );
+    let help = e.0[0].help_text().unwrap_or_default();
+    assert!(help.contains("--max-word"));
     // dfs needs no word.
-    let r = stlc::bed::Bed::new(d.clone(), &limits)
-        .and_then(|bed| {
-            draw_into(
-                &bed,
-                Derivation::Dfs,
-                &limits,
-                Recorder::default(),
-                &mut NoProgress,
-            )
-        })
-        .unwrap();
-    assert_eq!(r.segments.len(), 2 * 255);
+    let r = segments_within(&d, Derivation::Dfs, &limits).unwrap();
+    assert_eq!(r.len(), 2 * 255);
 }
 
 // --------------------------------------------------------------- writer --
@@ -667,6 +545,15 @@ fn drawing_letters_that_spell_a_rule_are_spaced() {
 
 // ------------------------------------------------------------------ deep --
 
+/// A BED whose seed nests `n` terms `R1{R1{...}}`.
+fn nested(n: usize) -> String {
+    format!(
+        "{HEAD} R1: [F] SEED {}{} ENDSEED",
+        "R1{".repeat(n),
+        "}".repeat(n)
+    )
+}
+
 fn big_stack<F: FnOnce() + Send + 'static>(f: F) {
     std::thread::Builder::new()
         .stack_size(256 << 20)
@@ -680,11 +567,7 @@ fn big_stack<F: FnOnce() + Send + 'static>(f: F) {
 fn five_thousand_nested_terms_parse_write_and_expand() {
     big_stack(|| {
         let n = 5000;
-        let src = format!(
-            "{HEAD} R1: [F] SEED {}{} ENDSEED",
-            "R1{".repeat(n),
-            "}".repeat(n)
-        );
+        let src = nested(n);
         let d = bed(&src);
         let text = write(&d);
         // One line per term, indented two spaces per level up to depth 24
@@ -710,11 +593,7 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         // it is compared on the first 500 levels only.
         assert_eq!(segments(&d, Derivation::Dfs).unwrap().len(), n);
         let m = 500;
-        let src = format!(
-            "{HEAD} R1: [F] SEED {}{} ENDSEED",
-            "R1{".repeat(m),
-            "}".repeat(m)
-        );
+        let src = nested(m);
         let small = bed(&src);
         assert_eq!(
             segments(&small, Derivation::Bfs).unwrap(),
@@ -727,11 +606,7 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
 #[test]
 fn nesting_of_a_hundred_thousand_is_refused_before_parsing() {
     let n = 100_000;
-    let src = format!(
-        "{HEAD} R1: [F] SEED {}{} ENDSEED",
-        "R1{".repeat(n),
-        "}".repeat(n)
-    );
+    let src = nested(n);
     let e = parse(&src, Format::Bed, &Limits::default()).unwrap_err();
     assert_eq!(
         e.first_kind(),
@@ -883,29 +758,12 @@ fn gen_shape(g: &mut Gen) -> LayoutShape {
         2 => (Shape::Ellipse { x, y, w, h }, Spelling::Corners),
         3 => {
             let r = g.eighth(5);
-            (
-                Shape::RoundRect {
-                    x,
-                    y,
-                    w,
-                    h,
-                    rx: r,
-                    ry: r,
-                },
-                Spelling::StartSize,
-            )
+            (round_rect(x, y, w, h, r, r), Spelling::StartSize)
         }
-        4 => (
-            Shape::RoundRect {
-                x,
-                y,
-                w,
-                h,
-                rx: g.eighth(5),
-                ry: g.eighth(5),
-            },
-            Spelling::Corners,
-        ),
+        4 => {
+            let (rx, ry) = (g.eighth(5), g.eighth(5));
+            (round_rect(x, y, w, h, rx, ry), Spelling::Corners)
+        }
         _ => {
             let pts = (0..3 + g.below(3))
                 .map(|_| (g.eighth(100), g.eighth(100)))
@@ -1165,8 +1023,7 @@ fn the_example_files_parse_and_expand_as_the_paper_says() {
         expanded(&d, Derivation::Bfs),
         "[FFF][F[+F][-F]F][F[+F][-F]F]\n"
     );
-    let od = parse(&read("2dtree.od"), Format::Od, &Limits::default()).unwrap();
-    assert_eq!(od.layout.unwrap().shapes.len(), 3);
+    assert_eq!(od(&read("2dtree.od")).layout.unwrap().shapes.len(), 3);
 }
 
 // ---------------------------------------------------------------- 3D --
@@ -1194,12 +1051,8 @@ fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
     let l = d.layout.as_ref().unwrap();
     assert!(l.shapes.is_empty());
     let solids: Vec<&Solid> = l.solids.iter().map(|s| &s.solid).collect();
-    let ellipse = Shape::Ellipse {
-        x: 50.0,
-        y: 40.0,
-        w: 200.0,
-        h: 180.0,
-    };
+    let (x, y, w, h) = (50.0, 40.0, 200.0, 180.0);
+    let ellipse = Shape::Ellipse { x, y, w, h };
     assert_eq!(
         solids,
         [
@@ -1231,14 +1084,7 @@ fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
                 z2: 30.0
             },
             &Solid::Revolve {
-                shape: Shape::RoundRect {
-                    x: 0.0,
-                    y: 0.0,
-                    w: 10.0,
-                    h: 20.0,
-                    rx: 2.0,
-                    ry: 2.0
-                }
+                shape: round_rect(0.0, 0.0, 10.0, 20.0, 2.0, 2.0)
             },
         ]
     );
