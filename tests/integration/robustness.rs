@@ -10,6 +10,7 @@
 //! thread with an ordinary 2 MiB stack: the CLI's big worker stack is not
 //! what keeps these from overflowing.
 
+use crate::support::od;
 use stlc::bed::validate;
 use stlc::bed::write::write;
 use stlc::diag::{
@@ -21,6 +22,13 @@ use stlc::model::{Description, Format, Shape};
 use stlc::progress::{NoProgress, Progress};
 use stlc::syntax::{lsys, precheck, stl};
 use stlc::turtle::{Bounds, Counter, Segment, Turtle};
+
+/// Asserts that the first error of the diagnostics `$e` matches `$kind`.
+macro_rules! assert_first {
+    ($e:expr, $kind:pat, $($message:tt)+) => {
+        assert!(matches!($e.first_kind(), Some($kind)), $($message)+)
+    };
+}
 
 /// The stack of an ordinary spawned thread.
 const SMALL_STACK: usize = 2 << 20;
@@ -64,17 +72,24 @@ impl Turtle for Segments {
 }
 
 fn lsys_err(src: String, limits: Limits) -> Diagnostics {
-    small_stack(move || match lsys::parse(&src, &limits) {
-        Ok(_) => panic!("parsed, expected an error"),
-        Err(e) => e,
-    })
+    small_stack(move || lsys::parse(&src, &limits).expect_err("parsed, expected an error"))
 }
 
 fn stl_err(src: String, format: Format, limits: Limits) -> Diagnostics {
-    small_stack(move || match stl::parse(&src, format, &limits) {
-        Ok(_) => panic!("parsed, expected an error"),
-        Err(e) => e,
-    })
+    small_stack(move || stl::parse(&src, format, &limits).expect_err("parsed, expected an error"))
+}
+
+/// [`stl_err`] of a BED under the default limits.
+fn bed_err(src: impl Into<String>) -> Diagnostics {
+    stl_err(src.into(), Format::Bed, Limits::default())
+}
+
+/// The value of the limit error `e` begins with.
+fn limit_value(e: &Diagnostics) -> &str {
+    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
+        panic!("not a limit error: {e}")
+    };
+    value
 }
 
 /// A limit error whose message names `what`.
@@ -101,10 +116,9 @@ fn too_deep(limit: usize) -> ErrorKind {
 
 /// The default limits with nesting allowed to a million levels.
 fn deep_limits() -> Limits {
-    Limits {
-        max_nesting: 1_000_000,
-        ..Limits::default()
-    }
+    let mut limits = Limits::default();
+    limits.max_nesting = 1_000_000;
+    limits
 }
 
 /// `d` read as a BED and drawn in `order` into `turtle`.
@@ -159,13 +173,7 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     let word = 4 * N as u64 + 3;
     for (segments, tally) in counts {
         assert_eq!(segments, 2);
-        assert_eq!(
-            tally,
-            Tally {
-                total: Some(word),
-                done: word
-            }
-        );
+        assert_eq!((tally.total, tally.done), (Some(word), word));
     }
     // An unbalanced one is still pointed at, at its opening bracket.
     let src = format!("axiom F{}\nangle 90\n", "[".repeat(N));
@@ -292,10 +300,8 @@ fn generations_in_the_millions_are_refused_with_limit() {
     let d = &e.0[0];
     assert_eq!(d.span, Some(12..19));
     // A number too large for any integer type is a limit too, not a crash.
-    let e = lsys_err(
-        "generations 99999999999999999999999999\naxiom F\nangle 90\n".into(),
-        Limits::default(),
-    );
+    let src = "generations 99999999999999999999999999\naxiom F\nangle 90\n";
+    let e = lsys_err(src.into(), Limits::default());
     assert!(is_limit(&e, "generations"), "{e}");
 }
 
@@ -310,7 +316,7 @@ fn self_resemblance_counts_in_the_millions_are_refused_with_limit() {
     }
     // In a fixed figure, and beyond u32.
     let src = format!("{HEAD} R1: [F[I 99999999999999 F+F]]");
-    let e = stl_err(src, Format::Bed, Limits::default());
+    let e = bed_err(src);
     assert!(is_limit(&e, "self-resemblance count"), "{e}");
 }
 
@@ -320,18 +326,14 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
     // beyond max_symbols.
     let d = bed(&format!("{HEAD} R1: [+F][-F] SEED [I 40 R1] ENDSEED"));
     let (e, drawn, tally) = small_stack(move || {
-        let mut c = Counter::default();
-        let mut tally = Tally::default();
+        let (mut c, mut tally) = (Counter::default(), Tally::default());
         let e = draw_bed(&d, Derivation::Dfs, &Limits::default(), &mut c, &mut tally).unwrap_err();
         (e, c.0, tally)
     });
     assert!(is_limit(&e, "symbols in the expansion"), "{e}");
     // The exact size, some 10^13 symbols, was counted, not walked: nothing
     // was drawn and no pass over the symbols began.
-    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
-        unreachable!()
-    };
-    assert_eq!(*value, (10 * ((1u64 << 40) - 1)).to_string());
+    assert_eq!(limit_value(&e), (10 * ((1u64 << 40) - 1)).to_string());
     assert_eq!((drawn, tally), (0, Tally::default()));
 }
 
@@ -339,29 +341,20 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
 fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
     let sys = lsys::parse("axiom F\nrule F FF\nangle 90\n", &Limits::default()).unwrap();
     let (e, drawn, tally) = small_stack(move || {
-        let mut c = Counter::default();
-        let mut tally = Tally::default();
-        let e = stlc::interpret::lsys::draw(
-            &sys,
-            10_000,
-            Derivation::Dfs,
-            &Limits::default(),
-            &mut c,
-            &mut tally,
-        )
-        .unwrap_err();
+        let (mut c, mut tally) = (Counter::default(), Tally::default());
+        let limits = Limits::default();
+        let e =
+            stlc::interpret::lsys::draw(&sys, 10_000, Derivation::Dfs, &limits, &mut c, &mut tally)
+                .unwrap_err();
         (e, c.0, tally)
     });
     // Refused before a symbol was derived.
     assert_eq!((drawn, tally), (0, Tally::default()));
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
     // 2^10000 has 3011 digits.
-    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
-        unreachable!()
-    };
-    assert_eq!(value.len(), 3011);
+    assert_eq!(limit_value(&e).len(), 3011);
     let exact = num_bigint::BigUint::from(2u32).pow(10_000);
-    assert_eq!(*value, exact.to_string());
+    assert_eq!(limit_value(&e), exact.to_string());
 }
 
 #[test]
@@ -379,8 +372,7 @@ fn a_wide_alphabet_at_the_depth_limit_is_refused_with_its_exact_length() {
     let (e, drawn, tally) = small_stack(move || {
         let limits = Limits::default();
         let sys = lsys::parse(&src, &limits).expect("parses");
-        let mut c = Counter::default();
-        let mut tally = Tally::default();
+        let (mut c, mut tally) = (Counter::default(), Tally::default());
         let e =
             stlc::interpret::lsys::draw(&sys, 10_000, Derivation::Dfs, &limits, &mut c, &mut tally)
                 .unwrap_err();
@@ -388,11 +380,8 @@ fn a_wide_alphabet_at_the_depth_limit_is_refused_with_its_exact_length() {
     });
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
     // 2^10000 copies of F and the inert symbols once each.
-    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
-        unreachable!()
-    };
     let exact = num_bigint::BigUint::from(2u32).pow(10_000) + inert;
-    assert_eq!(*value, exact.to_string());
+    assert_eq!(limit_value(&e), exact.to_string());
     assert_eq!((drawn, tally), (0, Tally::default()));
 }
 
@@ -410,14 +399,10 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         let src = format!("axiom F\n{line}\n");
         let at = src.find(needle).unwrap();
         let e = lsys_err(src.clone(), Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Lsys(LsysError::NumberTooLarge { .. })
-                        | ErrorKind::Lsys(LsysError::MalformedNumber { .. })
-                )
-            ),
+        assert_first!(
+            e,
+            ErrorKind::Lsys(LsysError::NumberTooLarge { .. })
+                | ErrorKind::Lsys(LsysError::MalformedNumber { .. }),
             "{line}: {e}"
         );
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{line}");
@@ -425,14 +410,10 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
     for line in ["length 0", "length -1", "width -2", "length 1e999"] {
         let src = format!("axiom F\nangle 90\n{line}\n");
         let e = lsys_err(src, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Lsys(LsysError::NotPositive { .. })
-                        | ErrorKind::Lsys(LsysError::NumberTooLarge { .. })
-                )
-            ),
+        assert_first!(
+            e,
+            ErrorKind::Lsys(LsysError::NotPositive { .. })
+                | ErrorKind::Lsys(LsysError::NumberTooLarge { .. }),
             "{line}: {e}"
         );
     }
@@ -440,31 +421,18 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
 
 #[test]
 fn stl_numbers_that_overflow_are_refused() {
+    let layout = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 1e309, 5 ENDLAYOUT");
     for (src, needle) in [
-        (
-            "T (1e999, 0) L=10(0) B=1(0) RULE R1: [F]".to_string(),
-            "1e999",
-        ),
-        (
-            "T (0, 0) L=1e400(0) B=1(0) RULE R1: [F]".to_string(),
-            "1e400",
-        ),
-        (
-            "T (0, 0) L=10(0) B=1(0) A=-1e999 RULE R1: [F]".to_string(),
-            "-1e999",
-        ),
-        (
-            format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 1e309, 5 ENDLAYOUT"),
-            "1e309",
-        ),
+        ("T (1e999, 0) L=10(0) B=1(0) RULE R1: [F]", "1e999"),
+        ("T (0, 0) L=1e400(0) B=1(0) RULE R1: [F]", "1e400"),
+        ("T (0, 0) L=10(0) B=1(0) A=-1e999 RULE R1: [F]", "-1e999"),
+        (&layout, "1e309"),
     ] {
         let at = src.find(needle).unwrap();
-        let e = stl_err(src.clone(), Format::Bed, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(ErrorKind::Input(InputError::NotFinite { .. }))
-            ),
+        let e = bed_err(src);
+        assert_first!(
+            e,
+            ErrorKind::Input(InputError::NotFinite { .. }),
             "{src}: {e}"
         );
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{src}");
@@ -474,14 +442,8 @@ fn stl_numbers_that_overflow_are_refused() {
         "T (NaN, 0) L=10(0) B=1(0) RULE R1: [F]",
         "T (0, 0) L=inf(0) B=1(0) RULE R1: [F]",
     ] {
-        let e = stl_err(src.into(), Format::Bed, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(ErrorKind::Input(InputError::Syntax(_)))
-            ),
-            "{src}: {e}"
-        );
+        let e = bed_err(src);
+        assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src}: {e}");
     }
 }
 
@@ -492,15 +454,11 @@ fn zero_and_negative_sizes_are_refused() {
         ("T (0, 0) L=10(0) B=-1(0) RULE R1: [F]", "-1(0)"),
         ("T (0, 0) L=10(-1) B=1(0) RULE R1: [F]", "-1)"),
     ] {
-        let e = stl_err(src.into(), Format::Bed, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Stl(StlError::StemSizeNotPositive { .. })
-                        | ErrorKind::Stl(StlError::NegativeDecrement { .. })
-                )
-            ),
+        let e = bed_err(src);
+        assert_first!(
+            e,
+            ErrorKind::Stl(StlError::StemSizeNotPositive { .. })
+                | ErrorKind::Stl(StlError::NegativeDecrement { .. }),
             "{src}: {e}"
         );
         let at = src.find(needle).unwrap();
@@ -517,25 +475,19 @@ fn zero_and_negative_sizes_are_refused() {
     ] {
         let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) {shape} ENDLAYOUT");
         let e = stl_err(src, Format::Od, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { .. })
-                        | ErrorKind::Layout(LayoutError::TooFewPoints { .. })
-                )
-            ),
+        assert_first!(
+            e,
+            ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { .. })
+                | ErrorKind::Layout(LayoutError::TooFewPoints { .. }),
             "{shape}: {e}"
         );
     }
     // A decrement that runs the length out: the order where it happens.
     let d = bed("T (0, 0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{R1{}}} ENDSEED");
     let e = validate(&d, &Limits::default()).unwrap_err();
-    assert!(
-        matches!(
-            e.first_kind(),
-            Some(ErrorKind::Bed(BedError::OrderTooDeep { order: 2, .. }))
-        ),
+    assert_first!(
+        e,
+        ErrorKind::Bed(BedError::OrderTooDeep { order: 2, .. }),
         "{e}"
     );
 }
@@ -568,14 +520,8 @@ fn a_layout_whose_shapes_cancel_is_read_and_drawn() {
     let d = bed(&src);
     assert_eq!(d.layout.as_ref().unwrap().shapes.len(), 2);
     let mut b = Bounds::default();
-    draw_bed(
-        &d,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut b,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let limits = Limits::default();
+    draw_bed(&d, Derivation::Dfs, &limits, &mut b, &mut NoProgress).unwrap();
     assert_eq!(b.count, 1);
 }
 
@@ -622,28 +568,20 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
         ));
         // As text (replacement characters): a syntax error or a limit.
         let e = lsys_err(lossy.clone(), Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Input(InputError::Syntax(_))
-                        | ErrorKind::Input(InputError::NestingTooDeep { .. })
-                        | ErrorKind::Lsys(LsysError::UnknownKey { .. })
-                        | ErrorKind::Lsys(LsysError::MissingKey { .. })
-                )
-            ),
+        assert_first!(
+            e,
+            ErrorKind::Input(InputError::Syntax(_))
+                | ErrorKind::Input(InputError::NestingTooDeep { .. })
+                | ErrorKind::Lsys(LsysError::UnknownKey { .. })
+                | ErrorKind::Lsys(LsysError::MissingKey { .. }),
             "{e}"
         );
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(lossy.clone(), format, Limits::default());
-            assert!(
-                matches!(
-                    e.first_kind(),
-                    Some(
-                        ErrorKind::Input(InputError::Syntax(_))
-                            | ErrorKind::Input(InputError::NestingTooDeep { .. })
-                    )
-                ),
+            assert_first!(
+                e,
+                ErrorKind::Input(InputError::Syntax(_))
+                    | ErrorKind::Input(InputError::NestingTooDeep { .. }),
                 "{e}"
             );
         }
@@ -679,13 +617,7 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
         );
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(src.into(), format, Limits::default());
-            assert!(
-                matches!(
-                    e.first_kind(),
-                    Some(ErrorKind::Input(InputError::Syntax(_)))
-                ),
-                "{src:?}: {e}"
-            );
+            assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src:?}: {e}");
             assert_eq!(e.0.len(), 1);
         }
     }
@@ -693,16 +625,12 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
 
 // ----------------------------------------------------------------- grower --
 
-fn od(src: &str) -> Description {
-    stl::parse(src, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
-
 fn grow_err(src: &str) -> Diagnostics {
     let d = od(src);
-    match stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress) {
-        Ok(g) => panic!("grew {} stems, expected an error", g.stems),
-        Err(e) => e,
-    }
+    let grown = stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress);
+    grown
+        .map(|g| g.stems)
+        .expect_err("grew stems, expected an error")
 }
 
 #[test]
@@ -710,13 +638,7 @@ fn a_layout_whose_shapes_cancel_leaves_nothing_to_grow_in() {
     let src = "T (5, 5) L=1(0) B=1(0) RULE R1: [+F][-F] \
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 (clWhite) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
-    assert!(
-        matches!(
-            e.first_kind(),
-            Some(ErrorKind::Layout(LayoutError::EmptyRegion))
-        ),
-        "{e}"
-    );
+    assert_first!(e, ErrorKind::Layout(LayoutError::EmptyRegion), "{e}");
     let at = src.find("LAYOUT").unwrap();
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), Some(at));
 }
@@ -726,13 +648,7 @@ fn a_root_outside_the_layout_is_refused_at_the_root() {
     let src = "T (50, 50) L=1(0) B=1(0) RULE R1: [+F][-F] \
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
-    assert!(
-        matches!(
-            e.first_kind(),
-            Some(ErrorKind::Grow(GrowError::RootOutside { .. }))
-        ),
-        "{e}"
-    );
+    assert_first!(e, ErrorKind::Grow(GrowError::RootOutside { .. }), "{e}");
     assert_eq!(e.0[0].span, Some(2..10));
 }
 
@@ -748,14 +664,9 @@ fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
         stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress).expect("grows")
     });
     let mut segs = Segments::default();
-    stlc::interpret::bed::draw(
-        &g.bed,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut segs,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let limits = Limits::default();
+    stlc::interpret::bed::draw(&g.bed, Derivation::Dfs, &limits, &mut segs, &mut NoProgress)
+        .unwrap();
     assert_eq!(segs.0.len() as u64, g.stems);
     let ends = || segs.0.iter().flat_map(|s| [s.from, s.to]);
     for p in ends() {
@@ -802,28 +713,15 @@ fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
     // the region counts it exactly.
     let e = stl::parse(&src, Format::Od, &Limits::default()).unwrap_err();
     assert!(is_limit(&e, "layout outline vertices"), "{e}");
-    assert!(
-        e.to_string().contains("20000 exceeds the limit of 16000"),
-        "{e}"
-    );
+    let message = e.to_string();
+    assert!(message.contains("20000 exceeds the limit of 16000"), "{e}");
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), src.find("(clGreen)"));
-    let limits = Limits {
-        max_layout_vertices: 20_000,
-        ..Limits::default()
-    };
+    let mut limits = Limits::default();
+    limits.max_layout_vertices = 20_000;
     let d = stl::parse(&src, Format::Od, &limits).expect("within the raised limit it parses");
-    let e = stlc::grow::grow(
-        &d,
-        &stlc::grow::GrowOptions {
-            limits: Limits {
-                max_layout_vertices: 16_000,
-                ..Limits::default()
-            },
-            ..Default::default()
-        },
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let mut o = stlc::grow::GrowOptions::default();
+    o.limits.max_layout_vertices = 16_000;
+    let e = stlc::grow::grow(&d, &o, &mut NoProgress).unwrap_err();
     assert!(is_limit(&e, "layout outline vertices"), "{e}");
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), src.find("(clGreen)"));
 
