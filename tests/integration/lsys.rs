@@ -1,18 +1,23 @@
 //! Classic L-systems: parsing, derivation (dfs and bfs), expand and stats,
 //! checked against independently known values.
 
+use crate::support::limit_kind;
 use num_bigint::BigUint;
 use proptest::prelude::*;
-use stlc::diag::{ErrorKind, InputError, LsysError};
+use stlc::diag::ErrorKind::{Input, Lsys};
+use stlc::diag::InputError::{Unbalanced, UnknownColour};
+use stlc::diag::LsysError::*;
+use stlc::diag::{ErrorKind, InputError};
 use stlc::interpret::Derivation;
 use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
 use stlc::interpret::stats::stats;
 use stlc::limits::{Bound, Limits};
+use stlc::model::lsys::{Background, LSystem};
 use stlc::progress::NoProgress;
+use stlc::syntax::lsys::parse;
 use stlc::turtle::{Point, Recorder, Segment};
-use stlc::{model::lsys::Background, syntax::lsys::parse};
 
-fn sys(src: &str) -> stlc::model::lsys::LSystem {
+fn sys(src: &str) -> LSystem {
     parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -21,17 +26,13 @@ fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
 }
 
 /// The segments `s` draws at `depth`, with the default limits.
-pub fn segments_of(
-    s: &stlc::model::lsys::LSystem,
-    depth: u32,
-    strategy: Derivation,
-) -> Vec<Segment> {
+pub fn segments_of(s: &LSystem, depth: u32, strategy: Derivation) -> Vec<Segment> {
     recorded_of(s, depth, strategy).segments
 }
 
 /// What the turtle hands a backend for `s` at `depth` (segments,
 /// polygons), with the default limits.
-pub fn recorded_of(s: &stlc::model::lsys::LSystem, depth: u32, strategy: Derivation) -> Recorder {
+pub fn recorded_of(s: &LSystem, depth: u32, strategy: Derivation) -> Recorder {
     let mut rec = Recorder::default();
     let limits = Limits::default();
     draw_into(s, depth, strategy, &limits, &mut rec, &mut NoProgress).unwrap();
@@ -43,17 +44,9 @@ fn expanded(src: &str, depth: u32, strategy: Derivation) -> String {
 }
 
 /// The word `s` derives at `depth` (newline included), default limits.
-pub fn expanded_of(s: &stlc::model::lsys::LSystem, depth: u32, strategy: Derivation) -> String {
-    let mut out = Vec::new();
-    expand(
-        s,
-        depth,
-        strategy,
-        &Limits::default(),
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
+pub fn expanded_of(s: &LSystem, depth: u32, strategy: Derivation) -> String {
+    let (mut out, limits) = (Vec::new(), Limits::default());
+    expand(s, depth, strategy, &limits, &mut out, &mut NoProgress).unwrap();
     String::from_utf8(out).unwrap()
 }
 
@@ -126,16 +119,13 @@ fn unknown_key_suggests_the_nearest() {
     let d = &err.0[0];
     assert_eq!(
         d.kind,
-        ErrorKind::Lsys(LsysError::UnknownKey {
+        Lsys(UnknownKey {
             key: "angel".into()
         })
     );
     assert_eq!(d.span, Some(8..13));
     assert_eq!(d.help_text().as_deref(), Some("did you mean `angle`?"));
-    assert_eq!(
-        err.0[1].kind,
-        ErrorKind::Lsys(LsysError::MissingKey { key: "angle" })
-    );
+    assert_eq!(err.0[1].kind, Lsys(MissingKey { key: "angle" }));
 }
 
 #[test]
@@ -145,14 +135,8 @@ fn missing_axiom_and_angle_are_both_reported() {
     assert_eq!(
         e,
         vec![
-            (
-                ErrorKind::Lsys(LsysError::MissingKey { key: "axiom" }),
-                24..24
-            ),
-            (
-                ErrorKind::Lsys(LsysError::MissingKey { key: "angle" }),
-                24..24
-            ),
+            (Lsys(MissingKey { key: "axiom" }), 24..24),
+            (Lsys(MissingKey { key: "angle" }), 24..24),
         ]
     );
 }
@@ -163,10 +147,7 @@ fn two_rules_for_one_symbol_label_both() {
     let err = parse(src, &Limits::default()).unwrap_err();
     assert_eq!(err.0.len(), 1);
     let d = &err.0[0];
-    assert_eq!(
-        d.kind,
-        ErrorKind::Lsys(LsysError::DuplicateProduction { symbol: 'F' })
-    );
+    assert_eq!(d.kind, Lsys(DuplicateProduction { symbol: 'F' }));
     assert_eq!(d.span, Some(27..37)); // the second rule line
     assert_eq!(d.labels.len(), 1);
     assert_eq!(d.labels[0].span, 17..26); // the first
@@ -182,8 +163,8 @@ fn unbalanced_brackets_point_at_the_unmatched_one() {
     assert_eq!(
         e,
         vec![
-            (ErrorKind::Input(InputError::Unbalanced('[')), 6..7),
-            (ErrorKind::Input(InputError::Unbalanced(']')), 29..30),
+            (Input(Unbalanced('[')), 6..7),
+            (Input(Unbalanced(']')), 29..30),
         ]
     );
 }
@@ -196,26 +177,23 @@ fn malformed_and_invalid_numbers() {
     assert_eq!(
         e,
         vec![
+            (Lsys(MalformedNumber { text: "2x5".into() }), 14..17),
             (
-                ErrorKind::Lsys(LsysError::MalformedNumber { text: "2x5".into() }),
-                14..17
-            ),
-            (
-                ErrorKind::Lsys(LsysError::NotPositive {
+                Lsys(NotPositive {
                     key: "length",
                     text: "-1".into()
                 }),
                 25..27
             ),
             (
-                ErrorKind::Lsys(LsysError::NumberTooLarge {
+                Lsys(NumberTooLarge {
                     key: "width",
                     text: "1e999".into()
                 }),
                 34..39
             ),
             (
-                ErrorKind::Lsys(LsysError::NotWholeNumber {
+                Lsys(NotWholeNumber {
                     key: "generations",
                     text: "2.5".into()
                 }),
@@ -226,29 +204,19 @@ fn malformed_and_invalid_numbers() {
     let e = errors("axiom F\nangle nan\n", &Limits::default());
     assert_eq!(
         e,
-        vec![(
-            ErrorKind::Lsys(LsysError::MalformedNumber { text: "nan".into() }),
-            14..17
-        )]
+        vec![(Lsys(MalformedNumber { text: "nan".into() }), 14..17)]
     );
 }
 
 #[test]
 fn generations_above_max_depth_name_the_flag() {
-    let limits = Limits {
-        max_depth: 10,
-        ..Limits::default()
-    };
+    let mut limits = Limits::default();
+    limits.max_depth = 10;
     let err = parse("generations 11\naxiom F\nangle 90\n", &limits).unwrap_err();
     let d = &err.0[0];
     assert_eq!(
         d.kind,
-        ErrorKind::Limit {
-            bound: Bound::Depth,
-            what: Some("generations".into()),
-            value: "11".into(),
-            limit: 10
-        }
+        limit_kind(Bound::Depth, Some("generations"), "11", 10)
     );
     assert_eq!(d.span, Some(12..14));
     assert!(d.help_text().unwrap().contains("--max-depth"));
@@ -261,18 +229,15 @@ fn duplicate_key_bad_colour_and_long_predecessor() {
     assert_eq!(
         e,
         vec![
+            (Lsys(DuplicateKey { key: "angle" }), 17..22),
             (
-                ErrorKind::Lsys(LsysError::DuplicateKey { key: "angle" }),
-                17..22
-            ),
-            (
-                ErrorKind::Input(InputError::UnknownColour {
+                Input(UnknownColour {
                     text: "clGren".into()
                 }),
                 32..38
             ),
             (
-                ErrorKind::Lsys(LsysError::LongPredecessor {
+                Lsys(LongPredecessor {
                     predecessor: "FF".into(),
                     symbols: 2
                 }),
@@ -389,10 +354,8 @@ fn bracketed_tree_closed_forms() {
     // F count 5^n and length 1 + 10 * (5^n - 1) / 4 = (5^(n+1) - 3) / 2.
     let s = sys(TREE1);
     // A small traversal budget: counts are exact whether or not it runs.
-    let limits = Limits {
-        max_symbols: 100_000,
-        ..Limits::default()
-    };
+    let mut limits = Limits::default();
+    limits.max_symbols = 100_000;
     for n in 0..=20u32 {
         let st = stats(&s, n, &limits).unwrap();
         // The memoized geometry gives the box at every depth; the trunk is
@@ -498,38 +461,22 @@ fn sierpinski_arrowhead_counts() {
 
 #[test]
 fn bfs_refuses_over_the_word_budget() {
-    let limits = Limits {
-        max_word: 1000,
-        ..Limits::default()
-    };
+    let mut limits = Limits::default();
+    limits.max_word = 1000;
     let s = sys(TREE1);
     let mut rec = Recorder::default();
     // Depth 4: 1561 symbols > 1000.
     let err = draw_into(&s, 4, Derivation::Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
-    assert_eq!(
-        err.first_kind(),
-        Some(&ErrorKind::Limit {
-            bound: Bound::Word,
-            what: Some("bfs word at level 4".into()),
-            value: "1561".into(),
-            limit: 1000
-        })
-    );
+    let word = limit_kind(Bound::Word, Some("bfs word at level 4"), "1561", 1000);
+    assert_eq!(err.first_kind(), Some(&word));
     assert!(err.0[0].help_text().unwrap().contains("--max-word"));
     assert!(rec.segments.is_empty());
     // dfs holds no word: fine.
     draw_into(&s, 4, Derivation::Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     assert_eq!(rec.segments.len(), 625);
     // Depth 57 with bfs: refused with the exact length, no attempt to allocate.
-    let err = draw_into(
-        &s,
-        57,
-        Derivation::Bfs,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let limits = Limits::default();
+    let err = draw_into(&s, 57, Derivation::Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
     let ErrorKind::Limit { value, .. } = err.first_kind().unwrap() else {
         panic!("{err}")
     };
@@ -541,11 +488,9 @@ fn bfs_refuses_over_the_word_budget() {
 
 #[test]
 fn both_strategies_refuse_over_max_symbols_and_max_depth() {
-    let limits = Limits {
-        max_symbols: 311,
-        max_depth: 20,
-        ..Limits::default()
-    };
+    let mut limits = Limits::default();
+    limits.max_symbols = 311;
+    limits.max_depth = 20;
     let s = sys(TREE1);
     for strategy in [Derivation::Dfs, Derivation::Bfs] {
         let mut rec = Recorder::default();
@@ -594,11 +539,12 @@ fn broken_pipe_has_its_own_kind() {
             Ok(())
         }
     }
+    let (tree, limits) = (sys(TREE1), Limits::default());
     let err = expand(
-        &sys(TREE1),
+        &tree,
         8,
         Derivation::Dfs,
-        &Limits::default(),
+        &limits,
         &mut Closed,
         &mut NoProgress,
     )
@@ -678,8 +624,7 @@ fn every_example_parses_and_draws_the_same_both_ways() {
         if s.is_3d() {
             // 3D (docs/3d.md): the same segments both ways, in 3D.
             use stlc::interpret::lsys::lsys3::draw3;
-            let mut a = Vec::new();
-            let mut b = Vec::new();
+            let (mut a, mut b) = (Vec::new(), Vec::new());
             draw3(
                 &s,
                 depth,
@@ -703,8 +648,7 @@ fn every_example_parses_and_draws_the_same_both_ways() {
             three += 1;
             continue;
         }
-        let mut a = Recorder::default();
-        let mut b = Recorder::default();
+        let (mut a, mut b) = (Recorder::default(), Recorder::default());
         draw_into(&s, depth, Derivation::Dfs, &lim, &mut a, &mut NoProgress).unwrap();
         draw_into(&s, depth, Derivation::Bfs, &lim, &mut b, &mut NoProgress).unwrap();
         assert!(!a.segments.is_empty(), "{path:?}");
@@ -721,10 +665,8 @@ fn every_example_parses_and_draws_the_same_both_ways() {
 #[test]
 fn hilbert_and_stl_fig4_counts() {
     // Hilbert: 4^n - 1 segments (each level: 4 copies joined by 3 F).
-    let src = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hilbert.lsys"),
-    )
-    .unwrap();
+    let src =
+        std::fs::read_to_string(crate::support::manifest_path("examples/hilbert.lsys")).unwrap();
     for n in 1..=7u32 {
         let st = stats(&sys(&src), n, &Limits::default()).unwrap();
         assert_eq!(st.segments, big(4u64.pow(n) - 1));
@@ -769,14 +711,11 @@ fn heading_defaults_to_up_and_is_checked_like_any_number() {
         e[0],
         // `north`, after "axiom F\nangle 90\nheading "
         (
-            ErrorKind::Lsys(LsysError::MalformedNumber {
+            Lsys(MalformedNumber {
                 text: "north".into()
             }),
             25..30
         )
     );
-    assert_eq!(
-        e[1].0,
-        ErrorKind::Lsys(LsysError::DuplicateKey { key: "heading" })
-    );
+    assert_eq!(e[1].0, Lsys(DuplicateKey { key: "heading" }));
 }
