@@ -556,3 +556,10 @@ pub fn limit_kind(
         limit,
     }
 }
+
+/// The default limits with `set` applied (`limits_with(|l| l.max_word = 100)`).
+pub fn limits_with(set: impl FnOnce(&mut stlc::Limits)) -> stlc::Limits {
+    let mut limits = stlc::Limits::default();
+    set(&mut limits);
+    limits
+}
