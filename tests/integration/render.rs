@@ -33,10 +33,7 @@ fn ops(text: &str) -> Vec<Op> {
 /// Runs `ops` from the origin with unit-length stems (minus `decrement` per
 /// order).
 fn run(ops: &[Op], angle: f64, decrement: f64, turtle: &mut dyn Turtle) {
-    let length = Linear {
-        base: 1.0,
-        decrement,
-    };
+    let length = Linear::new(1.0, decrement);
     let mut interp = Interp::new(turtle, Point::new(0.0, 0.0), angle, length);
     for &op in ops {
         interp.apply(op);
@@ -80,17 +77,8 @@ fn png_full(
     style: &Style,
     size: Option<(u32, u32)>,
 ) -> Pixmap {
-    let png = render_full(
-        text,
-        90.0,
-        decrement,
-        view,
-        &[],
-        style,
-        ImageFormat::Png,
-        size,
-    );
-    decode(&png.unwrap())
+    let png = ImageFormat::Png;
+    decode(&render_full(text, 90.0, decrement, view, &[], style, png, size).unwrap())
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -109,8 +97,7 @@ fn render_full(
         run(&ops, angle, decrement, t);
         Ok(())
     };
-    let mut out = Vec::new();
-    let opts = RenderOptions::new(format, size);
+    let (mut out, opts) = (Vec::new(), RenderOptions::new(format, size));
     render::render(
         &mut drawing,
         view,
@@ -130,11 +117,8 @@ fn exact_svg(text: &str, angle: f64, style: &Style, size: Option<(u32, u32)>) ->
         run(&ops, angle, 0.0, t);
         Ok(())
     };
-    let mut out = Vec::new();
-    let opts = RenderOptions {
-        exact: true,
-        ..RenderOptions::new(ImageFormat::Svg, size)
-    };
+    let (mut out, mut opts) = (Vec::new(), RenderOptions::new(ImageFormat::Svg, size));
+    opts.exact = true;
     render::render(
         &mut drawing,
         None,
@@ -146,6 +130,21 @@ fn exact_svg(text: &str, angle: f64, style: &Style, size: Option<(u32, u32)>) ->
     )
     .unwrap();
     String::from_utf8(out).unwrap()
+}
+
+/// `drawing` rendered in `format` at `size` with 1 px black stems, no view,
+/// underlay or background, into `out`.
+fn render_plain(
+    drawing: &mut render::Drawing<'_>,
+    format: ImageFormat,
+    size: Option<(u32, u32)>,
+    out: &mut dyn std::io::Write,
+) -> Result<Option<u64>, Diagnostics> {
+    let (st, opts) = (
+        style(Width::Pixels(1.0), None),
+        RenderOptions::new(format, size),
+    );
+    render::render(drawing, None, &[], &st, &opts, out, &mut NoProgress)
 }
 
 fn decode(png: &[u8]) -> Pixmap {
@@ -330,17 +329,9 @@ fn widths_below_zero_still_draw_hairlines() {
 #[test]
 fn tree_png_matches_its_reference() {
     let st = style(Width::Canvas(Linear::new(0.12, 0.04)), Some(Rgb::WHITE));
-    let png = render_full(
-        TREE,
-        30.0,
-        0.25,
-        None,
-        &[],
-        &st,
-        ImageFormat::Png,
-        Some((120, 160)),
-    );
-    assert_golden_png("tests/cases/render/tree.png", &decode(&png.unwrap()));
+    let (png, size) = (ImageFormat::Png, Some((120, 160)));
+    let png = render_full(TREE, 30.0, 0.25, None, &[], &st, png, size).unwrap();
+    assert_golden_png("tests/cases/render/tree.png", &decode(&png));
 }
 
 #[test]
@@ -391,13 +382,14 @@ fn underlay_is_even_odd_and_under_the_strokes() {
             draw(t);
             Ok(())
         };
-        let mut out = Vec::new();
+        let (mut out, opts) = (Vec::new(), RenderOptions::new(format, Some((100, 100))));
+        let view = Some(view);
         render::render(
             &mut drawing,
-            Some(view),
+            view,
             &underlay,
             &st,
-            &RenderOptions::new(format, Some((100, 100))),
+            &opts,
             &mut out,
             &mut NoProgress,
         )
@@ -521,16 +513,7 @@ fn absurd_sizes_are_refused_before_drawing() {
             Ok(())
         };
         let mut out = Vec::new();
-        let err = render::render(
-            &mut drawing,
-            None,
-            &[],
-            &style(Width::Pixels(1.0), None),
-            &RenderOptions::new(ImageFormat::Png, Some(size)),
-            &mut out,
-            &mut NoProgress,
-        )
-        .unwrap_err();
+        let err = render_plain(&mut drawing, ImageFormat::Png, Some(size), &mut out).unwrap_err();
         assert!(matches!(
             err.first_kind(),
             Some(ErrorKind::Render(RenderError::ImageSize { .. }))
@@ -556,20 +539,9 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
         Ok(())
     };
     let mut out = Vec::new();
-    let err = render::render(
-        &mut drawing,
-        None,
-        &[],
-        &style(Width::Pixels(1.0), None),
-        &RenderOptions::new(ImageFormat::Png, None),
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap_err();
-    assert_eq!(
-        err.first_kind(),
-        Some(&ErrorKind::Render(RenderError::DrawingNotFinite))
-    );
+    let err = render_plain(&mut drawing, ImageFormat::Png, None, &mut out).unwrap_err();
+    let not_finite = ErrorKind::Render(RenderError::DrawingNotFinite);
+    assert_eq!(err.first_kind(), Some(&not_finite));
     assert!(out.is_empty());
 }
 
@@ -590,16 +562,7 @@ fn write_errors_become_io_diagnostics() {
             run(&ops, 90.0, 0.0, t);
             Ok(())
         };
-        let err = render::render(
-            &mut drawing,
-            None,
-            &[],
-            &style(Width::Pixels(1.0), None),
-            &RenderOptions::new(format, None),
-            &mut Full,
-            &mut NoProgress,
-        )
-        .unwrap_err();
+        let err = render_plain(&mut drawing, format, None, &mut Full).unwrap_err();
         assert!(
             matches!(err.first_kind(), Some(ErrorKind::Io { error, .. }) if error == "disk full")
         );
@@ -645,12 +608,10 @@ fn a_million_tiny_segments_stream_through_the_png_backend() {
 // ---------------------------------------------------------------------------
 // Bands and threads
 
-/// The PNG `stlc render` writes for `args` with `--threads threads`.
-fn threads_png(args: &[&str], threads: &str) -> Vec<u8> {
-    let mut all = vec!["render"];
-    all.extend_from_slice(args);
-    all.extend_from_slice(&["-f", "png", "-o", "-", "-q", "--threads", threads]);
-    crate::support::stlc_stdout(&all)
+/// The PNG `stlc render` writes for `args` (one line) with `--threads threads`.
+fn threads_png(args: &str, threads: &str) -> Vec<u8> {
+    let line = format!("render {args} -f png -o - -q --threads {threads}");
+    crate::support::stlc_stdout(&line.split_whitespace().collect::<Vec<_>>())
 }
 
 /// Pixels darker than `level` in the red channel.
@@ -672,23 +633,9 @@ fn a_big_png_is_the_same_bytes_with_one_thread_or_two() {
     let tree = format!("{root}/examples/abop-1.24a.lsys");
     let plant = format!("{root}/examples/abop-1.27.lsys");
     for args in [
-        vec![
-            tree.as_str(),
-            "--exact",
-            "--depth",
-            "9",
-            "--size",
-            "300x600",
-        ],
-        vec![
-            plant.as_str(),
-            "--exact",
-            "--depth",
-            "11",
-            "--size",
-            "400x400",
-        ],
-        vec![tree.as_str(), "--depth", "20", "--size", "300x600"],
+        format!("{tree} --exact --depth 9 --size 300x600"),
+        format!("{plant} --exact --depth 11 --size 400x400"),
+        format!("{tree} --depth 20 --size 300x600"),
     ] {
         let one = threads_png(&args, "1");
         let two = threads_png(&args, "2");
@@ -732,15 +679,13 @@ fn a_tree_over_its_layout_in_bands_is_the_same_with_any_threads() {
     let fills = stlc::rings::fills(&layout);
     let png = |segments: u64, threads: usize| {
         let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
-        let opts = RenderOptions {
-            threads,
-            ..RenderOptions::new(ImageFormat::Png, Some((500, 700)))
-        };
-        let frame = render::Frame::View {
-            view,
-            segments: Some(segments),
-        };
-        let mut out = Vec::new();
+        let (mut out, mut opts) = (
+            Vec::new(),
+            RenderOptions::new(ImageFormat::Png, Some((500, 700))),
+        );
+        opts.threads = threads;
+        let segments = Some(segments);
+        let frame = render::Frame::View { view, segments };
         render::render_framed(
             &mut drawing,
             frame,
