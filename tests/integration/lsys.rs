@@ -1,7 +1,7 @@
 //! Classic L-systems: parsing, derivation (dfs and bfs), expand and stats,
 //! checked against independently known values.
 
-use crate::support::limit_kind;
+use crate::support::{limit_kind, limits_with};
 use num_bigint::BigUint;
 use proptest::prelude::*;
 use stlc::diag::ErrorKind::{Input, Lsys};
@@ -210,8 +210,7 @@ fn malformed_and_invalid_numbers() {
 
 #[test]
 fn generations_above_max_depth_name_the_flag() {
-    let mut limits = Limits::default();
-    limits.max_depth = 10;
+    let limits = limits_with(|l| l.max_depth = 10);
     let err = parse("generations 11\naxiom F\nangle 90\n", &limits).unwrap_err();
     let d = &err.0[0];
     assert_eq!(
@@ -354,8 +353,7 @@ fn bracketed_tree_closed_forms() {
     // F count 5^n and length 1 + 10 * (5^n - 1) / 4 = (5^(n+1) - 3) / 2.
     let s = sys(TREE1);
     // A small traversal budget: counts are exact whether or not it runs.
-    let mut limits = Limits::default();
-    limits.max_symbols = 100_000;
+    let limits = limits_with(|l| l.max_symbols = 100_000);
     for n in 0..=20u32 {
         let st = stats(&s, n, &limits).unwrap();
         // The memoized geometry gives the box at every depth; the trunk is
@@ -461,8 +459,7 @@ fn sierpinski_arrowhead_counts() {
 
 #[test]
 fn bfs_refuses_over_the_word_budget() {
-    let mut limits = Limits::default();
-    limits.max_word = 1000;
+    let limits = limits_with(|l| l.max_word = 1000);
     let s = sys(TREE1);
     let mut rec = Recorder::default();
     // Depth 4: 1561 symbols > 1000.
@@ -488,9 +485,7 @@ fn bfs_refuses_over_the_word_budget() {
 
 #[test]
 fn both_strategies_refuse_over_max_symbols_and_max_depth() {
-    let mut limits = Limits::default();
-    limits.max_symbols = 311;
-    limits.max_depth = 20;
+    let limits = limits_with(|l| (l.max_symbols, l.max_depth) = (311, 20));
     let s = sys(TREE1);
     for strategy in [Derivation::Dfs, Derivation::Bfs] {
         let mut rec = Recorder::default();

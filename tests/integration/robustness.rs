@@ -10,7 +10,7 @@
 //! thread with an ordinary 2 MiB stack: the CLI's big worker stack is not
 //! what keeps these from overflowing.
 
-use crate::support::od;
+use crate::support::{limits_with, od};
 use stlc::bed::validate;
 use stlc::bed::write::write;
 use stlc::diag::{
@@ -116,9 +116,7 @@ fn too_deep(limit: usize) -> ErrorKind {
 
 /// The default limits with nesting allowed to a million levels.
 fn deep_limits() -> Limits {
-    let mut limits = Limits::default();
-    limits.max_nesting = 1_000_000;
-    limits
+    limits_with(|l| l.max_nesting = 1_000_000)
 }
 
 /// `d` read as a BED and drawn in `order` into `turtle`.
@@ -716,8 +714,7 @@ fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
     let message = e.to_string();
     assert!(message.contains("20000 exceeds the limit of 16000"), "{e}");
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), src.find("(clGreen)"));
-    let mut limits = Limits::default();
-    limits.max_layout_vertices = 20_000;
+    let limits = limits_with(|l| l.max_layout_vertices = 20_000);
     let d = stl::parse(&src, Format::Od, &limits).expect("within the raised limit it parses");
     let mut o = stlc::grow::GrowOptions::default();
     o.limits.max_layout_vertices = 16_000;

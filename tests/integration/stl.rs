@@ -3,7 +3,7 @@
 //! Expected values are worked by hand (the paper's expansions, coordinates
 //! of a turtle turning by right angles), never copied from the output.
 
-use crate::support::{limit_kind, od};
+use crate::support::{limit_kind, limits_with, od};
 use proptest::prelude::*;
 use stlc::bed::Bed;
 use stlc::bed::validate;
@@ -475,8 +475,7 @@ fn validate_refuses_orders_without_length() {
 #[test]
 fn validate_bounds_the_derived_size() {
     let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 40 R1] ENDSEED"));
-    let mut limits = Limits::default();
-    limits.max_symbols = 1000;
+    let limits = limits_with(|l| l.max_symbols = 1000);
     let e = validate(&d, &limits).unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
 }
@@ -485,8 +484,7 @@ fn validate_bounds_the_derived_size() {
 fn bfs_refuses_words_over_the_limit() {
     // [I 8 R1], R1 = [F][F]: 2^8 - 1 = 255 applications, far over 100 symbols.
     let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 8 R1] ENDSEED"));
-    let mut limits = Limits::default();
-    limits.max_word = 100;
+    let limits = limits_with(|l| l.max_word = 100);
     let e = segments_within(&d, Derivation::Bfs, &limits).unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
     let help = e.0[0].help_text().unwrap_or_default();
