@@ -3,6 +3,7 @@
 //! the parser reading back what `expand` writes, hostile inputs and the
 //! diagnostics that point at the text.
 
+use crate::support::limits_with;
 use proptest::prelude::*;
 use stlc::diag::Diagnostics;
 use stlc::interpret::Derivation;
@@ -12,16 +13,12 @@ use stlc::progress::NoProgress;
 use stlc::syntax::lsys::parse;
 
 fn expanded(src: &str, depth: u32, strategy: Derivation) -> Result<String, Diagnostics> {
-    let sys = parse(src, &Limits::default())?;
-    let mut out = Vec::new();
-    expand(
-        &sys,
-        depth,
-        strategy,
-        &Limits::default(),
-        &mut out,
-        &mut NoProgress,
-    )?;
+    let (sys, mut out, limits) = (
+        parse(src, &Limits::default())?,
+        Vec::new(),
+        Limits::default(),
+    );
+    expand(&sys, depth, strategy, &limits, &mut out, &mut NoProgress)?;
     Ok(String::from_utf8(out).unwrap())
 }
 
@@ -370,12 +367,8 @@ fn a_division_by_zero_names_the_rule_and_the_generation() {
 fn a_condition_always_true_with_a_growing_word_stops_at_the_limits() {
     let src = "angle 9\naxiom A(1)\nrule A(x) : x > 0 -> A(x+1)A(x+1)\n";
     let sys = parse(src, &Limits::default()).unwrap();
-    let limits = Limits {
-        // A parametric derivation may derive a thirtieth of max_symbols.
-        max_symbols: 30_000,
-        max_word: 1000,
-        ..Limits::default()
-    };
+    // A parametric derivation may derive a thirtieth of max_symbols.
+    let limits = limits_with(|l| (l.max_symbols, l.max_word) = (30_000, 1000));
     for strategy in [Derivation::Dfs, Derivation::Bfs] {
         let mut out = Vec::new();
         let e = expand(&sys, 20, strategy, &limits, &mut out, &mut NoProgress).unwrap_err();
@@ -401,10 +394,7 @@ fn a_condition_always_true_with_a_growing_word_stops_at_the_limits() {
 #[test]
 fn the_work_over_all_generations_counts_against_the_budget() {
     let sys = parse("angle 90\naxiom AB\nrule A < B -> AB\n", &Limits::default()).unwrap();
-    let limits = Limits {
-        max_symbols: 30_000,
-        ..Limits::default()
-    };
+    let limits = limits_with(|l| l.max_symbols = 30_000);
     let mut out = Vec::new();
     expand(
         &sys,
@@ -455,10 +445,7 @@ fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
     );
     let sys = parse(&src, &Limits::default()).unwrap();
     let run = |max_symbols: u64| {
-        let limits = Limits {
-            max_symbols,
-            ..Limits::default()
-        };
+        let limits = limits_with(|l| l.max_symbols = max_symbols);
         let mut out = Vec::new();
         expand(&sys, 3, Derivation::Dfs, &limits, &mut out, &mut NoProgress)
             .map(|()| String::from_utf8(out).unwrap())
@@ -543,11 +530,8 @@ fn the_cli_report_points_at_the_expression() {
     let dir = std::env::temp_dir().join("stlc-param-diag");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("typo.lsys");
-    std::fs::write(
-        &file,
-        "angle 9\ndefine ratio 0.9\naxiom A(1)\nrule A(l) -> F(l)A(l*raito)\n",
-    )
-    .unwrap();
+    let text = "angle 9\ndefine ratio 0.9\naxiom A(1)\nrule A(l) -> F(l)A(l*raito)\n";
+    std::fs::write(&file, text).unwrap();
     let line = format!("check {} --color never", file.display());
     let (code, _, err) = crate::support::outcome(&mut crate::support::stlc_line(&line));
     assert_eq!(code, 1);
@@ -582,13 +566,14 @@ fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
 
 fn ends_3d(src: &str) -> Vec<stlc::turtle::turtle3::Segment3> {
     let sys = parse(src, &Limits::default()).unwrap();
-    let mut segs = Vec::new();
+    let (mut segs, limits) = (Vec::new(), Limits::default());
+    let mut push = |s| segs.push(s);
     stlc::interpret::lsys::lsys3::draw3(
         &sys,
         0,
         Derivation::Dfs,
-        &Limits::default(),
-        &mut |s| segs.push(s),
+        &limits,
+        &mut push,
         &mut NoProgress,
     )
     .unwrap();
@@ -599,21 +584,18 @@ fn close(a: f64, b: f64) -> bool {
     (a - b).abs() < 1e-12
 }
 
+/// Whether `p` is within 1e-12 of `(x, y)` on both axes.
+fn near(p: stlc::turtle::Point, x: f64, y: f64) -> bool {
+    close(p.x, x) && close(p.y, y)
+}
+
 #[test]
 fn parametric_steps_and_turns_take_their_parameters() {
     // Up 2 x length 3, then a right turn of 90 degrees and half a step.
     let s = ends_2d("angle 10\nlength 3\naxiom F(2)-(90)F(0.5)f(1)F\n", 0);
     assert_eq!(s.len(), 3);
-    assert!(
-        close(s[0].to.x, 0.0) && close(s[0].to.y, -6.0),
-        "{:?}",
-        s[0]
-    );
-    assert!(
-        close(s[1].to.x, 1.5) && close(s[1].to.y, -6.0),
-        "{:?}",
-        s[1]
-    );
+    assert!(near(s[0].to, 0.0, -6.0), "{:?}", s[0]);
+    assert!(near(s[1].to, 1.5, -6.0), "{:?}", s[1]);
     // `f(1)` moved 3 without drawing; the plain `F` turned by nothing.
     assert!(
         close(s[2].from.x, 4.5) && close(s[2].to.x, 7.5),
@@ -628,12 +610,12 @@ fn tropism_turns_the_heading_toward_t_by_e_times_the_sine() {
     // by e |H x T| = e radians toward +x.
     let e: f64 = 0.5;
     let s = ends_2d("angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n", 0);
-    assert!(close(s[0].to.x, 0.0) && close(s[0].to.y, -1.0));
+    assert!(near(s[0].to, 0.0, -1.0));
     assert!(close(s[1].to.x, libm::sin(e)), "{:?}", s[1]);
     assert!(close(s[1].to.y, -1.0 - libm::cos(e)), "{:?}", s[1]);
     // Without elasticity nothing bends.
     let s = ends_2d("angle 10\ntropism 1 0 0\naxiom FF\n", 0);
-    assert!(close(s[1].to.x, 0.0) && close(s[1].to.y, -2.0));
+    assert!(near(s[1].to, 0.0, -2.0));
 }
 
 #[test]
@@ -661,17 +643,12 @@ fn honda_trunk_is_the_geometric_series_of_its_contraction() {
 #[test]
 fn counting_steps_stops_as_soon_as_they_pass_the_bound() {
     // 2^40 steps at depth 40: counted only until 101.
-    let sys = parse(
-        "angle 9\naxiom A(1)\nrule A(x) -> A(x)F(x)A(x)\n",
-        &Limits::default(),
-    )
-    .unwrap();
+    let limits = Limits::default();
+    let sys = parse("angle 9\naxiom A(1)\nrule A(x) -> A(x)F(x)A(x)\n", &limits).unwrap();
     let p = sys.parametric.as_deref().unwrap();
-    let n =
-        stlc::interpret::lsys::param::count_steps(&sys, p, 40, &Limits::default(), 100).unwrap();
-    assert_eq!(n, 101);
-    let n = stlc::interpret::lsys::param::count_steps(&sys, p, 3, &Limits::default(), 100).unwrap();
-    assert_eq!(n, 7);
+    let count = |depth| stlc::interpret::lsys::param::count_steps(&sys, p, depth, &limits, 100);
+    assert_eq!(count(40).unwrap(), 101);
+    assert_eq!(count(3).unwrap(), 7);
 }
 
 /// Unnamed input whose first line is a parametric key (`define`) is read
