@@ -4,7 +4,9 @@
 
 use proptest::prelude::*;
 use stlc::choice::{Alternatives, Key};
-use stlc::diag::{ErrorKind, LsysError, RuleError};
+use stlc::diag::ErrorKind::{self, Lsys, Rule};
+use stlc::diag::LsysError::{DuplicateProduction, NotWholeNumber, Param, UnreadableProbability};
+use stlc::diag::RuleError::{BadProbability, MissingProbability, ProbabilitySum};
 use stlc::interpret::Derivation;
 use stlc::interpret::expected::{StochasticStats, stochastic_stats};
 use stlc::limits::Limits;
@@ -13,7 +15,7 @@ use stlc::syntax::lsys::parse;
 
 use crate::lsys::{expanded_of, segments_of as segments};
 use crate::support::stlc_stdout as render;
-use crate::support::{manifest_path, outcome, stlc_line};
+use crate::support::{limits_with, manifest_path, outcome, stlc_line};
 
 fn sys(src: &str) -> LSystem {
     parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
@@ -167,19 +169,13 @@ fn counted_stats_are_the_words_counts() {
 #[test]
 fn expected_stats_follow_the_mean_matrix() {
     let s = sys(FIG_1_27);
-    let tiny = Limits {
-        max_symbols: 10,
-        ..Limits::default()
-    };
+    let tiny = limits_with(|l| l.max_symbols = 10);
     let StochasticStats::Expected(e) = stochastic_stats(&s, 12, &tiny).unwrap() else {
         panic!("over the budget, the values are expected");
     };
     let f12 = 3.68f64.powi(12);
-    assert!(
-        (e.segments - f12).abs() < 1e-6 * f12,
-        "{} vs {f12}",
-        e.segments
-    );
+    let segments = e.segments;
+    assert!((segments - f12).abs() < 1e-6 * f12, "{segments} vs {f12}");
     let brackets: f64 = (0..12).map(|r| 3.68f64.powi(r) * 1.34).sum();
     assert!((e.symbols[&'['] - brackets).abs() < 1e-6 * brackets);
     let json = StochasticStats::Expected(e.clone()).to_json();
@@ -191,10 +187,7 @@ fn expected_stats_follow_the_mean_matrix() {
         .map(|seed| {
             let mut s = sys(FIG_1_27);
             s.seed = seed;
-            word(&s, 3, Derivation::Dfs)
-                .chars()
-                .filter(|&c| c == 'F')
-                .count() as f64
+            word(&s, 3, Derivation::Dfs).matches('F').count() as f64
         })
         .collect();
     let mean = counts.iter().sum::<f64>() / n as f64;
@@ -223,20 +216,15 @@ fn expected_stats_give_exact_bounds_at_any_depth() {
     assert_eq!(fig_1_27_bounds(3).1, 311u32.into());
     let s = sys(FIG_1_27);
     for depth in [3, 40, 100, 1000] {
-        let tiny = Limits {
-            max_symbols: 10,
-            ..Limits::default()
-        };
+        let tiny = limits_with(|l| l.max_symbols = 10);
         let StochasticStats::Expected(e) = stochastic_stats(&s, depth, &tiny).unwrap() else {
             panic!("over the budget, the values are expected");
         };
         let (lo, hi) = fig_1_27_bounds(depth);
         assert_eq!(e.bounds, (lo.clone(), hi.clone()), "depth {depth}");
         let json = StochasticStats::Expected(e.clone()).to_json();
-        assert!(
-            json.contains(&format!("\"bounds\": [\"{lo}\", \"{hi}\"]")),
-            "{json}"
-        );
+        let bounds = format!("\"bounds\": [\"{lo}\", \"{hi}\"]");
+        assert!(json.contains(&bounds), "{json}");
         let text = StochasticStats::Expected(e).to_text();
         assert!(text.contains(&format!("any seed: {lo} .. {hi}")), "{text}");
     }
@@ -255,31 +243,18 @@ fn expected_stats_give_exact_bounds_at_any_depth() {
 fn a_depth_no_choice_can_fit_is_refused_at_once() {
     let s = sys(FIG_1_27);
     let refuse = |depth: u32, limit: u64, strategy: Derivation| {
-        let limits = Limits {
-            max_symbols: limit,
-            ..Limits::default()
-        };
         let mut out = Vec::new();
-        let e = stlc::interpret::lsys::expand(
-            &s,
-            depth,
-            strategy,
-            &limits,
-            &mut out,
-            &mut stlc::progress::NoProgress,
-        )
-        .unwrap_err();
+        let e = expand_within(&s, depth, strategy, limit, &mut out).unwrap_err();
         assert!(out.is_empty(), "wrote {} bytes first", out.len());
-        match &e.0[0].kind {
-            ErrorKind::Limit {
-                value, limit: l, ..
-            } => {
-                // A stochastic expansion gets a tenth of --max-symbols.
-                assert_eq!(*l, limit / 10);
-                value.clone()
-            }
-            other => panic!("{other:?}"),
-        }
+        let ErrorKind::Limit {
+            value, limit: l, ..
+        } = &e.0[0].kind
+        else {
+            panic!("{:?}", e.0[0].kind)
+        };
+        // A stochastic expansion gets a tenth of --max-symbols.
+        assert_eq!(*l, limit / 10);
+        value.clone()
     };
     for strategy in [Derivation::Dfs, Derivation::Bfs] {
         assert_eq!(refuse(3, 650, strategy), "at least 66");
@@ -295,20 +270,8 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
         let mut s = sys(FIG_1_27);
         s.seed = seed;
         // A tenth of 1,200: 120 symbols.
-        let limits = Limits {
-            max_symbols: 1_200,
-            ..Limits::default()
-        };
         let mut out = Vec::new();
-        let r = stlc::interpret::lsys::expand(
-            &s,
-            3,
-            Derivation::Dfs,
-            &limits,
-            &mut out,
-            &mut stlc::progress::NoProgress,
-        );
-        if r.is_err() {
+        if expand_within(&s, 3, Derivation::Dfs, 1_200, &mut out).is_err() {
             over += 1;
             assert!(
                 out.is_empty(),
@@ -332,6 +295,19 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
     assert!(lens.iter().any(|&l| l != lens[0]), "{lens:?}");
 }
 
+/// `s` expanded to `depth` into `out` with `--max-symbols max_symbols`.
+fn expand_within(
+    s: &LSystem,
+    depth: u32,
+    strategy: Derivation,
+    max_symbols: u64,
+    out: &mut Vec<u8>,
+) -> Result<(), stlc::Diagnostics> {
+    let limits = limits_with(|l| l.max_symbols = max_symbols);
+    let progress = &mut stlc::progress::NoProgress;
+    stlc::interpret::lsys::expand(s, depth, strategy, &limits, out, progress)
+}
+
 fn first_error(src: &str) -> (ErrorKind, std::ops::Range<usize>) {
     let e = parse(src, &Limits::default()).unwrap_err();
     let d = e.iter().next().unwrap();
@@ -344,7 +320,7 @@ fn probabilities_are_checked() {
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\nrule F (0.4) -> F-F\n";
     let (kind, span) = first_error(src);
     assert!(
-        matches!(&kind, ErrorKind::Rule(RuleError::ProbabilitySum { name, sum }) if name == "F" && (sum - 0.9).abs() < 1e-12),
+        matches!(&kind, Rule(ProbabilitySum { name, sum }) if name == "F" && (sum - 0.9).abs() < 1e-12),
         "{kind:?}"
     );
     assert_eq!(&src[span], "rule F (0.5) -> F+F");
@@ -352,26 +328,18 @@ fn probabilities_are_checked() {
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F -> F-F\n";
     let (kind, span) = first_error(src);
-    assert!(
-        matches!(&kind, ErrorKind::Rule(RuleError::MissingProbability { name }) if name == "F")
-    );
+    assert!(matches!(&kind, Rule(MissingProbability { name }) if name == "F"));
     assert_eq!(&src[span], "rule F -> F-F");
 
     // Only that: the sum of the rules that have one (0.5) is no news.
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\nrule F -> F-F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
     assert_eq!(e.0.len(), 1, "{e}");
-    assert!(matches!(
-        &e.0[0].kind,
-        ErrorKind::Rule(RuleError::MissingProbability { .. })
-    ));
+    assert!(matches!(&e.0[0].kind, Rule(MissingProbability { .. })));
     // One rule with a probability other than 1: it needs none.
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
-    assert!(matches!(
-        &e.0[0].kind,
-        ErrorKind::Rule(RuleError::ProbabilitySum { .. })
-    ));
+    assert!(matches!(&e.0[0].kind, Rule(ProbabilitySum { .. })));
     let help = e.0[0].help_text().unwrap();
     assert!(
         help.contains("needs no probability: write `rule F -> ...`"),
@@ -380,22 +348,18 @@ fn probabilities_are_checked() {
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (0) -> F-F\n";
     let (kind, span) = first_error(src);
-    assert!(
-        matches!(&kind, ErrorKind::Rule(RuleError::BadProbability { value, .. }) if *value == 0.0)
-    );
+    assert!(matches!(&kind, Rule(BadProbability { value, .. }) if *value == 0.0));
     assert_eq!(&src[span], "rule F (0) -> F-F");
 
     let src = "axiom F\nangle 30\nrule F -> F+F\nrule F -> F-F\n";
     assert!(matches!(
         first_error(src).0,
-        ErrorKind::Lsys(LsysError::DuplicateProduction { symbol: 'F' })
+        Lsys(DuplicateProduction { symbol: 'F' })
     ));
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (1e400) -> F-F\n";
     let (kind, _) = first_error(src);
-    assert!(
-        matches!(&kind, ErrorKind::Rule(RuleError::BadProbability { value, .. }) if value.is_infinite())
-    );
+    assert!(matches!(&kind, Rule(BadProbability { value, .. }) if value.is_infinite()));
     assert!(
         kind.to_string().contains("not a finite number above 0"),
         "{kind}"
@@ -411,7 +375,7 @@ fn probabilities_are_checked() {
         let src = format!("axiom F\nangle 30\n{line}\n");
         let (kind, span) = first_error(&src);
         assert!(
-            matches!(&kind, ErrorKind::Lsys(LsysError::UnreadableProbability { text: t }) if t == text),
+            matches!(&kind, Lsys(UnreadableProbability { text: t }) if t == text),
             "{line}: {kind:?}"
         );
         assert_eq!(&src[span], text);
@@ -421,7 +385,7 @@ fn probabilities_are_checked() {
     let src = "axiom F\nangle 30\nrule F(0.5) -> F+F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
     let d = e.iter().next().unwrap();
-    assert!(matches!(d.kind, ErrorKind::Lsys(LsysError::Param { .. })));
+    assert!(matches!(d.kind, Lsys(Param { .. })));
     assert_eq!(d.kind.to_string(), "`0.5` is not a formal parameter");
     assert_eq!(&src[d.span.clone().unwrap()], "0.5");
     assert!(
@@ -433,10 +397,7 @@ fn probabilities_are_checked() {
     let src = "axiom F\nangle 30\nseed -3\n";
     let (kind, span) = first_error(src);
     assert!(
-        matches!(
-            kind,
-            ErrorKind::Lsys(LsysError::NotWholeNumber { key: "seed", .. })
-        ),
+        matches!(kind, Lsys(NotWholeNumber { key: "seed", .. })),
         "{kind:?}"
     );
     assert_eq!(&src[span], "-3");
@@ -481,12 +442,13 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
     let doubling = "generations 20\naxiom X\nangle 30\nrule X (0.5) -> XX\nrule X (0.5) -> XX\n";
     let (code, err) = run(doubling, "--max-symbols 1000000");
     assert_eq!(code, Some(1), "{err}");
+    let says = |words: &str| err.contains(words);
     assert!(
-        err.contains("at least 1048576 exceeds the limit of 100000"),
+        says("at least 1048576 exceeds the limit of 100000"),
         "{err}"
     );
     assert!(
-        err.contains("a tenth of --max-symbols (100000 of 1000000)"),
+        says("a tenth of --max-symbols (100000 of 1000000)"),
         "{err}"
     );
     // Twenty times the limit lets it through: 2^20 < 2 x 10^6.
@@ -508,11 +470,8 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
 fn a_tiny_probability_is_not_printed_as_zero() {
     let dir = tempfile::tempdir().unwrap();
     let f = dir.path().join("tiny.lsys");
-    std::fs::write(
-        &f,
-        "generations 2\naxiom F\nangle 30\nrule F (1e-300) -> F[+F]\nrule F (1) -> F[-F]\n",
-    )
-    .unwrap();
+    let text = "generations 2\naxiom F\nangle 30\nrule F (1e-300) -> F[+F]\nrule F (1) -> F[-F]\n";
+    std::fs::write(&f, text).unwrap();
     let (_, out, _) = outcome(&mut stlc_line(&format!("check {}", f.display())));
     let text = String::from_utf8_lossy(&out);
     assert!(text.contains("(probability 1e-300)"), "{text}");
@@ -541,10 +500,8 @@ fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
     };
     let (code, _, err) = render("--depth 16", "a.svg");
     assert_eq!(code, 1);
-    assert!(
-        err.contains("segments in the SVG: more than 10000000"),
-        "{err}"
-    );
+    let refused = err.contains("segments in the SVG: more than 10000000");
+    assert!(refused, "{err}");
     assert!(!dir.path().join("a.svg").exists());
     // A smaller limit refuses a smaller depth the same way: 3^6 = 729.
     let (code, _, _) = render("--depth 6 --max-svg-segments 700", "b.svg");
