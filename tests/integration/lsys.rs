@@ -549,8 +549,9 @@ fn broken_pipe_has_its_own_kind() {
 
 // -------------------------------------------------------- dfs == bfs (prop) --
 
-/// A random word over `alphabet` with balanced brackets.
-fn word(
+/// A random word over `alphabet` with balanced brackets (as the parser
+/// requires of successors).
+pub fn word(
     alphabet: &'static [char],
     max: usize,
 ) -> impl proptest::strategy::Strategy<Value = String> {
