@@ -13,6 +13,7 @@ use stlc::Limits;
 use stlc::color::Rgb;
 use stlc::diag::MissReason;
 use stlc::grow::{GrowthOrder, PlacedStem, grow, grow_traced};
+use stlc::interpret::Derivation;
 use stlc::model::*;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
@@ -264,77 +265,49 @@ const TREE: &str = "T (100, 200)L=10(0.6) B=2(0.1) A=40 C=1 RULE R1: [+F][-F]";
 
 /// A spheroid crown: an ellipse revolved about the root's vertical line.
 fn crown() -> Solid {
-    let shape = Shape::Ellipse {
-        x: 50.0,
-        y: 95.0,
-        w: 100.0,
-        h: 110.0,
-    };
+    let (x, y, w, h) = (50.0, 95.0, 100.0, 110.0);
+    let shape = Shape::Ellipse { x, y, w, h };
     Solid::Revolve { shape }
+}
+
+fn sphere(centre: P, r: f64) -> Solid {
+    Solid::Sphere { centre, r }
+}
+
+fn cuboid(corner: P, size: P) -> Solid {
+    Solid::Box { corner, size }
+}
+
+fn cylinder(base: P, r: f64, h: f64) -> Solid {
+    Solid::Cylinder { base, r, h }
+}
+
+fn ellipsoid(centre: P, radii: P) -> Solid {
+    Solid::Ellipsoid { centre, radii }
 }
 
 #[test]
 fn a_tree_grows_inside_each_kind_of_volume_and_keeps_clearance() {
     let cases: Vec<(&str, Vec<(Rgb, Solid)>)> = vec![
-        (
-            "sphere",
-            vec![(
-                GREEN,
-                Solid::Sphere {
-                    centre: [100.0, 150.0, 0.0],
-                    r: 55.0,
-                },
-            )],
-        ),
+        ("sphere", vec![(GREEN, sphere([100.0, 150.0, 0.0], 55.0))]),
         (
             "box",
-            vec![(
-                GREEN,
-                Solid::Box {
-                    corner: [60.0, 110.0, -30.0],
-                    size: [80.0, 95.0, 60.0],
-                },
-            )],
+            vec![(GREEN, cuboid([60.0, 110.0, -30.0], [80.0, 95.0, 60.0]))],
         ),
         (
             "cylinder",
-            vec![(
-                GREEN,
-                Solid::Cylinder {
-                    base: [100.0, 205.0, 0.0],
-                    r: 35.0,
-                    h: 100.0,
-                },
-            )],
+            vec![(GREEN, cylinder([100.0, 205.0, 0.0], 35.0, 100.0))],
         ),
         (
             "ellipsoid",
-            vec![(
-                GREEN,
-                Solid::Ellipsoid {
-                    centre: [100.0, 150.0, 0.0],
-                    radii: [50.0, 60.0, 25.0],
-                },
-            )],
+            vec![(GREEN, ellipsoid([100.0, 150.0, 0.0], [50.0, 60.0, 25.0]))],
         ),
         ("revolved ellipse", vec![(GREEN, crown())]),
         (
             "box with a sphere carved out",
             vec![
-                (
-                    GREEN,
-                    Solid::Box {
-                        corner: [40.0, 90.0, -40.0],
-                        size: [120.0, 115.0, 80.0],
-                    },
-                ),
-                (
-                    Rgb::WHITE,
-                    Solid::Sphere {
-                        centre: [100.0, 140.0, 15.0],
-                        r: 25.0,
-                    },
-                ),
+                (GREEN, cuboid([40.0, 90.0, -40.0], [120.0, 115.0, 80.0])),
+                (Rgb::WHITE, sphere([100.0, 140.0, 15.0], 25.0)),
             ],
         ),
     ];
@@ -351,41 +324,21 @@ fn a_tree_grows_inside_each_kind_of_volume_and_keeps_clearance() {
 
 #[test]
 fn divergence_spreads_a_planar_rule_around_the_stem() {
-    let solids = vec![(
-        GREEN,
-        Solid::Sphere {
-            centre: [100.0, 150.0, 0.0],
-            r: 55.0,
-        },
-    )];
+    let solids = vec![(GREEN, sphere([100.0, 150.0, 0.0], 55.0))];
     let flat = traced(&od3(TREE, 0.0, solids.clone()), GrowthOrder::Bfs);
     assert!(flat.iter().all(|s| s.z == [0.0, 0.0]));
     let spread = traced(&od3(TREE, 137.5, solids), GrowthOrder::Bfs);
     let off = spread.iter().filter(|s| s.z[1].abs() > 1.0).count();
-    assert!(
-        off * 2 > spread.len(),
-        "{off} of {} stems off the plane",
-        spread.len()
-    );
+    let (all, in_plane) = (spread.len(), flat.len());
+    assert!(off * 2 > all, "{off} of {all} stems off the plane");
     // Room in the third dimension: more stems than in the plane.
-    assert!(
-        spread.len() > flat.len(),
-        "{} <= {}",
-        spread.len(),
-        flat.len()
-    );
+    assert!(all > in_plane, "{all} <= {in_plane}");
 }
 
 #[test]
 fn a_forest_shares_the_volume_and_the_clearance() {
     let text = "F (70, 200) (130, 200) L=10(0.6) B=2(0.1) A=40 C=1 RULE R1: [+F][-F]";
-    let solids = vec![(
-        GREEN,
-        Solid::Box {
-            corner: [20.0, 100.0, -40.0],
-            size: [160.0, 105.0, 80.0],
-        },
-    )];
+    let solids = vec![(GREEN, cuboid([20.0, 100.0, -40.0], [160.0, 105.0, 80.0]))];
     let od = od3(text, 90.0, solids);
     for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         assert!(check(&od, growth) > 40);
@@ -450,11 +403,8 @@ fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
             assert_eq!(g2.stems, g3.stems);
             assert_eq!(p2.len(), p3.len());
             for (a, b) in p2.iter().zip(&p3) {
-                assert_eq!(
-                    (a.from, a.to, a.decision),
-                    (b.from, b.to, b.decision),
-                    "{path:?}"
-                );
+                let stem = |s: &PlacedStem| (s.from, s.to, s.decision);
+                assert_eq!(stem(a), stem(b), "{path:?}");
                 assert_eq!(b.z, [0.0, 0.0]);
             }
         }
@@ -531,15 +481,11 @@ fn a_3d_od_grows_a_bed_that_draws_the_stems_growth_placed() {
                 key(a, b)
             })
             .collect();
-        let mut drawn = Vec::new();
-        stlc::interpret::bed3::draw3(
-            &grown.bed,
-            stlc::interpret::Derivation::Dfs,
-            &Limits::default(),
-            &mut |s| drawn.push(key(s.from.to_array(), s.to.to_array())),
-            &mut NoProgress,
-        )
-        .unwrap();
+        let (mut drawn, limits, dfs) = (Vec::new(), Limits::default(), Derivation::Dfs);
+        let mut push = |s: stlc::turtle::turtle3::Segment3| {
+            drawn.push(key(s.from.to_array(), s.to.to_array()))
+        };
+        stlc::interpret::bed3::draw3(&grown.bed, dfs, &limits, &mut push, &mut NoProgress).unwrap();
         grew.sort_unstable();
         drawn.sort_unstable();
         assert_eq!(grew, drawn, "{growth:?}");
@@ -570,10 +516,8 @@ fn seeds_alternatives_m_and_explanations_in_space() {
     assert_ne!(a, compile(&text("V=4")).0);
     assert!(a.contains("R1.1{") && a.contains("R1.2{"), "{a}");
     // R2 draws 100 units straight up from the trunk's tip: out of the sphere.
-    assert!(
-        warned.contains("R2") && warned.contains("never"),
-        "{warned}"
-    );
+    let never = warned.contains("R2") && warned.contains("never");
+    assert!(never, "{warned}");
     let (m, warned) = compile(&text("V=3 M=40"));
     // The seed's trunk, and two stems for each application in the seed.
     let seed = &m[m.find("SEED\n").unwrap()..];
