@@ -11,8 +11,6 @@ use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{Recorder, Segment, StandIn, Turtle};
 
-use crate::support::stlc;
-
 fn sys(src: &str) -> LSystem {
     stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -26,12 +24,12 @@ fn plant(seed: u64) -> LSystem {
 }
 
 fn exact(s: &LSystem, depth: u32) -> Vec<Segment> {
-    let mut rec = Recorder::default();
+    let (mut rec, limits) = (Recorder::default(), Limits::default());
     draw(
         s,
         depth,
         Derivation::Dfs,
-        &Limits::default(),
+        &limits,
         &mut rec,
         &mut NoProgress,
     )
@@ -57,17 +55,15 @@ impl Turtle for Split {
 }
 
 fn walked(s: &LSystem, depth: u32, detail: f64) -> Split {
-    let chance = Chance::new(s, depth).unwrap();
+    walked_to(s, depth, detail).0
+}
+
+/// [`walked`], and where the walk ended.
+fn walked_to(s: &LSystem, depth: u32, detail: f64) -> (Split, stlc::turtle::Point) {
+    let (chance, limits) = (Chance::new(s, depth).unwrap(), Limits::default());
     let mut split = Split::default();
-    draw_chance(
-        &chance,
-        detail,
-        &Limits::default(),
-        &mut split,
-        &mut NoProgress,
-    )
-    .unwrap();
-    split
+    let end = draw_chance(&chance, detail, &limits, &mut split, &mut NoProgress).unwrap();
+    (split, end)
 }
 
 /// At detail 0 nothing that draws is cut: the walk, which skips nothing
@@ -95,22 +91,9 @@ fn stochastic_stand_ins_end_where_their_subtrees_end() {
         let all = exact(&s, 7);
         let end = all.last().unwrap().to;
         for detail in [8.0, 30.0] {
-            let chance = Chance::new(&s, 7).unwrap();
-            let mut split = Split::default();
-            let walked = draw_chance(
-                &chance,
-                detail,
-                &Limits::default(),
-                &mut split,
-                &mut NoProgress,
-            )
-            .unwrap();
-            let n = split.stand_ins.len() + split.segments.len();
-            assert!(
-                n > 10 && n < all.len() / 4,
-                "seed {seed}: {n} of {}",
-                all.len()
-            );
+            let (split, walked) = walked_to(&s, 7, detail);
+            let (n, of) = (split.stand_ins.len() + split.segments.len(), all.len());
+            assert!(n > 10 && n < of / 4, "seed {seed}: {n} of {of}");
             assert_eq!(
                 (walked.x.to_bits(), walked.y.to_bits()),
                 (end.x.to_bits(), end.y.to_bits()),
@@ -139,20 +122,15 @@ fn png(file: &str, depth: u32, exact: bool) -> tiny_skia::Pixmap {
 fn png_sized(file: &str, depth: u32, exact: bool, size: Option<&str>) -> tiny_skia::Pixmap {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out.png");
-    let mut c = stlc();
-    c.arg("render")
-        .arg(crate::support::manifest_path(format!(
-            "examples/{file}.lsys"
-        )))
-        .args(["--depth", &depth.to_string()]);
-    if let Some(size) = size {
-        c.args(["--size", size]);
-    }
-    c.arg("-o").arg(&out);
-    if exact {
-        c.arg("--exact");
-    }
-    c.assert().success();
+    let input = crate::support::manifest_path(format!("examples/{file}.lsys"));
+    let size = size.map(|s| format!("--size {s}")).unwrap_or_default();
+    let exact = if exact { "--exact" } else { "" };
+    let line = format!(
+        "render {} --depth {depth} {size} -o {} {exact}",
+        input.display(),
+        out.display()
+    );
+    crate::support::stlc_line(&line).assert().success();
     tiny_skia::Pixmap::load_png(&out).unwrap()
 }
 
