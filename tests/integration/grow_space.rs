@@ -18,6 +18,11 @@ fn bed_text(g: &Grown) -> String {
     stlc::bed::write::write(g.bed.description())
 }
 
+/// The BED `d` grows in the order `o`.
+fn bed_in(d: &Description, o: GrowthOrder) -> String {
+    bed_text(&grown(d, opts(o)))
+}
+
 /// The box: 200 x 200 with a 100 x 100 hole in the middle.
 fn box_with_hole(head: &str) -> String {
     format!(
@@ -36,21 +41,15 @@ fn box_with_hole(head: &str) -> String {
 #[test]
 fn without_points_space_first_is_bfs() {
     let d = od(&box_with_hole("N=0"));
-    assert_eq!(
-        bed_text(&grown(&d, opts(GrowthOrder::Space))),
-        bed_text(&grown(&d, opts(GrowthOrder::Bfs)))
-    );
+    assert_eq!(bed_in(&d, GrowthOrder::Space), bed_in(&d, GrowthOrder::Bfs));
     let free = od("Free (0, 0) L=10(1) B=1(0) RULE R1: [+F][-F]");
     assert_eq!(
-        bed_text(&grown(&free, opts(GrowthOrder::Space))),
-        bed_text(&grown(&free, opts(GrowthOrder::Bfs)))
+        bed_in(&free, GrowthOrder::Space),
+        bed_in(&free, GrowthOrder::Bfs)
     );
     // With points the order changes, and so does the tree.
     let d = od(&box_with_hole(""));
-    assert_ne!(
-        bed_text(&grown(&d, opts(GrowthOrder::Space))),
-        bed_text(&grown(&d, opts(GrowthOrder::Bfs)))
-    );
+    assert_ne!(bed_in(&d, GrowthOrder::Space), bed_in(&d, GrowthOrder::Bfs));
 }
 
 /// The root stands 20 from the left wall of a long box: the left growth
@@ -90,8 +89,8 @@ fn coverage(stems: &[PlacedStem], inside: impl Fn(f64, f64) -> bool, l: f64) -> 
                 .iter()
                 .map(|s| {
                     let (dx, dy) = (s.to.x - s.from.x, s.to.y - s.from.y);
-                    let t = (((x - s.from.x) * dx + (y - s.from.y) * dy) / (dx * dx + dy * dy))
-                        .clamp(0.0, 1.0);
+                    let l2 = dx * dx + dy * dy;
+                    let t = (((x - s.from.x) * dx + (y - s.from.y) * dy) / l2).clamp(0.0, 1.0);
                     let (ex, ey) = (x - s.from.x - t * dx, y - s.from.y - t * dy);
                     (ex * ex + ey * ey).sqrt()
                 })
@@ -146,8 +145,7 @@ fn space_first_covers_more_on_the_same_budget() {
 /// space-first loses to bfs here.
 #[test]
 fn space_first_covers_more_of_a_crown_with_a_length_decrement() {
-    let text =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/crown.od")).unwrap();
+    let text = std::fs::read_to_string(crate::support::manifest_path("examples/crown.od")).unwrap();
     let in_crown = |x: f64, y: f64| {
         let (u, v) = ((x - 100.0) / 80.0, (y - 115.0) / 95.0);
         u * u + v * v <= 1.0
@@ -169,10 +167,8 @@ fn space_first_covers_more_of_a_crown_with_a_length_decrement() {
 #[test]
 fn the_bed_round_trips_and_the_seed_decides() {
     let d = od(&box_with_hole("O=space V=3"));
-    let o = GrowOptions {
-        seed: 3,
-        ..opts(GrowthOrder::Space)
-    };
+    let mut o = opts(GrowthOrder::Space);
+    o.seed = 3;
     let g = grown(&d, o);
     let text = bed_text(&g);
     let back = parse(&text, Format::Bed, &Limits::default()).unwrap();
@@ -198,11 +194,8 @@ fn the_keys_are_read_and_refused_in_a_bed() {
     assert_eq!(d.params.design.points, Some(1_000_000));
     for bad in ["Q=0", "Q=-3", "N=1.5", "O=spacey", "N=1000001"] {
         let e = parse(&box_with_hole(bad), Format::Od, &Limits::default()).unwrap_err();
-        assert!(
-            matches!(e.0[0].kind, ErrorKind::Stl(_)),
-            "{bad}: {:?}",
-            e.0[0].kind
-        );
+        let kind = &e.0[0].kind;
+        assert!(matches!(kind, ErrorKind::Stl(_)), "{bad}: {kind:?}");
     }
     let g = grown(&od(&box_with_hole("")), opts(GrowthOrder::Space));
     let text = bed_text(&g);
