@@ -563,3 +563,23 @@ pub fn limits_with(set: impl FnOnce(&mut stlc::Limits)) -> stlc::Limits {
     set(&mut limits);
     limits
 }
+
+/// A layout volume: a sphere.
+pub fn sphere(centre: [f64; 3], r: f64) -> stlc::model::Solid {
+    stlc::model::Solid::Sphere { centre, r }
+}
+
+/// A layout volume: a box from `corner`, `size` along each axis.
+pub fn cuboid(corner: [f64; 3], size: [f64; 3]) -> stlc::model::Solid {
+    stlc::model::Solid::Box { corner, size }
+}
+
+/// A layout volume: a vertical cylinder standing on `base`.
+pub fn cylinder(base: [f64; 3], r: f64, h: f64) -> stlc::model::Solid {
+    stlc::model::Solid::Cylinder { base, r, h }
+}
+
+/// A layout volume: an ellipsoid.
+pub fn ellipsoid(centre: [f64; 3], radii: [f64; 3]) -> stlc::model::Solid {
+    stlc::model::Solid::Ellipsoid { centre, radii }
+}
