@@ -8,7 +8,7 @@
 //! the clearance with a distance computed here (a ternary search of the
 //! point-to-segment distance, which is convex along a segment).
 
-use crate::support::{near_pairs, opts};
+use crate::support::{cuboid, cylinder, ellipsoid, near_pairs, opts, sphere};
 use stlc::Limits;
 use stlc::color::Rgb;
 use stlc::diag::MissReason;
@@ -268,22 +268,6 @@ fn crown() -> Solid {
     let (x, y, w, h) = (50.0, 95.0, 100.0, 110.0);
     let shape = Shape::Ellipse { x, y, w, h };
     Solid::Revolve { shape }
-}
-
-fn sphere(centre: P, r: f64) -> Solid {
-    Solid::Sphere { centre, r }
-}
-
-fn cuboid(corner: P, size: P) -> Solid {
-    Solid::Box { corner, size }
-}
-
-fn cylinder(base: P, r: f64, h: f64) -> Solid {
-    Solid::Cylinder { base, r, h }
-}
-
-fn ellipsoid(centre: P, radii: P) -> Solid {
-    Solid::Ellipsoid { centre, radii }
 }
 
 #[test]

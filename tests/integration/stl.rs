@@ -3,7 +3,7 @@
 //! Expected values are worked by hand (the paper's expansions, coordinates
 //! of a turtle turning by right angles), never copied from the output.
 
-use crate::support::{limit_kind, limits_with, od};
+use crate::support::{cuboid, cylinder, ellipsoid, limit_kind, limits_with, od, sphere};
 use proptest::prelude::*;
 use stlc::bed::Bed;
 use stlc::bed::validate;
@@ -109,10 +109,8 @@ fn the_papers_2dtree_parses_as_written() {
     assert_eq!(d.name, "2DTree");
     assert_eq!(d.root, (76.0, 150.0));
     let (l, w) = (&d.params.length, &d.params.width);
-    assert_eq!(
-        (l.base, l.decrement, w.base, w.decrement),
-        (10.0, 0.0, 1.0, 0.0)
-    );
+    let stems = (l.base, l.decrement, w.base, w.decrement);
+    assert_eq!(stems, (10.0, 0.0, 1.0, 0.0));
     assert_eq!((d.params.angle, d.params.clearance), (None, None));
     assert_eq!(d.rules.len(), 1);
     assert_eq!(d.rules[0].name, "R1");
@@ -785,23 +783,10 @@ fn gen_solid(g: &mut Gen) -> LayoutSolid {
     let mut p = || [g.eighth(100) - 50.0, g.eighth(100), g.eighth(40) - 20.0];
     let point = p();
     let solid = match g.below(6) {
-        0 => Solid::Box {
-            corner: point,
-            size: [g.eighth(50), g.eighth(50), g.eighth(50)],
-        },
-        1 => Solid::Sphere {
-            centre: point,
-            r: g.eighth(50),
-        },
-        2 => Solid::Ellipsoid {
-            centre: point,
-            radii: [g.eighth(50), g.eighth(50), g.eighth(50)],
-        },
-        3 => Solid::Cylinder {
-            base: point,
-            r: g.eighth(20),
-            h: g.eighth(80),
-        },
+        0 => cuboid(point, [g.eighth(50), g.eighth(50), g.eighth(50)]),
+        1 => sphere(point, g.eighth(50)),
+        2 => ellipsoid(point, [g.eighth(50), g.eighth(50), g.eighth(50)]),
+        3 => cylinder(point, g.eighth(20), g.eighth(80)),
         4 => {
             let z1 = g.eighth(40) - 40.0;
             Solid::Extrude {
@@ -1012,15 +997,11 @@ fn the_example_files_parse_and_expand_as_the_paper_says() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let read = |n: &str| std::fs::read_to_string(dir.join(n)).unwrap();
     let d = bed(&read("paper-worked.bed"));
-    assert_eq!(
-        expanded(&d, Derivation::Dfs),
-        "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n"
-    );
+    let worked = "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n";
+    assert_eq!(expanded(&d, Derivation::Dfs), worked);
     let d = bed(&read("seed-r1r2r2.bed"));
-    assert_eq!(
-        expanded(&d, Derivation::Bfs),
-        "[FFF][F[+F][-F]F][F[+F][-F]F]\n"
-    );
+    let worked = "[FFF][F[+F][-F]F][F[+F][-F]F]\n";
+    assert_eq!(expanded(&d, Derivation::Bfs), worked);
     assert_eq!(od(&read("2dtree.od")).layout.unwrap().shapes.len(), 3);
 }
 
@@ -1054,23 +1035,10 @@ fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
     assert_eq!(
         solids,
         [
-            &Solid::Box {
-                corner: [1.0, 2.0, 3.0],
-                size: [4.0, 5.0, 6.0]
-            },
-            &Solid::Sphere {
-                centre: [150.0, 150.0, 0.0],
-                r: 40.0
-            },
-            &Solid::Ellipsoid {
-                centre: [1.0, 2.0, 3.0],
-                radii: [4.0, 5.0, 6.0]
-            },
-            &Solid::Cylinder {
-                base: [150.0, 298.0, 0.0],
-                r: 10.0,
-                h: 60.0
-            },
+            &cuboid([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]),
+            &sphere([150.0, 150.0, 0.0], 40.0),
+            &ellipsoid([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]),
+            &cylinder([150.0, 298.0, 0.0], 10.0, 60.0),
             &Solid::Extrude {
                 shape: ellipse.clone(),
                 z1: -30.0,
@@ -1110,13 +1078,8 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
     };
     let src = "T (0, 0, 0) (1, 1) RULE R1: [F]";
     let at = src.find("(1, 1)").unwrap();
-    assert_eq!(
-        one(src),
-        (
-            ErrorKind::Stl(StlError::MixedRoots { first: 3, this: 2 }),
-            at..at + 6
-        )
-    );
+    let mixed = ErrorKind::Stl(StlError::MixedRoots { first: 3, this: 2 });
+    assert_eq!(one(src), (mixed, at..at + 6));
     let src = "T (0, 0) RULE R1: [F/F]";
     let at = src.find('/').unwrap();
     let (kind, span) = one(src);
@@ -1152,16 +1115,9 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
     // Sizes and depths.
     let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Box (0, 0, 0), 5, 0, 5 ENDLAYOUT";
     let at = src.find("5, 0, 5").unwrap() + 3;
-    assert_eq!(
-        one(src),
-        (
-            ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
-                shape: "Box",
-                what: "height"
-            }),
-            at..at + 1
-        )
-    );
+    let (shape, what) = ("Box", "height");
+    let size = ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { shape, what });
+    assert_eq!(one(src), (size, at..at + 1));
     let src =
         "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Extrude Ellipse (0, 0), 5, 5, 3, 3 ENDLAYOUT";
     assert_eq!(one(src).0, ErrorKind::Layout(LayoutError::ExtrudeRange));
@@ -1174,12 +1130,8 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
         "Box Ellipse (0, 0), 5, 5",
     ] {
         let src = format!("T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) {bad} ENDLAYOUT");
-        assert!(
-            matches!(
-                one(&src).0,
-                ErrorKind::Layout(LayoutError::ShapeArguments { .. })
-            ),
-            "{bad}"
-        );
+        let kind = one(&src).0;
+        let arguments = matches!(kind, ErrorKind::Layout(LayoutError::ShapeArguments { .. }));
+        assert!(arguments, "{bad}");
     }
 }
