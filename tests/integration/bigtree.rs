@@ -60,18 +60,11 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     assert_eq!(stems(&a), 10_000);
     assert_eq!(a["tree_in_svg"], true);
     assert_eq!(a["stroke"], "#4a2c12");
-    assert!(
-        a["svg"]
-            .as_str()
-            .unwrap()
-            .contains(r##"fill="none" stroke="#4a2c12""##)
-    );
+    let svg = a["svg"].as_str().unwrap();
+    assert!(svg.contains(r##"fill="none" stroke="#4a2c12""##));
     let asked = post(&server.addr, "/api/render", &[COMPACT], &small);
-    assert!(
-        asked.head.contains("content-type: application/json"),
-        "{}",
-        asked.head
-    );
+    let head = &asked.head;
+    assert!(head.contains("content-type: application/json"), "{head}");
     assert_eq!(asked.json(), a);
 
     // 10,003 stems: the SVG has the layout, not the tree.
@@ -95,22 +88,16 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     let export = post(&server.addr, "/api/export?format=svg", &[], &body);
     let exported = String::from_utf8(export.body).unwrap();
     assert!(exported.contains(r##"fill="none" stroke="#4a2c12""##));
-    assert!(
-        exported.len() > 10 * svg.len(),
-        "{} {}",
-        exported.len(),
-        svg.len()
-    );
+    let (whole, shown) = (exported.len(), svg.len());
+    assert!(whole > 10 * shown, "{whole} {shown}");
 
     // The compact body is the JSON answer, number for number.
     let compact = post(&server.addr, "/api/render", &[COMPACT], &body);
     assert_eq!(compact.status, 200);
+    let head = &compact.head;
     assert!(
-        compact
-            .head
-            .contains("content-type: application/x-stlc-render"),
-        "{}",
-        compact.head
+        head.contains("content-type: application/x-stlc-render"),
+        "{head}"
     );
     assert_eq!(unpack(&compact.body), a);
     assert!(compact.body.len() < a.to_string().len() * 2 / 3);
