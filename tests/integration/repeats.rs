@@ -5,7 +5,7 @@
 //! parser refuses) is built in code: it applies nothing.
 
 use stlc::bed::Bed;
-use stlc::grow::{GrowOptions, GrowthOrder, grow};
+use stlc::grow::{GrowthOrder, grow};
 use stlc::interpret::{Derivation, bed::draw_into};
 use stlc::model::*;
 use stlc::progress::NoProgress;
@@ -45,15 +45,14 @@ fn by_hand(n: u32) -> Size {
 }
 
 fn segments(bed: &Bed, d: Derivation) -> Vec<Segment> {
-    draw_into(
+    let drawn = draw_into(
         bed,
         d,
         &Limits::default(),
         Recorder::default(),
         &mut NoProgress,
-    )
-    .unwrap_or_else(|e| panic!("{e}"))
-    .segments
+    );
+    drawn.unwrap_or_else(|e| panic!("{e}")).segments
 }
 
 #[test]
@@ -66,10 +65,7 @@ fn measure_expansion_and_growth_agree_for_every_count() {
         assert_eq!(drawn.len() as u64, want.stems, "dfs segments, n = {n}");
         assert_eq!(segments(&bed, Derivation::Bfs), drawn, "bfs, n = {n}");
         for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
-            let o = GrowOptions {
-                growth,
-                ..GrowOptions::default()
-            };
+            let o = crate::support::opts(growth);
             let g =
                 grow(&desc(n, Format::Od), &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(g.stems, want.stems, "grown stems, n = {n}, {growth:?}");
@@ -101,12 +97,7 @@ fn a_zero_count_in_a_slot_is_an_empty_slot() {
     // `F` and one `R1`, as `F [I 1 R1]`.
     assert_eq!(bed.size(), by_hand(1));
     let one = Bed::new(desc(1, Format::Bed), &Limits::default()).unwrap();
-    assert_eq!(
-        segments(&bed, Derivation::Dfs),
-        segments(&one, Derivation::Dfs)
-    );
-    assert_eq!(
-        segments(&bed, Derivation::Bfs),
-        segments(&one, Derivation::Dfs)
-    );
+    let one = segments(&one, Derivation::Dfs);
+    assert_eq!(segments(&bed, Derivation::Dfs), one);
+    assert_eq!(segments(&bed, Derivation::Bfs), one);
 }
