@@ -20,11 +20,7 @@ fn crc32(bytes: &[u8]) -> u32 {
     for &b in bytes {
         c ^= u32::from(b);
         for _ in 0..8 {
-            c = if c & 1 == 1 {
-                (c >> 1) ^ 0xEDB8_8320
-            } else {
-                c >> 1
-            };
+            c = (c >> 1) ^ (0xEDB8_8320 * (c & 1));
         }
     }
     !c
@@ -137,10 +133,8 @@ fn read_glb(glb: &[u8]) -> Body {
     let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
     let bin = &glb[28 + json_len..];
     let prims = doc["meshes"][0]["primitives"].as_array().unwrap();
-    assert_eq!(
-        (prims.len(), doc["meshes"].as_array().unwrap().len()),
-        (1, 1)
-    );
+    let meshes = doc["meshes"].as_array().unwrap().len();
+    assert_eq!((prims.len(), meshes), (1, 1));
     assert_eq!(doc["materials"].as_array().unwrap().len(), 1);
     let attrs = prims[0]["attributes"].as_object().unwrap();
     let keys: Vec<&str> = attrs.keys().map(String::as_str).collect();
