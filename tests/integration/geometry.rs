@@ -6,7 +6,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use proptest::prelude::*;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::Dfs;
 use stlc::interpret::lsys::{Measured, Memo, Refusal, draw, draw_into, draw_lod, measure};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
@@ -35,7 +35,7 @@ fn close_box(a: &BBox, b: &BBox, rel: f64) -> bool {
 /// The traversal: every segment into a bounding turtle.
 fn traversed(s: &LSystem, depth: u32) -> (Option<BBox>, stlc::turtle::Point, u64) {
     let (mut b, limits) = (Bounds::default(), Limits::default());
-    let end = draw_into(s, depth, Derivation::Dfs, &limits, &mut b, &mut NoProgress).unwrap();
+    let end = draw_into(s, depth, Dfs, &limits, &mut b, &mut NoProgress).unwrap();
     (b.bbox(), end, b.count)
 }
 
@@ -84,22 +84,14 @@ fn detailed(detail: f64) -> Detailed {
 
 fn lod(s: &LSystem, depth: u32, detail: f64) -> Detailed {
     let (mut t, limits) = (detailed(detail), Limits::default());
-    draw(s, depth, Derivation::Dfs, &limits, &mut t, &mut NoProgress).unwrap();
+    draw(s, depth, Dfs, &limits, &mut t, &mut NoProgress).unwrap();
     t
 }
 
 /// The exact segments of `s` at `depth`.
 fn exact(s: &LSystem, depth: u32) -> Recorder {
     let (mut rec, limits) = (Recorder::default(), Limits::default());
-    draw_into(
-        s,
-        depth,
-        Derivation::Dfs,
-        &limits,
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
+    draw_into(s, depth, Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     rec
 }
 

@@ -319,14 +319,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
         }
         let need = c + radius(s) + radius(t);
         let lt = line(t);
-        let ends_s = [s.from, s.to];
         let ends_t = [t.from, t.to];
-        let shared: Vec<Point> = ends_s
-            .iter()
-            .filter(|p| ends_t.contains(p))
-            .copied()
-            .collect();
-        if let Some(&j) = shared.first() {
+        if let Some(j) = [s.from, s.to].into_iter().find(|p| ends_t.contains(p)) {
             // A joint is where at least one of them starts.
             assert!(
                 s.from == j || t.from == j,

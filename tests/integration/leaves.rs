@@ -10,7 +10,7 @@
 
 use stlc::bed::Bed;
 use stlc::color::Rgb;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::Dfs;
 use stlc::limits::Limits;
 use stlc::model::Format;
 use stlc::progress::NoProgress;
@@ -34,8 +34,7 @@ fn recorded(src: &str) -> Recorder {
     let desc = parse(src, Format::Bed).unwrap();
     let bed = Bed::new(desc, &Limits::default()).unwrap();
     let (mut rec, limits) = (Recorder::default(), Limits::default());
-    stlc::interpret::dress::draw2(&bed, Derivation::Dfs, &limits, &mut rec, &mut NoProgress)
-        .unwrap();
+    stlc::interpret::dress::draw2(&bed, Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     rec
 }
 

@@ -4,7 +4,7 @@
 //! drawing's subtrees end; pictures stay within the quality bound of
 //! `--exact` (mean difference); dense curves are drawn as solid boxes.
 
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::Dfs;
 use stlc::interpret::lsys::{Chance, draw, draw_chance};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
@@ -25,15 +25,7 @@ fn plant(seed: u64) -> LSystem {
 
 fn exact(s: &LSystem, depth: u32) -> Vec<Segment> {
     let (mut rec, limits) = (Recorder::default(), Limits::default());
-    draw(
-        s,
-        depth,
-        Derivation::Dfs,
-        &limits,
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
+    draw(s, depth, Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     rec.segments
 }
 

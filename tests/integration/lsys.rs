@@ -8,7 +8,7 @@ use stlc::diag::ErrorKind::{Input, Lsys};
 use stlc::diag::InputError::{Unbalanced, UnknownColour};
 use stlc::diag::LsysError::*;
 use stlc::diag::{ErrorKind, InputError};
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
 use stlc::interpret::stats::stats;
 use stlc::limits::{Bound, Limits};
@@ -284,12 +284,12 @@ fn parallel_rewriting_gives_fibonacci_lengths() {
         assert_eq!(*len, big(a), "depth {n}");
         (a, b) = (b, a + b);
     }
-    assert_eq!(expanded(src, 4, Derivation::Dfs), "ABAABABA\n");
-    assert_eq!(expanded(src, 4, Derivation::Bfs), "ABAABABA\n");
+    assert_eq!(expanded(src, 4, Dfs), "ABAABABA\n");
+    assert_eq!(expanded(src, 4, Bfs), "ABAABABA\n");
     for depth in 0..12 {
-        let dfs = expanded(src, depth, Derivation::Dfs);
+        let dfs = expanded(src, depth, Dfs);
         assert_eq!(BigUint::from(dfs.len() - 1), lengths[depth as usize]);
-        assert_eq!(dfs, expanded(src, depth, Derivation::Bfs));
+        assert_eq!(dfs, expanded(src, depth, Bfs));
     }
 }
 
@@ -297,10 +297,10 @@ fn parallel_rewriting_gives_fibonacci_lengths() {
 fn expand_by_hand() {
     // Hand derivation: F+X -> (FF)+(F-X) -> (FFFF)+(FF-F-X).
     let src = "axiom F+X\nrule F FF\nrule X F-X\nangle 90\n";
-    assert_eq!(expanded(src, 0, Derivation::Dfs), "F+X\n");
-    assert_eq!(expanded(src, 1, Derivation::Dfs), "FF+F-X\n");
-    assert_eq!(expanded(src, 2, Derivation::Dfs), "FFFF+FF-F-X\n");
-    assert_eq!(expanded(src, 2, Derivation::Bfs), "FFFF+FF-F-X\n");
+    assert_eq!(expanded(src, 0, Dfs), "F+X\n");
+    assert_eq!(expanded(src, 1, Dfs), "FF+F-X\n");
+    assert_eq!(expanded(src, 2, Dfs), "FFFF+FF-F-X\n");
+    assert_eq!(expanded(src, 2, Bfs), "FFFF+FF-F-X\n");
 }
 
 /// A segment of order 0 from `a` to `b`.
@@ -315,28 +315,28 @@ fn seg(a: (f64, f64), b: (f64, f64)) -> Segment {
 #[test]
 fn segments_by_hand() {
     // `F+F` at 90 degrees: up one, turn left, then one step left (canvas: y down).
-    let segs = segments("axiom F+F\nangle 90\nlength 2\n", 0, Derivation::Dfs);
+    let segs = segments("axiom F+F\nangle 90\nlength 2\n", 0, Dfs);
     let p = Point::new;
     assert_eq!(
         segs,
         [seg((0.0, 0.0), (0.0, -2.0)), seg((0.0, -2.0), (-2.0, -2.0))]
     );
     // `heading 0`: the same word starts to the right, then turns up.
-    let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Derivation::Bfs);
+    let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Bfs);
     assert_eq!(
         segs,
         [seg((0.0, 0.0), (1.0, 0.0)), seg((1.0, 0.0), (1.0, -1.0))]
     );
     // `heading 180` with `|`: left, then turned around, back right.
     assert_eq!(
-        segments("axiom F|F\nangle 90\nheading 180\n", 0, Derivation::Dfs)
+        segments("axiom F|F\nangle 90\nheading 180\n", 0, Dfs)
             .iter()
             .map(|s| s.to)
             .collect::<Vec<_>>(),
         [p(-1.0, 0.0), p(0.0, 0.0)]
     );
     // `F[-F]|F` one level down from `X`: a right branch, then back down.
-    let segs = segments("axiom X\nrule X F[-F]|F\nangle 90\n", 1, Derivation::Dfs);
+    let segs = segments("axiom X\nrule X F[-F]|F\nangle 90\n", 1, Dfs);
     assert_eq!(
         segs,
         vec![
@@ -374,7 +374,7 @@ fn table_3_of_000_corrected() {
     for (level, &want) in truth.iter().enumerate() {
         let n = level as u32 + 1;
         assert_eq!((5u64.pow(n + 1) - 3) / 2, want);
-        let word = expanded(TREE1, n, Derivation::Bfs);
+        let word = expanded(TREE1, n, Bfs);
         assert_eq!(word.len() as u64 - 1, want, "level {level}");
         let st = stats(&sys(TREE1), n, &Limits::default()).unwrap();
         assert_eq!(st.length, big(want));
@@ -426,7 +426,7 @@ fn koch_snowflake_segments_end_and_box() {
     // Heading after the word: every `F+F--F+F` turns 0, the axiom -4 * 60:
     // 90 - 240 = -150 = 210 degrees. Check with one extra F at the end.
     let src = "axiom F--F--FA\nrule F F+F--F+F\nrule A F\nangle 60\n";
-    let segs = segments(src, 3, Derivation::Dfs);
+    let segs = segments(src, 3, Dfs);
     let last = segs.last().unwrap();
     let (dx, dy) = (last.to.x - last.from.x, last.to.y - last.from.y);
     let a210 = 210f64.to_radians();
@@ -448,10 +448,7 @@ fn sierpinski_arrowhead_counts() {
                 "{axiom} {n}"
             );
             if n <= 6 {
-                assert_eq!(
-                    segments(&src, n, Derivation::Dfs).len() as i64,
-                    3i64.pow(n) - 1 + extra
-                );
+                assert_eq!(segments(&src, n, Dfs).len() as i64, 3i64.pow(n) - 1 + extra);
             }
         }
     }
@@ -463,17 +460,17 @@ fn bfs_refuses_over_the_word_budget() {
     let s = sys(TREE1);
     let mut rec = Recorder::default();
     // Depth 4: 1561 symbols > 1000.
-    let err = draw_into(&s, 4, Derivation::Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
+    let err = draw_into(&s, 4, Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
     let word = limit_kind(Bound::Word, Some("bfs word at level 4"), "1561", 1000);
     assert_eq!(err.first_kind(), Some(&word));
     assert!(err.0[0].help_text().unwrap().contains("--max-word"));
     assert!(rec.segments.is_empty());
     // dfs holds no word: fine.
-    draw_into(&s, 4, Derivation::Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
+    draw_into(&s, 4, Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     assert_eq!(rec.segments.len(), 625);
     // Depth 57 with bfs: refused with the exact length, no attempt to allocate.
     let limits = Limits::default();
-    let err = draw_into(&s, 57, Derivation::Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
+    let err = draw_into(&s, 57, Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
     let ErrorKind::Limit { value, .. } = err.first_kind().unwrap() else {
         panic!("{err}")
     };
@@ -487,7 +484,7 @@ fn bfs_refuses_over_the_word_budget() {
 fn both_strategies_refuse_over_max_symbols_and_max_depth() {
     let limits = limits_with(|l| (l.max_symbols, l.max_depth) = (311, 20));
     let s = sys(TREE1);
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         let mut rec = Recorder::default();
         assert!(draw_into(&s, 3, strategy, &limits, &mut rec, &mut NoProgress).is_ok());
         let err = draw_into(&s, 4, strategy, &limits, &mut rec, &mut NoProgress).unwrap_err();
@@ -535,15 +532,7 @@ fn broken_pipe_has_its_own_kind() {
         }
     }
     let (tree, limits) = (sys(TREE1), Limits::default());
-    let err = expand(
-        &tree,
-        8,
-        Derivation::Dfs,
-        &limits,
-        &mut Closed,
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let err = expand(&tree, 8, Dfs, &limits, &mut Closed, &mut NoProgress).unwrap_err();
     assert_eq!(err.first_kind(), Some(&ErrorKind::BrokenPipe));
 }
 
@@ -596,10 +585,10 @@ proptest! {
                 src.push_str(&format!("rule {pred} -> {succ}\n"));
             }
         }
-        let dfs = segments(&src, depth, Derivation::Dfs);
-        let bfs = segments(&src, depth, Derivation::Bfs);
+        let dfs = segments(&src, depth, Dfs);
+        let bfs = segments(&src, depth, Bfs);
         prop_assert_eq!(&dfs, &bfs, "{}", src);
-        prop_assert_eq!(expanded(&src, depth, Derivation::Dfs), expanded(&src, depth, Derivation::Bfs));
+        prop_assert_eq!(expanded(&src, depth, Dfs), expanded(&src, depth, Bfs));
     }
 }
 
@@ -621,32 +610,16 @@ fn every_example_parses_and_draws_the_same_both_ways() {
             // 3D (docs/3d.md): the same segments both ways, in 3D.
             use stlc::interpret::lsys::lsys3::draw3;
             let (mut a, mut b) = (Vec::new(), Vec::new());
-            draw3(
-                &s,
-                depth,
-                Derivation::Dfs,
-                &lim,
-                &mut |x| a.push(x),
-                &mut NoProgress,
-            )
-            .unwrap();
-            draw3(
-                &s,
-                depth,
-                Derivation::Bfs,
-                &lim,
-                &mut |x| b.push(x),
-                &mut NoProgress,
-            )
-            .unwrap();
+            draw3(&s, depth, Dfs, &lim, &mut |x| a.push(x), &mut NoProgress).unwrap();
+            draw3(&s, depth, Bfs, &lim, &mut |x| b.push(x), &mut NoProgress).unwrap();
             assert!(!a.is_empty(), "{path:?}");
             assert_eq!(a, b, "{path:?}");
             three += 1;
             continue;
         }
         let (mut a, mut b) = (Recorder::default(), Recorder::default());
-        draw_into(&s, depth, Derivation::Dfs, &lim, &mut a, &mut NoProgress).unwrap();
-        draw_into(&s, depth, Derivation::Bfs, &lim, &mut b, &mut NoProgress).unwrap();
+        draw_into(&s, depth, Dfs, &lim, &mut a, &mut NoProgress).unwrap();
+        draw_into(&s, depth, Bfs, &lim, &mut b, &mut NoProgress).unwrap();
         assert!(!a.segments.is_empty(), "{path:?}");
         assert_eq!(a, b, "{path:?}");
         seen += 1;
@@ -675,11 +648,7 @@ fn hilbert_and_stl_fig4_counts() {
         );
     }
     // 003 Fig. 4 at depth 1: F[-F]F[+F]F, 30 degrees, by hand.
-    let segs = segments(
-        "axiom F\nrule F F[-F]F[+F]F\nangle 30\n",
-        1,
-        Derivation::Dfs,
-    );
+    let segs = segments("axiom F\nrule F F[-F]F[+F]F\nangle 30\n", 1, Dfs);
     assert_eq!(segs.len(), 5);
     let (s30, c30) = (0.5, 3f64.sqrt() / 2.0);
     let want = [

@@ -4,7 +4,7 @@
 //! that end in an error with nothing written.
 
 use stlc::color::Rgb;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::Dfs;
 use stlc::limits::Limits;
 use stlc::syntax::lsys::parse;
 use stlc::turtle::{Point, Recorder};
@@ -16,7 +16,7 @@ const BLUE: Rgb = Rgb::new(0, 0, 0xff);
 /// What the parametric turtle hands a backend for `src` at `depth`.
 fn recorded(src: &str, depth: u32) -> Recorder {
     let sys = parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e:?}"));
-    crate::lsys::recorded_of(&sys, depth, Derivation::Dfs)
+    crate::lsys::recorded_of(&sys, depth, Dfs)
 }
 
 /// The first error's message and the text its span covers.
@@ -245,8 +245,8 @@ fn abop_1_26_has_leaves_petals_and_stamens_in_their_colours() {
         _ => {}
     };
     let limits = Limits::default();
-    draw3_marks(&sys, p, 3, Derivation::Dfs, &limits, &mut mark).unwrap();
-    let word = crate::lsys::expanded_of(&sys, 2, Derivation::Dfs);
+    draw3_marks(&sys, p, 3, Dfs, &limits, &mut mark).unwrap();
+    let word = crate::lsys::expanded_of(&sys, 2, Dfs);
     // Only L (p4) and W (p7) rewrite to polygons, one each, their
     // successors hold no L or W, and a polygon written stays: the
     // polygons at depth 3 are the `{`, L and W of the word at depth 2

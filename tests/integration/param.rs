@@ -6,7 +6,7 @@
 use crate::support::limits_with;
 use proptest::prelude::*;
 use stlc::diag::Diagnostics;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::lsys::expand;
 use stlc::limits::Limits;
 use stlc::progress::NoProgress;
@@ -190,7 +190,7 @@ fn fig_26a(depth: u32) -> String {
 fn fig_1_31a_at_depth_30_is_the_hand_derivation() {
     let src = example("abop-1.31a.lsys");
     let want = fig_131a(30);
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         let got = expanded(&src, 30, strategy).unwrap();
         assert_eq!(got.len(), want.len());
         assert!(got == want, "{strategy:?}: the words differ");
@@ -204,7 +204,7 @@ fn fig_1_31a_at_depth_30_is_the_hand_derivation() {
 fn fig_2_6a_at_depth_10_is_the_hand_derivation() {
     let src = example("abop-2.6a.lsys");
     let want = fig_26a(10);
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         assert_eq!(expanded(&src, 10, strategy).unwrap(), want, "{strategy:?}");
     }
     // A binary tree of 2^10 - 1 internodes.
@@ -275,8 +275,8 @@ fn context_system() -> impl Strategy<Value = String> {
 /// dfs and bfs derive `src` to `depth` alike: the same word, or both
 /// refuse it.
 fn same_both_ways(src: &str, depth: u32) -> Result<(), proptest::test_runner::TestCaseError> {
-    let dfs = expanded(src, depth, Derivation::Dfs);
-    let bfs = expanded(src, depth, Derivation::Bfs);
+    let dfs = expanded(src, depth, Dfs);
+    let bfs = expanded(src, depth, Bfs);
     match (dfs, bfs) {
         (Ok(a), Ok(b)) => prop_assert_eq!(a, b),
         (Err(_), Err(_)) => {}
@@ -300,16 +300,16 @@ proptest! {
 
     #[test]
     fn the_parser_reads_back_what_expand_writes(src in system(), depth in 0u32..5) {
-        let Ok(word) = expanded(&src, depth, Derivation::Dfs) else { return Ok(()) };
+        let Ok(word) = expanded(&src, depth, Dfs) else { return Ok(()) };
         let again = format!("angle 30\naxiom {}", word);
-        prop_assert_eq!(expanded(&again, 0, Derivation::Dfs).unwrap(), word);
+        prop_assert_eq!(expanded(&again, 0, Dfs).unwrap(), word);
     }
 }
 
 #[test]
 fn expand_writes_the_shortest_numbers_that_read_back() {
     let src = "angle 90\naxiom A(0.1+0.2,1,7.07,-0,2^70)\n";
-    let got = expanded(src, 0, Derivation::Dfs).unwrap();
+    let got = expanded(src, 0, Dfs).unwrap();
     assert_eq!(
         got,
         "A(0.30000000000000004,1,7.07,-0,1180591620717411300000)\n"
@@ -353,7 +353,7 @@ fn a_huge_parameter_count_is_an_error() {
 #[test]
 fn a_division_by_zero_names_the_rule_and_the_generation() {
     let src = "angle 9\naxiom A(3)\nrule A(x) -> A(x-1)B(1/(x-1))\n";
-    let e = expanded(src, 5, Derivation::Dfs).unwrap_err();
+    let e = expanded(src, 5, Dfs).unwrap_err();
     let d = e.iter().next().unwrap();
     let msg = d.kind.to_string();
     assert!(msg.contains("not a finite number (inf)"), "{msg}");
@@ -369,7 +369,7 @@ fn a_condition_always_true_with_a_growing_word_stops_at_the_limits() {
     let sys = parse(src, &Limits::default()).unwrap();
     // A parametric derivation may derive a thirtieth of max_symbols.
     let limits = limits_with(|l| (l.max_symbols, l.max_word) = (30_000, 1000));
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         let mut out = Vec::new();
         let e = expand(&sys, 20, strategy, &limits, &mut out, &mut NoProgress).unwrap_err();
         let d = e.iter().next().unwrap();
@@ -396,29 +396,13 @@ fn the_work_over_all_generations_counts_against_the_budget() {
     let sys = parse("angle 90\naxiom AB\nrule A < B -> AB\n", &Limits::default()).unwrap();
     let limits = limits_with(|l| l.max_symbols = 30_000);
     let mut out = Vec::new();
-    expand(
-        &sys,
-        40,
-        Derivation::Dfs,
-        &limits,
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
+    expand(&sys, 40, Dfs, &limits, &mut out, &mut NoProgress).unwrap();
     assert_eq!(
         String::from_utf8(out).unwrap().trim(),
         format!("{}B", "A".repeat(41))
     );
     let mut out = Vec::new();
-    let e = expand(
-        &sys,
-        100,
-        Derivation::Dfs,
-        &limits,
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let e = expand(&sys, 100, Dfs, &limits, &mut out, &mut NoProgress).unwrap_err();
     let kind = e.iter().next().unwrap().kind.to_string();
     assert!(
         kind.contains(
@@ -447,7 +431,7 @@ fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
     let run = |max_symbols: u64| {
         let limits = limits_with(|l| l.max_symbols = max_symbols);
         let mut out = Vec::new();
-        expand(&sys, 3, Derivation::Dfs, &limits, &mut out, &mut NoProgress)
+        expand(&sys, 3, Dfs, &limits, &mut out, &mut NoProgress)
             .map(|()| String::from_utf8(out).unwrap())
     };
     assert_eq!(
@@ -475,7 +459,7 @@ fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
 #[test]
 fn a_doubling_word_is_refused_before_it_is_derived() {
     let src = "angle 9\naxiom A(1)\nrule A(x) : x > 0 -> A(x+1)A(x+1)\n";
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         let e = expanded(src, 40, strategy).unwrap_err();
         let kind = e.iter().next().unwrap().kind.to_string();
         assert!(
@@ -487,7 +471,7 @@ fn a_doubling_word_is_refused_before_it_is_derived() {
         );
     }
     // Within the budget the count changes nothing: 2^12 modules.
-    let word = expanded(src, 12, Derivation::Dfs).unwrap();
+    let word = expanded(src, 12, Dfs).unwrap();
     assert_eq!(word.trim(), "A(13)".repeat(1 << 12));
 }
 
@@ -561,22 +545,14 @@ fn classic_files_take_the_classic_path() {
 
 fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
     let sys = parse(src, &Limits::default()).unwrap();
-    crate::lsys::segments_of(&sys, depth, Derivation::Dfs)
+    crate::lsys::segments_of(&sys, depth, Dfs)
 }
 
 fn ends_3d(src: &str) -> Vec<stlc::turtle::turtle3::Segment3> {
     let sys = parse(src, &Limits::default()).unwrap();
     let (mut segs, limits) = (Vec::new(), Limits::default());
     let mut push = |s| segs.push(s);
-    stlc::interpret::lsys::lsys3::draw3(
-        &sys,
-        0,
-        Derivation::Dfs,
-        &limits,
-        &mut push,
-        &mut NoProgress,
-    )
-    .unwrap();
+    stlc::interpret::lsys::lsys3::draw3(&sys, 0, Dfs, &limits, &mut push, &mut NoProgress).unwrap();
     segs
 }
 

@@ -3,7 +3,7 @@
 //! a system is drawn exactly.
 
 use crate::support::limits_with;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::Dfs;
 use stlc::interpret::lsys::param::{ParamMemo, of};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
@@ -48,7 +48,7 @@ fn exact_within(
     limits: &Limits,
     t: &mut dyn Turtle,
 ) -> Result<stlc::turtle::Point, stlc::Diagnostics> {
-    stlc::interpret::lsys::draw_into(s, depth, Derivation::Dfs, limits, t, &mut NoProgress)
+    stlc::interpret::lsys::draw_into(s, depth, Dfs, limits, t, &mut NoProgress)
 }
 
 /// Each side of box `a` beside the same side of box `b`.

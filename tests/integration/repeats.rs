@@ -6,7 +6,8 @@
 
 use stlc::bed::Bed;
 use stlc::grow::{GrowthOrder, grow};
-use stlc::interpret::{Derivation, bed::draw_into};
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
+use stlc::interpret::bed::draw_into;
 use stlc::model::*;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
@@ -61,9 +62,9 @@ fn measure_expansion_and_growth_agree_for_every_count() {
         let want = by_hand(n);
         let bed = Bed::new(desc(n, Format::Bed), &Limits::default()).unwrap();
         assert_eq!(bed.size(), want, "measured, n = {n}");
-        let drawn = segments(&bed, Derivation::Dfs);
+        let drawn = segments(&bed, Dfs);
         assert_eq!(drawn.len() as u64, want.stems, "dfs segments, n = {n}");
-        assert_eq!(segments(&bed, Derivation::Bfs), drawn, "bfs, n = {n}");
+        assert_eq!(segments(&bed, Bfs), drawn, "bfs, n = {n}");
         for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let o = crate::support::opts(growth);
             let g =
@@ -71,7 +72,7 @@ fn measure_expansion_and_growth_agree_for_every_count() {
             assert_eq!(g.stems, want.stems, "grown stems, n = {n}, {growth:?}");
             assert_eq!(g.bed.size(), want, "the grown BED, n = {n}, {growth:?}");
             assert_eq!(
-                segments(&g.bed, Derivation::Dfs),
+                segments(&g.bed, Dfs),
                 drawn,
                 "the grown BED's segments, n = {n}, {growth:?}"
             );
@@ -97,7 +98,7 @@ fn a_zero_count_in_a_slot_is_an_empty_slot() {
     // `F` and one `R1`, as `F [I 1 R1]`.
     assert_eq!(bed.size(), by_hand(1));
     let one = Bed::new(desc(1, Format::Bed), &Limits::default()).unwrap();
-    let one = segments(&one, Derivation::Dfs);
-    assert_eq!(segments(&bed, Derivation::Dfs), one);
-    assert_eq!(segments(&bed, Derivation::Bfs), one);
+    let one = segments(&one, Dfs);
+    assert_eq!(segments(&bed, Dfs), one);
+    assert_eq!(segments(&bed, Bfs), one);
 }

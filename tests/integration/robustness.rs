@@ -16,7 +16,7 @@ use stlc::bed::write::write;
 use stlc::diag::{
     BedError, Diagnostics, ErrorKind, GrowError, InputError, LayoutError, LsysError, StlError,
 };
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::limits::Limits;
 use stlc::model::{Description, Format, Shape};
 use stlc::progress::{NoProgress, Progress};
@@ -158,7 +158,7 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     let src = format!("axiom {axiom}\nangle 90\nrule F F{successor}\n");
     let counts = small_stack(move || {
         let sys = lsys::parse(&src, &limits).expect("parses");
-        [Derivation::Dfs, Derivation::Bfs].map(|s| {
+        [Dfs, Bfs].map(|s| {
             let mut c = Counter::default();
             let mut tally = Tally::default();
             stlc::interpret::lsys::draw(&sys, 1, s, &limits, &mut c, &mut tally).expect("draws");
@@ -212,7 +212,7 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     let count = small_stack(move || {
         let d = stl::parse(&body, Format::Bed, &limits).expect("a deep branch parses");
         let mut c = Counter::default();
-        draw_bed(&d, Derivation::Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
+        draw_bed(&d, Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
         c.0
     });
     assert_eq!(count, 1);
@@ -252,9 +252,9 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         validate(&d, &limits).expect("valid");
         let text = write(&d);
         let mut c = Counter::default();
-        draw_bed(&d, Derivation::Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
+        draw_bed(&d, Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
         let mut b = Counter::default();
-        draw_bed(&d, Derivation::Bfs, &limits, &mut b, &mut NoProgress).expect("draws");
+        draw_bed(&d, Bfs, &limits, &mut b, &mut NoProgress).expect("draws");
         assert_eq!(b.0, c.0);
         let back = stl::parse(&text, Format::Bed, &limits).expect("reparses");
         assert!(back == d, "round trip");
@@ -325,7 +325,7 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
     let d = bed(&format!("{HEAD} R1: [+F][-F] SEED [I 40 R1] ENDSEED"));
     let (e, drawn, tally) = small_stack(move || {
         let (mut c, mut tally) = (Counter::default(), Tally::default());
-        let e = draw_bed(&d, Derivation::Dfs, &Limits::default(), &mut c, &mut tally).unwrap_err();
+        let e = draw_bed(&d, Dfs, &Limits::default(), &mut c, &mut tally).unwrap_err();
         (e, c.0, tally)
     });
     assert!(is_limit(&e, "symbols in the expansion"), "{e}");
@@ -341,9 +341,8 @@ fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
     let (e, drawn, tally) = small_stack(move || {
         let (mut c, mut tally) = (Counter::default(), Tally::default());
         let limits = Limits::default();
-        let e =
-            stlc::interpret::lsys::draw(&sys, 10_000, Derivation::Dfs, &limits, &mut c, &mut tally)
-                .unwrap_err();
+        let e = stlc::interpret::lsys::draw(&sys, 10_000, Dfs, &limits, &mut c, &mut tally)
+            .unwrap_err();
         (e, c.0, tally)
     });
     // Refused before a symbol was derived.
@@ -371,9 +370,8 @@ fn a_wide_alphabet_at_the_depth_limit_is_refused_with_its_exact_length() {
         let limits = Limits::default();
         let sys = lsys::parse(&src, &limits).expect("parses");
         let (mut c, mut tally) = (Counter::default(), Tally::default());
-        let e =
-            stlc::interpret::lsys::draw(&sys, 10_000, Derivation::Dfs, &limits, &mut c, &mut tally)
-                .unwrap_err();
+        let e = stlc::interpret::lsys::draw(&sys, 10_000, Dfs, &limits, &mut c, &mut tally)
+            .unwrap_err();
         (e, c.0, tally)
     });
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
@@ -519,7 +517,7 @@ fn a_layout_whose_shapes_cancel_is_read_and_drawn() {
     assert_eq!(d.layout.as_ref().unwrap().shapes.len(), 2);
     let mut b = Bounds::default();
     let limits = Limits::default();
-    draw_bed(&d, Derivation::Dfs, &limits, &mut b, &mut NoProgress).unwrap();
+    draw_bed(&d, Dfs, &limits, &mut b, &mut NoProgress).unwrap();
     assert_eq!(b.count, 1);
 }
 
@@ -663,8 +661,7 @@ fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
     });
     let mut segs = Segments::default();
     let limits = Limits::default();
-    stlc::interpret::bed::draw(&g.bed, Derivation::Dfs, &limits, &mut segs, &mut NoProgress)
-        .unwrap();
+    stlc::interpret::bed::draw(&g.bed, Dfs, &limits, &mut segs, &mut NoProgress).unwrap();
     assert_eq!(segs.0.len() as u64, g.stems);
     let ends = || segs.0.iter().flat_map(|s| [s.from, s.to]);
     for p in ends() {

@@ -10,7 +10,7 @@ use stlc::bed::validate;
 use stlc::bed::write::write;
 use stlc::color::Rgb;
 use stlc::diag::{BedError, Diagnostics, ErrorKind, InputError, LayoutError, RuleError, StlError};
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::bed::{draw_into, expand};
 use stlc::limits::{Bound, Limits};
 use stlc::model::{
@@ -58,8 +58,8 @@ fn expanded(d: &Description, strategy: Derivation) -> String {
 
 /// The expansion of `d`, asserted the same depth-first and breadth-first.
 fn expanded_both(d: &Description) -> String {
-    let dfs = expanded(d, Derivation::Dfs);
-    assert_eq!(expanded(d, Derivation::Bfs), dfs, "bfs against dfs");
+    let dfs = expanded(d, Dfs);
+    assert_eq!(expanded(d, Bfs), dfs, "bfs against dfs");
     dfs
 }
 
@@ -172,7 +172,7 @@ fn longest_match_prefers_the_longer_name() {
     let items = &seed.items;
     assert!(matches!(&items[1], SeedItem::Term(t) if seed.term(*t).rule() == RuleId(1)));
     assert!(matches!(&items[2], SeedItem::Term(t) if seed.term(*t).rule() == RuleId(0)));
-    assert_eq!(expanded(&d, Derivation::Dfs), "F[+F][F]\n");
+    assert_eq!(expanded(&d, Dfs), "F[+F][F]\n");
 }
 
 #[test]
@@ -199,7 +199,7 @@ fn trunk_and_successor_names_in_bodies() {
     assert!(
         matches!(&b[1], BodyItem::Branch(br) if br.successor.as_ref().map(|s| s.rule) == Some(RuleId(1)))
     );
-    assert_eq!(expanded(&d, Derivation::Dfs), "F[+F[F]][-F]\n");
+    assert_eq!(expanded(&d, Dfs), "F[+F[F]][-F]\n");
 }
 
 #[test]
@@ -219,8 +219,8 @@ fn segments_have_hand_computed_coordinates_and_orders() {
         seg(-8.0, -18.0, -14.0, -18.0, 2),  // the inner R1's trunk, still left
         seg(-14.0, -18.0, -14.0, -12.0, 2), // its branch, turned left again: down
     ];
-    assert_eq!(segments(&d, Derivation::Dfs).unwrap(), want);
-    assert_eq!(segments(&d, Derivation::Bfs).unwrap(), want);
+    assert_eq!(segments(&d, Dfs).unwrap(), want);
+    assert_eq!(segments(&d, Bfs).unwrap(), want);
 }
 
 #[test]
@@ -228,7 +228,7 @@ fn the_root_and_default_angle_are_used() {
     // A defaults to 30: a left turn then F from (100, 50) goes to
     // (100 - 10 sin 30, 50 - 10 cos 30).
     let d = bed("T (100, 50) L=10(0) B=1(0) RULE R1: [+F] SEED R1 ENDSEED");
-    let s = segments(&d, Derivation::Dfs).unwrap();
+    let s = segments(&d, Dfs).unwrap();
     assert_eq!(s.len(), 1);
     assert_eq!(s[0].from, Point::new(100.0, 50.0));
     assert!((s[0].to.x - 95.0).abs() < 1e-12);
@@ -467,7 +467,7 @@ fn validate_refuses_orders_without_length() {
     let src = "T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED";
     assert_eq!(e.0[0].span, Some(at(src, inner, 0)));
     // ... and so does drawing.
-    assert!(segments(&d, Derivation::Dfs).is_err());
+    assert!(segments(&d, Dfs).is_err());
 }
 
 #[test]
@@ -483,12 +483,12 @@ fn bfs_refuses_words_over_the_limit() {
     // [I 8 R1], R1 = [F][F]: 2^8 - 1 = 255 applications, far over 100 symbols.
     let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 8 R1] ENDSEED"));
     let limits = limits_with(|l| l.max_word = 100);
-    let e = segments_within(&d, Derivation::Bfs, &limits).unwrap_err();
+    let e = segments_within(&d, Bfs, &limits).unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
     let help = e.0[0].help_text().unwrap_or_default();
     assert!(help.contains("--max-word"));
     // dfs needs no word.
-    let r = segments_within(&d, Derivation::Dfs, &limits).unwrap();
+    let r = segments_within(&d, Dfs, &limits).unwrap();
     assert_eq!(r.len(), 2 * 255);
 }
 
@@ -581,19 +581,19 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         let limits = Limits::default();
         let mut out = Vec::new();
         stlc::bed::Bed::new(d.clone(), &limits)
-            .and_then(|bed| expand(&bed, Derivation::Dfs, &limits, &mut out, &mut NoProgress))
+            .and_then(|bed| expand(&bed, Dfs, &limits, &mut out, &mut NoProgress))
             .unwrap();
         assert_eq!(out.len(), 3 * n + 1);
         assert!(out.starts_with(b"[F[F"));
         // bfs rewrites the whole word once per level (quadratic here), so
         // it is compared on the first 500 levels only.
-        assert_eq!(segments(&d, Derivation::Dfs).unwrap().len(), n);
+        assert_eq!(segments(&d, Dfs).unwrap().len(), n);
         let m = 500;
         let src = nested(m);
         let small = bed(&src);
         assert_eq!(
-            segments(&small, Derivation::Bfs).unwrap(),
-            segments(&small, Derivation::Dfs).unwrap()
+            segments(&small, Bfs).unwrap(),
+            segments(&small, Dfs).unwrap()
         );
         drop(d);
     });
@@ -980,14 +980,14 @@ proptest! {
     #[test]
     fn dfs_and_bfs_draw_the_same(seed in any::<u64>()) {
         let d = gen_description(seed);
-        let a = segments(&d, Derivation::Dfs);
-        let b = segments(&d, Derivation::Bfs);
+        let a = segments(&d, Dfs);
+        let b = segments(&d, Bfs);
         prop_assert_eq!(&a, &b);
         if d.is_3d() {
-            prop_assert_eq!(segments3(&d, Derivation::Dfs), segments3(&d, Derivation::Bfs));
+            prop_assert_eq!(segments3(&d, Dfs), segments3(&d, Bfs));
         }
         if a.is_ok() {
-            prop_assert_eq!(expanded(&d, Derivation::Dfs), expanded(&d, Derivation::Bfs));
+            prop_assert_eq!(expanded(&d, Dfs), expanded(&d, Bfs));
         }
     }
 }
@@ -998,10 +998,10 @@ fn the_example_files_parse_and_expand_as_the_paper_says() {
     let read = |n: &str| std::fs::read_to_string(dir.join(n)).unwrap();
     let d = bed(&read("paper-worked.bed"));
     let worked = "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n";
-    assert_eq!(expanded(&d, Derivation::Dfs), worked);
+    assert_eq!(expanded(&d, Dfs), worked);
     let d = bed(&read("seed-r1r2r2.bed"));
     let worked = "[FFF][F[+F][-F]F][F[+F][-F]F]\n";
-    assert_eq!(expanded(&d, Derivation::Bfs), worked);
+    assert_eq!(expanded(&d, Bfs), worked);
     assert_eq!(od(&read("2dtree.od")).layout.unwrap().shapes.len(), 3);
 }
 

@@ -7,7 +7,7 @@ use stlc::choice::{Alternatives, Key};
 use stlc::diag::ErrorKind::{self, Lsys, Rule};
 use stlc::diag::LsysError::{DuplicateProduction, NotWholeNumber, Param, UnreadableProbability};
 use stlc::diag::RuleError::{BadProbability, MissingProbability, ProbabilitySum};
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::expected::{StochasticStats, stochastic_stats};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
@@ -38,7 +38,7 @@ fn the_choice_is_the_documented_function_of_seed_and_place() {
         "axiom {}\nangle 90\nrule A (0.5) -> x\nrule A (0.3) -> y\nrule A (0.2) -> z\nseed 11\n",
         "A".repeat(n)
     );
-    let got = word(&sys(&src), 1, Derivation::Dfs);
+    let got = word(&sys(&src), 1, Dfs);
     let table = Alternatives::new(&[0.5, 0.3, 0.2]).unwrap();
     let want: String = (0..n as u64)
         .map(|i| ['x', 'y', 'z'][table.pick(Key::root(11).child(i))])
@@ -57,7 +57,7 @@ fn choices_follow_the_probabilities() {
             "axiom {axiom}\nangle 90\nrule B -> AAA\n\
              rule A (0.6) -> x\nrule A (0.3) -> y\nrule A (0.1) -> z\n"
         );
-        let w = word(&sys(&src), depth, Derivation::Bfs);
+        let w = word(&sys(&src), depth, Bfs);
         assert_eq!(w.len(), n);
         for (c, p) in [('x', 0.6), ('y', 0.3), ('z', 0.1)] {
             let k = w.chars().filter(|&x| x == c).count() as f64;
@@ -103,8 +103,8 @@ proptest! {
     #[test]
     fn dfs_and_bfs_agree_on_stochastic_systems(src in arb_system(), depth in 0u32..6) {
         let s = sys(&src);
-        prop_assert_eq!(word(&s, depth, Derivation::Dfs), word(&s, depth, Derivation::Bfs));
-        prop_assert_eq!(segments(&s, depth, Derivation::Dfs), segments(&s, depth, Derivation::Bfs));
+        prop_assert_eq!(word(&s, depth, Dfs), word(&s, depth, Bfs));
+        prop_assert_eq!(segments(&s, depth, Dfs), segments(&s, depth, Bfs));
     }
 }
 
@@ -139,9 +139,9 @@ fn the_seed_selects_the_plant() {
 #[test]
 fn a_deterministic_system_ignores_the_seed() {
     let mut s = sys("axiom F\nangle 25.7\nrule F -> F[+F]F[-F]F\n");
-    let w = word(&s, 3, Derivation::Dfs);
+    let w = word(&s, 3, Dfs);
     s.seed = 12345;
-    assert_eq!(w, word(&s, 3, Derivation::Dfs));
+    assert_eq!(w, word(&s, 3, Dfs));
 }
 
 // ------------------------------------------------------------ stats
@@ -153,7 +153,7 @@ fn counted_stats_are_the_words_counts() {
     let StochasticStats::Counted(st) = stochastic_stats(&s, 4, &Limits::default()).unwrap() else {
         panic!("a short word is counted");
     };
-    let w = word(&s, 4, Derivation::Dfs);
+    let w = word(&s, 4, Dfs);
     assert_eq!(st.length, w.len().into());
     for (c, n) in &st.symbols {
         assert_eq!(*n, w.chars().filter(|x| x == c).count().into(), "{c}");
@@ -187,7 +187,7 @@ fn expected_stats_follow_the_mean_matrix() {
         .map(|seed| {
             let mut s = sys(FIG_1_27);
             s.seed = seed;
-            word(&s, 3, Derivation::Dfs).matches('F').count() as f64
+            word(&s, 3, Dfs).matches('F').count() as f64
         })
         .collect();
     let mean = counts.iter().sum::<f64>() / n as f64;
@@ -256,7 +256,7 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
         assert_eq!(*l, limit / 10);
         value.clone()
     };
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         assert_eq!(refuse(3, 650, strategy), "at least 66");
         assert_eq!(
             refuse(100, 1_000_000, strategy),
@@ -271,7 +271,7 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
         s.seed = seed;
         // A tenth of 1,200: 120 symbols.
         let mut out = Vec::new();
-        if expand_within(&s, 3, Derivation::Dfs, 1_200, &mut out).is_err() {
+        if expand_within(&s, 3, Dfs, 1_200, &mut out).is_err() {
             over += 1;
             assert!(
                 out.is_empty(),
@@ -288,7 +288,7 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
         .map(|seed| {
             let mut s = sys(FIG_1_27);
             s.seed = seed;
-            word(&s, 3, Derivation::Dfs).len()
+            word(&s, 3, Dfs).len()
         })
         .collect();
     assert!(lens.iter().all(|l| (66..=311).contains(l)), "{lens:?}");
@@ -413,13 +413,13 @@ fn stochastic_rule_forms() {
     assert_eq!(s.seed, u64::MAX);
     let s = sys("axiom F\nangle 30\nrule F (1) -> FF\n");
     assert!(s.is_stochastic());
-    assert_eq!(word(&s, 2, Derivation::Dfs), "FFFF");
+    assert_eq!(word(&s, 2, Dfs), "FFFF");
     let s = sys("axiom F\nangle 30\nrule F (F)\n");
     assert!(!s.is_stochastic());
-    assert_eq!(word(&s, 1, Derivation::Dfs), "(F)");
+    assert_eq!(word(&s, 1, Dfs), "(F)");
     // Without an arrow after it, a parenthesis is symbols of the successor.
     let s = sys("axiom F\nangle 30\nrule F (x)F\n");
-    assert_eq!(word(&s, 1, Derivation::Dfs), "(x)F");
+    assert_eq!(word(&s, 1, Dfs), "(x)F");
 }
 
 /// A stochastic derivation may visit a tenth of `--max-symbols` (each of
