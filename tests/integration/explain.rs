@@ -81,10 +81,8 @@ fn assert_problem_8_warning(warnings: &[Diagnostic], text: &str) {
     };
     assert_eq!((rule.as_str(), *tries), ("R1", 1));
     let (stem, kin, other, f, n, clearance) = too_close(*why);
-    assert_eq!(
-        (stem, kin, other, clearance),
-        (4, Kin::Sibling, Some(2), 1.5)
-    );
+    let want = (4, Kin::Sibling, Some(2), 1.5);
+    assert_eq!((stem, kin, other, clearance), want);
     assert!((f - found).abs() < 1e-9, "found {f}, expected {found}");
     assert!((n - needed).abs() < 1e-9, "needed {n}, expected {needed}");
     let message = w.kind.to_string();

@@ -642,10 +642,8 @@ fn root_outside_the_region_is_an_error() {
         LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT";
     let e = grow_err(&od(text), opts(GrowthOrder::Bfs));
     let (x, y, z) = (250.0, 100.0, None);
-    assert_eq!(
-        e.0[0].kind,
-        ErrorKind::Grow(GrowError::RootOutside { x, y, z })
-    );
+    let want = ErrorKind::Grow(GrowError::RootOutside { x, y, z });
+    assert_eq!(e.0[0].kind, want);
     assert_eq!(e.0[0].span, Some(span_of(text, "(250, 100)")));
 }
 
@@ -723,10 +721,8 @@ fn depth_limit_stops_a_vine_with_a_warning() {
     assert_eq!(g.stems, 1 + 5);
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(g.warnings[0].severity, Severity::Warning);
-    assert_eq!(
-        g.warnings[0].kind,
-        ErrorKind::Grow(GrowError::DepthCapped { limit: 5 })
-    );
+    let want = ErrorKind::Grow(GrowError::DepthCapped { limit: 5 });
+    assert_eq!(g.warnings[0].kind, want);
 }
 
 #[test]

@@ -43,10 +43,8 @@ fn without_points_space_first_is_bfs() {
     let d = od(&box_with_hole("N=0"));
     assert_eq!(bed_in(&d, GrowthOrder::Space), bed_in(&d, GrowthOrder::Bfs));
     let free = od("Free (0, 0) L=10(1) B=1(0) RULE R1: [+F][-F]");
-    assert_eq!(
-        bed_in(&free, GrowthOrder::Space),
-        bed_in(&free, GrowthOrder::Bfs)
-    );
+    let want = bed_in(&free, GrowthOrder::Bfs);
+    assert_eq!(bed_in(&free, GrowthOrder::Space), want);
     // With points the order changes, and so does the tree.
     let d = od(&box_with_hole(""));
     assert_ne!(bed_in(&d, GrowthOrder::Space), bed_in(&d, GrowthOrder::Bfs));

@@ -92,10 +92,8 @@ fn defaults_and_optional_generations() {
     assert_eq!(s.color, None);
     assert_eq!(s.background, Background::White);
     let s = sys("axiom F\r\nangle 90\r\nbackground clGreen\r\nrule F->F+F");
-    assert_eq!(
-        s.background,
-        Background::Color(stlc::color::Rgb::new(0, 128, 0))
-    );
+    let wanted = Background::Color(stlc::color::Rgb::new(0, 128, 0));
+    assert_eq!(s.background, wanted);
     assert_eq!(s.successor('F'), Some(&['F', '+', 'F'][..]));
 }
 
@@ -202,10 +200,8 @@ fn malformed_and_invalid_numbers() {
         ]
     );
     let e = errors("axiom F\nangle nan\n", &Limits::default());
-    assert_eq!(
-        e,
-        vec![(Lsys(MalformedNumber { text: "nan".into() }), 14..17)]
-    );
+    let wanted = vec![(Lsys(MalformedNumber { text: "nan".into() }), 14..17)];
+    assert_eq!(e, wanted);
 }
 
 #[test]
@@ -213,10 +209,8 @@ fn generations_above_max_depth_name_the_flag() {
     let limits = limits_with(|l| l.max_depth = 10);
     let err = parse("generations 11\naxiom F\nangle 90\n", &limits).unwrap_err();
     let d = &err.0[0];
-    assert_eq!(
-        d.kind,
-        limit_kind(Bound::Depth, Some("generations"), "11", 10)
-    );
+    let wanted = limit_kind(Bound::Depth, Some("generations"), "11", 10);
+    assert_eq!(d.kind, wanted);
     assert_eq!(d.span, Some(12..14));
     assert!(d.help_text().unwrap().contains("--max-depth"));
 }
@@ -250,10 +244,8 @@ fn duplicate_key_bad_colour_and_long_predecessor() {
 fn syntax_errors_read_like_the_file_not_the_grammar() {
     let err = parse("axiom F\nangle\n", &Limits::default()).unwrap_err();
     let d = &err.0[0];
-    assert_eq!(
-        d.kind,
-        ErrorKind::Input(InputError::Syntax("expected a number".into()))
-    );
+    let wanted = ErrorKind::Input(InputError::Syntax("expected a number".into()));
+    assert_eq!(d.kind, wanted);
     assert_eq!(d.span, Some(13..13));
     let err = parse("axiom F\nangle 90\nrule X\n", &Limits::default()).unwrap_err();
     let ErrorKind::Input(InputError::Syntax(m)) = &err.0[0].kind else {
@@ -317,16 +309,12 @@ fn segments_by_hand() {
     // `F+F` at 90 degrees: up one, turn left, then one step left (canvas: y down).
     let segs = segments("axiom F+F\nangle 90\nlength 2\n", 0, Dfs);
     let p = Point::new;
-    assert_eq!(
-        segs,
-        [seg((0.0, 0.0), (0.0, -2.0)), seg((0.0, -2.0), (-2.0, -2.0))]
-    );
+    let wanted = [seg((0.0, 0.0), (0.0, -2.0)), seg((0.0, -2.0), (-2.0, -2.0))];
+    assert_eq!(segs, wanted);
     // `heading 0`: the same word starts to the right, then turns up.
     let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Bfs);
-    assert_eq!(
-        segs,
-        [seg((0.0, 0.0), (1.0, 0.0)), seg((1.0, 0.0), (1.0, -1.0))]
-    );
+    let wanted = [seg((0.0, 0.0), (1.0, 0.0)), seg((1.0, 0.0), (1.0, -1.0))];
+    assert_eq!(segs, wanted);
     // `heading 180` with `|`: left, then turned around, back right.
     assert_eq!(
         segments("axiom F|F\nangle 90\nheading 180\n", 0, Dfs)
@@ -474,10 +462,8 @@ fn bfs_refuses_over_the_word_budget() {
     let ErrorKind::Limit { value, .. } = err.first_kind().unwrap() else {
         panic!("{err}")
     };
-    assert_eq!(
-        *value,
-        ((BigUint::from(5u32).pow(58) - 3u32) / 2u32).to_string()
-    );
+    let wanted = ((BigUint::from(5u32).pow(58) - 3u32) / 2u32).to_string();
+    assert_eq!(*value, wanted);
 }
 
 #[test]

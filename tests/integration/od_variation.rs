@@ -183,10 +183,8 @@ fn the_seed_selects_the_tree() {
 fn without_alternatives_the_seed_changes_nothing() {
     let text = std::fs::read_to_string(manifest_path("examples/crown.od")).unwrap();
     let d = od(&text);
-    assert_eq!(
-        bed_text(&grown(&d, GrowthOrder::Bfs, 0)),
-        bed_text(&grown(&d, GrowthOrder::Bfs, 99))
-    );
+    let want = bed_text(&grown(&d, GrowthOrder::Bfs, 99));
+    assert_eq!(bed_text(&grown(&d, GrowthOrder::Bfs, 0)), want);
 }
 
 // ------------------------------------------------------------ diagnostics
@@ -265,10 +263,8 @@ fn a_dot_in_an_od_is_refused() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] SEED F R1.1 ENDSEED";
     let e = errors(text, Format::Od);
     assert!(matches!(&e.0[0].kind, Rule(DottedName { name }) if name == "R1.1"));
-    assert_eq!(
-        e.0[0].span,
-        Some(span_of(text, "R1.1 ")).map(|s| s.start..s.end - 1)
-    );
+    let want = Some(span_of(text, "R1.1 ")).map(|s| s.start..s.end - 1);
+    assert_eq!(e.0[0].span, want);
 }
 
 #[test]
@@ -375,10 +371,8 @@ fn a_root_on_another_roots_point_is_warned_about() {
     assert_eq!(shared[0].kind, Grow(SharedRoot { root: 3, first: 1 }));
     let third = text.rfind("(10, 0)").unwrap();
     assert_eq!(shared[0].span, Some(third..third + "(10, 0)".len()));
-    assert_eq!(
-        shared[0].labels[0].span,
-        text.find("(10, 0)").unwrap()..text.find("(10, 0)").unwrap() + 7
-    );
+    let want = text.find("(10, 0)").unwrap()..text.find("(10, 0)").unwrap() + 7;
+    assert_eq!(shared[0].labels[0].span, want);
     let apart = "T (10, 0) (30, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
     assert!(grown(&od(apart), GrowthOrder::Bfs, 0).warnings.is_empty());
     let signed = "T (0, -0) (0, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";

@@ -137,10 +137,8 @@ fn a_surface_is_drawn_in_the_turtles_frame_scaled_and_leaves_it_as_it_was() {
     assert_eq!(rec.polygons, vec![(1, expected)]);
     let ends: Vec<(Point, Point)> = rec.segments.iter().map(|s| (s.from, s.to)).collect();
     let p = Point::new;
-    assert_eq!(
-        ends,
-        [(p(0.0, 0.0), p(0.0, -1.0)), (p(0.0, -1.0), p(0.0, -2.0))]
-    );
+    let want = [(p(0.0, 0.0), p(0.0, -1.0)), (p(0.0, -1.0), p(0.0, -2.0))];
+    assert_eq!(ends, want);
     // Unscaled, a surface turned by the turtle: after `+` the first side
     // goes left.
     let src = "generations 0\nangle 90\nsurface L { {.f+f+f+f} }\naxiom +~L\n";

@@ -310,10 +310,8 @@ proptest! {
 fn expand_writes_the_shortest_numbers_that_read_back() {
     let src = "angle 90\naxiom A(0.1+0.2,1,7.07,-0,2^70)\n";
     let got = expanded(src, 0, Dfs).unwrap();
-    assert_eq!(
-        got,
-        "A(0.30000000000000004,1,7.07,-0,1180591620717411300000)\n"
-    );
+    let expected = "A(0.30000000000000004,1,7.07,-0,1180591620717411300000)\n";
+    assert_eq!(got, expected);
     assert_eq!(
         "1180591620717411300000".parse::<f64>().unwrap(),
         2f64.powi(70)
@@ -397,10 +395,8 @@ fn the_work_over_all_generations_counts_against_the_budget() {
     let limits = limits_with(|l| l.max_symbols = 30_000);
     let mut out = Vec::new();
     expand(&sys, 40, Dfs, &limits, &mut out, &mut NoProgress).unwrap();
-    assert_eq!(
-        String::from_utf8(out).unwrap().trim(),
-        format!("{}B", "A".repeat(41))
-    );
+    let expected = format!("{}B", "A".repeat(41));
+    assert_eq!(String::from_utf8(out).unwrap().trim(), expected);
     let mut out = Vec::new();
     let e = expand(&sys, 100, Dfs, &limits, &mut out, &mut NoProgress).unwrap_err();
     let kind = e.iter().next().unwrap().kind.to_string();
@@ -434,10 +430,8 @@ fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
         expand(&sys, 3, Dfs, &limits, &mut out, &mut NoProgress)
             .map(|()| String::from_utf8(out).unwrap())
     };
-    assert_eq!(
-        run(750).unwrap().trim(),
-        format!("B(0){}", "A(3)".repeat(6))
-    );
+    let expected = format!("B(0){}", "A(3)".repeat(6));
+    assert_eq!(run(750).unwrap().trim(), expected);
     let e = run(690).unwrap_err();
     let kind = e.iter().next().unwrap().kind.to_string();
     assert!(

@@ -176,10 +176,8 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     // An unbalanced one is still pointed at, at its opening bracket.
     let src = format!("axiom F{}\nangle 90\n", "[".repeat(N));
     let e = lsys_err(src, limits);
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::Unbalanced('[')))
-    );
+    let want = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
+    assert_eq!(e.first_kind(), want);
 }
 
 #[test]
@@ -498,10 +496,8 @@ fn a_self_intersecting_polygon_is_read_and_written_back_as_given() {
         format!("{HEAD} R1: [F] LAYOUT (clGreen) Polygon (0,0), (10,10), (10,0), (0,10) ENDLAYOUT");
     let d = bed(&src);
     let shapes = &d.layout.as_ref().unwrap().shapes;
-    assert_eq!(
-        shapes[0].shape,
-        Shape::Polygon(vec![(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)])
-    );
+    let want = Shape::Polygon(vec![(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)]);
+    assert_eq!(shapes[0].shape, want);
     assert_eq!(bed(&write(&d)), d);
 }
 
@@ -589,17 +585,13 @@ fn invalid_utf8_is_refused_with_its_offset_by_both_parsers_entry() {
     let mut bytes = b"axiom F\nangle 90\n# caf".to_vec();
     bytes.extend_from_slice(&[0xc3, 0x28]);
     let e = precheck(&bytes, &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::NotUtf8(22)))
-    );
+    let want = Some(&ErrorKind::Input(InputError::NotUtf8(22)));
+    assert_eq!(e.first_kind(), want);
     assert_eq!(e.0[0].span, Some(22..22));
     // A UTF-16 file (BOM FF FE) fails at byte 0.
     let e = precheck(b"\xff\xfea\0x\0", &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::NotUtf8(0)))
-    );
+    let want = Some(&ErrorKind::Input(InputError::NotUtf8(0)));
+    assert_eq!(e.first_kind(), want);
 }
 
 #[test]

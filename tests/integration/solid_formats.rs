@@ -99,10 +99,8 @@ fn tags(xml: &str, tag: &str, attrs: &[&str]) -> Vec<Vec<String>> {
 fn read_3mf(zip: &[u8]) -> Body {
     let parts = unzip(zip);
     let names: Vec<&str> = parts.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(
-        names,
-        ["[Content_Types].xml", "_rels/.rels", "3D/3dmodel.model"]
-    );
+    let want = ["[Content_Types].xml", "_rels/.rels", "3D/3dmodel.model"];
+    assert_eq!(names, want);
     let text = |i: usize| String::from_utf8(parts[i].1.clone()).unwrap();
     assert!(text(0).contains(
         "Extension=\"model\" ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\""

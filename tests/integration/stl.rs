@@ -304,10 +304,8 @@ fn duplicate_rule_labels_both() {
     let src = format!("{HEAD} R1: [F] R1: [+F] SEED R1 ENDSEED");
     let e = errors(&src);
     assert_eq!(e.0.len(), 1, "{e}");
-    assert_eq!(
-        e.0[0].kind,
-        ErrorKind::Rule(RuleError::DuplicateRule { name: "R1".into() })
-    );
+    let wanted = ErrorKind::Rule(RuleError::DuplicateRule { name: "R1".into() });
+    assert_eq!(e.0[0].kind, wanted);
     assert_eq!(e.0[0].span, Some(at(&src, "R1", 1)));
     assert_eq!(e.0[0].labels[0].span, at(&src, "R1", 0));
 }
@@ -320,10 +318,8 @@ fn reserved_names_are_refused() {
             &src,
             ErrorKind::Rule(RuleError::ReservedName { name: name.into() }),
         );
-        assert_eq!(
-            span,
-            at(&src, &format!("{name}:"), 0).start..at(&src, ":", 0).start
-        );
+        let wanted = at(&src, &format!("{name}:"), 0).start..at(&src, ":", 0).start;
+        assert_eq!(span, wanted);
     }
 }
 
@@ -591,10 +587,8 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         let m = 500;
         let src = nested(m);
         let small = bed(&src);
-        assert_eq!(
-            segments(&small, Bfs).unwrap(),
-            segments(&small, Dfs).unwrap()
-        );
+        let wanted = segments(&small, Dfs).unwrap();
+        assert_eq!(segments(&small, Bfs).unwrap(), wanted);
         drop(d);
     });
 }
@@ -1096,10 +1090,8 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
     let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Rectangle (0, 0), 5, 5 ENDLAYOUT";
     let at = src.find("Rectangle").unwrap();
     let e = errors(src);
-    assert_eq!(
-        e.0[0].kind,
-        ErrorKind::Layout(LayoutError::FlatShapeIn3d { shape: "Rectangle" })
-    );
+    let wanted = ErrorKind::Layout(LayoutError::FlatShapeIn3d { shape: "Rectangle" });
+    assert_eq!(e.0[0].kind, wanted);
     assert_eq!(e.0[0].span, Some(at..src.find(" ENDLAYOUT").unwrap()));
     let help = e.0[0].help_text().unwrap();
     assert!(
@@ -1108,10 +1100,8 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
         "{help}"
     );
     let src = "T (0, 0) RULE R1: [F] LAYOUT (clGreen) Sphere (0, 0, 0), 5 ENDLAYOUT";
-    assert_eq!(
-        one(src).0,
-        ErrorKind::Layout(LayoutError::SolidIn2d { shape: "Sphere" })
-    );
+    let wanted = ErrorKind::Layout(LayoutError::SolidIn2d { shape: "Sphere" });
+    assert_eq!(one(src).0, wanted);
     // Sizes and depths.
     let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Box (0, 0, 0), 5, 0, 5 ENDLAYOUT";
     let at = src.find("5, 0, 5").unwrap() + 3;
