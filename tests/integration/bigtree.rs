@@ -95,10 +95,8 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     let compact = post(&server.addr, "/api/render", &[COMPACT], &body);
     assert_eq!(compact.status, 200);
     let head = &compact.head;
-    assert!(
-        head.contains("content-type: application/x-stlc-render"),
-        "{head}"
-    );
+    let ok = head.contains("content-type: application/x-stlc-render");
+    assert!(ok, "{head}");
     assert_eq!(unpack(&compact.body), a);
     assert!(compact.body.len() < a.to_string().len() * 2 / 3);
 }
@@ -316,10 +314,8 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         assert!(on.iter().all(|&a| a > 0), "a stem without ink: {on:?}");
         assert!(off.iter().all(|&a| a == 0), "ink far from every stem: {off:?}");
         let brown = [0x4a, 0x2c, 0x12].map(f64::from);
-        assert!(
-            (0..3).all(|i| (rgb[i] - brown[i]).abs() < 4.0),
-            "{rgb:?} is not the stroke #4a2c12"
-        );
+        let ok = (0..3).all(|i| (rgb[i] - brown[i]).abs() < 4.0);
+        assert!(ok, "{rgb:?} is not the stroke #4a2c12");
 
         // Zoomed in, a sharper canvas of the part in view replaces the
         // whole one once the view rests: inside the library's picture of

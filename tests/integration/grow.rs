@@ -285,10 +285,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
             .flat_map(|r| r.lines())
             .collect();
         for s in &segs {
-            assert!(
-                region.contains(&line(s)),
-                "segment {s:?} is not inside the region"
-            );
+            let holds = region.contains(&line(s));
+            assert!(holds, "segment {s:?} is not inside the region");
             if s.order == 0 {
                 continue; // the seed is drawn as given
             }
@@ -322,10 +320,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
         let ends_t = [t.from, t.to];
         if let Some(j) = [s.from, s.to].into_iter().find(|p| ends_t.contains(p)) {
             // A joint is where at least one of them starts.
-            assert!(
-                s.from == j || t.from == j,
-                "{s:?} and {t:?} meet end to end"
-            );
+            let holds = s.from == j || t.from == j;
+            assert!(holds, "{s:?} and {t:?} meet end to end");
             let far_s = if s.from == j { s.to } else { s.from };
             let far_t = if t.from == j { t.to } else { t.from };
             for (far, other) in [(far_s, &lt), (far_t, &ls)] {
@@ -334,10 +330,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
                     continue; // nearest at the joint: no fold
                 }
                 let d = Euclidean.distance(&geo::Point::new(far.x, far.y), other);
-                assert!(
-                    d >= need - tol,
-                    "joint too tight: {s:?} {t:?} ({d}) < {need}"
-                );
+                let holds = d >= need - tol;
+                assert!(holds, "joint too tight: {s:?} {t:?} ({d}) < {need}");
             }
         } else {
             let d = Euclidean.distance(&ls, &lt);
@@ -455,10 +449,8 @@ fn trees_of_a_forest_keep_clear_of_each_other() {
             // Stems start at every root: each tree drew at least its seed.
             for t in forest {
                 let (x, y) = t.root;
-                assert!(
-                    segs.iter().any(|p| p.from.x == x && p.from.y == y),
-                    "seed {seed} {s:?}: nothing at root ({x}, {y})"
-                );
+                let holds = segs.iter().any(|p| p.from.x == x && p.from.y == y);
+                assert!(holds, "seed {seed} {s:?}: nothing at root ({x}, {y})");
             }
         }
     }
@@ -569,11 +561,8 @@ fn count_follows_successors() {
         SEED F[I 3 R1] ENDSEED");
     let g = grown(&d, opts(GrowthOrder::Bfs));
     assert_eq!(g.stems, 10);
-    assert_eq!(
-        seed_of(&g),
-        "FR1{R2{R2{}},R1{R2{},R1{,}}}",
-        "written out by hand from the rule"
-    );
+    let wanted = "FR1{R2{R2{}},R1{R2{},R1{,}}}";
+    assert_eq!(seed_of(&g), wanted, "written out by hand from the rule");
 }
 
 #[test]
@@ -829,10 +818,8 @@ fn the_bed_keeps_every_digit_growth_used() {
     let d = od(text);
     let g = grown(&d, opts(GrowthOrder::Bfs));
     let written = stlc::bed::write::write(g.bed.description());
-    assert!(
-        written.contains("(0.0001234, 0.5)\nL=12(1) B=3(0.999999999926) A=28 C=0.5\n"),
-        "{written}"
-    );
+    let holds = written.contains("(0.0001234, 0.5)\nL=12(1) B=3(0.999999999926) A=28 C=0.5\n");
+    assert!(holds, "{written}");
     let back = parse(&written, Format::Bed, &Limits::default()).unwrap();
     let mut params = g.bed.description().params.clone();
     params.loc = back.params.loc.clone();

@@ -242,15 +242,11 @@ fn check(od: &Description, growth: GrowthOrder) -> usize {
             Some(far) => {
                 let (d1, at1) = to_segment(tb, sa, sb);
                 let at_joint = if ta == sa { 0.0 } else { 1.0 };
-                assert!(
-                    d1 >= need - 1e-9 || at1 == at_joint,
-                    "stem {i}: far end {d1} < {need}"
-                );
+                let ok = d1 >= need - 1e-9 || at1 == at_joint;
+                assert!(ok, "stem {i}: far end {d1} < {need}");
                 let (d2, at2) = to_segment(far, ta, tb);
-                assert!(
-                    d2 >= need - 1e-9 || at2 == 0.0,
-                    "stem {i}: other's far end {d2} < {need}"
-                );
+                let ok = d2 >= need - 1e-9 || at2 == 0.0;
+                assert!(ok, "stem {i}: other's far end {d2} < {need}");
             }
             None => {
                 let d = seg_dist(ta, tb, sa, sb);

@@ -125,14 +125,10 @@ fn space_first_covers_more_on_the_same_budget() {
     let d = od(&box_with_hole(""));
     let inside = |x: f64, y: f64| !((50.0..=150.0).contains(&x) && (50.0..=150.0).contains(&y));
     let [space, bfs, dfs] = at_a_third(&d, inside, 10.0);
-    assert!(
-        space.0 > bfs.0 && space.0 > dfs.0,
-        "{space:?} {bfs:?} {dfs:?}"
-    );
-    assert!(
-        space.1 < bfs.1 && space.1 < dfs.1,
-        "{space:?} {bfs:?} {dfs:?}"
-    );
+    let holds = space.0 > bfs.0 && space.0 > dfs.0;
+    assert!(holds, "{space:?} {bfs:?} {dfs:?}");
+    let holds = space.1 < bfs.1 && space.1 < dfs.1;
+    assert!(holds, "{space:?} {bfs:?} {dfs:?}");
 }
 
 /// With a length decrement (`crown.od`, `L=10(0.35)`), too: a growth
@@ -149,10 +145,8 @@ fn space_first_covers_more_of_a_crown_with_a_length_decrement() {
         u * u + v * v <= 1.0
     };
     let [space, bfs, dfs] = at_a_third(&od(&text), in_crown, 10.0);
-    assert!(
-        space.0 > bfs.0 && space.0 > dfs.0 && space.1 < bfs.1 && space.1 < dfs.1,
-        "{space:?} {bfs:?} {dfs:?}"
-    );
+    let holds = space.0 > bfs.0 && space.0 > dfs.0 && space.1 < bfs.1 && space.1 < dfs.1;
+    assert!(holds, "{space:?} {bfs:?} {dfs:?}");
     let fixed = text.replace("C=1\n", "C=1 Q=40\n");
     assert_ne!(fixed, text);
     let [space, bfs, _] = at_a_third(&od(&fixed), in_crown, 10.0);

@@ -166,16 +166,12 @@ fn level_of_detail_stays_within_the_quality_bound() {
             mean <= 2.0,
             "{file} at depth {depth}: mean {mean:.3}/255 (inked {x} exact, {l})"
         );
-        assert!(
-            x > 2000 && l > 2000,
-            "{file} at depth {depth}: inked {x} and {l}"
-        );
+        let holds = x > 2000 && l > 2000;
+        assert!(holds, "{file} at depth {depth}: inked {x} and {l}");
     }
     let (mean, x, l) = compare(&png("hilbert", 9, true), &png("hilbert", 9, false));
-    assert!(
-        mean <= 2.0 && x.abs_diff(l) * 100 <= 3 * x,
-        "hilbert: {mean} {x} {l}"
-    );
+    let holds = mean <= 2.0 && x.abs_diff(l) * 100 <= 3 * x;
+    assert!(holds, "hilbert: {mean} {x} {l}");
 }
 
 /// Issue 24 item 4, the silhouette: at the default size the default
@@ -237,10 +233,8 @@ fn solid_pieces_are_stamped_with_the_exact_drawings_tone() {
     let lod = png_sized("hilbert", 10, false, size);
     assert!(exact != lod, "nothing cut");
     let (mean, x, l) = compare(&exact, &lod);
-    assert!(
-        mean <= 4.0 && x.abs_diff(l) * 200 <= x,
-        "mean {mean:.3}/255, inked {x} exact, {l}"
-    );
+    let holds = mean <= 4.0 && x.abs_diff(l) * 200 <= x;
+    assert!(holds, "mean {mean:.3}/255, inked {x} exact, {l}");
 }
 
 /// Hilbert at depth 30 (10^18 segments) renders: its 2-16 px pieces are

@@ -418,10 +418,8 @@ fn koch_snowflake_segments_end_and_box() {
     let last = segs.last().unwrap();
     let (dx, dy) = (last.to.x - last.from.x, last.to.y - last.from.y);
     let a210 = 210f64.to_radians();
-    assert!(
-        close(dx, libm::cos(a210)) && close(dy, -libm::sin(a210)),
-        "{dx} {dy}"
-    );
+    let ok = close(dx, libm::cos(a210)) && close(dy, -libm::sin(a210));
+    assert!(ok, "{dx} {dy}");
 }
 
 #[test]
@@ -628,10 +626,8 @@ fn hilbert_and_stl_fig4_counts() {
         // The curve fills a (2^n - 1) square.
         let b = st.bbox.unwrap();
         let side = f64::from(2u32.pow(n) - 1);
-        assert!(
-            close(b[2] - b[0], side) && close(b[3] - b[1], side),
-            "{n} {b:?}"
-        );
+        let ok = close(b[2] - b[0], side) && close(b[3] - b[1], side);
+        assert!(ok, "{n} {b:?}");
     }
     // 003 Fig. 4 at depth 1: F[-F]F[+F]F, 30 degrees, by hand.
     let segs = segments("axiom F\nrule F F[-F]F[+F]F\nangle 30\n", 1, Dfs);

@@ -78,10 +78,8 @@ fn on_the_ground_at_the_origin(ring: &[Vec<f32>], r: f64) {
     let n = ring.len() as f64;
     for k in [0, 2] {
         let mean: f64 = ring.iter().map(|v| f64::from(v[k])).sum::<f64>() / n;
-        assert!(
-            mean.abs() < 1e-7,
-            "the ring's centre is off the origin: {mean}"
-        );
+        let holds = mean.abs() < 1e-7;
+        assert!(holds, "the ring's centre is off the origin: {mean}");
     }
     for v in ring {
         assert_eq!(v[1], 0.0, "{v:?}");
@@ -104,10 +102,8 @@ fn a_single_vertical_stem_stands_on_the_origin_with_v_in_circumferences() {
     let (ring, v) = first_tube(&g, 6);
     on_the_ground_at_the_origin(&ring, 0.01);
     let top: Vec<f32> = (0..6).map(|j| pos[2 * j + 1][1]).collect();
-    assert!(
-        top.iter().all(|&y| (f64::from(y) - 0.1).abs() < 1e-7),
-        "{top:?}"
-    );
+    let holds = top.iter().all(|&y| (f64::from(y) - 0.1).abs() < 1e-7);
+    assert!(holds, "{top:?}");
     assert!((f64::from(v) - 1.591_549_4).abs() < 1e-6, "{v}");
 }
 

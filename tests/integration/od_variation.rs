@@ -81,10 +81,8 @@ fn choices_follow_the_probabilities() {
     for (c, p) in counts.iter().zip([0.6, 0.3, 0.1]) {
         let mean = n as f64 * p;
         let sd = (n as f64 * p * (1.0 - p)).sqrt();
-        assert!(
-            (*c as f64 - mean).abs() < 4.0 * sd,
-            "{counts:?}: {c} vs {mean} ± {sd}"
-        );
+        let holds = (*c as f64 - mean).abs() < 4.0 * sd;
+        assert!(holds, "{counts:?}: {c} vs {mean} ± {sd}");
     }
 }
 
@@ -123,10 +121,8 @@ fn every_application_chooses_and_the_bed_names_the_choice() {
         R1 (0.5): [+F] R1 (0.5): [-F] SEED [I 6 R1] ENDSEED");
     let g = grown(&d, GrowthOrder::Bfs, 3);
     let text = bed_text(&g);
-    assert!(
-        text.contains("R1.1 (0.5): [+F]\nR1.2 (0.5): [-F]\n"),
-        "{text}"
-    );
+    let holds = text.contains("R1.1 (0.5): [+F]\nR1.2 (0.5): [-F]\n");
+    assert!(holds, "{text}");
     // One chain of six applications; both alternatives occur (the chance
     // that one seed gives six equal choices is 1/32, and seed 3 does not).
     let (ones, twos) = (text.matches("R1.1{").count(), text.matches("R1.2{").count());
@@ -158,10 +154,8 @@ fn a_grown_bed_reads_back_and_needs_no_seed() {
         let g = grown(&od(&text), GrowthOrder::Bfs, 5);
         let written = bed_text(&g);
         let back = parse(&written, Format::Bed, &Limits::default()).unwrap();
-        assert!(
-            back == *g.bed.description(),
-            "{file}: the BED reads back differently"
-        );
+        let holds = back == *g.bed.description();
+        assert!(holds, "{file}: the BED reads back differently");
         assert_eq!(stlc::bed::write::write(&back), written);
     }
 }
@@ -227,10 +221,8 @@ fn every_alternative_needs_a_probability() {
     let e = errors("T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F]", Format::Od);
     assert!(matches!(&e.0[0].kind, Rule(ProbabilitySum { .. })));
     let help = e.0[0].help_text().unwrap();
-    assert!(
-        help.contains("one body needs no probability: write `R1: ...`"),
-        "{help}"
-    );
+    let holds = help.contains("one body needs no probability: write `R1: ...`");
+    assert!(holds, "{help}");
     // Two bodies without probabilities stay a duplicate.
     let e = errors("T (0,0) L=1(0) B=1(0) RULE R1: [+F] R1: [-F]", Format::Od);
     assert!(matches!(&e.0[0].kind, Rule(DuplicateRule { .. })));
@@ -248,10 +240,8 @@ fn an_od_with_alternatives_writes_as_an_od() {
     assert_eq!(stlc::bed::write::write(&od(&written)), written);
     let g = grown(&d, GrowthOrder::Bfs, 0);
     let bed = bed_text(&g);
-    assert!(
-        bed.contains("R1.1 (0.6): [+F][-F]\nR1.2 (0.4): [F]\n"),
-        "{bed}"
-    );
+    let holds = bed.contains("R1.1 (0.6): [+F][-F]\nR1.2 (0.4): [F]\n");
+    assert!(holds, "{bed}");
 }
 
 #[test]

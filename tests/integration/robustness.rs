@@ -225,11 +225,8 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     );
     let at = repeats.find("[I").unwrap();
     let e = stl_err(repeats, Format::Bed, limits);
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::Unbalanced('['))),
-        "{e}"
-    );
+    let wanted = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
+    assert_eq!(e.first_kind(), wanted, "{e}");
     assert_eq!(e.0[0].span, Some(at..at + 1));
 }
 
@@ -599,10 +596,8 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
     for src in ["", "\n\n  \n", "# nothing but a comment\n# and another"] {
         let e = lsys_err(src.into(), Limits::default());
         let missing: Vec<String> = e.iter().map(|d| d.kind.to_string()).collect();
-        assert!(
-            missing.iter().any(|m| m.contains("axiom")),
-            "{src:?}: {missing:?}"
-        );
+        let holds = missing.iter().any(|m| m.contains("axiom"));
+        assert!(holds, "{src:?}: {missing:?}");
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(src.into(), format, Limits::default());
             assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src:?}: {e}");

@@ -38,11 +38,8 @@ fn u32_at(b: &[u8], at: usize) -> usize {
 /// local header agrees with it, each CRC with the contents.
 fn unzip(zip: &[u8]) -> Vec<(String, Vec<u8>)> {
     let end = zip.len() - 22;
-    assert_eq!(
-        u32_at(zip, end),
-        0x0605_4b50,
-        "no end record (or a comment)"
-    );
+    let expected = 0x0605_4b50;
+    assert_eq!(u32_at(zip, end), expected, "no end record (or a comment)");
     let (count, mut at) = (u16_at(zip, end + 10), u32_at(zip, end + 16));
     let mut entries = Vec::new();
     for _ in 0..count {
@@ -200,10 +197,8 @@ fn the_solid_as_3mf_and_glb_is_the_stls_body() {
     ] {
         assert!((m / 1000.0 - g).abs() < 1e-6, "{m} mm against {g} m");
     }
-    assert!(
-        (gl.volume * 1e9 / mf.volume - 1.0).abs() < 1e-4,
-        "{gl:?} {mf:?}"
-    );
+    let holds = (gl.volume * 1e9 / mf.volume - 1.0).abs() < 1e-4;
+    assert!(holds, "{gl:?} {mf:?}");
     assert_eq!(zip, write("3mf"), "the 3MF's bytes differ between runs");
 }
 

@@ -1054,10 +1054,8 @@ fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
         text.starts_with("Oak\n(150, 298, 0) (60, 280, -12.5)\nL=10(1) B=2(0.2) A=30 D=137.5\n"),
         "{text}"
     );
-    assert!(
-        text.contains("(clGreen) Extrude <Ellipse (50, 40), 200, 180>, -30, 30\n"),
-        "{text}"
-    );
+    let holds = text.contains("(clGreen) Extrude <Ellipse (50, 40), 200, 180>, -30, 30\n");
+    assert!(holds, "{text}");
     assert!(text.contains("R1: [+F&F][-F^F][\\F/F]\n"), "{text}");
     assert_eq!(bed(&text), d);
 }

@@ -339,10 +339,8 @@ fn probabilities_are_checked() {
     let e = parse(src, &Limits::default()).unwrap_err();
     assert!(matches!(&e.0[0].kind, Rule(ProbabilitySum { .. })));
     let help = e.0[0].help_text().unwrap();
-    assert!(
-        help.contains("needs no probability: write `rule F -> ...`"),
-        "{help}"
-    );
+    let holds = help.contains("needs no probability: write `rule F -> ...`");
+    assert!(holds, "{help}");
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (0) -> F-F\n";
     let (kind, span) = first_error(src);
@@ -358,10 +356,8 @@ fn probabilities_are_checked() {
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (1e400) -> F-F\n";
     let (kind, _) = first_error(src);
     assert!(matches!(&kind, Rule(BadProbability { value, .. }) if value.is_infinite()));
-    assert!(
-        kind.to_string().contains("not a finite number above 0"),
-        "{kind}"
-    );
+    let holds = kind.to_string().contains("not a finite number above 0");
+    assert!(holds, "{kind}");
 
     // A parenthesis where the probability goes that is no decimal number
     // would otherwise start the successor `(1/3)->F+F`.
@@ -441,14 +437,10 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
     let (code, err) = run(doubling, "--max-symbols 1000000");
     assert_eq!(code, Some(1), "{err}");
     let says = |words: &str| err.contains(words);
-    assert!(
-        says("at least 1048576 exceeds the limit of 100000"),
-        "{err}"
-    );
-    assert!(
-        says("a tenth of --max-symbols (100000 of 1000000)"),
-        "{err}"
-    );
+    let holds = says("at least 1048576 exceeds the limit of 100000");
+    assert!(holds, "{err}");
+    let holds = says("a tenth of --max-symbols (100000 of 1000000)");
+    assert!(holds, "{err}");
     // Twenty times the limit lets it through: 2^20 < 2 x 10^6.
     let (code, err) = run(doubling, "--max-symbols 20000000");
     assert_eq!(code, Some(0), "{err}");
