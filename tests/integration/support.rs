@@ -583,3 +583,21 @@ pub fn cylinder(base: [f64; 3], r: f64, h: f64) -> stlc::model::Solid {
 pub fn ellipsoid(centre: [f64; 3], radii: [f64; 3]) -> stlc::model::Solid {
     stlc::model::Solid::Ellipsoid { centre, radii }
 }
+
+/// The text of `examples/name`.
+pub fn example_text(name: &str) -> String {
+    fs::read_to_string(manifest_path("examples").join(name)).unwrap()
+}
+
+/// The distance from `p` to the segment `a`-`b` (to `a` when they
+/// coincide).
+pub fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
+}
