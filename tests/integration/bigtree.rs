@@ -11,7 +11,7 @@ use serde_json::{Value, json};
 
 use super::chromium::{Browser, click, js, shot};
 use super::serve::{Server, post, render};
-use crate::support::numbers;
+use crate::support::{numbers, segment_distance};
 
 /// An .od that grows `1 + 3k` stems for `M=1+3k` in a 1200 x 1200 square:
 /// one stem from the root, then `[-F][F][+F]` at every tip, bfs, until the
@@ -203,18 +203,6 @@ async fn canvas_box(c: &Client) -> Value {
     .await
 }
 
-/// The distance from `p` to segment `a`-`b`.
-fn distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let l = dx * dx + dy * dy;
-    let t = if l > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / l).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
-}
-
 /// One stem: from, to, decision.
 type Stem = ((f64, f64), (f64, f64), u64);
 
@@ -232,7 +220,10 @@ fn bare(stems: &[Stem]) -> Vec<(f64, f64)> {
     for i in 0..25 {
         for j in 0..25 {
             let p = (24.0 + 48.0 * f64::from(i), 24.0 + 48.0 * f64::from(j));
-            if stems.iter().all(|&(a, b, _)| distance(p, a, b) > 8.0) {
+            if stems
+                .iter()
+                .all(|&(a, b, _)| segment_distance(p, a, b) > 8.0)
+            {
                 out.push(p);
             }
         }

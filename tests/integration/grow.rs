@@ -785,9 +785,7 @@ fn the_traced_growth_places_exactly_the_beds_stems_in_decision_order() {
         (r(a.x), r(a.y), r(b.x), r(b.y))
     };
     for file in ["fig9.od", "holes.od", "2dtree.od"] {
-        let text =
-            std::fs::read_to_string(crate::support::manifest_path("examples").join(file)).unwrap();
-        let d = od(&text);
+        let d = od(&crate::support::example_text(file));
         for order in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let plain = grown(&d, opts(order));
             let (traced, placed) =

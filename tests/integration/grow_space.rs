@@ -3,7 +3,7 @@
 //! region with its clearance) run on space-first growth in `grow.rs`
 //! beside bfs and dfs.
 
-use crate::support::{od, opts};
+use crate::support::{od, opts, segment_distance};
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, PlacedStem, grow, grow_traced};
 use stlc::model::{Description, Format};
 use stlc::progress::NoProgress;
@@ -85,13 +85,7 @@ fn coverage(stems: &[PlacedStem], inside: impl Fn(f64, f64) -> bool, l: f64) -> 
             }
             let d = stems
                 .iter()
-                .map(|s| {
-                    let (dx, dy) = (s.to.x - s.from.x, s.to.y - s.from.y);
-                    let l2 = dx * dx + dy * dy;
-                    let t = (((x - s.from.x) * dx + (y - s.from.y) * dy) / l2).clamp(0.0, 1.0);
-                    let (ex, ey) = (x - s.from.x - t * dx, y - s.from.y - t * dy);
-                    (ex * ex + ey * ey).sqrt()
-                })
+                .map(|s| segment_distance((x, y), (s.from.x, s.from.y), (s.to.x, s.to.y)))
                 .fold(f64::INFINITY, f64::min);
             n += 1;
             near += u32::from(d <= 2.0 * l);

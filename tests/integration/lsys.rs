@@ -618,8 +618,7 @@ fn every_example_parses_and_draws_the_same_both_ways() {
 #[test]
 fn hilbert_and_stl_fig4_counts() {
     // Hilbert: 4^n - 1 segments (each level: 4 copies joined by 3 F).
-    let src =
-        std::fs::read_to_string(crate::support::manifest_path("examples/hilbert.lsys")).unwrap();
+    let src = crate::support::example_text("hilbert.lsys");
     for n in 1..=7u32 {
         let st = stats(&sys(&src), n, &Limits::default()).unwrap();
         assert_eq!(st.segments, big(4u64.pow(n) - 1));

@@ -8,7 +8,8 @@ use stlc::pipeline::{
 };
 
 use crate::support::{
-    gltf_validate, gltf_validator_present, manifest_path, numbers, outcome, stlc_line, stlc_piped,
+    example_text as example, gltf_validate, gltf_validator_present, manifest_path, numbers,
+    outcome, stlc_line, stlc_piped,
 };
 
 fn lsys_request(text: &str) -> Request {
@@ -28,11 +29,6 @@ fn render(req: &Request) -> Vec<u8> {
 fn stats_of(req: &Request) -> serde_json::Value {
     let (s, _) = req.stats(true).unwrap();
     serde_json::from_str(&s).unwrap()
-}
-
-/// The text of `examples/name`.
-fn example(name: &str) -> String {
-    std::fs::read_to_string(manifest_path("examples").join(name)).unwrap()
 }
 
 /// A planar branching system at an angle whose directions are not exact.

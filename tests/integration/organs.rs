@@ -224,8 +224,7 @@ fn a_3d_view_from_the_front_draws_colours_and_polygons_as_the_2d_picture() {
 
 #[test]
 fn abop_1_26_has_leaves_petals_and_stamens_in_their_colours() {
-    let src =
-        std::fs::read_to_string(crate::support::manifest_path("examples/abop-1.26.lsys")).unwrap();
+    let src = crate::support::example_text("abop-1.26.lsys");
     let sys = parse(&src, &Limits::default()).unwrap();
     let p = sys.parametric.as_deref().unwrap();
     use stlc::interpret::lsys::param::{Mark, draw3_marks};
@@ -330,8 +329,7 @@ fn abop_5_5a_leaf_is_one_polygon_of_2n_vertices_worked_by_hand() {
     // segments (it is made at step t + 1 and loses PD = 1 a step), so R0,
     // L0, R19 and L19 lie on the midrib; L19 equals R19 just before it and
     // is kept once: 1 + 20 + 19 = 40 vertices.
-    let src =
-        std::fs::read_to_string(crate::support::manifest_path("examples/abop-5.5a.lsys")).unwrap();
+    let src = crate::support::example_text("abop-5.5a.lsys");
     let rec = recorded(&src, 20);
     assert_eq!(rec.polygons.len(), 1);
     let v = &rec.polygons[0].1;

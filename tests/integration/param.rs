@@ -3,7 +3,7 @@
 //! the parser reading back what `expand` writes, hostile inputs and the
 //! diagnostics that point at the text.
 
-use crate::support::limits_with;
+use crate::support::{example_text as example, limits_with};
 use proptest::prelude::*;
 use stlc::diag::Diagnostics;
 use stlc::interpret::Derivation::{self, Bfs, Dfs};
@@ -20,10 +20,6 @@ fn expanded(src: &str, depth: u32, strategy: Derivation) -> Result<String, Diagn
     );
     expand(&sys, depth, strategy, &limits, &mut out, &mut NoProgress)?;
     Ok(String::from_utf8(out).unwrap())
-}
-
-fn example(name: &str) -> String {
-    std::fs::read_to_string(crate::support::manifest_path(format!("examples/{name}"))).unwrap()
 }
 
 /// The first error's message and help, and the text its span covers.

@@ -196,15 +196,7 @@ fn svg_strokes(svg: &str) -> Vec<(f64, Vec<(Point, Point)>)> {
 }
 
 fn distance_to_segment(p: Point, (a, b): (Point, Point)) -> f64 {
-    let (vx, vy) = (b.x - a.x, b.y - a.y);
-    let len2 = vx * vx + vy * vy;
-    let t = if len2 == 0.0 {
-        0.0
-    } else {
-        (((p.x - a.x) * vx + (p.y - a.y) * vy) / len2).clamp(0.0, 1.0)
-    };
-    let (dx, dy) = (a.x + t * vx - p.x, a.y + t * vy - p.y);
-    (dx * dx + dy * dy).sqrt()
+    crate::support::segment_distance((p.x, p.y), (a.x, a.y), (b.x, b.y))
 }
 
 /// A small branching tree: trunk, two branches of order 1 each carrying two
