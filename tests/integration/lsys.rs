@@ -115,12 +115,8 @@ fn unknown_key_suggests_the_nearest() {
     // Unknown key, and the angle is then missing: both reported.
     assert_eq!(err.0.len(), 2);
     let d = &err.0[0];
-    assert_eq!(
-        d.kind,
-        Lsys(UnknownKey {
-            key: "angel".into()
-        })
-    );
+    let key = "angel".into();
+    assert_eq!(d.kind, Lsys(UnknownKey { key }));
     assert_eq!(d.span, Some(8..13));
     assert_eq!(d.help_text().as_deref(), Some("did you mean `angle`?"));
     assert_eq!(err.0[1].kind, Lsys(MissingKey { key: "angle" }));
@@ -254,12 +250,8 @@ fn syntax_errors_read_like_the_file_not_the_grammar() {
     assert_eq!(m, "expected `->`, `=` or a space before the successor");
     assert_eq!(err.0[0].span, Some(23..23));
     let err = parse("axiom F\n5 F\nangle 90\n", &Limits::default()).unwrap_err();
-    assert_eq!(
-        err.0[0].kind,
-        ErrorKind::Input(InputError::Syntax(
-            "expected a line `key value` or a `#` comment".into()
-        ))
-    );
+    let line = "expected a line `key value` or a `#` comment".into();
+    assert_eq!(err.0[0].kind, ErrorKind::Input(InputError::Syntax(line)));
     assert_eq!(err.0[0].span, Some(8..8));
     assert!(err.0[0].help.is_some());
 }
@@ -492,13 +484,11 @@ fn both_strategies_refuse_over_max_symbols_and_max_depth() {
 fn stats_json_shape() {
     // F+F at 90: length 3, box x -1..0, y -1..0, ends at (-1, -1).
     let st = stats(&sys("axiom F+F\nangle 90\n"), 0, &Limits::default()).unwrap();
-    assert_eq!(
-        st.to_json(),
-        "{\"length\": \"3\", \"segments\": \"2\", \
+    let json = "{\"length\": \"3\", \"segments\": \"2\", \
          \"bbox\": [-1.000000, -1.000000, 0.000000, 0.000000], \
          \"end\": [-1.000000, -1.000000], \
-         \"symbols\": {\"+\": \"1\", \"F\": \"2\"}}"
-    );
+         \"symbols\": {\"+\": \"1\", \"F\": \"2\"}}";
+    assert_eq!(st.to_json(), json);
     let v: serde_json::Value = serde_json::from_str(&st.to_json()).unwrap();
     assert_eq!(v["length"], "3");
     assert!(st.to_text().contains("length    3"));
@@ -653,15 +643,8 @@ fn heading_defaults_to_up_and_is_checked_like_any_number() {
         "axiom F\nangle 90\nheading north\nheading 0\n",
         &Limits::default(),
     );
-    assert_eq!(
-        e[0],
-        // `north`, after "axiom F\nangle 90\nheading "
-        (
-            Lsys(MalformedNumber {
-                text: "north".into()
-            }),
-            25..30
-        )
-    );
+    // `north`, after "axiom F\nangle 90\nheading "
+    let text = "north".into();
+    assert_eq!(e[0], (Lsys(MalformedNumber { text }), 25..30));
     assert_eq!(e[1].0, Lsys(DuplicateKey { key: "heading" }));
 }

@@ -71,9 +71,9 @@ fn measure_expansion_and_growth_agree_for_every_count() {
                 grow(&desc(n, Format::Od), &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(g.stems, want.stems, "grown stems, n = {n}, {growth:?}");
             assert_eq!(g.bed.size(), want, "the grown BED, n = {n}, {growth:?}");
+            let grown = segments(&g.bed, Dfs);
             assert_eq!(
-                segments(&g.bed, Dfs),
-                drawn,
+                grown, drawn,
                 "the grown BED's segments, n = {n}, {growth:?}"
             );
         }

@@ -522,13 +522,9 @@ fn a_hundred_megabyte_input_is_refused_by_its_size_before_its_bytes_are_read() {
     // report that instead, so the size alone refused it.
     let big = vec![0xff; 100 << 20];
     let e = precheck(&big, &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::InputTooLarge {
-            size: 100 << 20,
-            limit: 64 << 20
-        }))
-    );
+    let (size, limit) = (100 << 20, 64 << 20);
+    let too_large = ErrorKind::Input(InputError::InputTooLarge { size, limit });
+    assert_eq!(e.first_kind(), Some(&too_large));
 }
 
 /// A deterministic stream of bytes (xorshift64*).

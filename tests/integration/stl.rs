@@ -598,12 +598,8 @@ fn nesting_of_a_hundred_thousand_is_refused_before_parsing() {
     let n = 100_000;
     let src = nested(n);
     let e = parse(&src, Format::Bed, &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::NestingTooDeep {
-            limit: 10_000
-        }))
-    );
+    let too_deep = ErrorKind::Input(InputError::NestingTooDeep { limit: 10_000 });
+    assert_eq!(e.first_kind(), Some(&too_deep));
 }
 
 // ------------------------------------------------------------ proptests --
@@ -1050,10 +1046,8 @@ fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
     );
     assert_eq!(l.solids[1].color, Rgb::WHITE);
     let text = write(&d);
-    assert!(
-        text.starts_with("Oak\n(150, 298, 0) (60, 280, -12.5)\nL=10(1) B=2(0.2) A=30 D=137.5\n"),
-        "{text}"
-    );
+    let head = "Oak\n(150, 298, 0) (60, 280, -12.5)\nL=10(1) B=2(0.2) A=30 D=137.5\n";
+    assert!(text.starts_with(head), "{text}");
     let holds = text.contains("(clGreen) Extrude <Ellipse (50, 40), 200, 180>, -30, 30\n");
     assert!(holds, "{text}");
     assert!(text.contains("R1: [+F&F][-F^F][\\F/F]\n"), "{text}");

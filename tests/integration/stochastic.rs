@@ -271,11 +271,8 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
         let mut out = Vec::new();
         if expand_within(&s, 3, Dfs, 1_200, &mut out).is_err() {
             over += 1;
-            assert!(
-                out.is_empty(),
-                "seed {seed}: wrote {} bytes first",
-                out.len()
-            );
+            let n = out.len();
+            assert!(n == 0, "seed {seed}: wrote {n} bytes first");
         } else {
             assert!(out.len() <= 121, "seed {seed}: {}", out.len());
         }
@@ -382,11 +379,8 @@ fn probabilities_are_checked() {
     assert!(matches!(d.kind, Lsys(Param { .. })));
     assert_eq!(d.kind.to_string(), "`0.5` is not a formal parameter");
     assert_eq!(&src[d.span.clone().unwrap()], "0.5");
-    assert!(
-        d.help_text().unwrap().contains("rule F (0.5)"),
-        "{:?}",
-        d.help
-    );
+    let help = d.help_text().unwrap();
+    assert!(help.contains("rule F (0.5)"), "{help}");
 
     let src = "axiom F\nangle 30\nseed -3\n";
     let (kind, span) = first_error(src);

@@ -161,12 +161,10 @@ fn a_3d_od_grows_into_a_3d_bed() {
     assert!(text.starts_with("T\n(0, 0, 0)\n"), "{text}");
     let out =
         String::from_utf8(stlc_piped(&format!("stats --json {}", bed.display()), "")).unwrap();
-    assert_eq!(
-        out.trim(),
-        "{\"dimensions\": 3, \"symbols\": \"11\", \"stems\": \"3\", \
+    let json = "{\"dimensions\": 3, \"symbols\": \"11\", \"stems\": \"3\", \
          \"bbox\": [0.000000, -15.000000, 0.000000, 0.000000, 0.000000, 5.000000], \
-         \"end\": [0.000000, -10.000000, 0.000000]}"
-    );
+         \"end\": [0.000000, -10.000000, 0.000000]}";
+    assert_eq!(out.trim(), json);
 }
 
 /// Drawn flat (what 2D-only consumers of a scene get), a 3D tree is its
