@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use stlc::Limits;
 use stlc::grow::GrowthOrder;
 use stlc::grow::grow;
+use stlc::interpret::bed::draw_into;
 use stlc::model::Format;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl;
@@ -94,14 +95,7 @@ fn every_golden_reparses_and_rewrites_unchanged_and_draws_its_stems() {
             let (_, stems) = compile(&od, order);
             let (limits, dfs) = (Limits::default(), stlc::interpret::Derivation::Dfs);
             let bed = stlc::bed::Bed::new(bed.clone(), &limits).unwrap();
-            let drawn = stlc::interpret::bed::draw_into(
-                &bed,
-                dfs,
-                &limits,
-                Counter::default(),
-                &mut NoProgress,
-            )
-            .unwrap();
+            let drawn = draw_into(&bed, dfs, &limits, Counter::default(), &mut NoProgress).unwrap();
             assert_eq!(drawn.0, stems, "{stem}.{tag}");
         }
     }

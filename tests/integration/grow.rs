@@ -59,10 +59,8 @@ fn drawn(g: &Grown) -> Vec<Segment> {
 fn draw_bed(bed: &Description) -> Vec<Segment> {
     let mut trees = vec![(bed.root, bed.seed.as_ref().unwrap())];
     for t in &bed.forest {
-        trees.push((
-            t.root,
-            t.seed.as_ref().expect("a grown forest has a seed per root"),
-        ));
+        let seed = t.seed.as_ref().expect("a grown forest has a seed per root");
+        trees.push((t.root, seed));
     }
     trees
         .into_iter()

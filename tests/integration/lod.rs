@@ -117,11 +117,8 @@ fn png_sized(file: &str, depth: u32, exact: bool, size: Option<&str>) -> tiny_sk
     let input = crate::support::manifest_path(format!("examples/{file}.lsys"));
     let size = size.map(|s| format!("--size {s}")).unwrap_or_default();
     let exact = if exact { "--exact" } else { "" };
-    let line = format!(
-        "render {} --depth {depth} {size} -o {} {exact}",
-        input.display(),
-        out.display()
-    );
+    let (input, out_path) = (input.display(), out.display());
+    let line = format!("render {input} --depth {depth} {size} -o {out_path} {exact}");
     crate::support::stlc_line(&line).assert().success();
     tiny_skia::Pixmap::load_png(&out).unwrap()
 }

@@ -242,11 +242,8 @@ fn the_command_line_writes_meshes_and_views() {
         "",
     );
     assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
-    let line = format!(
-        "render {} --view -45,10 -o {}",
-        input.display(),
-        png.display()
-    );
+    let (shown, to) = (input.display(), png.display());
+    let line = format!("render {shown} --view -45,10 -o {to}");
     stlc_piped(&line, "");
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
 }
@@ -324,11 +321,8 @@ fn a_view_past_the_top_is_a_usage_error() {
     let png = dir.path().join("h.png");
     let input = manifest_path("examples/hilbert3d.lsys");
     let run = |view: &str| {
-        let line = format!(
-            "render {} -o {} --view {view}",
-            input.display(),
-            png.display()
-        );
+        let (input, png) = (input.display(), png.display());
+        let line = format!("render {input} -o {png} --view {view}");
         outcome(&mut stlc_line(&line))
     };
     for view in ["30,100", "30,-90.5", "0,270"] {

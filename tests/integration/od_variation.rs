@@ -500,11 +500,8 @@ fn compile_grove_with_seeds() {
     let grove = manifest_path("examples/grove.od");
     let compile = |seed: &str, out: &str| {
         let out = dir.path().join(out);
-        let line = format!(
-            "compile {} --seed {seed} -o {}",
-            grove.display(),
-            out.display()
-        );
+        let (from, to) = (grove.display(), out.display());
+        let line = format!("compile {from} --seed {seed} -o {to}");
         stlc_line(&line).assert().success();
         std::fs::read(out).unwrap()
     };

@@ -98,15 +98,8 @@ fn render_full(
         Ok(())
     };
     let (mut out, opts) = (Vec::new(), RenderOptions::new(format, size));
-    render::render(
-        &mut drawing,
-        view,
-        underlay,
-        style,
-        &opts,
-        &mut out,
-        &mut NoProgress,
-    )?;
+    let quiet = &mut NoProgress;
+    render::render(&mut drawing, view, underlay, style, &opts, &mut out, quiet)?;
     Ok(out)
 }
 
@@ -119,16 +112,8 @@ fn exact_svg(text: &str, angle: f64, style: &Style, size: Option<(u32, u32)>) ->
     };
     let (mut out, mut opts) = (Vec::new(), RenderOptions::new(ImageFormat::Svg, size));
     opts.exact = true;
-    render::render(
-        &mut drawing,
-        None,
-        &[],
-        style,
-        &opts,
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let quiet = &mut NoProgress;
+    render::render(&mut drawing, None, &[], style, &opts, &mut out, quiet).unwrap();
     String::from_utf8(out).unwrap()
 }
 
@@ -376,16 +361,8 @@ fn underlay_is_even_odd_and_under_the_strokes() {
         };
         let (mut out, opts) = (Vec::new(), RenderOptions::new(format, Some((100, 100))));
         let view = Some(view);
-        render::render(
-            &mut drawing,
-            view,
-            &underlay,
-            &st,
-            &opts,
-            &mut out,
-            &mut NoProgress,
-        )
-        .unwrap();
+        let quiet = &mut NoProgress;
+        render::render(&mut drawing, view, &underlay, &st, &opts, &mut out, quiet).unwrap();
         outputs.push(out);
     }
     let p = decode(&outputs[0]);
@@ -674,16 +651,8 @@ fn a_tree_over_its_layout_in_bands_is_the_same_with_any_threads() {
         opts.threads = threads;
         let segments = Some(segments);
         let frame = render::Frame::View { view, segments };
-        render::render_framed(
-            &mut drawing,
-            frame,
-            &fills,
-            &st,
-            &opts,
-            &mut out,
-            &mut NoProgress,
-        )
-        .unwrap();
+        let quiet = &mut NoProgress;
+        render::render_framed(&mut drawing, frame, &fills, &st, &opts, &mut out, quiet).unwrap();
         decode(&out)
     };
     let banded = png(render::BANDED_SEGMENTS, 1);

@@ -46,13 +46,8 @@ fn by_hand(n: u32) -> Size {
 }
 
 fn segments(bed: &Bed, d: Derivation) -> Vec<Segment> {
-    let drawn = draw_into(
-        bed,
-        d,
-        &Limits::default(),
-        Recorder::default(),
-        &mut NoProgress,
-    );
+    let limits = Limits::default();
+    let drawn = draw_into(bed, d, &limits, Recorder::default(), &mut NoProgress);
     drawn.unwrap_or_else(|e| panic!("{e}")).segments
 }
 

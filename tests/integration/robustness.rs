@@ -104,6 +104,11 @@ fn bed(src: &str) -> Description {
 const N: usize = 100_000;
 const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
 
+/// A BED whose seed is `seed`, its rule `R1: [F]`.
+fn seeded(seed: String) -> String {
+    format!("{HEAD} R1: [F] SEED {seed} ENDSEED")
+}
+
 /// `open` `n` times, then `inner`, then `close` `n` times.
 fn nest(n: usize, open: &str, inner: &str, close: &str) -> String {
     format!("{}{inner}{}", open.repeat(n), close.repeat(n))
@@ -184,13 +189,10 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
 fn stl_brackets_braces_and_repeats_a_hundred_thousand_deep_are_refused() {
     let cases = [
         format!("{HEAD} R1: {}", nest(N, "[", "F", "]")),
-        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "R1{", "", "}")),
-        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "{", "", "}")),
-        format!(
-            "{HEAD} R1: [F] SEED {} ENDSEED",
-            nest(N, "[I 2 ", "R1", "]")
-        ),
-        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "[", "F", "]")),
+        seeded(nest(N, "R1{", "", "}")),
+        seeded(nest(N, "{", "", "}")),
+        seeded(nest(N, "[I 2 ", "R1", "]")),
+        seeded(nest(N, "[", "F", "]")),
     ];
     for src in cases {
         for format in [Format::Od, Format::Bed] {
@@ -214,15 +216,12 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
         c.0
     });
     assert_eq!(count, 1);
-    let braces = format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "{", "", "}"));
+    let braces = seeded(nest(N, "{", "", "}"));
     // Pointed at the first brace, which follows no rule name.
     let at = braces.find('{').unwrap();
     let e = stl_err(braces, Format::Bed, limits);
     assert_eq!(e.0[0].span, Some(at..at + 1), "{e}");
-    let repeats = format!(
-        "{HEAD} R1: [F] SEED {} ENDSEED",
-        nest(N, "[I 2 ", "R1", "]")
-    );
+    let repeats = seeded(nest(N, "[I 2 ", "R1", "]"));
     let at = repeats.find("[I").unwrap();
     let e = stl_err(repeats, Format::Bed, limits);
     let wanted = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
@@ -240,7 +239,7 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
 #[test]
 fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
     let n = 9_900;
-    let src = format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(n, "R1{", "", "}"));
+    let src = seeded(nest(n, "R1{", "", "}"));
     let (count, text_len) = small_stack(move || {
         let limits = Limits::default();
         let d = stl::parse(&src, Format::Bed, &limits).expect("parses");
@@ -259,10 +258,7 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         // (Locations do not take part in equality: only the innermost slot,
         // a repeat instead of empty, differs.)
         let deeper = stl::parse(
-            &format!(
-                "{HEAD} R1: [F] SEED {} ENDSEED",
-                nest(n - 1, "R1{", "[I 2 R1]", "}")
-            ),
+            &seeded(nest(n - 1, "R1{", "[I 2 R1]", "}")),
             Format::Bed,
             &limits,
         )

@@ -266,10 +266,8 @@ fn both_definition_forms_and_comments() {
 #[test]
 fn unknown_rule_suggests_the_nearest() {
     let src = format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED");
-    let (span, help) = refused(
-        &src,
-        ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() }),
-    );
+    let unknown = ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() });
+    let (span, help) = refused(&src, unknown);
     assert_eq!(span, at(&src, "R3", 0));
     assert!(help.contains("`R1`"), "{help}");
 }
@@ -314,10 +312,8 @@ fn duplicate_rule_labels_both() {
 fn reserved_names_are_refused() {
     for name in ["F", "f", "L", "R", "I", "SEED"] {
         let src = format!("{HEAD} {name}: [F] R1: [F]");
-        let (span, _) = refused(
-            &src,
-            ErrorKind::Rule(RuleError::ReservedName { name: name.into() }),
-        );
+        let reserved = ErrorKind::Rule(RuleError::ReservedName { name: name.into() });
+        let (span, _) = refused(&src, reserved);
         let wanted = at(&src, &format!("{name}:"), 0).start..at(&src, ":", 0).start;
         assert_eq!(span, wanted);
     }
@@ -359,10 +355,8 @@ fn sizes_must_be_positive() {
 #[test]
 fn polygons_need_three_points() {
     let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 }),
-    );
+    let few = ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 });
+    let (span, _) = refused(&src, few);
     assert_eq!(span, at(&src, "Polygon (0,0), (5,5)", 0));
 }
 

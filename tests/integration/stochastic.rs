@@ -475,11 +475,8 @@ fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
     let fig = manifest_path("examples/abop-1.27.lsys");
     let render = |flags: &str, out: &str| {
         let out = dir.path().join(out);
-        let line = format!(
-            "render {} --exact {flags} -o {}",
-            fig.display(),
-            out.display()
-        );
+        let (fig, out) = (fig.display(), out.display());
+        let line = format!("render {fig} --exact {flags} -o {out}");
         outcome(&mut stlc_line(&line))
     };
     let (code, _, err) = render("--depth 16", "a.svg");

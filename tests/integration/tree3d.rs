@@ -267,7 +267,7 @@ fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
 #[test]
 fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
     use stlc::grow::{GrowthOrder, grow_traced};
-    use stlc::interpret::{Derivation, bed3::draw3};
+    use stlc::interpret::{Derivation::Dfs, bed3::draw3};
     use stlc::progress::NoProgress;
     for name in ["examples/oak3d.od", "examples/forest3d.od"] {
         let text = std::fs::read_to_string(manifest_path(name)).unwrap();
@@ -286,14 +286,7 @@ fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
                 drawn.push(key([a.x, a.y, a.z, b.x, b.y, b.z]));
             };
             let limits = &opts.limits;
-            draw3(
-                &grown.bed,
-                Derivation::Dfs,
-                limits,
-                &mut push,
-                &mut NoProgress,
-            )
-            .unwrap();
+            draw3(&grown.bed, Dfs, limits, &mut push, &mut NoProgress).unwrap();
             assert!(grew.len() > 100, "{name}");
             grew.sort_unstable();
             drawn.sort_unstable();
