@@ -273,13 +273,8 @@ fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
         let mut rec = Recursion::new(&s);
         let g = rec.walk(&s.axiom, depth, s.heading);
         let b = g.bbox.expect("draws");
-        let [min_x, min_y, max_x, max_y] = b;
-        let want = BBox {
-            min_x,
-            min_y,
-            max_x,
-            max_y,
-        };
+        let mut want = BBox::at(stlc::turtle::Point::new(b[0], b[1]));
+        want.add(stlc::turtle::Point::new(b[2], b[3]));
         let got = m.bbox.expect("draws");
         // The two sum the same directions in different orders and compute
         // them differently (integer turns vs float degrees): relative
@@ -399,11 +394,8 @@ fn depth_57_renders_at_a_level_of_detail_and_exact_refuses() {
     let lsys = support_path("examples/abop-1.24a.lsys");
     let render = |flags: &str, out: &str| {
         let out = dir.path().join(out);
-        stlc_line(&format!(
-            "render {lsys} --depth 57 {flags} -o {}",
-            out.display()
-        ))
-        .assert()
+        let to = out.display();
+        stlc_line(&format!("render {lsys} --depth 57 {flags} -o {to}")).assert()
     };
     render("--size 200x200", "t.png").success();
     let pixmap = tiny_skia::Pixmap::load_png(dir.path().join("t.png")).unwrap();

@@ -97,6 +97,16 @@ fn defaults_and_optional_generations() {
     assert_eq!(s.successor('F'), Some(&['F', '+', 'F'][..]));
 }
 
+/// The `.lsys` error `$variant` of the key `$key` whose value is `$text`.
+macro_rules! keyed {
+    ($variant:ident, $key:expr, $text:expr) => {
+        Lsys($variant {
+            key: $key,
+            text: $text.into(),
+        })
+    };
+}
+
 /// Parses `src` and returns (kind, span) of every diagnostic.
 fn errors(src: &str, limits: &Limits) -> Vec<(ErrorKind, std::ops::Range<usize>)> {
     let err = parse(src, limits).unwrap_err();
@@ -172,27 +182,9 @@ fn malformed_and_invalid_numbers() {
         e,
         vec![
             (Lsys(MalformedNumber { text: "2x5".into() }), 14..17),
-            (
-                Lsys(NotPositive {
-                    key: "length",
-                    text: "-1".into()
-                }),
-                25..27
-            ),
-            (
-                Lsys(NumberTooLarge {
-                    key: "width",
-                    text: "1e999".into()
-                }),
-                34..39
-            ),
-            (
-                Lsys(NotWholeNumber {
-                    key: "generations",
-                    text: "2.5".into()
-                }),
-                52..55
-            ),
+            (keyed!(NotPositive, "length", "-1"), 25..27),
+            (keyed!(NumberTooLarge, "width", "1e999"), 34..39),
+            (keyed!(NotWholeNumber, "generations", "2.5"), 52..55),
         ]
     );
     let e = errors("axiom F\nangle nan\n", &Limits::default());
@@ -214,17 +206,13 @@ fn generations_above_max_depth_name_the_flag() {
 #[test]
 fn duplicate_key_bad_colour_and_long_predecessor() {
     let src = "axiom F\nangle 90\nangle 60\ncolor clGren\nrule FF F\n";
+    let text = "clGren".into();
     let e = errors(src, &Limits::default());
     assert_eq!(
         e,
         vec![
             (Lsys(DuplicateKey { key: "angle" }), 17..22),
-            (
-                Input(UnknownColour {
-                    text: "clGren".into()
-                }),
-                32..38
-            ),
+            (Input(UnknownColour { text }), 32..38),
             (
                 Lsys(LongPredecessor {
                     predecessor: "FF".into(),
@@ -639,10 +627,8 @@ fn hilbert_and_stl_fig4_counts() {
 fn heading_defaults_to_up_and_is_checked_like_any_number() {
     assert_eq!(sys("axiom F\nangle 90\n").heading, 90.0);
     assert_eq!(sys("axiom F\nangle 90\nheading -45\n").heading, -45.0);
-    let e = errors(
-        "axiom F\nangle 90\nheading north\nheading 0\n",
-        &Limits::default(),
-    );
+    let src = "axiom F\nangle 90\nheading north\nheading 0\n";
+    let e = errors(src, &Limits::default());
     // `north`, after "axiom F\nangle 90\nheading "
     let text = "north".into();
     assert_eq!(e[0], (Lsys(MalformedNumber { text }), 25..30));

@@ -237,10 +237,8 @@ fn the_command_line_writes_meshes_and_views() {
     let glb = dir.path().join("h.glb");
     let png = dir.path().join("h.png");
     let input = manifest_path("examples/hilbert3d.lsys");
-    stlc_piped(
-        &format!("render {} -o {}", input.display(), glb.display()),
-        "",
-    );
+    let (from, to) = (input.display(), glb.display());
+    stlc_piped(&format!("render {from} -o {to}"), "");
     assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
     let (shown, to) = (input.display(), png.display());
     let line = format!("render {shown} --view -45,10 -o {to}");

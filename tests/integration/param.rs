@@ -319,11 +319,8 @@ fn expand_writes_the_shortest_numbers_that_read_back() {
 
 #[test]
 fn a_deeply_nested_expression_is_an_error_not_a_stack_overflow() {
-    let deep = format!(
-        "angle 9\naxiom A({}1{})\n",
-        "(".repeat(5000),
-        ")".repeat(5000)
-    );
+    let (open, close) = ("(".repeat(5000), ")".repeat(5000));
+    let deep = format!("angle 9\naxiom A({open}1{close})\n");
     let (msg, help, _) = first_error(&deep);
     assert!(msg.contains("nested more than 64 levels"), "{msg}");
     assert!(help.contains("define"), "{help}");

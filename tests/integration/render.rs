@@ -273,12 +273,8 @@ fn canvas_widths_thin_with_order() {
     // A vertical trunk of order 0 then, after moving right, a vertical stem
     // of order 2 (decrement 1 of base 3: 3 and 1 canvas units). Scale is
     // fixed by the 100-pixel view: 10 px per unit, so 30 px and 10 px.
-    let view = BBox {
-        min_x: -2.0,
-        min_y: -8.0,
-        max_x: 8.0,
-        max_y: 2.0,
-    };
+    let mut view = BBox::at(Point::new(-2.0, -8.0));
+    view.add(Point::new(8.0, 2.0));
     let st = style(Width::Canvas(Linear::new(3.0, 1.0)), Some(Rgb::WHITE));
     let p = png_full("FF-fff+{{F}}", 0.0, Some(view), &st, Some((100, 100)));
     let dark_run = |y: u32, x0: u32, x1: u32| (x0..x1).filter(|&x| is_dark(&p, x, y)).count();
@@ -339,12 +335,8 @@ fn underlay_is_even_odd_and_under_the_strokes() {
         color: green,
         rings: vec![ring(0.0, 0.0, 10.0), ring(3.0, 3.0, 4.0)],
     }];
-    let view = BBox {
-        min_x: 0.0,
-        min_y: 0.0,
-        max_x: 10.0,
-        max_y: 10.0,
-    };
+    let mut view = BBox::at(Point::new(0.0, 0.0));
+    view.add(Point::new(10.0, 10.0));
     let ops = ops("F");
     let draw = |t: &mut dyn Turtle| {
         let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, Linear::constant(1.0));

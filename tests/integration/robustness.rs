@@ -671,11 +671,8 @@ fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
         .map(|i| {
             let t = std::f64::consts::TAU * f64::from(i) / 20_000.0;
             let r = if i % 2 == 1 { 400.0 } else { 200.0 };
-            format!(
-                "({:.3},{:.3})",
-                500.0 + r * libm::cos(t),
-                500.0 + r * libm::sin(t)
-            )
+            let (x, y) = (500.0 + r * libm::cos(t), 500.0 + r * libm::sin(t));
+            format!("({x:.3},{y:.3})")
         })
         .collect();
     let src = format!(

@@ -533,11 +533,8 @@ fn drawing_letters_that_spell_a_rule_are_spaced() {
 
 /// A BED whose seed nests `n` terms `R1{R1{...}}`.
 fn nested(n: usize) -> String {
-    format!(
-        "{HEAD} R1: [F] SEED {}{} ENDSEED",
-        "R1{".repeat(n),
-        "}".repeat(n)
-    )
+    let (open, close) = ("R1{".repeat(n), "}".repeat(n));
+    format!("{HEAD} R1: [F] SEED {open}{close} ENDSEED")
 }
 
 fn big_stack<F: FnOnce() + Send + 'static>(f: F) {
