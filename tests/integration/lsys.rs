@@ -136,13 +136,8 @@ fn unknown_key_suggests_the_nearest() {
 fn missing_axiom_and_angle_are_both_reported() {
     let src = "generations 3\nrule F FF\n";
     let e = errors(src, &Limits::default());
-    assert_eq!(
-        e,
-        vec![
-            (Lsys(MissingKey { key: "axiom" }), 24..24),
-            (Lsys(MissingKey { key: "angle" }), 24..24),
-        ]
-    );
+    let missing = |key| (Lsys(MissingKey { key }), 24..24);
+    assert_eq!(e, vec![missing("axiom"), missing("angle")]);
 }
 
 #[test]
@@ -164,13 +159,8 @@ fn unbalanced_brackets_point_at_the_unmatched_one() {
     assert_eq!(&src[6..7], "[");
     assert_eq!(&src[29..30], "]");
     let e = errors(src, &Limits::default());
-    assert_eq!(
-        e,
-        vec![
-            (Input(Unbalanced('[')), 6..7),
-            (Input(Unbalanced(']')), 29..30),
-        ]
-    );
+    let unbalanced = |c, at| (Input(Unbalanced(c)), at);
+    assert_eq!(e, vec![unbalanced('[', 6..7), unbalanced(']', 29..30)]);
 }
 
 #[test]
