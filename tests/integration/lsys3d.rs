@@ -3,13 +3,11 @@
 
 use std::collections::BTreeMap;
 
-use stlc::pipeline::{
-    ImageFormat, MeshFormat, MeshOptions, NoProgress, RenderOptions, Request, View,
-};
+use stlc::pipeline::{ImageFormat, MeshFormat, NoProgress, RenderOptions, Request, View};
 
 use crate::support::{
-    example_text as example, gltf_validate, gltf_validator_present, manifest_path, numbers,
-    outcome, stlc_line, stlc_piped,
+    example_text as example, gltf_validate, gltf_validator_present, limits_with, manifest_path,
+    numbers, outcome, stlc_line, stlc_piped,
 };
 
 fn lsys_request(text: &str) -> Request {
@@ -45,23 +43,20 @@ fn the_front_view_of_a_planar_system_is_its_2d_picture() {
             exact: true,
             ..RenderOptions::new(format, Some((300, 240)))
         };
-        let flat = render(&Request {
-            image,
-            ..lsys_request(PLANAR)
-        });
-        let deep = render(&Request {
-            image: RenderOptions::new(format, Some((300, 240))),
-            view: Some(View::FRONT),
-            ..lsys_request(&format!("dimensions 3\n{PLANAR}"))
-        });
+        let mut flat = lsys_request(PLANAR);
+        flat.image = image;
+        let flat = render(&flat);
+        let mut req = lsys_request(&format!("dimensions 3\n{PLANAR}"));
+        (req.image, req.view) = (
+            RenderOptions::new(format, Some((300, 240))),
+            Some(View::FRONT),
+        );
+        let deep = render(&req);
         assert!(flat.len() > 500);
         assert!(flat == deep, "{format:?} differs");
         // Another view is another picture.
-        let turned = render(&Request {
-            image: RenderOptions::new(format, Some((300, 240))),
-            view: Some(View { az: 0.0, el: 60.0 }),
-            ..lsys_request(&format!("dimensions 3\n{PLANAR}"))
-        });
+        req.view = Some(View { az: 0.0, el: 60.0 });
+        let turned = render(&req);
         assert!(turned != deep);
     }
 }
@@ -102,10 +97,7 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
 /// angles the reach memo gives the exact box at any depth instead.
 #[test]
 fn stats_past_the_budget_give_a_bound() {
-    let small = stlc::Limits {
-        max_symbols: 100,
-        ..stlc::Limits::DEFAULT
-    };
+    let small = limits_with(|l| l.max_symbols = 100);
     let mut req = lsys_request(&example("plant3d-bare.lsys"));
     (req.limits, req.depth) = (small, Some(2));
     let j = stats_of(&req);
@@ -194,15 +186,8 @@ fn a_3d_system_exports_a_gltf_that_reads_back() {
 /// coordinate, a normal and faces per stem; a triangle limit refuses with the flag to raise it.
 #[test]
 fn a_2d_tree_exports_an_obj_and_the_limit_refuses() {
-    let bed = std::fs::read_to_string(manifest_path("examples/paper-worked.bed")).unwrap();
-    let req = Request {
-        name: Some("t.bed".into()),
-        mesh: MeshOptions {
-            sides: 4,
-            ..MeshOptions::default()
-        },
-        ..Request::new(bed.into_bytes())
-    };
+    let mut req = Request::new(example("paper-worked.bed").into_bytes());
+    (req.name, req.mesh.sides) = (Some("t.bed".into()), 4);
     // `stlc check` counts 11 stems in this BED.
     let stems = 11;
     let text = String::from_utf8(mesh(&req, MeshFormat::Obj)).unwrap();
@@ -215,14 +200,8 @@ fn a_2d_tree_exports_an_obj_and_the_limit_refuses() {
     assert_eq!(count["vn"], count["v"]);
     assert_eq!(count["vt"], count["v"]);
     assert_eq!(count["f"], tubes * 12);
-    let too_small = Request {
-        mesh: MeshOptions {
-            sides: 4,
-            max_triangles: 12 * tubes - 1,
-            ..MeshOptions::default()
-        },
-        ..req.clone()
-    };
+    let mut too_small = req.clone();
+    too_small.mesh.max_triangles = 12 * tubes - 1;
     let err = too_small
         .mesh(MeshFormat::Obj, &mut Vec::new(), &mut NoProgress)
         .unwrap_err();
