@@ -39,12 +39,9 @@ const PLANAR: &str = "generations 4\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\nwi
 #[test]
 fn the_front_view_of_a_planar_system_is_its_2d_picture() {
     for format in [ImageFormat::Png, ImageFormat::Svg] {
-        let image = RenderOptions {
-            exact: true,
-            ..RenderOptions::new(format, Some((300, 240)))
-        };
         let mut flat = lsys_request(PLANAR);
-        flat.image = image;
+        flat.image = RenderOptions::new(format, Some((300, 240)));
+        flat.image.exact = true;
         let flat = render(&flat);
         let mut req = lsys_request(&format!("dimensions 3\n{PLANAR}"));
         (req.image, req.view) = (
@@ -246,10 +243,8 @@ fn the_khronos_validator_finds_no_issue() {
         ("abop-1.26.lsys", MeshFormat::Glb, "glb"),
     ] {
         let path = manifest_path("examples").join(example);
-        let req = Request {
-            name: Some(path.clone()),
-            ..Request::new(std::fs::read(&path).unwrap())
-        };
+        let mut req = Request::new(std::fs::read(&path).unwrap());
+        req.name = Some(path.clone());
         let out = dir.path().join(format!("{example}.{ext}"));
         std::fs::write(&out, mesh(&req, format)).unwrap();
         files.push(out);

@@ -880,19 +880,12 @@ fn gen_description(seed: u64) -> Description {
             angle: g.chance(50).then(|| g.milli(0, 90)),
             clearance: g.chance(50).then(|| g.milli(0, 5)),
             divergence,
-            stroke: g.chance(30).then(|| stlc::model::Colour {
-                rgb: Some(stlc::color::Rgb::new(0x80, 0, 0)),
-                text: g.pick(&["clMaroon", "#800000"]).to_string(),
-            }),
+            stroke: g
+                .chance(30)
+                .then(|| colour(Some(Rgb::new(0x80, 0, 0)), g.pick(&["clMaroon", "#800000"]))),
             background: g.chance(30).then(|| match g.chance(50) {
-                true => stlc::model::Colour {
-                    rgb: None,
-                    text: "none".into(),
-                },
-                false => stlc::model::Colour {
-                    rgb: Some(stlc::color::Rgb::WHITE),
-                    text: "#ffffff".into(),
-                },
+                true => colour(None, "none"),
+                false => colour(Some(Rgb::WHITE), "#ffffff"),
             }),
             stroke_end: None,
             leaf: None,
@@ -905,6 +898,12 @@ fn gen_description(seed: u64) -> Description {
         forest,
         surfaces: None,
     }
+}
+
+/// A colour as written (`text`) and what it paints (`None`: nothing).
+fn colour(rgb: Option<Rgb>, text: &str) -> stlc::model::Colour {
+    let text = text.to_string();
+    stlc::model::Colour { rgb, text }
 }
 
 fn solid_kind(s: &Solid) -> usize {
