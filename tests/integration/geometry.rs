@@ -13,12 +13,8 @@ use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{BBox, Bounds, Recorder, Segment, StandIn, Turtle};
 
-use crate::lsys::word;
+use crate::lsys::{sys, word};
 use crate::support::stlc_line;
-
-fn sys(src: &str) -> LSystem {
-    stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// Within `rel` of the larger magnitude (at least 1).
 fn close(a: f64, b: f64, rel: f64) -> bool {

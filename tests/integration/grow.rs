@@ -25,7 +25,7 @@ use stlc::{Bound, Diagnostics, ErrorKind, Limits, Severity};
 // ------------------------------------------------------------ descriptions
 
 /// The span of the first `needle` in `text`.
-fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
+pub fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
     let at = text.find(needle).expect("needle in text");
     at..at + needle.len()
 }

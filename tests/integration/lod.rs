@@ -4,16 +4,13 @@
 //! drawing's subtrees end; pictures stay within the quality bound of
 //! `--exact` (mean difference); dense curves are drawn as solid boxes.
 
+use crate::lsys::sys;
 use stlc::interpret::Derivation::Dfs;
 use stlc::interpret::lsys::{Chance, draw, draw_chance};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{Recorder, Segment, StandIn, Turtle};
-
-fn sys(src: &str) -> LSystem {
-    stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// ABOP 1.27 with `seed`.
 fn plant(seed: u64) -> LSystem {

@@ -17,8 +17,10 @@ use stlc::progress::NoProgress;
 use stlc::syntax::lsys::parse;
 use stlc::turtle::{Point, Recorder, Segment};
 
-fn sys(src: &str) -> LSystem {
-    parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
+/// `src` read as an `.lsys` with the default limits; its diagnostics and
+/// the text on failure.
+pub fn sys(src: &str) -> LSystem {
+    parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
 }
 
 fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {

@@ -13,6 +13,7 @@ use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
 use stlc::{Diagnostics, Limits};
 
+use crate::grow::span_of;
 use crate::support::{manifest_path, outcome, stlc_line};
 use crate::support::{od, opts};
 
@@ -42,11 +43,6 @@ fn first_choice(g: &Grown) -> Option<u32> {
         SeedItem::Term(t) => Some(d.rule(seed.term(*t).rule()).alternative.as_ref()?.number),
         _ => None,
     })
-}
-
-fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
-    let at = text.find(needle).expect("needle");
-    at..at + needle.len()
 }
 
 // ------------------------------------------------------------ choices

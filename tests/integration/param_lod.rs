@@ -2,23 +2,19 @@
 //! modules at equal depth are one piece of the one walk's memo; elsewhere
 //! a system is drawn exactly.
 
+use crate::lsys::sys;
 use crate::support::limits_with;
 use stlc::interpret::Derivation::Dfs;
 use stlc::interpret::lsys::param::{ParamMemo, of};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
-use stlc::syntax::lsys::parse;
 use stlc::turtle::{Bounds, Recorder, Turtle};
 
 /// A binary tree whose branches shorten by `r` a generation, with a
 /// closing step: every `A` of one generation is the same module.
 const TREE: &str = "generations 12\nangle 30\ndefine r 0.62\naxiom A(1)\n\
     rule A(l) -> F(l)[+A(l*r)][-(40)A(l*r)]F(l*0.4)\nlength 100\n";
-
-fn sys(src: &str) -> LSystem {
-    parse(src, &Limits::default()).unwrap()
-}
 
 fn memo(s: &LSystem, depth: u32) -> Option<ParamMemo> {
     ParamMemo::new(s, of(s).unwrap(), depth).unwrap()

@@ -10,6 +10,7 @@
 //! thread with an ordinary 2 MiB stack: the CLI's big worker stack is not
 //! what keeps these from overflowing.
 
+use crate::stl::bed;
 use crate::support::{limits_with, od};
 use stlc::bed::validate;
 use stlc::bed::write::write;
@@ -95,10 +96,6 @@ fn limit_value(e: &Diagnostics) -> &str {
 /// A limit error whose message names `what`.
 fn is_limit(e: &Diagnostics, what: &str) -> bool {
     matches!(e.first_kind(), Some(k @ ErrorKind::Limit { .. }) if k.to_string().contains(what))
-}
-
-fn bed(src: &str) -> Description {
-    stl::parse(src, Format::Bed, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 const N: usize = 100_000;

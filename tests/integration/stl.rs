@@ -25,7 +25,8 @@ use stlc::turtle::{Point, Recorder, Segment};
 
 const TREE_2D: &str = "2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT (clGreen)< RoundRect (0,0,180,192,7,7)> (clWhite)< RoundRect (55,30,40,15,4,4)> (clWhite)< RoundRect (35,125,76,30,5,5)> ENDLAYOUT";
 
-fn bed(src: &str) -> Description {
+/// `src` read as a BED with the default limits; its diagnostics on failure.
+pub fn bed(src: &str) -> Description {
     parse(src, Format::Bed, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 

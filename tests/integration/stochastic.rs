@@ -13,13 +13,9 @@ use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::syntax::lsys::parse;
 
-use crate::lsys::{expanded_of, segments_of as segments};
+use crate::lsys::{expanded_of, segments_of as segments, sys};
 use crate::support::stlc_stdout as render;
 use crate::support::{limits_with, manifest_path, outcome, stlc_line};
-
-fn sys(src: &str) -> LSystem {
-    parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
-}
 
 fn word(s: &LSystem, depth: u32, strategy: Derivation) -> String {
     expanded_of(s, depth, strategy).trim_end().to_string()
