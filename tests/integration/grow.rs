@@ -30,7 +30,8 @@ pub fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
     at..at + needle.len()
 }
 
-fn grown(od: &Description, o: GrowOptions) -> Grown {
+/// What `od` grows with the options `o`, which must succeed.
+pub fn grown(od: &Description, o: GrowOptions) -> Grown {
     grow(od, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))
 }
 

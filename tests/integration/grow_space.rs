@@ -3,20 +3,14 @@
 //! region with its clearance) run on space-first growth in `grow.rs`
 //! beside bfs and dfs.
 
+use crate::grow::grown;
+use crate::od_variation::bed_text;
 use crate::support::{od, opts, segment_distance};
-use stlc::grow::{GrowOptions, Grown, GrowthOrder, PlacedStem, grow, grow_traced};
+use stlc::grow::{GrowOptions, GrowthOrder, PlacedStem, grow_traced};
 use stlc::model::{Description, Format};
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
 use stlc::{ErrorKind, Limits};
-
-fn grown(d: &Description, o: GrowOptions) -> Grown {
-    grow(d, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn bed_text(g: &Grown) -> String {
-    stlc::bed::write::write(g.bed.description())
-}
 
 /// The BED `d` grows in the order `o`.
 fn bed_in(d: &Description, o: GrowthOrder) -> String {

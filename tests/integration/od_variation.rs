@@ -30,7 +30,8 @@ fn grown(d: &Description, growth: GrowthOrder, seed: u64) -> Grown {
     grow(d, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn bed_text(g: &Grown) -> String {
+/// The BED that grew, as written.
+pub fn bed_text(g: &Grown) -> String {
     stlc::bed::write::write(g.bed.description())
 }
 
