@@ -13,7 +13,7 @@ use stlc::render::{self, DEFAULT_SIDE, Fit, ImageFormat, PngTurtle, RenderOption
 use stlc::turtle::{BBox, Fill, Interp, Op, Point, Segment, Turtle};
 use tiny_skia::Pixmap;
 
-use crate::support::{assert_golden, assert_golden_png};
+use crate::support::{assert_golden, assert_golden_png, segment_distance};
 
 // ---------------------------------------------------------------------------
 // Helpers
@@ -180,8 +180,10 @@ fn svg_strokes(svg: &str) -> Vec<(f64, Vec<(Point, Point)>)> {
         .collect()
 }
 
-fn distance_to_segment(p: Point, (a, b): (Point, Point)) -> f64 {
-    crate::support::segment_distance((p.x, p.y), (a.x, a.y), (b.x, b.y))
+/// The distance from `p` to the nearest of `lines`.
+fn distance_to_nearest(p: Point, lines: &[(Point, Point)]) -> f64 {
+    let d = |&(a, b): &(Point, Point)| segment_distance((p.x, p.y), (a.x, a.y), (b.x, b.y));
+    lines.iter().map(d).fold(f64::INFINITY, f64::min)
 }
 
 /// A small branching tree: trunk, two branches of order 1 each carrying two
@@ -398,10 +400,7 @@ fn png_and_svg_agree() {
     for &(a, b) in &segs {
         for t in [0.0, 0.5, 1.0] {
             let p = Point::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
-            let d = lines
-                .iter()
-                .map(|&l| distance_to_segment(p, l))
-                .fold(f64::INFINITY, f64::min);
+            let d = distance_to_nearest(p, &lines);
             assert!(d < 0.01, "{p:?} is {d} px from every merged line");
         }
     }
@@ -411,10 +410,7 @@ fn png_and_svg_agree() {
         for x in 0..png.width() {
             if is_dark(&png, x, y) {
                 let c = Point::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
-                let d = segs
-                    .iter()
-                    .map(|&s| distance_to_segment(c, s))
-                    .fold(f64::INFINITY, f64::min);
+                let d = distance_to_nearest(c, &segs);
                 let ok = d <= 1.5 + 1.0;
                 assert!(ok, "dark pixel ({x}, {y}) is {d} px from every path");
             }
