@@ -385,8 +385,7 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         let e = lsys_err(src.clone(), Limits::default());
         assert_first!(
             e,
-            ErrorKind::Lsys(LsysError::NumberTooLarge { .. })
-                | ErrorKind::Lsys(LsysError::MalformedNumber { .. }),
+            ErrorKind::Lsys(LsysError::NumberTooLarge { .. } | LsysError::MalformedNumber { .. }),
             "{line}: {e}"
         );
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{line}");
@@ -396,8 +395,7 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         let e = lsys_err(src, Limits::default());
         assert_first!(
             e,
-            ErrorKind::Lsys(LsysError::NotPositive { .. })
-                | ErrorKind::Lsys(LsysError::NumberTooLarge { .. }),
+            ErrorKind::Lsys(LsysError::NotPositive { .. } | LsysError::NumberTooLarge { .. }),
             "{line}: {e}"
         );
     }
@@ -441,8 +439,9 @@ fn zero_and_negative_sizes_are_refused() {
         let e = bed_err(src);
         assert_first!(
             e,
-            ErrorKind::Stl(StlError::StemSizeNotPositive { .. })
-                | ErrorKind::Stl(StlError::NegativeDecrement { .. }),
+            ErrorKind::Stl(
+                StlError::StemSizeNotPositive { .. } | StlError::NegativeDecrement { .. }
+            ),
             "{src}: {e}"
         );
         let at = src.find(needle).unwrap();
@@ -461,8 +460,9 @@ fn zero_and_negative_sizes_are_refused() {
         let e = stl_err(src, Format::Od, Limits::default());
         assert_first!(
             e,
-            ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { .. })
-                | ErrorKind::Layout(LayoutError::TooFewPoints { .. }),
+            ErrorKind::Layout(
+                LayoutError::ShapeSizeNotPositive { .. } | LayoutError::TooFewPoints { .. }
+            ),
             "{shape}: {e}"
         );
     }
@@ -548,18 +548,15 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
         let e = lsys_err(lossy.clone(), Limits::default());
         assert_first!(
             e,
-            ErrorKind::Input(InputError::Syntax(_))
-                | ErrorKind::Input(InputError::NestingTooDeep { .. })
-                | ErrorKind::Lsys(LsysError::UnknownKey { .. })
-                | ErrorKind::Lsys(LsysError::MissingKey { .. }),
+            ErrorKind::Input(InputError::Syntax(_) | InputError::NestingTooDeep { .. })
+                | ErrorKind::Lsys(LsysError::UnknownKey { .. } | LsysError::MissingKey { .. }),
             "{e}"
         );
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(lossy.clone(), format, Limits::default());
             assert_first!(
                 e,
-                ErrorKind::Input(InputError::Syntax(_))
-                    | ErrorKind::Input(InputError::NestingTooDeep { .. }),
+                ErrorKind::Input(InputError::Syntax(_) | InputError::NestingTooDeep { .. }),
                 "{e}"
             );
         }
