@@ -13,7 +13,7 @@ use geo::{
 use crate::support::{limit_kind, near_pairs, od, opts};
 use stlc::bed::Bed;
 use stlc::diag::GrowError;
-use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow};
+use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow, grow_traced};
 use stlc::model::*;
 use stlc::progress::NoProgress;
 use stlc::rings::shape_ring;
@@ -787,8 +787,7 @@ fn the_traced_growth_places_exactly_the_beds_stems_in_decision_order() {
         let d = od(&crate::support::example_text(file));
         for order in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let plain = grown(&d, opts(order));
-            let (traced, placed) =
-                stlc::grow::grow_traced(&d, &opts(order), &mut NoProgress).unwrap();
+            let (traced, placed) = grow_traced(&d, &opts(order), &mut NoProgress).unwrap();
             assert!(traced == plain, "{file}: grow_traced grew another BED");
             assert_eq!(placed.len() as u64, plain.stems, "{file}");
             let mut from_trace: Vec<_> = placed.iter().map(|p| key(p.from, p.to)).collect();

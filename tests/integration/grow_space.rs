@@ -6,6 +6,7 @@
 use crate::grow::grown;
 use crate::od_variation::bed_text;
 use crate::support::{od, opts, segment_distance};
+use stlc::grow::region::Region;
 use stlc::grow::{GrowOptions, GrowthOrder, PlacedStem, grow_traced};
 use stlc::model::{Description, Format};
 use stlc::progress::NoProgress;
@@ -193,8 +194,7 @@ fn the_keys_are_read_and_refused_in_a_bed() {
 #[test]
 fn the_tallies_count_the_points_killed() {
     let d = od(&box_with_hole(""));
-    let region =
-        stlc::grow::region::Region::from_layout(d.layout.as_ref().unwrap(), 100_000).unwrap();
+    let region = Region::from_layout(d.layout.as_ref().unwrap(), 100_000).unwrap();
     let points = stlc::grow::colonize::sample::plane(&region, None, 100.0, 0);
     assert_eq!(points.len(), 300, "(200^2 - 100^2) / 10^2");
     let (g, trace) = grow_traced(&d, &opts(GrowthOrder::Space), &mut NoProgress).unwrap();

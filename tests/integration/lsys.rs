@@ -10,7 +10,7 @@ use stlc::diag::LsysError::*;
 use stlc::diag::{ErrorKind, InputError};
 use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
-use stlc::interpret::stats::stats;
+use stlc::interpret::stats::{stats, stats_with_budget};
 use stlc::limits::{Bound, Limits};
 use stlc::model::lsys::{Background, LSystem};
 use stlc::progress::NoProgress;
@@ -357,8 +357,7 @@ fn stats_at_depth_57_is_exact() {
     let json = st.to_json();
     assert!(json.contains(&format!("\"length\": \"{want}\"")), "{json}");
     // A skipped geometry (budget 0) is still written as null.
-    let skipped =
-        stlc::interpret::stats::stats_with_budget(&sys(TREE1), 57, &Limits::default(), 0).unwrap();
+    let skipped = stats_with_budget(&sys(TREE1), 57, &Limits::default(), 0).unwrap();
     assert!(skipped.to_json().contains("\"bbox\": null, \"end\": null"));
 }
 

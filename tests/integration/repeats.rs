@@ -5,7 +5,7 @@
 //! parser refuses) is built in code: it applies nothing.
 
 use stlc::bed::Bed;
-use stlc::grow::{GrowthOrder, grow};
+use stlc::grow::GrowthOrder;
 use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::bed::draw_into;
 use stlc::model::*;
@@ -62,8 +62,7 @@ fn measure_expansion_and_growth_agree_for_every_count() {
         assert_eq!(segments(&bed, Bfs), drawn, "bfs, n = {n}");
         for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let o = crate::support::opts(growth);
-            let g =
-                grow(&desc(n, Format::Od), &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"));
+            let g = crate::grow::grown(&desc(n, Format::Od), o);
             assert_eq!(g.stems, want.stems, "grown stems, n = {n}, {growth:?}");
             assert_eq!(g.bed.size(), want, "the grown BED, n = {n}, {growth:?}");
             let grown = segments(&g.bed, Dfs);
