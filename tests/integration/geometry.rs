@@ -284,13 +284,9 @@ fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
                 && (got.max_y - want.max_y).abs() <= tol,
             "{src} at {depth}: {got:?} vs {want:?}"
         );
-        assert!(
-            (m.end.x - g.x).abs() <= tol && (m.end.y - g.y).abs() <= tol,
-            "{src} at {depth}: end {:?} vs ({}, {})",
-            m.end,
-            g.x,
-            g.y
-        );
+        let (end, gx, gy) = (m.end, g.x, g.y);
+        let near = (end.x - gx).abs() <= tol && (end.y - gy).abs() <= tol;
+        assert!(near, "{src} at {depth}: end {end:?} vs ({gx}, {gy})");
     }
 }
 

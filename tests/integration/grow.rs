@@ -294,11 +294,9 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
                 .iter()
                 .map(|e| Euclidean.distance(&l, e))
                 .fold(f64::INFINITY, f64::min);
-            assert!(
-                d >= radius(s) - tol,
-                "the stroke of {s:?} pokes out of the region: {d} < {}",
-                radius(s)
-            );
+            let r = radius(s);
+            let ok = d >= r - tol;
+            assert!(ok, "the stroke of {s:?} pokes out of the region: {d} < {r}");
         }
     }
     // Pairwise clearance with the joint exception, brute force over the

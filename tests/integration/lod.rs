@@ -83,11 +83,8 @@ fn stochastic_stand_ins_end_where_their_subtrees_end() {
             let (split, walked) = walked_to(&s, 7, detail);
             let (n, of) = (split.stand_ins.len() + split.segments.len(), all.len());
             assert!(n > 10 && n < of / 4, "seed {seed}: {n} of {of}");
-            assert_eq!(
-                (walked.x.to_bits(), walked.y.to_bits()),
-                (end.x.to_bits(), end.y.to_bits()),
-                "seed {seed}, detail {detail}"
-            );
+            let bits = |p: stlc::turtle::Point| (p.x.to_bits(), p.y.to_bits());
+            assert_eq!(bits(walked), bits(end), "seed {seed}, detail {detail}");
         }
     }
 }

@@ -399,11 +399,8 @@ fn sierpinski_arrowhead_counts() {
         let src = format!("axiom {axiom}\nrule X YF+XF+Y\nrule Y XF-YF-X\nangle 60\n");
         for n in 0..=9u32 {
             let st = stats(&sys(&src), n, &Limits::default()).unwrap();
-            assert_eq!(
-                st.segments,
-                big((3i64.pow(n) - 1 + extra) as u64),
-                "{axiom} {n}"
-            );
+            let count = big((3i64.pow(n) - 1 + extra) as u64);
+            assert_eq!(st.segments, count, "{axiom} {n}");
             if n <= 6 {
                 assert_eq!(segments(&src, n, Dfs).len() as i64, 3i64.pow(n) - 1 + extra);
             }

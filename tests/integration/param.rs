@@ -205,11 +205,11 @@ fn fig_2_6a_at_depth_10_is_the_hand_derivation() {
     }
     // A binary tree of 2^10 - 1 internodes.
     assert_eq!(want.matches('F').count(), 1023);
-    assert!(
-        want.starts_with("!(10)F(1)[&(45)!(7.069999999999999)F(0.6)[-(45)$"),
-        "{}",
-        &want[..60]
+    let (start, head) = (
+        "!(10)F(1)[&(45)!(7.069999999999999)F(0.6)[-(45)$",
+        &want[..60],
     );
+    assert!(want.starts_with(start), "{head}");
 }
 
 // ------------------------------------------------------------- properties --
@@ -542,11 +542,8 @@ fn parametric_steps_and_turns_take_their_parameters() {
     assert!(near(s[0].to, 0.0, -6.0), "{:?}", s[0]);
     assert!(near(s[1].to, 1.5, -6.0), "{:?}", s[1]);
     // `f(1)` moved 3 without drawing; the plain `F` turned by nothing.
-    assert!(
-        close(s[2].from.x, 4.5) && close(s[2].to.x, 7.5),
-        "{:?}",
-        s[2]
-    );
+    let t = s[2];
+    assert!(close(t.from.x, 4.5) && close(t.to.x, 7.5), "{t:?}");
 }
 
 #[test]

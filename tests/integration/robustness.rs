@@ -638,11 +638,10 @@ fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
     assert_eq!(segs.0.len() as u64, g.stems);
     let ends = || segs.0.iter().flat_map(|s| [s.from, s.to]);
     for p in ends() {
+        let (x, y) = (p.x, p.y);
         assert!(
-            p.x <= p.y && p.y <= 100.0 - p.x,
-            "({}, {}) is outside the left lobe",
-            p.x,
-            p.y
+            x <= y && y <= 100.0 - x,
+            "({x}, {y}) is outside the left lobe"
         );
     }
     // It filled the lobe out to its outer edge, x = 0.
