@@ -259,11 +259,9 @@ fn a_bed_names_alternatives_that_exist() {
     let head = "T (0,0) L=1(0) B=1(0) RULE R1.1 (0.5): [+F] R1.2 (0.5): [-F] SEED ";
     let text = format!("{head}R1.3{{}} ENDSEED");
     let e = errors(&text, Format::Bed);
-    assert!(
-        matches!(&e.0[0].kind, Rule(UnknownAlternative { name, number }) if name == "R1" && number == "3"),
-        "{:?}",
-        e.0[0].kind
-    );
+    let (name, number) = ("R1".into(), "3".into());
+    let unknown = Rule(UnknownAlternative { name, number });
+    assert_eq!(e.0[0].kind, unknown);
     assert_eq!(e.0[0].span, Some(span_of(&text, "R1.3")));
     let text = format!("{head}R1{{}} ENDSEED");
     let e = errors(&text, Format::Bed);
@@ -279,11 +277,8 @@ fn a_bed_names_alternatives_that_exist() {
 fn a_bed_probability_belongs_to_an_alternative() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F][-F] SEED F R1{,} ENDSEED";
     let e = errors(text, Format::Bed);
-    assert!(
-        matches!(&e.0[0].kind, Rule(ProbabilityWithoutAlternative { name }) if name == "R1"),
-        "{:?}",
-        e.0[0].kind
-    );
+    let name = "R1".into();
+    assert_eq!(e.0[0].kind, Rule(ProbabilityWithoutAlternative { name }));
     assert_eq!(e.0[0].span, Some(span_of(text, "R1")));
     // The same line in an OD is a rule of one alternative.
     let d = od(text.replace("R1{,}", "R1").as_str());
@@ -299,11 +294,9 @@ fn a_bed_repeats_only_rules_without_alternatives() {
     for repeat in ["[I 2 R1]", "[I 2 R1.2]"] {
         let text = format!("{head}{repeat} ENDSEED");
         let e = errors(&text, Format::Bed);
-        assert!(
-            matches!(&e.0[0].kind, Rule(RepeatChooses { name, count: 2 }) if name == "R1"),
-            "{repeat}: {:?}",
-            e.0[0].kind
-        );
+        let name = "R1".into();
+        let chooses = Rule(RepeatChooses { name, count: 2 });
+        assert_eq!(e.0[0].kind, chooses, "{repeat}");
         assert_eq!(e.0[0].span, Some(span_of(&text, repeat)));
     }
     let text = format!("{head}[I 2 R2] ENDSEED");
