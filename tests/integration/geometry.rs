@@ -309,10 +309,8 @@ fn the_memo_refuses_what_it_cannot_bound() {
     // Net turn x 5 per level: headings past 2^63 at depth 30 and no period.
     let s = sys("axiom F\nrule F F+F+F+F+F\nangle 25.123456789\n");
     assert!(measure(&s, 5, 1.0).is_ok());
-    assert!(matches!(
-        measure(&s, 40, 1.0),
-        Err(Refusal::Budget | Refusal::Turns)
-    ));
+    let refused = measure(&s, 40, 1.0);
+    assert!(matches!(refused, Err(Refusal::Budget | Refusal::Turns)));
 }
 
 // ------------------------------------------------------ level of detail --

@@ -450,10 +450,8 @@ fn both_strategies_refuse_over_max_symbols_and_max_depth() {
         assert!(expand(&s, 4, strategy, &limits, &mut out, &mut NoProgress).is_err());
         assert!(out.is_empty());
     }
-    assert!(matches!(
-        stats(&s, 21, &limits).unwrap_err().first_kind(),
-        Some(ErrorKind::Limit { .. })
-    ));
+    let e = stats(&s, 21, &limits).unwrap_err();
+    assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
 }
 
 #[test]

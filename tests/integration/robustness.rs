@@ -538,12 +538,8 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
         let bytes = garbage(4096, seed);
         let lossy = String::from_utf8_lossy(&bytes).into_owned();
         // As bytes: not UTF-8.
-        assert!(matches!(
-            precheck(&bytes, &Limits::default())
-                .unwrap_err()
-                .first_kind(),
-            Some(ErrorKind::Input(InputError::NotUtf8(_)))
-        ));
+        let e = precheck(&bytes, &Limits::default()).unwrap_err();
+        assert_first!(e, ErrorKind::Input(InputError::NotUtf8(_)), "{e}");
         // As text (replacement characters): a syntax error or a limit.
         let e = lsys_err(lossy.clone(), Limits::default());
         assert_first!(
