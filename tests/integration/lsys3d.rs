@@ -139,12 +139,8 @@ fn a_2d_file_keeps_its_meaning_and_warns_of_a_view() {
     let mut req = lsys_request("angle 90\ngenerations 0\naxiom F&F\n");
     req.view = Some(View::DEFAULT);
     let drawn = req.render(&mut Vec::new(), &mut NoProgress).unwrap();
-    assert!(
-        drawn
-            .warnings
-            .iter()
-            .any(|w| w.to_string().contains("--view"))
-    );
+    let names_view = |w: &stlc::Diagnostic| w.to_string().contains("--view");
+    assert!(drawn.warnings.iter().any(names_view));
 }
 
 fn mesh(req: &Request, format: MeshFormat) -> Vec<u8> {
