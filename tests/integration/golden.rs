@@ -16,19 +16,12 @@ use stlc::progress::NoProgress;
 use stlc::syntax::stl;
 use stlc::turtle::Counter;
 
-use crate::support::{assert_golden, assert_same_text, blessing, manifest_path};
+use crate::support::{assert_golden, assert_same_text, blessing, files_with, manifest_path};
 
 /// All outline descriptions with goldens, sorted by name.
 fn cases() -> Vec<PathBuf> {
-    let mut v = Vec::new();
-    for dir in ["examples", "tests/cases/grow"] {
-        for e in fs::read_dir(manifest_path(dir)).unwrap() {
-            let p = e.unwrap().path();
-            if p.extension().is_some_and(|x| x == "od") {
-                v.push(p);
-            }
-        }
-    }
+    let mut v = files_with("examples", "od");
+    v.extend(files_with("tests/cases/grow", "od"));
     v.sort();
     v
 }

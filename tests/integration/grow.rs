@@ -406,13 +406,7 @@ fn invariants_hold_on_several_grown_trees() {
 /// into a tree whose strokes stay inside the outline and apart, as drawn.
 #[test]
 fn invariants_hold_on_every_example_with_strokes_as_drawn() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples");
-    let mut names: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "od"))
-        .collect();
-    names.sort();
+    let names = crate::support::files_with("examples", "od");
     assert!(names.len() >= 8, "{names:?}");
     for path in names {
         let d = od(&std::fs::read_to_string(&path).unwrap());

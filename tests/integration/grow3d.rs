@@ -8,7 +8,7 @@
 //! the clearance with a distance computed here (a ternary search of the
 //! point-to-segment distance, which is convex along a segment).
 
-use crate::support::{cuboid, cylinder, ellipsoid, near_pairs, opts, sphere};
+use crate::support::{cuboid, cylinder, ellipsoid, files_with, near_pairs, opts, sphere};
 use stlc::Limits;
 use stlc::color::Rgb;
 use stlc::diag::MissReason;
@@ -360,11 +360,7 @@ fn extruded(flat: &Description) -> Description {
 #[test]
 fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
     let mut tried = 0;
-    for entry in std::fs::read_dir("examples").unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().and_then(|e| e.to_str()) != Some("od") {
-            continue;
-        }
+    for path in files_with("examples", "od") {
         let text = std::fs::read_to_string(&path).unwrap();
         let flat = parsed(&text);
         if flat.layout.is_none() || flat.is_3d() {
@@ -397,13 +393,7 @@ fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
 #[test]
 fn every_3d_example_grows_inside_its_volumes_and_keeps_clearance() {
     let mut tried = Vec::new();
-    let mut paths: Vec<_> = std::fs::read_dir("examples")
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().and_then(|e| e.to_str()) == Some("od"))
-        .collect();
-    paths.sort();
-    for path in paths {
+    for path in files_with("examples", "od") {
         let od = parsed(&std::fs::read_to_string(&path).unwrap());
         if !od.is_3d() {
             continue;

@@ -542,14 +542,8 @@ proptest! {
 
 #[test]
 fn every_example_parses_and_draws_the_same_both_ways() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let mut seen = 0;
-    let mut three = 0;
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "lsys") {
-            continue;
-        }
+    let (mut seen, mut three) = (0, 0);
+    for path in crate::support::files_with("examples", "lsys") {
         let src = std::fs::read_to_string(&path).unwrap();
         let s = parse(&src, &Limits::default()).unwrap_or_else(|e| panic!("{path:?}: {e}"));
         let depth = s.generations.expect("examples say their depth").min(4);
