@@ -231,11 +231,8 @@ impl Recursion {
     }
 
     fn geo(&mut self, c: char, r: u32, heading: f64) -> Geo {
-        let key = (
-            c,
-            r,
-            libm::round(heading.rem_euclid(360.0) * 1e6) as i64 % 360_000_000,
-        );
+        let turn = libm::round(heading.rem_euclid(360.0) * 1e6) as i64 % 360_000_000;
+        let key = (c, r, turn);
         if let Some(g) = self.memo.get(&key) {
             return *g;
         }

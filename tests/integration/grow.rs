@@ -85,12 +85,8 @@ fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
         w
     }
     let p = &bed.params;
-    let mut it = Interp::new(
-        Recorder::default(),
-        Point::new(root.0, root.1),
-        p.angle(),
-        p.length,
-    );
+    let at = Point::new(root.0, root.1);
+    let mut it = Interp::new(Recorder::default(), at, p.angle(), p.length);
     let mut stack: Vec<Task> = Vec::new();
     for item in seed.items.iter().rev() {
         stack.push(match item {

@@ -67,11 +67,7 @@ fn dist(p: P, q: P) -> f64 {
 }
 
 fn lerp(a: P, b: P, t: f64) -> P {
-    [
-        a[0] + (b[0] - a[0]) * t,
-        a[1] + (b[1] - a[1]) * t,
-        a[2] + (b[2] - a[2]) * t,
-    ]
+    [0, 1, 2].map(|i| a[i] + (b[i] - a[i]) * t)
 }
 
 /// Distance from `p` to the segment `a`-`b`, and where along it (0..1).
@@ -347,11 +343,8 @@ fn extruded(flat: &Description) -> Description {
         .shapes
         .iter()
         .map(|s| {
-            let solid = Solid::Extrude {
-                shape: s.shape.clone(),
-                z1: -1000.0,
-                z2: 1000.0,
-            };
+            let (shape, z1, z2) = (s.shape.clone(), -1000.0, 1000.0);
+            let solid = Solid::Extrude { shape, z1, z2 };
             (s.color, solid)
         });
     lift(flat.clone(), 0.0, solids.collect())

@@ -13,11 +13,8 @@ use stlc::progress::NoProgress;
 use stlc::syntax::lsys::parse;
 
 fn expanded(src: &str, depth: u32, strategy: Derivation) -> Result<String, Diagnostics> {
-    let (sys, mut out, limits) = (
-        parse(src, &Limits::default())?,
-        Vec::new(),
-        Limits::default(),
-    );
+    let (mut out, limits) = (Vec::new(), Limits::default());
+    let sys = parse(src, &limits)?;
     expand(&sys, depth, strategy, &limits, &mut out, &mut NoProgress)?;
     Ok(String::from_utf8(out).unwrap())
 }
@@ -27,11 +24,8 @@ fn first_error(src: &str) -> (String, String, String) {
     let e = parse(src, &Limits::default()).expect_err("should not parse");
     let d = e.iter().next().unwrap();
     let span = d.span.clone().expect("the error points at the text");
-    (
-        d.kind.to_string(),
-        d.help_text().unwrap_or_default(),
-        src[span].to_string(),
-    )
+    let (kind, help) = (d.kind.to_string(), d.help_text().unwrap_or_default());
+    (kind, help, src[span].to_string())
 }
 
 // ------------------------------------------------ independent rewriters --

@@ -724,12 +724,8 @@ fn gen_term(g: &mut Gen, terms: &mut Terms, rules: &[RuleDef], depth: u32) -> Te
 
 fn gen_shape(g: &mut Gen) -> LayoutShape {
     let color_text = g.pick(&["clGreen", "clWhite", "#00ff00", "clRed", "#abc"]);
-    let (x, y, w, h) = (
-        g.eighth(100) - 50.0,
-        g.eighth(100),
-        g.eighth(50),
-        g.eighth(50),
-    );
+    let (x, y) = (g.eighth(100) - 50.0, g.eighth(100));
+    let (w, h) = (g.eighth(50), g.eighth(50));
     let (shape, spelling) = match g.below(6) {
         0 => (Shape::Rect { x, y, w, h }, Spelling::StartSize),
         1 => (Shape::Rect { x, y, w, h }, Spelling::Corners),
@@ -771,11 +767,8 @@ fn gen_solid(g: &mut Gen) -> LayoutSolid {
         3 => cylinder(point, g.eighth(20), g.eighth(80)),
         4 => {
             let z1 = g.eighth(40) - 40.0;
-            Solid::Extrude {
-                shape: gen_shape(g).shape,
-                z1,
-                z2: z1 + g.eighth(40),
-            }
+            let (shape, z2) = (gen_shape(g).shape, z1 + g.eighth(40));
+            Solid::Extrude { shape, z1, z2 }
         }
         _ => Solid::Revolve {
             shape: gen_shape(g).shape,
@@ -1013,6 +1006,8 @@ fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
     let solids: Vec<&Solid> = l.solids.iter().map(|s| &s.solid).collect();
     let (x, y, w, h) = (50.0, 40.0, 200.0, 180.0);
     let ellipse = Shape::Ellipse { x, y, w, h };
+    let (shape, z1, z2) = (ellipse, -30.0, 30.0);
+    let extruded = Solid::Extrude { shape, z1, z2 };
     assert_eq!(
         solids,
         [
@@ -1020,16 +1015,8 @@ fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
             &sphere([150.0, 150.0, 0.0], 40.0),
             &ellipsoid([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]),
             &cylinder([150.0, 298.0, 0.0], 10.0, 60.0),
-            &Solid::Extrude {
-                shape: ellipse.clone(),
-                z1: -30.0,
-                z2: 30.0
-            },
-            &Solid::Extrude {
-                shape: ellipse,
-                z1: -30.0,
-                z2: 30.0
-            },
+            &extruded,
+            &extruded,
             &Solid::Revolve {
                 shape: round_rect(0.0, 0.0, 10.0, 20.0, 2.0, 2.0)
             },
