@@ -269,11 +269,8 @@ fn expand_by_hand() {
 
 /// A segment of order 0 from `a` to `b`.
 fn seg(a: (f64, f64), b: (f64, f64)) -> Segment {
-    Segment {
-        from: Point::new(a.0, a.1),
-        to: Point::new(b.0, b.1),
-        order: 0,
-    }
+    let (from, to) = (Point::new(a.0, a.1), Point::new(b.0, b.1));
+    Segment { from, to, order: 0 }
 }
 
 #[test]

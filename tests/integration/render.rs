@@ -549,11 +549,8 @@ fn a_million_tiny_segments_stream_through_the_png_backend() {
         Point::new(f64::from(x) * 0.19, f64::from(row) * 0.19)
     };
     for i in 0..1_000_000 {
-        turtle.segment(Segment {
-            from: point(i),
-            to: point(i + 1),
-            order: 0,
-        });
+        let (from, to, order) = (point(i), point(i + 1), 0);
+        turtle.segment(Segment { from, to, order });
     }
     let p = turtle.into_raster().unwrap();
     assert!(is_dark(&p, 100, 100));

@@ -80,11 +80,8 @@ fn a_zero_count_in_a_slot_is_an_empty_slot() {
     let mut d = desc(1, Format::Bed);
     let seed = d.seed.as_mut().unwrap();
     let mut terms = Terms::new();
-    let zero = terms.repeat(Repeat {
-        count: 0,
-        rule: RuleId(0),
-        loc: Loc::default(),
-    });
+    let (count, rule, loc) = (0, RuleId(0), Loc::default());
+    let zero = terms.repeat(Repeat { count, rule, loc });
     let with_zero = terms.push(RuleId(0), false, 0..0, &[Some(zero), None]);
     seed.items[1] = SeedItem::Term(with_zero);
     seed.terms = terms;

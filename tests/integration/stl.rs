@@ -208,10 +208,9 @@ fn segments_have_hand_computed_coordinates_and_orders() {
     // A=90 keeps every coordinate exact. L=10(2): order 0 length 10,
     // order 1 length 8, order 2 length 6.
     let d = bed("T (0, 0) L=10(2) B=1(0) A=90 RULE R1: F[+F] SEED F R1{R1{}} ENDSEED");
-    let seg = |x0, y0, x1, y1, order| Segment {
-        from: Point::new(x0, y0),
-        to: Point::new(x1, y1),
-        order,
+    let seg = |x0, y0, x1, y1, order| {
+        let (from, to) = (Point::new(x0, y0), Point::new(x1, y1));
+        Segment { from, to, order }
     };
     let want = vec![
         seg(0.0, 0.0, 0.0, -10.0, 0),       // seed F, up
@@ -653,10 +652,8 @@ impl Gen {
 }
 
 fn run(text: String) -> DrawRun {
-    DrawRun {
-        text,
-        loc: Loc::default(),
-    }
+    let loc = Loc::default();
+    DrawRun { text, loc }
 }
 
 fn gen_body(g: &mut Gen, rules: usize) -> Body {
@@ -842,11 +839,8 @@ fn gen_description(seed: u64) -> Description {
     });
     let root_z = three.then(|| g.milli(-100, 100));
     let divergence = (three && g.chance(60)).then(|| g.milli(-360, 360));
-    let seed = g.chance(90).then_some(Seed {
-        items,
-        terms,
-        loc: Loc::default(),
-    });
+    let loc = Loc::default();
+    let seed = g.chance(90).then_some(Seed { items, terms, loc });
     // A 3D forest: a second root, with a seed of its own.
     let forest = match (three && g.chance(30), &seed) {
         (true, Some(_)) => vec![stlc::model::Tree {
