@@ -643,11 +643,8 @@ impl Gen {
         s
     }
     fn fixed(&mut self) -> Fixed {
-        Fixed {
-            count: 1 + self.below(3) as u32,
-            word: self.drawing(),
-            loc: Loc::default(),
-        }
+        let (count, word, loc) = (1 + self.below(3) as u32, self.drawing(), Loc::default());
+        Fixed { count, word, loc }
     }
 }
 
@@ -706,11 +703,9 @@ fn gen_term(g: &mut Gen, terms: &mut Terms, rules: &[RuleDef], depth: u32) -> Te
             if depth == 0 || g.chance(40) {
                 None
             } else if g.chance(20) {
-                Some(terms.repeat(Repeat {
-                    count: 1 + g.below(2) as u32,
-                    rule: RuleId(g.below(rules.len() as u64) as usize),
-                    loc: Loc::default(),
-                }))
+                let count = 1 + g.below(2) as u32;
+                let (rule, loc) = (RuleId(g.below(rules.len() as u64) as usize), Loc::default());
+                Some(terms.repeat(Repeat { count, rule, loc }))
             } else {
                 Some(Terms::slot_of(gen_term(g, terms, rules, depth - 1)))
             }
@@ -810,11 +805,11 @@ fn gen_description(seed: u64) -> Description {
         match g.below(5) {
             0 => push_draw(&mut items, g.drawing()),
             1 => items.push(SeedItem::Fixed(Box::new(g.fixed()))),
-            2 => items.push(SeedItem::Repeat(Box::new(Repeat {
-                count: 1 + g.below(3) as u32,
-                rule: RuleId(g.below(n as u64) as usize),
-                loc: Loc::default(),
-            }))),
+            2 => {
+                let (count, loc) = (1 + g.below(3) as u32, Loc::default());
+                let rule = RuleId(g.below(n as u64) as usize);
+                items.push(SeedItem::Repeat(Box::new(Repeat { count, rule, loc })));
+            }
             3 => {
                 // A term inside a seed bracket: `[+F`, term, `]`.
                 let open = format!("[{}", g.letters(2));
