@@ -168,18 +168,10 @@ fn holds(solid: &Solid, p: P, axis: [f64; 2]) -> bool {
 
 fn in_layout(od: &Description, p: P) -> bool {
     let axis = [od.root.0, od.root_z.unwrap_or(0.0)];
-    od.layout
-        .as_ref()
-        .unwrap()
-        .solids
-        .iter()
-        .fold(false, |inside, s| {
-            if holds(&s.solid, p, axis) {
-                s.color != Rgb::WHITE
-            } else {
-                inside
-            }
-        })
+    // The last volume that holds the point paints it (white: a hole).
+    let solids = &od.layout.as_ref().unwrap().solids;
+    let last = solids.iter().rev().find(|s| holds(&s.solid, p, axis));
+    last.is_some_and(|s| s.color != Rgb::WHITE)
 }
 
 /// Every stem lies in the volumes and keeps the clearance; returns how
