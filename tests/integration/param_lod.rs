@@ -117,12 +117,8 @@ fn at_a_detail_the_box_is_the_exact_ones_within_the_detail() {
 fn a_depth_the_exact_path_refuses_is_drawn_at_a_level_of_detail() {
     let s = sys(TREE);
     let mut rec = Recorder::default();
-    let refused = exact_within(
-        &s,
-        40,
-        &limits_with(|l| l.max_symbols = 30_000_000),
-        &mut rec,
-    );
+    let limits = limits_with(|l| l.max_symbols = 30_000_000);
+    let refused = exact_within(&s, 40, &limits, &mut rec);
     assert!(refused.is_err());
     let m = memo(&s, 40).unwrap();
     let visits = m.visits(1.0);

@@ -125,10 +125,8 @@ fn render_plain(
     size: Option<(u32, u32)>,
     out: &mut dyn std::io::Write,
 ) -> Result<Option<u64>, Diagnostics> {
-    let (st, opts) = (
-        style(Width::Pixels(1.0), None),
-        RenderOptions::new(format, size),
-    );
+    let st = style(Width::Pixels(1.0), None);
+    let opts = RenderOptions::new(format, size);
     render::render(drawing, None, &[], &st, &opts, out, &mut NoProgress)
 }
 

@@ -21,6 +21,7 @@ use stlc::model::{
 use stlc::num::Linear;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
+use stlc::turtle::turtle3::Segment3;
 use stlc::turtle::{Point, Recorder, Segment};
 
 const TREE_2D: &str = "2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT (clGreen)< RoundRect (0,0,180,192,7,7)> (clWhite)< RoundRect (55,30,40,15,4,4)> (clWhite)< RoundRect (35,125,76,30,5,5)> ENDLAYOUT";
@@ -76,10 +77,7 @@ fn segments_within(d: &Description, s: Derivation, l: &Limits) -> Segments {
 }
 
 /// A 3D description's stems, drawn by the 3D interpreter.
-fn segments3(
-    d: &Description,
-    strategy: Derivation,
-) -> Result<Vec<stlc::turtle::turtle3::Segment3>, Diagnostics> {
+fn segments3(d: &Description, strategy: Derivation) -> Result<Vec<Segment3>, Diagnostics> {
     let (mut out, l) = (Vec::new(), Limits::default());
     let bed = Bed::new(d.clone(), &l)?;
     stlc::interpret::bed3::draw3(&bed, strategy, &l, &mut |s| out.push(s), &mut NoProgress)?;
