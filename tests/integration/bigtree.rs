@@ -11,7 +11,7 @@ use serde_json::{Value, json};
 
 use super::chromium::{Browser, click, js, shot};
 use super::serve::{Server, post, render};
-use crate::support::numbers;
+use crate::support::{numbers, segment_distance};
 
 /// An .od that grows `1 + 3k` stems for `M=1+3k` in a 1200 x 1200 square:
 /// one stem from the root, then `[-F][F][+F]` at every tip, bfs, until the
@@ -60,18 +60,11 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     assert_eq!(stems(&a), 10_000);
     assert_eq!(a["tree_in_svg"], true);
     assert_eq!(a["stroke"], "#4a2c12");
-    assert!(
-        a["svg"]
-            .as_str()
-            .unwrap()
-            .contains(r##"fill="none" stroke="#4a2c12""##)
-    );
+    let svg = a["svg"].as_str().unwrap();
+    assert!(svg.contains(r##"fill="none" stroke="#4a2c12""##));
     let asked = post(&server.addr, "/api/render", &[COMPACT], &small);
-    assert!(
-        asked.head.contains("content-type: application/json"),
-        "{}",
-        asked.head
-    );
+    let head = &asked.head;
+    assert!(head.contains("content-type: application/json"), "{head}");
     assert_eq!(asked.json(), a);
 
     // 10,003 stems: the SVG has the layout, not the tree.
@@ -95,23 +88,15 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
     let export = post(&server.addr, "/api/export?format=svg", &[], &body);
     let exported = String::from_utf8(export.body).unwrap();
     assert!(exported.contains(r##"fill="none" stroke="#4a2c12""##));
-    assert!(
-        exported.len() > 10 * svg.len(),
-        "{} {}",
-        exported.len(),
-        svg.len()
-    );
+    let (whole, shown) = (exported.len(), svg.len());
+    assert!(whole > 10 * shown, "{whole} {shown}");
 
     // The compact body is the JSON answer, number for number.
     let compact = post(&server.addr, "/api/render", &[COMPACT], &body);
     assert_eq!(compact.status, 200);
-    assert!(
-        compact
-            .head
-            .contains("content-type: application/x-stlc-render"),
-        "{}",
-        compact.head
-    );
+    let head = &compact.head;
+    let ok = head.contains("content-type: application/x-stlc-render");
+    assert!(ok, "{head}");
     assert_eq!(unpack(&compact.body), a);
     assert!(compact.body.len() < a.to_string().len() * 2 / 3);
 }
@@ -218,18 +203,6 @@ async fn canvas_box(c: &Client) -> Value {
     .await
 }
 
-/// The distance from `p` to segment `a`-`b`.
-fn distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let l = dx * dx + dy * dy;
-    let t = if l > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / l).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
-}
-
 /// One stem: from, to, decision.
 type Stem = ((f64, f64), (f64, f64), u64);
 
@@ -247,7 +220,10 @@ fn bare(stems: &[Stem]) -> Vec<(f64, f64)> {
     for i in 0..25 {
         for j in 0..25 {
             let p = (24.0 + 48.0 * f64::from(i), 24.0 + 48.0 * f64::from(j));
-            if stems.iter().all(|&(a, b, _)| distance(p, a, b) > 8.0) {
+            if stems
+                .iter()
+                .all(|&(a, b, _)| segment_distance(p, a, b) > 8.0)
+            {
                 out.push(p);
             }
         }
@@ -329,10 +305,8 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         assert!(on.iter().all(|&a| a > 0), "a stem without ink: {on:?}");
         assert!(off.iter().all(|&a| a == 0), "ink far from every stem: {off:?}");
         let brown = [0x4a, 0x2c, 0x12].map(f64::from);
-        assert!(
-            (0..3).all(|i| (rgb[i] - brown[i]).abs() < 4.0),
-            "{rgb:?} is not the stroke #4a2c12"
-        );
+        let ok = (0..3).all(|i| (rgb[i] - brown[i]).abs() < 4.0);
+        assert!(ok, "{rgb:?} is not the stroke #4a2c12");
 
         // Zoomed in, a sharper canvas of the part in view replaces the
         // whole one once the view rests: inside the library's picture of

@@ -54,8 +54,7 @@ fn every_bound_names_a_real_flag_with_its_default() {
         String::from_utf8(crate::support::stlc_piped(&format!("{command} --help"), "")).unwrap()
     };
     let helps = [help("render"), help("serve")];
-    let docs = fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/limits.md"))
-        .unwrap();
+    let docs = fs::read_to_string(crate::support::manifest_path("docs/limits.md")).unwrap();
     for bound in stlc::Bound::ALL {
         let flag = format!("{} <{}>", bound.flag(), bound.value_name());
         let entry = helps
@@ -70,19 +69,15 @@ fn every_bound_names_a_real_flag_with_its_default() {
         // --max-stems has no default of its own on the command line: not
         // given, growth stops at the default with a warning.
         if bound != stlc::Bound::Stems {
+            let default = stlc::limits::Limits::DEFAULT.get(bound);
+            let shown = entry.contains(&format!("[default: {default}]"));
             assert!(
-                entry.contains(&format!(
-                    "[default: {}]",
-                    stlc::limits::Limits::DEFAULT.get(bound)
-                )),
-                "{bound:?}: {flag} does not default to {}:\n{entry}",
-                stlc::limits::Limits::DEFAULT.get(bound)
+                shown,
+                "{bound:?}: {flag} does not default to {default}:\n{entry}"
             );
         }
         let written = format!("`{} {}`", bound.flag(), bound.value_name());
-        assert!(
-            docs.contains(&written),
-            "{bound:?}: docs/limits.md lacks {written}"
-        );
+        let holds = docs.contains(&written);
+        assert!(holds, "{bound:?}: docs/limits.md lacks {written}");
     }
 }

@@ -15,14 +15,8 @@ use stlc::syntax::InputKind;
 fn blocks() -> Vec<(String, usize, InputKind, String)> {
     let root = env!("CARGO_MANIFEST_DIR");
     let mut files = vec![format!("{root}/README.md")];
-    let mut docs: Vec<String> = fs::read_dir(format!("{root}/docs"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "md"))
-        .map(|p| p.to_string_lossy().into_owned())
-        .collect();
-    docs.sort();
-    files.extend(docs);
+    let docs = crate::support::files_with("docs", "md");
+    files.extend(docs.iter().map(|p| p.to_string_lossy().into_owned()));
     let mut out = Vec::new();
     for file in files {
         let text = fs::read_to_string(&file).unwrap();

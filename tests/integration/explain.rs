@@ -7,7 +7,6 @@ use predicates::prelude::*;
 use stlc::diag::{Diagnostic, ErrorKind, GrowError, Kin, Misfit, MissReason};
 use stlc::grow::explain::RuleTally;
 use stlc::grow::{GrowOptions, GrowthOrder, grow};
-use stlc::limits::Limits;
 use stlc::pipeline::Request;
 use stlc::progress::NoProgress;
 
@@ -53,6 +52,22 @@ fn never_fitted(warnings: &[Diagnostic]) -> Vec<&Diagnostic> {
         .collect()
 }
 
+/// A clearance miss's stem, kin, other stem, found, needed and clearance.
+fn too_close(why: Misfit) -> (u32, Kin, Option<u32>, f64, f64, f64) {
+    let Misfit::TooClose {
+        stem,
+        kin,
+        other,
+        found,
+        needed,
+        clearance,
+    } = why
+    else {
+        panic!("not a clearance miss: {why:?}");
+    };
+    (stem, kin, other, found, needed, clearance)
+}
+
 /// The warning of problem 8: which stems, how far apart, how far they
 /// need to be, where the rule is, and what to change.
 fn assert_problem_8_warning(warnings: &[Diagnostic], text: &str) {
@@ -65,21 +80,9 @@ fn assert_problem_8_warning(warnings: &[Diagnostic], text: &str) {
         unreachable!()
     };
     assert_eq!((rule.as_str(), *tries), ("R1", 1));
-    let Misfit::TooClose {
-        stem,
-        kin,
-        other,
-        found: f,
-        needed: n,
-        clearance,
-    } = *why
-    else {
-        panic!("not a clearance miss: {why:?}");
-    };
-    assert_eq!(
-        (stem, kin, other, clearance),
-        (4, Kin::Sibling, Some(2), 1.5)
-    );
+    let (stem, kin, other, f, n, clearance) = too_close(*why);
+    let want = (4, Kin::Sibling, Some(2), 1.5);
+    assert_eq!((stem, kin, other, clearance), want);
     assert!((f - found).abs() < 1e-9, "found {f}, expected {found}");
     assert!((n - needed).abs() < 1e-9, "needed {n}, expected {needed}");
     let message = w.kind.to_string();
@@ -100,10 +103,8 @@ fn problem_8_warns_of_the_sibling_distance_in_every_front_end() {
     // The numbers the test expects: 3.677 found, 4.2 needed.
     assert_eq!(format!("{found:.3} {needed:.1}"), "3.677 4.2");
 
-    let request = Request {
-        kind: Some(stlc::pipeline::InputKind::Od),
-        ..Request::new(text.clone().into_bytes())
-    };
+    let mut request = Request::new(text.clone().into_bytes());
+    request.kind = Some(stlc::pipeline::InputKind::Od);
     let (compiled, warnings) = request.compile(&mut NoProgress).unwrap();
     assert_eq!(compiled.grown.stems, 9, "the seed alone");
     assert_problem_8_warning(&warnings, &text);
@@ -112,13 +113,8 @@ fn problem_8_warns_of_the_sibling_distance_in_every_front_end() {
     assert_problem_8_warning(&drawn.warnings, &text);
     let checked = request.check().unwrap();
     assert_problem_8_warning(&checked.warnings, &text);
-    assert!(
-        checked.summary.contains(
-            "  rule R1     1 try, 0 fits; most misses: too close to a sibling stem (1 of 1)\n"
-        ),
-        "{}",
-        checked.summary
-    );
+    let line = "  rule R1     1 try, 0 fits; most misses: too close to a sibling stem (1 of 1)\n";
+    assert!(checked.summary.contains(line), "{}", checked.summary);
 
     // `stlc check` prints the line and the warning, pointing at the rule.
     crate::support::stlc_line("check - --from od")
@@ -198,22 +194,10 @@ ENDLAYOUT
 /// A clearance miss of a try's one stem against a stem already there,
 /// its distances to rounding (the turtle's directions come from `libm`).
 fn assert_too_close(why: Misfit, kin: Kin, found: f64, needed: f64) {
-    let Misfit::TooClose {
-        stem,
-        kin: k,
-        other,
-        found: f,
-        needed: n,
-        clearance,
-    } = why
-    else {
-        panic!("not a clearance miss: {why:?}");
-    };
+    let (stem, k, other, f, n, clearance) = too_close(why);
     assert_eq!((stem, k, other, clearance), (1, kin, None, 1.0), "{why:?}");
-    assert!(
-        (f - found).abs() < 1e-9 && (n - needed).abs() < 1e-9,
-        "{why:?}"
-    );
+    let near = (f - found).abs() < 1e-9 && (n - needed).abs() < 1e-9;
+    assert!(near, "{why:?}");
 }
 
 /// Every kind of miss, each in a description small enough to work by
@@ -243,22 +227,12 @@ fn each_reason_is_found_with_its_numbers() {
     assert_too_close(why, Kin::Other, 0.0, 2.0);
     // Width 1 - 1 = 0 at order 1.
     let why = one("Thin (0, 0) L=10(0) B=1(1) RULE R1: [F] SEED F[I 1 R1] ENDSEED");
-    assert_eq!(
-        why,
-        Misfit::TooThin {
-            order: 1,
-            width: 0.0
-        }
-    );
+    let (order, width) = (1, 0.0);
+    assert_eq!(why, Misfit::TooThin { order, width });
     // Length 10 - 10 = 0 at order 1 (checked before the width).
     let why = one("Short (0, 0) L=10(10) B=1(1) RULE R1: [F] SEED F[I 1 R1] ENDSEED");
-    assert_eq!(
-        why,
-        Misfit::TooShort {
-            order: 1,
-            length: 0.0
-        }
-    );
+    let (order, length) = (1, 0.0);
+    assert_eq!(why, Misfit::TooShort { order, length });
 }
 
 /// A limit that stops a try has its own warning: the rule's counts say
@@ -266,24 +240,16 @@ fn each_reason_is_found_with_its_numbers() {
 #[test]
 fn a_limit_is_counted_but_not_warned_twice() {
     let d = od("Capped (0, 0) L=10(0) B=1(0) A=30 C=1 RULE R1: [F] SEED F[I 3 R1] ENDSEED");
-    let g = grow(
-        &d,
-        &GrowOptions {
-            limits: Limits {
-                max_depth: 0,
-                ..Limits::default()
-            },
-            ..GrowOptions::default()
-        },
-        &mut NoProgress,
-    )
-    .unwrap();
+    let mut o = GrowOptions::default();
+    o.limits.max_depth = 0;
+    let g = grow(&d, &o, &mut NoProgress).unwrap();
     assert_eq!(g.tallies[0].first_miss, Some(Misfit::Depth { limit: 0 }));
     assert_eq!(g.warnings.len(), 1, "{:?}", g.warnings);
-    assert!(matches!(
+    let capped = matches!(
         g.warnings[0].kind,
         ErrorKind::Grow(GrowError::DepthCapped { .. })
-    ));
+    );
+    assert!(capped);
 }
 
 /// The same input gives the same counts, and they add up: every try fits

@@ -6,18 +6,15 @@
 use std::collections::{BTreeMap, HashMap};
 
 use proptest::prelude::*;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::Dfs;
 use stlc::interpret::lsys::{Measured, Memo, Refusal, draw, draw_into, draw_lod, measure};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{BBox, Bounds, Recorder, Segment, StandIn, Turtle};
 
+use crate::lsys::{sys, word};
 use crate::support::stlc_line;
-
-fn sys(src: &str) -> LSystem {
-    stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// Within `rel` of the larger magnitude (at least 1).
 fn close(a: f64, b: f64, rel: f64) -> bool {
@@ -33,44 +30,12 @@ fn close_box(a: &BBox, b: &BBox, rel: f64) -> bool {
 
 /// The traversal: every segment into a bounding turtle.
 fn traversed(s: &LSystem, depth: u32) -> (Option<BBox>, stlc::turtle::Point, u64) {
-    let mut b = Bounds::default();
-    let end = draw_into(
-        s,
-        depth,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut b,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let (mut b, limits) = (Bounds::default(), Limits::default());
+    let end = draw_into(s, depth, Dfs, &limits, &mut b, &mut NoProgress).unwrap();
     (b.bbox(), end, b.count)
 }
 
 // ------------------------------------------------- against a traversal --
-
-/// A random word over `alphabet` with balanced brackets (as the parser
-/// requires of successors).
-fn word(alphabet: &'static [char], max: usize) -> impl Strategy<Value = String> {
-    proptest::collection::vec(0..alphabet.len() + 2, 0..max).prop_map(move |v| {
-        let mut out = String::new();
-        let mut open = 0;
-        for i in v {
-            if i == alphabet.len() {
-                out.push('[');
-                open += 1;
-            } else if i == alphabet.len() + 1 {
-                if open > 0 {
-                    out.push(']');
-                    open -= 1;
-                }
-            } else {
-                out.push(alphabet[i]);
-            }
-        }
-        out.extend(std::iter::repeat_n(']', open));
-        out
-    })
-}
 
 const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
 
@@ -105,21 +70,25 @@ impl Turtle for Detailed {
     }
 }
 
-fn lod(s: &LSystem, depth: u32, detail: f64) -> Detailed {
-    let mut t = Detailed {
+/// A [`Detailed`] turtle asking for `detail`.
+fn detailed(detail: f64) -> Detailed {
+    Detailed {
         detail,
         ..Detailed::default()
-    };
-    draw(
-        s,
-        depth,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut t,
-        &mut NoProgress,
-    )
-    .unwrap();
+    }
+}
+
+fn lod(s: &LSystem, depth: u32, detail: f64) -> Detailed {
+    let (mut t, limits) = (detailed(detail), Limits::default());
+    draw(s, depth, Dfs, &limits, &mut t, &mut NoProgress).unwrap();
     t
+}
+
+/// The exact segments of `s` at `depth`.
+fn exact(s: &LSystem, depth: u32) -> Recorder {
+    let (mut rec, limits) = (Recorder::default(), Limits::default());
+    draw_into(s, depth, Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
+    rec
 }
 
 proptest! {
@@ -152,8 +121,7 @@ proptest! {
         }
         prop_assert!(close(m.end.x, end.x, 1e-9) && close(m.end.y, end.y, 1e-9), "{}", src);
 
-        let mut exact = Recorder::default();
-        draw_into(&s, depth, Derivation::Dfs, &Limits::default(), &mut exact, &mut NoProgress).unwrap();
+        let exact = exact(&s, depth);
         let mut at0 = Detailed::default();
         prop_assert!(draw_lod(&s, depth, 0.0, &Limits::default(), &mut at0, &mut NoProgress).unwrap());
         prop_assert_eq!(at0.blots, 0);
@@ -263,11 +231,8 @@ impl Recursion {
     }
 
     fn geo(&mut self, c: char, r: u32, heading: f64) -> Geo {
-        let key = (
-            c,
-            r,
-            libm::round(heading.rem_euclid(360.0) * 1e6) as i64 % 360_000_000,
-        );
+        let turn = libm::round(heading.rem_euclid(360.0) * 1e6) as i64 % 360_000_000;
+        let key = (c, r, turn);
         if let Some(g) = self.memo.get(&key) {
             return *g;
         }
@@ -301,12 +266,8 @@ fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
         let mut rec = Recursion::new(&s);
         let g = rec.walk(&s.axiom, depth, s.heading);
         let b = g.bbox.expect("draws");
-        let want = BBox {
-            min_x: b[0],
-            min_y: b[1],
-            max_x: b[2],
-            max_y: b[3],
-        };
+        let mut want = BBox::at(stlc::turtle::Point::new(b[0], b[1]));
+        want.add(stlc::turtle::Point::new(b[2], b[3]));
         let got = m.bbox.expect("draws");
         // The two sum the same directions in different orders and compute
         // them differently (integer turns vs float degrees): relative
@@ -320,13 +281,9 @@ fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
                 && (got.max_y - want.max_y).abs() <= tol,
             "{src} at {depth}: {got:?} vs {want:?}"
         );
-        assert!(
-            (m.end.x - g.x).abs() <= tol && (m.end.y - g.y).abs() <= tol,
-            "{src} at {depth}: end {:?} vs ({}, {})",
-            m.end,
-            g.x,
-            g.y
-        );
+        let (end, gx, gy) = (m.end, g.x, g.y);
+        let near = (end.x - gx).abs() <= tol && (end.y - gy).abs() <= tol;
+        assert!(near, "{src} at {depth}: end {end:?} vs ({gx}, {gy})");
     }
 }
 
@@ -349,10 +306,8 @@ fn the_memo_refuses_what_it_cannot_bound() {
     // Net turn x 5 per level: headings past 2^63 at depth 30 and no period.
     let s = sys("axiom F\nrule F F+F+F+F+F\nangle 25.123456789\n");
     assert!(measure(&s, 5, 1.0).is_ok());
-    assert!(matches!(
-        measure(&s, 40, 1.0),
-        Err(Refusal::Budget | Refusal::Turns)
-    ));
+    let refused = measure(&s, 40, 1.0);
+    assert!(matches!(refused, Err(Refusal::Budget | Refusal::Turns)));
 }
 
 // ------------------------------------------------------ level of detail --
@@ -426,11 +381,8 @@ fn depth_57_renders_at_a_level_of_detail_and_exact_refuses() {
     let lsys = support_path("examples/abop-1.24a.lsys");
     let render = |flags: &str, out: &str| {
         let out = dir.path().join(out);
-        stlc_line(&format!(
-            "render {lsys} --depth 57 {flags} -o {}",
-            out.display()
-        ))
-        .assert()
+        let to = out.display();
+        stlc_line(&format!("render {lsys} --depth 57 {flags} -o {to}")).assert()
     };
     render("--size 200x200", "t.png").success();
     let pixmap = tiny_skia::Pixmap::load_png(dir.path().join("t.png")).unwrap();
@@ -495,47 +447,20 @@ fn a_cut_that_saves_too_little_draws_exactly() {
     let max = Limits::default().max_symbols;
     // The bush spans 2 steps: a detail of 3 cuts it.
     let plan = Memo::new(&small, 1).unwrap().plan(3.0, max);
-    assert_eq!(
-        (plan.visits, plan.word, plan.cuts, plan.walk),
-        (11, 18, 1, false)
-    );
+    let counts = |p: &stlc::interpret::lsys::Plan| (p.visits, p.word, p.cuts, p.walk);
+    assert_eq!(counts(&plan), (11, 18, 1, false));
     let t = lod(&small, 1, 3.0);
-    let mut exact = Recorder::default();
-    draw_into(
-        &small,
-        1,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut exact,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let exact = exact(&small, 1);
     assert_eq!(exact.segments.len(), 12);
     assert_eq!(t.blots, 0);
     assert_eq!(t.rec.segments, exact.segments);
     // Asked for the walk regardless, it cuts the bush.
-    let mut forced = Detailed {
-        detail: 3.0,
-        ..Detailed::default()
-    };
-    assert!(
-        draw_lod(
-            &small,
-            1,
-            3.0,
-            &Limits::default(),
-            &mut forced,
-            &mut NoProgress
-        )
-        .unwrap()
-    );
+    let (mut forced, limits) = (detailed(3.0), Limits::default());
+    assert!(draw_lod(&small, 1, 3.0, &limits, &mut forced, &mut NoProgress).unwrap());
     assert_eq!((forced.blots, forced.rec.segments.len()), (1, 11));
 
     let plan = Memo::new(&big, 1).unwrap().plan(3.0, max);
-    assert_eq!(
-        (plan.visits, plan.word, plan.cuts, plan.walk),
-        (11, 34, 1, true)
-    );
+    assert_eq!(counts(&plan), (11, 34, 1, true));
     let t = lod(&big, 1, 3.0);
     assert_eq!((t.blots, t.rec.segments.len()), (1, 11));
     // Over the traversal budget the exact path would refuse: the walk

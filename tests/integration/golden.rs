@@ -9,25 +9,19 @@ use std::path::{Path, PathBuf};
 
 use stlc::Limits;
 use stlc::grow::GrowthOrder;
-use stlc::grow::{GrowOptions, grow};
+use stlc::grow::grow;
+use stlc::interpret::bed::draw_into;
 use stlc::model::Format;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl;
 use stlc::turtle::Counter;
 
-use crate::support::{assert_golden, assert_same_text, blessing, manifest_path};
+use crate::support::{assert_golden, assert_same_text, blessing, files_with, manifest_path};
 
 /// All outline descriptions with goldens, sorted by name.
 fn cases() -> Vec<PathBuf> {
-    let mut v = Vec::new();
-    for dir in ["examples", "tests/cases/grow"] {
-        for e in fs::read_dir(manifest_path(dir)).unwrap() {
-            let p = e.unwrap().path();
-            if p.extension().is_some_and(|x| x == "od") {
-                v.push(p);
-            }
-        }
-    }
+    let mut v = files_with("examples", "od");
+    v.extend(files_with("tests/cases/grow", "od"));
     v.sort();
     v
 }
@@ -36,11 +30,7 @@ fn compile(od_path: &Path, strategy: GrowthOrder) -> (String, u64) {
     let text = fs::read_to_string(od_path).unwrap();
     let od = stl::parse(&text, Format::Od, &Limits::default())
         .unwrap_or_else(|e| panic!("{}: {e}", od_path.display()));
-    let opts = GrowOptions {
-        growth: strategy,
-        ..GrowOptions::default()
-    };
-    let grown = grow(&od, &opts, &mut NoProgress).unwrap();
+    let grown = grow(&od, &crate::support::opts(strategy), &mut NoProgress).unwrap();
     (
         stlc::bed::write::write(grown.bed.description()),
         grown.stems,
@@ -86,37 +76,19 @@ fn every_golden_reparses_and_rewrites_unchanged_and_draws_its_stems() {
     }
     for od in cases() {
         let stem = od.file_stem().unwrap().to_string_lossy().into_owned();
-        for tag in ["bfs", "dfs"] {
+        for (order, tag) in [(GrowthOrder::Bfs, "bfs"), (GrowthOrder::Dfs, "dfs")] {
             let golden = manifest_path(format!("tests/cases/grow/{stem}.{tag}.bed"));
             let text = fs::read_to_string(&golden).unwrap();
             let bed = stl::parse(&text, Format::Bed, &Limits::default())
                 .unwrap_or_else(|e| panic!("{}: {e}", golden.display()));
             stlc::bed::validate(&bed, &Limits::default()).unwrap();
-            assert_same_text(
-                &golden.display().to_string(),
-                &text,
-                &stlc::bed::write::write(&bed),
-            );
+            let rewritten = stlc::bed::write::write(&bed);
+            assert_same_text(&golden.display().to_string(), &text, &rewritten);
             // The BED draws exactly the stems the grower counted.
-            let (_, stems) = compile(
-                &od,
-                if tag == "bfs" {
-                    GrowthOrder::Bfs
-                } else {
-                    GrowthOrder::Dfs
-                },
-            );
-            let drawn = stlc::bed::Bed::new(bed.clone(), &Limits::default())
-                .and_then(|bed| {
-                    stlc::interpret::bed::draw_into(
-                        &bed,
-                        stlc::interpret::Derivation::Dfs,
-                        &Limits::default(),
-                        Counter::default(),
-                        &mut NoProgress,
-                    )
-                })
-                .unwrap();
+            let (_, stems) = compile(&od, order);
+            let (limits, dfs) = (Limits::default(), stlc::interpret::Derivation::Dfs);
+            let bed = stlc::bed::Bed::new(bed.clone(), &limits).unwrap();
+            let drawn = draw_into(&bed, dfs, &limits, Counter::default(), &mut NoProgress).unwrap();
             assert_eq!(drawn.0, stems, "{stem}.{tag}");
         }
     }
@@ -125,8 +97,9 @@ fn every_golden_reparses_and_rewrites_unchanged_and_draws_its_stems() {
 #[test]
 fn figures_9_and_10_differ_by_strategy() {
     let od = manifest_path("examples/fig9.od");
-    assert_ne!(
+    let (bfs, dfs) = (
         compile(&od, GrowthOrder::Bfs).0,
-        compile(&od, GrowthOrder::Dfs).0
+        compile(&od, GrowthOrder::Dfs).0,
     );
+    assert_ne!(bfs, dfs);
 }

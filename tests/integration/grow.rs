@@ -10,10 +10,10 @@ use geo::{
     BooleanOps, Contains, Coord, Distance, Euclidean, Line, LineString, MultiPolygon, Polygon,
 };
 
-use crate::support::{near_pairs, od, opts};
+use crate::support::{limit_kind, near_pairs, od, opts};
 use stlc::bed::Bed;
 use stlc::diag::GrowError;
-use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow};
+use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow, grow_traced};
 use stlc::model::*;
 use stlc::progress::NoProgress;
 use stlc::rings::shape_ring;
@@ -25,20 +25,31 @@ use stlc::{Bound, Diagnostics, ErrorKind, Limits, Severity};
 // ------------------------------------------------------------ descriptions
 
 /// The span of the first `needle` in `text`.
-fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
+pub fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
     let at = text.find(needle).expect("needle in text");
     at..at + needle.len()
 }
 
-fn grown(od: &Description, o: GrowOptions) -> Grown {
+/// What `od` grows with the options `o`, which must succeed.
+pub fn grown(od: &Description, o: GrowOptions) -> Grown {
     grow(od, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn grow_err(od: &Description, o: GrowOptions) -> Diagnostics {
-    match grow(od, &o, &mut NoProgress) {
-        Ok(g) => panic!("grew {} stems, expected an error", g.stems),
-        Err(e) => e,
-    }
+    let grown = grow(od, &o, &mut NoProgress);
+    grown
+        .map(|g| g.stems)
+        .expect_err("grew stems, expected an error")
+}
+
+/// [`seed_text`] of what grew.
+fn seed_of(g: &Grown) -> String {
+    seed_text(g.bed.description())
+}
+
+/// [`draw_bed`] of what grew.
+fn drawn(g: &Grown) -> Vec<Segment> {
+    draw_bed(g.bed.description())
 }
 
 // ------------------------------------------------- independent BED walk
@@ -49,10 +60,8 @@ fn grow_err(od: &Description, o: GrowOptions) -> Diagnostics {
 fn draw_bed(bed: &Description) -> Vec<Segment> {
     let mut trees = vec![(bed.root, bed.seed.as_ref().unwrap())];
     for t in &bed.forest {
-        trees.push((
-            t.root,
-            t.seed.as_ref().expect("a grown forest has a seed per root"),
-        ));
+        let seed = t.seed.as_ref().expect("a grown forest has a seed per root");
+        trees.push((t.root, seed));
     }
     trees
         .into_iter()
@@ -76,12 +85,8 @@ fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
         w
     }
     let p = &bed.params;
-    let mut it = Interp::new(
-        Recorder::default(),
-        Point::new(root.0, root.1),
-        p.angle(),
-        p.length,
-    );
+    let at = Point::new(root.0, root.1);
+    let mut it = Interp::new(Recorder::default(), at, p.angle(), p.length);
     let mut stack: Vec<Task> = Vec::new();
     for item in seed.items.iter().rev() {
         stack.push(match item {
@@ -228,16 +233,7 @@ fn oracle_region(od: &Description) -> MultiPolygon<f64> {
 }
 
 fn line(s: &Segment) -> Line<f64> {
-    Line::new(
-        Coord {
-            x: s.from.x,
-            y: s.from.y,
-        },
-        Coord {
-            x: s.to.x,
-            y: s.to.y,
-        },
-    )
+    Line::new((s.from.x, s.from.y), (s.to.x, s.to.y))
 }
 
 /// The nearest point of segment `l` to `p`.
@@ -284,10 +280,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
             .flat_map(|r| r.lines())
             .collect();
         for s in &segs {
-            assert!(
-                region.contains(&line(s)),
-                "segment {s:?} is not inside the region"
-            );
+            let holds = region.contains(&line(s));
+            assert!(holds, "segment {s:?} is not inside the region");
             if s.order == 0 {
                 continue; // the seed is drawn as given
             }
@@ -296,11 +290,9 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
                 .iter()
                 .map(|e| Euclidean.distance(&l, e))
                 .fold(f64::INFINITY, f64::min);
-            assert!(
-                d >= radius(s) - tol,
-                "the stroke of {s:?} pokes out of the region: {d} < {}",
-                radius(s)
-            );
+            let r = radius(s);
+            let ok = d >= r - tol;
+            assert!(ok, "the stroke of {s:?} pokes out of the region: {d} < {r}");
         }
     }
     // Pairwise clearance with the joint exception, brute force over the
@@ -318,19 +310,11 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
         }
         let need = c + radius(s) + radius(t);
         let lt = line(t);
-        let ends_s = [s.from, s.to];
         let ends_t = [t.from, t.to];
-        let shared: Vec<Point> = ends_s
-            .iter()
-            .filter(|p| ends_t.contains(p))
-            .copied()
-            .collect();
-        if let Some(&j) = shared.first() {
+        if let Some(j) = [s.from, s.to].into_iter().find(|p| ends_t.contains(p)) {
             // A joint is where at least one of them starts.
-            assert!(
-                s.from == j || t.from == j,
-                "{s:?} and {t:?} meet end to end"
-            );
+            let holds = s.from == j || t.from == j;
+            assert!(holds, "{s:?} and {t:?} meet end to end");
             let far_s = if s.from == j { s.to } else { s.from };
             let far_t = if t.from == j { t.to } else { t.from };
             for (far, other) in [(far_s, &lt), (far_t, &ls)] {
@@ -339,10 +323,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
                     continue; // nearest at the joint: no fold
                 }
                 let d = Euclidean.distance(&geo::Point::new(far.x, far.y), other);
-                assert!(
-                    d >= need - tol,
-                    "joint too tight: {s:?} {t:?} ({d}) < {need}"
-                );
+                let holds = d >= need - tol;
+                assert!(holds, "joint too tight: {s:?} {t:?} ({d}) < {need}");
             }
         } else {
             let d = Euclidean.distance(&ls, &lt);
@@ -420,13 +402,7 @@ fn invariants_hold_on_several_grown_trees() {
 /// into a tree whose strokes stay inside the outline and apart, as drawn.
 #[test]
 fn invariants_hold_on_every_example_with_strokes_as_drawn() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples");
-    let mut names: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "od"))
-        .collect();
-    names.sort();
+    let names = crate::support::files_with("examples", "od");
     assert!(names.len() >= 8, "{names:?}");
     for path in names {
         let d = od(&std::fs::read_to_string(&path).unwrap());
@@ -460,10 +436,8 @@ fn trees_of_a_forest_keep_clear_of_each_other() {
             // Stems start at every root: each tree drew at least its seed.
             for t in forest {
                 let (x, y) = t.root;
-                assert!(
-                    segs.iter().any(|p| p.from.x == x && p.from.y == y),
-                    "seed {seed} {s:?}: nothing at root ({x}, {y})"
-                );
+                let holds = segs.iter().any(|p| p.from.x == x && p.from.y == y);
+                assert!(holds, "seed {seed} {s:?}: nothing at root ({x}, {y})");
             }
         }
     }
@@ -476,10 +450,7 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
     let dfs = grown(&d, opts(GrowthOrder::Dfs));
     check_invariants(&d, &bfs);
     check_invariants(&d, &dfs);
-    assert_ne!(
-        seed_text(bfs.bed.description()),
-        seed_text(dfs.bed.description())
-    );
+    assert_ne!(seed_of(&bfs), seed_of(&dfs));
     // The seed's one growth point grew: F then R1{right, left}.
     let root = |g: &Grown| -> (usize, usize) {
         let seed = g.bed.description().seed.as_ref().unwrap();
@@ -504,8 +475,8 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
     assert!(d_right > 2 * d_left, "dfs {d_right} vs {d_left}");
     assert!(d_right > b_right);
     // A depth-first tree is deeper (vines).
-    let bfs_depth = max_order(&draw_bed(bfs.bed.description()));
-    let dfs_depth = max_order(&draw_bed(dfs.bed.description()));
+    let bfs_depth = max_order(&drawn(&bfs));
+    let dfs_depth = max_order(&drawn(&dfs));
     assert!(dfs_depth > bfs_depth, "{dfs_depth} vs {bfs_depth}");
 }
 
@@ -515,11 +486,8 @@ fn growth_is_deterministic() {
         for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
             let a = grown(&d, opts(s));
             let b = grown(&d, opts(s));
-            assert_eq!(
-                seed_text(a.bed.description()),
-                seed_text(b.bed.description())
-            );
-            assert_eq!(draw_bed(a.bed.description()), draw_bed(b.bed.description()));
+            assert_eq!(seed_of(&a), seed_of(&b));
+            assert_eq!(drawn(&a), drawn(&b));
         }
     }
 }
@@ -561,7 +529,7 @@ fn counts_grow_the_full_subtree_when_space_allows() {
             let g = grown(&d, opts(s));
             // 2^n - 1 applications of 2 stems each, plus the seed's F.
             assert_eq!(g.stems, stems, "n={n} {s:?}");
-            assert_eq!(seed_text(g.bed.description()), text);
+            assert_eq!(seed_of(&g), text);
             let segs = check_invariants(&d, &g);
             assert_eq!(max_order(&segs), n);
         }
@@ -580,11 +548,8 @@ fn count_follows_successors() {
         SEED F[I 3 R1] ENDSEED");
     let g = grown(&d, opts(GrowthOrder::Bfs));
     assert_eq!(g.stems, 10);
-    assert_eq!(
-        seed_text(g.bed.description()),
-        "FR1{R2{R2{}},R1{R2{},R1{,}}}",
-        "written out by hand from the rule"
-    );
+    let wanted = "FR1{R2{R2{}},R1{R2{},R1{,}}}";
+    assert_eq!(seed_of(&g), wanted, "written out by hand from the rule");
 }
 
 #[test]
@@ -604,44 +569,33 @@ fn decrements_end_growth_at_the_right_order() {
     let d = od("Thinner (0, 0) L=10(1) B=1(0.3) A=45 RULE R1: [+F][-F]");
     let g = grown(&d, o);
     assert_eq!(g.stems, 15);
-    assert_eq!(max_order(&draw_bed(g.bed.description())), 3);
+    assert_eq!(max_order(&drawn(&g)), 3);
 }
 
 #[test]
 fn max_stems_stops_growth_with_a_warning() {
     let mut o = opts(GrowthOrder::Bfs);
     o.clearance = Some(0.0);
-    o.limits = Limits {
-        max_stems: 100,
-        ..Limits::default()
-    };
+    o.limits.max_stems = 100;
     o.max_stems_explicit = true;
     let g = grown(&od(BINARY), o);
     // 1 + 2k <= 100: 49 applications fit, the 50th would make 101.
     assert_eq!(g.stems, 99);
-    assert_eq!(draw_bed(g.bed.description()).len(), 99);
+    assert_eq!(drawn(&g).len(), 99);
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(g.warnings[0].severity, Severity::Warning);
-    assert_eq!(
-        g.warnings[0].kind,
-        ErrorKind::Grow(GrowError::GrowthStopped {
-            stems: 99,
-            limit: 100
-        })
-    );
+    let (stems, limit) = (99, 100);
+    let stopped = ErrorKind::Grow(GrowError::GrowthStopped { stems, limit });
+    assert_eq!(g.warnings[0].kind, stopped);
 }
 
 #[test]
 fn unbounded_growth_is_refused_with_a_fix() {
     let e = grow_err(&od(BINARY), opts(GrowthOrder::Bfs));
     let d = &e.0[0];
-    assert_eq!(
-        d.kind,
-        ErrorKind::Grow(GrowError::UnboundedGrowth {
-            rule: "R1".into(),
-            through: "R1".into()
-        })
-    );
+    let (rule, through) = ("R1".into(), "R1".into());
+    let unbounded = ErrorKind::Grow(GrowError::UnboundedGrowth { rule, through });
+    assert_eq!(d.kind, unbounded);
     // The default seed has no text: the rule's name is pointed at.
     assert_eq!(d.span, Some(span_of(BINARY, "R1")));
     let help = d.help_text().unwrap();
@@ -663,14 +617,9 @@ fn root_outside_the_region_is_an_error() {
         RULE R1: [-F][+F]
         LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT";
     let e = grow_err(&od(text), opts(GrowthOrder::Bfs));
-    assert_eq!(
-        e.0[0].kind,
-        ErrorKind::Grow(GrowError::RootOutside {
-            x: 250.0,
-            y: 100.0,
-            z: None
-        })
-    );
+    let (x, y, z) = (250.0, 100.0, None);
+    let want = ErrorKind::Grow(GrowError::RootOutside { x, y, z });
+    assert_eq!(e.0[0].kind, want);
     assert_eq!(e.0[0].span, Some(span_of(text, "(250, 100)")));
 }
 
@@ -685,19 +634,11 @@ fn white_holes_are_respected() {
     for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
-        let hole = Polygon::new(
-            LineString::from(vec![
-                (60.0, 80.0),
-                (140.0, 80.0),
-                (140.0, 120.0),
-                (60.0, 120.0),
-            ]),
-            vec![],
-        );
-        assert!(
-            segs.iter()
-                .all(|s| !geo::Intersects::intersects(&hole, &line(s)))
-        );
+        let hole = geo::Rect::new((60.0, 80.0), (140.0, 120.0)).to_polygon();
+        let clear = segs
+            .iter()
+            .all(|s| !geo::Intersects::intersects(&hole, &line(s)));
+        assert!(clear);
         // The tree grew around the hole: stems above it too.
         assert!(segs.iter().any(|s| s.to.y < 70.0));
     }
@@ -710,7 +651,7 @@ fn written_terms_are_drawn_as_given_and_their_slots_grow() {
     let d = figure_9_10_with("L=10(0) B=1(0)", "SEED FR1{R1,} ENDSEED");
     let g = grown(&d, opts(GrowthOrder::Dfs));
     check_invariants(&d, &g);
-    let text = seed_text(g.bed.description());
+    let text = seed_of(&g);
     assert!(text.starts_with("FR1{R1{"), "{text}");
     assert!(text.ends_with(",}"), "second slot stays empty: {text}");
 }
@@ -756,10 +697,8 @@ fn depth_limit_stops_a_vine_with_a_warning() {
     assert_eq!(g.stems, 1 + 5);
     assert_eq!(g.warnings.len(), 1);
     assert_eq!(g.warnings[0].severity, Severity::Warning);
-    assert_eq!(
-        g.warnings[0].kind,
-        ErrorKind::Grow(GrowError::DepthCapped { limit: 5 })
-    );
+    let want = ErrorKind::Grow(GrowError::DepthCapped { limit: 5 });
+    assert_eq!(g.warnings[0].kind, want);
 }
 
 #[test]
@@ -797,15 +736,8 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     o.limits.max_stems = 4;
     let d = figure_9_10_with("L=10(0) B=1(0)", "SEED FFFFF ENDSEED");
     let e = grow_err(&d, o);
-    assert_eq!(
-        e.0[0].kind,
-        ErrorKind::Limit {
-            bound: Bound::Stems,
-            what: Some("stems drawn by the seed alone".into()),
-            value: "5".into(),
-            limit: 4
-        }
-    );
+    let seed_alone = Some("stems drawn by the seed alone");
+    assert_eq!(e.0[0].kind, limit_kind(Bound::Stems, seed_alone, "5", 4));
     // Terms written out in the seed count what their rules draw, all of
     // them, before anything is drawn: F, then 4 x R1{,} (2 stems each), 9.
     let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F R1{,}R1{,} R1{R1,} ENDSEED");
@@ -814,12 +746,7 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     let e = grow_err(&d, few);
     assert_eq!(
         e.0[0].kind,
-        ErrorKind::Limit {
-            bound: Bound::Stems,
-            what: Some("stems drawn by the seed alone".into()),
-            value: "7".into(),
-            limit: 5
-        },
+        limit_kind(Bound::Stems, seed_alone, "7", 5),
         "the bare R1 is a growth point and counts nothing"
     );
     // The seed (drawn first, R1 deferred) fills the limit: R1's application
@@ -829,7 +756,7 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     let g = grown(&d, o);
     assert_eq!(g.stems, 2);
     assert_eq!(g.warnings.len(), 1);
-    assert_eq!(seed_text(g.bed.description()), "FF");
+    assert_eq!(seed_of(&g), "FF");
 }
 
 // ---------------------------------------------------- the growth order
@@ -845,20 +772,14 @@ fn the_traced_growth_places_exactly_the_beds_stems_in_decision_order() {
         (r(a.x), r(a.y), r(b.x), r(b.y))
     };
     for file in ["fig9.od", "holes.od", "2dtree.od"] {
-        let text =
-            std::fs::read_to_string(crate::support::manifest_path("examples").join(file)).unwrap();
-        let d = od(&text);
+        let d = od(&crate::support::example_text(file));
         for order in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let plain = grown(&d, opts(order));
-            let (traced, placed) =
-                stlc::grow::grow_traced(&d, &opts(order), &mut NoProgress).unwrap();
+            let (traced, placed) = grow_traced(&d, &opts(order), &mut NoProgress).unwrap();
             assert!(traced == plain, "{file}: grow_traced grew another BED");
             assert_eq!(placed.len() as u64, plain.stems, "{file}");
             let mut from_trace: Vec<_> = placed.iter().map(|p| key(p.from, p.to)).collect();
-            let mut from_bed: Vec<_> = draw_bed(plain.bed.description())
-                .iter()
-                .map(|s| key(s.from, s.to))
-                .collect();
+            let mut from_bed: Vec<_> = drawn(&plain).iter().map(|s| key(s.from, s.to)).collect();
             from_trace.sort_unstable();
             from_bed.sort_unstable();
             assert_eq!(from_trace, from_bed, "{file} {order:?}");
@@ -881,17 +802,13 @@ fn the_bed_keeps_every_digit_growth_used() {
     let d = od(text);
     let g = grown(&d, opts(GrowthOrder::Bfs));
     let written = stlc::bed::write::write(g.bed.description());
-    assert!(
-        written.contains("(0.0001234, 0.5)\nL=12(1) B=3(0.999999999926) A=28 C=0.5\n"),
-        "{written}"
-    );
+    let holds = written.contains("(0.0001234, 0.5)\nL=12(1) B=3(0.999999999926) A=28 C=0.5\n");
+    assert!(holds, "{written}");
     let back = parse(&written, Format::Bed, &Limits::default()).unwrap();
-    assert_eq!(back.params, {
-        let mut p = g.bed.description().params.clone();
-        p.loc = back.params.loc.clone();
-        p
-    });
+    let mut params = g.bed.description().params.clone();
+    params.loc = back.params.loc.clone();
+    assert_eq!(back.params, params);
     let bed = Bed::new(back, &Limits::default()).expect("the written BED is valid");
     assert_eq!(bed.size().stems, g.stems);
-    assert_eq!(draw_bed(bed.description()), draw_bed(g.bed.description()));
+    assert_eq!(draw_bed(bed.description()), drawn(&g));
 }

@@ -8,11 +8,12 @@
 //! the clearance with a distance computed here (a ternary search of the
 //! point-to-segment distance, which is convex along a segment).
 
-use crate::support::{near_pairs, opts};
+use crate::support::{cuboid, cylinder, ellipsoid, files_with, near_pairs, opts, sphere};
 use stlc::Limits;
 use stlc::color::Rgb;
 use stlc::diag::MissReason;
 use stlc::grow::{GrowthOrder, PlacedStem, grow, grow_traced};
+use stlc::interpret::Derivation;
 use stlc::model::*;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
@@ -66,11 +67,7 @@ fn dist(p: P, q: P) -> f64 {
 }
 
 fn lerp(a: P, b: P, t: f64) -> P {
-    [
-        a[0] + (b[0] - a[0]) * t,
-        a[1] + (b[1] - a[1]) * t,
-        a[2] + (b[2] - a[2]) * t,
-    ]
+    [0, 1, 2].map(|i| a[i] + (b[i] - a[i]) * t)
 }
 
 /// Distance from `p` to the segment `a`-`b`, and where along it (0..1).
@@ -171,18 +168,10 @@ fn holds(solid: &Solid, p: P, axis: [f64; 2]) -> bool {
 
 fn in_layout(od: &Description, p: P) -> bool {
     let axis = [od.root.0, od.root_z.unwrap_or(0.0)];
-    od.layout
-        .as_ref()
-        .unwrap()
-        .solids
-        .iter()
-        .fold(false, |inside, s| {
-            if holds(&s.solid, p, axis) {
-                s.color != Rgb::WHITE
-            } else {
-                inside
-            }
-        })
+    // The last volume that holds the point paints it (white: a hole).
+    let solids = &od.layout.as_ref().unwrap().solids;
+    let last = solids.iter().rev().find(|s| holds(&s.solid, p, axis));
+    last.is_some_and(|s| s.color != Rgb::WHITE)
 }
 
 /// Every stem lies in the volumes and keeps the clearance; returns how
@@ -241,15 +230,11 @@ fn check(od: &Description, growth: GrowthOrder) -> usize {
             Some(far) => {
                 let (d1, at1) = to_segment(tb, sa, sb);
                 let at_joint = if ta == sa { 0.0 } else { 1.0 };
-                assert!(
-                    d1 >= need - 1e-9 || at1 == at_joint,
-                    "stem {i}: far end {d1} < {need}"
-                );
+                let ok = d1 >= need - 1e-9 || at1 == at_joint;
+                assert!(ok, "stem {i}: far end {d1} < {need}");
                 let (d2, at2) = to_segment(far, ta, tb);
-                assert!(
-                    d2 >= need - 1e-9 || at2 == 0.0,
-                    "stem {i}: other's far end {d2} < {need}"
-                );
+                let ok = d2 >= need - 1e-9 || at2 == 0.0;
+                assert!(ok, "stem {i}: other's far end {d2} < {need}");
             }
             None => {
                 let d = seg_dist(ta, tb, sa, sb);
@@ -264,77 +249,33 @@ const TREE: &str = "T (100, 200)L=10(0.6) B=2(0.1) A=40 C=1 RULE R1: [+F][-F]";
 
 /// A spheroid crown: an ellipse revolved about the root's vertical line.
 fn crown() -> Solid {
-    let shape = Shape::Ellipse {
-        x: 50.0,
-        y: 95.0,
-        w: 100.0,
-        h: 110.0,
-    };
+    let (x, y, w, h) = (50.0, 95.0, 100.0, 110.0);
+    let shape = Shape::Ellipse { x, y, w, h };
     Solid::Revolve { shape }
 }
 
 #[test]
 fn a_tree_grows_inside_each_kind_of_volume_and_keeps_clearance() {
     let cases: Vec<(&str, Vec<(Rgb, Solid)>)> = vec![
-        (
-            "sphere",
-            vec![(
-                GREEN,
-                Solid::Sphere {
-                    centre: [100.0, 150.0, 0.0],
-                    r: 55.0,
-                },
-            )],
-        ),
+        ("sphere", vec![(GREEN, sphere([100.0, 150.0, 0.0], 55.0))]),
         (
             "box",
-            vec![(
-                GREEN,
-                Solid::Box {
-                    corner: [60.0, 110.0, -30.0],
-                    size: [80.0, 95.0, 60.0],
-                },
-            )],
+            vec![(GREEN, cuboid([60.0, 110.0, -30.0], [80.0, 95.0, 60.0]))],
         ),
         (
             "cylinder",
-            vec![(
-                GREEN,
-                Solid::Cylinder {
-                    base: [100.0, 205.0, 0.0],
-                    r: 35.0,
-                    h: 100.0,
-                },
-            )],
+            vec![(GREEN, cylinder([100.0, 205.0, 0.0], 35.0, 100.0))],
         ),
         (
             "ellipsoid",
-            vec![(
-                GREEN,
-                Solid::Ellipsoid {
-                    centre: [100.0, 150.0, 0.0],
-                    radii: [50.0, 60.0, 25.0],
-                },
-            )],
+            vec![(GREEN, ellipsoid([100.0, 150.0, 0.0], [50.0, 60.0, 25.0]))],
         ),
         ("revolved ellipse", vec![(GREEN, crown())]),
         (
             "box with a sphere carved out",
             vec![
-                (
-                    GREEN,
-                    Solid::Box {
-                        corner: [40.0, 90.0, -40.0],
-                        size: [120.0, 115.0, 80.0],
-                    },
-                ),
-                (
-                    Rgb::WHITE,
-                    Solid::Sphere {
-                        centre: [100.0, 140.0, 15.0],
-                        r: 25.0,
-                    },
-                ),
+                (GREEN, cuboid([40.0, 90.0, -40.0], [120.0, 115.0, 80.0])),
+                (Rgb::WHITE, sphere([100.0, 140.0, 15.0], 25.0)),
             ],
         ),
     ];
@@ -351,41 +292,21 @@ fn a_tree_grows_inside_each_kind_of_volume_and_keeps_clearance() {
 
 #[test]
 fn divergence_spreads_a_planar_rule_around_the_stem() {
-    let solids = vec![(
-        GREEN,
-        Solid::Sphere {
-            centre: [100.0, 150.0, 0.0],
-            r: 55.0,
-        },
-    )];
+    let solids = vec![(GREEN, sphere([100.0, 150.0, 0.0], 55.0))];
     let flat = traced(&od3(TREE, 0.0, solids.clone()), GrowthOrder::Bfs);
     assert!(flat.iter().all(|s| s.z == [0.0, 0.0]));
     let spread = traced(&od3(TREE, 137.5, solids), GrowthOrder::Bfs);
     let off = spread.iter().filter(|s| s.z[1].abs() > 1.0).count();
-    assert!(
-        off * 2 > spread.len(),
-        "{off} of {} stems off the plane",
-        spread.len()
-    );
+    let (all, in_plane) = (spread.len(), flat.len());
+    assert!(off * 2 > all, "{off} of {all} stems off the plane");
     // Room in the third dimension: more stems than in the plane.
-    assert!(
-        spread.len() > flat.len(),
-        "{} <= {}",
-        spread.len(),
-        flat.len()
-    );
+    assert!(all > in_plane, "{all} <= {in_plane}");
 }
 
 #[test]
 fn a_forest_shares_the_volume_and_the_clearance() {
     let text = "F (70, 200) (130, 200) L=10(0.6) B=2(0.1) A=40 C=1 RULE R1: [+F][-F]";
-    let solids = vec![(
-        GREEN,
-        Solid::Box {
-            corner: [20.0, 100.0, -40.0],
-            size: [160.0, 105.0, 80.0],
-        },
-    )];
+    let solids = vec![(GREEN, cuboid([20.0, 100.0, -40.0], [160.0, 105.0, 80.0]))];
     let od = od3(text, 90.0, solids);
     for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
         assert!(check(&od, growth) > 40);
@@ -414,11 +335,8 @@ fn extruded(flat: &Description) -> Description {
         .shapes
         .iter()
         .map(|s| {
-            let solid = Solid::Extrude {
-                shape: s.shape.clone(),
-                z1: -1000.0,
-                z2: 1000.0,
-            };
+            let (shape, z1, z2) = (s.shape.clone(), -1000.0, 1000.0);
+            let solid = Solid::Extrude { shape, z1, z2 };
             (s.color, solid)
         });
     lift(flat.clone(), 0.0, solids.collect())
@@ -427,11 +345,7 @@ fn extruded(flat: &Description) -> Description {
 #[test]
 fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
     let mut tried = 0;
-    for entry in std::fs::read_dir("examples").unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().and_then(|e| e.to_str()) != Some("od") {
-            continue;
-        }
+    for path in files_with("examples", "od") {
         let text = std::fs::read_to_string(&path).unwrap();
         let flat = parsed(&text);
         if flat.layout.is_none() || flat.is_3d() {
@@ -450,11 +364,8 @@ fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
             assert_eq!(g2.stems, g3.stems);
             assert_eq!(p2.len(), p3.len());
             for (a, b) in p2.iter().zip(&p3) {
-                assert_eq!(
-                    (a.from, a.to, a.decision),
-                    (b.from, b.to, b.decision),
-                    "{path:?}"
-                );
+                let stem = |s: &PlacedStem| (s.from, s.to, s.decision);
+                assert_eq!(stem(a), stem(b), "{path:?}");
                 assert_eq!(b.z, [0.0, 0.0]);
             }
         }
@@ -467,13 +378,7 @@ fn a_planar_3d_tree_in_an_extruded_layout_grows_the_2d_decisions() {
 #[test]
 fn every_3d_example_grows_inside_its_volumes_and_keeps_clearance() {
     let mut tried = Vec::new();
-    let mut paths: Vec<_> = std::fs::read_dir("examples")
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().and_then(|e| e.to_str()) == Some("od"))
-        .collect();
-    paths.sort();
-    for path in paths {
+    for path in files_with("examples", "od") {
         let od = parsed(&std::fs::read_to_string(&path).unwrap());
         if !od.is_3d() {
             continue;
@@ -531,15 +436,11 @@ fn a_3d_od_grows_a_bed_that_draws_the_stems_growth_placed() {
                 key(a, b)
             })
             .collect();
-        let mut drawn = Vec::new();
-        stlc::interpret::bed3::draw3(
-            &grown.bed,
-            stlc::interpret::Derivation::Dfs,
-            &Limits::default(),
-            &mut |s| drawn.push(key(s.from.to_array(), s.to.to_array())),
-            &mut NoProgress,
-        )
-        .unwrap();
+        let (mut drawn, limits, dfs) = (Vec::new(), Limits::default(), Derivation::Dfs);
+        let mut push = |s: stlc::turtle::turtle3::Segment3| {
+            drawn.push(key(s.from.to_array(), s.to.to_array()))
+        };
+        stlc::interpret::bed3::draw3(&grown.bed, dfs, &limits, &mut push, &mut NoProgress).unwrap();
         grew.sort_unstable();
         drawn.sort_unstable();
         assert_eq!(grew, drawn, "{growth:?}");
@@ -570,10 +471,8 @@ fn seeds_alternatives_m_and_explanations_in_space() {
     assert_ne!(a, compile(&text("V=4")).0);
     assert!(a.contains("R1.1{") && a.contains("R1.2{"), "{a}");
     // R2 draws 100 units straight up from the trunk's tip: out of the sphere.
-    assert!(
-        warned.contains("R2") && warned.contains("never"),
-        "{warned}"
-    );
+    let never = warned.contains("R2") && warned.contains("never");
+    assert!(never, "{warned}");
     let (m, warned) = compile(&text("V=3 M=40"));
     // The seed's trunk, and two stems for each application in the seed.
     let seed = &m[m.find("SEED\n").unwrap()..];

@@ -3,19 +3,19 @@
 //! region with its clearance) run on space-first growth in `grow.rs`
 //! beside bfs and dfs.
 
-use crate::support::{od, opts};
-use stlc::grow::{GrowOptions, Grown, GrowthOrder, PlacedStem, grow, grow_traced};
+use crate::grow::grown;
+use crate::od_variation::bed_text;
+use crate::support::{od, opts, segment_distance};
+use stlc::grow::region::Region;
+use stlc::grow::{GrowOptions, GrowthOrder, PlacedStem, grow_traced};
 use stlc::model::{Description, Format};
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
 use stlc::{ErrorKind, Limits};
 
-fn grown(d: &Description, o: GrowOptions) -> Grown {
-    grow(d, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn bed_text(g: &Grown) -> String {
-    stlc::bed::write::write(g.bed.description())
+/// The BED `d` grows in the order `o`.
+fn bed_in(d: &Description, o: GrowthOrder) -> String {
+    bed_text(&grown(d, opts(o)))
 }
 
 /// The box: 200 x 200 with a 100 x 100 hole in the middle.
@@ -36,21 +36,13 @@ fn box_with_hole(head: &str) -> String {
 #[test]
 fn without_points_space_first_is_bfs() {
     let d = od(&box_with_hole("N=0"));
-    assert_eq!(
-        bed_text(&grown(&d, opts(GrowthOrder::Space))),
-        bed_text(&grown(&d, opts(GrowthOrder::Bfs)))
-    );
+    assert_eq!(bed_in(&d, GrowthOrder::Space), bed_in(&d, GrowthOrder::Bfs));
     let free = od("Free (0, 0) L=10(1) B=1(0) RULE R1: [+F][-F]");
-    assert_eq!(
-        bed_text(&grown(&free, opts(GrowthOrder::Space))),
-        bed_text(&grown(&free, opts(GrowthOrder::Bfs)))
-    );
+    let want = bed_in(&free, GrowthOrder::Bfs);
+    assert_eq!(bed_in(&free, GrowthOrder::Space), want);
     // With points the order changes, and so does the tree.
     let d = od(&box_with_hole(""));
-    assert_ne!(
-        bed_text(&grown(&d, opts(GrowthOrder::Space))),
-        bed_text(&grown(&d, opts(GrowthOrder::Bfs)))
-    );
+    assert_ne!(bed_in(&d, GrowthOrder::Space), bed_in(&d, GrowthOrder::Bfs));
 }
 
 /// The root stands 20 from the left wall of a long box: the left growth
@@ -88,13 +80,7 @@ fn coverage(stems: &[PlacedStem], inside: impl Fn(f64, f64) -> bool, l: f64) -> 
             }
             let d = stems
                 .iter()
-                .map(|s| {
-                    let (dx, dy) = (s.to.x - s.from.x, s.to.y - s.from.y);
-                    let t = (((x - s.from.x) * dx + (y - s.from.y) * dy) / (dx * dx + dy * dy))
-                        .clamp(0.0, 1.0);
-                    let (ex, ey) = (x - s.from.x - t * dx, y - s.from.y - t * dy);
-                    (ex * ex + ey * ey).sqrt()
-                })
+                .map(|s| segment_distance((x, y), (s.from.x, s.from.y), (s.to.x, s.to.y)))
                 .fold(f64::INFINITY, f64::min);
             n += 1;
             near += u32::from(d <= 2.0 * l);
@@ -128,14 +114,10 @@ fn space_first_covers_more_on_the_same_budget() {
     let d = od(&box_with_hole(""));
     let inside = |x: f64, y: f64| !((50.0..=150.0).contains(&x) && (50.0..=150.0).contains(&y));
     let [space, bfs, dfs] = at_a_third(&d, inside, 10.0);
-    assert!(
-        space.0 > bfs.0 && space.0 > dfs.0,
-        "{space:?} {bfs:?} {dfs:?}"
-    );
-    assert!(
-        space.1 < bfs.1 && space.1 < dfs.1,
-        "{space:?} {bfs:?} {dfs:?}"
-    );
+    let holds = space.0 > bfs.0 && space.0 > dfs.0;
+    assert!(holds, "{space:?} {bfs:?} {dfs:?}");
+    let holds = space.1 < bfs.1 && space.1 < dfs.1;
+    assert!(holds, "{space:?} {bfs:?} {dfs:?}");
 }
 
 /// With a length decrement (`crown.od`, `L=10(0.35)`), too: a growth
@@ -146,17 +128,14 @@ fn space_first_covers_more_on_the_same_budget() {
 /// space-first loses to bfs here.
 #[test]
 fn space_first_covers_more_of_a_crown_with_a_length_decrement() {
-    let text =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/crown.od")).unwrap();
+    let text = std::fs::read_to_string(crate::support::manifest_path("examples/crown.od")).unwrap();
     let in_crown = |x: f64, y: f64| {
         let (u, v) = ((x - 100.0) / 80.0, (y - 115.0) / 95.0);
         u * u + v * v <= 1.0
     };
     let [space, bfs, dfs] = at_a_third(&od(&text), in_crown, 10.0);
-    assert!(
-        space.0 > bfs.0 && space.0 > dfs.0 && space.1 < bfs.1 && space.1 < dfs.1,
-        "{space:?} {bfs:?} {dfs:?}"
-    );
+    let holds = space.0 > bfs.0 && space.0 > dfs.0 && space.1 < bfs.1 && space.1 < dfs.1;
+    assert!(holds, "{space:?} {bfs:?} {dfs:?}");
     let fixed = text.replace("C=1\n", "C=1 Q=40\n");
     assert_ne!(fixed, text);
     let [space, bfs, _] = at_a_third(&od(&fixed), in_crown, 10.0);
@@ -169,10 +148,8 @@ fn space_first_covers_more_of_a_crown_with_a_length_decrement() {
 #[test]
 fn the_bed_round_trips_and_the_seed_decides() {
     let d = od(&box_with_hole("O=space V=3"));
-    let o = GrowOptions {
-        seed: 3,
-        ..opts(GrowthOrder::Space)
-    };
+    let mut o = opts(GrowthOrder::Space);
+    o.seed = 3;
     let g = grown(&d, o);
     let text = bed_text(&g);
     let back = parse(&text, Format::Bed, &Limits::default()).unwrap();
@@ -198,11 +175,8 @@ fn the_keys_are_read_and_refused_in_a_bed() {
     assert_eq!(d.params.design.points, Some(1_000_000));
     for bad in ["Q=0", "Q=-3", "N=1.5", "O=spacey", "N=1000001"] {
         let e = parse(&box_with_hole(bad), Format::Od, &Limits::default()).unwrap_err();
-        assert!(
-            matches!(e.0[0].kind, ErrorKind::Stl(_)),
-            "{bad}: {:?}",
-            e.0[0].kind
-        );
+        let kind = &e.0[0].kind;
+        assert!(matches!(kind, ErrorKind::Stl(_)), "{bad}: {kind:?}");
     }
     let g = grown(&od(&box_with_hole("")), opts(GrowthOrder::Space));
     let text = bed_text(&g);
@@ -220,8 +194,7 @@ fn the_keys_are_read_and_refused_in_a_bed() {
 #[test]
 fn the_tallies_count_the_points_killed() {
     let d = od(&box_with_hole(""));
-    let region =
-        stlc::grow::region::Region::from_layout(d.layout.as_ref().unwrap(), 100_000).unwrap();
+    let region = Region::from_layout(d.layout.as_ref().unwrap(), 100_000).unwrap();
     let points = stlc::grow::colonize::sample::plane(&region, None, 100.0, 0);
     assert_eq!(points.len(), 300, "(200^2 - 100^2) / 10^2");
     let (g, trace) = grow_traced(&d, &opts(GrowthOrder::Space), &mut NoProgress).unwrap();

@@ -10,7 +10,7 @@
 
 use stlc::bed::Bed;
 use stlc::color::Rgb;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::Dfs;
 use stlc::limits::Limits;
 use stlc::model::Format;
 use stlc::progress::NoProgress;
@@ -33,15 +33,8 @@ fn parse(src: &str, format: Format) -> Result<stlc::model::Description, String> 
 fn recorded(src: &str) -> Recorder {
     let desc = parse(src, Format::Bed).unwrap();
     let bed = Bed::new(desc, &Limits::default()).unwrap();
-    let mut rec = Recorder::default();
-    stlc::interpret::dress::draw2(
-        &bed,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let (mut rec, limits) = (Recorder::default(), Limits::default());
+    stlc::interpret::dress::draw2(&bed, Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     rec
 }
 
@@ -64,10 +57,7 @@ fn a_ramp_paints_by_order_and_a_leaf_grows_at_each_tip() {
     // Order 0 is the ramp's start, order 1 (the deepest) its end; the
     // leaves take the end colour too.
     let blue = Rgb::new(0, 0, 0xff);
-    assert_eq!(
-        rec.paints,
-        vec![(0, Rgb::new(0, 0, 0)), (1, blue), (3, blue)]
-    );
+    assert_eq!(rec.paints, [(0, Rgb::new(0, 0, 0)), (1, blue), (3, blue)]);
     // Two tips (the trunk's end is where the branches start): a 10 x 10
     // square at each, its first vertex the tip.
     assert_eq!(rec.polygons.len(), 2);
@@ -92,15 +82,8 @@ fn a_ramp_over_three_orders_mixes_the_middle_colour() {
         .replace("F R1{,}", "F R1{R1{,},}");
     let rec = recorded(&src);
     let colours: Vec<Rgb> = rec.paints.iter().map(|p| p.1).collect();
-    assert_eq!(
-        colours,
-        vec![
-            Rgb::new(0, 0, 0),
-            Rgb::new(0, 0, 0x80),
-            Rgb::new(0, 0, 0xff),
-            Rgb::new(0, 0, 0x80),
-        ]
-    );
+    let blue = |b| Rgb::new(0, 0, b);
+    assert_eq!(colours, [blue(0), blue(0x80), blue(0xff), blue(0x80)]);
     assert!(rec.polygons.is_empty());
 }
 
@@ -116,15 +99,11 @@ fn the_bed_writer_keeps_the_ramp_the_leaf_and_the_surfaces() {
     let desc = parse(BED, Format::Bed).unwrap();
     let text = stlc::bed::write::write(&desc);
     assert!(text.contains(" S=#000000..#0000ff P=L\n"), "{text}");
-    assert!(
-        text.ends_with("SURFACES\nsurface L { {.f.+f.+f.} }\nENDSURFACES\n"),
-        "{text}"
-    );
+    let surfaces = "SURFACES\nsurface L { {.f.+f.+f.} }\nENDSURFACES\n";
+    assert!(text.ends_with(surfaces), "{text}");
     // Read again, it writes the same.
-    assert_eq!(
-        stlc::bed::write::write(&parse(&text, Format::Bed).unwrap()),
-        text
-    );
+    let again = stlc::bed::write::write(&parse(&text, Format::Bed).unwrap());
+    assert_eq!(again, text);
 }
 
 /// A small 2D OD with a ramp and leaves, and its layout.
@@ -153,11 +132,8 @@ fn an_od_and_its_bed_draw_the_same_leafy_picture() {
         let (a, b) = (format!("od.{ext}"), format!("bed.{ext}"));
         run_ok(&["render", "t.od", "--size", "200x200", "-o", &a], p);
         run_ok(&["render", "t.bed", "--size", "200x200", "-o", &b], p);
-        let (a, b) = (
-            std::fs::read(p.join(a)).unwrap(),
-            std::fs::read(p.join(b)).unwrap(),
-        );
-        assert_eq!(a, b, "{ext}");
+        let read = |name| std::fs::read(p.join(name)).unwrap();
+        assert_eq!(read(a), read(b), "{ext}");
     }
     // The SVG fills the leaves in the ramp's end colour and strokes the
     // seed's stems in its start.
@@ -184,11 +160,6 @@ fn a_leafy_mesh_has_bark_materials_by_order_and_a_leaf_material() {
     // written on both sides, as an .lsys's polygons are).
     assert_eq!(names.first(), Some(&"#5b3a1e"), "{names:?}");
     assert!(names.contains(&"#3b5e2b"), "{names:?}");
-    assert_eq!(
-        names
-            .iter()
-            .filter(|n| n.starts_with("leaf "))
-            .collect::<Vec<_>>(),
-        vec![&"leaf #3b5e2b"]
-    );
+    let leaves: Vec<_> = names.iter().filter(|n| n.starts_with("leaf ")).collect();
+    assert_eq!(leaves, [&"leaf #3b5e2b"]);
 }

@@ -4,18 +4,13 @@
 //! drawing's subtrees end; pictures stay within the quality bound of
 //! `--exact` (mean difference); dense curves are drawn as solid boxes.
 
-use stlc::interpret::Derivation;
+use crate::lsys::sys;
+use stlc::interpret::Derivation::Dfs;
 use stlc::interpret::lsys::{Chance, draw, draw_chance};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{Recorder, Segment, StandIn, Turtle};
-
-use crate::support::stlc;
-
-fn sys(src: &str) -> LSystem {
-    stlc::syntax::lsys::parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// ABOP 1.27 with `seed`.
 fn plant(seed: u64) -> LSystem {
@@ -26,16 +21,8 @@ fn plant(seed: u64) -> LSystem {
 }
 
 fn exact(s: &LSystem, depth: u32) -> Vec<Segment> {
-    let mut rec = Recorder::default();
-    draw(
-        s,
-        depth,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let (mut rec, limits) = (Recorder::default(), Limits::default());
+    draw(s, depth, Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     rec.segments
 }
 
@@ -57,17 +44,15 @@ impl Turtle for Split {
 }
 
 fn walked(s: &LSystem, depth: u32, detail: f64) -> Split {
-    let chance = Chance::new(s, depth).unwrap();
+    walked_to(s, depth, detail).0
+}
+
+/// [`walked`], and where the walk ended.
+fn walked_to(s: &LSystem, depth: u32, detail: f64) -> (Split, stlc::turtle::Point) {
+    let (chance, limits) = (Chance::new(s, depth).unwrap(), Limits::default());
     let mut split = Split::default();
-    draw_chance(
-        &chance,
-        detail,
-        &Limits::default(),
-        &mut split,
-        &mut NoProgress,
-    )
-    .unwrap();
-    split
+    let end = draw_chance(&chance, detail, &limits, &mut split, &mut NoProgress).unwrap();
+    (split, end)
 }
 
 /// At detail 0 nothing that draws is cut: the walk, which skips nothing
@@ -95,27 +80,11 @@ fn stochastic_stand_ins_end_where_their_subtrees_end() {
         let all = exact(&s, 7);
         let end = all.last().unwrap().to;
         for detail in [8.0, 30.0] {
-            let chance = Chance::new(&s, 7).unwrap();
-            let mut split = Split::default();
-            let walked = draw_chance(
-                &chance,
-                detail,
-                &Limits::default(),
-                &mut split,
-                &mut NoProgress,
-            )
-            .unwrap();
-            let n = split.stand_ins.len() + split.segments.len();
-            assert!(
-                n > 10 && n < all.len() / 4,
-                "seed {seed}: {n} of {}",
-                all.len()
-            );
-            assert_eq!(
-                (walked.x.to_bits(), walked.y.to_bits()),
-                (end.x.to_bits(), end.y.to_bits()),
-                "seed {seed}, detail {detail}"
-            );
+            let (split, walked) = walked_to(&s, 7, detail);
+            let (n, of) = (split.stand_ins.len() + split.segments.len(), all.len());
+            assert!(n > 10 && n < of / 4, "seed {seed}: {n} of {of}");
+            let bits = |p: stlc::turtle::Point| (p.x.to_bits(), p.y.to_bits());
+            assert_eq!(bits(walked), bits(end), "seed {seed}, detail {detail}");
         }
     }
 }
@@ -139,20 +108,12 @@ fn png(file: &str, depth: u32, exact: bool) -> tiny_skia::Pixmap {
 fn png_sized(file: &str, depth: u32, exact: bool, size: Option<&str>) -> tiny_skia::Pixmap {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out.png");
-    let mut c = stlc();
-    c.arg("render")
-        .arg(crate::support::manifest_path(format!(
-            "examples/{file}.lsys"
-        )))
-        .args(["--depth", &depth.to_string()]);
-    if let Some(size) = size {
-        c.args(["--size", size]);
-    }
-    c.arg("-o").arg(&out);
-    if exact {
-        c.arg("--exact");
-    }
-    c.assert().success();
+    let input = crate::support::manifest_path(format!("examples/{file}.lsys"));
+    let size = size.map(|s| format!("--size {s}")).unwrap_or_default();
+    let exact = if exact { "--exact" } else { "" };
+    let (input, out_path) = (input.display(), out.display());
+    let line = format!("render {input} --depth {depth} {size} -o {out_path} {exact}");
+    crate::support::stlc_line(&line).assert().success();
     tiny_skia::Pixmap::load_png(&out).unwrap()
 }
 
@@ -196,16 +157,12 @@ fn level_of_detail_stays_within_the_quality_bound() {
             mean <= 2.0,
             "{file} at depth {depth}: mean {mean:.3}/255 (inked {x} exact, {l})"
         );
-        assert!(
-            x > 2000 && l > 2000,
-            "{file} at depth {depth}: inked {x} and {l}"
-        );
+        let holds = x > 2000 && l > 2000;
+        assert!(holds, "{file} at depth {depth}: inked {x} and {l}");
     }
     let (mean, x, l) = compare(&png("hilbert", 9, true), &png("hilbert", 9, false));
-    assert!(
-        mean <= 2.0 && x.abs_diff(l) * 100 <= 3 * x,
-        "hilbert: {mean} {x} {l}"
-    );
+    let holds = mean <= 2.0 && x.abs_diff(l) * 100 <= 3 * x;
+    assert!(holds, "hilbert: {mean} {x} {l}");
 }
 
 /// Issue 24 item 4, the silhouette: at the default size the default
@@ -267,10 +224,8 @@ fn solid_pieces_are_stamped_with_the_exact_drawings_tone() {
     let lod = png_sized("hilbert", 10, false, size);
     assert!(exact != lod, "nothing cut");
     let (mean, x, l) = compare(&exact, &lod);
-    assert!(
-        mean <= 4.0 && x.abs_diff(l) * 200 <= x,
-        "mean {mean:.3}/255, inked {x} exact, {l}"
-    );
+    let holds = mean <= 4.0 && x.abs_diff(l) * 200 <= x;
+    assert!(holds, "mean {mean:.3}/255, inked {x} exact, {l}");
 }
 
 /// Hilbert at depth 30 (10^18 segments) renders: its 2-16 px pieces are

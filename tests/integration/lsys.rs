@@ -1,19 +1,26 @@
 //! Classic L-systems: parsing, derivation (dfs and bfs), expand and stats,
 //! checked against independently known values.
 
+use crate::support::{limit_kind, limits_with};
 use num_bigint::BigUint;
 use proptest::prelude::*;
-use stlc::diag::{ErrorKind, InputError, LsysError};
-use stlc::interpret::Derivation;
+use stlc::diag::ErrorKind::{Input, Lsys};
+use stlc::diag::InputError::{Unbalanced, UnknownColour};
+use stlc::diag::LsysError::*;
+use stlc::diag::{ErrorKind, InputError};
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::lsys::{draw_into, exact_lengths, expand};
-use stlc::interpret::stats::stats;
+use stlc::interpret::stats::{stats, stats_with_budget};
 use stlc::limits::{Bound, Limits};
+use stlc::model::lsys::{Background, LSystem};
 use stlc::progress::NoProgress;
+use stlc::syntax::lsys::parse;
 use stlc::turtle::{Point, Recorder, Segment};
-use stlc::{model::lsys::Background, syntax::lsys::parse};
 
-fn sys(src: &str) -> stlc::model::lsys::LSystem {
-    parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
+/// `src` read as an `.lsys` with the default limits; its diagnostics and
+/// the text on failure.
+pub fn sys(src: &str) -> LSystem {
+    parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
 }
 
 fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
@@ -21,17 +28,13 @@ fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
 }
 
 /// The segments `s` draws at `depth`, with the default limits.
-pub fn segments_of(
-    s: &stlc::model::lsys::LSystem,
-    depth: u32,
-    strategy: Derivation,
-) -> Vec<Segment> {
+pub fn segments_of(s: &LSystem, depth: u32, strategy: Derivation) -> Vec<Segment> {
     recorded_of(s, depth, strategy).segments
 }
 
 /// What the turtle hands a backend for `s` at `depth` (segments,
 /// polygons), with the default limits.
-pub fn recorded_of(s: &stlc::model::lsys::LSystem, depth: u32, strategy: Derivation) -> Recorder {
+pub fn recorded_of(s: &LSystem, depth: u32, strategy: Derivation) -> Recorder {
     let mut rec = Recorder::default();
     let limits = Limits::default();
     draw_into(s, depth, strategy, &limits, &mut rec, &mut NoProgress).unwrap();
@@ -43,17 +46,9 @@ fn expanded(src: &str, depth: u32, strategy: Derivation) -> String {
 }
 
 /// The word `s` derives at `depth` (newline included), default limits.
-pub fn expanded_of(s: &stlc::model::lsys::LSystem, depth: u32, strategy: Derivation) -> String {
-    let mut out = Vec::new();
-    expand(
-        s,
-        depth,
-        strategy,
-        &Limits::default(),
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
+pub fn expanded_of(s: &LSystem, depth: u32, strategy: Derivation) -> String {
+    let (mut out, limits) = (Vec::new(), Limits::default());
+    expand(s, depth, strategy, &limits, &mut out, &mut NoProgress).unwrap();
     String::from_utf8(out).unwrap()
 }
 
@@ -99,11 +94,19 @@ fn defaults_and_optional_generations() {
     assert_eq!(s.color, None);
     assert_eq!(s.background, Background::White);
     let s = sys("axiom F\r\nangle 90\r\nbackground clGreen\r\nrule F->F+F");
-    assert_eq!(
-        s.background,
-        Background::Color(stlc::color::Rgb::new(0, 128, 0))
-    );
+    let wanted = Background::Color(stlc::color::Rgb::new(0, 128, 0));
+    assert_eq!(s.background, wanted);
     assert_eq!(s.successor('F'), Some(&['F', '+', 'F'][..]));
+}
+
+/// The `.lsys` error `$variant` of the key `$key` whose value is `$text`.
+macro_rules! keyed {
+    ($variant:ident, $key:expr, $text:expr) => {
+        Lsys($variant {
+            key: $key,
+            text: $text.into(),
+        })
+    };
 }
 
 /// Parses `src` and returns (kind, span) of every diagnostic.
@@ -124,37 +127,19 @@ fn unknown_key_suggests_the_nearest() {
     // Unknown key, and the angle is then missing: both reported.
     assert_eq!(err.0.len(), 2);
     let d = &err.0[0];
-    assert_eq!(
-        d.kind,
-        ErrorKind::Lsys(LsysError::UnknownKey {
-            key: "angel".into()
-        })
-    );
+    let key = "angel".into();
+    assert_eq!(d.kind, Lsys(UnknownKey { key }));
     assert_eq!(d.span, Some(8..13));
     assert_eq!(d.help_text().as_deref(), Some("did you mean `angle`?"));
-    assert_eq!(
-        err.0[1].kind,
-        ErrorKind::Lsys(LsysError::MissingKey { key: "angle" })
-    );
+    assert_eq!(err.0[1].kind, Lsys(MissingKey { key: "angle" }));
 }
 
 #[test]
 fn missing_axiom_and_angle_are_both_reported() {
     let src = "generations 3\nrule F FF\n";
     let e = errors(src, &Limits::default());
-    assert_eq!(
-        e,
-        vec![
-            (
-                ErrorKind::Lsys(LsysError::MissingKey { key: "axiom" }),
-                24..24
-            ),
-            (
-                ErrorKind::Lsys(LsysError::MissingKey { key: "angle" }),
-                24..24
-            ),
-        ]
-    );
+    let missing = |key| (Lsys(MissingKey { key }), 24..24);
+    assert_eq!(e, vec![missing("axiom"), missing("angle")]);
 }
 
 #[test]
@@ -163,10 +148,7 @@ fn two_rules_for_one_symbol_label_both() {
     let err = parse(src, &Limits::default()).unwrap_err();
     assert_eq!(err.0.len(), 1);
     let d = &err.0[0];
-    assert_eq!(
-        d.kind,
-        ErrorKind::Lsys(LsysError::DuplicateProduction { symbol: 'F' })
-    );
+    assert_eq!(d.kind, Lsys(DuplicateProduction { symbol: 'F' }));
     assert_eq!(d.span, Some(27..37)); // the second rule line
     assert_eq!(d.labels.len(), 1);
     assert_eq!(d.labels[0].span, 17..26); // the first
@@ -179,13 +161,8 @@ fn unbalanced_brackets_point_at_the_unmatched_one() {
     assert_eq!(&src[6..7], "[");
     assert_eq!(&src[29..30], "]");
     let e = errors(src, &Limits::default());
-    assert_eq!(
-        e,
-        vec![
-            (ErrorKind::Input(InputError::Unbalanced('[')), 6..7),
-            (ErrorKind::Input(InputError::Unbalanced(']')), 29..30),
-        ]
-    );
+    let unbalanced = |c, at| (Input(Unbalanced(c)), at);
+    assert_eq!(e, vec![unbalanced('[', 6..7), unbalanced(']', 29..30)]);
 }
 
 #[test]
@@ -196,60 +173,24 @@ fn malformed_and_invalid_numbers() {
     assert_eq!(
         e,
         vec![
-            (
-                ErrorKind::Lsys(LsysError::MalformedNumber { text: "2x5".into() }),
-                14..17
-            ),
-            (
-                ErrorKind::Lsys(LsysError::NotPositive {
-                    key: "length",
-                    text: "-1".into()
-                }),
-                25..27
-            ),
-            (
-                ErrorKind::Lsys(LsysError::NumberTooLarge {
-                    key: "width",
-                    text: "1e999".into()
-                }),
-                34..39
-            ),
-            (
-                ErrorKind::Lsys(LsysError::NotWholeNumber {
-                    key: "generations",
-                    text: "2.5".into()
-                }),
-                52..55
-            ),
+            (Lsys(MalformedNumber { text: "2x5".into() }), 14..17),
+            (keyed!(NotPositive, "length", "-1"), 25..27),
+            (keyed!(NumberTooLarge, "width", "1e999"), 34..39),
+            (keyed!(NotWholeNumber, "generations", "2.5"), 52..55),
         ]
     );
     let e = errors("axiom F\nangle nan\n", &Limits::default());
-    assert_eq!(
-        e,
-        vec![(
-            ErrorKind::Lsys(LsysError::MalformedNumber { text: "nan".into() }),
-            14..17
-        )]
-    );
+    let wanted = vec![(Lsys(MalformedNumber { text: "nan".into() }), 14..17)];
+    assert_eq!(e, wanted);
 }
 
 #[test]
 fn generations_above_max_depth_name_the_flag() {
-    let limits = Limits {
-        max_depth: 10,
-        ..Limits::default()
-    };
+    let limits = limits_with(|l| l.max_depth = 10);
     let err = parse("generations 11\naxiom F\nangle 90\n", &limits).unwrap_err();
     let d = &err.0[0];
-    assert_eq!(
-        d.kind,
-        ErrorKind::Limit {
-            bound: Bound::Depth,
-            what: Some("generations".into()),
-            value: "11".into(),
-            limit: 10
-        }
-    );
+    let wanted = limit_kind(Bound::Depth, Some("generations"), "11", 10);
+    assert_eq!(d.kind, wanted);
     assert_eq!(d.span, Some(12..14));
     assert!(d.help_text().unwrap().contains("--max-depth"));
 }
@@ -257,22 +198,15 @@ fn generations_above_max_depth_name_the_flag() {
 #[test]
 fn duplicate_key_bad_colour_and_long_predecessor() {
     let src = "axiom F\nangle 90\nangle 60\ncolor clGren\nrule FF F\n";
+    let text = "clGren".into();
     let e = errors(src, &Limits::default());
     assert_eq!(
         e,
         vec![
+            (Lsys(DuplicateKey { key: "angle" }), 17..22),
+            (Input(UnknownColour { text }), 32..38),
             (
-                ErrorKind::Lsys(LsysError::DuplicateKey { key: "angle" }),
-                17..22
-            ),
-            (
-                ErrorKind::Input(InputError::UnknownColour {
-                    text: "clGren".into()
-                }),
-                32..38
-            ),
-            (
-                ErrorKind::Lsys(LsysError::LongPredecessor {
+                Lsys(LongPredecessor {
                     predecessor: "FF".into(),
                     symbols: 2
                 }),
@@ -286,10 +220,8 @@ fn duplicate_key_bad_colour_and_long_predecessor() {
 fn syntax_errors_read_like_the_file_not_the_grammar() {
     let err = parse("axiom F\nangle\n", &Limits::default()).unwrap_err();
     let d = &err.0[0];
-    assert_eq!(
-        d.kind,
-        ErrorKind::Input(InputError::Syntax("expected a number".into()))
-    );
+    let wanted = ErrorKind::Input(InputError::Syntax("expected a number".into()));
+    assert_eq!(d.kind, wanted);
     assert_eq!(d.span, Some(13..13));
     let err = parse("axiom F\nangle 90\nrule X\n", &Limits::default()).unwrap_err();
     let ErrorKind::Input(InputError::Syntax(m)) = &err.0[0].kind else {
@@ -298,12 +230,8 @@ fn syntax_errors_read_like_the_file_not_the_grammar() {
     assert_eq!(m, "expected `->`, `=` or a space before the successor");
     assert_eq!(err.0[0].span, Some(23..23));
     let err = parse("axiom F\n5 F\nangle 90\n", &Limits::default()).unwrap_err();
-    assert_eq!(
-        err.0[0].kind,
-        ErrorKind::Input(InputError::Syntax(
-            "expected a line `key value` or a `#` comment".into()
-        ))
-    );
+    let line = "expected a line `key value` or a `#` comment".into();
+    assert_eq!(err.0[0].kind, ErrorKind::Input(InputError::Syntax(line)));
     assert_eq!(err.0[0].span, Some(8..8));
     assert!(err.0[0].help.is_some());
 }
@@ -320,12 +248,12 @@ fn parallel_rewriting_gives_fibonacci_lengths() {
         assert_eq!(*len, big(a), "depth {n}");
         (a, b) = (b, a + b);
     }
-    assert_eq!(expanded(src, 4, Derivation::Dfs), "ABAABABA\n");
-    assert_eq!(expanded(src, 4, Derivation::Bfs), "ABAABABA\n");
+    assert_eq!(expanded(src, 4, Dfs), "ABAABABA\n");
+    assert_eq!(expanded(src, 4, Bfs), "ABAABABA\n");
     for depth in 0..12 {
-        let dfs = expanded(src, depth, Derivation::Dfs);
+        let dfs = expanded(src, depth, Dfs);
         assert_eq!(BigUint::from(dfs.len() - 1), lengths[depth as usize]);
-        assert_eq!(dfs, expanded(src, depth, Derivation::Bfs));
+        assert_eq!(dfs, expanded(src, depth, Bfs));
     }
 }
 
@@ -333,46 +261,39 @@ fn parallel_rewriting_gives_fibonacci_lengths() {
 fn expand_by_hand() {
     // Hand derivation: F+X -> (FF)+(F-X) -> (FFFF)+(FF-F-X).
     let src = "axiom F+X\nrule F FF\nrule X F-X\nangle 90\n";
-    assert_eq!(expanded(src, 0, Derivation::Dfs), "F+X\n");
-    assert_eq!(expanded(src, 1, Derivation::Dfs), "FF+F-X\n");
-    assert_eq!(expanded(src, 2, Derivation::Dfs), "FFFF+FF-F-X\n");
-    assert_eq!(expanded(src, 2, Derivation::Bfs), "FFFF+FF-F-X\n");
+    assert_eq!(expanded(src, 0, Dfs), "F+X\n");
+    assert_eq!(expanded(src, 1, Dfs), "FF+F-X\n");
+    assert_eq!(expanded(src, 2, Dfs), "FFFF+FF-F-X\n");
+    assert_eq!(expanded(src, 2, Bfs), "FFFF+FF-F-X\n");
 }
 
 /// A segment of order 0 from `a` to `b`.
 fn seg(a: (f64, f64), b: (f64, f64)) -> Segment {
-    Segment {
-        from: Point::new(a.0, a.1),
-        to: Point::new(b.0, b.1),
-        order: 0,
-    }
+    let (from, to) = (Point::new(a.0, a.1), Point::new(b.0, b.1));
+    Segment { from, to, order: 0 }
 }
 
 #[test]
 fn segments_by_hand() {
     // `F+F` at 90 degrees: up one, turn left, then one step left (canvas: y down).
-    let segs = segments("axiom F+F\nangle 90\nlength 2\n", 0, Derivation::Dfs);
+    let segs = segments("axiom F+F\nangle 90\nlength 2\n", 0, Dfs);
     let p = Point::new;
-    assert_eq!(
-        segs,
-        [seg((0.0, 0.0), (0.0, -2.0)), seg((0.0, -2.0), (-2.0, -2.0))]
-    );
+    let wanted = [seg((0.0, 0.0), (0.0, -2.0)), seg((0.0, -2.0), (-2.0, -2.0))];
+    assert_eq!(segs, wanted);
     // `heading 0`: the same word starts to the right, then turns up.
-    let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Derivation::Bfs);
-    assert_eq!(
-        segs,
-        [seg((0.0, 0.0), (1.0, 0.0)), seg((1.0, 0.0), (1.0, -1.0))]
-    );
+    let segs = segments("axiom F+F\nangle 90\nheading 0\n", 0, Bfs);
+    let wanted = [seg((0.0, 0.0), (1.0, 0.0)), seg((1.0, 0.0), (1.0, -1.0))];
+    assert_eq!(segs, wanted);
     // `heading 180` with `|`: left, then turned around, back right.
     assert_eq!(
-        segments("axiom F|F\nangle 90\nheading 180\n", 0, Derivation::Dfs)
+        segments("axiom F|F\nangle 90\nheading 180\n", 0, Dfs)
             .iter()
             .map(|s| s.to)
             .collect::<Vec<_>>(),
         [p(-1.0, 0.0), p(0.0, 0.0)]
     );
     // `F[-F]|F` one level down from `X`: a right branch, then back down.
-    let segs = segments("axiom X\nrule X F[-F]|F\nangle 90\n", 1, Derivation::Dfs);
+    let segs = segments("axiom X\nrule X F[-F]|F\nangle 90\n", 1, Dfs);
     assert_eq!(
         segs,
         vec![
@@ -389,10 +310,7 @@ fn bracketed_tree_closed_forms() {
     // F count 5^n and length 1 + 10 * (5^n - 1) / 4 = (5^(n+1) - 3) / 2.
     let s = sys(TREE1);
     // A small traversal budget: counts are exact whether or not it runs.
-    let limits = Limits {
-        max_symbols: 100_000,
-        ..Limits::default()
-    };
+    let limits = limits_with(|l| l.max_symbols = 100_000);
     for n in 0..=20u32 {
         let st = stats(&s, n, &limits).unwrap();
         // The memoized geometry gives the box at every depth; the trunk is
@@ -413,7 +331,7 @@ fn table_3_of_000_corrected() {
     for (level, &want) in truth.iter().enumerate() {
         let n = level as u32 + 1;
         assert_eq!((5u64.pow(n + 1) - 3) / 2, want);
-        let word = expanded(TREE1, n, Derivation::Bfs);
+        let word = expanded(TREE1, n, Bfs);
         assert_eq!(word.len() as u64 - 1, want, "level {level}");
         let st = stats(&sys(TREE1), n, &Limits::default()).unwrap();
         assert_eq!(st.length, big(want));
@@ -436,8 +354,7 @@ fn stats_at_depth_57_is_exact() {
     let json = st.to_json();
     assert!(json.contains(&format!("\"length\": \"{want}\"")), "{json}");
     // A skipped geometry (budget 0) is still written as null.
-    let skipped =
-        stlc::interpret::stats::stats_with_budget(&sys(TREE1), 57, &Limits::default(), 0).unwrap();
+    let skipped = stats_with_budget(&sys(TREE1), 57, &Limits::default(), 0).unwrap();
     assert!(skipped.to_json().contains("\"bbox\": null, \"end\": null"));
 }
 
@@ -465,14 +382,12 @@ fn koch_snowflake_segments_end_and_box() {
     // Heading after the word: every `F+F--F+F` turns 0, the axiom -4 * 60:
     // 90 - 240 = -150 = 210 degrees. Check with one extra F at the end.
     let src = "axiom F--F--FA\nrule F F+F--F+F\nrule A F\nangle 60\n";
-    let segs = segments(src, 3, Derivation::Dfs);
+    let segs = segments(src, 3, Dfs);
     let last = segs.last().unwrap();
     let (dx, dy) = (last.to.x - last.from.x, last.to.y - last.from.y);
     let a210 = 210f64.to_radians();
-    assert!(
-        close(dx, libm::cos(a210)) && close(dy, -libm::sin(a210)),
-        "{dx} {dy}"
-    );
+    let ok = close(dx, libm::cos(a210)) && close(dy, -libm::sin(a210));
+    assert!(ok, "{dx} {dy}");
 }
 
 #[test]
@@ -481,16 +396,10 @@ fn sierpinski_arrowhead_counts() {
         let src = format!("axiom {axiom}\nrule X YF+XF+Y\nrule Y XF-YF-X\nangle 60\n");
         for n in 0..=9u32 {
             let st = stats(&sys(&src), n, &Limits::default()).unwrap();
-            assert_eq!(
-                st.segments,
-                big((3i64.pow(n) - 1 + extra) as u64),
-                "{axiom} {n}"
-            );
+            let count = big((3i64.pow(n) - 1 + extra) as u64);
+            assert_eq!(st.segments, count, "{axiom} {n}");
             if n <= 6 {
-                assert_eq!(
-                    segments(&src, n, Derivation::Dfs).len() as i64,
-                    3i64.pow(n) - 1 + extra
-                );
+                assert_eq!(segments(&src, n, Dfs).len() as i64, 3i64.pow(n) - 1 + extra);
             }
         }
     }
@@ -498,56 +407,33 @@ fn sierpinski_arrowhead_counts() {
 
 #[test]
 fn bfs_refuses_over_the_word_budget() {
-    let limits = Limits {
-        max_word: 1000,
-        ..Limits::default()
-    };
+    let limits = limits_with(|l| l.max_word = 1000);
     let s = sys(TREE1);
     let mut rec = Recorder::default();
     // Depth 4: 1561 symbols > 1000.
-    let err = draw_into(&s, 4, Derivation::Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
-    assert_eq!(
-        err.first_kind(),
-        Some(&ErrorKind::Limit {
-            bound: Bound::Word,
-            what: Some("bfs word at level 4".into()),
-            value: "1561".into(),
-            limit: 1000
-        })
-    );
+    let err = draw_into(&s, 4, Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
+    let word = limit_kind(Bound::Word, Some("bfs word at level 4"), "1561", 1000);
+    assert_eq!(err.first_kind(), Some(&word));
     assert!(err.0[0].help_text().unwrap().contains("--max-word"));
     assert!(rec.segments.is_empty());
     // dfs holds no word: fine.
-    draw_into(&s, 4, Derivation::Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
+    draw_into(&s, 4, Dfs, &limits, &mut rec, &mut NoProgress).unwrap();
     assert_eq!(rec.segments.len(), 625);
     // Depth 57 with bfs: refused with the exact length, no attempt to allocate.
-    let err = draw_into(
-        &s,
-        57,
-        Derivation::Bfs,
-        &Limits::default(),
-        &mut rec,
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let limits = Limits::default();
+    let err = draw_into(&s, 57, Bfs, &limits, &mut rec, &mut NoProgress).unwrap_err();
     let ErrorKind::Limit { value, .. } = err.first_kind().unwrap() else {
         panic!("{err}")
     };
-    assert_eq!(
-        *value,
-        ((BigUint::from(5u32).pow(58) - 3u32) / 2u32).to_string()
-    );
+    let wanted = ((BigUint::from(5u32).pow(58) - 3u32) / 2u32).to_string();
+    assert_eq!(*value, wanted);
 }
 
 #[test]
 fn both_strategies_refuse_over_max_symbols_and_max_depth() {
-    let limits = Limits {
-        max_symbols: 311,
-        max_depth: 20,
-        ..Limits::default()
-    };
+    let limits = limits_with(|l| (l.max_symbols, l.max_depth) = (311, 20));
     let s = sys(TREE1);
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         let mut rec = Recorder::default();
         assert!(draw_into(&s, 3, strategy, &limits, &mut rec, &mut NoProgress).is_ok());
         let err = draw_into(&s, 4, strategy, &limits, &mut rec, &mut NoProgress).unwrap_err();
@@ -561,23 +447,19 @@ fn both_strategies_refuse_over_max_symbols_and_max_depth() {
         assert!(expand(&s, 4, strategy, &limits, &mut out, &mut NoProgress).is_err());
         assert!(out.is_empty());
     }
-    assert!(matches!(
-        stats(&s, 21, &limits).unwrap_err().first_kind(),
-        Some(ErrorKind::Limit { .. })
-    ));
+    let e = stats(&s, 21, &limits).unwrap_err();
+    assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
 }
 
 #[test]
 fn stats_json_shape() {
     // F+F at 90: length 3, box x -1..0, y -1..0, ends at (-1, -1).
     let st = stats(&sys("axiom F+F\nangle 90\n"), 0, &Limits::default()).unwrap();
-    assert_eq!(
-        st.to_json(),
-        "{\"length\": \"3\", \"segments\": \"2\", \
+    let json = "{\"length\": \"3\", \"segments\": \"2\", \
          \"bbox\": [-1.000000, -1.000000, 0.000000, 0.000000], \
          \"end\": [-1.000000, -1.000000], \
-         \"symbols\": {\"+\": \"1\", \"F\": \"2\"}}"
-    );
+         \"symbols\": {\"+\": \"1\", \"F\": \"2\"}}";
+    assert_eq!(st.to_json(), json);
     let v: serde_json::Value = serde_json::from_str(&st.to_json()).unwrap();
     assert_eq!(v["length"], "3");
     assert!(st.to_text().contains("length    3"));
@@ -594,22 +476,16 @@ fn broken_pipe_has_its_own_kind() {
             Ok(())
         }
     }
-    let err = expand(
-        &sys(TREE1),
-        8,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut Closed,
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let (tree, limits) = (sys(TREE1), Limits::default());
+    let err = expand(&tree, 8, Dfs, &limits, &mut Closed, &mut NoProgress).unwrap_err();
     assert_eq!(err.first_kind(), Some(&ErrorKind::BrokenPipe));
 }
 
 // -------------------------------------------------------- dfs == bfs (prop) --
 
-/// A random word over `alphabet` with balanced brackets.
-fn word(
+/// A random word over `alphabet` with balanced brackets (as the parser
+/// requires of successors).
+pub fn word(
     alphabet: &'static [char],
     max: usize,
 ) -> impl proptest::strategy::Strategy<Value = String> {
@@ -654,23 +530,17 @@ proptest! {
                 src.push_str(&format!("rule {pred} -> {succ}\n"));
             }
         }
-        let dfs = segments(&src, depth, Derivation::Dfs);
-        let bfs = segments(&src, depth, Derivation::Bfs);
+        let dfs = segments(&src, depth, Dfs);
+        let bfs = segments(&src, depth, Bfs);
         prop_assert_eq!(&dfs, &bfs, "{}", src);
-        prop_assert_eq!(expanded(&src, depth, Derivation::Dfs), expanded(&src, depth, Derivation::Bfs));
+        prop_assert_eq!(expanded(&src, depth, Dfs), expanded(&src, depth, Bfs));
     }
 }
 
 #[test]
 fn every_example_parses_and_draws_the_same_both_ways() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let mut seen = 0;
-    let mut three = 0;
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "lsys") {
-            continue;
-        }
+    let (mut seen, mut three) = (0, 0);
+    for path in crate::support::files_with("examples", "lsys") {
         let src = std::fs::read_to_string(&path).unwrap();
         let s = parse(&src, &Limits::default()).unwrap_or_else(|e| panic!("{path:?}: {e}"));
         let depth = s.generations.expect("examples say their depth").min(4);
@@ -678,35 +548,17 @@ fn every_example_parses_and_draws_the_same_both_ways() {
         if s.is_3d() {
             // 3D (docs/3d.md): the same segments both ways, in 3D.
             use stlc::interpret::lsys::lsys3::draw3;
-            let mut a = Vec::new();
-            let mut b = Vec::new();
-            draw3(
-                &s,
-                depth,
-                Derivation::Dfs,
-                &lim,
-                &mut |x| a.push(x),
-                &mut NoProgress,
-            )
-            .unwrap();
-            draw3(
-                &s,
-                depth,
-                Derivation::Bfs,
-                &lim,
-                &mut |x| b.push(x),
-                &mut NoProgress,
-            )
-            .unwrap();
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            draw3(&s, depth, Dfs, &lim, &mut |x| a.push(x), &mut NoProgress).unwrap();
+            draw3(&s, depth, Bfs, &lim, &mut |x| b.push(x), &mut NoProgress).unwrap();
             assert!(!a.is_empty(), "{path:?}");
             assert_eq!(a, b, "{path:?}");
             three += 1;
             continue;
         }
-        let mut a = Recorder::default();
-        let mut b = Recorder::default();
-        draw_into(&s, depth, Derivation::Dfs, &lim, &mut a, &mut NoProgress).unwrap();
-        draw_into(&s, depth, Derivation::Bfs, &lim, &mut b, &mut NoProgress).unwrap();
+        let (mut a, mut b) = (Recorder::default(), Recorder::default());
+        draw_into(&s, depth, Dfs, &lim, &mut a, &mut NoProgress).unwrap();
+        draw_into(&s, depth, Bfs, &lim, &mut b, &mut NoProgress).unwrap();
         assert!(!a.segments.is_empty(), "{path:?}");
         assert_eq!(a, b, "{path:?}");
         seen += 1;
@@ -721,27 +573,18 @@ fn every_example_parses_and_draws_the_same_both_ways() {
 #[test]
 fn hilbert_and_stl_fig4_counts() {
     // Hilbert: 4^n - 1 segments (each level: 4 copies joined by 3 F).
-    let src = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hilbert.lsys"),
-    )
-    .unwrap();
+    let src = crate::support::example_text("hilbert.lsys");
     for n in 1..=7u32 {
         let st = stats(&sys(&src), n, &Limits::default()).unwrap();
         assert_eq!(st.segments, big(4u64.pow(n) - 1));
         // The curve fills a (2^n - 1) square.
         let b = st.bbox.unwrap();
         let side = f64::from(2u32.pow(n) - 1);
-        assert!(
-            close(b[2] - b[0], side) && close(b[3] - b[1], side),
-            "{n} {b:?}"
-        );
+        let ok = close(b[2] - b[0], side) && close(b[3] - b[1], side);
+        assert!(ok, "{n} {b:?}");
     }
     // 003 Fig. 4 at depth 1: F[-F]F[+F]F, 30 degrees, by hand.
-    let segs = segments(
-        "axiom F\nrule F F[-F]F[+F]F\nangle 30\n",
-        1,
-        Derivation::Dfs,
-    );
+    let segs = segments("axiom F\nrule F F[-F]F[+F]F\nangle 30\n", 1, Dfs);
     assert_eq!(segs.len(), 5);
     let (s30, c30) = (0.5, 3f64.sqrt() / 2.0);
     let want = [
@@ -761,22 +604,10 @@ fn hilbert_and_stl_fig4_counts() {
 fn heading_defaults_to_up_and_is_checked_like_any_number() {
     assert_eq!(sys("axiom F\nangle 90\n").heading, 90.0);
     assert_eq!(sys("axiom F\nangle 90\nheading -45\n").heading, -45.0);
-    let e = errors(
-        "axiom F\nangle 90\nheading north\nheading 0\n",
-        &Limits::default(),
-    );
-    assert_eq!(
-        e[0],
-        // `north`, after "axiom F\nangle 90\nheading "
-        (
-            ErrorKind::Lsys(LsysError::MalformedNumber {
-                text: "north".into()
-            }),
-            25..30
-        )
-    );
-    assert_eq!(
-        e[1].0,
-        ErrorKind::Lsys(LsysError::DuplicateKey { key: "heading" })
-    );
+    let src = "axiom F\nangle 90\nheading north\nheading 0\n";
+    let e = errors(src, &Limits::default());
+    // `north`, after "axiom F\nangle 90\nheading "
+    let text = "north".into();
+    assert_eq!(e[0], (Lsys(MalformedNumber { text }), 25..30));
+    assert_eq!(e[1].0, Lsys(DuplicateKey { key: "heading" }));
 }

@@ -3,10 +3,11 @@
 
 use std::collections::BTreeMap;
 
-use stlc::pipeline::{ImageFormat, MeshFormat, MeshOptions, RenderOptions, Request, View};
+use stlc::pipeline::{ImageFormat, MeshFormat, NoProgress, RenderOptions, Request, View};
 
 use crate::support::{
-    gltf_validate, gltf_validator_present, manifest_path, numbers, outcome, stlc_line, stlc_piped,
+    example_text as example, gltf_validate, gltf_validator_present, limits_with, manifest_path,
+    numbers, outcome, stlc_line, stlc_piped,
 };
 
 fn lsys_request(text: &str) -> Request {
@@ -18,9 +19,14 @@ fn lsys_request(text: &str) -> Request {
 
 fn render(req: &Request) -> Vec<u8> {
     let mut out = Vec::new();
-    req.render(&mut out, &mut stlc::pipeline::NoProgress)
-        .unwrap();
+    req.render(&mut out, &mut NoProgress).unwrap();
     out
+}
+
+/// `stats --json` of `req`, read back.
+fn stats_of(req: &Request) -> serde_json::Value {
+    let (s, _) = req.stats(true).unwrap();
+    serde_json::from_str(&s).unwrap()
 }
 
 /// A planar branching system at an angle whose directions are not exact.
@@ -33,34 +39,27 @@ const PLANAR: &str = "generations 4\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\nwi
 #[test]
 fn the_front_view_of_a_planar_system_is_its_2d_picture() {
     for format in [ImageFormat::Png, ImageFormat::Svg] {
-        let image = RenderOptions {
-            exact: true,
-            ..RenderOptions::new(format, Some((300, 240)))
-        };
-        let flat = render(&Request {
-            image,
-            ..lsys_request(PLANAR)
-        });
-        let deep = render(&Request {
-            image: RenderOptions::new(format, Some((300, 240))),
-            view: Some(View::FRONT),
-            ..lsys_request(&format!("dimensions 3\n{PLANAR}"))
-        });
+        let mut flat = lsys_request(PLANAR);
+        flat.image = RenderOptions::new(format, Some((300, 240)));
+        flat.image.exact = true;
+        let flat = render(&flat);
+        let mut req = lsys_request(&format!("dimensions 3\n{PLANAR}"));
+        (req.image, req.view) = (
+            RenderOptions::new(format, Some((300, 240))),
+            Some(View::FRONT),
+        );
+        let deep = render(&req);
         assert!(flat.len() > 500);
         assert!(flat == deep, "{format:?} differs");
         // Another view is another picture.
-        let turned = render(&Request {
-            image: RenderOptions::new(format, Some((300, 240))),
-            view: Some(View { az: 0.0, el: 60.0 }),
-            ..lsys_request(&format!("dimensions 3\n{PLANAR}"))
-        });
+        req.view = Some(View { az: 0.0, el: 60.0 });
+        let turned = render(&req);
         assert!(turned != deep);
     }
 }
 
 fn stats_json(text: &str) -> serde_json::Value {
-    let (s, _) = lsys_request(text).stats(true).unwrap();
-    serde_json::from_str(&s).unwrap()
+    stats_of(&lsys_request(text))
 }
 
 /// Section 11's worked ends, in `stats --json`.
@@ -83,14 +82,9 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
         assert_eq!(j["segments"], "2");
     }
     // The 3D Hilbert curve at depth 3: 8^3 points, a cube of side 7.
-    let text = std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap();
-    let (s, _) = Request {
-        depth: Some(3),
-        ..lsys_request(&text)
-    }
-    .stats(true)
-    .unwrap();
-    let j: serde_json::Value = serde_json::from_str(&s).unwrap();
+    let mut req = lsys_request(&example("hilbert3d.lsys"));
+    req.depth = Some(3);
+    let j = stats_of(&req);
     assert_eq!(j["segments"], "511");
     let b: Vec<f64> = numbers(&j["bbox"]);
     assert_eq!((b[3] - b[0], b[4] - b[1], b[5] - b[2]), (7.0, 7.0, 7.0));
@@ -100,18 +94,10 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
 /// angles the reach memo gives the exact box at any depth instead.
 #[test]
 fn stats_past_the_budget_give_a_bound() {
-    let small = stlc::Limits {
-        max_symbols: 100,
-        ..stlc::Limits::DEFAULT
-    };
-    let plant = std::fs::read_to_string(manifest_path("examples/plant3d-bare.lsys")).unwrap();
-    let req = Request {
-        limits: small,
-        depth: Some(2),
-        ..lsys_request(&plant)
-    };
-    let (s, _) = req.stats(true).unwrap();
-    let j: serde_json::Value = serde_json::from_str(&s).unwrap();
+    let small = limits_with(|l| l.max_symbols = 100);
+    let mut req = lsys_request(&example("plant3d-bare.lsys"));
+    (req.limits, req.depth) = (small, Some(2));
+    let j = stats_of(&req);
     assert!(j["bbox"].is_null() && j["end"].is_null());
     // Depth 2: two steps, the second pitched 22.5 degrees from the first,
     // so the farthest point is 2 cos 11.25 = 1.9616 steps from the start;
@@ -122,17 +108,11 @@ fn stats_past_the_budget_give_a_bound() {
     assert_eq!(j["segments"], "12");
     // The Hilbert curve at depth 16 (2.8 * 10^14 symbols): exact, a cube
     // of side 2^16 - 1, on the lattice.
-    let hilbert = std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap();
+    let mut req = lsys_request(&example("hilbert3d.lsys"));
     for depth in [2, 10, 16] {
-        let (s, _) = Request {
-            limits: small,
-            depth: Some(depth),
-            ..lsys_request(&hilbert)
-        }
-        .stats(true)
-        .unwrap();
-        let j: serde_json::Value = serde_json::from_str(&s).unwrap();
-        assert!(j["bound"].is_null(), "{s}");
+        (req.limits, req.depth) = (small, Some(depth));
+        let j = stats_of(&req);
+        assert!(j["bound"].is_null(), "{j}");
         let b: Vec<f64> = (0..6).map(|i| j["bbox"][i].as_f64().unwrap()).collect();
         let side = f64::from((1u32 << depth) - 1);
         assert_eq!((b[3] - b[0], b[4] - b[1], b[5] - b[2]), (side, side, side));
@@ -156,24 +136,16 @@ fn a_2d_file_keeps_its_meaning_and_warns_of_a_view() {
     let j = stats_json("angle 90\ngenerations 0\naxiom F&F\n");
     let end: Vec<f64> = numbers(&j["end"]);
     assert_eq!(end, [0.0, -2.0]);
-    let drawn = Request {
-        view: Some(View::DEFAULT),
-        ..lsys_request("angle 90\ngenerations 0\naxiom F&F\n")
-    }
-    .render(&mut Vec::new(), &mut stlc::pipeline::NoProgress)
-    .unwrap();
-    assert!(
-        drawn
-            .warnings
-            .iter()
-            .any(|w| w.to_string().contains("--view"))
-    );
+    let mut req = lsys_request("angle 90\ngenerations 0\naxiom F&F\n");
+    req.view = Some(View::DEFAULT);
+    let drawn = req.render(&mut Vec::new(), &mut NoProgress).unwrap();
+    let names_view = |w: &stlc::Diagnostic| w.to_string().contains("--view");
+    assert!(drawn.warnings.iter().any(names_view));
 }
 
 fn mesh(req: &Request, format: MeshFormat) -> Vec<u8> {
     let mut out = Vec::new();
-    req.mesh(format, &mut out, &mut stlc::pipeline::NoProgress)
-        .unwrap();
+    req.mesh(format, &mut out, &mut NoProgress).unwrap();
     out
 }
 
@@ -183,8 +155,7 @@ fn mesh(req: &Request, format: MeshFormat) -> Vec<u8> {
 /// same buffer.
 #[test]
 fn a_3d_system_exports_a_gltf_that_reads_back() {
-    let text = std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap();
-    let req = lsys_request(&text);
+    let req = lsys_request(&example("hilbert3d.lsys"));
     let a = mesh(&req, MeshFormat::Gltf);
     assert_eq!(a, mesh(&req, MeshFormat::Gltf), "not deterministic");
     let j: serde_json::Value = serde_json::from_slice(&a).unwrap();
@@ -208,15 +179,8 @@ fn a_3d_system_exports_a_gltf_that_reads_back() {
 /// coordinate, a normal and faces per stem; a triangle limit refuses with the flag to raise it.
 #[test]
 fn a_2d_tree_exports_an_obj_and_the_limit_refuses() {
-    let bed = std::fs::read_to_string(manifest_path("examples/paper-worked.bed")).unwrap();
-    let req = Request {
-        name: Some("t.bed".into()),
-        mesh: MeshOptions {
-            sides: 4,
-            ..MeshOptions::default()
-        },
-        ..Request::new(bed.into_bytes())
-    };
+    let mut req = Request::new(example("paper-worked.bed").into_bytes());
+    (req.name, req.mesh.sides) = (Some("t.bed".into()), 4);
     // `stlc check` counts 11 stems in this BED.
     let stems = 11;
     let text = String::from_utf8(mesh(&req, MeshFormat::Obj)).unwrap();
@@ -229,20 +193,10 @@ fn a_2d_tree_exports_an_obj_and_the_limit_refuses() {
     assert_eq!(count["vn"], count["v"]);
     assert_eq!(count["vt"], count["v"]);
     assert_eq!(count["f"], tubes * 12);
-    let too_small = Request {
-        mesh: MeshOptions {
-            sides: 4,
-            max_triangles: 12 * tubes - 1,
-            ..MeshOptions::default()
-        },
-        ..req.clone()
-    };
+    let mut too_small = req.clone();
+    too_small.mesh.max_triangles = 12 * tubes - 1;
     let err = too_small
-        .mesh(
-            MeshFormat::Obj,
-            &mut Vec::new(),
-            &mut stlc::pipeline::NoProgress,
-        )
+        .mesh(MeshFormat::Obj, &mut Vec::new(), &mut NoProgress)
         .unwrap_err();
     assert!(err.to_string().contains("--max-triangles"), "{err}");
 }
@@ -255,16 +209,11 @@ fn the_command_line_writes_meshes_and_views() {
     let glb = dir.path().join("h.glb");
     let png = dir.path().join("h.png");
     let input = manifest_path("examples/hilbert3d.lsys");
-    stlc_piped(
-        &format!("render {} -o {}", input.display(), glb.display()),
-        "",
-    );
+    let (from, to) = (input.display(), glb.display());
+    stlc_piped(&format!("render {from} -o {to}"), "");
     assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
-    let line = format!(
-        "render {} --view -45,10 -o {}",
-        input.display(),
-        png.display()
-    );
+    let (shown, to) = (input.display(), png.display());
+    let line = format!("render {shown} --view -45,10 -o {to}");
     stlc_piped(&line, "");
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
 }
@@ -290,20 +239,15 @@ fn the_khronos_validator_finds_no_issue() {
         ("abop-1.26.lsys", MeshFormat::Glb, "glb"),
     ] {
         let path = manifest_path("examples").join(example);
-        let req = Request {
-            name: Some(path.clone()),
-            ..Request::new(std::fs::read(&path).unwrap())
-        };
+        let mut req = Request::new(std::fs::read(&path).unwrap());
+        req.name = Some(path.clone());
         let out = dir.path().join(format!("{example}.{ext}"));
         std::fs::write(&out, mesh(&req, format)).unwrap();
         files.push(out);
     }
     let said = gltf_validate(&files);
-    assert_eq!(
-        said.lines().filter(|l| l.ends_with(" 0 0")).count(),
-        7,
-        "{said}"
-    );
+    let clean = said.lines().filter(|l| l.ends_with(" 0 0")).count();
+    assert_eq!(clean, 7, "{said}");
 }
 
 /// `--mesh obj -o -` writes the OBJ to standard output; `--mesh` against
@@ -313,10 +257,8 @@ fn a_mesh_goes_to_standard_output_when_asked() {
     let input = manifest_path("examples/hilbert3d.lsys");
     let out = stlc_piped(&format!("render {} --mesh obj -o -", input.display()), "");
     let text = String::from_utf8(out).unwrap();
-    assert_eq!(
-        text.lines().filter(|l| l.starts_with("f ")).count(),
-        63 * 20
-    );
+    let faces = text.lines().filter(|l| l.starts_with("f ")).count();
+    assert_eq!(faces, 63 * 20);
     stlc_line(&format!("render {} --mesh obj -o x.glb", input.display()))
         .assert()
         .code(2);
@@ -327,21 +269,13 @@ fn a_mesh_goes_to_standard_output_when_asked() {
 /// budget of 10^6 stems and stand-ins, and a warning gives the detail.
 #[test]
 fn a_deep_view_is_drawn_at_a_level_of_detail_within_its_budget() {
-    let text = std::fs::read_to_string(manifest_path("examples/hilbert3d.lsys")).unwrap();
-    let req = Request {
-        depth: Some(12),
-        ..lsys_request(&text)
-    };
+    let mut req = lsys_request(&example("hilbert3d.lsys"));
+    req.depth = Some(12);
     let mut out = Vec::new();
-    let drawn = req
-        .render(&mut out, &mut stlc::pipeline::NoProgress)
-        .unwrap();
+    let drawn = req.render(&mut out, &mut NoProgress).unwrap();
     assert!(out.starts_with(b"\x89PNG"));
-    assert!(
-        drawn.segments > 0 && drawn.segments <= 1_000_000,
-        "{}",
-        drawn.segments
-    );
+    let segments = drawn.segments;
+    assert!(segments > 0 && segments <= 1_000_000, "{segments}");
     let w: Vec<String> = drawn.warnings.iter().map(|d| d.to_string()).collect();
     assert!(w.iter().any(|m| m.contains("level of detail of")), "{w:?}");
 }
@@ -355,20 +289,15 @@ fn a_view_past_the_top_is_a_usage_error() {
     let png = dir.path().join("h.png");
     let input = manifest_path("examples/hilbert3d.lsys");
     let run = |view: &str| {
-        let line = format!(
-            "render {} -o {} --view {view}",
-            input.display(),
-            png.display()
-        );
+        let (input, png) = (input.display(), png.display());
+        let line = format!("render {input} -o {png} --view {view}");
         outcome(&mut stlc_line(&line))
     };
     for view in ["30,100", "30,-90.5", "0,270"] {
         let (code, _, err) = run(view);
         assert_eq!(code, 2, "{view}: {err}");
-        assert!(
-            err.contains("from -90") && err.contains("to 90"),
-            "{view}: {err}"
-        );
+        let range = err.contains("from -90") && err.contains("to 90");
+        assert!(range, "{view}: {err}");
         assert!(!png.exists(), "{view} wrote a picture");
     }
     let (_, _, err) = run("30,100");

@@ -10,11 +10,8 @@ use crate::support::manifest_path;
 
 /// The `.glb` of `text` (named `name`, so its kind is known).
 fn glb(name: &str, text: &[u8]) -> Vec<u8> {
-    let req = Request {
-        name: Some(name.into()),
-        ..Request::new(text.to_vec())
-    };
-    let mut out = Vec::new();
+    let (mut req, mut out) = (Request::new(text.to_vec()), Vec::new());
+    req.name = Some(name.into());
     req.mesh(MeshFormat::Glb, &mut out, &mut NoProgress)
         .unwrap();
     out
@@ -35,10 +32,8 @@ impl Glb {
         let json = serde_json::from_slice(&bytes[20..20 + jl]).unwrap();
         let bl = word(20 + jl);
         assert_eq!(&bytes[24 + jl..28 + jl], b"BIN\0");
-        Glb {
-            json,
-            bin: bytes[28 + jl..28 + jl + bl].to_vec(),
-        }
+        let bin = bytes[28 + jl..28 + jl + bl].to_vec();
+        Glb { json, bin }
     }
 
     /// The accessor `attribute` of the first primitive, as `width`-float
@@ -50,10 +45,8 @@ impl Glb {
         let view = &self.json["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
         let off = view["byteOffset"].as_u64().unwrap() as usize;
         let count = a["count"].as_u64().unwrap() as usize;
-        assert_eq!(
-            view["byteLength"].as_u64().unwrap() as usize,
-            4 * width * count
-        );
+        let length = view["byteLength"].as_u64().unwrap() as usize;
+        assert_eq!(length, 4 * width * count);
         (0..count)
             .map(|i| {
                 (0..width)
@@ -85,10 +78,8 @@ fn on_the_ground_at_the_origin(ring: &[Vec<f32>], r: f64) {
     let n = ring.len() as f64;
     for k in [0, 2] {
         let mean: f64 = ring.iter().map(|v| f64::from(v[k])).sum::<f64>() / n;
-        assert!(
-            mean.abs() < 1e-7,
-            "the ring's centre is off the origin: {mean}"
-        );
+        let holds = mean.abs() < 1e-7;
+        assert!(holds, "the ring's centre is off the origin: {mean}");
     }
     for v in ring {
         assert_eq!(v[1], 0.0, "{v:?}");
@@ -104,19 +95,15 @@ fn on_the_ground_at_the_origin(ring: &[Vec<f32>], r: f64) {
 /// 0.1 / (2 pi 0.01) = 1.5915494 circumferences.
 #[test]
 fn a_single_vertical_stem_stands_on_the_origin_with_v_in_circumferences() {
-    let g = Glb::read(&glb(
-        "one.bed",
-        b"T (100, 200) L=10(0) B=2(0) A=30\nRULE\nR1: [F]\nSEED\nF\nENDSEED\n",
-    ));
+    let one = b"T (100, 200) L=10(0) B=2(0) A=30\nRULE\nR1: [F]\nSEED\nF\nENDSEED\n";
+    let g = Glb::read(&glb("one.bed", one));
     let pos = g.floats("POSITION", 3);
     assert_eq!(pos.len(), 4 * 6 + 2);
     let (ring, v) = first_tube(&g, 6);
     on_the_ground_at_the_origin(&ring, 0.01);
     let top: Vec<f32> = (0..6).map(|j| pos[2 * j + 1][1]).collect();
-    assert!(
-        top.iter().all(|&y| (f64::from(y) - 0.1).abs() < 1e-7),
-        "{top:?}"
-    );
+    let holds = top.iter().all(|&y| (f64::from(y) - 0.1).abs() < 1e-7);
+    assert!(holds, "{top:?}");
     assert!((f64::from(v) - 1.591_549_4).abs() < 1e-6, "{v}");
 }
 

@@ -3,34 +3,35 @@
 //! the choices, and forests of several roots in one outline.
 
 use stlc::choice::{Alternatives, Key};
-use stlc::diag::{GrowError, RuleError, StlError};
+use stlc::diag::ErrorKind::{Grow, Rule, Stl};
+use stlc::diag::GrowError::SharedRoot;
+use stlc::diag::RuleError::*;
+use stlc::diag::StlError::SeedsPerRoot;
 use stlc::grow::{GrowOptions, Grown, GrowthOrder, grow, grow_traced};
 use stlc::model::{Description, Format, SeedItem, Slot};
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
-use stlc::{Diagnostics, ErrorKind, Limits};
+use stlc::{Diagnostics, Limits};
 
-use crate::support::od;
+use crate::grow::span_of;
 use crate::support::{manifest_path, outcome, stlc_line};
+use crate::support::{od, opts};
 
 fn errors(text: &str, format: Format) -> Diagnostics {
-    match parse(text, format, &Limits::default()) {
-        Ok(_) => panic!("parsed, expected an error:\n{text}"),
-        Err(e) => e,
-    }
+    let parsed = parse(text, format, &Limits::default());
+    parsed
+        .err()
+        .unwrap_or_else(|| panic!("parsed, expected an error:\n{text}"))
 }
 
 fn grown(d: &Description, growth: GrowthOrder, seed: u64) -> Grown {
-    let o = GrowOptions {
-        growth,
-        seed,
-        max_stems_explicit: true,
-        ..GrowOptions::default()
-    };
+    let mut o = opts(growth);
+    (o.seed, o.max_stems_explicit) = (seed, true);
     grow(d, &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn bed_text(g: &Grown) -> String {
+/// The BED that grew, as written.
+pub fn bed_text(g: &Grown) -> String {
     stlc::bed::write::write(g.bed.description())
 }
 
@@ -43,11 +44,6 @@ fn first_choice(g: &Grown) -> Option<u32> {
         SeedItem::Term(t) => Some(d.rule(seed.term(*t).rule()).alternative.as_ref()?.number),
         _ => None,
     })
-}
-
-fn span_of(text: &str, needle: &str) -> std::ops::Range<usize> {
-    let at = text.find(needle).expect("needle");
-    at..at + needle.len()
 }
 
 // ------------------------------------------------------------ choices
@@ -82,10 +78,8 @@ fn choices_follow_the_probabilities() {
     for (c, p) in counts.iter().zip([0.6, 0.3, 0.1]) {
         let mean = n as f64 * p;
         let sd = (n as f64 * p * (1.0 - p)).sqrt();
-        assert!(
-            (*c as f64 - mean).abs() < 4.0 * sd,
-            "{counts:?}: {c} vs {mean} ± {sd}"
-        );
+        let holds = (*c as f64 - mean).abs() < 4.0 * sd;
+        assert!(holds, "{counts:?}: {c} vs {mean} ± {sd}");
     }
 }
 
@@ -124,10 +118,8 @@ fn every_application_chooses_and_the_bed_names_the_choice() {
         R1 (0.5): [+F] R1 (0.5): [-F] SEED [I 6 R1] ENDSEED");
     let g = grown(&d, GrowthOrder::Bfs, 3);
     let text = bed_text(&g);
-    assert!(
-        text.contains("R1.1 (0.5): [+F]\nR1.2 (0.5): [-F]\n"),
-        "{text}"
-    );
+    let holds = text.contains("R1.1 (0.5): [+F]\nR1.2 (0.5): [-F]\n");
+    assert!(holds, "{text}");
     // One chain of six applications; both alternatives occur (the chance
     // that one seed gives six equal choices is 1/32, and seed 3 does not).
     let (ones, twos) = (text.matches("R1.1{").count(), text.matches("R1.2{").count());
@@ -159,10 +151,8 @@ fn a_grown_bed_reads_back_and_needs_no_seed() {
         let g = grown(&od(&text), GrowthOrder::Bfs, 5);
         let written = bed_text(&g);
         let back = parse(&written, Format::Bed, &Limits::default()).unwrap();
-        assert!(
-            back == *g.bed.description(),
-            "{file}: the BED reads back differently"
-        );
+        let holds = back == *g.bed.description();
+        assert!(holds, "{file}: the BED reads back differently");
         assert_eq!(stlc::bed::write::write(&back), written);
     }
 }
@@ -184,10 +174,8 @@ fn the_seed_selects_the_tree() {
 fn without_alternatives_the_seed_changes_nothing() {
     let text = std::fs::read_to_string(manifest_path("examples/crown.od")).unwrap();
     let d = od(&text);
-    assert_eq!(
-        bed_text(&grown(&d, GrowthOrder::Bfs, 0)),
-        bed_text(&grown(&d, GrowthOrder::Bfs, 99))
-    );
+    let want = bed_text(&grown(&d, GrowthOrder::Bfs, 99));
+    assert_eq!(bed_text(&grown(&d, GrowthOrder::Bfs, 0)), want);
 }
 
 // ------------------------------------------------------------ diagnostics
@@ -198,7 +186,7 @@ fn probabilities_must_sum_to_one() {
     let e = errors(text, Format::Od);
     let d = &e.0[0];
     assert!(
-        matches!(&d.kind, ErrorKind::Rule(RuleError::ProbabilitySum { name, sum }) if name == "R1" && (sum - 0.9).abs() < 1e-12),
+        matches!(&d.kind, Rule(ProbabilitySum { name, sum }) if name == "R1" && (sum - 0.9).abs() < 1e-12),
         "{:?}",
         d.kind
     );
@@ -211,7 +199,7 @@ fn a_probability_must_be_above_zero() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] R1 (0): [-F]";
     let e = errors(text, Format::Od);
     assert!(
-        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::BadProbability { name, value }) if name == "R1" && *value == 0.0)
+        matches!(&e.0[0].kind, Rule(BadProbability { name, value }) if name == "R1" && *value == 0.0)
     );
     let second = text.rfind("R1").unwrap();
     assert_eq!(e.0[0].span, Some(second..second + 2));
@@ -221,30 +209,20 @@ fn a_probability_must_be_above_zero() {
 fn every_alternative_needs_a_probability() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F] R1: [-F]";
     let e = errors(text, Format::Od);
-    assert!(
-        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::MissingProbability { name }) if name == "R1")
-    );
+    assert!(matches!(&e.0[0].kind, Rule(MissingProbability { name }) if name == "R1"));
     let second = text.rfind("R1").unwrap();
     assert_eq!(e.0[0].span, Some(second..second + 2));
     // Only that: the sum of the bodies that have one (0.5) is no news.
     assert_eq!(e.0.len(), 1, "{e}");
     // One body with a probability other than 1: it needs none.
     let e = errors("T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F]", Format::Od);
-    assert!(matches!(
-        &e.0[0].kind,
-        ErrorKind::Rule(RuleError::ProbabilitySum { .. })
-    ));
+    assert!(matches!(&e.0[0].kind, Rule(ProbabilitySum { .. })));
     let help = e.0[0].help_text().unwrap();
-    assert!(
-        help.contains("one body needs no probability: write `R1: ...`"),
-        "{help}"
-    );
+    let holds = help.contains("one body needs no probability: write `R1: ...`");
+    assert!(holds, "{help}");
     // Two bodies without probabilities stay a duplicate.
     let e = errors("T (0,0) L=1(0) B=1(0) RULE R1: [+F] R1: [-F]", Format::Od);
-    assert!(matches!(
-        &e.0[0].kind,
-        ErrorKind::Rule(RuleError::DuplicateRule { .. })
-    ));
+    assert!(matches!(&e.0[0].kind, Rule(DuplicateRule { .. })));
 }
 
 /// The canonical writer keeps an OD an OD: alternatives as several bodies
@@ -259,29 +237,21 @@ fn an_od_with_alternatives_writes_as_an_od() {
     assert_eq!(stlc::bed::write::write(&od(&written)), written);
     let g = grown(&d, GrowthOrder::Bfs, 0);
     let bed = bed_text(&g);
-    assert!(
-        bed.contains("R1.1 (0.6): [+F][-F]\nR1.2 (0.4): [F]\n"),
-        "{bed}"
-    );
+    let holds = bed.contains("R1.1 (0.6): [+F][-F]\nR1.2 (0.4): [F]\n");
+    assert!(holds, "{bed}");
 }
 
 #[test]
 fn a_dot_in_an_od_is_refused() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1.1: [+F]";
     let e = errors(text, Format::Od);
-    assert!(
-        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::DottedName { name }) if name == "R1.1")
-    );
+    assert!(matches!(&e.0[0].kind, Rule(DottedName { name }) if name == "R1.1"));
     assert_eq!(e.0[0].span, Some(span_of(text, "R1.1")));
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] SEED F R1.1 ENDSEED";
     let e = errors(text, Format::Od);
-    assert!(
-        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::DottedName { name }) if name == "R1.1")
-    );
-    assert_eq!(
-        e.0[0].span,
-        Some(span_of(text, "R1.1 ")).map(|s| s.start..s.end - 1)
-    );
+    assert!(matches!(&e.0[0].kind, Rule(DottedName { name }) if name == "R1.1"));
+    let want = Some(span_of(text, "R1.1 ")).map(|s| s.start..s.end - 1);
+    assert_eq!(e.0[0].span, want);
 }
 
 #[test]
@@ -289,17 +259,13 @@ fn a_bed_names_alternatives_that_exist() {
     let head = "T (0,0) L=1(0) B=1(0) RULE R1.1 (0.5): [+F] R1.2 (0.5): [-F] SEED ";
     let text = format!("{head}R1.3{{}} ENDSEED");
     let e = errors(&text, Format::Bed);
-    assert!(
-        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::UnknownAlternative { name, number }) if name == "R1" && number == "3"),
-        "{:?}",
-        e.0[0].kind
-    );
+    let (name, number) = ("R1".into(), "3".into());
+    let unknown = Rule(UnknownAlternative { name, number });
+    assert_eq!(e.0[0].kind, unknown);
     assert_eq!(e.0[0].span, Some(span_of(&text, "R1.3")));
     let text = format!("{head}R1{{}} ENDSEED");
     let e = errors(&text, Format::Bed);
-    assert!(
-        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::AlternativeNotNamed { name, count: 2 }) if name == "R1")
-    );
+    assert!(matches!(&e.0[0].kind, Rule(AlternativeNotNamed { name, count: 2 }) if name == "R1"));
     let text = format!("{head}R1.2{{}} ENDSEED");
     assert!(parse(&text, Format::Bed, &Limits::default()).is_ok());
 }
@@ -311,11 +277,8 @@ fn a_bed_names_alternatives_that_exist() {
 fn a_bed_probability_belongs_to_an_alternative() {
     let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F][-F] SEED F R1{,} ENDSEED";
     let e = errors(text, Format::Bed);
-    assert!(
-        matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::ProbabilityWithoutAlternative { name }) if name == "R1"),
-        "{:?}",
-        e.0[0].kind
-    );
+    let name = "R1".into();
+    assert_eq!(e.0[0].kind, Rule(ProbabilityWithoutAlternative { name }));
     assert_eq!(e.0[0].span, Some(span_of(text, "R1")));
     // The same line in an OD is a rule of one alternative.
     let d = od(text.replace("R1{,}", "R1").as_str());
@@ -331,11 +294,9 @@ fn a_bed_repeats_only_rules_without_alternatives() {
     for repeat in ["[I 2 R1]", "[I 2 R1.2]"] {
         let text = format!("{head}{repeat} ENDSEED");
         let e = errors(&text, Format::Bed);
-        assert!(
-            matches!(&e.0[0].kind, ErrorKind::Rule(RuleError::RepeatChooses { name, count: 2 }) if name == "R1"),
-            "{repeat}: {:?}",
-            e.0[0].kind
-        );
+        let name = "R1".into();
+        let chooses = Rule(RepeatChooses { name, count: 2 });
+        assert_eq!(e.0[0].kind, chooses, "{repeat}");
         assert_eq!(e.0[0].span, Some(span_of(&text, repeat)));
     }
     let text = format!("{head}[I 2 R2] ENDSEED");
@@ -349,10 +310,7 @@ fn a_forest_bed_has_one_seed_per_root() {
     let text =
         "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED SEED F ENDSEED";
     let e = errors(text, Format::Bed);
-    assert!(matches!(
-        e.0[0].kind,
-        ErrorKind::Stl(StlError::SeedsPerRoot { roots: 2, seeds: 3 })
-    ));
+    assert_eq!(e.0[0].kind, Stl(SeedsPerRoot { roots: 2, seeds: 3 }));
     let text = "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED";
     let d = parse(text, Format::Bed, &Limits::default()).unwrap();
     assert_eq!(d.forest.len(), 1);
@@ -360,10 +318,7 @@ fn a_forest_bed_has_one_seed_per_root() {
     // drew one tree where the file names three).
     let text = "T (0,0) (10,0) (20,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED";
     let e = errors(text, Format::Bed);
-    assert!(matches!(
-        e.0[0].kind,
-        ErrorKind::Stl(StlError::SeedsPerRoot { roots: 3, seeds: 1 })
-    ));
+    assert_eq!(e.0[0].kind, Stl(SeedsPerRoot { roots: 3, seeds: 1 }));
     assert_eq!(e.0[0].span, Some(span_of(text, "(10,0)")));
     let text = "T (0,0) (10,0) (20,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED";
     let e = errors(text, Format::Bed);
@@ -375,10 +330,7 @@ fn a_forest_bed_has_one_seed_per_root() {
         "T (0,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED",
         Format::Od,
     );
-    assert!(matches!(
-        e.0[0].kind,
-        ErrorKind::Stl(StlError::SeedsPerRoot { roots: 1, seeds: 2 })
-    ));
+    assert_eq!(e.0[0].kind, Stl(SeedsPerRoot { roots: 1, seeds: 2 }));
 }
 
 // ------------------------------------------------------------ forests
@@ -393,27 +345,19 @@ fn a_root_on_another_roots_point_is_warned_about() {
     let shared: Vec<_> = g
         .warnings
         .iter()
-        .filter(|w| matches!(w.kind, ErrorKind::Grow(GrowError::SharedRoot { .. })))
+        .filter(|w| matches!(w.kind, Grow(SharedRoot { .. })))
         .collect();
     assert_eq!(shared.len(), 1, "the first repeat only: {:?}", g.warnings);
-    assert!(matches!(
-        shared[0].kind,
-        ErrorKind::Grow(GrowError::SharedRoot { root: 3, first: 1 })
-    ));
+    assert_eq!(shared[0].kind, Grow(SharedRoot { root: 3, first: 1 }));
     let third = text.rfind("(10, 0)").unwrap();
     assert_eq!(shared[0].span, Some(third..third + "(10, 0)".len()));
-    assert_eq!(
-        shared[0].labels[0].span,
-        text.find("(10, 0)").unwrap()..text.find("(10, 0)").unwrap() + 7
-    );
+    let want = text.find("(10, 0)").unwrap()..text.find("(10, 0)").unwrap() + 7;
+    assert_eq!(shared[0].labels[0].span, want);
     let apart = "T (10, 0) (30, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
     assert!(grown(&od(apart), GrowthOrder::Bfs, 0).warnings.is_empty());
     let signed = "T (0, -0) (0, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
     let w = grown(&od(signed), GrowthOrder::Bfs, 0).warnings;
-    assert!(matches!(
-        w[0].kind,
-        ErrorKind::Grow(GrowError::SharedRoot { root: 2, first: 1 })
-    ));
+    assert_eq!(w[0].kind, Grow(SharedRoot { root: 2, first: 1 }));
 }
 
 /// `check` counts a forest's roots and shows the first six: all four of
@@ -428,11 +372,13 @@ fn check_lists_a_forests_roots_briefly() {
         stlc::pipeline::check(&loaded, &opts).unwrap().summary
     };
     let grove = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
+    let (said, four) = (
+        summary(&grove),
+        "(50, 290) (110, 290) (170, 290) (235, 290)\n",
+    );
     assert!(
-        summary(&grove)
-            .contains("  roots       4 (a forest): (50, 290) (110, 290) (170, 290) (235, 290)\n"),
-        "{}",
-        summary(&grove)
+        said.contains(&format!("  roots       4 (a forest): {four}")),
+        "{said}"
     );
     let roots: Vec<String> = (0..10).map(|i| format!("({}, 0)", i * 100)).collect();
     let ten = format!(
@@ -456,11 +402,7 @@ const FAR_APART: &str =
 /// Which tree each decision of [`FAR_APART`] grew in, in decision order.
 fn decision_trees(growth: GrowthOrder) -> Vec<usize> {
     let d = od(FAR_APART);
-    let o = GrowOptions {
-        growth,
-        ..GrowOptions::default()
-    };
-    let (_, placed) = grow_traced(&d, &o, &mut NoProgress).unwrap();
+    let (_, placed) = grow_traced(&d, &opts(growth), &mut NoProgress).unwrap();
     let mut trees: Vec<(u64, usize)> = placed
         .iter()
         .filter(|s| s.decision > 0)
@@ -518,17 +460,12 @@ fn trees_share_the_occupancy() {
     );
     let one = grown(&alone, GrowthOrder::Bfs, 0).stems;
     let g = grown(&pair, GrowthOrder::Bfs, 0);
-    assert!(
-        g.stems < 2 * one,
-        "{} stems for two trees, {one} for one",
-        g.stems
-    );
+    let two = g.stems;
+    assert!(two < 2 * one, "{two} stems for two trees, {one} for one");
     let text = bed_text(&g);
     let seeds: Vec<&str> = text.split("SEED\n").collect();
-    assert!(
-        seeds[1].contains("R1{") && seeds[3].contains("R1{"),
-        "{text}"
-    );
+    let grew = |seed: &str| seed.contains("R1{");
+    assert!(grew(seeds[1]) && grew(seeds[3]), "{text}");
 }
 
 /// Roots of a forest get their own keys: the trees of a forest with
@@ -553,11 +490,8 @@ fn compile_grove_with_seeds() {
     let grove = manifest_path("examples/grove.od");
     let compile = |seed: &str, out: &str| {
         let out = dir.path().join(out);
-        let line = format!(
-            "compile {} --seed {seed} -o {}",
-            grove.display(),
-            out.display()
-        );
+        let (from, to) = (grove.display(), out.display());
+        let line = format!("compile {from} --seed {seed} -o {to}");
         stlc_line(&line).assert().success();
         std::fs::read(out).unwrap()
     };

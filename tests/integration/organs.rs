@@ -4,9 +4,8 @@
 //! that end in an error with nothing written.
 
 use stlc::color::Rgb;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::Dfs;
 use stlc::limits::Limits;
-use stlc::progress::NoProgress;
 use stlc::syntax::lsys::parse;
 use stlc::turtle::{Point, Recorder};
 
@@ -17,7 +16,7 @@ const BLUE: Rgb = Rgb::new(0, 0, 0xff);
 /// What the parametric turtle hands a backend for `src` at `depth`.
 fn recorded(src: &str, depth: u32) -> Recorder {
     let sys = parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e:?}"));
-    crate::lsys::recorded_of(&sys, depth, Derivation::Dfs)
+    crate::lsys::recorded_of(&sys, depth, Dfs)
 }
 
 /// The first error's message and the text its span covers.
@@ -54,17 +53,15 @@ fn colour_steps_up_and_down_stop_at_the_ends_and_brackets_restore_them() {
     // [,,F] steps back twice (green, red) and ] restores blue.
     let rec = recorded(&format!("{STEPS}axiom F'F'F'FF[,,F]F\n"), 0);
     assert_eq!(rec.segments.len(), 7);
-    assert_eq!(
-        rec.paints,
-        vec![
-            (0, RED),
-            (1, GREEN),
-            (2, BLUE),
-            (5, GREEN),
-            (5, RED),
-            (6, BLUE)
-        ]
-    );
+    let paints = [
+        (0, RED),
+        (1, GREEN),
+        (2, BLUE),
+        (5, GREEN),
+        (5, RED),
+        (6, BLUE),
+    ];
+    assert_eq!(rec.paints, paints);
     // Below the first colour: stays red; `'(i)` and `;(i)` set, clamped.
     let rec = recorded(&format!("{STEPS}axiom ,F'(7)F;(1)F,(-3)F\n"), 0);
     assert_eq!(rec.paints, vec![(0, RED), (1, BLUE), (2, GREEN), (3, RED)]);
@@ -102,12 +99,8 @@ fn a_square_polygon_has_its_four_corners_in_the_svg() {
     let expected: Vec<Point> = corners.iter().map(|&(x, y)| Point::new(x, y)).collect();
     assert_eq!(rec.polygons, vec![(0, expected)]);
     let svg = String::from_utf8(rendered(src, "out.svg")).unwrap();
-    assert!(
-        svg.contains(
-            "<path fill=\"#000000\" d=\"M95.50 95.50 L95.50 4.50 L4.50 4.50 L4.50 95.50 Z\"/>"
-        ),
-        "{svg}"
-    );
+    let square = "<path fill=\"#000000\" d=\"M95.50 95.50 L95.50 4.50 L4.50 4.50 L4.50 95.50 Z\"/>";
+    assert!(svg.contains(square), "{svg}");
 }
 
 #[test]
@@ -143,13 +136,9 @@ fn a_surface_is_drawn_in_the_turtles_frame_scaled_and_leaves_it_as_it_was() {
     let expected: Vec<Point> = square.iter().map(|&(x, y)| Point::new(x, y)).collect();
     assert_eq!(rec.polygons, vec![(1, expected)]);
     let ends: Vec<(Point, Point)> = rec.segments.iter().map(|s| (s.from, s.to)).collect();
-    assert_eq!(
-        ends,
-        vec![
-            (Point::new(0.0, 0.0), Point::new(0.0, -1.0)),
-            (Point::new(0.0, -1.0), Point::new(0.0, -2.0))
-        ]
-    );
+    let p = Point::new;
+    let want = [(p(0.0, 0.0), p(0.0, -1.0)), (p(0.0, -1.0), p(0.0, -2.0))];
+    assert_eq!(ends, want);
     // Unscaled, a surface turned by the turtle: after `+` the first side
     // goes left.
     let src = "generations 0\nangle 90\nsurface L { {.f+f+f+f} }\naxiom +~L\n";
@@ -226,11 +215,8 @@ fn a_palette_of_unknown_colours_is_an_error_at_the_colour() {
 fn a_3d_view_from_the_front_draws_colours_and_polygons_as_the_2d_picture() {
     let word = "angle 90\npalette #ff0000 #0000ff\naxiom F[-F]'{.f+f+f+f}F\n";
     let flat = rendered(&format!("generations 0\n{word}"), "out.svg");
-    let front = rendered_with(
-        &format!("generations 0\ndimensions 3\n{word}"),
-        "out.svg",
-        "--view 0,0",
-    );
+    let front = format!("generations 0\ndimensions 3\n{word}");
+    let front = rendered_with(&front, "out.svg", "--view 0,0");
     let flat = String::from_utf8(flat).unwrap();
     assert!(flat.contains("fill=\"#0000ff\""), "{flat}");
     assert_eq!(flat, String::from_utf8(front).unwrap());
@@ -238,45 +224,26 @@ fn a_3d_view_from_the_front_draws_colours_and_polygons_as_the_2d_picture() {
 
 #[test]
 fn abop_1_26_has_leaves_petals_and_stamens_in_their_colours() {
-    let src =
-        std::fs::read_to_string(crate::support::manifest_path("examples/abop-1.26.lsys")).unwrap();
+    let src = crate::support::example_text("abop-1.26.lsys");
     let sys = parse(&src, &Limits::default()).unwrap();
     let p = sys.parametric.as_deref().unwrap();
-    let mut polygons = 0;
-    let mut colours = std::collections::BTreeSet::new();
-    stlc::interpret::lsys::param::draw3_marks(
-        &sys,
-        p,
-        3,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut |m| match m {
-            stlc::interpret::lsys::param::Mark::Polygon(v) => {
-                // A leaf records its 8 `f`s (the last comes back to where
-                // it started, not recorded), a petal its 4.
-                assert!(v.len() == 8 || v.len() == 4, "{}", v.len());
-                polygons += 1;
-            }
-            stlc::interpret::lsys::param::Mark::Paint(i) => {
-                colours.insert(i);
-            }
-            _ => {}
-        },
-    )
-    .unwrap();
-    let word = {
-        let mut out = Vec::new();
-        stlc::interpret::lsys::expand(
-            &sys,
-            2,
-            Derivation::Dfs,
-            &Limits::default(),
-            &mut out,
-            &mut NoProgress,
-        )
-        .unwrap();
-        String::from_utf8(out).unwrap()
+    use stlc::interpret::lsys::param::{Mark, draw3_marks};
+    let (mut polygons, mut colours) = (0, std::collections::BTreeSet::new());
+    let mut mark = |m: Mark<'_>| match m {
+        Mark::Polygon(v) => {
+            // A leaf records its 8 `f`s (the last comes back to where
+            // it started, not recorded), a petal its 4.
+            assert!(v.len() == 8 || v.len() == 4, "{}", v.len());
+            polygons += 1;
+        }
+        Mark::Paint(i) => {
+            colours.insert(i);
+        }
+        _ => {}
     };
+    let limits = Limits::default();
+    draw3_marks(&sys, p, 3, Dfs, &limits, &mut mark).unwrap();
+    let word = crate::lsys::expanded_of(&sys, 2, Dfs);
     // Only L (p4) and W (p7) rewrite to polygons, one each, their
     // successors hold no L or W, and a polygon written stays: the
     // polygons at depth 3 are the `{`, L and W of the word at depth 2
@@ -294,11 +261,12 @@ fn a_leaf_in_a_mesh_is_two_faces_each_wound_to_its_own_normal() {
     // A unit square in the canvas plane; the files' axes are (x, -y, -z),
     // so it is counter-clockwise seen from +z: its normal is (0, 0, 1).
     let square = [(0.0, 0.0), (1.0, 0.0), (1.0, -1.0), (0.0, -1.0)];
+    let points = square
+        .iter()
+        .map(|&(x, y)| Point3::new(x, y, 0.0))
+        .collect();
     let leaf = Leaf {
-        points: square
-            .iter()
-            .map(|&(x, y)| Point3::new(x, y, 0.0))
-            .collect(),
+        points,
         color: GREEN,
     };
     let opts = MeshOptions {
@@ -318,10 +286,8 @@ fn a_leaf_in_a_mesh_is_two_faces_each_wound_to_its_own_normal() {
     // normal: each side is seen counter-clockwise from its own side.
     for t in p.indices.chunks(3) {
         let [a, b, c] = [0, 1, 2].map(|k| p.positions[t[k] as usize].map(f64::from));
-        let (u, v) = (
-            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
-            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
-        );
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
         let w = [
             u[1] * v[2] - u[2] * v[1],
             u[2] * v[0] - u[0] * v[2],
@@ -331,10 +297,8 @@ fn a_leaf_in_a_mesh_is_two_faces_each_wound_to_its_own_normal() {
         assert!(w[0] * n[0] + w[1] * n[1] + w[2] * n[2] > 0.0, "{t:?}");
     }
     // Texture coordinates: the square itself.
-    assert_eq!(
-        &p.texcoords[..4],
-        &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
-    );
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    assert_eq!(&p.texcoords[..4], &square);
 }
 
 #[test]
@@ -352,11 +316,8 @@ fn abop_1_26_as_a_mesh_has_one_material_per_colour_and_leaf_materials() {
         "\"name\": \"leaf #4f9a34\"",
         "\"name\": \"leaf #e9679b\"",
     ] {
-        assert!(
-            text.contains(name),
-            "{name} in {}",
-            &text[..text.len().min(3000)]
-        );
+        let head = &text[..text.len().min(3000)];
+        assert!(text.contains(name), "{name} in {head}");
     }
 }
 
@@ -368,8 +329,7 @@ fn abop_5_5a_leaf_is_one_polygon_of_2n_vertices_worked_by_hand() {
     // segments (it is made at step t + 1 and loses PD = 1 a step), so R0,
     // L0, R19 and L19 lie on the midrib; L19 equals R19 just before it and
     // is kept once: 1 + 20 + 19 = 40 vertices.
-    let src =
-        std::fs::read_to_string(crate::support::manifest_path("examples/abop-5.5a.lsys")).unwrap();
+    let src = crate::support::example_text("abop-5.5a.lsys");
     let rec = recorded(&src, 20);
     assert_eq!(rec.polygons.len(), 1);
     let v = &rec.polygons[0].1;

@@ -3,30 +3,20 @@
 //! the parser reading back what `expand` writes, hostile inputs and the
 //! diagnostics that point at the text.
 
+use crate::support::{example_text as example, limits_with};
 use proptest::prelude::*;
 use stlc::diag::Diagnostics;
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::lsys::expand;
 use stlc::limits::Limits;
 use stlc::progress::NoProgress;
 use stlc::syntax::lsys::parse;
 
 fn expanded(src: &str, depth: u32, strategy: Derivation) -> Result<String, Diagnostics> {
-    let sys = parse(src, &Limits::default())?;
-    let mut out = Vec::new();
-    expand(
-        &sys,
-        depth,
-        strategy,
-        &Limits::default(),
-        &mut out,
-        &mut NoProgress,
-    )?;
+    let (mut out, limits) = (Vec::new(), Limits::default());
+    let sys = parse(src, &limits)?;
+    expand(&sys, depth, strategy, &limits, &mut out, &mut NoProgress)?;
     Ok(String::from_utf8(out).unwrap())
-}
-
-fn example(name: &str) -> String {
-    std::fs::read_to_string(crate::support::manifest_path(format!("examples/{name}"))).unwrap()
 }
 
 /// The first error's message and help, and the text its span covers.
@@ -34,11 +24,8 @@ fn first_error(src: &str) -> (String, String, String) {
     let e = parse(src, &Limits::default()).expect_err("should not parse");
     let d = e.iter().next().unwrap();
     let span = d.span.clone().expect("the error points at the text");
-    (
-        d.kind.to_string(),
-        d.help_text().unwrap_or_default(),
-        src[span].to_string(),
-    )
+    let (kind, help) = (d.kind.to_string(), d.help_text().unwrap_or_default());
+    (kind, help, src[span].to_string())
 }
 
 // ------------------------------------------------ independent rewriters --
@@ -193,7 +180,7 @@ fn fig_26a(depth: u32) -> String {
 fn fig_1_31a_at_depth_30_is_the_hand_derivation() {
     let src = example("abop-1.31a.lsys");
     let want = fig_131a(30);
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         let got = expanded(&src, 30, strategy).unwrap();
         assert_eq!(got.len(), want.len());
         assert!(got == want, "{strategy:?}: the words differ");
@@ -207,16 +194,16 @@ fn fig_1_31a_at_depth_30_is_the_hand_derivation() {
 fn fig_2_6a_at_depth_10_is_the_hand_derivation() {
     let src = example("abop-2.6a.lsys");
     let want = fig_26a(10);
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         assert_eq!(expanded(&src, 10, strategy).unwrap(), want, "{strategy:?}");
     }
     // A binary tree of 2^10 - 1 internodes.
     assert_eq!(want.matches('F').count(), 1023);
-    assert!(
-        want.starts_with("!(10)F(1)[&(45)!(7.069999999999999)F(0.6)[-(45)$"),
-        "{}",
-        &want[..60]
+    let (start, head) = (
+        "!(10)F(1)[&(45)!(7.069999999999999)F(0.6)[-(45)$",
+        &want[..60],
     );
+    assert!(want.starts_with(start), "{head}");
 }
 
 // ------------------------------------------------------------- properties --
@@ -278,8 +265,8 @@ fn context_system() -> impl Strategy<Value = String> {
 /// dfs and bfs derive `src` to `depth` alike: the same word, or both
 /// refuse it.
 fn same_both_ways(src: &str, depth: u32) -> Result<(), proptest::test_runner::TestCaseError> {
-    let dfs = expanded(src, depth, Derivation::Dfs);
-    let bfs = expanded(src, depth, Derivation::Bfs);
+    let dfs = expanded(src, depth, Dfs);
+    let bfs = expanded(src, depth, Bfs);
     match (dfs, bfs) {
         (Ok(a), Ok(b)) => prop_assert_eq!(a, b),
         (Err(_), Err(_)) => {}
@@ -303,24 +290,20 @@ proptest! {
 
     #[test]
     fn the_parser_reads_back_what_expand_writes(src in system(), depth in 0u32..5) {
-        let Ok(word) = expanded(&src, depth, Derivation::Dfs) else { return Ok(()) };
+        let Ok(word) = expanded(&src, depth, Dfs) else { return Ok(()) };
         let again = format!("angle 30\naxiom {}", word);
-        prop_assert_eq!(expanded(&again, 0, Derivation::Dfs).unwrap(), word);
+        prop_assert_eq!(expanded(&again, 0, Dfs).unwrap(), word);
     }
 }
 
 #[test]
 fn expand_writes_the_shortest_numbers_that_read_back() {
     let src = "angle 90\naxiom A(0.1+0.2,1,7.07,-0,2^70)\n";
-    let got = expanded(src, 0, Derivation::Dfs).unwrap();
-    assert_eq!(
-        got,
-        "A(0.30000000000000004,1,7.07,-0,1180591620717411300000)\n"
-    );
-    assert_eq!(
-        "1180591620717411300000".parse::<f64>().unwrap(),
-        2f64.powi(70)
-    );
+    let got = expanded(src, 0, Dfs).unwrap();
+    let expected = "A(0.30000000000000004,1,7.07,-0,1180591620717411300000)\n";
+    assert_eq!(got, expected);
+    let written = "1180591620717411300000".parse::<f64>().unwrap();
+    assert_eq!(written, 2f64.powi(70));
     let (msg, _, at) = first_error("angle 9\naxiom A(1/0)\n");
     assert!(msg.contains("not a finite number"), "{msg}");
     assert_eq!(at, "1/0");
@@ -330,11 +313,8 @@ fn expand_writes_the_shortest_numbers_that_read_back() {
 
 #[test]
 fn a_deeply_nested_expression_is_an_error_not_a_stack_overflow() {
-    let deep = format!(
-        "angle 9\naxiom A({}1{})\n",
-        "(".repeat(5000),
-        ")".repeat(5000)
-    );
+    let (open, close) = ("(".repeat(5000), ")".repeat(5000));
+    let deep = format!("angle 9\naxiom A({open}1{close})\n");
     let (msg, help, _) = first_error(&deep);
     assert!(msg.contains("nested more than 64 levels"), "{msg}");
     assert!(help.contains("define"), "{help}");
@@ -346,17 +326,15 @@ fn a_deeply_nested_expression_is_an_error_not_a_stack_overflow() {
 fn a_huge_parameter_count_is_an_error() {
     let many = vec!["1"; 10_000].join(",");
     let (msg, help, _) = first_error(&format!("angle 9\naxiom A({many})\n"));
-    assert!(
-        msg.contains("10000 parameters") || msg.contains("65 parameters"),
-        "{msg}"
-    );
+    let holds = msg.contains("10000 parameters") || msg.contains("65 parameters");
+    assert!(holds, "{msg}");
     assert!(help.contains("at most 64"), "{help}");
 }
 
 #[test]
 fn a_division_by_zero_names_the_rule_and_the_generation() {
     let src = "angle 9\naxiom A(3)\nrule A(x) -> A(x-1)B(1/(x-1))\n";
-    let e = expanded(src, 5, Derivation::Dfs).unwrap_err();
+    let e = expanded(src, 5, Dfs).unwrap_err();
     let d = e.iter().next().unwrap();
     let msg = d.kind.to_string();
     assert!(msg.contains("not a finite number (inf)"), "{msg}");
@@ -370,13 +348,9 @@ fn a_division_by_zero_names_the_rule_and_the_generation() {
 fn a_condition_always_true_with_a_growing_word_stops_at_the_limits() {
     let src = "angle 9\naxiom A(1)\nrule A(x) : x > 0 -> A(x+1)A(x+1)\n";
     let sys = parse(src, &Limits::default()).unwrap();
-    let limits = Limits {
-        // A parametric derivation may derive a thirtieth of max_symbols.
-        max_symbols: 30_000,
-        max_word: 1000,
-        ..Limits::default()
-    };
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    // A parametric derivation may derive a thirtieth of max_symbols.
+    let limits = limits_with(|l| (l.max_symbols, l.max_word) = (30_000, 1000));
+    for strategy in [Dfs, Bfs] {
         let mut out = Vec::new();
         let e = expand(&sys, 20, strategy, &limits, &mut out, &mut NoProgress).unwrap_err();
         let d = e.iter().next().unwrap();
@@ -401,42 +375,17 @@ fn a_condition_always_true_with_a_growing_word_stops_at_the_limits() {
 #[test]
 fn the_work_over_all_generations_counts_against_the_budget() {
     let sys = parse("angle 90\naxiom AB\nrule A < B -> AB\n", &Limits::default()).unwrap();
-    let limits = Limits {
-        max_symbols: 30_000,
-        ..Limits::default()
-    };
+    let limits = limits_with(|l| l.max_symbols = 30_000);
     let mut out = Vec::new();
-    expand(
-        &sys,
-        40,
-        Derivation::Dfs,
-        &limits,
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
-    assert_eq!(
-        String::from_utf8(out).unwrap().trim(),
-        format!("{}B", "A".repeat(41))
-    );
+    expand(&sys, 40, Dfs, &limits, &mut out, &mut NoProgress).unwrap();
+    let expected = format!("{}B", "A".repeat(41));
+    assert_eq!(String::from_utf8(out).unwrap().trim(), expected);
     let mut out = Vec::new();
-    let e = expand(
-        &sys,
-        100,
-        Derivation::Dfs,
-        &limits,
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let e = expand(&sys, 100, Dfs, &limits, &mut out, &mut NoProgress).unwrap_err();
     let kind = e.iter().next().unwrap().kind.to_string();
-    assert!(
-        kind.contains(
-            "modules derived over the generations to depth 100, at least (at generation 9): \
-             1064 exceeds the limit of 1000"
-        ),
-        "{kind}"
-    );
+    let said = "modules derived over the generations to depth 100, at least (at generation 9): \
+                1064 exceeds the limit of 1000";
+    assert!(kind.contains(said), "{kind}");
     assert!(out.is_empty(), "nothing written before the refusal");
 }
 
@@ -455,26 +404,17 @@ fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
     );
     let sys = parse(&src, &Limits::default()).unwrap();
     let run = |max_symbols: u64| {
-        let limits = Limits {
-            max_symbols,
-            ..Limits::default()
-        };
+        let limits = limits_with(|l| l.max_symbols = max_symbols);
         let mut out = Vec::new();
-        expand(&sys, 3, Derivation::Dfs, &limits, &mut out, &mut NoProgress)
+        expand(&sys, 3, Dfs, &limits, &mut out, &mut NoProgress)
             .map(|()| String::from_utf8(out).unwrap())
     };
-    assert_eq!(
-        run(750).unwrap().trim(),
-        format!("B(0){}", "A(3)".repeat(6))
-    );
+    let expected = format!("B(0){}", "A(3)".repeat(6));
+    assert_eq!(run(750).unwrap().trim(), expected);
     let e = run(690).unwrap_err();
     let kind = e.iter().next().unwrap().kind.to_string();
-    assert!(
-        kind.contains(
-            "modules derived over the generations (at generation 3): 24 exceeds the limit of 23"
-        ),
-        "{kind}"
-    );
+    let said = "modules derived over the generations (at generation 3): 24 exceeds the limit of 23";
+    assert!(kind.contains(said), "{kind}");
 }
 
 /// A word that doubles, `A(x) : x > 0 -> A(x+1)A(x+1)`, at depth 40 with
@@ -488,19 +428,15 @@ fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
 #[test]
 fn a_doubling_word_is_refused_before_it_is_derived() {
     let src = "angle 9\naxiom A(1)\nrule A(x) : x > 0 -> A(x+1)A(x+1)\n";
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         let e = expanded(src, 40, strategy).unwrap_err();
         let kind = e.iter().next().unwrap().kind.to_string();
-        assert!(
-            kind.contains(
-                "modules derived over the generations (at generation 29): \
-                 1073741822 exceeds the limit of 666666666"
-            ),
-            "{kind}"
-        );
+        let said = "modules derived over the generations (at generation 29): \
+                    1073741822 exceeds the limit of 666666666";
+        assert!(kind.contains(said), "{kind}");
     }
     // Within the budget the count changes nothing: 2^12 modules.
-    let word = expanded(src, 12, Derivation::Dfs).unwrap();
+    let word = expanded(src, 12, Dfs).unwrap();
     assert_eq!(word.trim(), "A(13)".repeat(1 << 12));
 }
 
@@ -519,10 +455,8 @@ fn an_unknown_name_points_at_it_with_the_nearest_known_one() {
 fn a_predecessor_with_the_wrong_number_of_parameters_is_an_error() {
     let src = "angle 9\naxiom A(1,2)\nrule A(x) -> A(x)\n";
     let (msg, _, at) = first_error(src);
-    assert!(
-        msg.contains("`A` is made with 2 parameter(s), but this rule's predecessor has 1"),
-        "{msg}"
-    );
+    let holds = msg.contains("`A` is made with 2 parameter(s), but this rule's predecessor has 1");
+    assert!(holds, "{msg}");
     assert_eq!(at, "A(x)");
     let (msg, _, at) = first_error("angle 9\naxiom A(min(1))\n");
     assert_eq!(msg, "`min` takes 2 argument(s), not 1");
@@ -543,11 +477,8 @@ fn the_cli_report_points_at_the_expression() {
     let dir = std::env::temp_dir().join("stlc-param-diag");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("typo.lsys");
-    std::fs::write(
-        &file,
-        "angle 9\ndefine ratio 0.9\naxiom A(1)\nrule A(l) -> F(l)A(l*raito)\n",
-    )
-    .unwrap();
+    let text = "angle 9\ndefine ratio 0.9\naxiom A(1)\nrule A(l) -> F(l)A(l*raito)\n";
+    std::fs::write(&file, text).unwrap();
     let line = format!("check {} --color never", file.display());
     let (code, _, err) = crate::support::outcome(&mut crate::support::stlc_line(&line));
     assert_eq!(code, 1);
@@ -577,21 +508,14 @@ fn classic_files_take_the_classic_path() {
 
 fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
     let sys = parse(src, &Limits::default()).unwrap();
-    crate::lsys::segments_of(&sys, depth, Derivation::Dfs)
+    crate::lsys::segments_of(&sys, depth, Dfs)
 }
 
 fn ends_3d(src: &str) -> Vec<stlc::turtle::turtle3::Segment3> {
     let sys = parse(src, &Limits::default()).unwrap();
-    let mut segs = Vec::new();
-    stlc::interpret::lsys::lsys3::draw3(
-        &sys,
-        0,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut |s| segs.push(s),
-        &mut NoProgress,
-    )
-    .unwrap();
+    let (mut segs, limits) = (Vec::new(), Limits::default());
+    let mut push = |s| segs.push(s);
+    stlc::interpret::lsys::lsys3::draw3(&sys, 0, Dfs, &limits, &mut push, &mut NoProgress).unwrap();
     segs
 }
 
@@ -599,27 +523,21 @@ fn close(a: f64, b: f64) -> bool {
     (a - b).abs() < 1e-12
 }
 
+/// Whether `p` is within 1e-12 of `(x, y)` on both axes.
+fn near(p: stlc::turtle::Point, x: f64, y: f64) -> bool {
+    close(p.x, x) && close(p.y, y)
+}
+
 #[test]
 fn parametric_steps_and_turns_take_their_parameters() {
     // Up 2 x length 3, then a right turn of 90 degrees and half a step.
     let s = ends_2d("angle 10\nlength 3\naxiom F(2)-(90)F(0.5)f(1)F\n", 0);
     assert_eq!(s.len(), 3);
-    assert!(
-        close(s[0].to.x, 0.0) && close(s[0].to.y, -6.0),
-        "{:?}",
-        s[0]
-    );
-    assert!(
-        close(s[1].to.x, 1.5) && close(s[1].to.y, -6.0),
-        "{:?}",
-        s[1]
-    );
+    assert!(near(s[0].to, 0.0, -6.0), "{:?}", s[0]);
+    assert!(near(s[1].to, 1.5, -6.0), "{:?}", s[1]);
     // `f(1)` moved 3 without drawing; the plain `F` turned by nothing.
-    assert!(
-        close(s[2].from.x, 4.5) && close(s[2].to.x, 7.5),
-        "{:?}",
-        s[2]
-    );
+    let t = s[2];
+    assert!(close(t.from.x, 4.5) && close(t.to.x, 7.5), "{t:?}");
 }
 
 #[test]
@@ -628,12 +546,12 @@ fn tropism_turns_the_heading_toward_t_by_e_times_the_sine() {
     // by e |H x T| = e radians toward +x.
     let e: f64 = 0.5;
     let s = ends_2d("angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n", 0);
-    assert!(close(s[0].to.x, 0.0) && close(s[0].to.y, -1.0));
+    assert!(near(s[0].to, 0.0, -1.0));
     assert!(close(s[1].to.x, libm::sin(e)), "{:?}", s[1]);
     assert!(close(s[1].to.y, -1.0 - libm::cos(e)), "{:?}", s[1]);
     // Without elasticity nothing bends.
     let s = ends_2d("angle 10\ntropism 1 0 0\naxiom FF\n", 0);
-    assert!(close(s[1].to.x, 0.0) && close(s[1].to.y, -2.0));
+    assert!(near(s[1].to, 0.0, -2.0));
 }
 
 #[test]
@@ -661,17 +579,12 @@ fn honda_trunk_is_the_geometric_series_of_its_contraction() {
 #[test]
 fn counting_steps_stops_as_soon_as_they_pass_the_bound() {
     // 2^40 steps at depth 40: counted only until 101.
-    let sys = parse(
-        "angle 9\naxiom A(1)\nrule A(x) -> A(x)F(x)A(x)\n",
-        &Limits::default(),
-    )
-    .unwrap();
+    let limits = Limits::default();
+    let sys = parse("angle 9\naxiom A(1)\nrule A(x) -> A(x)F(x)A(x)\n", &limits).unwrap();
     let p = sys.parametric.as_deref().unwrap();
-    let n =
-        stlc::interpret::lsys::param::count_steps(&sys, p, 40, &Limits::default(), 100).unwrap();
-    assert_eq!(n, 101);
-    let n = stlc::interpret::lsys::param::count_steps(&sys, p, 3, &Limits::default(), 100).unwrap();
-    assert_eq!(n, 7);
+    let count = |depth| stlc::interpret::lsys::param::count_steps(&sys, p, depth, &limits, 100);
+    assert_eq!(count(40).unwrap(), 101);
+    assert_eq!(count(3).unwrap(), 7);
 }
 
 /// Unnamed input whose first line is a parametric key (`define`) is read

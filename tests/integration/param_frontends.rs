@@ -57,11 +57,8 @@ pub(super) fn same_words(name: &str, words: &Value) {
         );
         let stats = stlc_stdout(&["stats", &path, "--json", "--depth", &depth]);
         let mine = format!("{}\n", w["stats"].as_str().unwrap());
-        assert_eq!(
-            mine,
-            String::from_utf8(stats).unwrap(),
-            "{name} stats at depth {d}"
-        );
+        let cli = String::from_utf8(stats).unwrap();
+        assert_eq!(mine, cli, "{name} stats at depth {d}");
         let parsed: Value = serde_json::from_str(&mine).unwrap();
         assert_eq!(w["length"], parsed["length"], "{name} length at depth {d}");
     }
@@ -74,19 +71,14 @@ fn every_parametric_example_renders_expands_and_reports_stats_as_the_cli_in_serv
     assert_eq!(names.len(), 19, "{names:?}");
     let server = Server::start(&[]);
     for name in &names {
-        let path = format!("examples/{name}");
+        let file = format!("examples/{name}");
         let body = json!({"source": example(name), "kind": "lsys", "show_layout": true});
         let body = body.to_string();
         for format in ["svg", "png"] {
-            let a = request(
-                &server.addr,
-                "POST",
-                &format!("/api/export?format={format}"),
-                &[],
-                body.as_bytes(),
-            );
+            let path = format!("/api/export?format={format}");
+            let a = request(&server.addr, "POST", &path, &[], body.as_bytes());
             assert_eq!(a.status, 200, "{name} {format}");
-            let cli = stlc_stdout(&["render", &path, "--show-layout", "-f", format, "-o", "-"]);
+            let cli = stlc_stdout(&["render", &file, "--show-layout", "-f", format, "-o", "-"]);
             assert!(
                 a.body == cli,
                 "{name}: the served {format} is not the CLI's"

@@ -2,12 +2,13 @@
 //! modules at equal depth are one piece of the one walk's memo; elsewhere
 //! a system is drawn exactly.
 
-use stlc::interpret::Derivation;
+use crate::lsys::sys;
+use crate::support::limits_with;
+use stlc::interpret::Derivation::Dfs;
 use stlc::interpret::lsys::param::{ParamMemo, of};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
-use stlc::syntax::lsys::parse;
 use stlc::turtle::{Bounds, Recorder, Turtle};
 
 /// A binary tree whose branches shorten by `r` a generation, with a
@@ -15,36 +16,45 @@ use stlc::turtle::{Bounds, Recorder, Turtle};
 const TREE: &str = "generations 12\nangle 30\ndefine r 0.62\naxiom A(1)\n\
     rule A(l) -> F(l)[+A(l*r)][-(40)A(l*r)]F(l*0.4)\nlength 100\n";
 
-fn sys(src: &str) -> LSystem {
-    parse(src, &Limits::default()).unwrap()
-}
-
 fn memo(s: &LSystem, depth: u32) -> Option<ParamMemo> {
     ParamMemo::new(s, of(s).unwrap(), depth).unwrap()
 }
 
 fn walked(s: &LSystem, m: &ParamMemo, detail: f64, t: &mut dyn Turtle) {
-    m.draw(
-        s,
-        of(s).unwrap(),
-        detail,
-        &Limits::default(),
-        t,
-        &mut NoProgress,
-    )
-    .unwrap();
+    walked_within(s, m, detail, &Limits::default(), t).unwrap();
+}
+
+fn walked_within(
+    s: &LSystem,
+    m: &ParamMemo,
+    detail: f64,
+    limits: &Limits,
+    t: &mut dyn Turtle,
+) -> Result<stlc::turtle::Point, stlc::Diagnostics> {
+    m.draw(s, of(s).unwrap(), detail, limits, t, &mut NoProgress)
 }
 
 fn exact(s: &LSystem, depth: u32, t: &mut dyn Turtle) {
-    stlc::interpret::lsys::draw_into(
-        s,
-        depth,
-        Derivation::Dfs,
-        &Limits::default(),
-        t,
-        &mut NoProgress,
-    )
-    .unwrap();
+    exact_within(s, depth, &Limits::default(), t).unwrap();
+}
+
+fn exact_within(
+    s: &LSystem,
+    depth: u32,
+    limits: &Limits,
+    t: &mut dyn Turtle,
+) -> Result<stlc::turtle::Point, stlc::Diagnostics> {
+    stlc::interpret::lsys::draw_into(s, depth, Dfs, limits, t, &mut NoProgress)
+}
+
+/// Each side of box `a` beside the same side of box `b`.
+fn sides(a: stlc::turtle::BBox, b: stlc::turtle::BBox) -> [(f64, f64); 4] {
+    [
+        (a.min_x, b.min_x),
+        (a.min_y, b.min_y),
+        (a.max_x, b.max_x),
+        (a.max_y, b.max_y),
+    ]
 }
 
 /// Worked by hand at depth 40: 41 `A` (one value of `l` a generation,
@@ -92,12 +102,7 @@ fn at_a_detail_the_box_is_the_exact_ones_within_the_detail() {
     walked(&s, &m, detail, &mut lod);
     exact(&s, depth, &mut ex);
     let (a, b) = (lod.bbox().unwrap(), ex.bbox().unwrap());
-    for (x, y) in [
-        (a.min_x, b.min_x),
-        (a.min_y, b.min_y),
-        (a.max_x, b.max_x),
-        (a.max_y, b.max_y),
-    ] {
+    for (x, y) in sides(a, b) {
         assert!((x - y).abs() < detail, "{x} vs {y}");
     }
     assert_eq!(ex.count, (2u64 << depth) - 2);
@@ -112,17 +117,8 @@ fn at_a_detail_the_box_is_the_exact_ones_within_the_detail() {
 fn a_depth_the_exact_path_refuses_is_drawn_at_a_level_of_detail() {
     let s = sys(TREE);
     let mut rec = Recorder::default();
-    let refused = stlc::interpret::lsys::draw_into(
-        &s,
-        40,
-        Derivation::Dfs,
-        &Limits {
-            max_symbols: 30_000_000,
-            ..Limits::default()
-        },
-        &mut rec,
-        &mut NoProgress,
-    );
+    let limits = limits_with(|l| l.max_symbols = 30_000_000);
+    let refused = exact_within(&s, 40, &limits, &mut rec);
     assert!(refused.is_err());
     let m = memo(&s, 40).unwrap();
     let visits = m.visits(1.0);
@@ -138,20 +134,8 @@ fn a_depth_the_exact_path_refuses_is_drawn_at_a_level_of_detail() {
 fn past_the_budget_the_walk_is_refused_and_says_why() {
     let s = sys(TREE);
     let m = memo(&s, 40).unwrap();
-    let limits = Limits {
-        max_symbols: 30 * 1000,
-        ..Limits::default()
-    };
-    let err = m
-        .draw(
-            &s,
-            of(&s).unwrap(),
-            0.5,
-            &limits,
-            &mut Bounds::default(),
-            &mut NoProgress,
-        )
-        .unwrap_err();
+    let limits = limits_with(|l| l.max_symbols = 30 * 1000);
+    let err = walked_within(&s, &m, 0.5, &limits, &mut Bounds::default()).unwrap_err();
     let text = format!("{err}");
     assert!(text.contains("at this level of detail"), "{text}");
 }
@@ -225,12 +209,7 @@ proptest::proptest! {
         walked(&s, &m, 50.0, &mut lod);
         exact(&s, depth, &mut ex);
         if let (Some(x), Some(y)) = (lod.bbox(), ex.bbox()) {
-            for (p, q) in [
-                (x.min_x, y.min_x),
-                (x.min_y, y.min_y),
-                (x.max_x, y.max_x),
-                (x.max_y, y.max_y),
-            ] {
+            for (p, q) in sides(x, y) {
                 proptest::prop_assert!((p - q).abs() < 50.0 * (1.0 + 1e-9), "{} vs {}", p, q);
             }
         }

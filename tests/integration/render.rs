@@ -13,7 +13,7 @@ use stlc::render::{self, DEFAULT_SIDE, Fit, ImageFormat, PngTurtle, RenderOption
 use stlc::turtle::{BBox, Fill, Interp, Op, Point, Segment, Turtle};
 use tiny_skia::Pixmap;
 
-use crate::support::{assert_golden, assert_golden_png};
+use crate::support::{assert_golden, assert_golden_png, segment_distance};
 
 // ---------------------------------------------------------------------------
 // Helpers
@@ -33,10 +33,7 @@ fn ops(text: &str) -> Vec<Op> {
 /// Runs `ops` from the origin with unit-length stems (minus `decrement` per
 /// order).
 fn run(ops: &[Op], angle: f64, decrement: f64, turtle: &mut dyn Turtle) {
-    let length = Linear {
-        base: 1.0,
-        decrement,
-    };
+    let length = Linear::new(1.0, decrement);
     let mut interp = Interp::new(turtle, Point::new(0.0, 0.0), angle, length);
     for &op in ops {
         interp.apply(op);
@@ -80,17 +77,8 @@ fn png_full(
     style: &Style,
     size: Option<(u32, u32)>,
 ) -> Pixmap {
-    let png = render_full(
-        text,
-        90.0,
-        decrement,
-        view,
-        &[],
-        style,
-        ImageFormat::Png,
-        size,
-    );
-    decode(&png.unwrap())
+    let png = ImageFormat::Png;
+    decode(&render_full(text, 90.0, decrement, view, &[], style, png, size).unwrap())
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -109,17 +97,9 @@ fn render_full(
         run(&ops, angle, decrement, t);
         Ok(())
     };
-    let mut out = Vec::new();
-    let opts = RenderOptions::new(format, size);
-    render::render(
-        &mut drawing,
-        view,
-        underlay,
-        style,
-        &opts,
-        &mut out,
-        &mut NoProgress,
-    )?;
+    let (mut out, opts) = (Vec::new(), RenderOptions::new(format, size));
+    let quiet = &mut NoProgress;
+    render::render(&mut drawing, view, underlay, style, &opts, &mut out, quiet)?;
     Ok(out)
 }
 
@@ -130,22 +110,24 @@ fn exact_svg(text: &str, angle: f64, style: &Style, size: Option<(u32, u32)>) ->
         run(&ops, angle, 0.0, t);
         Ok(())
     };
-    let mut out = Vec::new();
-    let opts = RenderOptions {
-        exact: true,
-        ..RenderOptions::new(ImageFormat::Svg, size)
-    };
-    render::render(
-        &mut drawing,
-        None,
-        &[],
-        style,
-        &opts,
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let (mut out, mut opts) = (Vec::new(), RenderOptions::new(ImageFormat::Svg, size));
+    opts.exact = true;
+    let quiet = &mut NoProgress;
+    render::render(&mut drawing, None, &[], style, &opts, &mut out, quiet).unwrap();
     String::from_utf8(out).unwrap()
+}
+
+/// `drawing` rendered in `format` at `size` with 1 px black stems, no view,
+/// underlay or background, into `out`.
+fn render_plain(
+    drawing: &mut render::Drawing<'_>,
+    format: ImageFormat,
+    size: Option<(u32, u32)>,
+    out: &mut dyn std::io::Write,
+) -> Result<Option<u64>, Diagnostics> {
+    let st = style(Width::Pixels(1.0), None);
+    let opts = RenderOptions::new(format, size);
+    render::render(drawing, None, &[], &st, &opts, out, &mut NoProgress)
 }
 
 fn decode(png: &[u8]) -> Pixmap {
@@ -196,16 +178,10 @@ fn svg_strokes(svg: &str) -> Vec<(f64, Vec<(Point, Point)>)> {
         .collect()
 }
 
-fn distance_to_segment(p: Point, (a, b): (Point, Point)) -> f64 {
-    let (vx, vy) = (b.x - a.x, b.y - a.y);
-    let len2 = vx * vx + vy * vy;
-    let t = if len2 == 0.0 {
-        0.0
-    } else {
-        (((p.x - a.x) * vx + (p.y - a.y) * vy) / len2).clamp(0.0, 1.0)
-    };
-    let (dx, dy) = (a.x + t * vx - p.x, a.y + t * vy - p.y);
-    (dx * dx + dy * dy).sqrt()
+/// The distance from `p` to the nearest of `lines`.
+fn distance_to_nearest(p: Point, lines: &[(Point, Point)]) -> f64 {
+    let d = |&(a, b): &(Point, Point)| segment_distance((p.x, p.y), (a.x, a.y), (b.x, b.y));
+    lines.iter().map(d).fold(f64::INFINITY, f64::min)
 }
 
 /// A small branching tree: trunk, two branches of order 1 each carrying two
@@ -297,12 +273,8 @@ fn canvas_widths_thin_with_order() {
     // A vertical trunk of order 0 then, after moving right, a vertical stem
     // of order 2 (decrement 1 of base 3: 3 and 1 canvas units). Scale is
     // fixed by the 100-pixel view: 10 px per unit, so 30 px and 10 px.
-    let view = BBox {
-        min_x: -2.0,
-        min_y: -8.0,
-        max_x: 8.0,
-        max_y: 2.0,
-    };
+    let mut view = BBox::at(Point::new(-2.0, -8.0));
+    view.add(Point::new(8.0, 2.0));
     let st = style(Width::Canvas(Linear::new(3.0, 1.0)), Some(Rgb::WHITE));
     let p = png_full("FF-fff+{{F}}", 0.0, Some(view), &st, Some((100, 100)));
     let dark_run = |y: u32, x0: u32, x1: u32| (x0..x1).filter(|&x| is_dark(&p, x, y)).count();
@@ -330,17 +302,9 @@ fn widths_below_zero_still_draw_hairlines() {
 #[test]
 fn tree_png_matches_its_reference() {
     let st = style(Width::Canvas(Linear::new(0.12, 0.04)), Some(Rgb::WHITE));
-    let png = render_full(
-        TREE,
-        30.0,
-        0.25,
-        None,
-        &[],
-        &st,
-        ImageFormat::Png,
-        Some((120, 160)),
-    );
-    assert_golden_png("tests/cases/render/tree.png", &decode(&png.unwrap()));
+    let (png, size) = (ImageFormat::Png, Some((120, 160)));
+    let png = render_full(TREE, 30.0, 0.25, None, &[], &st, png, size).unwrap();
+    assert_golden_png("tests/cases/render/tree.png", &decode(&png));
 }
 
 #[test]
@@ -371,12 +335,8 @@ fn underlay_is_even_odd_and_under_the_strokes() {
         color: green,
         rings: vec![ring(0.0, 0.0, 10.0), ring(3.0, 3.0, 4.0)],
     }];
-    let view = BBox {
-        min_x: 0.0,
-        min_y: 0.0,
-        max_x: 10.0,
-        max_y: 10.0,
-    };
+    let mut view = BBox::at(Point::new(0.0, 0.0));
+    view.add(Point::new(10.0, 10.0));
     let ops = ops("F");
     let draw = |t: &mut dyn Turtle| {
         let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, Linear::constant(1.0));
@@ -391,17 +351,10 @@ fn underlay_is_even_odd_and_under_the_strokes() {
             draw(t);
             Ok(())
         };
-        let mut out = Vec::new();
-        render::render(
-            &mut drawing,
-            Some(view),
-            &underlay,
-            &st,
-            &RenderOptions::new(format, Some((100, 100))),
-            &mut out,
-            &mut NoProgress,
-        )
-        .unwrap();
+        let (mut out, opts) = (Vec::new(), RenderOptions::new(format, Some((100, 100))));
+        let view = Some(view);
+        let quiet = &mut NoProgress;
+        render::render(&mut drawing, view, &underlay, &st, &opts, &mut out, quiet).unwrap();
         outputs.push(out);
     }
     let p = decode(&outputs[0]);
@@ -445,10 +398,7 @@ fn png_and_svg_agree() {
     for &(a, b) in &segs {
         for t in [0.0, 0.5, 1.0] {
             let p = Point::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
-            let d = lines
-                .iter()
-                .map(|&l| distance_to_segment(p, l))
-                .fold(f64::INFINITY, f64::min);
+            let d = distance_to_nearest(p, &lines);
             assert!(d < 0.01, "{p:?} is {d} px from every merged line");
         }
     }
@@ -458,14 +408,9 @@ fn png_and_svg_agree() {
         for x in 0..png.width() {
             if is_dark(&png, x, y) {
                 let c = Point::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
-                let d = segs
-                    .iter()
-                    .map(|&s| distance_to_segment(c, s))
-                    .fold(f64::INFINITY, f64::min);
-                assert!(
-                    d <= 1.5 + 1.0,
-                    "dark pixel ({x}, {y}) is {d} px from every path"
-                );
+                let d = distance_to_nearest(c, &segs);
+                let ok = d <= 1.5 + 1.0;
+                assert!(ok, "dark pixel ({x}, {y}) is {d} px from every path");
             }
         }
     }
@@ -474,10 +419,8 @@ fn png_and_svg_agree() {
         for i in 0..=10 {
             let t = f64::from(i) / 10.0;
             let (x, y) = (a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
-            assert!(
-                is_dark(&png, x as u32, y as u32),
-                "({x}, {y}) on the path is not dark"
-            );
+            let ok = is_dark(&png, x as u32, y as u32);
+            assert!(ok, "({x}, {y}) on the path is not dark");
         }
     }
 }
@@ -521,20 +464,12 @@ fn absurd_sizes_are_refused_before_drawing() {
             Ok(())
         };
         let mut out = Vec::new();
-        let err = render::render(
-            &mut drawing,
-            None,
-            &[],
-            &style(Width::Pixels(1.0), None),
-            &RenderOptions::new(ImageFormat::Png, Some(size)),
-            &mut out,
-            &mut NoProgress,
-        )
-        .unwrap_err();
-        assert!(matches!(
+        let err = render_plain(&mut drawing, ImageFormat::Png, Some(size), &mut out).unwrap_err();
+        let size = matches!(
             err.first_kind(),
             Some(ErrorKind::Render(RenderError::ImageSize { .. }))
-        ));
+        );
+        assert!(size);
         assert!(err.to_string().contains("--size"), "{err}");
         assert!(!called && out.is_empty());
     }
@@ -556,20 +491,9 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
         Ok(())
     };
     let mut out = Vec::new();
-    let err = render::render(
-        &mut drawing,
-        None,
-        &[],
-        &style(Width::Pixels(1.0), None),
-        &RenderOptions::new(ImageFormat::Png, None),
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap_err();
-    assert_eq!(
-        err.first_kind(),
-        Some(&ErrorKind::Render(RenderError::DrawingNotFinite))
-    );
+    let err = render_plain(&mut drawing, ImageFormat::Png, None, &mut out).unwrap_err();
+    let not_finite = ErrorKind::Render(RenderError::DrawingNotFinite);
+    assert_eq!(err.first_kind(), Some(&not_finite));
     assert!(out.is_empty());
 }
 
@@ -590,16 +514,7 @@ fn write_errors_become_io_diagnostics() {
             run(&ops, 90.0, 0.0, t);
             Ok(())
         };
-        let err = render::render(
-            &mut drawing,
-            None,
-            &[],
-            &style(Width::Pixels(1.0), None),
-            &RenderOptions::new(format, None),
-            &mut Full,
-            &mut NoProgress,
-        )
-        .unwrap_err();
+        let err = render_plain(&mut drawing, format, None, &mut Full).unwrap_err();
         assert!(
             matches!(err.first_kind(), Some(ErrorKind::Io { error, .. }) if error == "disk full")
         );
@@ -632,11 +547,8 @@ fn a_million_tiny_segments_stream_through_the_png_backend() {
         Point::new(f64::from(x) * 0.19, f64::from(row) * 0.19)
     };
     for i in 0..1_000_000 {
-        turtle.segment(Segment {
-            from: point(i),
-            to: point(i + 1),
-            order: 0,
-        });
+        let (from, to, order) = (point(i), point(i + 1), 0);
+        turtle.segment(Segment { from, to, order });
     }
     let p = turtle.into_raster().unwrap();
     assert!(is_dark(&p, 100, 100));
@@ -645,12 +557,10 @@ fn a_million_tiny_segments_stream_through_the_png_backend() {
 // ---------------------------------------------------------------------------
 // Bands and threads
 
-/// The PNG `stlc render` writes for `args` with `--threads threads`.
-fn threads_png(args: &[&str], threads: &str) -> Vec<u8> {
-    let mut all = vec!["render"];
-    all.extend_from_slice(args);
-    all.extend_from_slice(&["-f", "png", "-o", "-", "-q", "--threads", threads]);
-    crate::support::stlc_stdout(&all)
+/// The PNG `stlc render` writes for `args` (one line) with `--threads threads`.
+fn threads_png(args: &str, threads: &str) -> Vec<u8> {
+    let line = format!("render {args} -f png -o - -q --threads {threads}");
+    crate::support::stlc_stdout(&line.split_whitespace().collect::<Vec<_>>())
 }
 
 /// Pixels darker than `level` in the red channel.
@@ -672,23 +582,9 @@ fn a_big_png_is_the_same_bytes_with_one_thread_or_two() {
     let tree = format!("{root}/examples/abop-1.24a.lsys");
     let plant = format!("{root}/examples/abop-1.27.lsys");
     for args in [
-        vec![
-            tree.as_str(),
-            "--exact",
-            "--depth",
-            "9",
-            "--size",
-            "300x600",
-        ],
-        vec![
-            plant.as_str(),
-            "--exact",
-            "--depth",
-            "11",
-            "--size",
-            "400x400",
-        ],
-        vec![tree.as_str(), "--depth", "20", "--size", "300x600"],
+        format!("{tree} --exact --depth 9 --size 300x600"),
+        format!("{plant} --exact --depth 11 --size 400x400"),
+        format!("{tree} --depth 20 --size 300x600"),
     ] {
         let one = threads_png(&args, "1");
         let two = threads_png(&args, "2");
@@ -732,25 +628,15 @@ fn a_tree_over_its_layout_in_bands_is_the_same_with_any_threads() {
     let fills = stlc::rings::fills(&layout);
     let png = |segments: u64, threads: usize| {
         let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
-        let opts = RenderOptions {
-            threads,
-            ..RenderOptions::new(ImageFormat::Png, Some((500, 700)))
-        };
-        let frame = render::Frame::View {
-            view,
-            segments: Some(segments),
-        };
-        let mut out = Vec::new();
-        render::render_framed(
-            &mut drawing,
-            frame,
-            &fills,
-            &st,
-            &opts,
-            &mut out,
-            &mut NoProgress,
-        )
-        .unwrap();
+        let (mut out, mut opts) = (
+            Vec::new(),
+            RenderOptions::new(ImageFormat::Png, Some((500, 700))),
+        );
+        opts.threads = threads;
+        let segments = Some(segments);
+        let frame = render::Frame::View { view, segments };
+        let quiet = &mut NoProgress;
+        render::render_framed(&mut drawing, frame, &fills, &st, &opts, &mut out, quiet).unwrap();
         decode(&out)
     };
     let banded = png(render::BANDED_SEGMENTS, 1);

@@ -5,8 +5,9 @@
 //! parser refuses) is built in code: it applies nothing.
 
 use stlc::bed::Bed;
-use stlc::grow::{GrowOptions, GrowthOrder, grow};
-use stlc::interpret::{Derivation, bed::draw_into};
+use stlc::grow::GrowthOrder;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
+use stlc::interpret::bed::draw_into;
 use stlc::model::*;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
@@ -45,15 +46,9 @@ fn by_hand(n: u32) -> Size {
 }
 
 fn segments(bed: &Bed, d: Derivation) -> Vec<Segment> {
-    draw_into(
-        bed,
-        d,
-        &Limits::default(),
-        Recorder::default(),
-        &mut NoProgress,
-    )
-    .unwrap_or_else(|e| panic!("{e}"))
-    .segments
+    let limits = Limits::default();
+    let drawn = draw_into(bed, d, &limits, Recorder::default(), &mut NoProgress);
+    drawn.unwrap_or_else(|e| panic!("{e}")).segments
 }
 
 #[test]
@@ -62,21 +57,17 @@ fn measure_expansion_and_growth_agree_for_every_count() {
         let want = by_hand(n);
         let bed = Bed::new(desc(n, Format::Bed), &Limits::default()).unwrap();
         assert_eq!(bed.size(), want, "measured, n = {n}");
-        let drawn = segments(&bed, Derivation::Dfs);
+        let drawn = segments(&bed, Dfs);
         assert_eq!(drawn.len() as u64, want.stems, "dfs segments, n = {n}");
-        assert_eq!(segments(&bed, Derivation::Bfs), drawn, "bfs, n = {n}");
+        assert_eq!(segments(&bed, Bfs), drawn, "bfs, n = {n}");
         for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
-            let o = GrowOptions {
-                growth,
-                ..GrowOptions::default()
-            };
-            let g =
-                grow(&desc(n, Format::Od), &o, &mut NoProgress).unwrap_or_else(|e| panic!("{e}"));
+            let o = crate::support::opts(growth);
+            let g = crate::grow::grown(&desc(n, Format::Od), o);
             assert_eq!(g.stems, want.stems, "grown stems, n = {n}, {growth:?}");
             assert_eq!(g.bed.size(), want, "the grown BED, n = {n}, {growth:?}");
+            let grown = segments(&g.bed, Dfs);
             assert_eq!(
-                segments(&g.bed, Derivation::Dfs),
-                drawn,
+                grown, drawn,
                 "the grown BED's segments, n = {n}, {growth:?}"
             );
         }
@@ -89,11 +80,8 @@ fn a_zero_count_in_a_slot_is_an_empty_slot() {
     let mut d = desc(1, Format::Bed);
     let seed = d.seed.as_mut().unwrap();
     let mut terms = Terms::new();
-    let zero = terms.repeat(Repeat {
-        count: 0,
-        rule: RuleId(0),
-        loc: Loc::default(),
-    });
+    let (count, rule, loc) = (0, RuleId(0), Loc::default());
+    let zero = terms.repeat(Repeat { count, rule, loc });
     let with_zero = terms.push(RuleId(0), false, 0..0, &[Some(zero), None]);
     seed.items[1] = SeedItem::Term(with_zero);
     seed.terms = terms;
@@ -101,12 +89,7 @@ fn a_zero_count_in_a_slot_is_an_empty_slot() {
     // `F` and one `R1`, as `F [I 1 R1]`.
     assert_eq!(bed.size(), by_hand(1));
     let one = Bed::new(desc(1, Format::Bed), &Limits::default()).unwrap();
-    assert_eq!(
-        segments(&bed, Derivation::Dfs),
-        segments(&one, Derivation::Dfs)
-    );
-    assert_eq!(
-        segments(&bed, Derivation::Bfs),
-        segments(&one, Derivation::Dfs)
-    );
+    let one = segments(&one, Dfs);
+    assert_eq!(segments(&bed, Dfs), one);
+    assert_eq!(segments(&bed, Bfs), one);
 }

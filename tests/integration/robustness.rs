@@ -10,17 +10,26 @@
 //! thread with an ordinary 2 MiB stack: the CLI's big worker stack is not
 //! what keeps these from overflowing.
 
+use crate::stl::bed;
+use crate::support::{limits_with, od};
 use stlc::bed::validate;
 use stlc::bed::write::write;
 use stlc::diag::{
     BedError, Diagnostics, ErrorKind, GrowError, InputError, LayoutError, LsysError, StlError,
 };
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::limits::Limits;
 use stlc::model::{Description, Format, Shape};
 use stlc::progress::{NoProgress, Progress};
 use stlc::syntax::{lsys, precheck, stl};
 use stlc::turtle::{Bounds, Counter, Segment, Turtle};
+
+/// Asserts that the first error of the diagnostics `$e` matches `$kind`.
+macro_rules! assert_first {
+    ($e:expr, $kind:pat, $($message:tt)+) => {
+        assert!(matches!($e.first_kind(), Some($kind)), $($message)+)
+    };
+}
 
 /// The stack of an ordinary spawned thread.
 const SMALL_STACK: usize = 2 << 20;
@@ -64,17 +73,24 @@ impl Turtle for Segments {
 }
 
 fn lsys_err(src: String, limits: Limits) -> Diagnostics {
-    small_stack(move || match lsys::parse(&src, &limits) {
-        Ok(_) => panic!("parsed, expected an error"),
-        Err(e) => e,
-    })
+    small_stack(move || lsys::parse(&src, &limits).expect_err("parsed, expected an error"))
 }
 
 fn stl_err(src: String, format: Format, limits: Limits) -> Diagnostics {
-    small_stack(move || match stl::parse(&src, format, &limits) {
-        Ok(_) => panic!("parsed, expected an error"),
-        Err(e) => e,
-    })
+    small_stack(move || stl::parse(&src, format, &limits).expect_err("parsed, expected an error"))
+}
+
+/// [`stl_err`] of a BED under the default limits.
+fn bed_err(src: impl Into<String>) -> Diagnostics {
+    stl_err(src.into(), Format::Bed, Limits::default())
+}
+
+/// The value of the limit error `e` begins with.
+fn limit_value(e: &Diagnostics) -> &str {
+    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
+        panic!("not a limit error: {e}")
+    };
+    value
 }
 
 /// A limit error whose message names `what`.
@@ -82,12 +98,13 @@ fn is_limit(e: &Diagnostics, what: &str) -> bool {
     matches!(e.first_kind(), Some(k @ ErrorKind::Limit { .. }) if k.to_string().contains(what))
 }
 
-fn bed(src: &str) -> Description {
-    stl::parse(src, Format::Bed, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
-
 const N: usize = 100_000;
 const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
+
+/// A BED whose seed is `seed`, its rule `R1: [F]`.
+fn seeded(seed: String) -> String {
+    format!("{HEAD} R1: [F] SEED {seed} ENDSEED")
+}
 
 /// `open` `n` times, then `inner`, then `close` `n` times.
 fn nest(n: usize, open: &str, inner: &str, close: &str) -> String {
@@ -101,10 +118,7 @@ fn too_deep(limit: usize) -> ErrorKind {
 
 /// The default limits with nesting allowed to a million levels.
 fn deep_limits() -> Limits {
-    Limits {
-        max_nesting: 1_000_000,
-        ..Limits::default()
-    }
+    limits_with(|l| l.max_nesting = 1_000_000)
 }
 
 /// `d` read as a BED and drawn in `order` into `turtle`.
@@ -146,7 +160,7 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     let src = format!("axiom {axiom}\nangle 90\nrule F F{successor}\n");
     let counts = small_stack(move || {
         let sys = lsys::parse(&src, &limits).expect("parses");
-        [Derivation::Dfs, Derivation::Bfs].map(|s| {
+        [Dfs, Bfs].map(|s| {
             let mut c = Counter::default();
             let mut tally = Tally::default();
             stlc::interpret::lsys::draw(&sys, 1, s, &limits, &mut c, &mut tally).expect("draws");
@@ -159,34 +173,23 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     let word = 4 * N as u64 + 3;
     for (segments, tally) in counts {
         assert_eq!(segments, 2);
-        assert_eq!(
-            tally,
-            Tally {
-                total: Some(word),
-                done: word
-            }
-        );
+        assert_eq!((tally.total, tally.done), (Some(word), word));
     }
     // An unbalanced one is still pointed at, at its opening bracket.
     let src = format!("axiom F{}\nangle 90\n", "[".repeat(N));
     let e = lsys_err(src, limits);
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::Unbalanced('[')))
-    );
+    let want = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
+    assert_eq!(e.first_kind(), want);
 }
 
 #[test]
 fn stl_brackets_braces_and_repeats_a_hundred_thousand_deep_are_refused() {
     let cases = [
         format!("{HEAD} R1: {}", nest(N, "[", "F", "]")),
-        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "R1{", "", "}")),
-        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "{", "", "}")),
-        format!(
-            "{HEAD} R1: [F] SEED {} ENDSEED",
-            nest(N, "[I 2 ", "R1", "]")
-        ),
-        format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "[", "F", "]")),
+        seeded(nest(N, "R1{", "", "}")),
+        seeded(nest(N, "{", "", "}")),
+        seeded(nest(N, "[I 2 ", "R1", "]")),
+        seeded(nest(N, "[", "F", "]")),
     ];
     for src in cases {
         for format in [Format::Od, Format::Bed] {
@@ -206,26 +209,20 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     let count = small_stack(move || {
         let d = stl::parse(&body, Format::Bed, &limits).expect("a deep branch parses");
         let mut c = Counter::default();
-        draw_bed(&d, Derivation::Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
+        draw_bed(&d, Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
         c.0
     });
     assert_eq!(count, 1);
-    let braces = format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(N, "{", "", "}"));
+    let braces = seeded(nest(N, "{", "", "}"));
     // Pointed at the first brace, which follows no rule name.
     let at = braces.find('{').unwrap();
     let e = stl_err(braces, Format::Bed, limits);
     assert_eq!(e.0[0].span, Some(at..at + 1), "{e}");
-    let repeats = format!(
-        "{HEAD} R1: [F] SEED {} ENDSEED",
-        nest(N, "[I 2 ", "R1", "]")
-    );
+    let repeats = seeded(nest(N, "[I 2 ", "R1", "]"));
     let at = repeats.find("[I").unwrap();
     let e = stl_err(repeats, Format::Bed, limits);
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::Unbalanced('['))),
-        "{e}"
-    );
+    let wanted = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
+    assert_eq!(e.first_kind(), wanted, "{e}");
     assert_eq!(e.0[0].span, Some(at..at + 1));
 }
 
@@ -239,16 +236,16 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
 #[test]
 fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
     let n = 9_900;
-    let src = format!("{HEAD} R1: [F] SEED {} ENDSEED", nest(n, "R1{", "", "}"));
+    let src = seeded(nest(n, "R1{", "", "}"));
     let (count, text_len) = small_stack(move || {
         let limits = Limits::default();
         let d = stl::parse(&src, Format::Bed, &limits).expect("parses");
         validate(&d, &limits).expect("valid");
         let text = write(&d);
         let mut c = Counter::default();
-        draw_bed(&d, Derivation::Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
+        draw_bed(&d, Dfs, &limits, &mut c, &mut NoProgress).expect("draws");
         let mut b = Counter::default();
-        draw_bed(&d, Derivation::Bfs, &limits, &mut b, &mut NoProgress).expect("draws");
+        draw_bed(&d, Bfs, &limits, &mut b, &mut NoProgress).expect("draws");
         assert_eq!(b.0, c.0);
         let back = stl::parse(&text, Format::Bed, &limits).expect("reparses");
         assert!(back == d, "round trip");
@@ -258,10 +255,7 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         // (Locations do not take part in equality: only the innermost slot,
         // a repeat instead of empty, differs.)
         let deeper = stl::parse(
-            &format!(
-                "{HEAD} R1: [F] SEED {} ENDSEED",
-                nest(n - 1, "R1{", "[I 2 R1]", "}")
-            ),
+            &seeded(nest(n - 1, "R1{", "[I 2 R1]", "}")),
             Format::Bed,
             &limits,
         )
@@ -292,10 +286,8 @@ fn generations_in_the_millions_are_refused_with_limit() {
     let d = &e.0[0];
     assert_eq!(d.span, Some(12..19));
     // A number too large for any integer type is a limit too, not a crash.
-    let e = lsys_err(
-        "generations 99999999999999999999999999\naxiom F\nangle 90\n".into(),
-        Limits::default(),
-    );
+    let src = "generations 99999999999999999999999999\naxiom F\nangle 90\n";
+    let e = lsys_err(src.into(), Limits::default());
     assert!(is_limit(&e, "generations"), "{e}");
 }
 
@@ -310,7 +302,7 @@ fn self_resemblance_counts_in_the_millions_are_refused_with_limit() {
     }
     // In a fixed figure, and beyond u32.
     let src = format!("{HEAD} R1: [F[I 99999999999999 F+F]]");
-    let e = stl_err(src, Format::Bed, Limits::default());
+    let e = bed_err(src);
     assert!(is_limit(&e, "self-resemblance count"), "{e}");
 }
 
@@ -320,18 +312,14 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
     // beyond max_symbols.
     let d = bed(&format!("{HEAD} R1: [+F][-F] SEED [I 40 R1] ENDSEED"));
     let (e, drawn, tally) = small_stack(move || {
-        let mut c = Counter::default();
-        let mut tally = Tally::default();
-        let e = draw_bed(&d, Derivation::Dfs, &Limits::default(), &mut c, &mut tally).unwrap_err();
+        let (mut c, mut tally) = (Counter::default(), Tally::default());
+        let e = draw_bed(&d, Dfs, &Limits::default(), &mut c, &mut tally).unwrap_err();
         (e, c.0, tally)
     });
     assert!(is_limit(&e, "symbols in the expansion"), "{e}");
     // The exact size, some 10^13 symbols, was counted, not walked: nothing
     // was drawn and no pass over the symbols began.
-    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
-        unreachable!()
-    };
-    assert_eq!(*value, (10 * ((1u64 << 40) - 1)).to_string());
+    assert_eq!(limit_value(&e), (10 * ((1u64 << 40) - 1)).to_string());
     assert_eq!((drawn, tally), (0, Tally::default()));
 }
 
@@ -339,29 +327,19 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
 fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
     let sys = lsys::parse("axiom F\nrule F FF\nangle 90\n", &Limits::default()).unwrap();
     let (e, drawn, tally) = small_stack(move || {
-        let mut c = Counter::default();
-        let mut tally = Tally::default();
-        let e = stlc::interpret::lsys::draw(
-            &sys,
-            10_000,
-            Derivation::Dfs,
-            &Limits::default(),
-            &mut c,
-            &mut tally,
-        )
-        .unwrap_err();
+        let (mut c, mut tally) = (Counter::default(), Tally::default());
+        let limits = Limits::default();
+        let e = stlc::interpret::lsys::draw(&sys, 10_000, Dfs, &limits, &mut c, &mut tally)
+            .unwrap_err();
         (e, c.0, tally)
     });
     // Refused before a symbol was derived.
     assert_eq!((drawn, tally), (0, Tally::default()));
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
     // 2^10000 has 3011 digits.
-    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
-        unreachable!()
-    };
-    assert_eq!(value.len(), 3011);
+    assert_eq!(limit_value(&e).len(), 3011);
     let exact = num_bigint::BigUint::from(2u32).pow(10_000);
-    assert_eq!(*value, exact.to_string());
+    assert_eq!(limit_value(&e), exact.to_string());
 }
 
 #[test]
@@ -379,20 +357,15 @@ fn a_wide_alphabet_at_the_depth_limit_is_refused_with_its_exact_length() {
     let (e, drawn, tally) = small_stack(move || {
         let limits = Limits::default();
         let sys = lsys::parse(&src, &limits).expect("parses");
-        let mut c = Counter::default();
-        let mut tally = Tally::default();
-        let e =
-            stlc::interpret::lsys::draw(&sys, 10_000, Derivation::Dfs, &limits, &mut c, &mut tally)
-                .unwrap_err();
+        let (mut c, mut tally) = (Counter::default(), Tally::default());
+        let e = stlc::interpret::lsys::draw(&sys, 10_000, Dfs, &limits, &mut c, &mut tally)
+            .unwrap_err();
         (e, c.0, tally)
     });
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
     // 2^10000 copies of F and the inert symbols once each.
-    let ErrorKind::Limit { value, .. } = &e.0[0].kind else {
-        unreachable!()
-    };
     let exact = num_bigint::BigUint::from(2u32).pow(10_000) + inert;
-    assert_eq!(*value, exact.to_string());
+    assert_eq!(limit_value(&e), exact.to_string());
     assert_eq!((drawn, tally), (0, Tally::default()));
 }
 
@@ -410,14 +383,9 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         let src = format!("axiom F\n{line}\n");
         let at = src.find(needle).unwrap();
         let e = lsys_err(src.clone(), Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Lsys(LsysError::NumberTooLarge { .. })
-                        | ErrorKind::Lsys(LsysError::MalformedNumber { .. })
-                )
-            ),
+        assert_first!(
+            e,
+            ErrorKind::Lsys(LsysError::NumberTooLarge { .. } | LsysError::MalformedNumber { .. }),
             "{line}: {e}"
         );
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{line}");
@@ -425,14 +393,9 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
     for line in ["length 0", "length -1", "width -2", "length 1e999"] {
         let src = format!("axiom F\nangle 90\n{line}\n");
         let e = lsys_err(src, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Lsys(LsysError::NotPositive { .. })
-                        | ErrorKind::Lsys(LsysError::NumberTooLarge { .. })
-                )
-            ),
+        assert_first!(
+            e,
+            ErrorKind::Lsys(LsysError::NotPositive { .. } | LsysError::NumberTooLarge { .. }),
             "{line}: {e}"
         );
     }
@@ -440,31 +403,18 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
 
 #[test]
 fn stl_numbers_that_overflow_are_refused() {
+    let layout = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 1e309, 5 ENDLAYOUT");
     for (src, needle) in [
-        (
-            "T (1e999, 0) L=10(0) B=1(0) RULE R1: [F]".to_string(),
-            "1e999",
-        ),
-        (
-            "T (0, 0) L=1e400(0) B=1(0) RULE R1: [F]".to_string(),
-            "1e400",
-        ),
-        (
-            "T (0, 0) L=10(0) B=1(0) A=-1e999 RULE R1: [F]".to_string(),
-            "-1e999",
-        ),
-        (
-            format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 1e309, 5 ENDLAYOUT"),
-            "1e309",
-        ),
+        ("T (1e999, 0) L=10(0) B=1(0) RULE R1: [F]", "1e999"),
+        ("T (0, 0) L=1e400(0) B=1(0) RULE R1: [F]", "1e400"),
+        ("T (0, 0) L=10(0) B=1(0) A=-1e999 RULE R1: [F]", "-1e999"),
+        (&layout, "1e309"),
     ] {
         let at = src.find(needle).unwrap();
-        let e = stl_err(src.clone(), Format::Bed, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(ErrorKind::Input(InputError::NotFinite { .. }))
-            ),
+        let e = bed_err(src);
+        assert_first!(
+            e,
+            ErrorKind::Input(InputError::NotFinite { .. }),
             "{src}: {e}"
         );
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{src}");
@@ -474,14 +424,8 @@ fn stl_numbers_that_overflow_are_refused() {
         "T (NaN, 0) L=10(0) B=1(0) RULE R1: [F]",
         "T (0, 0) L=inf(0) B=1(0) RULE R1: [F]",
     ] {
-        let e = stl_err(src.into(), Format::Bed, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(ErrorKind::Input(InputError::Syntax(_)))
-            ),
-            "{src}: {e}"
-        );
+        let e = bed_err(src);
+        assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src}: {e}");
     }
 }
 
@@ -492,14 +436,11 @@ fn zero_and_negative_sizes_are_refused() {
         ("T (0, 0) L=10(0) B=-1(0) RULE R1: [F]", "-1(0)"),
         ("T (0, 0) L=10(-1) B=1(0) RULE R1: [F]", "-1)"),
     ] {
-        let e = stl_err(src.into(), Format::Bed, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Stl(StlError::StemSizeNotPositive { .. })
-                        | ErrorKind::Stl(StlError::NegativeDecrement { .. })
-                )
+        let e = bed_err(src);
+        assert_first!(
+            e,
+            ErrorKind::Stl(
+                StlError::StemSizeNotPositive { .. } | StlError::NegativeDecrement { .. }
             ),
             "{src}: {e}"
         );
@@ -517,13 +458,10 @@ fn zero_and_negative_sizes_are_refused() {
     ] {
         let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) {shape} ENDLAYOUT");
         let e = stl_err(src, Format::Od, Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { .. })
-                        | ErrorKind::Layout(LayoutError::TooFewPoints { .. })
-                )
+        assert_first!(
+            e,
+            ErrorKind::Layout(
+                LayoutError::ShapeSizeNotPositive { .. } | LayoutError::TooFewPoints { .. }
             ),
             "{shape}: {e}"
         );
@@ -531,11 +469,9 @@ fn zero_and_negative_sizes_are_refused() {
     // A decrement that runs the length out: the order where it happens.
     let d = bed("T (0, 0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{R1{}}} ENDSEED");
     let e = validate(&d, &Limits::default()).unwrap_err();
-    assert!(
-        matches!(
-            e.first_kind(),
-            Some(ErrorKind::Bed(BedError::OrderTooDeep { order: 2, .. }))
-        ),
+    assert_first!(
+        e,
+        ErrorKind::Bed(BedError::OrderTooDeep { order: 2, .. }),
         "{e}"
     );
 }
@@ -550,10 +486,8 @@ fn a_self_intersecting_polygon_is_read_and_written_back_as_given() {
         format!("{HEAD} R1: [F] LAYOUT (clGreen) Polygon (0,0), (10,10), (10,0), (0,10) ENDLAYOUT");
     let d = bed(&src);
     let shapes = &d.layout.as_ref().unwrap().shapes;
-    assert_eq!(
-        shapes[0].shape,
-        Shape::Polygon(vec![(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)])
-    );
+    let want = Shape::Polygon(vec![(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)]);
+    assert_eq!(shapes[0].shape, want);
     assert_eq!(bed(&write(&d)), d);
 }
 
@@ -568,14 +502,8 @@ fn a_layout_whose_shapes_cancel_is_read_and_drawn() {
     let d = bed(&src);
     assert_eq!(d.layout.as_ref().unwrap().shapes.len(), 2);
     let mut b = Bounds::default();
-    draw_bed(
-        &d,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut b,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let limits = Limits::default();
+    draw_bed(&d, Dfs, &limits, &mut b, &mut NoProgress).unwrap();
     assert_eq!(b.count, 1);
 }
 
@@ -587,13 +515,9 @@ fn a_hundred_megabyte_input_is_refused_by_its_size_before_its_bytes_are_read() {
     // report that instead, so the size alone refused it.
     let big = vec![0xff; 100 << 20];
     let e = precheck(&big, &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::InputTooLarge {
-            size: 100 << 20,
-            limit: 64 << 20
-        }))
-    );
+    let (size, limit) = (100 << 20, 64 << 20);
+    let too_large = ErrorKind::Input(InputError::InputTooLarge { size, limit });
+    assert_eq!(e.first_kind(), Some(&too_large));
 }
 
 /// A deterministic stream of bytes (xorshift64*).
@@ -614,36 +538,21 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
         let bytes = garbage(4096, seed);
         let lossy = String::from_utf8_lossy(&bytes).into_owned();
         // As bytes: not UTF-8.
-        assert!(matches!(
-            precheck(&bytes, &Limits::default())
-                .unwrap_err()
-                .first_kind(),
-            Some(ErrorKind::Input(InputError::NotUtf8(_)))
-        ));
+        let e = precheck(&bytes, &Limits::default()).unwrap_err();
+        assert_first!(e, ErrorKind::Input(InputError::NotUtf8(_)), "{e}");
         // As text (replacement characters): a syntax error or a limit.
         let e = lsys_err(lossy.clone(), Limits::default());
-        assert!(
-            matches!(
-                e.first_kind(),
-                Some(
-                    ErrorKind::Input(InputError::Syntax(_))
-                        | ErrorKind::Input(InputError::NestingTooDeep { .. })
-                        | ErrorKind::Lsys(LsysError::UnknownKey { .. })
-                        | ErrorKind::Lsys(LsysError::MissingKey { .. })
-                )
-            ),
+        assert_first!(
+            e,
+            ErrorKind::Input(InputError::Syntax(_) | InputError::NestingTooDeep { .. })
+                | ErrorKind::Lsys(LsysError::UnknownKey { .. } | LsysError::MissingKey { .. }),
             "{e}"
         );
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(lossy.clone(), format, Limits::default());
-            assert!(
-                matches!(
-                    e.first_kind(),
-                    Some(
-                        ErrorKind::Input(InputError::Syntax(_))
-                            | ErrorKind::Input(InputError::NestingTooDeep { .. })
-                    )
-                ),
+            assert_first!(
+                e,
+                ErrorKind::Input(InputError::Syntax(_) | InputError::NestingTooDeep { .. }),
                 "{e}"
             );
         }
@@ -655,17 +564,13 @@ fn invalid_utf8_is_refused_with_its_offset_by_both_parsers_entry() {
     let mut bytes = b"axiom F\nangle 90\n# caf".to_vec();
     bytes.extend_from_slice(&[0xc3, 0x28]);
     let e = precheck(&bytes, &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::NotUtf8(22)))
-    );
+    let want = Some(&ErrorKind::Input(InputError::NotUtf8(22)));
+    assert_eq!(e.first_kind(), want);
     assert_eq!(e.0[0].span, Some(22..22));
     // A UTF-16 file (BOM FF FE) fails at byte 0.
     let e = precheck(b"\xff\xfea\0x\0", &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::NotUtf8(0)))
-    );
+    let want = Some(&ErrorKind::Input(InputError::NotUtf8(0)));
+    assert_eq!(e.first_kind(), want);
 }
 
 #[test]
@@ -673,19 +578,11 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
     for src in ["", "\n\n  \n", "# nothing but a comment\n# and another"] {
         let e = lsys_err(src.into(), Limits::default());
         let missing: Vec<String> = e.iter().map(|d| d.kind.to_string()).collect();
-        assert!(
-            missing.iter().any(|m| m.contains("axiom")),
-            "{src:?}: {missing:?}"
-        );
+        let holds = missing.iter().any(|m| m.contains("axiom"));
+        assert!(holds, "{src:?}: {missing:?}");
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(src.into(), format, Limits::default());
-            assert!(
-                matches!(
-                    e.first_kind(),
-                    Some(ErrorKind::Input(InputError::Syntax(_)))
-                ),
-                "{src:?}: {e}"
-            );
+            assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src:?}: {e}");
             assert_eq!(e.0.len(), 1);
         }
     }
@@ -693,16 +590,12 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
 
 // ----------------------------------------------------------------- grower --
 
-fn od(src: &str) -> Description {
-    stl::parse(src, Format::Od, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
-
 fn grow_err(src: &str) -> Diagnostics {
     let d = od(src);
-    match stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress) {
-        Ok(g) => panic!("grew {} stems, expected an error", g.stems),
-        Err(e) => e,
-    }
+    let grown = stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress);
+    grown
+        .map(|g| g.stems)
+        .expect_err("grew stems, expected an error")
 }
 
 #[test]
@@ -710,13 +603,7 @@ fn a_layout_whose_shapes_cancel_leaves_nothing_to_grow_in() {
     let src = "T (5, 5) L=1(0) B=1(0) RULE R1: [+F][-F] \
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 (clWhite) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
-    assert!(
-        matches!(
-            e.first_kind(),
-            Some(ErrorKind::Layout(LayoutError::EmptyRegion))
-        ),
-        "{e}"
-    );
+    assert_first!(e, ErrorKind::Layout(LayoutError::EmptyRegion), "{e}");
     let at = src.find("LAYOUT").unwrap();
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), Some(at));
 }
@@ -726,13 +613,7 @@ fn a_root_outside_the_layout_is_refused_at_the_root() {
     let src = "T (50, 50) L=1(0) B=1(0) RULE R1: [+F][-F] \
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
-    assert!(
-        matches!(
-            e.first_kind(),
-            Some(ErrorKind::Grow(GrowError::RootOutside { .. }))
-        ),
-        "{e}"
-    );
+    assert_first!(e, ErrorKind::Grow(GrowError::RootOutside { .. }), "{e}");
     assert_eq!(e.0[0].span, Some(2..10));
 }
 
@@ -748,23 +629,14 @@ fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
         stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress).expect("grows")
     });
     let mut segs = Segments::default();
-    stlc::interpret::bed::draw(
-        &g.bed,
-        Derivation::Dfs,
-        &Limits::default(),
-        &mut segs,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let limits = Limits::default();
+    stlc::interpret::bed::draw(&g.bed, Dfs, &limits, &mut segs, &mut NoProgress).unwrap();
     assert_eq!(segs.0.len() as u64, g.stems);
     let ends = || segs.0.iter().flat_map(|s| [s.from, s.to]);
     for p in ends() {
-        assert!(
-            p.x <= p.y && p.y <= 100.0 - p.x,
-            "({}, {}) is outside the left lobe",
-            p.x,
-            p.y
-        );
+        let (x, y) = (p.x, p.y);
+        let inside = x <= y && y <= 100.0 - x;
+        assert!(inside, "({x}, {y}) is outside the left lobe");
     }
     // It filled the lobe out to its outer edge, x = 0.
     let min_x = ends().map(|p| p.x).fold(f64::INFINITY, f64::min);
@@ -786,11 +658,8 @@ fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
         .map(|i| {
             let t = std::f64::consts::TAU * f64::from(i) / 20_000.0;
             let r = if i % 2 == 1 { 400.0 } else { 200.0 };
-            format!(
-                "({:.3},{:.3})",
-                500.0 + r * libm::cos(t),
-                500.0 + r * libm::sin(t)
-            )
+            let (x, y) = (500.0 + r * libm::cos(t), 500.0 + r * libm::sin(t));
+            format!("({x:.3},{y:.3})")
         })
         .collect();
     let src = format!(
@@ -802,28 +671,14 @@ fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
     // the region counts it exactly.
     let e = stl::parse(&src, Format::Od, &Limits::default()).unwrap_err();
     assert!(is_limit(&e, "layout outline vertices"), "{e}");
-    assert!(
-        e.to_string().contains("20000 exceeds the limit of 16000"),
-        "{e}"
-    );
+    let message = e.to_string();
+    assert!(message.contains("20000 exceeds the limit of 16000"), "{e}");
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), src.find("(clGreen)"));
-    let limits = Limits {
-        max_layout_vertices: 20_000,
-        ..Limits::default()
-    };
+    let limits = limits_with(|l| l.max_layout_vertices = 20_000);
     let d = stl::parse(&src, Format::Od, &limits).expect("within the raised limit it parses");
-    let e = stlc::grow::grow(
-        &d,
-        &stlc::grow::GrowOptions {
-            limits: Limits {
-                max_layout_vertices: 16_000,
-                ..Limits::default()
-            },
-            ..Default::default()
-        },
-        &mut NoProgress,
-    )
-    .unwrap_err();
+    let mut o = stlc::grow::GrowOptions::default();
+    o.limits.max_layout_vertices = 16_000;
+    let e = stlc::grow::grow(&d, &o, &mut NoProgress).unwrap_err();
     assert!(is_limit(&e, "layout outline vertices"), "{e}");
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), src.find("(clGreen)"));
 

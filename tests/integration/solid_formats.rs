@@ -20,11 +20,7 @@ fn crc32(bytes: &[u8]) -> u32 {
     for &b in bytes {
         c ^= u32::from(b);
         for _ in 0..8 {
-            c = if c & 1 == 1 {
-                (c >> 1) ^ 0xEDB8_8320
-            } else {
-                c >> 1
-            };
+            c = (c >> 1) ^ (0xEDB8_8320 * (c & 1));
         }
     }
     !c
@@ -42,11 +38,8 @@ fn u32_at(b: &[u8], at: usize) -> usize {
 /// local header agrees with it, each CRC with the contents.
 fn unzip(zip: &[u8]) -> Vec<(String, Vec<u8>)> {
     let end = zip.len() - 22;
-    assert_eq!(
-        u32_at(zip, end),
-        0x0605_4b50,
-        "no end record (or a comment)"
-    );
+    let expected = 0x0605_4b50;
+    assert_eq!(u32_at(zip, end), expected, "no end record (or a comment)");
     let (count, mut at) = (u16_at(zip, end + 10), u32_at(zip, end + 16));
     let mut entries = Vec::new();
     for _ in 0..count {
@@ -103,10 +96,8 @@ fn tags(xml: &str, tag: &str, attrs: &[&str]) -> Vec<Vec<String>> {
 fn read_3mf(zip: &[u8]) -> Body {
     let parts = unzip(zip);
     let names: Vec<&str> = parts.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(
-        names,
-        ["[Content_Types].xml", "_rels/.rels", "3D/3dmodel.model"]
-    );
+    let want = ["[Content_Types].xml", "_rels/.rels", "3D/3dmodel.model"];
+    assert_eq!(names, want);
     let text = |i: usize| String::from_utf8(parts[i].1.clone()).unwrap();
     assert!(text(0).contains(
         "Extension=\"model\" ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\""
@@ -137,10 +128,8 @@ fn read_glb(glb: &[u8]) -> Body {
     let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
     let bin = &glb[28 + json_len..];
     let prims = doc["meshes"][0]["primitives"].as_array().unwrap();
-    assert_eq!(
-        (prims.len(), doc["meshes"].as_array().unwrap().len()),
-        (1, 1)
-    );
+    let meshes = doc["meshes"].as_array().unwrap().len();
+    assert_eq!((prims.len(), meshes), (1, 1));
     assert_eq!(doc["materials"].as_array().unwrap().len(), 1);
     let attrs = prims[0]["attributes"].as_object().unwrap();
     let keys: Vec<&str> = attrs.keys().map(String::as_str).collect();
@@ -208,10 +197,8 @@ fn the_solid_as_3mf_and_glb_is_the_stls_body() {
     ] {
         assert!((m / 1000.0 - g).abs() < 1e-6, "{m} mm against {g} m");
     }
-    assert!(
-        (gl.volume * 1e9 / mf.volume - 1.0).abs() < 1e-4,
-        "{gl:?} {mf:?}"
-    );
+    let holds = (gl.volume * 1e9 / mf.volume - 1.0).abs() < 1e-4;
+    assert!(holds, "{gl:?} {mf:?}");
     assert_eq!(zip, write("3mf"), "the 3MF's bytes differ between runs");
 }
 

@@ -3,13 +3,14 @@
 //! Expected values are worked by hand (the paper's expansions, coordinates
 //! of a turtle turning by right angles), never copied from the output.
 
+use crate::support::{cuboid, cylinder, ellipsoid, limit_kind, limits_with, od, sphere};
 use proptest::prelude::*;
 use stlc::bed::Bed;
 use stlc::bed::validate;
 use stlc::bed::write::write;
 use stlc::color::Rgb;
 use stlc::diag::{BedError, Diagnostics, ErrorKind, InputError, LayoutError, RuleError, StlError};
-use stlc::interpret::Derivation;
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::bed::{draw_into, expand};
 use stlc::limits::{Bound, Limits};
 use stlc::model::{
@@ -20,22 +21,18 @@ use stlc::model::{
 use stlc::num::Linear;
 use stlc::progress::NoProgress;
 use stlc::syntax::stl::parse;
+use stlc::turtle::turtle3::Segment3;
 use stlc::turtle::{Point, Recorder, Segment};
 
 const TREE_2D: &str = "2DTree (76, 150)L=10(0) B=1(0)RULE R1: [+F][-F] LAYOUT (clGreen)< RoundRect (0,0,180,192,7,7)> (clWhite)< RoundRect (55,30,40,15,4,4)> (clWhite)< RoundRect (35,125,76,30,5,5)> ENDLAYOUT";
 
-fn bed(src: &str) -> Description {
-    match parse(src, Format::Bed, &Limits::default()) {
-        Ok(d) => d,
-        Err(e) => panic!("{e}"),
-    }
+/// `src` read as a BED with the default limits; its diagnostics on failure.
+pub fn bed(src: &str) -> Description {
+    parse(src, Format::Bed, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn errors(src: &str) -> Diagnostics {
-    match parse(src, Format::Bed, &Limits::default()) {
-        Ok(d) => panic!("parsed, expected an error: {d:?}"),
-        Err(e) => e,
-    }
+    parse(src, Format::Bed, &Limits::default()).expect_err("parsed, expected an error")
 }
 
 /// The one error of `src`, asserted to be of `kind`: its span and help.
@@ -55,46 +52,50 @@ fn at(src: &str, needle: &str, n: usize) -> std::ops::Range<usize> {
 }
 
 fn expanded(d: &Description, strategy: Derivation) -> String {
-    let mut out = Vec::new();
-    let bed = Bed::new(d.clone(), &Limits::default()).unwrap();
-    expand(
-        &bed,
-        strategy,
-        &Limits::default(),
-        &mut out,
-        &mut NoProgress,
-    )
-    .unwrap();
+    let (mut out, l) = (Vec::new(), Limits::default());
+    let bed = Bed::new(d.clone(), &l).unwrap();
+    expand(&bed, strategy, &l, &mut out, &mut NoProgress).unwrap();
     String::from_utf8(out).unwrap()
 }
 
-fn segments(d: &Description, strategy: Derivation) -> Result<Vec<Segment>, Diagnostics> {
-    let bed = Bed::new(d.clone(), &Limits::default())?;
-    draw_into(
-        &bed,
-        strategy,
-        &Limits::default(),
-        Recorder::default(),
-        &mut NoProgress,
-    )
-    .map(|r| r.segments)
+/// The expansion of `d`, asserted the same depth-first and breadth-first.
+fn expanded_both(d: &Description) -> String {
+    let dfs = expanded(d, Dfs);
+    assert_eq!(expanded(d, Bfs), dfs, "bfs against dfs");
+    dfs
+}
+
+type Segments = Result<Vec<Segment>, Diagnostics>;
+
+fn segments(d: &Description, strategy: Derivation) -> Segments {
+    segments_within(d, strategy, &Limits::default())
+}
+
+fn segments_within(d: &Description, s: Derivation, l: &Limits) -> Segments {
+    let bed = Bed::new(d.clone(), l)?;
+    draw_into(&bed, s, l, Recorder::default(), &mut NoProgress).map(|r| r.segments)
 }
 
 /// A 3D description's stems, drawn by the 3D interpreter.
-fn segments3(
-    d: &Description,
-    strategy: Derivation,
-) -> Result<Vec<stlc::turtle::turtle3::Segment3>, Diagnostics> {
-    let bed = Bed::new(d.clone(), &Limits::default())?;
-    let mut out = Vec::new();
-    stlc::interpret::bed3::draw3(
-        &bed,
-        strategy,
-        &Limits::default(),
-        &mut |s| out.push(s),
-        &mut NoProgress,
-    )?;
+fn segments3(d: &Description, strategy: Derivation) -> Result<Vec<Segment3>, Diagnostics> {
+    let (mut out, l) = (Vec::new(), Limits::default());
+    let bed = Bed::new(d.clone(), &l)?;
+    stlc::interpret::bed3::draw3(&bed, strategy, &l, &mut |s| out.push(s), &mut NoProgress)?;
     Ok(out)
+}
+
+/// A rule's term with `found` slots where the rule has `expected` branches.
+fn slot_count(rule: &str, expected: usize, found: usize) -> ErrorKind {
+    ErrorKind::Rule(RuleError::SlotCount {
+        rule: rule.into(),
+        expected,
+        found,
+    })
+}
+
+/// A rounded rectangle's shape.
+fn round_rect(x: f64, y: f64, w: f64, h: f64, rx: f64, ry: f64) -> Shape {
+    Shape::RoundRect { x, y, w, h, rx, ry }
 }
 
 const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
@@ -103,20 +104,13 @@ const HEAD: &str = "T (0, 0) L=10(0) B=1(0) RULE ";
 
 #[test]
 fn the_papers_2dtree_parses_as_written() {
-    let d = parse(TREE_2D, Format::Od, &Limits::default()).unwrap();
+    let d = od(TREE_2D);
     assert_eq!(d.name, "2DTree");
     assert_eq!(d.root, (76.0, 150.0));
-    let p = &d.params;
-    assert_eq!(
-        (
-            p.length.base,
-            p.length.decrement,
-            p.width.base,
-            p.width.decrement
-        ),
-        (10.0, 0.0, 1.0, 0.0)
-    );
-    assert_eq!((p.angle, p.clearance), (None, None));
+    let (l, w) = (&d.params.length, &d.params.width);
+    let stems = (l.base, l.decrement, w.base, w.decrement);
+    assert_eq!(stems, (10.0, 0.0, 1.0, 0.0));
+    assert_eq!((d.params.angle, d.params.clearance), (None, None));
     assert_eq!(d.rules.len(), 1);
     assert_eq!(d.rules[0].name, "R1");
     assert_eq!(d.rules[0].branch_count(), 2);
@@ -135,17 +129,7 @@ fn the_papers_2dtree_parses_as_written() {
         assert_eq!(s.color, c);
         assert_eq!(s.spelling, Spelling::Corners);
         assert!(s.angled);
-        assert_eq!(
-            s.shape,
-            Shape::RoundRect {
-                x,
-                y,
-                w,
-                h,
-                rx: r,
-                ry: r
-            }
-        );
+        assert_eq!(s.shape, round_rect(x, y, w, h, r, r));
     }
     assert_eq!(shapes[0].color_text, "clGreen");
     // No seed: `F` then the first rule (Figure 9's `FR1`).
@@ -161,12 +145,8 @@ fn the_papers_worked_expansion() {
     let d = bed("Rn (0, 0) L=10(0) B=1(0)
         RULE R1 = [F][+F][-F]  R2 = [++F][-F]
         SEED R1{R1{,,},R2{,},R1{,,}} ENDSEED");
-    for s in [Derivation::Dfs, Derivation::Bfs] {
-        assert_eq!(
-            expanded(&d, s),
-            "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n"
-        );
-    }
+    let want = "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n";
+    assert_eq!(expanded_both(&d), want);
 }
 
 #[test]
@@ -181,9 +161,7 @@ fn seed_r1r2r2_is_split_by_longest_match() {
         assert!(matches!(item, SeedItem::Term(t)
             if !seed.term(*t).bare() && seed.term(*t).slot_count() == 1 && seed.term(*t).all_empty()));
     }
-    for s in [Derivation::Dfs, Derivation::Bfs] {
-        assert_eq!(expanded(&d, s), "[FFF][F[+F][-F]F][F[+F][-F]F]\n");
-    }
+    assert_eq!(expanded_both(&d), "[FFF][F[+F][-F]F][F[+F][-F]F]\n");
 }
 
 #[test]
@@ -193,22 +171,20 @@ fn longest_match_prefers_the_longer_name() {
     let items = &seed.items;
     assert!(matches!(&items[1], SeedItem::Term(t) if seed.term(*t).rule() == RuleId(1)));
     assert!(matches!(&items[2], SeedItem::Term(t) if seed.term(*t).rule() == RuleId(0)));
-    assert_eq!(expanded(&d, Derivation::Dfs), "F[+F][F]\n");
+    assert_eq!(expanded(&d, Dfs), "F[+F][F]\n");
 }
 
 #[test]
 fn self_resemblance_counts_in_both_forms() {
     // [I 2 R1] = R1{R1{,},R1{,}}
     let d = bed(&format!("{HEAD} R1=[F][+F] SEED [I 2 R1] ENDSEED"));
-    assert_eq!(expanded(&d, Derivation::Dfs), "[F[F][+F]][+F[F][+F]]\n");
-    assert_eq!(expanded(&d, Derivation::Bfs), "[F[F][+F]][+F[F][+F]]\n");
+    assert_eq!(expanded_both(&d), "[F[F][+F]][+F[F][+F]]\n");
     // [I 1 w] is w; [I 2 w] rewrites each F of w by w once.
     let d = bed(&format!(
         "{HEAD} R1=[F] SEED [I 1 F+F] f [I 2 F[+F]F] ENDSEED"
     ));
     let want = "F+Ff F[+F]F[+F[+F]F]F[+F]F\n".replace(' ', "");
-    assert_eq!(expanded(&d, Derivation::Dfs), want);
-    assert_eq!(expanded(&d, Derivation::Bfs), want);
+    assert_eq!(expanded_both(&d), want);
 }
 
 #[test]
@@ -222,7 +198,7 @@ fn trunk_and_successor_names_in_bodies() {
     assert!(
         matches!(&b[1], BodyItem::Branch(br) if br.successor.as_ref().map(|s| s.rule) == Some(RuleId(1)))
     );
-    assert_eq!(expanded(&d, Derivation::Dfs), "F[+F[F]][-F]\n");
+    assert_eq!(expanded(&d, Dfs), "F[+F[F]][-F]\n");
 }
 
 #[test]
@@ -230,10 +206,9 @@ fn segments_have_hand_computed_coordinates_and_orders() {
     // A=90 keeps every coordinate exact. L=10(2): order 0 length 10,
     // order 1 length 8, order 2 length 6.
     let d = bed("T (0, 0) L=10(2) B=1(0) A=90 RULE R1: F[+F] SEED F R1{R1{}} ENDSEED");
-    let seg = |x0, y0, x1, y1, order| Segment {
-        from: Point::new(x0, y0),
-        to: Point::new(x1, y1),
-        order,
+    let seg = |x0, y0, x1, y1, order| {
+        let (from, to) = (Point::new(x0, y0), Point::new(x1, y1));
+        Segment { from, to, order }
     };
     let want = vec![
         seg(0.0, 0.0, 0.0, -10.0, 0),       // seed F, up
@@ -242,8 +217,8 @@ fn segments_have_hand_computed_coordinates_and_orders() {
         seg(-8.0, -18.0, -14.0, -18.0, 2),  // the inner R1's trunk, still left
         seg(-14.0, -18.0, -14.0, -12.0, 2), // its branch, turned left again: down
     ];
-    assert_eq!(segments(&d, Derivation::Dfs).unwrap(), want);
-    assert_eq!(segments(&d, Derivation::Bfs).unwrap(), want);
+    assert_eq!(segments(&d, Dfs).unwrap(), want);
+    assert_eq!(segments(&d, Bfs).unwrap(), want);
 }
 
 #[test]
@@ -251,7 +226,7 @@ fn the_root_and_default_angle_are_used() {
     // A defaults to 30: a left turn then F from (100, 50) goes to
     // (100 - 10 sin 30, 50 - 10 cos 30).
     let d = bed("T (100, 50) L=10(0) B=1(0) RULE R1: [+F] SEED R1 ENDSEED");
-    let s = segments(&d, Derivation::Dfs).unwrap();
+    let s = segments(&d, Dfs).unwrap();
     assert_eq!(s.len(), 1);
     assert_eq!(s[0].from, Point::new(100.0, 50.0));
     assert!((s[0].to.x - 95.0).abs() < 1e-12);
@@ -261,12 +236,7 @@ fn the_root_and_default_angle_are_used() {
 
 #[test]
 fn od_bare_references_are_growth_points() {
-    let d = parse(
-        &format!("{HEAD} R1: [+F][-F] SEED FR1 ENDSEED"),
-        Format::Od,
-        &Limits::default(),
-    )
-    .unwrap();
+    let d = od(&format!("{HEAD} R1: [+F][-F] SEED FR1 ENDSEED"));
     let seed = d.seed.as_ref().unwrap();
     assert!(
         matches!(&seed.items[1], SeedItem::Term(t) if seed.term(*t).bare() && seed.term(*t).slot_count() == 2)
@@ -285,15 +255,8 @@ fn both_definition_forms_and_comments() {
     let s = &d.layout.as_ref().unwrap().shapes[0];
     assert_eq!(s.color, Rgb::new(0, 255, 0));
     assert_eq!(s.spelling, Spelling::StartSize);
-    assert_eq!(
-        s.shape,
-        Shape::Rect {
-            x: 0.0,
-            y: 0.0,
-            w: 200.0,
-            h: 100.0
-        }
-    );
+    let (x, y, w, h) = (0.0, 0.0, 200.0, 100.0);
+    assert_eq!(s.shape, Shape::Rect { x, y, w, h });
 }
 
 // ---------------------------------------------------------- diagnostics --
@@ -301,10 +264,8 @@ fn both_definition_forms_and_comments() {
 #[test]
 fn unknown_rule_suggests_the_nearest() {
     let src = format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED");
-    let (span, help) = refused(
-        &src,
-        ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() }),
-    );
+    let unknown = ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() });
+    let (span, help) = refused(&src, unknown);
     assert_eq!(span, at(&src, "R3", 0));
     assert!(help.contains("`R1`"), "{help}");
 }
@@ -312,14 +273,7 @@ fn unknown_rule_suggests_the_nearest() {
 #[test]
 fn slot_count_names_the_rule_and_its_count() {
     let src = format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED");
-    let (span, help) = refused(
-        &src,
-        ErrorKind::Rule(RuleError::SlotCount {
-            rule: "R1".into(),
-            expected: 2,
-            found: 3,
-        }),
-    );
+    let (span, help) = refused(&src, slot_count("R1", 2, 3));
     assert_eq!(span, at(&src, "R1{,,}", 0));
     assert!(help.contains("R1{,}"), "{help}");
 }
@@ -346,10 +300,8 @@ fn duplicate_rule_labels_both() {
     let src = format!("{HEAD} R1: [F] R1: [+F] SEED R1 ENDSEED");
     let e = errors(&src);
     assert_eq!(e.0.len(), 1, "{e}");
-    assert_eq!(
-        e.0[0].kind,
-        ErrorKind::Rule(RuleError::DuplicateRule { name: "R1".into() })
-    );
+    let wanted = ErrorKind::Rule(RuleError::DuplicateRule { name: "R1".into() });
+    assert_eq!(e.0[0].kind, wanted);
     assert_eq!(e.0[0].span, Some(at(&src, "R1", 1)));
     assert_eq!(e.0[0].labels[0].span, at(&src, "R1", 0));
 }
@@ -358,14 +310,10 @@ fn duplicate_rule_labels_both() {
 fn reserved_names_are_refused() {
     for name in ["F", "f", "L", "R", "I", "SEED"] {
         let src = format!("{HEAD} {name}: [F] R1: [F]");
-        let (span, _) = refused(
-            &src,
-            ErrorKind::Rule(RuleError::ReservedName { name: name.into() }),
-        );
-        assert_eq!(
-            span,
-            at(&src, &format!("{name}:"), 0).start..at(&src, ":", 0).start
-        );
+        let reserved = ErrorKind::Rule(RuleError::ReservedName { name: name.into() });
+        let (span, _) = refused(&src, reserved);
+        let wanted = at(&src, &format!("{name}:"), 0).start..at(&src, ":", 0).start;
+        assert_eq!(span, wanted);
     }
 }
 
@@ -381,68 +329,40 @@ fn rule_names_in_bodies_only_end_branches() {
 
 #[test]
 fn sizes_must_be_positive() {
+    let stem = |key, what| ErrorKind::Stl(StlError::StemSizeNotPositive { key, what });
+    let shape = |shape, what| ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { shape, what });
     let src = "T (0, 0) L=-1(0) B=1(0) RULE R1: [F]";
-    let (span, _) = refused(
-        src,
-        ErrorKind::Stl(StlError::StemSizeNotPositive {
-            key: "L",
-            what: "length",
-        }),
-    );
+    let (span, _) = refused(src, stem("L", "length"));
     assert_eq!(span, at(src, "-1", 0));
 
     let src = "T (0, 0) L=1(0) B=0(0) RULE R1: [F]";
-    let (span, _) = refused(
-        src,
-        ErrorKind::Stl(StlError::StemSizeNotPositive {
-            key: "B",
-            what: "broadness",
-        }),
-    );
+    let (span, _) = refused(src, stem("B", "broadness"));
     let b = at(src, "B=0", 0).start + 2;
     assert_eq!(span, b..b + 1);
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 0, 10 ENDLAYOUT");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
-            shape: "Rectangle",
-            what: "width",
-        }),
-    );
+    let (span, _) = refused(&src, shape("Rectangle", "width"));
     let w = at(&src, "(0,0), 0", 0).end - 1;
     assert_eq!(span, w..w + 1);
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) RoundRect (0,0), 5, 10, -2 ENDLAYOUT");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
-            shape: "RoundRect",
-            what: "corner radius",
-        }),
-    );
+    let (span, _) = refused(&src, shape("RoundRect", "corner radius"));
     assert_eq!(span, at(&src, "-2", 0));
 }
 
 #[test]
 fn polygons_need_three_points() {
     let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 }),
-    );
+    let few = ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 });
+    let (span, _) = refused(&src, few);
     assert_eq!(span, at(&src, "Polygon (0,0), (5,5)", 0));
 }
 
 #[test]
 fn unknown_colour_suggests_one() {
     let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let (span, help) = refused(
-        &src,
-        ErrorKind::Input(InputError::UnknownColour {
-            text: "clGren".into(),
-        }),
-    );
+    let text = "clGren".into();
+    let (span, help) = refused(&src, ErrorKind::Input(InputError::UnknownColour { text }));
     assert_eq!(span, at(&src, "clGren", 0));
     assert!(help.contains("clGreen"));
 }
@@ -450,50 +370,27 @@ fn unknown_colour_suggests_one() {
 #[test]
 fn missing_section_ends() {
     let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Stl(StlError::UnclosedSection {
-            open: "SEED",
-            close: "ENDSEED",
-        }),
-    );
+    let unclosed = |open, close| ErrorKind::Stl(StlError::UnclosedSection { open, close });
+    let (span, _) = refused(&src, unclosed("SEED", "ENDSEED"));
     assert_eq!(span, at(&src, "SEED", 0));
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 5, 5");
-    let (span, _) = refused(
-        &src,
-        ErrorKind::Stl(StlError::UnclosedSection {
-            open: "LAYOUT",
-            close: "ENDLAYOUT",
-        }),
-    );
+    let (span, _) = refused(&src, unclosed("LAYOUT", "ENDLAYOUT"));
     assert_eq!(span, at(&src, "LAYOUT", 0));
 }
 
 #[test]
 fn numbers_must_be_finite() {
     let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
-    let (span, _) = refused(
-        src,
-        ErrorKind::Input(InputError::NotFinite {
-            text: "1e999".into(),
-        }),
-    );
+    let text = "1e999".into();
+    let (span, _) = refused(src, ErrorKind::Input(InputError::NotFinite { text }));
     assert_eq!(span, at(src, "1e999", 0));
 }
 
 #[test]
 fn counts_over_the_limit_are_refused() {
     let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
-    let (span, help) = refused(
-        &src,
-        ErrorKind::Limit {
-            bound: Bound::Repeat,
-            what: None,
-            value: "10001".into(),
-            limit: 10000,
-        },
-    );
+    let (span, help) = refused(&src, limit_kind(Bound::Repeat, None, "10001", 10000));
     assert_eq!(span, at(&src, "10001", 0));
     assert!(help.contains("--max-depth"));
 }
@@ -514,19 +411,14 @@ fn several_errors_are_reported_together() {
     let kinds: Vec<ErrorKind> = e.iter().map(|d| d.kind.clone()).collect();
     // The layout is read as it is met, names before bodies, the seed last,
     // in the order its text is read (the seed is tokenised as it is built).
+    let blu = "clBlu".into();
     assert_eq!(
         kinds,
         vec![
-            ErrorKind::Input(InputError::UnknownColour {
-                text: "clBlu".into()
-            }),
+            ErrorKind::Input(InputError::UnknownColour { text: blu }),
             ErrorKind::Layout(LayoutError::TooFewPoints { points: 1 }),
             ErrorKind::Rule(RuleError::ReservedName { name: "F".into() }),
-            ErrorKind::Rule(RuleError::SlotCount {
-                rule: "R1".into(),
-                expected: 2,
-                found: 3
-            }),
+            slot_count("R1", 2, 3),
             ErrorKind::Rule(RuleError::UnknownRule { name: "R9".into() }),
         ]
     );
@@ -563,16 +455,13 @@ fn validate_refuses_orders_without_length() {
     let src = "T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED";
     assert_eq!(e.0[0].span, Some(at(src, inner, 0)));
     // ... and so does drawing.
-    assert!(segments(&d, Derivation::Dfs).is_err());
+    assert!(segments(&d, Dfs).is_err());
 }
 
 #[test]
 fn validate_bounds_the_derived_size() {
     let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 40 R1] ENDSEED"));
-    let limits = Limits {
-        max_symbols: 1000,
-        ..Limits::default()
-    };
+    let limits = limits_with(|l| l.max_symbols = 1000);
     let e = validate(&d, &limits).unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
 }
@@ -581,41 +470,14 @@ fn validate_bounds_the_derived_size() {
 fn bfs_refuses_words_over_the_limit() {
     // [I 8 R1], R1 = [F][F]: 2^8 - 1 = 255 applications, far over 100 symbols.
     let d = bed(&format!("{HEAD} R1: [F][F] SEED [I 8 R1] ENDSEED"));
-    let limits = Limits {
-        max_word: 100,
-        ..Limits::default()
-    };
-    let e = stlc::bed::Bed::new(d.clone(), &limits)
-        .and_then(|bed| {
-            draw_into(
-                &bed,
-                Derivation::Bfs,
-                &limits,
-                Recorder::default(),
-                &mut NoProgress,
-            )
-        })
-        .unwrap_err();
+    let limits = limits_with(|l| l.max_word = 100);
+    let e = segments_within(&d, Bfs, &limits).unwrap_err();
     assert!(matches!(e.first_kind(), Some(ErrorKind::Limit { .. })));
-    assert!(
-        e.0[0]
-            .help_text()
-            .unwrap_or_default()
-            .contains("--max-word")
-    );
+    let help = e.0[0].help_text().unwrap_or_default();
+    assert!(help.contains("--max-word"));
     // dfs needs no word.
-    let r = stlc::bed::Bed::new(d.clone(), &limits)
-        .and_then(|bed| {
-            draw_into(
-                &bed,
-                Derivation::Dfs,
-                &limits,
-                Recorder::default(),
-                &mut NoProgress,
-            )
-        })
-        .unwrap();
-    assert_eq!(r.segments.len(), 2 * 255);
+    let r = segments_within(&d, Dfs, &limits).unwrap();
+    assert_eq!(r.len(), 2 * 255);
 }
 
 // --------------------------------------------------------------- writer --
@@ -667,6 +529,12 @@ fn drawing_letters_that_spell_a_rule_are_spaced() {
 
 // ------------------------------------------------------------------ deep --
 
+/// A BED whose seed nests `n` terms `R1{R1{...}}`.
+fn nested(n: usize) -> String {
+    let (open, close) = ("R1{".repeat(n), "}".repeat(n));
+    format!("{HEAD} R1: [F] SEED {open}{close} ENDSEED")
+}
+
 fn big_stack<F: FnOnce() + Send + 'static>(f: F) {
     std::thread::Builder::new()
         .stack_size(256 << 20)
@@ -680,11 +548,7 @@ fn big_stack<F: FnOnce() + Send + 'static>(f: F) {
 fn five_thousand_nested_terms_parse_write_and_expand() {
     big_stack(|| {
         let n = 5000;
-        let src = format!(
-            "{HEAD} R1: [F] SEED {}{} ENDSEED",
-            "R1{".repeat(n),
-            "}".repeat(n)
-        );
+        let src = nested(n);
         let d = bed(&src);
         let text = write(&d);
         // One line per term, indented two spaces per level up to depth 24
@@ -702,24 +566,18 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         let limits = Limits::default();
         let mut out = Vec::new();
         stlc::bed::Bed::new(d.clone(), &limits)
-            .and_then(|bed| expand(&bed, Derivation::Dfs, &limits, &mut out, &mut NoProgress))
+            .and_then(|bed| expand(&bed, Dfs, &limits, &mut out, &mut NoProgress))
             .unwrap();
         assert_eq!(out.len(), 3 * n + 1);
         assert!(out.starts_with(b"[F[F"));
         // bfs rewrites the whole word once per level (quadratic here), so
         // it is compared on the first 500 levels only.
-        assert_eq!(segments(&d, Derivation::Dfs).unwrap().len(), n);
+        assert_eq!(segments(&d, Dfs).unwrap().len(), n);
         let m = 500;
-        let src = format!(
-            "{HEAD} R1: [F] SEED {}{} ENDSEED",
-            "R1{".repeat(m),
-            "}".repeat(m)
-        );
+        let src = nested(m);
         let small = bed(&src);
-        assert_eq!(
-            segments(&small, Derivation::Bfs).unwrap(),
-            segments(&small, Derivation::Dfs).unwrap()
-        );
+        let wanted = segments(&small, Dfs).unwrap();
+        assert_eq!(segments(&small, Bfs).unwrap(), wanted);
         drop(d);
     });
 }
@@ -727,18 +585,10 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
 #[test]
 fn nesting_of_a_hundred_thousand_is_refused_before_parsing() {
     let n = 100_000;
-    let src = format!(
-        "{HEAD} R1: [F] SEED {}{} ENDSEED",
-        "R1{".repeat(n),
-        "}".repeat(n)
-    );
+    let src = nested(n);
     let e = parse(&src, Format::Bed, &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Input(InputError::NestingTooDeep {
-            limit: 10_000
-        }))
-    );
+    let too_deep = ErrorKind::Input(InputError::NestingTooDeep { limit: 10_000 });
+    assert_eq!(e.first_kind(), Some(&too_deep));
 }
 
 // ------------------------------------------------------------ proptests --
@@ -791,19 +641,14 @@ impl Gen {
         s
     }
     fn fixed(&mut self) -> Fixed {
-        Fixed {
-            count: 1 + self.below(3) as u32,
-            word: self.drawing(),
-            loc: Loc::default(),
-        }
+        let (count, word, loc) = (1 + self.below(3) as u32, self.drawing(), Loc::default());
+        Fixed { count, word, loc }
     }
 }
 
 fn run(text: String) -> DrawRun {
-    DrawRun {
-        text,
-        loc: Loc::default(),
-    }
+    let loc = Loc::default();
+    DrawRun { text, loc }
 }
 
 fn gen_body(g: &mut Gen, rules: usize) -> Body {
@@ -856,11 +701,9 @@ fn gen_term(g: &mut Gen, terms: &mut Terms, rules: &[RuleDef], depth: u32) -> Te
             if depth == 0 || g.chance(40) {
                 None
             } else if g.chance(20) {
-                Some(terms.repeat(Repeat {
-                    count: 1 + g.below(2) as u32,
-                    rule: RuleId(g.below(rules.len() as u64) as usize),
-                    loc: Loc::default(),
-                }))
+                let count = 1 + g.below(2) as u32;
+                let (rule, loc) = (RuleId(g.below(rules.len() as u64) as usize), Loc::default());
+                Some(terms.repeat(Repeat { count, rule, loc }))
             } else {
                 Some(Terms::slot_of(gen_term(g, terms, rules, depth - 1)))
             }
@@ -871,41 +714,20 @@ fn gen_term(g: &mut Gen, terms: &mut Terms, rules: &[RuleDef], depth: u32) -> Te
 
 fn gen_shape(g: &mut Gen) -> LayoutShape {
     let color_text = g.pick(&["clGreen", "clWhite", "#00ff00", "clRed", "#abc"]);
-    let (x, y, w, h) = (
-        g.eighth(100) - 50.0,
-        g.eighth(100),
-        g.eighth(50),
-        g.eighth(50),
-    );
+    let (x, y) = (g.eighth(100) - 50.0, g.eighth(100));
+    let (w, h) = (g.eighth(50), g.eighth(50));
     let (shape, spelling) = match g.below(6) {
         0 => (Shape::Rect { x, y, w, h }, Spelling::StartSize),
         1 => (Shape::Rect { x, y, w, h }, Spelling::Corners),
         2 => (Shape::Ellipse { x, y, w, h }, Spelling::Corners),
         3 => {
             let r = g.eighth(5);
-            (
-                Shape::RoundRect {
-                    x,
-                    y,
-                    w,
-                    h,
-                    rx: r,
-                    ry: r,
-                },
-                Spelling::StartSize,
-            )
+            (round_rect(x, y, w, h, r, r), Spelling::StartSize)
         }
-        4 => (
-            Shape::RoundRect {
-                x,
-                y,
-                w,
-                h,
-                rx: g.eighth(5),
-                ry: g.eighth(5),
-            },
-            Spelling::Corners,
-        ),
+        4 => {
+            let (rx, ry) = (g.eighth(5), g.eighth(5));
+            (round_rect(x, y, w, h, rx, ry), Spelling::Corners)
+        }
         _ => {
             let pts = (0..3 + g.below(3))
                 .map(|_| (g.eighth(100), g.eighth(100)))
@@ -929,30 +751,14 @@ fn gen_solid(g: &mut Gen) -> LayoutSolid {
     let mut p = || [g.eighth(100) - 50.0, g.eighth(100), g.eighth(40) - 20.0];
     let point = p();
     let solid = match g.below(6) {
-        0 => Solid::Box {
-            corner: point,
-            size: [g.eighth(50), g.eighth(50), g.eighth(50)],
-        },
-        1 => Solid::Sphere {
-            centre: point,
-            r: g.eighth(50),
-        },
-        2 => Solid::Ellipsoid {
-            centre: point,
-            radii: [g.eighth(50), g.eighth(50), g.eighth(50)],
-        },
-        3 => Solid::Cylinder {
-            base: point,
-            r: g.eighth(20),
-            h: g.eighth(80),
-        },
+        0 => cuboid(point, [g.eighth(50), g.eighth(50), g.eighth(50)]),
+        1 => sphere(point, g.eighth(50)),
+        2 => ellipsoid(point, [g.eighth(50), g.eighth(50), g.eighth(50)]),
+        3 => cylinder(point, g.eighth(20), g.eighth(80)),
         4 => {
             let z1 = g.eighth(40) - 40.0;
-            Solid::Extrude {
-                shape: gen_shape(g).shape,
-                z1,
-                z2: z1 + g.eighth(40),
-            }
+            let (shape, z2) = (gen_shape(g).shape, z1 + g.eighth(40));
+            Solid::Extrude { shape, z1, z2 }
         }
         _ => Solid::Revolve {
             shape: gen_shape(g).shape,
@@ -997,11 +803,11 @@ fn gen_description(seed: u64) -> Description {
         match g.below(5) {
             0 => push_draw(&mut items, g.drawing()),
             1 => items.push(SeedItem::Fixed(Box::new(g.fixed()))),
-            2 => items.push(SeedItem::Repeat(Box::new(Repeat {
-                count: 1 + g.below(3) as u32,
-                rule: RuleId(g.below(n as u64) as usize),
-                loc: Loc::default(),
-            }))),
+            2 => {
+                let (count, loc) = (1 + g.below(3) as u32, Loc::default());
+                let rule = RuleId(g.below(n as u64) as usize);
+                items.push(SeedItem::Repeat(Box::new(Repeat { count, rule, loc })));
+            }
             3 => {
                 // A term inside a seed bracket: `[+F`, term, `]`.
                 let open = format!("[{}", g.letters(2));
@@ -1026,11 +832,8 @@ fn gen_description(seed: u64) -> Description {
     });
     let root_z = three.then(|| g.milli(-100, 100));
     let divergence = (three && g.chance(60)).then(|| g.milli(-360, 360));
-    let seed = g.chance(90).then_some(Seed {
-        items,
-        terms,
-        loc: Loc::default(),
-    });
+    let loc = Loc::default();
+    let seed = g.chance(90).then_some(Seed { items, terms, loc });
     // A 3D forest: a second root, with a seed of its own.
     let forest = match (three && g.chance(30), &seed) {
         (true, Some(_)) => vec![stlc::model::Tree {
@@ -1058,19 +861,12 @@ fn gen_description(seed: u64) -> Description {
             angle: g.chance(50).then(|| g.milli(0, 90)),
             clearance: g.chance(50).then(|| g.milli(0, 5)),
             divergence,
-            stroke: g.chance(30).then(|| stlc::model::Colour {
-                rgb: Some(stlc::color::Rgb::new(0x80, 0, 0)),
-                text: g.pick(&["clMaroon", "#800000"]).to_string(),
-            }),
+            stroke: g
+                .chance(30)
+                .then(|| colour(Some(Rgb::new(0x80, 0, 0)), g.pick(&["clMaroon", "#800000"]))),
             background: g.chance(30).then(|| match g.chance(50) {
-                true => stlc::model::Colour {
-                    rgb: None,
-                    text: "none".into(),
-                },
-                false => stlc::model::Colour {
-                    rgb: Some(stlc::color::Rgb::WHITE),
-                    text: "#ffffff".into(),
-                },
+                true => colour(None, "none"),
+                false => colour(Some(Rgb::WHITE), "#ffffff"),
             }),
             stroke_end: None,
             leaf: None,
@@ -1085,15 +881,10 @@ fn gen_description(seed: u64) -> Description {
     }
 }
 
-fn solid_kind(s: &Solid) -> usize {
-    match s {
-        Solid::Box { .. } => 0,
-        Solid::Sphere { .. } => 1,
-        Solid::Ellipsoid { .. } => 2,
-        Solid::Cylinder { .. } => 3,
-        Solid::Extrude { .. } => 4,
-        Solid::Revolve { .. } => 5,
-    }
+/// A colour as written (`text`) and what it paints (`None`: nothing).
+fn colour(rgb: Option<Rgb>, text: &str) -> stlc::model::Colour {
+    let text = text.to_string();
+    stlc::model::Colour { rgb, text }
 }
 
 /// The round trip's generator makes 3D descriptions too: roots with z, a
@@ -1101,7 +892,8 @@ fn solid_kind(s: &Solid) -> usize {
 #[test]
 fn the_generator_makes_3d_descriptions_with_everything_3d() {
     let (mut roots, mut forests, mut divergences, mut turns) = (0, 0, 0, 0);
-    let mut kinds = std::collections::BTreeSet::new();
+    // The kinds of volume met (Box, Sphere, Ellipsoid, Cylinder, Extrude, Revolve).
+    let mut kinds = std::collections::HashSet::new();
     for seed in 0..400 {
         let d = gen_description(seed);
         if !d.is_3d() {
@@ -1113,7 +905,7 @@ fn the_generator_makes_3d_descriptions_with_everything_3d() {
         let text = write(&d);
         turns += usize::from(text.contains('&') || text.contains('\\'));
         for s in d.layout.iter().flat_map(|l| &l.solids) {
-            kinds.insert(solid_kind(&s.solid));
+            kinds.insert(std::mem::discriminant(&s.solid));
         }
         assert_eq!(bed(&text), d, "{text}");
     }
@@ -1139,14 +931,14 @@ proptest! {
     #[test]
     fn dfs_and_bfs_draw_the_same(seed in any::<u64>()) {
         let d = gen_description(seed);
-        let a = segments(&d, Derivation::Dfs);
-        let b = segments(&d, Derivation::Bfs);
+        let a = segments(&d, Dfs);
+        let b = segments(&d, Bfs);
         prop_assert_eq!(&a, &b);
         if d.is_3d() {
-            prop_assert_eq!(segments3(&d, Derivation::Dfs), segments3(&d, Derivation::Bfs));
+            prop_assert_eq!(segments3(&d, Dfs), segments3(&d, Bfs));
         }
         if a.is_ok() {
-            prop_assert_eq!(expanded(&d, Derivation::Dfs), expanded(&d, Derivation::Bfs));
+            prop_assert_eq!(expanded(&d, Dfs), expanded(&d, Bfs));
         }
     }
 }
@@ -1156,17 +948,12 @@ fn the_example_files_parse_and_expand_as_the_paper_says() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let read = |n: &str| std::fs::read_to_string(dir.join(n)).unwrap();
     let d = bed(&read("paper-worked.bed"));
-    assert_eq!(
-        expanded(&d, Derivation::Dfs),
-        "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n"
-    );
+    let worked = "[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]\n";
+    assert_eq!(expanded(&d, Dfs), worked);
     let d = bed(&read("seed-r1r2r2.bed"));
-    assert_eq!(
-        expanded(&d, Derivation::Bfs),
-        "[FFF][F[+F][-F]F][F[+F][-F]F]\n"
-    );
-    let od = parse(&read("2dtree.od"), Format::Od, &Limits::default()).unwrap();
-    assert_eq!(od.layout.unwrap().shapes.len(), 3);
+    let worked = "[FFF][F[+F][-F]F][F[+F][-F]F]\n";
+    assert_eq!(expanded(&d, Bfs), worked);
+    assert_eq!(od(&read("2dtree.od")).layout.unwrap().shapes.len(), 3);
 }
 
 // ---------------------------------------------------------------- 3D --
@@ -1194,64 +981,30 @@ fn a_3d_description_reads_roots_divergence_turns_and_volumes() {
     let l = d.layout.as_ref().unwrap();
     assert!(l.shapes.is_empty());
     let solids: Vec<&Solid> = l.solids.iter().map(|s| &s.solid).collect();
-    let ellipse = Shape::Ellipse {
-        x: 50.0,
-        y: 40.0,
-        w: 200.0,
-        h: 180.0,
-    };
+    let (x, y, w, h) = (50.0, 40.0, 200.0, 180.0);
+    let ellipse = Shape::Ellipse { x, y, w, h };
+    let (shape, z1, z2) = (ellipse, -30.0, 30.0);
+    let extruded = Solid::Extrude { shape, z1, z2 };
     assert_eq!(
         solids,
         [
-            &Solid::Box {
-                corner: [1.0, 2.0, 3.0],
-                size: [4.0, 5.0, 6.0]
-            },
-            &Solid::Sphere {
-                centre: [150.0, 150.0, 0.0],
-                r: 40.0
-            },
-            &Solid::Ellipsoid {
-                centre: [1.0, 2.0, 3.0],
-                radii: [4.0, 5.0, 6.0]
-            },
-            &Solid::Cylinder {
-                base: [150.0, 298.0, 0.0],
-                r: 10.0,
-                h: 60.0
-            },
-            &Solid::Extrude {
-                shape: ellipse.clone(),
-                z1: -30.0,
-                z2: 30.0
-            },
-            &Solid::Extrude {
-                shape: ellipse,
-                z1: -30.0,
-                z2: 30.0
-            },
+            &cuboid([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]),
+            &sphere([150.0, 150.0, 0.0], 40.0),
+            &ellipsoid([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]),
+            &cylinder([150.0, 298.0, 0.0], 10.0, 60.0),
+            &extruded,
+            &extruded,
             &Solid::Revolve {
-                shape: Shape::RoundRect {
-                    x: 0.0,
-                    y: 0.0,
-                    w: 10.0,
-                    h: 20.0,
-                    rx: 2.0,
-                    ry: 2.0
-                }
+                shape: round_rect(0.0, 0.0, 10.0, 20.0, 2.0, 2.0)
             },
         ]
     );
     assert_eq!(l.solids[1].color, Rgb::WHITE);
     let text = write(&d);
-    assert!(
-        text.starts_with("Oak\n(150, 298, 0) (60, 280, -12.5)\nL=10(1) B=2(0.2) A=30 D=137.5\n"),
-        "{text}"
-    );
-    assert!(
-        text.contains("(clGreen) Extrude <Ellipse (50, 40), 200, 180>, -30, 30\n"),
-        "{text}"
-    );
+    let head = "Oak\n(150, 298, 0) (60, 280, -12.5)\nL=10(1) B=2(0.2) A=30 D=137.5\n";
+    assert!(text.starts_with(head), "{text}");
+    let holds = text.contains("(clGreen) Extrude <Ellipse (50, 40), 200, 180>, -30, 30\n");
+    assert!(holds, "{text}");
     assert!(text.contains("R1: [+F&F][-F^F][\\F/F]\n"), "{text}");
     assert_eq!(bed(&text), d);
 }
@@ -1266,13 +1019,8 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
     };
     let src = "T (0, 0, 0) (1, 1) RULE R1: [F]";
     let at = src.find("(1, 1)").unwrap();
-    assert_eq!(
-        one(src),
-        (
-            ErrorKind::Stl(StlError::MixedRoots { first: 3, this: 2 }),
-            at..at + 6
-        )
-    );
+    let mixed = ErrorKind::Stl(StlError::MixedRoots { first: 3, this: 2 });
+    assert_eq!(one(src), (mixed, at..at + 6));
     let src = "T (0, 0) RULE R1: [F/F]";
     let at = src.find('/').unwrap();
     let (kind, span) = one(src);
@@ -1289,35 +1037,24 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
     let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Rectangle (0, 0), 5, 5 ENDLAYOUT";
     let at = src.find("Rectangle").unwrap();
     let e = errors(src);
-    assert_eq!(
-        e.0[0].kind,
-        ErrorKind::Layout(LayoutError::FlatShapeIn3d { shape: "Rectangle" })
-    );
+    let wanted = ErrorKind::Layout(LayoutError::FlatShapeIn3d { shape: "Rectangle" });
+    assert_eq!(e.0[0].kind, wanted);
     assert_eq!(e.0[0].span, Some(at..src.find(" ENDLAYOUT").unwrap()));
     let help = e.0[0].help_text().unwrap();
-    assert!(
-        help.contains("`Extrude Rectangle (0, 0), 5, 5, z1, z2`")
-            && help.contains("`Revolve Rectangle (0, 0), 5, 5`"),
-        "{help}"
-    );
+    let both = [
+        "`Extrude Rectangle (0, 0), 5, 5, z1, z2`",
+        "`Revolve Rectangle (0, 0), 5, 5`",
+    ];
+    assert!(both.iter().all(|b| help.contains(b)), "{help}");
     let src = "T (0, 0) RULE R1: [F] LAYOUT (clGreen) Sphere (0, 0, 0), 5 ENDLAYOUT";
-    assert_eq!(
-        one(src).0,
-        ErrorKind::Layout(LayoutError::SolidIn2d { shape: "Sphere" })
-    );
+    let wanted = ErrorKind::Layout(LayoutError::SolidIn2d { shape: "Sphere" });
+    assert_eq!(one(src).0, wanted);
     // Sizes and depths.
     let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Box (0, 0, 0), 5, 0, 5 ENDLAYOUT";
     let at = src.find("5, 0, 5").unwrap() + 3;
-    assert_eq!(
-        one(src),
-        (
-            ErrorKind::Layout(LayoutError::ShapeSizeNotPositive {
-                shape: "Box",
-                what: "height"
-            }),
-            at..at + 1
-        )
-    );
+    let (shape, what) = ("Box", "height");
+    let size = ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { shape, what });
+    assert_eq!(one(src), (size, at..at + 1));
     let src =
         "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Extrude Ellipse (0, 0), 5, 5, 3, 3 ENDLAYOUT";
     assert_eq!(one(src).0, ErrorKind::Layout(LayoutError::ExtrudeRange));
@@ -1330,12 +1067,8 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
         "Box Ellipse (0, 0), 5, 5",
     ] {
         let src = format!("T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) {bad} ENDLAYOUT");
-        assert!(
-            matches!(
-                one(&src).0,
-                ErrorKind::Layout(LayoutError::ShapeArguments { .. })
-            ),
-            "{bad}"
-        );
+        let kind = one(&src).0;
+        let arguments = matches!(kind, ErrorKind::Layout(LayoutError::ShapeArguments { .. }));
+        assert!(arguments, "{bad}");
     }
 }

@@ -4,20 +4,18 @@
 
 use proptest::prelude::*;
 use stlc::choice::{Alternatives, Key};
-use stlc::diag::{ErrorKind, LsysError, RuleError};
-use stlc::interpret::Derivation;
+use stlc::diag::ErrorKind::{self, Lsys, Rule};
+use stlc::diag::LsysError::{DuplicateProduction, NotWholeNumber, Param, UnreadableProbability};
+use stlc::diag::RuleError::{BadProbability, MissingProbability, ProbabilitySum};
+use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::interpret::expected::{StochasticStats, stochastic_stats};
 use stlc::limits::Limits;
 use stlc::model::lsys::LSystem;
 use stlc::syntax::lsys::parse;
 
-use crate::lsys::{expanded_of, segments_of as segments};
+use crate::lsys::{expanded_of, segments_of as segments, sys};
 use crate::support::stlc_stdout as render;
-use crate::support::{manifest_path, outcome, stlc_line};
-
-fn sys(src: &str) -> LSystem {
-    parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
-}
+use crate::support::{limits_with, manifest_path, outcome, stlc_line};
 
 fn word(s: &LSystem, depth: u32, strategy: Derivation) -> String {
     expanded_of(s, depth, strategy).trim_end().to_string()
@@ -36,7 +34,7 @@ fn the_choice_is_the_documented_function_of_seed_and_place() {
         "axiom {}\nangle 90\nrule A (0.5) -> x\nrule A (0.3) -> y\nrule A (0.2) -> z\nseed 11\n",
         "A".repeat(n)
     );
-    let got = word(&sys(&src), 1, Derivation::Dfs);
+    let got = word(&sys(&src), 1, Dfs);
     let table = Alternatives::new(&[0.5, 0.3, 0.2]).unwrap();
     let want: String = (0..n as u64)
         .map(|i| ['x', 'y', 'z'][table.pick(Key::root(11).child(i))])
@@ -55,7 +53,7 @@ fn choices_follow_the_probabilities() {
             "axiom {axiom}\nangle 90\nrule B -> AAA\n\
              rule A (0.6) -> x\nrule A (0.3) -> y\nrule A (0.1) -> z\n"
         );
-        let w = word(&sys(&src), depth, Derivation::Bfs);
+        let w = word(&sys(&src), depth, Bfs);
         assert_eq!(w.len(), n);
         for (c, p) in [('x', 0.6), ('y', 0.3), ('z', 0.1)] {
             let k = w.chars().filter(|&x| x == c).count() as f64;
@@ -101,8 +99,8 @@ proptest! {
     #[test]
     fn dfs_and_bfs_agree_on_stochastic_systems(src in arb_system(), depth in 0u32..6) {
         let s = sys(&src);
-        prop_assert_eq!(word(&s, depth, Derivation::Dfs), word(&s, depth, Derivation::Bfs));
-        prop_assert_eq!(segments(&s, depth, Derivation::Dfs), segments(&s, depth, Derivation::Bfs));
+        prop_assert_eq!(word(&s, depth, Dfs), word(&s, depth, Bfs));
+        prop_assert_eq!(segments(&s, depth, Dfs), segments(&s, depth, Bfs));
     }
 }
 
@@ -137,9 +135,9 @@ fn the_seed_selects_the_plant() {
 #[test]
 fn a_deterministic_system_ignores_the_seed() {
     let mut s = sys("axiom F\nangle 25.7\nrule F -> F[+F]F[-F]F\n");
-    let w = word(&s, 3, Derivation::Dfs);
+    let w = word(&s, 3, Dfs);
     s.seed = 12345;
-    assert_eq!(w, word(&s, 3, Derivation::Dfs));
+    assert_eq!(w, word(&s, 3, Dfs));
 }
 
 // ------------------------------------------------------------ stats
@@ -151,7 +149,7 @@ fn counted_stats_are_the_words_counts() {
     let StochasticStats::Counted(st) = stochastic_stats(&s, 4, &Limits::default()).unwrap() else {
         panic!("a short word is counted");
     };
-    let w = word(&s, 4, Derivation::Dfs);
+    let w = word(&s, 4, Dfs);
     assert_eq!(st.length, w.len().into());
     for (c, n) in &st.symbols {
         assert_eq!(*n, w.chars().filter(|x| x == c).count().into(), "{c}");
@@ -167,19 +165,13 @@ fn counted_stats_are_the_words_counts() {
 #[test]
 fn expected_stats_follow_the_mean_matrix() {
     let s = sys(FIG_1_27);
-    let tiny = Limits {
-        max_symbols: 10,
-        ..Limits::default()
-    };
+    let tiny = limits_with(|l| l.max_symbols = 10);
     let StochasticStats::Expected(e) = stochastic_stats(&s, 12, &tiny).unwrap() else {
         panic!("over the budget, the values are expected");
     };
     let f12 = 3.68f64.powi(12);
-    assert!(
-        (e.segments - f12).abs() < 1e-6 * f12,
-        "{} vs {f12}",
-        e.segments
-    );
+    let segments = e.segments;
+    assert!((segments - f12).abs() < 1e-6 * f12, "{segments} vs {f12}");
     let brackets: f64 = (0..12).map(|r| 3.68f64.powi(r) * 1.34).sum();
     assert!((e.symbols[&'['] - brackets).abs() < 1e-6 * brackets);
     let json = StochasticStats::Expected(e.clone()).to_json();
@@ -191,10 +183,7 @@ fn expected_stats_follow_the_mean_matrix() {
         .map(|seed| {
             let mut s = sys(FIG_1_27);
             s.seed = seed;
-            word(&s, 3, Derivation::Dfs)
-                .chars()
-                .filter(|&c| c == 'F')
-                .count() as f64
+            word(&s, 3, Dfs).matches('F').count() as f64
         })
         .collect();
     let mean = counts.iter().sum::<f64>() / n as f64;
@@ -223,20 +212,15 @@ fn expected_stats_give_exact_bounds_at_any_depth() {
     assert_eq!(fig_1_27_bounds(3).1, 311u32.into());
     let s = sys(FIG_1_27);
     for depth in [3, 40, 100, 1000] {
-        let tiny = Limits {
-            max_symbols: 10,
-            ..Limits::default()
-        };
+        let tiny = limits_with(|l| l.max_symbols = 10);
         let StochasticStats::Expected(e) = stochastic_stats(&s, depth, &tiny).unwrap() else {
             panic!("over the budget, the values are expected");
         };
         let (lo, hi) = fig_1_27_bounds(depth);
         assert_eq!(e.bounds, (lo.clone(), hi.clone()), "depth {depth}");
         let json = StochasticStats::Expected(e.clone()).to_json();
-        assert!(
-            json.contains(&format!("\"bounds\": [\"{lo}\", \"{hi}\"]")),
-            "{json}"
-        );
+        let bounds = format!("\"bounds\": [\"{lo}\", \"{hi}\"]");
+        assert!(json.contains(&bounds), "{json}");
         let text = StochasticStats::Expected(e).to_text();
         assert!(text.contains(&format!("any seed: {lo} .. {hi}")), "{text}");
     }
@@ -255,38 +239,23 @@ fn expected_stats_give_exact_bounds_at_any_depth() {
 fn a_depth_no_choice_can_fit_is_refused_at_once() {
     let s = sys(FIG_1_27);
     let refuse = |depth: u32, limit: u64, strategy: Derivation| {
-        let limits = Limits {
-            max_symbols: limit,
-            ..Limits::default()
-        };
         let mut out = Vec::new();
-        let e = stlc::interpret::lsys::expand(
-            &s,
-            depth,
-            strategy,
-            &limits,
-            &mut out,
-            &mut stlc::progress::NoProgress,
-        )
-        .unwrap_err();
+        let e = expand_within(&s, depth, strategy, limit, &mut out).unwrap_err();
         assert!(out.is_empty(), "wrote {} bytes first", out.len());
-        match &e.0[0].kind {
-            ErrorKind::Limit {
-                value, limit: l, ..
-            } => {
-                // A stochastic expansion gets a tenth of --max-symbols.
-                assert_eq!(*l, limit / 10);
-                value.clone()
-            }
-            other => panic!("{other:?}"),
-        }
+        let ErrorKind::Limit {
+            value, limit: l, ..
+        } = &e.0[0].kind
+        else {
+            panic!("{:?}", e.0[0].kind)
+        };
+        // A stochastic expansion gets a tenth of --max-symbols.
+        assert_eq!(*l, limit / 10);
+        value.clone()
     };
-    for strategy in [Derivation::Dfs, Derivation::Bfs] {
+    for strategy in [Dfs, Bfs] {
         assert_eq!(refuse(3, 650, strategy), "at least 66");
-        assert_eq!(
-            refuse(100, 1_000_000, strategy),
-            format!("at least {}", fig_1_27_bounds(100).0)
-        );
+        let wanted = format!("at least {}", fig_1_27_bounds(100).0);
+        assert_eq!(refuse(100, 1_000_000, strategy), wanted);
     }
     // Under a limit between the bounds some seeds fit and some do not: a
     // word over it is refused before anything is written all the same.
@@ -295,26 +264,11 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
         let mut s = sys(FIG_1_27);
         s.seed = seed;
         // A tenth of 1,200: 120 symbols.
-        let limits = Limits {
-            max_symbols: 1_200,
-            ..Limits::default()
-        };
         let mut out = Vec::new();
-        let r = stlc::interpret::lsys::expand(
-            &s,
-            3,
-            Derivation::Dfs,
-            &limits,
-            &mut out,
-            &mut stlc::progress::NoProgress,
-        );
-        if r.is_err() {
+        if expand_within(&s, 3, Dfs, 1_200, &mut out).is_err() {
             over += 1;
-            assert!(
-                out.is_empty(),
-                "seed {seed}: wrote {} bytes first",
-                out.len()
-            );
+            let n = out.len();
+            assert!(n == 0, "seed {seed}: wrote {n} bytes first");
         } else {
             assert!(out.len() <= 121, "seed {seed}: {}", out.len());
         }
@@ -325,11 +279,24 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
         .map(|seed| {
             let mut s = sys(FIG_1_27);
             s.seed = seed;
-            word(&s, 3, Derivation::Dfs).len()
+            word(&s, 3, Dfs).len()
         })
         .collect();
     assert!(lens.iter().all(|l| (66..=311).contains(l)), "{lens:?}");
     assert!(lens.iter().any(|&l| l != lens[0]), "{lens:?}");
+}
+
+/// `s` expanded to `depth` into `out` with `--max-symbols max_symbols`.
+fn expand_within(
+    s: &LSystem,
+    depth: u32,
+    strategy: Derivation,
+    max_symbols: u64,
+    out: &mut Vec<u8>,
+) -> Result<(), stlc::Diagnostics> {
+    let limits = limits_with(|l| l.max_symbols = max_symbols);
+    let progress = &mut stlc::progress::NoProgress;
+    stlc::interpret::lsys::expand(s, depth, strategy, &limits, out, progress)
 }
 
 fn first_error(src: &str) -> (ErrorKind, std::ops::Range<usize>) {
@@ -344,7 +311,7 @@ fn probabilities_are_checked() {
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\nrule F (0.4) -> F-F\n";
     let (kind, span) = first_error(src);
     assert!(
-        matches!(&kind, ErrorKind::Rule(RuleError::ProbabilitySum { name, sum }) if name == "F" && (sum - 0.9).abs() < 1e-12),
+        matches!(&kind, Rule(ProbabilitySum { name, sum }) if name == "F" && (sum - 0.9).abs() < 1e-12),
         "{kind:?}"
     );
     assert_eq!(&src[span], "rule F (0.5) -> F+F");
@@ -352,54 +319,36 @@ fn probabilities_are_checked() {
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F -> F-F\n";
     let (kind, span) = first_error(src);
-    assert!(
-        matches!(&kind, ErrorKind::Rule(RuleError::MissingProbability { name }) if name == "F")
-    );
+    assert!(matches!(&kind, Rule(MissingProbability { name }) if name == "F"));
     assert_eq!(&src[span], "rule F -> F-F");
 
     // Only that: the sum of the rules that have one (0.5) is no news.
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\nrule F -> F-F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
     assert_eq!(e.0.len(), 1, "{e}");
-    assert!(matches!(
-        &e.0[0].kind,
-        ErrorKind::Rule(RuleError::MissingProbability { .. })
-    ));
+    assert!(matches!(&e.0[0].kind, Rule(MissingProbability { .. })));
     // One rule with a probability other than 1: it needs none.
     let src = "axiom F\nangle 30\nrule F (0.5) -> F+F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
-    assert!(matches!(
-        &e.0[0].kind,
-        ErrorKind::Rule(RuleError::ProbabilitySum { .. })
-    ));
+    assert!(matches!(&e.0[0].kind, Rule(ProbabilitySum { .. })));
     let help = e.0[0].help_text().unwrap();
-    assert!(
-        help.contains("needs no probability: write `rule F -> ...`"),
-        "{help}"
-    );
+    let holds = help.contains("needs no probability: write `rule F -> ...`");
+    assert!(holds, "{help}");
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (0) -> F-F\n";
     let (kind, span) = first_error(src);
-    assert!(
-        matches!(&kind, ErrorKind::Rule(RuleError::BadProbability { value, .. }) if *value == 0.0)
-    );
+    assert!(matches!(&kind, Rule(BadProbability { value, .. }) if *value == 0.0));
     assert_eq!(&src[span], "rule F (0) -> F-F");
 
     let src = "axiom F\nangle 30\nrule F -> F+F\nrule F -> F-F\n";
-    assert!(matches!(
-        first_error(src).0,
-        ErrorKind::Lsys(LsysError::DuplicateProduction { symbol: 'F' })
-    ));
+    let duplicate = Lsys(DuplicateProduction { symbol: 'F' });
+    assert_eq!(first_error(src).0, duplicate);
 
     let src = "axiom F\nangle 30\nrule F (1) -> F+F\nrule F (1e400) -> F-F\n";
     let (kind, _) = first_error(src);
-    assert!(
-        matches!(&kind, ErrorKind::Rule(RuleError::BadProbability { value, .. }) if value.is_infinite())
-    );
-    assert!(
-        kind.to_string().contains("not a finite number above 0"),
-        "{kind}"
-    );
+    assert!(matches!(&kind, Rule(BadProbability { value, .. }) if value.is_infinite()));
+    let holds = kind.to_string().contains("not a finite number above 0");
+    assert!(holds, "{kind}");
 
     // A parenthesis where the probability goes that is no decimal number
     // would otherwise start the successor `(1/3)->F+F`.
@@ -410,10 +359,8 @@ fn probabilities_are_checked() {
     ] {
         let src = format!("axiom F\nangle 30\n{line}\n");
         let (kind, span) = first_error(&src);
-        assert!(
-            matches!(&kind, ErrorKind::Lsys(LsysError::UnreadableProbability { text: t }) if t == text),
-            "{line}: {kind:?}"
-        );
+        let unreadable = Lsys(UnreadableProbability { text: text.into() });
+        assert_eq!(kind, unreadable, "{line}");
         assert_eq!(&src[span], text);
     }
     // `F(0.5)` in a rule head names F's parameters (issue 32, docs/lsys.md):
@@ -421,22 +368,16 @@ fn probabilities_are_checked() {
     let src = "axiom F\nangle 30\nrule F(0.5) -> F+F\n";
     let e = parse(src, &Limits::default()).unwrap_err();
     let d = e.iter().next().unwrap();
-    assert!(matches!(d.kind, ErrorKind::Lsys(LsysError::Param { .. })));
+    assert!(matches!(d.kind, Lsys(Param { .. })));
     assert_eq!(d.kind.to_string(), "`0.5` is not a formal parameter");
     assert_eq!(&src[d.span.clone().unwrap()], "0.5");
-    assert!(
-        d.help_text().unwrap().contains("rule F (0.5)"),
-        "{:?}",
-        d.help
-    );
+    let help = d.help_text().unwrap();
+    assert!(help.contains("rule F (0.5)"), "{help}");
 
     let src = "axiom F\nangle 30\nseed -3\n";
     let (kind, span) = first_error(src);
     assert!(
-        matches!(
-            kind,
-            ErrorKind::Lsys(LsysError::NotWholeNumber { key: "seed", .. })
-        ),
+        matches!(kind, Lsys(NotWholeNumber { key: "seed", .. })),
         "{kind:?}"
     );
     assert_eq!(&src[span], "-3");
@@ -452,13 +393,13 @@ fn stochastic_rule_forms() {
     assert_eq!(s.seed, u64::MAX);
     let s = sys("axiom F\nangle 30\nrule F (1) -> FF\n");
     assert!(s.is_stochastic());
-    assert_eq!(word(&s, 2, Derivation::Dfs), "FFFF");
+    assert_eq!(word(&s, 2, Dfs), "FFFF");
     let s = sys("axiom F\nangle 30\nrule F (F)\n");
     assert!(!s.is_stochastic());
-    assert_eq!(word(&s, 1, Derivation::Dfs), "(F)");
+    assert_eq!(word(&s, 1, Dfs), "(F)");
     // Without an arrow after it, a parenthesis is symbols of the successor.
     let s = sys("axiom F\nangle 30\nrule F (x)F\n");
-    assert_eq!(word(&s, 1, Derivation::Dfs), "(x)F");
+    assert_eq!(word(&s, 1, Dfs), "(x)F");
 }
 
 /// A stochastic derivation may visit a tenth of `--max-symbols` (each of
@@ -481,14 +422,11 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
     let doubling = "generations 20\naxiom X\nangle 30\nrule X (0.5) -> XX\nrule X (0.5) -> XX\n";
     let (code, err) = run(doubling, "--max-symbols 1000000");
     assert_eq!(code, Some(1), "{err}");
-    assert!(
-        err.contains("at least 1048576 exceeds the limit of 100000"),
-        "{err}"
-    );
-    assert!(
-        err.contains("a tenth of --max-symbols (100000 of 1000000)"),
-        "{err}"
-    );
+    let says = |words: &str| err.contains(words);
+    let holds = says("at least 1048576 exceeds the limit of 100000");
+    assert!(holds, "{err}");
+    let holds = says("a tenth of --max-symbols (100000 of 1000000)");
+    assert!(holds, "{err}");
     // Twenty times the limit lets it through: 2^20 < 2 x 10^6.
     let (code, err) = run(doubling, "--max-symbols 20000000");
     assert_eq!(code, Some(0), "{err}");
@@ -508,11 +446,8 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
 fn a_tiny_probability_is_not_printed_as_zero() {
     let dir = tempfile::tempdir().unwrap();
     let f = dir.path().join("tiny.lsys");
-    std::fs::write(
-        &f,
-        "generations 2\naxiom F\nangle 30\nrule F (1e-300) -> F[+F]\nrule F (1) -> F[-F]\n",
-    )
-    .unwrap();
+    let text = "generations 2\naxiom F\nangle 30\nrule F (1e-300) -> F[+F]\nrule F (1) -> F[-F]\n";
+    std::fs::write(&f, text).unwrap();
     let (_, out, _) = outcome(&mut stlc_line(&format!("check {}", f.display())));
     let text = String::from_utf8_lossy(&out);
     assert!(text.contains("(probability 1e-300)"), "{text}");
@@ -532,19 +467,14 @@ fn an_svg_the_fewest_segments_overflow_is_refused_before_deriving() {
     let fig = manifest_path("examples/abop-1.27.lsys");
     let render = |flags: &str, out: &str| {
         let out = dir.path().join(out);
-        let line = format!(
-            "render {} --exact {flags} -o {}",
-            fig.display(),
-            out.display()
-        );
+        let (fig, out) = (fig.display(), out.display());
+        let line = format!("render {fig} --exact {flags} -o {out}");
         outcome(&mut stlc_line(&line))
     };
     let (code, _, err) = render("--depth 16", "a.svg");
     assert_eq!(code, 1);
-    assert!(
-        err.contains("segments in the SVG: more than 10000000"),
-        "{err}"
-    );
+    let refused = err.contains("segments in the SVG: more than 10000000");
+    assert!(refused, "{err}");
     assert!(!dir.path().join("a.svg").exists());
     // A smaller limit refuses a smaller depth the same way: 3^6 = 729.
     let (code, _, _) = render("--depth 6 --max-svg-segments 700", "b.svg");

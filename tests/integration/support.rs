@@ -548,3 +548,78 @@ pub fn files_in(dir: impl AsRef<Path>) -> Vec<String> {
     names.sort();
     names
 }
+
+/// The kind of a limit error, written out field by field: `bound` with
+/// `value` (as the message writes it) over `limit`, `what` measured where
+/// the bound's own words are not precise enough.
+pub fn limit_kind(
+    bound: stlc::Bound,
+    what: Option<&str>,
+    value: &str,
+    limit: u64,
+) -> stlc::ErrorKind {
+    let (what, value) = (what.map(str::to_string), value.to_string());
+    stlc::ErrorKind::Limit {
+        bound,
+        what,
+        value,
+        limit,
+    }
+}
+
+/// The default limits with `set` applied (`limits_with(|l| l.max_word = 100)`).
+pub fn limits_with(set: impl FnOnce(&mut stlc::Limits)) -> stlc::Limits {
+    let mut limits = stlc::Limits::default();
+    set(&mut limits);
+    limits
+}
+
+/// A layout volume: a sphere.
+pub fn sphere(centre: [f64; 3], r: f64) -> stlc::model::Solid {
+    stlc::model::Solid::Sphere { centre, r }
+}
+
+/// A layout volume: a box from `corner`, `size` along each axis.
+pub fn cuboid(corner: [f64; 3], size: [f64; 3]) -> stlc::model::Solid {
+    stlc::model::Solid::Box { corner, size }
+}
+
+/// A layout volume: a vertical cylinder standing on `base`.
+pub fn cylinder(base: [f64; 3], r: f64, h: f64) -> stlc::model::Solid {
+    stlc::model::Solid::Cylinder { base, r, h }
+}
+
+/// A layout volume: an ellipsoid.
+pub fn ellipsoid(centre: [f64; 3], radii: [f64; 3]) -> stlc::model::Solid {
+    stlc::model::Solid::Ellipsoid { centre, radii }
+}
+
+/// The text of `examples/name`.
+pub fn example_text(name: &str) -> String {
+    fs::read_to_string(manifest_path("examples").join(name)).unwrap()
+}
+
+/// The distance from `p` to the segment `a`-`b` (to `a` when they
+/// coincide).
+pub fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
+}
+
+/// The files of the crate's folder `dir` whose names end in `.ext`,
+/// sorted.
+pub fn files_with(dir: &str, ext: &str) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = fs::read_dir(manifest_path(dir))
+        .unwrap_or_else(|e| panic!("{dir}: {e}"))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == ext))
+        .collect();
+    files.sort();
+    files
+}

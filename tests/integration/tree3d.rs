@@ -79,28 +79,19 @@ fn the_front_view_of_a_planar_3d_bed_is_the_2d_picture() {
         .replacen("RULE", "D=0\nRULE", 1);
     for format in [ImageFormat::Png, ImageFormat::Svg] {
         let image = RenderOptions::new(format, Some((300, 240)));
-        let draw = |req: Request| {
-            let mut out = Vec::new();
+        let draw = |text: &str, view: Option<View>| {
+            let (mut req, mut out) = (bed_request(text), Vec::new());
+            (req.image, req.view) = (image, view);
             req.render(&mut out, &mut stlc::pipeline::NoProgress)
                 .unwrap();
             out
         };
-        let a = draw(Request {
-            image,
-            ..bed_request(flat)
-        });
-        let b = draw(Request {
-            image,
-            view: Some(View::FRONT),
-            ..bed_request(&deep)
-        });
+        let a = draw(flat, None);
+        let b = draw(&deep, Some(View::FRONT));
         assert!(a.len() > 1000);
         assert!(a == b, "{format:?} differs");
         // The default view (30, 20) is another picture.
-        let c = draw(Request {
-            image,
-            ..bed_request(&deep)
-        });
+        let c = draw(&deep, None);
         assert!(c != b, "{format:?}");
     }
 }
@@ -121,9 +112,9 @@ fn obj_vertices(obj: &str) -> Vec<[f64; 3]> {
 }
 
 fn obj(text: &str) -> String {
-    let mut out = Vec::new();
+    let (mut out, mut progress) = (Vec::new(), stlc::pipeline::NoProgress);
     bed_request(text)
-        .mesh(MeshFormat::Obj, &mut out, &mut stlc::pipeline::NoProgress)
+        .mesh(MeshFormat::Obj, &mut out, &mut progress)
         .unwrap();
     String::from_utf8(out).unwrap()
 }
@@ -168,13 +159,12 @@ fn a_3d_od_grows_into_a_3d_bed() {
     stlc_piped(&format!("compile --from od -o {} -", bed.display()), od);
     let text = std::fs::read_to_string(&bed).unwrap();
     assert!(text.starts_with("T\n(0, 0, 0)\n"), "{text}");
-    let out = stlc_piped(&format!("stats --json {}", bed.display()), "");
-    assert_eq!(
-        String::from_utf8(out).unwrap().trim(),
-        "{\"dimensions\": 3, \"symbols\": \"11\", \"stems\": \"3\", \
+    let out =
+        String::from_utf8(stlc_piped(&format!("stats --json {}", bed.display()), "")).unwrap();
+    let json = "{\"dimensions\": 3, \"symbols\": \"11\", \"stems\": \"3\", \
          \"bbox\": [0.000000, -15.000000, 0.000000, 0.000000, 0.000000, 5.000000], \
-         \"end\": [0.000000, -10.000000, 0.000000]}"
-    );
+         \"end\": [0.000000, -10.000000, 0.000000]}";
+    assert_eq!(out.trim(), json);
 }
 
 /// Drawn flat (what 2D-only consumers of a scene get), a 3D tree is its
@@ -276,22 +266,14 @@ fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
 /// examples, both growth orders.
 #[test]
 fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
-    use stlc::grow::{GrowOptions, GrowthOrder, grow_traced};
-    use stlc::interpret::{Derivation, bed3::draw3};
+    use stlc::grow::{GrowthOrder, grow_traced};
+    use stlc::interpret::{Derivation::Dfs, bed3::draw3};
     use stlc::progress::NoProgress;
     for name in ["examples/oak3d.od", "examples/forest3d.od"] {
         let text = std::fs::read_to_string(manifest_path(name)).unwrap();
-        let od = stlc::syntax::stl::parse(
-            &text,
-            stlc::model::Format::Od,
-            &stlc::limits::Limits::default(),
-        )
-        .unwrap();
+        let od = crate::support::od(&text);
         for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
-            let opts = GrowOptions {
-                growth,
-                ..GrowOptions::default()
-            };
+            let opts = crate::support::opts(growth);
             let (grown, placed) = grow_traced(&od, &opts, &mut NoProgress).unwrap();
             let key = |a: [f64; 6]| a.map(f64::to_bits);
             let mut grew: Vec<[u64; 6]> = placed
@@ -299,24 +281,17 @@ fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
                 .map(|p| key([p.from.x, p.from.y, p.z[0], p.to.x, p.to.y, p.z[1]]))
                 .collect();
             let mut drawn = Vec::new();
-            draw3(
-                &grown.bed,
-                Derivation::Dfs,
-                &opts.limits,
-                &mut |s| {
-                    let (a, b) = (s.from, s.to);
-                    drawn.push(key([a.x, a.y, a.z, b.x, b.y, b.z]));
-                },
-                &mut NoProgress,
-            )
-            .unwrap();
+            let mut push = |s: stlc::turtle::turtle3::Segment3| {
+                let (a, b) = (s.from, s.to);
+                drawn.push(key([a.x, a.y, a.z, b.x, b.y, b.z]));
+            };
+            let limits = &opts.limits;
+            draw3(&grown.bed, Dfs, limits, &mut push, &mut NoProgress).unwrap();
             assert!(grew.len() > 100, "{name}");
             grew.sort_unstable();
             drawn.sort_unstable();
-            assert!(
-                grew == drawn,
-                "{name} {growth:?}: growth and the BED differ"
-            );
+            let holds = grew == drawn;
+            assert!(holds, "{name} {growth:?}: growth and the BED differ");
         }
     }
 }

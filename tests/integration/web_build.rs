@@ -4,7 +4,7 @@
 //! the folder in place: a second build running beside the first failed
 //! with "cp: cannot create regular file 'target/site/examples/'".
 
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 
 use super::browser_web::{examples, wasm_target};
 use crate::support::manifest_path;
@@ -22,12 +22,11 @@ fn build(folder: &std::path::Path) -> std::process::Child {
         .unwrap()
 }
 
-fn succeeded(out: Output, what: &str) {
-    assert!(
-        out.status.success(),
-        "{what} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+/// Waits for the build `child`, which must succeed (`what` it was in the panic).
+fn succeeded(child: std::process::Child, what: &str) {
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{what} failed: {err}");
 }
 
 #[test]
@@ -44,18 +43,9 @@ fn two_builds_at_once_then_a_third_all_succeed_and_leave_one_whole_site() {
 
     let first = build(&site);
     let second = build(&site);
-    succeeded(
-        first.wait_with_output().unwrap(),
-        "the first of two builds at once",
-    );
-    succeeded(
-        second.wait_with_output().unwrap(),
-        "the second of two builds at once",
-    );
-    succeeded(
-        build(&site).wait_with_output().unwrap(),
-        "a third build after them",
-    );
+    succeeded(first, "the first of two builds at once");
+    succeeded(second, "the second of two builds at once");
+    succeeded(build(&site), "a third build after them");
 
     // One whole site: the page, the module, every example and their list.
     let index = std::fs::read_to_string(site.join("index.html")).unwrap();
