@@ -197,7 +197,7 @@ const TEST_FILE_LINES: usize = 1000;
 /// Test files over [`TEST_FILE_LINES`] when the ceiling came, with the
 /// lines they had then: each may shrink, not grow, and leaves the list
 /// once under the ceiling (the test says so).
-const TEST_FILES_OVER: &[(&str, usize)] = &[("stl.rs", 1378)];
+const TEST_FILES_OVER: &[(&str, usize)] = &[("stl.rs", 1074)];
 
 /// Ceilings for tests and the page's JavaScript, as src/ has its 650
 /// lines: a test file at most [`TEST_FILE_LINES`] (those listed in
