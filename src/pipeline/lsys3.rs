@@ -213,6 +213,12 @@ fn render_view_lod(
     let (sys, _) = lsys3(scene).expect("a 3D .lsys");
     let style = style(scene, look);
     let reach = memo.radius();
+    if !reach.is_finite() {
+        // Lengths past f64's range (`S -> SFS` at depth 1024): no fit.
+        return Err(Diagnostic::error(RenderError::DrawingNotFinite)
+            .with_help("the drawing's size overflows at this depth: use a smaller depth")
+            .into());
+    }
     // The coarse walk: the smallest detail, halving from the whole, whose
     // walk visits at most MEASURE_VISITS.
     let mut coarse = 4.0 * reach;
@@ -233,6 +239,9 @@ fn render_view_lod(
         }
     };
     let plan = memo.plan(coarse);
+    if plan.visits > VIEW_VISITS {
+        return Err(view_too_large(format!("more than {MAX_VIEW_SEGMENTS}")));
+    }
     memo.walk(
         sys,
         coarse,

@@ -309,3 +309,14 @@ fn a_view_past_the_top_is_a_usage_error() {
         std::fs::remove_file(&png).unwrap();
     }
 }
+
+/// A view whose drawing outgrows f64 (`F -> F[&F]F` at depth 1100: its
+/// reach is 3^1100 steps) ends at once with the error that says so; the
+/// walk measuring it used to run without end.
+#[test]
+fn a_view_past_f64_s_range_is_refused_at_once() {
+    let mut req = lsys_request("dimensions 3\nangle 90\naxiom F\nrule F -> F[&F]F\n");
+    req.depth = Some(1100);
+    let err = req.render(&mut Vec::new(), &mut NoProgress).unwrap_err();
+    assert!(err.to_string().contains("not finite numbers"), "{err}");
+}
