@@ -18,6 +18,9 @@ done
 for n in abop-1.31a abop-2.6a abop-2.7a abop-2.8a param-willow abop-5.5a; do
   $B render examples/$n.lsys --size 240x240 -o $G/$n.png
 done
+# Leaves, flowers and colours (docs/lsys.md, *Colours, widths and organs*).
+$B render examples/abop-1.26.lsys --size 360x360 -o $G/abop-1.26.png
+$B render examples/abop-3.2.lsys --size 240x240 -o $G/abop-3.2.png
 $B render examples/crown.od --show-layout --size 300x300 -o $G/crown.png
 $B render examples/successors.od --show-layout --size 300x300 -o $G/successors.png
 $B render examples/pentagon.od --show-layout --size 300x300 -o $G/pentagon.png

@@ -110,6 +110,10 @@ pub(crate) static EXAMPLES: &[(&str, &str)] = &[
         include_str!("../../examples/abop-2.8d.lsys"),
     ),
     (
+        "abop-3.2.lsys",
+        include_str!("../../examples/abop-3.2.lsys"),
+    ),
+    (
         "abop-5.5a.lsys",
         include_str!("../../examples/abop-5.5a.lsys"),
     ),

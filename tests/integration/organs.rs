@@ -322,6 +322,66 @@ fn abop_1_26_as_a_mesh_has_one_material_per_colour_and_leaf_materials() {
 }
 
 #[test]
+fn abop_3_2_leaves_and_flower_grow_with_their_age_worked_by_hand() {
+    // a(t) lays down F(1) and a leaf ~L(0) for t = 1..6, then F(20) and
+    // the flower ~K(0) at step 7. A leaf made at step k is L(16 - k) at
+    // depth 16, capped at 9; K(0) made at step 8 ages to K(5). The kite
+    // leaf reaches 0.2 cos 25 + 0.13 + 0.2 cos 25 from its base times its
+    // scale; a petal 2 x 0.4 cos 20 times the flower's. An internode
+    // steps 1, 1.2, ... by 0.2 while under 2: 1 + 5 x 0.2 is
+    // 1.9999999999999998 in doubles, so it takes a sixth step, to 2.2.
+    let src = crate::support::example_text("abop-3.2.lsys");
+    let sys = parse(&src, &Limits::default()).unwrap();
+    let p = sys.parametric.as_deref().unwrap();
+    use stlc::interpret::lsys::param::{Mark, draw3_marks};
+    use stlc::turtle::turtle3::Point3;
+    let (mut steps, mut reaches, mut paints) = (Vec::new(), Vec::new(), Vec::new());
+    let dist = |a: Point3, b: Point3| {
+        libm::sqrt((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.z - b.z).powi(2))
+    };
+    let mut mark = |m: Mark<'_>| match m {
+        Mark::Step(s, _) => steps.push(dist(s.from, s.to)),
+        Mark::Polygon(v) => {
+            let far = v.iter().map(|q| dist(v[0], *q)).fold(0.0, f64::max);
+            reaches.push((v.len(), far));
+        }
+        Mark::Paint(i) => paints.push(i),
+    };
+    draw3_marks(&sys, p, 16, Dfs, &Limits::default(), &mut mark).unwrap();
+    let near = |a: f64, b: f64| (a - b).abs() < 1e-9;
+    let (mut internode, mut grown) = (1.0f64, 0);
+    while internode < 2.0 {
+        (internode, grown) = (internode + 0.2, grown + 1);
+    }
+    assert!(
+        grown == 6 && near(internode, 2.2),
+        "{grown} steps to {internode}"
+    );
+    assert_eq!(steps.len(), 7);
+    assert!(
+        steps[..6].iter().all(|&l| near(l, 2.2)) && near(steps[6], 20.0),
+        "{steps:?}"
+    );
+    let kite = 0.4 * libm::cos(25f64.to_radians()) + 0.13;
+    let petal = 0.8 * libm::cos(20f64.to_radians());
+    // Six leaves of 7 recorded vertices (the base `.` and 6 `f`s: the
+    // last lands on the base only to within rounding, so it is kept),
+    // then five petals of 5 (`.` and 4 `f`s); stems in colour 0, leaves
+    // 1, petals 2.
+    assert_eq!(reaches.len(), 11);
+    for (i, &(n, far)) in reaches.iter().enumerate() {
+        let (want_n, want) = if i < 6 {
+            (7, 9.0 * kite)
+        } else {
+            (5, 5.0 * petal)
+        };
+        assert_eq!(n, want_n, "polygon {i}");
+        assert!(near(far, want), "polygon {i}: {far} against {want}");
+    }
+    assert!(paints.contains(&1) && paints.contains(&2), "{paints:?}");
+}
+
+#[test]
 fn abop_5_5a_leaf_is_one_polygon_of_2n_vertices_worked_by_hand() {
     // n = 20: the base `.`, then on the way up the midrib the ends of the
     // veins turned `-` (right) R0..R19, on the way down those turned `+`
