@@ -309,13 +309,18 @@ impl ParamMemo {
         let visits = self.visits(detail);
         let most = (limits.max_symbols / PARAM_COST).max(1);
         if visits > most {
+            // The count saturates: past u64 it is a bound, not a number.
+            let value = match visits {
+                u64::MAX => "more than 2^64".to_string(),
+                n => n.to_string(),
+            };
             return Err(Bound::Symbols
                 .exceeded_by(
                     format!(
                         "modules to visit at depth {} at this level of detail",
                         self.pieces.depth
                     ),
-                    visits,
+                    value,
                     most,
                 )
                 .with_help(
@@ -433,5 +438,45 @@ impl<'m> Memo<'m> for WalkParam<'m, '_> {
                     )
                 }
             });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limits::Limits;
+    use crate::progress::NoProgress;
+    use crate::turtle::Recorder;
+
+    /// `A(x) -> F(x)[+A(x)]A(x)` doubles its apices each step: at depth
+    /// 1100 the modules to visit pass u64, and the error says so instead
+    /// of printing the saturated count (18446744073709551615). At depth 20
+    /// and detail 0 the count is a number: the 2^20 - 1 apices rewritten
+    /// on the way, then the last word's 2^20 apices and 2^20 - 1 of each
+    /// of `F`, `[`, `+`, `]`: 6 x 2^20 - 5, over the limit of 100 / 30 =
+    /// 3 modules.
+    #[test]
+    fn a_count_past_u64_is_said_as_a_bound() {
+        let src = "angle 20\naxiom A(1)\nrule A(x) -> F(x)[+A(x)]A(x)\n";
+        let sys = crate::syntax::lsys::parse(src, &Limits::DEFAULT).unwrap();
+        let p = sys.parametric.as_deref().unwrap();
+        let limits = Limits {
+            max_symbols: 100,
+            ..Limits::DEFAULT
+        };
+        let said = |depth: u32| {
+            let memo = ParamMemo::new(&sys, p, depth).unwrap().unwrap();
+            let mut rec = Recorder::default();
+            let e = memo
+                .draw(&sys, p, 0.0, &limits, &mut rec, &mut NoProgress)
+                .unwrap_err();
+            e.iter().next().unwrap().kind.to_string()
+        };
+        let deep = said(1100);
+        assert!(deep.contains(": more than 2^64 exceeds"), "{deep}");
+        assert!(!deep.contains("18446744073709551615"), "{deep}");
+        let shallow = said(20);
+        let want = format!(": {} exceeds the limit of 3", 6 * (1u64 << 20) - 5);
+        assert!(shallow.contains(&want), "{shallow}");
     }
 }
