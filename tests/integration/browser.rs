@@ -1,9 +1,6 @@
-//! `stlc serve` in a real headless Chromium, driven over WebDriver
-//! (chromedriver, fantoccini): type an OD, draw a rectangle with the
-//! mouse, switch bfs/dfs, type an error, replay growth, save. Skips with a
-//! message where `chromium` or `chromedriver` is not installed (`.ci/run`
-//! installs Debian's packages), except under CI (`CI` set), where that
-//! fails. Screenshots go to `tests/store/browser/`.
+//! `stlc serve` in a real headless Chromium (the harness, and when it
+//! skips: chromium.rs): type an OD, draw a rectangle with the mouse,
+//! switch bfs/dfs, type an error, replay growth, save.
 
 use std::path::Path;
 
@@ -74,8 +71,7 @@ async fn acceptance(c: &Client) {
         .replace("B=1(0)RULE", "B=1(0) O=dfs RULE");
     assert_eq!(text, want, "{text}");
     click(c, "#play").await;
-    let replayed = "return window.stlc.state.replayTimer === null";
-    js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
+    replay_ended(c).await;
     shot(c, "11-acceptance").await;
     click(c, "#save").await;
     let on_disk = file_until(&file, 100, |t| t == text).await;
@@ -84,24 +80,16 @@ async fn acceptance(c: &Client) {
     // Export: the page offers the CLI's PNG and BED for the same options.
     let od = tmp.path().join("saved.od");
     std::fs::write(&od, text).unwrap();
-    for (button, args) in [
-        (
-            "#export-png",
-            vec!["render", "-f", "png", "--show-layout", "--growth", "dfs"],
-        ),
-        ("#export-bed", vec!["compile", "--growth", "dfs"]),
+    for (button, command, ext) in [
+        ("#export-png", "render -f png --show-layout", ".png"),
+        ("#export-bed", "compile", ".bed"),
     ] {
         js(c, "window.stlc.state.lastDownload = null; return 0;").await;
         click(c, button).await;
         let last = "return window.stlc.state.lastDownload";
         let offered = js_until(c, last, 200, 50, |v| !v.is_null()).await;
-        let out = cli(&[&args[..1], &[od.to_str().unwrap()], &args[1..]].concat());
+        let out = cli_line(&format!("{command} {} --growth dfs", od.display()));
         assert_eq!(offered["size"], out.len(), "{button}: {offered}");
-        let ext = if button.ends_with("png") {
-            ".png"
-        } else {
-            ".bed"
-        };
         let name = offered["name"].as_str().unwrap();
         assert!(name.ends_with(ext), "{offered}");
     }
@@ -167,8 +155,7 @@ async fn steps(c: &Client, file: &Path) {
     assert!(v > 0 && v < max, "{mid}");
     assert_eq!(mid["replaying"], true, "{mid}");
     shot(c, "5-replay").await;
-    let replayed = "return window.stlc.state.replayTimer === null";
-    js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
+    replay_ended(c).await;
     assert_eq!(value_of(c, "#step").await, max.to_string());
 
     // An error: its diagnostic is listed and marked at its line.
@@ -203,6 +190,13 @@ async fn steps(c: &Client, file: &Path) {
     tools(c, &good).await;
 }
 
+/// The page's settled answer and the layout lines of its text.
+async fn settled_layout(c: &Client) -> (Value, Vec<String>) {
+    let v = settled(c).await;
+    let lines = layout_lines(v["text"].as_str().unwrap());
+    (v, lines)
+}
+
 /// The layout lines of `text`, between `LAYOUT` and `ENDLAYOUT`.
 fn layout_lines(text: &str) -> Vec<String> {
     text.lines()
@@ -227,8 +221,7 @@ async fn tools(c: &Client, start: &str) {
     click(c, "[data-tool=Ellipse]").await;
     click(c, "#colour option[value=clWhite]").await;
     drag(c, (60.0, 40.0), (140.0, 100.0)).await;
-    let holed = settled(c).await;
-    let lines = layout_lines(holed["text"].as_str().unwrap());
+    let (holed, lines) = settled_layout(c).await;
     assert_eq!(lines.len(), 3, "{lines:?}");
     assert_eq!(lines[2], "(clWhite) Ellipse (60, 40), 80, 60");
     let stems1 = holed["stems"].as_u64().unwrap();
@@ -239,20 +232,17 @@ async fn tools(c: &Client, start: &str) {
     // Select it by its outline and move it 10 units right and down.
     click(c, "[data-tool=select]").await;
     drag(c, (100.0, 70.0), (110.0, 80.0)).await;
-    let moved = settled(c).await;
-    let lines = layout_lines(moved["text"].as_str().unwrap());
+    let lines = settled_layout(c).await.1;
     assert_eq!(lines[2], "(clWhite) Ellipse (70, 50), 80, 60", "{lines:?}");
 
     // Resize by its bottom-right handle.
     drag(c, (150.0, 110.0), (160.0, 120.0)).await;
-    let resized = settled(c).await;
-    let lines = layout_lines(resized["text"].as_str().unwrap());
+    let lines = settled_layout(c).await.1;
     assert_eq!(lines[2], "(clWhite) Ellipse (70, 50), 90, 70", "{lines:?}");
 
     // Lower it below the second rectangle: paint order in the text.
     click(c, "#lower").await;
-    let lowered = settled(c).await;
-    let lines = layout_lines(lowered["text"].as_str().unwrap());
+    let (lowered, lines) = settled_layout(c).await;
     assert_eq!(lines[1], "(clWhite) Ellipse (70, 50), 90, 70", "{lines:?}");
     assert_eq!(lines[2], before[1]);
     // Painted before the big green rectangle, the hole is painted over.
@@ -260,8 +250,7 @@ async fn tools(c: &Client, start: &str) {
 
     // Delete it.
     click(c, "#delete").await;
-    let deleted = settled(c).await;
-    assert_eq!(layout_lines(deleted["text"].as_str().unwrap()), before);
+    assert_eq!(settled_layout(c).await.1, before);
 
     // A polygon by clicks, closed on its first point.
     click(c, "[data-tool=Polygon]").await;
@@ -274,8 +263,7 @@ async fn tools(c: &Client, start: &str) {
     ] {
         click_at(c, p).await;
     }
-    let poly = settled(c).await;
-    let lines = layout_lines(poly["text"].as_str().unwrap());
+    let lines = settled_layout(c).await.1;
     assert_eq!(lines.len(), 3, "{lines:?}");
     let polygon = "(clGreen) Polygon (150, 170), (190, 170), (190, 195)";
     assert_eq!(lines[2], polygon);
@@ -316,6 +304,12 @@ async fn tools(c: &Client, start: &str) {
     let drawn = super::browser_steps::count(c, "#preview .lib path").await;
     assert!(drawn >= 1, "{drawn}");
     shot(c, "10-renderer").await;
+}
+
+/// Waits (up to 30 s) until the replay has ended.
+async fn replay_ended(c: &Client) {
+    let replayed = "return window.stlc.state.replayTimer === null";
+    js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
 }
 
 /// The BED of the page's answer once it is `want` (the page may still be
