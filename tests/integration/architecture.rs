@@ -7,6 +7,11 @@ use crate::support;
 
 /// Every `.rs` file under `dir`, sorted.
 pub(crate) fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    files_with(dir, &["rs"])
+}
+
+/// Every file under `dir` whose extension is one of `exts`, sorted.
+pub(crate) fn files_with(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
     let mut found = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {
@@ -14,13 +19,21 @@ pub(crate) fn rust_files(dir: &Path) -> Vec<PathBuf> {
             let path = entry.unwrap().path();
             if path.is_dir() {
                 stack.push(path);
-            } else if path.extension().is_some_and(|e| e == "rs") {
+            } else if path
+                .extension()
+                .is_some_and(|e| exts.iter().any(|x| e == *x))
+            {
                 found.push(path);
             }
         }
     }
     found.sort();
     found
+}
+
+/// The number of lines of the file at `path`.
+fn lines_of(path: &Path) -> usize {
+    std::fs::read_to_string(path).unwrap().lines().count()
 }
 
 /// The stages `text` imports from the crate: `crate::x` paths and the
@@ -185,7 +198,7 @@ fn no_source_file_is_over_650_lines() {
     let files = rust_files(&support::manifest_path("src"));
     assert!(files.len() >= 40, "only {} files found", files.len());
     for file in files {
-        let lines = std::fs::read_to_string(&file).unwrap().lines().count();
+        let lines = lines_of(&file);
         assert!(lines <= 650, "{} has {lines} lines", file.display());
     }
 }
@@ -208,7 +221,7 @@ fn test_files_and_javascript_have_ceilings() {
     let tests = rust_files(&support::manifest_path("tests/integration"));
     assert!(tests.len() >= 30, "only {} test files found", tests.len());
     for file in tests {
-        let lines = std::fs::read_to_string(&file).unwrap().lines().count();
+        let lines = lines_of(&file);
         let name = file.file_name().unwrap().to_string_lossy().into_owned();
         match TEST_FILES_OVER.iter().find(|(n, _)| *n == name) {
             Some((_, had)) => {
@@ -229,22 +242,14 @@ fn test_files_and_javascript_have_ceilings() {
     }
     let mut scripts = 0;
     for dir in ["src/serve/page", "web/page", "tests/page"] {
-        let mut stack = vec![support::manifest_path(dir)];
-        while let Some(d) = stack.pop() {
-            for entry in std::fs::read_dir(&d).unwrap() {
-                let path = entry.unwrap().path();
-                if path.is_dir() {
-                    stack.push(path);
-                } else if path.extension().is_some_and(|e| e == "js") {
-                    let lines = std::fs::read_to_string(&path).unwrap().lines().count();
-                    assert!(
-                        lines <= 400,
-                        "{} has {lines} lines (at most 400)",
-                        path.display()
-                    );
-                    scripts += 1;
-                }
-            }
+        for path in files_with(&support::manifest_path(dir), &["js"]) {
+            let lines = lines_of(&path);
+            assert!(
+                lines <= 400,
+                "{} has {lines} lines (at most 400)",
+                path.display()
+            );
+            scripts += 1;
         }
     }
     assert!(scripts >= 30, "only {scripts} scripts found");
