@@ -109,7 +109,7 @@ fn an_export_with_only_a_width_keeps_the_aspect_in_chromium() {
 /// Writes `files` (`[path, text]`, below the site) and opens the first,
 /// on the site's server; waits until no `<stl-tree>` is drawing (or none
 /// appeared after 10 s) and returns their states.
-async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Value {
+pub(super) async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Value {
     let site = site().unwrap();
     for (path, text) in files {
         let path = site.join(path);
