@@ -9,6 +9,7 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
+use super::browser_3d::unpack;
 use super::chromium::{Browser, click, js, shot};
 use super::serve::{Server, post, render};
 use crate::support::{numbers, segment_distance};
@@ -28,27 +29,7 @@ fn stems(a: &Value) -> u64 {
     a["stems"].as_str().unwrap().parse().unwrap()
 }
 
-/// A compact body decoded as the page decodes it (engine/http.js): the
-/// head's answer with `growth.stems` put back.
-fn unpack(body: &[u8]) -> Value {
-    let n = u32::from_le_bytes(body[..4].try_into().unwrap()) as usize;
-    assert_eq!((4 + n) % 4, 0, "the stems start on a 4-byte boundary");
-    let head: Value = serde_json::from_slice(&body[4..4 + n]).unwrap();
-    let mut answer = head["answer"].clone();
-    assert_eq!(answer["growth"]["stems"], json!([]));
-    let k = head["stems"].as_u64().unwrap() as usize;
-    assert_eq!(body.len(), 4 + n + 4 * k);
-    let numbers: Vec<f64> = body[4 + n..]
-        .chunks(4)
-        .map(|c| f64::from(i32::from_le_bytes(c.try_into().unwrap())))
-        .enumerate()
-        .map(|(i, x)| if i % 6 == 5 { x } else { x / 1000.0 })
-        .collect();
-    answer["growth"]["stems"] = json!(numbers);
-    answer
-}
-
-const COMPACT: (&str, &str) = ("Accept", "application/x-stlc-render, application/json");
+pub(super) const COMPACT: (&str, &str) = ("Accept", "application/x-stlc-render, application/json");
 
 #[test]
 fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {

@@ -13,22 +13,22 @@ use serde_json::{Value, json};
 
 use super::browser_steps::{reload, settled_ok, text_of};
 use super::chromium::{
-    cli, click, file_until, js, js_async, on_served_file, press_along, settled_until, shot, wheel,
+    cli_line, click, file_until, js, js_async, on_served_file, press_along, settled_until, shot,
+    wheel,
 };
-use super::serve::{Server, example, post, render, request};
+use super::serve::{Server, example, post, render};
 use crate::support::{manifest_path, numbers, stlc_stdout};
 
 /// A compact body decoded as the page decodes it (engine/http.js): the
-/// head's answer with `growth.stems` and `space.stems` put back.
-fn unpack(body: &[u8]) -> Value {
+/// head's answer with `growth.stems` (and `space.stems`, if any) put back.
+pub(super) fn unpack(body: &[u8]) -> Value {
     let n = u32::from_le_bytes(body[..4].try_into().unwrap()) as usize;
+    assert_eq!((4 + n) % 4, 0, "the stems start on a 4-byte boundary");
     let head: Value = serde_json::from_slice(&body[4..4 + n]).unwrap();
     let mut answer = head["answer"].clone();
-    let (k, m) = (
-        head["stems"].as_u64().unwrap() as usize,
-        head["space"].as_u64().unwrap() as usize,
-    );
-    assert_eq!(answer["space"]["stems"], json!([]));
+    let k = head["stems"].as_u64().unwrap() as usize;
+    let m = head["space"].as_u64().unwrap_or(0) as usize;
+    assert_eq!(answer["growth"]["stems"], json!([]));
     assert_eq!(body.len(), 4 + n + 4 * (k + m));
     let numbers = |from: usize, count: usize, per: usize| -> Vec<f64> {
         body[from..from + 4 * count]
@@ -39,7 +39,10 @@ fn unpack(body: &[u8]) -> Value {
             .collect()
     };
     answer["growth"]["stems"] = json!(numbers(4 + n, k, 6));
-    answer["space"]["stems"] = json!(numbers(4 + n + 4 * k, m, 8));
+    if head.get("space").is_some() {
+        assert_eq!(answer["space"]["stems"], json!([]));
+        answer["space"]["stems"] = json!(numbers(4 + n + 4 * k, m, 8));
+    }
     answer
 }
 
@@ -62,12 +65,11 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
     // The turtle starts at the origin.
     assert_eq!(space["stems"].as_array().unwrap()[0..3], [0.0, 0.0, 0.0]);
     // The compact body: the same answer, number for number.
-    let compact = request(
+    let compact = post(
         &server.addr,
-        "POST",
         "/api/render",
-        &[("Accept", "application/x-stlc-render, application/json")],
-        body.to_string().as_bytes(),
+        &[super::bigtree::COMPACT],
+        &body,
     );
     let head = &compact.head;
     let compact_type = "content-type: application/x-stlc-render";
@@ -76,14 +78,7 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
     // The export draws the view asked for: the CLI's bytes.
     let view = json!({"source": text, "kind": "lsys", "view": [-60, 35]});
     let svg = post(&server.addr, "/api/export?format=svg", &[], &view);
-    let want = cli(&[
-        "render",
-        "examples/hilbert3d.lsys",
-        "--view",
-        "-60,35",
-        "-f",
-        "svg",
-    ]);
+    let want = cli_line("render examples/hilbert3d.lsys --view -60,35 -f svg");
     assert_eq!(svg.body, want);
     // A 3D BED: its stems worked by hand (`&` at 90 degrees turns the
     // heading (0, -1, 0) to +z, `^` to -z; B=2(0.5): 2 wide at order 0,
@@ -307,15 +302,10 @@ async fn the_camera_is_the_clis(c: &Client) {
         .iter()
         .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
         .collect();
-    let svg =
-        String::from_utf8(cli(&["render", "examples/plant3d-bare.lsys", "-f", "svg"])).unwrap();
-    let d = svg
-        .split(" d=\"")
-        .nth(1)
-        .unwrap()
-        .split('"')
-        .next()
-        .unwrap();
+    let svg = cli_line("render examples/plant3d-bare.lsys -f svg");
+    let svg = String::from_utf8(svg).unwrap();
+    let (_, path) = svg.split_once(" d=\"").unwrap();
+    let d = path.split_once('"').unwrap().0;
     let numbers: Vec<f64> = d
         .split([' ', 'M', 'L'])
         .filter(|t| !t.is_empty())
@@ -458,20 +448,17 @@ fn the_static_site_shows_a_3d_file_in_chromium() {
 fn the_3d_oak_grows_and_replays_in_chromium() {
     let check = String::from_utf8(stlc_stdout(&["check", "examples/oak3d.od"])).unwrap();
     // "grows       5656 stems (bfs)" and "1882 fits".
-    let grows: usize = check
-        .split("grows")
-        .nth(1)
-        .and_then(|t| t.split_whitespace().next())
-        .unwrap()
-        .parse()
-        .unwrap();
-    let fits: usize = check
-        .split(" fits")
-        .next()
-        .and_then(|t| t.rsplit(' ').next())
-        .unwrap()
-        .parse()
-        .unwrap();
+    let words: Vec<&str> = check.split_whitespace().collect();
+    let at = |word: &str| {
+        words
+            .iter()
+            .position(|w| w.trim_end_matches([',', ';']) == word)
+    };
+    let (grows, fits) = (
+        words[at("grows").unwrap() + 1],
+        words[at("fits").unwrap() - 1],
+    );
+    let (grows, fits): (usize, usize) = (grows.parse().unwrap(), fits.parse().unwrap());
     assert_eq!(grows, 10 + 3 * fits, "{check}");
     on_served_file("oak3d.od", &example("oak3d.od"), async |c, _| {
         settled_ok(c).await;
