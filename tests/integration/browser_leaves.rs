@@ -64,10 +64,8 @@ fn the_leaf_control_rewrites_only_p_in_chromium() {
         let leafy = example("oak3d.od");
         assert_eq!(leaf_list(c).await, json!([["none", "L"], "L"]));
         let shown = "return document.getElementById('leaf').offsetParent !== null";
-        assert!(
-            js(c, shown).await == json!(true),
-            "the leaf control is shown for an OD"
-        );
+        let for_an_od = "the leaf control is shown for an OD";
+        assert!(js(c, shown).await == json!(true), "{for_an_od}");
 
         // none: the header line loses ` P=L`, nothing else changes.
         let header = "L=12(0.5) B=3(0.2) A=28 C=2 D=137.5 S=#5b3a1e..#3b5e2b P=L";
