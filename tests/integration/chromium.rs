@@ -392,12 +392,8 @@ pub(super) async fn chord(c: &Client, held: &[char], key: char) {
 }
 
 pub(super) async fn click(c: &Client, css: &str) {
-    c.find(Locator::Css(css))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
+    let element = c.find(Locator::Css(css)).await.unwrap();
+    element.click().await.unwrap();
 }
 
 /// What `stlc ARGS -o -` writes.
@@ -419,13 +415,7 @@ pub(super) fn cli_svg_of(name: &str, text: &str) -> Vec<u8> {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join(name);
     std::fs::write(&file, text).unwrap();
-    cli(&[
-        "render",
-        file.to_str().unwrap(),
-        "--show-layout",
-        "-f",
-        "svg",
-    ])
+    cli_line(&format!("render {} --show-layout -f svg", file.display()))
 }
 
 /// The bytes of `dir/name` once Chromium has finished downloading it.
@@ -441,12 +431,8 @@ pub(super) async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
 /// Opens `file` through the page's Open… control (its file input), and
 /// waits until the page has read it into the editor.
 pub(super) async fn open(c: &Client, file: &Path) {
-    c.find(Locator::Id("open-file"))
-        .await
-        .unwrap()
-        .send_keys(file.to_str().unwrap())
-        .await
-        .unwrap();
+    let input = c.find(Locator::Id("open-file")).await.unwrap();
+    input.send_keys(file.to_str().unwrap()).await.unwrap();
     let text = std::fs::read_to_string(file).unwrap();
     let script = "return document.getElementById('source').value === arguments[0]";
     let read = async || c.execute(script, vec![json!(text)]).await.unwrap();
