@@ -10,7 +10,8 @@ use fantoccini::Client;
 use serde_json::{Value, json};
 
 use super::browser_3d::unpack;
-use super::chromium::{Browser, click, js, shot};
+use super::browser_steps::set_value;
+use super::chromium::{Browser, click, js, js_async, js_until, shot};
 use super::serve::{Server, post, render};
 use crate::support::{numbers, segment_distance};
 
@@ -94,15 +95,14 @@ async fn drawn(c: &Client) -> u64 {
         .await;
         if ready == json!(true) {
             tokio::time::sleep(Duration::from_millis(300)).await;
-            let n = c
-                .execute_async(
-                    "const done = arguments[arguments.length - 1];
-                     const t = window.stlc.view.tree;
-                     t.settled().then(() => requestAnimationFrame(() => done(t.drawn())));",
-                    vec![],
-                )
-                .await
-                .unwrap();
+            let n = js_async(
+                c,
+                "const done = arguments[arguments.length - 1];
+                 const t = window.stlc.view.tree;
+                 t.settled().then(() => requestAnimationFrame(() => done(t.drawn())));",
+                vec![],
+            )
+            .await;
             let again = js(
                 c,
                 "return !window.stlc.state.inFlight && window.stlc.state.answerText === document.getElementById('source').value",
@@ -267,13 +267,9 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         assert!(page["strokes"].as_u64().unwrap() > 100, "{page}");
         assert!(page["dots"].as_u64().unwrap() > 100, "{page}");
         assert_eq!(page["bed"], Value::Null);
-        assert_eq!(
-            page["label"],
-            format!(
-                "decision {0} of {0} · 30,001 stems",
-                crate::support::grouped(last as u64)
-            )
-        );
+        let all_of = crate::support::grouped(last);
+        let label = format!("decision {all_of} of {all_of} · 30,001 stems");
+        assert_eq!(page["label"], label);
 
         // Ink on every 97th stem's midpoint, none far from all stems, in
         // the stroke's colour.
@@ -332,22 +328,14 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         // resolution may differ by a little; this one is the reference.)
         let (_, inked, _) = ink(&c, &[]).await;
         for i in 0..4 {
-            let (a, b) = (
-                refitted["fo"][i].as_f64().unwrap(),
-                refitted["lib"][i].as_f64().unwrap(),
-            );
+            let a = refitted["fo"][i].as_f64().unwrap();
+            let b = refitted["lib"][i].as_f64().unwrap();
             assert!((a - b).abs() < 1.0, "{refitted}");
         }
 
         // Replay to a decision halfway: the stems up to it, no more.
         let k = last / 2;
-        js(
-            &c,
-            &format!(
-                "const s = document.getElementById('step'); s.value = {k}; s.dispatchEvent(new Event('input')); return 0;"
-            ),
-        )
-        .await;
+        set_value(&c, "#step", &k.to_string()).await;
         let early: Vec<Stem> = all.iter().copied().filter(|s| s.2 <= k).collect();
         let later: Vec<Stem> = all.iter().copied().filter(|s| s.2 > k).collect();
         assert_eq!(drawn(&c).await, early.len() as u64);
@@ -363,26 +351,14 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         // Play on to the end, in a second: the whole tree again.
         js(&c, "document.getElementById('replay-speed').value = '1s'; return 0;").await;
         click(&c, "#play").await;
-        for _ in 0..200 {
-            let at = js(&c, "return Number(document.getElementById('step').value)").await;
-            if at.as_u64() == Some(last) {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
+        let at = "return Number(document.getElementById('step').value)";
+        js_until(&c, at, 200, 50, |v| v.as_u64() == Some(last)).await;
         assert_eq!(drawn(&c).await, 30_001);
         let (_, replayed, _) = ink(&c, &[]).await;
         assert_eq!(replayed, inked, "the replay ends on the same picture");
 
         // A small tree: the SVG's paths, no canvas.
-        let small = std::fs::read_to_string(crate::support::manifest_path("examples/fig9.od")).unwrap();
-        js(
-            &c,
-            &format!(
-                "const t = document.getElementById('source'); t.value = {small:?}; t.dispatchEvent(new Event('input')); return 0;"
-            ),
-        )
-        .await;
+        set_value(&c, "#source", &super::serve::example("fig9.od")).await;
         drawn(&c).await;
         let page = js(
             &c,
