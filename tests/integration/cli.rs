@@ -265,19 +265,13 @@ fn compile_writes_the_golden_bed_to_a_file_a_default_name_and_stdout() {
 fn render_of_an_od_equals_render_of_its_compiled_bed() {
     let dir = tempfile::tempdir().unwrap();
     for strategy in ["bfs", "dfs"] {
+        let sized = "--show-layout --size 200x200 -o";
         let from_od = dir.path().join(format!("od-{strategy}.png"));
-        let grown = format!("render {ROOT}/examples/fig9.od --growth {strategy}");
-        let sized = " --show-layout --size 200x200 -o";
-        stlc_line(&format!("{grown}{sized}"))
-            .arg(&from_od)
-            .assert()
-            .success();
+        let od = format!("render {ROOT}/examples/fig9.od --growth {strategy} {sized}");
+        stlc_line(&od).arg(&from_od).assert().success();
         let from_bed = dir.path().join(format!("bed-{strategy}.png"));
-        let bed = format!("render {ROOT}/tests/cases/grow/fig9.{strategy}.bed");
-        stlc_line(&format!("{bed}{sized}"))
-            .arg(&from_bed)
-            .assert()
-            .success();
+        let bed = format!("render {ROOT}/tests/cases/grow/fig9.{strategy}.bed {sized}");
+        stlc_line(&bed).arg(&from_bed).assert().success();
         let (a, b) = (png_at(&from_od), png_at(&from_bed));
         assert_eq!((a.width(), a.height()), (b.width(), b.height()));
         assert!(a.data() == b.data(), "{strategy}: pixels differ");
@@ -305,16 +299,14 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
     let outside = "O\n(500, 500)\nRULE\nR1: [+F][-F]\nSEED\nFR1\nENDSEED\nLAYOUT\nRectangle (0,0), 100, 100 clGreen\nENDLAYOUT\n";
     let outside = write("out.od", outside);
     let bad_bed = write("bad.bed", "T (0,0) RULE R1: [F] SEED R7{} ENDSEED");
+    let deep_stdin = "render - --from lsys --depth 1000000";
+    let small_input = "--max-stems 5 --clearance=0 --max-input 10";
     // The line at fault is named, and the bracket; a limit is refused
     // before anything is drawn (from standard input too).
     let cases = [
         (format!("render {bad_rule} --depth 2"), 1, "rule.lsys:3:"),
         (format!("render {bad_rule} --depth 2"), 1, "["),
-        (
-            "render - --from lsys --depth 1000000".into(),
-            1,
-            "--max-depth",
-        ),
+        (deep_stdin.into(), 1, "--max-depth"),
         (format!("render {bad_lsys}"), 1, "unbalanced"),
         (format!("render {square} --depth 1000000"), 1, "--max-depth"),
         (format!("render {square} --size 0x0"), 2, "size"),
@@ -325,11 +317,7 @@ fn every_writing_command_keeps_the_old_output_on_every_failure_class() {
         (format!("compile {outside}"), 1, "root"),
         (format!("compile {u} --clearance -1"), 2, "clearance"),
         (format!("compile {u} --clearance nan"), 2, "clearance"),
-        (
-            format!("compile {u} --max-stems 5 --clearance=0 --max-input 10"),
-            1,
-            "--max-input",
-        ),
+        (format!("compile {u} {small_input}"), 1, "--max-input"),
         (format!("compile {square}"), 1, "lsys"),
         (format!("expand {bad_lsys}"), 1, "unbalanced"),
         (format!("expand {square} --depth 1000000"), 1, "--max-depth"),
