@@ -230,13 +230,11 @@ fn no_flag_is_ignored_without_a_word() {
     let koch = example("koch-snowflake.lsys");
     let decrement = example("decrement.od");
     let (png, svg, jpg) = (o("x.png"), o("x.svg"), o("x.jpg"));
+    let jpg_refused = "`.jpg` is not an image format";
     for (line, needle) in [
         (format!("render {od} -f svg -o {png}"), "contradicts"),
         (format!("render {od} -f png -o {svg}"), "contradicts"),
-        (
-            format!("render {od} -o {jpg}"),
-            "`.jpg` is not an image format",
-        ),
+        (format!("render {od} -o {jpg}"), jpg_refused),
     ] {
         let (code, _, err) = run_line(&line);
         assert_eq!(code, 2, "{line}: {err}");
@@ -248,16 +246,11 @@ fn no_flag_is_ignored_without_a_word() {
     let (code, _, _) = outcome(stlc().args(["render", "-"]).write_stdin(text));
     assert_eq!(code, 2);
     let (a, b, c, d, e) = (o("a.png"), o("b.png"), o("c.png"), o("d.png"), o("e.txt"));
+    let layout = "--show-layout";
     for (line, flag) in [
         (format!("render {od} --depth 3 -o {a}"), "--depth"),
-        (
-            format!("render {koch} --show-layout -o {b}"),
-            "--show-layout",
-        ),
-        (
-            format!("render {decrement} --show-layout -o {c}"),
-            "--show-layout",
-        ),
+        (format!("render {koch} {layout} -o {b}"), layout),
+        (format!("render {decrement} {layout} -o {c}"), layout),
         (format!("render {koch} --growth dfs -o {d}"), "--growth"),
         (format!("expand {koch} --clearance 1 -o {e}"), "--clearance"),
         (format!("check {koch} --max-stems 5"), "--max-stems"),
