@@ -87,27 +87,17 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
 /// (if any) is drawn: the stems on it.
 async fn drawn(c: &Client) -> u64 {
     for _ in 0..1200 {
-        let ready = js(
-            c,
-            "const s = window.stlc && window.stlc.state;
-             return !!s && !s.inFlight && s.answerText === document.getElementById('source').value;",
-        )
-        .await;
+        let script = "const s = window.stlc && window.stlc.state;
+             return !!s && !s.inFlight && s.answerText === document.getElementById('source').value;";
+        let ready = js(c, script).await;
         if ready == json!(true) {
             tokio::time::sleep(Duration::from_millis(300)).await;
-            let n = js_async(
-                c,
-                "const done = arguments[arguments.length - 1];
+            let probe = "const done = arguments[arguments.length - 1];
                  const t = window.stlc.view.tree;
-                 t.settled().then(() => requestAnimationFrame(() => done(t.drawn())));",
-                vec![],
-            )
-            .await;
-            let again = js(
-                c,
-                "return !window.stlc.state.inFlight && window.stlc.state.answerText === document.getElementById('source').value",
-            )
-            .await;
+                 t.settled().then(() => requestAnimationFrame(() => done(t.drawn())));";
+            let n = js_async(c, probe, vec![]).await;
+            let script = "return !window.stlc.state.inFlight && window.stlc.state.answerText === document.getElementById('source').value";
+            let again = js(c, script).await;
             if again == json!(true) {
                 return n.as_u64().unwrap();
             }
@@ -171,17 +161,14 @@ async fn ink(c: &Client, points: &[(f64, f64)]) -> (Vec<u8>, u64, [f64; 3]) {
 /// unit, its screen rectangle and the library's picture's, and how many
 /// tree canvases the preview holds.
 async fn canvas_box(c: &Client) -> Value {
-    js(
-        c,
-        "const cv = document.querySelector('#preview [data-testid=tree-canvas]');
+    let script = "const cv = document.querySelector('#preview [data-testid=tree-canvas]');
          const fo = cv.closest('foreignObject');
          const box = ['x', 'y', 'width', 'height'].map((a) => Number(fo.getAttribute(a)));
          const r = (e) => { const b = e.getBoundingClientRect(); return [b.left, b.top, b.right, b.bottom]; };
          return {box: [box[0], box[1], box[0] + box[2], box[1] + box[3]], k: cv.width / box[2],
                  fo: r(fo), lib: r(document.querySelector('#preview .lib svg')),
-                 canvases: document.querySelectorAll('#preview foreignObject.tree').length};",
-    )
-    .await
+                 canvases: document.querySelectorAll('#preview foreignObject.tree').length};";
+    js(c, script).await
 }
 
 /// One stem: from, to, decision.
@@ -241,9 +228,7 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         c.goto(&server.url).await.unwrap();
         assert_eq!(drawn(&c).await, 30_001, "every stem on the canvas");
         shot(&c, "bigtree").await;
-        let page = js(
-            &c,
-            "const a = window.stlc.state.answer;
+        let script = "const a = window.stlc.state.answer;
              const inked = (id) => {
                const c = document.querySelector(`#preview [data-testid=${id}]`);
                const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
@@ -255,9 +240,8 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
                      paths: document.querySelectorAll('#preview .lib path[fill=\"none\"]').length,
                      layout: document.querySelectorAll('#preview .lib path[fill=\"#008000\"]').length,
                      canvases: document.querySelectorAll('#preview canvas').length,
-                     bed: a.bed, label: document.getElementById('step-label').textContent};",
-        )
-        .await;
+                     bed: a.bed, label: document.getElementById('step-label').textContent};";
+        let page = js(&c, script).await;
         assert_eq!(page["compact"], true, "{page}");
         assert_eq!(page["n"], 6 * 30_001);
         assert_eq!(page["paths"], 0, "no stem in the SVG");
@@ -293,12 +277,9 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
             click(&c, "#zoom-in").await;
         }
         // The tree's base in the middle.
-        js(
-            &c,
-            "const v = window.stlc.state.view;
-             window.stlc.view.pan(v, (v[0] + v[2]) / 2 - 600, (v[1] + v[3]) / 2 - 1100); return 0;",
-        )
-        .await;
+        let script = "const v = window.stlc.state.view;
+             window.stlc.view.pan(v, (v[0] + v[2]) / 2 - 600, (v[1] + v[3]) / 2 - 1100); return 0;";
+        js(&c, script).await;
         tokio::time::sleep(Duration::from_millis(400)).await;
         assert_eq!(drawn(&c).await, 30_001);
         let zoomed = canvas_box(&c).await;
@@ -360,13 +341,10 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         // A small tree: the SVG's paths, no canvas.
         set_value(&c, "#source", &super::serve::example("fig9.od")).await;
         drawn(&c).await;
-        let page = js(
-            &c,
-            "return {paths: document.querySelectorAll('#preview .lib path[fill=\"none\"]').length,
+        let script = "return {paths: document.querySelectorAll('#preview .lib path[fill=\"none\"]').length,
                      canvases: document.querySelectorAll('#preview canvas').length,
-                     svg: window.stlc.state.answer.tree_in_svg};",
-        )
-        .await;
+                     svg: window.stlc.state.answer.tree_in_svg};";
+        let page = js(&c, script).await;
         assert!(page["paths"].as_u64().unwrap() > 0, "{page}");
         assert_eq!(page["canvases"], 0);
         assert_eq!(page["svg"], true);
