@@ -140,10 +140,8 @@ async fn steps(c: &Client, file: &Path) {
     shot(c, "4-dfs").await;
 
     // Replay: midway only part of the tree is drawn.
-    let max: u64 = js(c, "return Number(document.getElementById('step').max)")
-        .await
-        .as_u64()
-        .unwrap();
+    let max = js(c, "return Number(document.getElementById('step').max)").await;
+    let max = max.as_u64().unwrap();
     assert!(max > 10, "{max}");
     click(c, "#play").await;
     // The replay takes about four seconds: look once it is under way.
@@ -180,10 +178,8 @@ async fn steps(c: &Client, file: &Path) {
     assert_eq!(on_disk, good);
     // The page says so once the answer is back (the file is written first).
     let saved = "return document.getElementById('saved').textContent";
-    let status = js_until(c, saved, 100, 50, |v| {
-        v.as_str().unwrap().starts_with("Saved")
-    })
-    .await;
+    let said_saved = |v: &Value| v.as_str().unwrap().starts_with("Saved");
+    let status = js_until(c, saved, 100, 50, said_saved).await;
     assert!(status.as_str().unwrap().starts_with("Saved"), "{status}");
     shot(c, "7-saved").await;
 
@@ -325,12 +321,9 @@ async fn answer_bed(c: &Client, want: &str) -> String {
 
 /// The preview's view box: `[x, y, width, height]` in canvas units.
 async fn view_box(c: &Client) -> Vec<f64> {
-    let v = js(
-        c,
-        "const b = document.getElementById('preview').viewBox.baseVal;
-         return [b.x, b.y, b.width, b.height];",
-    )
-    .await;
+    let script = "const b = document.getElementById('preview').viewBox.baseVal;
+         return [b.x, b.y, b.width, b.height];";
+    let v = js(c, script).await;
     numbers(&v)
 }
 
@@ -580,10 +573,8 @@ async fn editing(c: &Client, served: &Served<'_>) {
     caret_to_end(c).await;
     type_into(c, "source", "JUNK(").await;
     let typed = settled_failed(c).await;
-    assert_eq!(
-        typed["text"].as_str().unwrap(),
-        format!("{raised_text}JUNK(")
-    );
+    let junk = format!("{raised_text}JUNK(");
+    assert_eq!(typed["text"].as_str().unwrap(), junk);
     chord(c, &[CONTROL], 'z').await;
     assert_eq!(settled_ok(c).await["text"].as_str().unwrap(), raised_text);
 
@@ -599,12 +590,9 @@ async fn editing(c: &Client, served: &Served<'_>) {
     )
     .await;
     chord(c, &[CONTROL], 'c').await;
-    js(
-        c,
-        "document.getElementById('scratch').remove();
-         const s = document.getElementById('source'); s.focus(); s.select(); return 0;",
-    )
-    .await;
+    let script = "document.getElementById('scratch').remove();
+         const s = document.getElementById('source'); s.focus(); s.select(); return 0;";
+    js(c, script).await;
     chord(c, &[CONTROL], 'v').await;
     let pasted = settled_ok(c).await;
     assert_eq!(pasted["text"].as_str().unwrap(), fig9);
@@ -619,10 +607,8 @@ async fn editing(c: &Client, served: &Served<'_>) {
     assert_ne!(dfs["growth"], pasted["growth"]);
     let od = dir.join("fig9.od");
     std::fs::write(&od, &fig9).unwrap();
-    let svg = cli_line(&format!(
-        "render {} --show-layout --growth dfs -f svg",
-        od.display()
-    ));
+    let command = format!("render {} --show-layout --growth dfs -f svg", od.display());
+    let svg = cli_line(&command);
     click(c, "#export-svg").await;
     same_bytes(&downloaded(downloads, "tree.svg").await, &svg, "tree.svg");
 }
@@ -672,12 +658,9 @@ async fn columns(c: &Client, dir: &Path) {
     let at = text.find(']').unwrap();
     let want = json!([js_index(text, at), js_index(text, at + 1)]);
     assert_eq!(click_error(c).await, want, "{text}");
-    let selected = js(
-        c,
-        "const s = document.getElementById('source');
-         return s.value.slice(s.selectionStart, s.selectionEnd);",
-    )
-    .await;
+    let script = "const s = document.getElementById('source');
+         return s.value.slice(s.selectionStart, s.selectionEnd);";
+    let selected = js(c, script).await;
     assert_eq!(selected, "]");
     shot(c, "20-emoji-column").await;
 }
