@@ -141,25 +141,19 @@ async fn angles(c: &Client) -> Vec<f64> {
 
 /// The centre of the 3D canvas in viewport pixels.
 async fn centre(c: &Client) -> (f64, f64) {
-    let v = js(
-        c,
-        "const r = document.getElementById('view3d').getBoundingClientRect();
-         return [r.left + r.width / 2, r.top + r.height / 2];",
-    )
-    .await;
+    let probe = "const r = document.getElementById('view3d').getBoundingClientRect();
+         return [r.left + r.width / 2, r.top + r.height / 2];";
+    let v = js(c, probe).await;
     (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
 }
 
 async fn opens_in_the_3d_view(c: &Client) -> Value {
-    let shown = js(
-        c,
-        "const v = document.getElementById('view3d');
+    let probe = "const v = document.getElementById('view3d');
          return {canvas: !v.hidden && v.getBoundingClientRect().width > 100,
                  svg: getComputedStyle(document.getElementById('preview')).display,
                  gl: window.stlc.view3d.available(),
-                 stems: Array.from(window.stlc.state.answer.space.stems)};",
-    )
-    .await;
+                 stems: Array.from(window.stlc.state.answer.space.stems)};";
+    let shown = js(c, probe).await;
     assert_eq!(shown["canvas"], true, "{shown}");
     assert_eq!(shown["svg"], "none", "the 2D preview is hidden");
     assert_eq!(shown["gl"], true, "headless Chromium has WebGL 2");
@@ -279,9 +273,7 @@ async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
 async fn the_camera_is_the_clis(c: &Client) {
     let opened = super::browser_web::open_example(c, "plant3d-bare.lsys").await;
     assert_eq!(opened["ok"], true);
-    let page = js_async(
-        c,
-        "const done = arguments[arguments.length - 1];
+    let script = "const done = arguments[arguments.length - 1];
              import('/view3d.js').then((m) => {
                const [r, d] = m.camera(30, 20);
                const s = window.stlc.state.answer.space.stems;
@@ -292,10 +284,8 @@ async fn the_camera_is_the_clis(c: &Client) {
                  }
                }
                done(out);
-             });",
-        vec![],
-    )
-    .await;
+             });";
+    let page = js_async(c, script, vec![]).await;
     let page: Vec<(f64, f64)> = page
         .as_array()
         .unwrap()
@@ -345,9 +335,7 @@ async fn the_camera_is_the_clis(c: &Client) {
 /// The volumes (one of each kind) and the replay, from an answer made
 /// here: two stems, decisions 1 and 2, inside a translucent box.
 async fn volumes_and_replay(c: &Client) {
-    let shown = js(
-        c,
-        r##"const app = window.stlc;
+    let probe = r##"const app = window.stlc;
         const ellipse = {type: 'Ellipse', x: -40, y: -160, w: 80, h: 100};
         const answer = Object.assign({}, app.state.answer, {
           stroke: '#5a3a1a',
@@ -371,9 +359,8 @@ async fn volumes_and_replay(c: &Client) {
         // As session.js applies an answer: the slider at its end, then the view.
         app.replay.reset(2);
         app.view.draw();
-        return app.view3d.pixels();"##,
-    )
-    .await;
+        return app.view3d.pixels();"##;
+    let shown = js(c, probe).await;
     assert!(shown["count"].as_f64().unwrap() > 20000.0, "{shown}");
     shot(c, "3d-04-volumes").await;
     let one = replay_to(c, 1).await;
@@ -393,9 +380,7 @@ async fn volumes_and_replay(c: &Client) {
     // vertices lie between the shape's nearest and farthest x, 40 and 80;
     // one across the axis is its outer edge turned, from the axis (0) to
     // 40.
-    let radii = js(
-        c,
-        r##"return import('/meshes.js').then(({ volumeMesh }) => {
+    let probe = r##"return import('/meshes.js').then(({ volumeMesh }) => {
           const r = (shape) => {
             const { pos } = volumeMesh({type: 'Revolve', shape, color: '#008000'}, [0, 0]);
             let lo = Infinity; let hi = 0;
@@ -407,9 +392,8 @@ async fn volumes_and_replay(c: &Client) {
           };
           return [r({type: 'Ellipse', x: 40, y: -100, w: 40, h: 60}),
                   r({type: 'Ellipse', x: -40, y: -100, w: 80, h: 60})];
-        });"##,
-    )
-    .await;
+        });"##;
+    let radii = js(c, probe).await;
     let r = |i: usize, j: usize| radii[i][j].as_f64().unwrap();
     let torus = (r(0, 0) - 40.0).abs() < 1e-6 && (r(0, 1) - 80.0).abs() < 1e-6;
     assert!(torus, "{radii}");
@@ -426,12 +410,9 @@ fn the_static_site_shows_a_3d_file_in_chromium() {
         let stats = stlc_stdout(&["stats", "--json", "examples/plant3d-bare.lsys"]);
         let stats: Value = serde_json::from_slice(&stats).unwrap();
         let segments: usize = stats["segments"].as_str().unwrap().parse().unwrap();
-        let shown = js(
-            c,
-            "const v = document.getElementById('view3d');
-             return {canvas: !v.hidden, stems: window.stlc.state.answer.space.stems.length};",
-        )
-        .await;
+        let probe = "const v = document.getElementById('view3d');
+             return {canvas: !v.hidden, stems: window.stlc.state.answer.space.stems.length};";
+        let shown = js(c, probe).await;
         assert_eq!(shown["canvas"], true, "{shown}");
         assert_eq!(shown["stems"], json!(8 * segments));
         let p = pixels(c).await;
@@ -462,13 +443,10 @@ fn the_3d_oak_grows_and_replays_in_chromium() {
     assert_eq!(grows, 10 + 3 * fits, "{check}");
     on_served_file("oak3d.od", &example("oak3d.od"), async |c, _| {
         settled_ok(c).await;
-        let space = js(
-            c,
-            "const s = window.stlc.state.answer.space;
+        let probe = "const s = window.stlc.state.answer.space;
              return {stems: s.stems.length / 8, decisions: s.decisions, volumes: s.volumes.map((v) => v.type),
-                     shown: !document.getElementById('view3d').hidden};",
-        )
-        .await;
+                     shown: !document.getElementById('view3d').hidden};";
+        let space = js(c, probe).await;
         assert_eq!(space["stems"], json!(grows));
         assert_eq!(space["decisions"], json!(fits));
         assert_eq!(space["volumes"], json!(["Cylinder", "Revolve"]));
