@@ -28,14 +28,11 @@ async fn choose(c: &fantoccini::Client, name: &str, want: &str) -> Value {
 /// The page's SVG export of its text at the 3D view's angles, and the
 /// CLI's SVG of `text` at those angles.
 async fn page_and_cli_svg(c: &fantoccini::Client, text: &str) -> (Vec<u8>, Vec<u8>) {
-    let got = js(
-        c,
-        "const a = window.stlc;
+    let script = "const a = window.stlc;
          const view = a.view3d.angles();
          const e = await a.engine.export({source: a.editor.text(), kind: 'od', view}, 'svg');
-         return [view, e.ok ? await e.blob.text() : ''];",
-    )
-    .await;
+         return [view, e.ok ? await e.blob.text() : ''];";
+    let got = js(c, script).await;
     let view = format!("{},{}", got[0][0], got[0][1]);
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("oak3d.od");
@@ -49,12 +46,9 @@ async fn page_and_cli_svg(c: &fantoccini::Client, text: &str) -> (Vec<u8>, Vec<u
 
 /// The leaf list's options and its value.
 async fn leaf_list(c: &fantoccini::Client) -> Value {
-    js(
-        c,
-        "const s = document.getElementById('leaf');
-         return [[...s.options].map((o) => o.value), s.value]",
-    )
-    .await
+    let script = "const s = document.getElementById('leaf');
+         return [[...s.options].map((o) => o.value), s.value]";
+    js(c, script).await
 }
 
 #[test]
