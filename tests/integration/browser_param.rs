@@ -31,10 +31,8 @@ async fn slide(c: &Client, key: &str, value: &str) -> Value {
     until(c, script, "the slider").await;
     set_value(c, &input, value).await;
     let line_end = format!(" {value}\n");
-    settled_until(c, 100, 50, |v| {
-        v["text"].as_str().unwrap().contains(&line_end)
-    })
-    .await
+    let moved = |v: &Value| v["text"].as_str().unwrap().contains(&line_end);
+    settled_until(c, 100, 50, moved).await
 }
 
 /// The willow's four `define`s are sliders beside `angle`; moving
@@ -68,11 +66,8 @@ fn a_diagnostic_underlines_the_expression_it_is_about_in_chromium() {
         until(c, &format!("{marks}.length === 1"), "the underline").await;
         assert_eq!(js(c, marks).await, json!(["1/(x-1)"]));
         click(c, "#diagnostics li.error").await;
-        let selected = js(
-            c,
-            "const s = document.getElementById('source'); return s.value.slice(s.selectionStart, s.selectionEnd)",
-        )
-        .await;
+        let probe = "const s = document.getElementById('source'); return s.value.slice(s.selectionStart, s.selectionEnd)";
+        let selected = js(c, probe).await;
         assert_eq!(selected, json!("1/(x-1)"));
         shot(c, "param-02-underlined-expression").await;
     });
@@ -92,13 +87,9 @@ fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in
             let svg = engine_export(&c, &request, "svg").await.unwrap();
             let want = cli(&["render", &path, "--show-layout", "-f", "svg"]);
             same_bytes(&svg, &want, &name);
-            let words = js_async(
-                &c,
-                "const [request, done] = arguments;
-                     window.stlc.engine.words(request).then(done, (e) => done(String(e)));",
-                vec![request],
-            )
-            .await;
+            let probe = "const [request, done] = arguments;
+                     window.stlc.engine.words(request).then(done, (e) => done(String(e)));";
+            let words = js_async(&c, probe, vec![request]).await;
             same_words(&name, &words);
         }
         // The words view: the axiom A(10,0), then the first rule applied
