@@ -112,12 +112,9 @@ pub(super) async fn retype(c: &Client, keys: &str) {
 
 /// Focuses the editor with the caret at the end of its text.
 pub(super) async fn caret_to_end(c: &Client) {
-    js(
-        c,
-        "const s = document.getElementById('source'); s.focus();
-         s.setSelectionRange(s.value.length, s.value.length); return 0;",
-    )
-    .await;
+    let probe = "const s = document.getElementById('source'); s.focus();
+         s.setSelectionRange(s.value.length, s.value.length); return 0;";
+    js(c, probe).await;
 }
 
 /// The page's settled answer, which must be drawn without error.
@@ -153,15 +150,12 @@ pub(super) async fn rewritten(c: &Client, text: &str) -> Value {
 /// The first error the diagnostics list: its line, its text, the line
 /// marked in the gutter, and whether a picture is shown.
 pub(super) async fn listed_error(c: &Client) -> Value {
-    js(
-        c,
-        "const li = document.querySelector('[data-testid=diagnostics] li.error');
+    let probe = "const li = document.querySelector('[data-testid=diagnostics] li.error');
          const mark = document.querySelector('#gutter span.error');
          return {line: li && li.dataset.line, text: li && li.textContent,
                  mark: mark && mark.textContent,
-                 picture: document.querySelector('#preview .lib') !== null};",
-    )
-    .await
+                 picture: document.querySelector('#preview .lib') !== null};";
+    js(c, probe).await
 }
 
 /// Waits (at most 10 s) until the element with the id `id` is shown (not
