@@ -135,19 +135,15 @@ pub(super) async fn engine_export(
     request: &Value,
     format: &str,
 ) -> Result<Vec<u8>, Value> {
-    let v = js_async(
-        c,
-        "const [request, format, done] = arguments;
+    let script = "const [request, format, done] = arguments;
              window.stlc.engine.export(request, format).then(async (a) => {
                if (!a.ok) { done({failed: a}); return; }
                const b = new Uint8Array(await a.blob.arrayBuffer());
                let s = '';
                for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
                done({bytes: s});
-             }, (e) => done({failed: String(e)}));",
-        vec![request.clone(), json!(format)],
-    )
-    .await;
+             }, (e) => done({failed: String(e)}));";
+    let v = js_async(c, script, vec![request.clone(), json!(format)]).await;
     match v["bytes"].as_str() {
         // One character a byte (0 to 255).
         Some(s) => Ok(s.chars().map(|ch| ch as u32 as u8).collect()),
@@ -242,10 +238,8 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
         js(c, "document.getElementById('words').open = true").await;
         let listed =
             "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)";
-        let words = js_until(c, listed, 100, 50, |v| {
-            v.as_array().is_some_and(|w| w.len() >= 2)
-        })
-        .await;
+        let two = |v: &Value| v.as_array().is_some_and(|w| w.len() >= 2);
+        let words = js_until(c, listed, 100, 50, two).await;
         assert_eq!(words[0], json!("F--F--F (7)"), "{words}");
         let first = json!("F+F--F+F--F+F--F+F--F+F--F+F (28)");
         assert_eq!(words[1], first, "{words}");
@@ -308,9 +302,7 @@ async fn every_example(c: &Client) {
 async fn newer_edit_ends_older_work(c: &Client) {
     let source = manifest_path("tests/cases/render/slow-stochastic.lsys");
     let source = std::fs::read_to_string(source).unwrap();
-    let v = js_async(
-        c,
-        "const [source, done] = arguments;
+    let script = "const [source, done] = arguments;
              const engine = window.stlc.engine;
              const old = new AbortController();
              const slow = engine.render({source, kind: 'lsys', depth: 14}, {signal: old.signal})
@@ -319,10 +311,8 @@ async fn newer_edit_ends_older_work(c: &Client) {
                old.abort();
                const fast = await engine.render({source, kind: 'lsys', depth: 2});
                done({slow: await slow, fast: fast.ok, stems: fast.stems});
-             }, 200);",
-        vec![json!(source)],
-    )
-    .await;
+             }, 200);";
+    let v = js_async(c, script, vec![json!(source)]).await;
     assert_eq!(v["slow"], "AbortError", "{v}");
     assert_eq!(v["fast"], true, "{v}");
     assert_eq!(v["stems"], "6", "{v}");
@@ -330,12 +320,9 @@ async fn newer_edit_ends_older_work(c: &Client) {
 
 /// The page's share link for its document as it is now.
 pub(super) async fn share_link(c: &Client) -> String {
-    let v = js_async(
-        c,
-        "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));",
-        vec![],
-    )
-    .await;
+    let script =
+        "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));";
+    let v = js_async(c, script, vec![]).await;
     v.as_str().unwrap().to_string()
 }
 
@@ -425,13 +412,9 @@ async fn link_lengths(c: &Client) {
     for name in examples() {
         let text = example(&name);
         let kind = name.rsplit('.').next().unwrap();
-        let v = js_async(
-            c,
-            "const [name, kind, text, done] = arguments;
-                 import('./share.js').then((m) => m.toFragment({name, kind, text})).then((f) => done(f.length));",
-            vec![json!(name), json!(kind), json!(text)],
-        )
-        .await;
+        let script = "const [name, kind, text, done] = arguments;
+                 import('./share.js').then((m) => m.toFragment({name, kind, text})).then((f) => done(f.length));";
+        let v = js_async(c, script, vec![json!(name), json!(kind), json!(text)]).await;
         let (bytes, link) = (text.len(), v.as_u64().unwrap());
         rows.push(format!("| `{name}` | {bytes} | {link} |"));
     }
