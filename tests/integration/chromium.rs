@@ -95,15 +95,12 @@ pub(super) async fn js_async(c: &Client, script: &str, args: Vec<Value>) -> Valu
 /// Waits until the page shows the answer to the text in its editor.
 pub(super) async fn settled(c: &Client) -> Value {
     for _ in 0..400 {
-        let v = js(
-            c,
-            "const s = window.stlc && window.stlc.state; const t = document.getElementById('source').value;
+        let probe = "const s = window.stlc && window.stlc.state; const t = document.getElementById('source').value;
              if (!s || s.inFlight || s.answerText !== t) return null;
              return {ok: s.answer.ok, stems: Number(s.answer.stems || 0),
                      growth: s.answer.growth ? s.answer.growth.stems : [],
-                     text: t};",
-        )
-        .await;
+                     text: t};";
+        let v = js(c, probe).await;
         if !v.is_null() {
             // The debounce may still hold an edit: settle twice in a row.
             tokio::time::sleep(Duration::from_millis(300)).await;
