@@ -20,20 +20,16 @@ pub(super) async fn js_with(c: &Client, script: &str, args: &[Value]) -> Value {
 pub(super) async fn text_of(c: &Client, css: &str) -> String {
     let script = "const e = document.querySelector(arguments[0]); return e && e.textContent";
     let v = js_with(c, script, &[json!(css)]).await;
-    v.as_str()
-        .unwrap_or_else(|| panic!("no element {css}"))
-        .to_string()
+    let text = v.as_str().unwrap_or_else(|| panic!("no element {css}"));
+    text.to_string()
 }
 
 /// The texts of the elements `css` selects, in document order.
 pub(super) async fn texts_of(c: &Client, css: &str) -> Vec<String> {
     let script = "return [...document.querySelectorAll(arguments[0])].map((e) => e.textContent)";
     let v = js_with(c, script, &[json!(css)]).await;
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|t| t.as_str().unwrap().to_string())
-        .collect()
+    let texts = v.as_array().unwrap().iter();
+    texts.map(|t| t.as_str().unwrap().to_string()).collect()
 }
 
 /// How many elements `css` selects.
