@@ -111,9 +111,7 @@ async fn drawn(c: &Client) -> u64 {
 /// each canvas point (canvas units) in `points`, the number of inked
 /// pixels, and the mean colour of the pixels inked at least half.
 async fn ink(c: &Client, points: &[(f64, f64)]) -> (Vec<u8>, u64, [f64; 3]) {
-    let v = js(
-        c,
-        &format!(
+    let script = format!(
             "const strokes = document.querySelector('#preview [data-testid=tree-canvas]');
              const dots = document.querySelector('#preview [data-testid=tree-dots]');
              const cv = document.createElement('canvas');
@@ -143,9 +141,8 @@ async fn ink(c: &Client, points: &[(f64, f64)]) -> (Vec<u8>, u64, [f64; 3]) {
              }});
              return {{alpha, inked, rgb: rgb.map((c) => c / Math.max(strong, 1))}};",
             points = points.iter().map(|&(x, y)| [x, y]).collect::<Vec<_>>()
-        ),
-    )
-    .await;
+    );
+    let v = js(c, &script).await;
     let alpha = v["alpha"]
         .as_array()
         .unwrap()
