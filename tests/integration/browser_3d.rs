@@ -228,15 +228,12 @@ async fn orbit_zoom_and_fit(c: &Client, first: &Value) {
 async fn replace(c: &Client, from: &str, to: &str) {
     let src = c.find(fantoccini::Locator::Css("#source")).await.unwrap();
     src.click().await.unwrap();
-    js(
-        c,
-        &format!(
-            "const s = document.getElementById('source'); const i = s.value.indexOf({from:?});
+    let script = format!(
+        "const s = document.getElementById('source'); const i = s.value.indexOf({from:?});
              s.selectionStart = i; s.selectionEnd = i + {};",
-            from.chars().count()
-        ),
-    )
-    .await;
+        from.chars().count()
+    );
+    js(c, &script).await;
     src.send_keys(to).await.unwrap();
 }
 
