@@ -14,14 +14,11 @@ use super::serve::example;
 /// Chooses `name` in the leaf list as a user does (a `change` event); the
 /// page's answer once its text is `want`.
 async fn choose(c: &fantoccini::Client, name: &str, want: &str) -> Value {
-    js(
-        c,
-        &format!(
-            "const s = document.getElementById('leaf'); s.value = {name:?};
+    let script = format!(
+        "const s = document.getElementById('leaf'); s.value = {name:?};
              s.dispatchEvent(new Event('change')); return 0;"
-        ),
-    )
-    .await;
+    );
+    js(c, &script).await;
     answered(c, want, &format!("with leaf {name}")).await
 }
 
