@@ -186,14 +186,11 @@ pub(super) async fn file_until(path: &Path, tries: u32, done: impl Fn(&str) -> b
 
 /// The viewport position of canvas point `(x, y)` in the preview.
 pub(super) async fn screen_of(c: &Client, x: f64, y: f64) -> (f64, f64) {
-    let v = js(
-        c,
-        &format!(
-            "const m = document.getElementById('preview').getScreenCTM();
+    let script = format!(
+        "const m = document.getElementById('preview').getScreenCTM();
              return [m.a * {x} + m.e, m.d * {y} + m.f];"
-        ),
-    )
-    .await;
+    );
+    let v = js(c, &script).await;
     (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
 }
 
