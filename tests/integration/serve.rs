@@ -305,12 +305,8 @@ fn render_answers_the_cli_bytes_for_an_od() {
     for name in ["2dtree.od", "fig9.od", "holes.od"] {
         let path = manifest_path("examples").join(name);
         let path = path.to_str().unwrap();
-        for (strategy, extra) in [
-            ("bfs", ""),
-            ("dfs", ""),
-            ("dfs", "--clearance 0.5 --max-stems 120"),
-            ("space", ""),
-        ] {
+        let limited = "--clearance 0.5 --max-stems 120";
+        for (strategy, extra) in [("bfs", ""), ("dfs", ""), ("dfs", limited), ("space", "")] {
             let mut body = json!({"source": example(name), "kind": "od", "growth": strategy});
             if !extra.is_empty() {
                 body["clearance"] = json!(0.5);
@@ -667,10 +663,8 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
     crate::support::assert_same_text("grove --seed 7", &bed, a["bed"].as_str().unwrap());
     assert_ne!(a["bed"], ask(8)["bed"]);
     let others = a["root"]["others"].as_array().unwrap();
-    let xy = others
-        .iter()
-        .map(|r| (r["x"].as_f64().unwrap(), r["y"].as_f64().unwrap()));
-    let xy: Vec<(f64, f64)> = xy.collect();
+    let at = |r: &Value, k: &str| r[k].as_f64().unwrap();
+    let xy: Vec<(f64, f64)> = others.iter().map(|r| (at(r, "x"), at(r, "y"))).collect();
     assert_eq!(xy, [(110.0, 290.0), (170.0, 290.0), (235.0, 290.0)]);
     // A seed as a string of digits (how the page sends it): exact past a
     // JavaScript number's 2^53, the CLI's --seed of the same digits.
