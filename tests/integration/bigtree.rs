@@ -9,7 +9,9 @@ use std::time::Duration;
 use fantoccini::Client;
 use serde_json::{Value, json};
 
-use super::chromium::{Browser, click, js, shot};
+use super::browser_3d::unpack;
+use super::browser_steps::set_value;
+use super::chromium::{Browser, click, js, js_async, js_until, shot};
 use super::serve::{Server, post, render};
 use crate::support::{numbers, segment_distance};
 
@@ -28,27 +30,7 @@ fn stems(a: &Value) -> u64 {
     a["stems"].as_str().unwrap().parse().unwrap()
 }
 
-/// A compact body decoded as the page decodes it (engine/http.js): the
-/// head's answer with `growth.stems` put back.
-fn unpack(body: &[u8]) -> Value {
-    let n = u32::from_le_bytes(body[..4].try_into().unwrap()) as usize;
-    assert_eq!((4 + n) % 4, 0, "the stems start on a 4-byte boundary");
-    let head: Value = serde_json::from_slice(&body[4..4 + n]).unwrap();
-    let mut answer = head["answer"].clone();
-    assert_eq!(answer["growth"]["stems"], json!([]));
-    let k = head["stems"].as_u64().unwrap() as usize;
-    assert_eq!(body.len(), 4 + n + 4 * k);
-    let numbers: Vec<f64> = body[4 + n..]
-        .chunks(4)
-        .map(|c| f64::from(i32::from_le_bytes(c.try_into().unwrap())))
-        .enumerate()
-        .map(|(i, x)| if i % 6 == 5 { x } else { x / 1000.0 })
-        .collect();
-    answer["growth"]["stems"] = json!(numbers);
-    answer
-}
-
-const COMPACT: (&str, &str) = ("Accept", "application/x-stlc-render, application/json");
+pub(super) const COMPACT: (&str, &str) = ("Accept", "application/x-stlc-render, application/json");
 
 #[test]
 fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
@@ -105,28 +87,17 @@ fn past_10000_stems_the_svg_leaves_the_tree_out_and_the_stems_come_compact() {
 /// (if any) is drawn: the stems on it.
 async fn drawn(c: &Client) -> u64 {
     for _ in 0..1200 {
-        let ready = js(
-            c,
-            "const s = window.stlc && window.stlc.state;
-             return !!s && !s.inFlight && s.answerText === document.getElementById('source').value;",
-        )
-        .await;
+        let script = "const s = window.stlc && window.stlc.state;
+             return !!s && !s.inFlight && s.answerText === document.getElementById('source').value;";
+        let ready = js(c, script).await;
         if ready == json!(true) {
             tokio::time::sleep(Duration::from_millis(300)).await;
-            let n = c
-                .execute_async(
-                    "const done = arguments[arguments.length - 1];
-                     const t = window.stlc.view.tree;
-                     t.settled().then(() => requestAnimationFrame(() => done(t.drawn())));",
-                    vec![],
-                )
-                .await
-                .unwrap();
-            let again = js(
-                c,
-                "return !window.stlc.state.inFlight && window.stlc.state.answerText === document.getElementById('source').value",
-            )
-            .await;
+            let probe = "const done = arguments[arguments.length - 1];
+                 const t = window.stlc.view.tree;
+                 t.settled().then(() => requestAnimationFrame(() => done(t.drawn())));";
+            let n = js_async(c, probe, vec![]).await;
+            let script = "return !window.stlc.state.inFlight && window.stlc.state.answerText === document.getElementById('source').value";
+            let again = js(c, script).await;
             if again == json!(true) {
                 return n.as_u64().unwrap();
             }
@@ -140,9 +111,7 @@ async fn drawn(c: &Client) -> u64 {
 /// each canvas point (canvas units) in `points`, the number of inked
 /// pixels, and the mean colour of the pixels inked at least half.
 async fn ink(c: &Client, points: &[(f64, f64)]) -> (Vec<u8>, u64, [f64; 3]) {
-    let v = js(
-        c,
-        &format!(
+    let script = format!(
             "const strokes = document.querySelector('#preview [data-testid=tree-canvas]');
              const dots = document.querySelector('#preview [data-testid=tree-dots]');
              const cv = document.createElement('canvas');
@@ -172,9 +141,8 @@ async fn ink(c: &Client, points: &[(f64, f64)]) -> (Vec<u8>, u64, [f64; 3]) {
              }});
              return {{alpha, inked, rgb: rgb.map((c) => c / Math.max(strong, 1))}};",
             points = points.iter().map(|&(x, y)| [x, y]).collect::<Vec<_>>()
-        ),
-    )
-    .await;
+    );
+    let v = js(c, &script).await;
     let alpha = v["alpha"]
         .as_array()
         .unwrap()
@@ -190,17 +158,14 @@ async fn ink(c: &Client, points: &[(f64, f64)]) -> (Vec<u8>, u64, [f64; 3]) {
 /// unit, its screen rectangle and the library's picture's, and how many
 /// tree canvases the preview holds.
 async fn canvas_box(c: &Client) -> Value {
-    js(
-        c,
-        "const cv = document.querySelector('#preview [data-testid=tree-canvas]');
+    let script = "const cv = document.querySelector('#preview [data-testid=tree-canvas]');
          const fo = cv.closest('foreignObject');
          const box = ['x', 'y', 'width', 'height'].map((a) => Number(fo.getAttribute(a)));
          const r = (e) => { const b = e.getBoundingClientRect(); return [b.left, b.top, b.right, b.bottom]; };
          return {box: [box[0], box[1], box[0] + box[2], box[1] + box[3]], k: cv.width / box[2],
                  fo: r(fo), lib: r(document.querySelector('#preview .lib svg')),
-                 canvases: document.querySelectorAll('#preview foreignObject.tree').length};",
-    )
-    .await
+                 canvases: document.querySelectorAll('#preview foreignObject.tree').length};";
+    js(c, script).await
 }
 
 /// One stem: from, to, decision.
@@ -260,9 +225,7 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         c.goto(&server.url).await.unwrap();
         assert_eq!(drawn(&c).await, 30_001, "every stem on the canvas");
         shot(&c, "bigtree").await;
-        let page = js(
-            &c,
-            "const a = window.stlc.state.answer;
+        let script = "const a = window.stlc.state.answer;
              const inked = (id) => {
                const c = document.querySelector(`#preview [data-testid=${id}]`);
                const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
@@ -274,9 +237,8 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
                      paths: document.querySelectorAll('#preview .lib path[fill=\"none\"]').length,
                      layout: document.querySelectorAll('#preview .lib path[fill=\"#008000\"]').length,
                      canvases: document.querySelectorAll('#preview canvas').length,
-                     bed: a.bed, label: document.getElementById('step-label').textContent};",
-        )
-        .await;
+                     bed: a.bed, label: document.getElementById('step-label').textContent};";
+        let page = js(&c, script).await;
         assert_eq!(page["compact"], true, "{page}");
         assert_eq!(page["n"], 6 * 30_001);
         assert_eq!(page["paths"], 0, "no stem in the SVG");
@@ -286,13 +248,9 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         assert!(page["strokes"].as_u64().unwrap() > 100, "{page}");
         assert!(page["dots"].as_u64().unwrap() > 100, "{page}");
         assert_eq!(page["bed"], Value::Null);
-        assert_eq!(
-            page["label"],
-            format!(
-                "decision {0} of {0} · 30,001 stems",
-                crate::support::grouped(last as u64)
-            )
-        );
+        let all_of = crate::support::grouped(last);
+        let label = format!("decision {all_of} of {all_of} · 30,001 stems");
+        assert_eq!(page["label"], label);
 
         // Ink on every 97th stem's midpoint, none far from all stems, in
         // the stroke's colour.
@@ -316,12 +274,9 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
             click(&c, "#zoom-in").await;
         }
         // The tree's base in the middle.
-        js(
-            &c,
-            "const v = window.stlc.state.view;
-             window.stlc.view.pan(v, (v[0] + v[2]) / 2 - 600, (v[1] + v[3]) / 2 - 1100); return 0;",
-        )
-        .await;
+        let script = "const v = window.stlc.state.view;
+             window.stlc.view.pan(v, (v[0] + v[2]) / 2 - 600, (v[1] + v[3]) / 2 - 1100); return 0;";
+        js(&c, script).await;
         tokio::time::sleep(Duration::from_millis(400)).await;
         assert_eq!(drawn(&c).await, 30_001);
         let zoomed = canvas_box(&c).await;
@@ -351,22 +306,14 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         // resolution may differ by a little; this one is the reference.)
         let (_, inked, _) = ink(&c, &[]).await;
         for i in 0..4 {
-            let (a, b) = (
-                refitted["fo"][i].as_f64().unwrap(),
-                refitted["lib"][i].as_f64().unwrap(),
-            );
+            let a = refitted["fo"][i].as_f64().unwrap();
+            let b = refitted["lib"][i].as_f64().unwrap();
             assert!((a - b).abs() < 1.0, "{refitted}");
         }
 
         // Replay to a decision halfway: the stems up to it, no more.
         let k = last / 2;
-        js(
-            &c,
-            &format!(
-                "const s = document.getElementById('step'); s.value = {k}; s.dispatchEvent(new Event('input')); return 0;"
-            ),
-        )
-        .await;
+        set_value(&c, "#step", &k.to_string()).await;
         let early: Vec<Stem> = all.iter().copied().filter(|s| s.2 <= k).collect();
         let later: Vec<Stem> = all.iter().copied().filter(|s| s.2 > k).collect();
         assert_eq!(drawn(&c).await, early.len() as u64);
@@ -382,34 +329,19 @@ fn a_big_tree_draws_on_a_canvas_and_replays_in_chromium() {
         // Play on to the end, in a second: the whole tree again.
         js(&c, "document.getElementById('replay-speed').value = '1s'; return 0;").await;
         click(&c, "#play").await;
-        for _ in 0..200 {
-            let at = js(&c, "return Number(document.getElementById('step').value)").await;
-            if at.as_u64() == Some(last) {
-                break;
-            }
-            tokio::time::sleep(Duration::from_millis(50)).await;
-        }
+        let at = "return Number(document.getElementById('step').value)";
+        js_until(&c, at, 200, 50, |v| v.as_u64() == Some(last)).await;
         assert_eq!(drawn(&c).await, 30_001);
         let (_, replayed, _) = ink(&c, &[]).await;
         assert_eq!(replayed, inked, "the replay ends on the same picture");
 
         // A small tree: the SVG's paths, no canvas.
-        let small = std::fs::read_to_string(crate::support::manifest_path("examples/fig9.od")).unwrap();
-        js(
-            &c,
-            &format!(
-                "const t = document.getElementById('source'); t.value = {small:?}; t.dispatchEvent(new Event('input')); return 0;"
-            ),
-        )
-        .await;
+        set_value(&c, "#source", &super::serve::example("fig9.od")).await;
         drawn(&c).await;
-        let page = js(
-            &c,
-            "return {paths: document.querySelectorAll('#preview .lib path[fill=\"none\"]').length,
+        let script = "return {paths: document.querySelectorAll('#preview .lib path[fill=\"none\"]').length,
                      canvases: document.querySelectorAll('#preview canvas').length,
-                     svg: window.stlc.state.answer.tree_in_svg};",
-        )
-        .await;
+                     svg: window.stlc.state.answer.tree_in_svg};";
+        let page = js(&c, script).await;
         assert!(page["paths"].as_u64().unwrap() > 0, "{page}");
         assert_eq!(page["canvases"], 0);
         assert_eq!(page["svg"], true);

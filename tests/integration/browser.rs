@@ -1,9 +1,6 @@
-//! `stlc serve` in a real headless Chromium, driven over WebDriver
-//! (chromedriver, fantoccini): type an OD, draw a rectangle with the
-//! mouse, switch bfs/dfs, type an error, replay growth, save. Skips with a
-//! message where `chromium` or `chromedriver` is not installed (`.ci/run`
-//! installs Debian's packages), except under CI (`CI` set), where that
-//! fails. Screenshots go to `tests/store/browser/`.
+//! `stlc serve` in a real headless Chromium (the harness, and when it
+//! skips: chromium.rs): type an OD, draw a rectangle with the mouse,
+//! switch bfs/dfs, type an error, replay growth, save.
 
 use std::path::Path;
 
@@ -74,8 +71,7 @@ async fn acceptance(c: &Client) {
         .replace("B=1(0)RULE", "B=1(0) O=dfs RULE");
     assert_eq!(text, want, "{text}");
     click(c, "#play").await;
-    let replayed = "return window.stlc.state.replayTimer === null";
-    js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
+    replay_ended(c).await;
     shot(c, "11-acceptance").await;
     click(c, "#save").await;
     let on_disk = file_until(&file, 100, |t| t == text).await;
@@ -84,24 +80,16 @@ async fn acceptance(c: &Client) {
     // Export: the page offers the CLI's PNG and BED for the same options.
     let od = tmp.path().join("saved.od");
     std::fs::write(&od, text).unwrap();
-    for (button, args) in [
-        (
-            "#export-png",
-            vec!["render", "-f", "png", "--show-layout", "--growth", "dfs"],
-        ),
-        ("#export-bed", vec!["compile", "--growth", "dfs"]),
+    for (button, command, ext) in [
+        ("#export-png", "render -f png --show-layout", ".png"),
+        ("#export-bed", "compile", ".bed"),
     ] {
         js(c, "window.stlc.state.lastDownload = null; return 0;").await;
         click(c, button).await;
         let last = "return window.stlc.state.lastDownload";
         let offered = js_until(c, last, 200, 50, |v| !v.is_null()).await;
-        let out = cli(&[&args[..1], &[od.to_str().unwrap()], &args[1..]].concat());
+        let out = cli_line(&format!("{command} {} --growth dfs", od.display()));
         assert_eq!(offered["size"], out.len(), "{button}: {offered}");
-        let ext = if button.ends_with("png") {
-            ".png"
-        } else {
-            ".bed"
-        };
         let name = offered["name"].as_str().unwrap();
         assert!(name.ends_with(ext), "{offered}");
     }
@@ -152,10 +140,8 @@ async fn steps(c: &Client, file: &Path) {
     shot(c, "4-dfs").await;
 
     // Replay: midway only part of the tree is drawn.
-    let max: u64 = js(c, "return Number(document.getElementById('step').max)")
-        .await
-        .as_u64()
-        .unwrap();
+    let max = js(c, "return Number(document.getElementById('step').max)").await;
+    let max = max.as_u64().unwrap();
     assert!(max > 10, "{max}");
     click(c, "#play").await;
     // The replay takes about four seconds: look once it is under way.
@@ -167,8 +153,7 @@ async fn steps(c: &Client, file: &Path) {
     assert!(v > 0 && v < max, "{mid}");
     assert_eq!(mid["replaying"], true, "{mid}");
     shot(c, "5-replay").await;
-    let replayed = "return window.stlc.state.replayTimer === null";
-    js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
+    replay_ended(c).await;
     assert_eq!(value_of(c, "#step").await, max.to_string());
 
     // An error: its diagnostic is listed and marked at its line.
@@ -193,14 +178,19 @@ async fn steps(c: &Client, file: &Path) {
     assert_eq!(on_disk, good);
     // The page says so once the answer is back (the file is written first).
     let saved = "return document.getElementById('saved').textContent";
-    let status = js_until(c, saved, 100, 50, |v| {
-        v.as_str().unwrap().starts_with("Saved")
-    })
-    .await;
+    let said_saved = |v: &Value| v.as_str().unwrap().starts_with("Saved");
+    let status = js_until(c, saved, 100, 50, said_saved).await;
     assert!(status.as_str().unwrap().starts_with("Saved"), "{status}");
     shot(c, "7-saved").await;
 
     tools(c, &good).await;
+}
+
+/// The page's settled answer and the layout lines of its text.
+async fn settled_layout(c: &Client) -> (Value, Vec<String>) {
+    let v = settled(c).await;
+    let lines = layout_lines(v["text"].as_str().unwrap());
+    (v, lines)
 }
 
 /// The layout lines of `text`, between `LAYOUT` and `ENDLAYOUT`.
@@ -227,8 +217,7 @@ async fn tools(c: &Client, start: &str) {
     click(c, "[data-tool=Ellipse]").await;
     click(c, "#colour option[value=clWhite]").await;
     drag(c, (60.0, 40.0), (140.0, 100.0)).await;
-    let holed = settled(c).await;
-    let lines = layout_lines(holed["text"].as_str().unwrap());
+    let (holed, lines) = settled_layout(c).await;
     assert_eq!(lines.len(), 3, "{lines:?}");
     assert_eq!(lines[2], "(clWhite) Ellipse (60, 40), 80, 60");
     let stems1 = holed["stems"].as_u64().unwrap();
@@ -239,20 +228,17 @@ async fn tools(c: &Client, start: &str) {
     // Select it by its outline and move it 10 units right and down.
     click(c, "[data-tool=select]").await;
     drag(c, (100.0, 70.0), (110.0, 80.0)).await;
-    let moved = settled(c).await;
-    let lines = layout_lines(moved["text"].as_str().unwrap());
+    let lines = settled_layout(c).await.1;
     assert_eq!(lines[2], "(clWhite) Ellipse (70, 50), 80, 60", "{lines:?}");
 
     // Resize by its bottom-right handle.
     drag(c, (150.0, 110.0), (160.0, 120.0)).await;
-    let resized = settled(c).await;
-    let lines = layout_lines(resized["text"].as_str().unwrap());
+    let lines = settled_layout(c).await.1;
     assert_eq!(lines[2], "(clWhite) Ellipse (70, 50), 90, 70", "{lines:?}");
 
     // Lower it below the second rectangle: paint order in the text.
     click(c, "#lower").await;
-    let lowered = settled(c).await;
-    let lines = layout_lines(lowered["text"].as_str().unwrap());
+    let (lowered, lines) = settled_layout(c).await;
     assert_eq!(lines[1], "(clWhite) Ellipse (70, 50), 90, 70", "{lines:?}");
     assert_eq!(lines[2], before[1]);
     // Painted before the big green rectangle, the hole is painted over.
@@ -260,8 +246,7 @@ async fn tools(c: &Client, start: &str) {
 
     // Delete it.
     click(c, "#delete").await;
-    let deleted = settled(c).await;
-    assert_eq!(layout_lines(deleted["text"].as_str().unwrap()), before);
+    assert_eq!(settled_layout(c).await.1, before);
 
     // A polygon by clicks, closed on its first point.
     click(c, "[data-tool=Polygon]").await;
@@ -274,8 +259,7 @@ async fn tools(c: &Client, start: &str) {
     ] {
         click_at(c, p).await;
     }
-    let poly = settled(c).await;
-    let lines = layout_lines(poly["text"].as_str().unwrap());
+    let lines = settled_layout(c).await.1;
     assert_eq!(lines.len(), 3, "{lines:?}");
     let polygon = "(clGreen) Polygon (150, 170), (190, 170), (190, 195)";
     assert_eq!(lines[2], polygon);
@@ -318,6 +302,12 @@ async fn tools(c: &Client, start: &str) {
     shot(c, "10-renderer").await;
 }
 
+/// Waits (up to 30 s) until the replay has ended.
+async fn replay_ended(c: &Client) {
+    let replayed = "return window.stlc.state.replayTimer === null";
+    js_until(c, replayed, 600, 50, |v| v == &json!(true)).await;
+}
+
 /// The BED of the page's answer once it is `want` (the page may still be
 /// answering an earlier edit), or the last one seen.
 async fn answer_bed(c: &Client, want: &str) -> String {
@@ -331,12 +321,9 @@ async fn answer_bed(c: &Client, want: &str) -> String {
 
 /// The preview's view box: `[x, y, width, height]` in canvas units.
 async fn view_box(c: &Client) -> Vec<f64> {
-    let v = js(
-        c,
-        "const b = document.getElementById('preview').viewBox.baseVal;
-         return [b.x, b.y, b.width, b.height];",
-    )
-    .await;
+    let script = "const b = document.getElementById('preview').viewBox.baseVal;
+         return [b.x, b.y, b.width, b.height];";
+    let v = js(c, script).await;
     numbers(&v)
 }
 
@@ -586,10 +573,8 @@ async fn editing(c: &Client, served: &Served<'_>) {
     caret_to_end(c).await;
     type_into(c, "source", "JUNK(").await;
     let typed = settled_failed(c).await;
-    assert_eq!(
-        typed["text"].as_str().unwrap(),
-        format!("{raised_text}JUNK(")
-    );
+    let junk = format!("{raised_text}JUNK(");
+    assert_eq!(typed["text"].as_str().unwrap(), junk);
     chord(c, &[CONTROL], 'z').await;
     assert_eq!(settled_ok(c).await["text"].as_str().unwrap(), raised_text);
 
@@ -605,12 +590,9 @@ async fn editing(c: &Client, served: &Served<'_>) {
     )
     .await;
     chord(c, &[CONTROL], 'c').await;
-    js(
-        c,
-        "document.getElementById('scratch').remove();
-         const s = document.getElementById('source'); s.focus(); s.select(); return 0;",
-    )
-    .await;
+    let script = "document.getElementById('scratch').remove();
+         const s = document.getElementById('source'); s.focus(); s.select(); return 0;";
+    js(c, script).await;
     chord(c, &[CONTROL], 'v').await;
     let pasted = settled_ok(c).await;
     assert_eq!(pasted["text"].as_str().unwrap(), fig9);
@@ -625,10 +607,8 @@ async fn editing(c: &Client, served: &Served<'_>) {
     assert_ne!(dfs["growth"], pasted["growth"]);
     let od = dir.join("fig9.od");
     std::fs::write(&od, &fig9).unwrap();
-    let svg = cli_line(&format!(
-        "render {} --show-layout --growth dfs -f svg",
-        od.display()
-    ));
+    let command = format!("render {} --show-layout --growth dfs -f svg", od.display());
+    let svg = cli_line(&command);
     click(c, "#export-svg").await;
     same_bytes(&downloaded(downloads, "tree.svg").await, &svg, "tree.svg");
 }
@@ -678,12 +658,9 @@ async fn columns(c: &Client, dir: &Path) {
     let at = text.find(']').unwrap();
     let want = json!([js_index(text, at), js_index(text, at + 1)]);
     assert_eq!(click_error(c).await, want, "{text}");
-    let selected = js(
-        c,
-        "const s = document.getElementById('source');
-         return s.value.slice(s.selectionStart, s.selectionEnd);",
-    )
-    .await;
+    let script = "const s = document.getElementById('source');
+         return s.value.slice(s.selectionStart, s.selectionEnd);";
+    let selected = js(c, script).await;
     assert_eq!(selected, "]");
     shot(c, "20-emoji-column").await;
 }

@@ -13,22 +13,22 @@ use serde_json::{Value, json};
 
 use super::browser_steps::{reload, settled_ok, text_of};
 use super::chromium::{
-    cli, click, file_until, js, js_async, on_served_file, press_along, settled_until, shot, wheel,
+    cli_line, click, file_until, js, js_async, on_served_file, press_along, settled_until, shot,
+    wheel,
 };
-use super::serve::{Server, example, post, render, request};
+use super::serve::{Server, example, post, render};
 use crate::support::{manifest_path, numbers, stlc_stdout};
 
 /// A compact body decoded as the page decodes it (engine/http.js): the
-/// head's answer with `growth.stems` and `space.stems` put back.
-fn unpack(body: &[u8]) -> Value {
+/// head's answer with `growth.stems` (and `space.stems`, if any) put back.
+pub(super) fn unpack(body: &[u8]) -> Value {
     let n = u32::from_le_bytes(body[..4].try_into().unwrap()) as usize;
+    assert_eq!((4 + n) % 4, 0, "the stems start on a 4-byte boundary");
     let head: Value = serde_json::from_slice(&body[4..4 + n]).unwrap();
     let mut answer = head["answer"].clone();
-    let (k, m) = (
-        head["stems"].as_u64().unwrap() as usize,
-        head["space"].as_u64().unwrap() as usize,
-    );
-    assert_eq!(answer["space"]["stems"], json!([]));
+    let k = head["stems"].as_u64().unwrap() as usize;
+    let m = head["space"].as_u64().unwrap_or(0) as usize;
+    assert_eq!(answer["growth"]["stems"], json!([]));
     assert_eq!(body.len(), 4 + n + 4 * (k + m));
     let numbers = |from: usize, count: usize, per: usize| -> Vec<f64> {
         body[from..from + 4 * count]
@@ -39,7 +39,10 @@ fn unpack(body: &[u8]) -> Value {
             .collect()
     };
     answer["growth"]["stems"] = json!(numbers(4 + n, k, 6));
-    answer["space"]["stems"] = json!(numbers(4 + n + 4 * k, m, 8));
+    if head.get("space").is_some() {
+        assert_eq!(answer["space"]["stems"], json!([]));
+        answer["space"]["stems"] = json!(numbers(4 + n + 4 * k, m, 8));
+    }
     answer
 }
 
@@ -62,12 +65,11 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
     // The turtle starts at the origin.
     assert_eq!(space["stems"].as_array().unwrap()[0..3], [0.0, 0.0, 0.0]);
     // The compact body: the same answer, number for number.
-    let compact = request(
+    let compact = post(
         &server.addr,
-        "POST",
         "/api/render",
-        &[("Accept", "application/x-stlc-render, application/json")],
-        body.to_string().as_bytes(),
+        &[super::bigtree::COMPACT],
+        &body,
     );
     let head = &compact.head;
     let compact_type = "content-type: application/x-stlc-render";
@@ -76,14 +78,7 @@ fn a_3d_answer_carries_its_stems_json_or_compact_and_2d_answers_do_not() {
     // The export draws the view asked for: the CLI's bytes.
     let view = json!({"source": text, "kind": "lsys", "view": [-60, 35]});
     let svg = post(&server.addr, "/api/export?format=svg", &[], &view);
-    let want = cli(&[
-        "render",
-        "examples/hilbert3d.lsys",
-        "--view",
-        "-60,35",
-        "-f",
-        "svg",
-    ]);
+    let want = cli_line("render examples/hilbert3d.lsys --view -60,35 -f svg");
     assert_eq!(svg.body, want);
     // A 3D BED: its stems worked by hand (`&` at 90 degrees turns the
     // heading (0, -1, 0) to +z, `^` to -z; B=2(0.5): 2 wide at order 0,
@@ -146,25 +141,19 @@ async fn angles(c: &Client) -> Vec<f64> {
 
 /// The centre of the 3D canvas in viewport pixels.
 async fn centre(c: &Client) -> (f64, f64) {
-    let v = js(
-        c,
-        "const r = document.getElementById('view3d').getBoundingClientRect();
-         return [r.left + r.width / 2, r.top + r.height / 2];",
-    )
-    .await;
+    let probe = "const r = document.getElementById('view3d').getBoundingClientRect();
+         return [r.left + r.width / 2, r.top + r.height / 2];";
+    let v = js(c, probe).await;
     (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
 }
 
 async fn opens_in_the_3d_view(c: &Client) -> Value {
-    let shown = js(
-        c,
-        "const v = document.getElementById('view3d');
+    let probe = "const v = document.getElementById('view3d');
          return {canvas: !v.hidden && v.getBoundingClientRect().width > 100,
                  svg: getComputedStyle(document.getElementById('preview')).display,
                  gl: window.stlc.view3d.available(),
-                 stems: Array.from(window.stlc.state.answer.space.stems)};",
-    )
-    .await;
+                 stems: Array.from(window.stlc.state.answer.space.stems)};";
+    let shown = js(c, probe).await;
     assert_eq!(shown["canvas"], true, "{shown}");
     assert_eq!(shown["svg"], "none", "the 2D preview is hidden");
     assert_eq!(shown["gl"], true, "headless Chromium has WebGL 2");
@@ -239,15 +228,12 @@ async fn orbit_zoom_and_fit(c: &Client, first: &Value) {
 async fn replace(c: &Client, from: &str, to: &str) {
     let src = c.find(fantoccini::Locator::Css("#source")).await.unwrap();
     src.click().await.unwrap();
-    js(
-        c,
-        &format!(
-            "const s = document.getElementById('source'); const i = s.value.indexOf({from:?});
+    let script = format!(
+        "const s = document.getElementById('source'); const i = s.value.indexOf({from:?});
              s.selectionStart = i; s.selectionEnd = i + {};",
-            from.chars().count()
-        ),
-    )
-    .await;
+        from.chars().count()
+    );
+    js(c, &script).await;
     src.send_keys(to).await.unwrap();
 }
 
@@ -284,9 +270,7 @@ async fn a_reload_keeps_the_text(c: &Client, file: &std::path::Path) {
 async fn the_camera_is_the_clis(c: &Client) {
     let opened = super::browser_web::open_example(c, "plant3d-bare.lsys").await;
     assert_eq!(opened["ok"], true);
-    let page = js_async(
-        c,
-        "const done = arguments[arguments.length - 1];
+    let script = "const done = arguments[arguments.length - 1];
              import('/view3d.js').then((m) => {
                const [r, d] = m.camera(30, 20);
                const s = window.stlc.state.answer.space.stems;
@@ -297,25 +281,18 @@ async fn the_camera_is_the_clis(c: &Client) {
                  }
                }
                done(out);
-             });",
-        vec![],
-    )
-    .await;
+             });";
+    let page = js_async(c, script, vec![]).await;
     let page: Vec<(f64, f64)> = page
         .as_array()
         .unwrap()
         .iter()
         .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
         .collect();
-    let svg =
-        String::from_utf8(cli(&["render", "examples/plant3d-bare.lsys", "-f", "svg"])).unwrap();
-    let d = svg
-        .split(" d=\"")
-        .nth(1)
-        .unwrap()
-        .split('"')
-        .next()
-        .unwrap();
+    let svg = cli_line("render examples/plant3d-bare.lsys -f svg");
+    let svg = String::from_utf8(svg).unwrap();
+    let (_, path) = svg.split_once(" d=\"").unwrap();
+    let d = path.split_once('"').unwrap().0;
     let numbers: Vec<f64> = d
         .split([' ', 'M', 'L'])
         .filter(|t| !t.is_empty())
@@ -355,9 +332,7 @@ async fn the_camera_is_the_clis(c: &Client) {
 /// The volumes (one of each kind) and the replay, from an answer made
 /// here: two stems, decisions 1 and 2, inside a translucent box.
 async fn volumes_and_replay(c: &Client) {
-    let shown = js(
-        c,
-        r##"const app = window.stlc;
+    let probe = r##"const app = window.stlc;
         const ellipse = {type: 'Ellipse', x: -40, y: -160, w: 80, h: 100};
         const answer = Object.assign({}, app.state.answer, {
           stroke: '#5a3a1a',
@@ -381,9 +356,8 @@ async fn volumes_and_replay(c: &Client) {
         // As session.js applies an answer: the slider at its end, then the view.
         app.replay.reset(2);
         app.view.draw();
-        return app.view3d.pixels();"##,
-    )
-    .await;
+        return app.view3d.pixels();"##;
+    let shown = js(c, probe).await;
     assert!(shown["count"].as_f64().unwrap() > 20000.0, "{shown}");
     shot(c, "3d-04-volumes").await;
     let one = replay_to(c, 1).await;
@@ -403,9 +377,7 @@ async fn volumes_and_replay(c: &Client) {
     // vertices lie between the shape's nearest and farthest x, 40 and 80;
     // one across the axis is its outer edge turned, from the axis (0) to
     // 40.
-    let radii = js(
-        c,
-        r##"return import('/meshes.js').then(({ volumeMesh }) => {
+    let probe = r##"return import('/meshes.js').then(({ volumeMesh }) => {
           const r = (shape) => {
             const { pos } = volumeMesh({type: 'Revolve', shape, color: '#008000'}, [0, 0]);
             let lo = Infinity; let hi = 0;
@@ -417,9 +389,8 @@ async fn volumes_and_replay(c: &Client) {
           };
           return [r({type: 'Ellipse', x: 40, y: -100, w: 40, h: 60}),
                   r({type: 'Ellipse', x: -40, y: -100, w: 80, h: 60})];
-        });"##,
-    )
-    .await;
+        });"##;
+    let radii = js(c, probe).await;
     let r = |i: usize, j: usize| radii[i][j].as_f64().unwrap();
     let torus = (r(0, 0) - 40.0).abs() < 1e-6 && (r(0, 1) - 80.0).abs() < 1e-6;
     assert!(torus, "{radii}");
@@ -436,12 +407,9 @@ fn the_static_site_shows_a_3d_file_in_chromium() {
         let stats = stlc_stdout(&["stats", "--json", "examples/plant3d-bare.lsys"]);
         let stats: Value = serde_json::from_slice(&stats).unwrap();
         let segments: usize = stats["segments"].as_str().unwrap().parse().unwrap();
-        let shown = js(
-            c,
-            "const v = document.getElementById('view3d');
-             return {canvas: !v.hidden, stems: window.stlc.state.answer.space.stems.length};",
-        )
-        .await;
+        let probe = "const v = document.getElementById('view3d');
+             return {canvas: !v.hidden, stems: window.stlc.state.answer.space.stems.length};";
+        let shown = js(c, probe).await;
         assert_eq!(shown["canvas"], true, "{shown}");
         assert_eq!(shown["stems"], json!(8 * segments));
         let p = pixels(c).await;
@@ -458,30 +426,24 @@ fn the_static_site_shows_a_3d_file_in_chromium() {
 fn the_3d_oak_grows_and_replays_in_chromium() {
     let check = String::from_utf8(stlc_stdout(&["check", "examples/oak3d.od"])).unwrap();
     // "grows       5656 stems (bfs)" and "1882 fits".
-    let grows: usize = check
-        .split("grows")
-        .nth(1)
-        .and_then(|t| t.split_whitespace().next())
-        .unwrap()
-        .parse()
-        .unwrap();
-    let fits: usize = check
-        .split(" fits")
-        .next()
-        .and_then(|t| t.rsplit(' ').next())
-        .unwrap()
-        .parse()
-        .unwrap();
+    let words: Vec<&str> = check.split_whitespace().collect();
+    let at = |word: &str| {
+        words
+            .iter()
+            .position(|w| w.trim_end_matches([',', ';']) == word)
+    };
+    let (grows, fits) = (
+        words[at("grows").unwrap() + 1],
+        words[at("fits").unwrap() - 1],
+    );
+    let (grows, fits): (usize, usize) = (grows.parse().unwrap(), fits.parse().unwrap());
     assert_eq!(grows, 10 + 3 * fits, "{check}");
     on_served_file("oak3d.od", &example("oak3d.od"), async |c, _| {
         settled_ok(c).await;
-        let space = js(
-            c,
-            "const s = window.stlc.state.answer.space;
+        let probe = "const s = window.stlc.state.answer.space;
              return {stems: s.stems.length / 8, decisions: s.decisions, volumes: s.volumes.map((v) => v.type),
-                     shown: !document.getElementById('view3d').hidden};",
-        )
-        .await;
+                     shown: !document.getElementById('view3d').hidden};";
+        let space = js(c, probe).await;
         assert_eq!(space["stems"], json!(grows));
         assert_eq!(space["decisions"], json!(fits));
         assert_eq!(space["volumes"], json!(["Cylinder", "Revolve"]));

@@ -53,16 +53,12 @@ fn the_stem_colour_and_palette_fields_rewrite_only_their_key_in_chromium() {
         // Fig. 1.26's palette: a field per colour, each the line's.
         open_example(c, "abop-1.26.lsys").await;
         let plant = example("abop-1.26.lsys");
-        let fields = js(
-            c,
-            "return [...document.querySelectorAll('#palette-colours input')].map((f) => f.value)",
-        )
-        .await;
+        let script =
+            "return [...document.querySelectorAll('#palette-colours input')].map((f) => f.value)";
+        let fields = js(c, script).await;
         assert_eq!(fields, json!(["#2f5d1e", "#4f9a34", "#e9679b", "#f2c230"]));
-        let (before, after) = (
-            "palette #2f5d1e #4f9a34 #e9679b #f2c230".to_string(),
-            "palette #2f5d1e #4f9a34 #7b2cbf #f2c230".to_string(),
-        );
+        let before = "palette #2f5d1e #4f9a34 #e9679b #f2c230".to_string();
+        let after = "palette #2f5d1e #4f9a34 #7b2cbf #f2c230".to_string();
         let petals = plant.replace(&before, &after);
         pick(c, "[data-testid=palette-2]", "#7b2cbf", &petals).await;
         assert_eq!(changed_lines(&plant, &petals), [(before, after)]);

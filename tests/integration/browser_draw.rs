@@ -73,10 +73,8 @@ async fn paint_colour_is_for_the_next_shape(c: &Client) {
     }
     let at = |k: f64, radius: f64, cy: f64| {
         let a = (k * 72.0 - 90.0).to_radians();
-        (
-            (rx + radius * libm::cos(a)).round(),
-            (cy + radius * libm::sin(a)).round(),
-        )
+        let (x, y) = (rx + radius * libm::cos(a), cy + radius * libm::sin(a));
+        (x.round(), y.round())
     };
     // A green pentagon around the root, by clicks, closed on its first point.
     click(c, "[data-tool=Polygon]").await;

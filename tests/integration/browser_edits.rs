@@ -16,7 +16,7 @@ use super::chromium::{
     Served, cli_line, click, downloaded, js, on_served_file, open, settled, shot, until,
 };
 use super::serve::example;
-use crate::support::{manifest_path, stlc_piped};
+use crate::support::manifest_path;
 
 #[test]
 fn no_edit_is_lost_across_reloads_tabs_and_disk_changes_in_chromium() {
@@ -293,24 +293,25 @@ async fn export_as_artists_need(c: &Client, downloads: &Path) {
 /// Teaching (item 9): the replay steps one decision back and on, and plays
 /// one decision a frame when asked (144 decisions of 2DTree: about 5 s).
 async fn replay_steps_and_speeds(c: &Client) {
-    let label = text_of(c, "#step-label").await;
-    assert!(label.starts_with("decision 144 of 144"), "{label}");
-    click(c, "[data-testid=step-back]").await;
-    click(c, "[data-testid=step-back]").await;
-    let label = text_of(c, "#step-label").await;
-    assert!(label.starts_with("decision 142 of 144"), "{label}");
-    click(c, "[data-testid=step-next]").await;
-    let label = text_of(c, "#step-label").await;
-    assert!(label.starts_with("decision 143 of 144"), "{label}");
+    for (button, want) in [
+        (None, "decision 144 of 144"),
+        (Some("step-back"), "decision 143 of 144"),
+        (Some("step-back"), "decision 142 of 144"),
+        (Some("step-next"), "decision 143 of 144"),
+    ] {
+        if let Some(id) = button {
+            click(c, &format!("[data-testid={id}]")).await;
+        }
+        let label = text_of(c, "#step-label").await;
+        assert!(label.starts_with(want), "{label}");
+    }
     assign_value(c, "#replay-speed", "1").await;
     assign_value(c, "#step", "0").await;
     click(c, "[data-testid=play]").await;
     tokio::time::sleep(Duration::from_millis(1000)).await;
     let at: u64 = value_of(c, "#step").await.parse().unwrap();
-    assert!(
-        at > 0 && at < 144,
-        "one decision a frame: at {at} after a second"
-    );
+    let one_a_frame = format!("one decision a frame: at {at} after a second");
+    assert!(at > 0 && at < 144, "{one_a_frame}");
     click(c, "[data-testid=play]").await;
     shot(c, "37-replay-step").await;
 }
@@ -352,10 +353,7 @@ async fn words_generation_by_generation(c: &Client) {
     let items = texts_of(c, "#word-list li").await;
     let koch = manifest_path("examples/koch-snowflake.lsys");
     for (depth, item) in items.iter().enumerate() {
-        let word = stlc_piped(
-            &format!("expand {} --depth {depth} -o -", koch.display()),
-            "",
-        );
+        let word = cli_line(&format!("expand {} --depth {depth}", koch.display()));
         let word = String::from_utf8(word).unwrap();
         let word = word.trim_end();
         assert_eq!(*item, format!("{word} ({})", word.len()), "depth {depth}");
@@ -434,11 +432,8 @@ async fn a_rule_that_never_fits_says_why(c: &Client) {
 /// Opens the template or example `name` from the New… menu.
 async fn new_from(c: &Client, name: &str) {
     let names = texts_of(c, "#new option").await;
-    let i = names
-        .iter()
-        .position(|n| n == name)
-        .unwrap_or_else(|| panic!("{name} is not in New…: {names:?}"))
-        - 1;
+    let at = names.iter().position(|n| n == name);
+    let i = at.unwrap_or_else(|| panic!("{name} is not in New…: {names:?}")) - 1;
     click(c, &format!("#new option[value='{i}']")).await;
 }
 

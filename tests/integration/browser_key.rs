@@ -53,11 +53,8 @@ fn the_key_travels_in_the_fragment_and_a_header_never_a_cookie() {
 /// What the tab holds: the address bar's fragment and address,
 /// the key kept, the cookies, the editor's text.
 async fn state(c: &Client) -> Value {
-    js(
-        c,
-        "return {hash: location.hash, href: location.href,
+    let script = "return {hash: location.hash, href: location.href,
                  kept: sessionStorage.getItem('stlc-token'), cookie: document.cookie,
-                 text: document.getElementById('source').value};",
-    )
-    .await
+                 text: document.getElementById('source').value};";
+    js(c, script).await
 }

@@ -14,28 +14,22 @@ use super::serve::example;
 /// Chooses `name` in the leaf list as a user does (a `change` event); the
 /// page's answer once its text is `want`.
 async fn choose(c: &fantoccini::Client, name: &str, want: &str) -> Value {
-    js(
-        c,
-        &format!(
-            "const s = document.getElementById('leaf'); s.value = {name:?};
+    let script = format!(
+        "const s = document.getElementById('leaf'); s.value = {name:?};
              s.dispatchEvent(new Event('change')); return 0;"
-        ),
-    )
-    .await;
+    );
+    js(c, &script).await;
     answered(c, want, &format!("with leaf {name}")).await
 }
 
 /// The page's SVG export of its text at the 3D view's angles, and the
 /// CLI's SVG of `text` at those angles.
 async fn page_and_cli_svg(c: &fantoccini::Client, text: &str) -> (Vec<u8>, Vec<u8>) {
-    let got = js(
-        c,
-        "const a = window.stlc;
+    let script = "const a = window.stlc;
          const view = a.view3d.angles();
          const e = await a.engine.export({source: a.editor.text(), kind: 'od', view}, 'svg');
-         return [view, e.ok ? await e.blob.text() : ''];",
-    )
-    .await;
+         return [view, e.ok ? await e.blob.text() : ''];";
+    let got = js(c, script).await;
     let view = format!("{},{}", got[0][0], got[0][1]);
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("oak3d.od");
@@ -49,12 +43,9 @@ async fn page_and_cli_svg(c: &fantoccini::Client, text: &str) -> (Vec<u8>, Vec<u
 
 /// The leaf list's options and its value.
 async fn leaf_list(c: &fantoccini::Client) -> Value {
-    js(
-        c,
-        "const s = document.getElementById('leaf');
-         return [[...s.options].map((o) => o.value), s.value]",
-    )
-    .await
+    let script = "const s = document.getElementById('leaf');
+         return [[...s.options].map((o) => o.value), s.value]";
+    js(c, script).await
 }
 
 #[test]
@@ -64,10 +55,8 @@ fn the_leaf_control_rewrites_only_p_in_chromium() {
         let leafy = example("oak3d.od");
         assert_eq!(leaf_list(c).await, json!([["none", "L"], "L"]));
         let shown = "return document.getElementById('leaf').offsetParent !== null";
-        assert!(
-            js(c, shown).await == json!(true),
-            "the leaf control is shown for an OD"
-        );
+        let for_an_od = "the leaf control is shown for an OD";
+        assert!(js(c, shown).await == json!(true), "{for_an_od}");
 
         // none: the header line loses ` P=L`, nothing else changes.
         let header = "L=12(0.5) B=3(0.2) A=28 C=2 D=137.5 S=#5b3a1e..#3b5e2b P=L";

@@ -10,7 +10,7 @@ use serde_json::json;
 use super::browser_steps::{set_value, text_of};
 use super::browser_web::{engine_export, on_site, open_example};
 use super::chromium::{cli_line, click, downloaded, js, on_served_page, same_bytes, shot};
-use super::serve::{Server, example, request};
+use super::serve::{Server, example, post};
 use crate::support::numbers;
 
 /// `stlc render examples/NAME --mesh glb --unit UNIT -o -`.
@@ -36,14 +36,8 @@ fn a_glb_export_over_http_is_the_cli_mesh_at_the_unit_asked() {
     let server = Server::start(&[]);
     let text = example("hilbert3d.lsys");
     let glb = |unit: serde_json::Value| {
-        let body = json!({"source": text, "kind": "lsys", "unit": unit}).to_string();
-        request(
-            &server.addr,
-            "POST",
-            "/api/export?format=glb",
-            &[],
-            body.as_bytes(),
-        )
+        let body = json!({"source": text, "kind": "lsys", "unit": unit});
+        post(&server.addr, "/api/export?format=glb", &[], &body)
     };
     let at2 = glb(json!(0.02));
     let head = &at2.head;

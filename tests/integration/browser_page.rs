@@ -18,9 +18,7 @@ use super::serve::example;
 /// UTF-8), deflated in the page (1 MiB chunks streamed through
 /// CompressionStream, so the page never holds the whole text).
 async fn bomb_fragment(c: &Client, mib: u32) -> String {
-    let v = js_async(
-        c,
-        "const [mib, done] = arguments;
+    let script = "const [mib, done] = arguments;
              const zeros = new Uint8Array(1 << 20);
              let n = 0;
              const src = new ReadableStream({ pull(ctl) { if (n++ < mib) ctl.enqueue(zeros); else ctl.close(); } });
@@ -29,10 +27,8 @@ async fn bomb_fragment(c: &Client, mib: u32) -> String {
                let s = '';
                for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
                done('#k=od&n=bomb.od&s=' + btoa(s).replace(/\\+/g, '-').replace(/\\//g, '_').replace(/=+$/, ''));
-             }, (e) => done(String(e)));",
-        vec![json!(mib)],
-    )
-    .await;
+             }, (e) => done(String(e)));";
+    let v = js_async(c, script, vec![json!(mib)]).await;
     v.as_str().unwrap().to_string()
 }
 
@@ -109,24 +105,19 @@ fn an_export_with_only_a_width_keeps_the_aspect_in_chromium() {
 /// Writes `files` (`[path, text]`, below the site) and opens the first,
 /// on the site's server; waits until no `<stl-tree>` is drawing (or none
 /// appeared after 10 s) and returns their states.
-async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Value {
+pub(super) async fn elements(c: &Client, server: &Static, files: &[(&str, String)]) -> Value {
     let site = site().unwrap();
     for (path, text) in files {
         let path = site.join(path);
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
         std::fs::write(path, text).unwrap();
     }
-    c.goto(&format!("{}{}", server.url, files[0].0))
-        .await
-        .unwrap();
+    let url = format!("{}{}", server.url, files[0].0);
+    c.goto(&url).await.unwrap();
     let states =
         "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state || null)";
-    let busy = |s: &Value| {
-        s.as_array()
-            .unwrap()
-            .iter()
-            .any(|x| x.is_null() || x == "drawing")
-    };
+    let drawing = |x: &Value| x.is_null() || x == "drawing";
+    let busy = |s: &Value| s.as_array().unwrap().iter().any(drawing);
     js_until(c, states, 600, 50, |s| !busy(s)).await
 }
 
@@ -210,11 +201,8 @@ fn stl_tree_draws_in_a_worker_within_its_time_budget_in_chromium() {
         assert!(error.starts_with(stopped), "{error}");
         let timer = "return [window.gap, window.ticks, window.last - window.first, document.getElementById('long').svg.length]";
         let v = js(c, timer).await;
-        let (gap, ticks, drawing) = (
-            v[0].as_f64().unwrap(),
-            v[1].as_f64().unwrap(),
-            v[2].as_f64().unwrap(),
-        );
+        let n = |i: usize| v[i].as_f64().unwrap();
+        let (gap, ticks, drawing) = (n(0), n(1), n(2));
         eprintln!(
             "while `long` drew ({drawing} ms), the page's 20 ms timer ran {ticks} times and waited {gap} ms at most"
         );
@@ -293,10 +281,8 @@ fn the_template_grows_into_what_one_draws_and_says_why_it_stops_in_chromium() {
         click(c, "[data-tool=Rectangle]").await;
         click(c, "#colour option[value=clGreen]").await;
         drag(c, (150.0, 10.0), (205.0, 170.0)).await;
-        let drawn = settled_until(c, 100, 50, |v| {
-            v["text"].as_str().unwrap().contains("Rectangle")
-        })
-        .await;
+        let has_it = |v: &Value| v["text"].as_str().unwrap().contains("Rectangle");
+        let drawn = settled_until(c, 100, 50, has_it).await;
         let text = drawn["text"].as_str().unwrap();
         let rectangle = "(clGreen) Rectangle (150, 10), 55, 160";
         assert!(text.contains(rectangle), "{text}");
@@ -349,9 +335,7 @@ fn the_open_export_panel_covers_no_control_in_chromium() {
         click(c, "#export-options summary").await;
         let open = js(c, "return document.getElementById('export-options').open").await;
         assert_eq!(open, json!(true));
-        let covered = js(
-            c,
-            "const panel = document.querySelector('#export-options .export-panel');
+        let probe = "const panel = document.querySelector('#export-options .export-panel');
              const all = [...document.querySelectorAll('header button, header select, header input, #tools button, #tools select, #replay button, #replay select, #replay input')];
              const shown = all.filter((e) => e.getClientRects().length > 0 && getComputedStyle(e).visibility !== 'hidden' && !panel.contains(e));
              const out = [];
@@ -360,9 +344,8 @@ fn the_open_export_panel_covers_no_control_in_chromium() {
                const at = document.elementFromPoint(r.left + r.width / 2, r.top + r.height / 2);
                if (!(at === e || e.contains(at) || (at && at.contains(e) && at.tagName === 'LABEL'))) out.push((e.id || e.textContent.trim() || e.tagName) + ' under ' + (at ? at.tagName + '#' + at.id : 'nothing'));
              }
-             return [shown.length, out];",
-        )
-        .await;
+             return [shown.length, out];";
+        let covered = js(c, probe).await;
         assert!(covered[0].as_u64().unwrap() > 20, "{covered}");
         assert_eq!(covered[1], json!([]), "controls covered by the open panel");
         // The panel itself shows its command.
@@ -390,14 +373,11 @@ fn compare_marks_the_lines_that_differ_in_chromium() {
         tokio::time::sleep(std::time::Duration::from_millis(600)).await;
         reload(c).await;
         click(c, "[data-testid=compare]").await;
-        let sides = js(
-            c,
-            "const side = (id) => [document.getElementById(id).textContent,
+        let probe = "const side = (id) => [document.getElementById(id).textContent,
                [...document.querySelectorAll('#' + id + ' span.differs')].map((s) => s.textContent),
                document.getElementById(id + '-count').textContent];
-             return [side('compare-theirs'), side('compare-mine')];",
-        )
-        .await;
+             return [side('compare-theirs'), side('compare-mine')];";
+        let sides = js(c, probe).await;
         assert_eq!(sides[0][0], json!(original));
         assert_eq!(sides[1][0], json!(edited));
         assert_eq!(sides[0][1], json!(["L=22(1.6) B=3.2(0.25) A=30 C=1\n"]));
@@ -424,11 +404,8 @@ fn stlc_serve_shares_like_the_web_page_in_chromium() {
         let share = |v: &Value| v.as_str().unwrap().starts_with("Share link: ");
         let said = js_until(c, saved, 100, 50, share).await;
         assert!(share(&said), "{said}");
-        let link = js(c, "return location.href")
-            .await
-            .as_str()
-            .unwrap()
-            .to_string();
+        let link = js(c, "return location.href").await;
+        let link = link.as_str().unwrap().to_string();
         let base = format!("http://{}/#k=od&n=tree.od&s=", server.addr);
         assert!(link.starts_with(&base), "{link}");
         let token = link.contains(&server.token);
@@ -436,14 +413,10 @@ fn stlc_serve_shares_like_the_web_page_in_chromium() {
         shot(c, "page-serve-share").await;
         // Another document's link, put into this tab's address.
         let other = "T (0, 0) L=10(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 1 R1] ENDSEED\n";
-        js_async(
-            c,
-            "const [text, done] = arguments;
+        let script = "const [text, done] = arguments;
              import('./share.js').then((m) => m.toFragment({name: 'other.od', kind: 'od', text}))
-               .then((f) => { location.hash = f; done(true); });",
-            vec![json!(other)],
-        )
-        .await;
+               .then((f) => { location.hash = f; done(true); });";
+        js_async(c, script, vec![json!(other)]).await;
         let v = settled_until(c, 100, 50, |v| v["text"] == json!(other)).await;
         assert_eq!(v["text"], json!(other));
         assert_eq!(v["stems"], json!(3), "{v}");
@@ -474,11 +447,8 @@ fn the_page_state_has_one_declared_shape_in_chromium() {
                      doc: typeof app.state.doc.name};",
         )
         .await;
-        assert_eq!(
-            v,
-            json!({"sealed": true, "added": "TypeError", "module": "TypeError",
-                   "has": false, "doc": "string"}),
-            "{v}"
-        );
+        let want = json!({"sealed": true, "added": "TypeError", "module": "TypeError",
+                          "has": false, "doc": "string"});
+        assert_eq!(v, want, "{v}");
     });
 }

@@ -11,10 +11,10 @@ use serde_json::{Value, json};
 
 use super::browser_steps::{set_value, settled_failed, shows_svg, texts_of};
 use super::browser_web::{
-    engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link, site,
+    engine_export, on_site, open_example, opens_in_a_fresh_profile, share_link,
 };
 use super::chromium::{
-    cli, cli_svg_of, click, js, js_async, on_served_file, on_served_page, same_bytes,
+    cli, cli_line, cli_svg_of, click, js, js_async, on_served_file, on_served_page, same_bytes,
     settled_until, shot, until,
 };
 use super::param_frontends::{parametric_examples, same_words};
@@ -31,10 +31,8 @@ async fn slide(c: &Client, key: &str, value: &str) -> Value {
     until(c, script, "the slider").await;
     set_value(c, &input, value).await;
     let line_end = format!(" {value}\n");
-    settled_until(c, 100, 50, |v| {
-        v["text"].as_str().unwrap().contains(&line_end)
-    })
-    .await
+    let moved = |v: &Value| v["text"].as_str().unwrap().contains(&line_end);
+    settled_until(c, 100, 50, moved).await
 }
 
 /// The willow's four `define`s are sliders beside `angle`; moving
@@ -45,15 +43,8 @@ fn each_define_is_a_slider_that_rewrites_only_its_number_in_chromium() {
     on_served_page(async |c, _| {
         open_example(c, "param-willow.lsys").await;
         let after = slide(c, "define-spread", "45").await;
-        let keys =
-            "return [...document.querySelectorAll('#scrub-list input')].map((i) => i.dataset.key)";
-        let want = [
-            "angle",
-            "define-shrink",
-            "define-side",
-            "define-spread",
-            "define-twig",
-        ];
+        let keys = "return [...document.querySelectorAll('#scrub-list input')].map((i) => i.dataset.key).join()";
+        let want = "angle,define-shrink,define-side,define-spread,define-twig";
         assert_eq!(js(c, keys).await, json!(want));
         let text = example("param-willow.lsys").replace("define spread 30\n", "define spread 45\n");
         assert_eq!(after["ok"], true, "{after}");
@@ -75,11 +66,8 @@ fn a_diagnostic_underlines_the_expression_it_is_about_in_chromium() {
         until(c, &format!("{marks}.length === 1"), "the underline").await;
         assert_eq!(js(c, marks).await, json!(["1/(x-1)"]));
         click(c, "#diagnostics li.error").await;
-        let selected = js(
-            c,
-            "const s = document.getElementById('source'); return s.value.slice(s.selectionStart, s.selectionEnd)",
-        )
-        .await;
+        let probe = "const s = document.getElementById('source'); return s.value.slice(s.selectionStart, s.selectionEnd)";
+        let selected = js(c, probe).await;
         assert_eq!(selected, json!("1/(x-1)"));
         shot(c, "param-02-underlined-expression").await;
     });
@@ -99,13 +87,9 @@ fn the_web_engine_draws_expands_and_reports_stats_of_every_parametric_example_in
             let svg = engine_export(&c, &request, "svg").await.unwrap();
             let want = cli(&["render", &path, "--show-layout", "-f", "svg"]);
             same_bytes(&svg, &want, &name);
-            let words = js_async(
-                &c,
-                "const [request, done] = arguments;
-                     window.stlc.engine.words(request).then(done, (e) => done(String(e)));",
-                vec![request],
-            )
-            .await;
+            let probe = "const [request, done] = arguments;
+                     window.stlc.engine.words(request).then(done, (e) => done(String(e)));";
+            let words = js_async(&c, probe, vec![request]).await;
             same_words(&name, &words);
         }
         // The words view: the axiom A(10,0), then the first rule applied
@@ -135,24 +119,16 @@ fn stl_tree_draws_parametric_trees_as_the_cli_in_chromium() {
              <stl-tree id=willow><script type=\"text/stl\">\n{willow}</script></stl-tree>\n\
              <stl-tree id=honda src=\"examples/abop-2.6a.lsys\" depth=6></stl-tree>\n"
         );
-        std::fs::write(site().unwrap().join("param-elements-test.html"), page).unwrap();
-        c.goto(&format!("{}param-elements-test.html", server.url))
-            .await
-            .unwrap();
-        let states =
-            "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state).join()";
-        until(c, &format!("{states} === 'drawn,drawn'"), "both drawn").await;
-        let want = [
-            ("willow", vec!["render", "examples/param-willow.lsys"]),
-            (
-                "honda",
-                vec!["render", "examples/abop-2.6a.lsys", "--depth", "6"],
-            ),
-        ];
-        for (id, mut args) in want {
+        let files = [("param-elements-test.html", page)];
+        let states = super::browser_page::elements(c, server, &files).await;
+        assert_eq!(states, json!(["drawn", "drawn"]), "both drawn");
+        for (id, line) in [
+            ("willow", "render examples/param-willow.lsys"),
+            ("honda", "render examples/abop-2.6a.lsys --depth 6"),
+        ] {
             let svg = js(c, &format!("return document.getElementById('{id}').svg")).await;
-            args.extend(["-f", "svg"]);
-            same_bytes(svg.as_str().unwrap().as_bytes(), &cli(&args), id);
+            let cli = cli_line(&format!("{line} -f svg"));
+            same_bytes(svg.as_str().unwrap().as_bytes(), &cli, id);
         }
         shot(c, "param-04-stl-tree").await;
     });

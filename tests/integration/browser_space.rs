@@ -5,8 +5,9 @@
 
 use serde_json::json;
 
+use super::browser_steps::shows_svg;
 use super::browser_web::{engine_export, on_site, open_example};
-use super::chromium::{cli, cli_svg_of, click, js, same_bytes, settled_until, shot};
+use super::chromium::{cli, cli_svg_of, click, same_bytes, settled_until, shot};
 use super::serve::example;
 
 #[test]
@@ -42,12 +43,8 @@ fn the_web_engine_and_the_growth_control_grow_space_first_as_the_cli_in_chromium
         let v = settled_until(c, 100, 50, space).await;
         let text = v["text"].as_str().unwrap().to_string();
         assert!(text.contains("O=space"), "{text}");
-        let svg = js(c, "return window.stlc.state.answer.svg").await;
-        same_bytes(
-            svg.as_str().unwrap().as_bytes(),
-            &cli_svg_of("holes.od", &text),
-            "the editor's space-first holes.od",
-        );
+        let want = cli_svg_of("holes.od", &text);
+        shows_svg(c, &want, "the editor's space-first holes.od").await;
         shot(c, "space-01-growth-control").await;
     });
 }

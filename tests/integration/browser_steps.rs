@@ -20,20 +20,16 @@ pub(super) async fn js_with(c: &Client, script: &str, args: &[Value]) -> Value {
 pub(super) async fn text_of(c: &Client, css: &str) -> String {
     let script = "const e = document.querySelector(arguments[0]); return e && e.textContent";
     let v = js_with(c, script, &[json!(css)]).await;
-    v.as_str()
-        .unwrap_or_else(|| panic!("no element {css}"))
-        .to_string()
+    let text = v.as_str().unwrap_or_else(|| panic!("no element {css}"));
+    text.to_string()
 }
 
 /// The texts of the elements `css` selects, in document order.
 pub(super) async fn texts_of(c: &Client, css: &str) -> Vec<String> {
     let script = "return [...document.querySelectorAll(arguments[0])].map((e) => e.textContent)";
     let v = js_with(c, script, &[json!(css)]).await;
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|t| t.as_str().unwrap().to_string())
-        .collect()
+    let texts = v.as_array().unwrap().iter();
+    texts.map(|t| t.as_str().unwrap().to_string()).collect()
 }
 
 /// How many elements `css` selects.
@@ -112,12 +108,9 @@ pub(super) async fn retype(c: &Client, keys: &str) {
 
 /// Focuses the editor with the caret at the end of its text.
 pub(super) async fn caret_to_end(c: &Client) {
-    js(
-        c,
-        "const s = document.getElementById('source'); s.focus();
-         s.setSelectionRange(s.value.length, s.value.length); return 0;",
-    )
-    .await;
+    let probe = "const s = document.getElementById('source'); s.focus();
+         s.setSelectionRange(s.value.length, s.value.length); return 0;";
+    js(c, probe).await;
 }
 
 /// The page's settled answer, which must be drawn without error.
@@ -153,15 +146,12 @@ pub(super) async fn rewritten(c: &Client, text: &str) -> Value {
 /// The first error the diagnostics list: its line, its text, the line
 /// marked in the gutter, and whether a picture is shown.
 pub(super) async fn listed_error(c: &Client) -> Value {
-    js(
-        c,
-        "const li = document.querySelector('[data-testid=diagnostics] li.error');
+    let probe = "const li = document.querySelector('[data-testid=diagnostics] li.error');
          const mark = document.querySelector('#gutter span.error');
          return {line: li && li.dataset.line, text: li && li.textContent,
                  mark: mark && mark.textContent,
-                 picture: document.querySelector('#preview .lib') !== null};",
-    )
-    .await
+                 picture: document.querySelector('#preview .lib') !== null};";
+    js(c, probe).await
 }
 
 /// Waits (at most 10 s) until the element with the id `id` is shown (not

@@ -33,11 +33,7 @@ async fn thumb(c: &Client, name: &str) -> Vec<u8> {
         shot(c, "thumbs-timeout").await;
         panic!("the thumbnail of {name} was never drawn");
     }
-    let kind = if name.ends_with(".lsys") {
-        "lsys"
-    } else {
-        "od"
-    };
+    let kind = name.rsplit('.').next().unwrap();
     let request = json!({"source": example(name), "kind": kind, "size": [96, 96]});
     engine_export(c, &request, "png").await.unwrap()
 }

@@ -3,8 +3,7 @@
 //! `python3 -m http.server` on loopback: the pipeline runs in the page
 //! (WebAssembly in a Web Worker), and its pictures and exports are the
 //! CLI's bytes. Skips with a message where the wasm32-unknown-unknown
-//! target or python3 is missing; Chromium as browser.rs does (a failure
-//! under CI). Screenshots go to `tests/store/browser/`.
+//! target or python3 is missing; Chromium as chromium.rs says.
 
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
@@ -17,8 +16,8 @@ use serde_json::{Value, json};
 
 use super::browser_steps::{answer_svg, rewritten, settled_ok, shows_svg, type_into};
 use super::chromium::{
-    Browser, cli, cli_svg_of, click, downloaded, drag, free_port, js, js_async, js_until, open,
-    same_bytes, settled, settled_until, shot, wait_for_port,
+    Browser, cli, cli_line, cli_svg_of, click, downloaded, drag, free_port, js, js_async, js_until,
+    open, same_bytes, settled, settled_until, shot, wait_for_port,
 };
 use super::serve::example;
 use crate::support::manifest_path;
@@ -136,19 +135,15 @@ pub(super) async fn engine_export(
     request: &Value,
     format: &str,
 ) -> Result<Vec<u8>, Value> {
-    let v = js_async(
-        c,
-        "const [request, format, done] = arguments;
+    let script = "const [request, format, done] = arguments;
              window.stlc.engine.export(request, format).then(async (a) => {
                if (!a.ok) { done({failed: a}); return; }
                const b = new Uint8Array(await a.blob.arrayBuffer());
                let s = '';
                for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
                done({bytes: s});
-             }, (e) => done({failed: String(e)}));",
-        vec![request.clone(), json!(format)],
-    )
-    .await;
+             }, (e) => done({failed: String(e)}));";
+    let v = js_async(c, script, vec![request.clone(), json!(format)]).await;
     match v["bytes"].as_str() {
         // One character a byte (0 to 255).
         Some(s) => Ok(s.chars().map(|ch| ch as u32 as u8).collect()),
@@ -235,13 +230,7 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
         let koch = manifest_path("examples/koch-snowflake.lsys");
         open(c, &koch).await;
         settled_ok(c).await;
-        let cli_svg = cli(&[
-            "render",
-            koch.to_str().unwrap(),
-            "--show-layout",
-            "-f",
-            "svg",
-        ]);
+        let cli_svg = cli_line(&format!("render {} --show-layout -f svg", koch.display()));
         shows_svg(c, &cli_svg, "the opened file's picture").await;
         // Words, generation by generation, from the module: the Koch
         // snowflake's axiom `F--F--F` (7 symbols) and first word: each F
@@ -249,10 +238,8 @@ fn the_static_site_draws_regrows_and_exports_the_cli_bytes_in_chromium() {
         js(c, "document.getElementById('words').open = true").await;
         let listed =
             "return [...document.querySelectorAll('#word-list li')].map((l) => l.textContent)";
-        let words = js_until(c, listed, 100, 50, |v| {
-            v.as_array().is_some_and(|w| w.len() >= 2)
-        })
-        .await;
+        let two = |v: &Value| v.as_array().is_some_and(|w| w.len() >= 2);
+        let words = js_until(c, listed, 100, 50, two).await;
         assert_eq!(words[0], json!("F--F--F (7)"), "{words}");
         let first = json!("F+F--F+F--F+F--F+F--F+F--F+F (28)");
         assert_eq!(words[1], first, "{words}");
@@ -315,9 +302,7 @@ async fn every_example(c: &Client) {
 async fn newer_edit_ends_older_work(c: &Client) {
     let source = manifest_path("tests/cases/render/slow-stochastic.lsys");
     let source = std::fs::read_to_string(source).unwrap();
-    let v = js_async(
-        c,
-        "const [source, done] = arguments;
+    let script = "const [source, done] = arguments;
              const engine = window.stlc.engine;
              const old = new AbortController();
              const slow = engine.render({source, kind: 'lsys', depth: 14}, {signal: old.signal})
@@ -326,10 +311,8 @@ async fn newer_edit_ends_older_work(c: &Client) {
                old.abort();
                const fast = await engine.render({source, kind: 'lsys', depth: 2});
                done({slow: await slow, fast: fast.ok, stems: fast.stems});
-             }, 200);",
-        vec![json!(source)],
-    )
-    .await;
+             }, 200);";
+    let v = js_async(c, script, vec![json!(source)]).await;
     assert_eq!(v["slow"], "AbortError", "{v}");
     assert_eq!(v["fast"], true, "{v}");
     assert_eq!(v["stems"], "6", "{v}");
@@ -337,12 +320,9 @@ async fn newer_edit_ends_older_work(c: &Client) {
 
 /// The page's share link for its document as it is now.
 pub(super) async fn share_link(c: &Client) -> String {
-    let v = js_async(
-        c,
-        "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));",
-        vec![],
-    )
-    .await;
+    let script =
+        "const done = arguments[0]; window.stlc.shareLink().then(done, (e) => done(String(e)));";
+    let v = js_async(c, script, vec![]).await;
     v.as_str().unwrap().to_string()
 }
 
@@ -432,13 +412,9 @@ async fn link_lengths(c: &Client) {
     for name in examples() {
         let text = example(&name);
         let kind = name.rsplit('.').next().unwrap();
-        let v = js_async(
-            c,
-            "const [name, kind, text, done] = arguments;
-                 import('./share.js').then((m) => m.toFragment({name, kind, text})).then((f) => done(f.length));",
-            vec![json!(name), json!(kind), json!(text)],
-        )
-        .await;
+        let script = "const [name, kind, text, done] = arguments;
+                 import('./share.js').then((m) => m.toFragment({name, kind, text})).then((f) => done(f.length));";
+        let v = js_async(c, script, vec![json!(name), json!(kind), json!(text)]).await;
         let (bytes, link) = (text.len(), v.as_u64().unwrap());
         rows.push(format!("| `{name}` | {bytes} | {link} |"));
     }
@@ -454,10 +430,6 @@ async fn link_lengths(c: &Client) {
 /// draws every example as `stlc render -f svg` does.
 #[test]
 fn stl_tree_elements_draw_the_cli_svgs_in_chromium() {
-    let tmp = tempfile::tempdir().unwrap();
-    let Some((site, server, browser)) = start(tmp.path()) else {
-        return;
-    };
     let (grove, koch) = (example("grove.od"), example("koch-snowflake.lsys"));
     let page = format!(
         "<!doctype html><meta charset=utf-8><script type=module src=stl-tree.js></script>\n\
@@ -466,47 +438,42 @@ fn stl_tree_elements_draw_the_cli_svgs_in_chromium() {
          <stl-tree id=lsys depth=3><script type=\"text/stl\">\n{koch}</script></stl-tree>\n\
          <stl-tree id=bad kind=od><script type=\"text/stl\">\nT (1, 2) L=10(0) B=1(0)\nRULE\nR1: [+F][-F]\nSEED\nR2\nENDSEED\n</script></stl-tree>\n"
     );
-    std::fs::write(site.join("elements-test.html"), page).unwrap();
-    browser.rt.block_on(async {
-        let c = browser.connect().await;
-        c.goto(&format!("{}elements-test.html", server.url)).await.unwrap();
-        let states = "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state)";
-        let busy = |s: &Value| s.as_array().unwrap().iter().any(|x| x.is_null() || x == "drawing");
-        js_until(&c, states, 200, 50, |s| !busy(s)).await;
-        assert_eq!(js(&c, states).await, json!(["drawn", "drawn", "drawn", "error"]));
-        let svg = |id: &str| {
-            let c = c.clone();
+    on_site(async |c, server, _| {
+        let files = [("elements-test.html", page)];
+        let states = super::browser_page::elements(c, server, &files).await;
+        assert_eq!(states, json!(["drawn", "drawn", "drawn", "error"]));
+        for (id, line) in [
+            ("od", "render examples/grove.od --growth dfs --seed 7"),
+            ("bed", "render examples/paper-worked.bed"),
+            ("lsys", "render examples/koch-snowflake.lsys --depth 3"),
+        ] {
             let script = format!(
                 "const e = document.getElementById('{id}');
                  return [e.svg, e.querySelector(':scope > svg') !== null];"
             );
-            async move { js(&c, &script).await }
-        };
-        let want = [
-            ("od", vec!["render", "examples/grove.od", "--growth", "dfs", "--seed", "7"]),
-            ("bed", vec!["render", "examples/paper-worked.bed"]),
-            ("lsys", vec!["render", "examples/koch-snowflake.lsys", "--depth", "3"]),
-        ];
-        for (id, mut args) in want {
-            let v = svg(id).await;
+            let v = js(c, &script).await;
             assert_eq!(v[1], true, "{id}: no inline <svg> child");
-            args.extend(["-f", "svg"]);
-            same_bytes(v[0].as_str().unwrap().as_bytes(), &cli(&args), id);
+            let cli = cli_line(&format!("{line} -f svg"));
+            same_bytes(v[0].as_str().unwrap().as_bytes(), &cli, id);
         }
-        let error = super::browser_steps::text_of(&c, "#bad pre.stl-tree-error").await;
+        let error = super::browser_steps::text_of(c, "#bad pre.stl-tree-error").await;
         let unknown = "line 5, column 1: error: unknown rule `R2` (no rule has this name)";
         assert_eq!(error.lines().next().unwrap(), unknown);
-        shot(&c, "web-04-elements").await;
+        shot(c, "web-04-elements").await;
 
         // The gallery: every example, drawn live.
-        c.goto(&format!("{}gallery.html", server.url)).await.unwrap();
+        let states =
+            "return [...document.querySelectorAll('stl-tree')].map((e) => e.dataset.state)";
+        c.goto(&format!("{}gallery.html", server.url))
+            .await
+            .unwrap();
         let names = examples();
-        js_until(&c, states, 600, 50, |s| {
+        js_until(c, states, 600, 50, |s| {
             let s = s.as_array().unwrap();
             s.len() == names.len() && s.iter().all(|x| x == "drawn")
         })
         .await;
-        let drawn = js(&c, "return [...document.querySelectorAll('stl-tree')].map((e) => [e.getAttribute('src'), e.svg])").await;
+        let drawn = js(c, "return [...document.querySelectorAll('stl-tree')].map((e) => [e.getAttribute('src'), e.svg])").await;
         let drawn = drawn.as_array().unwrap();
         assert_eq!(drawn.len(), names.len());
         for (d, name) in drawn.iter().zip(&names) {
@@ -515,8 +482,7 @@ fn stl_tree_elements_draw_the_cli_svgs_in_chromium() {
             let got = d[1].as_str().unwrap_or_else(|| panic!("{name} not drawn"));
             same_bytes(got.as_bytes(), &cli(&["render", &path, "-f", "svg"]), name);
         }
-        shot(&c, "web-05-gallery").await;
-        let _ = c.close().await;
+        shot(c, "web-05-gallery").await;
     });
 }
 

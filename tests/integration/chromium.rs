@@ -95,15 +95,12 @@ pub(super) async fn js_async(c: &Client, script: &str, args: Vec<Value>) -> Valu
 /// Waits until the page shows the answer to the text in its editor.
 pub(super) async fn settled(c: &Client) -> Value {
     for _ in 0..400 {
-        let v = js(
-            c,
-            "const s = window.stlc && window.stlc.state; const t = document.getElementById('source').value;
+        let probe = "const s = window.stlc && window.stlc.state; const t = document.getElementById('source').value;
              if (!s || s.inFlight || s.answerText !== t) return null;
              return {ok: s.answer.ok, stems: Number(s.answer.stems || 0),
                      growth: s.answer.growth ? s.answer.growth.stems : [],
-                     text: t};",
-        )
-        .await;
+                     text: t};";
+        let v = js(c, probe).await;
         if !v.is_null() {
             // The debounce may still hold an edit: settle twice in a row.
             tokio::time::sleep(Duration::from_millis(300)).await;
@@ -189,14 +186,11 @@ pub(super) async fn file_until(path: &Path, tries: u32, done: impl Fn(&str) -> b
 
 /// The viewport position of canvas point `(x, y)` in the preview.
 pub(super) async fn screen_of(c: &Client, x: f64, y: f64) -> (f64, f64) {
-    let v = js(
-        c,
-        &format!(
-            "const m = document.getElementById('preview').getScreenCTM();
+    let script = format!(
+        "const m = document.getElementById('preview').getScreenCTM();
              return [m.a * {x} + m.e, m.d * {y} + m.f];"
-        ),
-    )
-    .await;
+    );
+    let v = js(c, &script).await;
     (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
 }
 
@@ -392,12 +386,8 @@ pub(super) async fn chord(c: &Client, held: &[char], key: char) {
 }
 
 pub(super) async fn click(c: &Client, css: &str) {
-    c.find(Locator::Css(css))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
+    let element = c.find(Locator::Css(css)).await.unwrap();
+    element.click().await.unwrap();
 }
 
 /// What `stlc ARGS -o -` writes.
@@ -419,13 +409,7 @@ pub(super) fn cli_svg_of(name: &str, text: &str) -> Vec<u8> {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join(name);
     std::fs::write(&file, text).unwrap();
-    cli(&[
-        "render",
-        file.to_str().unwrap(),
-        "--show-layout",
-        "-f",
-        "svg",
-    ])
+    cli_line(&format!("render {} --show-layout -f svg", file.display()))
 }
 
 /// The bytes of `dir/name` once Chromium has finished downloading it.
@@ -441,12 +425,8 @@ pub(super) async fn downloaded(dir: &Path, name: &str) -> Vec<u8> {
 /// Opens `file` through the page's Open… control (its file input), and
 /// waits until the page has read it into the editor.
 pub(super) async fn open(c: &Client, file: &Path) {
-    c.find(Locator::Id("open-file"))
-        .await
-        .unwrap()
-        .send_keys(file.to_str().unwrap())
-        .await
-        .unwrap();
+    let input = c.find(Locator::Id("open-file")).await.unwrap();
+    input.send_keys(file.to_str().unwrap()).await.unwrap();
     let text = std::fs::read_to_string(file).unwrap();
     let script = "return document.getElementById('source').value === arguments[0]";
     let read = async || c.execute(script, vec![json!(text)]).await.unwrap();

@@ -5,7 +5,7 @@
 //! docs say so.
 
 use std::collections::BTreeSet;
-use std::path::Path;
+use std::path::PathBuf;
 
 use stlc::api::{self, Page, Settings};
 use stlc::pipeline::{ImageFormat, NoProgress};
@@ -25,38 +25,22 @@ fn table_names(doc: &str, first: &str) -> BTreeSet<String> {
         let Some(row) = line.strip_prefix("| ") else {
             break;
         };
-        let cell = row.split(" |").next().unwrap_or("");
-        for name in cell.split('`').skip(1).step_by(2) {
-            names.insert(name.to_string());
-        }
+        names.append(&mut backticked(row.split(" |").next().unwrap_or("")));
     }
     names
 }
 
 /// The files under `dir` with one of `exts`, as paths relative to it.
 fn files(dir: &str, exts: &[&str]) -> BTreeSet<String> {
-    fn walk(root: &Path, dir: &Path, exts: &[&str], out: &mut BTreeSet<String>) {
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                walk(root, &path, exts, out);
-            } else if path
-                .extension()
-                .is_some_and(|e| exts.contains(&e.to_string_lossy().as_ref()))
-            {
-                let rel = path
-                    .strip_prefix(root)
-                    .unwrap()
-                    .to_string_lossy()
-                    .replace('\\', "/");
-                out.insert(rel);
-            }
-        }
-    }
     let root = manifest_path(dir);
-    let mut out = BTreeSet::new();
-    walk(&root, &root, exts, &mut out);
-    out
+    let found = crate::architecture::files_with(&root, exts).into_iter();
+    let relative = |p: PathBuf| {
+        p.strip_prefix(&root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/")
+    };
+    found.map(relative).collect()
 }
 
 #[test]
@@ -101,7 +85,12 @@ fn every_web_page_file_is_in_the_web_docs_and_every_named_one_exists() {
 fn body_fields() -> BTreeSet<String> {
     let api::BadRequest(m) = api::parse(br#"{"source": "x", "no such field": 1}"#).unwrap_err();
     let list = &m[m.find("expected one of").expect(&m)..];
-    list.split('`')
+    backticked(list)
+}
+
+/// The names in backticks in `text`.
+fn backticked(text: &str) -> BTreeSet<String> {
+    text.split('`')
         .skip(1)
         .step_by(2)
         .map(str::to_string)
@@ -120,12 +109,7 @@ fn documented(lead: &str, open: char, close: char) -> BTreeSet<String> {
     let rest = &rest[rest.find(open).unwrap() + 1..];
     let list = &rest[..rest.find(close).unwrap()];
     if list.contains('`') {
-        return list
-            .split('`')
-            .skip(1)
-            .step_by(2)
-            .map(str::to_string)
-            .collect();
+        return backticked(list);
     }
     list.split(',')
         .map(|f| {
@@ -145,10 +129,8 @@ fn documented(lead: &str, open: char, close: char) -> BTreeSet<String> {
 fn the_api_fields_in_the_serve_docs_are_the_api_s() {
     // The request: every field the API reads, and no other.
     let mut fields = body_fields();
-    assert!(
-        fields.contains("source") && fields.contains("growth"),
-        "{fields:?}"
-    );
+    let read = fields.contains("source") && fields.contains("growth");
+    assert!(read, "{fields:?}");
     // `strategy` is `growth`'s old name, still read: the docs say so in
     // prose, not as a field of its own.
     assert!(fields.remove("strategy"), "{fields:?}");
@@ -159,10 +141,8 @@ fn the_api_fields_in_the_serve_docs_are_the_api_s() {
         '(',
         ')',
     );
-    assert_eq!(
-        named, fields,
-        "docs/serve.md's render(request) row against the API's body"
-    );
+    let row = "docs/serve.md's render(request) row against the API's body";
+    assert_eq!(named, fields, "{row}");
     // The answer: the keys of a real render answer (an .od has a root and
     // a layout; a 3D input's `space` is named as the answer says it is).
     let tree = std::fs::read_to_string(manifest_path("examples/2dtree.od")).unwrap();
@@ -178,10 +158,8 @@ fn the_api_fields_in_the_serve_docs_are_the_api_s() {
         .collect();
     keys.insert("space".into());
     let named = documented("| `render(request)` |", '{', '}');
-    assert_eq!(
-        named, keys,
-        "docs/serve.md's render answer against the API's"
-    );
+    let answer = "docs/serve.md's render answer against the API's";
+    assert_eq!(named, keys, "{answer}");
 }
 
 /// The `@property` names of the JSDoc `@typedef` named `name` in the
@@ -225,11 +203,8 @@ fn the_page_s_typedefs_are_the_api_s() {
     // the old name, only in prose), and no field the API would refuse.
     let mut fields = body_fields();
     fields.remove("strategy");
-    assert_eq!(
-        typedef_properties("RenderRequest"),
-        fields,
-        "engine/index.js's RenderRequest against the API's body"
-    );
+    let request = "engine/index.js's RenderRequest against the API's body";
+    assert_eq!(typedef_properties("RenderRequest"), fields, "{request}");
     // A diagnostic as the API writes it: the keys of a real one.
     let body = api::parse(br#"{"source": "T (0,0) L=1(0) RULE R1: [F R9]"}"#).unwrap();
     let s = Settings::defaults(Page::Served);
@@ -244,9 +219,6 @@ fn the_page_s_typedefs_are_the_api_s() {
         .keys()
         .cloned()
         .collect();
-    assert_eq!(
-        typedef_properties("Diagnostic"),
-        diagnostic,
-        "engine/index.js's Diagnostic against the API's"
-    );
+    let what = "engine/index.js's Diagnostic against the API's";
+    assert_eq!(typedef_properties("Diagnostic"), diagnostic, "{what}");
 }

@@ -244,10 +244,8 @@ fn the_graph_reader_sees_crate_super_and_child_paths() {
     assert_eq!(paths_from(&code, "super"), [vec!["a", "B"], vec!["c"]]);
     assert_eq!(paths_from(&code, "kid"), [vec!["run"]]);
     // `super::super::x` is one path.
-    assert_eq!(
-        paths_from("use super::super::x::Y;", "super"),
-        [vec!["super", "x", "Y"]]
-    );
+    let up = paths_from("use super::super::x::Y;", "super");
+    assert_eq!(up, [vec!["super", "x", "Y"]]);
     // A loop of three and a tail: Tarjan finds the three.
     let m = |s: &str| vec![s.to_string()];
     let mut edges = BTreeMap::new();
@@ -255,10 +253,8 @@ fn the_graph_reader_sees_crate_super_and_child_paths() {
     edges.insert(m("b"), BTreeSet::from([m("c")]));
     edges.insert(m("c"), BTreeSet::from([m("a"), m("d")]));
     edges.insert(m("d"), BTreeSet::new());
-    assert_eq!(
-        loops(&edges).iter().map(|c| name(c)).collect::<Vec<_>>(),
-        ["a b c"]
-    );
+    let found: Vec<String> = loops(&edges).iter().map(|c| name(c)).collect();
+    assert_eq!(found, ["a b c"]);
 }
 
 #[test]
@@ -268,13 +264,9 @@ fn no_two_files_import_each_other_round_a_loop() {
     let found: BTreeSet<String> = loops(&edges).iter().map(|c| name(c)).collect();
     let known: BTreeSet<String> = KNOWN_LOOPS.iter().map(|s| s.to_string()).collect();
     let new: Vec<&String> = found.difference(&known).collect();
-    assert!(
-        new.is_empty(),
-        "files that import each other round a loop: {new:#?}"
-    );
+    let round = "files that import each other round a loop";
+    assert!(new.is_empty(), "{round}: {new:#?}");
     let gone: Vec<&String> = known.difference(&found).collect();
-    assert!(
-        gone.is_empty(),
-        "these loops are gone: strike them from KNOWN_LOOPS: {gone:#?}"
-    );
+    let strike = "these loops are gone: strike them from KNOWN_LOOPS";
+    assert!(gone.is_empty(), "{strike}: {gone:#?}");
 }

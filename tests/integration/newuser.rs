@@ -230,13 +230,11 @@ fn no_flag_is_ignored_without_a_word() {
     let koch = example("koch-snowflake.lsys");
     let decrement = example("decrement.od");
     let (png, svg, jpg) = (o("x.png"), o("x.svg"), o("x.jpg"));
+    let jpg_refused = "`.jpg` is not an image format";
     for (line, needle) in [
         (format!("render {od} -f svg -o {png}"), "contradicts"),
         (format!("render {od} -f png -o {svg}"), "contradicts"),
-        (
-            format!("render {od} -o {jpg}"),
-            "`.jpg` is not an image format",
-        ),
+        (format!("render {od} -o {jpg}"), jpg_refused),
     ] {
         let (code, _, err) = run_line(&line);
         assert_eq!(code, 2, "{line}: {err}");
@@ -248,35 +246,19 @@ fn no_flag_is_ignored_without_a_word() {
     let (code, _, _) = outcome(stlc().args(["render", "-"]).write_stdin(text));
     assert_eq!(code, 2);
     let (a, b, c, d, e) = (o("a.png"), o("b.png"), o("c.png"), o("d.png"), o("e.txt"));
-    for (line, needle) in [
-        (
-            format!("render {od} --depth 3 -o {a}"),
-            "--depth was ignored",
-        ),
-        (
-            format!("render {koch} --show-layout -o {b}"),
-            "--show-layout was ignored",
-        ),
-        (
-            format!("render {decrement} --show-layout -o {c}"),
-            "--show-layout was ignored",
-        ),
-        (
-            format!("render {koch} --growth dfs -o {d}"),
-            "--growth was ignored",
-        ),
-        (
-            format!("expand {koch} --clearance 1 -o {e}"),
-            "--clearance was ignored",
-        ),
-        (
-            format!("check {koch} --max-stems 5"),
-            "--max-stems was ignored",
-        ),
+    let layout = "--show-layout";
+    for (line, flag) in [
+        (format!("render {od} --depth 3 -o {a}"), "--depth"),
+        (format!("render {koch} {layout} -o {b}"), layout),
+        (format!("render {decrement} {layout} -o {c}"), layout),
+        (format!("render {koch} --growth dfs -o {d}"), "--growth"),
+        (format!("expand {koch} --clearance 1 -o {e}"), "--clearance"),
+        (format!("check {koch} --max-stems 5"), "--max-stems"),
     ] {
         let (code, _, err) = run_line(&line);
         assert_eq!(code, 0, "{line}: {err}");
-        assert!(err.contains(needle), "{line}: {err}");
+        let ignored = format!("{flag} was ignored");
+        assert!(err.contains(&ignored), "{line}: {err}");
     }
     // --quiet silences the warnings.
     let (code, _, err) = run(&["render", &od, "--depth", "3", "-q", "-o", &o("f.png")]);
@@ -376,15 +358,11 @@ fn a_seed_that_changes_nothing_says_so() {
     let tree = example("2dtree.od");
     let (a, b) = (out("a.png"), out("b.bed"));
     let no_alternatives = "this description has no alternatives";
+    let bed_reason = "a .bed has its choices written out";
+    let lsys_reason = "this L-system has no stochastic rules";
     for (line, reason) in [
-        (
-            format!("render {bed} --seed 3 -o {a}"),
-            "a .bed has its choices written out",
-        ),
-        (
-            format!("stats {koch} --seed 3"),
-            "this L-system has no stochastic rules",
-        ),
+        (format!("render {bed} --seed 3 -o {a}"), bed_reason),
+        (format!("stats {koch} --seed 3"), lsys_reason),
         (format!("compile {tree} --seed 3 -o {b}"), no_alternatives),
         (format!("check {tree} --seed 3"), no_alternatives),
     ] {

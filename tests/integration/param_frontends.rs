@@ -8,8 +8,11 @@
 use serde_json::{Value, json};
 use stlc::api::WORD_CHARS;
 
-use super::serve::{Server, example, post, request};
+use super::serve::{Server, example, post};
 use crate::support::{manifest_path, stlc_stdout};
+
+/// The names of issue 32's examples begin so.
+const BOOK: [&str; 4] = ["abop-1.31", "abop-1.35", "abop-2.", "param-"];
 
 /// The examples of issue 32 (ABOP Fig. 1.31, 1.35, 2.6-2.8 and our own
 /// tree): every parametric or context-sensitive file of `examples/`.
@@ -17,12 +20,7 @@ pub(super) fn parametric_examples() -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(manifest_path("examples"))
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())
-        .filter(|n| {
-            ["abop-1.31", "abop-1.35", "abop-2.", "param-"]
-                .iter()
-                .any(|p| n.starts_with(p))
-                && n.ends_with(".lsys")
-        })
+        .filter(|n| n.ends_with(".lsys") && BOOK.iter().any(|p| n.starts_with(p)))
         .collect();
     names.sort();
     names
@@ -32,10 +30,8 @@ pub(super) fn parametric_examples() -> Vec<String> {
 /// [`WORD_CHARS`] bytes, without trailing whitespace.
 pub(super) fn kept(expanded: &[u8]) -> String {
     let n = expanded.len().min(WORD_CHARS);
-    String::from_utf8(expanded[..n].to_vec())
-        .unwrap()
-        .trim_end()
-        .to_string()
+    let text = String::from_utf8(expanded[..n].to_vec()).unwrap();
+    text.trim_end().to_string()
 }
 
 /// The words answer's generations against `stlc expand` and `stlc stats
@@ -50,11 +46,8 @@ pub(super) fn same_words(name: &str, words: &Value) {
         let depth = d.to_string();
         assert_eq!(w["depth"], json!(d));
         let expanded = stlc_stdout(&["expand", &path, "--depth", &depth]);
-        assert_eq!(
-            w["word"],
-            json!(kept(&expanded)),
-            "{name} word at depth {d}"
-        );
+        let word = json!(kept(&expanded));
+        assert_eq!(w["word"], word, "{name} word at depth {d}");
         let stats = stlc_stdout(&["stats", &path, "--json", "--depth", &depth]);
         let mine = format!("{}\n", w["stats"].as_str().unwrap());
         let cli = String::from_utf8(stats).unwrap();
@@ -73,18 +66,15 @@ fn every_parametric_example_renders_expands_and_reports_stats_as_the_cli_in_serv
     for name in &names {
         let file = format!("examples/{name}");
         let body = json!({"source": example(name), "kind": "lsys", "show_layout": true});
-        let body = body.to_string();
         for format in ["svg", "png"] {
             let path = format!("/api/export?format={format}");
-            let a = request(&server.addr, "POST", &path, &[], body.as_bytes());
+            let a = post(&server.addr, &path, &[], &body);
             assert_eq!(a.status, 200, "{name} {format}");
             let cli = stlc_stdout(&["render", &file, "--show-layout", "-f", format, "-o", "-"]);
-            assert!(
-                a.body == cli,
-                "{name}: the served {format} is not the CLI's"
-            );
+            let not_the_clis = format!("{name}: the served {format} is not the CLI's");
+            assert!(a.body == cli, "{not_the_clis}");
         }
-        let words = request(&server.addr, "POST", "/api/words", &[], body.as_bytes());
+        let words = post(&server.addr, "/api/words", &[], &body);
         assert_eq!(words.status, 200, "{name}");
         same_words(name, &words.json());
     }

@@ -297,19 +297,16 @@ fn cli_text(line: &str) -> String {
 
 /// The BED and SVG of an .od are byte for byte what `stlc compile` and
 /// `stlc render -f svg --show-layout` write with the same options, in both
-/// growth orders and space-first, with a clearance and a stem limit.
+/// growth orders and space-first, with a clearance and a stem limit, and
+/// space-first with a seed in the file.
 #[test]
 fn render_answers_the_cli_bytes_for_an_od() {
     let server = Server::start(&[]);
     for name in ["2dtree.od", "fig9.od", "holes.od"] {
         let path = manifest_path("examples").join(name);
         let path = path.to_str().unwrap();
-        for (strategy, extra) in [
-            ("bfs", ""),
-            ("dfs", ""),
-            ("dfs", "--clearance 0.5 --max-stems 120"),
-            ("space", ""),
-        ] {
+        let limited = "--clearance 0.5 --max-stems 120";
+        for (strategy, extra) in [("bfs", ""), ("dfs", ""), ("dfs", limited), ("space", "")] {
             let mut body = json!({"source": example(name), "kind": "od", "growth": strategy});
             if !extra.is_empty() {
                 body["clearance"] = json!(0.5);
@@ -330,31 +327,22 @@ fn render_answers_the_cli_bytes_for_an_od() {
             }
         }
     }
-}
-
-/// Space-first growth with a seed in the file (`V=`, which moves the
-/// attraction points): the server's BED is the CLI's, byte for byte, for
-/// two seeds, and the two seeds grow different trees.
-#[test]
-fn space_first_with_a_seed_answers_the_cli_bytes() {
-    let server = Server::start(&[]);
-    let dir = std::env::temp_dir().join(format!("stlc-serve-space-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    // Space-first with a seed in the file (`V=`, which moves the
+    // attraction points): two seeds, each the CLI's, two different trees.
+    let dir = tempfile::tempdir().unwrap();
     let mut beds = Vec::new();
     for seed in [3, 8] {
         let text = example("holes.od").replace("C=1.5\n", &format!("C=1.5 O=space V={seed}\n"));
         assert!(text.contains("V="), "the header line is where it was");
-        let path = dir.join(format!("holes-v{seed}.od"));
+        let path = dir.path().join(format!("holes-v{seed}.od"));
         std::fs::write(&path, &text).unwrap();
         let body = json!({"source": text, "kind": "od", "growth": "space"});
         let a = render_ok(&server.addr, &body);
-        let path = path.to_str().unwrap();
-        let bed = cli_text(&format!("compile {path} -o - --growth space"));
+        let bed = cli_text(&format!("compile {} -o - --growth space", path.display()));
         crate::support::assert_same_text("holes.od", &bed, a["bed"].as_str().unwrap());
         beds.push(bed);
     }
     assert_ne!(beds[0], beds[1], "the seed moves the points and the tree");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The growth order: the seed's stems come first (decision 0, the first
@@ -675,10 +663,8 @@ fn the_seed_of_a_request_is_the_cli_seed_and_forest_roots_are_listed() {
     crate::support::assert_same_text("grove --seed 7", &bed, a["bed"].as_str().unwrap());
     assert_ne!(a["bed"], ask(8)["bed"]);
     let others = a["root"]["others"].as_array().unwrap();
-    let xy = others
-        .iter()
-        .map(|r| (r["x"].as_f64().unwrap(), r["y"].as_f64().unwrap()));
-    let xy: Vec<(f64, f64)> = xy.collect();
+    let at = |r: &Value, k: &str| r[k].as_f64().unwrap();
+    let xy: Vec<(f64, f64)> = others.iter().map(|r| (at(r, "x"), at(r, "y"))).collect();
     assert_eq!(xy, [(110.0, 290.0), (170.0, 290.0), (235.0, 290.0)]);
     // A seed as a string of digits (how the page sends it): exact past a
     // JavaScript number's 2^53, the CLI's --seed of the same digits.

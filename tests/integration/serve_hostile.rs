@@ -7,6 +7,7 @@
 use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::process::Command;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 use serde_json::json;
@@ -255,12 +256,7 @@ fn the_served_file_is_read_with_bounds() {
     std::fs::remove_file(&file).unwrap();
 
     std::os::unix::fs::symlink("/dev/zero", &file).unwrap();
-    let error = || {
-        get(&addr, "/api/file").json()["error"]
-            .as_str()
-            .unwrap()
-            .to_string()
-    };
+    let error = || get(&addr, "/api/file").json()["error"].to_string();
     let e = error();
     assert!(e.contains("a device, not a regular file"), "{e}");
     std::fs::remove_file(&file).unwrap();
@@ -306,7 +302,7 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
     let addr = server.addr.clone();
     let big = std::fs::read_to_string(manifest_path("benches/bigtree.od")).unwrap();
     let fresh = server.status_kb("VmRSS:");
-    let peak = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(fresh));
+    let peak = AtomicU64::new(fresh);
     let growths: Vec<_> = (0..2)
         .map(|_| {
             let (addr, big) = (addr.clone(), big.clone());
@@ -328,17 +324,14 @@ fn memory_freed_after_a_burst_goes_back_to_the_system() {
         })
         .collect();
     while growths.iter().any(|g| !g.is_finished()) {
-        peak.fetch_max(
-            server.status_kb("VmRSS:"),
-            std::sync::atomic::Ordering::Relaxed,
-        );
+        peak.fetch_max(server.status_kb("VmRSS:"), Ordering::Relaxed);
         std::thread::sleep(Duration::from_millis(50));
     }
     for g in growths {
         let answer = g.join().unwrap();
         assert_eq!(answer["ok"], true, "{answer}");
     }
-    let peak = peak.load(std::sync::atomic::Ordering::Relaxed);
+    let peak = peak.load(Ordering::Relaxed);
     // The server looks every 2 s whether it is idle.
     std::thread::sleep(Duration::from_secs(5));
     let idle = server.status_kb("VmRSS:");

@@ -60,19 +60,10 @@ fn two_builds_at_once_then_a_third_all_succeed_and_leave_one_whole_site() {
     assert_eq!(&wasm[..4], b"\0asm");
     let list = std::fs::read_to_string(site.join("examples/index.json")).unwrap();
     for name in examples() {
-        assert!(
-            site.join("examples").join(&name).is_file(),
-            "{name} is missing"
-        );
-        assert!(
-            list.contains(&format!("\"{name}\"")),
-            "{name} is not in {list}"
-        );
+        let (file, listed) = (site.join("examples").join(&name), format!("\"{name}\""));
+        assert!(file.is_file(), "{name} is missing");
+        assert!(list.contains(&listed), "{name} is not in {list}");
     }
     // Nothing left beside it: no half-built or set-aside folders.
-    let beside: Vec<String> = std::fs::read_dir(parent.path())
-        .unwrap()
-        .map(|e| e.unwrap().file_name().into_string().unwrap())
-        .collect();
-    assert_eq!(beside, ["site"]);
+    assert_eq!(crate::support::files_in(parent.path()), ["site"]);
 }
