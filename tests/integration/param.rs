@@ -33,16 +33,9 @@ fn first_error(src: &str) -> (String, String, String) {
 /// ABOP Fig. 1.31a by hand: a bracketed 2L-system over `0 1 F + - [ ]`
 /// whose contexts skip `+ - F` and whole branches (ABOP p. 32).
 fn fig_131a(depth: u32) -> String {
-    let rules: [(&str, &str); 8] = [
-        ("000", "0"),
-        ("001", "1[+F1F1]"),
-        ("010", "1"),
-        ("011", "1"),
-        ("100", "0"),
-        ("101", "1F1"),
-        ("110", "0"),
-        ("111", "0"),
-    ];
+    // Predecessor with its contexts `l c r`, then the successor.
+    let rules = "000 0 001 1[+F1F1] 010 1 011 1 100 0 101 1F1 110 0 111 0";
+    let rules: Vec<&str> = rules.split(' ').collect();
     let skip = |c: u8| matches!(c, b'+' | b'-' | b'F');
     let mut w: Vec<u8> = b"F1F1F1".to_vec();
     for _ in 0..depth {
@@ -54,61 +47,37 @@ fn fig_131a(depth: u32) -> String {
                 b'-' => next.push(b'+'),
                 b'0' | b'1' => {
                     // Left: skip ignored symbols and whole branches, cross `[`.
-                    let mut left = None;
-                    let mut j = i;
+                    let (mut left, mut j) = (None, i);
                     while j > 0 {
                         j -= 1;
-                        let s = w[j];
-                        if s == b']' {
-                            let mut depth = 1;
-                            while depth > 0 {
-                                j -= 1;
-                                if w[j] == b']' {
-                                    depth += 1;
-                                } else if w[j] == b'[' {
-                                    depth -= 1;
-                                }
+                        match w[j] {
+                            b']' => j = matching(&w, j, -1),
+                            s if s == b'[' || skip(s) => {}
+                            s => {
+                                left = Some(s);
+                                break;
                             }
-                        } else if s == b'[' || skip(s) {
-                        } else {
-                            left = Some(s);
-                            break;
                         }
                     }
                     // Right: skip ignored symbols and whole branches, stop at `]`.
-                    let mut right = None;
-                    let mut j = i + 1;
+                    let (mut right, mut j) = (None, i + 1);
                     while j < w.len() {
-                        let s = w[j];
-                        if s == b'[' {
-                            let mut depth = 1;
-                            while depth > 0 {
-                                j += 1;
-                                if w[j] == b'[' {
-                                    depth += 1;
-                                } else if w[j] == b']' {
-                                    depth -= 1;
-                                }
+                        match w[j] {
+                            b'[' => j = matching(&w, j, 1),
+                            b']' => break,
+                            s if skip(s) => {}
+                            s => {
+                                right = Some(s);
+                                break;
                             }
-                            j += 1;
-                        } else if s == b']' {
-                            break;
-                        } else if skip(s) {
-                            j += 1;
-                        } else {
-                            right = Some(s);
-                            break;
                         }
+                        j += 1;
                     }
                     match (left, right) {
                         (Some(l), Some(r)) => {
                             let key = [l, c, r];
-                            let succ = rules
-                                .iter()
-                                .find(|(k, _)| k.as_bytes() == key)
-                                .map(|(_, s)| s.as_bytes())
-                                .unwrap();
-                            next.extend_from_slice(succ);
+                            let k = rules.iter().position(|k| k.as_bytes() == key).unwrap();
+                            next.extend_from_slice(rules[k + 1].as_bytes());
                         }
                         _ => next.push(c),
                     }
@@ -119,6 +88,22 @@ fn fig_131a(depth: u32) -> String {
         w = next;
     }
     String::from_utf8(w).unwrap() + "\n"
+}
+
+/// The index of the bracket that matches the one at `j`, walking by `step`.
+fn matching(w: &[u8], mut j: usize, step: isize) -> usize {
+    let mut depth = 0;
+    loop {
+        match w[j] {
+            b'[' => depth += step,
+            b']' => depth -= step,
+            _ => {}
+        }
+        if depth == 0 {
+            return j;
+        }
+        j = j.wrapping_add_signed(step);
+    }
 }
 
 /// ABOP Fig. 2.6a by hand: modules as symbols with f64 parameters,
