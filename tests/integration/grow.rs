@@ -334,6 +334,19 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
     segs
 }
 
+/// `d` grown in each order, the invariants checked on each, which drew
+/// more than `more_than` stems.
+fn grown_checked(d: &Description, more_than: usize, what: &str) -> Vec<Grown> {
+    let orders = [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space];
+    orders.map(|s| {
+        let g = grown(d, opts(s));
+        let n = check_invariants(d, &g).len();
+        assert!(n > more_than, "{what} {s:?} grew only {n}");
+        g
+    })
+    .into()
+}
+
 // ---------------------------------------------------------- trees
 
 /// The paper's 2DTree (Figure 8), as `examples/2dtree.od` has it: Delphi's
@@ -381,18 +394,9 @@ fn invariants_hold_on_several_grown_trees() {
         R1: [+F[I 2 F[+F]F]][-FF R2]
         R2: [I 1 F[-F]][+F R1]
         LAYOUT (clGreen) Rectangle (0,0), 120, 120 ENDLAYOUT";
-    let trees = [
-        od(TWO_D_TREE),
-        figure_9_10(),
-        od(ellipse),
-        od(polygon),
-        od(fixed),
-    ];
-    for d in trees {
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-            let g = grown(&d, opts(s));
-            let segs = check_invariants(&d, &g);
-            assert!(segs.len() > 40, "{s:?} grew only {}", segs.len());
+    let (ellipse, polygon, fixed) = (od(ellipse), od(polygon), od(fixed));
+    for d in [od(TWO_D_TREE), figure_9_10(), ellipse, polygon, fixed] {
+        for g in grown_checked(&d, 40, &d.name) {
             assert!(g.warnings.is_empty());
         }
     }
@@ -409,11 +413,7 @@ fn invariants_hold_on_every_example_with_strokes_as_drawn() {
         if d.is_3d() {
             continue; // grow3d.rs checks the 3D examples in their volumes
         }
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-            let g = grown(&d, opts(s));
-            let segs = check_invariants(&d, &g);
-            assert!(segs.len() > 10, "{path:?} {s:?} grew only {}", segs.len());
-        }
+        grown_checked(&d, 10, &path.display().to_string());
     }
 }
 
@@ -423,8 +423,7 @@ fn invariants_hold_on_every_example_with_strokes_as_drawn() {
 /// (A tree may find no room: dfs lets the first trees take it.)
 #[test]
 fn trees_of_a_forest_keep_clear_of_each_other() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/grove.od");
-    let d = od(&std::fs::read_to_string(path).unwrap());
+    let d = od(&crate::support::example_text("grove.od"));
     assert_eq!(d.forest.len(), 3, "four roots");
     for seed in [7, 8] {
         for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
@@ -666,11 +665,7 @@ fn seed_with_trunk_rule_stays_consistent() {
         R2: F[-F][+F]
         SEED F R2 F R1 [+F R1] ENDSEED
         LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT");
-    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-        let g = grown(&d, opts(s));
-        let segs = check_invariants(&d, &g);
-        assert!(segs.len() > 100);
-    }
+    grown_checked(&d, 100, "trunk");
 }
 
 #[test]
@@ -679,11 +674,7 @@ fn seed_drawing_is_laid_down_before_growth() {
     // the seed's `-F` must already be there, or the subtree could take its
     // place (the pairwise check would then fail on it).
     let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F[+F R1][-F R1] ENDSEED");
-    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-        let g = grown(&d, opts(s));
-        let segs = check_invariants(&d, &g);
-        assert!(segs.len() > 200);
-    }
+    grown_checked(&d, 200, "seed drawing");
 }
 
 #[test]

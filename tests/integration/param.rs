@@ -76,8 +76,8 @@ fn fig_131a(depth: u32) -> String {
                     match (left, right) {
                         (Some(l), Some(r)) => {
                             let key = [l, c, r];
-                            let k = rules.iter().position(|k| k.as_bytes() == key).unwrap();
-                            next.extend_from_slice(rules[k + 1].as_bytes());
+                            let rule = rules.chunks(2).find(|r| r[0].as_bytes() == key);
+                            next.extend_from_slice(rule.unwrap()[1].as_bytes());
                         }
                         _ => next.push(c),
                     }
