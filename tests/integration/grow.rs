@@ -338,13 +338,14 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
 /// more than `more_than` stems.
 fn grown_checked(d: &Description, more_than: usize, what: &str) -> Vec<Grown> {
     let orders = [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space];
-    orders.map(|s| {
-        let g = grown(d, opts(s));
-        let n = check_invariants(d, &g).len();
-        assert!(n > more_than, "{what} {s:?} grew only {n}");
-        g
-    })
-    .into()
+    orders
+        .map(|s| {
+            let g = grown(d, opts(s));
+            let n = check_invariants(d, &g).len();
+            assert!(n > more_than, "{what} {s:?} grew only {n}");
+            g
+        })
+        .into()
 }
 
 // ---------------------------------------------------------- trees
@@ -493,12 +494,7 @@ fn growth_is_deterministic() {
 
 /// The full binary tree of `n` levels of R1, written out.
 fn full(n: u32) -> String {
-    if n == 0 {
-        String::new()
-    } else {
-        let c = full(n - 1);
-        format!("R1{{{c},{c}}}")
-    }
+    (0..n).fold(String::new(), |c, _| format!("R1{{{c},{c}}}"))
 }
 
 #[test]

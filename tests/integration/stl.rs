@@ -261,21 +261,77 @@ fn both_definition_forms_and_comments() {
 
 // ---------------------------------------------------------- diagnostics --
 
+/// Mistakes with one error each: the error, the text it points at (its
+/// first occurrence) and what its help must name (`""`: anything).
 #[test]
-fn unknown_rule_suggests_the_nearest() {
-    let src = format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED");
-    let unknown = ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() });
-    let (span, help) = refused(&src, unknown);
-    assert_eq!(span, at(&src, "R3", 0));
-    assert!(help.contains("`R1`"), "{help}");
-}
-
-#[test]
-fn slot_count_names_the_rule_and_its_count() {
-    let src = format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED");
-    let (span, help) = refused(&src, slot_count("R1", 2, 3));
-    assert_eq!(span, at(&src, "R1{,,}", 0));
-    assert!(help.contains("R1{,}"), "{help}");
+fn each_mistake_is_reported_at_its_text() {
+    let unknown = |name: &str| ErrorKind::Rule(RuleError::UnknownRule { name: name.into() });
+    let colour = |text: &str| ErrorKind::Input(InputError::UnknownColour { text: text.into() });
+    let unclosed = |open, close| ErrorKind::Stl(StlError::UnclosedSection { open, close });
+    let finite = ErrorKind::Input(InputError::NotFinite {
+        text: "1e999".into(),
+    });
+    let rect = "LAYOUT (clGreen) Rectangle (0,0), 5, 5";
+    for (src, kind, needle, help) in [
+        (
+            format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED"),
+            unknown("R3"),
+            "R3",
+            "`R1`",
+        ),
+        (
+            format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED"),
+            slot_count("R1", 2, 3),
+            "R1{,,}",
+            "R1{,}",
+        ),
+        (
+            format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT"),
+            ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 }),
+            "Polygon (0,0), (5,5)",
+            "",
+        ),
+        (
+            format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT"),
+            colour("clGren"),
+            "clGren",
+            "clGreen",
+        ),
+        (
+            format!("{HEAD} R1: [F] SEED R1 {rect} ENDLAYOUT"),
+            unclosed("SEED", "ENDSEED"),
+            "SEED",
+            "",
+        ),
+        (
+            format!("{HEAD} R1: [F] {rect}"),
+            unclosed("LAYOUT", "ENDLAYOUT"),
+            "LAYOUT",
+            "",
+        ),
+        (
+            "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]".into(),
+            finite,
+            "1e999",
+            "",
+        ),
+        (
+            format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED"),
+            limit_kind(Bound::Repeat, None, "10001", 10000),
+            "10001",
+            "--max-depth",
+        ),
+        (
+            format!("{HEAD} R1: [F] SEED F{{}} ENDSEED"),
+            ErrorKind::Stl(StlError::BraceWithoutRule),
+            "{",
+            "",
+        ),
+    ] {
+        let (span, got) = refused(&src, kind);
+        assert_eq!(span, at(&src, needle, 0), "{src}");
+        assert!(got.contains(help), "{src}: {got}");
+    }
 }
 
 #[test]
@@ -348,58 +404,6 @@ fn sizes_must_be_positive() {
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) RoundRect (0,0), 5, 10, -2 ENDLAYOUT");
     let (span, _) = refused(&src, shape("RoundRect", "corner radius"));
     assert_eq!(span, at(&src, "-2", 0));
-}
-
-#[test]
-fn polygons_need_three_points() {
-    let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
-    let few = ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 });
-    let (span, _) = refused(&src, few);
-    assert_eq!(span, at(&src, "Polygon (0,0), (5,5)", 0));
-}
-
-#[test]
-fn unknown_colour_suggests_one() {
-    let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let text = "clGren".into();
-    let (span, help) = refused(&src, ErrorKind::Input(InputError::UnknownColour { text }));
-    assert_eq!(span, at(&src, "clGren", 0));
-    assert!(help.contains("clGreen"));
-}
-
-#[test]
-fn missing_section_ends() {
-    let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let unclosed = |open, close| ErrorKind::Stl(StlError::UnclosedSection { open, close });
-    let (span, _) = refused(&src, unclosed("SEED", "ENDSEED"));
-    assert_eq!(span, at(&src, "SEED", 0));
-
-    let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 5, 5");
-    let (span, _) = refused(&src, unclosed("LAYOUT", "ENDLAYOUT"));
-    assert_eq!(span, at(&src, "LAYOUT", 0));
-}
-
-#[test]
-fn numbers_must_be_finite() {
-    let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
-    let text = "1e999".into();
-    let (span, _) = refused(src, ErrorKind::Input(InputError::NotFinite { text }));
-    assert_eq!(span, at(src, "1e999", 0));
-}
-
-#[test]
-fn counts_over_the_limit_are_refused() {
-    let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
-    let (span, help) = refused(&src, limit_kind(Bound::Repeat, None, "10001", 10000));
-    assert_eq!(span, at(&src, "10001", 0));
-    assert!(help.contains("--max-depth"));
-}
-
-#[test]
-fn braces_must_follow_a_rule_name() {
-    let src = format!("{HEAD} R1: [F] SEED F{{}} ENDSEED");
-    let (span, _) = refused(&src, ErrorKind::Stl(StlError::BraceWithoutRule));
-    assert_eq!(span, at(&src, "{", 0));
 }
 
 #[test]
