@@ -13,7 +13,7 @@ use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{BBox, Bounds, Recorder, Segment, StandIn, Turtle};
 
-use crate::lsys::{sys, word};
+use crate::lsys::{ALPHABET, source, sys, word};
 use crate::support::stlc_line;
 
 /// Within `rel` of the larger magnitude (at least 1).
@@ -36,8 +36,6 @@ fn traversed(s: &LSystem, depth: u32) -> (Option<BBox>, stlc::turtle::Point, u64
 }
 
 // ------------------------------------------------- against a traversal --
-
-const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
 
 /// A turtle that records segments and stand-ins and asks for a level of
 /// detail.
@@ -104,13 +102,7 @@ proptest! {
         heading in prop_oneof![Just(90.0), Just(0.0), -720.0..720.0f64],
         depth in 0u32..=5,
     ) {
-        let axiom = if axiom.is_empty() { "F".to_string() } else { axiom };
-        let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
-        for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(&rules) {
-            if !succ.is_empty() {
-                src.push_str(&format!("rule {pred} -> {succ}\n"));
-            }
-        }
+        let src = source(axiom, &rules, angle, heading);
         let s = sys(&src);
         let (bbox, end, count) = traversed(&s, depth);
         let m: Measured = measure(&s, depth, s.length).unwrap();

@@ -510,7 +510,24 @@ pub fn word(
     })
 }
 
-const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
+pub const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
+
+/// A system of random words: the axiom (`F` if empty) and the rules of
+/// `F A B +` that are not empty, in that order.
+pub fn source(axiom: String, rules: &[String], angle: f64, heading: f64) -> String {
+    let axiom = if axiom.is_empty() {
+        "F".to_string()
+    } else {
+        axiom
+    };
+    let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
+    for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(rules) {
+        if !succ.is_empty() {
+            src.push_str(&format!("rule {pred} -> {succ}\n"));
+        }
+    }
+    src
+}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
@@ -523,13 +540,7 @@ proptest! {
         heading in prop_oneof![Just(90.0), Just(0.0), Just(180.0), -720.0..720.0f64],
         depth in 0u32..=5,
     ) {
-        let axiom = if axiom.is_empty() { "F".to_string() } else { axiom };
-        let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
-        for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(&rules) {
-            if !succ.is_empty() {
-                src.push_str(&format!("rule {pred} -> {succ}\n"));
-            }
-        }
+        let src = source(axiom, &rules, angle, heading);
         let dfs = segments(&src, depth, Dfs);
         let bfs = segments(&src, depth, Bfs);
         prop_assert_eq!(&dfs, &bfs, "{}", src);

@@ -73,12 +73,8 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
         let j = stats_json(&format!(
             "dimensions 3\nangle 90\ngenerations 0\naxiom {word}\n"
         ));
-        let nums = |key: &str| -> Vec<f64> {
-            let v = j[key].as_array().unwrap();
-            v.iter().map(|v| v.as_f64().unwrap()).collect()
-        };
-        assert_eq!(nums("end"), end, "{word}");
-        assert_eq!(nums("bbox"), bbox, "{word}");
+        assert_eq!(numbers(&j["end"]), end, "{word}");
+        assert_eq!(numbers(&j["bbox"]), bbox, "{word}");
         assert_eq!(j["segments"], "2");
     }
     // The 3D Hilbert curve at depth 3: 8^3 points, a cube of side 7.
