@@ -45,6 +45,14 @@ fn refused(src: &str, kind: ErrorKind) -> (std::ops::Range<usize>, String) {
     (d.span.clone().expect("a span"), help)
 }
 
+/// The help of the one error of `src`, asserted to be of `kind` and to
+/// point at the first `needle`.
+fn refused_at(src: &str, kind: ErrorKind, needle: &str) -> String {
+    let (span, help) = refused(src, kind);
+    assert_eq!(span, at(src, needle, 0), "{src}");
+    help
+}
+
 /// Byte range of the `n`th (0-based) occurrence of `needle` in `src`.
 fn at(src: &str, needle: &str, n: usize) -> std::ops::Range<usize> {
     let start = src.match_indices(needle).nth(n).expect("needle").0;
@@ -261,77 +269,43 @@ fn both_definition_forms_and_comments() {
 
 // ---------------------------------------------------------- diagnostics --
 
-/// Mistakes with one error each: the error, the text it points at (its
-/// first occurrence) and what its help must name (`""`: anything).
+/// Mistakes with one error each, pointed at the first occurrence of the
+/// text at fault; the help of unknown names suggests the nearest.
 #[test]
 fn each_mistake_is_reported_at_its_text() {
-    let unknown = |name: &str| ErrorKind::Rule(RuleError::UnknownRule { name: name.into() });
-    let colour = |text: &str| ErrorKind::Input(InputError::UnknownColour { text: text.into() });
+    let src = format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED");
+    let unknown = ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() });
+    assert!(refused_at(&src, unknown, "R3").contains("`R1`"));
+    let src = format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED");
+    assert!(refused_at(&src, slot_count("R1", 2, 3), "R1{,,}").contains("R1{,}"));
+    let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
+    let few = ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 });
+    refused_at(&src, few, "Polygon (0,0), (5,5)");
+    let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
+    let text = "clGren".into();
+    let help = refused_at(
+        &src,
+        ErrorKind::Input(InputError::UnknownColour { text }),
+        "clGren",
+    );
+    assert!(help.contains("clGreen"));
     let unclosed = |open, close| ErrorKind::Stl(StlError::UnclosedSection { open, close });
-    let finite = ErrorKind::Input(InputError::NotFinite {
-        text: "1e999".into(),
-    });
-    let rect = "LAYOUT (clGreen) Rectangle (0,0), 5, 5";
-    for (src, kind, needle, help) in [
-        (
-            format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED"),
-            unknown("R3"),
-            "R3",
-            "`R1`",
-        ),
-        (
-            format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED"),
-            slot_count("R1", 2, 3),
-            "R1{,,}",
-            "R1{,}",
-        ),
-        (
-            format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT"),
-            ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 }),
-            "Polygon (0,0), (5,5)",
-            "",
-        ),
-        (
-            format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT"),
-            colour("clGren"),
-            "clGren",
-            "clGreen",
-        ),
-        (
-            format!("{HEAD} R1: [F] SEED R1 {rect} ENDLAYOUT"),
-            unclosed("SEED", "ENDSEED"),
-            "SEED",
-            "",
-        ),
-        (
-            format!("{HEAD} R1: [F] {rect}"),
-            unclosed("LAYOUT", "ENDLAYOUT"),
-            "LAYOUT",
-            "",
-        ),
-        (
-            "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]".into(),
-            finite,
-            "1e999",
-            "",
-        ),
-        (
-            format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED"),
-            limit_kind(Bound::Repeat, None, "10001", 10000),
-            "10001",
-            "--max-depth",
-        ),
-        (
-            format!("{HEAD} R1: [F] SEED F{{}} ENDSEED"),
-            ErrorKind::Stl(StlError::BraceWithoutRule),
-            "{",
-            "",
-        ),
-    ] {
-        let (span, got) = refused(&src, kind);
-        assert_eq!(span, at(&src, needle, 0), "{src}");
-        assert!(got.contains(help), "{src}: {got}");
-    }
+    let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
+    refused_at(&src, unclosed("SEED", "ENDSEED"), "SEED");
+    let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 5, 5");
+    refused_at(&src, unclosed("LAYOUT", "ENDLAYOUT"), "LAYOUT");
+    let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
+    let text = "1e999".into();
+    refused_at(
+        src,
+        ErrorKind::Input(InputError::NotFinite { text }),
+        "1e999",
+    );
+    let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
+    let over = limit_kind(Bound::Repeat, None, "10001", 10000);
+    assert!(refused_at(&src, over, "10001").contains("--max-depth"));
+    let src = format!("{HEAD} R1: [F] SEED F{{}} ENDSEED");
+    refused_at(&src, ErrorKind::Stl(StlError::BraceWithoutRule), "{");
 }
 
 #[test]
@@ -388,8 +362,7 @@ fn sizes_must_be_positive() {
     let stem = |key, what| ErrorKind::Stl(StlError::StemSizeNotPositive { key, what });
     let shape = |shape, what| ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { shape, what });
     let src = "T (0, 0) L=-1(0) B=1(0) RULE R1: [F]";
-    let (span, _) = refused(src, stem("L", "length"));
-    assert_eq!(span, at(src, "-1", 0));
+    refused_at(src, stem("L", "length"), "-1");
 
     let src = "T (0, 0) L=1(0) B=0(0) RULE R1: [F]";
     let (span, _) = refused(src, stem("B", "broadness"));
@@ -402,8 +375,7 @@ fn sizes_must_be_positive() {
     assert_eq!(span, w..w + 1);
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) RoundRect (0,0), 5, 10, -2 ENDLAYOUT");
-    let (span, _) = refused(&src, shape("RoundRect", "corner radius"));
-    assert_eq!(span, at(&src, "-2", 0));
+    refused_at(&src, shape("RoundRect", "corner radius"), "-2");
 }
 
 #[test]
