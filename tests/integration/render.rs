@@ -323,12 +323,10 @@ fn underlay_is_even_odd_and_under_the_strokes() {
     // A 10x10 green square with a 4x4 hole, shown exactly (view 0..10 on
     // 100x100: 10 px per unit), and a vertical stem from (1,9) up to (1,8).
     let ring = |x0: f64, y0: f64, s: f64| {
-        vec![
-            Point::new(x0, y0),
-            Point::new(x0 + s, y0),
-            Point::new(x0 + s, y0 + s),
-            Point::new(x0, y0 + s),
-        ]
+        let corners = [(0.0, 0.0), (s, 0.0), (s, s), (0.0, s)];
+        corners
+            .map(|(dx, dy)| Point::new(x0 + dx, y0 + dy))
+            .to_vec()
     };
     let green = Rgb::new(0, 128, 0);
     let underlay = [Fill {
@@ -337,18 +335,12 @@ fn underlay_is_even_odd_and_under_the_strokes() {
     }];
     let mut view = BBox::at(Point::new(0.0, 0.0));
     view.add(Point::new(10.0, 10.0));
-    let ops = ops("F");
-    let draw = |t: &mut dyn Turtle| {
-        let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, Linear::constant(1.0));
-        for &op in &ops {
-            interp.apply(op);
-        }
-    };
     let st = style(Width::Pixels(4.0), Some(Rgb::WHITE));
     let mut outputs = Vec::new();
     for format in [ImageFormat::Png, ImageFormat::Svg] {
         let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
-            draw(t);
+            let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, Linear::constant(1.0));
+            ops("F").into_iter().for_each(|op| interp.apply(op));
             Ok(())
         };
         let (mut out, opts) = (Vec::new(), RenderOptions::new(format, Some((100, 100))));
@@ -385,15 +377,12 @@ fn png_and_svg_agree() {
     assert_eq!((png.width(), png.height()), (150, 200));
 
     let strokes = svg_strokes(&svg);
-    let segs: Vec<(Point, Point)> = strokes.iter().flat_map(|(_, s)| s.clone()).collect();
+    let segs: Vec<(Point, Point)> = strokes.into_iter().flat_map(|s| s.1).collect();
     assert_eq!(segs.len(), TREE.matches('F').count());
     // Merged (the default): collinear runs are one line, fewer lines,
     // and every segment's points lie on one of them.
     let merged = svg_of(TREE, 30.0, &st, size);
-    let lines: Vec<(Point, Point)> = svg_strokes(&merged)
-        .iter()
-        .flat_map(|(_, s)| s.clone())
-        .collect();
+    let lines: Vec<(Point, Point)> = svg_strokes(&merged).into_iter().flat_map(|s| s.1).collect();
     assert!(lines.len() < segs.len(), "{} lines", lines.len());
     for &(a, b) in &segs {
         for t in [0.0, 0.5, 1.0] {
@@ -515,9 +504,9 @@ fn write_errors_become_io_diagnostics() {
             Ok(())
         };
         let err = render_plain(&mut drawing, format, None, &mut Full).unwrap_err();
-        assert!(
-            matches!(err.first_kind(), Some(ErrorKind::Io { error, .. }) if error == "disk full")
-        );
+        let full =
+            matches!(err.first_kind(), Some(ErrorKind::Io { error, .. }) if error == "disk full");
+        assert!(full, "{err}");
     }
 }
 
@@ -537,13 +526,9 @@ fn a_million_tiny_segments_stream_through_the_png_backend() {
     };
     let mut turtle = PngTurtle::new(fit, &style(Width::Pixels(1.0), Some(Rgb::WHITE))).unwrap();
     let point = |i: u32| {
-        let row = i / 1000;
-        let col = i % 1000;
-        let x = if row.is_multiple_of(2) {
-            col
-        } else {
-            1000 - col
-        };
+        // Even rows run right, odd rows back left.
+        let (row, col) = (i / 1000, i % 1000);
+        let x = col.abs_diff(1000 * (row % 2));
         Point::new(f64::from(x) * 0.19, f64::from(row) * 0.19)
     };
     for i in 0..1_000_000 {
@@ -628,10 +613,8 @@ fn a_tree_over_its_layout_in_bands_is_the_same_with_any_threads() {
     let fills = stlc::rings::fills(&layout);
     let png = |segments: u64, threads: usize| {
         let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
-        let (mut out, mut opts) = (
-            Vec::new(),
-            RenderOptions::new(ImageFormat::Png, Some((500, 700))),
-        );
+        let mut opts = RenderOptions::new(ImageFormat::Png, Some((500, 700)));
+        let mut out = Vec::new();
         opts.threads = threads;
         let segments = Some(segments);
         let frame = render::Frame::View { view, segments };
