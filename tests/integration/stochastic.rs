@@ -21,6 +21,22 @@ fn word(s: &LSystem, depth: u32, strategy: Derivation) -> String {
     expanded_of(s, depth, strategy).trim_end().to_string()
 }
 
+/// Fig. 1.27 with `seed`.
+fn fig_1_27(seed: u64) -> LSystem {
+    let mut s = sys(FIG_1_27);
+    s.seed = seed;
+    s
+}
+
+/// The expected stats of `s` at `depth`, over a budget of 10 symbols.
+fn expected(s: &LSystem, depth: u32) -> stlc::interpret::expected::Expected {
+    let tiny = limits_with(|l| l.max_symbols = 10);
+    let StochasticStats::Expected(e) = stochastic_stats(s, depth, &tiny).unwrap() else {
+        panic!("over the budget, the values are expected");
+    };
+    e
+}
+
 const FIG_1_27: &str = "axiom F\nangle 25.7\n\
     rule F (0.34) -> F[+F]F[-F]F\nrule F (0.33) -> F[+F]F\nrule F (0.33) -> F[-F]F\n";
 
@@ -164,11 +180,7 @@ fn counted_stats_are_the_words_counts() {
 /// depth 3, agrees within 4 standard errors.
 #[test]
 fn expected_stats_follow_the_mean_matrix() {
-    let s = sys(FIG_1_27);
-    let tiny = limits_with(|l| l.max_symbols = 10);
-    let StochasticStats::Expected(e) = stochastic_stats(&s, 12, &tiny).unwrap() else {
-        panic!("over the budget, the values are expected");
-    };
+    let e = expected(&sys(FIG_1_27), 12);
     let f12 = 3.68f64.powi(12);
     let segments = e.segments;
     assert!((segments - f12).abs() < 1e-6 * f12, "{segments} vs {f12}");
@@ -180,11 +192,7 @@ fn expected_stats_follow_the_mean_matrix() {
     // Mean over seeds at depth 3.
     let n = 400;
     let counts: Vec<f64> = (0..n)
-        .map(|seed| {
-            let mut s = sys(FIG_1_27);
-            s.seed = seed;
-            word(&s, 3, Dfs).matches('F').count() as f64
-        })
+        .map(|seed| word(&fig_1_27(seed), 3, Dfs).matches('F').count() as f64)
         .collect();
     let mean = counts.iter().sum::<f64>() / n as f64;
     let var = counts.iter().map(|c| (c - mean).powi(2)).sum::<f64>() / (n as f64 - 1.0);
@@ -212,10 +220,7 @@ fn expected_stats_give_exact_bounds_at_any_depth() {
     assert_eq!(fig_1_27_bounds(3).1, 311u32.into());
     let s = sys(FIG_1_27);
     for depth in [3, 40, 100, 1000] {
-        let tiny = limits_with(|l| l.max_symbols = 10);
-        let StochasticStats::Expected(e) = stochastic_stats(&s, depth, &tiny).unwrap() else {
-            panic!("over the budget, the values are expected");
-        };
+        let e = expected(&s, depth);
         let (lo, hi) = fig_1_27_bounds(depth);
         assert_eq!(e.bounds, (lo.clone(), hi.clone()), "depth {depth}");
         let json = StochasticStats::Expected(e.clone()).to_json();
@@ -261,11 +266,9 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
     // word over it is refused before anything is written all the same.
     let mut over = 0;
     for seed in 0..20 {
-        let mut s = sys(FIG_1_27);
-        s.seed = seed;
         // A tenth of 1,200: 120 symbols.
         let mut out = Vec::new();
-        if expand_within(&s, 3, Dfs, 1_200, &mut out).is_err() {
+        if expand_within(&fig_1_27(seed), 3, Dfs, 1_200, &mut out).is_err() {
             over += 1;
             let n = out.len();
             assert!(n == 0, "seed {seed}: wrote {n} bytes first");
@@ -276,11 +279,7 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
     assert!(over > 0 && over < 20, "{over} of 20 seeds over 120 symbols");
     // Every seed's word lies within the bounds, and they vary.
     let lens: Vec<usize> = (0..50)
-        .map(|seed| {
-            let mut s = sys(FIG_1_27);
-            s.seed = seed;
-            word(&s, 3, Dfs).len()
-        })
+        .map(|seed| word(&fig_1_27(seed), 3, Dfs).len())
         .collect();
     assert!(lens.iter().all(|l| (66..=311).contains(l)), "{lens:?}");
     assert!(lens.iter().any(|&l| l != lens[0]), "{lens:?}");
