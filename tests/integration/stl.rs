@@ -994,28 +994,23 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
         (e.0[0].kind.clone(), e.0[0].span.clone().unwrap())
     };
     let src = "T (0, 0, 0) (1, 1) RULE R1: [F]";
-    let at = src.find("(1, 1)").unwrap();
     let mixed = ErrorKind::Stl(StlError::MixedRoots { first: 3, this: 2 });
-    assert_eq!(one(src), (mixed, at..at + 6));
+    assert_eq!(one(src), (mixed, at(src, "(1, 1)", 0)));
     let src = "T (0, 0) RULE R1: [F/F]";
-    let at = src.find('/').unwrap();
     let (kind, span) = one(src);
-    assert_eq!(span, at..at + 1);
+    assert_eq!(span, at(src, "/", 0));
     assert!(matches!(kind, ErrorKind::Stl(StlError::Needs3d { .. })));
     let e = errors(src);
     assert!(e.0[0].help_text().unwrap().contains("`(0, 0, 0)`"));
     // In a seed and in `[I n w]` alike.
     let src = "T (0, 0) RULE R1: [F] SEED [I 2 F^F] ENDSEED";
-    assert_eq!(one(src).1, src.find('^').map(|a| a..a + 1).unwrap());
+    assert_eq!(one(src).1, at(src, "^", 0));
     let src = "T (0, 0) D=5 RULE R1: [F]";
-    let at = src.find("D=5").unwrap();
-    assert_eq!(one(src).1, at..at + 3);
+    assert_eq!(one(src).1, at(src, "D=5", 0));
     let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Rectangle (0, 0), 5, 5 ENDLAYOUT";
-    let at = src.find("Rectangle").unwrap();
     let e = errors(src);
     let wanted = ErrorKind::Layout(LayoutError::FlatShapeIn3d { shape: "Rectangle" });
-    assert_eq!(e.0[0].kind, wanted);
-    assert_eq!(e.0[0].span, Some(at..src.find(" ENDLAYOUT").unwrap()));
+    assert_eq!(one(src), (wanted, at(src, "Rectangle (0, 0), 5, 5", 0)));
     let help = e.0[0].help_text().unwrap();
     let both = [
         "`Extrude Rectangle (0, 0), 5, 5, z1, z2`",
