@@ -254,12 +254,8 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         assert!(copy == d);
         // (Locations do not take part in equality: only the innermost slot,
         // a repeat instead of empty, differs.)
-        let deeper = stl::parse(
-            &seeded(nest(n - 1, "R1{", "[I 2 R1]", "}")),
-            Format::Bed,
-            &limits,
-        )
-        .expect("parses");
+        let deeper = seeded(nest(n - 1, "R1{", "[I 2 R1]", "}"));
+        let deeper = stl::parse(&deeper, Format::Bed, &limits).expect("parses");
         assert!(deeper != d, "the innermost slot differs");
         // `{:?}` of the description shows the arena's size, not its terms.
         let shown = format!("{d:#?}");
@@ -323,16 +319,22 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
     assert_eq!((drawn, tally), (0, Tally::default()));
 }
 
-#[test]
-fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
-    let sys = lsys::parse("axiom F\nrule F FF\nangle 90\n", &Limits::default()).unwrap();
-    let (e, drawn, tally) = small_stack(move || {
-        let (mut c, mut tally) = (Counter::default(), Tally::default());
+/// `src` parsed and drawn to depth 10,000 on a small stack, which must
+/// fail: the error, the segments drawn and the work announced.
+fn drawn_to_depth_10000(src: String) -> (Diagnostics, u64, Tally) {
+    small_stack(move || {
         let limits = Limits::default();
+        let sys = lsys::parse(&src, &limits).expect("parses");
+        let (mut c, mut tally) = (Counter::default(), Tally::default());
         let e = stlc::interpret::lsys::draw(&sys, 10_000, Dfs, &limits, &mut c, &mut tally)
             .unwrap_err();
         (e, c.0, tally)
-    });
+    })
+}
+
+#[test]
+fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
+    let (e, drawn, tally) = drawn_to_depth_10000("axiom F\nrule F FF\nangle 90\n".into());
     // Refused before a symbol was derived.
     assert_eq!((drawn, tally), (0, Tally::default()));
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
@@ -354,14 +356,7 @@ fn a_wide_alphabet_at_the_depth_limit_is_refused_with_its_exact_length() {
         .collect();
     let inert = alphabet.chars().count();
     let src = format!("axiom F{alphabet}\nrule F FF\nangle 90\n");
-    let (e, drawn, tally) = small_stack(move || {
-        let limits = Limits::default();
-        let sys = lsys::parse(&src, &limits).expect("parses");
-        let (mut c, mut tally) = (Counter::default(), Tally::default());
-        let e = stlc::interpret::lsys::draw(&sys, 10_000, Dfs, &limits, &mut c, &mut tally)
-            .unwrap_err();
-        (e, c.0, tally)
-    });
+    let (e, drawn, tally) = drawn_to_depth_10000(src);
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
     // 2^10000 copies of F and the inert symbols once each.
     let exact = num_bigint::BigUint::from(2u32).pow(10_000) + inert;
@@ -591,11 +586,8 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
 // ----------------------------------------------------------------- grower --
 
 fn grow_err(src: &str) -> Diagnostics {
-    let d = od(src);
-    let grown = stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress);
-    grown
-        .map(|g| g.stems)
-        .expect_err("grew stems, expected an error")
+    let grown = stlc::grow::grow(&od(src), &Default::default(), &mut NoProgress);
+    grown.map(|g| g.stems).expect_err(src)
 }
 
 #[test]
