@@ -62,13 +62,7 @@ fn read(bytes: &[u8]) -> Body {
         }
         // The written normal agrees with the winding.
         let [a, b, cc] = c.map(|i| points[i]);
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]];
-        let w = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let w = crate::organs::winding_normal(a, b, cc);
         let dot: f64 = (0..3).map(|i| w[i] * f64::from(normal[i])).sum();
         assert!(dot >= 0.0, "triangle {t}'s normal against its winding");
         tris.push(c);
