@@ -627,29 +627,29 @@ fn run(text: String) -> DrawRun {
     DrawRun { text, loc }
 }
 
+/// Appends the drawing `$t` to `$items`: to the `$draw` run that ends
+/// them (the parser reads adjacent letters as one run), else as a new one.
+macro_rules! push_run {
+    ($items:expr, $draw:path, $t:expr) => {{
+        let t: String = $t;
+        match $items.last_mut() {
+            Some($draw(r)) => r.text.push_str(&t),
+            _ => $items.push($draw(run(t).into())),
+        }
+    }};
+}
+
 fn gen_body(g: &mut Gen, rules: usize) -> Body {
     let mut items: Vec<BodyItem> = Vec::new();
     for _ in 0..1 + g.below(4) {
         match g.below(3) {
-            0 => {
-                let t = g.letters(3);
-                if let Some(BodyItem::Draw(r)) = items.last_mut() {
-                    r.text.push_str(&t);
-                } else {
-                    items.push(BodyItem::Draw(run(t)));
-                }
-            }
+            0 => push_run!(items, BodyItem::Draw, g.letters(3)),
             1 => items.push(BodyItem::Fixed(g.fixed())),
             _ => {
                 let mut pieces: Vec<Piece> = Vec::new();
                 for _ in 0..g.below(3) {
                     if g.chance(70) {
-                        let t = g.drawing();
-                        if let Some(Piece::Draw(r)) = pieces.last_mut() {
-                            r.text.push_str(&t);
-                        } else {
-                            pieces.push(Piece::Draw(run(t)));
-                        }
+                        push_run!(pieces, Piece::Draw, g.drawing());
                     } else {
                         pieces.push(Piece::Fixed(g.fixed()));
                     }
@@ -768,16 +768,9 @@ fn gen_description(seed: u64) -> Description {
         .collect();
     let mut items: Vec<SeedItem> = Vec::new();
     let mut terms = Terms::new();
-    let push_draw = |items: &mut Vec<SeedItem>, t: String| {
-        if let Some(SeedItem::Draw(r)) = items.last_mut() {
-            r.text.push_str(&t);
-        } else {
-            items.push(SeedItem::Draw(Box::new(run(t))));
-        }
-    };
     for _ in 0..g.below(5) {
         match g.below(5) {
-            0 => push_draw(&mut items, g.drawing()),
+            0 => push_run!(items, SeedItem::Draw, g.drawing()),
             1 => items.push(SeedItem::Fixed(Box::new(g.fixed()))),
             2 => {
                 let (count, loc) = (1 + g.below(3) as u32, Loc::default());
@@ -787,10 +780,10 @@ fn gen_description(seed: u64) -> Description {
             3 => {
                 // A term inside a seed bracket: `[+F`, term, `]`.
                 let open = format!("[{}", g.letters(2));
-                push_draw(&mut items, open);
+                push_run!(items, SeedItem::Draw, open);
                 let t = gen_term(&mut g, &mut terms, &rules, 3);
                 items.push(SeedItem::Term(t));
-                push_draw(&mut items, "]".into());
+                push_run!(items, SeedItem::Draw, "]".into());
             }
             _ => {
                 let t = gen_term(&mut g, &mut terms, &rules, 4);
