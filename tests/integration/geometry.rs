@@ -145,12 +145,9 @@ struct Recursion {
 
 impl Recursion {
     fn new(s: &LSystem) -> Self {
+        let rules = s.rules.iter().map(|(k, p)| (*k, p[0].successor.clone()));
         Recursion {
-            rules: s
-                .rules
-                .iter()
-                .map(|(k, p)| (*k, p[0].successor.clone()))
-                .collect(),
+            rules: rules.collect(),
             angle: s.angle,
             memo: HashMap::new(),
         }
@@ -237,19 +234,15 @@ impl Recursion {
 
 #[test]
 fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
+    let hilbert = "axiom L\nrule L +RF-LFL-FR+\nrule R -LF+RFR+FL-\nangle 90\n";
+    let plant = "axiom X\nrule X F-[[X]+X]+F[+FX]-X\nrule F FF\nangle 22.5\nheading 80\n";
     let cases = [
         ("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\n", 30),
         ("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\n", 57),
         ("axiom X\nrule X F[+X]F[-X]+X\nrule F FF\nangle 20\n", 40),
         ("axiom F--F--F\nrule F F+F--F+F\nangle 60\n", 30),
-        (
-            "axiom L\nrule L +RF-LFL-FR+\nrule R -LF+RFR+FL-\nangle 90\n",
-            31,
-        ),
-        (
-            "axiom X\nrule X F-[[X]+X]+F[+FX]-X\nrule F FF\nangle 22.5\nheading 80\n",
-            33,
-        ),
+        (hilbert, 31),
+        (plant, 33),
         ("axiom F|F\nrule F F[+F|f]F[-fF]|F\nangle 33.3\n", 30),
     ];
     for (src, depth) in cases {
@@ -266,13 +259,10 @@ fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
         // agreement to 1e-9 of the drawing's size.
         let size = want.width().max(want.height());
         let tol = 1e-9 * size;
-        assert!(
-            (got.min_x - want.min_x).abs() <= tol
-                && (got.min_y - want.min_y).abs() <= tol
-                && (got.max_x - want.max_x).abs() <= tol
-                && (got.max_y - want.max_y).abs() <= tol,
-            "{src} at {depth}: {got:?} vs {want:?}"
-        );
+        let lo = [got.min_x - want.min_x, got.min_y - want.min_y];
+        let hi = [got.max_x - want.max_x, got.max_y - want.max_y];
+        let holds = lo.iter().chain(&hi).all(|d| d.abs() <= tol);
+        assert!(holds, "{src} at {depth}: {got:?} vs {want:?}");
         let (end, gx, gy) = (m.end, g.x, g.y);
         let near = (end.x - gx).abs() <= tol && (end.y - gy).abs() <= tol;
         assert!(near, "{src} at {depth}: end {end:?} vs ({gx}, {gy})");
@@ -331,13 +321,9 @@ fn level_of_detail_is_bounded_and_stays_in_the_box() {
     let slack = size * 1e-9;
     for seg in &fine.rec.segments {
         for p in [seg.from, seg.to] {
-            assert!(
-                p.x >= b.min_x - slack
-                    && p.x <= b.max_x + slack
-                    && p.y >= b.min_y - slack
-                    && p.y <= b.max_y + slack,
-                "{p:?} outside {b:?}"
-            );
+            let across = b.min_x - slack <= p.x && p.x <= b.max_x + slack;
+            let down = b.min_y - slack <= p.y && p.y <= b.max_y + slack;
+            assert!(across && down, "{p:?} outside {b:?}");
         }
     }
 }
