@@ -283,12 +283,8 @@ fn each_mistake_is_reported_at_its_text() {
     refused_at(&src, few, "Polygon (0,0), (5,5)");
     let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
     let text = "clGren".into();
-    let help = refused_at(
-        &src,
-        ErrorKind::Input(InputError::UnknownColour { text }),
-        "clGren",
-    );
-    assert!(help.contains("clGreen"));
+    let colour = ErrorKind::Input(InputError::UnknownColour { text });
+    assert!(refused_at(&src, colour, "clGren").contains("clGreen"));
     let unclosed = |open, close| ErrorKind::Stl(StlError::UnclosedSection { open, close });
     let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
     refused_at(&src, unclosed("SEED", "ENDSEED"), "SEED");
@@ -296,11 +292,8 @@ fn each_mistake_is_reported_at_its_text() {
     refused_at(&src, unclosed("LAYOUT", "ENDLAYOUT"), "LAYOUT");
     let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
     let text = "1e999".into();
-    refused_at(
-        src,
-        ErrorKind::Input(InputError::NotFinite { text }),
-        "1e999",
-    );
+    let finite = ErrorKind::Input(InputError::NotFinite { text });
+    refused_at(src, finite, "1e999");
     let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
     let over = limit_kind(Bound::Repeat, None, "10001", 10000);
     assert!(refused_at(&src, over, "10001").contains("--max-depth"));
