@@ -9,6 +9,9 @@ use stlc::limits::Limits;
 use stlc::syntax::lsys::parse;
 use stlc::turtle::{Point, Recorder};
 
+use crate::param::first_error;
+use crate::render::rgba;
+
 const RED: Rgb = Rgb::new(0xff, 0, 0);
 const GREEN: Rgb = Rgb::new(0, 0xaa, 0);
 const BLUE: Rgb = Rgb::new(0, 0, 0xff);
@@ -17,14 +20,6 @@ const BLUE: Rgb = Rgb::new(0, 0, 0xff);
 fn recorded(src: &str, depth: u32) -> Recorder {
     let sys = parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e:?}"));
     crate::lsys::recorded_of(&sys, depth, Dfs)
-}
-
-/// The first error's message and the text its span covers.
-fn first_error(src: &str) -> (String, String) {
-    let e = parse(src, &Limits::default()).expect_err("should not parse");
-    let d = e.iter().next().unwrap();
-    let span = d.span.clone().expect("the error points at the text");
-    (d.kind.to_string(), src[span].to_string())
 }
 
 /// The picture `stlc render` writes for `src` as `name` (its extension
@@ -102,12 +97,8 @@ fn a_polygon_is_filled_with_the_colour_in_force_in_the_png() {
     let svg = String::from_utf8(rendered(src, "out.svg")).unwrap();
     assert!(svg.contains("<path fill=\"#0000ff\" d=\"M95.50"), "{svg}");
     let png = tiny_skia::Pixmap::decode_png(&rendered(src, "out.png")).unwrap();
-    let at = |x: u32, y: u32| {
-        let c = png.pixel(x, y).unwrap().demultiply();
-        [c.red(), c.green(), c.blue(), c.alpha()]
-    };
-    assert_eq!(at(50, 50), [0, 0, 255, 255]);
-    assert_eq!(at(1, 1), [255, 255, 255, 255]);
+    assert_eq!(rgba(&png, 50, 50), [0, 0, 255, 255]);
+    assert_eq!(rgba(&png, 1, 1), [255, 255, 255, 255]);
 }
 
 #[test]
@@ -149,9 +140,9 @@ fn a_surfaces_colour_stays_inside_it() {
 
 #[test]
 fn polygons_that_do_not_close_are_errors_at_the_brace() {
-    let (msg, at) = first_error("generations 1\nangle 90\naxiom F{.f\n");
+    let (msg, _, at) = first_error("generations 1\nangle 90\naxiom F{.f\n");
     assert_eq!((msg.as_str(), at.as_str()), ("this `{` is not closed", "{"));
-    let (msg, at) = first_error("generations 1\nangle 90\naxiom F\nrule F -> F}f\n");
+    let (msg, _, at) = first_error("generations 1\nangle 90\naxiom F\nrule F -> F}f\n");
     assert_eq!((msg.as_str(), at.as_str()), ("`}` without its `{`", "}"));
 }
 
@@ -159,7 +150,7 @@ fn polygons_that_do_not_close_are_errors_at_the_brace() {
 fn a_polygon_over_the_vertex_limit_is_an_error_as_written_and_as_derived() {
     let n = stlc::model::param::MAX_POLYGON_VERTICES;
     let src = format!("generations 1\nangle 90\naxiom {{{}}}\n", "f".repeat(n + 1));
-    let (msg, at) = first_error(&src);
+    let (msg, _, at) = first_error(&src);
     assert_eq!(msg, format!("a polygon of more than {n} vertices"));
     assert_eq!(at, "{");
     // Exactly the limit is fine.
@@ -180,11 +171,11 @@ fn a_polygon_over_the_vertex_limit_is_an_error_as_written_and_as_derived() {
 
 #[test]
 fn a_surface_that_places_itself_is_an_error_at_its_line() {
-    let (msg, at) = first_error("generations 1\nangle 90\nsurface A { F~A }\naxiom ~A\n");
+    let (msg, _, at) = first_error("generations 1\nangle 90\nsurface A { F~A }\naxiom ~A\n");
     assert_eq!(msg, "surface `A` places itself (~A -> ~A)");
     assert_eq!(at, "surface A { F~A }");
     let src = "generations 1\nangle 90\nsurface A { ~B }\nsurface B { [F~A] }\naxiom ~A\n";
-    let (msg, _) = first_error(src);
+    let (msg, _, _) = first_error(src);
     assert_eq!(msg, "surface `A` places itself (~A -> ~B -> ~A)");
     // A surface placing another, without a way back, is fine.
     let src = "generations 0\nangle 90\nsurface A { F~B }\nsurface B { {.f+f+f} }\naxiom ~A\n";
@@ -193,7 +184,7 @@ fn a_surface_that_places_itself_is_an_error_at_its_line() {
 
 #[test]
 fn a_palette_of_unknown_colours_is_an_error_at_the_colour() {
-    let (msg, at) = first_error("generations 1\nangle 90\npalette #00ff00 clGrean\naxiom F\n");
+    let (msg, _, at) = first_error("generations 1\nangle 90\npalette #00ff00 clGrean\naxiom F\n");
     assert!(msg.contains("clGrean"), "{msg}");
     assert_eq!(at, "clGrean");
     // A `#` that starts no colour starts a comment.

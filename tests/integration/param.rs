@@ -20,7 +20,7 @@ fn expanded(src: &str, depth: u32, strategy: Derivation) -> Result<String, Diagn
 }
 
 /// The first error's message and help, and the text its span covers.
-fn first_error(src: &str) -> (String, String, String) {
+pub fn first_error(src: &str) -> (String, String, String) {
     let e = parse(src, &Limits::default()).expect_err("should not parse");
     let d = e.iter().next().unwrap();
     let span = d.span.clone().expect("the error points at the text");

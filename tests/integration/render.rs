@@ -135,7 +135,7 @@ fn decode(png: &[u8]) -> Pixmap {
 }
 
 /// Demultiplied RGBA of one pixel.
-fn rgba(p: &Pixmap, x: u32, y: u32) -> [u8; 4] {
+pub fn rgba(p: &Pixmap, x: u32, y: u32) -> [u8; 4] {
     let c = p.pixel(x, y).unwrap().demultiply();
     [c.red(), c.green(), c.blue(), c.alpha()]
 }
