@@ -219,15 +219,9 @@ fn check(od: &Description, growth: GrowthOrder) -> usize {
             return;
         }
         // A joint: the far ends keep the clearance unless nearest at the joint.
-        let joint = if ta == sa {
-            Some(sb)
-        } else if ta == sb {
-            Some(sa)
-        } else {
-            None
-        };
+        let joint = [(sa, sb), (sb, sa)].into_iter().find(|&(j, _)| ta == j);
         match joint {
-            Some(far) => {
+            Some((_, far)) => {
                 let (d1, at1) = to_segment(tb, sa, sb);
                 let at_joint = if ta == sa { 0.0 } else { 1.0 };
                 let ok = d1 >= need - 1e-9 || at1 == at_joint;
@@ -412,7 +406,7 @@ ENDLAYOUT
 ";
 
 /// The bits of a stem's ends, for comparing sets of stems.
-fn key(a: P, b: P) -> [u64; 6] {
+fn key((a, b): (P, P)) -> [u64; 6] {
     [a[0], a[1], a[2], b[0], b[1], b[2]].map(f64::to_bits)
 }
 
@@ -429,16 +423,10 @@ fn a_3d_od_grows_a_bed_that_draws_the_stems_growth_placed() {
         assert!(placed.len() > 30, "{growth:?}: {} stems", placed.len());
         // The volumes: sphere, cylinder, extruded ellipse, minus the box.
         assert!(check(&od, growth) > 30);
-        let mut grew: Vec<[u64; 6]> = placed
-            .iter()
-            .map(|s| {
-                let (a, b) = ends(s);
-                key(a, b)
-            })
-            .collect();
+        let mut grew: Vec<[u64; 6]> = placed.iter().map(|s| key(ends(s))).collect();
         let (mut drawn, limits, dfs) = (Vec::new(), Limits::default(), Derivation::Dfs);
         let mut push = |s: stlc::turtle::turtle3::Segment3| {
-            drawn.push(key(s.from.to_array(), s.to.to_array()))
+            drawn.push(key((s.from.to_array(), s.to.to_array())))
         };
         stlc::interpret::bed3::draw3(&grown.bed, dfs, &limits, &mut push, &mut NoProgress).unwrap();
         grew.sort_unstable();
