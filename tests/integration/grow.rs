@@ -36,10 +36,8 @@ pub fn grown(od: &Description, o: GrowOptions) -> Grown {
 }
 
 fn grow_err(od: &Description, o: GrowOptions) -> Diagnostics {
-    let grown = grow(od, &o, &mut NoProgress);
-    grown
-        .map(|g| g.stems)
-        .expect_err("grew stems, expected an error")
+    let grown = grow(od, &o, &mut NoProgress).map(|g| g.stems);
+    grown.expect_err("grew stems, expected an error")
 }
 
 /// [`seed_text`] of what grew.
@@ -464,8 +462,7 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
         };
         (size(t.slot(0)), size(t.slot(1)))
     };
-    let (b_right, b_left) = root(&bfs);
-    let (d_right, d_left) = root(&dfs);
+    let ((b_right, b_left), (d_right, d_left)) = (root(&bfs), root(&dfs));
     // Breadth-first: both sides get an almost equal share (the paper's
     // "equally distributed in left and right sides").
     let b_ratio = b_right as f64 / b_left as f64;
@@ -475,8 +472,7 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
     assert!(d_right > 2 * d_left, "dfs {d_right} vs {d_left}");
     assert!(d_right > b_right);
     // A depth-first tree is deeper (vines).
-    let bfs_depth = max_order(&drawn(&bfs));
-    let dfs_depth = max_order(&drawn(&dfs));
+    let (bfs_depth, dfs_depth) = (max_order(&drawn(&bfs)), max_order(&drawn(&dfs)));
     assert!(dfs_depth > bfs_depth, "{dfs_depth} vs {bfs_depth}");
 }
 
@@ -570,9 +566,7 @@ fn decrements_end_growth_at_the_right_order() {
 #[test]
 fn max_stems_stops_growth_with_a_warning() {
     let mut o = opts(GrowthOrder::Bfs);
-    o.clearance = Some(0.0);
-    o.limits.max_stems = 100;
-    o.max_stems_explicit = true;
+    (o.clearance, o.limits.max_stems, o.max_stems_explicit) = (Some(0.0), 100, true);
     let g = grown(&od(BINARY), o);
     // 1 + 2k <= 100: 49 applications fit, the 50th would make 101.
     assert_eq!(g.stems, 99);
@@ -630,10 +624,8 @@ fn white_holes_are_respected() {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
         let hole = geo::Rect::new((60.0, 80.0), (140.0, 120.0)).to_polygon();
-        let clear = segs
-            .iter()
-            .all(|s| !geo::Intersects::intersects(&hole, &line(s)));
-        assert!(clear);
+        let hits = |s: &Segment| geo::Intersects::intersects(&hole, &line(s));
+        assert!(!segs.iter().any(hits));
         // The tree grew around the hole: stems above it too.
         assert!(segs.iter().any(|s| s.to.y < 70.0));
     }
@@ -678,8 +670,7 @@ fn depth_limit_stops_a_vine_with_a_warning() {
     // R1 = [F]: a straight vine, one stem per application.
     let d = od("Vine (0, 0) L=10(0) B=1(0) RULE R1: [F]");
     let mut o = opts(GrowthOrder::Dfs);
-    o.limits.max_depth = 5;
-    o.max_stems_explicit = true;
+    (o.limits.max_depth, o.max_stems_explicit) = (5, true);
     let g = grown(&d, o);
     assert_eq!(g.stems, 1 + 5);
     assert_eq!(g.warnings.len(), 1);
@@ -731,9 +722,9 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     let mut few = opts(GrowthOrder::Bfs);
     few.limits.max_stems = 5;
     let e = grow_err(&d, few);
+    let seven = limit_kind(Bound::Stems, seed_alone, "7", 5);
     assert_eq!(
-        e.0[0].kind,
-        limit_kind(Bound::Stems, seed_alone, "7", 5),
+        e.0[0].kind, seven,
         "the bare R1 is a growth point and counts nothing"
     );
     // The seed (drawn first, R1 deferred) fills the limit: R1's application
