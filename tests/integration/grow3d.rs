@@ -103,17 +103,12 @@ fn seg_dist(a: P, b: P, c: P, d: P) -> f64 {
 fn capsule_points(s: &PlacedStem) -> Vec<P> {
     let (a, b) = ends(s);
     let r = s.width / 2.0;
-    let mut dirs = Vec::new();
-    for i in -1..=1 {
-        for j in -1..=1 {
-            for k in -1..=1 {
-                if (i, j, k) != (0, 0, 0) {
-                    let n = ((i * i + j * j + k * k) as f64).sqrt();
-                    dirs.push([i as f64 / n, j as f64 / n, k as f64 / n]);
-                }
-            }
-        }
-    }
+    // The 26 unit vectors toward the other cells of a 3 x 3 x 3 block.
+    let dirs: Vec<P> = (0..27)
+        .map(|n| [n / 9, n / 3 % 3, n % 3].map(|c| f64::from(c) - 1.0))
+        .filter(|d| *d != [0.0; 3])
+        .map(|d| d.map(|c| c / dist(d, [0.0; 3])))
+        .collect();
     let mut out = Vec::new();
     for step in 0..=16 {
         let c = lerp(a, b, step as f64 / 16.0);
