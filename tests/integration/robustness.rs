@@ -22,7 +22,7 @@ use stlc::limits::Limits;
 use stlc::model::{Description, Format, Shape};
 use stlc::progress::{NoProgress, Progress};
 use stlc::syntax::{lsys, precheck, stl};
-use stlc::turtle::{Bounds, Counter, Segment, Turtle};
+use stlc::turtle::{Bounds, Counter, Recorder, Turtle};
 
 /// Asserts that the first error of the diagnostics `$e` matches `$kind`.
 macro_rules! assert_first {
@@ -60,16 +60,6 @@ impl Progress for Tally {
         self.done = done;
     }
     fn finish(&mut self) {}
-}
-
-/// Every segment drawn.
-#[derive(Default)]
-struct Segments(Vec<Segment>);
-
-impl Turtle for Segments {
-    fn segment(&mut self, seg: Segment) {
-        self.0.push(seg);
-    }
 }
 
 fn lsys_err(src: String, limits: Limits) -> Diagnostics {
@@ -620,11 +610,11 @@ fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
     let g = small_stack(move || {
         stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress).expect("grows")
     });
-    let mut segs = Segments::default();
+    let mut segs = Recorder::default();
     let limits = Limits::default();
     stlc::interpret::bed::draw(&g.bed, Dfs, &limits, &mut segs, &mut NoProgress).unwrap();
-    assert_eq!(segs.0.len() as u64, g.stems);
-    let ends = || segs.0.iter().flat_map(|s| [s.from, s.to]);
+    assert_eq!(segs.segments.len() as u64, g.stems);
+    let ends = || segs.segments.iter().flat_map(|s| [s.from, s.to]);
     for p in ends() {
         let (x, y) = (p.x, p.y);
         let inside = x <= y && y <= 100.0 - x;
