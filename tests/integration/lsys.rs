@@ -446,17 +446,9 @@ fn stats_json_shape() {
 
 #[test]
 fn broken_pipe_has_its_own_kind() {
-    struct Closed;
-    impl std::io::Write for Closed {
-        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
-            Err(std::io::ErrorKind::BrokenPipe.into())
-        }
-        fn flush(&mut self) -> std::io::Result<()> {
-            Ok(())
-        }
-    }
+    let mut closed = crate::render::Failing(|| std::io::ErrorKind::BrokenPipe.into());
     let (tree, limits) = (sys(TREE1), Limits::default());
-    let err = expand(&tree, 8, Dfs, &limits, &mut Closed, &mut NoProgress).unwrap_err();
+    let err = expand(&tree, 8, Dfs, &limits, &mut closed, &mut NoProgress).unwrap_err();
     assert_eq!(err.first_kind(), Some(&ErrorKind::BrokenPipe));
 }
 

@@ -486,24 +486,28 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
     assert!(out.is_empty());
 }
 
+/// A writer whose every write fails with the error `0` makes.
+pub struct Failing(pub fn() -> std::io::Error);
+
+impl std::io::Write for Failing {
+    fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+        Err((self.0)())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
 #[test]
 fn write_errors_become_io_diagnostics() {
-    struct Full;
-    impl std::io::Write for Full {
-        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
-            Err(std::io::Error::other("disk full"))
-        }
-        fn flush(&mut self) -> std::io::Result<()> {
-            Ok(())
-        }
-    }
     for format in [ImageFormat::Png, ImageFormat::Svg] {
         let ops = ops("FF");
         let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
             run(&ops, 90.0, 0.0, t);
             Ok(())
         };
-        let err = render_plain(&mut drawing, format, None, &mut Full).unwrap_err();
+        let mut full = Failing(|| std::io::Error::other("disk full"));
+        let err = render_plain(&mut drawing, format, None, &mut full).unwrap_err();
         let full =
             matches!(err.first_kind(), Some(ErrorKind::Io { error, .. }) if error == "disk full");
         assert!(full, "{err}");
