@@ -375,10 +375,8 @@ fn probabilities_are_checked() {
 
     let src = "axiom F\nangle 30\nseed -3\n";
     let (kind, span) = first_error(src);
-    assert!(
-        matches!(kind, Lsys(NotWholeNumber { key: "seed", .. })),
-        "{kind:?}"
-    );
+    let whole = matches!(kind, Lsys(NotWholeNumber { key: "seed", .. }));
+    assert!(whole, "{kind:?}");
     assert_eq!(&src[span], "-3");
 }
 
