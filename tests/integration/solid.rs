@@ -93,10 +93,10 @@ pub(crate) fn analyse(points: &[[f64; 3]], tris: &[[usize; 3]]) -> Body {
     }
     for &[a, b, c] in tris {
         let ra = root(&mut parent, a);
-        let rb = root(&mut parent, b);
-        parent[rb] = ra;
-        let rc = root(&mut parent, c);
-        parent[rc] = ra;
+        for x in [b, c] {
+            let rx = root(&mut parent, x);
+            parent[rx] = ra;
+        }
     }
     let mut roots: Vec<usize> = (0..points.len()).map(|i| root(&mut parent, i)).collect();
     roots.sort_unstable();
@@ -110,14 +110,13 @@ pub(crate) fn analyse(points: &[[f64; 3]], tris: &[[usize; 3]]) -> Body {
                 / 6.0
         })
         .sum();
-    let mut min = [f64::INFINITY; 3];
-    let mut max = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for i in 0..3 {
-            min[i] = min[i].min(p[i]);
-            max[i] = max[i].max(p[i]);
-        }
-    }
+    let min = [0, 1, 2].map(|i| points.iter().map(|p| p[i]).fold(f64::INFINITY, f64::min));
+    let max = [0, 1, 2].map(|i| {
+        points
+            .iter()
+            .map(|p| p[i])
+            .fold(f64::NEG_INFINITY, f64::max)
+    });
     Body {
         triangles: tris.len(),
         vertices: points.len(),
@@ -302,10 +301,8 @@ fn leaves_are_slabs_united_with_their_stems() {
     for (name, leaf) in [("bare", ""), ("leafy", " P=L")] {
         let input = dir.path().join(format!("{name}.bed"));
         std::fs::write(&input, leafy_y(leaf)).unwrap();
-        let body = read(&solid_written(
-            &input,
-            &dir.path().join(format!("{name}.stl")),
-        ));
+        let out = dir.path().join(format!("{name}.stl"));
+        let body = read(&solid_written(&input, &out));
         printable(&body, 0);
         volumes.push(body.volume);
     }
