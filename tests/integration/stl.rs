@@ -409,20 +409,18 @@ fn syntax_errors_name_what_the_user_types() {
 #[test]
 fn validate_refuses_orders_without_length() {
     // L=10(5): order 2 has length 0.
-    let d = bed("T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED");
-    let e = validate(&d, &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Bed(BedError::OrderTooDeep {
-            rule: "R1".into(),
-            order: 2,
-            length: 0.0,
-            width: 1.0
-        }))
-    );
-    let inner = "R1{}";
     let src = "T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED";
-    assert_eq!(e.0[0].span, Some(at(src, inner, 0)));
+    let d = bed(src);
+    let e = validate(&d, &Limits::default()).unwrap_err();
+    let (rule, order, length, width) = ("R1".into(), 2, 0.0, 1.0);
+    let deep = ErrorKind::Bed(BedError::OrderTooDeep {
+        rule,
+        order,
+        length,
+        width,
+    });
+    assert_eq!(e.first_kind(), Some(&deep));
+    assert_eq!(e.0[0].span, Some(at(src, "R1{}", 0)));
     // ... and so does drawing.
     assert!(segments(&d, Dfs).is_err());
 }
