@@ -359,10 +359,8 @@ fn a_root_on_another_roots_point_is_warned_about() {
 #[test]
 fn check_lists_a_forests_roots_briefly() {
     let summary = |text: &str| {
-        let opts = GrowOptions::default();
-        let loaded =
-            stlc::pipeline::load(text.as_bytes(), stlc::syntax::InputKind::Od, &opts.limits)
-                .unwrap();
+        let (opts, od) = (GrowOptions::default(), stlc::syntax::InputKind::Od);
+        let loaded = stlc::pipeline::load(text.as_bytes(), od, &opts.limits).unwrap();
         stlc::pipeline::check(&loaded, &opts).unwrap().summary
     };
     let said = summary(&example_text("grove.od"));
@@ -373,10 +371,9 @@ fn check_lists_a_forests_roots_briefly() {
     let ten = format!("T {roots} L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED");
     let s = summary(&ten);
     let line = s.lines().find(|l| l.starts_with("  roots")).unwrap();
-    assert_eq!(
-        line,
-        "  roots       10 (a forest): (0, 0) (100, 0) (200, 0) (300, 0) (400, 0) (500, 0) ... and 4 more"
-    );
+    let six = "(0, 0) (100, 0) (200, 0) (300, 0) (400, 0) (500, 0)";
+    let want = format!("  roots       10 (a forest): {six} ... and 4 more");
+    assert_eq!(line, want);
 }
 
 /// Two binary trees far apart, three levels each, lengths 15, 10, 5 and
