@@ -117,26 +117,20 @@ fn png_sized(file: &str, depth: u32, exact: bool, size: Option<&str>) -> tiny_sk
 /// at least half inked (largest channel difference from the corner's
 /// background over 127) of each.
 fn compare(a: &tiny_skia::Pixmap, b: &tiny_skia::Pixmap) -> (f64, u64, u64) {
-    let d = |p: &tiny_skia::PremultipliedColorU8, q: &tiny_skia::PremultipliedColorU8| {
-        [
-            p.red().abs_diff(q.red()),
-            p.green().abs_diff(q.green()),
-            p.blue().abs_diff(q.blue()),
-            p.alpha().abs_diff(q.alpha()),
-        ]
-        .into_iter()
-        .max()
-        .unwrap_or(0)
+    let channels = |p: tiny_skia::PremultipliedColorU8| [p.red(), p.green(), p.blue(), p.alpha()];
+    let d = |p, q| {
+        let (p, q) = (channels(p), channels(q));
+        (0..4).map(|k| p[k].abs_diff(q[k])).max().unwrap()
     };
     let sum: u64 = a
         .pixels()
         .iter()
         .zip(b.pixels())
-        .map(|(p, q)| u64::from(d(p, q)))
+        .map(|(p, q)| u64::from(d(*p, *q)))
         .sum();
     let inked = |m: &tiny_skia::Pixmap| {
         let bg = m.pixels()[0];
-        m.pixels().iter().filter(|p| d(p, &bg) > 127).count() as u64
+        m.pixels().iter().filter(|p| d(**p, bg) > 127).count() as u64
     };
     (sum as f64 / a.pixels().len() as f64, inked(a), inked(b))
 }
