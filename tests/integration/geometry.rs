@@ -356,34 +356,29 @@ fn a_straight_run_is_drawn_as_its_chords() {
 #[test]
 fn depth_57_renders_at_a_level_of_detail_and_exact_refuses() {
     let dir = tempfile::tempdir().unwrap();
-    let lsys = support_path("examples/abop-1.24a.lsys");
+    let lsys = crate::support::manifest_path("examples/abop-1.24a.lsys");
+    let lsys = lsys.display();
     let render = |flags: &str, out: &str| {
         let out = dir.path().join(out);
-        let to = out.display();
-        stlc_line(&format!("render {lsys} --depth 57 {flags} -o {to}")).assert()
+        let line = format!("render {lsys} --depth 57 {flags} -o {}", out.display());
+        crate::support::outcome(&mut stlc_line(&line))
     };
-    render("--size 200x200", "t.png").success();
+    assert_eq!(render("--size 200x200", "t.png").0, 0);
     let pixmap = tiny_skia::Pixmap::load_png(dir.path().join("t.png")).unwrap();
     assert_eq!((pixmap.width(), pixmap.height()), (200, 200));
     // Something is drawn in the middle column (the trunk), not everywhere.
     let dark = pixmap.pixels().iter().filter(|p| p.red() < 128).count();
     assert!(dark > 200 && dark < 200 * 200 / 2, "{dark}");
-    render("--size 200x200", "t.svg").success();
+    assert_eq!(render("--size 200x200", "t.svg").0, 0);
     let text = std::fs::read_to_string(dir.path().join("t.svg")).unwrap();
     // A few thousand stand-ins at 200 px: well under a megabyte.
     assert!(text.len() < 1_000_000, "{}", text.len());
     assert!(text.contains("<path"));
-    render("--exact", "x.png")
-        .failure()
-        .stderr(predicates::str::contains("--max-symbols"));
+    let (code, _, err) = render("--exact", "x.png");
+    assert!(code != 0 && err.contains("--max-symbols"), "{err}");
     // And the limit still holds at a level of detail: visits are counted.
-    render("--max-symbols 1000", "y.png")
-        .failure()
-        .stderr(predicates::str::contains("level of detail"));
-}
-
-fn support_path(rel: &str) -> String {
-    crate::support::manifest_path(rel).display().to_string()
+    let (code, _, err) = render("--max-symbols 1000", "y.png");
+    assert!(code != 0 && err.contains("level of detail"), "{err}");
 }
 
 // ------------------------------------- walk or exact path: the decision --
