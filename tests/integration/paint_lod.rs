@@ -12,12 +12,8 @@ fn near(png: &tiny_skia::Pixmap, rgb: [u8; 3]) -> (usize, usize) {
     for p in png.pixels() {
         let c = p.demultiply();
         let px = [c.red(), c.green(), c.blue()];
-        if px.iter().any(|&v| v < 200) {
-            inked += 1;
-        }
-        if px.iter().zip(rgb).all(|(&a, b)| a.abs_diff(b) <= 40) {
-            near += 1;
-        }
+        inked += usize::from(px.iter().any(|&v| v < 200));
+        near += usize::from(px.iter().zip(rgb).all(|(&a, b)| a.abs_diff(b) <= 40));
     }
     (near, inked)
 }
