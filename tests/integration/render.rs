@@ -163,11 +163,8 @@ fn svg_strokes(svg: &str) -> Vec<(f64, Vec<(Point, Point)>)> {
             let mut at = Point::default();
             let mut letters = d.chars().filter(|c| *c == 'M' || *c == 'L');
             for coords in d.split(['M', 'L']).skip(1) {
-                let v: Vec<f64> = coords
-                    .split_whitespace()
-                    .map(|n| n.parse().unwrap())
-                    .collect();
-                let p = Point::new(v[0], v[1]);
+                let mut v = coords.split_whitespace().map(|n| n.parse().unwrap());
+                let p = Point::new(v.next().unwrap(), v.next().unwrap());
                 if letters.next() == Some('L') {
                     segs.push((at, p));
                 }
