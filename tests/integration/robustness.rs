@@ -14,9 +14,16 @@ use crate::stl::bed;
 use crate::support::{limits_with, od};
 use stlc::bed::validate;
 use stlc::bed::write::write;
-use stlc::diag::{
-    BedError, Diagnostics, ErrorKind, GrowError, InputError, LayoutError, LsysError, StlError,
+use stlc::diag::BedError::OrderTooDeep;
+use stlc::diag::Diagnostics;
+use stlc::diag::ErrorKind::{self, Bed, Grow, Input, Layout, Lsys, Stl};
+use stlc::diag::GrowError::RootOutside;
+use stlc::diag::InputError::{
+    InputTooLarge, NestingTooDeep, NotFinite, NotUtf8, Syntax, Unbalanced,
 };
+use stlc::diag::LayoutError::{EmptyRegion, ShapeSizeNotPositive, TooFewPoints};
+use stlc::diag::LsysError::{MalformedNumber, MissingKey, NotPositive, NumberTooLarge, UnknownKey};
+use stlc::diag::StlError::{NegativeDecrement, StemSizeNotPositive};
 use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::limits::Limits;
 use stlc::model::{Description, Format, Shape};
@@ -103,7 +110,7 @@ fn nest(n: usize, open: &str, inner: &str, close: &str) -> String {
 
 /// The error of nesting past `limit` levels.
 fn too_deep(limit: usize) -> ErrorKind {
-    ErrorKind::Input(InputError::NestingTooDeep { limit })
+    Input(NestingTooDeep { limit })
 }
 
 /// The default limits with nesting allowed to a million levels.
@@ -168,7 +175,7 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     // An unbalanced one is still pointed at, at its opening bracket.
     let src = format!("axiom F{}\nangle 90\n", "[".repeat(N));
     let e = lsys_err(src, limits);
-    let want = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
+    let want = Some(&Input(Unbalanced('[')));
     assert_eq!(e.first_kind(), want);
 }
 
@@ -211,7 +218,7 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     let repeats = seeded(nest(N, "[I 2 ", "R1", "]"));
     let at = repeats.find("[I").unwrap();
     let e = stl_err(repeats, Format::Bed, limits);
-    let wanted = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
+    let wanted = Some(&Input(Unbalanced('[')));
     assert_eq!(e.first_kind(), wanted, "{e}");
     assert_eq!(e.0[0].span, Some(at..at + 1));
 }
@@ -370,7 +377,7 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         let e = lsys_err(src.clone(), Limits::default());
         assert_first!(
             e,
-            ErrorKind::Lsys(LsysError::NumberTooLarge { .. } | LsysError::MalformedNumber { .. }),
+            Lsys(NumberTooLarge { .. } | MalformedNumber { .. }),
             "{line}: {e}"
         );
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{line}");
@@ -380,7 +387,7 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         let e = lsys_err(src, Limits::default());
         assert_first!(
             e,
-            ErrorKind::Lsys(LsysError::NotPositive { .. } | LsysError::NumberTooLarge { .. }),
+            Lsys(NotPositive { .. } | NumberTooLarge { .. }),
             "{line}: {e}"
         );
     }
@@ -397,11 +404,7 @@ fn stl_numbers_that_overflow_are_refused() {
     ] {
         let at = src.find(needle).unwrap();
         let e = bed_err(src);
-        assert_first!(
-            e,
-            ErrorKind::Input(InputError::NotFinite { .. }),
-            "{src}: {e}"
-        );
+        assert_first!(e, Input(NotFinite { .. }), "{src}: {e}");
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{src}");
     }
     // `NaN` and `inf` are not numbers in the grammar at all.
@@ -410,7 +413,7 @@ fn stl_numbers_that_overflow_are_refused() {
         "T (0, 0) L=inf(0) B=1(0) RULE R1: [F]",
     ] {
         let e = bed_err(src);
-        assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src}: {e}");
+        assert_first!(e, Input(Syntax(_)), "{src}: {e}");
     }
 }
 
@@ -424,9 +427,7 @@ fn zero_and_negative_sizes_are_refused() {
         let e = bed_err(src);
         assert_first!(
             e,
-            ErrorKind::Stl(
-                StlError::StemSizeNotPositive { .. } | StlError::NegativeDecrement { .. }
-            ),
+            Stl(StemSizeNotPositive { .. } | NegativeDecrement { .. }),
             "{src}: {e}"
         );
         let at = src.find(needle).unwrap();
@@ -445,20 +446,14 @@ fn zero_and_negative_sizes_are_refused() {
         let e = stl_err(src, Format::Od, Limits::default());
         assert_first!(
             e,
-            ErrorKind::Layout(
-                LayoutError::ShapeSizeNotPositive { .. } | LayoutError::TooFewPoints { .. }
-            ),
+            Layout(ShapeSizeNotPositive { .. } | TooFewPoints { .. }),
             "{shape}: {e}"
         );
     }
     // A decrement that runs the length out: the order where it happens.
     let d = bed("T (0, 0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{R1{}}} ENDSEED");
     let e = validate(&d, &Limits::default()).unwrap_err();
-    assert_first!(
-        e,
-        ErrorKind::Bed(BedError::OrderTooDeep { order: 2, .. }),
-        "{e}"
-    );
+    assert_first!(e, Bed(OrderTooDeep { order: 2, .. }), "{e}");
 }
 
 // ---------------------------------------------------------------- layout --
@@ -501,7 +496,7 @@ fn a_hundred_megabyte_input_is_refused_by_its_size_before_its_bytes_are_read() {
     let big = vec![0xff; 100 << 20];
     let e = precheck(&big, &Limits::default()).unwrap_err();
     let (size, limit) = (100 << 20, 64 << 20);
-    let too_large = ErrorKind::Input(InputError::InputTooLarge { size, limit });
+    let too_large = Input(InputTooLarge { size, limit });
     assert_eq!(e.first_kind(), Some(&too_large));
 }
 
@@ -524,22 +519,17 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
         let lossy = String::from_utf8_lossy(&bytes).into_owned();
         // As bytes: not UTF-8.
         let e = precheck(&bytes, &Limits::default()).unwrap_err();
-        assert_first!(e, ErrorKind::Input(InputError::NotUtf8(_)), "{e}");
+        assert_first!(e, Input(NotUtf8(_)), "{e}");
         // As text (replacement characters): a syntax error or a limit.
         let e = lsys_err(lossy.clone(), Limits::default());
         assert_first!(
             e,
-            ErrorKind::Input(InputError::Syntax(_) | InputError::NestingTooDeep { .. })
-                | ErrorKind::Lsys(LsysError::UnknownKey { .. } | LsysError::MissingKey { .. }),
+            Input(Syntax(_) | NestingTooDeep { .. }) | Lsys(UnknownKey { .. } | MissingKey { .. }),
             "{e}"
         );
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(lossy.clone(), format, Limits::default());
-            assert_first!(
-                e,
-                ErrorKind::Input(InputError::Syntax(_) | InputError::NestingTooDeep { .. }),
-                "{e}"
-            );
+            assert_first!(e, Input(Syntax(_) | NestingTooDeep { .. }), "{e}");
         }
     }
 }
@@ -549,12 +539,12 @@ fn invalid_utf8_is_refused_with_its_offset_by_both_parsers_entry() {
     let mut bytes = b"axiom F\nangle 90\n# caf".to_vec();
     bytes.extend_from_slice(&[0xc3, 0x28]);
     let e = precheck(&bytes, &Limits::default()).unwrap_err();
-    let want = Some(&ErrorKind::Input(InputError::NotUtf8(22)));
+    let want = Some(&Input(NotUtf8(22)));
     assert_eq!(e.first_kind(), want);
     assert_eq!(e.0[0].span, Some(22..22));
     // A UTF-16 file (BOM FF FE) fails at byte 0.
     let e = precheck(b"\xff\xfea\0x\0", &Limits::default()).unwrap_err();
-    let want = Some(&ErrorKind::Input(InputError::NotUtf8(0)));
+    let want = Some(&Input(NotUtf8(0)));
     assert_eq!(e.first_kind(), want);
 }
 
@@ -567,7 +557,7 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
         assert!(holds, "{src:?}: {missing:?}");
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(src.into(), format, Limits::default());
-            assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src:?}: {e}");
+            assert_first!(e, Input(Syntax(_)), "{src:?}: {e}");
             assert_eq!(e.0.len(), 1);
         }
     }
@@ -585,7 +575,7 @@ fn a_layout_whose_shapes_cancel_leaves_nothing_to_grow_in() {
     let src = "T (5, 5) L=1(0) B=1(0) RULE R1: [+F][-F] \
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 (clWhite) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
-    assert_first!(e, ErrorKind::Layout(LayoutError::EmptyRegion), "{e}");
+    assert_first!(e, Layout(EmptyRegion), "{e}");
     let at = src.find("LAYOUT").unwrap();
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), Some(at));
 }
@@ -595,7 +585,7 @@ fn a_root_outside_the_layout_is_refused_at_the_root() {
     let src = "T (50, 50) L=1(0) B=1(0) RULE R1: [+F][-F] \
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
-    assert_first!(e, ErrorKind::Grow(GrowError::RootOutside { .. }), "{e}");
+    assert_first!(e, Grow(RootOutside { .. }), "{e}");
     assert_eq!(e.0[0].span, Some(2..10));
 }
 
