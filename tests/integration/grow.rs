@@ -70,10 +70,9 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
 /// [`draw_bed`] for one tree.
 fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
     enum Task<'a> {
-        Text(&'a str),
+        Text(std::borrow::Cow<'a, str>),
         Term(Term<'a>),
         Op(Op),
-        Fixed(&'a Fixed),
     }
     fn fixed_text(f: &Fixed) -> String {
         let mut w = "F".to_string();
@@ -88,8 +87,8 @@ fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
     let mut stack: Vec<Task> = Vec::new();
     for item in seed.items.iter().rev() {
         stack.push(match item {
-            SeedItem::Draw(d) => Task::Text(&d.text),
-            SeedItem::Fixed(f) => Task::Fixed(f),
+            SeedItem::Draw(d) => Task::Text((&d.text).into()),
+            SeedItem::Fixed(f) => Task::Text(fixed_text(f).into()),
             SeedItem::Term(t) => {
                 let t = seed.term(*t);
                 assert!(!t.bare(), "a BED has no bare terms");
@@ -101,10 +100,6 @@ fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
     while let Some(t) = stack.pop() {
         match t {
             Task::Text(s) => s.chars().filter_map(Op::of_stl).for_each(|o| it.apply(o)),
-            Task::Fixed(f) => fixed_text(f)
-                .chars()
-                .filter_map(Op::of_stl)
-                .for_each(|o| it.apply(o)),
             Task::Op(o) => it.apply(o),
             Task::Term(term) => {
                 let rule = bed.rule(term.rule());
@@ -113,14 +108,14 @@ fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
                 let mut k = 0;
                 for item in &rule.body.items {
                     match item {
-                        BodyItem::Draw(d) => seq.push(Task::Text(&d.text)),
-                        BodyItem::Fixed(f) => seq.push(Task::Fixed(f)),
+                        BodyItem::Draw(d) => seq.push(Task::Text((&d.text).into())),
+                        BodyItem::Fixed(f) => seq.push(Task::Text(fixed_text(f).into())),
                         BodyItem::Branch(b) => {
                             seq.push(Task::Op(Op::Push));
                             for piece in &b.pieces {
                                 match piece {
-                                    Piece::Draw(d) => seq.push(Task::Text(&d.text)),
-                                    Piece::Fixed(f) => seq.push(Task::Fixed(f)),
+                                    Piece::Draw(d) => seq.push(Task::Text((&d.text).into())),
+                                    Piece::Fixed(f) => seq.push(Task::Text(fixed_text(f).into())),
                                 }
                             }
                             match term.slot(k) {
