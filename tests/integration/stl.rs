@@ -530,19 +530,13 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         assert!(text.ends_with("  }\n}\nENDSEED\n"));
         // Linear in depth, so the deep file reads back too.
         assert_eq!(bed(&text), d);
-        let limits = Limits::default();
-        let mut out = Vec::new();
-        stlc::bed::Bed::new(d.clone(), &limits)
-            .and_then(|bed| expand(&bed, Dfs, &limits, &mut out, &mut NoProgress))
-            .unwrap();
+        let out = expanded(&d, Dfs);
         assert_eq!(out.len(), 3 * n + 1);
-        assert!(out.starts_with(b"[F[F"));
+        assert!(out.starts_with("[F[F"));
         // bfs rewrites the whole word once per level (quadratic here), so
         // it is compared on the first 500 levels only.
         assert_eq!(segments(&d, Dfs).unwrap().len(), n);
-        let m = 500;
-        let src = nested(m);
-        let small = bed(&src);
+        let small = bed(&nested(500));
         let wanted = segments(&small, Dfs).unwrap();
         assert_eq!(segments(&small, Bfs).unwrap(), wanted);
         drop(d);
