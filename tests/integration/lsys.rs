@@ -486,11 +486,7 @@ pub const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
 /// A system of random words: the axiom (`F` if empty) and the rules of
 /// `F A B +` that are not empty, in that order.
 pub fn source(axiom: String, rules: &[String], angle: f64, heading: f64) -> String {
-    let axiom = if axiom.is_empty() {
-        "F".to_string()
-    } else {
-        axiom
-    };
+    let axiom = if axiom.is_empty() { "F" } else { &axiom };
     let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
     for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(rules) {
         if !succ.is_empty() {
