@@ -15,7 +15,7 @@ use stlc::syntax::lsys::parse;
 
 use crate::lsys::{expanded_of, segments_of as segments, sys};
 use crate::support::stlc_stdout as render;
-use crate::support::{limits_with, manifest_path, outcome, stlc_line};
+use crate::support::{limits_with, manifest_path, outcome, stlc_line, stlc_piped};
 
 fn word(s: &LSystem, depth: u32, strategy: Derivation) -> String {
     expanded_of(s, depth, strategy).trim_end().to_string()
@@ -126,16 +126,12 @@ proptest! {
 fn the_seed_selects_the_plant() {
     let file = manifest_path("examples/abop-1.27.lsys");
     let f = file.to_str().unwrap();
-    let png = |extra: &[&str]| {
-        let mut a = vec!["render", f, "-o", "-", "--size", "120x120"];
-        a.extend_from_slice(extra);
-        render(&a)
-    };
-    let one = png(&["--seed", "1"]);
-    assert_eq!(one, png(&["--seed", "1"]));
-    assert_ne!(one, png(&["--seed", "2"]));
-    assert_eq!(one, png(&["--seed", "1", "--exact"]));
-    assert_eq!(one, png(&["--seed", "1", "--strategy", "bfs"]));
+    let png = |extra: &str| stlc_piped(&format!("render {f} -o - --size 120x120 {extra}"), "");
+    let one = png("--seed 1");
+    assert_eq!(one, png("--seed 1"));
+    assert_ne!(one, png("--seed 2"));
+    assert_eq!(one, png("--seed 1 --exact"));
+    assert_eq!(one, png("--seed 1 --strategy bfs"));
     // The seed key, and the flag over it.
     let dir = tempfile::tempdir().unwrap();
     let keyed = dir.path().join("keyed.lsys");
