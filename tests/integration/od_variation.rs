@@ -401,15 +401,8 @@ fn decision_trees(growth: GrowthOrder) -> Vec<usize> {
 fn bfs_interleaves_trees_by_level_and_dfs_grows_them_in_root_order() {
     // Levels of 1, 2, 4 applications per tree.
     let bfs = decision_trees(GrowthOrder::Bfs);
-    let level = |t: usize, n: usize| std::iter::repeat_n(t, n);
-    let expected: Vec<usize> = level(0, 1)
-        .chain(level(1, 1))
-        .chain(level(0, 2))
-        .chain(level(1, 2))
-        .chain(level(0, 4))
-        .chain(level(1, 4))
-        .collect();
-    assert_eq!(bfs, expected);
+    let levels = [1, 2, 4].map(|n| [vec![0; n], vec![1; n]].concat());
+    assert_eq!(bfs, levels.concat());
     let dfs = decision_trees(GrowthOrder::Dfs);
     assert_eq!(dfs, [vec![0; 7], vec![1; 7]].concat());
 }
