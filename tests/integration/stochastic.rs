@@ -404,11 +404,9 @@ fn stochastic_rule_forms() {
 fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
     let dir = tempfile::tempdir().unwrap();
     let run = |text: &str, flags: &str| {
-        let f = dir.path().join("s.lsys");
-        std::fs::write(&f, text).unwrap();
         let png = dir.path().join("s.png");
-        let line = format!("render {} -o {} {flags}", f.display(), png.display());
-        let (code, _, err) = outcome(&mut stlc_line(&line));
+        let line = format!("render - --from lsys -o {} {flags}", png.display());
+        let (code, _, err) = outcome(stlc_line(&line).write_stdin(text));
         (Some(code), err)
     };
     // Every choice doubles: 2^20 symbols, over a tenth of 10^6 at once.
@@ -437,11 +435,8 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
 /// scientific notation where six decimals would show nothing.
 #[test]
 fn a_tiny_probability_is_not_printed_as_zero() {
-    let dir = tempfile::tempdir().unwrap();
-    let f = dir.path().join("tiny.lsys");
     let text = "generations 2\naxiom F\nangle 30\nrule F (1e-300) -> F[+F]\nrule F (1) -> F[-F]\n";
-    std::fs::write(&f, text).unwrap();
-    let (_, out, _) = outcome(&mut stlc_line(&format!("check {}", f.display())));
+    let out = stlc_piped("check - --from lsys", text);
     let text = String::from_utf8_lossy(&out);
     assert!(text.contains("(probability 1e-300)"), "{text}");
     assert!(text.contains("(probability 1)"), "{text}");
