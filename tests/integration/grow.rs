@@ -61,10 +61,8 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
         let seed = t.seed.as_ref().expect("a grown forest has a seed per root");
         trees.push((t.root, seed));
     }
-    trees
-        .into_iter()
-        .flat_map(|(root, seed)| draw_tree(bed, root, seed))
-        .collect()
+    let tree = |(root, seed)| draw_tree(bed, root, seed);
+    trees.into_iter().flat_map(tree).collect()
 }
 
 /// [`draw_bed`] for one tree.
@@ -279,10 +277,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
                 continue; // the seed is drawn as given
             }
             let l = line(s);
-            let d = boundary
-                .iter()
-                .map(|e| Euclidean.distance(&l, e))
-                .fold(f64::INFINITY, f64::min);
+            let distances = boundary.iter().map(|e| Euclidean.distance(&l, e));
+            let d = distances.fold(f64::INFINITY, f64::min);
             let r = radius(s);
             let ok = d >= r - tol;
             assert!(ok, "the stroke of {s:?} pokes out of the region: {d} < {r}");
@@ -290,10 +286,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
     }
     // Pairwise clearance with the joint exception, brute force over the
     // pairs whose x spans come within the largest clearance needed.
-    let spans: Vec<(f64, f64)> = segs
-        .iter()
-        .map(|s| (s.from.x.min(s.to.x), s.from.x.max(s.to.x)))
-        .collect();
+    let span = |s: &Segment| (s.from.x.min(s.to.x), s.from.x.max(s.to.x));
+    let spans: Vec<(f64, f64)> = segs.iter().map(span).collect();
     let widest = segs.iter().map(radius).fold(0.0, f64::max);
     near_pairs(&spans, c + 2.0 * widest, |a, b| {
         let (s, t) = (&segs[a], &segs[b]);

@@ -338,11 +338,8 @@ fn a_root_on_another_roots_point_is_warned_about() {
     };
     let text = &forest("(10, 0) (30, 0) (10, 0) (0, -0) (0, 0)");
     let g = grown(&od(text), GrowthOrder::Bfs, 0);
-    let shared: Vec<_> = g
-        .warnings
-        .iter()
-        .filter(|w| matches!(w.kind, Grow(SharedRoot { .. })))
-        .collect();
+    let is_shared = |w: &&stlc::Diagnostic| matches!(w.kind, Grow(SharedRoot { .. }));
+    let shared: Vec<_> = g.warnings.iter().filter(is_shared).collect();
     assert_eq!(shared.len(), 1, "the first repeat only: {:?}", g.warnings);
     assert_eq!(shared[0].kind, Grow(SharedRoot { root: 3, first: 1 }));
     let third = text.rfind("(10, 0)").unwrap();

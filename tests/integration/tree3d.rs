@@ -206,15 +206,13 @@ fn show_layout_paints_the_volumes_of_a_3d_tree() {
     };
     assert!(!svg(None).contains("#aad5aa"));
     let shown = svg(Some("--show-layout"));
-    let line = shown
-        .lines()
-        .find(|l| l.contains("fill=\"#aad5aa\""))
-        .unwrap_or_else(|| panic!("{shown}"));
+    let line = shown.lines().find(|l| l.contains("fill=\"#aad5aa\""));
+    let line = line.unwrap_or_else(|| panic!("{shown}"));
     // The points of a path's `d`, as (xs, ys).
     let points = |line: &str| -> (Vec<f64>, Vec<f64>) {
         let d = line.split("d=\"").nth(1).unwrap();
-        let v: Vec<f64> = d
-            .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+        let numbers = d.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'));
+        let v: Vec<f64> = numbers
             .filter(|t| !t.is_empty())
             .map(|t| t.parse().unwrap())
             .collect();
