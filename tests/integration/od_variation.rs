@@ -136,10 +136,11 @@ fn every_application_chooses_and_the_bed_names_the_choice() {
         expected.push(format!("R1.{}", table.pick(key) + 1));
         key = key.child(0);
     }
+    let applied = |l: &&str| l.starts_with("R1.") && l.contains('{');
     let found: Vec<&str> = text
         .lines()
         .map(str::trim)
-        .filter(|l| l.starts_with("R1.") && l.contains('{'))
+        .filter(applied)
         .map(|l| &l[..4])
         .collect();
     assert_eq!(found, expected);
@@ -383,11 +384,8 @@ const FAR_APART: &str =
 fn decision_trees(growth: GrowthOrder) -> Vec<usize> {
     let d = od(FAR_APART);
     let (_, placed) = grow_traced(&d, &opts(growth), &mut NoProgress).unwrap();
-    let mut trees: Vec<(u64, usize)> = placed
-        .iter()
-        .filter(|s| s.decision > 0)
-        .map(|s| (s.decision, usize::from(s.from.x > 500.0)))
-        .collect();
+    let tree = |s: &stlc::grow::PlacedStem| (s.decision, usize::from(s.from.x > 500.0));
+    let mut trees: Vec<(u64, usize)> = placed.iter().filter(|s| s.decision > 0).map(tree).collect();
     trees.dedup();
     trees.into_iter().map(|(_, t)| t).collect()
 }

@@ -110,13 +110,9 @@ pub(crate) fn analyse(points: &[[f64; 3]], tris: &[[usize; 3]]) -> Body {
                 / 6.0
         })
         .sum();
-    let min = [0, 1, 2].map(|i| points.iter().map(|p| p[i]).fold(f64::INFINITY, f64::min));
-    let max = [0, 1, 2].map(|i| {
-        points
-            .iter()
-            .map(|p| p[i])
-            .fold(f64::NEG_INFINITY, f64::max)
-    });
+    let axis = |i: usize| points.iter().map(move |p| p[i]);
+    let min = [0, 1, 2].map(|i| axis(i).fold(f64::INFINITY, f64::min));
+    let max = [0, 1, 2].map(|i| axis(i).fold(f64::NEG_INFINITY, f64::max));
     Body {
         triangles: tris.len(),
         vertices: points.len(),

@@ -251,7 +251,7 @@ fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
 /// examples, both growth orders.
 #[test]
 fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
-    use stlc::grow::{GrowthOrder, grow_traced};
+    use stlc::grow::{GrowthOrder, PlacedStem, grow_traced};
     use stlc::interpret::{Derivation::Dfs, bed3::draw3};
     use stlc::progress::NoProgress;
     for name in ["examples/oak3d.od", "examples/forest3d.od"] {
@@ -260,10 +260,8 @@ fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
             let opts = crate::support::opts(growth);
             let (grown, placed) = grow_traced(&od, &opts, &mut NoProgress).unwrap();
             let key = |a: [f64; 6]| a.map(f64::to_bits);
-            let mut grew: Vec<[u64; 6]> = placed
-                .iter()
-                .map(|p| key([p.from.x, p.from.y, p.z[0], p.to.x, p.to.y, p.z[1]]))
-                .collect();
+            let ends = |p: &PlacedStem| key([p.from.x, p.from.y, p.z[0], p.to.x, p.to.y, p.z[1]]);
+            let mut grew: Vec<[u64; 6]> = placed.iter().map(ends).collect();
             let mut drawn = Vec::new();
             let mut push = |s: stlc::turtle::turtle3::Segment3| {
                 let (a, b) = (s.from, s.to);
