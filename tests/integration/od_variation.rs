@@ -421,12 +421,8 @@ fn each_root_grows_the_seed_and_the_bed_lists_the_roots() {
 /// invariants of grow.rs hold between the trees of every example forest.)
 #[test]
 fn trees_share_the_occupancy() {
-    let layout = "LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT";
-    let roots = |r: &str| {
-        od(&format!(
-            "A {r} L=10(0) B=1(0) RULE R1: [+F][-F] SEED FF R1 ENDSEED {layout}"
-        ))
-    };
+    let layout = "SEED FF R1 ENDSEED LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT";
+    let roots = |r: &str| od(&format!("A {r} L=10(0) B=1(0) RULE R1: [+F][-F] {layout}"));
     let one = grown(&roots("(50,190)"), GrowthOrder::Bfs, 0).stems;
     let g = grown(&roots("(50,190) (90,190)"), GrowthOrder::Bfs, 0);
     let two = g.stems;

@@ -380,10 +380,8 @@ fn the_work_over_all_generations_counts_against_the_budget() {
 /// (690) it is refused at generation 3 with 24.
 #[test]
 fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
-    let src = format!(
-        "angle 90\naxiom B(0){}\nrule B(y) < A(x) ->\nrule A(x) -> A(x+1)\n",
-        "A(0)".repeat(9)
-    );
+    let nine = "A(0)".repeat(9);
+    let src = format!("angle 90\naxiom B(0){nine}\nrule B(y) < A(x) ->\nrule A(x) -> A(x+1)\n");
     let sys = parse(&src, &Limits::default()).unwrap();
     let run = |max_symbols: u64| {
         let limits = limits_with(|l| l.max_symbols = max_symbols);

@@ -347,10 +347,8 @@ fn a_wide_alphabet_at_the_depth_limit_is_refused_with_its_exact_length() {
     // (symbol, depth) pair would be 4.8 GB. Only `F` has a rule, so only
     // its lengths are carried from level to level.
     // (U+FEFF, the byte-order mark, is blank space to the parser.)
-    let alphabet: String = (0x4e00u32..0x4e00 + 60_000)
-        .filter_map(char::from_u32)
-        .filter(|&c| c != '\u{feff}')
-        .collect();
+    let chars = (0x4e00u32..0x4e00 + 60_000).filter_map(char::from_u32);
+    let alphabet: String = chars.filter(|&c| c != '\u{feff}').collect();
     let inert = alphabet.chars().count();
     let src = format!("axiom F{alphabet}\nrule F FF\nangle 90\n");
     let (e, drawn, tally) = drawn_to_depth_10000(src);
@@ -634,9 +632,9 @@ fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
             format!("({x:.3},{y:.3})")
         })
         .collect();
+    let star = star.join(",");
     let src = format!(
-        "T (500, 500) L=10(0) B=1(0) RULE R1: [-F][+F] LAYOUT (clGreen) Polygon {} ENDLAYOUT",
-        star.join(",")
+        "T (500, 500) L=10(0) B=1(0) RULE R1: [-F][+F] LAYOUT (clGreen) Polygon {star} ENDLAYOUT"
     );
     // A polygon of more points than the limit is refused before the parser
     // reads it, pointing at the shape; within a raised limit it parses and
