@@ -206,13 +206,10 @@ fn system() -> impl Strategy<Value = String> {
         1..5,
     );
     (succ.clone(), succ.clone(), succ, 0.05f64..0.95, 0u64..5).prop_map(|(a, b, c, p, seed)| {
+        let (a, b, c, q) = (a.concat(), b.concat(), c.concat(), 1.0 - p);
         format!(
-            "angle 30\nseed {seed}\naxiom A(1,2)B(3,4)\nrule A(x,y) : x < 4 -> {}\n\
-             rule B(x,y) ({p}) -> {}\nrule B(x,y) ({}) -> {}\n",
-            a.concat(),
-            b.concat(),
-            1.0 - p,
-            c.concat()
+            "angle 30\nseed {seed}\naxiom A(1,2)B(3,4)\nrule A(x,y) : x < 4 -> {a}\n\
+             rule B(x,y) ({p}) -> {b}\nrule B(x,y) ({q}) -> {c}\n"
         )
     })
 }
@@ -233,13 +230,11 @@ fn context_system() -> impl Strategy<Value = String> {
         1..4,
     );
     (succ.clone(), succ.clone(), succ, 0u32..4).prop_map(|(a, b, c, k)| {
+        let (a, b, c) = (a.concat(), b.concat(), c.concat());
         format!(
             "angle 30\nignore +F\naxiom A(1)B(2)[C(3)]A(4)C(5)\n\
-             rule B(y) < A(x) : x > {k} -> {}\nrule A(x) > C(y) -> {}\n\
-             rule A(y) < C(x) > B(z) -> {}\n",
-            a.concat(),
-            b.concat(),
-            c.concat()
+             rule B(y) < A(x) : x > {k} -> {a}\nrule A(x) > C(y) -> {b}\n\
+             rule A(y) < C(x) > B(z) -> {c}\n"
         )
     })
 }
