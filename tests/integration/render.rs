@@ -6,6 +6,7 @@
 //! `tests/cases/render/`, compared by [`crate::support`].
 
 use stlc::color::Rgb;
+use stlc::diag::RenderError::ImageSize;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError};
 use stlc::num::Linear;
 use stlc::progress::{NoProgress, Progress};
@@ -451,11 +452,8 @@ fn absurd_sizes_are_refused_before_drawing() {
         };
         let mut out = Vec::new();
         let err = render_plain(&mut drawing, ImageFormat::Png, Some(size), &mut out).unwrap_err();
-        let size = matches!(
-            err.first_kind(),
-            Some(ErrorKind::Render(RenderError::ImageSize { .. }))
-        );
-        assert!(size);
+        let size = matches!(err.first_kind(), Some(ErrorKind::Render(ImageSize { .. })));
+        assert!(size, "{err}");
         assert!(err.to_string().contains("--size"), "{err}");
         assert!(!called && out.is_empty());
     }

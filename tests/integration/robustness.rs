@@ -271,10 +271,8 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
 
 #[test]
 fn generations_in_the_millions_are_refused_with_limit() {
-    let e = lsys_err(
-        "generations 5000000\naxiom F\nangle 90\n".into(),
-        Limits::default(),
-    );
+    let src = "generations 5000000\naxiom F\nangle 90\n";
+    let e = lsys_err(src.into(), Limits::default());
     assert!(is_limit(&e, "generations"), "{e}");
     let d = &e.0[0];
     assert_eq!(d.span, Some(12..19));
