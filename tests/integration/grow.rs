@@ -712,10 +712,8 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     few.limits.max_stems = 5;
     let e = grow_err(&d, few);
     let seven = limit_kind(Bound::Stems, seed_alone, "7", 5);
-    assert_eq!(
-        e.0[0].kind, seven,
-        "the bare R1 is a growth point and counts nothing"
-    );
+    let why = "the bare R1 is a growth point and counts nothing";
+    assert_eq!(e.0[0].kind, seven, "{why}");
     // The seed (drawn first, R1 deferred) fills the limit: R1's application
     // would pass it, so growth stops with a warning and R1 is left out.
     let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F R1 F ENDSEED");
