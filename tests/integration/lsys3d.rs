@@ -67,9 +67,8 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
         ("F&F", [0.0, -1.0, 1.0], [0.0, -1.0, 0.0, 0.0, 0.0, 1.0]),
         ("F/+F", [0.0, -1.0, -1.0], [0.0, -1.0, -1.0, 0.0, 0.0, 0.0]),
     ] {
-        let j = stats_json(&format!(
-            "dimensions 3\nangle 90\ngenerations 0\naxiom {word}\n"
-        ));
+        let three = "dimensions 3\nangle 90\ngenerations 0\naxiom";
+        let j = stats_json(&format!("{three} {word}\n"));
         assert_eq!(numbers(&j["end"]), end, "{word}");
         assert_eq!(numbers(&j["bbox"]), bbox, "{word}");
         assert_eq!(j["segments"], "2");
