@@ -186,16 +186,11 @@ impl Recursion {
                     // Right angles exactly (the Hilbert curve's 4^31 steps
                     // would otherwise drift by cos(90 degrees) = 6e-17 each).
                     let deg = h.rem_euclid(360.0);
-                    let right = [
-                        (0.0, (1.0, 0.0)),
-                        (90.0, (0.0, 1.0)),
-                        (180.0, (-1.0, 0.0)),
-                        (270.0, (0.0, -1.0)),
-                    ];
-                    let (co, si) = right.iter().find(|(d, _)| *d == deg).map_or(
-                        (libm::cos(deg.to_radians()), libm::sin(deg.to_radians())),
-                        |r| r.1,
-                    );
+                    let quarter = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
+                    let right = deg % 90.0 == 0.0 && deg < 360.0;
+                    let rad = deg.to_radians();
+                    let exact = right.then(|| quarter[(deg / 90.0) as usize]);
+                    let (co, si) = exact.unwrap_or((libm::cos(rad), libm::sin(rad)));
                     let (dx, dy) = (sign * co, -sign * si);
                     if c == 'F' {
                         add(&mut bbox, x, y);
