@@ -23,7 +23,8 @@ pub fn sys(src: &str) -> LSystem {
     parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
 }
 
-fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
+/// The segments `src` draws at `depth`, with the default limits.
+pub fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
     segments_of(&sys(src), depth, strategy)
 }
 

@@ -3,6 +3,7 @@
 //! the parser reading back what `expand` writes, hostile inputs and the
 //! diagnostics that point at the text.
 
+use crate::lsys::segments;
 use crate::support::{example_text as example, limits_with};
 use proptest::prelude::*;
 use stlc::diag::Diagnostics;
@@ -481,11 +482,6 @@ fn classic_files_take_the_classic_path() {
 
 // ------------------------------------------------------------- turtle --
 
-fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
-    let sys = parse(src, &Limits::default()).unwrap();
-    crate::lsys::segments_of(&sys, depth, Dfs)
-}
-
 fn ends_3d(src: &str) -> Vec<stlc::turtle::turtle3::Segment3> {
     let sys = parse(src, &Limits::default()).unwrap();
     let (mut segs, limits) = (Vec::new(), Limits::default());
@@ -506,7 +502,7 @@ fn near(p: stlc::turtle::Point, x: f64, y: f64) -> bool {
 #[test]
 fn parametric_steps_and_turns_take_their_parameters() {
     // Up 2 x length 3, then a right turn of 90 degrees and half a step.
-    let s = ends_2d("angle 10\nlength 3\naxiom F(2)-(90)F(0.5)f(1)F\n", 0);
+    let s = segments("angle 10\nlength 3\naxiom F(2)-(90)F(0.5)f(1)F\n", 0, Dfs);
     assert_eq!(s.len(), 3);
     assert!(near(s[0].to, 0.0, -6.0), "{:?}", s[0]);
     assert!(near(s[1].to, 1.5, -6.0), "{:?}", s[1]);
@@ -520,12 +516,13 @@ fn tropism_turns_the_heading_toward_t_by_e_times_the_sine() {
     // Up the canvas, T to the right: after the first step the frame turns
     // by e |H x T| = e radians toward +x.
     let e: f64 = 0.5;
-    let s = ends_2d("angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n", 0);
+    let bends = "angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n";
+    let s = segments(bends, 0, Dfs);
     assert!(near(s[0].to, 0.0, -1.0));
     assert!(close(s[1].to.x, libm::sin(e)), "{:?}", s[1]);
     assert!(close(s[1].to.y, -1.0 - libm::cos(e)), "{:?}", s[1]);
     // Without elasticity nothing bends.
-    let s = ends_2d("angle 10\ntropism 1 0 0\naxiom FF\n", 0);
+    let s = segments("angle 10\ntropism 1 0 0\naxiom FF\n", 0, Dfs);
     assert!(near(s[1].to, 0.0, -2.0));
 }
 
