@@ -200,12 +200,10 @@ fn oracle_region(od: &Description) -> MultiPolygon<f64> {
     let mut area = MultiPolygon::<f64>::new(vec![]);
     for s in &od.layout.as_ref().unwrap().shapes {
         let mut ring: Vec<Coord<f64>> = match &s.shape {
-            Shape::Rect { x, y, w, h } => vec![
-                Coord { x: *x, y: *y },
-                Coord { x: x + w, y: *y },
-                Coord { x: x + w, y: y + h },
-                Coord { x: *x, y: y + h },
-            ],
+            Shape::Rect { x, y, w, h } => {
+                let corners = [(*x, *y), (x + w, *y), (x + w, y + h), (*x, y + h)];
+                corners.map(Coord::from).to_vec()
+            }
             Shape::Polygon(p) => p.iter().map(|&(x, y)| Coord { x, y }).collect(),
             other => shape_ring(other)
                 .into_iter()
