@@ -6,17 +6,13 @@
 //! read `git diff`); CI never writes snapshots.
 
 use std::fs;
-use std::path::PathBuf;
 
-use assert_cmd::Command;
-
-fn errors_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/cases/errors")
-}
+use crate::support::{manifest_path, stlc};
 
 #[test]
 fn every_error_case_renders_a_pointed_report() {
-    let mut names: Vec<String> = fs::read_dir(errors_dir())
+    let dir = manifest_path("tests/cases/errors");
+    let mut names: Vec<String> = fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
@@ -28,12 +24,7 @@ fn every_error_case_renders_a_pointed_report() {
         } else {
             vec!["check", &name, "--color", "never"]
         };
-        let out = Command::cargo_bin("stlc")
-            .unwrap()
-            .current_dir(errors_dir())
-            .args(&args)
-            .output()
-            .unwrap();
+        let out = stlc().current_dir(&dir).args(&args).output().unwrap();
         assert_eq!(out.status.code(), Some(1), "{name} should fail with exit 1");
         assert!(out.stdout.is_empty(), "{name}: nothing on stdout");
         let stderr = String::from_utf8(out.stderr).unwrap();
@@ -54,7 +45,7 @@ fn every_bound_names_a_real_flag_with_its_default() {
         String::from_utf8(crate::support::stlc_piped(&format!("{command} --help"), "")).unwrap()
     };
     let helps = [help("render"), help("serve")];
-    let docs = fs::read_to_string(crate::support::manifest_path("docs/limits.md")).unwrap();
+    let docs = fs::read_to_string(manifest_path("docs/limits.md")).unwrap();
     for bound in stlc::Bound::ALL {
         let flag = format!("{} <{}>", bound.flag(), bound.value_name());
         let entry = helps

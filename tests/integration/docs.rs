@@ -22,26 +22,21 @@ fn blocks() -> Vec<(String, usize, InputKind, String)> {
         let text = fs::read_to_string(&file).unwrap();
         let mut current: Option<(usize, InputKind, String)> = None;
         for (n, line) in text.lines().enumerate() {
+            let fence = line.trim();
             match current.as_mut() {
-                Some((start, kind, body)) => {
-                    if line.trim_start().starts_with("```") {
-                        out.push((file.clone(), *start, *kind, std::mem::take(body)));
-                        current = None;
-                    } else {
-                        body.push_str(line);
-                        body.push('\n');
-                    }
+                Some((start, kind, body)) if fence.starts_with("```") => {
+                    out.push((file.clone(), *start, *kind, std::mem::take(body)));
+                    current = None;
                 }
+                Some((_, _, body)) => body.push_str(&format!("{line}\n")),
                 None => {
-                    let kind = match line.trim() {
+                    let kind = match fence {
                         "```od" => Some(InputKind::Od),
                         "```bed" => Some(InputKind::Bed),
                         "```lsys" => Some(InputKind::Lsys),
                         _ => None,
                     };
-                    if let Some(k) = kind {
-                        current = Some((n + 1, k, String::new()));
-                    }
+                    current = kind.map(|k| (n + 1, k, String::new()));
                 }
             }
         }

@@ -13,7 +13,7 @@ use stlc::model::lsys::LSystem;
 use stlc::progress::NoProgress;
 use stlc::turtle::{BBox, Bounds, Recorder, Segment, StandIn, Turtle};
 
-use crate::lsys::{sys, word};
+use crate::lsys::{ALPHABET, source, sys, word};
 use crate::support::stlc_line;
 
 /// Within `rel` of the larger magnitude (at least 1).
@@ -36,8 +36,6 @@ fn traversed(s: &LSystem, depth: u32) -> (Option<BBox>, stlc::turtle::Point, u64
 }
 
 // ------------------------------------------------- against a traversal --
-
-const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
 
 /// A turtle that records segments and stand-ins and asks for a level of
 /// detail.
@@ -104,13 +102,7 @@ proptest! {
         heading in prop_oneof![Just(90.0), Just(0.0), -720.0..720.0f64],
         depth in 0u32..=5,
     ) {
-        let axiom = if axiom.is_empty() { "F".to_string() } else { axiom };
-        let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
-        for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(&rules) {
-            if !succ.is_empty() {
-                src.push_str(&format!("rule {pred} -> {succ}\n"));
-            }
-        }
+        let src = source(axiom, &rules, angle, heading);
         let s = sys(&src);
         let (bbox, end, count) = traversed(&s, depth);
         let m: Measured = measure(&s, depth, s.length).unwrap();
@@ -153,12 +145,9 @@ struct Recursion {
 
 impl Recursion {
     fn new(s: &LSystem) -> Self {
+        let rules = s.rules.iter().map(|(k, p)| (*k, p[0].successor.clone()));
         Recursion {
-            rules: s
-                .rules
-                .iter()
-                .map(|(k, p)| (*k, p[0].successor.clone()))
-                .collect(),
+            rules: rules.collect(),
             angle: s.angle,
             memo: HashMap::new(),
         }
@@ -197,16 +186,11 @@ impl Recursion {
                     // Right angles exactly (the Hilbert curve's 4^31 steps
                     // would otherwise drift by cos(90 degrees) = 6e-17 each).
                     let deg = h.rem_euclid(360.0);
-                    let right = [
-                        (0.0, (1.0, 0.0)),
-                        (90.0, (0.0, 1.0)),
-                        (180.0, (-1.0, 0.0)),
-                        (270.0, (0.0, -1.0)),
-                    ];
-                    let (co, si) = right.iter().find(|(d, _)| *d == deg).map_or(
-                        (libm::cos(deg.to_radians()), libm::sin(deg.to_radians())),
-                        |r| r.1,
-                    );
+                    let quarter = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
+                    let right = deg % 90.0 == 0.0 && deg < 360.0;
+                    let rad = deg.to_radians();
+                    let exact = right.then(|| quarter[(deg / 90.0) as usize]);
+                    let (co, si) = exact.unwrap_or((libm::cos(rad), libm::sin(rad)));
                     let (dx, dy) = (sign * co, -sign * si);
                     if c == 'F' {
                         add(&mut bbox, x, y);
@@ -245,19 +229,15 @@ impl Recursion {
 
 #[test]
 fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
+    let hilbert = "axiom L\nrule L +RF-LFL-FR+\nrule R -LF+RFR+FL-\nangle 90\n";
+    let plant = "axiom X\nrule X F-[[X]+X]+F[+FX]-X\nrule F FF\nangle 22.5\nheading 80\n";
     let cases = [
         ("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\n", 30),
         ("axiom F\nrule F F[+F]F[-F]F\nangle 25.7\n", 57),
         ("axiom X\nrule X F[+X]F[-X]+X\nrule F FF\nangle 20\n", 40),
         ("axiom F--F--F\nrule F F+F--F+F\nangle 60\n", 30),
-        (
-            "axiom L\nrule L +RF-LFL-FR+\nrule R -LF+RFR+FL-\nangle 90\n",
-            31,
-        ),
-        (
-            "axiom X\nrule X F-[[X]+X]+F[+FX]-X\nrule F FF\nangle 22.5\nheading 80\n",
-            33,
-        ),
+        (hilbert, 31),
+        (plant, 33),
         ("axiom F|F\nrule F F[+F|f]F[-fF]|F\nangle 33.3\n", 30),
     ];
     for (src, depth) in cases {
@@ -274,13 +254,10 @@ fn memo_matches_an_independent_recursion_at_depth_30_and_more() {
         // agreement to 1e-9 of the drawing's size.
         let size = want.width().max(want.height());
         let tol = 1e-9 * size;
-        assert!(
-            (got.min_x - want.min_x).abs() <= tol
-                && (got.min_y - want.min_y).abs() <= tol
-                && (got.max_x - want.max_x).abs() <= tol
-                && (got.max_y - want.max_y).abs() <= tol,
-            "{src} at {depth}: {got:?} vs {want:?}"
-        );
+        let lo = [got.min_x - want.min_x, got.min_y - want.min_y];
+        let hi = [got.max_x - want.max_x, got.max_y - want.max_y];
+        let holds = lo.iter().chain(&hi).all(|d| d.abs() <= tol);
+        assert!(holds, "{src} at {depth}: {got:?} vs {want:?}");
         let (end, gx, gy) = (m.end, g.x, g.y);
         let near = (end.x - gx).abs() <= tol && (end.y - gy).abs() <= tol;
         assert!(near, "{src} at {depth}: end {end:?} vs ({gx}, {gy})");
@@ -339,13 +316,9 @@ fn level_of_detail_is_bounded_and_stays_in_the_box() {
     let slack = size * 1e-9;
     for seg in &fine.rec.segments {
         for p in [seg.from, seg.to] {
-            assert!(
-                p.x >= b.min_x - slack
-                    && p.x <= b.max_x + slack
-                    && p.y >= b.min_y - slack
-                    && p.y <= b.max_y + slack,
-                "{p:?} outside {b:?}"
-            );
+            let across = b.min_x - slack <= p.x && p.x <= b.max_x + slack;
+            let down = b.min_y - slack <= p.y && p.y <= b.max_y + slack;
+            assert!(across && down, "{p:?} outside {b:?}");
         }
     }
 }
@@ -378,34 +351,29 @@ fn a_straight_run_is_drawn_as_its_chords() {
 #[test]
 fn depth_57_renders_at_a_level_of_detail_and_exact_refuses() {
     let dir = tempfile::tempdir().unwrap();
-    let lsys = support_path("examples/abop-1.24a.lsys");
+    let lsys = crate::support::manifest_path("examples/abop-1.24a.lsys");
+    let lsys = lsys.display();
     let render = |flags: &str, out: &str| {
         let out = dir.path().join(out);
-        let to = out.display();
-        stlc_line(&format!("render {lsys} --depth 57 {flags} -o {to}")).assert()
+        let line = format!("render {lsys} --depth 57 {flags} -o {}", out.display());
+        crate::support::outcome(&mut stlc_line(&line))
     };
-    render("--size 200x200", "t.png").success();
+    assert_eq!(render("--size 200x200", "t.png").0, 0);
     let pixmap = tiny_skia::Pixmap::load_png(dir.path().join("t.png")).unwrap();
     assert_eq!((pixmap.width(), pixmap.height()), (200, 200));
     // Something is drawn in the middle column (the trunk), not everywhere.
     let dark = pixmap.pixels().iter().filter(|p| p.red() < 128).count();
     assert!(dark > 200 && dark < 200 * 200 / 2, "{dark}");
-    render("--size 200x200", "t.svg").success();
+    assert_eq!(render("--size 200x200", "t.svg").0, 0);
     let text = std::fs::read_to_string(dir.path().join("t.svg")).unwrap();
     // A few thousand stand-ins at 200 px: well under a megabyte.
     assert!(text.len() < 1_000_000, "{}", text.len());
     assert!(text.contains("<path"));
-    render("--exact", "x.png")
-        .failure()
-        .stderr(predicates::str::contains("--max-symbols"));
+    let (code, _, err) = render("--exact", "x.png");
+    assert!(code != 0 && err.contains("--max-symbols"), "{err}");
     // And the limit still holds at a level of detail: visits are counted.
-    render("--max-symbols 1000", "y.png")
-        .failure()
-        .stderr(predicates::str::contains("level of detail"));
-}
-
-fn support_path(rel: &str) -> String {
-    crate::support::manifest_path(rel).display().to_string()
+    let (code, _, err) = render("--max-symbols 1000", "y.png");
+    assert!(code != 0 && err.contains("level of detail"), "{err}");
 }
 
 // ------------------------------------- walk or exact path: the decision --

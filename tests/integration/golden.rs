@@ -31,10 +31,8 @@ fn compile(od_path: &Path, strategy: GrowthOrder) -> (String, u64) {
     let od = stl::parse(&text, Format::Od, &Limits::default())
         .unwrap_or_else(|e| panic!("{}: {e}", od_path.display()));
     let grown = grow(&od, &crate::support::opts(strategy), &mut NoProgress).unwrap();
-    (
-        stlc::bed::write::write(grown.bed.description()),
-        grown.stems,
-    )
+    let text = stlc::bed::write::write(grown.bed.description());
+    (text, grown.stems)
 }
 
 /// The `.bed` goldens on disk, by file name.
@@ -97,9 +95,6 @@ fn every_golden_reparses_and_rewrites_unchanged_and_draws_its_stems() {
 #[test]
 fn figures_9_and_10_differ_by_strategy() {
     let od = manifest_path("examples/fig9.od");
-    let (bfs, dfs) = (
-        compile(&od, GrowthOrder::Bfs).0,
-        compile(&od, GrowthOrder::Dfs).0,
-    );
+    let [bfs, dfs] = [GrowthOrder::Bfs, GrowthOrder::Dfs].map(|o| compile(&od, o).0);
     assert_ne!(bfs, dfs);
 }

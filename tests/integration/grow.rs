@@ -36,10 +36,8 @@ pub fn grown(od: &Description, o: GrowOptions) -> Grown {
 }
 
 fn grow_err(od: &Description, o: GrowOptions) -> Diagnostics {
-    let grown = grow(od, &o, &mut NoProgress);
-    grown
-        .map(|g| g.stems)
-        .expect_err("grew stems, expected an error")
+    let grown = grow(od, &o, &mut NoProgress).map(|g| g.stems);
+    grown.expect_err("grew stems, expected an error")
 }
 
 /// [`seed_text`] of what grew.
@@ -63,19 +61,16 @@ fn draw_bed(bed: &Description) -> Vec<Segment> {
         let seed = t.seed.as_ref().expect("a grown forest has a seed per root");
         trees.push((t.root, seed));
     }
-    trees
-        .into_iter()
-        .flat_map(|(root, seed)| draw_tree(bed, root, seed))
-        .collect()
+    let tree = |(root, seed)| draw_tree(bed, root, seed);
+    trees.into_iter().flat_map(tree).collect()
 }
 
 /// [`draw_bed`] for one tree.
 fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
     enum Task<'a> {
-        Text(&'a str),
+        Text(std::borrow::Cow<'a, str>),
         Term(Term<'a>),
         Op(Op),
-        Fixed(&'a Fixed),
     }
     fn fixed_text(f: &Fixed) -> String {
         let mut w = "F".to_string();
@@ -90,8 +85,8 @@ fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
     let mut stack: Vec<Task> = Vec::new();
     for item in seed.items.iter().rev() {
         stack.push(match item {
-            SeedItem::Draw(d) => Task::Text(&d.text),
-            SeedItem::Fixed(f) => Task::Fixed(f),
+            SeedItem::Draw(d) => Task::Text((&d.text).into()),
+            SeedItem::Fixed(f) => Task::Text(fixed_text(f).into()),
             SeedItem::Term(t) => {
                 let t = seed.term(*t);
                 assert!(!t.bare(), "a BED has no bare terms");
@@ -103,10 +98,6 @@ fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
     while let Some(t) = stack.pop() {
         match t {
             Task::Text(s) => s.chars().filter_map(Op::of_stl).for_each(|o| it.apply(o)),
-            Task::Fixed(f) => fixed_text(f)
-                .chars()
-                .filter_map(Op::of_stl)
-                .for_each(|o| it.apply(o)),
             Task::Op(o) => it.apply(o),
             Task::Term(term) => {
                 let rule = bed.rule(term.rule());
@@ -115,14 +106,14 @@ fn draw_tree(bed: &Description, root: (f64, f64), seed: &Seed) -> Vec<Segment> {
                 let mut k = 0;
                 for item in &rule.body.items {
                     match item {
-                        BodyItem::Draw(d) => seq.push(Task::Text(&d.text)),
-                        BodyItem::Fixed(f) => seq.push(Task::Fixed(f)),
+                        BodyItem::Draw(d) => seq.push(Task::Text((&d.text).into())),
+                        BodyItem::Fixed(f) => seq.push(Task::Text(fixed_text(f).into())),
                         BodyItem::Branch(b) => {
                             seq.push(Task::Op(Op::Push));
                             for piece in &b.pieces {
                                 match piece {
-                                    Piece::Draw(d) => seq.push(Task::Text(&d.text)),
-                                    Piece::Fixed(f) => seq.push(Task::Fixed(f)),
+                                    Piece::Draw(d) => seq.push(Task::Text((&d.text).into())),
+                                    Piece::Fixed(f) => seq.push(Task::Text(fixed_text(f).into())),
                                 }
                             }
                             match term.slot(k) {
@@ -209,12 +200,10 @@ fn oracle_region(od: &Description) -> MultiPolygon<f64> {
     let mut area = MultiPolygon::<f64>::new(vec![]);
     for s in &od.layout.as_ref().unwrap().shapes {
         let mut ring: Vec<Coord<f64>> = match &s.shape {
-            Shape::Rect { x, y, w, h } => vec![
-                Coord { x: *x, y: *y },
-                Coord { x: x + w, y: *y },
-                Coord { x: x + w, y: y + h },
-                Coord { x: *x, y: y + h },
-            ],
+            Shape::Rect { x, y, w, h } => {
+                let corners = [(*x, *y), (x + w, *y), (x + w, y + h), (*x, y + h)];
+                corners.map(Coord::from).to_vec()
+            }
             Shape::Polygon(p) => p.iter().map(|&(x, y)| Coord { x, y }).collect(),
             other => shape_ring(other)
                 .into_iter()
@@ -286,10 +275,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
                 continue; // the seed is drawn as given
             }
             let l = line(s);
-            let d = boundary
-                .iter()
-                .map(|e| Euclidean.distance(&l, e))
-                .fold(f64::INFINITY, f64::min);
+            let distances = boundary.iter().map(|e| Euclidean.distance(&l, e));
+            let d = distances.fold(f64::INFINITY, f64::min);
             let r = radius(s);
             let ok = d >= r - tol;
             assert!(ok, "the stroke of {s:?} pokes out of the region: {d} < {r}");
@@ -297,10 +284,8 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
     }
     // Pairwise clearance with the joint exception, brute force over the
     // pairs whose x spans come within the largest clearance needed.
-    let spans: Vec<(f64, f64)> = segs
-        .iter()
-        .map(|s| (s.from.x.min(s.to.x), s.from.x.max(s.to.x)))
-        .collect();
+    let span = |s: &Segment| (s.from.x.min(s.to.x), s.from.x.max(s.to.x));
+    let spans: Vec<(f64, f64)> = segs.iter().map(span).collect();
     let widest = segs.iter().map(radius).fold(0.0, f64::max);
     near_pairs(&spans, c + 2.0 * widest, |a, b| {
         let (s, t) = (&segs[a], &segs[b]);
@@ -332,6 +317,20 @@ fn check_invariants(od: &Description, g: &Grown) -> Vec<Segment> {
         }
     });
     segs
+}
+
+/// `d` grown in each order, the invariants checked on each, which drew
+/// more than `more_than` stems.
+fn grown_checked(d: &Description, more_than: usize, what: &str) -> Vec<Grown> {
+    let orders = [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space];
+    orders
+        .map(|s| {
+            let g = grown(d, opts(s));
+            let n = check_invariants(d, &g).len();
+            assert!(n > more_than, "{what} {s:?} grew only {n}");
+            g
+        })
+        .into()
 }
 
 // ---------------------------------------------------------- trees
@@ -381,18 +380,9 @@ fn invariants_hold_on_several_grown_trees() {
         R1: [+F[I 2 F[+F]F]][-FF R2]
         R2: [I 1 F[-F]][+F R1]
         LAYOUT (clGreen) Rectangle (0,0), 120, 120 ENDLAYOUT";
-    let trees = [
-        od(TWO_D_TREE),
-        figure_9_10(),
-        od(ellipse),
-        od(polygon),
-        od(fixed),
-    ];
-    for d in trees {
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-            let g = grown(&d, opts(s));
-            let segs = check_invariants(&d, &g);
-            assert!(segs.len() > 40, "{s:?} grew only {}", segs.len());
+    let (ellipse, polygon, fixed) = (od(ellipse), od(polygon), od(fixed));
+    for d in [od(TWO_D_TREE), figure_9_10(), ellipse, polygon, fixed] {
+        for g in grown_checked(&d, 40, &d.name) {
             assert!(g.warnings.is_empty());
         }
     }
@@ -409,11 +399,7 @@ fn invariants_hold_on_every_example_with_strokes_as_drawn() {
         if d.is_3d() {
             continue; // grow3d.rs checks the 3D examples in their volumes
         }
-        for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-            let g = grown(&d, opts(s));
-            let segs = check_invariants(&d, &g);
-            assert!(segs.len() > 10, "{path:?} {s:?} grew only {}", segs.len());
-        }
+        grown_checked(&d, 10, &path.display().to_string());
     }
 }
 
@@ -423,8 +409,7 @@ fn invariants_hold_on_every_example_with_strokes_as_drawn() {
 /// (A tree may find no room: dfs lets the first trees take it.)
 #[test]
 fn trees_of_a_forest_keep_clear_of_each_other() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/grove.od");
-    let d = od(&std::fs::read_to_string(path).unwrap());
+    let d = od(&crate::support::example_text("grove.od"));
     assert_eq!(d.forest.len(), 3, "four roots");
     for seed in [7, 8] {
         for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
@@ -464,8 +449,7 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
         };
         (size(t.slot(0)), size(t.slot(1)))
     };
-    let (b_right, b_left) = root(&bfs);
-    let (d_right, d_left) = root(&dfs);
+    let ((b_right, b_left), (d_right, d_left)) = (root(&bfs), root(&dfs));
     // Breadth-first: both sides get an almost equal share (the paper's
     // "equally distributed in left and right sides").
     let b_ratio = b_right as f64 / b_left as f64;
@@ -475,8 +459,7 @@ fn bfs_and_dfs_grow_different_trees_from_figure_9_10() {
     assert!(d_right > 2 * d_left, "dfs {d_right} vs {d_left}");
     assert!(d_right > b_right);
     // A depth-first tree is deeper (vines).
-    let bfs_depth = max_order(&drawn(&bfs));
-    let dfs_depth = max_order(&drawn(&dfs));
+    let (bfs_depth, dfs_depth) = (max_order(&drawn(&bfs)), max_order(&drawn(&dfs)));
     assert!(dfs_depth > bfs_depth, "{dfs_depth} vs {bfs_depth}");
 }
 
@@ -494,12 +477,7 @@ fn growth_is_deterministic() {
 
 /// The full binary tree of `n` levels of R1, written out.
 fn full(n: u32) -> String {
-    if n == 0 {
-        String::new()
-    } else {
-        let c = full(n - 1);
-        format!("R1{{{c},{c}}}")
-    }
+    (0..n).fold(String::new(), |c, _| format!("R1{{{c},{c}}}"))
 }
 
 #[test]
@@ -575,9 +553,7 @@ fn decrements_end_growth_at_the_right_order() {
 #[test]
 fn max_stems_stops_growth_with_a_warning() {
     let mut o = opts(GrowthOrder::Bfs);
-    o.clearance = Some(0.0);
-    o.limits.max_stems = 100;
-    o.max_stems_explicit = true;
+    (o.clearance, o.limits.max_stems, o.max_stems_explicit) = (Some(0.0), 100, true);
     let g = grown(&od(BINARY), o);
     // 1 + 2k <= 100: 49 applications fit, the 50th would make 101.
     assert_eq!(g.stems, 99);
@@ -635,10 +611,8 @@ fn white_holes_are_respected() {
         let g = grown(&d, opts(s));
         let segs = check_invariants(&d, &g);
         let hole = geo::Rect::new((60.0, 80.0), (140.0, 120.0)).to_polygon();
-        let clear = segs
-            .iter()
-            .all(|s| !geo::Intersects::intersects(&hole, &line(s)));
-        assert!(clear);
+        let hits = |s: &Segment| geo::Intersects::intersects(&hole, &line(s));
+        assert!(!segs.iter().any(hits));
         // The tree grew around the hole: stems above it too.
         assert!(segs.iter().any(|s| s.to.y < 70.0));
     }
@@ -666,11 +640,7 @@ fn seed_with_trunk_rule_stays_consistent() {
         R2: F[-F][+F]
         SEED F R2 F R1 [+F R1] ENDSEED
         LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT");
-    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-        let g = grown(&d, opts(s));
-        let segs = check_invariants(&d, &g);
-        assert!(segs.len() > 100);
-    }
+    grown_checked(&d, 100, "trunk");
 }
 
 #[test]
@@ -679,11 +649,7 @@ fn seed_drawing_is_laid_down_before_growth() {
     // the seed's `-F` must already be there, or the subtree could take its
     // place (the pairwise check would then fail on it).
     let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F[+F R1][-F R1] ENDSEED");
-    for s in [GrowthOrder::Bfs, GrowthOrder::Dfs, GrowthOrder::Space] {
-        let g = grown(&d, opts(s));
-        let segs = check_invariants(&d, &g);
-        assert!(segs.len() > 200);
-    }
+    grown_checked(&d, 200, "seed drawing");
 }
 
 #[test]
@@ -691,8 +657,7 @@ fn depth_limit_stops_a_vine_with_a_warning() {
     // R1 = [F]: a straight vine, one stem per application.
     let d = od("Vine (0, 0) L=10(0) B=1(0) RULE R1: [F]");
     let mut o = opts(GrowthOrder::Dfs);
-    o.limits.max_depth = 5;
-    o.max_stems_explicit = true;
+    (o.limits.max_depth, o.max_stems_explicit) = (5, true);
     let g = grown(&d, o);
     assert_eq!(g.stems, 1 + 5);
     assert_eq!(g.warnings.len(), 1);
@@ -744,11 +709,9 @@ fn a_seed_beyond_max_stems_is_an_error_and_the_seed_is_drawn_whole() {
     let mut few = opts(GrowthOrder::Bfs);
     few.limits.max_stems = 5;
     let e = grow_err(&d, few);
-    assert_eq!(
-        e.0[0].kind,
-        limit_kind(Bound::Stems, seed_alone, "7", 5),
-        "the bare R1 is a growth point and counts nothing"
-    );
+    let seven = limit_kind(Bound::Stems, seed_alone, "7", 5);
+    let why = "the bare R1 is a growth point and counts nothing";
+    assert_eq!(e.0[0].kind, seven, "{why}");
     // The seed (drawn first, R1 deferred) fills the limit: R1's application
     // would pass it, so growth stops with a warning and R1 is left out.
     let d = figure_9_10_with("L=10(0) B=1(0)", "SEED F R1 F ENDSEED");

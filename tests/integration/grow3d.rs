@@ -103,17 +103,12 @@ fn seg_dist(a: P, b: P, c: P, d: P) -> f64 {
 fn capsule_points(s: &PlacedStem) -> Vec<P> {
     let (a, b) = ends(s);
     let r = s.width / 2.0;
-    let mut dirs = Vec::new();
-    for i in -1..=1 {
-        for j in -1..=1 {
-            for k in -1..=1 {
-                if (i, j, k) != (0, 0, 0) {
-                    let n = ((i * i + j * j + k * k) as f64).sqrt();
-                    dirs.push([i as f64 / n, j as f64 / n, k as f64 / n]);
-                }
-            }
-        }
-    }
+    // The 26 unit vectors toward the other cells of a 3 x 3 x 3 block.
+    let dirs: Vec<P> = (0..27)
+        .map(|n| [n / 9, n / 3 % 3, n % 3].map(|c| f64::from(c) - 1.0))
+        .filter(|d| *d != [0.0; 3])
+        .map(|d| d.map(|c| c / dist(d, [0.0; 3])))
+        .collect();
     let mut out = Vec::new();
     for step in 0..=16 {
         let c = lerp(a, b, step as f64 / 16.0);
@@ -219,15 +214,9 @@ fn check(od: &Description, growth: GrowthOrder) -> usize {
             return;
         }
         // A joint: the far ends keep the clearance unless nearest at the joint.
-        let joint = if ta == sa {
-            Some(sb)
-        } else if ta == sb {
-            Some(sa)
-        } else {
-            None
-        };
+        let joint = [(sa, sb), (sb, sa)].into_iter().find(|&(j, _)| ta == j);
         match joint {
-            Some(far) => {
+            Some((_, far)) => {
                 let (d1, at1) = to_segment(tb, sa, sb);
                 let at_joint = if ta == sa { 0.0 } else { 1.0 };
                 let ok = d1 >= need - 1e-9 || at1 == at_joint;
@@ -412,7 +401,7 @@ ENDLAYOUT
 ";
 
 /// The bits of a stem's ends, for comparing sets of stems.
-fn key(a: P, b: P) -> [u64; 6] {
+fn key((a, b): (P, P)) -> [u64; 6] {
     [a[0], a[1], a[2], b[0], b[1], b[2]].map(f64::to_bits)
 }
 
@@ -429,16 +418,10 @@ fn a_3d_od_grows_a_bed_that_draws_the_stems_growth_placed() {
         assert!(placed.len() > 30, "{growth:?}: {} stems", placed.len());
         // The volumes: sphere, cylinder, extruded ellipse, minus the box.
         assert!(check(&od, growth) > 30);
-        let mut grew: Vec<[u64; 6]> = placed
-            .iter()
-            .map(|s| {
-                let (a, b) = ends(s);
-                key(a, b)
-            })
-            .collect();
+        let mut grew: Vec<[u64; 6]> = placed.iter().map(|s| key(ends(s))).collect();
         let (mut drawn, limits, dfs) = (Vec::new(), Limits::default(), Derivation::Dfs);
         let mut push = |s: stlc::turtle::turtle3::Segment3| {
-            drawn.push(key(s.from.to_array(), s.to.to_array()))
+            drawn.push(key((s.from.to_array(), s.to.to_array())))
         };
         stlc::interpret::bed3::draw3(&grown.bed, dfs, &limits, &mut push, &mut NoProgress).unwrap();
         grew.sort_unstable();

@@ -114,9 +114,7 @@ fn space_first_covers_more_on_the_same_budget() {
     let d = od(&box_with_hole(""));
     let inside = |x: f64, y: f64| !((50.0..=150.0).contains(&x) && (50.0..=150.0).contains(&y));
     let [space, bfs, dfs] = at_a_third(&d, inside, 10.0);
-    let holds = space.0 > bfs.0 && space.0 > dfs.0;
-    assert!(holds, "{space:?} {bfs:?} {dfs:?}");
-    let holds = space.1 < bfs.1 && space.1 < dfs.1;
+    let holds = space.0 > bfs.0 && space.0 > dfs.0 && space.1 < bfs.1 && space.1 < dfs.1;
     assert!(holds, "{space:?} {bfs:?} {dfs:?}");
 }
 

@@ -23,7 +23,8 @@ pub fn sys(src: &str) -> LSystem {
     parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e}\n{src}"))
 }
 
-fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
+/// The segments `src` draws at `depth`, with the default limits.
+pub fn segments(src: &str, depth: u32, strategy: Derivation) -> Vec<Segment> {
     segments_of(&sys(src), depth, strategy)
 }
 
@@ -170,15 +171,11 @@ fn malformed_and_invalid_numbers() {
     let src = "axiom F\nangle 2x5\nlength -1\nwidth 1e999\ngenerations 2.5\n";
     let e = errors(src, &Limits::default());
     assert_eq!(e.len(), 4);
-    assert_eq!(
-        e,
-        vec![
-            (Lsys(MalformedNumber { text: "2x5".into() }), 14..17),
-            (keyed!(NotPositive, "length", "-1"), 25..27),
-            (keyed!(NumberTooLarge, "width", "1e999"), 34..39),
-            (keyed!(NotWholeNumber, "generations", "2.5"), 52..55),
-        ]
-    );
+    let malformed = (Lsys(MalformedNumber { text: "2x5".into() }), 14..17);
+    let not_positive = (keyed!(NotPositive, "length", "-1"), 25..27);
+    let too_large = (keyed!(NumberTooLarge, "width", "1e999"), 34..39);
+    let not_whole = (keyed!(NotWholeNumber, "generations", "2.5"), 52..55);
+    assert_eq!(e, [malformed, not_positive, too_large, not_whole]);
     let e = errors("axiom F\nangle nan\n", &Limits::default());
     let wanted = vec![(Lsys(MalformedNumber { text: "nan".into() }), 14..17)];
     assert_eq!(e, wanted);
@@ -198,22 +195,15 @@ fn generations_above_max_depth_name_the_flag() {
 #[test]
 fn duplicate_key_bad_colour_and_long_predecessor() {
     let src = "axiom F\nangle 90\nangle 60\ncolor clGren\nrule FF F\n";
-    let text = "clGren".into();
-    let e = errors(src, &Limits::default());
-    assert_eq!(
-        e,
-        vec![
-            (Lsys(DuplicateKey { key: "angle" }), 17..22),
-            (Input(UnknownColour { text }), 32..38),
-            (
-                Lsys(LongPredecessor {
-                    predecessor: "FF".into(),
-                    symbols: 2
-                }),
-                44..46
-            ),
-        ]
-    );
+    let (text, predecessor, symbols) = ("clGren".into(), "FF".into(), 2);
+    let long = Lsys(LongPredecessor {
+        predecessor,
+        symbols,
+    });
+    let long = (long, 44..46);
+    let duplicate = (Lsys(DuplicateKey { key: "angle" }), 17..22);
+    let colour = (Input(UnknownColour { text }), 32..38);
+    assert_eq!(errors(src, &Limits::default()), [duplicate, colour, long]);
 }
 
 #[test]
@@ -285,23 +275,13 @@ fn segments_by_hand() {
     let wanted = [seg((0.0, 0.0), (1.0, 0.0)), seg((1.0, 0.0), (1.0, -1.0))];
     assert_eq!(segs, wanted);
     // `heading 180` with `|`: left, then turned around, back right.
-    assert_eq!(
-        segments("axiom F|F\nangle 90\nheading 180\n", 0, Dfs)
-            .iter()
-            .map(|s| s.to)
-            .collect::<Vec<_>>(),
-        [p(-1.0, 0.0), p(0.0, 0.0)]
-    );
+    let segs = segments("axiom F|F\nangle 90\nheading 180\n", 0, Dfs);
+    let ends: Vec<Point> = segs.iter().map(|s| s.to).collect();
+    assert_eq!(ends, [p(-1.0, 0.0), p(0.0, 0.0)]);
     // `F[-F]|F` one level down from `X`: a right branch, then back down.
     let segs = segments("axiom X\nrule X F[-F]|F\nangle 90\n", 1, Dfs);
-    assert_eq!(
-        segs,
-        vec![
-            seg((0.0, 0.0), (0.0, -1.0)),
-            seg((0.0, -1.0), (1.0, -1.0)),
-            seg((0.0, -1.0), (0.0, 0.0)),
-        ]
-    );
+    let (up, right) = (seg((0.0, 0.0), (0.0, -1.0)), seg((0.0, -1.0), (1.0, -1.0)));
+    assert_eq!(segs, [up, right, seg((0.0, -1.0), (0.0, 0.0))]);
 }
 
 #[test]
@@ -437,9 +417,9 @@ fn both_strategies_refuse_over_max_symbols_and_max_depth() {
         let mut rec = Recorder::default();
         assert!(draw_into(&s, 3, strategy, &limits, &mut rec, &mut NoProgress).is_ok());
         let err = draw_into(&s, 4, strategy, &limits, &mut rec, &mut NoProgress).unwrap_err();
-        assert!(
-            matches!(err.first_kind(), Some(ErrorKind::Limit { value, .. }) if value == "1561")
-        );
+        let limit =
+            matches!(err.first_kind(), Some(ErrorKind::Limit { value, .. }) if value == "1561");
+        assert!(limit, "{err}");
         assert!(err.0[0].help_text().unwrap().contains("--max-symbols"));
         let err = draw_into(&s, 21, strategy, &limits, &mut rec, &mut NoProgress).unwrap_err();
         assert!(err.0[0].help_text().unwrap().contains("--max-depth"));
@@ -467,17 +447,9 @@ fn stats_json_shape() {
 
 #[test]
 fn broken_pipe_has_its_own_kind() {
-    struct Closed;
-    impl std::io::Write for Closed {
-        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
-            Err(std::io::ErrorKind::BrokenPipe.into())
-        }
-        fn flush(&mut self) -> std::io::Result<()> {
-            Ok(())
-        }
-    }
+    let mut closed = crate::render::Failing(|| std::io::ErrorKind::BrokenPipe.into());
     let (tree, limits) = (sys(TREE1), Limits::default());
-    let err = expand(&tree, 8, Dfs, &limits, &mut Closed, &mut NoProgress).unwrap_err();
+    let err = expand(&tree, 8, Dfs, &limits, &mut closed, &mut NoProgress).unwrap_err();
     assert_eq!(err.first_kind(), Some(&ErrorKind::BrokenPipe));
 }
 
@@ -510,7 +482,20 @@ pub fn word(
     })
 }
 
-const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
+pub const ALPHABET: &[char] = &['F', 'F', 'f', '+', '-', '|', 'A', 'B', 'X'];
+
+/// A system of random words: the axiom (`F` if empty) and the rules of
+/// `F A B +` that are not empty, in that order.
+pub fn source(axiom: String, rules: &[String], angle: f64, heading: f64) -> String {
+    let axiom = if axiom.is_empty() { "F" } else { &axiom };
+    let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
+    for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(rules) {
+        if !succ.is_empty() {
+            src.push_str(&format!("rule {pred} -> {succ}\n"));
+        }
+    }
+    src
+}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
@@ -523,13 +508,7 @@ proptest! {
         heading in prop_oneof![Just(90.0), Just(0.0), Just(180.0), -720.0..720.0f64],
         depth in 0u32..=5,
     ) {
-        let axiom = if axiom.is_empty() { "F".to_string() } else { axiom };
-        let mut src = format!("axiom {axiom}\nangle {angle}\nheading {heading}\n");
-        for (pred, succ) in ['F', 'A', 'B', '+'].iter().zip(&rules) {
-            if !succ.is_empty() {
-                src.push_str(&format!("rule {pred} -> {succ}\n"));
-            }
-        }
+        let src = source(axiom, &rules, angle, heading);
         let dfs = segments(&src, depth, Dfs);
         let bfs = segments(&src, depth, Bfs);
         prop_assert_eq!(&dfs, &bfs, "{}", src);

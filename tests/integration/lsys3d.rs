@@ -39,15 +39,12 @@ const PLANAR: &str = "generations 4\nangle 25.7\naxiom F\nrule F F[+F]F[-F]F\nwi
 #[test]
 fn the_front_view_of_a_planar_system_is_its_2d_picture() {
     for format in [ImageFormat::Png, ImageFormat::Svg] {
+        let image = RenderOptions::new(format, Some((300, 240)));
         let mut flat = lsys_request(PLANAR);
-        flat.image = RenderOptions::new(format, Some((300, 240)));
-        flat.image.exact = true;
+        (flat.image, flat.image.exact) = (image, true);
         let flat = render(&flat);
         let mut req = lsys_request(&format!("dimensions 3\n{PLANAR}"));
-        (req.image, req.view) = (
-            RenderOptions::new(format, Some((300, 240))),
-            Some(View::FRONT),
-        );
+        (req.image, req.view) = (image, Some(View::FRONT));
         let deep = render(&req);
         assert!(flat.len() > 500);
         assert!(flat == deep, "{format:?} differs");
@@ -70,15 +67,10 @@ fn stats_give_the_worked_ends_and_a_3d_box() {
         ("F&F", [0.0, -1.0, 1.0], [0.0, -1.0, 0.0, 0.0, 0.0, 1.0]),
         ("F/+F", [0.0, -1.0, -1.0], [0.0, -1.0, -1.0, 0.0, 0.0, 0.0]),
     ] {
-        let j = stats_json(&format!(
-            "dimensions 3\nangle 90\ngenerations 0\naxiom {word}\n"
-        ));
-        let nums = |key: &str| -> Vec<f64> {
-            let v = j[key].as_array().unwrap();
-            v.iter().map(|v| v.as_f64().unwrap()).collect()
-        };
-        assert_eq!(nums("end"), end, "{word}");
-        assert_eq!(nums("bbox"), bbox, "{word}");
+        let three = "dimensions 3\nangle 90\ngenerations 0\naxiom";
+        let j = stats_json(&format!("{three} {word}\n"));
+        assert_eq!(numbers(&j["end"]), end, "{word}");
+        assert_eq!(numbers(&j["bbox"]), bbox, "{word}");
         assert_eq!(j["segments"], "2");
     }
     // The 3D Hilbert curve at depth 3: 8^3 points, a cube of side 7.
@@ -113,7 +105,7 @@ fn stats_past_the_budget_give_a_bound() {
         (req.limits, req.depth) = (small, Some(depth));
         let j = stats_of(&req);
         assert!(j["bound"].is_null(), "{j}");
-        let b: Vec<f64> = (0..6).map(|i| j["bbox"][i].as_f64().unwrap()).collect();
+        let b = numbers(&j["bbox"]);
         let side = f64::from((1u32 << depth) - 1);
         assert_eq!((b[3] - b[0], b[4] - b[1], b[5] - b[2]), (side, side, side));
         assert!(b.iter().all(|v| v.fract() == 0.0));
@@ -122,12 +114,10 @@ fn stats_past_the_budget_give_a_bound() {
 
 #[test]
 fn dimensions_other_than_2_or_3_are_refused_with_help() {
-    stlc_line("check -")
-        .write_stdin("dimensions 4\nangle 90\naxiom F\n")
-        .assert()
-        .failure()
-        .stderr(predicates::str::contains("`dimensions` is 2 or 3, not `4`"))
-        .stderr(predicates::str::contains("dimensions 3"));
+    let four = "dimensions 4\nangle 90\naxiom F\n";
+    let (code, _, err) = outcome(stlc_line("check -").write_stdin(four));
+    let said = ["`dimensions` is 2 or 3, not `4`", "dimensions 3"];
+    assert!(code != 0 && said.iter().all(|s| err.contains(s)), "{err}");
 }
 
 /// In a 2D file `&` is an ordinary symbol, and `--view` a warning.
@@ -195,9 +185,8 @@ fn a_2d_tree_exports_an_obj_and_the_limit_refuses() {
     assert_eq!(count["f"], tubes * 12);
     let mut too_small = req.clone();
     too_small.mesh.max_triangles = 12 * tubes - 1;
-    let err = too_small
-        .mesh(MeshFormat::Obj, &mut Vec::new(), &mut NoProgress)
-        .unwrap_err();
+    let err = too_small.mesh(MeshFormat::Obj, &mut Vec::new(), &mut NoProgress);
+    let err = err.unwrap_err();
     assert!(err.to_string().contains("--max-triangles"), "{err}");
 }
 
@@ -259,9 +248,8 @@ fn a_mesh_goes_to_standard_output_when_asked() {
     let text = String::from_utf8(out).unwrap();
     let faces = text.lines().filter(|l| l.starts_with("f ")).count();
     assert_eq!(faces, 63 * 20);
-    stlc_line(&format!("render {} --mesh obj -o x.glb", input.display()))
-        .assert()
-        .code(2);
+    let line = format!("render {} --mesh obj -o x.glb", input.display());
+    assert_eq!(outcome(&mut stlc_line(&line)).0, 2);
 }
 
 /// A view at a depth whose stems no view could hold (the Hilbert curve at

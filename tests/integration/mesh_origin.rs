@@ -18,13 +18,13 @@ fn glb(name: &str, text: &[u8]) -> Vec<u8> {
 }
 
 /// A `.glb` read back: its JSON and its BIN chunk.
-struct Glb {
-    json: serde_json::Value,
+pub struct Glb {
+    pub json: serde_json::Value,
     bin: Vec<u8>,
 }
 
 impl Glb {
-    fn read(bytes: &[u8]) -> Glb {
+    pub fn read(bytes: &[u8]) -> Glb {
         assert_eq!(&bytes[..4], b"glTF");
         let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
         let jl = word(12);
@@ -36,27 +36,38 @@ impl Glb {
         Glb { json, bin }
     }
 
-    /// The accessor `attribute` of the first primitive, as `width`-float
-    /// vectors.
-    fn floats(&self, attribute: &str, width: usize) -> Vec<Vec<f32>> {
+    /// The 4-byte words of the first primitive's accessor `which` (an
+    /// attribute, or `indices`), checked to be glTF's `component` type,
+    /// tightly packed, in rows of `width`.
+    fn words(&self, which: &str, component: u32, width: usize) -> Vec<Vec<[u8; 4]>> {
         let prim = &self.json["meshes"][0]["primitives"][0];
-        let a = &self.json["accessors"][prim["attributes"][attribute].as_u64().unwrap() as usize];
-        assert_eq!(a["componentType"], 5126);
+        let index = prim.get(which).unwrap_or(&prim["attributes"][which]);
+        let a = &self.json["accessors"][index.as_u64().unwrap() as usize];
+        assert_eq!(a["componentType"], component);
         let view = &self.json["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
         let off = view["byteOffset"].as_u64().unwrap() as usize;
         let count = a["count"].as_u64().unwrap() as usize;
         let length = view["byteLength"].as_u64().unwrap() as usize;
         assert_eq!(length, 4 * width * count);
-        (0..count)
-            .map(|i| {
-                (0..width)
-                    .map(|k| {
-                        let at = off + 4 * (width * i + k);
-                        f32::from_le_bytes(self.bin[at..at + 4].try_into().unwrap())
-                    })
-                    .collect()
-            })
+        let word = |at: usize| self.bin[at..at + 4].try_into().unwrap();
+        let words: Vec<[u8; 4]> = (0..width * count).map(|j| word(off + 4 * j)).collect();
+        words.chunks(width).map(<[_]>::to_vec).collect()
+    }
+
+    /// The attribute `attribute` of the first primitive, as `width`-float
+    /// vectors.
+    pub fn floats(&self, attribute: &str, width: usize) -> Vec<Vec<f32>> {
+        let float = |r: Vec<[u8; 4]>| r.into_iter().map(f32::from_le_bytes).collect();
+        self.words(attribute, 5126, width)
+            .into_iter()
+            .map(float)
             .collect()
+    }
+
+    /// The first primitive's indices (unsigned 32-bit).
+    pub fn indices(&self) -> Vec<usize> {
+        let rows = self.words("indices", 5125, 1).into_iter();
+        rows.map(|r| u32::from_le_bytes(r[0]) as usize).collect()
     }
 }
 

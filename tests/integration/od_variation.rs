@@ -3,7 +3,7 @@
 //! the choices, and forests of several roots in one outline.
 
 use stlc::choice::{Alternatives, Key};
-use stlc::diag::ErrorKind::{Grow, Rule, Stl};
+use stlc::diag::ErrorKind::{self, Grow, Rule, Stl};
 use stlc::diag::GrowError::SharedRoot;
 use stlc::diag::RuleError::*;
 use stlc::diag::StlError::SeedsPerRoot;
@@ -14,14 +14,17 @@ use stlc::syntax::stl::parse;
 use stlc::{Diagnostics, Limits};
 
 use crate::grow::span_of;
-use crate::support::{manifest_path, outcome, stlc_line};
-use crate::support::{od, opts};
+use crate::support::{example_text, manifest_path, od, opts, outcome, stlc_line};
 
 fn errors(text: &str, format: Format) -> Diagnostics {
     let parsed = parse(text, format, &Limits::default());
-    parsed
-        .err()
-        .unwrap_or_else(|| panic!("parsed, expected an error:\n{text}"))
+    parsed.expect_err(text)
+}
+
+/// The first error of `text` read as `format`: its kind and span.
+fn first(text: &str, format: Format) -> (ErrorKind, Option<std::ops::Range<usize>>) {
+    let d = errors(text, format).0.swap_remove(0);
+    (d.kind, d.span)
 }
 
 fn grown(d: &Description, growth: GrowthOrder, seed: u64) -> Grown {
@@ -133,10 +136,11 @@ fn every_application_chooses_and_the_bed_names_the_choice() {
         expected.push(format!("R1.{}", table.pick(key) + 1));
         key = key.child(0);
     }
+    let applied = |l: &&str| l.starts_with("R1.") && l.contains('{');
     let found: Vec<&str> = text
         .lines()
         .map(str::trim)
-        .filter(|l| l.starts_with("R1.") && l.contains('{'))
+        .filter(applied)
         .map(|l| &l[..4])
         .collect();
     assert_eq!(found, expected);
@@ -147,8 +151,8 @@ fn every_application_chooses_and_the_bed_names_the_choice() {
 #[test]
 fn a_grown_bed_reads_back_and_needs_no_seed() {
     for file in ["alternatives", "grove"] {
-        let text = std::fs::read_to_string(manifest_path(format!("examples/{file}.od"))).unwrap();
-        let g = grown(&od(&text), GrowthOrder::Bfs, 5);
+        let d = od(&example_text(&format!("{file}.od")));
+        let g = grown(&d, GrowthOrder::Bfs, 5);
         let written = bed_text(&g);
         let back = parse(&written, Format::Bed, &Limits::default()).unwrap();
         let holds = back == *g.bed.description();
@@ -160,8 +164,7 @@ fn a_grown_bed_reads_back_and_needs_no_seed() {
 /// Same seed, same bytes; another seed, another tree.
 #[test]
 fn the_seed_selects_the_tree() {
-    let text = std::fs::read_to_string(manifest_path("examples/alternatives.od")).unwrap();
-    let d = od(&text);
+    let d = od(&example_text("alternatives.od"));
     for g in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
         let a = bed_text(&grown(&d, g, 1));
         assert_eq!(a, bed_text(&grown(&d, g, 1)));
@@ -172,42 +175,37 @@ fn the_seed_selects_the_tree() {
 /// A description without alternatives grows the same tree for any seed.
 #[test]
 fn without_alternatives_the_seed_changes_nothing() {
-    let text = std::fs::read_to_string(manifest_path("examples/crown.od")).unwrap();
-    let d = od(&text);
+    let d = od(&example_text("crown.od"));
     let want = bed_text(&grown(&d, GrowthOrder::Bfs, 99));
     assert_eq!(bed_text(&grown(&d, GrowthOrder::Bfs, 0)), want);
 }
 
 // ------------------------------------------------------------ diagnostics
 
+const R: &str = "T (0,0) L=1(0) B=1(0) RULE";
+
 #[test]
 fn probabilities_must_sum_to_one() {
-    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F] R1 (0.4): [-F]";
-    let e = errors(text, Format::Od);
-    let d = &e.0[0];
-    assert!(
-        matches!(&d.kind, Rule(ProbabilitySum { name, sum }) if name == "R1" && (sum - 0.9).abs() < 1e-12),
-        "{:?}",
-        d.kind
-    );
-    assert_eq!(d.span, Some(span_of(text, "R1")));
-    assert!(d.kind.to_string().contains("0.9"), "{}", d.kind);
+    let text = &format!("{R} R1 (0.5): [+F] R1 (0.4): [-F]");
+    let (kind, span) = first(text, Format::Od);
+    let sum = matches!(&kind, Rule(ProbabilitySum { name, sum }) if name == "R1" && (sum - 0.9).abs() < 1e-12);
+    assert!(sum, "{kind:?}");
+    assert_eq!(span, Some(span_of(text, "R1")));
+    assert!(kind.to_string().contains("0.9"), "{kind}");
 }
 
 #[test]
 fn a_probability_must_be_above_zero() {
-    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] R1 (0): [-F]";
-    let e = errors(text, Format::Od);
-    assert!(
-        matches!(&e.0[0].kind, Rule(BadProbability { name, value }) if name == "R1" && *value == 0.0)
-    );
+    let text = &format!("{R} R1 (1): [+F] R1 (0): [-F]");
+    let (kind, span) = first(text, Format::Od);
+    assert!(matches!(&kind, Rule(BadProbability { name, value }) if name == "R1" && *value == 0.0));
     let second = text.rfind("R1").unwrap();
-    assert_eq!(e.0[0].span, Some(second..second + 2));
+    assert_eq!(span, Some(second..second + 2));
 }
 
 #[test]
 fn every_alternative_needs_a_probability() {
-    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F] R1: [-F]";
+    let text = &format!("{R} R1 (0.5): [+F] R1: [-F]");
     let e = errors(text, Format::Od);
     assert!(matches!(&e.0[0].kind, Rule(MissingProbability { name }) if name == "R1"));
     let second = text.rfind("R1").unwrap();
@@ -215,14 +213,14 @@ fn every_alternative_needs_a_probability() {
     // Only that: the sum of the bodies that have one (0.5) is no news.
     assert_eq!(e.0.len(), 1, "{e}");
     // One body with a probability other than 1: it needs none.
-    let e = errors("T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F]", Format::Od);
+    let e = errors(&format!("{R} R1 (0.5): [+F]"), Format::Od);
     assert!(matches!(&e.0[0].kind, Rule(ProbabilitySum { .. })));
     let help = e.0[0].help_text().unwrap();
     let holds = help.contains("one body needs no probability: write `R1: ...`");
     assert!(holds, "{help}");
     // Two bodies without probabilities stay a duplicate.
-    let e = errors("T (0,0) L=1(0) B=1(0) RULE R1: [+F] R1: [-F]", Format::Od);
-    assert!(matches!(&e.0[0].kind, Rule(DuplicateRule { .. })));
+    let (kind, _) = first(&format!("{R} R1: [+F] R1: [-F]"), Format::Od);
+    assert!(matches!(&kind, Rule(DuplicateRule { .. })));
 }
 
 /// The canonical writer keeps an OD an OD: alternatives as several bodies
@@ -243,29 +241,28 @@ fn an_od_with_alternatives_writes_as_an_od() {
 
 #[test]
 fn a_dot_in_an_od_is_refused() {
-    let text = "T (0,0) L=1(0) B=1(0) RULE R1.1: [+F]";
-    let e = errors(text, Format::Od);
-    assert!(matches!(&e.0[0].kind, Rule(DottedName { name }) if name == "R1.1"));
-    assert_eq!(e.0[0].span, Some(span_of(text, "R1.1")));
-    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F] SEED F R1.1 ENDSEED";
-    let e = errors(text, Format::Od);
-    assert!(matches!(&e.0[0].kind, Rule(DottedName { name }) if name == "R1.1"));
-    let want = Some(span_of(text, "R1.1 ")).map(|s| s.start..s.end - 1);
-    assert_eq!(e.0[0].span, want);
+    // The name's span: at a rule's definition and at a use in the seed.
+    for text in [
+        format!("{R} R1.1: [+F]"),
+        format!("{R} R1 (1): [+F] SEED F R1.1 ENDSEED"),
+    ] {
+        let (kind, span) = first(&text, Format::Od);
+        let dotted = matches!(&kind, Rule(DottedName { name }) if name == "R1.1");
+        assert!(dotted, "{text}");
+        assert_eq!(span, Some(span_of(&text, "R1.1")), "{text}");
+    }
 }
 
 #[test]
 fn a_bed_names_alternatives_that_exist() {
-    let head = "T (0,0) L=1(0) B=1(0) RULE R1.1 (0.5): [+F] R1.2 (0.5): [-F] SEED ";
+    let head = format!("{R} R1.1 (0.5): [+F] R1.2 (0.5): [-F] SEED ");
     let text = format!("{head}R1.3{{}} ENDSEED");
-    let e = errors(&text, Format::Bed);
     let (name, number) = ("R1".into(), "3".into());
     let unknown = Rule(UnknownAlternative { name, number });
-    assert_eq!(e.0[0].kind, unknown);
-    assert_eq!(e.0[0].span, Some(span_of(&text, "R1.3")));
-    let text = format!("{head}R1{{}} ENDSEED");
-    let e = errors(&text, Format::Bed);
-    assert!(matches!(&e.0[0].kind, Rule(AlternativeNotNamed { name, count: 2 }) if name == "R1"));
+    let want = (unknown, Some(span_of(&text, "R1.3")));
+    assert_eq!(first(&text, Format::Bed), want);
+    let (kind, _) = first(&format!("{head}R1{{}} ENDSEED"), Format::Bed);
+    assert!(matches!(&kind, Rule(AlternativeNotNamed { name, count: 2 }) if name == "R1"));
     let text = format!("{head}R1.2{{}} ENDSEED");
     assert!(parse(&text, Format::Bed, &Limits::default()).is_ok());
 }
@@ -275,11 +272,11 @@ fn a_bed_names_alternatives_that_exist() {
 /// (it was read as an alternative numbered 0 and written back as `R1.0`).
 #[test]
 fn a_bed_probability_belongs_to_an_alternative() {
-    let text = "T (0,0) L=1(0) B=1(0) RULE R1 (1): [+F][-F] SEED F R1{,} ENDSEED";
-    let e = errors(text, Format::Bed);
+    let text = &format!("{R} R1 (1): [+F][-F] SEED F R1{{,}} ENDSEED");
     let name = "R1".into();
-    assert_eq!(e.0[0].kind, Rule(ProbabilityWithoutAlternative { name }));
-    assert_eq!(e.0[0].span, Some(span_of(text, "R1")));
+    let without = Rule(ProbabilityWithoutAlternative { name });
+    let want = (without, Some(span_of(text, "R1")));
+    assert_eq!(first(text, Format::Bed), want);
     // The same line in an OD is a rule of one alternative.
     let d = od(text.replace("R1{,}", "R1").as_str());
     assert_eq!(d.rules[0].alternative.as_ref().map(|a| a.number), Some(1));
@@ -290,47 +287,44 @@ fn a_bed_repeats_only_rules_without_alternatives() {
     // `[I 2 R1]` unrolls R1 at every tip: with alternatives each level
     // would choose, so a BED (which records choices) refuses it, with or
     // without an alternative's number; an OD's repeat is a growth point.
-    let head = "T (0,0) L=1(0) B=1(0) RULE R1.1 (0.5): [+F] R1.2 (0.5): [-F] R2: [+F] SEED F ";
+    let head = format!("{R} R1.1 (0.5): [+F] R1.2 (0.5): [-F] R2: [+F] SEED F ");
     for repeat in ["[I 2 R1]", "[I 2 R1.2]"] {
         let text = format!("{head}{repeat} ENDSEED");
-        let e = errors(&text, Format::Bed);
         let name = "R1".into();
         let chooses = Rule(RepeatChooses { name, count: 2 });
-        assert_eq!(e.0[0].kind, chooses, "{repeat}");
-        assert_eq!(e.0[0].span, Some(span_of(&text, repeat)));
+        let want = (chooses, Some(span_of(&text, repeat)));
+        assert_eq!(first(&text, Format::Bed), want, "{repeat}");
     }
     let text = format!("{head}[I 2 R2] ENDSEED");
     assert!(parse(&text, Format::Bed, &Limits::default()).is_ok());
-    let od = "T (0,0) L=1(0) B=1(0) RULE R1 (0.5): [+F] R1 (0.5): [-F] SEED F [I 2 R1] ENDSEED";
-    assert!(parse(od, Format::Od, &Limits::default()).is_ok());
+    let od = format!("{R} R1 (0.5): [+F] R1 (0.5): [-F] SEED F [I 2 R1] ENDSEED");
+    assert!(parse(&od, Format::Od, &Limits::default()).is_ok());
 }
 
 #[test]
 fn a_forest_bed_has_one_seed_per_root() {
-    let text =
-        "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED SEED F ENDSEED";
-    let e = errors(text, Format::Bed);
-    assert_eq!(e.0[0].kind, Stl(SeedsPerRoot { roots: 2, seeds: 3 }));
-    let text = "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED";
-    let d = parse(text, Format::Bed, &Limits::default()).unwrap();
+    let forest = |roots: &str, seeds: usize| {
+        let seeds = "SEED F ENDSEED ".repeat(seeds);
+        format!("T {roots} L=1(0) B=1(0) RULE R1: [+F] {seeds}")
+    };
+    let text = forest("(0,0) (10,0)", 3);
+    let (kind, _) = first(&text, Format::Bed);
+    assert_eq!(kind, Stl(SeedsPerRoot { roots: 2, seeds: 3 }));
+    let d = parse(&forest("(0,0) (10,0)", 2), Format::Bed, &Limits::default()).unwrap();
     assert_eq!(d.forest.len(), 1);
     // Fewer SEEDs than roots: an error at the first root without one (it
     // drew one tree where the file names three).
-    let text = "T (0,0) (10,0) (20,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED";
-    let e = errors(text, Format::Bed);
-    assert_eq!(e.0[0].kind, Stl(SeedsPerRoot { roots: 3, seeds: 1 }));
-    assert_eq!(e.0[0].span, Some(span_of(text, "(10,0)")));
-    let text = "T (0,0) (10,0) (20,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED";
-    let e = errors(text, Format::Bed);
-    assert_eq!(e.0[0].span, Some(span_of(text, "(20,0)")));
+    let text = forest("(0,0) (10,0) (20,0)", 1);
+    let few = Stl(SeedsPerRoot { roots: 3, seeds: 1 });
+    let want = (few, Some(span_of(&text, "(10,0)")));
+    assert_eq!(first(&text, Format::Bed), want);
+    let text = forest("(0,0) (10,0) (20,0)", 2);
+    assert_eq!(first(&text, Format::Bed).1, Some(span_of(&text, "(20,0)")));
     // No SEED at all: every root grows the default seed.
-    let none = "T (0,0) (10,0) L=1(0) B=1(0) RULE R1: [+F]";
-    assert!(parse(none, Format::Bed, &Limits::default()).is_ok());
-    let e = errors(
-        "T (0,0) L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED SEED F ENDSEED",
-        Format::Od,
-    );
-    assert_eq!(e.0[0].kind, Stl(SeedsPerRoot { roots: 1, seeds: 2 }));
+    let none = forest("(0,0) (10,0)", 0);
+    assert!(parse(&none, Format::Bed, &Limits::default()).is_ok());
+    let (kind, _) = first(&forest("(0,0)", 2), Format::Od);
+    assert_eq!(kind, Stl(SeedsPerRoot { roots: 1, seeds: 2 }));
 }
 
 // ------------------------------------------------------------ forests
@@ -340,23 +334,21 @@ fn a_forest_bed_has_one_seed_per_root() {
 /// 0 against -0.
 #[test]
 fn a_root_on_another_roots_point_is_warned_about() {
-    let text = "T (10, 0) (30, 0) (10, 0) (0, -0) (0, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
+    let forest = |roots: &str| {
+        format!("T {roots} L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED")
+    };
+    let text = &forest("(10, 0) (30, 0) (10, 0) (0, -0) (0, 0)");
     let g = grown(&od(text), GrowthOrder::Bfs, 0);
-    let shared: Vec<_> = g
-        .warnings
-        .iter()
-        .filter(|w| matches!(w.kind, Grow(SharedRoot { .. })))
-        .collect();
+    let is_shared = |w: &&stlc::Diagnostic| matches!(w.kind, Grow(SharedRoot { .. }));
+    let shared: Vec<_> = g.warnings.iter().filter(is_shared).collect();
     assert_eq!(shared.len(), 1, "the first repeat only: {:?}", g.warnings);
     assert_eq!(shared[0].kind, Grow(SharedRoot { root: 3, first: 1 }));
     let third = text.rfind("(10, 0)").unwrap();
     assert_eq!(shared[0].span, Some(third..third + "(10, 0)".len()));
-    let want = text.find("(10, 0)").unwrap()..text.find("(10, 0)").unwrap() + 7;
-    assert_eq!(shared[0].labels[0].span, want);
-    let apart = "T (10, 0) (30, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
-    assert!(grown(&od(apart), GrowthOrder::Bfs, 0).warnings.is_empty());
-    let signed = "T (0, -0) (0, 0) L=5(0) B=1(0) A=30 RULE R1: [+F][-F] SEED F [I 2 R1] ENDSEED";
-    let w = grown(&od(signed), GrowthOrder::Bfs, 0).warnings;
+    assert_eq!(shared[0].labels[0].span, span_of(text, "(10, 0)"));
+    let apart = forest("(10, 0) (30, 0)");
+    assert!(grown(&od(&apart), GrowthOrder::Bfs, 0).warnings.is_empty());
+    let w = grown(&od(&forest("(0, -0) (0, 0)")), GrowthOrder::Bfs, 0).warnings;
     assert_eq!(w[0].kind, Grow(SharedRoot { root: 2, first: 1 }));
 }
 
@@ -365,32 +357,21 @@ fn a_root_on_another_roots_point_is_warned_about() {
 #[test]
 fn check_lists_a_forests_roots_briefly() {
     let summary = |text: &str| {
-        let opts = GrowOptions::default();
-        let loaded =
-            stlc::pipeline::load(text.as_bytes(), stlc::syntax::InputKind::Od, &opts.limits)
-                .unwrap();
+        let (opts, od) = (GrowOptions::default(), stlc::syntax::InputKind::Od);
+        let loaded = stlc::pipeline::load(text.as_bytes(), od, &opts.limits).unwrap();
         stlc::pipeline::check(&loaded, &opts).unwrap().summary
     };
-    let grove = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
-    let (said, four) = (
-        summary(&grove),
-        "(50, 290) (110, 290) (170, 290) (235, 290)\n",
-    );
-    assert!(
-        said.contains(&format!("  roots       4 (a forest): {four}")),
-        "{said}"
-    );
+    let said = summary(&example_text("grove.od"));
+    let four = "  roots       4 (a forest): (50, 290) (110, 290) (170, 290) (235, 290)\n";
+    assert!(said.contains(four), "{said}");
     let roots: Vec<String> = (0..10).map(|i| format!("({}, 0)", i * 100)).collect();
-    let ten = format!(
-        "T {} L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED",
-        roots.join(" ")
-    );
+    let roots = roots.join(" ");
+    let ten = format!("T {roots} L=1(0) B=1(0) RULE R1: [+F] SEED F ENDSEED");
     let s = summary(&ten);
     let line = s.lines().find(|l| l.starts_with("  roots")).unwrap();
-    assert_eq!(
-        line,
-        "  roots       10 (a forest): (0, 0) (100, 0) (200, 0) (300, 0) (400, 0) (500, 0) ... and 4 more"
-    );
+    let six = "(0, 0) (100, 0) (200, 0) (300, 0) (400, 0) (500, 0)";
+    let want = format!("  roots       10 (a forest): {six} ... and 4 more");
+    assert_eq!(line, want);
 }
 
 /// Two binary trees far apart, three levels each, lengths 15, 10, 5 and
@@ -403,11 +384,8 @@ const FAR_APART: &str =
 fn decision_trees(growth: GrowthOrder) -> Vec<usize> {
     let d = od(FAR_APART);
     let (_, placed) = grow_traced(&d, &opts(growth), &mut NoProgress).unwrap();
-    let mut trees: Vec<(u64, usize)> = placed
-        .iter()
-        .filter(|s| s.decision > 0)
-        .map(|s| (s.decision, usize::from(s.from.x > 500.0)))
-        .collect();
+    let tree = |s: &stlc::grow::PlacedStem| (s.decision, usize::from(s.from.x > 500.0));
+    let mut trees: Vec<(u64, usize)> = placed.iter().filter(|s| s.decision > 0).map(tree).collect();
     trees.dedup();
     trees.into_iter().map(|(_, t)| t).collect()
 }
@@ -418,15 +396,8 @@ fn decision_trees(growth: GrowthOrder) -> Vec<usize> {
 fn bfs_interleaves_trees_by_level_and_dfs_grows_them_in_root_order() {
     // Levels of 1, 2, 4 applications per tree.
     let bfs = decision_trees(GrowthOrder::Bfs);
-    let level = |t: usize, n: usize| std::iter::repeat_n(t, n);
-    let expected: Vec<usize> = level(0, 1)
-        .chain(level(1, 1))
-        .chain(level(0, 2))
-        .chain(level(1, 2))
-        .chain(level(0, 4))
-        .chain(level(1, 4))
-        .collect();
-    assert_eq!(bfs, expected);
+    let levels = [1, 2, 4].map(|n| [vec![0; n], vec![1; n]].concat());
+    assert_eq!(bfs, levels.concat());
     let dfs = decision_trees(GrowthOrder::Dfs);
     assert_eq!(dfs, [vec![0; 7], vec![1; 7]].concat());
 }
@@ -450,16 +421,10 @@ fn each_root_grows_the_seed_and_the_bed_lists_the_roots() {
 /// invariants of grow.rs hold between the trees of every example forest.)
 #[test]
 fn trees_share_the_occupancy() {
-    let alone = od(
-        "A (50,190) L=10(0) B=1(0) RULE R1: [+F][-F] SEED FF R1 ENDSEED
-        LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT",
-    );
-    let pair = od(
-        "A (50,190) (90,190) L=10(0) B=1(0) RULE R1: [+F][-F] SEED FF R1 ENDSEED
-        LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT",
-    );
-    let one = grown(&alone, GrowthOrder::Bfs, 0).stems;
-    let g = grown(&pair, GrowthOrder::Bfs, 0);
+    let layout = "SEED FF R1 ENDSEED LAYOUT (clGreen) Rectangle (0,0), 200, 200 ENDLAYOUT";
+    let roots = |r: &str| od(&format!("A {r} L=10(0) B=1(0) RULE R1: [+F][-F] {layout}"));
+    let one = grown(&roots("(50,190)"), GrowthOrder::Bfs, 0).stems;
+    let g = grown(&roots("(50,190) (90,190)"), GrowthOrder::Bfs, 0);
     let two = g.stems;
     assert!(two < 2 * one, "{two} stems for two trees, {one} for one");
     let text = bed_text(&g);
@@ -513,8 +478,7 @@ fn compile_grove_with_seeds() {
 /// Every slot of a grown forest's terms names an alternative of R1.
 #[test]
 fn grown_terms_name_alternatives() {
-    let text = std::fs::read_to_string(manifest_path("examples/grove.od")).unwrap();
-    let g = grown(&od(&text), GrowthOrder::Dfs, 7);
+    let g = grown(&od(&example_text("grove.od")), GrowthOrder::Dfs, 7);
     let d = g.bed.description();
     let mut seeds = vec![d.seed.as_ref().unwrap()];
     seeds.extend(d.forest.iter().map(|t| t.seed.as_ref().unwrap()));

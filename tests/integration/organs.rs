@@ -9,6 +9,9 @@ use stlc::limits::Limits;
 use stlc::syntax::lsys::parse;
 use stlc::turtle::{Point, Recorder};
 
+use crate::param::first_error;
+use crate::render::rgba;
+
 const RED: Rgb = Rgb::new(0xff, 0, 0);
 const GREEN: Rgb = Rgb::new(0, 0xaa, 0);
 const BLUE: Rgb = Rgb::new(0, 0, 0xff);
@@ -17,14 +20,6 @@ const BLUE: Rgb = Rgb::new(0, 0, 0xff);
 fn recorded(src: &str, depth: u32) -> Recorder {
     let sys = parse(src, &Limits::default()).unwrap_or_else(|e| panic!("{e:?}"));
     crate::lsys::recorded_of(&sys, depth, Dfs)
-}
-
-/// The first error's message and the text its span covers.
-fn first_error(src: &str) -> (String, String) {
-    let e = parse(src, &Limits::default()).expect_err("should not parse");
-    let d = e.iter().next().unwrap();
-    let span = d.span.clone().expect("the error points at the text");
-    (d.kind.to_string(), src[span].to_string())
 }
 
 /// The picture `stlc render` writes for `src` as `name` (its extension
@@ -53,15 +48,8 @@ fn colour_steps_up_and_down_stop_at_the_ends_and_brackets_restore_them() {
     // [,,F] steps back twice (green, red) and ] restores blue.
     let rec = recorded(&format!("{STEPS}axiom F'F'F'FF[,,F]F\n"), 0);
     assert_eq!(rec.segments.len(), 7);
-    let paints = [
-        (0, RED),
-        (1, GREEN),
-        (2, BLUE),
-        (5, GREEN),
-        (5, RED),
-        (6, BLUE),
-    ];
-    assert_eq!(rec.paints, paints);
+    let (at, paint) = ([0, 1, 2, 5, 5, 6], [RED, GREEN, BLUE, GREEN, RED, BLUE]);
+    assert_eq!(rec.paints, at.into_iter().zip(paint).collect::<Vec<_>>());
     // Below the first colour: stays red; `'(i)` and `;(i)` set, clamped.
     let rec = recorded(&format!("{STEPS}axiom ,F'(7)F;(1)F,(-3)F\n"), 0);
     assert_eq!(rec.paints, vec![(0, RED), (1, BLUE), (2, GREEN), (3, RED)]);
@@ -109,12 +97,8 @@ fn a_polygon_is_filled_with_the_colour_in_force_in_the_png() {
     let svg = String::from_utf8(rendered(src, "out.svg")).unwrap();
     assert!(svg.contains("<path fill=\"#0000ff\" d=\"M95.50"), "{svg}");
     let png = tiny_skia::Pixmap::decode_png(&rendered(src, "out.png")).unwrap();
-    let at = |x: u32, y: u32| {
-        let c = png.pixel(x, y).unwrap().demultiply();
-        [c.red(), c.green(), c.blue(), c.alpha()]
-    };
-    assert_eq!(at(50, 50), [0, 0, 255, 255]);
-    assert_eq!(at(1, 1), [255, 255, 255, 255]);
+    assert_eq!(rgba(&png, 50, 50), [0, 0, 255, 255]);
+    assert_eq!(rgba(&png, 1, 1), [255, 255, 255, 255]);
 }
 
 #[test]
@@ -156,9 +140,9 @@ fn a_surfaces_colour_stays_inside_it() {
 
 #[test]
 fn polygons_that_do_not_close_are_errors_at_the_brace() {
-    let (msg, at) = first_error("generations 1\nangle 90\naxiom F{.f\n");
+    let (msg, _, at) = first_error("generations 1\nangle 90\naxiom F{.f\n");
     assert_eq!((msg.as_str(), at.as_str()), ("this `{` is not closed", "{"));
-    let (msg, at) = first_error("generations 1\nangle 90\naxiom F\nrule F -> F}f\n");
+    let (msg, _, at) = first_error("generations 1\nangle 90\naxiom F\nrule F -> F}f\n");
     assert_eq!((msg.as_str(), at.as_str()), ("`}` without its `{`", "}"));
 }
 
@@ -166,7 +150,7 @@ fn polygons_that_do_not_close_are_errors_at_the_brace() {
 fn a_polygon_over_the_vertex_limit_is_an_error_as_written_and_as_derived() {
     let n = stlc::model::param::MAX_POLYGON_VERTICES;
     let src = format!("generations 1\nangle 90\naxiom {{{}}}\n", "f".repeat(n + 1));
-    let (msg, at) = first_error(&src);
+    let (msg, _, at) = first_error(&src);
     assert_eq!(msg, format!("a polygon of more than {n} vertices"));
     assert_eq!(at, "{");
     // Exactly the limit is fine.
@@ -187,11 +171,11 @@ fn a_polygon_over_the_vertex_limit_is_an_error_as_written_and_as_derived() {
 
 #[test]
 fn a_surface_that_places_itself_is_an_error_at_its_line() {
-    let (msg, at) = first_error("generations 1\nangle 90\nsurface A { F~A }\naxiom ~A\n");
+    let (msg, _, at) = first_error("generations 1\nangle 90\nsurface A { F~A }\naxiom ~A\n");
     assert_eq!(msg, "surface `A` places itself (~A -> ~A)");
     assert_eq!(at, "surface A { F~A }");
     let src = "generations 1\nangle 90\nsurface A { ~B }\nsurface B { [F~A] }\naxiom ~A\n";
-    let (msg, _) = first_error(src);
+    let (msg, _, _) = first_error(src);
     assert_eq!(msg, "surface `A` places itself (~A -> ~B -> ~A)");
     // A surface placing another, without a way back, is fine.
     let src = "generations 0\nangle 90\nsurface A { F~B }\nsurface B { {.f+f+f} }\naxiom ~A\n";
@@ -200,14 +184,12 @@ fn a_surface_that_places_itself_is_an_error_at_its_line() {
 
 #[test]
 fn a_palette_of_unknown_colours_is_an_error_at_the_colour() {
-    let (msg, at) = first_error("generations 1\nangle 90\npalette #00ff00 clGrean\naxiom F\n");
+    let (msg, _, at) = first_error("generations 1\nangle 90\npalette #00ff00 clGrean\naxiom F\n");
     assert!(msg.contains("clGrean"), "{msg}");
     assert_eq!(at, "clGrean");
     // A `#` that starts no colour starts a comment.
-    let rec = recorded(
-        "generations 0\nangle 90\npalette #ff0000 clBlue # leaves\naxiom F'F\n",
-        0,
-    );
+    let src = "generations 0\nangle 90\npalette #ff0000 clBlue # leaves\naxiom F'F\n";
+    let rec = recorded(src, 0);
     assert_eq!(rec.paints, vec![(0, RED), (1, BLUE)]);
 }
 
@@ -254,6 +236,17 @@ fn abop_1_26_has_leaves_petals_and_stamens_in_their_colours() {
     assert_eq!(colours, [1, 2, 3, 0].into_iter().collect());
 }
 
+/// The normal of the triangle `a b c` by the right hand: (b - a) x (c - a).
+pub fn winding_normal(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
+}
+
 #[test]
 fn a_leaf_in_a_mesh_is_two_faces_each_wound_to_its_own_normal() {
     use stlc::render::mesh::{Leaf, MeshOptions, build_with_leaves};
@@ -261,10 +254,7 @@ fn a_leaf_in_a_mesh_is_two_faces_each_wound_to_its_own_normal() {
     // A unit square in the canvas plane; the files' axes are (x, -y, -z),
     // so it is counter-clockwise seen from +z: its normal is (0, 0, 1).
     let square = [(0.0, 0.0), (1.0, 0.0), (1.0, -1.0), (0.0, -1.0)];
-    let points = square
-        .iter()
-        .map(|&(x, y)| Point3::new(x, y, 0.0))
-        .collect();
+    let points = square.map(|(x, y)| Point3::new(x, y, 0.0)).to_vec();
     let leaf = Leaf {
         points,
         color: GREEN,
@@ -286,13 +276,7 @@ fn a_leaf_in_a_mesh_is_two_faces_each_wound_to_its_own_normal() {
     // normal: each side is seen counter-clockwise from its own side.
     for t in p.indices.chunks(3) {
         let [a, b, c] = [0, 1, 2].map(|k| p.positions[t[k] as usize].map(f64::from));
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let w = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let w = winding_normal(a, b, c);
         let n = p.normals[t[0] as usize].map(f64::from);
         assert!(w[0] * n[0] + w[1] * n[1] + w[2] * n[2] > 0.0, "{t:?}");
     }
@@ -353,15 +337,11 @@ fn abop_3_2_leaves_and_flower_grow_with_their_age_worked_by_hand() {
     while internode < 2.0 {
         (internode, grown) = (internode + 0.2, grown + 1);
     }
-    assert!(
-        grown == 6 && near(internode, 2.2),
-        "{grown} steps to {internode}"
-    );
+    let sixth = grown == 6 && near(internode, 2.2);
+    assert!(sixth, "{grown} steps to {internode}");
     assert_eq!(steps.len(), 7);
-    assert!(
-        steps[..6].iter().all(|&l| near(l, 2.2)) && near(steps[6], 20.0),
-        "{steps:?}"
-    );
+    let internodes = steps[..6].iter().all(|&l| near(l, 2.2)) && near(steps[6], 20.0);
+    assert!(internodes, "{steps:?}");
     let kite = 0.4 * libm::cos(25f64.to_radians()) + 0.13;
     let petal = 0.8 * libm::cos(20f64.to_radians());
     // Six leaves of 7 recorded vertices (the base `.` and 6 `f`s: the
@@ -370,11 +350,7 @@ fn abop_3_2_leaves_and_flower_grow_with_their_age_worked_by_hand() {
     // 1, petals 2.
     assert_eq!(reaches.len(), 11);
     for (i, &(n, far)) in reaches.iter().enumerate() {
-        let (want_n, want) = if i < 6 {
-            (7, 9.0 * kite)
-        } else {
-            (5, 5.0 * petal)
-        };
+        let (want_n, want) = [(7, 9.0 * kite), (5, 5.0 * petal)][usize::from(i >= 6)];
         assert_eq!(n, want_n, "polygon {i}");
         assert!(near(far, want), "polygon {i}: {far} against {want}");
     }

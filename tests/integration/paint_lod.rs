@@ -12,12 +12,8 @@ fn near(png: &tiny_skia::Pixmap, rgb: [u8; 3]) -> (usize, usize) {
     for p in png.pixels() {
         let c = p.demultiply();
         let px = [c.red(), c.green(), c.blue()];
-        if px.iter().any(|&v| v < 200) {
-            inked += 1;
-        }
-        if px.iter().zip(rgb).all(|(&a, b)| a.abs_diff(b) <= 40) {
-            near += 1;
-        }
+        inked += usize::from(px.iter().any(|&v| v < 200));
+        near += usize::from(px.iter().zip(rgb).all(|(&a, b)| a.abs_diff(b) <= 40));
     }
     (near, inked)
 }
@@ -29,11 +25,8 @@ fn fig_1_26_at_depth_16_is_drawn_with_its_flowers_and_stems_in_their_colours() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("deep.png");
     let input = manifest_path("examples/abop-1.26.lsys");
-    let line = format!(
-        "render {} --depth 16 --size 300x300 -o {}",
-        input.display(),
-        out.display()
-    );
+    let (input, to) = (input.display(), out.display());
+    let line = format!("render {input} --depth 16 --size 300x300 -o {to}");
     let (code, _, err) = outcome(&mut stlc_line(&line));
     assert_eq!(code, 0, "{err}");
     let png = png_at(&out);
@@ -66,11 +59,8 @@ fn below_its_budget_a_painting_view_is_the_exact_one() {
     let mut pictures = Vec::new();
     for exact in ["", "--exact"] {
         let out = dir.path().join(format!("p{}.png", exact.len()));
-        let line = format!(
-            "render {} --depth 9 --size 200x200 {exact} -o {}",
-            input.display(),
-            out.display()
-        );
+        let (input, to) = (input.display(), out.display());
+        let line = format!("render {input} --depth 9 --size 200x200 {exact} -o {to}");
         stlc_line(&line).assert().success();
         pictures.push(std::fs::read(&out).unwrap());
     }

@@ -3,6 +3,7 @@
 //! the parser reading back what `expand` writes, hostile inputs and the
 //! diagnostics that point at the text.
 
+use crate::lsys::segments;
 use crate::support::{example_text as example, limits_with};
 use proptest::prelude::*;
 use stlc::diag::Diagnostics;
@@ -20,7 +21,7 @@ fn expanded(src: &str, depth: u32, strategy: Derivation) -> Result<String, Diagn
 }
 
 /// The first error's message and help, and the text its span covers.
-fn first_error(src: &str) -> (String, String, String) {
+pub fn first_error(src: &str) -> (String, String, String) {
     let e = parse(src, &Limits::default()).expect_err("should not parse");
     let d = e.iter().next().unwrap();
     let span = d.span.clone().expect("the error points at the text");
@@ -33,16 +34,9 @@ fn first_error(src: &str) -> (String, String, String) {
 /// ABOP Fig. 1.31a by hand: a bracketed 2L-system over `0 1 F + - [ ]`
 /// whose contexts skip `+ - F` and whole branches (ABOP p. 32).
 fn fig_131a(depth: u32) -> String {
-    let rules: [(&str, &str); 8] = [
-        ("000", "0"),
-        ("001", "1[+F1F1]"),
-        ("010", "1"),
-        ("011", "1"),
-        ("100", "0"),
-        ("101", "1F1"),
-        ("110", "0"),
-        ("111", "0"),
-    ];
+    // Predecessor with its contexts `l c r`, then the successor.
+    let rules = "000 0 001 1[+F1F1] 010 1 011 1 100 0 101 1F1 110 0 111 0";
+    let rules: Vec<&str> = rules.split(' ').collect();
     let skip = |c: u8| matches!(c, b'+' | b'-' | b'F');
     let mut w: Vec<u8> = b"F1F1F1".to_vec();
     for _ in 0..depth {
@@ -54,61 +48,37 @@ fn fig_131a(depth: u32) -> String {
                 b'-' => next.push(b'+'),
                 b'0' | b'1' => {
                     // Left: skip ignored symbols and whole branches, cross `[`.
-                    let mut left = None;
-                    let mut j = i;
+                    let (mut left, mut j) = (None, i);
                     while j > 0 {
                         j -= 1;
-                        let s = w[j];
-                        if s == b']' {
-                            let mut depth = 1;
-                            while depth > 0 {
-                                j -= 1;
-                                if w[j] == b']' {
-                                    depth += 1;
-                                } else if w[j] == b'[' {
-                                    depth -= 1;
-                                }
+                        match w[j] {
+                            b']' => j = matching(&w, j, -1),
+                            s if s == b'[' || skip(s) => {}
+                            s => {
+                                left = Some(s);
+                                break;
                             }
-                        } else if s == b'[' || skip(s) {
-                        } else {
-                            left = Some(s);
-                            break;
                         }
                     }
                     // Right: skip ignored symbols and whole branches, stop at `]`.
-                    let mut right = None;
-                    let mut j = i + 1;
+                    let (mut right, mut j) = (None, i + 1);
                     while j < w.len() {
-                        let s = w[j];
-                        if s == b'[' {
-                            let mut depth = 1;
-                            while depth > 0 {
-                                j += 1;
-                                if w[j] == b'[' {
-                                    depth += 1;
-                                } else if w[j] == b']' {
-                                    depth -= 1;
-                                }
+                        match w[j] {
+                            b'[' => j = matching(&w, j, 1),
+                            b']' => break,
+                            s if skip(s) => {}
+                            s => {
+                                right = Some(s);
+                                break;
                             }
-                            j += 1;
-                        } else if s == b']' {
-                            break;
-                        } else if skip(s) {
-                            j += 1;
-                        } else {
-                            right = Some(s);
-                            break;
                         }
+                        j += 1;
                     }
                     match (left, right) {
                         (Some(l), Some(r)) => {
                             let key = [l, c, r];
-                            let succ = rules
-                                .iter()
-                                .find(|(k, _)| k.as_bytes() == key)
-                                .map(|(_, s)| s.as_bytes())
-                                .unwrap();
-                            next.extend_from_slice(succ);
+                            let rule = rules.chunks(2).find(|r| r[0].as_bytes() == key);
+                            next.extend_from_slice(rule.unwrap()[1].as_bytes());
                         }
                         _ => next.push(c),
                     }
@@ -119,6 +89,22 @@ fn fig_131a(depth: u32) -> String {
         w = next;
     }
     String::from_utf8(w).unwrap() + "\n"
+}
+
+/// The index of the bracket that matches the one at `j`, walking by `step`.
+fn matching(w: &[u8], mut j: usize, step: isize) -> usize {
+    let mut depth = 0;
+    loop {
+        match w[j] {
+            b'[' => depth += step,
+            b']' => depth -= step,
+            _ => {}
+        }
+        if depth == 0 {
+            return j;
+        }
+        j = j.wrapping_add_signed(step);
+    }
 }
 
 /// ABOP Fig. 2.6a by hand: modules as symbols with f64 parameters,
@@ -199,11 +185,8 @@ fn fig_2_6a_at_depth_10_is_the_hand_derivation() {
     }
     // A binary tree of 2^10 - 1 internodes.
     assert_eq!(want.matches('F').count(), 1023);
-    let (start, head) = (
-        "!(10)F(1)[&(45)!(7.069999999999999)F(0.6)[-(45)$",
-        &want[..60],
-    );
-    assert!(want.starts_with(start), "{head}");
+    let start = "!(10)F(1)[&(45)!(7.069999999999999)F(0.6)[-(45)$";
+    assert!(want.starts_with(start), "{}", &want[..60]);
 }
 
 // ------------------------------------------------------------- properties --
@@ -224,13 +207,10 @@ fn system() -> impl Strategy<Value = String> {
         1..5,
     );
     (succ.clone(), succ.clone(), succ, 0.05f64..0.95, 0u64..5).prop_map(|(a, b, c, p, seed)| {
+        let (a, b, c, q) = (a.concat(), b.concat(), c.concat(), 1.0 - p);
         format!(
-            "angle 30\nseed {seed}\naxiom A(1,2)B(3,4)\nrule A(x,y) : x < 4 -> {}\n\
-             rule B(x,y) ({p}) -> {}\nrule B(x,y) ({}) -> {}\n",
-            a.concat(),
-            b.concat(),
-            1.0 - p,
-            c.concat()
+            "angle 30\nseed {seed}\naxiom A(1,2)B(3,4)\nrule A(x,y) : x < 4 -> {a}\n\
+             rule B(x,y) ({p}) -> {b}\nrule B(x,y) ({q}) -> {c}\n"
         )
     })
 }
@@ -251,13 +231,11 @@ fn context_system() -> impl Strategy<Value = String> {
         1..4,
     );
     (succ.clone(), succ.clone(), succ, 0u32..4).prop_map(|(a, b, c, k)| {
+        let (a, b, c) = (a.concat(), b.concat(), c.concat());
         format!(
             "angle 30\nignore +F\naxiom A(1)B(2)[C(3)]A(4)C(5)\n\
-             rule B(y) < A(x) : x > {k} -> {}\nrule A(x) > C(y) -> {}\n\
-             rule A(y) < C(x) > B(z) -> {}\n",
-            a.concat(),
-            b.concat(),
-            c.concat()
+             rule B(y) < A(x) : x > {k} -> {a}\nrule A(x) > C(y) -> {b}\n\
+             rule A(y) < C(x) > B(z) -> {c}\n"
         )
     })
 }
@@ -398,10 +376,8 @@ fn the_work_over_all_generations_counts_against_the_budget() {
 /// (690) it is refused at generation 3 with 24.
 #[test]
 fn a_word_that_may_shrink_is_not_refused_by_the_bound_ahead() {
-    let src = format!(
-        "angle 90\naxiom B(0){}\nrule B(y) < A(x) ->\nrule A(x) -> A(x+1)\n",
-        "A(0)".repeat(9)
-    );
+    let nine = "A(0)".repeat(9);
+    let src = format!("angle 90\naxiom B(0){nine}\nrule B(y) < A(x) ->\nrule A(x) -> A(x+1)\n");
     let sys = parse(&src, &Limits::default()).unwrap();
     let run = |max_symbols: u64| {
         let limits = limits_with(|l| l.max_symbols = max_symbols);
@@ -506,11 +482,6 @@ fn classic_files_take_the_classic_path() {
 
 // ------------------------------------------------------------- turtle --
 
-fn ends_2d(src: &str, depth: u32) -> Vec<stlc::turtle::Segment> {
-    let sys = parse(src, &Limits::default()).unwrap();
-    crate::lsys::segments_of(&sys, depth, Dfs)
-}
-
 fn ends_3d(src: &str) -> Vec<stlc::turtle::turtle3::Segment3> {
     let sys = parse(src, &Limits::default()).unwrap();
     let (mut segs, limits) = (Vec::new(), Limits::default());
@@ -531,7 +502,7 @@ fn near(p: stlc::turtle::Point, x: f64, y: f64) -> bool {
 #[test]
 fn parametric_steps_and_turns_take_their_parameters() {
     // Up 2 x length 3, then a right turn of 90 degrees and half a step.
-    let s = ends_2d("angle 10\nlength 3\naxiom F(2)-(90)F(0.5)f(1)F\n", 0);
+    let s = segments("angle 10\nlength 3\naxiom F(2)-(90)F(0.5)f(1)F\n", 0, Dfs);
     assert_eq!(s.len(), 3);
     assert!(near(s[0].to, 0.0, -6.0), "{:?}", s[0]);
     assert!(near(s[1].to, 1.5, -6.0), "{:?}", s[1]);
@@ -545,12 +516,13 @@ fn tropism_turns_the_heading_toward_t_by_e_times_the_sine() {
     // Up the canvas, T to the right: after the first step the frame turns
     // by e |H x T| = e radians toward +x.
     let e: f64 = 0.5;
-    let s = ends_2d("angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n", 0);
+    let bends = "angle 10\ntropism 1 0 0\nelasticity 0.5\naxiom FF\n";
+    let s = segments(bends, 0, Dfs);
     assert!(near(s[0].to, 0.0, -1.0));
     assert!(close(s[1].to.x, libm::sin(e)), "{:?}", s[1]);
     assert!(close(s[1].to.y, -1.0 - libm::cos(e)), "{:?}", s[1]);
     // Without elasticity nothing bends.
-    let s = ends_2d("angle 10\ntropism 1 0 0\naxiom FF\n", 0);
+    let s = segments("angle 10\ntropism 1 0 0\naxiom FF\n", 0, Dfs);
     assert!(near(s[1].to, 0.0, -2.0));
 }
 
@@ -592,10 +564,7 @@ fn counting_steps_stops_as_soon_as_they_pass_the_bound() {
 /// F(2)F(1)A(0).
 #[test]
 fn standard_input_starting_with_define_is_an_lsys() {
-    crate::support::stlc()
-        .args(["expand", "-", "--depth", "2"])
-        .write_stdin("define d 2\naxiom A(d)\nrule A(x) : x > 0 -> F(x)A(x-1)\nangle 90\n")
-        .assert()
-        .success()
-        .stdout("F(2)F(1)A(0)\n");
+    let src = "define d 2\naxiom A(d)\nrule A(x) : x > 0 -> F(x)A(x-1)\nangle 90\n";
+    let word = crate::support::stlc_piped("expand - --depth 2", src);
+    assert_eq!(String::from_utf8(word).unwrap(), "F(2)F(1)A(0)\n");
 }

@@ -21,30 +21,14 @@ fn memo(s: &LSystem, depth: u32) -> Option<ParamMemo> {
 }
 
 fn walked(s: &LSystem, m: &ParamMemo, detail: f64, t: &mut dyn Turtle) {
-    walked_within(s, m, detail, &Limits::default(), t).unwrap();
-}
-
-fn walked_within(
-    s: &LSystem,
-    m: &ParamMemo,
-    detail: f64,
-    limits: &Limits,
-    t: &mut dyn Turtle,
-) -> Result<stlc::turtle::Point, stlc::Diagnostics> {
-    m.draw(s, of(s).unwrap(), detail, limits, t, &mut NoProgress)
+    let limits = Limits::default();
+    m.draw(s, of(s).unwrap(), detail, &limits, t, &mut NoProgress)
+        .unwrap();
 }
 
 fn exact(s: &LSystem, depth: u32, t: &mut dyn Turtle) {
-    exact_within(s, depth, &Limits::default(), t).unwrap();
-}
-
-fn exact_within(
-    s: &LSystem,
-    depth: u32,
-    limits: &Limits,
-    t: &mut dyn Turtle,
-) -> Result<stlc::turtle::Point, stlc::Diagnostics> {
-    stlc::interpret::lsys::draw_into(s, depth, Dfs, limits, t, &mut NoProgress)
+    let limits = Limits::default();
+    stlc::interpret::lsys::draw_into(s, depth, Dfs, &limits, t, &mut NoProgress).unwrap();
 }
 
 /// Each side of box `a` beside the same side of box `b`.
@@ -118,7 +102,7 @@ fn a_depth_the_exact_path_refuses_is_drawn_at_a_level_of_detail() {
     let s = sys(TREE);
     let mut rec = Recorder::default();
     let limits = limits_with(|l| l.max_symbols = 30_000_000);
-    let refused = exact_within(&s, 40, &limits, &mut rec);
+    let refused = stlc::interpret::lsys::draw_into(&s, 40, Dfs, &limits, &mut rec, &mut NoProgress);
     assert!(refused.is_err());
     let m = memo(&s, 40).unwrap();
     let visits = m.visits(1.0);
@@ -135,7 +119,10 @@ fn past_the_budget_the_walk_is_refused_and_says_why() {
     let s = sys(TREE);
     let m = memo(&s, 40).unwrap();
     let limits = limits_with(|l| l.max_symbols = 30 * 1000);
-    let err = walked_within(&s, &m, 0.5, &limits, &mut Bounds::default()).unwrap_err();
+    let (bounds, quiet) = (&mut Bounds::default(), &mut NoProgress);
+    let err = m
+        .draw(&s, of(&s).unwrap(), 0.5, &limits, bounds, quiet)
+        .unwrap_err();
     let text = format!("{err}");
     assert!(text.contains("at this level of detail"), "{text}");
 }

@@ -6,6 +6,7 @@
 //! `tests/cases/render/`, compared by [`crate::support`].
 
 use stlc::color::Rgb;
+use stlc::diag::RenderError::ImageSize;
 use stlc::diag::{Diagnostic, Diagnostics, ErrorKind, RenderError};
 use stlc::num::Linear;
 use stlc::progress::{NoProgress, Progress};
@@ -135,7 +136,7 @@ fn decode(png: &[u8]) -> Pixmap {
 }
 
 /// Demultiplied RGBA of one pixel.
-fn rgba(p: &Pixmap, x: u32, y: u32) -> [u8; 4] {
+pub fn rgba(p: &Pixmap, x: u32, y: u32) -> [u8; 4] {
     let c = p.pixel(x, y).unwrap().demultiply();
     [c.red(), c.green(), c.blue(), c.alpha()]
 }
@@ -163,11 +164,8 @@ fn svg_strokes(svg: &str) -> Vec<(f64, Vec<(Point, Point)>)> {
             let mut at = Point::default();
             let mut letters = d.chars().filter(|c| *c == 'M' || *c == 'L');
             for coords in d.split(['M', 'L']).skip(1) {
-                let v: Vec<f64> = coords
-                    .split_whitespace()
-                    .map(|n| n.parse().unwrap())
-                    .collect();
-                let p = Point::new(v[0], v[1]);
+                let mut v = coords.split_whitespace().map(|n| n.parse().unwrap());
+                let p = Point::new(v.next().unwrap(), v.next().unwrap());
                 if letters.next() == Some('L') {
                     segs.push((at, p));
                 }
@@ -323,12 +321,10 @@ fn underlay_is_even_odd_and_under_the_strokes() {
     // A 10x10 green square with a 4x4 hole, shown exactly (view 0..10 on
     // 100x100: 10 px per unit), and a vertical stem from (1,9) up to (1,8).
     let ring = |x0: f64, y0: f64, s: f64| {
-        vec![
-            Point::new(x0, y0),
-            Point::new(x0 + s, y0),
-            Point::new(x0 + s, y0 + s),
-            Point::new(x0, y0 + s),
-        ]
+        let corners = [(0.0, 0.0), (s, 0.0), (s, s), (0.0, s)];
+        corners
+            .map(|(dx, dy)| Point::new(x0 + dx, y0 + dy))
+            .to_vec()
     };
     let green = Rgb::new(0, 128, 0);
     let underlay = [Fill {
@@ -337,18 +333,12 @@ fn underlay_is_even_odd_and_under_the_strokes() {
     }];
     let mut view = BBox::at(Point::new(0.0, 0.0));
     view.add(Point::new(10.0, 10.0));
-    let ops = ops("F");
-    let draw = |t: &mut dyn Turtle| {
-        let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, Linear::constant(1.0));
-        for &op in &ops {
-            interp.apply(op);
-        }
-    };
     let st = style(Width::Pixels(4.0), Some(Rgb::WHITE));
     let mut outputs = Vec::new();
     for format in [ImageFormat::Png, ImageFormat::Svg] {
         let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
-            draw(t);
+            let mut interp = Interp::new(t, Point::new(1.0, 9.0), 90.0, Linear::constant(1.0));
+            ops("F").into_iter().for_each(|op| interp.apply(op));
             Ok(())
         };
         let (mut out, opts) = (Vec::new(), RenderOptions::new(format, Some((100, 100))));
@@ -385,15 +375,12 @@ fn png_and_svg_agree() {
     assert_eq!((png.width(), png.height()), (150, 200));
 
     let strokes = svg_strokes(&svg);
-    let segs: Vec<(Point, Point)> = strokes.iter().flat_map(|(_, s)| s.clone()).collect();
+    let segs: Vec<(Point, Point)> = strokes.into_iter().flat_map(|s| s.1).collect();
     assert_eq!(segs.len(), TREE.matches('F').count());
     // Merged (the default): collinear runs are one line, fewer lines,
     // and every segment's points lie on one of them.
     let merged = svg_of(TREE, 30.0, &st, size);
-    let lines: Vec<(Point, Point)> = svg_strokes(&merged)
-        .iter()
-        .flat_map(|(_, s)| s.clone())
-        .collect();
+    let lines: Vec<(Point, Point)> = svg_strokes(&merged).into_iter().flat_map(|s| s.1).collect();
     assert!(lines.len() < segs.len(), "{} lines", lines.len());
     for &(a, b) in &segs {
         for t in [0.0, 0.5, 1.0] {
@@ -465,11 +452,8 @@ fn absurd_sizes_are_refused_before_drawing() {
         };
         let mut out = Vec::new();
         let err = render_plain(&mut drawing, ImageFormat::Png, Some(size), &mut out).unwrap_err();
-        let size = matches!(
-            err.first_kind(),
-            Some(ErrorKind::Render(RenderError::ImageSize { .. }))
-        );
-        assert!(size);
+        let size = matches!(err.first_kind(), Some(ErrorKind::Render(ImageSize { .. })));
+        assert!(size, "{err}");
         assert!(err.to_string().contains("--size"), "{err}");
         assert!(!called && out.is_empty());
     }
@@ -497,27 +481,31 @@ fn drawing_errors_pass_through_and_nothing_is_written() {
     assert!(out.is_empty());
 }
 
+/// A writer whose every write fails with the error `0` makes.
+pub struct Failing(pub fn() -> std::io::Error);
+
+impl std::io::Write for Failing {
+    fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+        Err((self.0)())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
 #[test]
 fn write_errors_become_io_diagnostics() {
-    struct Full;
-    impl std::io::Write for Full {
-        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
-            Err(std::io::Error::other("disk full"))
-        }
-        fn flush(&mut self) -> std::io::Result<()> {
-            Ok(())
-        }
-    }
     for format in [ImageFormat::Png, ImageFormat::Svg] {
         let ops = ops("FF");
         let mut drawing = |t: &mut dyn Turtle, _: &mut dyn Progress| {
             run(&ops, 90.0, 0.0, t);
             Ok(())
         };
-        let err = render_plain(&mut drawing, format, None, &mut Full).unwrap_err();
-        assert!(
-            matches!(err.first_kind(), Some(ErrorKind::Io { error, .. }) if error == "disk full")
-        );
+        let mut full = Failing(|| std::io::Error::other("disk full"));
+        let err = render_plain(&mut drawing, format, None, &mut full).unwrap_err();
+        let full =
+            matches!(err.first_kind(), Some(ErrorKind::Io { error, .. }) if error == "disk full");
+        assert!(full, "{err}");
     }
 }
 
@@ -537,13 +525,9 @@ fn a_million_tiny_segments_stream_through_the_png_backend() {
     };
     let mut turtle = PngTurtle::new(fit, &style(Width::Pixels(1.0), Some(Rgb::WHITE))).unwrap();
     let point = |i: u32| {
-        let row = i / 1000;
-        let col = i % 1000;
-        let x = if row.is_multiple_of(2) {
-            col
-        } else {
-            1000 - col
-        };
+        // Even rows run right, odd rows back left.
+        let (row, col) = (i / 1000, i % 1000);
+        let x = col.abs_diff(1000 * (row % 2));
         Point::new(f64::from(x) * 0.19, f64::from(row) * 0.19)
     };
     for i in 0..1_000_000 {
@@ -565,11 +549,8 @@ fn threads_png(args: &str, threads: &str) -> Vec<u8> {
 
 /// Pixels darker than `level` in the red channel.
 fn inked(png: &[u8], level: u8) -> usize {
-    decode(png)
-        .pixels()
-        .iter()
-        .filter(|p| p.red() < level)
-        .count()
+    let p = decode(png);
+    p.pixels().iter().filter(|p| p.red() < level).count()
 }
 
 /// Big drawings (2^20 segments or more) are painted in bands; one thread
@@ -628,10 +609,8 @@ fn a_tree_over_its_layout_in_bands_is_the_same_with_any_threads() {
     let fills = stlc::rings::fills(&layout);
     let png = |segments: u64, threads: usize| {
         let mut drawing = |t: &mut dyn Turtle, p: &mut dyn Progress| scene.draw(t, p);
-        let (mut out, mut opts) = (
-            Vec::new(),
-            RenderOptions::new(ImageFormat::Png, Some((500, 700))),
-        );
+        let mut opts = RenderOptions::new(ImageFormat::Png, Some((500, 700)));
+        let mut out = Vec::new();
         opts.threads = threads;
         let segments = Some(segments);
         let frame = render::Frame::View { view, segments };
@@ -645,18 +624,12 @@ fn a_tree_over_its_layout_in_bands_is_the_same_with_any_threads() {
     }
     let whole = png(1, 2);
     assert!(banded != whole, "banded: not one raster's bytes");
-    let differing = banded
-        .pixels()
-        .iter()
-        .zip(whole.pixels())
-        .filter(|(a, b)| a != b)
-        .count();
+    let pairs = banded.pixels().iter().zip(whole.pixels());
+    let differing = pairs.filter(|(a, b)| a != b).count();
     assert!(differing < 500, "{differing} of 350,000 pixels differ");
     // The layout and the tree are painted: not a white page.
-    let painted = banded
-        .pixels()
-        .iter()
-        .filter(|p| (p.red(), p.green(), p.blue()) != (255, 255, 255))
-        .count();
+    let white =
+        |p: &&tiny_skia::PremultipliedColorU8| (p.red(), p.green(), p.blue()) == (255, 255, 255);
+    let painted = banded.pixels().iter().filter(|p| !white(p)).count();
     assert!(painted > 10_000, "{painted}");
 }

@@ -14,15 +14,22 @@ use crate::stl::bed;
 use crate::support::{limits_with, od};
 use stlc::bed::validate;
 use stlc::bed::write::write;
-use stlc::diag::{
-    BedError, Diagnostics, ErrorKind, GrowError, InputError, LayoutError, LsysError, StlError,
+use stlc::diag::BedError::OrderTooDeep;
+use stlc::diag::Diagnostics;
+use stlc::diag::ErrorKind::{self, Bed, Grow, Input, Layout, Lsys, Stl};
+use stlc::diag::GrowError::RootOutside;
+use stlc::diag::InputError::{
+    InputTooLarge, NestingTooDeep, NotFinite, NotUtf8, Syntax, Unbalanced,
 };
+use stlc::diag::LayoutError::{EmptyRegion, ShapeSizeNotPositive, TooFewPoints};
+use stlc::diag::LsysError::{MalformedNumber, MissingKey, NotPositive, NumberTooLarge, UnknownKey};
+use stlc::diag::StlError::{NegativeDecrement, StemSizeNotPositive};
 use stlc::interpret::Derivation::{self, Bfs, Dfs};
 use stlc::limits::Limits;
 use stlc::model::{Description, Format, Shape};
 use stlc::progress::{NoProgress, Progress};
 use stlc::syntax::{lsys, precheck, stl};
-use stlc::turtle::{Bounds, Counter, Segment, Turtle};
+use stlc::turtle::{Bounds, Counter, Recorder, Turtle};
 
 /// Asserts that the first error of the diagnostics `$e` matches `$kind`.
 macro_rules! assert_first {
@@ -60,16 +67,6 @@ impl Progress for Tally {
         self.done = done;
     }
     fn finish(&mut self) {}
-}
-
-/// Every segment drawn.
-#[derive(Default)]
-struct Segments(Vec<Segment>);
-
-impl Turtle for Segments {
-    fn segment(&mut self, seg: Segment) {
-        self.0.push(seg);
-    }
 }
 
 fn lsys_err(src: String, limits: Limits) -> Diagnostics {
@@ -113,7 +110,7 @@ fn nest(n: usize, open: &str, inner: &str, close: &str) -> String {
 
 /// The error of nesting past `limit` levels.
 fn too_deep(limit: usize) -> ErrorKind {
-    ErrorKind::Input(InputError::NestingTooDeep { limit })
+    Input(NestingTooDeep { limit })
 }
 
 /// The default limits with nesting allowed to a million levels.
@@ -178,7 +175,7 @@ fn deep_lsys_brackets_within_a_raised_limit_parse_and_draw_without_recursion() {
     // An unbalanced one is still pointed at, at its opening bracket.
     let src = format!("axiom F{}\nangle 90\n", "[".repeat(N));
     let e = lsys_err(src, limits);
-    let want = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
+    let want = Some(&Input(Unbalanced('[')));
     assert_eq!(e.first_kind(), want);
 }
 
@@ -221,7 +218,7 @@ fn stl_nesting_beyond_the_limit_in_a_raised_limit_is_a_clean_error_or_a_tree() {
     let repeats = seeded(nest(N, "[I 2 ", "R1", "]"));
     let at = repeats.find("[I").unwrap();
     let e = stl_err(repeats, Format::Bed, limits);
-    let wanted = Some(&ErrorKind::Input(InputError::Unbalanced('[')));
+    let wanted = Some(&Input(Unbalanced('[')));
     assert_eq!(e.first_kind(), wanted, "{e}");
     assert_eq!(e.0[0].span, Some(at..at + 1));
 }
@@ -254,12 +251,8 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
         assert!(copy == d);
         // (Locations do not take part in equality: only the innermost slot,
         // a repeat instead of empty, differs.)
-        let deeper = stl::parse(
-            &seeded(nest(n - 1, "R1{", "[I 2 R1]", "}")),
-            Format::Bed,
-            &limits,
-        )
-        .expect("parses");
+        let deeper = seeded(nest(n - 1, "R1{", "[I 2 R1]", "}"));
+        let deeper = stl::parse(&deeper, Format::Bed, &limits).expect("parses");
         assert!(deeper != d, "the innermost slot differs");
         // `{:?}` of the description shows the arena's size, not its terms.
         let shown = format!("{d:#?}");
@@ -278,10 +271,8 @@ fn terms_nested_to_the_default_limit_work_on_an_ordinary_thread_stack() {
 
 #[test]
 fn generations_in_the_millions_are_refused_with_limit() {
-    let e = lsys_err(
-        "generations 5000000\naxiom F\nangle 90\n".into(),
-        Limits::default(),
-    );
+    let src = "generations 5000000\naxiom F\nangle 90\n";
+    let e = lsys_err(src.into(), Limits::default());
     assert!(is_limit(&e, "generations"), "{e}");
     let d = &e.0[0];
     assert_eq!(d.span, Some(12..19));
@@ -323,16 +314,22 @@ fn an_expansion_beyond_the_symbol_budget_is_refused_before_drawing() {
     assert_eq!((drawn, tally), (0, Tally::default()));
 }
 
-#[test]
-fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
-    let sys = lsys::parse("axiom F\nrule F FF\nangle 90\n", &Limits::default()).unwrap();
-    let (e, drawn, tally) = small_stack(move || {
-        let (mut c, mut tally) = (Counter::default(), Tally::default());
+/// `src` parsed and drawn to depth 10,000 on a small stack, which must
+/// fail: the error, the segments drawn and the work announced.
+fn drawn_to_depth_10000(src: String) -> (Diagnostics, u64, Tally) {
+    small_stack(move || {
         let limits = Limits::default();
+        let sys = lsys::parse(&src, &limits).expect("parses");
+        let (mut c, mut tally) = (Counter::default(), Tally::default());
         let e = stlc::interpret::lsys::draw(&sys, 10_000, Dfs, &limits, &mut c, &mut tally)
             .unwrap_err();
         (e, c.0, tally)
-    });
+    })
+}
+
+#[test]
+fn a_derivation_beyond_the_budget_is_refused_with_its_exact_length() {
+    let (e, drawn, tally) = drawn_to_depth_10000("axiom F\nrule F FF\nangle 90\n".into());
     // Refused before a symbol was derived.
     assert_eq!((drawn, tally), (0, Tally::default()));
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
@@ -348,20 +345,11 @@ fn a_wide_alphabet_at_the_depth_limit_is_refused_with_its_exact_length() {
     // (symbol, depth) pair would be 4.8 GB. Only `F` has a rule, so only
     // its lengths are carried from level to level.
     // (U+FEFF, the byte-order mark, is blank space to the parser.)
-    let alphabet: String = (0x4e00u32..0x4e00 + 60_000)
-        .filter_map(char::from_u32)
-        .filter(|&c| c != '\u{feff}')
-        .collect();
+    let chars = (0x4e00u32..0x4e00 + 60_000).filter_map(char::from_u32);
+    let alphabet: String = chars.filter(|&c| c != '\u{feff}').collect();
     let inert = alphabet.chars().count();
     let src = format!("axiom F{alphabet}\nrule F FF\nangle 90\n");
-    let (e, drawn, tally) = small_stack(move || {
-        let limits = Limits::default();
-        let sys = lsys::parse(&src, &limits).expect("parses");
-        let (mut c, mut tally) = (Counter::default(), Tally::default());
-        let e = stlc::interpret::lsys::draw(&sys, 10_000, Dfs, &limits, &mut c, &mut tally)
-            .unwrap_err();
-        (e, c.0, tally)
-    });
+    let (e, drawn, tally) = drawn_to_depth_10000(src);
     assert!(is_limit(&e, "derived word length at depth 10000"), "{e}");
     // 2^10000 copies of F and the inert symbols once each.
     let exact = num_bigint::BigUint::from(2u32).pow(10_000) + inert;
@@ -385,7 +373,7 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         let e = lsys_err(src.clone(), Limits::default());
         assert_first!(
             e,
-            ErrorKind::Lsys(LsysError::NumberTooLarge { .. } | LsysError::MalformedNumber { .. }),
+            Lsys(NumberTooLarge { .. } | MalformedNumber { .. }),
             "{line}: {e}"
         );
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{line}");
@@ -395,7 +383,7 @@ fn lsys_numbers_that_overflow_or_are_not_numbers_are_refused() {
         let e = lsys_err(src, Limits::default());
         assert_first!(
             e,
-            ErrorKind::Lsys(LsysError::NotPositive { .. } | LsysError::NumberTooLarge { .. }),
+            Lsys(NotPositive { .. } | NumberTooLarge { .. }),
             "{line}: {e}"
         );
     }
@@ -412,11 +400,7 @@ fn stl_numbers_that_overflow_are_refused() {
     ] {
         let at = src.find(needle).unwrap();
         let e = bed_err(src);
-        assert_first!(
-            e,
-            ErrorKind::Input(InputError::NotFinite { .. }),
-            "{src}: {e}"
-        );
+        assert_first!(e, Input(NotFinite { .. }), "{src}: {e}");
         assert_eq!(e.0[0].span, Some(at..at + needle.len()), "{src}");
     }
     // `NaN` and `inf` are not numbers in the grammar at all.
@@ -425,7 +409,7 @@ fn stl_numbers_that_overflow_are_refused() {
         "T (0, 0) L=inf(0) B=1(0) RULE R1: [F]",
     ] {
         let e = bed_err(src);
-        assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src}: {e}");
+        assert_first!(e, Input(Syntax(_)), "{src}: {e}");
     }
 }
 
@@ -439,9 +423,7 @@ fn zero_and_negative_sizes_are_refused() {
         let e = bed_err(src);
         assert_first!(
             e,
-            ErrorKind::Stl(
-                StlError::StemSizeNotPositive { .. } | StlError::NegativeDecrement { .. }
-            ),
+            Stl(StemSizeNotPositive { .. } | NegativeDecrement { .. }),
             "{src}: {e}"
         );
         let at = src.find(needle).unwrap();
@@ -460,20 +442,14 @@ fn zero_and_negative_sizes_are_refused() {
         let e = stl_err(src, Format::Od, Limits::default());
         assert_first!(
             e,
-            ErrorKind::Layout(
-                LayoutError::ShapeSizeNotPositive { .. } | LayoutError::TooFewPoints { .. }
-            ),
+            Layout(ShapeSizeNotPositive { .. } | TooFewPoints { .. }),
             "{shape}: {e}"
         );
     }
     // A decrement that runs the length out: the order where it happens.
     let d = bed("T (0, 0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{R1{}}} ENDSEED");
     let e = validate(&d, &Limits::default()).unwrap_err();
-    assert_first!(
-        e,
-        ErrorKind::Bed(BedError::OrderTooDeep { order: 2, .. }),
-        "{e}"
-    );
+    assert_first!(e, Bed(OrderTooDeep { order: 2, .. }), "{e}");
 }
 
 // ---------------------------------------------------------------- layout --
@@ -516,7 +492,7 @@ fn a_hundred_megabyte_input_is_refused_by_its_size_before_its_bytes_are_read() {
     let big = vec![0xff; 100 << 20];
     let e = precheck(&big, &Limits::default()).unwrap_err();
     let (size, limit) = (100 << 20, 64 << 20);
-    let too_large = ErrorKind::Input(InputError::InputTooLarge { size, limit });
+    let too_large = Input(InputTooLarge { size, limit });
     assert_eq!(e.first_kind(), Some(&too_large));
 }
 
@@ -539,22 +515,17 @@ fn binary_garbage_is_refused_cleanly_by_every_parser() {
         let lossy = String::from_utf8_lossy(&bytes).into_owned();
         // As bytes: not UTF-8.
         let e = precheck(&bytes, &Limits::default()).unwrap_err();
-        assert_first!(e, ErrorKind::Input(InputError::NotUtf8(_)), "{e}");
+        assert_first!(e, Input(NotUtf8(_)), "{e}");
         // As text (replacement characters): a syntax error or a limit.
         let e = lsys_err(lossy.clone(), Limits::default());
         assert_first!(
             e,
-            ErrorKind::Input(InputError::Syntax(_) | InputError::NestingTooDeep { .. })
-                | ErrorKind::Lsys(LsysError::UnknownKey { .. } | LsysError::MissingKey { .. }),
+            Input(Syntax(_) | NestingTooDeep { .. }) | Lsys(UnknownKey { .. } | MissingKey { .. }),
             "{e}"
         );
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(lossy.clone(), format, Limits::default());
-            assert_first!(
-                e,
-                ErrorKind::Input(InputError::Syntax(_) | InputError::NestingTooDeep { .. }),
-                "{e}"
-            );
+            assert_first!(e, Input(Syntax(_) | NestingTooDeep { .. }), "{e}");
         }
     }
 }
@@ -564,12 +535,12 @@ fn invalid_utf8_is_refused_with_its_offset_by_both_parsers_entry() {
     let mut bytes = b"axiom F\nangle 90\n# caf".to_vec();
     bytes.extend_from_slice(&[0xc3, 0x28]);
     let e = precheck(&bytes, &Limits::default()).unwrap_err();
-    let want = Some(&ErrorKind::Input(InputError::NotUtf8(22)));
+    let want = Some(&Input(NotUtf8(22)));
     assert_eq!(e.first_kind(), want);
     assert_eq!(e.0[0].span, Some(22..22));
     // A UTF-16 file (BOM FF FE) fails at byte 0.
     let e = precheck(b"\xff\xfea\0x\0", &Limits::default()).unwrap_err();
-    let want = Some(&ErrorKind::Input(InputError::NotUtf8(0)));
+    let want = Some(&Input(NotUtf8(0)));
     assert_eq!(e.first_kind(), want);
 }
 
@@ -582,7 +553,7 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
         assert!(holds, "{src:?}: {missing:?}");
         for format in [Format::Od, Format::Bed] {
             let e = stl_err(src.into(), format, Limits::default());
-            assert_first!(e, ErrorKind::Input(InputError::Syntax(_)), "{src:?}: {e}");
+            assert_first!(e, Input(Syntax(_)), "{src:?}: {e}");
             assert_eq!(e.0.len(), 1);
         }
     }
@@ -591,11 +562,8 @@ fn empty_and_comment_only_files_of_each_kind_say_what_is_missing() {
 // ----------------------------------------------------------------- grower --
 
 fn grow_err(src: &str) -> Diagnostics {
-    let d = od(src);
-    let grown = stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress);
-    grown
-        .map(|g| g.stems)
-        .expect_err("grew stems, expected an error")
+    let grown = stlc::grow::grow(&od(src), &Default::default(), &mut NoProgress);
+    grown.map(|g| g.stems).expect_err(src)
 }
 
 #[test]
@@ -603,7 +571,7 @@ fn a_layout_whose_shapes_cancel_leaves_nothing_to_grow_in() {
     let src = "T (5, 5) L=1(0) B=1(0) RULE R1: [+F][-F] \
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 (clWhite) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
-    assert_first!(e, ErrorKind::Layout(LayoutError::EmptyRegion), "{e}");
+    assert_first!(e, Layout(EmptyRegion), "{e}");
     let at = src.find("LAYOUT").unwrap();
     assert_eq!(e.0[0].span.as_ref().map(|s| s.start), Some(at));
 }
@@ -613,7 +581,7 @@ fn a_root_outside_the_layout_is_refused_at_the_root() {
     let src = "T (50, 50) L=1(0) B=1(0) RULE R1: [+F][-F] \
                LAYOUT (clGreen) Rectangle (0,0), 10, 10 ENDLAYOUT";
     let e = grow_err(src);
-    assert_first!(e, ErrorKind::Grow(GrowError::RootOutside { .. }), "{e}");
+    assert_first!(e, Grow(RootOutside { .. }), "{e}");
     assert_eq!(e.0[0].span, Some(2..10));
 }
 
@@ -628,11 +596,11 @@ fn a_self_intersecting_polygon_layout_grows_inside_its_lobes() {
     let g = small_stack(move || {
         stlc::grow::grow(&d, &stlc::grow::GrowOptions::default(), &mut NoProgress).expect("grows")
     });
-    let mut segs = Segments::default();
+    let mut segs = Recorder::default();
     let limits = Limits::default();
     stlc::interpret::bed::draw(&g.bed, Dfs, &limits, &mut segs, &mut NoProgress).unwrap();
-    assert_eq!(segs.0.len() as u64, g.stems);
-    let ends = || segs.0.iter().flat_map(|s| [s.from, s.to]);
+    assert_eq!(segs.segments.len() as u64, g.stems);
+    let ends = || segs.segments.iter().flat_map(|s| [s.from, s.to]);
     for p in ends() {
         let (x, y) = (p.x, p.y);
         let inside = x <= y && y <= 100.0 - x;
@@ -662,9 +630,9 @@ fn runaway_layouts_are_refused_at_the_shape_that_passes_the_vertex_limit() {
             format!("({x:.3},{y:.3})")
         })
         .collect();
+    let star = star.join(",");
     let src = format!(
-        "T (500, 500) L=10(0) B=1(0) RULE R1: [-F][+F] LAYOUT (clGreen) Polygon {} ENDLAYOUT",
-        star.join(",")
+        "T (500, 500) L=10(0) B=1(0) RULE R1: [-F][+F] LAYOUT (clGreen) Polygon {star} ENDLAYOUT"
     );
     // A polygon of more points than the limit is refused before the parser
     // reads it, pointing at the shape; within a raised limit it parses and

@@ -62,13 +62,7 @@ fn read(bytes: &[u8]) -> Body {
         }
         // The written normal agrees with the winding.
         let [a, b, cc] = c.map(|i| points[i]);
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]];
-        let w = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let w = crate::organs::winding_normal(a, b, cc);
         let dot: f64 = (0..3).map(|i| w[i] * f64::from(normal[i])).sum();
         assert!(dot >= 0.0, "triangle {t}'s normal against its winding");
         tris.push(c);
@@ -99,10 +93,10 @@ pub(crate) fn analyse(points: &[[f64; 3]], tris: &[[usize; 3]]) -> Body {
     }
     for &[a, b, c] in tris {
         let ra = root(&mut parent, a);
-        let rb = root(&mut parent, b);
-        parent[rb] = ra;
-        let rc = root(&mut parent, c);
-        parent[rc] = ra;
+        for x in [b, c] {
+            let rx = root(&mut parent, x);
+            parent[rx] = ra;
+        }
     }
     let mut roots: Vec<usize> = (0..points.len()).map(|i| root(&mut parent, i)).collect();
     roots.sort_unstable();
@@ -116,14 +110,9 @@ pub(crate) fn analyse(points: &[[f64; 3]], tris: &[[usize; 3]]) -> Body {
                 / 6.0
         })
         .sum();
-    let mut min = [f64::INFINITY; 3];
-    let mut max = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for i in 0..3 {
-            min[i] = min[i].min(p[i]);
-            max[i] = max[i].max(p[i]);
-        }
-    }
+    let axis = |i: usize| points.iter().map(move |p| p[i]);
+    let min = [0, 1, 2].map(|i| axis(i).fold(f64::INFINITY, f64::min));
+    let max = [0, 1, 2].map(|i| axis(i).fold(f64::NEG_INFINITY, f64::max));
     Body {
         triangles: tris.len(),
         vertices: points.len(),
@@ -256,19 +245,10 @@ fn solid_usage_errors() {
         (&oak, "a.png", true, "not a picture"),
         (&oak, "a.obj", true, "not .obj"),
         (&oak, "a.gltf", true, "not .gltf"),
-        (
-            &oak,
-            "a.stl",
-            false,
-            "an .stl is written as one closed body: add --solid",
-        ),
-        (
-            &oak,
-            "a.3mf",
-            false,
-            "a .3mf is written as one closed body: add --solid",
-        ),
+        (&oak, "a.stl", false, "an .stl {closed}"),
+        (&oak, "a.3mf", false, "a .3mf {closed}"),
     ] {
+        let says = says.replace("{closed}", "is written as one closed body: add --solid");
         let path = dir.path().join(out);
         let mut cmd = stlc();
         cmd.args(["render", "-q", "-o"]).arg(&path).arg(input);
@@ -308,10 +288,8 @@ fn leaves_are_slabs_united_with_their_stems() {
     for (name, leaf) in [("bare", ""), ("leafy", " P=L")] {
         let input = dir.path().join(format!("{name}.bed"));
         std::fs::write(&input, leafy_y(leaf)).unwrap();
-        let body = read(&solid_written(
-            &input,
-            &dir.path().join(format!("{name}.stl")),
-        ));
+        let out = dir.path().join(format!("{name}.stl"));
+        let body = read(&solid_written(&input, &out));
         printable(&body, 0);
         volumes.push(body.volume);
     }

@@ -11,6 +11,7 @@
 
 use std::io::Read;
 
+use crate::mesh_origin::Glb;
 use crate::solid::{Body, analyse, leafy_y, printable, solid_written};
 use crate::support::{gltf_validate, gltf_validator_present};
 
@@ -122,11 +123,9 @@ fn read_3mf(zip: &[u8]) -> Body {
 
 /// Reads a glb's one primitive (metres, y up).
 fn read_glb(glb: &[u8]) -> Body {
-    assert_eq!(&glb[..4], b"glTF");
     assert_eq!(u32_at(glb, 8), glb.len());
-    let json_len = u32_at(glb, 12);
-    let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
-    let bin = &glb[28 + json_len..];
+    let g = Glb::read(glb);
+    let doc = &g.json;
     let prims = doc["meshes"][0]["primitives"].as_array().unwrap();
     let meshes = doc["meshes"].as_array().unwrap().len();
     assert_eq!((prims.len(), meshes), (1, 1));
@@ -134,31 +133,13 @@ fn read_glb(glb: &[u8]) -> Body {
     let attrs = prims[0]["attributes"].as_object().unwrap();
     let keys: Vec<&str> = attrs.keys().map(String::as_str).collect();
     assert_eq!(keys, ["NORMAL", "POSITION"], "no texture coordinates");
-    let floats = |acc: &serde_json::Value| -> Vec<[f64; 3]> {
-        let a = &doc["accessors"][acc.as_u64().unwrap() as usize];
-        let view = &doc["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
-        let at = view["byteOffset"].as_u64().unwrap() as usize;
-        (0..a["count"].as_u64().unwrap() as usize)
-            .map(|i| {
-                [0, 1, 2].map(|k| {
-                    f64::from(f32::from_le_bytes(
-                        bin[at + 12 * i + 4 * k..][..4].try_into().unwrap(),
-                    ))
-                })
-            })
-            .collect()
-    };
-    let points = floats(&attrs["POSITION"]);
-    for n in floats(&attrs["NORMAL"]) {
+    let vec3 = |v: &Vec<f32>| [0, 1, 2].map(|k| f64::from(v[k]));
+    let points: Vec<[f64; 3]> = g.floats("POSITION", 3).iter().map(vec3).collect();
+    for n in g.floats("NORMAL", 3).iter().map(vec3) {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         assert!((len - 1.0).abs() < 1e-6, "normal {n:?}");
     }
-    let a = &doc["accessors"][prims[0]["indices"].as_u64().unwrap() as usize];
-    let view = &doc["bufferViews"][a["bufferView"].as_u64().unwrap() as usize];
-    let at = view["byteOffset"].as_u64().unwrap() as usize;
-    let idx: Vec<usize> = (0..a["count"].as_u64().unwrap() as usize)
-        .map(|i| u32_at(bin, at + 4 * i))
-        .collect();
+    let idx = g.indices();
     let tris: Vec<[usize; 3]> = idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     analyse(&points, &tris)
 }

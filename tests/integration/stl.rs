@@ -45,6 +45,14 @@ fn refused(src: &str, kind: ErrorKind) -> (std::ops::Range<usize>, String) {
     (d.span.clone().expect("a span"), help)
 }
 
+/// The help of the one error of `src`, asserted to be of `kind` and to
+/// point at the first `needle`.
+fn refused_at(src: &str, kind: ErrorKind, needle: &str) -> String {
+    let (span, help) = refused(src, kind);
+    assert_eq!(span, at(src, needle, 0), "{src}");
+    help
+}
+
 /// Byte range of the `n`th (0-based) occurrence of `needle` in `src`.
 fn at(src: &str, needle: &str, n: usize) -> std::ops::Range<usize> {
     let start = src.match_indices(needle).nth(n).expect("needle").0;
@@ -261,21 +269,36 @@ fn both_definition_forms_and_comments() {
 
 // ---------------------------------------------------------- diagnostics --
 
+/// Mistakes with one error each, pointed at the first occurrence of the
+/// text at fault; the help of unknown names suggests the nearest.
 #[test]
-fn unknown_rule_suggests_the_nearest() {
+fn each_mistake_is_reported_at_its_text() {
     let src = format!("{HEAD} R1: [F] R2: [F][F] SEED FR3 ENDSEED");
     let unknown = ErrorKind::Rule(RuleError::UnknownRule { name: "R3".into() });
-    let (span, help) = refused(&src, unknown);
-    assert_eq!(span, at(&src, "R3", 0));
-    assert!(help.contains("`R1`"), "{help}");
-}
-
-#[test]
-fn slot_count_names_the_rule_and_its_count() {
+    assert!(refused_at(&src, unknown, "R3").contains("`R1`"));
     let src = format!("{HEAD} R1: [F][F] SEED F R1{{,,}} ENDSEED");
-    let (span, help) = refused(&src, slot_count("R1", 2, 3));
-    assert_eq!(span, at(&src, "R1{,,}", 0));
-    assert!(help.contains("R1{,}"), "{help}");
+    assert!(refused_at(&src, slot_count("R1", 2, 3), "R1{,,}").contains("R1{,}"));
+    let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
+    let few = ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 });
+    refused_at(&src, few, "Polygon (0,0), (5,5)");
+    let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
+    let text = "clGren".into();
+    let colour = ErrorKind::Input(InputError::UnknownColour { text });
+    assert!(refused_at(&src, colour, "clGren").contains("clGreen"));
+    let unclosed = |open, close| ErrorKind::Stl(StlError::UnclosedSection { open, close });
+    let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
+    refused_at(&src, unclosed("SEED", "ENDSEED"), "SEED");
+    let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 5, 5");
+    refused_at(&src, unclosed("LAYOUT", "ENDLAYOUT"), "LAYOUT");
+    let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
+    let text = "1e999".into();
+    let finite = ErrorKind::Input(InputError::NotFinite { text });
+    refused_at(src, finite, "1e999");
+    let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
+    let over = limit_kind(Bound::Repeat, None, "10001", 10000);
+    assert!(refused_at(&src, over, "10001").contains("--max-depth"));
+    let src = format!("{HEAD} R1: [F] SEED F{{}} ENDSEED");
+    refused_at(&src, ErrorKind::Stl(StlError::BraceWithoutRule), "{");
 }
 
 #[test]
@@ -332,8 +355,7 @@ fn sizes_must_be_positive() {
     let stem = |key, what| ErrorKind::Stl(StlError::StemSizeNotPositive { key, what });
     let shape = |shape, what| ErrorKind::Layout(LayoutError::ShapeSizeNotPositive { shape, what });
     let src = "T (0, 0) L=-1(0) B=1(0) RULE R1: [F]";
-    let (span, _) = refused(src, stem("L", "length"));
-    assert_eq!(span, at(src, "-1", 0));
+    refused_at(src, stem("L", "length"), "-1");
 
     let src = "T (0, 0) L=1(0) B=0(0) RULE R1: [F]";
     let (span, _) = refused(src, stem("B", "broadness"));
@@ -346,60 +368,7 @@ fn sizes_must_be_positive() {
     assert_eq!(span, w..w + 1);
 
     let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) RoundRect (0,0), 5, 10, -2 ENDLAYOUT");
-    let (span, _) = refused(&src, shape("RoundRect", "corner radius"));
-    assert_eq!(span, at(&src, "-2", 0));
-}
-
-#[test]
-fn polygons_need_three_points() {
-    let src = format!("{HEAD} R1: [F] LAYOUT (clRed) Polygon (0,0), (5,5) ENDLAYOUT");
-    let few = ErrorKind::Layout(LayoutError::TooFewPoints { points: 2 });
-    let (span, _) = refused(&src, few);
-    assert_eq!(span, at(&src, "Polygon (0,0), (5,5)", 0));
-}
-
-#[test]
-fn unknown_colour_suggests_one() {
-    let src = format!("{HEAD} R1: [F] LAYOUT (clGren) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let text = "clGren".into();
-    let (span, help) = refused(&src, ErrorKind::Input(InputError::UnknownColour { text }));
-    assert_eq!(span, at(&src, "clGren", 0));
-    assert!(help.contains("clGreen"));
-}
-
-#[test]
-fn missing_section_ends() {
-    let src = format!("{HEAD} R1: [F] SEED R1 LAYOUT (clGreen) Rectangle (0,0), 5, 5 ENDLAYOUT");
-    let unclosed = |open, close| ErrorKind::Stl(StlError::UnclosedSection { open, close });
-    let (span, _) = refused(&src, unclosed("SEED", "ENDSEED"));
-    assert_eq!(span, at(&src, "SEED", 0));
-
-    let src = format!("{HEAD} R1: [F] LAYOUT (clGreen) Rectangle (0,0), 5, 5");
-    let (span, _) = refused(&src, unclosed("LAYOUT", "ENDLAYOUT"));
-    assert_eq!(span, at(&src, "LAYOUT", 0));
-}
-
-#[test]
-fn numbers_must_be_finite() {
-    let src = "T (0, 1e999) L=10(0) B=1(0) RULE R1: [F]";
-    let text = "1e999".into();
-    let (span, _) = refused(src, ErrorKind::Input(InputError::NotFinite { text }));
-    assert_eq!(span, at(src, "1e999", 0));
-}
-
-#[test]
-fn counts_over_the_limit_are_refused() {
-    let src = format!("{HEAD} R1: [F] SEED [I 10001 R1] ENDSEED");
-    let (span, help) = refused(&src, limit_kind(Bound::Repeat, None, "10001", 10000));
-    assert_eq!(span, at(&src, "10001", 0));
-    assert!(help.contains("--max-depth"));
-}
-
-#[test]
-fn braces_must_follow_a_rule_name() {
-    let src = format!("{HEAD} R1: [F] SEED F{{}} ENDSEED");
-    let (span, _) = refused(&src, ErrorKind::Stl(StlError::BraceWithoutRule));
-    assert_eq!(span, at(&src, "{", 0));
+    refused_at(&src, shape("RoundRect", "corner radius"), "-2");
 }
 
 #[test]
@@ -440,20 +409,18 @@ fn syntax_errors_name_what_the_user_types() {
 #[test]
 fn validate_refuses_orders_without_length() {
     // L=10(5): order 2 has length 0.
-    let d = bed("T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED");
-    let e = validate(&d, &Limits::default()).unwrap_err();
-    assert_eq!(
-        e.first_kind(),
-        Some(&ErrorKind::Bed(BedError::OrderTooDeep {
-            rule: "R1".into(),
-            order: 2,
-            length: 0.0,
-            width: 1.0
-        }))
-    );
-    let inner = "R1{}";
     let src = "T (0,0) L=10(5) B=1(0) RULE R1: [F] SEED R1{R1{}} ENDSEED";
-    assert_eq!(e.0[0].span, Some(at(src, inner, 0)));
+    let d = bed(src);
+    let e = validate(&d, &Limits::default()).unwrap_err();
+    let (rule, order, length, width) = ("R1".into(), 2, 0.0, 1.0);
+    let deep = ErrorKind::Bed(BedError::OrderTooDeep {
+        rule,
+        order,
+        length,
+        width,
+    });
+    assert_eq!(e.first_kind(), Some(&deep));
+    assert_eq!(e.0[0].span, Some(at(src, "R1{}", 0)));
     // ... and so does drawing.
     assert!(segments(&d, Dfs).is_err());
 }
@@ -563,19 +530,13 @@ fn five_thousand_nested_terms_parse_write_and_expand() {
         assert!(text.ends_with("  }\n}\nENDSEED\n"));
         // Linear in depth, so the deep file reads back too.
         assert_eq!(bed(&text), d);
-        let limits = Limits::default();
-        let mut out = Vec::new();
-        stlc::bed::Bed::new(d.clone(), &limits)
-            .and_then(|bed| expand(&bed, Dfs, &limits, &mut out, &mut NoProgress))
-            .unwrap();
+        let out = expanded(&d, Dfs);
         assert_eq!(out.len(), 3 * n + 1);
-        assert!(out.starts_with(b"[F[F"));
+        assert!(out.starts_with("[F[F"));
         // bfs rewrites the whole word once per level (quadratic here), so
         // it is compared on the first 500 levels only.
         assert_eq!(segments(&d, Dfs).unwrap().len(), n);
-        let m = 500;
-        let src = nested(m);
-        let small = bed(&src);
+        let small = bed(&nested(500));
         let wanted = segments(&small, Dfs).unwrap();
         assert_eq!(segments(&small, Bfs).unwrap(), wanted);
         drop(d);
@@ -651,29 +612,29 @@ fn run(text: String) -> DrawRun {
     DrawRun { text, loc }
 }
 
+/// Appends the drawing `$t` to `$items`: to the `$draw` run that ends
+/// them (the parser reads adjacent letters as one run), else as a new one.
+macro_rules! push_run {
+    ($items:expr, $draw:path, $t:expr) => {{
+        let t: String = $t;
+        match $items.last_mut() {
+            Some($draw(r)) => r.text.push_str(&t),
+            _ => $items.push($draw(run(t).into())),
+        }
+    }};
+}
+
 fn gen_body(g: &mut Gen, rules: usize) -> Body {
     let mut items: Vec<BodyItem> = Vec::new();
     for _ in 0..1 + g.below(4) {
         match g.below(3) {
-            0 => {
-                let t = g.letters(3);
-                if let Some(BodyItem::Draw(r)) = items.last_mut() {
-                    r.text.push_str(&t);
-                } else {
-                    items.push(BodyItem::Draw(run(t)));
-                }
-            }
+            0 => push_run!(items, BodyItem::Draw, g.letters(3)),
             1 => items.push(BodyItem::Fixed(g.fixed())),
             _ => {
                 let mut pieces: Vec<Piece> = Vec::new();
                 for _ in 0..g.below(3) {
                     if g.chance(70) {
-                        let t = g.drawing();
-                        if let Some(Piece::Draw(r)) = pieces.last_mut() {
-                            r.text.push_str(&t);
-                        } else {
-                            pieces.push(Piece::Draw(run(t)));
-                        }
+                        push_run!(pieces, Piece::Draw, g.drawing());
                     } else {
                         pieces.push(Piece::Fixed(g.fixed()));
                     }
@@ -792,16 +753,9 @@ fn gen_description(seed: u64) -> Description {
         .collect();
     let mut items: Vec<SeedItem> = Vec::new();
     let mut terms = Terms::new();
-    let push_draw = |items: &mut Vec<SeedItem>, t: String| {
-        if let Some(SeedItem::Draw(r)) = items.last_mut() {
-            r.text.push_str(&t);
-        } else {
-            items.push(SeedItem::Draw(Box::new(run(t))));
-        }
-    };
     for _ in 0..g.below(5) {
         match g.below(5) {
-            0 => push_draw(&mut items, g.drawing()),
+            0 => push_run!(items, SeedItem::Draw, g.drawing()),
             1 => items.push(SeedItem::Fixed(Box::new(g.fixed()))),
             2 => {
                 let (count, loc) = (1 + g.below(3) as u32, Loc::default());
@@ -811,10 +765,10 @@ fn gen_description(seed: u64) -> Description {
             3 => {
                 // A term inside a seed bracket: `[+F`, term, `]`.
                 let open = format!("[{}", g.letters(2));
-                push_draw(&mut items, open);
+                push_run!(items, SeedItem::Draw, open);
                 let t = gen_term(&mut g, &mut terms, &rules, 3);
                 items.push(SeedItem::Term(t));
-                push_draw(&mut items, "]".into());
+                push_run!(items, SeedItem::Draw, "]".into());
             }
             _ => {
                 let t = gen_term(&mut g, &mut terms, &rules, 4);
@@ -1018,28 +972,23 @@ fn mixing_2d_and_3d_is_reported_where_it_happens() {
         (e.0[0].kind.clone(), e.0[0].span.clone().unwrap())
     };
     let src = "T (0, 0, 0) (1, 1) RULE R1: [F]";
-    let at = src.find("(1, 1)").unwrap();
     let mixed = ErrorKind::Stl(StlError::MixedRoots { first: 3, this: 2 });
-    assert_eq!(one(src), (mixed, at..at + 6));
+    assert_eq!(one(src), (mixed, at(src, "(1, 1)", 0)));
     let src = "T (0, 0) RULE R1: [F/F]";
-    let at = src.find('/').unwrap();
     let (kind, span) = one(src);
-    assert_eq!(span, at..at + 1);
+    assert_eq!(span, at(src, "/", 0));
     assert!(matches!(kind, ErrorKind::Stl(StlError::Needs3d { .. })));
     let e = errors(src);
     assert!(e.0[0].help_text().unwrap().contains("`(0, 0, 0)`"));
     // In a seed and in `[I n w]` alike.
     let src = "T (0, 0) RULE R1: [F] SEED [I 2 F^F] ENDSEED";
-    assert_eq!(one(src).1, src.find('^').map(|a| a..a + 1).unwrap());
+    assert_eq!(one(src).1, at(src, "^", 0));
     let src = "T (0, 0) D=5 RULE R1: [F]";
-    let at = src.find("D=5").unwrap();
-    assert_eq!(one(src).1, at..at + 3);
+    assert_eq!(one(src).1, at(src, "D=5", 0));
     let src = "T (0, 0, 0) RULE R1: [F] LAYOUT (clGreen) Rectangle (0, 0), 5, 5 ENDLAYOUT";
-    let at = src.find("Rectangle").unwrap();
     let e = errors(src);
     let wanted = ErrorKind::Layout(LayoutError::FlatShapeIn3d { shape: "Rectangle" });
-    assert_eq!(e.0[0].kind, wanted);
-    assert_eq!(e.0[0].span, Some(at..src.find(" ENDLAYOUT").unwrap()));
+    assert_eq!(one(src), (wanted, at(src, "Rectangle (0, 0), 5, 5", 0)));
     let help = e.0[0].help_text().unwrap();
     let both = [
         "`Extrude Rectangle (0, 0), 5, 5, z1, z2`",

@@ -15,10 +15,26 @@ use stlc::syntax::lsys::parse;
 
 use crate::lsys::{expanded_of, segments_of as segments, sys};
 use crate::support::stlc_stdout as render;
-use crate::support::{limits_with, manifest_path, outcome, stlc_line};
+use crate::support::{limits_with, manifest_path, outcome, stlc_line, stlc_piped};
 
 fn word(s: &LSystem, depth: u32, strategy: Derivation) -> String {
     expanded_of(s, depth, strategy).trim_end().to_string()
+}
+
+/// Fig. 1.27 with `seed`.
+fn fig_1_27(seed: u64) -> LSystem {
+    let mut s = sys(FIG_1_27);
+    s.seed = seed;
+    s
+}
+
+/// The expected stats of `s` at `depth`, over a budget of 10 symbols.
+fn expected(s: &LSystem, depth: u32) -> stlc::interpret::expected::Expected {
+    let tiny = limits_with(|l| l.max_symbols = 10);
+    let StochasticStats::Expected(e) = stochastic_stats(s, depth, &tiny).unwrap() else {
+        panic!("over the budget, the values are expected");
+    };
+    e
 }
 
 const FIG_1_27: &str = "axiom F\nangle 25.7\n\
@@ -110,16 +126,12 @@ proptest! {
 fn the_seed_selects_the_plant() {
     let file = manifest_path("examples/abop-1.27.lsys");
     let f = file.to_str().unwrap();
-    let png = |extra: &[&str]| {
-        let mut a = vec!["render", f, "-o", "-", "--size", "120x120"];
-        a.extend_from_slice(extra);
-        render(&a)
-    };
-    let one = png(&["--seed", "1"]);
-    assert_eq!(one, png(&["--seed", "1"]));
-    assert_ne!(one, png(&["--seed", "2"]));
-    assert_eq!(one, png(&["--seed", "1", "--exact"]));
-    assert_eq!(one, png(&["--seed", "1", "--strategy", "bfs"]));
+    let png = |extra: &str| stlc_piped(&format!("render {f} -o - --size 120x120 {extra}"), "");
+    let one = png("--seed 1");
+    assert_eq!(one, png("--seed 1"));
+    assert_ne!(one, png("--seed 2"));
+    assert_eq!(one, png("--seed 1 --exact"));
+    assert_eq!(one, png("--seed 1 --strategy bfs"));
     // The seed key, and the flag over it.
     let dir = tempfile::tempdir().unwrap();
     let keyed = dir.path().join("keyed.lsys");
@@ -164,11 +176,7 @@ fn counted_stats_are_the_words_counts() {
 /// depth 3, agrees within 4 standard errors.
 #[test]
 fn expected_stats_follow_the_mean_matrix() {
-    let s = sys(FIG_1_27);
-    let tiny = limits_with(|l| l.max_symbols = 10);
-    let StochasticStats::Expected(e) = stochastic_stats(&s, 12, &tiny).unwrap() else {
-        panic!("over the budget, the values are expected");
-    };
+    let e = expected(&sys(FIG_1_27), 12);
     let f12 = 3.68f64.powi(12);
     let segments = e.segments;
     assert!((segments - f12).abs() < 1e-6 * f12, "{segments} vs {f12}");
@@ -180,11 +188,7 @@ fn expected_stats_follow_the_mean_matrix() {
     // Mean over seeds at depth 3.
     let n = 400;
     let counts: Vec<f64> = (0..n)
-        .map(|seed| {
-            let mut s = sys(FIG_1_27);
-            s.seed = seed;
-            word(&s, 3, Dfs).matches('F').count() as f64
-        })
+        .map(|seed| word(&fig_1_27(seed), 3, Dfs).matches('F').count() as f64)
         .collect();
     let mean = counts.iter().sum::<f64>() / n as f64;
     let var = counts.iter().map(|c| (c - mean).powi(2)).sum::<f64>() / (n as f64 - 1.0);
@@ -212,10 +216,7 @@ fn expected_stats_give_exact_bounds_at_any_depth() {
     assert_eq!(fig_1_27_bounds(3).1, 311u32.into());
     let s = sys(FIG_1_27);
     for depth in [3, 40, 100, 1000] {
-        let tiny = limits_with(|l| l.max_symbols = 10);
-        let StochasticStats::Expected(e) = stochastic_stats(&s, depth, &tiny).unwrap() else {
-            panic!("over the budget, the values are expected");
-        };
+        let e = expected(&s, depth);
         let (lo, hi) = fig_1_27_bounds(depth);
         assert_eq!(e.bounds, (lo.clone(), hi.clone()), "depth {depth}");
         let json = StochasticStats::Expected(e.clone()).to_json();
@@ -261,11 +262,9 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
     // word over it is refused before anything is written all the same.
     let mut over = 0;
     for seed in 0..20 {
-        let mut s = sys(FIG_1_27);
-        s.seed = seed;
         // A tenth of 1,200: 120 symbols.
         let mut out = Vec::new();
-        if expand_within(&s, 3, Dfs, 1_200, &mut out).is_err() {
+        if expand_within(&fig_1_27(seed), 3, Dfs, 1_200, &mut out).is_err() {
             over += 1;
             let n = out.len();
             assert!(n == 0, "seed {seed}: wrote {n} bytes first");
@@ -276,11 +275,7 @@ fn a_depth_no_choice_can_fit_is_refused_at_once() {
     assert!(over > 0 && over < 20, "{over} of 20 seeds over 120 symbols");
     // Every seed's word lies within the bounds, and they vary.
     let lens: Vec<usize> = (0..50)
-        .map(|seed| {
-            let mut s = sys(FIG_1_27);
-            s.seed = seed;
-            word(&s, 3, Dfs).len()
-        })
+        .map(|seed| word(&fig_1_27(seed), 3, Dfs).len())
         .collect();
     assert!(lens.iter().all(|l| (66..=311).contains(l)), "{lens:?}");
     assert!(lens.iter().any(|&l| l != lens[0]), "{lens:?}");
@@ -376,10 +371,8 @@ fn probabilities_are_checked() {
 
     let src = "axiom F\nangle 30\nseed -3\n";
     let (kind, span) = first_error(src);
-    assert!(
-        matches!(kind, Lsys(NotWholeNumber { key: "seed", .. })),
-        "{kind:?}"
-    );
+    let whole = matches!(kind, Lsys(NotWholeNumber { key: "seed", .. }));
+    assert!(whole, "{kind:?}");
     assert_eq!(&src[span], "-3");
 }
 
@@ -411,11 +404,9 @@ fn stochastic_rule_forms() {
 fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
     let dir = tempfile::tempdir().unwrap();
     let run = |text: &str, flags: &str| {
-        let f = dir.path().join("s.lsys");
-        std::fs::write(&f, text).unwrap();
         let png = dir.path().join("s.png");
-        let line = format!("render {} -o {} {flags}", f.display(), png.display());
-        let (code, _, err) = outcome(&mut stlc_line(&line));
+        let line = format!("render - --from lsys -o {} {flags}", png.display());
+        let (code, _, err) = outcome(stlc_line(&line).write_stdin(text));
         (Some(code), err)
     };
     // Every choice doubles: 2^20 symbols, over a tenth of 10^6 at once.
@@ -444,11 +435,8 @@ fn a_stochastic_derivation_gets_a_tenth_of_the_symbol_limit() {
 /// scientific notation where six decimals would show nothing.
 #[test]
 fn a_tiny_probability_is_not_printed_as_zero() {
-    let dir = tempfile::tempdir().unwrap();
-    let f = dir.path().join("tiny.lsys");
     let text = "generations 2\naxiom F\nangle 30\nrule F (1e-300) -> F[+F]\nrule F (1) -> F[-F]\n";
-    std::fs::write(&f, text).unwrap();
-    let (_, out, _) = outcome(&mut stlc_line(&format!("check {}", f.display())));
+    let out = stlc_piped("check - --from lsys", text);
     let text = String::from_utf8_lossy(&out);
     assert!(text.contains("(probability 1e-300)"), "{text}");
     assert!(text.contains("(probability 1)"), "{text}");

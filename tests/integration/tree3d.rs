@@ -26,9 +26,8 @@ fn stats_of_a_3d_bed_give_the_worked_ends_of_section_11() {
         ("F&F", [0.0, -1.0, 1.0], [0.0, -1.0, 0.0, 0.0, 0.0, 1.0]),
         ("F/+F", [0.0, -1.0, -1.0], [0.0, -1.0, -1.0, 0.0, 0.0, 0.0]),
     ] {
-        let j = stats_json(&format!(
-            "T\n(0, 0, 0)\nL=1(0) A=90\nRULE\nR1: [F]\nSEED\n{word}\nENDSEED\n"
-        ));
+        let bed = format!("T\n(0, 0, 0)\nL=1(0) A=90\nRULE\nR1: [F]\nSEED\n{word}\nENDSEED\n");
+        let j = stats_json(&bed);
         assert_eq!(j["dimensions"], 3, "{word}");
         assert_eq!(j["stems"], "2", "{word}");
         assert_eq!(numbers(&j["end"]), end, "{word}");
@@ -82,8 +81,8 @@ fn the_front_view_of_a_planar_3d_bed_is_the_2d_picture() {
         let draw = |text: &str, view: Option<View>| {
             let (mut req, mut out) = (bed_request(text), Vec::new());
             (req.image, req.view) = (image, view);
-            req.render(&mut out, &mut stlc::pipeline::NoProgress)
-                .unwrap();
+            let quiet = &mut stlc::pipeline::NoProgress;
+            req.render(&mut out, quiet).unwrap();
             out
         };
         let a = draw(flat, None);
@@ -101,21 +100,16 @@ fn obj_vertices(obj: &str) -> Vec<[f64; 3]> {
     obj.lines()
         .filter_map(|l| l.strip_prefix("v "))
         .map(|l| {
-            let v: Vec<f64> = l
-                .split_whitespace()
-                .take(3)
-                .map(|x| x.parse().unwrap())
-                .collect();
-            [v[0], v[1], v[2]]
+            let mut v = l.split_whitespace().map(|x| x.parse().unwrap());
+            [0; 3].map(|_| v.next().unwrap())
         })
         .collect()
 }
 
 fn obj(text: &str) -> String {
     let (mut out, mut progress) = (Vec::new(), stlc::pipeline::NoProgress);
-    bed_request(text)
-        .mesh(MeshFormat::Obj, &mut out, &mut progress)
-        .unwrap();
+    let req = bed_request(text);
+    req.mesh(MeshFormat::Obj, &mut out, &mut progress).unwrap();
     String::from_utf8(out).unwrap()
 }
 
@@ -159,8 +153,8 @@ fn a_3d_od_grows_into_a_3d_bed() {
     stlc_piped(&format!("compile --from od -o {} -", bed.display()), od);
     let text = std::fs::read_to_string(&bed).unwrap();
     assert!(text.starts_with("T\n(0, 0, 0)\n"), "{text}");
-    let out =
-        String::from_utf8(stlc_piped(&format!("stats --json {}", bed.display()), "")).unwrap();
+    let out = stlc_piped(&format!("stats --json {}", bed.display()), "");
+    let out = String::from_utf8(out).unwrap();
     let json = "{\"dimensions\": 3, \"symbols\": \"11\", \"stems\": \"3\", \
          \"bbox\": [0.000000, -15.000000, 0.000000, 0.000000, 0.000000, 5.000000], \
          \"end\": [0.000000, -10.000000, 0.000000]}";
@@ -206,23 +200,19 @@ fn show_layout_paints_the_volumes_of_a_3d_tree() {
     let od = "T (0, 0, 0) L=10(5) B=1(0) A=90 RULE R1: [&F][/F] SEED F R1 ENDSEED \
               LAYOUT (clGreen) Box (-20, -30, -20), 40, 40, 40 ENDLAYOUT";
     let svg = |flag: Option<&str>| {
-        let line = format!(
-            "render --from od --view 0,0 -f svg -o - - {}",
-            flag.unwrap_or("")
-        );
+        let flag = flag.unwrap_or("");
+        let line = format!("render --from od --view 0,0 -f svg -o - - {flag}");
         String::from_utf8(stlc_piped(&line, od)).unwrap()
     };
     assert!(!svg(None).contains("#aad5aa"));
     let shown = svg(Some("--show-layout"));
-    let line = shown
-        .lines()
-        .find(|l| l.contains("fill=\"#aad5aa\""))
-        .unwrap_or_else(|| panic!("{shown}"));
+    let line = shown.lines().find(|l| l.contains("fill=\"#aad5aa\""));
+    let line = line.unwrap_or_else(|| panic!("{shown}"));
     // The points of a path's `d`, as (xs, ys).
     let points = |line: &str| -> (Vec<f64>, Vec<f64>) {
         let d = line.split("d=\"").nth(1).unwrap();
-        let v: Vec<f64> = d
-            .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+        let numbers = d.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'));
+        let v: Vec<f64> = numbers
             .filter(|t| !t.is_empty())
             .map(|t| t.parse().unwrap())
             .collect();
@@ -233,10 +223,8 @@ fn show_layout_paints_the_volumes_of_a_3d_tree() {
         v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
     };
     // The trunk and the rolled branch: one vertical line 15 units long.
-    let trunk = shown
-        .lines()
-        .find(|l| l.contains("stroke=\"#4a2c12\""))
-        .unwrap();
+    let trunk = shown.lines().find(|l| l.contains("stroke=\"#4a2c12\""));
+    let trunk = trunk.unwrap();
     let (_, ty) = points(trunk);
     let unit = span(&ty) / 15.0;
     assert!((span(&xs) / unit - 40.0).abs() < 0.01, "{line}");
@@ -249,11 +237,8 @@ fn show_layout_paints_the_volumes_of_a_3d_tree() {
 fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
     let od = manifest_path("examples/oak3d.od");
     let run = |line: &str| stlc_piped(&format!("{line} {}", od.display()), "");
-    for line in [
-        "compile -o -",
-        "render --view 30,20 -f png -o -",
-        "render --mesh glb -o -",
-    ] {
+    let lines = ["compile -o -", "render --view 30,20 -f png -o -"];
+    for line in lines.into_iter().chain(["render --mesh glb -o -"]) {
         let first = run(line);
         assert!(first.len() > 1000, "{line}");
         assert_eq!(first, run(line), "{line}");
@@ -266,20 +251,17 @@ fn the_3d_oak_grows_draws_and_meshes_the_same_bytes_twice() {
 /// examples, both growth orders.
 #[test]
 fn growth_and_the_grown_bed_draw_the_same_3d_stems() {
-    use stlc::grow::{GrowthOrder, grow_traced};
+    use stlc::grow::{GrowthOrder, PlacedStem, grow_traced};
     use stlc::interpret::{Derivation::Dfs, bed3::draw3};
     use stlc::progress::NoProgress;
     for name in ["examples/oak3d.od", "examples/forest3d.od"] {
-        let text = std::fs::read_to_string(manifest_path(name)).unwrap();
-        let od = crate::support::od(&text);
+        let od = crate::support::od(&std::fs::read_to_string(manifest_path(name)).unwrap());
         for growth in [GrowthOrder::Bfs, GrowthOrder::Dfs] {
             let opts = crate::support::opts(growth);
             let (grown, placed) = grow_traced(&od, &opts, &mut NoProgress).unwrap();
             let key = |a: [f64; 6]| a.map(f64::to_bits);
-            let mut grew: Vec<[u64; 6]> = placed
-                .iter()
-                .map(|p| key([p.from.x, p.from.y, p.z[0], p.to.x, p.to.y, p.z[1]]))
-                .collect();
+            let ends = |p: &PlacedStem| key([p.from.x, p.from.y, p.z[0], p.to.x, p.to.y, p.z[1]]);
+            let mut grew: Vec<[u64; 6]> = placed.iter().map(ends).collect();
             let mut drawn = Vec::new();
             let mut push = |s: stlc::turtle::turtle3::Segment3| {
                 let (a, b) = (s.from, s.to);
@@ -345,10 +327,8 @@ fn the_front_view_of_a_planar_3d_od_is_fitted_as_its_2d_picture() {
     // The 2D picture: the layout 300 x 240 (plus margins) fitted to 800 wide.
     assert_eq!(png_size(&a), (800, 653));
     assert_eq!(png_size(&b), png_size(&a));
-    assert!(
-        a == b,
-        "the front view's pixels differ from the 2D picture's"
-    );
+    let same = a == b;
+    assert!(same, "the front view's pixels differ from the 2D picture's");
     // Another view of the same OD is framed by the volume seen from there.
     assert_ne!(png_size(&render_od(&deep, Some("30,20"))), (800, 653));
 }
