@@ -72,24 +72,19 @@ fn the_gallery_is_the_same_with_and_without_the_skips() {
     runs.push(("abop-1.24a.lsys", 9, false, big));
     for (name, depth, exact, size) in runs {
         let text = example(name);
-        {
-            {
-                let with = png(&text, exact, size, Some(depth), false);
-                let without = png(&text, exact, size, Some(depth), true);
-                assert!(
-                    with == without,
-                    "{name} depth {depth} exact {exact} size {size:?}: the skips changed the picture"
-                );
-            }
-        }
+        let with = png(&text, exact, size, Some(depth), false);
+        let without = png(&text, exact, size, Some(depth), true);
+        let what = format!("{name} depth {depth} exact {exact} size {size:?}");
+        assert!(with == without, "{what}: the skips changed the picture");
     }
 }
 
 #[test]
 fn a_square_drawn_over_and_over_is_the_same_and_costs_a_few_strokes() {
-    // 200,000 `F+` at 90 degrees: 50,000 times round one square, in
-    // batches that are all the same path.
-    let text = format!("axiom {}\nangle 90\n", "F+".repeat(200_000));
+    // 20,000 `F+` at 90 degrees: 5,000 times round one square, in
+    // batches that are all the same path. (benches/pixels.sh times 2
+    // million.)
+    let text = format!("axiom {}\nangle 90\n", "F+".repeat(20_000));
     let with = png(&text, true, None, Some(0), false);
     let without = png(&text, true, None, Some(0), true);
     assert!(with == without, "the skips changed the picture");
