@@ -384,26 +384,38 @@ async fn numbers_scrub(c: &Client) {
 /// roots) timed on the same main thread before and after, the slower of
 /// the two (about 25 ms on an idle machine, so about 200 ms: growth on
 /// the page's thread, or a redraw per stem, takes several times that).
-/// A ratio measured side by side, so a loaded machine slows both.
+/// A ratio measured side by side, so a loaded machine slows both; and the
+/// best of three rounds, since a task the machine's load stretched (other
+/// tests' browsers and builds beside this one) is not the page's: a page
+/// that stalls stalls in every round.
 async fn main_thread_stalls(c: &Client) {
     new_from(c, "grove.od").await;
     settled(c).await;
-    let unit = js_unit(c).await;
     let observe = "window.__longest = 0; new PerformanceObserver((l) => { for (const e of l.getEntries()) window.__longest = Math.max(window.__longest, e.duration); }).observe({type: 'longtask', buffered: false}); return 0;";
     js(c, observe).await;
-    for k in 0..5 {
-        let text = editor_text(c).await;
-        set_value(c, "#source", &format!("{text}\n# {k}")).await;
-        settled(c).await;
+    let mut rounds = Vec::new();
+    for round in 0..3 {
+        let unit = js_unit(c).await;
+        js(c, "window.__longest = 0; return 0").await;
+        for k in 0..5 {
+            let text = editor_text(c).await;
+            set_value(c, "#source", &format!("{text}\n# {round}.{k}")).await;
+            settled(c).await;
+        }
+        let longest = js(c, "return window.__longest").await.as_f64().unwrap();
+        let unit = unit.max(js_unit(c).await);
+        let units = longest / unit;
+        eprintln!(
+            "longest main-thread task while editing grove.od: {longest:.0} ms ({units:.1} units of {unit:.0} ms)"
+        );
+        rounds.push(format!(
+            "{longest:.0} ms, {units:.1} times the {unit:.0} ms unit"
+        ));
+        if longest < 8.0 * unit {
+            return;
+        }
     }
-    let longest = js(c, "return window.__longest").await.as_f64().unwrap();
-    let unit = unit.max(js_unit(c).await);
-    let units = longest / unit;
-    eprintln!(
-        "longest main-thread task while editing grove.od: {longest:.0} ms ({units:.1} units of {unit:.0} ms)"
-    );
-    let stall = format!("a {longest} ms stall, {units:.1} times the {unit:.0} ms unit");
-    assert!(longest < 8.0 * unit, "{stall}");
+    panic!("a stall in every round: {rounds:?}");
 }
 
 /// The median of three timings, in ms, of ten million square roots on the
